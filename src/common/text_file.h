@@ -1,0 +1,22 @@
+// Whole-file reads and atomic writes. Every file dynosize writes (catalog entries, reports,
+// figures, CSV results) goes to a temporary file in the same folder that is renamed into place,
+// so that a killed or failed run leaves the earlier file intact.
+#pragma once
+
+#include <cstddef>
+#include <string>
+
+namespace dynosize {
+
+// Reads a whole file. Throws NoInputError when it is missing or unreadable (naming the path and
+// the system's reason), DataError when it is larger than max_bytes.
+std::string ReadTextFile(const std::string& path, std::size_t max_bytes);
+
+// Writes `content` to `path` atomically: a temporary file beside it, flushed and fsynced, then
+// rename(2). Throws CantCreateError naming the path and the reason.
+void WriteFileAtomic(const std::string& path, const std::string& content);
+
+// Creates a folder (and its parents) for output; CantCreateError when impossible.
+void MakeOutputDir(const std::string& dir);
+
+}  // namespace dynosize

@@ -1,0 +1,180 @@
+// The combined motor + ESC model of Brown & Chopra (../shared/docs/model.md), closed form.
+//
+// One "drive" is a motor and the controller that feeds it. Both motor types share the
+// quasi-single-phase circuit
+//
+//     kv * VDC * TR_eff = (Rm + RESC) * I + KE * omega          (BLDC: eq 48; brushed: eq 15)
+//     Q = KT * (I - Io)                                          (eq 42 / eq 2)
+//
+// with kv = 3/(sqrt(2)*pi) for a BLDC (eq 46, I is the rms phase current Irms and the voltage
+// the line-line rms VLL,rms) and kv = 1 for a brushed motor (I and V are DC at the terminals).
+// The remaining outputs follow:
+//
+//     VLL,rms = kv*VDC*TR_eff - RESC*I                           (47)
+//     PAC     = kp * VLL,rms * I, kp = sqrt(27/10) BLDC, 1 brushed  (41, 51)
+//     IDC     = (C1*TR_eff + C0) * I                             (57)
+//     PDC     = VDC * IDC,  PESC = PDC - PAC                     (59, 52)
+//     Pmech   = Q * omega                                        (50)
+//     eta_motor = Pmech/PAC, eta_esc = PAC/PDC (53), eta_system = Pmech/PDC (13)
+//
+// ESC saturation (model.md section 7): TR_eff = TR up to tr_sat, tr_sat + sat_slope*(TR -
+// tr_sat) above it; TR_eff is used in both (47) and (57).
+//
+// For a brushed motor fed by the paper's voltage regulator (eqs 15-18: the motor sees VDC*TR,
+// the input power is VDC*I) use an ESC with C1 = 0, C0 = 1; an ideal PWM chopper is C1 = 1,
+// C0 = 0.
+//
+// The model does no I/O and allocates nothing per point. Every function is closed form.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "common/units.h"
+
+namespace dynosize {
+
+enum class MotorType { kBldc, kBrushed };
+
+struct MotorParams {
+  MotorType type = MotorType::kBldc;
+  double ke_v_s_per_rad = 0.0;  // back-EMF constant (BLDC: line-line rms volts per rad/s)
+  double kt_nm_per_a = 0.0;     // torque constant (BLDC: per rms ampere)
+  double rm_ohm = 0.0;          // winding resistance of the quasi-single-phase circuit
+  double io_a = 0.0;            // no-load current
+  // Ratings; +inf when the catalog gives none.
+  double max_current_a = std::numeric_limits<double>::infinity();
+  double max_power_w = std::numeric_limits<double>::infinity();
+};
+
+struct EscParams {
+  double resc_ohm = 0.0;  // equivalent series resistance (eq 47)
+  // DC/AC current ratio IDC/Irms = c1*TR_eff + c0 (eq 57). Defaults: the ideal ESC (eq 56).
+  double c1 = kIdealIdcPerIrmsPerThrottle;
+  double c0 = 0.0;
+  double tr_sat = 1.0;     // throttle above which the ESC saturates (section 7)
+  double sat_slope = 1.0;  // fraction of the nominal voltage slope delivered above tr_sat
+  double max_current_a = std::numeric_limits<double>::infinity();
+  double vdc_max_v = std::numeric_limits<double>::infinity();
+};
+
+// A load torque law Q = a + b*omega + c*omega^2 (a propeller: c > 0; a hysteresis brake: b = c
+// = 0; viscous friction: b > 0).
+struct TorqueLaw {
+  double a_nm = 0.0;
+  double b_nm_s_per_rad = 0.0;
+  double c_nm_s2_per_rad2 = 0.0;
+};
+
+// Why an operating point is not feasible; bits of OperatingPoint::limits.
+enum Limit : std::uint32_t {
+  kLimitNone = 0,
+  kLimitThrottleAboveOne = 1u << 0,  // the required throttle exceeds 100 %
+  kLimitThrottleBelowZero = 1u << 1, // the required throttle is negative
+  kLimitMotorCurrent = 1u << 2,      // max(IDC, Irms) above the motor's current rating
+  kLimitEscCurrent = 1u << 3,        // max(IDC, Irms) above the ESC's current rating
+  kLimitMotorPower = 1u << 4,        // PAC above the motor's power rating
+  kLimitEscVoltage = 1u << 5,        // VDC above the ESC's voltage rating
+  kLimitStalled = 1u << 6,           // the load torque exceeds the stall torque: omega = 0
+  kLimitOverrunning = 1u << 7,       // omega above no-load speed: the load drives the motor
+};
+
+// Names of the set bits, in bit order ("throttle_above_one", "motor_current", ...).
+std::vector<std::string> LimitNames(std::uint32_t limits);
+
+struct OperatingPoint {
+  double vdc_v = 0.0;
+  double throttle = 0.0;
+  double throttle_effective = 0.0;
+  bool saturated = false;
+  double omega_rad_s = 0.0;
+  double rpm = 0.0;
+  double torque_nm = 0.0;
+  double irms_a = 0.0;     // BLDC: rms phase current; brushed: DC motor current
+  double vll_rms_v = 0.0;  // BLDC: line-line rms voltage; brushed: terminal voltage
+  double pac_w = 0.0;
+  double idc_a = 0.0;
+  double pdc_w = 0.0;
+  double pesc_w = 0.0;
+  double pmech_w = 0.0;
+  double eta_motor = 0.0;
+  double eta_esc = 0.0;
+  double eta_system = 0.0;
+  std::uint32_t limits = kLimitNone;
+  bool feasible() const { return limits == kLimitNone; }
+};
+
+// Structure-of-arrays results for the batch path (no per-point allocation).
+struct OperatingPointBatch {
+  std::vector<double> omega_rad_s, torque_nm, irms_a, vll_rms_v, pac_w, idc_a, pdc_w, pesc_w,
+      pmech_w, eta_motor, eta_esc, eta_system, throttle_effective;
+  void Resize(std::size_t n);
+  std::size_t size() const { return omega_rad_s.size(); }
+};
+
+class Drive {
+ public:
+  Drive(const MotorParams& motor, const EscParams& esc);
+
+  const MotorParams& motor() const { return motor_; }
+  const EscParams& esc() const { return esc_; }
+  // Total series resistance Rm + RESC of eq (48).
+  double r_total_ohm() const { return r_total_ohm_; }
+  // kv of eq (46): 3/(sqrt(2)*pi) for a BLDC, 1 for a brushed motor.
+  double volt_factor() const { return volt_factor_; }
+
+  // Section 7: TR_eff = TR (TR <= tr_sat), tr_sat + sat_slope*(TR - tr_sat) above.
+  double EffectiveThrottle(double throttle) const;
+  // Inverse of EffectiveThrottle (sat_slope > 0).
+  double ThrottleFromEffective(double throttle_effective) const;
+
+  // Forward model: VDC and throttle given, the load sets the operating point.
+  // Constant torque (a hysteresis brake, model.md section 1).
+  OperatingPoint AtTorque(double vdc_v, double throttle, double torque_nm) const;
+  // Fixed speed (a speed-controlled dyno).
+  OperatingPoint AtSpeed(double vdc_v, double throttle, double omega_rad_s) const;
+  // Torque law Q = a + b*omega + c*omega^2 (a propeller): the positive root of a quadratic.
+  OperatingPoint AtLoad(double vdc_v, double throttle, const TorqueLaw& load) const;
+
+  // Inverse model: the throttle that holds (torque, speed) at VDC. Infeasible (flagged in
+  // limits) above 100 % throttle or over a current limit; the numbers are still computed.
+  OperatingPoint Inverse(double vdc_v, double torque_nm, double omega_rad_s) const;
+
+  // Derived points at a given VDC and throttle.
+  // No-load speed omega_NL = (kv*VDC*TR_eff - Io*R)/KE (eq 49 with Q = 0).
+  double NoLoadSpeed(double vdc_v, double throttle) const;
+  // Stall torque KT*(kv*VDC*TR_eff/R - Io) (eq 49 with omega = 0).
+  double StallTorque(double vdc_v, double throttle) const;
+  // Maximum mechanical power speed omega_NL/2 (eq 12, eq 50).
+  double MaxPowerSpeed(double vdc_v, double throttle) const;
+  // Speed of maximum system efficiency Pmech/PDC at fixed throttle: the analogue of eq (14),
+  // omega_opt = (U - sqrt(Io*R*U))/KE with U = kv*VDC*TR_eff and R = Rm + RESC. It holds
+  // because PDC = VDC*(C1*TR_eff + C0)*I is proportional to I at fixed throttle, exactly as
+  // the brushed motor's VDC*I in eq (13).
+  double MaxEfficiencySpeed(double vdc_v, double throttle) const;
+  // ESC timing figure (t_on + t_off)*f_sw of eq (62): (C1 - (3/pi)*sqrt(27/20))*TR_eff + C0.
+  double EscTimingFigure(double throttle) const;
+
+  // Batch forward model for a torque law per point, Q_i = a_i + b_i*omega + c_i*omega^2 (pass
+  // b = c = nullptr for a constant torque a_i). Writes out[i]; limits are not evaluated here
+  // (use AtLoad for a single checked point). Branch-free so that the compiler vectorises it.
+  void AtLoadBatch(std::size_t n, const double* vdc_v, const double* throttle, const double* a_nm,
+                   const double* b_nm_s_per_rad, const double* c_nm_s2_per_rad2,
+                   OperatingPointBatch* out) const;
+
+ private:
+  // Fills every output from (VDC, TR, omega, I); shared by all entry points.
+  OperatingPoint Complete(double vdc_v, double throttle, double omega_rad_s, double current_a,
+                          std::uint32_t limits) const;
+
+  MotorParams motor_;
+  EscParams esc_;
+  double r_total_ohm_;
+  double volt_factor_;
+  double power_factor_;
+};
+
+}  // namespace dynosize

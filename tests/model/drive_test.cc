@@ -1,0 +1,257 @@
+#include "model/drive.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+#include "catalog/catalog.h"
+#include "common/units.h"
+
+namespace dynosize {
+namespace {
+
+// Closed-form results agree with hand algebra to rounding: a few hundred ulps of the largest
+// term involved.
+constexpr double kClosedFormRelTol = 1e-12;
+// Numerical maxima found by golden-section search to 1e-10 of the bracket: the located argmax
+// of a smooth function is only good to about sqrt(1e-10)*scale, hence 1e-5 relative.
+constexpr double kArgmaxRelTol = 1e-5;
+
+MotorParams TestMotor() {
+  MotorParams m;
+  m.ke_v_s_per_rad = 0.0037745;
+  m.kt_nm_per_a = kPacPerVllIrms * m.ke_v_s_per_rad;
+  m.rm_ohm = 0.12;
+  m.io_a = 0.5;
+  return m;
+}
+
+EscParams TestEsc() {
+  EscParams e;
+  e.resc_ohm = 0.02;
+  e.c1 = 1.2;
+  e.c0 = 0.03;
+  e.tr_sat = 0.9;
+  e.sat_slope = 0.61;
+  return e;
+}
+
+// Maximises f on [lo, hi] by golden-section search.
+template <typename F>
+double ArgMax(F f, double lo, double hi) {
+  const double g = (std::sqrt(5.0) - 1.0) / 2.0;
+  double a = lo, b = hi;
+  while (b - a > 1e-10 * (hi - lo)) {
+    const double x1 = b - g * (b - a), x2 = a + g * (b - a);
+    if (f(x1) < f(x2)) a = x1; else b = x2;
+  }
+  return 0.5 * (a + b);
+}
+
+TEST(Constants, PaperIdentities) {
+  EXPECT_NEAR(kVllRmsPerVdc, 3.0 / (std::sqrt(2.0) * kPi), 1e-15);
+  EXPECT_NEAR(kVllRmsPerVdc, 0.675, 0.0003);  // eq (46) "~0.675"
+  EXPECT_NEAR(kPacPerVllIrms, std::sqrt(27.0 / 10.0), 1e-15);  // eq (41)
+  EXPECT_NEAR(kIdealIdcPerIrmsPerThrottle, 3.0 / kPi * std::sqrt(27.0 / 20.0), 1e-15);
+  EXPECT_NEAR(kIdealIdcPerIrmsPerThrottle, 10.0 / 9.0, 0.002);  // eq (56) "~10/9"
+  // The ideal ESC moves power without loss: sqrt(27/10)*0.675 = (3/pi)*sqrt(27/20).
+  EXPECT_NEAR(kPacPerVllIrms * kVllRmsPerVdc, kIdealIdcPerIrmsPerThrottle, 1e-15);
+  // Section 8: Kv = 1900 rpm/V gives KE = 0.675/(1900*pi/30).
+  EXPECT_NEAR(KeFromKvBldc(1900.0), 3.0 / (std::sqrt(2.0) * kPi) / (1900.0 * kPi / 30.0), 1e-15 * 0.0034);
+}
+
+TEST(Drive, IdealEscHasUnitEfficiencyAndTenNinthsRatio) {
+  MotorParams m = TestMotor();
+  EscParams ideal;  // defaults: resc 0, c1 = (3/pi)*sqrt(27/20), c0 0, no saturation
+  const Drive d(m, ideal);
+  for (double tr : {0.3, 0.6, 1.0}) {
+    const OperatingPoint p = d.AtTorque(11.1, tr, 0.05);
+    EXPECT_NEAR(p.idc_a / p.irms_a, kIdealIdcPerIrmsPerThrottle * tr, kClosedFormRelTol);  // (56)
+    EXPECT_NEAR(p.eta_esc, 1.0, 1e-12);
+    EXPECT_NEAR(p.pesc_w, 0.0, 1e-10 * p.pdc_w);
+  }
+}
+
+TEST(Drive, ForwardSatisfiesCircuitAndPowerBalance) {
+  const Drive d(TestMotor(), TestEsc());
+  const OperatingPoint p = d.AtTorque(7.2, 0.6, 0.04);
+  const auto& m = d.motor();
+  const auto& e = d.esc();
+  // (48): 0.675*VDC*TR = (RESC + Rm)*Irms + KE*omega.
+  EXPECT_NEAR(kVllRmsPerVdc * 7.2 * 0.6, (e.resc_ohm + m.rm_ohm) * p.irms_a + m.ke_v_s_per_rad * p.omega_rad_s,
+              kClosedFormRelTol * 7.2);
+  EXPECT_NEAR(p.torque_nm, 0.04, 1e-15);
+  // PESC closed form of model.md section 6 equals PDC - PAC.
+  const double pesc = 7.2 * p.irms_a * ((e.c1 - kIdealIdcPerIrmsPerThrottle) * 0.6 + e.c0) +
+                      kPacPerVllIrms * e.resc_ohm * p.irms_a * p.irms_a;
+  EXPECT_NEAR(p.pesc_w, pesc, kClosedFormRelTol * p.pdc_w);
+  // Motor losses: copper sqrt(27/10)*I^2*Rm plus no-load KT*Io*omega when KT = sqrt(27/10)*KE.
+  EXPECT_NEAR(p.pac_w - p.pmech_w,
+              kPacPerVllIrms * p.irms_a * p.irms_a * m.rm_ohm + m.kt_nm_per_a * m.io_a * p.omega_rad_s,
+              kClosedFormRelTol * p.pac_w);
+  EXPECT_NEAR(p.eta_system, p.eta_motor * p.eta_esc, 1e-14);
+  EXPECT_TRUE(p.feasible());
+  EXPECT_FALSE(p.saturated);
+}
+
+TEST(Drive, BrushedMaxPowerAtHalfNoLoadSpeedAndEq14Optimum) {
+  MotorParams m;
+  m.type = MotorType::kBrushed;
+  m.ke_v_s_per_rad = 0.01;
+  m.kt_nm_per_a = 0.01;
+  m.rm_ohm = 0.3;
+  m.io_a = 0.4;
+  EscParams regulator;  // the paper's voltage regulator: input power VDC*I (eqs 13, 18)
+  regulator.c1 = 0.0;
+  regulator.c0 = 1.0;
+  const Drive d(m, regulator);
+  const double v = 12.0;
+  const double w_nl = d.NoLoadSpeed(v, 1.0);
+  EXPECT_NEAR(w_nl, (v - m.io_a * m.rm_ohm) / m.ke_v_s_per_rad, kClosedFormRelTol * w_nl);
+  EXPECT_NEAR(d.StallTorque(v, 1.0), m.kt_nm_per_a * (v / m.rm_ohm - m.io_a), 1e-12);
+  const double w_p = ArgMax([&](double w) { return d.AtSpeed(v, 1.0, w).pmech_w; }, 0.0, w_nl);
+  EXPECT_NEAR(w_p, w_nl / 2.0, kArgmaxRelTol * w_nl);  // (12)
+  EXPECT_NEAR(d.MaxPowerSpeed(v, 1.0), w_nl / 2.0, 1e-9);
+  // (14): omega_opt = (V - sqrt(Io*Rm*V))/KE maximises eta_sys = Pm/(V*I).
+  const double w_opt_14 = (v - std::sqrt(m.io_a * m.rm_ohm * v)) / m.ke_v_s_per_rad;
+  const double w_opt = ArgMax([&](double w) { return d.AtSpeed(v, 1.0, w).eta_system; }, 0.0, w_nl);
+  EXPECT_NEAR(w_opt, w_opt_14, kArgmaxRelTol * w_nl);
+  EXPECT_NEAR(d.MaxEfficiencySpeed(v, 1.0), w_opt_14, kClosedFormRelTol * w_nl);
+  // With the regulator the input power is V*I (eq 13).
+  const OperatingPoint p = d.AtSpeed(v, 1.0, w_opt);
+  EXPECT_NEAR(p.pdc_w, v * p.irms_a, 1e-12 * p.pdc_w);
+  // "Typical: omega_opt is 75-95 % of omega_NL".
+  EXPECT_GT(w_opt / w_nl, 0.75);
+  EXPECT_LT(w_opt / w_nl, 0.95);
+}
+
+TEST(Drive, CombinedOptimumAgainstNumericalMaximum) {
+  const Drive d(TestMotor(), TestEsc());
+  for (double tr : {0.4, 0.7, 0.95}) {
+    const double w_nl = d.NoLoadSpeed(14.8, tr);
+    const double w_num =
+        ArgMax([&](double w) { return d.AtSpeed(14.8, tr, w).eta_system; }, 0.0, w_nl);
+    EXPECT_NEAR(d.MaxEfficiencySpeed(14.8, tr), w_num, kArgmaxRelTol * w_nl) << "TR " << tr;
+    const double w_p = ArgMax([&](double w) { return d.AtSpeed(14.8, tr, w).pmech_w; }, 0.0, w_nl);
+    EXPECT_NEAR(d.MaxPowerSpeed(14.8, tr), w_p, kArgmaxRelTol * w_nl);
+  }
+}
+
+TEST(Drive, ForwardInverseRoundTrip) {
+  const Drive d(TestMotor(), TestEsc());
+  std::mt19937 rng(20261121);
+  std::uniform_real_distribution<double> tr_dist(0.15, 1.0), q_dist(0.0, 0.08),
+      v_dist(7.0, 16.8);
+  for (int k = 0; k < 500; ++k) {
+    const double v = v_dist(rng), tr = tr_dist(rng), q = q_dist(rng);
+    const OperatingPoint fwd = d.AtTorque(v, tr, q);
+    if (!fwd.feasible()) continue;  // stalled points have no inverse
+    const OperatingPoint inv = d.Inverse(v, fwd.torque_nm, fwd.omega_rad_s);
+    EXPECT_NEAR(inv.throttle, tr, 1e-12) << "v " << v << " q " << q;
+    EXPECT_NEAR(inv.irms_a, fwd.irms_a, 1e-12 * (1 + fwd.irms_a));
+    EXPECT_EQ(inv.saturated, fwd.saturated);
+    const OperatingPoint spd = d.AtSpeed(v, tr, fwd.omega_rad_s);
+    EXPECT_NEAR(spd.torque_nm, q, 1e-12);
+  }
+}
+
+TEST(Drive, PropellerLoadMatchesQuadraticLaw) {
+  const Drive d(TestMotor(), TestEsc());
+  const TorqueLaw prop{0.001, 2e-6, 1.2e-7};
+  for (double tr : {0.2, 0.5, 0.9, 1.0}) {
+    const OperatingPoint p = d.AtLoad(11.1, tr, prop);
+    const double w = p.omega_rad_s;
+    EXPECT_NEAR(p.torque_nm, prop.a_nm + prop.b_nm_s_per_rad * w + prop.c_nm_s2_per_rad2 * w * w,
+                1e-12);
+    EXPECT_GT(w, 0.0);
+  }
+}
+
+TEST(Drive, SaturationAboveKneeReducesSlope) {
+  const Drive d(TestMotor(), TestEsc());
+  EXPECT_DOUBLE_EQ(d.EffectiveThrottle(0.8), 0.8);
+  EXPECT_NEAR(d.EffectiveThrottle(1.0), 0.9 + 0.61 * 0.1, 1e-15);
+  EXPECT_NEAR(d.ThrottleFromEffective(d.EffectiveThrottle(0.97)), 0.97, 1e-15);
+  EXPECT_TRUE(d.AtTorque(7.2, 0.95, 0.01).saturated);
+  EXPECT_FALSE(d.AtTorque(7.2, 0.9, 0.01).saturated);
+}
+
+TEST(Drive, LimitsAreFlagged) {
+  MotorParams m = TestMotor();
+  m.max_current_a = 5.0;
+  EscParams e = TestEsc();
+  e.vdc_max_v = 12.0;
+  const Drive d(m, e);
+  // Inverse above full throttle.
+  const double w_nl_full = d.NoLoadSpeed(7.2, 1.0);
+  OperatingPoint p = d.Inverse(7.2, 0.01, 1.2 * w_nl_full);
+  EXPECT_TRUE(p.limits & kLimitThrottleAboveOne);
+  EXPECT_GT(p.throttle, 1.0);
+  // Over the motor's current rating.
+  p = d.AtTorque(7.2, 0.9, 0.06);
+  EXPECT_TRUE(p.limits & kLimitMotorCurrent) << p.irms_a;
+  // Load above stall torque: stalled, omega 0, never negative.
+  p = d.AtTorque(7.2, 0.1, 1.0);
+  EXPECT_TRUE(p.limits & kLimitStalled);
+  EXPECT_EQ(p.omega_rad_s, 0.0);
+  // Supply over the ESC rating.
+  EXPECT_TRUE(d.AtTorque(14.8, 0.5, 0.01).limits & kLimitEscVoltage);
+  // Driven beyond no-load speed.
+  EXPECT_TRUE(d.AtSpeed(7.2, 0.5, 2.0 * d.NoLoadSpeed(7.2, 0.5)).limits & kLimitOverrunning);
+  EXPECT_EQ(LimitNames(kLimitMotorCurrent | kLimitStalled),
+            (std::vector<std::string>{"motor_current", "stalled"}));
+}
+
+TEST(Drive, EscTimingFigureEq62) {
+  const Drive d(TestMotor(), TestEsc());
+  EXPECT_NEAR(d.EscTimingFigure(0.5), (1.2 - kIdealIdcPerIrmsPerThrottle) * 0.5 + 0.03, 1e-15);
+  // Derived from PESC: the switching-like part over VDC*Irms.
+  const OperatingPoint p = d.AtTorque(7.2, 0.5, 0.03);
+  const double conduction = kPacPerVllIrms * 0.02 * p.irms_a * p.irms_a;
+  EXPECT_NEAR((p.pesc_w - conduction) / (7.2 * p.irms_a), d.EscTimingFigure(0.5), 1e-12);
+}
+
+TEST(Drive, BatchEqualsScalar) {
+  const Drive d(TestMotor(), TestEsc());
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  const std::size_t n = 257;  // not a multiple of the vector width
+  std::vector<double> v(n), tr(n), a(n), b(n), c(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    v[i] = 7 + 10 * u(rng);
+    tr[i] = u(rng);
+    a[i] = 0.05 * u(rng);
+    b[i] = 1e-5 * u(rng);
+    c[i] = 2e-7 * u(rng);
+  }
+  OperatingPointBatch out;
+  d.AtLoadBatch(n, v.data(), tr.data(), a.data(), b.data(), c.data(), &out);
+  for (std::size_t i = 0; i < n; ++i) {
+    const OperatingPoint p = d.AtLoad(v[i], tr[i], TorqueLaw{a[i], b[i], c[i]});
+    EXPECT_NEAR(out.omega_rad_s[i], p.omega_rad_s, 1e-9 * (1 + p.omega_rad_s)) << i;
+    EXPECT_NEAR(out.torque_nm[i], p.torque_nm, 1e-12) << i;
+    EXPECT_NEAR(out.pdc_w[i], p.pdc_w, 1e-9 * (1 + p.pdc_w)) << i;
+    EXPECT_NEAR(out.eta_system[i], p.eta_system, 1e-12) << i;
+  }
+}
+
+// The paper's own check (model.md section 7): EMAX 1900 KV + MultiStar 30 A at 7.2 V, torque-
+// speed lines 1230 rpm apart per 10 % throttle up to 90 % and 750 rpm from 90 % to 100 %.
+TEST(PaperCheck, TorqueSpeedLineSpacingWithShippedEntries) {
+  const Catalog cat = Catalog::Load(std::string(DYNOSIZE_SOURCE_DIR) + "/catalog");
+  const Drive d(cat.motor("emax_1900kv_paper").params, cat.esc("multistar_30a_paper").params);
+  const double kRpmTol = 30.0;  // the paper reads the spacing off a figure: +-30 rpm
+  for (double q : {0.0, 0.02, 0.05}) {
+    for (int k = 1; k < 9; ++k) {
+      const double lo = d.AtTorque(7.2, 0.1 * k, q).rpm, hi = d.AtTorque(7.2, 0.1 * (k + 1), q).rpm;
+      if (lo <= 0.0) continue;  // stalled at this torque and throttle
+      EXPECT_NEAR(hi - lo, 1230.0, kRpmTol) << "TR " << 0.1 * k << " Q " << q;
+    }
+    const double d90 = d.AtTorque(7.2, 1.0, q).rpm - d.AtTorque(7.2, 0.9, q).rpm;
+    EXPECT_NEAR(d90, 750.0, kRpmTol) << "Q " << q;
+  }
+}
+
+}  // namespace
+}  // namespace dynosize
