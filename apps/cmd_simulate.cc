@@ -170,9 +170,12 @@ int RunSimulate(const SimulateOptions& o) {
   if (!esc.assumed_keys.empty()) {
     assumed += (assumed.empty() ? "" : "; ") + std::string("ESC ") + esc.id + ": " + Assumed(esc);
   }
-  if (!assumed.empty() && !o.json) {
-    std::cerr << "note: results rest on assumed catalog values (" << assumed << ")\n";
-  }
+  // Said once the results are out, so that an error stays the only line on stderr.
+  const auto note_assumed = [&] {
+    if (!assumed.empty() && !o.json) {
+      std::cerr << "note: results rest on assumed catalog values (" << assumed << ")\n";
+    }
+  };
 
   std::vector<std::string> figures;
   if (!o.plot_dir.empty()) {
@@ -206,6 +209,7 @@ int RunSimulate(const SimulateOptions& o) {
       std::cerr << "wrote " << requests.size() << " points to " << o.out_csv << " ("
                 << infeasible << " infeasible)\n";
     }
+    note_assumed();
     return 0;
   }
 
@@ -220,6 +224,7 @@ int RunSimulate(const SimulateOptions& o) {
     } else {
       PrintPoint(title, p);
     }
+    note_assumed();
     return 0;
   }
 
@@ -236,6 +241,7 @@ int RunSimulate(const SimulateOptions& o) {
   } else {
     PrintSweep(title, drive, req.vdc_v);
   }
+  note_assumed();
   return 0;
 }
 

@@ -27,11 +27,11 @@ int main(int argc, char** argv) {
   CLI::App app{"dynosize: motor + ESC model, catalog, calibration and sizing for electric "
                "multirotors and eVTOL (Brown & Chopra's combined model)"};
   app.require_subcommand(1);
+  app.fallthrough();  // --catalog may also follow the subcommand
   app.set_version_flag("--version", std::string(DYNOSIZE_VERSION));
   std::string catalog_dir;
   app.add_option("--catalog", catalog_dir,
-                 "catalog folder (default: $DYNOSIZE_CATALOG or the bundled catalog/)")
-      ->check(CLI::ExistingDirectory);
+                 "catalog folder (default: $DYNOSIZE_CATALOG or the bundled catalog/)");
 
   // simulate
   cli::SimulateOptions sim;
@@ -61,6 +61,7 @@ int main(int argc, char** argv) {
   // catalog
   auto* catalog = app.add_subcommand("catalog", "list, show, validate the component catalog");
   catalog->require_subcommand(1);
+  catalog->fallthrough();
   cli::CatalogListOptions list;
   auto* list_cmd = catalog->add_subcommand("list", "list the loaded components");
   list_cmd->add_option("--kind", list.kind, "motors, escs, props or batteries")
@@ -82,6 +83,13 @@ int main(int argc, char** argv) {
   auto* schema_cmd = catalog->add_subcommand("schema", "print every catalog key with its unit and rule");
   schema_cmd->add_flag("--json", schema_json, "print the schema as JSON");
 
+  if (argc > 1 && argv[1][0] != '-') {
+    const std::string first = argv[1];
+    if (first != "simulate" && first != "catalog") {
+      return Fail(ExitCode::kUsage, "unknown subcommand '" + first +
+                                        "': valid are simulate, catalog (see 'dynosize --help')");
+    }
+  }
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp&) {
