@@ -1,6 +1,7 @@
 // End-to-end tests of the dynosize executable: exit codes, one-line errors, JSON contract.
 #include <gtest/gtest.h>
 #include <sys/wait.h>
+#include <unistd.h>
 
 #include <array>
 #include <cstdio>
@@ -20,7 +21,11 @@ struct CliRun {
 
 CliRun Exec(const std::string& args) {
   namespace fs = std::filesystem;
-  const fs::path err_file = fs::temp_directory_path() / "dynosize_cli_test_stderr.txt";
+  // One file per process and call: ctest -j runs tests of this binary concurrently.
+  static int calls = 0;
+  const fs::path err_file = fs::temp_directory_path() /
+                            ("dynosize_cli_stderr_" + std::to_string(getpid()) + "_" +
+                             std::to_string(++calls) + ".txt");
   const std::string cmd = std::string(DYNOSIZE_EXE) + " " + args + " 2> " + err_file.string();
   CliRun r;
   FILE* p = popen(cmd.c_str(), "r");
@@ -34,6 +39,7 @@ CliRun Exec(const std::string& args) {
   std::stringstream ss;
   ss << e.rdbuf();
   r.err = ss.str();
+  fs::remove(err_file);
   return r;
 }
 
@@ -77,7 +83,7 @@ TEST(Cli, BadInputGetsOneLineAndExitCode) {
 
 TEST(Cli, MalformedCatalogIsExit65AndNamesTheProblem) {
   namespace fs = std::filesystem;
-  const fs::path dir = fs::temp_directory_path() / "dynosize_cli_bad_catalog";
+  const fs::path dir = fs::temp_directory_path() / "dynosize_cli_bad_catalog_" + std::to_string(getpid());
   fs::remove_all(dir);
   fs::create_directories(dir);
   std::ofstream(dir / "bad.json") << R"({"motors": [{"id": "x", "name": "x", "type": "bldc",
@@ -117,8 +123,8 @@ TEST(Cli, InfeasibleInverseIsReportedNotCrashed) {
 
 TEST(Cli, BatchWritesOneRowPerPoint) {
   namespace fs = std::filesystem;
-  const fs::path in = fs::temp_directory_path() / "dynosize_points.csv";
-  const fs::path out = fs::temp_directory_path() / "dynosize_points_out.csv";
+  const fs::path in = fs::temp_directory_path() / "dynosize_points_" + std::to_string(getpid()) + ".csv";
+  const fs::path out = fs::temp_directory_path() / "dynosize_points_out_" + std::to_string(getpid()) + ".csv";
   std::ofstream(in) << "vdc_v,throttle,torque_nm,rpm\n7.2,0.5,0.02,\n7.2,0.5,,3000\n7.2,,0.02,3000\n";
   CliRun r = Exec(kPair + "--batch " + in.string() + " --out " + out.string());
   ASSERT_EQ(r.code, 0) << r.err;
@@ -138,7 +144,7 @@ TEST(Cli, BatchWritesOneRowPerPoint) {
 TEST(Cli, PlotWritesTheFiguresAndNoNaNIsPrinted) {
   if (std::system("command -v gnuplot > /dev/null 2>&1") != 0) GTEST_SKIP() << "gnuplot not installed";
   namespace fs = std::filesystem;
-  const fs::path dir = fs::temp_directory_path() / "dynosize_cli_plot";
+  const fs::path dir = fs::temp_directory_path() / "dynosize_cli_plot_" + std::to_string(getpid());
   fs::remove_all(dir);
   const CliRun r = Exec(kPair + "--vdc 7.2 --plot " + dir.string() + " --json");
   ASSERT_EQ(r.code, 0) << r.err;
