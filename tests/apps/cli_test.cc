@@ -83,7 +83,7 @@ TEST(Cli, BadInputGetsOneLineAndExitCode) {
 
 TEST(Cli, MalformedCatalogIsExit65AndNamesTheProblem) {
   namespace fs = std::filesystem;
-  const fs::path dir = fs::temp_directory_path() / "dynosize_cli_bad_catalog_" + std::to_string(getpid());
+  const fs::path dir = fs::temp_directory_path() / (std::string("dynosize_cli_bad_catalog_" + std::to_string(getpid())));
   fs::remove_all(dir);
   fs::create_directories(dir);
   std::ofstream(dir / "bad.json") << R"({"motors": [{"id": "x", "name": "x", "type": "bldc",
@@ -123,8 +123,8 @@ TEST(Cli, InfeasibleInverseIsReportedNotCrashed) {
 
 TEST(Cli, BatchWritesOneRowPerPoint) {
   namespace fs = std::filesystem;
-  const fs::path in = fs::temp_directory_path() / "dynosize_points_" + std::to_string(getpid()) + ".csv";
-  const fs::path out = fs::temp_directory_path() / "dynosize_points_out_" + std::to_string(getpid()) + ".csv";
+  const fs::path in = fs::temp_directory_path() / (std::string("dynosize_points_" + std::to_string(getpid()) + ".csv"));
+  const fs::path out = fs::temp_directory_path() / (std::string("dynosize_points_out_" + std::to_string(getpid()) + ".csv"));
   std::ofstream(in) << "vdc_v,throttle,torque_nm,rpm\n7.2,0.5,0.02,\n7.2,0.5,,3000\n7.2,,0.02,3000\n";
   CliRun r = Exec(kPair + "--batch " + in.string() + " --out " + out.string());
   ASSERT_EQ(r.code, 0) << r.err;
@@ -144,7 +144,7 @@ TEST(Cli, BatchWritesOneRowPerPoint) {
 TEST(Cli, PlotWritesTheFiguresAndNoNaNIsPrinted) {
   if (std::system("command -v gnuplot > /dev/null 2>&1") != 0) GTEST_SKIP() << "gnuplot not installed";
   namespace fs = std::filesystem;
-  const fs::path dir = fs::temp_directory_path() / "dynosize_cli_plot_" + std::to_string(getpid());
+  const fs::path dir = fs::temp_directory_path() / (std::string("dynosize_cli_plot_" + std::to_string(getpid())));
   fs::remove_all(dir);
   const CliRun r = Exec(kPair + "--vdc 7.2 --plot " + dir.string() + " --json");
   ASSERT_EQ(r.code, 0) << r.err;
