@@ -77,7 +77,11 @@ class Evaluator {
       return false;
     }
     r->resize(rows());
-    if (want_jacobian) jac->resize(rows(), n_);
+    raw_.resize(rows());
+    if (want_jacobian) {
+      jac->resize(rows(), n_);
+      jac_row_scale_.resize(rows());
+    }
     double c = 0.0;
     for (int i = 0; i < m_; ++i) {
       const double ri = r_data_[i];
@@ -93,21 +97,37 @@ class Evaluator {
         j_scale = sqrt_rho1 * (1.0 - alpha);
       }
       (*r)[i] = r_scale * ri;
-      if (want_jacobian) jac->row(i) = j_scale * j_data_.row(i);
+      raw_[i] = ri;
+      if (want_jacobian) {
+        jac->row(i) = j_scale * j_data_.row(i);
+        jac_row_scale_[i] = j_scale;
+      }
     }
     for (int k = 0; k < k_; ++k) {
       const GaussianPrior& pr = p_.priors[k];
       const double z = (x[pr.index] - pr.mean) / pr.sigma;
       c += z * z;
       (*r)[m_ + k] = z;
+      raw_[m_ + k] = z;
       if (want_jacobian) {
+        jac_row_scale_[m_ + k] = 1.0;
         jac->row(m_ + k).setZero();
         (*jac)(m_ + k, pr.index) = 1.0 / pr.sigma;
       }
     }
     *cost = 0.5 * c;
+    if (want_jacobian) raw_at_jacobian_ = raw_;
     return std::isfinite(*cost);
   }
+
+  // Residuals before the loss correction (data rows, then prior rows) of the last evaluation,
+  // and of the last evaluation with a Jacobian, with the row scales applied to that Jacobian.
+  // Geodesic acceleration differentiates the raw residuals and applies the row scales of the
+  // current point: differencing corrected residuals would mix in the change of the loss
+  // weights between the two points, which is not curvature of the model.
+  const Eigen::VectorXd& raw() const { return raw_; }
+  const Eigen::VectorXd& raw_at_jacobian() const { return raw_at_jacobian_; }
+  const Eigen::VectorXd& jacobian_row_scale() const { return jac_row_scale_; }
 
   const Eigen::MatrixXd& data_jacobian() const { return j_data_; }
   const Eigen::VectorXd& data_residuals() const { return r_data_; }
@@ -119,6 +139,7 @@ class Evaluator {
   int m_, n_, k_;
   Eigen::VectorXd r_data_;
   Eigen::MatrixXd j_data_;
+  Eigen::VectorXd raw_, raw_at_jacobian_, jac_row_scale_;
 };
 
 void ValidateProblem(const LeastSquaresProblem& p, const Eigen::VectorXd& x) {
@@ -344,7 +365,9 @@ LevenbergMarquardtSummary SolveLeastSquares(const LeastSquaresProblem& problem,
       double cost_probe;
       Eigen::MatrixXd unused;
       if (eval.Evaluate(x_probe, false, &cost_probe, &r_probe, &unused)) {
-        const Eigen::VectorXd rpp = (2.0 / h) * ((r_probe - r) / h - jac * step);
+        const Eigen::VectorXd rpp =
+            (2.0 / h) * (eval.jacobian_row_scale().cwiseProduct(eval.raw() - eval.raw_at_jacobian()) / h -
+                         jac * step);
         const Eigen::VectorXd af = SolveDampedStep(jf, df, lambda, -rpp);
         if (2.0 * (df.cwiseProduct(af)).norm() <= options.geodesic_max_ratio * (df.cwiseProduct(vf)).norm()) {
           for (Eigen::Index k = 0; k < nf; ++k) step[free[k]] += 0.5 * af[k];
@@ -508,7 +531,7 @@ std::string LevenbergMarquardtSummary::BriefReport() const {
 std::string LevenbergMarquardtSummary::FullReport() const {
   if (!solve_called) return "Solve was not called.\n";
   std::ostringstream os;
-  char buf[256];
+  char buf[512];
   os << "Levenberg-Marquardt summary\n";
   std::snprintf(buf, sizeof buf, "  %-28s %s\n", "termination", TerminationTypeToString(termination_type));
   os << buf << "  message                      " << message << "\n";
