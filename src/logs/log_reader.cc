@@ -411,6 +411,8 @@ Plan PlanMapped(const Header& h, bool header_is_data, const LogReadOptions& o,
 
 struct RawRows {
   std::vector<std::size_t> line;
+  std::vector<char> esc_outside;  // per row: ESC signal outside the end points (lenient only)
+  std::string esc_reason;
 };
 
 void ReadRows(LineReader* lr, Plan* plan, const std::string& path, SteadyTable* t,
@@ -426,6 +428,7 @@ void ReadRows(LineReader* lr, Plan* plan, const std::string& path, SteadyTable* 
   }
   std::size_t other_motor_rows = 0;
   std::size_t short_rows = 0;
+  std::size_t esc_outside = 0;
 
   auto process = [&](std::string_view line, std::size_t line_no) {
     if (Trim(line).empty() || Trim(line).front() == '#') {
@@ -468,6 +471,7 @@ void ReadRows(LineReader* lr, Plan* plan, const std::string& path, SteadyTable* 
         return;
       }
     }
+    char row_outside = 0;
     for (Slot& s : plan->slots) {
       const std::string_view cell = fields[s.field];
       double v = 0.0;
@@ -487,6 +491,13 @@ void ReadRows(LineReader* lr, Plan* plan, const std::string& path, SteadyTable* 
       const double si = ToSi(s, v);
       if (s.target == Column::kThrottle &&
           (si < -kThrottleRoundingSlack || si > 1.0 + kThrottleRoundingSlack)) {
+        if (plan->lenient) {
+          // Stand scripts send e.g. 980 us (arming, motor off) or 2100 us: no throttle point.
+          s.values.push_back(kNaN);
+          ++esc_outside;
+          row_outside = 1;
+          continue;
+        }
         if (s.pulse) {
           CellError(path, line_no, s.header, cell,
                     "outside the ESC end points " + std::to_string(s.pulse_min) + " .. " +
@@ -498,6 +509,7 @@ void ReadRows(LineReader* lr, Plan* plan, const std::string& path, SteadyTable* 
       s.values.push_back(si);
     }
     rows->line.push_back(line_no);
+    rows->esc_outside.push_back(row_outside);
   };
 
   if (!plan->has_header) {
@@ -509,6 +521,12 @@ void ReadRows(LineReader* lr, Plan* plan, const std::string& path, SteadyTable* 
     process(line, lr->line_number());
   }
   AddDrop(t, "rows shorter than the header", short_rows);
+  {
+    std::ostringstream s;
+    s << "rows with the ESC signal outside the end points " << o.esc_min_us << "-"
+      << o.esc_max_us << " us (arming / beyond full throttle)";
+    rows->esc_reason = s.str();
+  }
   if (drivecalc_filter) {
     if (rows->line.empty()) {
       throw DataError(path + ": no MData row has motor_id " +
@@ -572,16 +590,25 @@ void AppendRow(SteadyTable* t, const std::vector<Slot*>& chosen, std::size_t lin
   t->samples.push_back(samples);
 }
 
-void BuildPerRow(SteadyTable* t, const std::vector<Slot*>& chosen, const RawRows& rows) {
+void BuildPerRow(SteadyTable* t, const std::vector<Slot*>& chosen, const RawRows& rows,
+                 bool zero_is_dropout) {
   double vals[kColumnCount];
   const std::size_t n = rows.line.size();
   for (std::size_t r = 0; r < n; ++r) {
+    if (rows.esc_outside[r]) {
+      AddDrop(t, rows.esc_reason);
+      continue;
+    }
     bool ok = true;
     for (int c = 0; c < kColumnCount && ok; ++c) {
       if (chosen[c] == nullptr) continue;
       vals[c] = chosen[c]->values[r];
       if (std::isnan(vals[c])) {
-        AddDrop(t, "rows with an empty \"" + chosen[c]->header + "\" cell");
+        AddDrop(t, "rows with an empty " +
+                       std::string(zero_is_dropout && c == static_cast<int>(Column::kOmegaRadS)
+                                       ? "or zero (probe dropout / motor not started) "
+                                       : "") +
+                       "\"" + chosen[c]->header + "\" cell");
         ok = false;
       }
     }
@@ -600,6 +627,10 @@ void BuildPlateaus(SteadyTable* t, const std::vector<Slot*>& chosen, const RawRo
   std::vector<std::size_t> keep;
   keep.reserve(n);
   for (std::size_t r = 0; r < n; ++r) {
+    if (rows.esc_outside[r]) {
+      AddDrop(t, rows.esc_reason);
+      continue;
+    }
     if (time != nullptr && std::isnan(time->values[r])) {
       AddDrop(t, "samples with an empty \"" + time->header + "\" cell");
       continue;
@@ -630,8 +661,10 @@ void BuildPlateaus(SteadyTable* t, const std::vector<Slot*>& chosen, const RawRo
   std::vector<std::pair<std::size_t, std::size_t>> runs;
   std::size_t run_start = 0;
   const std::size_t m = keep.size();
+  // Asynchronous sampling makes time jitter backwards by a few ms; only a jump back by more
+  // than summary_min_interval_s is a new recording appended to the file.
   for (std::size_t i = 1; i <= m; ++i) {
-    if (i == m || (time != nullptr && col[0][i] < col[0][i - 1])) {
+    if (i == m || (time != nullptr && col[0][i] < col[0][i - 1] - po.summary_min_interval_s)) {
       runs.emplace_back(run_start, i);
       run_start = i;
     }
@@ -643,7 +676,7 @@ void BuildPlateaus(SteadyTable* t, const std::vector<Slot*>& chosen, const RawRo
   }
   std::vector<char> mask;
   std::size_t short_plateaus = 0, short_samples = 0, unsteady = 0;
-  std::size_t by_command = 0, by_signal = 0;
+  std::vector<std::size_t> by_method(4, 0);
   double vals[kColumnCount];
   for (const auto& [rb, re] : runs) {
     const std::size_t len = re - rb;
@@ -651,7 +684,7 @@ void BuildPlateaus(SteadyTable* t, const std::vector<Slot*>& chosen, const RawRo
     const double* cp = cmd != nullptr ? col[static_cast<int>(Column::kThrottle)].data() + rb : nullptr;
     const double* sp = sig_col >= 0 ? col[sig_col].data() + rb : nullptr;
     const PlateauSearch ps = FindPlateaus(tp, cp, sp, len, po);
-    (ps.by_command ? by_command : by_signal) += 1;
+    by_method[static_cast<std::size_t>(ps.method)] += 1;
     t->transient_samples += ps.transient_samples;
     short_plateaus += ps.short_plateaus;
     short_samples += ps.short_plateau_samples;
@@ -693,11 +726,13 @@ void BuildPlateaus(SteadyTable* t, const std::vector<Slot*>& chosen, const RawRo
   if (short_plateaus > 0) {
     t->notes.push_back(std::to_string(short_plateaus) + " steps/runs too short to be plateaus");
   }
-  t->notes.push_back(std::string("plateaus found ") +
-                     (by_command > 0 && by_signal == 0 ? "by throttle command steps"
-                      : by_signal > 0 && by_command == 0
-                          ? "by speed/current steadiness (command absent or not stepped)"
-                          : "by command in some runs and by signal in others"));
+  std::string how;
+  for (std::size_t k = 0; k < by_method.size(); ++k) {
+    if (by_method[k] == 0) continue;
+    how += std::string(how.empty() ? "" : ", ") + PlateauMethodName(static_cast<PlateauMethod>(k));
+    if (runs.size() > 1) how += " (" + std::to_string(by_method[k]) + " runs)";
+  }
+  t->notes.push_back("plateaus found by " + how);
 }
 
 double MedianInterval(const std::vector<double>& t) {
@@ -907,7 +942,7 @@ SteadyTable ReadLog(const std::string& path, const LogReadOptions& options) {
   if (plateaus) {
     BuildPlateaus(&t, chosen, rows, options.plateau);
   } else {
-    BuildPerRow(&t, chosen, rows);
+    BuildPerRow(&t, chosen, rows, fmt == LogFormat::kRcbenchmark);
   }
   // DriveCalc: points whose speed was not measured (n = 0) are not operating points.
   if (fmt == LogFormat::kDriveCalc && t.Has(Column::kOmegaRadS)) {

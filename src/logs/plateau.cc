@@ -32,9 +32,20 @@ std::string PlateauOptions::Validate() const {
   if (!(mad_floor_rel >= 0.0)) return bad("mad_floor_rel", mad_floor_rel, "must be >= 0");
   if (!(steady_window_s > 0.0)) return bad("steady_window_s", steady_window_s, "must be > 0");
   if (!(steady_band > 0.0)) return bad("steady_band", steady_band, "must be > 0");
+  if (!(steady_min_fraction > 0.0 && steady_min_fraction <= 1.0)) {
+    return bad("steady_min_fraction", steady_min_fraction, "must be in (0, 1]");
+  }
+  if (!(stepped_min_fraction > 0.0 && stepped_min_fraction <= 1.0)) {
+    return bad("stepped_min_fraction", stepped_min_fraction, "must be in (0, 1]");
+  }
   if (steady_window_samples_without_time < 2) {
     return bad("steady_window_samples_without_time",
                static_cast<double>(steady_window_samples_without_time), "must be >= 2");
+  }
+  if (!(ramp_bin_width > 0.0)) return bad("ramp_bin_width", ramp_bin_width, "must be > 0");
+  if (ramp_min_samples < 1) return bad("ramp_min_samples", 0, "must be >= 1");
+  if (!(ramp_max_reversal_fraction >= 0.0 && ramp_max_reversal_fraction < 1.0)) {
+    return bad("ramp_max_reversal_fraction", ramp_max_reversal_fraction, "must be in [0, 1)");
   }
   if (!(summary_min_interval_s > 0.0)) return bad("summary_min_interval_s", summary_min_interval_s, "must be > 0");
   return "";
@@ -59,17 +70,18 @@ double MedianOf(const double* x, std::size_t begin, std::size_t end) {
 
 bool CommandIsStepped(const double* command, std::size_t n, const PlateauOptions& options) {
   if (command == nullptr || n == 0) return false;
-  // Sample-weighted: a few one-sample blips (a hand-set value, a ramp between steps) do not
-  // turn a step test into a continuously varying command.
+  // Stand scripts hold the command exactly constant within a step; a fine ramp (0.5 us per
+  // sample) changes it every sample. Sample-weighted, so that a few one-sample blips (a
+  // hand-set value, a ramp between steps) do not hide the steps.
   std::size_t in_steps = 0;
   std::size_t start = 0;
   for (std::size_t i = 1; i <= n; ++i) {
-    if (i == n || std::fabs(command[i] - command[start]) > options.command_step_tolerance) {
+    if (i == n || command[i] != command[i - 1]) {
       if (i - start >= options.min_samples) in_steps += i - start;
       start = i;
     }
   }
-  return 2 * in_steps >= n;
+  return static_cast<double>(in_steps) >= options.stepped_min_fraction * static_cast<double>(n);
 }
 
 namespace {
@@ -107,8 +119,10 @@ void SearchByCommand(const double* t, const double* c, const double* s, std::siz
 
 void SearchBySignal(const double* t, const double* s, std::size_t n, const PlateauOptions& o,
                     PlateauSearch* out) {
-  // Steadiness of each sample over a centred window (two pointers: O(n * window)).
+  // Steadiness of each sample over a centred window: at least steady_min_fraction of the
+  // window's samples within +-steady_band of the window median (robust to probe spikes).
   std::vector<char> steady(n, 0);
+  std::vector<double> med(n, kNaN);
   std::size_t lo = 0, hi = 0;  // window [lo, hi)
   const double half = 0.5 * o.steady_window_s;
   const std::size_t half_n = o.steady_window_samples_without_time / 2;
@@ -124,19 +138,16 @@ void SearchBySignal(const double* t, const double* s, std::size_t n, const Plate
       lo = i - half_n;
       hi = i + half_n + 1;
     }
-    double sum = 0.0;
-    std::size_t cnt = 0;
-    double mn = std::numeric_limits<double>::infinity(), mx = -mn;
+    const double m = MedianOf(s, lo, hi);
+    if (std::isnan(m)) continue;
+    med[i] = m;
+    std::size_t cnt = 0, in = 0;
     for (std::size_t k = lo; k < hi; ++k) {
       if (std::isnan(s[k])) continue;
-      sum += s[k];
       ++cnt;
-      mn = std::min(mn, s[k]);
-      mx = std::max(mx, s[k]);
+      in += Within(s[k], m, o.steady_band);
     }
-    if (cnt < 2) continue;
-    const double mean = sum / static_cast<double>(cnt);
-    steady[i] = (Within(mn, mean, o.steady_band) && Within(mx, mean, o.steady_band)) ? 1 : 0;
+    steady[i] = cnt >= 2 && static_cast<double>(in) >= o.steady_min_fraction * static_cast<double>(cnt);
   }
   std::size_t i = 0;
   while (i < n) {
@@ -146,16 +157,9 @@ void SearchBySignal(const double* t, const double* s, std::size_t n, const Plate
       continue;
     }
     const std::size_t begin = i;
-    double sum = 0.0;
-    std::size_t cnt = 0;
-    while (i < n && steady[i]) {
-      if (!std::isnan(s[i])) {
-        if (cnt > 0 && !Within(s[i], sum / static_cast<double>(cnt), o.steady_band)) break;
-        sum += s[i];
-        ++cnt;
-      }
-      ++i;
-    }
+    const double ref = med[i];
+    // A plateau ends where the local median leaves +-steady_band of its first median.
+    while (i < n && steady[i] && Within(med[i], ref, o.steady_band)) ++i;
     if (i - begin >= o.min_samples) {
       out->plateaus.push_back({begin, begin, i});
     } else {
@@ -167,16 +171,68 @@ void SearchBySignal(const double* t, const double* s, std::size_t n, const Plate
 
 }  // namespace
 
+const char* PlateauMethodName(PlateauMethod m) {
+  switch (m) {
+    case PlateauMethod::kWholeLog: return "whole log";
+    case PlateauMethod::kCommandSteps: return "throttle command steps";
+    case PlateauMethod::kRampBins: return "throttle ramp bins";
+    case PlateauMethod::kSignalSteadiness: return "speed/current steadiness";
+  }
+  return "?";
+}
+
+CommandKind ClassifyCommand(const double* command, std::size_t n, const PlateauOptions& o) {
+  if (command == nullptr || n == 0) return CommandKind::kNone;
+  if (CommandIsStepped(command, n, o)) return CommandKind::kStepped;
+  std::size_t changes = 0, reversals = 0;
+  int last_sign = 0;
+  for (std::size_t i = 1; i < n; ++i) {
+    const double d = command[i] - command[i - 1];
+    if (d == 0.0) continue;
+    const int sign = d > 0 ? 1 : -1;
+    ++changes;
+    if (last_sign != 0 && sign != last_sign) ++reversals;
+    last_sign = sign;
+  }
+  if (changes == 0) return CommandKind::kStepped;  // constant: one step
+  return static_cast<double>(reversals) <= o.ramp_max_reversal_fraction * static_cast<double>(changes)
+             ? CommandKind::kRamp
+             : CommandKind::kVarying;
+}
+
+namespace {
+void SearchByRampBins(const double* c, std::size_t n, const PlateauOptions& o, PlateauSearch* out) {
+  std::size_t start = 0;
+  auto bin = [&](double x) { return std::floor(x / o.ramp_bin_width + 0.5); };
+  for (std::size_t i = 1; i <= n; ++i) {
+    if (i < n && bin(c[i]) == bin(c[start])) continue;
+    if (i - start >= o.ramp_min_samples) {
+      out->plateaus.push_back({start, start, i});
+    } else {
+      ++out->short_plateaus;
+      out->short_plateau_samples += i - start;
+    }
+    start = i;
+  }
+}
+}  // namespace
+
 PlateauSearch FindPlateaus(const double* time_s, const double* command, const double* signal,
                            std::size_t n, const PlateauOptions& options) {
   PlateauSearch out;
   if (n == 0) return out;
-  if (command != nullptr && (signal == nullptr || CommandIsStepped(command, n, options))) {
-    out.by_command = true;
+  const CommandKind kind = ClassifyCommand(command, n, options);
+  if (kind == CommandKind::kStepped || (kind != CommandKind::kNone && signal == nullptr)) {
+    out.method = PlateauMethod::kCommandSteps;
     SearchByCommand(time_s, command, signal, n, options, &out);
+  } else if (kind == CommandKind::kRamp) {
+    out.method = PlateauMethod::kRampBins;
+    SearchByRampBins(command, n, options, &out);
   } else if (signal != nullptr) {
+    out.method = PlateauMethod::kSignalSteadiness;
     SearchBySignal(time_s, signal, n, options, &out);
   } else {
+    out.method = PlateauMethod::kWholeLog;
     out.plateaus.push_back({0, 0, n});
   }
   return out;

@@ -8,10 +8,17 @@
 //     then leading samples are dropped while the settle signal (speed, else current) is farther
 //     than settle_band (relative) from the median of the step's second half ("rpm settle").
 //  2. by signal: no usable command (absent, or varying every sample as in closed-loop speed
-//     control). A sample is steady when, over the window of steady_window_s centred on it, the
-//     settle signal stays within +-steady_band (relative) of the window mean; consecutive steady
-//     samples form a plateau, which is split where the signal leaves +-steady_band of the
-//     plateau's running mean.
+//     control). A sample is steady when, over the window of steady_window_s centred on it, at
+//     least steady_min_fraction of the settle signal's samples lie within +-steady_band
+//     (relative) of the window median; consecutive steady samples form a plateau, which ends
+//     where the window median leaves +-steady_band of the plateau's first window median.
+//  3. by ramp bins: the command varies slowly and monotonically (ramps up and/or down: fewer
+//     than ramp_max_reversal_fraction of its changes reverse direction). Such a ramp is
+//     quasi-steady; consecutive samples whose command falls in the same bin of width
+//     ramp_bin_width form one plateau (at least ramp_min_samples). The speed lags the command
+//     by the motor's time constant (7-50 ms on the stands in shared/data), so a ramp of
+//     R per second biases the throttle of a point by about R * 0.05 s: under 0.2 % of the
+//     range for the ramps in shared/data (<= 25 us/s).
 // Plateaus with fewer than min_samples steady samples are dropped (counted).
 //
 // Averaging: inside a plateau a sample is an outlier when any of the averaged columns lies more
@@ -47,9 +54,23 @@ struct PlateauOptions {
   // of the real logs while keeping every sample of Gaussian noise (p ~ 6e-7 per sample).
   double outlier_mad_k = 5.0;
   double mad_floor_rel = 1e-3;
-  // Signal mode: window and band of the steadiness test.
+  // Ramp mode: bin width (throttle fraction; 0.02 = 20 us on a 1000-2000 us range), the
+  // fewest samples per bin (1: the slow "polar" scripts log one averaged row per ~12 us), and
+  // the largest fraction of command changes that reverse direction for a ramp (a PID-driven
+  // command reverses about every other sample).
+  double ramp_bin_width = 0.02;
+  std::size_t ramp_min_samples = 1;
+  double ramp_max_reversal_fraction = 0.1;
+  // Signal mode: a sample is steady when at least steady_min_fraction of the samples in the
+  // window of steady_window_s centred on it lie within +-steady_band of the window median
+  // (the fraction, not all, because optical probes spike and drop out).
   double steady_window_s = 1.0;
   double steady_band = 0.02;
+  double steady_min_fraction = 0.8;
+  // The command counts as stepped when at least this fraction of the samples lie in runs of
+  // min_samples or more exactly equal values. Step scripts slew between steps (the xNova
+  // step logs hold 41-54 % of their samples); ramps hold under 33 %.
+  double stepped_min_fraction = 0.4;
   // Signal mode without a time column: window in samples.
   std::size_t steady_window_samples_without_time = 20;
   // A log whose median sample interval is at least this is already a list of steady points
@@ -66,8 +87,15 @@ struct Plateau {
   std::size_t end = 0;         // one past the last steady sample
 };
 
+enum class PlateauMethod { kWholeLog, kCommandSteps, kRampBins, kSignalSteadiness };
+const char* PlateauMethodName(PlateauMethod m);
+
+// How the command moves: kStepped / kRamp / kVarying (closed loop) / kNone (absent).
+enum class CommandKind { kNone, kStepped, kRamp, kVarying };
+CommandKind ClassifyCommand(const double* command, std::size_t n, const PlateauOptions& options);
+
 struct PlateauSearch {
-  bool by_command = false;
+  PlateauMethod method = PlateauMethod::kWholeLog;
   std::vector<Plateau> plateaus;
   std::size_t transient_samples = 0;      // dropped as transients (by command)
   std::size_t unsteady_samples = 0;       // not steady (by signal)
@@ -82,9 +110,9 @@ struct PlateauSearch {
 PlateauSearch FindPlateaus(const double* time_s, const double* command, const double* signal,
                            std::size_t n, const PlateauOptions& options);
 
-// True when the command moves in steps (at least half of the samples lie in steps of
-// min_samples or more) rather than every sample (closed-loop control): decides between the
-// two searches.
+// True when the command moves in steps: at least stepped_min_fraction of the samples lie in
+// runs of min_samples or more exactly equal values (stand scripts hold the command exactly
+// within a step).
 bool CommandIsStepped(const double* command, std::size_t n, const PlateauOptions& options);
 
 // Marks outliers in [begin, end) over the given columns (NaN cells are ignored). mask[i-begin]
