@@ -31,6 +31,11 @@ LineReader::~LineReader() {
   if (file_ != nullptr) std::fclose(file_);
 }
 
+void LineReader::TooLong() const {
+  throw DataError(path_ + ": line " + std::to_string(line_number_) + ": longer than " +
+                  std::to_string(max_line_bytes_) + " bytes: not a text log");
+}
+
 bool LineReader::Fill() {
   if (eof_) return false;
   if (begin_ > 0) {
@@ -41,8 +46,8 @@ bool LineReader::Fill() {
   if (end_ == buf_.size()) {
     // A line longer than the buffer: grow, up to the limit.
     if (buf_.size() >= max_line_bytes_ + 2) {
-      throw DataError(path_ + ": line " + std::to_string(line_number_ + 1) + ": longer than " +
-                      std::to_string(max_line_bytes_) + " bytes: not a text log");
+      ++line_number_;
+      TooLong();
     }
     buf_.resize(std::min(buf_.size() * 2, max_line_bytes_ + 2));
   }
@@ -93,6 +98,7 @@ bool LineReader::Next(std::string_view* line) {
         skip_lf_ = true;  // CR at the buffer edge: decide CR vs CRLF on the next call
       }
       ++line_number_;
+      if (len > max_line_bytes_) TooLong();
       std::string_view v(base + start, len);
       if (line_number_ == 1 && v.size() >= 3 && static_cast<unsigned char>(v[0]) == 0xEF &&
           static_cast<unsigned char>(v[1]) == 0xBB && static_cast<unsigned char>(v[2]) == 0xBF) {
@@ -106,6 +112,7 @@ bool LineReader::Next(std::string_view* line) {
       if (begin_ == end_) return false;
       // Last line without a line end.
       ++line_number_;
+      if (end_ - begin_ > max_line_bytes_) TooLong();
       std::string_view v(buf_.data() + begin_, end_ - begin_);
       begin_ = end_;
       if (line_number_ == 1 && v.size() >= 3 && static_cast<unsigned char>(v[0]) == 0xEF &&

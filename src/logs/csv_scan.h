@@ -39,6 +39,7 @@ class LineReader {
   const std::string& path() const { return path_; }
 
  private:
+  [[noreturn]] void TooLong() const;
   bool Fill();  // moves the unread tail to the front and reads more; false at EOF
 
   std::string path_;

@@ -36,6 +36,7 @@ struct Plan {
   LogFormat format = LogFormat::kAuto;
   std::vector<Slot> slots;
   bool lenient = false;        // RCbenchmark: empty cells allowed, extra cells ignored
+  bool empty_cells_ok = false; // empty cells become NaN and drop their row (counted)
   bool has_header = true;
   std::size_t header_cells = 0;
   std::vector<std::string> header_for_errors;  // header cell per field (UTF-8)
@@ -476,7 +477,7 @@ void ReadRows(LineReader* lr, Plan* plan, const std::string& path, SteadyTable* 
       const std::string_view cell = fields[s.field];
       double v = 0.0;
       if (Trim(cell).empty()) {
-        if (!plan->lenient) {
+        if (!plan->lenient && !plan->empty_cells_ok) {
           CellError(path, line_no, s.header, cell,
                     std::string("empty cell (rule: the ") + LogFormatName(plan->format) +
                         " format has no optional cells)");
@@ -895,6 +896,7 @@ SteadyTable ReadLog(const std::string& path, const LogReadOptions& options) {
       }
       const bool header_is_data = all_hash && LooksNumeric(h);
       plan = PlanMapped(h, header_is_data, options, path);
+      plan.empty_cells_ok = options.mapped_drop_rows_with_empty_cells;
       if (header_is_data) first_data = std::string(line);
       break;
     }

@@ -64,6 +64,10 @@ struct LogReadOptions {
   // the header's; without either the canonical column's own unit is assumed. Giving a map
   // with format kAuto selects kMapped.
   std::vector<std::string> column_map;
+  // kMapped is strict like the canonical format. Hand-made tables sometimes carry annotation
+  // rows ("6s Lipo,,PEAK THRUST" in sjkim's A4220 table): with this set, a row with an empty
+  // mapped cell is dropped and counted instead (text in a number stays an error).
+  bool mapped_drop_rows_with_empty_cells = false;
 
   TimeSeriesMode time_series = TimeSeriesMode::kAuto;
   PlateauOptions plateau;
