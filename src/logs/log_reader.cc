@@ -778,11 +778,6 @@ void CheckCanonicalRanges(const SteadyTable& t, const std::string& path) {
 }
 
 void CheckTable(const SteadyTable& t, const std::string& path) {
-  if (!t.Has(Column::kIdcA)) {
-    throw DataError(path + ": no usable current column (" +
-                    t.info[static_cast<int>(Column::kIdcA)].note +
-                    "): every calibration needs the DC current");
-  }
   const std::size_t n = t.rows();
   std::string why = t.DroppedTotal() > 0 ? " after dropping " + std::to_string(t.DroppedTotal()) +
                                                " rows/samples"
@@ -791,6 +786,11 @@ void CheckTable(const SteadyTable& t, const std::string& path) {
     throw DataError(path + ": " + std::to_string(n) + " steady operating point" +
                     (n == 1 ? "" : "s") + why + " (" + std::to_string(t.data_rows_read) +
                     " data rows read): a calibration needs at least 2");
+  }
+  if (!t.Has(Column::kIdcA)) {
+    throw DataError(path + ": no usable current column (" +
+                    t.info[static_cast<int>(Column::kIdcA)].note +
+                    "): every calibration needs the DC current");
   }
   bool all_same = true;
   for (int c = 0; c < kColumnCount && all_same; ++c) {
