@@ -19,6 +19,7 @@ struct Importer {
 const std::vector<Importer>& Importers() {
   static const std::vector<Importer> kImporters = {
       {"drivecalc", ImportDriveCalc},
+      {"uiuc_propdb", ImportUiuc},
   };
   return kImporters;
 }
