@@ -20,6 +20,7 @@ const std::vector<Importer>& Importers() {
   static const std::vector<Importer> kImporters = {
       {"drivecalc", ImportDriveCalc},
       {"uiuc_propdb", ImportUiuc},
+      {"apc_per3_subset", ImportApcPer3},
   };
   return kImporters;
 }

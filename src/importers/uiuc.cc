@@ -70,11 +70,11 @@ void ImportVolume(const std::string& dir, int volume, ImportedDataset* out) {
                cp = ParseNumber(t.Field(r, c_cp));
     const std::string example = file + ":" + std::to_string(r.line) + " " + name;
     if (!b || !d || !p || !j || !n || !ct || !cp) {
-      out->report.Drop("props", "UIUC point with a malformed or empty number", example);
+      out->report.Drop("prop points", "UIUC point with a malformed or empty number", example);
       continue;
     }
     if (!(*n > 0) || *j < 0 || !(*d > 0)) {
-      out->report.Drop("props", "UIUC point with rpm <= 0, J < 0 or D <= 0", example);
+      out->report.Drop("prop points", "UIUC point with rpm <= 0, J < 0 or D <= 0", example);
       continue;
     }
     auto it = index.find(name);
