@@ -86,6 +86,64 @@ std::optional<double> GetOpt(const Json& e, const char* key) {
   return it->get<double>();
 }
 
+// Checks a numeric array; returns the violated rule or "".
+std::string CheckNumberArray(const Json& a, bool increasing, double min_value) {
+  if (!a.is_array() || a.empty()) return "must be a non-empty array of numbers";
+  double prev = -1e300;
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    if (!a[i].is_number()) return "element " + std::to_string(i) + " must be a number";
+    const double x = a[i].get<double>();
+    if (!std::isfinite(x)) return "element " + std::to_string(i) + " must be finite";
+    if (x < min_value) {
+      return "element " + std::to_string(i) + " = " + ValueText(a[i]) + " must be >= " +
+             ValueText(Json(min_value));
+    }
+    if (increasing && i > 0 && !(x > prev)) {
+      return "element " + std::to_string(i) + " = " + ValueText(a[i]) +
+             " must be greater than the one before (strictly increasing)";
+    }
+    prev = x;
+  }
+  return "";
+}
+
+// Validates {"rpm"|"j": [...], "ct": [...], "cp": [...]} (+ "rpm": number for a sweep);
+// `bad(key, rule)` records problems under `path`.
+template <typename Bad>
+void CheckCoefficientTable(const Json& t, const std::string& path, bool sweep, Bad bad) {
+  const char* axis = sweep ? "j" : "rpm";
+  for (auto k = t.begin(); k != t.end(); ++k) {
+    if (k.key() != axis && k.key() != "ct" && k.key() != "cp" && !(sweep && k.key() == "rpm")) {
+      bad(path + "." + k.key(), std::string("unknown key: allowed are ") +
+                                    (sweep ? "rpm, j, ct, cp" : "rpm, ct, cp"));
+    }
+  }
+  if (sweep) {
+    const auto r = t.find("rpm");
+    if (r == t.end() || !r->is_number() || !(r->get<double>() > 0)) {
+      bad(path + ".rpm", "must be a number > 0 (the speed of the sweep)");
+    }
+  }
+  std::size_t n = 0;
+  for (const char* key : {axis, "ct", "cp"}) {
+    const auto a = t.find(key);
+    if (a == t.end()) {
+      bad(path + "." + key, "missing");
+      continue;
+    }
+    const bool is_axis = std::string(key) == axis;
+    const std::string rule = CheckNumberArray(*a, is_axis, is_axis ? 0.0 : -10.0);
+    if (!rule.empty()) {
+      bad(path + "." + key, rule);
+    } else if (n == 0) {
+      n = a->size();
+    } else if (a->size() != n) {
+      bad(path + "." + key, "must have as many elements as " + std::string(axis) + " (" +
+                                std::to_string(n) + "), has " + std::to_string(a->size()));
+    }
+  }
+}
+
 }  // namespace
 
 const char* KindArrayName(ComponentKind kind) {
@@ -194,7 +252,7 @@ void Catalog::AddDocument(const Json& doc, const std::string& file,
                          std::find(methods.begin(), methods.end(), m->get<std::string>()) ==
                              methods.end()) {
                 bad("source.values." + m.key(),
-                    "must be one of datasheet, measured, fitted, derived, assumed", &*m);
+                    "must be one of datasheet, measured, computed, fitted, derived, assumed", &*m);
               }
             }
           } else {
@@ -206,6 +264,59 @@ void Catalog::AddDocument(const Json& doc, const std::string& file,
       if (kind == ComponentKind::kMotor && !e.contains("ke_v_s_per_rad") &&
           !e.contains("kv_rpm_per_v")) {
         bad("ke_v_s_per_rad", "missing: a motor needs ke_v_s_per_rad or kv_rpm_per_v");
+      }
+      if (kind == ComponentKind::kProp) {
+        auto bad_path = [&](const std::string& key, const std::string& rule) {
+          problems->push_back(where + ": key '" + key + "': " + rule);
+        };
+        if (const auto st = e.find("static_table"); st != e.end() && st->is_object()) {
+          CheckCoefficientTable(*st, "static_table", false, bad_path);
+        }
+        if (const auto jt = e.find("j_tables"); jt != e.end() && jt->is_array()) {
+          double prev_rpm = 0.0;
+          for (std::size_t k = 0; k < jt->size(); ++k) {
+            const std::string path = "j_tables[" + std::to_string(k) + "]";
+            const Json& t = (*jt)[k];
+            if (!t.is_object()) {
+              bad_path(path, "must be an object {rpm, j, ct, cp}");
+              continue;
+            }
+            CheckCoefficientTable(t, path, true, bad_path);
+            const auto r = t.find("rpm");
+            if (r != t.end() && r->is_number()) {
+              if (!(r->get<double>() > prev_rpm)) {
+                bad_path(path + ".rpm", "sweeps must be sorted by strictly increasing rpm");
+              }
+              prev_rpm = r->get<double>();
+            }
+          }
+        }
+        const bool t_law = e.contains("thrust_law_n"), p_law = e.contains("power_law_w");
+        for (const char* k : {"thrust_law_exp", "power_law_exp", "law_rho_kg_m3"}) {
+          if ((t_law || p_law) && !e.contains(k)) bad(k, "missing: the power laws need it");
+        }
+        if (t_law != p_law) bad(t_law ? "power_law_w" : "thrust_law_n",
+                                "missing: thrust and power laws come together");
+        if (e.contains("ct_static") != e.contains("cp_static")) {
+          bad(e.contains("ct_static") ? "cp_static" : "ct_static",
+              "missing: ct_static and cp_static come together");
+        }
+        if (!t_law && !e.contains("ct_static") && !e.contains("static_table") &&
+            !e.contains("j_tables")) {
+          bad("thrust_law_n", "missing: a propeller needs performance data (power laws, "
+                              "ct_static/cp_static, static_table or j_tables)");
+        }
+      }
+      if (kind == ComponentKind::kBattery) {
+        const auto s_it = e.find("cells_series");
+        const auto v_it = e.find("voltage_nominal_v");
+        if (s_it != e.end() && v_it != e.end() && s_it->is_number() && v_it->is_number()) {
+          const double per_cell = v_it->get<double>() / s_it->get<double>();
+          if (per_cell < 0.9 || per_cell > 4.5) {
+            bad("voltage_nominal_v", "gives " + ValueText(Json(per_cell)) +
+                                         " V per cell: must be 0.9-4.5 V per cell in series");
+          }
+        }
       }
       if (!id.empty()) {
         const auto prev = id_file_.find(id);
@@ -248,6 +359,8 @@ void Catalog::AddDocument(const Json& doc, const std::string& file,
           p.max_current_a = Get(e, "max_current_a", p.max_current_a);
           p.max_power_w = Get(e, "max_power_w", p.max_power_w);
           m.mass_kg = GetOpt(e, "mass_kg");
+          m.loss_torque_nm = GetOpt(e, "loss_torque_nm");
+          m.loss_torque_per_omega_nm_s_per_rad = GetOpt(e, "loss_torque_per_omega_nm_s_per_rad");
           index_[id] = {kind, motors_.size()};
           motors_.push_back(std::move(m));
           break;
@@ -264,6 +377,7 @@ void Catalog::AddDocument(const Json& doc, const std::string& file,
           p.max_current_a = Get(e, "max_current_a", p.max_current_a);
           p.vdc_max_v = Get(e, "vdc_max_v", p.vdc_max_v);
           x.mass_kg = GetOpt(e, "mass_kg");
+          x.ipeak_a = GetOpt(e, "ipeak_a");
           index_[id] = {kind, escs_.size()};
           escs_.push_back(std::move(x));
           break;
@@ -274,6 +388,34 @@ void Catalog::AddDocument(const Json& doc, const std::string& file,
           x.diameter_m = e["diameter_m"].get<double>();
           x.pitch_m = GetOpt(e, "pitch_m");
           x.mass_kg = GetOpt(e, "mass_kg");
+          if (const auto b = e.find("blades"); b != e.end()) x.blades = b->get<int>();
+          x.max_rpm = GetOpt(e, "max_rpm");
+          if (e.contains("thrust_law_n")) {
+            PropPowerLaw law;
+            law.thrust_law_n = e["thrust_law_n"].get<double>();
+            law.thrust_law_exp = e["thrust_law_exp"].get<double>();
+            law.power_law_w = e["power_law_w"].get<double>();
+            law.power_law_exp = e["power_law_exp"].get<double>();
+            law.rho_kg_m3 = e["law_rho_kg_m3"].get<double>();
+            x.power_law = law;
+          }
+          x.ct_static = GetOpt(e, "ct_static");
+          x.cp_static = GetOpt(e, "cp_static");
+          if (const auto st = e.find("static_table"); st != e.end()) {
+            x.static_table.rpm = (*st)["rpm"].get<std::vector<double>>();
+            x.static_table.ct = (*st)["ct"].get<std::vector<double>>();
+            x.static_table.cp = (*st)["cp"].get<std::vector<double>>();
+          }
+          if (const auto jt = e.find("j_tables"); jt != e.end()) {
+            for (const Json& t : *jt) {
+              PropSweep sw;
+              sw.rpm = t["rpm"].get<double>();
+              sw.j = t["j"].get<std::vector<double>>();
+              sw.ct = t["ct"].get<std::vector<double>>();
+              sw.cp = t["cp"].get<std::vector<double>>();
+              x.j_tables.push_back(std::move(sw));
+            }
+          }
           index_[id] = {kind, props_.size()};
           props_.push_back(std::move(x));
           break;
@@ -282,6 +424,21 @@ void Catalog::AddDocument(const Json& doc, const std::string& file,
           BatteryEntry x;
           static_cast<EntryBase&>(x) = std::move(base);
           x.mass_kg = GetOpt(e, "mass_kg");
+          static const std::pair<const char*, BatteryChemistry> kChem[] = {
+              {"lipo", BatteryChemistry::kLiPo}, {"liion", BatteryChemistry::kLiIon},
+              {"lifepo4", BatteryChemistry::kLiFePo4}, {"nimh", BatteryChemistry::kNiMh},
+              {"nicd", BatteryChemistry::kNiCd}};
+          const std::string chem = e["chemistry"].get<std::string>();
+          for (const auto& [name, value] : kChem) {
+            if (chem == name) x.chemistry = value;
+          }
+          x.cells_series = e["cells_series"].get<int>();
+          if (const auto p = e.find("cells_parallel"); p != e.end()) x.cells_parallel = p->get<int>();
+          x.capacity_ah = e["capacity_ah"].get<double>();
+          x.voltage_nominal_v = e["voltage_nominal_v"].get<double>();
+          x.ri_ohm = GetOpt(e, "ri_ohm");
+          x.max_current_a = GetOpt(e, "max_current_a");
+          x.peak_current_a = GetOpt(e, "peak_current_a");
           index_[id] = {kind, batteries_.size()};
           batteries_.push_back(std::move(x));
           break;

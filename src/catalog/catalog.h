@@ -5,7 +5,9 @@
 //   "source": {"dataset": "...",            required: the data set or document
 //              "reference": "...",          optional: file, row, figure
 //              "values": {"rm_ohm": "assumed", ...},  optional: how each value was obtained,
-//                                           one of datasheet | measured | fitted | derived | assumed
+//                                           one of datasheet | measured | computed | fitted |
+//                                           derived | assumed ("computed": a manufacturer's own
+//                                           simulation, e.g. APC PER3 blade-element tables)
 //              "note": "..."}               optional
 //
 // The reader is strict (schema.h lists every key, its type, unit and range): unknown keys,
@@ -45,20 +47,69 @@ struct MotorEntry : EntryBase {
   MotorParams params;
   std::optional<double> kv_rpm_per_v;
   std::optional<double> mass_kg;
+  // DriveCalc's loss terms (model.md section 9): Io(omega) = (loss_torque_nm +
+  // loss_torque_per_omega_nm_s_per_rad*omega)/kt; absent for other data sets.
+  std::optional<double> loss_torque_nm;
+  std::optional<double> loss_torque_per_omega_nm_s_per_rad;
 };
 
 struct EscEntry : EntryBase {
   EscParams params;
   std::optional<double> mass_kg;
+  std::optional<double> ipeak_a;
+};
+
+// Static thrust and shaft power as power laws in speed (DriveCalc):
+//   T [N] = thrust_law_n * (rpm/1000)^thrust_law_exp,  P [W] = power_law_w * (rpm/1000)^power_law_exp
+// at air density rho_kg_m3 (both scale linearly with density).
+struct PropPowerLaw {
+  double thrust_law_n = 0.0;
+  double thrust_law_exp = 2.0;
+  double power_law_w = 0.0;
+  double power_law_exp = 3.0;
+  double rho_kg_m3 = 1.225;
+};
+
+// Coefficients at one speed: CT and CP vs advance ratio J = V/(n*D) (UIUC definitions,
+// T = CT*rho*n^2*D^4, P = CP*rho*n^3*D^5, n in rev/s). For the static table `j` is empty and
+// the arrays run over `rpm` instead.
+struct PropSweep {
+  double rpm = 0.0;
+  std::vector<double> j;
+  std::vector<double> ct;
+  std::vector<double> cp;
+};
+
+struct PropStaticTable {
+  std::vector<double> rpm;  // increasing
+  std::vector<double> ct;
+  std::vector<double> cp;
 };
 
 struct PropEntry : EntryBase {
   double diameter_m = 0.0;
   std::optional<double> pitch_m;
   std::optional<double> mass_kg;
+  std::optional<int> blades;
+  std::optional<double> max_rpm;
+  std::optional<PropPowerLaw> power_law;
+  std::optional<double> ct_static;
+  std::optional<double> cp_static;
+  PropStaticTable static_table;     // empty when absent
+  std::vector<PropSweep> j_tables;  // by increasing rpm; empty when absent
 };
 
+enum class BatteryChemistry { kLiPo, kLiIon, kLiFePo4, kNiMh, kNiCd };
+
 struct BatteryEntry : EntryBase {
+  BatteryChemistry chemistry = BatteryChemistry::kLiPo;
+  int cells_series = 1;
+  int cells_parallel = 1;
+  double capacity_ah = 0.0;
+  double voltage_nominal_v = 0.0;
+  std::optional<double> ri_ohm;
+  std::optional<double> max_current_a;
+  std::optional<double> peak_current_a;
   std::optional<double> mass_kg;
 };
 

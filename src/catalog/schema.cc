@@ -66,6 +66,21 @@ std::vector<KeySpec> Build(ComponentKind kind) {
       add(Num("mass_kg", false, 0, true, 1000, "mass, kg"));
       add(Num("max_current_a", false, 0, true, 1e4, "current rating, A"));
       add(Num("max_power_w", false, 0, true, 1e7, "power rating, W"));
+      add(Num("io_test_voltage_v", false, 0, true, 2000,
+              "DC supply voltage at which io_a was stated or evaluated, V"));
+      add(Num("vdc_nominal_v", false, 0, true, 2000, "nominal (datasheet test) supply voltage, V"));
+      add(Int("cells_min", false, 1, 50, "smallest recommended LiPo cell count in series"));
+      add(Int("cells_max", false, 1, 50, "largest recommended LiPo cell count in series"));
+      add(Int("poles", false, 2, 200, "number of magnet poles"));
+      add(Num("loss_torque_nm", false, 0, false, 100,
+              "constant loss torque (DriveCalc MvK), N*m; with loss_torque_per_omega it is "
+              "the no-load current law Io(omega) = (loss_torque + loss_torque_per_omega*omega)/kt "
+              "of model.md section 9"));
+      add(Num("loss_torque_per_omega_nm_s_per_rad", false, 0, false, 1,
+              "speed-proportional loss torque (DriveCalc kL), N*m per rad/s"));
+      add(Num("rm_per_omega_ohm_s_per_rad", false, 0, false, 1,
+              "speed-dependent impedance term (DriveCalc K): R(omega) = rm + K*omega, ohm per rad/s"));
+      add(Num("max_torque_nm", false, 0, true, 1e4, "peak torque rating, N*m"));
       break;
     case ComponentKind::kEsc:
       add(Num("resc_ohm", true, 0, false, 10, "equivalent series resistance of eq (47), ohm"));
@@ -77,14 +92,55 @@ std::vector<KeySpec> Build(ComponentKind kind) {
       add(Num("max_current_a", false, 0, true, 1e4, "continuous current rating, A"));
       add(Num("vdc_max_v", false, 0, true, 2000, "maximum supply voltage, V"));
       add(Num("mass_kg", false, 0, true, 1000, "mass, kg"));
+      add(Num("ipeak_a", false, 0, true, 1e4, "peak (burst, a few seconds) current rating, A"));
+      add(Num("max_power_w", false, 0, true, 1e7, "power rating, W"));
+      add(Int("cells_min", false, 1, 50, "smallest LiPo cell count in series it accepts"));
+      add(Int("cells_max", false, 1, 50, "largest LiPo cell count in series it accepts"));
       break;
-    case ComponentKind::kProp:
+    case ComponentKind::kProp: {
       add(Num("diameter_m", true, 0, true, 20, "diameter, m"));
       add(Num("pitch_m", false, 0, false, 20, "geometric pitch, m"));
       add(Int("blades", false, 1, 12, "number of blades"));
       add(Num("mass_kg", false, 0, true, 1000, "mass, kg"));
+      add(Num("max_rpm", false, 0, true, 1e6, "manufacturer's speed limit, rpm"));
+      add(Num("thrust_law_n", false, 0, true, 1e6,
+              "power law T = thrust_law_n*(rpm/1000)^thrust_law_exp at law_rho_kg_m3, static "
+              "thrust in N at 1000 rpm (DriveCalc a, converted from g)"));
+      add(Num("thrust_law_exp", false, 0, true, 6, "exponent of the thrust power law"));
+      add(Num("power_law_w", false, 0, true, 1e7,
+              "power law P = power_law_w*(rpm/1000)^power_law_exp at law_rho_kg_m3, static shaft "
+              "power in W at 1000 rpm (DriveCalc c)"));
+      add(Num("power_law_exp", false, 0, true, 8, "exponent of the power power law"));
+      add(Num("law_rho_kg_m3", false, 0.5, false, 1.5,
+              "air density at which the power laws hold, kg/m^3 (they scale with rho)"));
+      add(Num("ct_static", false, 0, true, 1,
+              "static thrust coefficient, T = ct*rho*n^2*D^4 with n in rev/s (UIUC definition)"));
+      add(Num("cp_static", false, 0, true, 1,
+              "static power coefficient, P = cp*rho*n^3*D^5 with n in rev/s (UIUC definition)"));
+      KeySpec st;
+      st.key = "static_table";
+      st.type = ValueType::kObject;
+      st.doc = "static (J = 0) coefficients vs speed: {\"rpm\": [increasing], \"ct\": [...], "
+               "\"cp\": [...]}, arrays of equal length";
+      add(st);
+      KeySpec jt;
+      jt.key = "j_tables";
+      jt.type = ValueType::kArray;
+      jt.doc = "forward-flight coefficients: [{\"rpm\": speed of the sweep, \"j\": [increasing "
+               "advance ratios V/(n*D)], \"ct\": [...], \"cp\": [...]}], sweeps by increasing rpm";
+      add(jt);
       break;
+    }
     case ComponentKind::kBattery:
+      add(Str("chemistry", true, "cell chemistry (selects the open-circuit-voltage curve)",
+              {"lipo", "liion", "lifepo4", "nimh", "nicd"}));
+      add(Int("cells_series", true, 1, 100, "cells in series in this unit (1 for a single cell)"));
+      add(Int("cells_parallel", false, 1, 100, "cells in parallel in this unit (default 1)"));
+      add(Num("capacity_ah", true, 0, true, 1e4, "rated capacity of the unit, A*h"));
+      add(Num("voltage_nominal_v", true, 0, true, 2000, "nominal voltage of the unit, V"));
+      add(Num("ri_ohm", false, 0, true, 100, "internal (DC) resistance of the unit, ohm"));
+      add(Num("max_current_a", false, 0, true, 1e5, "continuous discharge current rating, A"));
+      add(Num("peak_current_a", false, 0, true, 1e5, "burst discharge current rating, A"));
       add(Num("mass_kg", false, 0, true, 1000, "mass, kg"));
       break;
   }
@@ -132,8 +188,8 @@ std::string DescribeRule(const KeySpec& spec) {
 }
 
 const std::vector<std::string>& ProvenanceMethods() {
-  static const std::vector<std::string> kMethods = {"datasheet", "measured", "fitted", "derived",
-                                                    "assumed"};
+  static const std::vector<std::string> kMethods = {"datasheet", "measured", "computed",
+                                                    "fitted", "derived", "assumed"};
   return kMethods;
 }
 

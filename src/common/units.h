@@ -28,6 +28,16 @@ inline constexpr double GramsToKg(double g) { return g * 1e-3; }
 inline constexpr double MilliohmToOhm(double mohm) { return mohm * 1e-3; }
 inline constexpr double InchToMeter(double in) { return in * 0.0254; }
 inline constexpr double MahToCoulomb(double mah) { return mah * 3.6; }
+inline constexpr double MahToAh(double mah) { return mah * 1e-3; }
+inline constexpr double AhToCoulomb(double ah) { return ah * 3600.0; }
+inline constexpr double GramForceToNewton(double gf) { return gf * 9.80665e-3; }
+inline constexpr double KgForceToNewton(double kgf) { return kgf * 9.80665; }
+inline constexpr double PoundForceToNewton(double lbf) { return lbf * 4.4482216152605; }
+inline constexpr double InchPoundForceToNewtonMeter(double in_lbf) { return in_lbf * 0.1129848290276167; }
+inline constexpr double MphToMeterPerSecond(double mph) { return mph * 0.44704; }
+inline constexpr double OunceToKg(double oz) { return oz * 0.028349523125; }
+// rev/s from rpm (the n of the UIUC coefficient definitions).
+inline constexpr double RpmToRevPerSec(double rpm) { return rpm / 60.0; }
 
 // model.md section 8: datasheet Kv [rpm per DC volt] is the no-load speed at full throttle of
 // an ideal ESC, omega = 0.675*VDC/KE, hence KE = (3/(sqrt(2)*pi)) / (Kv*pi/30)

@@ -1,0 +1,323 @@
+// DriveCalc database (shared/data/drivecalc, exported from DCbase.dcd): motors, ESCs, battery
+// cells and propellers. Units in the source: Rm [ohm], R and Ri [milliohm], Weight [g],
+// Capacity [mAh], prop Dia/Pitch [in], thrust [g] = a*(n/1000)^b, power [W] = c*(n/1000)^d.
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <regex>
+#include <set>
+
+#include "catalog/esc_prior.h"
+#include "common/atmosphere.h"
+#include "common/units.h"
+#include "importers/csv.h"
+#include "importers/importers.h"
+
+namespace dynosize {
+
+namespace {
+
+constexpr const char* kDataset = "DriveCalc DB";
+// Speed at which io_a is evaluated from the loss terms: the no-load speed at 10 V DC, the
+// voltage at which hobby datasheets most often state Io ("Io @ 10 V").
+constexpr double kIoTestVoltageV = 10.0;
+
+struct Row {
+  const CsvTable* t;
+  const CsvRow* r;
+  std::string Str(const char* col) const { return t->Field(*r, t->Column(col)); }
+  // A number; 0 for an empty cell (DriveCalc writes empty for "none").
+  double Num(const char* col, bool* ok) const {
+    const std::string f = Str(col);
+    if (f.empty()) return 0.0;
+    const auto v = ParseNumber(f);
+    if (!v) {
+      *ok = false;
+      return 0.0;
+    }
+    return *v;
+  }
+  // "Motors.csv:12" for the report.
+  std::string Where() const {
+    const auto slash = t->path.find_last_of('/');
+    return t->path.substr(slash == std::string::npos ? 0 : slash + 1) + ":" + std::to_string(r->line);
+  }
+};
+
+std::string Ref(const char* file, const Row& row) {
+  return std::string(file) + " myid " + row.Str("myid");
+}
+
+// Brushed motors by name: Graupner/Power "Speed 280..700", Mabuchi RS-xxx, "Bürsti" (German for
+// brushed), Permax without "BL", GWS EPS gear drives. Everything else in DriveCalc is BLDC.
+bool LooksBrushed(const std::string& name) {
+  static const std::regex kBrushed(
+      "(speed ?[0-9]{3})|(mabuchi)|(rs-[0-9]{3})|(b\xC3\xBCrst)|(permax [0-9])|(permax/)|"
+      "(gws [0-9]{3} [0-9]+v)|(lightspeed [0-9]{3})",
+      std::regex::icase);
+  return std::regex_search(name, kBrushed);
+}
+
+void ImportMotors(const std::string& dir, ImportedDataset* out) {
+  const CsvTable t = ReadCsv(dir + "/Motors.csv");
+  if (t.was_latin1) out->report.notes.push_back("Motors.csv decoded as Latin-1");
+  std::map<std::string, std::string> seen;  // exact-duplicate key -> id kept
+  for (const auto& r : t.rows) {
+    const Row row{&t, &r};
+    const std::string name = CleanName(row.Str("Name"));
+    const std::string example = row.Where() + " " + name;
+    bool ok = true;
+    const double kv = row.Num("kV", &ok), rm = row.Num("Rm", &ok), imax = row.Num("Imax", &ok),
+                 weight_g = row.Num("Weight", &ok), k = row.Num("K", &ok),
+                 mvk = row.Num("MvK", &ok), kl = row.Num("kL", &ok);
+    if (!ok) {
+      out->report.Drop("motors", "malformed number", example);
+      continue;
+    }
+    if (name.empty()) {
+      out->report.Drop("motors", "no name", example);
+      continue;
+    }
+    if (!(kv > 0)) {
+      out->report.Drop("motors", "kV = 0 placeholder", example);
+      continue;
+    }
+    if (!(rm > 0)) {
+      out->report.Drop("motors", "Rm = 0 placeholder", example);
+      continue;
+    }
+    const std::string dup_key = name + "|" + row.Str("kV") + "|" + row.Str("Rm") + "|" +
+                                row.Str("Weight") + "|" + row.Str("MvK") + "|" + row.Str("kL");
+    const std::string id = "dc_m_" + row.Str("myid");
+    if (const auto d = seen.find(dup_key); d != seen.end()) {
+      out->report.Drop("motors", "exact duplicate (same name, kV, Rm, weight, losses)",
+                       example + " = " + d->second);
+      continue;
+    }
+    seen[dup_key] = id;
+    const bool brushed = LooksBrushed(name);
+    // model.md section 8 (BLDC) / DC machine: KE from Kv; section 5: KT = sqrt(27/10)*KE (BLDC).
+    const double ke = brushed ? KeFromKvBrushed(kv) : KeFromKvBldc(kv);
+    const double kt = brushed ? ke : kPacPerVllIrms * ke;
+    // DriveCalc's loss torque MvK + kL*omega is carried by the no-load current: model.md
+    // section 9, Io(omega) = (MvK + kL*omega)/KT, evaluated at the 10 V no-load speed.
+    const double omega_ref = RpmToRadPerSec(kv * kIoTestVoltageV);
+    const double io = (mvk + kl * omega_ref) / kt;
+
+    EntryBuilder b(id, name);
+    b.Set("type", brushed ? "brushed" : "bldc", "derived");
+    b.SetNum("kv_rpm_per_v", kv, "datasheet");
+    b.SetNum("rm_ohm", rm, "datasheet");
+    b.SetNum("io_a", io, "derived", 4);
+    b.Set("io_test_voltage_v", kIoTestVoltageV, "assumed");
+    if (mvk > 0) b.SetNum("loss_torque_nm", mvk, "datasheet");
+    if (kl > 0) b.SetNum("loss_torque_per_omega_nm_s_per_rad", kl, "datasheet");
+    if (k > 0) b.SetNum("rm_per_omega_ohm_s_per_rad", k, "datasheet");
+    if (imax > 0) b.SetNum("max_current_a", imax, "datasheet");
+    if (weight_g > 0) b.SetNum("mass_kg", GramsToKg(weight_g), "datasheet");
+    // The long explanation lives in the document comment and catalog/README.md.
+    std::string note = "rm_ohm: DB Rm, ~1.6x below a fit of DriveCalc's own measurements";
+    if (brushed) note += "; brushed (by name)";
+    if (name.find(':') != std::string::npos) note += "; geared (ratio in name), Kv of the motor";
+    b.Source(kDataset, Ref("Motors.csv", row), note);
+    out->motors.push_back(b.Build());
+    out->report.Keep("motors");
+  }
+}
+
+void ImportEscs(const std::string& dir, ImportedDataset* out) {
+  const CsvTable t = ReadCsv(dir + "/ESC.csv");
+  const EscPrior& prior = DefaultEscPrior();
+  for (const auto& r : t.rows) {
+    const Row row{&t, &r};
+    const std::string name = CleanName(row.Str("Name"));
+    const std::string example = row.Where() + " " + name;
+    bool ok = true;
+    const double imax = row.Num("Imax", &ok), ipeak = row.Num("Ipeak", &ok),
+                 r_mohm = row.Num("R", &ok), weight_g = row.Num("Weight", &ok),
+                 lipo_min = row.Num("LiPomin", &ok), lipo_max = row.Num("LiPomax", &ok);
+    if (!ok) {
+      out->report.Drop("escs", "malformed number", example);
+      continue;
+    }
+    if (!(imax > 0)) {
+      out->report.Drop("escs", "Imax = 0 placeholder (no current rating)", example);
+      continue;
+    }
+    EntryBuilder b("dc_e_" + row.Str("myid"), name);
+    std::string note;
+    if (r_mohm > 0) {
+      b.SetNum("resc_ohm", MilliohmToOhm(r_mohm), "datasheet");
+      note = "";
+    } else {
+      b.SetNum("resc_ohm", PriorEscResistanceOhm(imax), "assumed", 3);
+      note = "R = 0 placeholder: resc_ohm from the Imax prior; ";
+    }
+    b.SetNum("c1", prior.c1, "assumed");
+    b.SetNum("c0", prior.c0, "assumed");
+    b.SetNum("tr_sat", prior.tr_sat, "assumed");
+    b.SetNum("sat_slope", prior.sat_slope, "assumed");
+    b.SetNum("max_current_a", imax, "datasheet");
+    if (ipeak >= imax) b.SetNum("ipeak_a", ipeak, "datasheet");
+    if (weight_g > 0) b.SetNum("mass_kg", GramsToKg(weight_g), "datasheet");
+    if (lipo_min >= 1 && lipo_max >= lipo_min) {
+      b.Set("cells_min", static_cast<int>(lipo_min), "datasheet");
+      b.Set("cells_max", static_cast<int>(lipo_max), "datasheet");
+      // 4.2 V per fully charged LiPo cell.
+      b.SetNum("vdc_max_v", 4.2 * lipo_max, "derived");
+    }
+    if (ipeak > 0 && ipeak < imax) note += "Ipeak < Imax in the source, left out; ";
+    b.Source(kDataset, Ref("ESC.csv", row), note + "c1, c0, tr_sat, sat_slope: esc_prior.h");
+    out->escs.push_back(b.Build());
+    out->report.Keep("escs");
+  }
+}
+
+// Chemistry from the nominal cell voltage and the name.
+std::pair<std::string, std::string> Chemistry(double volt, const std::string& name) {
+  std::string lower = name;
+  std::transform(lower.begin(), lower.end(), lower.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  auto has = [&](const char* s) { return lower.find(s) != std::string::npos; };
+  if (volt < 1.5) {
+    if (has("nicd") || has("nicad")) return {"nicd", "derived"};
+    return {"nimh", "assumed"};  // 1.2 V: NiMH or NiCd, the data set does not say
+  }
+  if (volt < 3.35 || has("fepo") || has("a123") || has("a 123") || has("life")) {
+    return {"lifepo4", "derived"};
+  }
+  if (has("konion") || has("li-ion") || has("liion") || has("18650") || has("26650")) {
+    return {"liion", "derived"};
+  }
+  return {"lipo", "derived"};
+}
+
+void ImportBatteries(const std::string& dir, ImportedDataset* out) {
+  const CsvTable t = ReadCsv(dir + "/Batteries.csv");
+  for (const auto& r : t.rows) {
+    const Row row{&t, &r};
+    const std::string name = CleanName(row.Str("Name"));
+    const std::string example = row.Where() + " " + name;
+    bool ok = true;
+    const double imax = row.Num("Imax", &ok), ipeak = row.Num("Ipeak", &ok),
+                 cap_mah = row.Num("Capacity", &ok), weight_g = row.Num("Weight", &ok),
+                 ri_mohm = row.Num("Ri", &ok), volt = row.Num("Volt", &ok);
+    if (!ok) {
+      out->report.Drop("batteries", "malformed number", example);
+      continue;
+    }
+    if (!(cap_mah > 0) || !(volt > 0)) {
+      out->report.Drop("batteries",
+                       "not a cell: no capacity or voltage (DriveCalc's 'Constant voltage' source)",
+                       example);
+      continue;
+    }
+    const auto [chem, chem_method] = Chemistry(volt, name);
+    EntryBuilder b("dc_b_" + row.Str("myid"), name);
+    b.Set("chemistry", chem, chem_method);
+    b.Set("cells_series", 1, "datasheet");
+    b.SetNum("capacity_ah", MahToAh(cap_mah), "datasheet");
+    b.SetNum("voltage_nominal_v", volt, "datasheet");
+    if (ri_mohm > 0) b.SetNum("ri_ohm", MilliohmToOhm(ri_mohm), "datasheet");
+    if (imax > 0) b.SetNum("max_current_a", imax, "datasheet");
+    if (ipeak > 0) b.SetNum("peak_current_a", ipeak, "datasheet");
+    if (weight_g > 0) b.SetNum("mass_kg", GramsToKg(weight_g), "datasheet");
+    std::string note;
+    if (chem_method == "assumed") note += "1.2 V: NiMH assumed (DB does not tell NiMH from NiCd); ";
+    if (ri_mohm <= 0) note += "Ri = 0 placeholder, left out; ";
+    if (!note.empty()) note.resize(note.size() - 2);
+    b.Source(kDataset, Ref("Batteries.csv", row), note);
+    out->batteries.push_back(b.Build());
+    out->report.Keep("batteries");
+  }
+}
+
+// Density of a DriveCalc measurement from its altitude [m] and temperature [C]; 0/0 means not
+// stated, and sea-level ISA is assumed.
+double LawDensity(double alt_m, double temp_c, bool* assumed) {
+  *assumed = alt_m == 0.0 && temp_c == 0.0;
+  return *assumed ? kIsaSeaLevelRhoKgM3 : AirDensityKgM3(alt_m, temp_c);
+}
+
+void ImportProps(const std::string& dir, ImportedDataset* out) {
+  const CsvTable t = ReadCsv(dir + "/Props.csv");
+  for (const auto& r : t.rows) {
+    const Row row{&t, &r};
+    bool ok = true;
+    const double dia_in = row.Num("Dia", &ok), pitch_in = row.Num("Pitch", &ok),
+                 a = row.Num("a", &ok), bexp = row.Num("b", &ok), c = row.Num("c", &ok),
+                 d = row.Num("d", &ok), alt_t = row.Num("AltThr", &ok),
+                 tmp_t = row.Num("TmpThr", &ok), alt_p = row.Num("AltPwr", &ok),
+                 tmp_p = row.Num("TmpPwr", &ok), max_rpm = row.Num("MaxRPM", &ok),
+                 folder = row.Num("Folder", &ok);
+    const std::string name = CleanName(row.Str("Name")) + " " + row.Str("Dia") + "x" + row.Str("Pitch");
+    const std::string example = row.Where() + " " + name;
+    if (!ok) {
+      out->report.Drop("props", "malformed number", example);
+      continue;
+    }
+    if (!(dia_in > 0)) {
+      out->report.Drop("props", "no diameter", example);
+      continue;
+    }
+    if (!(a > 0) || !(bexp > 0)) {
+      out->report.Drop("props", "no thrust law (a = 0, b = 0 placeholders; power law only)", example);
+      continue;
+    }
+    if (!(c > 0) || !(d > 0)) {
+      out->report.Drop("props", "no power law (c = 0 or d = 0)", example);
+      continue;
+    }
+    // Both laws are brought to sea-level ISA density (T and P scale linearly with rho, from
+    // T = CT*rho*n^2*D^4 and P = CP*rho*n^3*D^5).
+    bool t_assumed = false, p_assumed = false;
+    const double rho_t = LawDensity(alt_t, tmp_t, &t_assumed);
+    const double rho_p = LawDensity(alt_p, tmp_p, &p_assumed);
+    EntryBuilder b("dc_p_" + row.Str("myid"), name);
+    b.SetNum("diameter_m", InchToMeter(dia_in), "datasheet");
+    if (pitch_in > 0) b.SetNum("pitch_m", InchToMeter(pitch_in), "datasheet");
+    b.SetNum("thrust_law_n", GramForceToNewton(a) * kIsaSeaLevelRhoKgM3 / rho_t, "derived");
+    b.SetNum("thrust_law_exp", bexp, "datasheet");
+    b.SetNum("power_law_w", c * kIsaSeaLevelRhoKgM3 / rho_p, "derived");
+    b.SetNum("power_law_exp", d, "datasheet");
+    b.Set("law_rho_kg_m3", kIsaSeaLevelRhoKgM3, "derived");
+    if (max_rpm > 0) b.SetNum("max_rpm", max_rpm, "datasheet");
+    std::string note = "thrust: " + row.Str("srcThr") + " at " + row.Str("AltThr") + " m " +
+                       row.Str("TmpThr") + " C; power: " + row.Str("srcPwr") + " at " +
+                       row.Str("AltPwr") + " m " + row.Str("TmpPwr") + " C";
+    if (t_assumed || p_assumed) note += " (0 m 0 C = not stated: sea level assumed)";
+    if (folder > 0) note += "; folding";
+    b.Source(kDataset, Ref("Props.csv", row), note);
+    out->props.push_back(b.Build());
+    out->report.Keep("props");
+  }
+}
+
+}  // namespace
+
+ImportedDataset ImportDriveCalc(const std::string& dir) {
+  ImportedDataset out;
+  out.report.dataset = "drivecalc";
+  out.report.output_file = "drivecalc.json";
+  out.comment =
+      "Generated by dynosize ImportAll from shared/data/drivecalc: the DriveCalc database "
+      "(drivecalc.de, Christian Persson; DCbase.dcd export from "
+      "github.com/dariomangoni/DriveCalculatorMatlab commit 4451ac8; user-contributed entries, "
+      "redistribution terms unclear). 'datasheet' = the value as stored in the DB. Units "
+      "converted: g -> kg, mOhm -> ohm, mAh -> Ah, in -> m, gf -> N. Motors: ke/kt from kV "
+      "(model.md sections 5, 8); rm_ohm is DriveCalc's stored Rm, which a fit of DriveCalc's own "
+      "measurement points (MData) finds ~1.6x too small (deciles 1.1-3.9x): a lower bound until "
+      "refitted; io_a = (MvK + kL*omega)/kt at the no-load speed at 10 V DC (model.md section 9), "
+      "in rms amperes; MvK, kL, K kept as loss_torque_nm, loss_torque_per_omega_nm_s_per_rad, "
+      "rm_per_omega_ohm_s_per_rad. ESCs: c1, c0, tr_sat, sat_slope (and resc_ohm where R = 0) "
+      "from the esc_prior.h prior, marked assumed. Batteries: one cell position each, per-cell "
+      "values. Props: static power laws rescaled from the stated altitude/temperature to "
+      "1.225 kg/m^3; no forward-flight data. Do not edit by hand: see catalog/README.md.";
+  ImportMotors(dir, &out);
+  ImportEscs(dir, &out);
+  ImportBatteries(dir, &out);
+  ImportProps(dir, &out);
+  return out;
+}
+
+}  // namespace dynosize

@@ -1,0 +1,80 @@
+#include <filesystem>
+#include <functional>
+#include <set>
+
+#include "catalog/catalog.h"
+#include "common/error.h"
+#include "common/text_file.h"
+#include "importers/importers.h"
+
+namespace dynosize {
+
+namespace {
+
+struct Importer {
+  const char* folder;
+  std::function<ImportedDataset(const std::string&)> run;
+};
+
+const std::vector<Importer>& Importers() {
+  static const std::vector<Importer> kImporters = {
+      {"drivecalc", ImportDriveCalc},
+      {"uiuc_propdb", ImportUiuc},
+      {"apc_per3_subset", ImportApcPer3},
+  };
+  return kImporters;
+}
+
+}  // namespace
+
+ImportReport ImportAll(const std::string& shared_data_dir, const std::string& out_catalog_dir) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  if (!fs::is_directory(shared_data_dir, ec)) {
+    throw NoInputError(shared_data_dir + ": no such folder (expected shared/data with drivecalc/, "
+                                         "uiuc_propdb/, ...)");
+  }
+  std::vector<ImportedDataset> results;
+  for (const auto& imp : Importers()) {
+    const std::string dir = shared_data_dir + "/" + imp.folder;
+    if (!fs::is_directory(dir, ec)) throw NoInputError(dir + ": data-set folder missing");
+    results.push_back(imp.run(dir));
+  }
+  // Ids unique across everything written and the hand-made files already in the folder.
+  std::set<std::string> written;
+  for (const auto& r : results) written.insert(r.report.output_file);
+  std::set<std::string> ids;
+  if (fs::is_directory(out_catalog_dir, ec)) {
+    for (const auto& entry : fs::directory_iterator(out_catalog_dir, ec)) {
+      const std::string fname = entry.path().filename().string();
+      if (entry.path().extension() != ".json" || written.count(fname)) continue;
+      const Json doc = ReadJsonFile(entry.path().string());
+      for (const char* kind : {"motors", "escs", "props", "batteries"}) {
+        if (!doc.contains(kind)) continue;
+        for (const auto& e : doc[kind]) {
+          if (e.contains("id") && e["id"].is_string()) ids.insert(e["id"].get<std::string>());
+        }
+      }
+    }
+  }
+  for (const auto& r : results) {
+    for (const Json* arr : {&r.motors, &r.escs, &r.props, &r.batteries}) {
+      for (const auto& e : *arr) {
+        const std::string id = e["id"].get<std::string>();
+        if (!ids.insert(id).second) {
+          throw InternalError("importer " + r.report.dataset + " produced duplicate id '" + id + "'");
+        }
+      }
+    }
+  }
+  MakeOutputDir(out_catalog_dir);
+  ImportReport report;
+  for (auto& r : results) {
+    WriteFileAtomic(out_catalog_dir + "/" + r.report.output_file,
+                    FormatCatalogDocument(r.comment, r.motors, r.escs, r.props, r.batteries));
+    report.datasets.push_back(std::move(r.report));
+  }
+  return report;
+}
+
+}  // namespace dynosize

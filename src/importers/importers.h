@@ -1,0 +1,48 @@
+// Importers: the public data sets of ../shared/data turned into catalog JSON with provenance.
+//
+// One function per data set reads its folder and returns the entries plus a report of what was
+// kept and what was dropped and why; ImportAll runs them all and writes catalog/<dataset>.json.
+// Importers are pure functions of their input files: no time stamps, stable order (the order
+// of the source rows), numbers rounded to stated significant digits, so re-running on the same
+// inputs reproduces the committed files byte for byte.
+//
+// Ids are lowercase and prefixed by data set: dc_ (DriveCalc), fu_ (FAST-UAV), uiuc_,
+// apc_ (APC PER3), sj_ (sjkim manufacturer tables), dbc_ (dronebuildcalc), ctu_ (CTU-MRS).
+#pragma once
+
+#include <string>
+
+#include "importers/import_common.h"
+
+namespace dynosize {
+
+struct ImportedDataset {
+  DatasetReport report;
+  std::string comment;  // the document's "comment": origin, licence, cleaning
+  Json motors = Json::array();
+  Json escs = Json::array();
+  Json props = Json::array();
+  Json batteries = Json::array();
+};
+
+// shared/data/drivecalc: Motors.csv, ESC.csv, Batteries.csv, Props.csv.
+ImportedDataset ImportDriveCalc(const std::string& dir);
+// shared/data/fastuav_catalogues: Motors_Data.csv, ESC_data.csv,
+// Non-Dominated-Augmented-Batteries.csv, APC_propellers_MR.csv.
+ImportedDataset ImportFastUav(const std::string& dir);
+// shared/data/uiuc_propdb: volume{1,2,3}_exp.csv.
+ImportedDataset ImportUiuc(const std::string& dir);
+// shared/data/apc_per3_subset: PER3_*.csv.
+ImportedDataset ImportApcPer3(const std::string& dir);
+// shared/data/{sjkim_mfr_motor_tables, dronebuildcalc_mfr_tables, ctu_mrs_motor_tests}.
+ImportedDataset ImportSjkimTables(const std::string& dir);
+ImportedDataset ImportDroneBuildCalc(const std::string& dir);
+ImportedDataset ImportCtuMrs(const std::string& dir);
+
+// Runs every importer on shared_data_dir/<dataset>/ and writes out_catalog_dir/<dataset>.json
+// (atomically, deterministic bytes). Ids must be unique across all data sets and the files
+// already in out_catalog_dir (InternalError otherwise: an importer bug). A missing data-set
+// folder throws NoInputError; a malformed source file DataError naming file and line.
+ImportReport ImportAll(const std::string& shared_data_dir, const std::string& out_catalog_dir);
+
+}  // namespace dynosize

@@ -1,0 +1,230 @@
+#include "prop/prop_model.h"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+#include "common/error.h"
+#include "common/units.h"
+
+namespace dynosize {
+
+namespace {
+
+struct Interp {
+  double value = 0.0;
+  bool outside = false;
+};
+
+// Linear interpolation of y(x) on increasing x; outside the range the end value is held and
+// `outside` is set (no silent extrapolation).
+Interp Lerp(const std::vector<double>& x, const std::vector<double>& y, double xq) {
+  if (x.size() == 1) return {y[0], xq != x[0]};
+  if (xq <= x.front()) return {y.front(), xq < x.front()};
+  if (xq >= x.back()) return {y.back(), xq > x.back()};
+  const auto it = std::upper_bound(x.begin(), x.end(), xq);
+  const std::size_t i = static_cast<std::size_t>(it - x.begin());
+  const double t = (xq - x[i - 1]) / (x[i] - x[i - 1]);
+  return {y[i - 1] + t * (y[i] - y[i - 1]), false};
+}
+
+std::string Num(double x) {
+  std::ostringstream o;
+  o.precision(4);
+  o << x;
+  return o.str();
+}
+
+}  // namespace
+
+PropModel::PropModel(const PropEntry& entry) : entry_(entry) {
+  if (!entry_.static_table.rpm.empty() || !entry_.j_tables.empty()) {
+    kind_ = PropDataKind::kTables;
+  } else if (entry_.ct_static && entry_.cp_static) {
+    kind_ = PropDataKind::kCoefficients;
+  } else if (entry_.power_law) {
+    kind_ = PropDataKind::kPowerLaw;
+  } else {
+    throw UsageError("propeller '" + entry_.id + "' has no performance data (tables, "
+                     "ct_static/cp_static or power laws)");
+  }
+  if (!(entry_.diameter_m > 0)) {
+    throw UsageError("propeller '" + entry_.id + "': diameter_m must be > 0");
+  }
+}
+
+void PropModel::TableCoefficients(double rpm, double j, PropEvaluation* ev) const {
+  const PropStaticTable& st = entry_.static_table;
+  const bool have_static = !st.rpm.empty();
+  std::ostringstream msg;
+  if (j == 0.0 || entry_.j_tables.empty()) {
+    if (have_static) {
+      const Interp ct = Lerp(st.rpm, st.ct, rpm), cp = Lerp(st.rpm, st.cp, rpm);
+      ev->ct = ct.value;
+      ev->cp = cp.value;
+      if (ct.outside) {
+        ev->rpm_outside_data = true;
+        msg << "rpm " << Num(rpm) << " outside the static data " << Num(st.rpm.front()) << "-"
+            << Num(st.rpm.back()) << "; ";
+      }
+      if (j > 0.0) {
+        ev->no_forward_flight_data = true;
+        msg << "J = " << Num(j) << " but only static data: static coefficients used; ";
+      }
+      ev->message = msg.str();
+      if (!ev->message.empty()) ev->message.resize(ev->message.size() - 2);
+      return;
+    }
+  }
+  // Forward flight (or static without a static table): interpolate each sweep at J, then
+  // between the two sweeps that bracket rpm.
+  const auto& sweeps = entry_.j_tables;
+  auto sweep_at = [&](const PropSweep& s, double* ct, double* cp) {
+    std::vector<double> jj = s.j, tt = s.ct, pp = s.cp;
+    if (have_static && jj.front() > 0.0) {
+      // Join the sweep to the static table at this sweep's rpm (J = 0).
+      jj.insert(jj.begin(), 0.0);
+      tt.insert(tt.begin(), Lerp(st.rpm, st.ct, s.rpm).value);
+      pp.insert(pp.begin(), Lerp(st.rpm, st.cp, s.rpm).value);
+    }
+    const Interp a = Lerp(jj, tt, j), b = Lerp(jj, pp, j);
+    *ct = a.value;
+    *cp = b.value;
+    return a.outside;
+  };
+  std::size_t hi = 0;
+  while (hi < sweeps.size() && sweeps[hi].rpm < rpm) ++hi;
+  double ct = 0, cp = 0;
+  bool j_out = false;
+  if (hi == 0 || hi == sweeps.size()) {
+    const PropSweep& s = sweeps[hi == 0 ? 0 : sweeps.size() - 1];
+    j_out = sweep_at(s, &ct, &cp);
+    ev->rpm_outside_data = rpm < sweeps.front().rpm || rpm > sweeps.back().rpm;
+    if (ev->rpm_outside_data) {
+      msg << "rpm " << Num(rpm) << " outside the forward-flight sweeps " << Num(sweeps.front().rpm)
+          << "-" << Num(sweeps.back().rpm) << "; ";
+    }
+  } else {
+    const PropSweep& a = sweeps[hi - 1];
+    const PropSweep& b = sweeps[hi];
+    double cta, cpa, ctb, cpb;
+    const bool oa = sweep_at(a, &cta, &cpa);
+    const bool ob = sweep_at(b, &ctb, &cpb);
+    const double t = (rpm - a.rpm) / (b.rpm - a.rpm);
+    ct = cta + t * (ctb - cta);
+    cp = cpa + t * (cpb - cpa);
+    j_out = oa || ob;
+  }
+  if (j_out) {
+    ev->j_outside_data = true;
+    msg << "J = " << Num(j) << " outside the measured advance ratios; edge coefficients held; ";
+  }
+  ev->ct = ct;
+  ev->cp = cp;
+  ev->message = msg.str();
+  if (!ev->message.empty()) ev->message.resize(ev->message.size() - 2);
+}
+
+PropEvaluation PropModel::Evaluate(double omega_rad_s, double rho_kg_m3,
+                                   double airspeed_m_s) const {
+  if (!std::isfinite(omega_rad_s) || omega_rad_s < 0) {
+    throw UsageError("propeller '" + entry_.id + "': omega_rad_s = " + Num(omega_rad_s) +
+                     " must be a finite number >= 0");
+  }
+  if (!std::isfinite(rho_kg_m3) || !(rho_kg_m3 > 0)) {
+    throw UsageError("propeller '" + entry_.id + "': rho_kg_m3 = " + Num(rho_kg_m3) +
+                     " must be a finite number > 0");
+  }
+  if (!std::isfinite(airspeed_m_s) || airspeed_m_s < 0) {
+    throw UsageError("propeller '" + entry_.id + "': airspeed_m_s = " + Num(airspeed_m_s) +
+                     " must be a finite number >= 0");
+  }
+  PropEvaluation ev;
+  ev.omega_rad_s = omega_rad_s;
+  ev.rpm = RadPerSecToRpm(omega_rad_s);
+  ev.rho_kg_m3 = rho_kg_m3;
+  ev.airspeed_m_s = airspeed_m_s;
+  ev.data = kind_;
+  const double d = entry_.diameter_m;
+  const double n = omega_rad_s / (2.0 * kPi);  // rev/s
+  if (n == 0.0) {
+    if (airspeed_m_s > 0) ev.message = "shaft at rest in a flow: windmilling is not modelled";
+    return ev;
+  }
+  ev.j = airspeed_m_s / (n * d);
+  switch (kind_) {
+    case PropDataKind::kTables:
+      TableCoefficients(ev.rpm, ev.j, &ev);
+      break;
+    case PropDataKind::kCoefficients:
+      ev.ct = *entry_.ct_static;
+      ev.cp = *entry_.cp_static;
+      if (ev.j > 0) {
+        ev.no_forward_flight_data = true;
+        ev.message = "J = " + Num(ev.j) + " but only static coefficients: static values used";
+      }
+      break;
+    case PropDataKind::kPowerLaw: {
+      // DriveCalc: T [N] = a*(rpm/1000)^b, P [W] = c*(rpm/1000)^d at law rho, linear in rho;
+      // expressed as CT, CP through the UIUC definitions.
+      const PropPowerLaw& law = *entry_.power_law;
+      const double k = ev.rpm / 1000.0;
+      const double t = law.thrust_law_n * std::pow(k, law.thrust_law_exp) * rho_kg_m3 / law.rho_kg_m3;
+      const double p = law.power_law_w * std::pow(k, law.power_law_exp) * rho_kg_m3 / law.rho_kg_m3;
+      ev.ct = t / (rho_kg_m3 * n * n * std::pow(d, 4));
+      ev.cp = p / (rho_kg_m3 * n * n * n * std::pow(d, 5));
+      std::string msg;
+      if (entry_.max_rpm && ev.rpm > *entry_.max_rpm) {
+        ev.rpm_outside_data = true;
+        msg = "rpm " + Num(ev.rpm) + " above the propeller's limit " + Num(*entry_.max_rpm);
+      }
+      if (ev.j > 0) {
+        ev.no_forward_flight_data = true;
+        msg += std::string(msg.empty() ? "" : "; ") + "J = " + Num(ev.j) +
+               " but only static power laws: static values used";
+      }
+      ev.message = msg;
+      break;
+    }
+  }
+  // UIUC definitions: T = CT*rho*n^2*D^4, P = CP*rho*n^3*D^5, Q = P/omega.
+  ev.thrust_n = ev.ct * rho_kg_m3 * n * n * std::pow(d, 4);
+  ev.power_w = ev.cp * rho_kg_m3 * n * n * n * std::pow(d, 5);
+  ev.torque_nm = ev.power_w / omega_rad_s;
+  return ev;
+}
+
+LocalTorqueFit PropModel::FitTorqueLaw(double omega0_rad_s, double rho_kg_m3, double airspeed_m_s,
+                                       double rel_step) const {
+  if (!std::isfinite(omega0_rad_s) || !(omega0_rad_s > 0)) {
+    throw UsageError("FitTorqueLaw: omega0_rad_s = " + Num(omega0_rad_s) + " must be > 0");
+  }
+  if (!(rel_step > 0 && rel_step <= 0.5)) {
+    throw UsageError("FitTorqueLaw: rel_step = " + Num(rel_step) + " must be in (0, 0.5]");
+  }
+  const double w[3] = {omega0_rad_s * (1 - rel_step), omega0_rad_s, omega0_rad_s * (1 + rel_step)};
+  double q[3];
+  LocalTorqueFit fit;
+  fit.omega0_rad_s = omega0_rad_s;
+  fit.rel_step = rel_step;
+  for (int i = 0; i < 3; ++i) {
+    const PropEvaluation ev = Evaluate(w[i], rho_kg_m3, airspeed_m_s);
+    q[i] = ev.torque_nm;
+    if (!ev.InData()) {
+      fit.in_data = false;
+      if (fit.message.empty()) fit.message = ev.message;
+    }
+  }
+  // Newton divided differences of the three points, expanded to a + b*w + c*w^2.
+  const double f01 = (q[1] - q[0]) / (w[1] - w[0]);
+  const double f12 = (q[2] - q[1]) / (w[2] - w[1]);
+  const double c = (f12 - f01) / (w[2] - w[0]);
+  const double b = f01 - c * (w[0] + w[1]);
+  const double a = q[0] - b * w[0] - c * w[0] * w[0];
+  fit.law.a_nm = a;
+  fit.law.b_nm_s_per_rad = b;
+  fit.law.c_nm_s2_per_rad2 = c;
+  return fit;
+}
+
+}  // namespace dynosize

@@ -1,0 +1,86 @@
+// Propeller model: thrust and torque of a catalog propeller as functions of shaft speed, air
+// density and airspeed (advance ratio), and the local quadratic load law that the closed-form
+// motor+ESC operating point (model/drive.h, TorqueLaw) needs.
+//
+// Definitions (UIUC Propeller Data Site, Brandt & Selig; n in rev/s, D in m):
+//   J = V/(n*D),   T = CT*rho*n^2*D^4,   P = CP*rho*n^3*D^5,   Q = P/(2*pi*n) = CP*rho*n^2*D^5/(2*pi)
+// Data, in the order the model prefers them:
+//   1. measured tables (PropEntry::static_table: CT, CP vs rpm at J = 0; PropEntry::j_tables:
+//      CT, CP vs J at several rpm). Linear interpolation in J within a sweep and in rpm between
+//      sweeps, so the Reynolds-number (rpm) dependence of the data is kept. A sweep that starts
+//      above J = 0 is joined to the static table at its rpm.
+//   2. constant coefficients ct_static, cp_static (static only, no rpm dependence).
+//   3. DriveCalc power laws T = a*(rpm/1000)^b, P = c*(rpm/1000)^d at law_rho, scaled by rho
+//      (static only).
+// Outside the data the model does not extrapolate silently: it holds the coefficients at the
+// nearest edge of the data and says so in PropEvaluation (rpm_outside_data, j_outside_data,
+// no_forward_flight_data).
+#pragma once
+
+#include <string>
+
+#include "catalog/catalog.h"
+#include "model/drive.h"
+
+namespace dynosize {
+
+enum class PropDataKind { kTables, kCoefficients, kPowerLaw };
+
+struct PropEvaluation {
+  double omega_rad_s = 0.0;
+  double rpm = 0.0;
+  double rho_kg_m3 = 0.0;
+  double airspeed_m_s = 0.0;
+  double j = 0.0;  // advance ratio V/(n*D); 0 when n = 0
+  double ct = 0.0;
+  double cp = 0.0;
+  double thrust_n = 0.0;
+  double torque_nm = 0.0;
+  double power_w = 0.0;
+  PropDataKind data = PropDataKind::kTables;
+  // The flags: when any is set the numbers rest on coefficients held at the edge of the data.
+  bool rpm_outside_data = false;        // below the lowest / above the highest measured rpm
+  bool j_outside_data = false;          // advance ratio beyond the measured sweep(s)
+  bool no_forward_flight_data = false;  // airspeed > 0 but only static data exist
+  bool InData() const { return !rpm_outside_data && !j_outside_data && !no_forward_flight_data; }
+  // "" when in the data, else one sentence naming the limit ("rpm 1200 below the data 2484-6804").
+  std::string message;
+};
+
+// The load law Q(omega) = a + b*omega + c*omega^2 of model/drive.h, a quadratic through the
+// exact torque at omega0*(1 - rel_step), omega0, omega0*(1 + rel_step) at fixed density and
+// airspeed. Valid near omega0 only; `in_data` and `message` carry the flags of the three points.
+struct LocalTorqueFit {
+  TorqueLaw law;
+  double omega0_rad_s = 0.0;
+  double rel_step = 0.0;
+  bool in_data = true;
+  std::string message;
+};
+
+class PropModel {
+ public:
+  // Copies what it needs from the entry. Throws UsageError when the entry has no performance
+  // data (the catalog reader already refuses such entries).
+  explicit PropModel(const PropEntry& entry);
+
+  // Exact evaluation. Throws UsageError for omega < 0, rho <= 0 or airspeed < 0 (not finite).
+  PropEvaluation Evaluate(double omega_rad_s, double rho_kg_m3, double airspeed_m_s = 0.0) const;
+
+  // Local quadratic fit of the torque around omega0 (> 0), rel_step in (0, 0.5].
+  LocalTorqueFit FitTorqueLaw(double omega0_rad_s, double rho_kg_m3, double airspeed_m_s = 0.0,
+                              double rel_step = 0.05) const;
+
+  const PropEntry& entry() const { return entry_; }
+  PropDataKind data_kind() const { return kind_; }
+  double diameter_m() const { return entry_.diameter_m; }
+
+ private:
+  // CT, CP at (rpm, J) from the tables; sets the flags of `ev`.
+  void TableCoefficients(double rpm, double j, PropEvaluation* ev) const;
+
+  PropEntry entry_;
+  PropDataKind kind_ = PropDataKind::kTables;
+};
+
+}  // namespace dynosize
