@@ -86,7 +86,7 @@ AlgorithmChoice Choose(const std::string& name, const Problem& p) {
   if (name == "nlopt_cobyla") return {nlopt::LN_COBYLA};
   if (name == "nlopt_mma") {
     // MMA handles inequalities only; equalities go to NLopt's augmented Lagrangian.
-    if (eq) return {nlopt::AUGLAG_EQ, true, nlopt::LD_MMA};
+    if (eq) return {nlopt::AUGLAG, true, nlopt::LD_MMA};
     return {nlopt::LD_MMA};
   }
   if (name == "nlopt_isres") return {nlopt::GN_ISRES, false, nlopt::LD_SLSQP, true};

@@ -42,7 +42,7 @@ struct SolverOptions {
   //           violation and complementarity, scaled as in Ipopt's "tol") <= relative_tolerance;
   //   nlopt:  stop when an iteration changes f by less than relative_tolerance * |f|
   //           (ftol_rel) or every x_i by less than relative_tolerance * |x_i| (xtol_rel).
-  double relative_tolerance = 1e-10;
+  double relative_tolerance = 1e-8;
   // Constraint violation the backends accept internally (Ipopt constr_viol_tol, NLopt
   // per-constraint tolerance), absolute, in each constraint's own unit.
   double constraint_tolerance = 1e-9;
