@@ -5,6 +5,9 @@
 
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <unistd.h>
 #include <map>
 #include <memory>
 #include <stdexcept>
@@ -328,6 +331,33 @@ TEST(Solver, ReCheckDowngradesAFalseSuccessAndNamesTheConstraint) {
   EXPECT_EQ(r.worst_constraint, "thermal_limit <= 0");
   EXPECT_DOUBLE_EQ(r.constraint_violation, 0.5);
   EXPECT_NE(r.message.find("re-check found thermal_limit <= 0 violated by 0.5"), std::string::npos) << r.message;
+}
+
+TEST(Ipopt, PrintsNothingOnStdoutAndIgnoresIpoptOptFile) {
+  // Two traps of Ipopt (ecosystem-notes.md): its banner on stdout would corrupt `--json`, and
+  // Initialize() would read ./ipopt.opt, letting a stray file override our options. Put an
+  // ipopt.opt that would cap Ipopt at 1 iteration into the working directory and check both.
+  namespace fs = std::filesystem;
+  const fs::path old_cwd = fs::current_path();
+  const fs::path dir = fs::temp_directory_path() / ("dynosize_ipopt_opt_" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  { std::ofstream(dir / "ipopt.opt") << "max_iter 1\nprint_level 12\n"; }
+  fs::current_path(dir);
+  testing::internal::CaptureStdout();
+  SolverResult r;
+  try {
+    r = Solve(Hs071(), OptionsFor("ipopt"));
+  } catch (...) {
+    testing::internal::GetCapturedStdout();
+    fs::current_path(old_cwd);
+    throw;
+  }
+  const std::string out = testing::internal::GetCapturedStdout();
+  fs::current_path(old_cwd);
+  fs::remove_all(dir);
+  EXPECT_EQ(out, "");
+  EXPECT_TRUE(r.is_success()) << r.FullReport();
+  EXPECT_GT(r.iterations, 1) << "ipopt.opt was read";
 }
 
 class ReferenceTablePrinter : public testing::Environment {
