@@ -141,8 +141,10 @@ ResidualFunction MakeResidualFunction(const FitData& d, const Layout& lay,
 }
 
 // Bounds of each parameter (physical: no negative resistance or no-load current).
-constexpr double kLower[kParamCount] = {1e-7, 1e-7, 0.0, 0.0, 0.0, 0.0, -1.0, 0.0, 0.0};
-constexpr double kUpper[kParamCount] = {10.0, 20.0, 100.0, 1000.0, 100.0, 5.0, 2.0, 1.0, 1.5};
+// Rm stays above 1 micro-ohm (the catalog requires rm_ohm > 0); C0 and sat_slope within the
+// catalog's ranges (schema.cc).
+constexpr double kLower[kParamCount] = {1e-7, 1e-7, 1e-6, 0.0, 0.0, 0.0, -1.0, 0.0, 0.0};
+constexpr double kUpper[kParamCount] = {10.0, 20.0, 100.0, 200.0, 10.0, 5.0, 1.0, 1.0, 1.0};
 
 std::string FileTag(const SteadyTable& t) { return t.file.empty() ? std::string("log") : t.file; }
 
@@ -769,6 +771,14 @@ RowPrediction PredictRow(const SteadyTable& t, std::size_t row, const MotorParam
     return out;
   }
   if (tq) out.omega_rad_s = pred[kMOmega];
+  {
+    const double tre = EffThrottle(tr, esc.tr_sat, esc.sat_slope);
+    const double g = esc.c1 * tre + esc.c0;
+    const double u = kVllRmsPerVdc * t.Get(Column::kVdcV)[row] * tre;
+    if (g > 0.0 && motor.ke_v_s_per_rad > 0.0) {
+      out.omega_from_idc_rad_s = (u - (motor.rm_ohm + esc.resc_ohm) * t.Get(Column::kIdcA)[row] / g) / motor.ke_v_s_per_rad;
+    }
+  }
   if (!tq) out.torque_nm = qp;
   out.idc_a = pred[kMIdc];
   out.irms_a = pred[kMIrms];
@@ -831,22 +841,10 @@ CrossValidation LeaveOneOut(const SteadyTable& t, const CalibrationOptions& opti
   for (double w : t.Get(Column::kOmegaRadS)) wmax = std::max(wmax, w);
   for (long long g : groups) {
     ++cv.folds;
-    SteadyTable train = t;
     std::vector<std::size_t> test;
     std::vector<std::size_t> keep;
     for (std::size_t i = 0; i < n; ++i) (group[i] == g ? test : keep).push_back(i);
-    for (int c = 0; c < logs::kColumnCount; ++c) {
-      if (!t.info[c].present) continue;
-      auto& col = train.columns[c];
-      col.clear();
-      for (std::size_t i : keep) col.push_back(t.columns[c][i]);
-    }
-    train.source_line.clear();
-    train.samples.clear();
-    for (std::size_t i : keep) {
-      train.source_line.push_back(t.source_line[i]);
-      train.samples.push_back(t.samples.empty() ? 1 : t.samples[i]);
-    }
+    const SteadyTable train = SelectRows(t, keep);
     CalibrationResult r;
     try {
       r = Calibrate(train, options);
@@ -860,12 +858,60 @@ CrossValidation LeaveOneOut(const SteadyTable& t, const CalibrationOptions& opti
       if (t.Has(Column::kThrottle) && t.Get(Column::kThrottle)[i] < options.min_throttle) continue;
       const RowPrediction p = PredictRow(t, i, r.motor, r.esc, options.assumed_throttle);
       const double idc = t.Get(Column::kIdcA)[i];
-      if (idc > 0.0 && std::isfinite(p.idc_a)) cv.idc_error_percent.push_back((p.idc_a - idc) / idc * 100.0);
+      const bool no_load = has_nl && t.Get(Column::kNoLoad)[i] != 0.0;
+      if (idc > 0.0 && std::isfinite(p.idc_a)) {
+        cv.idc_error_percent.push_back((p.idc_a - idc) / idc * 100.0);
+        if (!no_load) cv.idc_loaded_error_percent.push_back(cv.idc_error_percent.back());
+      }
       const bool tq = has_q || (has_nl && t.Get(Column::kNoLoad)[i] != 0.0);
+      if (std::isfinite(p.omega_from_idc_rad_s)) {
+        cv.omega_from_idc_error_percent.push_back((p.omega_from_idc_rad_s - w) / w * 100.0);
+      }
       if (tq && std::isfinite(p.omega_rad_s)) cv.omega_error_percent.push_back((p.omega_rad_s - w) / w * 100.0);
     }
   }
   return cv;
+}
+
+SteadyTable SelectRows(const SteadyTable& t, const std::vector<std::size_t>& keep) {
+  SteadyTable out = t;
+  for (int c = 0; c < logs::kColumnCount; ++c) {
+    auto& col = out.columns[c];
+    col.clear();
+    if (!t.info[c].present) continue;
+    for (std::size_t i : keep) col.push_back(t.columns[c][i]);
+  }
+  out.source_line.clear();
+  out.samples.clear();
+  for (std::size_t i : keep) {
+    out.source_line.push_back(t.source_line[i]);
+    out.samples.push_back(i < t.samples.size() ? t.samples[i] : 1);
+  }
+  return out;
+}
+
+SteadyTable MergeLogs(const std::vector<SteadyTable>& tables) {
+  if (tables.empty()) throw UsageError("no log to calibrate");
+  if (tables.size() == 1) return tables[0];
+  SteadyTable out = tables[0];
+  for (std::size_t k = 1; k < tables.size(); ++k) {
+    const SteadyTable& t = tables[k];
+    out.file += ", " + t.file;
+    for (int c = 0; c < logs::kColumnCount; ++c) {
+      if (!out.info[c].present) continue;
+      if (!t.info[c].present) {
+        out.info[c].present = false;
+        out.info[c].note = std::string("absent from ") + t.file;
+        out.columns[c].clear();
+        continue;
+      }
+      out.columns[c].insert(out.columns[c].end(), t.columns[c].begin(), t.columns[c].end());
+    }
+    out.source_line.insert(out.source_line.end(), t.source_line.begin(), t.source_line.end());
+    for (std::size_t i = 0; i < t.rows(); ++i) out.samples.push_back(i < t.samples.size() ? t.samples[i] : 1);
+    for (const auto& d : t.dropped) logs::AddDrop(&out, d.reason, d.count);
+  }
+  return out;
 }
 
 }  // namespace dynosize::calibration

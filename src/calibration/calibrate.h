@@ -160,6 +160,9 @@ struct RowPrediction {
   double vll_rms_v = std::numeric_limits<double>::quiet_NaN();
   double pac_w = std::numeric_limits<double>::quiet_NaN();
   double torque_nm = std::numeric_limits<double>::quiet_NaN();  // speed-known rows
+  // Speed from the measured DC current (I = IDC/(C1*TR_eff + C0), omega = (U - R*I)/KE): the
+  // quantity a DC-side model "U = n/Kv + R*I" predicts; every row.
+  double omega_from_idc_rad_s = std::numeric_limits<double>::quiet_NaN();
 };
 RowPrediction PredictRow(const logs::SteadyTable& table, std::size_t row, const MotorParams& motor,
                          const EscParams& esc, double assumed_throttle = 1.0);
@@ -170,11 +173,21 @@ RowPrediction PredictRow(const logs::SteadyTable& table, std::size_t row, const 
 // where the torque is known, i.e. torque column or no-load rows).
 struct CrossValidation {
   std::vector<double> idc_error_percent;
+  std::vector<double> idc_loaded_error_percent;  // rows with torque or speed known, not no-load
   std::vector<double> omega_error_percent;
+  std::vector<double> omega_from_idc_error_percent;  // RowPrediction::omega_from_idc_rad_s, every row
   std::size_t folds = 0;
   std::size_t failed_folds = 0;  // too few rows left to fit
 };
 CrossValidation LeaveOneOut(const logs::SteadyTable& table, const CalibrationOptions& options,
                             bool by_throttle);
+
+// Rows of several logs of one motor + ESC pair as one table: the columns present in every log
+// (a column missing from one is absent, with a note), file = the names joined by ", ".
+// Throws UsageError for an empty list.
+logs::SteadyTable MergeLogs(const std::vector<logs::SteadyTable>& tables);
+
+// The rows `keep` of `table` (every present column, source lines, samples; metadata kept).
+logs::SteadyTable SelectRows(const logs::SteadyTable& table, const std::vector<std::size_t>& keep);
 
 }  // namespace dynosize::calibration
