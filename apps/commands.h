@@ -41,6 +41,7 @@ struct CalibrateOptions {
   std::string format = "auto";      // auto | canonical | rcbenchmark | mapped | drivecalc
   std::vector<std::string> column_map;  // mapped tables: canonical=Header [unit]
   long long drivecalc_motor = -1;   // drivecalc: one motor id
+  bool drop_incomplete_rows = false;  // mapped: drop rows with an empty mapped cell
   double esc_min_us = 1000.0, esc_max_us = 2000.0;
   std::string prior_motor, prior_esc;  // catalog ids anchoring / filling in the fit
   std::string out;                  // catalog file to add the entries to
@@ -50,6 +51,10 @@ struct CalibrateOptions {
   // Refit every DriveCalc motor with a no-load point and >= 3 loaded points in LOG (MData.csv)
   // and write them to --out (default catalog/drivecalc_fitted.json).
   bool drivecalc_all = false;
+  // Also report leave-one-out prediction errors (one throttle level out; one row out for
+  // logs without throttle and for --drivecalc-all, where the plain U = n/Kv + R*I fit is
+  // reported beside it).
+  bool loo = false;
 };
 int RunCalibrate(const CalibrateOptions& o);
 

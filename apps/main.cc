@@ -71,6 +71,8 @@ int main(int argc, char** argv) {
       ->check(CLI::IsMember({"auto", "canonical", "rcbenchmark", "mapped", "drivecalc"}));
   calibrate->add_option("--map", cal.column_map,
                         "mapped tables: canonical_name=Source Header [unit] (repeatable)");
+  calibrate->add_flag("--drop-incomplete-rows", cal.drop_incomplete_rows,
+                      "mapped tables: drop (and count) rows with an empty mapped cell instead of failing");
   calibrate->add_option("--drivecalc-motor", cal.drivecalc_motor, "drivecalc: only this motor_id");
   calibrate->add_option("--esc-min-us", cal.esc_min_us, "ESC pulse width at throttle 0, us");
   calibrate->add_option("--esc-max-us", cal.esc_max_us, "ESC pulse width at throttle 1, us");
@@ -83,6 +85,8 @@ int main(int argc, char** argv) {
   calibrate->add_flag("--force", cal.force, "replace entries with the same ids in --out");
   calibrate->add_flag("--json", cal.json, "print one JSON object");
   calibrate->add_option("--plot", cal.plot_dir, "write measured-vs-predicted and residual figures here");
+  calibrate->add_flag("--loo", cal.loo,
+                      "also report leave-one-throttle-out (or leave-one-row-out) prediction errors");
   calibrate->add_flag("--drivecalc-all", cal.drivecalc_all,
                       "refit every DriveCalc motor in LOG (MData.csv) into --out (default "
                       "catalog/drivecalc_fitted.json)");

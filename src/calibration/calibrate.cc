@@ -753,6 +753,17 @@ CalibrationResult Calibrate(const SteadyTable& table, const CalibrationOptions& 
     cf.median_abs_percent = Median(rel);
     res.fit.push_back(cf);
   }
+  if (!pr.has_throttle) {
+    for (const auto& f : res.fit) {
+      if (f.rmse_percent > 10.0) {
+        res.warnings.push_back(std::string("no throttle column and ") + logs::ColumnName(f.column) + " misfit by " +
+                               std::to_string(f.rmse_percent) +
+                               " % rms: the rows do not look like full-throttle points, so KE and R are not "
+                               "meaningful; calibrate a log that records the throttle");
+        break;
+      }
+    }
+  }
   return res;
 }
 

@@ -42,6 +42,18 @@ struct DriveCalcRefit {
 // Throws DataError when those columns are absent. Deterministic: same input, same output.
 DriveCalcRefit RefitDriveCalc(const logs::SteadyTable& mdata, const DriveCalcRefitOptions& options = {});
 
+// Leave-one-out prediction errors over every motor of `refit` (percent, signed):
+//  - model: this calibration refitted without the row (Calibrate + PredictRow): DC current of
+//    loaded rows from (U, n), speed of every row from (U, I);
+//  - baseline: the plain per-motor least-squares fit U = n/Kv + R*I (QR, no intercept), the
+//    same two predictions, same rows.
+struct DriveCalcLooErrors {
+  std::vector<double> model_idc_loaded, model_omega;
+  std::vector<double> baseline_idc_loaded, baseline_omega;
+};
+DriveCalcLooErrors DriveCalcLeaveOneOut(const logs::SteadyTable& mdata, const DriveCalcRefit& refit,
+                                        const DriveCalcRefitOptions& options = {});
+
 // Rows of one motor.
 std::vector<std::size_t> RowsOfMotor(const logs::SteadyTable& mdata, long long motor_id);
 
