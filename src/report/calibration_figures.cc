@@ -92,7 +92,7 @@ std::vector<std::string> WriteCalibrationFigures(const std::string& dir, const l
           << " %, median |error| " << f.median_abs_percent << " %, " << f.points << " points";
     std::ostringstream g;
     g << "set multiplot layout 1," << (thr ? 3 : 2) << " title " << Quote(title.str()) << "\n"
-      << "set grid\nset key top left\nset xtics rotate by -35\nset lmargin 10\n"
+      << "set grid\nset key bottom right\nset xtics rotate by -35\nset lmargin 10\n"
       << "set xlabel 'measured [" << s.unit << "]'\nset ylabel 'predicted [" << s.unit << "]'\n"
       << "plot $pts using 1:2 with points pt 7 ps 0.8 lc rgb '#1f3b99' title 'points', "
       << "x with lines dt 2 lc rgb 'gray' title '1:1'\n"
