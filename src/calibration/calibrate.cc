@@ -808,6 +808,16 @@ std::string CalibrationResult::BriefReport() const {
   return s.str();
 }
 
+namespace {
+// A standard error for the table: "-" where there is none (held parameters, bounds).
+std::string ErrText(double v) {
+  if (!std::isfinite(v)) return "-";
+  std::ostringstream s;
+  s << std::setprecision(3) << v;
+  return s.str();
+}
+}  // namespace
+
 std::string CalibrationResult::FullReport() const {
   if (!solve_called) return message + "\n";
   std::ostringstream s;
@@ -817,12 +827,12 @@ std::string CalibrationResult::FullReport() const {
   for (int k = 0; k < kParamCount; ++k) {
     const auto& e = params[k];
     s << std::left << std::setw(16) << ParamName(static_cast<Param>(k)) << std::right << std::setw(14)
-      << std::setprecision(6) << e.value << std::setw(14) << std::setprecision(3) << e.standard_error << "  "
+      << std::setprecision(6) << e.value << std::setw(14) << ErrText(e.standard_error) << "  "
       << std::left << std::setw(7) << (e.fitted ? "yes" : "no") << std::setw(6)
       << (e.identifiable ? "yes" : "NO") << e.note << std::right << "\n";
   }
   s << std::left << std::setw(16) << "r_total_ohm" << std::right << std::setw(14) << std::setprecision(6)
-    << r_total_ohm << std::setw(14) << std::setprecision(3) << r_total_standard_error << "\n";
+    << r_total_ohm << std::setw(14) << ErrText(r_total_standard_error) << "\n";
   s << "condition (unit-scaled Jacobian): " << std::setprecision(3) << condition_number << "\n\n";
   for (const auto& f : fit) {
     s << "  " << std::left << std::setw(12) << logs::ColumnName(f.column) << std::right << " n " << f.points
