@@ -21,6 +21,7 @@ const std::vector<Importer>& Importers() {
       {"drivecalc", ImportDriveCalc},
       {"uiuc_propdb", ImportUiuc},
       {"apc_per3_subset", ImportApcPer3},
+      {"fastuav_catalogues", ImportFastUav},
   };
   return kImporters;
 }
