@@ -1,2 +1,131 @@
-// placeholder, replaced below
-int main() { return 0; }
+// dynosize command-line front end: parses flags (CLI11, only here) and calls apps/commands.h.
+//
+// Exit codes (see README): 0 ok, 64 usage, 65 bad input data, 66 missing input, 70 internal
+// error, 73 cannot create output. Results go to stdout, messages to stderr; with --json stdout
+// is exactly one JSON document.
+#include <CLI/CLI.hpp>
+
+#include <cstdio>
+#include <iostream>
+
+#include "commands.h"
+#include "common/error.h"
+
+namespace {
+
+using dynosize::ExitCode;
+
+int Fail(ExitCode code, const std::string& message) {
+  std::cerr << "dynosize: " << message << "\n";
+  return static_cast<int>(code);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  namespace cli = dynosize::cli;
+  CLI::App app{"dynosize: motor + ESC model, catalog, calibration and sizing for electric "
+               "multirotors and eVTOL (Brown & Chopra's combined model)"};
+  app.require_subcommand(1);
+  app.fallthrough();  // --catalog may also follow the subcommand
+  app.set_version_flag("--version", std::string(DYNOSIZE_VERSION));
+  std::string catalog_dir;
+  app.add_option("--catalog", catalog_dir,
+                 "catalog folder (default: $DYNOSIZE_CATALOG or the bundled catalog/)");
+
+  // simulate
+  cli::SimulateOptions sim;
+  auto* simulate = app.add_subcommand(
+      "simulate",
+      "operating point(s) of a motor + ESC pair: forward (VDC, throttle, load) or inverse "
+      "(VDC, torque, rpm -> throttle); --plot writes the paper's figures");
+  simulate->add_option("--motor", sim.motor_id, "motor id from the catalog")->required();
+  simulate->add_option("--esc", sim.esc_id, "ESC id from the catalog")->required();
+  simulate->add_option("--vdc", sim.vdc_v, "supply voltage at the ESC, V");
+  simulate->add_option("--throttle", sim.throttle, "throttle command, 0..1");
+  simulate->add_option("--torque", sim.torque_nm, "load torque, N*m (hysteresis brake)");
+  simulate->add_option("--rpm", sim.rpm, "shaft speed, rpm (with --throttle: fixed speed; with --torque: inverse)");
+  simulate->add_option("--torque-law", sim.torque_law,
+                       "propeller-like load Q = A + B*omega + C*omega^2 (N*m, omega in rad/s): A,B,C")
+      ->delimiter(',')
+      ->expected(3);
+  simulate->add_option("--batch", sim.batch_csv,
+                       "CSV of points (header: vdc_v,throttle,torque_nm,rpm; two of the last three per row)");
+  simulate->add_option("--out", sim.out_csv, "with --batch: write the results CSV here (default stdout)");
+  simulate->add_option("--plot", sim.plot_dir, "write the pair's figures (PNG + gnuplot script) into this folder");
+  simulate->add_flag("--json", sim.json, "print one JSON object");
+  simulate->callback([&] {
+    sim.catalog_dir = catalog_dir;
+  });
+
+  // catalog
+  auto* catalog = app.add_subcommand("catalog", "list, show, validate the component catalog");
+  catalog->require_subcommand(1);
+  catalog->fallthrough();
+  cli::CatalogListOptions list;
+  auto* list_cmd = catalog->add_subcommand("list", "list the loaded components");
+  list_cmd->add_option("--kind", list.kind, "motors, escs, props or batteries")
+      ->check(CLI::IsMember({"motors", "escs", "props", "batteries"}));
+  list_cmd->add_option("--kv-min", list.kv_min, "motors with Kv >= this, rpm/V");
+  list_cmd->add_option("--kv-max", list.kv_max, "motors with Kv <= this, rpm/V");
+  list_cmd->add_option("--mass-max-kg", list.mass_max_kg, "entries with mass <= this, kg");
+  list_cmd->add_option("--current-min-a", list.current_min_a, "entries rated for >= this current, A");
+  list_cmd->add_flag("--json", list.json, "print {kind: [entries as catalog JSON objects]}");
+  std::string show_id;
+  auto* show_cmd = catalog->add_subcommand("show", "print one entry with its derived SI parameters");
+  show_cmd->add_option("id", show_id, "entry id")->required();
+  std::string validate_dir;
+  bool validate_json = false;
+  auto* validate_cmd = catalog->add_subcommand("validate", "report every problem in a catalog folder");
+  validate_cmd->add_option("dir", validate_dir, "catalog folder (default: the one in use)");
+  validate_cmd->add_flag("--json", validate_json, "print {\"valid\": bool, \"problems\": [...]}");
+  bool schema_json = false;
+  auto* schema_cmd = catalog->add_subcommand("schema", "print every catalog key with its unit and rule");
+  schema_cmd->add_flag("--json", schema_json, "print the schema as JSON");
+
+  if (argc > 1 && argv[1][0] != '-') {
+    const std::string first = argv[1];
+    if (first != "simulate" && first != "catalog") {
+      return Fail(ExitCode::kUsage, "unknown subcommand '" + first +
+                                        "': valid are simulate, catalog (see 'dynosize --help')");
+    }
+  }
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp&) {
+    std::cout << app.help();
+    return 0;
+  } catch (const CLI::CallForAllHelp&) {
+    std::cout << app.help("", CLI::AppFormatMode::All);
+    return 0;
+  } catch (const CLI::CallForVersion&) {
+    std::cout << DYNOSIZE_VERSION << "\n";
+    return 0;
+  } catch (const CLI::ParseError& e) {
+    // Help requested on a subcommand arrives here too.
+    if (e.get_exit_code() == 0) {
+      return app.exit(e);
+    }
+    return Fail(ExitCode::kUsage, std::string(e.what()) + " (see 'dynosize --help')");
+  }
+
+  try {
+    const std::string dir = catalog_dir.empty() ? cli::DefaultCatalogDir() : catalog_dir;
+    if (*simulate) {
+      sim.catalog_dir = dir;
+      return cli::RunSimulate(sim);
+    }
+    if (*list_cmd) {
+      list.catalog_dir = dir;
+      return cli::RunCatalogList(list);
+    }
+    if (*show_cmd) return cli::RunCatalogShow(dir, show_id);
+    if (*validate_cmd) return cli::RunCatalogValidate(validate_dir.empty() ? dir : validate_dir, validate_json);
+    if (*schema_cmd) return cli::RunCatalogSchema(schema_json);
+  } catch (const dynosize::Error& e) {
+    return Fail(e.code(), e.what());
+  } catch (const std::exception& e) {
+    return Fail(ExitCode::kInternal, std::string("internal error: ") + e.what());
+  }
+  return Fail(ExitCode::kUsage, "no subcommand (see 'dynosize --help')");
+}

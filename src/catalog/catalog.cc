@@ -206,10 +206,11 @@ void Catalog::AddDocument(const Json& doc, const std::string& file,
         where += " id=" + id;
       }
       const std::size_t before = problems->size();
-      auto bad = [&](const std::string& key, const std::string& rule) {
+      // One problem line: file, entry, key, value (when present) and the rule.
+      auto bad = [&](const std::string& key, const std::string& rule, const Json* value = nullptr) {
+        if (!value && e.contains(key)) value = &e[key];
         problems->push_back(where + ": key '" + key + "'" +
-                            (e.contains(key) ? " = " + ValueText(e[key]) : std::string()) + ": " +
-                            rule);
+                            (value ? " = " + ValueText(*value) : std::string()) + ": " + rule);
       };
       // Unknown keys, listed sorted.
       std::set<std::string> unknown;
@@ -237,7 +238,7 @@ void Catalog::AddDocument(const Json& doc, const std::string& file,
         for (auto k = src->begin(); k != src->end(); ++k) {
           const std::string& sk = k.key();
           if (sk == "dataset" || sk == "reference" || sk == "note") {
-            if (!k->is_string()) bad("source." + sk, "must be a string");
+            if (!k->is_string()) bad("source." + sk, "must be a string", &*k);
           } else if (sk == "values") {
             if (!k->is_object()) {
               bad("source.values", "must be an object {key: method}");
@@ -251,11 +252,11 @@ void Catalog::AddDocument(const Json& doc, const std::string& file,
                          std::find(methods.begin(), methods.end(), m->get<std::string>()) ==
                              methods.end()) {
                 bad("source.values." + m.key(),
-                    "must be one of datasheet, measured, computed, fitted, derived, assumed");
+                    "must be one of datasheet, measured, computed, fitted, derived, assumed", &*m);
               }
             }
           } else {
-            bad("source." + sk, "unknown key: allowed are dataset, reference, values, note");
+            bad("source." + sk, "unknown key: allowed are dataset, reference, values, note", &*k);
           }
         }
         if (!src->contains("dataset")) bad("source.dataset", "missing (required)");

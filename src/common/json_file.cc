@@ -79,6 +79,12 @@ Json ParseJsonText(const std::string& text, const std::string& name,
     if (pos != std::string::npos) what = what.substr(pos + 2);
     throw DataError(name + ":" + LineColumn(text, e.byte > 0 ? e.byte - 1 : 0) +
                     ": invalid JSON: " + what);
+  } catch (const nlohmann::json::exception& e) {
+    // Number overflow (1e999) and similar: no byte position is given.
+    std::string what = e.what();
+    const auto pos = what.find("] ");
+    if (pos != std::string::npos) what = what.substr(pos + 2);
+    throw DataError(name + ": invalid JSON: " + what);
   }
 }
 

@@ -50,4 +50,22 @@ inline constexpr double KeFromKvBrushed(double kv_rpm_per_v) {
   return 1.0 / (kv_rpm_per_v * kRadPerSecPerRpm);
 }
 
+// Force, torque and other stand units (thrust-stand exports write the unit the user chose).
+inline constexpr double kStandardGravity = 9.80665;          // m/s^2, exact (CGPM 1901)
+inline constexpr double kNewtonPerGramForce = kStandardGravity * 1e-3;
+inline constexpr double kNewtonPerKilogramForce = kStandardGravity;
+inline constexpr double kNewtonPerPoundForce = 4.4482216152605;   // 0.45359237 kg * g0, exact
+inline constexpr double kNewtonPerOunceForce = kNewtonPerPoundForce / 16.0;
+inline constexpr double kNmPerOunceForceInch = kNewtonPerOunceForce * 0.0254;
+inline constexpr double kNmPerPoundForceFoot = kNewtonPerPoundForce * 0.3048;
+inline constexpr double kNmPerKilogramForceCm = kNewtonPerKilogramForce * 0.01;
+
+inline constexpr double GramForceToNewton(double gf) { return gf * kNewtonPerGramForce; }
+inline constexpr double KilogramForceToNewton(double kgf) { return kgf * kNewtonPerKilogramForce; }
+inline constexpr double PoundForceToNewton(double lbf) { return lbf * kNewtonPerPoundForce; }
+inline constexpr double OunceForceToNewton(double ozf) { return ozf * kNewtonPerOunceForce; }
+inline constexpr double FahrenheitToCelsius(double f) { return (f - 32.0) * (5.0 / 9.0); }
+inline constexpr double KelvinToCelsius(double k) { return k - 273.15; }
+inline constexpr double HertzToRadPerSec(double hz) { return hz * 2.0 * kPi; }
+
 }  // namespace dynosize

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include <Eigen/Core>
+
 #include "common/units.h"
 
 namespace dynosize {
@@ -154,60 +156,51 @@ double Drive::EscTimingFigure(double throttle) const {
 void Drive::AtLoadBatch(std::size_t n, const double* vdc_v, const double* throttle,
                         const double* a_nm, const double* b_nm_s_per_rad,
                         const double* c_nm_s2_per_rad2, OperatingPointBatch* out) const {
+  // Eigen array expressions: each line is one SIMD pass with no branches. The selects of the
+  // scalar path become min/max, which is exact for non-negative load laws (a, b, c >= 0):
+  //  - TR_eff = min(TR, tr_sat) + sat_slope*max(TR - tr_sat, 0)                  (section 7)
+  //  - a stalled drive has omega = max(root, 0) = 0, and then I = U/R >= 0 follows from (48)
+  //    with omega = 0, so the same current formula serves both cases;
+  //  - when running, Q = a + b*w + c*w^2 >= 0, so Q = max(KT*(I - Io), 0) in both cases.
+  using Arr = Eigen::ArrayXd;
+  using In = Eigen::Map<const Arr>;
+  using Out = Eigen::Map<Arr>;
   out->Resize(n);
-  // Hoisted constants; the loop body mirrors AtLoad + Complete without the limit checks and
-  // with selects instead of branches.
+  const Eigen::Index m = static_cast<Eigen::Index>(n);
+  const In vdc(vdc_v, m), tr(throttle, m), a(a_nm, m);
   const double kt = motor_.kt_nm_per_a, ke = motor_.ke_v_s_per_rad, io = motor_.io_a;
-  const double r = r_total_ohm_, resc = esc_.resc_ohm, c1 = esc_.c1, c0 = esc_.c0;
-  const double tr_sat = esc_.tr_sat, slope = esc_.sat_slope;
-  const double kv = volt_factor_, kp = power_factor_, kt_ke_over_r = kt * ke / r;
-  double* __restrict w_out = out->omega_rad_s.data();
-  double* __restrict q_out = out->torque_nm.data();
-  double* __restrict i_out = out->irms_a.data();
-  double* __restrict v_out = out->vll_rms_v.data();
-  double* __restrict pac_out = out->pac_w.data();
-  double* __restrict idc_out = out->idc_a.data();
-  double* __restrict pdc_out = out->pdc_w.data();
-  double* __restrict pesc_out = out->pesc_w.data();
-  double* __restrict pm_out = out->pmech_w.data();
-  double* __restrict em_out = out->eta_motor.data();
-  double* __restrict ee_out = out->eta_esc.data();
-  double* __restrict es_out = out->eta_system.data();
-  double* __restrict tre_out = out->throttle_effective.data();
-  for (std::size_t i = 0; i < n; ++i) {
-    const double tr = throttle[i];
-    const double tre = tr <= tr_sat ? tr : tr_sat + slope * (tr - tr_sat);
-    const double u = kv * vdc_v[i] * tre;
-    const double b = b_nm_s_per_rad ? b_nm_s_per_rad[i] : 0.0;
-    const double c = c_nm_s2_per_rad2 ? c_nm_s2_per_rad2[i] : 0.0;
-    const double b_total = b + kt_ke_over_r;
-    const double c_total = a_nm[i] + kt * io - kt * u / r;
-    const double disc = std::max(b_total * b_total - 4.0 * c * c_total, 0.0);
-    const double w_root = -2.0 * c_total / (b_total + std::sqrt(disc));
-    const bool stalled = !(w_root >= 0.0);
-    const double w = stalled ? 0.0 : w_root;
-    const double cur = stalled ? std::max(u / r, 0.0) : (u - ke * w) / r;
-    const double q_raw = kt * (cur - io);
-    const double q = stalled ? std::max(q_raw, 0.0) : q_raw;
-    const double vll = u - resc * cur;
-    const double pac = kp * vll * cur;
-    const double idc = (c1 * tre + c0) * cur;
-    const double pdc = vdc_v[i] * idc;
-    const double pm = q * w;
-    tre_out[i] = tre;
-    w_out[i] = w;
-    q_out[i] = q;
-    i_out[i] = cur;
-    v_out[i] = vll;
-    pac_out[i] = pac;
-    idc_out[i] = idc;
-    pdc_out[i] = pdc;
-    pesc_out[i] = pdc - pac;
-    pm_out[i] = pm;
-    em_out[i] = (pac > 0.0 && pm > 0.0) ? pm / pac : 0.0;
-    ee_out[i] = (pdc > 0.0 && pac > 0.0) ? pac / pdc : 0.0;
-    es_out[i] = (pdc > 0.0 && pm > 0.0) ? pm / pdc : 0.0;
+  const double inv_r = 1.0 / r_total_ohm_;
+  Out tre(out->throttle_effective.data(), m), w(out->omega_rad_s.data(), m),
+      cur(out->irms_a.data(), m), q(out->torque_nm.data(), m), vll(out->vll_rms_v.data(), m),
+      pac(out->pac_w.data(), m), idc(out->idc_a.data(), m), pdc(out->pdc_w.data(), m),
+      pesc(out->pesc_w.data(), m), pm(out->pmech_w.data(), m), em(out->eta_motor.data(), m),
+      ee(out->eta_esc.data(), m), es(out->eta_system.data(), m);
+  tre = tr.min(esc_.tr_sat) + esc_.sat_slope * (tr - esc_.tr_sat).max(0.0);
+  vll = volt_factor_ * vdc * tre;  // U of (48), kept in vll until (47) below
+  // c*w^2 + B*w + C = 0 with B = b + KT*KE/R, C = a + KT*Io - KT*U/R (as AtLoad); pac and
+  // idc serve as scratch for B and C.
+  pac.setConstant(kt * ke * inv_r);
+  if (b_nm_s_per_rad) pac += In(b_nm_s_per_rad, m);
+  idc = a + kt * io - kt * inv_r * vll;
+  if (c_nm_s2_per_rad2) {
+    const In c(c_nm_s2_per_rad2, m);
+    // |disc| < 0 only when C > 0, where the motor stalls whatever the root (see AtLoad).
+    w = (-2.0 * idc / (pac + (pac.square() - 4.0 * c * idc).abs().sqrt())).max(0.0);
+  } else {
+    w = (-idc / pac).max(0.0);
   }
+  cur = (vll - ke * w) * inv_r;                            // (48)
+  q = (kt * (cur - io)).max(0.0);                          // (42)
+  vll = vll - esc_.resc_ohm * cur;                         // (47)
+  pac = power_factor_ * vll * cur;                         // (41), (51)
+  idc = (esc_.c1 * tre + esc_.c0) * cur;                   // (57)
+  pdc = vdc * idc;                                         // (59)
+  pesc = pdc - pac;                                        // (52)
+  pm = q * w;                                              // (50)
+  // Efficiencies: 0 where the numerator or denominator is not positive, as Ratio() does.
+  em = (pac > 0.0 && pm > 0.0).select(pm / pac.max(1e-300), 0.0);
+  ee = (pdc > 0.0 && pac > 0.0).select(pac / pdc.max(1e-300), 0.0);
+  es = (pdc > 0.0 && pm > 0.0).select(pm / pdc.max(1e-300), 0.0);
 }
 
 }  // namespace dynosize

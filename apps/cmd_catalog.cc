@@ -1,0 +1,228 @@
+// `dynosize catalog list|show|validate|schema`.
+#include <cmath>
+#include <iomanip>
+#include <iostream>
+#include <sstream>
+
+#include "catalog/catalog.h"
+#include "catalog/schema.h"
+#include "commands.h"
+#include "common/error.h"
+#include "common/units.h"
+
+namespace dynosize::cli {
+
+namespace {
+
+std::optional<double> Number(const Json& e, const char* key) {
+  const auto it = e.find(key);
+  if (it == e.end() || !it->is_number()) return std::nullopt;
+  return it->get<double>();
+}
+
+// Filters of `catalog list`; an entry without the filtered value does not pass.
+bool Passes(const CatalogListOptions& o, const Json& e) {
+  auto within = [&](const char* key, std::optional<double> lo, std::optional<double> hi) {
+    if (!lo && !hi) return true;
+    const auto v = Number(e, key);
+    return v && (!lo || *v >= *lo) && (!hi || *v <= *hi);
+  };
+  return within("kv_rpm_per_v", o.kv_min, o.kv_max) && within("mass_kg", std::nullopt, o.mass_max_kg) &&
+         within("max_current_a", o.current_min_a, std::nullopt);
+}
+
+std::string Cell(std::optional<double> v, double scale, int prec) {
+  if (!v) return "-";
+  std::ostringstream s;
+  s << std::fixed << std::setprecision(prec) << *v * scale;
+  return s.str();
+}
+
+template <typename Entry>
+std::vector<const Entry*> Select(const std::vector<Entry>& entries, const CatalogListOptions& o) {
+  std::vector<const Entry*> out;
+  for (const auto& e : entries) {
+    if (Passes(o, e.json)) out.push_back(&e);
+  }
+  return out;
+}
+
+std::string Clip(const std::string& s, std::size_t n) {
+  return s.size() <= n ? s : s.substr(0, n - 1) + "~";
+}
+
+}  // namespace
+
+int RunCatalogList(const CatalogListOptions& o) {
+  if ((o.kv_min || o.kv_max) && !o.kind.empty() && o.kind != "motors") {
+    throw UsageError("--kv-min/--kv-max filter motors: use them with --kind motors");
+  }
+  const Catalog cat = Catalog::Load(o.catalog_dir);
+  const bool all = o.kind.empty();
+  const auto motors = Select(cat.motors(), o);
+  const auto escs = Select(cat.escs(), o);
+  const auto props = Select(cat.props(), o);
+  const auto batteries = Select(cat.batteries(), o);
+  const bool motor_filter = o.kv_min || o.kv_max;
+  if (o.json) {
+    Json j;
+    auto put = [&](const char* kind, const auto& entries) {
+      if (!all && o.kind != kind) return;
+      if (all && motor_filter && std::string(kind) != "motors") return;
+      Json arr = Json::array();
+      for (const auto* e : entries) arr.push_back(e->json);
+      j[kind] = arr;
+    };
+    put("motors", motors);
+    put("escs", escs);
+    put("props", props);
+    put("batteries", batteries);
+    std::cout << DumpJson(j);
+    return 0;
+  }
+  std::ostringstream out;
+  if (all || o.kind == "motors") {
+    out << "motors (" << motors.size() << ")\n";
+    out << "  " << std::left << std::setw(28) << "id" << std::setw(40) << "name" << std::right
+        << std::setw(6) << "type" << std::setw(8) << "Kv" << std::setw(10) << "KE mV*s"
+        << std::setw(9) << "Rm mOhm" << std::setw(7) << "Io A" << std::setw(8) << "Imax A"
+        << std::setw(8) << "mass g" << "\n";
+    for (const auto* m : motors) {
+      out << "  " << std::left << std::setw(28) << Clip(m->id, 27) << std::setw(40) << Clip(m->name, 39)
+          << std::right << std::setw(6) << (m->params.type == MotorType::kBldc ? "bldc" : "dc")
+          << std::setw(8) << Cell(m->kv_rpm_per_v, 1, 0) << std::setw(10)
+          << Cell(m->params.ke_v_s_per_rad, 1e3, 3) << std::setw(9) << Cell(m->params.rm_ohm, 1e3, 1)
+          << std::setw(7) << Cell(m->params.io_a, 1, 2) << std::setw(8)
+          << Cell(std::isfinite(m->params.max_current_a) ? std::optional<double>(m->params.max_current_a) : std::nullopt, 1, 1)
+          << std::setw(8) << Cell(m->mass_kg, 1e3, 0) << "\n";
+    }
+  }
+  if ((all && !motor_filter) || o.kind == "escs") {
+    out << "escs (" << escs.size() << ")\n";
+    out << "  " << std::left << std::setw(28) << "id" << std::setw(40) << "name" << std::right
+        << std::setw(10) << "RESC mOhm" << std::setw(7) << "C1" << std::setw(7) << "C0"
+        << std::setw(8) << "TR_sat" << std::setw(7) << "slope" << std::setw(8) << "Imax A"
+        << std::setw(8) << "mass g" << "\n";
+    for (const auto* e : escs) {
+      const auto& p = e->params;
+      out << "  " << std::left << std::setw(28) << Clip(e->id, 27) << std::setw(40) << Clip(e->name, 39)
+          << std::right << std::setw(10) << Cell(p.resc_ohm, 1e3, 1) << std::setw(7) << Cell(p.c1, 1, 3)
+          << std::setw(7) << Cell(p.c0, 1, 3) << std::setw(8) << Cell(p.tr_sat, 1, 2) << std::setw(7)
+          << Cell(p.sat_slope, 1, 2) << std::setw(8)
+          << Cell(std::isfinite(p.max_current_a) ? std::optional<double>(p.max_current_a) : std::nullopt, 1, 0)
+          << std::setw(8) << Cell(e->mass_kg, 1e3, 0)
+          << (e->assumed_keys.empty() ? "" : "  (assumed: " + std::to_string(e->assumed_keys.size()) + " values)")
+          << "\n";
+    }
+  }
+  if ((all && !motor_filter) || o.kind == "props") {
+    out << "props (" << props.size() << ")\n";
+    out << "  " << std::left << std::setw(28) << "id" << std::setw(40) << "name" << std::right
+        << std::setw(10) << "diam in" << std::setw(10) << "pitch in" << std::setw(8) << "mass g" << "\n";
+    for (const auto* p : props) {
+      out << "  " << std::left << std::setw(28) << Clip(p->id, 27) << std::setw(40) << Clip(p->name, 39)
+          << std::right << std::setw(10) << Cell(p->diameter_m, 1 / 0.0254, 1) << std::setw(10)
+          << Cell(p->pitch_m, 1 / 0.0254, 1) << std::setw(8) << Cell(p->mass_kg, 1e3, 0) << "\n";
+    }
+  }
+  if ((all && !motor_filter) || o.kind == "batteries") {
+    out << "batteries (" << batteries.size() << ")\n";
+    out << "  " << std::left << std::setw(28) << "id" << std::setw(40) << "name" << std::right
+        << std::setw(8) << "mass g" << "\n";
+    for (const auto* b : batteries) {
+      out << "  " << std::left << std::setw(28) << Clip(b->id, 27) << std::setw(40) << Clip(b->name, 39)
+          << std::right << std::setw(8) << Cell(b->mass_kg, 1e3, 0) << "\n";
+    }
+  }
+  std::cout << out.str();
+  return 0;
+}
+
+int RunCatalogShow(const std::string& catalog_dir, const std::string& id) {
+  const Catalog cat = Catalog::Load(catalog_dir);
+  Json out;
+  bool found = false;
+  for (const auto& m : cat.motors()) {
+    if (m.id != id) continue;
+    found = true;
+    out = m.json;
+    Json si;
+    si["ke_v_s_per_rad"] = m.params.ke_v_s_per_rad;
+    si["kt_nm_per_a"] = m.params.kt_nm_per_a;
+    si["kt_over_ke"] = m.params.kt_nm_per_a / m.params.ke_v_s_per_rad;
+    si["kt_over_ke_ideal"] = m.params.type == MotorType::kBldc ? kPacPerVllIrms : 1.0;
+    si["file"] = m.file;
+    out["derived"] = si;
+  }
+  for (const auto& e : cat.escs()) {
+    if (e.id != id) continue;
+    found = true;
+    out = e.json;
+    Json si;
+    si["esc_timing_figure_at_full_throttle"] =
+        (e.params.c1 - kIdealIdcPerIrmsPerThrottle) *
+            (e.params.tr_sat + e.params.sat_slope * (1.0 - e.params.tr_sat)) + e.params.c0;
+    si["file"] = e.file;
+    out["derived"] = si;
+  }
+  auto plain = [&](const auto& entries) {
+    for (const auto& e : entries) {
+      if (e.id != id) continue;
+      found = true;
+      out = e.json;
+      out["derived"] = Json{{"file", e.file}};
+    }
+  };
+  plain(cat.props());
+  plain(cat.batteries());
+  if (!found) {
+    // Ask the typed lookups for their "closest ids" message.
+    try {
+      cat.motor(id);
+    } catch (const UsageError&) {
+      throw UsageError("no catalog entry with id '" + id + "' (see 'dynosize catalog list')");
+    }
+  }
+  std::cout << DumpJson(out);
+  return 0;
+}
+
+int RunCatalogValidate(const std::string& dir, bool json) {
+  const auto problems = Catalog::Validate(dir);
+  if (json) {
+    Json j;
+    j["valid"] = problems.empty();
+    j["problems"] = problems;
+    std::cout << DumpJson(j);
+  } else if (problems.empty()) {
+    const Catalog cat = Catalog::Load(dir);
+    std::cout << dir << ": valid: " << cat.motors().size() << " motors, " << cat.escs().size()
+              << " ESCs, " << cat.props().size() << " props, " << cat.batteries().size()
+              << " batteries\n";
+  } else {
+    for (const auto& p : problems) std::cout << p << "\n";
+    std::cerr << dir << ": " << problems.size() << " problem" << (problems.size() == 1 ? "" : "s") << "\n";
+  }
+  return problems.empty() ? 0 : static_cast<int>(ExitCode::kDataError);
+}
+
+int RunCatalogSchema(bool json) {
+  const ComponentKind kinds[] = {ComponentKind::kMotor, ComponentKind::kEsc, ComponentKind::kProp,
+                                 ComponentKind::kBattery};
+  Json j;
+  std::ostringstream out;
+  for (ComponentKind k : kinds) {
+    Json arr = Json::array();
+    out << KindArrayName(k) << ":\n";
+    for (const auto& s : SchemaFor(k)) {
+      arr.push_back({{"key", s.key}, {"required", s.required}, {"rule", DescribeRule(s)}, {"doc", s.doc}});
+      out << "  " << std::left << std::setw(18) << s.key << (s.required ? " required " : " optional ")
+          << DescribeRule(s) << ": " << s.doc << "\n";
+    }
+    j[KindArrayName(k)] = arr;
+  }
+  if (json) std::cout << DumpJson(j); else std::cout << out.str();
+  return 0;
+}
+
+}  // namespace dynosize::cli

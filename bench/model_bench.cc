@@ -1,0 +1,101 @@
+// Google Benchmark of the closed-form model: one operating point, and a batch over many points.
+// Target (issue #2): under 20 ns per point on one core, the batch path vectorised.
+#include <benchmark/benchmark.h>
+
+#include <random>
+#include <vector>
+
+#include "common/units.h"
+#include "model/drive.h"
+
+namespace {
+
+using namespace dynosize;
+
+Drive MakeDrive() {
+  MotorParams m;
+  m.ke_v_s_per_rad = 0.0037745;
+  m.kt_nm_per_a = kPacPerVllIrms * m.ke_v_s_per_rad;
+  m.rm_ohm = 0.12;
+  m.io_a = 0.5;
+  m.max_current_a = 30;
+  EscParams e;
+  e.resc_ohm = 0.02;
+  e.c1 = 1.2;
+  e.c0 = 0.03;
+  e.tr_sat = 0.9;
+  e.sat_slope = 0.61;
+  return Drive(m, e);
+}
+
+struct Inputs {
+  std::vector<double> vdc, tr, a, b, c;
+  explicit Inputs(std::size_t n) : vdc(n), tr(n), a(n), b(n), c(n) {
+    std::mt19937 rng(42);
+    std::uniform_real_distribution<double> u(0.0, 1.0);
+    for (std::size_t i = 0; i < n; ++i) {
+      vdc[i] = 7.0 + 10.0 * u(rng);
+      tr[i] = 0.1 + 0.9 * u(rng);
+      a[i] = 0.002 * u(rng);
+      b[i] = 1e-6 * u(rng);
+      c[i] = 1.5e-7 * u(rng);
+    }
+  }
+};
+
+constexpr std::size_t kInputs = 4096;  // cycled through so the inputs are not constants
+
+void BM_AtTorque(benchmark::State& state) {
+  const Drive d = MakeDrive();
+  const Inputs in(kInputs);
+  std::size_t i = 0;
+  for (auto _ : state) {
+    benchmark::DoNotOptimize(d.AtTorque(in.vdc[i], in.tr[i], 10 * in.a[i]));
+    i = (i + 1) & (kInputs - 1);
+  }
+  state.SetItemsProcessed(state.iterations());
+}
+BENCHMARK(BM_AtTorque);
+
+void BM_AtLoadPropeller(benchmark::State& state) {
+  const Drive d = MakeDrive();
+  const Inputs in(kInputs);
+  std::size_t i = 0;
+  for (auto _ : state) {
+    benchmark::DoNotOptimize(d.AtLoad(in.vdc[i], in.tr[i], TorqueLaw{in.a[i], in.b[i], in.c[i]}));
+    i = (i + 1) & (kInputs - 1);
+  }
+  state.SetItemsProcessed(state.iterations());
+}
+BENCHMARK(BM_AtLoadPropeller);
+
+void BM_Inverse(benchmark::State& state) {
+  const Drive d = MakeDrive();
+  const Inputs in(kInputs);
+  std::size_t i = 0;
+  for (auto _ : state) {
+    benchmark::DoNotOptimize(d.Inverse(in.vdc[i], 10 * in.a[i], 500.0 + 1e6 * in.b[i]));
+    i = (i + 1) & (kInputs - 1);
+  }
+  state.SetItemsProcessed(state.iterations());
+}
+BENCHMARK(BM_Inverse);
+
+void BM_AtLoadBatch(benchmark::State& state) {
+  const Drive d = MakeDrive();
+  const std::size_t n = static_cast<std::size_t>(state.range(0));
+  const Inputs in(n);
+  OperatingPointBatch out;
+  out.Resize(n);  // allocated once; AtLoadBatch only resizes to the same size
+  for (auto _ : state) {
+    d.AtLoadBatch(n, in.vdc.data(), in.tr.data(), in.a.data(), in.b.data(), in.c.data(), &out);
+    benchmark::DoNotOptimize(out.pdc_w.data());
+    benchmark::ClobberMemory();
+  }
+  state.SetItemsProcessed(state.iterations() * state.range(0));
+}
+BENCHMARK(BM_AtLoadBatch)->Arg(1024)->Arg(65536);
+
+}  // namespace
+
+BENCHMARK_MAIN();

@@ -1,0 +1,119 @@
+#include "io/points_csv.h"
+
+#include <charconv>
+#include <cmath>
+#include <sstream>
+
+#include "common/error.h"
+#include "common/text_file.h"
+
+namespace dynosize {
+
+namespace {
+
+std::string Trim(const std::string& s) {
+  const auto b = s.find_first_not_of(" \t\r");
+  if (b == std::string::npos) return "";
+  const auto e = s.find_last_not_of(" \t\r");
+  return s.substr(b, e - b + 1);
+}
+
+std::vector<std::string> SplitComma(const std::string& line) {
+  std::vector<std::string> cells;
+  std::string cell;
+  std::istringstream in(line);
+  while (std::getline(in, cell, ',')) cells.push_back(Trim(cell));
+  if (!line.empty() && line.back() == ',') cells.emplace_back();
+  return cells;
+}
+
+}  // namespace
+
+std::string CheckPointRequest(const PointRequest& r) {
+  if (!(r.vdc_v > 0.0) || !std::isfinite(r.vdc_v)) return "vdc_v must be a finite number > 0 V";
+  if (r.throttle && !(*r.throttle >= 0.0 && *r.throttle <= 1.0)) {
+    return "throttle must be between 0 and 1 (a fraction, not percent)";
+  }
+  if (r.torque_nm && !(*r.torque_nm >= 0.0 && std::isfinite(*r.torque_nm))) {
+    return "torque_nm must be a finite number >= 0 N*m";
+  }
+  if (r.rpm && !(*r.rpm >= 0.0 && std::isfinite(*r.rpm))) return "rpm must be a finite number >= 0";
+  const int given = (r.throttle ? 1 : 0) + (r.torque_nm ? 1 : 0) + (r.rpm ? 1 : 0);
+  if (given != 2) {
+    return "give exactly two of throttle, torque_nm, rpm (throttle+torque_nm or throttle+rpm: "
+           "forward model; torque_nm+rpm: inverse)";
+  }
+  return "";
+}
+
+std::vector<PointRequest> ReadPointsCsv(const std::string& path) {
+  const std::string text = ReadTextFile(path, 256u << 20);
+  std::istringstream in(text);
+  std::string line;
+  std::size_t line_no = 0;
+  std::vector<std::string> header;
+  while (header.empty() && std::getline(in, line)) {
+    ++line_no;
+    if (line_no == 1 && line.rfind("\xEF\xBB\xBF", 0) == 0) line.erase(0, 3);  // UTF-8 BOM
+    if (!Trim(line).empty()) header = SplitComma(line);
+  }
+  if (header.empty()) throw DataError(path + ": empty file: expected a header line");
+  enum Col { kVdc, kThrottle, kTorque, kRpm };
+  std::vector<Col> cols;
+  bool seen[4] = {false, false, false, false};
+  for (const auto& h : header) {
+    Col c;
+    if (h == "vdc_v") c = kVdc;
+    else if (h == "throttle") c = kThrottle;
+    else if (h == "torque_nm") c = kTorque;
+    else if (h == "rpm") c = kRpm;
+    else {
+      throw DataError(path + ":" + std::to_string(line_no) + ": unknown column \"" + h +
+                      "\": allowed are vdc_v, throttle, torque_nm, rpm");
+    }
+    if (seen[c]) throw DataError(path + ":" + std::to_string(line_no) + ": duplicate column \"" + h + "\"");
+    seen[c] = true;
+    cols.push_back(c);
+  }
+  if (!seen[kVdc]) throw DataError(path + ":" + std::to_string(line_no) + ": missing column \"vdc_v\"");
+  std::vector<PointRequest> out;
+  while (std::getline(in, line)) {
+    ++line_no;
+    if (Trim(line).empty()) continue;
+    const auto cells = SplitComma(line);
+    const std::string where = path + ":" + std::to_string(line_no);
+    if (cells.size() != cols.size()) {
+      throw DataError(where + ": " + std::to_string(cells.size()) + " cells, the header has " +
+                      std::to_string(cols.size()));
+    }
+    PointRequest r;
+    r.row = line_no;
+    for (std::size_t i = 0; i < cells.size(); ++i) {
+      if (cells[i].empty()) {
+        if (cols[i] == kVdc) throw DataError(where + ": column vdc_v is empty: a value is required");
+        continue;
+      }
+      double v = 0.0;
+      const char* b = cells[i].data();
+      const char* e = b + cells[i].size();
+      const auto res = std::from_chars(b, e, v);
+      if (res.ec != std::errc() || res.ptr != e || !std::isfinite(v)) {
+        throw DataError(where + ": column " + header[i] + " = \"" + cells[i] +
+                        "\": not a finite number");
+      }
+      switch (cols[i]) {
+        case kVdc: r.vdc_v = v; break;
+        case kThrottle: r.throttle = v; break;
+        case kTorque: r.torque_nm = v; break;
+        case kRpm: r.rpm = v; break;
+      }
+    }
+    const std::string rule = CheckPointRequest(r);
+    if (!rule.empty()) throw DataError(where + ": " + rule);
+    out.push_back(r);
+  }
+  if (out.empty()) throw DataError(path + ": no data rows after the header");
+  return out;
+}
+
+}  // namespace dynosize

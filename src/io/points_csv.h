@@ -1,0 +1,28 @@
+// The point list read by `dynosize simulate --batch FILE`: a CSV with a header naming some of
+// vdc_v, throttle, torque_nm, rpm (any order; other columns are refused). Each row gives vdc_v and
+// exactly two of throttle, torque_nm, rpm (empty cells are absent): throttle + torque_nm or
+// throttle + rpm for the forward model, torque_nm + rpm for the inverse.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace dynosize {
+
+struct PointRequest {
+  std::size_t row = 0;  // 1-based line number in the file (the header is line 1)
+  double vdc_v = 0.0;
+  std::optional<double> throttle;
+  std::optional<double> torque_nm;
+  std::optional<double> rpm;
+};
+
+// Throws NoInputError / DataError naming file:line, column, value and rule.
+std::vector<PointRequest> ReadPointsCsv(const std::string& path);
+
+// Checks one request's values (VDC > 0, 0 <= throttle <= 1, torque >= 0, rpm >= 0, the
+// combination of given keys); returns "" or the violated rule. Shared by the CLI flags.
+std::string CheckPointRequest(const PointRequest& r);
+
+}  // namespace dynosize

@@ -1,0 +1,993 @@
+#include "logs/log_reader.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <sstream>
+
+#include "common/error.h"
+#include "common/units.h"
+#include "logs/csv_scan.h"
+#include "logs/log_units.h"
+
+namespace dynosize::logs {
+
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+// Throttle computed from a pulse width may exceed 0..1 by rounding only.
+constexpr double kThrottleRoundingSlack = 1e-9;
+
+// One source column being read.
+struct Slot {
+  Column target = Column::kTimeS;
+  Quantity quantity = Quantity::kTime;
+  std::size_t field = 0;  // 0-based cell index
+  std::string header;     // as written (UTF-8)
+  std::string unit;       // as written
+  UnitConversion conv;
+  double pulse_min = 0.0, pulse_max = 0.0;  // throttle from a pulse width / command units
+  bool pulse = false;
+  std::vector<double> values;  // SI, NaN for an empty cell (lenient formats only)
+  bool active = true;
+};
+
+struct Plan {
+  LogFormat format = LogFormat::kAuto;
+  std::vector<Slot> slots;
+  bool lenient = false;        // RCbenchmark: empty cells allowed, extra cells ignored
+  bool empty_cells_ok = false; // empty cells become NaN and drop their row (counted)
+  bool has_header = true;
+  std::size_t header_cells = 0;
+  std::vector<std::string> header_for_errors;  // header cell per field (UTF-8)
+};
+
+[[noreturn]] void CellError(const std::string& path, std::size_t line, const std::string& column,
+                            std::string_view cell, const std::string& rule) {
+  throw DataError(path + ": line " + std::to_string(line) + ", column \"" + column + "\": " +
+                  QuoteCell(cell) + ": " + rule);
+}
+
+std::string JoinSorted(std::vector<std::string> v) {
+  std::sort(v.begin(), v.end());
+  std::string out;
+  for (std::size_t i = 0; i < v.size(); ++i) out += (i ? ", " : "") + v[i];
+  return out;
+}
+
+// Canonical column names accepted in the canonical CSV and in column maps.
+struct CanonicalName {
+  const char* name;
+  Column column;
+  Quantity quantity;
+  const char* default_unit;
+};
+const CanonicalName kCanonicalNames[] = {
+    {"time_s", Column::kTimeS, Quantity::kTime, "s"},
+    {"vdc_v", Column::kVdcV, Quantity::kVoltage, "V"},
+    {"throttle", Column::kThrottle, Quantity::kThrottle, ""},
+    {"rpm", Column::kOmegaRadS, Quantity::kSpeed, "rpm"},
+    {"omega_rad_s", Column::kOmegaRadS, Quantity::kSpeed, "rad/s"},
+    {"torque_nm", Column::kTorqueNm, Quantity::kTorque, "N*m"},
+    {"idc_a", Column::kIdcA, Quantity::kCurrent, "A"},
+    {"vll_rms_v", Column::kVllRmsV, Quantity::kVoltage, "V"},
+    {"irms_a", Column::kIrmsA, Quantity::kCurrent, "A"},
+    {"pac_w", Column::kPacW, Quantity::kPower, "W"},
+    {"temp_c", Column::kTempC, Quantity::kTemperature, "C"},
+    {"thrust_n", Column::kThrustN, Quantity::kForce, "N"},
+};
+
+const CanonicalName* FindCanonical(std::string_view name) {
+  for (const auto& c : kCanonicalNames) {
+    if (name == c.name) return &c;
+  }
+  return nullptr;
+}
+
+std::string CanonicalNameList() {
+  std::string out;
+  for (const auto& c : kCanonicalNames) out += std::string(out.empty() ? "" : ", ") + c.name;
+  return out;
+}
+
+double ToSi(const Slot& s, double raw) {
+  if (s.pulse) return (raw - s.pulse_min) / (s.pulse_max - s.pulse_min);
+  return raw * s.conv.scale + s.conv.offset;
+}
+
+// ---------------------------------------------------------------- header and detection
+
+struct Header {
+  std::string raw_line_utf8;
+  std::vector<std::string> cells;  // trimmed UTF-8
+  bool latin1 = false;
+  char delim = ',';
+};
+
+Header ParseHeader(std::string_view line) {
+  Header h;
+  h.delim = DetectDelimiter(line);
+  h.raw_line_utf8 = ToUtf8(line, &h.latin1);
+  std::vector<std::string_view> f;
+  SplitFields(h.raw_line_utf8, h.delim, &f);
+  for (auto v : f) h.cells.emplace_back(Trim(v));
+  return h;
+}
+
+bool HasCell(const Header& h, const char* name) {
+  for (const auto& c : h.cells) {
+    if (c == name) return true;
+  }
+  return false;
+}
+
+LogFormat Detect(const Header& h, const LogReadOptions& o, const std::string& path) {
+  if (!o.column_map.empty()) return LogFormat::kMapped;
+  if (HasCell(h, "time_s") && HasCell(h, "idc_a")) return LogFormat::kCanonical;
+  if (HasCell(h, "motor_id") && HasCell(h, "U") && HasCell(h, "n") && HasCell(h, "I") &&
+      HasCell(h, "IsNoLoad")) {
+    return LogFormat::kDriveCalc;
+  }
+  for (const auto& c : h.cells) {
+    const std::string name = AsciiLower(SplitHeaderCell(c).name);
+    if (name == "esc signal" || name == "esc" || name == "motor electrical speed" ||
+        name == "motor optical speed") {
+      return LogFormat::kRcbenchmark;
+    }
+  }
+  throw DataError(path + ": line 1: cannot tell the log format from the header " +
+                  QuoteCell(h.raw_line_utf8) +
+                  ". Known: canonical (header with time_s and idc_a), rcbenchmark (\"ESC signal "
+                  "(us)\", \"Motor ... Speed (RPM)\"), drivecalc (motor_id,U,n,I,IsNoLoad); any "
+                  "other table needs a column map (LogReadOptions::column_map)");
+}
+
+// ---------------------------------------------------------------- plans per format
+
+Plan PlanCanonical(const Header& h, const std::string& path) {
+  Plan p;
+  p.format = LogFormat::kCanonical;
+  p.header_cells = h.cells.size();
+  std::vector<std::string> unknown;
+  std::vector<int> seen(kColumnCount, -1);
+  for (std::size_t i = 0; i < h.cells.size(); ++i) {
+    const std::string& name = h.cells[i];
+    const CanonicalName* cn = FindCanonical(name);
+    if (cn == nullptr) {
+      unknown.push_back(name.empty() ? "(empty: trailing delimiter?)" : "\"" + name + "\"");
+      continue;
+    }
+    const int col = static_cast<int>(cn->column);
+    if (seen[col] >= 0) {
+      throw DataError(path + ": line 1: column \"" + name + "\" given twice (as \"" +
+                      h.cells[static_cast<std::size_t>(seen[col])] + "\" in column " +
+                      std::to_string(seen[col] + 1) + " and in column " + std::to_string(i + 1) +
+                      "): each canonical column at most once");
+    }
+    seen[col] = static_cast<int>(i);
+    Slot s;
+    s.target = cn->column;
+    s.quantity = cn->quantity;
+    s.field = i;
+    s.header = name;
+    s.unit = cn->default_unit;
+    s.conv = *ParseUnit(cn->quantity, cn->default_unit);
+    p.slots.push_back(std::move(s));
+  }
+  if (!unknown.empty()) {
+    throw DataError(path + ": line 1: unknown column(s) " + JoinSorted(unknown) +
+                    " in the canonical format; valid names: " + CanonicalNameList());
+  }
+  std::vector<std::string> missing;
+  for (const Column c : {Column::kTimeS, Column::kVdcV, Column::kThrottle, Column::kOmegaRadS,
+                         Column::kTorqueNm, Column::kIdcA}) {
+    if (seen[static_cast<int>(c)] < 0) {
+      missing.push_back(c == Column::kOmegaRadS ? "rpm (or omega_rad_s)" : ColumnName(c));
+    }
+  }
+  if (!missing.empty()) {
+    throw DataError(path + ": line 1: missing required column(s) " + JoinSorted(missing) +
+                    " of the canonical format (required: time_s, vdc_v, throttle, rpm or "
+                    "omega_rad_s, torque_nm, idc_a)");
+  }
+  return p;
+}
+
+Plan PlanRcbenchmark(const Header& h, const LogReadOptions& o, const std::string& path,
+                     SteadyTable* t) {
+  Plan p;
+  p.format = LogFormat::kRcbenchmark;
+  p.lenient = true;
+  p.header_cells = h.cells.size();
+  // A trailing delimiter leaves an empty last header cell: not a column.
+  while (p.header_cells > 0 && h.cells[p.header_cells - 1].empty()) --p.header_cells;
+  Slot* optical = nullptr;
+  (void)optical;
+  bool have_temp = false;
+  for (std::size_t i = 0; i < p.header_cells; ++i) {
+    const HeaderCell hc = SplitHeaderCell(h.cells[i]);
+    const std::string name = AsciiLower(hc.name);
+    Slot s;
+    s.field = i;
+    s.header = h.cells[i];
+    s.unit = hc.unit;
+    int priority = 0;
+    if (name == "time") {
+      s.target = Column::kTimeS, s.quantity = Quantity::kTime;
+    } else if (name == "esc signal" || name == "esc") {
+      s.target = Column::kThrottle, s.quantity = Quantity::kThrottle;
+      if (hc.unit.empty()) {
+        if (o.esc_unitless_max > o.esc_unitless_min) {
+          s.pulse = true, s.pulse_min = o.esc_unitless_min, s.pulse_max = o.esc_unitless_max;
+          t->info[static_cast<int>(Column::kThrottle)].note =
+              "from unitless command units through esc_unitless_min/max";
+          p.slots.push_back(std::move(s));
+        } else {
+          t->info[static_cast<int>(Column::kThrottle)].note =
+              "\"" + h.cells[i] + "\" has no unit (command units, not us): set "
+              "LogReadOptions::esc_unitless_min/max to derive throttle";
+          t->notes.push_back("throttle absent: " + t->info[static_cast<int>(Column::kThrottle)].note);
+        }
+        continue;
+      }
+      const auto u = ParseUnit(Quantity::kThrottle, hc.unit);
+      if (u && u->pulse_width_us) {
+        s.pulse = true, s.pulse_min = o.esc_min_us, s.pulse_max = o.esc_max_us;
+      }
+    } else if (name == "torque") {
+      s.target = Column::kTorqueNm, s.quantity = Quantity::kTorque;
+    } else if (name == "thrust") {
+      s.target = Column::kThrustN, s.quantity = Quantity::kForce;
+    } else if (name == "voltage") {
+      s.target = Column::kVdcV, s.quantity = Quantity::kVoltage;
+    } else if (name == "current") {
+      s.target = Column::kIdcA, s.quantity = Quantity::kCurrent;
+    } else if (name == "motor optical speed") {
+      s.target = Column::kOmegaRadS, s.quantity = Quantity::kSpeed, priority = 1;
+    } else if (name == "motor electrical speed") {
+      s.target = Column::kOmegaRadS, s.quantity = Quantity::kSpeed, priority = 2;
+    } else if (name.find("temp") != std::string::npos &&
+               ParseUnit(Quantity::kTemperature, hc.unit) && !have_temp) {
+      s.target = Column::kTempC, s.quantity = Quantity::kTemperature;
+      have_temp = true;
+    } else {
+      continue;  // powers, efficiencies, accelerations, servos, messages: not needed
+    }
+    (void)priority;
+    const auto u = ParseUnit(s.quantity, hc.unit);
+    if (!u) {
+      throw DataError(path + ": line 1, column " + std::to_string(i + 1) + " \"" + h.cells[i] +
+                      "\": unit " + QuoteCell(hc.unit) + " is not a unit of " +
+                      (s.quantity == Quantity::kThrottle ? "an ESC signal" : SiUnit(s.quantity)) +
+                      "; valid: " + ValidUnits(s.quantity));
+    }
+    s.conv = *u;
+    p.slots.push_back(std::move(s));
+  }
+  // Optical speed before electrical: the electrical probe reads spurious values at low
+  // throttle (ecosystem-notes.md), the optical one is used whenever it saw anything.
+  std::stable_sort(p.slots.begin(), p.slots.end(), [](const Slot& a, const Slot& b) {
+    auto rank = [](const Slot& s) {
+      if (s.target != Column::kOmegaRadS) return 0;
+      return AsciiLower(SplitHeaderCell(s.header).name) == "motor optical speed" ? 1 : 2;
+    };
+    return rank(a) < rank(b);
+  });
+  return p;
+}
+
+Plan PlanDriveCalc(const Header& h, const std::string& path, const LogReadOptions& o) {
+  Plan p;
+  p.format = LogFormat::kDriveCalc;
+  p.header_cells = h.cells.size();
+  struct Want {
+    const char* name;
+    Column column;
+    Quantity quantity;
+    const char* unit;
+    bool required;
+  };
+  const Want wants[] = {
+      {"motor_id", Column::kMotorId, Quantity::kId, "", true},
+      {"U", Column::kVdcV, Quantity::kVoltage, "V", true},
+      {"n", Column::kOmegaRadS, Quantity::kSpeed, "rpm", true},
+      {"I", Column::kIdcA, Quantity::kCurrent, "A", true},
+      {"IsNoLoad", Column::kNoLoad, Quantity::kFlag, "", true},
+      {"Temp", Column::kTempC, Quantity::kTemperature, "C", false},
+  };
+  for (const Want& w : wants) {
+    std::size_t idx = h.cells.size();
+    for (std::size_t i = 0; i < h.cells.size(); ++i) {
+      if (h.cells[i] == w.name) idx = i;
+    }
+    if (idx == h.cells.size()) {
+      if (w.required) {
+        throw DataError(path + ": line 1: DriveCalc MData column \"" + w.name +
+                        "\" missing (required: motor_id, U, n, I, IsNoLoad)");
+      }
+      continue;
+    }
+    if (w.column == Column::kMotorId && o.drivecalc_motor_id >= 0) {
+      // Still read (to filter), but not a table column.
+    }
+    Slot s;
+    s.target = w.column;
+    s.quantity = w.quantity;
+    s.field = idx;
+    s.header = w.name;
+    s.unit = w.unit;
+    s.conv = *ParseUnit(w.quantity, w.unit);
+    p.slots.push_back(std::move(s));
+  }
+  return p;
+}
+
+Plan PlanMapped(const Header& h, bool header_is_data, const LogReadOptions& o,
+                const std::string& path) {
+  Plan p;
+  p.format = LogFormat::kMapped;
+  p.has_header = !header_is_data;
+  p.header_cells = h.cells.size();
+  std::vector<int> seen(kColumnCount, -1);
+  for (const std::string& entry : o.column_map) {
+    const std::size_t eq = entry.find('=');
+    if (eq == std::string::npos) {
+      throw UsageError("column map entry \"" + entry +
+                       "\": expected canonical_name=Source Header [unit]");
+    }
+    const std::string key(Trim(std::string_view(entry).substr(0, eq)));
+    std::string source(Trim(std::string_view(entry).substr(eq + 1)));
+    const CanonicalName* cn = FindCanonical(key);
+    if (cn == nullptr) {
+      throw UsageError("column map entry \"" + entry + "\": unknown canonical name \"" + key +
+                       "\"; valid: " + CanonicalNameList());
+    }
+    const int col = static_cast<int>(cn->column);
+    if (seen[col] >= 0) {
+      throw UsageError("column map entry \"" + entry + "\": " + ColumnName(cn->column) +
+                       " is mapped twice");
+    }
+    // Locate the source: whole header cell first, then "name [unit]" split.
+    std::size_t idx = h.cells.size();
+    std::string unit;
+    bool unit_from_map = false;
+    if (!source.empty() && source[0] == '#') {
+      const HeaderCell hc = SplitHeaderCell(source);
+      double k = 0;
+      if (!ParseDouble(std::string_view(hc.name).substr(1), &k) || k < 1 || k != std::floor(k)) {
+        throw UsageError("column map entry \"" + entry + "\": \"#k\" needs a column number >= 1");
+      }
+      if (!hc.unit.empty()) unit = hc.unit, unit_from_map = true;
+      idx = static_cast<std::size_t>(k) - 1;
+    } else {
+      for (std::size_t i = 0; i < h.cells.size() && !header_is_data; ++i) {
+        if (h.cells[i] == source) idx = i;
+      }
+      if (idx < h.cells.size()) {
+        unit = SplitHeaderCell(h.cells[idx]).unit;  // the header's own unit, if any
+        if (!unit.empty() && !ParseUnit(cn->quantity, unit)) unit.clear();
+      } else {
+        const HeaderCell want = SplitHeaderCell(source);
+        for (std::size_t i = 0; i < h.cells.size() && !header_is_data; ++i) {
+          if (h.cells[i] == want.name || SplitHeaderCell(h.cells[i]).name == want.name) idx = i;
+        }
+        if (idx < h.cells.size()) {
+          unit = want.unit.empty() ? SplitHeaderCell(h.cells[idx]).unit : want.unit;
+          unit_from_map = !want.unit.empty();
+        }
+      }
+      if (idx >= h.cells.size()) {
+        std::vector<std::string> have;
+        for (const auto& c : h.cells) have.push_back("\"" + c + "\"");
+        throw DataError(path + ": line 1: column map entry \"" + entry + "\": no column \"" +
+                        source + "\" in the header; columns: " +
+                        (header_is_data ? std::string("(no header: use #k)") : JoinSorted(have)));
+      }
+    }
+    if (unit.empty()) unit = cn->default_unit;
+    const auto u = ParseUnit(cn->quantity, unit);
+    if (!u) {
+      throw UsageError("column map entry \"" + entry + "\": unit " + QuoteCell(unit) +
+                       (unit_from_map ? "" : " (from the header)") + " is not valid for " +
+                       key + "; valid: " + ValidUnits(cn->quantity));
+    }
+    seen[col] = static_cast<int>(idx);
+    Slot s;
+    s.target = cn->column;
+    s.quantity = cn->quantity;
+    s.field = idx;
+    s.header = idx < h.cells.size() && !header_is_data ? h.cells[idx] : "#" + std::to_string(idx + 1);
+    s.unit = unit;
+    s.conv = *u;
+    if (u->pulse_width_us) s.pulse = true, s.pulse_min = o.esc_min_us, s.pulse_max = o.esc_max_us;
+    p.slots.push_back(std::move(s));
+  }
+  if (seen[static_cast<int>(Column::kIdcA)] < 0) {
+    throw UsageError("column map: idc_a must be mapped (every calibration needs the DC current)");
+  }
+  return p;
+}
+
+// ---------------------------------------------------------------- row reading
+
+struct RawRows {
+  std::vector<std::size_t> line;
+  std::vector<char> esc_outside;  // per row: ESC signal outside the end points (lenient only)
+  std::string esc_reason;
+};
+
+void ReadRows(LineReader* lr, Plan* plan, const std::string& path, SteadyTable* t,
+              RawRows* rows, std::string_view first_data_line, const LogReadOptions& o) {
+  std::vector<std::string_view> fields;
+  fields.reserve(64);
+  std::size_t max_field = 0;
+  for (const Slot& s : plan->slots) max_field = std::max(max_field, s.field);
+  const bool drivecalc_filter = plan->format == LogFormat::kDriveCalc && o.drivecalc_motor_id >= 0;
+  std::size_t motor_slot = plan->slots.size();
+  for (std::size_t k = 0; k < plan->slots.size(); ++k) {
+    if (plan->slots[k].target == Column::kMotorId) motor_slot = k;
+  }
+  std::size_t other_motor_rows = 0;
+  std::size_t short_rows = 0;
+  std::size_t esc_outside = 0;
+
+  auto process = [&](std::string_view line, std::size_t line_no) {
+    if (Trim(line).empty() || Trim(line).front() == '#') {
+      ++t->blank_or_comment_lines;
+      return;
+    }
+    ++t->data_rows_read;
+    SplitFields(line, t->delimiter, &fields);
+    if (!plan->lenient) {
+      if (plan->has_header && fields.size() != plan->header_cells) {
+        throw DataError(path + ": line " + std::to_string(line_no) + ": " +
+                        std::to_string(fields.size()) + " cells, the header has " +
+                        std::to_string(plan->header_cells) +
+                        " (rule: one cell per header column in every row)");
+      }
+      if (fields.size() <= max_field) {
+        throw DataError(path + ": line " + std::to_string(line_no) + ": " +
+                        std::to_string(fields.size()) + " cells, column " +
+                        std::to_string(max_field + 1) + " is mapped (rule: every row has it)");
+      }
+    } else {
+      if (fields.size() <= max_field) {
+        ++short_rows;
+        return;
+      }
+      // A trailing delimiter gives one empty extra cell: that is the format, not an extra.
+      std::size_t n = fields.size();
+      if (n > plan->header_cells && Trim(fields[n - 1]).empty()) --n;
+      if (n > plan->header_cells) ++t->rows_with_extra_cells;
+    }
+    if (drivecalc_filter) {
+      double id = 0;
+      const std::string_view cell = fields[plan->slots[motor_slot].field];
+      if (!ParseDouble(cell, &id)) {
+        CellError(path, line_no, "motor_id", cell, "not a number");
+      }
+      if (static_cast<long long>(id) != o.drivecalc_motor_id) {
+        ++other_motor_rows;
+        --t->data_rows_read;
+        return;
+      }
+    }
+    char row_outside = 0;
+    for (Slot& s : plan->slots) {
+      const std::string_view cell = fields[s.field];
+      double v = 0.0;
+      if (Trim(cell).empty()) {
+        if (!plan->lenient && !plan->empty_cells_ok) {
+          CellError(path, line_no, s.header, cell,
+                    std::string("empty cell (rule: the ") + LogFormatName(plan->format) +
+                        " format has no optional cells)");
+        }
+        s.values.push_back(kNaN);
+        continue;
+      }
+      if (!ParseDouble(cell, &v)) {
+        CellError(path, line_no, s.header, cell,
+                  "not a number (rule: a finite decimal number with '.' as decimal point)");
+      }
+      const double si = ToSi(s, v);
+      if (s.target == Column::kThrottle &&
+          (si < -kThrottleRoundingSlack || si > 1.0 + kThrottleRoundingSlack)) {
+        if (plan->lenient) {
+          // Stand scripts send e.g. 980 us (arming, motor off) or 2100 us: no throttle point.
+          s.values.push_back(kNaN);
+          ++esc_outside;
+          row_outside = 1;
+          continue;
+        }
+        if (s.pulse) {
+          CellError(path, line_no, s.header, cell,
+                    "outside the ESC end points " + std::to_string(s.pulse_min) + " .. " +
+                        std::to_string(s.pulse_max) +
+                        " (set LogReadOptions esc_min_us/esc_max_us, or esc_unitless_min/max)");
+        }
+        CellError(path, line_no, s.header, cell, "throttle outside 0..1");
+      }
+      s.values.push_back(si);
+    }
+    rows->line.push_back(line_no);
+    rows->esc_outside.push_back(row_outside);
+  };
+
+  if (!plan->has_header) {
+    process(first_data_line, 1);
+  }
+  std::string_view line;
+  while (lr->Next(&line)) {
+    ++t->lines_read;
+    process(line, lr->line_number());
+  }
+  AddDrop(t, "rows shorter than the header", short_rows);
+  {
+    std::ostringstream s;
+    s << "rows with the ESC signal outside the end points " << o.esc_min_us << "-"
+      << o.esc_max_us << " us (arming / beyond full throttle)";
+    rows->esc_reason = s.str();
+  }
+  if (drivecalc_filter) {
+    if (rows->line.empty()) {
+      throw DataError(path + ": no MData row has motor_id " +
+                      std::to_string(o.drivecalc_motor_id) + " (" +
+                      std::to_string(other_motor_rows) + " rows of other motors)");
+    }
+    t->notes.push_back(std::to_string(other_motor_rows) + " rows of other motors skipped (motor_id filter " +
+                       std::to_string(o.drivecalc_motor_id) + ")");
+    for (Slot& s : plan->slots) {
+      if (s.target == Column::kMotorId) s.active = false;
+    }
+  }
+}
+
+// ---------------------------------------------------------------- building the table
+
+bool AllNaN(const std::vector<double>& v) {
+  return std::all_of(v.begin(), v.end(), [](double x) { return std::isnan(x); });
+}
+bool AllZeroOrNaN(const std::vector<double>& v) {
+  return std::all_of(v.begin(), v.end(), [](double x) { return std::isnan(x) || x == 0.0; });
+}
+
+// Decides which slots make columns; fills info.
+std::vector<Slot*> ResolveColumns(Plan* plan, SteadyTable* t) {
+  std::vector<Slot*> chosen(kColumnCount, nullptr);
+  for (Slot& s : plan->slots) {
+    if (!s.active) continue;
+    ColumnInfo& ci = t->info[static_cast<int>(s.target)];
+    if (AllNaN(s.values)) {
+      if (chosen[static_cast<int>(s.target)] == nullptr) {
+        ci.note = "\"" + s.header + "\" is empty in every row";
+      }
+      continue;
+    }
+    if (s.target == Column::kOmegaRadS && AllZeroOrNaN(s.values)) {
+      if (chosen[static_cast<int>(s.target)] == nullptr) {
+        ci.note += std::string(ci.note.empty() ? "" : "; ") + "\"" + s.header +
+                   "\" is zero in every row (no speed sensor)";
+      }
+      continue;
+    }
+    if (chosen[static_cast<int>(s.target)] != nullptr) {
+      ci.note += std::string(ci.note.empty() ? "" : "; ") + "\"" + s.header + "\" not used";
+      continue;
+    }
+    chosen[static_cast<int>(s.target)] = &s;
+    ci.present = true;
+    ci.source_header = s.header;
+    ci.source_unit = s.unit;
+  }
+  return chosen;
+}
+
+void AppendRow(SteadyTable* t, const std::vector<Slot*>& chosen, std::size_t line,
+               std::size_t samples, const double* values) {
+  for (int c = 0; c < kColumnCount; ++c) {
+    if (chosen[c] != nullptr) t->columns[c].push_back(values[c]);
+  }
+  t->source_line.push_back(line);
+  t->samples.push_back(samples);
+}
+
+void BuildPerRow(SteadyTable* t, const std::vector<Slot*>& chosen, const RawRows& rows,
+                 bool zero_is_dropout) {
+  double vals[kColumnCount];
+  const std::size_t n = rows.line.size();
+  for (std::size_t r = 0; r < n; ++r) {
+    if (rows.esc_outside[r]) {
+      AddDrop(t, rows.esc_reason);
+      continue;
+    }
+    bool ok = true;
+    for (int c = 0; c < kColumnCount && ok; ++c) {
+      if (chosen[c] == nullptr) continue;
+      vals[c] = chosen[c]->values[r];
+      if (std::isnan(vals[c])) {
+        AddDrop(t, "rows with an empty " +
+                       std::string(zero_is_dropout && c == static_cast<int>(Column::kOmegaRadS)
+                                       ? "or zero (probe dropout / motor not started) "
+                                       : "") +
+                       "\"" + chosen[c]->header + "\" cell");
+        ok = false;
+      }
+    }
+    if (ok) AppendRow(t, chosen, rows.line[r], 1, vals);
+  }
+}
+
+void BuildPlateaus(SteadyTable* t, const std::vector<Slot*>& chosen, const RawRows& rows,
+                   const PlateauOptions& po) {
+  const std::size_t n = rows.line.size();
+  const Slot* time = chosen[static_cast<int>(Column::kTimeS)];
+  const Slot* cmd = chosen[static_cast<int>(Column::kThrottle)];
+  const Slot* sig = chosen[static_cast<int>(Column::kOmegaRadS)];
+  if (sig == nullptr) sig = chosen[static_cast<int>(Column::kIdcA)];
+  // Rows without time or command cannot be placed in a step.
+  std::vector<std::size_t> keep;
+  keep.reserve(n);
+  for (std::size_t r = 0; r < n; ++r) {
+    if (rows.esc_outside[r]) {
+      AddDrop(t, rows.esc_reason);
+      continue;
+    }
+    if (time != nullptr && std::isnan(time->values[r])) {
+      AddDrop(t, "samples with an empty \"" + time->header + "\" cell");
+      continue;
+    }
+    if (cmd != nullptr && std::isnan(cmd->values[r])) {
+      AddDrop(t, "samples with an empty \"" + cmd->header + "\" cell");
+      continue;
+    }
+    keep.push_back(r);
+  }
+  // Gather compact copies (contiguous arrays for the search).
+  std::vector<std::vector<double>> col(kColumnCount);
+  for (int c = 0; c < kColumnCount; ++c) {
+    if (chosen[c] == nullptr) continue;
+    col[c].reserve(keep.size());
+    for (const std::size_t r : keep) col[c].push_back(chosen[c]->values[r]);
+  }
+  const int sig_col = sig == nullptr ? -1 : static_cast<int>(sig->target);
+  std::vector<const double*> measured;
+  for (int c = 0; c < kColumnCount; ++c) {
+    if (chosen[c] == nullptr || c == static_cast<int>(Column::kTimeS) ||
+        c == static_cast<int>(Column::kThrottle)) {
+      continue;
+    }
+    measured.push_back(col[c].data());
+  }
+  // Independent runs where time goes backwards (appended recordings, out-of-order rows).
+  std::vector<std::pair<std::size_t, std::size_t>> runs;
+  std::size_t run_start = 0;
+  const std::size_t m = keep.size();
+  // Asynchronous sampling makes time jitter backwards by a few ms; only a jump back by more
+  // than summary_min_interval_s is a new recording appended to the file.
+  for (std::size_t i = 1; i <= m; ++i) {
+    if (i == m || (time != nullptr && col[0][i] < col[0][i - 1] - po.summary_min_interval_s)) {
+      runs.emplace_back(run_start, i);
+      run_start = i;
+    }
+  }
+  if (runs.size() > 1) {
+    t->notes.push_back("time goes backwards " + std::to_string(runs.size() - 1) +
+                       " time(s): the log was searched as " + std::to_string(runs.size()) +
+                       " separate runs");
+  }
+  std::vector<char> mask;
+  std::size_t short_plateaus = 0, short_samples = 0, unsteady = 0;
+  std::vector<std::size_t> by_method(4, 0);
+  double vals[kColumnCount];
+  for (const auto& [rb, re] : runs) {
+    const std::size_t len = re - rb;
+    const double* tp = time != nullptr ? col[0].data() + rb : nullptr;
+    const double* cp = cmd != nullptr ? col[static_cast<int>(Column::kThrottle)].data() + rb : nullptr;
+    const double* sp = sig_col >= 0 ? col[sig_col].data() + rb : nullptr;
+    const PlateauSearch ps = FindPlateaus(tp, cp, sp, len, po);
+    by_method[static_cast<std::size_t>(ps.method)] += 1;
+    t->transient_samples += ps.transient_samples;
+    short_plateaus += ps.short_plateaus;
+    short_samples += ps.short_plateau_samples;
+    unsteady += ps.unsteady_samples;
+    for (const Plateau& pl : ps.plateaus) {
+      std::vector<const double*> cols;
+      for (const double* x : measured) cols.push_back(x + rb);
+      t->outlier_samples += MarkOutliers(cols, pl.begin, pl.end, po, &mask);
+      bool ok = true;
+      std::size_t used_max = 0;
+      std::size_t first_line = 0;
+      for (int c = 0; c < kColumnCount && ok; ++c) {
+        if (chosen[c] == nullptr) continue;
+        const double* x = col[c].data() + rb;
+        double sum = 0.0;
+        std::size_t cnt = 0;
+        for (std::size_t i = pl.begin; i < pl.end; ++i) {
+          if (mask[i - pl.begin] || std::isnan(x[i])) continue;
+          if (first_line == 0) first_line = rows.line[keep[rb + i]];
+          sum += x[i];
+          ++cnt;
+        }
+        if (cnt == 0) {
+          AddDrop(t, "plateaus without a \"" + chosen[c]->header + "\" sample");
+          ok = false;
+          break;
+        }
+        vals[c] = sum / static_cast<double>(cnt);
+        used_max = std::max(used_max, cnt);
+      }
+      if (ok) {
+        AppendRow(t, chosen, first_line, used_max, vals);
+        ++t->plateaus_found;
+      }
+    }
+  }
+  AddDrop(t, "samples in steps shorter than min_samples after the transient", short_samples);
+  AddDrop(t, "samples not steady (signal search)", unsteady);
+  if (short_plateaus > 0) {
+    t->notes.push_back(std::to_string(short_plateaus) + " steps/runs too short to be plateaus");
+  }
+  std::string how;
+  for (std::size_t k = 0; k < by_method.size(); ++k) {
+    if (by_method[k] == 0) continue;
+    how += std::string(how.empty() ? "" : ", ") + PlateauMethodName(static_cast<PlateauMethod>(k));
+    if (runs.size() > 1) how += " (" + std::to_string(by_method[k]) + " runs)";
+  }
+  t->notes.push_back("plateaus found by " + how);
+}
+
+double MedianInterval(const std::vector<double>& t) {
+  std::vector<double> d;
+  for (std::size_t i = 1; i < t.size(); ++i) {
+    if (!std::isnan(t[i]) && !std::isnan(t[i - 1])) d.push_back(std::fabs(t[i] - t[i - 1]));
+  }
+  return MedianOf(d.data(), 0, d.size());
+}
+
+void NormalizeSigns(SteadyTable* t) {
+  for (const Column c : {Column::kTorqueNm, Column::kThrustN}) {
+    if (!t->Has(c)) continue;
+    std::vector<double>& v = t->Mutable(c);
+    const double med = MedianOf(v.data(), 0, v.size());
+    if (med < 0.0) {
+      for (double& x : v) x = -x;
+      ColumnInfo& ci = t->info[static_cast<int>(c)];
+      ci.note += std::string(ci.note.empty() ? "" : "; ") +
+                 "sign flipped (negative median: mounting direction)";
+    }
+  }
+}
+
+void CheckCanonicalRanges(const SteadyTable& t, const std::string& path) {
+  const std::size_t n = t.rows();
+  auto check = [&](Column c, bool (*ok)(double), const char* rule) {
+    if (!t.Has(c)) return;
+    const auto& v = t.Get(c);
+    for (std::size_t r = 0; r < n; ++r) {
+      if (!ok(v[r])) {
+        std::ostringstream val;
+        val.precision(17);
+        val << v[r];
+        CellError(path, t.source_line[r], ColumnName(c), val.str(), rule);
+      }
+    }
+  };
+  check(Column::kVdcV, [](double x) { return x > 0.0; }, "vdc_v must be > 0");
+  check(Column::kVllRmsV, [](double x) { return x >= 0.0; }, "vll_rms_v must be >= 0");
+  check(Column::kIrmsA, [](double x) { return x >= 0.0; }, "irms_a must be >= 0");
+}
+
+void CheckTable(const SteadyTable& t, const std::string& path) {
+  const std::size_t n = t.rows();
+  std::string why = t.DroppedTotal() > 0 ? " after dropping " + std::to_string(t.DroppedTotal()) +
+                                               " rows/samples"
+                                         : std::string();
+  if (n < 2) {
+    throw DataError(path + ": " + std::to_string(n) + " steady operating point" +
+                    (n == 1 ? "" : "s") + why + " (" + std::to_string(t.data_rows_read) +
+                    " data rows read): a calibration needs at least 2");
+  }
+  if (!t.Has(Column::kIdcA)) {
+    throw DataError(path + ": no usable current column (" +
+                    t.info[static_cast<int>(Column::kIdcA)].note +
+                    "): every calibration needs the DC current");
+  }
+  bool all_same = true;
+  for (int c = 0; c < kColumnCount && all_same; ++c) {
+    if (!t.info[c].present || c == static_cast<int>(Column::kTimeS)) continue;
+    const auto& v = t.columns[c];
+    for (std::size_t r = 1; r < n && all_same; ++r) all_same = v[r] == v[0];
+  }
+  if (all_same) {
+    throw DataError(path + ": all " + std::to_string(n) +
+                    " operating points are identical (time aside): nothing to fit");
+  }
+  const auto& idc = t.Get(Column::kIdcA);
+  if (std::all_of(idc.begin(), idc.end(), [](double x) { return x == 0.0; })) {
+    throw DataError(path + ": column \"" + t.info[static_cast<int>(Column::kIdcA)].source_header +
+                    "\" (idc_a) is zero in every point: current sensor not connected?");
+  }
+}
+
+std::string LineEnds(const LineReader& lr) {
+  std::string s;
+  if (lr.saw_lf()) s += "LF";
+  if (lr.saw_crlf()) s += std::string(s.empty() ? "" : "+") + "CRLF";
+  if (lr.saw_cr()) s += std::string(s.empty() ? "" : "+") + "CR";
+  return s;
+}
+
+bool LooksNumeric(const Header& h) {
+  if (h.cells.empty()) return false;
+  for (const auto& c : h.cells) {
+    double v;
+    if (!c.empty() && !ParseDouble(c, &v)) return false;
+  }
+  return true;
+}
+
+}  // namespace
+
+std::string LogReadOptions::Validate() const {
+  auto num = [](double v) {
+    std::ostringstream s;
+    s << v;
+    return s.str();
+  };
+  if (!(esc_max_us > esc_min_us) || !std::isfinite(esc_min_us) || !std::isfinite(esc_max_us)) {
+    return "LogReadOptions.esc_min_us/esc_max_us = " + num(esc_min_us) + "/" + num(esc_max_us) +
+           ": need finite values with esc_max_us > esc_min_us";
+  }
+  if (esc_unitless_max != 0.0 || esc_unitless_min != 0.0) {
+    if (!(esc_unitless_max > esc_unitless_min)) {
+      return "LogReadOptions.esc_unitless_min/max = " + num(esc_unitless_min) + "/" +
+             num(esc_unitless_max) + ": need esc_unitless_max > esc_unitless_min";
+    }
+  }
+  if (!column_map.empty() && format != LogFormat::kAuto && format != LogFormat::kMapped) {
+    return std::string("LogReadOptions.column_map is given with format ") + LogFormatName(format) +
+           ": a column map needs format mapped (or auto)";
+  }
+  if (format == LogFormat::kMapped && column_map.empty()) {
+    return "LogReadOptions.format = mapped without a column_map";
+  }
+  if (max_line_bytes < 64) return "LogReadOptions.max_line_bytes must be >= 64";
+  return plateau.Validate();
+}
+
+SteadyTable ReadLog(const std::string& path, const LogReadOptions& options) {
+  const std::string bad = options.Validate();
+  if (!bad.empty()) throw UsageError(bad);
+  SteadyTable t;
+  t.file = path;
+  LineReader lr(path, options.max_line_bytes);
+  std::string_view line;
+  // The header: the first line that is not blank.
+  bool got = false;
+  while (lr.Next(&line)) {
+    ++t.lines_read;
+    if (!Trim(line).empty()) {
+      got = true;
+      break;
+    }
+    ++t.blank_or_comment_lines;
+  }
+  if (!got) throw DataError(path + ": empty file: no header line");
+  const std::size_t header_line_no = lr.line_number();
+  const Header h = ParseHeader(line);
+  t.header_latin1 = h.latin1;
+  t.delimiter = h.delim;
+  LogFormat fmt = options.format;
+  if (fmt == LogFormat::kAuto) fmt = Detect(h, options, path);
+  t.format = fmt;
+
+  Plan plan;
+  std::string first_data;  // a headerless mapped file's first line is data
+  switch (fmt) {
+    case LogFormat::kCanonical: plan = PlanCanonical(h, path); break;
+    case LogFormat::kRcbenchmark: plan = PlanRcbenchmark(h, options, path, &t); break;
+    case LogFormat::kDriveCalc: plan = PlanDriveCalc(h, path, options); break;
+    case LogFormat::kMapped: {
+      bool all_hash = true;
+      for (const auto& e : options.column_map) {
+        const std::size_t eq = e.find('=');
+        all_hash = all_hash && eq != std::string::npos &&
+                   Trim(std::string_view(e).substr(eq + 1)).substr(0, 1) == "#";
+      }
+      const bool header_is_data = all_hash && LooksNumeric(h);
+      plan = PlanMapped(h, header_is_data, options, path);
+      plan.empty_cells_ok = options.mapped_drop_rows_with_empty_cells;
+      if (header_is_data) first_data = std::string(line);
+      break;
+    }
+    case LogFormat::kAuto: throw InternalError("ReadLog: format still auto");
+  }
+  (void)header_line_no;
+  RawRows rows;
+  ReadRows(&lr, &plan, path, &t, &rows, first_data, options);
+  t.line_ends = LineEnds(lr);
+  t.had_bom = lr.had_bom();
+
+  std::vector<Slot*> chosen = ResolveColumns(&plan, &t);
+  // RCbenchmark speed probes read exactly 0 when they lose the target (optical dropouts,
+  // electrical probe below its minimum speed): a 0 in a column that reads elsewhere is "no
+  // reading", not a stopped motor.
+  if (fmt == LogFormat::kRcbenchmark) {
+    if (Slot* sp = chosen[static_cast<int>(Column::kOmegaRadS)]) {
+      std::size_t zeros = 0;
+      for (double& v : sp->values) {
+        if (v == 0.0) v = kNaN, ++zeros;
+      }
+      if (zeros > 0) {
+        t.info[static_cast<int>(Column::kOmegaRadS)].note +=
+            std::string(t.info[static_cast<int>(Column::kOmegaRadS)].note.empty() ? "" : "; ") +
+            std::to_string(zeros) + " cells reading 0 treated as dropouts";
+      }
+    }
+  }
+  bool plateaus = false;
+  if (fmt == LogFormat::kRcbenchmark || options.time_series == TimeSeriesMode::kPlateaus) {
+    plateaus = options.time_series != TimeSeriesMode::kPerRow;
+    const Slot* time = chosen[static_cast<int>(Column::kTimeS)];
+    if (plateaus && options.time_series == TimeSeriesMode::kAuto && time != nullptr) {
+      const double dt = MedianInterval(time->values);
+      if (!std::isnan(dt) && dt >= options.plateau.summary_min_interval_s) {
+        plateaus = false;
+        std::ostringstream s;
+        s << "one steady point per row (median interval " << dt
+          << " s >= summary_min_interval_s): no plateau search";
+        t.notes.push_back(s.str());
+      }
+    }
+  }
+  t.time_series = plateaus;
+  if (plateaus) {
+    BuildPlateaus(&t, chosen, rows, options.plateau);
+  } else {
+    BuildPerRow(&t, chosen, rows, fmt == LogFormat::kRcbenchmark);
+  }
+  // DriveCalc: points whose speed was not measured (n = 0) are not operating points.
+  if (fmt == LogFormat::kDriveCalc && t.Has(Column::kOmegaRadS)) {
+    std::size_t w = 0;
+    const std::size_t n = t.rows();
+    auto& om = t.columns[static_cast<int>(Column::kOmegaRadS)];
+    std::vector<char> keep(n);
+    for (std::size_t r = 0; r < n; ++r) keep[r] = om[r] != 0.0;
+    for (int c = 0; c < kColumnCount; ++c) {
+      if (!t.info[c].present) continue;
+      auto& v = t.columns[c];
+      w = 0;
+      for (std::size_t r = 0; r < n; ++r) {
+        if (keep[r]) v[w++] = v[r];
+      }
+      v.resize(w);
+    }
+    w = 0;
+    for (std::size_t r = 0; r < n; ++r) {
+      if (keep[r]) {
+        t.source_line[w] = t.source_line[r];
+        t.samples[w] = t.samples[r];
+        ++w;
+      }
+    }
+    AddDrop(&t, "points with n = 0 (speed not measured)", n - w);
+    t.source_line.resize(w);
+    t.samples.resize(w);
+  }
+  if (fmt == LogFormat::kCanonical) CheckCanonicalRanges(t, path);
+  if (options.normalize_signs && fmt != LogFormat::kCanonical) NormalizeSigns(&t);
+  // What the fit can identify.
+  if (!t.Has(Column::kThrottle) && t.info[static_cast<int>(Column::kThrottle)].note.empty()) {
+    t.info[static_cast<int>(Column::kThrottle)].note = "no throttle column in this log";
+  }
+  for (const Column c : {Column::kThrottle, Column::kVdcV, Column::kOmegaRadS, Column::kTorqueNm}) {
+    if (!t.Has(c)) {
+      const std::string& why = t.info[static_cast<int>(c)].note;
+      t.notes.push_back(std::string(ColumnName(c)) + " absent" + (why.empty() ? "" : ": " + why));
+    }
+  }
+  CheckTable(t, path);
+  return t;
+}
+
+}  // namespace dynosize::logs

@@ -1,0 +1,92 @@
+// Reading measurement logs into one SteadyTable (steady_table.h).
+//
+// Formats (LogFormat; kAuto decides from the header line):
+//  - kCanonical: dynosize's own CSV. Header names exactly from
+//      time_s, vdc_v, throttle, rpm | omega_rad_s, torque_nm, idc_a   (required)
+//      vll_rms_v, irms_a, pac_w, temp_c, thrust_n                     (optional)
+//    one row per operating point, SI units (rpm is the one datasheet unit accepted). Strict: an
+//    unknown or repeated column, a row with a different cell count, an empty cell or text in a
+//    number, throttle outside 0..1, vdc_v <= 0, negative vll_rms_v / irms_a are DataErrors
+//    naming file, line, column, value and rule. Detected by a header holding time_s and idc_a.
+//  - kRcbenchmark: RCbenchmark / Tyto Robotics exports (Series 1520/1580/1585/1780), and the
+//    same files re-saved by a spreadsheet. Headers "Name (unit)", units parsed (gf/kgf/N,
+//    RPM/rad/s, ...). Throttle = (ESC signal - esc_min_us)/(esc_max_us - esc_min_us). Time
+//    series are cut into plateaus (plateau.h); logs already holding one averaged row per step
+//    (median interval >= plateau.summary_min_interval_s) are read row by row. Lenient where the
+//    real files demand it: empty cells (asynchronous sensors) are skipped and counted; rows
+//    with more cells than the header (commas inside "App message", script columns) keep their
+//    named cells; blank and '#' comment lines are skipped and counted. Text in a number is
+//    still a DataError. Detected by a header cell "ESC signal", "ESC (...)" or "Motor ...
+//    Speed (...)".
+//  - kMapped: any table with a header (or none) through LogReadOptions::column_map.
+//  - kDriveCalc: DriveCalc's MData table (motor_id, U, n, I, IsNoLoad, ...): U -> vdc_v,
+//    n -> omega_rad_s, I -> idc_a, IsNoLoad -> no_load, Temp -> temp_c. Points with n = 0
+//    (speed not measured) are dropped and counted. Detected by motor_id, U, n, I, IsNoLoad.
+//
+// Every format: a UTF-8 BOM, LF/CRLF/CR line ends and a Latin-1 header are accepted; the table
+// must end with at least 2 rows, not all identical, idc_a present and not all zero - else a
+// DataError. A missing file is a NoInputError; invalid options a UsageError.
+// Memory: the file is read through a fixed buffer; only the parsed numbers are kept.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "logs/plateau.h"
+#include "logs/steady_table.h"
+
+namespace dynosize::logs {
+
+enum class TimeSeriesMode {
+  kAuto,      // RCbenchmark: plateaus unless the log is a list of steady points
+  kPerRow,    // every row is a steady point
+  kPlateaus,  // always search plateaus (needs a time column or a stepped command)
+};
+
+struct LogReadOptions {
+  LogFormat format = LogFormat::kAuto;
+
+  // ESC pulse width end points: throttle = (us - esc_min_us) / (esc_max_us - esc_min_us).
+  // A pulse width outside [esc_min_us, esc_max_us] is a DataError (set the end points your ESC
+  // was calibrated to). Defaults: the usual 1000-2000 us.
+  double esc_min_us = 1000.0;
+  double esc_max_us = 2000.0;
+  // An ESC command column without a unit (bhabas_sar_motor_sysid: "ESC signal", 0..2000
+  // command units) is not a pulse width: throttle is derived from it only when these are set
+  // (esc_unitless_max > esc_unitless_min); otherwise throttle is absent, with a note.
+  double esc_unitless_min = 0.0;
+  double esc_unitless_max = 0.0;
+
+  // kMapped: "canonical_name=Source Header [unit]" pairs, e.g. "thrust_n=Thrust [g]",
+  // "rpm=Rpm", "torque_nm=#2 [N*m]". canonical_name is a canonical column name (rpm allowed
+  // for omega). The source is a header cell (matched whole, or by its name without unit) or
+  // "#k", the k-th column (1-based) of a file without header. The unit in brackets overrides
+  // the header's; without either the canonical column's own unit is assumed. Giving a map
+  // with format kAuto selects kMapped.
+  std::vector<std::string> column_map;
+  // kMapped is strict like the canonical format. Hand-made tables sometimes carry annotation
+  // rows ("6s Lipo,,PEAK THRUST" in sjkim's A4220 table): with this set, a row with an empty
+  // mapped cell is dropped and counted instead (text in a number stays an error).
+  bool mapped_drop_rows_with_empty_cells = false;
+
+  TimeSeriesMode time_series = TimeSeriesMode::kAuto;
+  PlateauOptions plateau;
+
+  // kDriveCalc: keep only this motor_id (negative: all motors, with a motor_id column).
+  long long drivecalc_motor_id = -1;
+
+  // Thrust-stand torque and thrust signs depend on how the motor is mounted: when the median is
+  // negative, the column is negated (and a note says so).
+  bool normalize_signs = true;
+
+  // Longest line accepted (a longer one is a DataError: not a text log).
+  std::size_t max_line_bytes = 1 << 20;
+
+  // Empty when valid; else names the field, the value and the rule.
+  std::string Validate() const;
+};
+
+// Reads `path` into a steady table. Throws NoInputError, DataError or UsageError (see above).
+SteadyTable ReadLog(const std::string& path, const LogReadOptions& options = LogReadOptions());
+
+}  // namespace dynosize::logs

@@ -1,0 +1,170 @@
+// End-to-end tests of the dynosize executable: exit codes, one-line errors, JSON contract.
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <array>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "common/json_file.h"
+
+namespace dynosize {
+namespace {
+
+struct CliRun {
+  int code = -1;
+  std::string out, err;
+};
+
+CliRun Exec(const std::string& args) {
+  namespace fs = std::filesystem;
+  // One file per process and call: ctest -j runs tests of this binary concurrently.
+  static int calls = 0;
+  const fs::path err_file = fs::temp_directory_path() /
+                            ("dynosize_cli_stderr_" + std::to_string(getpid()) + "_" +
+                             std::to_string(++calls) + ".txt");
+  const std::string cmd = std::string(DYNOSIZE_EXE) + " " + args + " 2> " + err_file.string();
+  CliRun r;
+  FILE* p = popen(cmd.c_str(), "r");
+  if (!p) return r;
+  std::array<char, 4096> buf;
+  std::size_t n;
+  while ((n = fread(buf.data(), 1, buf.size(), p)) > 0) r.out.append(buf.data(), n);
+  const int status = pclose(p);
+  r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  std::ifstream e(err_file);
+  std::stringstream ss;
+  ss << e.rdbuf();
+  r.err = ss.str();
+  fs::remove(err_file);
+  return r;
+}
+
+const std::string kPair = "simulate --motor emax_1900kv_paper --esc multistar_30a_paper ";
+
+int Lines(const std::string& s) {
+  int n = 0;
+  for (char c : s) n += c == '\n';
+  return n;
+}
+
+TEST(Cli, BadInputGetsOneLineAndExitCode) {
+  struct Case {
+    std::string args;
+    int code;
+    std::string message;
+  };
+  const std::vector<Case> cases = {
+      {kPair + "--vdc 7.2 --throttle 1.7 --torque 0.01", 64, "--throttle 1.7: must be between 0 and 1"},
+      {kPair + "--vdc=-5 --throttle 0.5 --torque 0.01", 64, "--vdc -5: must be a finite number > 0 V"},
+      {kPair + "--vdc nan --throttle 0.5 --torque 0.01", 64, "--vdc nan: must be a finite number > 0 V"},
+      {kPair + "--vdc 7.2 --throttle 0.5 --torque -1", 64, "--torque -1: must be a finite number >= 0"},
+      {kPair + "--vdc 7.2 --throttle 0.5", 64, "give --throttle with one of --torque"},
+      {kPair + "--vdc 7.2 --throttle 0.5 --torque 0.01 --rpm 100", 64, "give --throttle with one of"},
+      {kPair + "--vdc abc --throttle 0.5 --torque 0.01", 64, "Could not convert: --vdc = abc"},
+      {"simulate --motor nope --esc multistar_30a_paper --vdc 7.2 --throttle 0.5 --torque 0.01", 64,
+       "unknown motor id 'nope'; closest:"},
+      {kPair + "--vdc 7.2 --throttle 0.5 --torque 0.01 --catalog /nonexistent", 66,
+       "/nonexistent: no such catalog folder"},
+      {"frobnicate", 64, "unknown subcommand 'frobnicate': valid are simulate, catalog"},
+      {kPair + "--batch /nonexistent.csv", 66, "/nonexistent.csv: no such file"},
+  };
+  for (const auto& c : cases) {
+    const CliRun r = Exec(c.args);
+    EXPECT_EQ(r.code, c.code) << c.args << "\n" << r.err;
+    EXPECT_NE(r.err.find("dynosize: " + c.message), std::string::npos) << c.args << "\n" << r.err;
+    EXPECT_EQ(Lines(r.err), 1) << c.args << "\n" << r.err;
+    EXPECT_TRUE(r.out.empty()) << c.args;
+  }
+}
+
+TEST(Cli, MalformedCatalogIsExit65AndNamesTheProblem) {
+  namespace fs = std::filesystem;
+  const fs::path dir = fs::temp_directory_path() / (std::string("dynosize_cli_bad_catalog_" + std::to_string(getpid())));
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  std::ofstream(dir / "bad.json") << R"({"motors": [{"id": "x", "name": "x", "type": "bldc",
+    "kv_rpm_per_v": 900, "rm_ohm": 0, "io_a": 0.3, "source": {"dataset": "t"}}]})";
+  const CliRun r = Exec(kPair + "--vdc 7.2 --throttle 0.5 --torque 0.01 --catalog " + dir.string());
+  EXPECT_EQ(r.code, 65);
+  EXPECT_NE(r.err.find("bad.json: motors[0] id=x: key 'rm_ohm' = 0: must be a finite number > 0"),
+            std::string::npos) << r.err;
+  const CliRun v = Exec("catalog validate " + dir.string());
+  EXPECT_EQ(v.code, 65);
+  fs::remove_all(dir);
+}
+
+TEST(Cli, JsonContract) {
+  const CliRun r = Exec(kPair + "--vdc 7.2 --throttle 0.6 --torque 0.04 --json");
+  ASSERT_EQ(r.code, 0) << r.err;
+  const Json j = ParseJsonText(r.out, "stdout");
+  for (const char* key : {"rpm", "omega_rad_s", "torque_nm", "irms_a", "vll_rms_v", "pac_w", "idc_a",
+                          "pdc_w", "pesc_w", "pmech_w", "eta_motor", "eta_esc", "eta_system",
+                          "throttle", "throttle_effective", "saturated", "feasible"}) {
+    EXPECT_TRUE(j.contains(key)) << key;
+  }
+  EXPECT_NEAR(j["torque_nm"].get<double>(), 0.04, 1e-15);
+  // The inverse from the forward result returns the throttle.
+  const CliRun inv = Exec(kPair + "--vdc 7.2 --torque 0.04 --rpm " + std::to_string(j["rpm"].get<double>()) + " --json");
+  ASSERT_EQ(inv.code, 0) << inv.err;
+  EXPECT_NEAR(ParseJsonText(inv.out, "stdout")["throttle"].get<double>(), 0.6, 1e-6);  // rpm printed to 6 digits
+}
+
+TEST(Cli, InfeasibleInverseIsReportedNotCrashed) {
+  const CliRun r = Exec(kPair + "--vdc 7.2 --torque 0.01 --rpm 30000 --json");
+  ASSERT_EQ(r.code, 0) << r.err;
+  const Json j = ParseJsonText(r.out, "stdout");
+  EXPECT_FALSE(j["feasible"].get<bool>());
+  EXPECT_EQ(j["limits"][0].get<std::string>(), "throttle_above_one");
+}
+
+TEST(Cli, BatchWritesOneRowPerPoint) {
+  namespace fs = std::filesystem;
+  const fs::path in = fs::temp_directory_path() / (std::string("dynosize_points_" + std::to_string(getpid()) + ".csv"));
+  const fs::path out = fs::temp_directory_path() / (std::string("dynosize_points_out_" + std::to_string(getpid()) + ".csv"));
+  std::ofstream(in) << "vdc_v,throttle,torque_nm,rpm\n7.2,0.5,0.02,\n7.2,0.5,,3000\n7.2,,0.02,3000\n";
+  CliRun r = Exec(kPair + "--batch " + in.string() + " --out " + out.string());
+  ASSERT_EQ(r.code, 0) << r.err;
+  std::ifstream f(out);
+  std::string line;
+  int rows = 0;
+  while (std::getline(f, line)) ++rows;
+  EXPECT_EQ(rows, 4);
+  std::ofstream(in) << "vdc_v,throttle,torque_nm\n7.2,0.5,abc\n";
+  r = Exec(kPair + "--batch " + in.string());
+  EXPECT_EQ(r.code, 65);
+  EXPECT_NE(r.err.find(":2: column torque_nm = \"abc\": not a finite number"), std::string::npos) << r.err;
+  fs::remove(in);
+  fs::remove(out);
+}
+
+TEST(Cli, PlotWritesTheFiguresAndNoNaNIsPrinted) {
+  if (std::system("command -v gnuplot > /dev/null 2>&1") != 0) GTEST_SKIP() << "gnuplot not installed";
+  namespace fs = std::filesystem;
+  const fs::path dir = fs::temp_directory_path() / (std::string("dynosize_cli_plot_" + std::to_string(getpid())));
+  fs::remove_all(dir);
+  const CliRun r = Exec(kPair + "--vdc 7.2 --plot " + dir.string() + " --json");
+  ASSERT_EQ(r.code, 0) << r.err;
+  const Json j = ParseJsonText(r.out, "stdout");
+  EXPECT_EQ(j["figures"].size(), 5u);
+  for (const auto& f : j["figures"]) EXPECT_GT(fs::file_size(f.get<std::string>()), 10000u) << f;
+  EXPECT_EQ(r.out.find("null"), std::string::npos);
+  EXPECT_EQ(r.out.find("nan"), std::string::npos);
+  fs::remove_all(dir);
+}
+
+TEST(Cli, CatalogListJsonIsCatalogEntries) {
+  const CliRun r = Exec("catalog list --kind escs --json");
+  ASSERT_EQ(r.code, 0) << r.err;
+  const Json j = ParseJsonText(r.out, "stdout");
+  ASSERT_TRUE(j.contains("escs"));
+  bool found = false;
+  for (const auto& e : j["escs"]) found |= e["id"] == "multistar_30a_paper";
+  EXPECT_TRUE(found);
+}
+
+}  // namespace
+}  // namespace dynosize

@@ -1,0 +1,165 @@
+#include "catalog/catalog.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+
+#include "catalog/schema.h"
+#include "common/error.h"
+#include "common/units.h"
+
+namespace dynosize {
+namespace {
+
+const char* kGoodMotor = R"({"id": "m1", "name": "Test motor", "type": "bldc",
+  "kv_rpm_per_v": 1000, "rm_ohm": 0.1, "io_a": 0.4,
+  "source": {"dataset": "unit test", "values": {"rm_ohm": "assumed"}}})";
+const char* kGoodEsc = R"({"id": "e1", "name": "Test ESC", "resc_ohm": 0.01, "c1": 1.15,
+  "c0": 0.02, "tr_sat": 0.9, "sat_slope": 0.6, "max_current_a": 30,
+  "source": {"dataset": "unit test"}})";
+
+std::vector<std::string> Problems(const std::string& doc_text) {
+  Catalog c;
+  std::vector<std::string> problems;
+  c.AddDocument(ParseJsonText(doc_text, "t.json"), "t.json", &problems);
+  return problems;
+}
+
+// Replaces the first occurrence of `from` in `s` by `to`.
+std::string Edit(std::string s, const std::string& from, const std::string& to) {
+  const auto at = s.find(from);
+  EXPECT_NE(at, std::string::npos) << from;
+  return s.replace(at, from.size(), to);
+}
+
+std::string Doc(const std::string& motor, const std::string& esc = kGoodEsc) {
+  return R"({"motors": [)" + motor + R"(], "escs": [)" + esc + "]}";
+}
+
+TEST(Catalog, ValidEntriesConvertToSi) {
+  Catalog c;
+  std::vector<std::string> problems;
+  c.AddDocument(ParseJsonText(Doc(kGoodMotor), "t.json"), "t.json", &problems);
+  ASSERT_TRUE(problems.empty()) << problems[0];
+  const MotorEntry& m = c.motor("m1");
+  // ke from Kv by model.md section 8; kt = sqrt(27/10)*ke by section 5.
+  EXPECT_NEAR(m.params.ke_v_s_per_rad, KeFromKvBldc(1000.0), 1e-15);
+  EXPECT_NEAR(m.params.kt_nm_per_a, kPacPerVllIrms * KeFromKvBldc(1000.0), 1e-15);
+  EXPECT_EQ(m.assumed_keys, std::vector<std::string>{"rm_ohm"});
+  EXPECT_TRUE(std::isinf(m.params.max_current_a));
+  EXPECT_EQ(c.esc("e1").params.max_current_a, 30.0);
+  EXPECT_EQ(m.json["kv_rpm_per_v"].get<double>(), 1000.0);  // kept exactly as written
+}
+
+struct BadCase {
+  const char* what;
+  std::string doc;
+  std::string expected;  // a substring of the one problem reported
+};
+
+TEST(Catalog, EveryRuleNamesEntryKeyValueAndRule) {
+  const std::vector<BadCase> cases = {
+      {"negative resistance", Doc(Edit(kGoodMotor, "\"rm_ohm\": 0.1", "\"rm_ohm\": -0.1")),
+       "t.json: motors[0] id=m1: key 'rm_ohm' = -0.1: must be a finite number > 0 and <= 100"},
+      {"unknown key", Doc(Edit(kGoodMotor, "\"io_a\": 0.4", "\"io_a\": 0.4, \"rm_mohm\": 100")),
+       "key 'rm_mohm' = 100: unknown key for a motor"},
+      {"missing key", Doc(Edit(kGoodMotor, "\"io_a\": 0.4,", "")),
+       "key 'io_a': missing (required"},
+      {"wrong type", Doc(Edit(kGoodMotor, "\"rm_ohm\": 0.1", "\"rm_ohm\": \"0.1\"")),
+       "key 'rm_ohm' = \"0.1\": must be a finite number"},
+      {"bad enum", Doc(Edit(kGoodMotor, "\"bldc\"", "\"ac\"")),
+       "key 'type' = \"ac\": must be a string, one of bldc, brushed"},
+      {"no ke nor kv", Doc(Edit(kGoodMotor, "\"kv_rpm_per_v\": 1000,", "")),
+       "a motor needs ke_v_s_per_rad or kv_rpm_per_v"},
+      {"throttle knee above 1", Doc(kGoodMotor, Edit(kGoodEsc, "\"tr_sat\": 0.9", "\"tr_sat\": 1.5")),
+       "escs[0] id=e1: key 'tr_sat' = 1.5: must be a finite number > 0 and <= 1"},
+      {"bad provenance", Doc(Edit(kGoodMotor, "\"assumed\"", "\"guessed\"")),
+       "source.values.rm_ohm' = \"guessed\": must be one of datasheet"},
+      {"provenance of absent key", Doc(Edit(kGoodMotor, "{\"rm_ohm\"", "{\"mass_kg\"")),
+       "source.values.mass_kg': names a key the entry does not have"},
+      {"missing dataset", Doc(Edit(kGoodMotor, "\"dataset\": \"unit test\", ", "")),
+       "source.dataset': missing"},
+      {"bad id", Doc(Edit(kGoodMotor, "\"m1\"", "\"m 1\"")), "must be 1-120 characters"},
+      {"duplicate id", Doc(kGoodMotor, Edit(kGoodEsc, "\"e1\"", "\"m1\"")),
+       "escs[0] id=m1: key 'id' = \"m1\": duplicate id: already used in t.json: motors[0] id=m1"},
+      {"entry not an object", R"({"motors": [42]})", "motors[0]: must be an object, found 42"},
+      {"array not an array", R"({"escs": {}})", "\"escs\" must be an array"},
+      {"unknown top-level key", R"({"motor": []})", "unknown top-level key \"motor\""},
+  };
+  for (const auto& c : cases) {
+    const auto problems = Problems(c.doc);
+    ASSERT_EQ(problems.size(), 1u) << c.what << ": " << (problems.empty() ? "none" : problems[0]);
+    EXPECT_NE(problems[0].find(c.expected), std::string::npos)
+        << c.what << "\n got: " << problems[0] << "\n want: " << c.expected;
+  }
+}
+
+TEST(Catalog, JsonSyntaxProblemsNamePosition) {
+  try {
+    ParseJsonText("{\n  \"motors\": [\n    {\"id\": 1,}\n  ]\n}", "x.json");
+    FAIL() << "no error";
+  } catch (const DataError& e) {
+    EXPECT_NE(std::string(e.what()).find("x.json:3:"), std::string::npos) << e.what();
+  }
+  EXPECT_THROW(ParseJsonText(R"({"a": 1, "a": 2})", "d.json"), DataError);
+  EXPECT_THROW(ParseJsonText(R"({"a": 1e999})", "d.json"), DataError);
+  EXPECT_THROW(ParseJsonText(std::string(100, '[') + std::string(100, ']'), "deep.json"), DataError);
+  EXPECT_THROW(ParseJsonText("", "empty.json"), DataError);
+  EXPECT_THROW(ParseJsonText("\x89PNG\r\n\x1a\n\x00\x01", "bin.json"), DataError);
+}
+
+TEST(Catalog, UnknownIdSuggestsClosest) {
+  Catalog c;
+  std::vector<std::string> problems;
+  c.AddDocument(ParseJsonText(Doc(kGoodMotor), "t.json"), "t.json", &problems);
+  try {
+    c.motor("m2");
+    FAIL();
+  } catch (const UsageError& e) {
+    EXPECT_NE(std::string(e.what()).find("unknown motor id 'm2'; closest: m1"), std::string::npos)
+        << e.what();
+  }
+  try {
+    c.motor("e1");
+    FAIL();
+  } catch (const UsageError& e) {
+    EXPECT_NE(std::string(e.what()).find("that id is a ESC"), std::string::npos) << e.what();
+  }
+}
+
+TEST(Catalog, LoadReportsAllProblemsAndMissingFolder) {
+  namespace fs = std::filesystem;
+  const fs::path dir = fs::temp_directory_path() / "dynosize_catalog_test";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  std::ofstream(dir / "a.json") << Doc(Edit(kGoodMotor, "\"rm_ohm\": 0.1", "\"rm_ohm\": -1"));
+  std::ofstream(dir / "b.json") << "{ not json";
+  const auto problems = Catalog::Validate(dir.string());
+  ASSERT_EQ(problems.size(), 2u);
+  EXPECT_NE(problems[0].find("a.json"), std::string::npos);
+  EXPECT_NE(problems[1].find("b.json:1:"), std::string::npos);
+  EXPECT_THROW(Catalog::Load(dir.string()), DataError);
+  EXPECT_THROW(Catalog::Load((dir / "missing").string()), NoInputError);
+  fs::remove_all(dir);
+}
+
+TEST(Catalog, BundledCatalogIsValid) {
+  const std::string dir = std::string(DYNOSIZE_SOURCE_DIR) + "/catalog";
+  const auto problems = Catalog::Validate(dir);
+  EXPECT_TRUE(problems.empty()) << problems.size() << " problems, first: " << problems[0];
+  const Catalog c = Catalog::Load(dir);
+  EXPECT_GE(c.motors().size(), 2u);
+  EXPECT_GE(c.escs().size(), 1u);
+  for (const auto& m : c.motors()) EXPECT_TRUE(m.json.contains("source")) << m.id;
+}
+
+TEST(Schema, DescribesRules) {
+  for (const auto& spec : SchemaFor(ComponentKind::kEsc)) {
+    if (spec.key == "tr_sat") EXPECT_EQ(DescribeRule(spec), "a finite number > 0 and <= 1");
+  }
+}
+
+}  // namespace
+}  // namespace dynosize

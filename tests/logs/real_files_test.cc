@@ -1,0 +1,205 @@
+// Every real public log in shared/data listed in issue #4 reads without error, with what the
+// data allows (columns present / absent as documented in each folder's README). Skipped when
+// ../shared is absent. The per-file counts are printed (rows read, plateaus, dropped).
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <iostream>
+#include <string>
+#include <vector>
+
+#include "common/error.h"
+#include "logs/log_reader.h"
+#include "logs/log_test_util.h"
+
+namespace dynosize::logs {
+namespace {
+
+using testing_util::HaveShared;
+using testing_util::SharedData;
+
+std::vector<std::string> CsvFilesIn(const std::string& dir) {
+  std::vector<std::string> out;
+  for (const auto& e : std::filesystem::recursive_directory_iterator(SharedData() + dir)) {
+    if (e.is_regular_file() && e.path().extension() == ".csv") out.push_back(e.path().string());
+  }
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+std::string Present(const SteadyTable& t) {
+  std::string s;
+  for (int c = 0; c < kColumnCount; ++c) {
+    if (t.info[c].present) s += std::string(s.empty() ? "" : " ") + ColumnName(static_cast<Column>(c));
+  }
+  return s;
+}
+
+SteadyTable ReadAndPrint(const std::string& path, const LogReadOptions& o = LogReadOptions()) {
+  SCOPED_TRACE(path);
+  SteadyTable t;
+  try {
+    t = ReadLog(path, o);
+  } catch (const Error& e) {
+    ADD_FAILURE() << e.what();
+    return t;
+  }
+  EXPECT_GE(t.rows(), 2u);
+  EXPECT_TRUE(t.Has(Column::kIdcA));
+  for (int c = 0; c < kColumnCount; ++c) {
+    for (double v : t.columns[c]) EXPECT_TRUE(std::isfinite(v)) << ColumnName(static_cast<Column>(c));
+    if (t.info[c].present) {
+      EXPECT_EQ(t.columns[c].size(), t.rows()) << ColumnName(static_cast<Column>(c));
+    } else {
+      EXPECT_TRUE(t.columns[c].empty()) << ColumnName(static_cast<Column>(c));
+    }
+  }
+  const std::string rel = path.substr(SharedData().size());
+  std::cout << "[real] " << rel << " | " << LogFormatName(t.format) << " | read " << t.data_rows_read
+            << " | points " << t.rows() << (t.time_series ? " (plateaus)" : "") << " | dropped "
+            << t.DroppedTotal() << " | transient " << t.transient_samples << " | outliers "
+            << t.outlier_samples << " | " << Present(t) << "\n";
+  return t;
+}
+
+#define REQUIRE_SHARED() \
+  if (!HaveShared()) GTEST_SKIP() << "shared data folder " << SharedData() << " not found"
+
+TEST(RealLogs, AlspitzEscTest) {
+  REQUIRE_SHARED();
+  for (const auto& f : CsvFilesIn("alspitz_esc_test/data/rcbench")) {
+    const SteadyTable t = ReadAndPrint(f);
+    EXPECT_EQ(t.format, LogFormat::kRcbenchmark);
+    EXPECT_TRUE(t.time_series);
+    // Only the Aikon test (2019-11-09) drove the ESC from the stand.
+    EXPECT_EQ(t.Has(Column::kThrottle), f.find("2019-11-09") != std::string::npos) << f;
+    EXPECT_TRUE(t.Has(Column::kTorqueNm));
+    EXPECT_TRUE(t.Has(Column::kVdcV));
+  }
+}
+
+TEST(RealLogs, StrawsonFpvMotorProp) {
+  REQUIRE_SHARED();
+  const auto files = CsvFilesIn("strawson_fpv_motor_prop/rawdata");
+  EXPECT_EQ(files.size(), 208u);
+  std::size_t rows = 0, dropped = 0;
+  for (const auto& f : files) {
+    SteadyTable t;
+    ASSERT_NO_THROW(t = ReadLog(f)) << f;
+    EXPECT_FALSE(t.time_series) << f;  // one averaged row per step
+    EXPECT_FALSE(t.Has(Column::kTorqueNm)) << f;  // "NO torque" (README)
+    EXPECT_TRUE(t.Has(Column::kThrottle) && t.Has(Column::kThrustN) && t.Has(Column::kOmegaRadS)) << f;
+    rows += t.rows();
+    dropped += t.DroppedTotal();
+  }
+  std::cout << "[real] strawson_fpv_motor_prop/rawdata/*.csv (208 files) | rcbenchmark | read 2288 | points "
+            << rows << " | dropped " << dropped << " (speed 0: motor not started / dropout)\n";
+  EXPECT_EQ(rows + dropped, 2288u);  // README: 2288 data rows
+}
+
+TEST(RealLogs, Aerostack2Xnova) {
+  REQUIRE_SHARED();
+  for (const auto& f : CsvFilesIn("aerostack2_xnova_thrustmap")) {
+    const SteadyTable t = ReadAndPrint(f);
+    EXPECT_TRUE(t.Has(Column::kThrottle) && t.Has(Column::kThrustN) && t.Has(Column::kVdcV)) << f;
+    if (f.find("TM-S") != std::string::npos) EXPECT_EQ(t.delimiter, ';');
+    if (f.find("TM-") != std::string::npos) EXPECT_FALSE(t.Has(Column::kTimeS));
+    if (f.find("SR-ramp") != std::string::npos) EXPECT_FALSE(t.Has(Column::kOmegaRadS));  // rpm all 0
+  }
+}
+
+TEST(RealLogs, DiegosdantonioTinywhoop) {
+  REQUIRE_SHARED();
+  for (const auto& f : CsvFilesIn("diegosdantonio_tinywhoop")) {
+    const SteadyTable t = ReadAndPrint(f);
+    // 2023 tests had no rpm sensor (README).
+    if (f.find("StepsTest2023") != std::string::npos) EXPECT_FALSE(t.Has(Column::kOmegaRadS)) << f;
+  }
+}
+
+TEST(RealLogs, BhabasSarMotorSysid) {
+  REQUIRE_SHARED();
+  LogReadOptions o;
+  o.esc_unitless_min = 0.0;  // README: ESC signal in 0..2000 command units, not us
+  o.esc_unitless_max = 2000.0;
+  for (const auto& f : CsvFilesIn("bhabas_sar_motor_sysid")) {
+    const SteadyTable plain = ReadLog(f);
+    EXPECT_FALSE(plain.Has(Column::kThrottle)) << f;  // unitless command: not guessed
+    const SteadyTable t = ReadAndPrint(f, o);
+    EXPECT_TRUE(t.Has(Column::kThrottle)) << f;
+    EXPECT_EQ(t.info[static_cast<int>(Column::kOmegaRadS)].source_unit, "rad/s");
+  }
+}
+
+TEST(RealLogs, HeinzgerhardLargeMotor) {
+  REQUIRE_SHARED();
+  for (const auto& f : CsvFilesIn("heinzgerhard_rcb_large_motor")) {
+    const SteadyTable t = ReadAndPrint(f);
+    EXPECT_TRUE(t.Has(Column::kTempC)) << f;  // "4N76 Temp (ºC)"
+    EXPECT_EQ(t.info[static_cast<int>(Column::kOmegaRadS)].source_header, "Motor Optical Speed (RPM)");
+    // Torque is negative as mounted (README): flipped, with a note.
+    EXPECT_NE(t.info[static_cast<int>(Column::kTorqueNm)].note.find("sign flipped"), std::string::npos);
+  }
+}
+
+TEST(RealLogs, SjkimManufacturerTables) {
+  REQUIRE_SHARED();
+  const std::string d = SharedData() + "sjkim_mfr_motor_tables/";
+  LogReadOptions o;
+  o.column_map = {"throttle=Throttle", "vdc_v=Voltage", "idc_a=Current", "rpm=Rpm",
+                  "torque_nm=Torque [N*m]", "thrust_n=Thrust [g]"};
+  ReadAndPrint(d + "TMotor_AT2814_1200kv.csv", o);
+  o.column_map = {"throttle=throttle", "vdc_v=voltage_V", "idc_a=current_A", "rpm=rpm",
+                  "torque_nm=torque_Nm", "thrust_n=thrust_g [g]"};
+  ReadAndPrint(d + "TMotor_AT3520_550kv.csv", o);
+  ReadAndPrint(d + "TMotor_AT4125_540kv.csv", o);
+  o.column_map = {"throttle=throttle", "vdc_v=voltage_V", "idc_a=current_A", "rpm=rpm",
+                  "torque_nm=torque_Nm"};
+  ReadAndPrint(d + "Scorpion_1100kv.csv", o);
+  // The A-4220 stand table: thrust in kgf (README), an annotation row "6s Lipo,,PEAK THRUST"
+  // and a peak-thrust row without throttle: strict by default, dropped on request.
+  o.column_map = {"throttle=Throttle", "vdc_v=Voltage", "idc_a=Current", "rpm=RPM",
+                  "torque_nm=Torque", "thrust_n=Thrust [kgf]"};
+  try {
+    ReadLog(d + "A4220_540kv_stand_test.csv", o);
+    ADD_FAILURE() << "no error";
+  } catch (const DataError& e) {
+    EXPECT_NE(std::string(e.what()).find("line 13, column \"Throttle\": \"\": empty cell"), std::string::npos)
+        << e.what();
+  }
+  o.mapped_drop_rows_with_empty_cells = true;
+  const SteadyTable t = ReadAndPrint(d + "A4220_540kv_stand_test.csv", o);
+  EXPECT_EQ(t.rows(), 11u);
+  EXPECT_EQ(t.DroppedTotal(), 2u);
+  EXPECT_NEAR(t.Get(Column::kThrustN)[0], 0.57 * 9.80665, 1e-12);
+}
+
+TEST(RealLogs, MitKde2814) {
+  REQUIRE_SHARED();
+  LogReadOptions o;
+  o.column_map = {"throttle=#1 [us]", "torque_nm=#2 [N*m]", "thrust_n=#3 [N]", "rpm=#4",
+                  "idc_a=#5 [A]"};
+  for (const char* f : {"motor_10inch_prop.txt", "motor_14inch_prop.txt"}) {
+    const SteadyTable t = ReadAndPrint(SharedData() + "mit_multicopter_kde2814/" + f, o);
+    EXPECT_FALSE(t.Has(Column::kVdcV));  // no voltage column (README)
+    EXPECT_TRUE(t.Has(Column::kThrottle));
+  }
+}
+
+TEST(RealLogs, DriveCalcMData) {
+  REQUIRE_SHARED();
+  const SteadyTable all = ReadAndPrint(SharedData() + "drivecalc/MData.csv");
+  EXPECT_EQ(all.data_rows_read, 8214u);      // README: 8214 rows
+  EXPECT_EQ(all.DroppedTotal(), 448u);       // README: 448 rows have n = 0
+  EXPECT_FALSE(all.Has(Column::kThrottle));
+  EXPECT_TRUE(all.Has(Column::kNoLoad) && all.Has(Column::kMotorId));
+  LogReadOptions o;
+  o.drivecalc_motor_id = 1;
+  const SteadyTable m1 = ReadAndPrint(SharedData() + "drivecalc/MData.csv", o);
+  EXPECT_EQ(m1.rows(), 3u);
+  EXPECT_EQ(m1.Get(Column::kNoLoad)[0], 1.0);
+  EXPECT_EQ(m1.Get(Column::kVdcV)[0], 7.19);  // first MData row: 1,4,1,7.19,39315.0,0.78,1,...
+}
+
+}  // namespace
+}  // namespace dynosize::logs
