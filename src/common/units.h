@@ -30,9 +30,6 @@ inline constexpr double InchToMeter(double in) { return in * 0.0254; }
 inline constexpr double MahToCoulomb(double mah) { return mah * 3.6; }
 inline constexpr double MahToAh(double mah) { return mah * 1e-3; }
 inline constexpr double AhToCoulomb(double ah) { return ah * 3600.0; }
-inline constexpr double GramForceToNewton(double gf) { return gf * 9.80665e-3; }
-inline constexpr double KgForceToNewton(double kgf) { return kgf * 9.80665; }
-inline constexpr double PoundForceToNewton(double lbf) { return lbf * 4.4482216152605; }
 inline constexpr double InchPoundForceToNewtonMeter(double in_lbf) { return in_lbf * 0.1129848290276167; }
 inline constexpr double MphToMeterPerSecond(double mph) { return mph * 0.44704; }
 inline constexpr double OunceToKg(double oz) { return oz * 0.028349523125; }

@@ -132,7 +132,7 @@ ImportedDataset ImportSjkimTables(const std::string& dir) {
        GramForceToNewton(1), "T-Motor datasheet, 6S"},
       {"Scorpion_1100kv.csv", "Scorpion 1100KV", "sj_m_scorpion_1100kv", 0,
        "6S; model and propeller not stated"},
-      {"A4220_540kv_stand_test.csv", "A-4220 540KV", "sj_m_a4220_540kv", KgForceToNewton(1),
+      {"A4220_540kv_stand_test.csv", "A-4220 540KV", "sj_m_a4220_540kv", KilogramForceToNewton(1),
        "stand test with Tribunus III 06-110A ESC and Falcon 15x10E, 6S; thrust column in kgf"},
   };
   for (const auto& f : files) {
