@@ -48,6 +48,17 @@ PropModel::PropModel(const PropEntry& entry) : entry_(entry) {
     throw UsageError("propeller '" + entry_.id + "' has no performance data (tables, "
                      "ct_static/cp_static or power laws)");
   }
+  const PropStaticTable& st = entry_.static_table;
+  for (const PropSweep& s : entry_.j_tables) {
+    PropSweep a = s;
+    if (!st.rpm.empty() && !a.j.empty() && a.j.front() > 0.0) {
+      // Join the sweep to the static table at this sweep's rpm (J = 0).
+      a.j.insert(a.j.begin(), 0.0);
+      a.ct.insert(a.ct.begin(), Lerp(st.rpm, st.ct, s.rpm).value);
+      a.cp.insert(a.cp.begin(), Lerp(st.rpm, st.cp, s.rpm).value);
+    }
+    sweeps_.push_back(std::move(a));
+  }
   if (!(entry_.diameter_m > 0)) {
     throw UsageError("propeller '" + entry_.id + "': diameter_m must be > 0");
   }
@@ -78,16 +89,9 @@ void PropModel::TableCoefficients(double rpm, double j, PropEvaluation* ev) cons
   }
   // Forward flight (or static without a static table): interpolate each sweep at J, then
   // between the two sweeps that bracket rpm.
-  const auto& sweeps = entry_.j_tables;
+  const auto& sweeps = sweeps_;
   auto sweep_at = [&](const PropSweep& s, double* ct, double* cp) {
-    std::vector<double> jj = s.j, tt = s.ct, pp = s.cp;
-    if (have_static && jj.front() > 0.0) {
-      // Join the sweep to the static table at this sweep's rpm (J = 0).
-      jj.insert(jj.begin(), 0.0);
-      tt.insert(tt.begin(), Lerp(st.rpm, st.ct, s.rpm).value);
-      pp.insert(pp.begin(), Lerp(st.rpm, st.cp, s.rpm).value);
-    }
-    const Interp a = Lerp(jj, tt, j), b = Lerp(jj, pp, j);
+    const Interp a = Lerp(s.j, s.ct, j), b = Lerp(s.j, s.cp, j);
     *ct = a.value;
     *cp = b.value;
     return a.outside;
