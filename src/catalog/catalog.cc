@@ -335,8 +335,10 @@ void Catalog::AddDocument(const Json& doc, const std::string& file,
               }
               if (!f->is_number() || !std::isfinite(f->get<double>()) || f->get<double>() < lo ||
                   f->get<double>() > hi) {
-                bad(path + "." + fk, "must be a number in [" + ValueText(Json(lo)) + ", " +
-                                         ValueText(Json(hi)) + "], found " + ValueText(*f));
+                std::ostringstream rule;
+                rule << "must be a number in [" << lo << ", " << hi << "], found "
+                     << ValueText(*f);
+                bad(path + "." + fk, rule.str());
               }
             }
           }
