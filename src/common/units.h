@@ -59,6 +59,7 @@ inline constexpr double kNmPerKilogramForceCm = kNewtonPerKilogramForce * 0.01;
 
 inline constexpr double GramForceToNewton(double gf) { return gf * kNewtonPerGramForce; }
 inline constexpr double KilogramForceToNewton(double kgf) { return kgf * kNewtonPerKilogramForce; }
+inline constexpr double KgForceToNewton(double kgf) { return KilogramForceToNewton(kgf); }
 inline constexpr double PoundForceToNewton(double lbf) { return lbf * kNewtonPerPoundForce; }
 inline constexpr double OunceForceToNewton(double ozf) { return ozf * kNewtonPerOunceForce; }
 inline constexpr double FahrenheitToCelsius(double f) { return (f - 32.0) * (5.0 / 9.0); }

@@ -553,6 +553,20 @@ std::string LevenbergMarquardtSummary::FullReport() const {
                   b ? "(at bound)" : "");
     os << buf;
   }
+  // Correlations near +-1 flag pairs the data barely separate (e.g. KT and Io from torque
+  // data at a single current), before they become outright unidentifiable.
+  if (correlation.rows() == parameters.size() && parameters.size() > 1) {
+    os << "  correlation\n";
+    for (Eigen::Index a = 0; a < correlation.rows(); ++a) {
+      std::snprintf(buf, sizeof buf, "  %-24s", parameter_names[a].c_str());
+      os << buf;
+      for (Eigen::Index b = 0; b <= a; ++b) {
+        std::snprintf(buf, sizeof buf, " %7.3f", correlation(a, b));
+        os << buf;
+      }
+      os << "\n";
+    }
+  }
   os << "  Jacobian rank (unit-scaled columns): " << jacobian_rank << "\n";
   if (unidentifiable.empty()) {
     os << "  all free parameters are identifiable from the data\n";

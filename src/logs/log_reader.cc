@@ -201,8 +201,6 @@ Plan PlanRcbenchmark(const Header& h, const LogReadOptions& o, const std::string
   p.header_cells = h.cells.size();
   // A trailing delimiter leaves an empty last header cell: not a column.
   while (p.header_cells > 0 && h.cells[p.header_cells - 1].empty()) --p.header_cells;
-  Slot* optical = nullptr;
-  (void)optical;
   bool have_temp = false;
   for (std::size_t i = 0; i < p.header_cells; ++i) {
     const HeaderCell hc = SplitHeaderCell(h.cells[i]);
@@ -211,7 +209,6 @@ Plan PlanRcbenchmark(const Header& h, const LogReadOptions& o, const std::string
     s.field = i;
     s.header = h.cells[i];
     s.unit = hc.unit;
-    int priority = 0;
     if (name == "time") {
       s.target = Column::kTimeS, s.quantity = Quantity::kTime;
     } else if (name == "esc signal" || name == "esc") {
@@ -243,9 +240,9 @@ Plan PlanRcbenchmark(const Header& h, const LogReadOptions& o, const std::string
     } else if (name == "current") {
       s.target = Column::kIdcA, s.quantity = Quantity::kCurrent;
     } else if (name == "motor optical speed") {
-      s.target = Column::kOmegaRadS, s.quantity = Quantity::kSpeed, priority = 1;
+      s.target = Column::kOmegaRadS, s.quantity = Quantity::kSpeed;
     } else if (name == "motor electrical speed") {
-      s.target = Column::kOmegaRadS, s.quantity = Quantity::kSpeed, priority = 2;
+      s.target = Column::kOmegaRadS, s.quantity = Quantity::kSpeed;
     } else if (name.find("temp") != std::string::npos &&
                ParseUnit(Quantity::kTemperature, hc.unit) && !have_temp) {
       s.target = Column::kTempC, s.quantity = Quantity::kTemperature;
@@ -253,7 +250,6 @@ Plan PlanRcbenchmark(const Header& h, const LogReadOptions& o, const std::string
     } else {
       continue;  // powers, efficiencies, accelerations, servos, messages: not needed
     }
-    (void)priority;
     const auto u = ParseUnit(s.quantity, hc.unit);
     if (!u) {
       throw DataError(path + ": line 1, column " + std::to_string(i + 1) + " \"" + h.cells[i] +
@@ -276,7 +272,8 @@ Plan PlanRcbenchmark(const Header& h, const LogReadOptions& o, const std::string
   return p;
 }
 
-Plan PlanDriveCalc(const Header& h, const std::string& path, const LogReadOptions& o) {
+// motor_id is always read (the filter needs it); with a filter it is dropped from the table.
+Plan PlanDriveCalc(const Header& h, const std::string& path) {
   Plan p;
   p.format = LogFormat::kDriveCalc;
   p.header_cells = h.cells.size();
@@ -306,9 +303,6 @@ Plan PlanDriveCalc(const Header& h, const std::string& path, const LogReadOption
                         "\" missing (required: motor_id, U, n, I, IsNoLoad)");
       }
       continue;
-    }
-    if (w.column == Column::kMotorId && o.drivecalc_motor_id >= 0) {
-      // Still read (to filter), but not a table column.
     }
     Slot s;
     s.target = w.column;
@@ -873,7 +867,6 @@ SteadyTable ReadLog(const std::string& path, const LogReadOptions& options) {
     ++t.blank_or_comment_lines;
   }
   if (!got) throw DataError(path + ": empty file: no header line");
-  const std::size_t header_line_no = lr.line_number();
   const Header h = ParseHeader(line);
   t.header_latin1 = h.latin1;
   t.delimiter = h.delim;
@@ -886,7 +879,7 @@ SteadyTable ReadLog(const std::string& path, const LogReadOptions& options) {
   switch (fmt) {
     case LogFormat::kCanonical: plan = PlanCanonical(h, path); break;
     case LogFormat::kRcbenchmark: plan = PlanRcbenchmark(h, options, path, &t); break;
-    case LogFormat::kDriveCalc: plan = PlanDriveCalc(h, path, options); break;
+    case LogFormat::kDriveCalc: plan = PlanDriveCalc(h, path); break;
     case LogFormat::kMapped: {
       bool all_hash = true;
       for (const auto& e : options.column_map) {
@@ -902,7 +895,6 @@ SteadyTable ReadLog(const std::string& path, const LogReadOptions& options) {
     }
     case LogFormat::kAuto: throw InternalError("ReadLog: format still auto");
   }
-  (void)header_line_no;
   RawRows rows;
   ReadRows(&lr, &plan, path, &t, &rows, first_data, options);
   t.line_ends = LineEnds(lr);

@@ -23,7 +23,8 @@
 //    n -> omega_rad_s, I -> idc_a, IsNoLoad -> no_load, Temp -> temp_c. Points with n = 0
 //    (speed not measured) are dropped and counted. Detected by motor_id, U, n, I, IsNoLoad.
 //
-// Every format: a UTF-8 BOM, LF/CRLF/CR line ends and a Latin-1 header are accepted; the table
+// Every format: a UTF-8 BOM, LF/CRLF/CR line ends and a Latin-1 header are accepted, blank
+// lines and lines starting with '#' are skipped (counted in blank_or_comment_lines); the table
 // must end with at least 2 rows, not all identical, idc_a present and not all zero - else a
 // DataError. A missing file is a NoInputError; invalid options a UsageError.
 // Memory: the file is read through a fixed buffer; only the parsed numbers are kept.

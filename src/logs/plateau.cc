@@ -222,7 +222,7 @@ PlateauSearch FindPlateaus(const double* time_s, const double* command, const do
   PlateauSearch out;
   if (n == 0) return out;
   const CommandKind kind = ClassifyCommand(command, n, options);
-  if (kind == CommandKind::kStepped || (kind != CommandKind::kNone && signal == nullptr)) {
+  if (kind == CommandKind::kStepped || (kind == CommandKind::kVarying && signal == nullptr)) {
     out.method = PlateauMethod::kCommandSteps;
     SearchByCommand(time_s, command, signal, n, options, &out);
   } else if (kind == CommandKind::kRamp) {
@@ -251,7 +251,15 @@ std::size_t MarkOutliers(const std::vector<const double*>& columns, std::size_t 
       if (!std::isnan(x[i])) dev.push_back(std::fabs(x[i] - med));
     }
     const double mad = MedianOf(dev.data(), 0, dev.size());
-    const double sigma = std::max(kMadToSigma * mad, options.mad_floor_rel * std::fabs(med));
+    double scale = kMadToSigma * mad;
+    if (scale == 0.0) {
+      // More than half the samples equal (quantised probes): the mean absolute deviation,
+      // sqrt(pi/2) = 1.2533 of it for a normal sample, still sees the spread.
+      double sum = 0.0;
+      for (const double d : dev) sum += d;
+      scale = 1.2533 * sum / static_cast<double>(dev.size());
+    }
+    const double sigma = std::max(scale, options.mad_floor_rel * std::fabs(med));
     if (!(sigma > 0.0)) continue;  // all equal (e.g. zero): nothing to reject
     const double limit = options.outlier_mad_k * sigma;
     for (std::size_t i = begin; i < end; ++i) {

@@ -23,8 +23,10 @@
 //
 // Averaging: inside a plateau a sample is an outlier when any of the averaged columns lies more
 // than outlier_mad_k robust standard deviations from the column's median, with
-// sigma = 1.4826*MAD (the MAD of a normal sample), floored at mad_floor_rel*|median| so that a
-// quantised, nearly constant signal does not turn every step of one count into an outlier.
+// sigma = 1.4826*MAD (the MAD of a normal sample); when MAD is 0 (more than half the samples
+// equal, as with quantised probes) sigma = 1.2533 * mean absolute deviation instead; and sigma
+// is floored at mad_floor_rel*|median| so that a nearly constant signal does not turn every
+// step of one count into an outlier.
 #pragma once
 
 #include <cstddef>
