@@ -35,9 +35,35 @@ std::string Num(double x) {
   return o.str();
 }
 
+// The catalog reader enforces these rules for entries from files; a PropEntry built in code
+// is checked here so that interpolation never reads outside an array.
+void CheckTable(const std::string& id, const std::string& what, const std::vector<double>& x,
+                const std::vector<double>& ct, const std::vector<double>& cp) {
+  if (x.empty() || x.size() != ct.size() || x.size() != cp.size()) {
+    throw UsageError("propeller '" + id + "': " + what +
+                     " needs non-empty axis, ct and cp arrays of equal length");
+  }
+  for (std::size_t i = 1; i < x.size(); ++i) {
+    if (!(x[i] > x[i - 1])) {
+      throw UsageError("propeller '" + id + "': " + what + " axis must be strictly increasing");
+    }
+  }
+}
+
 }  // namespace
 
 PropModel::PropModel(const PropEntry& entry) : entry_(entry) {
+  if (!entry_.static_table.rpm.empty()) {
+    CheckTable(entry_.id, "static_table", entry_.static_table.rpm, entry_.static_table.ct,
+               entry_.static_table.cp);
+  }
+  for (std::size_t k = 0; k < entry_.j_tables.size(); ++k) {
+    const PropSweep& s = entry_.j_tables[k];
+    CheckTable(entry_.id, "j_tables[" + std::to_string(k) + "]", s.j, s.ct, s.cp);
+    if (k > 0 && !(s.rpm > entry_.j_tables[k - 1].rpm)) {
+      throw UsageError("propeller '" + entry_.id + "': j_tables must be sorted by increasing rpm");
+    }
+  }
   if (!entry_.static_table.rpm.empty() || !entry_.j_tables.empty()) {
     kind_ = PropDataKind::kTables;
   } else if (entry_.ct_static && entry_.cp_static) {
