@@ -58,4 +58,14 @@ struct CalibrateOptions {
 };
 int RunCalibrate(const CalibrateOptions& o);
 
+// `dynosize catalog import --shared DIR --out DIR [--json]`: runs every importer
+// (src/importers/importers.h ImportAll) on DIR/<dataset>/ and writes OUT/<dataset>.json; prints
+// what was kept and dropped per data set (stdout), or the report as JSON.
+struct CatalogImportOptions {
+  std::string shared_data_dir;  // shared/data
+  std::string out_dir;          // catalog folder to write
+  bool json = false;
+};
+int RunCatalogImport(const CatalogImportOptions& o);
+
 }  // namespace dynosize::cli

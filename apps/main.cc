@@ -112,6 +112,14 @@ int main(int argc, char** argv) {
   auto* validate_cmd = catalog->add_subcommand("validate", "report every problem in a catalog folder");
   validate_cmd->add_option("dir", validate_dir, "catalog folder (default: the one in use)");
   validate_cmd->add_flag("--json", validate_json, "print {\"valid\": bool, \"problems\": [...]}");
+  cli::CatalogImportOptions import_opts;
+  auto* import_cmd = catalog->add_subcommand(
+      "import", "regenerate catalog JSON from the public data sets (shared/data)");
+  import_cmd->add_option("--shared", import_opts.shared_data_dir,
+                         "folder holding drivecalc/, uiuc_propdb/, ... (shared/data)")
+      ->required();
+  import_cmd->add_option("--out", import_opts.out_dir, "catalog folder to write")->required();
+  import_cmd->add_flag("--json", import_opts.json, "print the import report as JSON");
   bool schema_json = false;
   auto* schema_cmd = catalog->add_subcommand("schema", "print every catalog key with its unit and rule");
   schema_cmd->add_flag("--json", schema_json, "print the schema as JSON");
@@ -159,6 +167,7 @@ int main(int argc, char** argv) {
     if (*show_cmd) return cli::RunCatalogShow(dir, show_id);
     if (*validate_cmd) return cli::RunCatalogValidate(validate_dir.empty() ? dir : validate_dir, validate_json);
     if (*schema_cmd) return cli::RunCatalogSchema(schema_json);
+    if (*import_cmd) return cli::RunCatalogImport(import_opts);
   } catch (const dynosize::Error& e) {
     return Fail(e.code(), e.what());
   } catch (const std::exception& e) {

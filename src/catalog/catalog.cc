@@ -307,6 +307,43 @@ void Catalog::AddDocument(const Json& doc, const std::string& file,
                               "ct_static/cp_static, static_table or j_tables)");
         }
       }
+      if (kind == ComponentKind::kMotor) {
+        if (const auto tp = e.find("test_points"); tp != e.end() && tp->is_array()) {
+          for (std::size_t k = 0; k < tp->size(); ++k) {
+            const std::string path = "test_points[" + std::to_string(k) + "]";
+            const Json& pt = (*tp)[k];
+            if (!pt.is_object()) {
+              bad(path, "must be an object {vdc_v, idc_a, throttle, rpm, torque_nm, thrust_n, prop}");
+              continue;
+            }
+            for (const char* req : {"vdc_v", "idc_a"}) {
+              if (!pt.contains(req)) bad(path + "." + req, "missing (required)");
+            }
+            for (auto f = pt.begin(); f != pt.end(); ++f) {
+              const std::string& fk = f.key();
+              if (fk == "prop") {
+                if (!f->is_string()) bad(path + ".prop", "must be a string");
+                continue;
+              }
+              double lo = 0, hi = 1e7;
+              if (fk == "throttle") hi = 1;
+              else if (fk != "vdc_v" && fk != "idc_a" && fk != "rpm" && fk != "torque_nm" &&
+                       fk != "thrust_n") {
+                bad(path + "." + fk, "unknown key: allowed are vdc_v, idc_a, throttle, rpm, "
+                                     "torque_nm, thrust_n, prop");
+                continue;
+              }
+              if (!f->is_number() || !std::isfinite(f->get<double>()) || f->get<double>() < lo ||
+                  f->get<double>() > hi) {
+                std::ostringstream rule;
+                rule << "must be a number in [" << lo << ", " << hi << "], found "
+                     << ValueText(*f);
+                bad(path + "." + fk, rule.str());
+              }
+            }
+          }
+        }
+      }
       if (kind == ComponentKind::kBattery) {
         const auto s_it = e.find("cells_series");
         const auto v_it = e.find("voltage_nominal_v");

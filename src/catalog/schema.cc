@@ -81,6 +81,15 @@ std::vector<KeySpec> Build(ComponentKind kind) {
       add(Num("rm_per_omega_ohm_s_per_rad", false, 0, false, 1,
               "speed-dependent impedance term (DriveCalc K): R(omega) = rm + K*omega, ohm per rad/s"));
       add(Num("max_torque_nm", false, 0, true, 1e4, "peak torque rating, N*m"));
+      {
+        KeySpec tp;
+        tp.key = "test_points";
+        tp.type = ValueType::kArray;
+        tp.doc = "published operating points (manufacturer or stand tables): [{\"vdc_v\", "
+                 "\"idc_a\" (required), \"throttle\" (0-1), \"rpm\", \"torque_nm\", "
+                 "\"thrust_n\", \"prop\" (string)}]";
+        add(tp);
+      }
       break;
     case ComponentKind::kEsc:
       add(Num("resc_ohm", true, 0, false, 10, "equivalent series resistance of eq (47), ohm"));

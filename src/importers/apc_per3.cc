@@ -96,7 +96,7 @@ ImportedDataset ImportApcPer3(const std::string& dir) {
         continue;
       }
       const double n = RpmToRevPerSec(*rpm);
-      const double ct = KgForceToNewton(*th) / (rho * n * n * std::pow(d, 4));
+      const double ct = KilogramForceToNewton(*th) / (rho * n * n * std::pow(d, 4));
       const double cp = 2 * kPi * *q / (rho * n * n * std::pow(d, 5));
       if (*v == 0.0) statics[*rpm] = {RoundSig(ct, kDigits), RoundSig(cp, kDigits)};
       else sweeps[*rpm].push_back({RoundSig(*v / (n * d), kDigits), RoundSig(ct, kDigits), RoundSig(cp, kDigits)});

@@ -21,6 +21,10 @@ const std::vector<Importer>& Importers() {
       {"drivecalc", ImportDriveCalc},
       {"uiuc_propdb", ImportUiuc},
       {"apc_per3_subset", ImportApcPer3},
+      {"fastuav_catalogues", ImportFastUav},
+      {"sjkim_mfr_motor_tables", ImportSjkimTables},
+      {"dronebuildcalc_mfr_tables", ImportDroneBuildCalc},
+      {"ctu_mrs_motor_tests", ImportCtuMrs},
   };
   return kImporters;
 }

@@ -35,9 +35,35 @@ std::string Num(double x) {
   return o.str();
 }
 
+// The catalog reader enforces these rules for entries from files; a PropEntry built in code
+// is checked here so that interpolation never reads outside an array.
+void CheckTable(const std::string& id, const std::string& what, const std::vector<double>& x,
+                const std::vector<double>& ct, const std::vector<double>& cp) {
+  if (x.empty() || x.size() != ct.size() || x.size() != cp.size()) {
+    throw UsageError("propeller '" + id + "': " + what +
+                     " needs non-empty axis, ct and cp arrays of equal length");
+  }
+  for (std::size_t i = 1; i < x.size(); ++i) {
+    if (!(x[i] > x[i - 1])) {
+      throw UsageError("propeller '" + id + "': " + what + " axis must be strictly increasing");
+    }
+  }
+}
+
 }  // namespace
 
 PropModel::PropModel(const PropEntry& entry) : entry_(entry) {
+  if (!entry_.static_table.rpm.empty()) {
+    CheckTable(entry_.id, "static_table", entry_.static_table.rpm, entry_.static_table.ct,
+               entry_.static_table.cp);
+  }
+  for (std::size_t k = 0; k < entry_.j_tables.size(); ++k) {
+    const PropSweep& s = entry_.j_tables[k];
+    CheckTable(entry_.id, "j_tables[" + std::to_string(k) + "]", s.j, s.ct, s.cp);
+    if (k > 0 && !(s.rpm > entry_.j_tables[k - 1].rpm)) {
+      throw UsageError("propeller '" + entry_.id + "': j_tables must be sorted by increasing rpm");
+    }
+  }
   if (!entry_.static_table.rpm.empty() || !entry_.j_tables.empty()) {
     kind_ = PropDataKind::kTables;
   } else if (entry_.ct_static && entry_.cp_static) {
@@ -47,6 +73,17 @@ PropModel::PropModel(const PropEntry& entry) : entry_(entry) {
   } else {
     throw UsageError("propeller '" + entry_.id + "' has no performance data (tables, "
                      "ct_static/cp_static or power laws)");
+  }
+  const PropStaticTable& st = entry_.static_table;
+  for (const PropSweep& s : entry_.j_tables) {
+    PropSweep a = s;
+    if (!st.rpm.empty() && !a.j.empty() && a.j.front() > 0.0) {
+      // Join the sweep to the static table at this sweep's rpm (J = 0).
+      a.j.insert(a.j.begin(), 0.0);
+      a.ct.insert(a.ct.begin(), Lerp(st.rpm, st.ct, s.rpm).value);
+      a.cp.insert(a.cp.begin(), Lerp(st.rpm, st.cp, s.rpm).value);
+    }
+    sweeps_.push_back(std::move(a));
   }
   if (!(entry_.diameter_m > 0)) {
     throw UsageError("propeller '" + entry_.id + "': diameter_m must be > 0");
@@ -78,16 +115,9 @@ void PropModel::TableCoefficients(double rpm, double j, PropEvaluation* ev) cons
   }
   // Forward flight (or static without a static table): interpolate each sweep at J, then
   // between the two sweeps that bracket rpm.
-  const auto& sweeps = entry_.j_tables;
+  const auto& sweeps = sweeps_;
   auto sweep_at = [&](const PropSweep& s, double* ct, double* cp) {
-    std::vector<double> jj = s.j, tt = s.ct, pp = s.cp;
-    if (have_static && jj.front() > 0.0) {
-      // Join the sweep to the static table at this sweep's rpm (J = 0).
-      jj.insert(jj.begin(), 0.0);
-      tt.insert(tt.begin(), Lerp(st.rpm, st.ct, s.rpm).value);
-      pp.insert(pp.begin(), Lerp(st.rpm, st.cp, s.rpm).value);
-    }
-    const Interp a = Lerp(jj, tt, j), b = Lerp(jj, pp, j);
+    const Interp a = Lerp(s.j, s.ct, j), b = Lerp(s.j, s.cp, j);
     *ct = a.value;
     *cp = b.value;
     return a.outside;

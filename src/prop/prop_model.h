@@ -81,6 +81,9 @@ class PropModel {
 
   PropEntry entry_;
   PropDataKind kind_ = PropDataKind::kTables;
+  // j_tables with the static point (J = 0, from static_table at the sweep's rpm) prepended
+  // when the sweep starts above J = 0; built once in the constructor.
+  std::vector<PropSweep> sweeps_;
 };
 
 }  // namespace dynosize

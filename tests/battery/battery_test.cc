@@ -187,7 +187,7 @@ TEST(BatteryLogTest, OneCDischargeOfA2250mAhLiPo) {
   ASSERT_GT(log.size(), 3000u);
   const double ri = RiAfterSettling(log);
   const LogComparison c = CompareWithLog(log, ri, 3.3);
-  std::cout << "1C log: Ri from first step " << ri * 1e3 << " mOhm; V rms error " << c.rms_v * 1e3
+  std::cout << "1C log: Ri after 10 s " << ri * 1e3 << " mOhm; V rms error " << c.rms_v * 1e3
             << " mV, max " << c.max_v * 1e3 << " mV; time to 3.3 V measured " << c.t_cut_measured
             << " s, model " << c.t_cut_model << " s\n";
   EXPECT_LT(c.rms_v, kLowRateRmsTolV);
@@ -207,7 +207,7 @@ TEST(BatteryLogTest, FiftyAmpDischargeOfA2250mAhLiPo) {
   ASSERT_GT(log.size(), 100u);
   const double ri = RiAfterSettling(log);
   const LogComparison c = CompareWithLog(log, ri, 3.1);
-  std::cout << "50 A log: Ri from first step " << ri * 1e3 << " mOhm; V rms error "
+  std::cout << "50 A log: Ri after 10 s " << ri * 1e3 << " mOhm; V rms error "
             << c.rms_v * 1e3 << " mV, max " << c.max_v * 1e3 << " mV; time to 3.1 V measured "
             << c.t_cut_measured << " s, model " << c.t_cut_model << " s\n";
   EXPECT_LT(c.rms_v, kHighRateRmsTolV);

@@ -1,5 +1,5 @@
-// The driver that regenerates the committed catalog (run by hand until the CLI has
-// `dynosize catalog import`):
+// Regenerating the committed catalog: `build/dynosize catalog import --shared ../shared/data
+// --out catalog`, or without the CLI:
 //   build/dynosize_tests --gtest_also_run_disabled_tests --gtest_filter='*RegenerateCatalog*'
 #include <filesystem>
 #include <iostream>

@@ -73,6 +73,13 @@ TEST(PropModelTest, RejectsBadInputNamingTheValue) {
   }
   EXPECT_THROW(m.Evaluate(100.0, 0.0, 0.0), UsageError);
   EXPECT_THROW(m.FitTorqueLaw(0.0, 1.225, 0.0), UsageError);
+  PropEntry broken;
+  broken.id = "b";
+  broken.diameter_m = 0.2;
+  broken.static_table = {{1000, 900}, {0.1, 0.1}, {0.04, 0.04}};
+  EXPECT_THROW(PropModel{broken}, UsageError);
+  broken.static_table = {{1000, 2000}, {0.1}, {0.04, 0.04}};
+  EXPECT_THROW(PropModel{broken}, UsageError);
 }
 
 PropEntry TableProp() {

@@ -1,0 +1,131 @@
+// The DriveCalc importer on a hand-made excerpt of its four tables (rows copied from
+// shared/data/drivecalc with edge cases added), checked against values computed by hand.
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+
+#include <gtest/gtest.h>
+
+#include "catalog/catalog.h"
+#include "importers/importers.h"
+
+namespace dynosize {
+namespace {
+
+// Values written with 6 significant digits by the importer.
+constexpr double kSixDigits = 5e-6;
+
+class DriveCalcExcerptTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = ::testing::TempDir() + "/dynosize_dc_excerpt";
+    std::filesystem::remove_all(dir_);
+    std::filesystem::create_directories(dir_);
+    Write("Motors.csv",
+          "myid,tbs,Name,Rem,custom,meas,match,StatDia,StatH,Turns,WireDia,Delta,Imax,Weight,"
+          "mgear_id,mesc_id,kV,Rm,K,MvK,kL,ts\n"
+          "1,4,137x50 11Y450 Kisscatz 9N6P,\"6pol 5x1,5x1 N45\",1,3,0,13.7,5.0,11.0,0.45,1,11.2,"
+          "9.0,1,63,5624.754246532947,0.09715478431947354,3.388795981058409e-05,0.0,"
+          "3.2164405930089476e-07,2007-09-07 09:56:29\n"
+          "7,4,137x50 11Y450 Kisscatz 9N6P,\"6pol 5x1,5x1 N45\",1,3,0,13.7,5.0,11.0,0.45,1,11.2,"
+          "9.0,1,63,5624.754246532947,0.09715478431947354,3.388795981058409e-05,0.0,"
+          "3.2164405930089476e-07,2007-09-07 09:56:29\n"
+          "8,4,Poly-Tec 480-31,,0,1,0,0,0,0,0,0,20,50,1,1,3100,0.0,0,0.001,1e-6,2006-01-01\n"
+          "9,4,GWS B\xFCrsti 300,,0,1,0,0,0,0,0,0,5,20,1,1,2000,1.2,0,0.002,0,2006-01-01\n");
+    Write("ESC.csv",
+          "myid,tbs,Name,Rem,Imax,Ipeak,R,Weight,NiMHmin,NiMHmax,LiPomin,LiPomax,ts\n"
+          "1,4,SBL Micro Autotiming,,0.0,0.0,0.0,0.0,0,0,0,0,2006-03-21\n"
+          "2,4,Aveox H-160,,60.0,100.0,7.0,74.0,0,30,2,4,2006-03-21\n"
+          "3,4,No-R 40,,40.0,50.0,0.0,30.0,0,0,0,0,2006-03-21\n");
+    Write("Batteries.csv",
+          "myid,tbs,Name,Rem,Imax,Ipeak,Capacity,Weight,Ri,Volt,ts\n"
+          "1,, Constant voltage,,,,,,,,2008-12-29\n"
+          "2,4,E-Tec 1200 Li-Poly,,7.2,10.0,1200.0,12.5,33.0,3.7,2006-03-21\n"
+          "4,4,GP 1100 2/3 AA,,14.0,22.0,1100.0,22.0,9.2,1.2,2006-03-21\n");
+    Write("Props.csv",
+          "myid,tbs,Name,Dia,Pitch,a,b,AltThr,TmpThr,srcThr,c,d,AltPwr,TmpPwr,srcPwr,n10N,n100W,"
+          "Folder,Hub,MaxRPM,match,Rely,ts\n"
+          "1,4,APC E,4.1,4.1,0.5022887,2.046544,200,20.0,Dr Kiwi,0.0054099,3.090473,120,18.0,"
+          "DC generated,41319.2,24023.3,0,0.0,46341,0,15,2009-09-16\n"
+          "102,4,APC Sport,11.0,8.0,0.0,0.0,0,15.0,,0.5010857,3.060167,155,20.0,DC generated,0,"
+          "17272,0,0.0,0,0,0,2009-01-01\n");
+    data_ = ImportDriveCalc(dir_);
+  }
+  void Write(const std::string& name, const std::string& text) {
+    std::ofstream(dir_ + "/" + name, std::ios::binary) << text;
+  }
+  std::string dir_;
+  ImportedDataset data_;
+};
+
+TEST_F(DriveCalcExcerptTest, MotorValuesByHand) {
+  ASSERT_EQ(data_.motors.size(), 2u);  // duplicate (myid 7) and Rm = 0 (myid 8) dropped
+  const Json& m = data_.motors[0];
+  EXPECT_EQ(m["id"], "dc_m_1");
+  EXPECT_EQ(m["type"], "bldc");
+  EXPECT_NEAR(m["kv_rpm_per_v"].get<double>(), 5624.754246532947, kSixDigits * 5624.75);
+  EXPECT_NEAR(m["rm_ohm"].get<double>(), 0.09715478431947354, kSixDigits * 0.0971548);
+  EXPECT_NEAR(m["mass_kg"].get<double>(), 0.009, 1e-15);
+  // io = (MvK + kL*omega_10V)/kt, omega_10V = Kv*10*pi/30, kt = 1.10953/(Kv*pi/30):
+  // 3.2164405930e-7 * (589.0264)^2 * 10 / 1.1095280 = 1.00578 A (4 digits kept).
+  const double w = 5624.754246532947 * M_PI / 30;
+  const double io_hand = 3.2164405930089476e-07 * w * w * 10 / 1.1095279993106997;
+  EXPECT_NEAR(io_hand, 1.00578, 1e-5);
+  EXPECT_NEAR(m["io_a"].get<double>(), 1.006, 1e-12);
+  EXPECT_EQ(m["source"]["values"]["rm_ohm"], "datasheet");
+  EXPECT_EQ(m["source"]["values"]["io_a"], "derived");
+  // Latin-1 name decoded, brushed by name.
+  EXPECT_EQ(data_.motors[1]["name"], "GWS B\xC3\xBCrsti 300");
+  EXPECT_EQ(data_.motors[1]["type"], "brushed");
+  EXPECT_EQ(data_.report.DroppedCount("motors"), 2u);
+}
+
+TEST_F(DriveCalcExcerptTest, EscValuesAndPrior) {
+  ASSERT_EQ(data_.escs.size(), 2u);  // Imax = 0 row dropped
+  const Json& e = data_.escs[0];
+  EXPECT_NEAR(e["resc_ohm"].get<double>(), 0.007, 1e-15);  // 7 mOhm
+  EXPECT_EQ(e["source"]["values"]["resc_ohm"], "datasheet");
+  EXPECT_EQ(e["source"]["values"]["c1"], "assumed");
+  EXPECT_NEAR(e["c1"].get<double>(), 1.10953, 1e-12);
+  EXPECT_EQ(e["cells_max"], 4);
+  EXPECT_NEAR(e["vdc_max_v"].get<double>(), 16.8, 1e-12);
+  // R = 0 placeholder: prior 79.18*40^-0.8467 mOhm = 3.484 mOhm (3 digits kept).
+  const Json& p = data_.escs[1];
+  EXPECT_NEAR(79.18 * std::pow(40.0, -0.8467), 3.4841, 1e-3);
+  EXPECT_NEAR(p["resc_ohm"].get<double>(), 0.00348, 1e-15);
+  EXPECT_EQ(p["source"]["values"]["resc_ohm"], "assumed");
+}
+
+TEST_F(DriveCalcExcerptTest, BatteriesAndProps) {
+  ASSERT_EQ(data_.batteries.size(), 2u);
+  const Json& b = data_.batteries[0];
+  EXPECT_EQ(b["chemistry"], "lipo");
+  EXPECT_NEAR(b["capacity_ah"].get<double>(), 1.2, 1e-15);
+  EXPECT_NEAR(b["ri_ohm"].get<double>(), 0.033, 1e-15);
+  EXPECT_EQ(data_.batteries[1]["chemistry"], "nimh");
+  EXPECT_EQ(data_.batteries[1]["source"]["values"]["chemistry"], "assumed");
+  ASSERT_EQ(data_.props.size(), 1u);  // APC Sport has no thrust law
+  const Json& p = data_.props[0];
+  EXPECT_EQ(p["name"], "APC E 4.1x4.1");
+  EXPECT_NEAR(p["diameter_m"].get<double>(), 0.10414, 1e-15);
+  // a = 0.5022887 g at 200 m, 20 C: p = 101325*(1 - 2.25577e-5*200)^5.25588 = 98945 Pa,
+  // rho = p/(287.058*293.15) = 1.17581; T(1000 rpm) = 0.5022887 g * 9.80665e-3 * 1.225/rho.
+  const double rho = 101325 * std::pow(1 - 2.25577e-5 * 200, 5.25588) / (287.058 * 293.15);
+  EXPECT_NEAR(rho, 1.17581, 1e-5);
+  EXPECT_NEAR(p["thrust_law_n"].get<double>(), 0.5022887 * 9.80665e-3 * 1.225 / rho,
+              kSixDigits * 0.005132);
+  EXPECT_NEAR(p["thrust_law_exp"].get<double>(), 2.04654, 1e-12);
+}
+
+TEST_F(DriveCalcExcerptTest, OutputValidatesAsACatalog) {
+  const std::string text = FormatCatalogDocument(data_.comment, data_.motors, data_.escs,
+                                                 data_.props, data_.batteries);
+  Catalog c;
+  std::vector<std::string> problems;
+  c.AddDocument(ParseJsonText(text, "excerpt.json"), "excerpt.json", &problems);
+  EXPECT_TRUE(problems.empty()) << (problems.empty() ? "" : problems[0]);
+  EXPECT_EQ(c.motors().size(), 2u);
+}
+
+}  // namespace
+}  // namespace dynosize
