@@ -9,39 +9,15 @@
 #include <fstream>
 #include <sstream>
 
+#include "cli_runner.h"
 #include "common/json_file.h"
 
 namespace dynosize {
 namespace {
 
-struct CliRun {
-  int code = -1;
-  std::string out, err;
-};
+using testing_util::CliRun;
 
-CliRun Exec(const std::string& args) {
-  namespace fs = std::filesystem;
-  // One file per process and call: ctest -j runs tests of this binary concurrently.
-  static int calls = 0;
-  const fs::path err_file = fs::temp_directory_path() /
-                            ("dynosize_cli_stderr_" + std::to_string(getpid()) + "_" +
-                             std::to_string(++calls) + ".txt");
-  const std::string cmd = std::string(DYNOSIZE_EXE) + " " + args + " 2> " + err_file.string();
-  CliRun r;
-  FILE* p = popen(cmd.c_str(), "r");
-  if (!p) return r;
-  std::array<char, 4096> buf;
-  std::size_t n;
-  while ((n = fread(buf.data(), 1, buf.size(), p)) > 0) r.out.append(buf.data(), n);
-  const int status = pclose(p);
-  r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  std::ifstream e(err_file);
-  std::stringstream ss;
-  ss << e.rdbuf();
-  r.err = ss.str();
-  fs::remove(err_file);
-  return r;
-}
+CliRun Exec(const std::string& args) { return testing_util::RunCli(args); }
 
 const std::string kPair = "simulate --motor emax_1900kv_paper --esc multistar_30a_paper ";
 

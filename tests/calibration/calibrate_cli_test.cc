@@ -14,6 +14,7 @@
 
 #include "calibration/synthetic_log.h"
 #include "catalog/catalog.h"
+#include "cli_runner.h"
 #include "common/json_file.h"
 
 namespace dynosize::calibration {
@@ -22,31 +23,9 @@ namespace {
 namespace fs = std::filesystem;
 using logs::Column;
 
-struct CliRun {
-  int code = -1;
-  std::string out, err;
-};
+using dynosize::testing_util::CliRun;
 
-CliRun Exec(const std::string& args) {
-  static int calls = 0;
-  const fs::path err_file =
-      fs::temp_directory_path() / ("dynosize_cal_cli_" + std::to_string(getpid()) + "_" + std::to_string(++calls));
-  const std::string cmd = std::string(DYNOSIZE_EXE) + " " + args + " 2> " + err_file.string();
-  CliRun r;
-  FILE* p = popen(cmd.c_str(), "r");
-  if (!p) return r;
-  std::array<char, 4096> buf;
-  std::size_t n;
-  while ((n = fread(buf.data(), 1, buf.size(), p)) > 0) r.out.append(buf.data(), n);
-  const int status = pclose(p);
-  r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  std::ifstream e(err_file);
-  std::stringstream ss;
-  ss << e.rdbuf();
-  r.err = ss.str();
-  fs::remove(err_file);
-  return r;
-}
+CliRun Exec(const std::string& args) { return dynosize::testing_util::RunCli(args); }
 
 std::string Slurp(const std::string& path) {
   std::ifstream f(path, std::ios::binary);
