@@ -1,6 +1,7 @@
 #include "catalog/catalog.h"
 
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <cmath>
 #include <filesystem>
@@ -131,7 +132,7 @@ TEST(Catalog, UnknownIdSuggestsClosest) {
 
 TEST(Catalog, LoadReportsAllProblemsAndMissingFolder) {
   namespace fs = std::filesystem;
-  const fs::path dir = fs::temp_directory_path() / "dynosize_catalog_test";
+  const fs::path dir = fs::temp_directory_path() / ("dynosize_catalog_test_" + std::to_string(getpid()));
   fs::remove_all(dir);
   fs::create_directories(dir);
   std::ofstream(dir / "a.json") << Doc(Edit(kGoodMotor, "\"rm_ohm\": 0.1", "\"rm_ohm\": -1"));

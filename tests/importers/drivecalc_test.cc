@@ -5,6 +5,7 @@
 #include <fstream>
 
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include "catalog/catalog.h"
 #include "importers/importers.h"
@@ -18,7 +19,7 @@ constexpr double kSixDigits = 5e-6;
 class DriveCalcExcerptTest : public ::testing::Test {
  protected:
   void SetUp() override {
-    dir_ = ::testing::TempDir() + "/dynosize_dc_excerpt";
+    dir_ = ::testing::TempDir() + "/dynosize_dc_excerpt_" + std::to_string(getpid());
     std::filesystem::remove_all(dir_);
     std::filesystem::create_directories(dir_);
     Write("Motors.csv",

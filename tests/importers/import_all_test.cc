@@ -5,6 +5,7 @@
 #include <iostream>
 
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include "catalog/catalog.h"
 #include "common/text_file.h"
@@ -27,7 +28,7 @@ TEST(ImportAllTest, DISABLED_RegenerateCatalog) {
 // Re-running the importers reproduces the committed files byte for byte.
 TEST(ImportAllTest, ReproducesCommittedCatalogByteForByte) {
   if (!HaveShared()) GTEST_SKIP() << "no ../shared/data: the importers cannot run";
-  const std::string tmp = ::testing::TempDir() + "/dynosize_catalog_repro";
+  const std::string tmp = ::testing::TempDir() + "/dynosize_catalog_repro_" + std::to_string(getpid());
   std::filesystem::remove_all(tmp);
   const ImportReport report = ImportAll(kShared, tmp);
   for (const auto& d : report.datasets) {

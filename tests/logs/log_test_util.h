@@ -3,6 +3,7 @@
 #pragma once
 
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <cmath>
@@ -14,7 +15,7 @@ namespace dynosize::logs::testing_util {
 
 // Writes `bytes` verbatim (binary) to a fresh file in the test temp folder; returns its path.
 inline std::string WriteTemp(const std::string& name, const std::string& bytes) {
-  const std::string dir = ::testing::TempDir() + "dynosize_logs_test/";
+  const std::string dir = ::testing::TempDir() + "dynosize_logs_test_" + std::to_string(getpid()) + "/";
   std::filesystem::create_directories(dir);
   const std::string path = dir + name;
   std::ofstream out(path, std::ios::binary | std::ios::trunc);
