@@ -109,6 +109,9 @@ TEST(PropModelTest, TablesInterpolateByHand) {
   EXPECT_NEAR(fw.ct, 0.085, 1e-12);
   EXPECT_NEAR(fw.cp, 0.040, 1e-12);
   EXPECT_TRUE(fw.InData()) << fw.message;
+  const PropEvaluation byj = m.EvaluateAtAdvanceRatio(RpmToRadPerSec(4000), rho, 0.3);
+  EXPECT_NEAR(byj.ct, 0.085, 1e-12);
+  EXPECT_NEAR(byj.airspeed_m_s, v, 1e-12);
   // J = 0.1 at 3000 rpm lies between the static table (J = 0: CT 0.105) and J = 0.2 (0.09).
   const PropEvaluation low = m.Evaluate(RpmToRadPerSec(3000), rho, 0.1 * 50.0 * d);
   EXPECT_NEAR(low.ct, 0.0975, 1e-12);
