@@ -271,8 +271,9 @@ ImportedDataset ImportFastUav(const std::string& dir) {
       "catalogues (github.com/SizingLab/FAST-UAV commit 421083d, GPL-3.0-only), compiled from "
       "manufacturer spec sheets (not measured). Motors: io_a = datasheet Io / 1.1095 (rms, "
       "eq 56). ESCs have no resistance: resc_ohm and c1, c0, tr_sat, sat_slope are the "
-      "esc_prior.h prior (assumed). Batteries: only the real packs (n_series = n_parallel = 1), "
-      "not the augmented combinations. APC MR props: APC's computed static CT, CP. Do not edit "
+      "esc_prior.h prior (assumed). Batteries: the real packs (n_series = n_parallel = 1), not "
+      "the augmented combinations (two models found only as combinations are divided back). "
+      "APC MR props: APC's computed static CT, CP. Do not edit "
       "by hand.";
   ImportMotors(dir, &out);
   ImportEscs(dir, &out);
