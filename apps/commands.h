@@ -34,6 +34,30 @@ int RunCatalogShow(const std::string& catalog_dir, const std::string& id);
 int RunCatalogValidate(const std::string& dir, bool json);
 int RunCatalogSchema(bool json);
 
+struct CalibrateOptions {
+  std::string catalog_dir;
+  std::vector<std::string> logs;
+  std::string motor_id, esc_id;     // ids of the fitted entries
+  std::string format = "auto";      // auto | canonical | rcbenchmark | mapped | drivecalc
+  std::vector<std::string> column_map;  // mapped tables: canonical=Header [unit]
+  long long drivecalc_motor = -1;   // drivecalc: one motor id
+  bool drop_incomplete_rows = false;  // mapped: drop rows with an empty mapped cell
+  double esc_min_us = 1000.0, esc_max_us = 2000.0;
+  std::string prior_motor, prior_esc;  // catalog ids anchoring / filling in the fit
+  std::string out;                  // catalog file to add the entries to
+  bool force = false;
+  bool json = false;
+  std::string plot_dir;
+  // Refit every DriveCalc motor with a no-load point and >= 3 loaded points in LOG (MData.csv)
+  // and write them to --out (default catalog/drivecalc_fitted.json).
+  bool drivecalc_all = false;
+  // Also report leave-one-out prediction errors (one throttle level out; one row out for
+  // logs without throttle and for --drivecalc-all, where the plain U = n/Kv + R*I fit is
+  // reported beside it).
+  bool loo = false;
+};
+int RunCalibrate(const CalibrateOptions& o);
+
 // `dynosize catalog import --shared DIR --out DIR [--json]`: runs every importer
 // (src/importers/importers.h ImportAll) on DIR/<dataset>/ and writes OUT/<dataset>.json; prints
 // what was kept and dropped per data set (stdout), or the report as JSON.

@@ -58,6 +58,39 @@ int main(int argc, char** argv) {
     sim.catalog_dir = catalog_dir;
   });
 
+  // calibrate
+  cli::CalibrateOptions cal;
+  auto* calibrate = app.add_subcommand(
+      "calibrate",
+      "fit motor + ESC catalog entries (KE, KT, Rm, Io, RESC, C1, C0, tr_sat, sat_slope) to steady "
+      "points of dyno / thrust-stand logs, with standard errors and identifiability");
+  calibrate->add_option("logs", cal.logs, "log files of one motor + ESC pair")->required();
+  calibrate->add_option("--motor-id", cal.motor_id, "id of the fitted motor entry");
+  calibrate->add_option("--esc-id", cal.esc_id, "id of the fitted ESC entry");
+  calibrate->add_option("--format", cal.format, "log format")
+      ->check(CLI::IsMember({"auto", "canonical", "rcbenchmark", "mapped", "drivecalc"}));
+  calibrate->add_option("--map", cal.column_map,
+                        "mapped tables: canonical_name=Source Header [unit] (repeatable)");
+  calibrate->add_flag("--drop-incomplete-rows", cal.drop_incomplete_rows,
+                      "mapped tables: drop (and count) rows with an empty mapped cell instead of failing");
+  calibrate->add_option("--drivecalc-motor", cal.drivecalc_motor, "drivecalc: only this motor_id");
+  calibrate->add_option("--esc-min-us", cal.esc_min_us, "ESC pulse width at throttle 0, us");
+  calibrate->add_option("--esc-max-us", cal.esc_max_us, "ESC pulse width at throttle 1, us");
+  calibrate->add_option("--prior-motor", cal.prior_motor,
+                        "catalog motor whose KE, Rm, Io anchor the fit (Gaussian priors) and fill in what the "
+                        "data cannot identify");
+  calibrate->add_option("--prior-esc", cal.prior_esc,
+                        "catalog ESC whose values are held where the data cannot identify them");
+  calibrate->add_option("--out", cal.out, "catalog JSON file to add the entries to (written atomically)");
+  calibrate->add_flag("--force", cal.force, "replace entries with the same ids in --out");
+  calibrate->add_flag("--json", cal.json, "print one JSON object");
+  calibrate->add_option("--plot", cal.plot_dir, "write measured-vs-predicted and residual figures here");
+  calibrate->add_flag("--loo", cal.loo,
+                      "also report leave-one-throttle-out (or leave-one-row-out) prediction errors");
+  calibrate->add_flag("--drivecalc-all", cal.drivecalc_all,
+                      "refit every DriveCalc motor in LOG (MData.csv) into --out (default "
+                      "catalog/drivecalc_fitted.json)");
+
   // catalog
   auto* catalog = app.add_subcommand("catalog", "list, show, validate the component catalog");
   catalog->require_subcommand(1);
@@ -93,9 +126,9 @@ int main(int argc, char** argv) {
 
   if (argc > 1 && argv[1][0] != '-') {
     const std::string first = argv[1];
-    if (first != "simulate" && first != "catalog") {
+    if (first != "simulate" && first != "catalog" && first != "calibrate") {
       return Fail(ExitCode::kUsage, "unknown subcommand '" + first +
-                                        "': valid are simulate, catalog (see 'dynosize --help')");
+                                        "': valid are simulate, calibrate, catalog (see 'dynosize --help')");
     }
   }
   try {
@@ -122,6 +155,10 @@ int main(int argc, char** argv) {
     if (*simulate) {
       sim.catalog_dir = dir;
       return cli::RunSimulate(sim);
+    }
+    if (*calibrate) {
+      cal.catalog_dir = dir;
+      return cli::RunCalibrate(cal);
     }
     if (*list_cmd) {
       list.catalog_dir = dir;

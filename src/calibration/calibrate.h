@@ -1,0 +1,193 @@
+// Calibration: motor (KE, KT, Rm, Io) and ESC (RESC, C1, C0, tr_sat, sat_slope) parameters of
+// the Brown & Chopra model (../shared/docs/model.md, src/model/drive.h) fitted to the steady
+// points of a dynamometer / thrust-stand log (logs::SteadyTable).
+//
+// The fit is a forward-model fit: each row's known inputs are VDC, the throttle TR (assumed 1
+// when the log has none, see below) and either the load torque Q (measured torque, or Q = 0 on
+// a no-load row) or the measured speed omega; every other measured column is predicted from
+// them and compared:
+//
+//   TR_eff = TR (TR <= tr_sat), tr_sat + sat_slope*(TR - tr_sat) above    (section 7)
+//   U      = 3/(sqrt(2)*pi) * VDC * TR_eff                                 (46)
+//   torque known:  I = Q/KT + Io,   omega = (U - (Rm+RESC)*I)/KE           (42, 48)
+//   speed known:   I = (U - KE*omega)/(Rm+RESC),  Q = KT*(I - Io)          (48, 42)
+//   VLL = U - RESC*I (47),  IDC = (C1*TR_eff + C0)*I (57),  PAC = sqrt(27/10)*VLL*I (51)
+//
+// Residuals are in percent of each column's median magnitude, so that columns in different
+// units weigh alike; a robust loss (Huber by default) bounds the pull of outliers, and points
+// whose residual stays beyond `outlier_sigmas` robust standard deviations are dropped and the
+// fit repeated. Starting values come from the linear sub-problems of the paper solved by QR
+// (eq 42: VLL = Irms*Rm + KE*omega; eq 57: IDC = C1*TR*Irms + C0*Irms; Q = KT*Irms - KT*Io);
+// the joint fit is the bounded Levenberg-Marquardt of src/fit (Rm, Io, RESC >= 0; KE, KT > 0).
+// The saturation knee tr_sat is found by profiling: the fit is repeated for each candidate on
+// a grid and the best is kept if it beats "no knee" (tr_sat = 1) by an F test.
+//
+// What each column set identifies (the flags in the result say so per parameter):
+//  - AC columns (vll_rms_v, irms_a) + vdc_v + throttle: all of KE, Rm, RESC separately; with
+//    idc_a also C1, C0 (two or more throttle levels); with torque_nm also KT and Io.
+//  - DC side only (vdc_v, throttle, omega, idc_a [, torque_nm]) - most thrust stands: KT is
+//    tied to KE by the power balance KT = sqrt(27/10)*KE (model.md section 5), and only the
+//    sum Rm + RESC enters (eq 48): RESC is held at its prior (0 without one), Rm absorbs the
+//    rest, and both are flagged unidentifiable; r_total_ohm reports the sum with its error.
+//    Without torque, IDC = (C1*TR_eff + C0)*(U - KE*omega)/R determines only C1/R and C0/R:
+//    C1, C0 are held at the ideal ESC of eq (56) (or the ESC prior) and R is then conditional
+//    on that assumption; Io needs torque or no-load rows.
+//  - No throttle column (DriveCalc MData, stands driven by an external controller): every row
+//    is taken as full throttle (`assumed_throttle`). At TR = 1 the model reduces to the DC
+//    relation of a brushed motor, VDC = R_dc*IDC + omega/Kv_dc with
+//        KE = kv*T1/Kv_dc,  R = kv*T1*g*R_dc,  Io = Io_dc/g,   g = C1*T1 + C0, T1 = TR_eff(1),
+//    so only KE, R = Rm + RESC and Io (from no-load rows) are identifiable, all conditional on
+//    the assumed ESC (ideal: T1 = 1, g = 1.1095, i.e. R = 0.749*R_dc, Io = 0.901*Io_dc). The
+//    ESC parameters are reported unidentifiable. If the log was in fact taken at part
+//    throttle, KE and R are scaled by that throttle: a warning says so.
+//
+// Parameters the data cannot pin down are also found numerically: the LM identifiability test
+// (singular values of the unit-scaled Jacobian) flags combinations, and e.g. all rows at one
+// throttle leave the saturation knee unidentified.
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <limits>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "fit/nonlinear_least_squares.h"
+#include "logs/steady_table.h"
+#include "model/drive.h"
+
+namespace dynosize::calibration {
+
+enum class Param : int { kKe = 0, kKt, kRm, kIo, kResc, kC1, kC0, kTrSat, kSatSlope };
+inline constexpr int kParamCount = 9;
+// "ke_v_s_per_rad", "kt_nm_per_a", "rm_ohm", "io_a", "resc_ohm", "c1", "c0", "tr_sat", "sat_slope".
+const char* ParamName(Param p);
+
+struct CalibrationOptions {
+  // Loss for the residuals (in percent of the column's median magnitude) and its scale a:
+  // residuals beyond a percent count linearly (Huber).
+  LossType loss = LossType::kHuber;
+  double loss_scale_percent = 2.0;
+  // After the first fit, a row whose largest |residual| exceeds outlier_sigmas robust standard
+  // deviations (1.4826*MAD of all residuals, floored at outlier_floor_percent) is dropped and
+  // the fit repeated once. 0 disables.
+  double outlier_sigmas = 6.0;
+  double outlier_floor_percent = 1.0;
+  // Rows below this fraction of the largest measured speed are dropped (motor not turning).
+  double min_speed_fraction = 0.02;
+  // Rows below this throttle are dropped (ESC dead band: no voltage yet).
+  double min_throttle = 0.02;
+  // Throttle assumed for every row when the log has no throttle column.
+  double assumed_throttle = 1.0;
+  // Saturation knee grid: candidates knee_min, knee_min + knee_step, ... below 1.
+  double knee_min = 0.5;
+  double knee_step = 0.02;
+  // A knee is kept when the F statistic (drop in cost per extra parameter over the residual
+  // variance) exceeds this (about the 0.1 % point of F(2, 30)).
+  double knee_min_f = 10.0;
+  // Priors. A motor prior (e.g. a datasheet entry) anchors KE, Rm, Io by Gaussian priors with
+  // these relative standard deviations, and supplies values that the data cannot identify.
+  std::optional<MotorParams> motor_prior;
+  double prior_ke_rel_sigma = 0.10;
+  double prior_rm_rel_sigma = 0.50;
+  double prior_io_rel_sigma = 0.50;
+  // ESC values used where the data cannot identify them (default: the ideal ESC, RESC = 0, no
+  // saturation).
+  std::optional<EscParams> esc_prior;
+  LevenbergMarquardtOptions solver;  // max iterations etc.; loss fields are set from the above
+
+  CalibrationOptions() { solver.max_num_iterations = 200; }
+  // Names the first violated rule (field, value, rule) in *error.
+  bool IsValid(std::string* error) const;
+};
+
+struct ParamEstimate {
+  double value = 0.0;
+  // Standard error from the final Jacobian; NaN when the parameter was not fitted or the fit
+  // has no degrees of freedom.
+  double standard_error = std::numeric_limits<double>::quiet_NaN();
+  bool fitted = false;        // a free parameter of the fit (else held at a prior / default)
+  bool identifiable = false;  // the data determine it (fitted and not in a flat direction)
+  bool at_bound = false;
+  std::string note;           // why it is not identifiable, or how it was obtained
+};
+
+struct ColumnFit {
+  logs::Column column = logs::Column::kIdcA;
+  std::size_t points = 0;
+  double rmse = 0.0;          // in the column's SI unit
+  double rmse_percent = 0.0;  // rmse / rms of the measured values * 100
+  double median_abs_percent = 0.0;  // median |pred - meas| / |meas| * 100
+};
+
+struct CalibrationResult {
+  bool solve_called = false;
+  bool converged = false;
+  std::string message = "Calibrate was not called.";
+  std::string mode;  // "ac", "dc", "dc_no_throttle"
+  MotorParams motor;
+  EscParams esc;
+  std::array<ParamEstimate, kParamCount> params;
+  double r_total_ohm = 0.0;  // Rm + RESC, identifiable whenever Rm or RESC is fitted
+  double r_total_standard_error = std::numeric_limits<double>::quiet_NaN();
+  std::vector<ColumnFit> fit;  // one per predicted measured column
+  std::size_t points_used = 0;
+  std::size_t points_dropped = 0;  // by this fit (below speed / throttle floor, outliers)
+  std::vector<logs::DropCount> dropped;
+  // Condition number of the unit-column-scaled Jacobian of the final fit (sigma_max/sigma_min).
+  double condition_number = std::numeric_limits<double>::quiet_NaN();
+  std::vector<std::string> unidentifiable_directions;  // from the LM test
+  std::vector<std::string> warnings;
+  LevenbergMarquardtSummary solver_summary;  // of the final solve
+
+  const ParamEstimate& param(Param p) const { return params[static_cast<int>(p)]; }
+  std::string BriefReport() const;  // one line
+  std::string FullReport() const;   // parameters with errors and flags, column fit, warnings
+};
+
+// Fits the parameters to `table`. Throws DataError when the log lacks what any fit needs
+// (omega_rad_s; vdc_v or the AC columns; enough rows with the motor turning), naming the file,
+// the column and the rule; UsageError for invalid options. Non-convergence is a status.
+CalibrationResult Calibrate(const logs::SteadyTable& table, const CalibrationOptions& options = {});
+
+// Model predictions for row `row` of `table` with the given parameters, for the columns the fit
+// compares (omega_rad_s only where the torque is known). NaN for a column not predicted.
+struct RowPrediction {
+  double omega_rad_s = std::numeric_limits<double>::quiet_NaN();
+  double idc_a = std::numeric_limits<double>::quiet_NaN();
+  double irms_a = std::numeric_limits<double>::quiet_NaN();
+  double vll_rms_v = std::numeric_limits<double>::quiet_NaN();
+  double pac_w = std::numeric_limits<double>::quiet_NaN();
+  double torque_nm = std::numeric_limits<double>::quiet_NaN();  // speed-known rows
+  // Speed from the measured DC current (I = IDC/(C1*TR_eff + C0), omega = (U - R*I)/KE): the
+  // quantity a DC-side model "U = n/Kv + R*I" predicts; every row.
+  double omega_from_idc_rad_s = std::numeric_limits<double>::quiet_NaN();
+};
+RowPrediction PredictRow(const logs::SteadyTable& table, std::size_t row, const MotorParams& motor,
+                         const EscParams& esc, double assumed_throttle = 1.0);
+
+// Leave-one-out prediction errors: for each group (one throttle level, or one row when
+// `by_throttle` is false or the log has no throttle), fit on the other rows and predict the
+// left-out ones. Percent errors (pred - meas)/meas*100 of idc_a and omega_rad_s (omega only
+// where the torque is known, i.e. torque column or no-load rows).
+struct CrossValidation {
+  std::vector<double> idc_error_percent;
+  std::vector<double> idc_loaded_error_percent;  // rows with torque or speed known, not no-load
+  std::vector<double> omega_error_percent;
+  std::vector<double> omega_from_idc_error_percent;  // RowPrediction::omega_from_idc_rad_s, every row
+  std::size_t folds = 0;
+  std::size_t failed_folds = 0;  // too few rows left to fit
+};
+CrossValidation LeaveOneOut(const logs::SteadyTable& table, const CalibrationOptions& options,
+                            bool by_throttle);
+
+// Rows of several logs of one motor + ESC pair as one table: the columns present in every log
+// (a column missing from one is absent, with a note), file = the names joined by ", ".
+// Throws UsageError for an empty list.
+logs::SteadyTable MergeLogs(const std::vector<logs::SteadyTable>& tables);
+
+// The rows `keep` of `table` (every present column, source lines, samples; metadata kept).
+logs::SteadyTable SelectRows(const logs::SteadyTable& table, const std::vector<std::size_t>& keep);
+
+}  // namespace dynosize::calibration

@@ -1,0 +1,181 @@
+#include "calibration/catalog_output.h"
+
+#include <cmath>
+#include <filesystem>
+
+#include "catalog/catalog.h"
+#include "common/error.h"
+#include "common/text_file.h"
+#include "common/units.h"
+
+namespace dynosize::calibration {
+
+namespace {
+
+Json NumOrNull(double v) { return std::isfinite(v) ? Json(v) : Json(nullptr); }
+
+// Rounds to 6 significant digits: the fit's errors are far larger, and the files stay readable.
+double Sig6(double v) {
+  if (v == 0.0 || !std::isfinite(v)) return v;
+  const double e = std::floor(std::log10(std::fabs(v))) - 5.0;
+  const double f = std::pow(10.0, e);
+  return std::round(v / f) * f;
+}
+
+std::string Method(const ParamEstimate& e) { return e.fitted ? "fitted" : "assumed"; }
+
+std::string UnidentifiedNote(const CalibrationResult& r, const std::vector<Param>& ps) {
+  std::string s;
+  for (Param p : ps) {
+    const auto& e = r.param(p);
+    if (!e.identifiable) s += std::string(s.empty() ? "" : "; ") + ParamName(p) + ": " + e.note;
+  }
+  return s.empty() ? "" : "not identifiable from the data: " + s;
+}
+
+Json Source(const EntryProvenance& p, const Json& values, const std::string& auto_note) {
+  Json src;
+  src["dataset"] = p.dataset;
+  if (!p.reference.empty()) src["reference"] = p.reference;
+  src["values"] = values;
+  std::string note = auto_note;
+  if (!p.note.empty()) note = note.empty() ? p.note : p.note + "; " + note;
+  if (!note.empty()) src["note"] = note;
+  return src;
+}
+
+}  // namespace
+
+Json MotorEntryJson(const std::string& id, const std::string& name, const CalibrationResult& r,
+                    const EntryProvenance& p) {
+  Json e;
+  e["id"] = id;
+  e["name"] = name;
+  e["type"] = "bldc";
+  e["ke_v_s_per_rad"] = Sig6(r.motor.ke_v_s_per_rad);
+  e["kt_nm_per_a"] = Sig6(r.motor.kt_nm_per_a);
+  e["rm_ohm"] = Sig6(r.motor.rm_ohm);
+  e["io_a"] = Sig6(r.motor.io_a);
+  e["kv_rpm_per_v"] = Sig6(kVllRmsPerVdc / (r.motor.ke_v_s_per_rad * kRadPerSecPerRpm));
+  Json v;
+  v["type"] = "assumed";
+  v["ke_v_s_per_rad"] = Method(r.param(Param::kKe));
+  v["kt_nm_per_a"] = r.param(Param::kKt).fitted ? "fitted" : "derived";
+  v["rm_ohm"] = Method(r.param(Param::kRm));
+  v["io_a"] = Method(r.param(Param::kIo));
+  v["kv_rpm_per_v"] = "derived";
+  e["source"] = Source(p, v, UnidentifiedNote(r, {Param::kKe, Param::kKt, Param::kRm, Param::kIo}));
+  CheckJsonFinite(e, "motor entry " + id);
+  return e;
+}
+
+Json EscEntryJson(const std::string& id, const std::string& name, const CalibrationResult& r,
+                  const EntryProvenance& p) {
+  Json e;
+  e["id"] = id;
+  e["name"] = name;
+  e["resc_ohm"] = Sig6(r.esc.resc_ohm);
+  e["c1"] = Sig6(r.esc.c1);
+  e["c0"] = Sig6(r.esc.c0);
+  e["tr_sat"] = Sig6(r.esc.tr_sat);
+  e["sat_slope"] = Sig6(r.esc.sat_slope);
+  Json v;
+  v["resc_ohm"] = Method(r.param(Param::kResc));
+  v["c1"] = Method(r.param(Param::kC1));
+  v["c0"] = Method(r.param(Param::kC0));
+  v["tr_sat"] = Method(r.param(Param::kTrSat));
+  v["sat_slope"] = Method(r.param(Param::kSatSlope));
+  e["source"] = Source(p, v, UnidentifiedNote(r, {Param::kResc, Param::kC1, Param::kC0, Param::kTrSat,
+                                                  Param::kSatSlope}));
+  CheckJsonFinite(e, "ESC entry " + id);
+  return e;
+}
+
+void WriteCatalogEntries(const std::string& path, const std::vector<Json>& motors, const std::vector<Json>& escs,
+                         bool force, const std::string& comment) {
+  Json doc;
+  std::error_code ec;
+  if (std::filesystem::exists(path, ec)) {
+    doc = ReadJsonFile(path);
+    if (!doc.is_object()) throw DataError(path + ": not a catalog document (a JSON object)");
+  } else {
+    doc["comment"] = comment;
+  }
+  auto merge = [&](const char* array, const std::vector<Json>& entries) {
+    if (entries.empty()) return;
+    Json& arr = doc[array];
+    if (arr.is_null()) arr = Json::array();
+    if (!arr.is_array()) throw DataError(path + ": '" + array + "' is not an array");
+    for (const Json& e : entries) {
+      const std::string id = e.at("id").get<std::string>();
+      bool replaced = false;
+      for (Json& old : arr) {
+        if (old.is_object() && old.contains("id") && old["id"] == id) {
+          if (!force) {
+            throw UsageError(path + ": " + array + " already has id '" + id +
+                             "': use --force to replace it (the file was not changed)");
+          }
+          old = e;
+          replaced = true;
+        }
+      }
+      if (!replaced) arr.push_back(e);
+    }
+  };
+  merge("motors", motors);
+  merge("escs", escs);
+  Catalog check;
+  std::vector<std::string> problems;
+  check.AddDocument(doc, path, &problems);
+  if (!problems.empty()) {
+    std::string m = path + ": the catalog with the new entries would not load (file not changed):";
+    for (std::size_t k = 0; k < problems.size() && k < 10; ++k) m += "\n  " + problems[k];
+    throw DataError(m);
+  }
+  WriteFileAtomic(path, DumpJson(doc));
+}
+
+Json StandardErrorsJson(const CalibrationResult& r) {
+  Json j = Json::object();
+  for (int k = 0; k < kParamCount; ++k) j[ParamName(static_cast<Param>(k))] = NumOrNull(r.params[k].standard_error);
+  j["r_total_ohm"] = NumOrNull(r.r_total_standard_error);
+  return j;
+}
+
+Json IdentifiableJson(const CalibrationResult& r) {
+  Json j = Json::object();
+  for (int k = 0; k < kParamCount; ++k) j[ParamName(static_cast<Param>(k))] = r.params[k].identifiable;
+  j["r_total_ohm"] = true;
+  return j;
+}
+
+Json FitJson(const CalibrationResult& r) {
+  Json j;
+  j["mode"] = r.mode;
+  j["converged"] = r.converged;
+  j["message"] = r.message;
+  j["points_used"] = r.points_used;
+  j["points_dropped"] = r.points_dropped;
+  Json d = Json::array();
+  for (const auto& x : r.dropped) d.push_back({{"reason", x.reason}, {"count", x.count}});
+  j["dropped"] = d;
+  j["condition_number"] = NumOrNull(r.condition_number);
+  j["r_total_ohm"] = NumOrNull(r.r_total_ohm);
+  Json notes = Json::object();
+  for (int k = 0; k < kParamCount; ++k) {
+    if (!r.params[k].note.empty()) notes[ParamName(static_cast<Param>(k))] = r.params[k].note;
+  }
+  j["parameter_notes"] = notes;
+  Json cols = Json::object();
+  for (const auto& f : r.fit) {
+    cols[logs::ColumnName(f.column)] = {{"points", f.points},
+                                        {"rmse", NumOrNull(f.rmse)},
+                                        {"rmse_percent", NumOrNull(f.rmse_percent)},
+                                        {"median_abs_percent", NumOrNull(f.median_abs_percent)}};
+  }
+  j["columns"] = cols;
+  j["unidentifiable_directions"] = r.unidentifiable_directions;
+  return j;
+}
+
+}  // namespace dynosize::calibration
