@@ -109,7 +109,7 @@ void ImportMotors(const std::string& dir, ImportedDataset* out) {
     b.SetNum("kv_rpm_per_v", kv, "datasheet");
     b.SetNum("rm_ohm", rm, "datasheet");
     b.SetNum("io_a", io, "derived", 4);
-    b.Set("io_test_voltage_v", kIoTestVoltageV, "assumed");
+    b.Set("io_test_voltage_v", kIoTestVoltageV, "derived");  // our evaluation point, see kIoTestVoltageV
     if (mvk > 0) b.SetNum("loss_torque_nm", mvk, "datasheet");
     if (kl > 0) b.SetNum("loss_torque_per_omega_nm_s_per_rad", kl, "datasheet");
     if (k > 0) b.SetNum("rm_per_omega_ohm_s_per_rad", k, "datasheet");

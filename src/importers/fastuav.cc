@@ -147,42 +147,77 @@ void ImportEscs(const std::string& dir, ImportedDataset* out) {
 void ImportBatteries(const std::string& dir, ImportedDataset* out) {
   const std::string file = "Non-Dominated-Augmented-Batteries.csv";
   const CsvTable t = ReadCsv(dir + "/" + file);
-  std::set<std::string> models;
+  // A row is a real pack (n_series = n_parallel = 1) or an "augmented" combination of one. A
+  // model that appears only in combinations is recovered from its smallest combination by
+  // dividing voltage by n_series, capacity and current by n_parallel, mass by both.
+  struct Pick {
+    std::size_t row = 0;
+    double ns = 0, np = 0;
+  };
+  std::map<std::string, Pick> pick;
+  std::vector<std::string> order;
   for (std::size_t k = 0; k < t.rows.size(); ++k) {
     const Row row{&t, &t.rows[k], file};
     const std::string name = CleanName(row.Str("Model"));
-    const std::string ex = row.Where() + " " + name;
-    const auto ns = row.Num("n_series"), np = row.Num("n_parallel"), v = row.Num("Voltage_V"),
-               cap = row.Num("Capacity_mAh"), imax = row.Num("Imax_A"), c_burst = row.Num("Max_Burst_Discharge_Rate_C"),
-               mass = row.Num("Weight_kg");
-    if (!ns || !np || *ns != 1 || *np != 1) {
+    const auto ns = row.Num("n_series"), np = row.Num("n_parallel");
+    if (!ns || !np || *ns < 1 || *np < 1) {
+      out->report.Drop("batteries", "n_series or n_parallel missing", row.Where() + " " + name);
+      continue;
+    }
+    auto it = pick.find(name);
+    if (it == pick.end()) {
+      pick[name] = {k, *ns, *np};
+      order.push_back(name);
+    } else if (*ns * *np < it->second.ns * it->second.np) {
+      it->second = {k, *ns, *np};
+    }
+  }
+  for (std::size_t k = 0; k < t.rows.size(); ++k) {
+    const Row row{&t, &t.rows[k], file};
+    const std::string name = CleanName(row.Str("Model"));
+    const auto p = pick.find(name);
+    if (p != pick.end() && p->second.row != k) {
       out->report.Drop("batteries",
-                       "augmented series/parallel combination of a real pack (not a product; "
-                       "build packs with PackFromEntry)",
-                       ex);
-      continue;
+                       "augmented series/parallel combination of a pack (not a product; build "
+                       "packs with PackFromEntry)",
+                       row.Where() + " " + name);
     }
-    if (!models.insert(name).second) {
-      out->report.Drop("batteries", "duplicate product", ex);
-      continue;
-    }
+  }
+  for (const std::string& name : order) {
+    const Pick& pk = pick[name];
+    const Row row{&t, &t.rows[pk.row], file};
+    const std::string ex = row.Where() + " " + name;
+    const auto v = row.Num("Voltage_V"), cap = row.Num("Capacity_mAh"), imax = row.Num("Imax_A"),
+               c_burst = row.Num("Max_Burst_Discharge_Rate_C"), mass = row.Num("Weight_kg");
     if (!v || !cap || !(*v > 0) || !(*cap > 0)) {
       out->report.Drop("batteries", "no voltage or capacity", ex);
       continue;
     }
+    const bool recovered = pk.ns != 1 || pk.np != 1;
+    const char* how = recovered ? "derived" : "datasheet";
+    const double unit_v = *v / pk.ns, unit_cap_mah = *cap / pk.np;
     // LiPo packs: 3.7 V nominal per cell.
-    const int cells = std::max(1, static_cast<int>(std::lround(*v / 3.7)));
+    const int cells = std::max(1, static_cast<int>(std::lround(unit_v / 3.7)));
     EntryBuilder b("fu_b_" + Slug(name), name);
     b.Set("chemistry", "lipo", "datasheet");
     b.Set("cells_series", cells, "derived");
-    b.SetNum("capacity_ah", MahToAh(*cap), "datasheet");
-    b.SetNum("voltage_nominal_v", *v, "datasheet");
-    if (imax && *imax > 0) b.SetNum("max_current_a", *imax, "datasheet");
-    if (c_burst && *c_burst > 0) b.SetNum("peak_current_a", *c_burst * MahToAh(*cap), "derived");
-    if (mass && *mass > 0) b.SetNum("mass_kg", *mass, "datasheet");
+    b.SetNum("capacity_ah", MahToAh(unit_cap_mah), how);
+    b.SetNum("voltage_nominal_v", unit_v, how);
+    if (imax && *imax > 0) b.SetNum("max_current_a", *imax / pk.np, how);
+    if (c_burst && *c_burst > 0) {
+      b.SetNum("peak_current_a", *c_burst * MahToAh(unit_cap_mah), "derived");
+    }
+    if (mass && *mass > 0) b.SetNum("mass_kg", *mass / (pk.ns * pk.np), how);
+    std::string note = "cells_series = voltage/3.7 V; peak current = burst C rate x capacity; "
+                       "no internal resistance in the source";
+    if (recovered) {
+      char buf[96];
+      std::snprintf(buf, sizeof buf, "; only in the data as a %gS%gP combination, divided back",
+                    pk.ns, pk.np);
+      note += buf;
+    }
     b.Source(kDataset, file + " line " + std::to_string(row.r->line) + " (" + row.Str("TYPE") + ")",
-             "cells_series = voltage/3.7 V; peak current = burst C rate x capacity; no "
-             "internal resistance in the source");
+             note);
     out->batteries.push_back(b.Build());
     out->report.Keep("batteries");
   }
@@ -236,8 +271,9 @@ ImportedDataset ImportFastUav(const std::string& dir) {
       "catalogues (github.com/SizingLab/FAST-UAV commit 421083d, GPL-3.0-only), compiled from "
       "manufacturer spec sheets (not measured). Motors: io_a = datasheet Io / 1.1095 (rms, "
       "eq 56). ESCs have no resistance: resc_ohm and c1, c0, tr_sat, sat_slope are the "
-      "esc_prior.h prior (assumed). Batteries: only the real packs (n_series = n_parallel = 1), "
-      "not the augmented combinations. APC MR props: APC's computed static CT, CP. Do not edit "
+      "esc_prior.h prior (assumed). Batteries: the real packs (n_series = n_parallel = 1), not "
+      "the augmented combinations (two models found only as combinations are divided back). "
+      "APC MR props: APC's computed static CT, CP. Do not edit "
       "by hand.";
   ImportMotors(dir, &out);
   ImportEscs(dir, &out);

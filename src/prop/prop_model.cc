@@ -224,6 +224,17 @@ PropEvaluation PropModel::Evaluate(double omega_rad_s, double rho_kg_m3,
   return ev;
 }
 
+PropEvaluation PropModel::EvaluateAtAdvanceRatio(double omega_rad_s, double rho_kg_m3,
+                                                 double j) const {
+  if (!std::isfinite(j) || j < 0) {
+    throw UsageError("propeller '" + entry_.id + "': advance ratio J = " + Num(j) +
+                     " must be a finite number >= 0");
+  }
+  // J = V/(n*D) with n = omega/(2*pi) rev/s.
+  const double v = j * (omega_rad_s / (2.0 * kPi)) * entry_.diameter_m;
+  return Evaluate(omega_rad_s, rho_kg_m3, std::isfinite(v) ? v : 0.0);
+}
+
 LocalTorqueFit PropModel::FitTorqueLaw(double omega0_rad_s, double rho_kg_m3, double airspeed_m_s,
                                        double rel_step) const {
   if (!std::isfinite(omega0_rad_s) || !(omega0_rad_s > 0)) {

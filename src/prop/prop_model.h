@@ -67,6 +67,9 @@ class PropModel {
   // Exact evaluation. Throws UsageError for omega < 0, rho <= 0 or airspeed < 0 (not finite).
   PropEvaluation Evaluate(double omega_rad_s, double rho_kg_m3, double airspeed_m_s = 0.0) const;
 
+  // Same at a given advance ratio J = V/(n*D) (>= 0) instead of an airspeed.
+  PropEvaluation EvaluateAtAdvanceRatio(double omega_rad_s, double rho_kg_m3, double j) const;
+
   // Local quadratic fit of the torque around omega0 (> 0), rel_step in (0, 0.5].
   LocalTorqueFit FitTorqueLaw(double omega0_rad_s, double rho_kg_m3, double airspeed_m_s = 0.0,
                               double rel_step = 0.05) const;

@@ -95,7 +95,9 @@ TEST(RealDataImportTest, FastUavMotorAndEsc) {
   const double r = 79.18e-3 * std::pow(80.0, -0.8467);
   EXPECT_NEAR((*e)["resc_ohm"].get<double>(), r, 5e-3 * r);
   EXPECT_EQ((*e)["source"]["values"]["resc_ohm"], "assumed");
-  EXPECT_EQ(d.batteries.size(), 21u);  // only n_series = n_parallel = 1
+  // 21 real packs (n_series = n_parallel = 1) + 2 models recovered from their smallest
+  // augmented combination (TP6000-4SPX25, KOKAM SLPB68106100).
+  EXPECT_EQ(d.batteries.size(), 23u);
 }
 
 TEST(RealDataImportTest, ManufacturerTableFitByHand) {

@@ -109,6 +109,9 @@ TEST(PropModelTest, TablesInterpolateByHand) {
   EXPECT_NEAR(fw.ct, 0.085, 1e-12);
   EXPECT_NEAR(fw.cp, 0.040, 1e-12);
   EXPECT_TRUE(fw.InData()) << fw.message;
+  const PropEvaluation byj = m.EvaluateAtAdvanceRatio(RpmToRadPerSec(4000), rho, 0.3);
+  EXPECT_NEAR(byj.ct, 0.085, 1e-12);
+  EXPECT_NEAR(byj.airspeed_m_s, v, 1e-12);
   // J = 0.1 at 3000 rpm lies between the static table (J = 0: CT 0.105) and J = 0.2 (0.09).
   const PropEvaluation low = m.Evaluate(RpmToRadPerSec(3000), rho, 0.1 * 50.0 * d);
   EXPECT_NEAR(low.ct, 0.0975, 1e-12);
@@ -259,6 +262,34 @@ TEST(PropModelUiucTest, ForwardFlightHeldOutSweeps) {
   EXPECT_LT(cp_err.Quantile(0.5), kSweepMedianTol);
   EXPECT_LT(ct_err.Quantile(0.95), kSweep95Tol);
   EXPECT_LT(cp_err.Quantile(0.95), kSweep95Tol);
+}
+
+}  // namespace
+}  // namespace dynosize
+
+namespace dynosize {
+namespace {
+
+// Data quality: APC's computed PER3 coefficients against UIUC measurements of the same
+// propellers (catalog/README.md quotes these numbers). At 5000 rpm static, measured at commit
+// time: APC CT higher by +4 % (11x7E) to +24 % (9x4.7SF). Bounds 0.95-1.35 catch a unit or
+// axis error in either importer (a factor of 2 or more) without pinning the data.
+TEST(PropDataQualityTest, ApcComputedAgainstUiucMeasured) {
+  if (!std::filesystem::exists(kCatalog + "/apc_per3.json")) GTEST_SKIP() << "no catalog";
+  const Catalog c = Catalog::Load(kCatalog);
+  const std::pair<const char*, const char*> pairs[] = {
+      {"uiuc_v1_apcsf_10.0x4.7_2", "apc_per3_10x47sf"}, {"uiuc_v1_apcsf_9.0x4.7_2", "apc_per3_9x47sf"},
+      {"uiuc_v1_apce_10.0x5.0_2", "apc_per3_10x5e"},    {"uiuc_v1_apce_11.0x7.0_2", "apc_per3_11x7e"},
+      {"uiuc_v1_apcsf_11.0x4.7_2", "apc_per3_11x47sf"}, {"uiuc_v1_apce_9.0x6.0_2", "apc_per3_9x6e"}};
+  const double w = RpmToRadPerSec(5000);
+  for (const auto& [uiuc, apc] : pairs) {
+    const PropEvaluation u = PropModel(c.prop(uiuc)).Evaluate(w, 1.225);
+    const PropEvaluation a = PropModel(c.prop(apc)).Evaluate(w, 1.225);
+    std::cout << apc << " / " << uiuc << " static CT at 5000 rpm: " << a.ct / u.ct << ", CP "
+              << a.cp / u.cp << "\n";
+    EXPECT_GT(a.ct / u.ct, 0.95) << apc;
+    EXPECT_LT(a.ct / u.ct, 1.35) << apc;
+  }
 }
 
 }  // namespace
