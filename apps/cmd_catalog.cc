@@ -159,9 +159,8 @@ int RunCatalogShow(const std::string& catalog_dir, const std::string& id) {
     found = true;
     out = e.json;
     Json si;
-    si["esc_timing_figure_at_full_throttle"] =
-        (e.params.c1 - kIdealIdcPerIrmsPerThrottle) *
-            (e.params.tr_sat + e.params.sat_slope * (1.0 - e.params.tr_sat)) + e.params.c0;
+    // Eq (62) at full throttle; the figure depends on the ESC alone, so any motor will do.
+    si["esc_timing_figure_at_full_throttle"] = Drive(MotorParams{}, e.params).EscTimingFigure(1.0);
     si["file"] = e.file;
     out["derived"] = si;
   }

@@ -5,45 +5,10 @@
 #include <cmath>
 
 #include "common/error.h"
+#include "common/text_encoding.h"
 #include "common/text_file.h"
 
 namespace dynosize {
-
-bool IsValidUtf8(const std::string& bytes) {
-  std::size_t i = 0;
-  const std::size_t n = bytes.size();
-  while (i < n) {
-    const auto c = static_cast<unsigned char>(bytes[i]);
-    std::size_t len = 0;
-    if (c < 0x80) len = 1;
-    else if ((c >> 5) == 0x6) len = 2;
-    else if ((c >> 4) == 0xE) len = 3;
-    else if ((c >> 3) == 0x1E) len = 4;
-    else return false;
-    if (i + len > n) return false;
-    for (std::size_t k = 1; k < len; ++k) {
-      if ((static_cast<unsigned char>(bytes[i + k]) >> 6) != 0x2) return false;
-    }
-    if (len == 2 && c < 0xC2) return false;  // overlong
-    i += len;
-  }
-  return true;
-}
-
-std::string Latin1ToUtf8(const std::string& bytes) {
-  std::string out;
-  out.reserve(bytes.size() + bytes.size() / 8);
-  for (char ch : bytes) {
-    const auto c = static_cast<unsigned char>(ch);
-    if (c < 0x80) {
-      out.push_back(ch);
-    } else {
-      out.push_back(static_cast<char>(0xC0 | (c >> 6)));
-      out.push_back(static_cast<char>(0x80 | (c & 0x3F)));
-    }
-  }
-  return out;
-}
 
 std::string Trim(const std::string& s) {
   std::size_t b = 0, e = s.size();
@@ -168,10 +133,7 @@ CsvTable ParseCsv(const std::string& raw, const std::string& name, const CsvOpti
     text.erase(0, 3);
     table.had_bom = true;
   }
-  if (!IsValidUtf8(text)) {
-    text = Latin1ToUtf8(text);
-    table.was_latin1 = true;
-  }
+  text = ToUtf8(text, &table.was_latin1);
   // Skip preamble lines.
   std::size_t pos = 0;
   for (std::size_t k = 0; k < options.skip_lines && pos < text.size(); ++k) {

@@ -55,10 +55,6 @@ CsvTable ReadCsv(const std::string& path, const CsvOptions& options = {});
 // Same for text in memory (`name` used in messages).
 CsvTable ParseCsv(const std::string& text, const std::string& name, const CsvOptions& options = {});
 
-// True when `bytes` is well-formed UTF-8.
-bool IsValidUtf8(const std::string& bytes);
-// Decodes ISO-8859-1 bytes to UTF-8.
-std::string Latin1ToUtf8(const std::string& bytes);
 
 // Trims ASCII white space (and non-breaking spaces) at both ends.
 std::string Trim(const std::string& s);

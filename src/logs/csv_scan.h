@@ -14,6 +14,8 @@
 #include <string_view>
 #include <vector>
 
+#include "common/text_encoding.h"
+
 namespace dynosize::logs {
 
 // Reads a file line by line through a fixed buffer: memory stays bounded whatever the file
@@ -66,10 +68,7 @@ std::string_view Trim(std::string_view s);
 // any other text make it return false.
 bool ParseDouble(std::string_view cell, double* value);
 
-// True when `s` is valid UTF-8.
-bool IsValidUtf8(std::string_view s);
-// Returns `s` as UTF-8: unchanged when valid UTF-8, else decoded as Latin-1.
-std::string ToUtf8(std::string_view s, bool* was_latin1 = nullptr);
+// IsValidUtf8 and ToUtf8 (Latin-1 fallback) come from common/text_encoding.h.
 
 // Picks the field delimiter of a header line: ',' ';' or '\t' (the most frequent), else ' '
 // (whitespace-separated).
