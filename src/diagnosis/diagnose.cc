@@ -464,6 +464,49 @@ void AddCause(Model* m, Cause c) {
   }
 }
 
+// Fits model `m` (the current model plus candidate `c`) from several starts and keeps the best:
+// the current fit's values, and - for the offset-like dead band and supply resistance, or when
+// a base parameter of the current fit sits on a bound (the first-order model could not follow
+// the data) - the linear starting values of the base model with the candidate's own starts
+// (dead band: +0.05, -0.1, -0.3, i.e. a dead band or a throttle offset).
+FitOut FitCandidate(const Data& d, const std::vector<std::size_t>& rows, const Model& m, Cause c,
+                    const Values& fresh, bool base_at_bound, const std::vector<double>& knees) {
+  std::vector<Model> starts = {m};
+  const bool offset_like = c == Cause::kThrottleDeadband || c == Cause::kSupplyResistance;
+  if (offset_like || base_at_bound) {
+    Model f = m;
+    for (int s = 0; s < kSlotCount; ++s) {
+      if (kSlotIsBase[s]) f.values[s] = fresh[s];
+    }
+    starts.push_back(f);
+  }
+  if (c == Cause::kThrottleDeadband) {
+    const std::size_t k = starts.size();
+    for (std::size_t j = 0; j < k; ++j) {
+      for (double db : {-0.1, -0.3}) {
+        Model v = starts[j];
+        v.values[kDeadband] = std::clamp(db, v.lower[kDeadband], v.upper[kDeadband]);
+        starts.push_back(v);
+      }
+    }
+  }
+  FitOut best;
+  for (const Model& st : starts) {
+    FitOut f = FitProfiled(d, rows, st, knees, LossType::kTrivial, 1.0);
+    if (f.ok && (!best.ok || f.sse < best.sse)) best = f;
+  }
+  return best;
+}
+
+bool BaseAtBound(const Model& m, const Values& v) {
+  for (int s = 0; s < kSlotCount; ++s) {
+    if (!kSlotIsBase[s] || !m.free[s]) continue;
+    const double tol = 1e-6 * std::max(std::fabs(m.upper[s] - m.lower[s]), 1e-12);
+    if (v[s] - m.lower[s] <= tol || m.upper[s] - v[s] <= tol) return true;
+  }
+  return false;
+}
+
 std::string Separation(Cause a, Cause b) {
   auto is = [&](Cause x, Cause y) { return (a == x && b == y) || (a == y && b == x); };
   if (is(Cause::kWindingTemperatureRise, Cause::kTorqueConstantDroop)) {
@@ -792,6 +835,18 @@ DiagnoseResult Diagnose(const SteadyTable& t, const DiagnoseOptions& o) {
                     "prediction at the start values): check the units of the columns");
   }
   current.values = cur_fit.values;
+  if (BaseAtBound(current, cur_fit.values)) {
+    std::string which;
+    for (int s = 0; s < kSlotCount; ++s) {
+      if (!kSlotIsBase[s] || !current.free[s]) continue;
+      const double tol = 1e-6 * std::max(std::fabs(current.upper[s] - current.lower[s]), 1e-12);
+      if (cur_fit.values[s] - current.lower[s] <= tol || current.upper[s] - cur_fit.values[s] <= tol) {
+        which += (which.empty() ? "" : ", ") + std::string(kSlotName[s]);
+      }
+    }
+    res.warnings.push_back("first-order fit has " + which +
+                           " on a physical bound: the first-order model cannot follow this log");
+  }
   CvOut cur_cv = CrossValidate(d, used, fold_of, o.folds, current, cur_fit, knees);
   ToParams(d, cur_fit.values, &res.base_motor, &res.base_esc);
   res.baseline_cv = ColumnErrors(d, used, cur_cv);
@@ -897,10 +952,11 @@ DiagnoseResult Diagnose(const SteadyTable& t, const DiagnoseOptions& o) {
     std::vector<CvOut> cvs;
     std::vector<Model> models;
     const double aicc0 = Aicc(cur_fit.sse, cur_fit.n_terms, cur_fit.n_free);
+    const bool base_at_bound = BaseAtBound(current, cur_fit.values);
     for (Cause c : remaining) {
       Model m = current;
       AddCause(&m, c);
-      FitOut f = FitProfiled(d, used, m, knees, LossType::kTrivial, 1.0);
+      FitOut f = FitCandidate(d, used, m, c, base.values, base_at_bound, knees);
       CandidateScore cs;
       cs.cause = c;
       cs.testable = true;
@@ -981,7 +1037,7 @@ DiagnoseResult Diagnose(const SteadyTable& t, const DiagnoseOptions& o) {
     for (Cause rc : rivals) {
       Model m = current;
       AddCause(&m, rc);
-      const FitOut f = FitProfiled(d, used, m, knees, LossType::kTrivial, 1.0);
+      const FitOut f = FitCandidate(d, used, m, rc, base.values, base_at_bound, knees);
       bool still = false;
       if (f.ok && f.sse < cur_fit.sse) {
         const int q = CauseExtraParams(rc);
