@@ -100,7 +100,9 @@ bool PredictRow(const Data& d, const Drive& drive, std::size_t k, double* pred) 
   for (int m = 0; m < kMeasCount; ++m) {
     if (!std::isfinite(pred[m])) return false;
   }
-  return (p.limits & (kLimitStalled | kLimitThermalRunaway)) == 0;
+  // A stalled prediction (omega = 0) is kept: its large residual steers the fit away, where
+  // rejecting it would stop the fit at a poor start.
+  return (p.limits & kLimitThermalRunaway) == 0;
 }
 
 bool Residuals(const Data& d, const std::vector<std::size_t>& rows, const Values& v, double* r) {
@@ -946,6 +948,17 @@ DiagnoseResult Diagnose(const SteadyTable& t, const DiagnoseOptions& o) {
 
   // --- Greedy forward selection.
   std::vector<Cause> remaining = candidates;
+  if (!has_tr && res.baseline_cv_rms_percent > o.no_throttle_max_percent) {
+    // Without a throttle column every row is taken at assumed_throttle; when the model misses
+    // by this much the rows are not such points and any "cause" would explain the wrong
+    // throttle, not the drive.
+    std::ostringstream w;
+    w << std::setprecision(3) << "no throttle column and the first-order model misses by "
+      << res.baseline_cv_rms_percent << " % rms: the rows are not full-throttle points, so no "
+      << "cause is named; diagnose a log that records the throttle";
+    res.warnings.push_back(w.str());
+    remaining.clear();
+  }
   while (static_cast<int>(res.findings.size()) < o.max_findings && !remaining.empty()) {
     std::vector<CandidateScore> scores;
     std::vector<FitOut> fits;
@@ -985,7 +998,16 @@ DiagnoseResult Diagnose(const SteadyTable& t, const DiagnoseOptions& o) {
           cs.p_value = FDistributionUpperTail(cs.f_statistic, q, df2);
           if (c == Cause::kEscSaturation) cs.p_value = std::min(1.0, cs.p_value * static_cast<double>(knees.size()));
         }
-        const bool pre = cs.p_value < o.alpha && cs.delta_aicc < 0.0;
+        // The extension's own parameter must be determined: at least 2 standard errors from
+        // its "no effect" value (0; 1 for sat_slope). A parameter the data cannot separate from
+        // the base parameters (|corr| -> 1, huge error) is not a finding, whatever the F test.
+        bool determined = true;
+        for (int sl : CauseSlots(c)) {
+          const double null_value = sl == kSatSlope ? 1.0 : 0.0;
+          const double se = f.stderr_[sl];
+          if (std::isfinite(se) && std::fabs(f.values[sl] - null_value) < 2.0 * se) determined = false;
+        }
+        const bool pre = cs.p_value < o.alpha && cs.delta_aicc < 0.0 && determined;
         if (pre) {
           cv = CrossValidate(d, used, fold_of, o.folds, m, f, knees);
           cs.cv_rms_percent = cv.rms_percent;
