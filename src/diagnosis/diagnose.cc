@@ -792,6 +792,49 @@ DiagnoseResult Diagnose(const SteadyTable& t, const DiagnoseOptions& o) {
   std::vector<std::size_t> used(n);
   std::iota(used.begin(), used.end(), 0);
 
+  // --- Effective-variance weights. The known inputs (VDC, and the speed or the torque) are
+  // measured with the same relative noise as the outputs, and at low throttle a small error in
+  // U = kv*VDC*TR or in KE*omega is a large error in the current (I = (U - KE*omega)/R is a
+  // small difference there). Each residual is therefore divided by the spread that relative
+  // noise of the output and of the inputs gives it (the "effective variance" of errors-in-
+  // variables fitting): s = sqrt(y^2 + (dy/dVDC*VDC)^2 + (dy/dx*x)^2), x = omega or torque,
+  // with the derivatives of a preliminary fit of the first-order model. Without this the F test
+  // sees heteroscedastic residuals and calls low-throttle noise an effect.
+  {
+    const FitOut pre = FitModel(d, used, base, LossType::kHuber, 1.0);
+    if (pre.ok) {
+      MotorParams mp;
+      EscParams ep;
+      ToParams(d, pre.values, &mp, &ep);
+      const Drive drive(mp, ep);
+      double p0[kMeasCount], pv[kMeasCount], px[kMeasCount];
+      for (std::size_t k = 0; k < n; ++k) {
+        const double h = 1e-4;
+        const bool tk = d.torque_known[k] != 0;
+        const double x = tk ? d.q[k] : d.omega[k];
+        auto predict = [&](double vdc, double xin, double* out) {
+          const OperatingPoint p = tk ? drive.AtTorque(vdc, d.tr[k], xin) : drive.AtSpeed(vdc, d.tr[k], xin);
+          out[kMOmega] = p.omega_rad_s;
+          out[kMIdc] = p.idc_a;
+          out[kMIrms] = p.irms_a;
+          out[kMVll] = p.vll_rms_v;
+          out[kMPac] = p.pac_w;
+        };
+        predict(d.vdc[k], x, p0);
+        predict(d.vdc[k] * (1.0 + h), x, pv);
+        predict(d.vdc[k], x == 0.0 ? h : x * (1.0 + h), px);
+        for (int tt = d.term_begin[k]; tt < d.term_begin[k + 1]; ++tt) {
+          Term& term = d.terms[tt];
+          const double sv = (pv[term.meas] - p0[term.meas]) / h;  // dy/dVDC * VDC
+          const double sx = x == 0.0 ? 0.0 : (px[term.meas] - p0[term.meas]) / h;
+          const double spread = std::sqrt(term.value * term.value + sv * sv + sx * sx);
+          const double floor = 5.0 / inv_scale[term.meas];
+          if (std::isfinite(spread)) term.inv_scale = 100.0 / std::max(spread, floor);
+        }
+      }
+    }
+  }
+
   // --- Outlier screen with the union model.
   if (o.outlier_sigmas > 0.0) {
     Model uni = base;
