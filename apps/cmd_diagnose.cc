@@ -1,8 +1,13 @@
 // `dynosize diagnose LOG`: what the first-order model gets wrong in a measured log, the named
 // cause, the extended model and the cross-validated gain (src/diagnosis/diagnose.h).
+#include <cctype>
 #include <cmath>
+#include <sstream>
 #include <iostream>
 
+#include <filesystem>
+
+#include "calibration/catalog_output.h"
 #include "catalog/catalog.h"
 #include "commands.h"
 #include "common/error.h"
@@ -80,6 +85,64 @@ Json ScoreJson(const diagnosis::CandidateScore& s) {
   return j;
 }
 
+// A catalog id from a file name: [A-Za-z0-9_.+-] kept, anything else '_'.
+std::string IdFrom(const std::string& path) {
+  std::string stem = std::filesystem::path(path).stem().string();
+  for (char& c : stem) {
+    const bool ok = std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '.' || c == '+' || c == '-';
+    if (!ok) c = '_';
+  }
+  if (stem.empty()) stem = "diagnosed";
+  return stem.substr(0, 100);
+}
+
+// The extended model as catalog entries: fitted values say "fitted", values held at a default
+// or at the --motor/--esc entry say "assumed", KT tied to KE says "derived".
+void WriteExtendedEntries(const DiagnoseCliOptions& o, const diagnosis::DiagnoseResult& r) {
+  const std::string id = o.id.empty() ? IdFrom(o.log) : o.id;
+  auto fitted = [&](const std::string& key) {
+    for (const auto& f : r.base_free_parameters) {
+      if (f == key) return true;
+    }
+    for (const auto& f : r.findings) {
+      if (f.parameters.count(key)) return true;
+    }
+    return false;
+  };
+  std::ostringstream ref;
+  ref << "dynosize diagnose (" << r.mode << "), " << r.points_used << " points; findings:";
+  for (const auto& f : r.findings) ref << " " << CauseId(f.cause);
+  if (r.findings.empty()) ref << " none";
+  Json motor = MotorJson(r.extended_motor);
+  Json esc = EscJson(r.extended_esc);
+  Json mv = Json::object(), ev = Json::object();
+  for (auto it = motor.begin(); it != motor.end(); ++it) {
+    if (it.key() == "type") continue;
+    mv[it.key()] = it.key() == "kt_nm_per_a" && !fitted("kt_nm_per_a") ? "derived"
+                   : fitted(it.key())                                  ? "fitted"
+                                                                       : "assumed";
+  }
+  for (auto it = esc.begin(); it != esc.end(); ++it) ev[it.key()] = fitted(it.key()) ? "fitted" : "assumed";
+  const std::string dataset = std::filesystem::path(o.log).filename().string();
+  Json m;
+  m["id"] = id + "_motor";
+  m["name"] = id + " motor (diagnosed, extended model)";
+  for (auto it = motor.begin(); it != motor.end(); ++it) m[it.key()] = it.value();
+  std::string note;
+  for (const auto& w : r.warnings) note += (note.empty() ? "" : "; ") + w;
+  m["source"] = {{"dataset", dataset}, {"reference", ref.str()}, {"values", mv}};
+  if (!note.empty()) m["source"]["note"] = note;
+  Json e;
+  e["id"] = id + "_esc";
+  e["name"] = id + " ESC (diagnosed, extended model)";
+  for (auto it = esc.begin(); it != esc.end(); ++it) e[it.key()] = it.value();
+  e["source"] = {{"dataset", dataset}, {"reference", ref.str()}, {"values", ev}};
+  if (!note.empty()) e["source"]["note"] = note;
+  calibration::WriteCatalogEntries(o.out, {m}, {e}, o.force,
+                                   "Extended models fitted by dynosize diagnose from dynamometer logs.");
+  if (!o.json) std::cerr << "wrote " << id << "_motor, " << id << "_esc to " << o.out << "\n";
+}
+
 }  // namespace
 
 int RunDiagnose(const DiagnoseCliOptions& o) {
@@ -108,6 +171,7 @@ int RunDiagnose(const DiagnoseCliOptions& o) {
       if (!o.json) std::cerr << "wrote " << f << "\n";
     }
   }
+  if (!o.out.empty()) WriteExtendedEntries(o, r);
   if (!o.json) {
     std::cout << r.FullReport();
     return 0;

@@ -72,6 +72,11 @@ struct DiagnoseCliOptions {
   double alpha = 1e-3;
   bool json = false;
   std::string plot_dir;
+  // Write the extended model as catalog entries <id>_motor and <id>_esc into this file
+  // (atomically; an existing id is replaced only with force). Default id: the log's base name.
+  std::string out;
+  std::string id;
+  bool force = false;
 };
 int RunDiagnose(const DiagnoseCliOptions& o);
 

@@ -144,6 +144,10 @@ int main(int argc, char** argv) {
   diagnose->add_option("--alpha", diag.alpha, "significance level of the nested F test");
   diagnose->add_flag("--json", diag.json, "print one JSON object (baseline, findings, ambiguous, extended_model)");
   diagnose->add_option("--plot", diag.plot_dir, "write residual, measured-vs-predicted and curve figures here");
+  diagnose->add_option("--out", diag.out,
+                       "catalog JSON file to add the extended model to (<id>_motor, <id>_esc; atomic)");
+  diagnose->add_option("--id", diag.id, "id prefix of the --out entries (default: the log's base name)");
+  diagnose->add_flag("--force", diag.force, "replace entries with the same ids in --out");
 
   if (argc > 1 && argv[1][0] != '-') {
     const std::string first = argv[1];

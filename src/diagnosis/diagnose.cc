@@ -1131,6 +1131,10 @@ DiagnoseResult Diagnose(const SteadyTable& t, const DiagnoseOptions& o) {
     }
   }
   ToParams(d, cur_fit.values, &res.extended_motor, &res.extended_esc);
+  if (!res.findings.empty() && BaseAtBound(current, cur_fit.values)) {
+    res.warnings.push_back("the extended model still has a base parameter on a physical bound: its "
+                           "values describe this log, they are not physical motor constants");
+  }
   // Ratings and held values from the catalog entries.
   if (o.motor) {
     res.extended_motor.max_current_a = o.motor->max_current_a;
