@@ -82,6 +82,7 @@ Json ScoreJson(const diagnosis::CandidateScore& s) {
   j["cv_rms_percent"] = s.cv_rms_percent > 0.0 ? Num(s.cv_rms_percent) : Json(nullptr);
   j["gain_percent"] = Num(s.gain_percent);
   j["significant"] = s.significant;
+  if (!s.note.empty()) j["note"] = s.note;
   return j;
 }
 
@@ -221,6 +222,9 @@ int RunDiagnose(const DiagnoseCliOptions& o) {
     findings.push_back(fj);
   }
   j["findings"] = findings;
+  Json last = Json::array();
+  for (const auto& s : r.last_step_scores) last.push_back(ScoreJson(s));
+  j["rejected_candidates"] = last;
   Json amb = Json::array();
   for (const auto& a : r.ambiguous) {
     Json causes = Json::array();

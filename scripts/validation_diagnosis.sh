@@ -37,6 +37,9 @@ row() {
   fi
   local f
   f=$(jq -r '[.findings[] | "\(.cause) (" + ((.parameters | to_entries | map(select(.key != "tr_sat") | "\(.key) \(.value * 10000 | round / 10000)") | join(", "))) + "; \(.gain_percent | round) %)"] | if length == 0 then "none" else join("; ") end' "$j")
+  if [ "$f" = none ] && jq -e '[.baseline.residual_structure[] | select(.structured)] | length > 0' "$j" > /dev/null; then
+    f="none: structured misfit no candidate explains$(jq -r '[.rejected_candidates[] | select(.note != null and .p_value < 0.001) | "\(.cause): \(.note)"] | if length > 0 then " (" + join("; ") + ")" else "" end' "$j")"
+  fi
   local w
   w=$(jq -r '[.warnings[] | select(test("outlier") | not) | .[0:70]] | join("; ")' "$j" | tr '|' '/')
   echo "| $set | $name | $(jq -r .mode "$j") | $(jq .points_used "$j") | $(r2 .baseline.cv_rms_percent_all "$j") % | $(r2 .extended_model.cv_rms_percent_all "$j") % | $f | $w |"

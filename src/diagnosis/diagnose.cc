@@ -1049,7 +1049,18 @@ DiagnoseResult Diagnose(const SteadyTable& t, const DiagnoseOptions& o) {
           const double null_value = sl == kSatSlope ? 1.0 : 0.0;
           const double se = f.stderr_[sl];
           if (std::isfinite(se) && std::fabs(f.values[sl] - null_value) < 2.0 * se) determined = false;
+          // On a bound of its physical range the parameter is not estimated but clipped: the
+          // misfit is bigger than, or different from, what this mechanism can produce. (A knee
+          // slope of 0 - no voltage gain above the knee - is a physical value, not a clip.)
+          const double tol = 1e-6 * (m.upper[sl] - m.lower[sl]);
+          const bool at_lower = f.values[sl] - m.lower[sl] <= tol && sl != kSatSlope;
+          const bool at_upper = m.upper[sl] - f.values[sl] <= tol && sl != kSatSlope;
+          if (at_lower || at_upper) {
+            determined = false;
+            cs.note = std::string(kSlotName[sl]) + " clipped at the bound of its physical range";
+          }
         }
+        if (!determined && cs.note.empty()) cs.note = "parameter within 2 standard errors of no effect";
         const bool pre = cs.p_value < o.alpha && cs.delta_aicc < 0.0 && determined;
         if (pre) {
           cv = CrossValidate(d, used, fold_of, o.folds, m, f, knees);
@@ -1069,7 +1080,10 @@ DiagnoseResult Diagnose(const SteadyTable& t, const DiagnoseOptions& o) {
         best = static_cast<int>(j);
       }
     }
-    if (best < 0) break;
+    if (best < 0) {
+      res.last_step_scores = scores;
+      break;
+    }
     const CandidateScore& bs = scores[best];
     Finding fd;
     fd.cause = bs.cause;
@@ -1186,7 +1200,19 @@ std::string DiagnoseResult::FullReport() const {
   }
   if (!any_trend) s << "  no residual structure against the logged variables\n";
   s << "\nFindings:\n";
-  if (findings.empty()) s << "  none: nothing significant beyond noise\n";
+  if (findings.empty()) {
+    if (any_trend) {
+      s << "  none: the residuals have structure (above) that no candidate explains";
+      std::string closest;
+      for (const auto& c : last_step_scores) {
+        if (c.p_value < 1e-3 && !c.note.empty()) closest += std::string(closest.empty() ? "" : "; ") + CauseId(c.cause) + " (" + c.note + ")";
+      }
+      if (!closest.empty()) s << "; rejected: " << closest;
+      s << "\n";
+    } else {
+      s << "  none: nothing significant beyond noise\n";
+    }
+  }
   int k = 0;
   for (const auto& f : findings) {
     s << "  " << ++k << ". " << CauseId(f.cause) << ": " << f.description << "\n     ";

@@ -142,6 +142,7 @@ struct CandidateScore {
   double cv_rms_percent = 0.0;  // all columns, percent residuals
   double gain_percent = 0.0;    // CV rms error reduction vs the current model
   bool significant = false;
+  std::string note;  // why a candidate with p < alpha was not kept, when that is the reason
 };
 
 struct Finding {
@@ -180,6 +181,8 @@ struct DiagnoseResult {
   std::vector<WorstPoint> worst_points;      // baseline, CV predictions
   std::vector<ResidualTrend> residual_trends;  // baseline, CV residuals
   std::vector<Finding> findings;             // in the order selected (importance)
+  // Scores of the candidates at the step where the search stopped (what came closest).
+  std::vector<CandidateScore> last_step_scores;
   std::vector<Ambiguity> ambiguous;
   std::vector<CandidateScore> not_testable;  // candidates the columns cannot reveal
   MotorParams extended_motor;
