@@ -107,6 +107,6 @@ fig strawson_a1_11 "Strawson a1_11: speed at 5 % command far above 0.675*VDC*TR 
   "$data/strawson_fpv_motor_prop/rawdata/a1_11.csv"
 fig at3520 "T-Motor AT3520 550kv (manufacturer table)" "$s/TMotor_AT3520_550kv.csv" --format mapped \
   --map throttle=throttle --map vdc_v=voltage_V --map idc_a=current_A --map rpm=rpm --map torque_nm=torque_Nm
-fig xnova_tm_sr "aerostack2 xNova thrust map (single rotor)" "$data/aerostack2_xnova_thrustmap/xNova-TM-SR.csv"
+fig xnova_tm_mr "aerostack2 xNova thrust map (multi-rotor set-up)" "$data/aerostack2_xnova_thrustmap/xNova-TM-MR.csv"
 fig alspitz_181347 "alspitz Log_2019-11-09_181347 (RCbenchmark, with throttle)" \
   "$data/alspitz_esc_test/data/rcbench/Log_2019-11-09_181347.csv"

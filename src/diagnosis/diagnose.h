@@ -7,8 +7,13 @@
 //     inputs per row are VDC, the throttle TR and either the shaft torque Q (torque column or a
 //     no-load row: Q = 0) or the measured speed omega; every other measured column among
 //     omega_rad_s, idc_a, irms_a, vll_rms_v, pac_w is predicted by the model (Drive::AtTorque or
-//     Drive::AtSpeed, so the extensions act exactly as in simulate). Residuals are in percent of
-//     each column's median magnitude, so columns in different units weigh alike.
+//     Drive::AtSpeed, so the extensions act exactly as in simulate). Each residual is in percent
+//     of its effective spread (errors in variables): sqrt(y^2 + (dy/dVDC*VDC)^2 + (dy/dx*x)^2),
+//     x the speed or torque input, derivatives from a preliminary first-order fit, floored at 5 %
+//     of the column's median. With sensors of equal relative noise the residuals are then
+//     homoscedastic, as the F test needs (at low throttle I = (U - KE*omega)/R is a small
+//     difference, and plain percent errors there would call input noise an effect), and columns
+//     in different units weigh alike.
 //  2. Base parameters free in every model (as src/calibration/calibrate.h explains what each
 //     column set identifies): KE; R = Rm (+ RESC with AC columns); Io with a known torque; KT with
 //     torque + AC columns (else KT = sqrt(27/10)*KE, section 5); C1, C0 with idc_a, several
@@ -30,7 +35,10 @@
 //     parameters; the profiled knee counts as 2 and its p value is multiplied by the number of
 //     knees tried, Bonferroni), AICc, and k-fold cross-validated rms error (folds of rows,
 //     seeded; every score is on rows the fit did not see). A candidate is significant when
-//     p < alpha, AICc falls, and the CV error falls by at least min_gain_percent. The best
+//     p < alpha, AICc falls, its own parameter is at least 2 standard errors from "no effect"
+//     and not clipped at a bound of its physical range, and the CV error falls by at least
+//     min_gain_percent. In the folds the knee is re-profiled among the full-data knee's grid
+//     neighbours (a small leak of the knee choice, documented rather than hidden). The best
 //     significant one (largest CV gain) is added and the search repeats; it stops when nothing
 //     significant is left or after max_findings.
 //  6. Ambiguity: when another significant candidate comes within ambiguity_aicc of the winner's
