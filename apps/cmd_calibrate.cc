@@ -65,6 +65,7 @@ int RunDriveCalcAll(const CalibrateOptions& o) {
   if (o.logs.size() != 1) throw UsageError("--drivecalc-all takes one log: DriveCalc's MData.csv");
   logs::LogReadOptions ro;
   ro.format = logs::LogFormat::kDriveCalc;
+  ro.drivecalc_keep_no_load_without_speed = true;  // their no-load current still fixes Io
   const logs::SteadyTable t = logs::ReadLog(o.logs[0], ro);
   const calibration::DriveCalcRefit all = calibration::RefitDriveCalc(t);
   // Names from the imported DriveCalc catalog (dc_m_<id>) when it is there.
@@ -162,6 +163,7 @@ int RunCalibrate(const CalibrateOptions& o) {
   ro.format = ParseFormat(o.format);
   ro.column_map = o.column_map;
   ro.drivecalc_motor_id = o.drivecalc_motor;
+  ro.drivecalc_keep_no_load_without_speed = true;
   ro.mapped_drop_rows_with_empty_cells = o.drop_incomplete_rows;
   ro.esc_min_us = o.esc_min_us;
   ro.esc_max_us = o.esc_max_us;

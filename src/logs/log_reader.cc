@@ -944,7 +944,19 @@ SteadyTable ReadLog(const std::string& path, const LogReadOptions& options) {
     const std::size_t n = t.rows();
     auto& om = t.columns[static_cast<int>(Column::kOmegaRadS)];
     std::vector<char> keep(n);
-    for (std::size_t r = 0; r < n; ++r) keep[r] = om[r] != 0.0;
+    const bool keep_nl = options.drivecalc_keep_no_load_without_speed && t.Has(Column::kNoLoad);
+    std::size_t kept_without_speed = 0;
+    for (std::size_t r = 0; r < n; ++r) {
+      keep[r] = om[r] != 0.0;
+      if (!keep[r] && keep_nl && t.columns[static_cast<int>(Column::kNoLoad)][r] != 0.0) {
+        keep[r] = 1;
+        ++kept_without_speed;
+      }
+    }
+    if (kept_without_speed > 0) {
+      t.notes.push_back(std::to_string(kept_without_speed) +
+                        " no-load points without a speed reading (n = 0) kept: they give Io only");
+    }
     for (int c = 0; c < kColumnCount; ++c) {
       if (!t.info[c].present) continue;
       auto& v = t.columns[c];
@@ -962,7 +974,8 @@ SteadyTable ReadLog(const std::string& path, const LogReadOptions& options) {
         ++w;
       }
     }
-    AddDrop(&t, "points with n = 0 (speed not measured)", n - w);
+    AddDrop(&t, keep_nl ? "loaded points with n = 0 (speed not measured)" : "points with n = 0 (speed not measured)",
+            n - w);
     t.source_line.resize(w);
     t.samples.resize(w);
   }
