@@ -8,6 +8,7 @@
 #include "catalog/schema.h"
 #include "commands.h"
 #include "common/error.h"
+#include "common/json_pretty.h"
 #include "common/units.h"
 
 namespace dynosize::cli {
@@ -182,7 +183,7 @@ int RunCatalogShow(const std::string& catalog_dir, const std::string& id) {
       throw UsageError("no catalog entry with id '" + id + "' (see 'dynosize catalog list')");
     }
   }
-  std::cout << DumpJson(out);
+  std::cout << DumpJsonReadable(out);
   return 0;
 }
 
