@@ -3,6 +3,7 @@
 #include <iomanip>
 #include <iostream>
 #include <sstream>
+#include <utility>
 
 #include "catalog/catalog.h"
 #include "catalog/schema.h"
@@ -55,6 +56,21 @@ std::string Clip(const std::string& s, std::size_t n) {
 }  // namespace
 
 int RunCatalogList(const CatalogListOptions& o) {
+  for (const auto& [flag, v] : {std::pair<const char*, std::optional<double>>{"--kv-min", o.kv_min},
+                                {"--kv-max", o.kv_max},
+                                {"--mass-max-kg", o.mass_max_kg},
+                                {"--current-min-a", o.current_min_a}}) {
+    if (v && !(std::isfinite(*v) && *v >= 0.0)) {
+      std::ostringstream s;
+      s << flag << " " << *v << ": must be a finite number >= 0";
+      throw UsageError(s.str());
+    }
+  }
+  if (o.kv_min && o.kv_max && *o.kv_min > *o.kv_max) {
+    std::ostringstream s;
+    s << "--kv-min " << *o.kv_min << " > --kv-max " << *o.kv_max << ": the range is empty";
+    throw UsageError(s.str());
+  }
   if ((o.kv_min || o.kv_max) && !o.kind.empty() && o.kind != "motors") {
     throw UsageError("--kv-min/--kv-max filter motors: use them with --kind motors");
   }

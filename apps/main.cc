@@ -15,8 +15,19 @@ namespace {
 
 using dynosize::ExitCode;
 
+// One "dynosize: " line per problem (a catalog with several problems lists each on its line).
 int Fail(ExitCode code, const std::string& message) {
-  std::cerr << "dynosize: " << message << "\n";
+  std::string out;
+  std::size_t begin = 0;
+  while (begin <= message.size()) {
+    std::size_t end = message.find('\n', begin);
+    if (end == std::string::npos) end = message.size();
+    std::size_t b = begin;
+    while (b < end && message[b] == ' ') ++b;  // continuation lines are indented in messages
+    out += "dynosize: " + message.substr(b, end - b) + "\n";
+    begin = end + 1;
+  }
+  std::cerr << out;
   return static_cast<int>(code);
 }
 

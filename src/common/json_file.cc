@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "common/error.h"
+#include "common/text_encoding.h"
 #include "common/text_file.h"
 
 namespace dynosize {
@@ -46,27 +47,66 @@ Json ParseJsonText(const std::string& text, const std::string& name,
     throw DataError(name + ": " + std::to_string(text.size()) + " bytes: larger than the " +
                     std::to_string(options.max_bytes) + "-byte limit for a JSON input");
   }
-  // Keys seen in each open object, to refuse duplicates (nlohmann keeps the last silently).
-  std::vector<std::set<std::string>> open_objects;
-  std::string error;
+  if (text.find_first_not_of(" \t\r\n") == std::string::npos) {
+    throw DataError(name + ": empty file: expected a JSON object");
+  }
+  if (const std::string enc = UnsupportedTextEncoding(std::string_view(text).substr(0, 64));
+      !enc.empty()) {
+    throw DataError(name + ": the file is " + enc + ": save it as UTF-8");
+  }
+  // The open containers, to name the JSON path in messages and to refuse duplicate keys
+  // (nlohmann keeps the last silently). The stack is bounded by max_depth.
+  struct Frame {
+    bool array = false;
+    std::size_t index = 0;   // arrays: the element being read
+    std::string key;         // objects: the key being read
+    std::set<std::string> keys;
+  };
+  std::vector<Frame> open;
+  auto path = [&open]() {
+    std::string p;
+    for (const Frame& f : open) p += "/" + (f.array ? std::to_string(f.index) : f.key);
+    return p.empty() ? std::string("/") : p;
+  };
+  auto element_done = [&open]() {
+    if (!open.empty() && open.back().array) ++open.back().index;
+  };
   auto callback = [&](int depth, nlohmann::detail::parse_event_t event, Json& parsed) {
     using E = nlohmann::detail::parse_event_t;
-    if (!error.empty()) return false;
     if (depth > options.max_depth) {
-      error = "nesting deeper than " + std::to_string(options.max_depth) + " levels";
-      throw DataError(name + ": " + error);
+      throw DataError(name + ": " + path() + ": nesting deeper than " +
+                      std::to_string(options.max_depth) + " levels (rule: catalogs and missions "
+                      "need far fewer)");
     }
-    if (event == E::object_start) open_objects.emplace_back();
-    if (event == E::object_end && !open_objects.empty()) open_objects.pop_back();
-    if (event == E::key && !open_objects.empty()) {
-      const std::string key = parsed.get<std::string>();
-      if (!open_objects.back().insert(key).second) {
-        throw DataError(name + ": duplicate key \"" + key + "\" in one object");
+    switch (event) {
+      case E::object_start:
+      case E::array_start:
+        open.emplace_back();
+        open.back().array = event == E::array_start;
+        break;
+      case E::object_end:
+      case E::array_end:
+        if (!open.empty()) open.pop_back();
+        element_done();
+        break;
+      case E::key: {
+        std::string key = parsed.get<std::string>();
+        if (!open.empty()) {
+          if (!open.back().keys.insert(key).second) {
+            throw DataError(name + ": " + path() + ": duplicate key \"" + key +
+                            "\" (rule: each key once per object)");
+          }
+          open.back().key = std::move(key);
+        }
+        break;
       }
-    }
-    if (event == E::value && parsed.is_number_float() && !std::isfinite(parsed.get<double>())) {
-      throw DataError(name + ": a number out of the range of a double (" + parsed.dump() +
-                      "): numbers must be finite");
+      case E::value:
+        if (parsed.is_number_float() && !std::isfinite(parsed.get<double>())) {
+          throw DataError(name + ": " + path() + ": a number out of the range of a double (" +
+                          parsed.dump() + "): numbers must be finite");
+        }
+        element_done();
+        break;
     }
     return true;
   };
@@ -77,14 +117,15 @@ Json ParseJsonText(const std::string& text, const std::string& name,
     std::string what = e.what();
     const auto pos = what.find("] ");
     if (pos != std::string::npos) what = what.substr(pos + 2);
-    throw DataError(name + ":" + LineColumn(text, e.byte > 0 ? e.byte - 1 : 0) +
+    throw DataError(name + ":" + LineColumn(text, e.byte > 0 ? e.byte - 1 : 0) + ": " + path() +
                     ": invalid JSON: " + what);
   } catch (const nlohmann::json::exception& e) {
     // Number overflow (1e999) and similar: no byte position is given.
     std::string what = e.what();
     const auto pos = what.find("] ");
     if (pos != std::string::npos) what = what.substr(pos + 2);
-    throw DataError(name + ": invalid JSON: " + what);
+    throw DataError(name + ": " + path() + ": invalid JSON: " + what +
+                    " (rule: numbers must be finite doubles)");
   }
 }
 

@@ -17,6 +17,11 @@ namespace {
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 // Throttle computed from a pulse width may exceed 0..1 by rounding only.
 constexpr double kThrottleRoundingSlack = 1e-9;
+// Largest magnitude of a value in SI units (after unit conversion). Far beyond any measurement
+// (1e12 A, V, rad/s; time stamps in Unix seconds are 1.7e9), it keeps squares and products
+// the fit forms finite over millions of rows (1e24 * 1e6 << 1.8e308). Beyond it (1e308 in a
+// cell, or kgf * 9.81 overflowing) the cell is a DataError in every format.
+constexpr double kMaxAbsSiValue = 1e12;
 
 // One source column being read.
 struct Slot {
@@ -484,6 +489,12 @@ void ReadRows(LineReader* lr, Plan* plan, const std::string& path, SteadyTable* 
                   "not a number (rule: a finite decimal number with '.' as decimal point)");
       }
       const double si = ToSi(s, v);
+      if (!(std::fabs(si) <= kMaxAbsSiValue)) {
+        std::ostringstream rule;
+        rule << "out of range: " << si << " " << SiUnit(s.quantity)
+             << " after conversion (rule: magnitude at most " << kMaxAbsSiValue << " in SI units)";
+        CellError(path, line_no, s.header, cell, rule.str());
+      }
       if (s.target == Column::kThrottle &&
           (si < -kThrottleRoundingSlack || si > 1.0 + kThrottleRoundingSlack)) {
         if (plan->lenient) {
