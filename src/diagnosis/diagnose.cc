@@ -100,7 +100,9 @@ bool PredictRow(const Data& d, const Drive& drive, std::size_t k, double* pred) 
   for (int m = 0; m < kMeasCount; ++m) {
     if (!std::isfinite(pred[m])) return false;
   }
-  return (p.limits & (kLimitStalled | kLimitThermalRunaway)) == 0;
+  // A stalled prediction (omega = 0) is kept: its large residual steers the fit away, where
+  // rejecting it would stop the fit at a poor start.
+  return (p.limits & kLimitThermalRunaway) == 0;
 }
 
 bool Residuals(const Data& d, const std::vector<std::size_t>& rows, const Values& v, double* r) {
@@ -464,6 +466,49 @@ void AddCause(Model* m, Cause c) {
   }
 }
 
+// Fits model `m` (the current model plus candidate `c`) from several starts and keeps the best:
+// the current fit's values, and - for the offset-like dead band and supply resistance, or when
+// a base parameter of the current fit sits on a bound (the first-order model could not follow
+// the data) - the linear starting values of the base model with the candidate's own starts
+// (dead band: +0.05, -0.1, -0.3, i.e. a dead band or a throttle offset).
+FitOut FitCandidate(const Data& d, const std::vector<std::size_t>& rows, const Model& m, Cause c,
+                    const Values& fresh, bool base_at_bound, const std::vector<double>& knees) {
+  std::vector<Model> starts = {m};
+  const bool offset_like = c == Cause::kThrottleDeadband || c == Cause::kSupplyResistance;
+  if (offset_like || base_at_bound) {
+    Model f = m;
+    for (int s = 0; s < kSlotCount; ++s) {
+      if (kSlotIsBase[s]) f.values[s] = fresh[s];
+    }
+    starts.push_back(f);
+  }
+  if (c == Cause::kThrottleDeadband) {
+    const std::size_t k = starts.size();
+    for (std::size_t j = 0; j < k; ++j) {
+      for (double db : {-0.1, -0.3}) {
+        Model v = starts[j];
+        v.values[kDeadband] = std::clamp(db, v.lower[kDeadband], v.upper[kDeadband]);
+        starts.push_back(v);
+      }
+    }
+  }
+  FitOut best;
+  for (const Model& st : starts) {
+    FitOut f = FitProfiled(d, rows, st, knees, LossType::kTrivial, 1.0);
+    if (f.ok && (!best.ok || f.sse < best.sse)) best = f;
+  }
+  return best;
+}
+
+bool BaseAtBound(const Model& m, const Values& v) {
+  for (int s = 0; s < kSlotCount; ++s) {
+    if (!kSlotIsBase[s] || !m.free[s]) continue;
+    const double tol = 1e-6 * std::max(std::fabs(m.upper[s] - m.lower[s]), 1e-12);
+    if (v[s] - m.lower[s] <= tol || m.upper[s] - v[s] <= tol) return true;
+  }
+  return false;
+}
+
 std::string Separation(Cause a, Cause b) {
   auto is = [&](Cause x, Cause y) { return (a == x && b == y) || (a == y && b == x); };
   if (is(Cause::kWindingTemperatureRise, Cause::kTorqueConstantDroop)) {
@@ -747,6 +792,49 @@ DiagnoseResult Diagnose(const SteadyTable& t, const DiagnoseOptions& o) {
   std::vector<std::size_t> used(n);
   std::iota(used.begin(), used.end(), 0);
 
+  // --- Effective-variance weights. The known inputs (VDC, and the speed or the torque) are
+  // measured with the same relative noise as the outputs, and at low throttle a small error in
+  // U = kv*VDC*TR or in KE*omega is a large error in the current (I = (U - KE*omega)/R is a
+  // small difference there). Each residual is therefore divided by the spread that relative
+  // noise of the output and of the inputs gives it (the "effective variance" of errors-in-
+  // variables fitting): s = sqrt(y^2 + (dy/dVDC*VDC)^2 + (dy/dx*x)^2), x = omega or torque,
+  // with the derivatives of a preliminary fit of the first-order model. Without this the F test
+  // sees heteroscedastic residuals and calls low-throttle noise an effect.
+  {
+    const FitOut pre = FitModel(d, used, base, LossType::kHuber, 1.0);
+    if (pre.ok) {
+      MotorParams mp;
+      EscParams ep;
+      ToParams(d, pre.values, &mp, &ep);
+      const Drive drive(mp, ep);
+      double p0[kMeasCount], pv[kMeasCount], px[kMeasCount];
+      for (std::size_t k = 0; k < n; ++k) {
+        const double h = 1e-4;
+        const bool tk = d.torque_known[k] != 0;
+        const double x = tk ? d.q[k] : d.omega[k];
+        auto predict = [&](double vdc, double xin, double* out) {
+          const OperatingPoint p = tk ? drive.AtTorque(vdc, d.tr[k], xin) : drive.AtSpeed(vdc, d.tr[k], xin);
+          out[kMOmega] = p.omega_rad_s;
+          out[kMIdc] = p.idc_a;
+          out[kMIrms] = p.irms_a;
+          out[kMVll] = p.vll_rms_v;
+          out[kMPac] = p.pac_w;
+        };
+        predict(d.vdc[k], x, p0);
+        predict(d.vdc[k] * (1.0 + h), x, pv);
+        predict(d.vdc[k], x == 0.0 ? h : x * (1.0 + h), px);
+        for (int tt = d.term_begin[k]; tt < d.term_begin[k + 1]; ++tt) {
+          Term& term = d.terms[tt];
+          const double sv = (pv[term.meas] - p0[term.meas]) / h;  // dy/dVDC * VDC
+          const double sx = x == 0.0 ? 0.0 : (px[term.meas] - p0[term.meas]) / h;
+          const double spread = std::sqrt(term.value * term.value + sv * sv + sx * sx);
+          const double floor = 5.0 / inv_scale[term.meas];
+          if (std::isfinite(spread)) term.inv_scale = 100.0 / std::max(spread, floor);
+        }
+      }
+    }
+  }
+
   // --- Outlier screen with the union model.
   if (o.outlier_sigmas > 0.0) {
     Model uni = base;
@@ -792,6 +880,18 @@ DiagnoseResult Diagnose(const SteadyTable& t, const DiagnoseOptions& o) {
                     "prediction at the start values): check the units of the columns");
   }
   current.values = cur_fit.values;
+  if (BaseAtBound(current, cur_fit.values)) {
+    std::string which;
+    for (int s = 0; s < kSlotCount; ++s) {
+      if (!kSlotIsBase[s] || !current.free[s]) continue;
+      const double tol = 1e-6 * std::max(std::fabs(current.upper[s] - current.lower[s]), 1e-12);
+      if (cur_fit.values[s] - current.lower[s] <= tol || current.upper[s] - cur_fit.values[s] <= tol) {
+        which += (which.empty() ? "" : ", ") + std::string(kSlotName[s]);
+      }
+    }
+    res.warnings.push_back("first-order fit has " + which +
+                           " on a physical bound: the first-order model cannot follow this log");
+  }
   CvOut cur_cv = CrossValidate(d, used, fold_of, o.folds, current, cur_fit, knees);
   ToParams(d, cur_fit.values, &res.base_motor, &res.base_esc);
   res.baseline_cv = ColumnErrors(d, used, cur_cv);
@@ -891,16 +991,28 @@ DiagnoseResult Diagnose(const SteadyTable& t, const DiagnoseOptions& o) {
 
   // --- Greedy forward selection.
   std::vector<Cause> remaining = candidates;
+  if (!has_tr && res.baseline_cv_rms_percent > o.no_throttle_max_percent) {
+    // Without a throttle column every row is taken at assumed_throttle; when the model misses
+    // by this much the rows are not such points and any "cause" would explain the wrong
+    // throttle, not the drive.
+    std::ostringstream w;
+    w << std::setprecision(3) << "no throttle column and the first-order model misses by "
+      << res.baseline_cv_rms_percent << " % rms: the rows are not full-throttle points, so no "
+      << "cause is named; diagnose a log that records the throttle";
+    res.warnings.push_back(w.str());
+    remaining.clear();
+  }
   while (static_cast<int>(res.findings.size()) < o.max_findings && !remaining.empty()) {
     std::vector<CandidateScore> scores;
     std::vector<FitOut> fits;
     std::vector<CvOut> cvs;
     std::vector<Model> models;
     const double aicc0 = Aicc(cur_fit.sse, cur_fit.n_terms, cur_fit.n_free);
+    const bool base_at_bound = BaseAtBound(current, cur_fit.values);
     for (Cause c : remaining) {
       Model m = current;
       AddCause(&m, c);
-      FitOut f = FitProfiled(d, used, m, knees, LossType::kTrivial, 1.0);
+      FitOut f = FitCandidate(d, used, m, c, base.values, base_at_bound, knees);
       CandidateScore cs;
       cs.cause = c;
       cs.testable = true;
@@ -929,7 +1041,16 @@ DiagnoseResult Diagnose(const SteadyTable& t, const DiagnoseOptions& o) {
           cs.p_value = FDistributionUpperTail(cs.f_statistic, q, df2);
           if (c == Cause::kEscSaturation) cs.p_value = std::min(1.0, cs.p_value * static_cast<double>(knees.size()));
         }
-        const bool pre = cs.p_value < o.alpha && cs.delta_aicc < 0.0;
+        // The extension's own parameter must be determined: at least 2 standard errors from
+        // its "no effect" value (0; 1 for sat_slope). A parameter the data cannot separate from
+        // the base parameters (|corr| -> 1, huge error) is not a finding, whatever the F test.
+        bool determined = true;
+        for (int sl : CauseSlots(c)) {
+          const double null_value = sl == kSatSlope ? 1.0 : 0.0;
+          const double se = f.stderr_[sl];
+          if (std::isfinite(se) && std::fabs(f.values[sl] - null_value) < 2.0 * se) determined = false;
+        }
+        const bool pre = cs.p_value < o.alpha && cs.delta_aicc < 0.0 && determined;
         if (pre) {
           cv = CrossValidate(d, used, fold_of, o.folds, m, f, knees);
           cs.cv_rms_percent = cv.rms_percent;
@@ -981,7 +1102,7 @@ DiagnoseResult Diagnose(const SteadyTable& t, const DiagnoseOptions& o) {
     for (Cause rc : rivals) {
       Model m = current;
       AddCause(&m, rc);
-      const FitOut f = FitProfiled(d, used, m, knees, LossType::kTrivial, 1.0);
+      const FitOut f = FitCandidate(d, used, m, rc, base.values, base_at_bound, knees);
       bool still = false;
       if (f.ok && f.sse < cur_fit.sse) {
         const int q = CauseExtraParams(rc);

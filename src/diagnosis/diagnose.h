@@ -81,6 +81,9 @@ struct DiagnoseOptions {
   double min_speed_fraction = 0.02;  // rows below this fraction of the top speed are dropped
   double min_throttle = 0.02;        // rows below this throttle are dropped
   double assumed_throttle = 1.0;     // every row's throttle when the log has none
+  // Without a throttle column, no cause is named when the baseline CV error exceeds this
+  // (percent rms): the rows are then not at assumed_throttle.
+  double no_throttle_max_percent = 10.0;
   // Starting / held parameters (catalog entries, --motor / --esc); the base model is still
   // refitted on the log (its free parameters), the rest are held at these values.
   std::optional<MotorParams> motor;

@@ -126,6 +126,25 @@ TEST(DiagnoseTest, CleanCampaignsReportNothing) {
   EXPECT_GE(clean, kSeeds * 95 / 100) << alarms;
 }
 
+// The same for DC logs without torque, where the speed is the input and the low-throttle
+// current is a small difference (the effective-variance weights of diagnose.h matter here).
+TEST(DiagnoseTest, CleanCampaignsWithoutTorqueReportNothing) {
+  constexpr int kSeeds = 40;
+  CampaignOptions co;
+  co.torque = false;
+  int clean = 0;
+  std::string alarms;
+  for (int s = 0; s < kSeeds; ++s) {
+    const DiagnoseResult r = Diagnose(MakeCampaign(2000 + s, {}, co).table);
+    if (r.findings.empty()) {
+      ++clean;
+    } else {
+      alarms += "seed " + std::to_string(2000 + s) + ": " + Names(r) + "\n";
+    }
+  }
+  EXPECT_GE(clean, kSeeds * 95 / 100) << alarms;
+}
+
 TEST(DiagnoseTest, ErrorsNameTheMissingColumn) {
   logs::SteadyTable t = MakeCampaign(5, {}).table;
   t.info[static_cast<int>(logs::Column::kVdcV)].present = false;
