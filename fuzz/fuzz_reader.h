@@ -66,9 +66,10 @@ int RunReader(const char* suffix, const std::uint8_t* data, std::size_t size, Re
 
 }  // namespace dynosize::fuzz
 
-// Defines LLVMFuzzerTestOneInput: BODY sees `const std::string& path` (the input file).
-#define DYNOSIZE_FUZZ_READER(SUFFIX, BODY)                                             \
+// Defines LLVMFuzzerTestOneInput: the body (a braced block, commas allowed) sees
+// `const std::string& path` (the input file).
+#define DYNOSIZE_FUZZ_READER(SUFFIX, ...)                                              \
   extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) { \
     return dynosize::fuzz::RunReader(SUFFIX, data, size,                              \
-                                     [](const std::string& path) BODY);               \
+                                     [](const std::string& path) __VA_ARGS__);        \
   }
