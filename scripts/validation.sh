@@ -1,7 +1,9 @@
 #!/usr/bin/env bash
 # Regenerates docs/validation.md: leave-one-out prediction errors of `dynosize calibrate` on the
 # real logs in ../shared/data (DriveCalc MData, sjkim T-Motor/Scorpion/A-4220 tables, alspitz and
-# Strawson RCbenchmark logs). Deterministic: the same build and data give the same file.
+# Strawson RCbenchmark logs), then the "Diagnosis" section (scripts/validation_diagnosis.sh:
+# `dynosize diagnose` on every real log with the columns, figures in docs/img). Deterministic:
+# the same build and data give the same file.
 #   usage: scripts/validation.sh [path/to/dynosize] [shared/data dir]
 set -euo pipefail
 here=$(cd "$(dirname "$0")/.." && pwd)
@@ -92,4 +94,7 @@ echo "Calibrated $ok of $n logs. Median over logs of the per-log median LOO erro
 echo "Logs where KE ran to its lower bound (fit not physical): $kebound."
 } >> "$out"
 cat "$here/docs/validation_notes.md" >> "$out"
+# Diagnosis of the same and further logs (dynosize diagnose), with figures in docs/img.
+"$here/scripts/validation_diagnosis.sh" "$exe" "$data" >> "$out"
+if [ -f "$here/docs/validation_diagnosis_notes.md" ]; then cat "$here/docs/validation_diagnosis_notes.md" >> "$out"; fi
 echo "wrote $out" >&2

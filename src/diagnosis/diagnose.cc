@@ -1088,7 +1088,10 @@ DiagnoseResult Diagnose(const SteadyTable& t, const DiagnoseOptions& o) {
     std::vector<Cause> rivals;
     for (std::size_t j = 0; j < scores.size(); ++j) {
       if (static_cast<int>(j) == best || !scores[j].significant) continue;
-      if (scores[j].aicc - bs.aicc < o.ambiguity_aicc) rivals.push_back(scores[j].cause);
+      if (scores[j].aicc - bs.aicc < o.ambiguity_aicc ||
+          scores[j].gain_percent >= o.ambiguity_gain_ratio * bs.gain_percent) {
+        rivals.push_back(scores[j].cause);
+      }
     }
     current = models[best];
     current.values = fits[best].values;
@@ -1114,9 +1117,12 @@ DiagnoseResult Diagnose(const SteadyTable& t, const DiagnoseOptions& o) {
         Ambiguity a;
         a.causes = {bs.cause, rc};
         std::ostringstream s;
-        s << std::setprecision(3) << CauseId(bs.cause) << " and " << CauseId(rc)
-          << " fit the data about equally well (AICc within " << o.ambiguity_aicc
-          << ") and the second adds nothing once the first is in the model";
+        const auto it = std::find_if(scores.begin(), scores.end(),
+                                     [&](const CandidateScore& x) { return x.cause == rc; });
+        s << std::setprecision(3) << CauseId(bs.cause) << " (gain " << bs.gain_percent << " %, AICc "
+          << bs.aicc << ") and " << CauseId(rc) << " (gain " << it->gain_percent << " %, AICc "
+          << it->aicc << ") both explain the misfit and the second adds nothing once the first is "
+          << "in the model: the data cannot tell them apart";
         a.reason = s.str();
         a.measurement = Separation(bs.cause, rc);
         res.ambiguous.push_back(a);

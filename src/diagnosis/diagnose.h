@@ -34,8 +34,9 @@
 //     significant one (largest CV gain) is added and the search repeats; it stops when nothing
 //     significant is left or after max_findings.
 //  6. Ambiguity: when another significant candidate comes within ambiguity_aicc of the winner's
-//     AICc and is no longer significant once the winner is in the model, the data cannot tell
-//     the two apart: both are reported, with the measurement that would separate them.
+//     AICc or reaches ambiguity_gain_ratio of its CV gain, and is no longer significant once the
+//     winner is in the model, the data cannot tell the two apart: both are reported, with the
+//     measurement that would separate them.
 #pragma once
 
 #include <cstddef>
@@ -76,8 +77,10 @@ struct DiagnoseOptions {
   double outlier_sigmas = 5.0;  // 0 disables the outlier screen
   double outlier_floor_percent = 0.2;  // floor of the robust sd (percent of the column median)
   int max_findings = 3;
-  // Two causes whose AICc differ by less than this are equally supported.
+  // A significant runner-up within this AICc of the winner, or with at least this fraction of
+  // its CV gain, that adds nothing once the winner is in the model, is reported as ambiguous.
   double ambiguity_aicc = 2.0;
+  double ambiguity_gain_ratio = 0.5;
   double min_speed_fraction = 0.02;  // rows below this fraction of the top speed are dropped
   double min_throttle = 0.02;        // rows below this throttle are dropped
   double assumed_throttle = 1.0;     // every row's throttle when the log has none

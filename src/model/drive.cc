@@ -53,6 +53,8 @@ Drive::Drive(const MotorParams& motor, const EscParams& esc)
       volt_factor_(motor.type == MotorType::kBldc ? kVllRmsPerVdc : 1.0),
       power_factor_(motor.type == MotorType::kBldc ? kPacPerVllIrms : 1.0),
       nonlinear_(motor.rth_k_per_w != 0.0 || motor.kt_droop_per_a != 0.0),
+      extended_(nonlinear_ || motor.io1_a_s_per_rad != 0.0 || esc.deadband != 0.0 ||
+                esc.rsupply_ohm != 0.0),
       thermal_k_per_a2_(kAlphaCopperPerK * motor.rth_k_per_w * power_factor_ * motor.rm_ohm) {}
 
 namespace {
@@ -132,22 +134,63 @@ double Drive::ThrottleFromEffective(double throttle_effective) const {
 
 OperatingPoint Drive::Complete(double vdc_v, double throttle, double omega_rad_s,
                                double current_a, std::uint32_t limits) const {
+  // One object and one return (copy elision); the extensions fill it in CompleteExtended so
+  // that the first-order path stays as short as before.
   OperatingPoint p;
+  if (extended_) {
+    CompleteExtended(vdc_v, throttle, omega_rad_s, current_a, &p, &limits);
+  } else {
+    p.vdc_v = vdc_v;
+    p.throttle = throttle;
+    p.throttle_effective = EffectiveThrottle(throttle);
+    p.saturated = throttle > esc_.tr_sat;
+    p.omega_rad_s = omega_rad_s;
+    p.rpm = RadPerSecToRpm(omega_rad_s);
+    p.irms_a = current_a;
+    p.torque_nm = motor_.kt_nm_per_a * (current_a - motor_.io_a);                 // (42)
+    if (limits & kLimitStalled) p.torque_nm = std::max(p.torque_nm, 0.0);
+    p.vll_rms_v = volt_factor_ * vdc_v * p.throttle_effective - esc_.resc_ohm * current_a;  // (47)
+    p.pac_w = power_factor_ * p.vll_rms_v * current_a;                            // (41), (51)
+    p.idc_a = (esc_.c1 * p.throttle_effective + esc_.c0) * current_a;             // (57)
+    p.pdc_w = vdc_v * p.idc_a;                                                    // (59)
+    p.pesc_w = p.pdc_w - p.pac_w;                                                 // (52)
+    p.pmech_w = p.torque_nm * omega_rad_s;                                        // (50)
+    p.eta_motor = Ratio(p.pmech_w, p.pac_w);
+    p.eta_esc = Ratio(p.pac_w, p.pdc_w);                                          // (53)
+    p.eta_system = Ratio(p.pmech_w, p.pdc_w);                                     // (13)
+  }
+  Flag(&p, limits);
+  return p;
+}
+
+void Drive::Flag(OperatingPoint* p, std::uint32_t limits) const {
+  if (p->throttle > 1.0) limits |= kLimitThrottleAboveOne;
+  if (p->throttle < 0.0) limits |= kLimitThrottleBelowZero;
+  const double i_max = std::max(std::fabs(p->idc_a), std::fabs(p->irms_a));
+  if (i_max > motor_.max_current_a) limits |= kLimitMotorCurrent;
+  if (i_max > esc_.max_current_a) limits |= kLimitEscCurrent;
+  if (p->pac_w > motor_.max_power_w) limits |= kLimitMotorPower;
+  if (p->vdc_v > esc_.vdc_max_v) limits |= kLimitEscVoltage;
+  p->limits = limits;
+}
+
+[[gnu::noinline]] void Drive::CompleteExtended(double vdc_v, double throttle, double omega_rad_s,
+                                               double current_a, OperatingPoint* out,
+                                               std::uint32_t* limits) const {
+  OperatingPoint& p = *out;
   p.vdc_v = vdc_v;
   p.throttle = throttle;
   p.throttle_effective = EffectiveThrottle(throttle);
   p.saturated = (esc_.deadband != 0.0 ? esc_.deadband + esc_.tr_sat * (1.0 - esc_.deadband)
-                                     : esc_.tr_sat) < throttle;
+                                      : esc_.tr_sat) < throttle;
   p.omega_rad_s = omega_rad_s;
   p.rpm = RadPerSecToRpm(omega_rad_s);
   p.irms_a = current_a;
-  const double io = motor_.io1_a_s_per_rad == 0.0
-                        ? motor_.io_a
-                        : motor_.io_a + motor_.io1_a_s_per_rad * omega_rad_s;  // section 9
-  p.torque_nm = TorqueConstant(current_a) * (current_a - io);                  // (42)
-  if (limits & kLimitStalled) p.torque_nm = std::max(p.torque_nm, 0.0);
+  const double io = motor_.io_a + motor_.io1_a_s_per_rad * omega_rad_s;          // section 9
+  p.torque_nm = TorqueConstant(current_a) * (current_a - io);                    // (42)
+  if (*limits & kLimitStalled) p.torque_nm = std::max(p.torque_nm, 0.0);
   p.idc_a = (esc_.c1 * p.throttle_effective + esc_.c0) * current_a;             // (57)
-  const double vdc_esc = esc_.rsupply_ohm == 0.0 ? vdc_v : vdc_v - esc_.rsupply_ohm * p.idc_a;
+  const double vdc_esc = vdc_v - esc_.rsupply_ohm * p.idc_a;                    // supply drop
   p.vll_rms_v = volt_factor_ * vdc_esc * p.throttle_effective - esc_.resc_ohm * current_a;  // (47)
   p.pac_w = power_factor_ * p.vll_rms_v * current_a;                            // (41), (51)
   p.pdc_w = vdc_v * p.idc_a;                                                    // (59)
@@ -159,21 +202,28 @@ OperatingPoint Drive::Complete(double vdc_v, double throttle, double omega_rad_s
   if (motor_.rth_k_per_w != 0.0) {
     const double rm_hot = WindingResistance(current_a);
     p.winding_rise_k = motor_.rth_k_per_w * power_factor_ * rm_hot * current_a * current_a;
-    if (!std::isfinite(rm_hot)) limits |= kLimitThermalRunaway;
+    if (!std::isfinite(rm_hot)) *limits |= kLimitThermalRunaway;
   }
-
-  if (throttle > 1.0) limits |= kLimitThrottleAboveOne;
-  if (throttle < 0.0) limits |= kLimitThrottleBelowZero;
-  const double i_max = std::max(std::fabs(p.idc_a), std::fabs(p.irms_a));
-  if (i_max > motor_.max_current_a) limits |= kLimitMotorCurrent;
-  if (i_max > esc_.max_current_a) limits |= kLimitEscCurrent;
-  if (p.pac_w > motor_.max_power_w) limits |= kLimitMotorPower;
-  if (vdc_v > esc_.vdc_max_v) limits |= kLimitEscVoltage;
-  p.limits = limits;
-  return p;
 }
 
 OperatingPoint Drive::AtLoad(double vdc_v, double throttle, const TorqueLaw& load) const {
+  if (extended_) return AtLoadExtended(vdc_v, throttle, load);
+  const double kt = motor_.kt_nm_per_a;
+  const double u = volt_factor_ * vdc_v * EffectiveThrottle(throttle);  // (48) left side
+  // Substituting I = (U - KE*w)/R (48) into KT*(I - Io) = a + b*w + c*w^2 gives
+  // c*w^2 + (b + KT*KE/R)*w + (a + KT*Io - KT*U/R) = 0.
+  const double b_total = load.b_nm_s_per_rad + kt * motor_.ke_v_s_per_rad / r_total_ohm_;
+  const double c_total = load.a_nm + kt * motor_.io_a - kt * u / r_total_ohm_;
+  const double omega = PositiveRoot(load.c_nm_s2_per_rad2, b_total, c_total);
+  if (omega < 0.0) {
+    // The load at standstill exceeds what the motor can deliver: it stalls.
+    return Complete(vdc_v, throttle, 0.0, std::max(u / r_total_ohm_, 0.0), kLimitStalled);
+  }
+  const double current = (u - motor_.ke_v_s_per_rad * omega) / r_total_ohm_;
+  return Complete(vdc_v, throttle, omega, current, kLimitNone);
+}
+
+[[gnu::noinline]] OperatingPoint Drive::AtLoadExtended(double vdc_v, double throttle, const TorqueLaw& load) const {
   if (nonlinear_) return AtLoadNonlinear(vdc_v, throttle, load);
   const double kt = motor_.kt_nm_per_a;
   const double tre = EffectiveThrottle(throttle);
@@ -239,6 +289,14 @@ OperatingPoint Drive::AtSpeed(double vdc_v, double throttle, double omega_rad_s)
 }
 
 OperatingPoint Drive::Inverse(double vdc_v, double torque_nm, double omega_rad_s) const {
+  if (extended_) return InverseExtended(vdc_v, torque_nm, omega_rad_s);
+  const double current = torque_nm / motor_.kt_nm_per_a + motor_.io_a;                 // (42)
+  const double u = r_total_ohm_ * current + motor_.ke_v_s_per_rad * omega_rad_s;       // (48)
+  const double throttle = ThrottleFromEffective(u / (volt_factor_ * vdc_v));
+  return Complete(vdc_v, throttle, omega_rad_s, current, kLimitNone);
+}
+
+[[gnu::noinline]] OperatingPoint Drive::InverseExtended(double vdc_v, double torque_nm, double omega_rad_s) const {
   const double kt = motor_.kt_nm_per_a;
   const double io = motor_.io1_a_s_per_rad == 0.0
                         ? motor_.io_a

@@ -220,6 +220,13 @@ class Drive {
   double SeriesResistance(double throttle_effective) const;
   // Current that holds the circuit (48) at U - KE*omega = x with the temperature-dependent Rm.
   double CircuitCurrent(double x_v, double r_series_ohm) const;
+  // Paths with an extension (the first-order paths stay short and inlinable).
+  OperatingPoint AtLoadExtended(double vdc_v, double throttle, const TorqueLaw& load) const;
+  OperatingPoint InverseExtended(double vdc_v, double torque_nm, double omega_rad_s) const;
+  void CompleteExtended(double vdc_v, double throttle, double omega_rad_s, double current_a,
+                        OperatingPoint* p, std::uint32_t* limits) const;
+  // Sets the limit bits shared by every path.
+  void Flag(OperatingPoint* p, std::uint32_t limits) const;
   // Nonlinear path of AtLoad (temperature rise or droop).
   OperatingPoint AtLoadNonlinear(double vdc_v, double throttle, const TorqueLaw& load) const;
 
@@ -233,6 +240,7 @@ class Drive {
   double volt_factor_;
   double power_factor_;
   bool nonlinear_;
+  bool extended_;  // any extension non-zero (else the first-order code paths run unchanged)
   double thermal_k_per_a2_;  // alpha_cu*rth*kp*Rm0: Rm(I) = Rm0/(1 - thermal_k*I^2)
 };
 

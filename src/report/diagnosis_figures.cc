@@ -175,18 +175,44 @@ std::vector<std::string> WriteDiagnosisFigures(const std::string& dir, const log
         if (r.row_used[i] && std::isfinite(b) && t.Get(c)[i] != 0.0) errs.push_back((b - t.Get(c)[i]) / t.Get(c)[i] * 100.0);
       }
       const double miss = std::max(3.0 * MedianAbs(errs), 1.0);
-      std::map<long, std::vector<std::size_t>> by_v;
-      for (std::size_t i = 0; i < t.rows(); ++i) {
-        if (!r.row_used[i] || !std::isfinite(r.baseline_cv_prediction.at(c)[i])) continue;
-        by_v[std::lround(t.Get(Column::kVdcV)[i] * 2.0)].push_back(i);
+      // Series: sweeps (consecutive rows while the x variable does not fall), the way stand
+      // logs are taken; more than 8 sweeps are grouped by supply voltage (0.5 V bins) instead.
+      std::vector<std::vector<std::size_t>> groups;
+      std::vector<std::string> titles;
+      {
+        double last = -1e300;
+        for (std::size_t i = 0; i < t.rows(); ++i) {
+          if (!r.row_used[i] || !std::isfinite(r.baseline_cv_prediction.at(c)[i])) continue;
+          const double x = t.Get(xcol)[i];
+          if (groups.empty() || x < last) groups.emplace_back();
+          groups.back().push_back(i);
+          last = x;
+        }
+        if (groups.size() > 8) {
+          std::map<long, std::vector<std::size_t>> by_v;
+          for (const auto& gr : groups) {
+            for (std::size_t i : gr) by_v[std::lround(t.Get(Column::kVdcV)[i] * 2.0)].push_back(i);
+          }
+          groups.clear();
+          for (auto& [vkey, rows] : by_v) {
+            std::sort(rows.begin(), rows.end(), [&](std::size_t a, std::size_t bb) {
+              return t.Get(xcol)[a] < t.Get(xcol)[bb];
+            });
+            groups.push_back(rows);
+          }
+        }
+        for (const auto& gr : groups) {
+          double v = 0.0;
+          for (std::size_t i : gr) v += t.Get(Column::kVdcV)[i];
+          std::ostringstream tt;
+          tt.precision(3);
+          tt << v / static_cast<double>(gr.size()) << " V";
+          titles.push_back(tt.str());
+        }
       }
       DataBlock b;
       b.name = "c" + std::to_string(k);
-      std::vector<std::string> titles;
-      for (auto& [vkey, rows] : by_v) {
-        std::sort(rows.begin(), rows.end(), [&](std::size_t a, std::size_t bb) {
-          return t.Get(xcol)[a] < t.Get(xcol)[bb];
-        });
+      for (const auto& rows : groups) {
         std::vector<double> x, m, pb, pe, missed;
         for (std::size_t i : rows) {
           const double mv = t.Get(c)[i];
@@ -198,10 +224,6 @@ std::vector<std::string> WriteDiagnosisFigures(const std::string& dir, const log
           missed.push_back(mv != 0.0 && std::fabs((bv - mv) / mv * 100.0) > miss ? mv * ax.scale : std::nan(""));
         }
         b.series.push_back({x, m, pb, pe, missed});
-        std::ostringstream tt;
-        tt.precision(3);
-        tt << static_cast<double>(vkey) / 2.0 << " V";
-        titles.push_back(tt.str());
       }
       blocks.push_back(b);
       g << "set title '" << ax.label << "'\nset ylabel '" << ax.label << " [" << ax.unit << "]'\nplot ";

@@ -4,6 +4,7 @@
 // model.md section 9 effects in such campaigns and require the diagnosis to find them.
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 #include <vector>
@@ -29,6 +30,8 @@ struct CampaignOptions {
   int outliers = 2;       // rows whose idc_a is off by 15-30 %
   double size = -1.0;     // effect size in [0, 1] (fraction of its range); < 0: random
   double noise_min = 0.003, noise_max = 0.01;
+  std::vector<double> vdc_v = {11.1, 14.8, 16.8};  // supply voltages of the sweeps
+  int props = 2;                                   // 1 or 2 propellers per voltage
 };
 
 // The true value of each effect's main parameter for a size s in [0, 1].
@@ -88,7 +91,8 @@ inline Campaign MakeCampaign(unsigned seed, const std::vector<Cause>& effects,
   const double w_full = base.NoLoadSpeed(14.8, 1.0) * 0.8;
   const double q_full = c.motor.kt_nm_per_a * 22.0;
   const double c_prop = q_full / (w_full * w_full);
-  const std::vector<double> props = {c_prop, 0.6 * c_prop};
+  std::vector<double> props = {c_prop, 0.6 * c_prop};
+  props.resize(static_cast<std::size_t>(std::clamp(o.props, 1, 2)));
   const double imax = 25.0;
   for (Cause e : effects) {
     HideEffect(e, o.size >= 0.0 ? o.size : u01(rng), imax, &c.motor, &c.esc, &c.hidden);
@@ -104,7 +108,7 @@ inline Campaign MakeCampaign(unsigned seed, const std::vector<Cause>& effects,
   if (o.torque) cols.push_back(Column::kTorqueNm);
   for (Column col : cols) t.info[static_cast<int>(col)].present = true;
   std::size_t row = 0;
-  for (double v : {11.1, 14.8, 16.8}) {
+  for (double v : o.vdc_v) {
     for (double cp : props) {
       for (int k = 0; k <= 16; ++k) {
         const double tr = o.throttle ? 0.2 + 0.05 * k : 1.0;

@@ -110,6 +110,27 @@ TEST(DiagnoseTest, TwoEffectsAtOnceAreBothFound) {
   }
 }
 
+// One voltage, one propeller, no torque: current rises with throttle along a single path, so a
+// supply resistance (drop ~ IDC) and winding heating (Rm ~ I^2) bend the data alike. The
+// diagnosis must say that it cannot tell them apart, and what would.
+TEST(DiagnoseTest, IndistinguishableCausesAreReportedAsAmbiguous) {
+  CampaignOptions co;
+  co.torque = false;
+  co.vdc_v = {14.8};
+  co.props = 1;
+  const Campaign c = MakeCampaign(301, {Cause::kSupplyResistance}, co);
+  const DiagnoseResult r = Diagnose(c.table);
+  SCOPED_TRACE(r.FullReport());
+  ASSERT_FALSE(r.findings.empty());
+  ASSERT_FALSE(r.ambiguous.empty());
+  const Ambiguity& a = r.ambiguous.front();
+  const bool pair = (a.causes[0] == Cause::kSupplyResistance || a.causes[1] == Cause::kSupplyResistance) &&
+                    (a.causes[0] == Cause::kWindingTemperatureRise ||
+                     a.causes[1] == Cause::kWindingTemperatureRise);
+  EXPECT_TRUE(pair);
+  EXPECT_NE(a.measurement.find("VDC at the ESC"), std::string::npos) << a.measurement;
+}
+
 // Clean campaigns: findings empty in at least 95 % of the seeds (the false-alarm bound).
 TEST(DiagnoseTest, CleanCampaignsReportNothing) {
   constexpr int kSeeds = 60;
