@@ -49,6 +49,6 @@ for t in "${targets[@]}"; do
     echo "fuzz.sh: $t FOUND A FAILURE: reproduce with $exe $build/fuzz/artifacts/$t-*" >&2
     exit 1
   fi
-  grep -E "^#[0-9]+ +DONE" "$build/fuzz/$t.log" | tail -n 1 | sed "s/^/fuzz.sh: $t: /" >&2 || true
+  grep -E "^#[0-9]+[[:space:]]+DONE" "$build/fuzz/$t.log" | tail -n 1 | sed "s/^/fuzz.sh: $t: /" >&2 || true
 done
 echo "fuzz.sh: ${#targets[@]} targets clean in $(( $(date +%s) - start )) s" >&2
