@@ -152,7 +152,7 @@ int RunSimulate(const SimulateOptions& o) {
         }
       }
       if (o.torque_law[2] < 0.0) throw UsageError("--torque-law: C must be >= 0 (a propeller's torque grows with speed)");
-      req.torque_nm = o.torque_law[0];  // for the checks below: one load given
+      req.torque_nm = 0.0;  // for the checks below: one load given (its coefficients are checked above)
     }
     if (o.throttle && !(*o.throttle >= 0.0 && *o.throttle <= 1.0)) {
       throw UsageError("--throttle " + FlagValue(*o.throttle) +

@@ -24,7 +24,7 @@ int Fail(ExitCode code, const std::string& message) {
     if (end == std::string::npos) end = message.size();
     std::size_t b = begin;
     while (b < end && message[b] == ' ') ++b;  // continuation lines are indented in messages
-    out += "dynosize: " + message.substr(b, end - b) + "\n";
+    if (b < end || out.empty()) out += "dynosize: " + message.substr(b, end - b) + "\n";
     begin = end + 1;
   }
   std::cerr << out;

@@ -1,6 +1,7 @@
 // Fuzz target: logs::ReadLog through a column map (kMapped), once by header names with units
 // and once by column numbers of a headerless table.
 #include "fuzz_reader.h"
+#include "log_checks.h"
 #include "logs/log_reader.h"
 
 DYNOSIZE_FUZZ_READER(".csv", {
@@ -10,11 +11,11 @@ DYNOSIZE_FUZZ_READER(".csv", {
                   "throttle=Throttle"};
   o.mapped_drop_rows_with_empty_cells = true;
   try {
-    (void)dynosize::logs::ReadLog(path, o);
+    dynosize::fuzz::CheckTable(dynosize::logs::ReadLog(path, o));
   } catch (const dynosize::Error&) {
     // the second map below still runs
   }
   o.column_map = {"vdc_v=#1", "idc_a=#2", "rpm=#3", "throttle=#4"};
   o.mapped_drop_rows_with_empty_cells = false;
-  (void)dynosize::logs::ReadLog(path, o);
+  dynosize::fuzz::CheckTable(dynosize::logs::ReadLog(path, o));
 })

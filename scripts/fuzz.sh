@@ -42,13 +42,13 @@ for t in "${targets[@]}"; do
     done
   done < scripts/fuzz_seeds.txt
   echo "fuzz.sh: $t: ${per} s, $n seed files, corpus $(ls "$corpus" | wc -l) inputs" >&2
-  if ! "$exe" -max_total_time="$per" -max_len=65536 -timeout=10 -rss_limit_mb=2048 \
+  if ! "$exe" -max_total_time="$per" -max_len=16384 -timeout=10 -rss_limit_mb=2048 \
        -print_final_stats=0 -artifact_prefix="$build/fuzz/artifacts/$t-" \
        "$corpus" "$seeds" > "$build/fuzz/$t.log" 2>&1; then
     tail -n 60 "$build/fuzz/$t.log" >&2
     echo "fuzz.sh: $t FOUND A FAILURE: reproduce with $exe $build/fuzz/artifacts/$t-*" >&2
     exit 1
   fi
-  grep -E "^#[0-9]+ +DONE" "$build/fuzz/$t.log" | tail -n 1 | sed "s/^/fuzz.sh: $t: /" >&2 || true
+  grep -E "^#[0-9]+[[:space:]]+DONE" "$build/fuzz/$t.log" | tail -n 1 | sed "s/^/fuzz.sh: $t: /" >&2 || true
 done
 echo "fuzz.sh: ${#targets[@]} targets clean in $(( $(date +%s) - start )) s" >&2

@@ -23,6 +23,10 @@ stamp "Release build and tests done"
 
 # -O1: the sanitizers' recommended level (fast to compile, readable reports); assertions stay on
 # (no NDEBUG) as an extra check in this build.
+# A build-asan configured with another compiler cannot switch: start it afresh.
+if [ -f build-asan/CMakeCache.txt ] && ! grep -q '^CMAKE_CXX_COMPILER:.*clang' build-asan/CMakeCache.txt; then
+  rm -rf build-asan
+fi
 CXX=clang++ cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=Release -DCMAKE_CXX_FLAGS_RELEASE=-O1 \
   -DDYNOSIZE_SANITIZE=ON -DDYNOSIZE_FUZZ=ON -DDYNOSIZE_BUILD_BENCHMARKS=OFF
 cmake --build build-asan -j"$jobs"

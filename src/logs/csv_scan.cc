@@ -25,7 +25,9 @@ LineReader::LineReader(const std::string& path, std::size_t max_line_bytes)
   }
   file_ = std::fopen(path.c_str(), "rb");
   if (file_ == nullptr) throw NoInputError(path + ": cannot open: " + std::strerror(errno));
-  buf_.resize(kChunkBytes);
+  // A small file gets a small buffer (Fill grows it when a line needs more).
+  const auto size = std::filesystem::file_size(path, ec);
+  buf_.resize(ec ? kChunkBytes : std::clamp<std::size_t>(static_cast<std::size_t>(size) + 1, 64, kChunkBytes));
 }
 
 LineReader::~LineReader() {

@@ -600,6 +600,12 @@ void BuildPerRow(SteadyTable* t, const std::vector<Slot*>& chosen, const RawRows
                  bool zero_is_dropout) {
   double vals[kColumnCount];
   const std::size_t n = rows.line.size();
+  // At most n rows: no growth by doubling on the way (peak memory of a million-row log).
+  for (int c = 0; c < kColumnCount; ++c) {
+    if (chosen[c] != nullptr) t->columns[c].reserve(n);
+  }
+  t->source_line.reserve(n);
+  t->samples.reserve(n);
   for (std::size_t r = 0; r < n; ++r) {
     if (rows.esc_outside[r]) {
       AddDrop(t, rows.esc_reason);

@@ -92,7 +92,9 @@ inline std::vector<BadInputCase> BadInputCases() {
   const std::string cal = "calibrate --motor-id fm --esc-id fe ";
   const std::string list = "catalog list --catalog {dir}/cat";
   const std::string sim = "--catalog {dir}/cat simulate --motor m1 --esc e1 ";
-  const std::string batch = "simulate --motor emax_1900kv_paper --esc multistar_30a_paper --batch ";
+  // {dir}/paper holds the paper's catalog file only (bad_input_test.cc puts it there).
+  const std::string batch =
+      "--catalog {dir}/paper simulate --motor emax_1900kv_paper --esc multistar_30a_paper --batch ";
   std::vector<BadInputCase> c;
 
   // ---- catalog JSON (strict)
@@ -313,7 +315,8 @@ inline std::vector<BadInputCase> BadInputCases() {
   c.push_back({"batch_binary", {{"p.csv", Garbage(500, 11)}}, batch + "{dir}/p.csv", 65, {"{dir}/p.csv"}});
 
   // ---- command-line values
-  const std::string pair = "simulate --motor emax_1900kv_paper --esc multistar_30a_paper ";
+  const std::string pair =
+      "--catalog {dir}/paper simulate --motor emax_1900kv_paper --esc multistar_30a_paper ";
   c.push_back({"flag_throttle_above_one", {}, pair + "--vdc 7.2 --throttle 1.7 --torque 0.01", 64,
                {"--throttle", "1.7", "between 0 and 1"}});
   c.push_back({"flag_throttle_negative", {}, pair + "--vdc 7.2 --throttle -0.2 --torque 0.01", 64,
@@ -337,7 +340,7 @@ inline std::vector<BadInputCase> BadInputCases() {
                {"--torque-law"}});
   c.push_back({"flag_unknown", {}, pair + "--vdc 7.2 --colour red", 64, {"--colour"}});
   c.push_back({"flag_unknown_subcommand", {}, "fly --now", 64, {"unknown subcommand 'fly'"}});
-  c.push_back({"flag_unknown_motor", {}, "simulate --motor emax_1900kv_papr --esc multistar_30a_paper --vdc 7",
+  c.push_back({"flag_unknown_motor", {}, "--catalog {dir}/paper simulate --motor emax_1900kv_papr --esc multistar_30a_paper --vdc 7",
                64, {"emax_1900kv_papr", "emax_1900kv_paper"}});
   c.push_back({"flag_batch_missing", {}, batch + "{dir}/none.csv", 66, {"{dir}/none.csv", "no such file"}});
   c.push_back({"flag_calibrate_esc_endpoints", {{"log.csv", CanonicalLog()}},
