@@ -156,12 +156,38 @@ int main(int argc, char** argv) {
   diagnose->add_flag("--json", diag.json, "print one JSON object (baseline, findings, ambiguous, extended_model)");
   diagnose->add_option("--plot", diag.plot_dir, "write residual, measured-vs-predicted and curve figures here");
 
+  // evaluate, optimize (issue #6)
+  cli::EvaluateOptions eval;
+  auto* evaluate = app.add_subcommand(
+      "evaluate", "one motor/ESC/propeller/battery combination flying a mission: operating point "
+                  "per segment, battery state, objective, limits");
+  evaluate->add_option("mission", eval.mission, "mission JSON file")->required();
+  evaluate->add_option("--motor", eval.motor_id, "motor id")->required();
+  evaluate->add_option("--esc", eval.esc_id, "ESC id")->required();
+  evaluate->add_option("--prop", eval.prop_id, "propeller id")->required();
+  evaluate->add_option("--battery", eval.battery_id, "battery (cell) id")->required();
+  evaluate->add_option("--cells", eval.cells, "cells in series (default: the mission's, if fixed)")
+      ->check(CLI::Range(1, 64));
+  evaluate->add_flag("--json", eval.json, "print one JSON object");
+  evaluate->add_option("--plot", eval.plot_dir, "write per-segment efficiency maps here");
+  cli::OptimizeOptions optim;
+  auto* optimize = app.add_subcommand(
+      "optimize", "the best motor/ESC/propeller/battery combinations of the catalog for a mission "
+                  "(exact search with provably safe pruning)");
+  optimize->add_option("mission", optim.mission, "mission JSON file")->required();
+  optimize->add_option("--top", optim.top, "how many combinations to list")->check(CLI::Range(1, 1000));
+  optimize->add_flag("--json", optim.json, "print one JSON object");
+  optimize->add_flag("--quiet", optim.quiet, "no progress bar");
+  optimize->add_option("--plot", optim.plot_dir,
+                       "write the Pareto front and the top pick's efficiency maps here");
+
   if (argc > 1 && argv[1][0] != '-') {
     const std::string first = argv[1];
-    if (first != "simulate" && first != "catalog" && first != "calibrate" &&
-        first != "diagnose") {
+    if (first != "simulate" && first != "catalog" && first != "calibrate" && first != "diagnose" &&
+        first != "evaluate" && first != "optimize") {
       return Fail(ExitCode::kUsage, "unknown subcommand '" + first +
-                                        "': valid are simulate, calibrate, diagnose, catalog (see 'dynosize --help')");
+                                        "': valid are simulate, calibrate, diagnose, catalog, evaluate, "
+                                        "optimize (see 'dynosize --help')");
     }
   }
   try {
@@ -196,6 +222,14 @@ int main(int argc, char** argv) {
     if (*diagnose) {
       diag.catalog_dir = dir;
       return cli::RunDiagnose(diag);
+    }
+    if (*evaluate) {
+      eval.catalog_dir = dir;
+      return cli::RunEvaluate(eval);
+    }
+    if (*optimize) {
+      optim.catalog_dir = dir;
+      return cli::RunOptimize(optim);
     }
     if (*list_cmd) {
       list.catalog_dir = dir;
