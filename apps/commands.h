@@ -90,4 +90,28 @@ struct CatalogImportOptions {
 };
 int RunCatalogImport(const CatalogImportOptions& o);
 
+// `dynosize evaluate MISSION --motor ID --esc ID --prop ID --battery ID [--cells N] [--json]`:
+// one combination flying the mission (src/optimization/mission_eval.h).
+struct EvaluateOptions {
+  std::string catalog_dir;
+  std::string mission;
+  std::string motor_id, esc_id, prop_id, battery_id;
+  int cells = 0;  // 0: the mission's only cell count (an error when it gives a range)
+  bool json = false;
+  std::string plot_dir;
+};
+int RunEvaluate(const EvaluateOptions& o);
+
+// `dynosize optimize MISSION [--top N] [--json] [--plot DIR]`: the best N combinations of the
+// catalog (src/optimization/search.h).
+struct OptimizeOptions {
+  std::string catalog_dir;
+  std::string mission;
+  int top = 5;
+  bool json = false;
+  bool quiet = false;
+  std::string plot_dir;
+};
+int RunOptimize(const OptimizeOptions& o);
+
 }  // namespace dynosize::cli

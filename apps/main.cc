@@ -15,8 +15,19 @@ namespace {
 
 using dynosize::ExitCode;
 
+// One "dynosize: " line per problem (a catalog with several problems lists each on its line).
 int Fail(ExitCode code, const std::string& message) {
-  std::cerr << "dynosize: " << message << "\n";
+  std::string out;
+  std::size_t begin = 0;
+  while (begin <= message.size()) {
+    std::size_t end = message.find('\n', begin);
+    if (end == std::string::npos) end = message.size();
+    std::size_t b = begin;
+    while (b < end && message[b] == ' ') ++b;  // continuation lines are indented in messages
+    if (b < end || out.empty()) out += "dynosize: " + message.substr(b, end - b) + "\n";
+    begin = end + 1;
+  }
+  std::cerr << out;
   return static_cast<int>(code);
 }
 
@@ -149,12 +160,38 @@ int main(int argc, char** argv) {
   diagnose->add_option("--id", diag.id, "id prefix of the --out entries (default: the log's base name)");
   diagnose->add_flag("--force", diag.force, "replace entries with the same ids in --out");
 
+  // evaluate, optimize (issue #6)
+  cli::EvaluateOptions eval;
+  auto* evaluate = app.add_subcommand(
+      "evaluate", "one motor/ESC/propeller/battery combination flying a mission: operating point "
+                  "per segment, battery state, objective, limits");
+  evaluate->add_option("mission", eval.mission, "mission JSON file")->required();
+  evaluate->add_option("--motor", eval.motor_id, "motor id")->required();
+  evaluate->add_option("--esc", eval.esc_id, "ESC id")->required();
+  evaluate->add_option("--prop", eval.prop_id, "propeller id")->required();
+  evaluate->add_option("--battery", eval.battery_id, "battery (cell) id")->required();
+  evaluate->add_option("--cells", eval.cells, "cells in series (default: the mission's, if fixed)")
+      ->check(CLI::Range(1, 64));
+  evaluate->add_flag("--json", eval.json, "print one JSON object");
+  evaluate->add_option("--plot", eval.plot_dir, "write per-segment efficiency maps here");
+  cli::OptimizeOptions optim;
+  auto* optimize = app.add_subcommand(
+      "optimize", "the best motor/ESC/propeller/battery combinations of the catalog for a mission "
+                  "(exact search with provably safe pruning)");
+  optimize->add_option("mission", optim.mission, "mission JSON file")->required();
+  optimize->add_option("--top", optim.top, "how many combinations to list")->check(CLI::Range(1, 1000));
+  optimize->add_flag("--json", optim.json, "print one JSON object");
+  optimize->add_flag("--quiet", optim.quiet, "no progress bar");
+  optimize->add_option("--plot", optim.plot_dir,
+                       "write the Pareto front and the top pick's efficiency maps here");
+
   if (argc > 1 && argv[1][0] != '-') {
     const std::string first = argv[1];
-    if (first != "simulate" && first != "catalog" && first != "calibrate" &&
-        first != "diagnose") {
+    if (first != "simulate" && first != "catalog" && first != "calibrate" && first != "diagnose" &&
+        first != "evaluate" && first != "optimize") {
       return Fail(ExitCode::kUsage, "unknown subcommand '" + first +
-                                        "': valid are simulate, calibrate, diagnose, catalog (see 'dynosize --help')");
+                                        "': valid are simulate, calibrate, diagnose, catalog, evaluate, "
+                                        "optimize (see 'dynosize --help')");
     }
   }
   try {
@@ -189,6 +226,14 @@ int main(int argc, char** argv) {
     if (*diagnose) {
       diag.catalog_dir = dir;
       return cli::RunDiagnose(diag);
+    }
+    if (*evaluate) {
+      eval.catalog_dir = dir;
+      return cli::RunEvaluate(eval);
+    }
+    if (*optimize) {
+      optim.catalog_dir = dir;
+      return cli::RunOptimize(optim);
     }
     if (*list_cmd) {
       list.catalog_dir = dir;

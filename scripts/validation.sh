@@ -29,8 +29,9 @@ echo
 echo "## DriveCalc MData (no throttle column: full-throttle points)"
 echo
 "$exe" calibrate --drivecalc-all "$data/drivecalc/MData.csv" --out "$tmp/dc.json" --loo --json > "$tmp/dc_all.json"
-echo "Motors fitted: $(jq .motors_fitted "$tmp/dc_all.json") of $(jq .motors_seen "$tmp/dc_all.json") with rpm"\
-" ($(jq .motors_too_few_points "$tmp/dc_all.json") with fewer than 1 no-load point with rpm + 3 loaded points)."
+echo "Motors fitted: $(jq .motors_fitted "$tmp/dc_all.json") of $(jq .motors_seen "$tmp/dc_all.json")"\
+" ($(jq .motors_too_few_points "$tmp/dc_all.json") with fewer than 1 no-load point + 3 loaded points with rpm)."\
+" No-load points without an rpm reading count: their current fixes Io."
 echo
 echo "| model | idc, loaded points | omega @I, all points | points |"
 echo "|---|---|---|---|"

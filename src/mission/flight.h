@@ -1,0 +1,82 @@
+// Forward-flight physics of a segment: the thrust each rotor must give and the component of
+// the airspeed along its axis (the advance ratio the propeller model sees).
+//
+//  - hover: T_total = W (momentum balance at zero speed).
+//  - climb (rate Vc, < 0 descends): T_total = W + D(Vc), D = 1/2*rho*Vc*|Vc|*Cd*A, the rotor
+//    axis vertical and the axial inflow Vc. A descent is given the static propeller data
+//    (axial inflow 0): the propeller tables do not cover negative advance ratios, and the
+//    vortex-ring state makes momentum theory invalid there (Leishman, Principles of Helicopter
+//    Aerodynamics, 2nd ed., sec. 2.13); the static value is the usual conservative stand-in.
+//  - cruise without a wing (a multirotor): the standard steady-level forward-flight balance
+//    of a multirotor (e.g. Bangura & Mahony, "Nonlinear dynamic modeling for high performance
+//    control of a quadrotor", ACRA 2012; Leishman sec. 2.14-2.15): the thrust vector tilts
+//    forward by theta so that T*cos(theta) = W and T*sin(theta) = D(V), hence
+//        T_total = sqrt(W^2 + D^2),  theta = atan(D/W),
+//    and the airspeed component along the rotor axis is V*sin(theta) (the propeller data are
+//    axial; the edgewise component is neglected, which is conservative: edgewise flow adds
+//    translational lift).
+//  - cruise with a wing (lift + cruise): the wing carries W, the cruise rotors give
+//    T_total = W/(L/D) along the flight path, axial inflow V.
+//  - coaxial pairs: the lower rotor works in the upper one's wake; at equal thrust the pair
+//    needs kappa_int = 1.2816 times the induced power of two isolated rotors (Leishman sec.
+//    2.14.2, Eq. 2.196, theoretical, fully contracted wake). With ideal P ~ T^(3/2) that is the
+//    power of isolated rotors at kappa_int^(2/3) = 1.180 times the thrust, which is what the
+//    isolated-propeller data are evaluated at.
+#pragma once
+
+#include <cmath>
+
+#include "common/units.h"
+#include "mission/mission.h"
+
+namespace dynosize {
+
+inline constexpr double kCoaxialInducedPowerFactor = 1.2816;
+
+struct RotorLoad {
+  double thrust_total_n = 0.0;   // all rotors together
+  double thrust_per_rotor_n = 0.0;  // what each rotor's propeller data are evaluated at
+  double axial_airspeed_m_s = 0.0;
+  double tilt_rad = 0.0;
+  int rotors = 0;
+};
+
+inline RotorLoad SegmentRotorLoad(const Mission& m, const Segment& s, double total_mass_kg,
+                                  double airspeed_m_s) {
+  RotorLoad r;
+  const double w = total_mass_kg * kStandardGravity;
+  const double cda = m.vehicle.drag_area_m2 * m.vehicle.drag_coefficient;
+  r.rotors = s.rotors_active > 0 ? s.rotors_active : m.vehicle.rotors;
+  switch (s.type) {
+    case SegmentType::kHover:
+    case SegmentType::kShaft:
+      r.thrust_total_n = w;
+      break;
+    case SegmentType::kClimb: {
+      const double vc = s.climb_rate_m_s;
+      r.thrust_total_n = w + 0.5 * m.rho_kg_m3 * vc * std::fabs(vc) * cda;
+      r.axial_airspeed_m_s = vc > 0 ? vc : 0.0;
+      break;
+    }
+    case SegmentType::kCruise: {
+      const double v = airspeed_m_s;
+      const double drag = 0.5 * m.rho_kg_m3 * v * v * cda;
+      if (s.lift_to_drag > 0) {
+        r.thrust_total_n = w / s.lift_to_drag;
+        r.axial_airspeed_m_s = v;
+      } else {
+        r.thrust_total_n = std::hypot(w, drag);
+        r.tilt_rad = std::atan2(drag, w);
+        r.axial_airspeed_m_s = v * std::sin(r.tilt_rad);
+      }
+      break;
+    }
+  }
+  r.thrust_per_rotor_n = r.thrust_total_n / r.rotors;
+  if (m.vehicle.coaxial && s.lift_to_drag <= 0) {
+    r.thrust_per_rotor_n *= std::cbrt(kCoaxialInducedPowerFactor * kCoaxialInducedPowerFactor);
+  }
+  return r;
+}
+
+}  // namespace dynosize

@@ -1,0 +1,335 @@
+#include "mission/mission.h"
+
+#include <algorithm>
+#include <cmath>
+#include <set>
+#include <sstream>
+
+#include "common/atmosphere.h"
+#include "common/error.h"
+#include "common/units.h"
+
+namespace dynosize {
+
+const char* SegmentTypeName(SegmentType type) {
+  switch (type) {
+    case SegmentType::kHover: return "hover";
+    case SegmentType::kClimb: return "climb";
+    case SegmentType::kCruise: return "cruise";
+    case SegmentType::kShaft: return "shaft";
+  }
+  return "?";
+}
+
+const char* ObjectiveTypeName(ObjectiveType type) {
+  switch (type) {
+    case ObjectiveType::kMaxEndurance: return "max_endurance";
+    case ObjectiveType::kMinEnergy: return "min_energy";
+    case ObjectiveType::kMaxEfficiency: return "max_efficiency";
+  }
+  return "?";
+}
+
+namespace {
+
+std::string ValueText(const Json& v) {
+  std::string s = v.dump();
+  if (s.size() > 60) s = s.substr(0, 57) + "...";
+  return s;
+}
+
+// One object of the mission file at a JSON path, read strictly.
+class Reader {
+ public:
+  Reader(const Json& obj, std::string file, std::string path)
+      : obj_(obj), file_(std::move(file)), path_(std::move(path)) {
+    if (!obj_.is_object()) Fail(path_, obj_, "must be an object");
+  }
+
+  [[noreturn]] void Fail(const std::string& path, const Json& value, const std::string& rule) const {
+    throw DataError(file_ + ": " + path + " = " + ValueText(value) + ": " + rule);
+  }
+  [[noreturn]] void FailMissing(const std::string& key, const std::string& rule) const {
+    throw DataError(file_ + ": " + Path(key) + ": missing (" + rule + ")");
+  }
+  std::string Path(const std::string& key) const { return path_ + "." + key; }
+  const std::string& file() const { return file_; }
+
+  // Unknown keys are an error, listed sorted, with the valid keys.
+  void AllowOnly(std::initializer_list<const char*> keys) const {
+    std::set<std::string> allowed(keys.begin(), keys.end());
+    std::set<std::string> unknown;
+    for (auto it = obj_.begin(); it != obj_.end(); ++it) {
+      if (!allowed.count(it.key())) unknown.insert(it.key());
+    }
+    if (unknown.empty()) return;
+    std::string u, v;
+    for (const auto& k : unknown) u += (u.empty() ? "" : ", ") + k;
+    for (const auto& k : allowed) v += (v.empty() ? "" : ", ") + k;
+    throw DataError(file_ + ": " + path_ + ": unknown key(s) " + u + " (valid: " + v + ")");
+  }
+
+  bool Has(const std::string& key) const { return obj_.contains(key); }
+  const Json& At(const std::string& key) const { return obj_.at(key); }
+
+  double Number(const std::string& key, double min, double max, bool min_exclusive,
+                std::optional<double> fallback = std::nullopt) const {
+    if (!Has(key)) {
+      if (fallback) return *fallback;
+      FailMissing(key, "a number is required");
+    }
+    return CheckNumber(Path(key), At(key), min, max, min_exclusive);
+  }
+  std::optional<double> OptNumber(const std::string& key, double min, double max,
+                                  bool min_exclusive) const {
+    if (!Has(key)) return std::nullopt;
+    return CheckNumber(Path(key), At(key), min, max, min_exclusive);
+  }
+  double CheckNumber(const std::string& path, const Json& v, double min, double max,
+                     bool min_exclusive) const {
+    if (!v.is_number()) Fail(path, v, "must be a number");
+    const double x = v.get<double>();
+    const bool below = min_exclusive ? !(x > min) : !(x >= min);
+    if (!std::isfinite(x) || below || !(x <= max)) {
+      std::ostringstream rule;
+      rule << "must be a number " << (min_exclusive ? "> " : ">= ") << min;
+      if (std::isfinite(max)) rule << " and <= " << max;
+      Fail(path, v, rule.str());
+    }
+    return x;
+  }
+  int Integer(const std::string& key, int min, int max, std::optional<int> fallback) const {
+    if (!Has(key)) {
+      if (fallback) return *fallback;
+      FailMissing(key, "an integer is required");
+    }
+    const Json& v = At(key);
+    if (!v.is_number_integer() || v.get<long long>() < min || v.get<long long>() > max) {
+      Fail(Path(key), v, "must be an integer in [" + std::to_string(min) + ", " +
+                             std::to_string(max) + "]");
+    }
+    return static_cast<int>(v.get<long long>());
+  }
+  bool Bool(const std::string& key, bool fallback) const {
+    if (!Has(key)) return fallback;
+    if (!At(key).is_boolean()) Fail(Path(key), At(key), "must be true or false");
+    return At(key).get<bool>();
+  }
+  std::string String(const std::string& key, std::optional<std::string> fallback) const {
+    if (!Has(key)) {
+      if (fallback) return *fallback;
+      FailMissing(key, "a string is required");
+    }
+    if (!At(key).is_string() || At(key).get<std::string>().empty()) {
+      Fail(Path(key), At(key), "must be a non-empty string");
+    }
+    return At(key).get<std::string>();
+  }
+  // A number or a two-element [lo, hi] array (a free range).
+  Range NumberOrRange(const std::string& key, double min, double max, bool min_exclusive) const {
+    if (!Has(key)) FailMissing(key, "a number or a [min, max] range is required");
+    const Json& v = At(key);
+    if (v.is_array()) {
+      if (v.size() != 2) Fail(Path(key), v, "a range must be [min, max]");
+      Range r{CheckNumber(Path(key) + "[0]", v[0], min, max, min_exclusive),
+              CheckNumber(Path(key) + "[1]", v[1], min, max, min_exclusive)};
+      if (!(r.hi >= r.lo)) Fail(Path(key), v, "a range must have min <= max");
+      return r;
+    }
+    const double x = CheckNumber(Path(key), v, min, max, min_exclusive);
+    return Range{x, x};
+  }
+
+ private:
+  const Json& obj_;
+  std::string file_;
+  std::string path_;
+};
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+Segment ReadSegment(const Reader& r, const std::string& path) {
+  Segment s;
+  s.name = r.String("name", std::nullopt);
+  const std::string type = r.String("type", std::nullopt);
+  if (type == "hover") s.type = SegmentType::kHover;
+  else if (type == "climb") s.type = SegmentType::kClimb;
+  else if (type == "cruise") s.type = SegmentType::kCruise;
+  else if (type == "shaft") s.type = SegmentType::kShaft;
+  else r.Fail(r.Path("type"), r.At("type"), "must be one of climb, cruise, hover, shaft");
+  switch (s.type) {
+    case SegmentType::kHover:
+      r.AllowOnly({"name", "type", "duration_s", "rotors"});
+      break;
+    case SegmentType::kClimb:
+      r.AllowOnly({"name", "type", "duration_s", "distance_m", "rate_m_s", "rotors"});
+      s.climb_rate_m_s = r.Number("rate_m_s", -50.0, 50.0, false);
+      if (s.climb_rate_m_s == 0.0) r.Fail(r.Path("rate_m_s"), r.At("rate_m_s"), "must not be 0 (use a hover segment)");
+      break;
+    case SegmentType::kCruise:
+      r.AllowOnly({"name", "type", "duration_s", "distance_m", "airspeed_m_s", "lift_to_drag", "rotors"});
+      s.airspeed_m_s = r.NumberOrRange("airspeed_m_s", 0.0, 150.0, true);
+      s.lift_to_drag = r.Number("lift_to_drag", 1.0, 50.0, false, 0.0);
+      break;
+    case SegmentType::kShaft: {
+      r.AllowOnly({"name", "type", "duration_s", "power_w", "torque_nm", "rpm"});
+      s.shaft_power_w = r.OptNumber("power_w", 0.0, 1e7, true);
+      s.shaft_torque_nm = r.OptNumber("torque_nm", 0.0, 1e5, true);
+      if (s.shaft_power_w.has_value() == s.shaft_torque_nm.has_value()) {
+        throw DataError(r.file() + ": " + path + ": give exactly one of power_w and torque_nm");
+      }
+      const Range rpm = r.NumberOrRange("rpm", 0.0, 1e6, true);
+      s.shaft_omega_rad_s = Range{RpmToRadPerSec(rpm.lo), RpmToRadPerSec(rpm.hi)};
+      break;
+    }
+  }
+  s.rotors_active = r.Integer("rotors", 1, 64, 0);
+  s.duration_s = r.OptNumber("duration_s", 0.0, 1e7, true);
+  if (r.Has("distance_m")) s.distance_m = r.Number("distance_m", 0.0, 1e8, true);
+  if (s.duration_s.has_value() == s.distance_m.has_value()) {
+    throw DataError(r.file() + ": " + path + ": give exactly one of duration_s and distance_m");
+  }
+  if (s.type == SegmentType::kCruise && s.distance_m && s.airspeed_m_s.lo <= 0) {
+    throw DataError(r.file() + ": " + path + ": a cruise by distance needs airspeed_m_s > 0");
+  }
+  return s;
+}
+
+}  // namespace
+
+Mission ParseMission(const Json& doc, const std::string& name) {
+  Mission m;
+  m.file = name;
+  const Reader top(doc, name, "$");
+  top.AllowOnly({"name", "comment", "vehicle", "air", "battery", "constraints", "objective", "segments"});
+  m.name = top.String("name", std::string("mission"));
+  if (top.Has("comment") && !top.At("comment").is_string()) {
+    top.Fail("$.comment", top.At("comment"), "must be a string");
+  }
+
+  if (!top.Has("vehicle")) top.FailMissing("vehicle", "an object is required");
+  const Reader v(top.At("vehicle"), name, "$.vehicle");
+  v.AllowOnly({"mass_kg", "rotors", "coaxial", "drag_area_m2", "drag_coefficient", "avionics_power_w"});
+  m.vehicle.mass_kg = v.Number("mass_kg", 0.0, 1e4, true);
+  m.vehicle.rotors = v.Integer("rotors", 1, 64, std::nullopt);
+  m.vehicle.coaxial = v.Bool("coaxial", false);
+  if (m.vehicle.coaxial && m.vehicle.rotors % 2 != 0) {
+    v.Fail("$.vehicle.rotors", v.At("rotors"), "must be even for a coaxial vehicle");
+  }
+  m.vehicle.drag_area_m2 = v.Number("drag_area_m2", 0.0, 100.0, false, 0.0);
+  m.vehicle.drag_coefficient = v.Number("drag_coefficient", 0.0, 5.0, false, 0.0);
+  m.vehicle.avionics_power_w = v.Number("avionics_power_w", 0.0, 1e5, false, 0.0);
+
+  if (top.Has("air")) {
+    const Reader a(top.At("air"), name, "$.air");
+    a.AllowOnly({"density_kg_m3", "altitude_m", "temperature_c"});
+    if (a.Has("density_kg_m3")) {
+      if (a.Has("altitude_m") || a.Has("temperature_c")) {
+        throw DataError(name + ": $.air: give density_kg_m3 or altitude_m/temperature_c, not both");
+      }
+      m.rho_kg_m3 = a.Number("density_kg_m3", 0.3, 1.6, false);
+    } else {
+      const double h = a.Number("altitude_m", -500.0, 10000.0, false, 0.0);
+      const double t = a.Number("temperature_c", -60.0, 60.0, false, 15.0);
+      m.rho_kg_m3 = AirDensityKgM3(h, t);
+    }
+  }
+
+  if (!top.Has("battery")) top.FailMissing("battery", "an object is required");
+  const Reader b(top.At("battery"), name, "$.battery");
+  b.AllowOnly({"id", "cells", "capacity_ah", "reserve_soc", "cutoff_cell_v"});
+  if (!b.Has("id")) b.FailMissing("id", "a catalog battery id or an array of ids is required");
+  if (b.At("id").is_array()) {
+    if (b.At("id").empty()) b.Fail("$.battery.id", b.At("id"), "must list at least one id");
+    for (std::size_t i = 0; i < b.At("id").size(); ++i) {
+      const Json& e = b.At("id")[i];
+      if (!e.is_string() || e.get<std::string>().empty()) {
+        b.Fail("$.battery.id[" + std::to_string(i) + "]", e, "must be a non-empty string");
+      }
+      m.battery.ids.push_back(e.get<std::string>());
+    }
+  } else {
+    m.battery.ids.push_back(b.String("id", std::nullopt));
+  }
+  const Range cells = b.NumberOrRange("cells", 1.0, 64.0, false);
+  for (double c : {cells.lo, cells.hi}) {
+    if (c != std::floor(c)) b.Fail("$.battery.cells", b.At("cells"), "cell counts must be integers");
+  }
+  m.battery.cells_min = static_cast<int>(cells.lo);
+  m.battery.cells_max = static_cast<int>(cells.hi);
+  if (b.Has("capacity_ah")) m.battery.capacity_ah = b.NumberOrRange("capacity_ah", 0.0, 1e4, true);
+  m.battery.reserve_soc = b.Number("reserve_soc", 0.0, 0.9, false, 0.2);
+  m.battery.cutoff_cell_v = b.OptNumber("cutoff_cell_v", 0.5, 4.5, true);
+
+  if (top.Has("constraints")) {
+    const Reader c(top.At("constraints"), name, "$.constraints");
+    c.AllowOnly({"max_throttle", "current_margin", "allow_esc_saturation", "enforce_motor_power",
+                 "max_figure_of_merit"});
+    m.constraints.max_figure_of_merit = c.Number("max_figure_of_merit", 0.0, 1.0, true, 0.85);
+    m.constraints.max_throttle = c.Number("max_throttle", 0.0, 1.0, true, 0.8);
+    m.constraints.current_margin = c.Number("current_margin", 0.0, 0.9, false, 0.1);
+    m.constraints.allow_esc_saturation = c.Bool("allow_esc_saturation", false);
+    m.constraints.enforce_motor_power = c.Bool("enforce_motor_power", true);
+  }
+
+  if (!top.Has("segments") || !top.At("segments").is_array() || top.At("segments").empty()) {
+    top.Fail("$.segments", top.Has("segments") ? top.At("segments") : Json(nullptr),
+             "must be a non-empty array of segments");
+  }
+  std::set<std::string> names;
+  for (std::size_t i = 0; i < top.At("segments").size(); ++i) {
+    const std::string path = "$.segments[" + std::to_string(i) + "]";
+    const Reader s(top.At("segments")[i], name, path);
+    m.segments.push_back(ReadSegment(s, path));
+    if (!names.insert(m.segments.back().name).second) {
+      s.Fail(path + ".name", s.At("name"), "segment names must be unique");
+    }
+    if (m.segments.back().rotors_active > m.vehicle.rotors) {
+      s.Fail(path + ".rotors", s.At("rotors"), "must be <= vehicle.rotors (" +
+                                                   std::to_string(m.vehicle.rotors) + ")");
+    }
+  }
+
+  if (!top.Has("objective")) top.FailMissing("objective", "an object is required");
+  const Reader o(top.At("objective"), name, "$.objective");
+  o.AllowOnly({"type", "segment"});
+  const std::string type = o.String("type", std::nullopt);
+  if (type == "max_endurance") m.objective.type = ObjectiveType::kMaxEndurance;
+  else if (type == "min_energy") m.objective.type = ObjectiveType::kMinEnergy;
+  else if (type == "max_efficiency") m.objective.type = ObjectiveType::kMaxEfficiency;
+  else o.Fail("$.objective.type", o.At("type"), "must be one of max_efficiency, max_endurance, min_energy");
+  m.objective.segment = o.String("segment", std::string());
+  if (m.objective.segment.empty()) {
+    if (m.objective.type == ObjectiveType::kMaxEfficiency) {
+      o.FailMissing("segment", "max_efficiency needs the name of a segment");
+    }
+    if (m.objective.type == ObjectiveType::kMaxEndurance) {
+      for (std::size_t i = 0; i < m.segments.size(); ++i) {
+        if (m.segments[i].type == SegmentType::kHover) m.objective.segment_index = static_cast<int>(i);
+      }
+      if (m.objective.segment_index < 0) {
+        o.FailMissing("segment", "max_endurance needs a hover or cruise segment to stretch");
+      }
+      m.objective.segment = m.segments[m.objective.segment_index].name;
+    }
+  } else {
+    for (std::size_t i = 0; i < m.segments.size(); ++i) {
+      if (m.segments[i].name == m.objective.segment) m.objective.segment_index = static_cast<int>(i);
+    }
+    if (m.objective.segment_index < 0) {
+      o.Fail("$.objective.segment", o.At("segment"), "names no segment");
+    }
+    const SegmentType st = m.segments[m.objective.segment_index].type;
+    if (m.objective.type == ObjectiveType::kMaxEndurance && st != SegmentType::kHover &&
+        st != SegmentType::kCruise) {
+      o.Fail("$.objective.segment", o.At("segment"), "max_endurance stretches a hover or cruise segment");
+    }
+  }
+  return m;
+}
+
+Mission ReadMission(const std::string& path) {
+  return ParseMission(ReadJsonFile(path), path);
+}
+
+}  // namespace dynosize

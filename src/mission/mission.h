@@ -1,0 +1,103 @@
+// A mission: the vehicle without its propulsion, the air, the battery to use, the design
+// constraints, the objective and the flight segments. Read from a JSON file (README, "Mission
+// files") by a strict reader: unknown keys, wrong types, out-of-range values and inconsistent
+// choices are DataError (exit 65) naming file, JSON path, value and rule.
+//
+// All values SI inside (kg, m, s, W, N*m, rad/s); rpm only at the JSON edge ("rpm" keys).
+#pragma once
+
+#include <limits>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "common/json_file.h"
+
+namespace dynosize {
+
+enum class SegmentType { kHover, kClimb, kCruise, kShaft };
+const char* SegmentTypeName(SegmentType type);
+
+// A closed interval; lo == hi for a fixed value.
+struct Range {
+  double lo = 0.0;
+  double hi = 0.0;
+  bool free() const { return hi > lo; }
+};
+
+struct Segment {
+  std::string name;
+  SegmentType type = SegmentType::kHover;
+  // Exactly one of duration_s and distance_m is given in the file. For climb the distance is
+  // the height change (|rate| * time), for cruise the ground distance (airspeed * time).
+  std::optional<double> duration_s;
+  std::optional<double> distance_m;
+  double climb_rate_m_s = 0.0;  // climb: > 0 up, < 0 down (a descent)
+  Range airspeed_m_s;           // cruise: fixed or free within bounds
+  // cruise with a wing (lift + cruise): the wing carries the weight, the thrust equals
+  // weight / (L/D) and the flow is axial; 0 = no wing (a multirotor tilts into the wind).
+  double lift_to_drag = 0.0;
+  int rotors_active = 0;  // rotors that thrust in this segment; 0 = all of the vehicle's
+  // shaft: per-motor shaft power or torque (one of them) and the speed range.
+  std::optional<double> shaft_power_w;
+  std::optional<double> shaft_torque_nm;
+  Range shaft_omega_rad_s;
+};
+
+struct Vehicle {
+  double mass_kg = 0.0;  // without motors, ESCs, propellers, battery
+  int rotors = 4;
+  bool coaxial = false;        // rotors in coaxial pairs (rotors must be even)
+  double drag_area_m2 = 0.0;   // reference area of the body drag, m^2 (0: no drag)
+  double drag_coefficient = 0.0;
+  double avionics_power_w = 0.0;  // drawn from the battery throughout
+};
+
+struct MissionBattery {
+  std::vector<std::string> ids;  // catalog battery entries (cells or packs) to choose from
+  int cells_min = 1, cells_max = 1;  // cells in series (a multiple of the entry's cells_series)
+  std::optional<Range> capacity_ah;  // size the capacity within this range (mass scales with it)
+  double reserve_soc = 0.2;          // state of charge that must remain at the end
+  std::optional<double> cutoff_cell_v;  // under-load cut-off per cell; default per chemistry
+};
+
+struct MissionConstraints {
+  double max_throttle = 0.8;         // control authority: hover/climb throttle at most this
+  double current_margin = 0.1;       // currents <= (1 - margin) * rating (motor, ESC, battery)
+  bool allow_esc_saturation = false; // throttle above the ESC's tr_sat is allowed
+  bool enforce_motor_power = true;   // PAC <= the motor's max_power_w when rated
+  // Propeller data whose figure of merit P_ideal/P (momentum theory) exceeds this are not
+  // credible: such points fail "prop_figure_of_merit" (optimization/mission_eval.cc).
+  double max_figure_of_merit = 0.85;
+};
+
+enum class ObjectiveType { kMaxEndurance, kMinEnergy, kMaxEfficiency };
+const char* ObjectiveTypeName(ObjectiveType type);
+
+struct Objective {
+  ObjectiveType type = ObjectiveType::kMaxEndurance;
+  // max_endurance: the segment whose duration is stretched until the battery reaches its
+  // reserve (hover or cruise; default: the last hover segment). max_efficiency: the segment
+  // whose energy-weighted system efficiency is maximised.
+  std::string segment;
+  int segment_index = -1;  // resolved by the reader
+};
+
+struct Mission {
+  std::string file;  // where it was read from ("" when built in code)
+  std::string name;
+  Vehicle vehicle;
+  double rho_kg_m3 = 1.225;
+  MissionBattery battery;
+  MissionConstraints constraints;
+  Objective objective;
+  std::vector<Segment> segments;
+};
+
+// Reads and checks a mission file: NoInputError when missing, DataError (one line: file, JSON
+// path, value, rule) when anything is wrong.
+Mission ReadMission(const std::string& path);
+// Same for a parsed document; `name` is used in messages.
+Mission ParseMission(const Json& doc, const std::string& name);
+
+}  // namespace dynosize

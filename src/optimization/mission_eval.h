@@ -1,0 +1,153 @@
+// One combination (motor, ESC, propeller, battery cell, cells in series) flying one mission:
+// the continuous problem of issue #6.
+//
+// Per segment the rotors' thrust and axial airspeed follow from the weight (vehicle plus
+// propulsion) and mission/flight.h; the propeller's speed is the root of T_prop(omega) =
+// T_required (PropModel, thrust rising with speed), its torque is the load, and the drive's
+// throttle and currents come from Drive::Inverse at the battery's terminal voltage. The battery
+// (battery/battery.h: OCV(SOC) - I*R_pack) sags with the total current N*IDC + P_avionics/V,
+// solved as a fixed point per instant; SOC follows by coulomb counting (a midpoint rule over
+// sub-steps of each segment). Each segment reports ONE operating point, its end (the lowest
+// voltage and the highest throttle of the segment: the worst case), reproducible by
+// `dynosize simulate --vdc V --throttle TR --torque Q`, plus the range over the segment.
+//
+// Continuous variables: the battery capacity (when the mission gives a range: mass, capacity,
+// resistance and current rating scale with it, the cell's specific values held), the airspeed
+// of cruise segments with a range, the duration of the max_endurance segment (the longest
+// that keeps every constraint: found by regula falsi on the smallest constraint slack, which
+// falls monotonically with time) and the shaft speed (optimization/shaft.h, Ipopt).
+// Capacity and airspeeds pass through tabulated propeller data (piecewise linear: not smooth),
+// so they are solved by a derivative-free NLopt method (COBYLA, see SolveCombination).
+#pragma once
+
+#include <limits>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "battery/battery.h"
+#include "catalog/catalog.h"
+#include "mission/mission.h"
+#include "model/drive.h"
+#include "prop/prop_model.h"
+
+namespace dynosize {
+
+// Propeller mass assumed when the catalog has none: 14 g for a 10-inch hobby propeller
+// (APC 10x4.5 MR: 14 g; datasheet), scaled as D^2.5 (between area and volume scaling).
+double AssumedPropMassKg(double diameter_m);
+
+// The fixed parts of one combination, built once.
+struct Combination {
+  const MotorEntry* motor = nullptr;
+  const EscEntry* esc = nullptr;
+  const PropEntry* prop = nullptr;
+  const BatteryEntry* battery = nullptr;
+  int cells = 0;  // cells in series
+};
+
+// A constraint that fails: where, value, limit and by how much (value - limit, in its unit).
+struct Violation {
+  std::string constraint;  // "max_throttle", "motor_current", ...
+  std::string segment;     // "" for mission-wide ones
+  double value = 0.0;
+  double limit = 0.0;
+  std::string unit;
+  double excess() const { return value - limit; }
+};
+
+struct SegmentResult {
+  std::string name;
+  SegmentType type = SegmentType::kHover;
+  double duration_s = 0.0;
+  double airspeed_m_s = 0.0;
+  double thrust_per_rotor_n = 0.0;
+  double tilt_deg = 0.0;
+  int rotors = 0;
+  OperatingPoint point;  // the segment's end: its worst case (lowest voltage)
+  // Ranges over the segment (start to end).
+  double vdc_min_v = 0, vdc_max_v = 0, throttle_min = 0, throttle_max = 0, idc_min_a = 0,
+         idc_max_a = 0;
+  double soc_start = 0, soc_end = 0;
+  double battery_current_a = 0;  // at the end
+  double battery_current_start_a = 0;
+  double energy_j = 0;           // drawn from the battery in this segment
+  double eta_average = 0;        // energy-weighted system efficiency (motor + ESC)
+  std::string active_limit;      // the tightest constraint ("" if none is within 10 %)
+  double active_limit_slack = 0; // its relative slack (negative: violated)
+  std::string prop_note;         // propeller data held at an edge, if any
+  std::string shaft_solver;      // shaft segments: the solver's brief report
+};
+
+struct MissionResult {
+  bool feasible = false;
+  // Solve(cutoff_score) proved that the score cannot beat the cutoff and stopped early; the
+  // other fields are then incomplete.
+  bool bounded_out = false;
+  double objective = 0.0;   // in objective_unit; larger is better for max_*, smaller for min_*
+  std::string objective_unit;
+  double score = 0.0;       // to minimise: -objective for max_*, objective for min_energy
+  double endurance_s = 0.0; // total mission time
+  double energy_wh = 0.0;   // drawn from the battery
+  double propulsion_mass_kg = 0.0, total_mass_kg = 0.0, capacity_ah = 0.0;
+  double final_soc = 0.0;
+  std::vector<SegmentResult> segments;
+  std::vector<Violation> violations;  // worst per constraint
+  std::vector<std::string> warnings;
+  std::vector<std::string> assumed;   // "motor x: mass_kg", ...
+  std::string solver;                 // continuous solver's brief report ("" when none needed)
+  double min_slack = 0.0;             // smallest relative constraint slack (< 0: infeasible)
+};
+
+struct ContinuousVars {
+  double capacity_ah = 0.0;            // 0: the entry's capacity
+  std::vector<double> airspeed_m_s;    // per segment (cruise), else unused
+  double endurance_segment_s = 0.0;    // max_endurance: the stretched segment's duration
+};
+
+class MissionEvaluator {
+ public:
+  // Throws UsageError when the cell count is not a multiple of the battery entry's cells, or
+  // DataError when a component lacks data the mission needs.
+  // `prop_model` (optional) is a PropModel of combination.prop shared between evaluators (the
+  // catalog search builds one per propeller); it must outlive the evaluator.
+  MissionEvaluator(const Mission& mission, const Combination& combination,
+                   const PropModel* prop_model = nullptr);
+
+  // Simulates with fixed continuous variables (no optimisation).
+  MissionResult Simulate(const ContinuousVars& vars) const;
+
+  // Solves the continuous problem: the endurance segment's duration, the capacity and free
+  // airspeeds (NLopt COBYLA through solvers/, checked from several starts), the shaft speeds
+  // (Ipopt). This is what `evaluate` and `optimize` report.
+  // With cutoff_score: stop early (bounded_out) once a bound proves score >= cutoff_score
+  // (max_endurance only; see EnduranceUpperBound in the .cc).
+  MissionResult Solve(double cutoff_score = std::numeric_limits<double>::infinity()) const;
+
+  double fixed_mass_kg() const { return fixed_mass_kg_; }  // everything but the battery
+  double BatteryMassKg(double capacity_ah) const;
+  double entry_capacity_ah() const { return base_capacity_ah_; }
+
+ private:
+  BatteryPackParams PackAt(double capacity_ah) const;
+  MissionResult Run(const ContinuousVars& vars, double stretch_s) const;
+  MissionResult WithEndurance(ContinuousVars vars) const;
+  double StretchStartCurrent(const MissionResult& r) const;
+  // An upper bound of the total mission time over the capacity range (max_endurance).
+  double EnduranceUpperBound() const;
+  // The warnings a designer expects (hover throttle over the limit, currents near a rating,
+  // ESC saturation, a motor running far below its efficient load, assumed parameters).
+  void AddWarnings(MissionResult* r) const;
+
+  const Mission& m_;
+  Combination c_;
+  Drive drive_;
+  std::unique_ptr<PropModel> owned_prop_;
+  const PropModel& prop_;
+  BatteryPackParams pack_base_;
+  double base_capacity_ah_ = 0;
+  double fixed_mass_kg_ = 0;
+  std::vector<std::string> assumed_;
+};
+
+}  // namespace dynosize

@@ -1,0 +1,278 @@
+#include "report/mission_report.h"
+
+#include <algorithm>
+#include <cmath>
+#include <iomanip>
+#include <limits>
+#include <sstream>
+
+#include "common/text_file.h"
+#include "common/units.h"
+#include "model/drive.h"
+#include "report/gnuplot.h"
+
+namespace dynosize {
+
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+std::string ObjectiveLabel(const Mission& m) {
+  switch (m.objective.type) {
+    case ObjectiveType::kMaxEndurance: return "endurance [min]";
+    case ObjectiveType::kMinEnergy: return "energy drawn [Wh]";
+    case ObjectiveType::kMaxEfficiency: return "system efficiency in '" + m.objective.segment + "' [%]";
+  }
+  return "objective";
+}
+
+// The objective in the unit of the figures and text (minutes, Wh, %).
+double Display(const Mission& m, double objective) {
+  switch (m.objective.type) {
+    case ObjectiveType::kMaxEndurance: return objective / 60.0;
+    case ObjectiveType::kMinEnergy: return objective;
+    case ObjectiveType::kMaxEfficiency: return 100.0 * objective;
+  }
+  return objective;
+}
+
+std::string Fixed(double x, int digits) {
+  std::ostringstream o;
+  o << std::fixed << std::setprecision(digits) << x;
+  return o.str();
+}
+
+}  // namespace
+
+Json MissionResultJson(const Mission& m, const Combination& c, const MissionResult& r) {
+  Json j;
+  j["motor"] = c.motor->id;
+  j["esc"] = c.esc->id;
+  j["prop"] = c.prop->id;
+  j["battery"] = c.battery->id;
+  j["cells"] = c.cells;
+  j["objective"] = r.objective;
+  j["objective_type"] = ObjectiveTypeName(m.objective.type);
+  j["objective_unit"] = r.objective_unit;
+  j["feasible"] = r.feasible;
+  j["endurance_s"] = r.endurance_s;
+  j["energy_wh"] = r.energy_wh;
+  j["final_soc"] = r.final_soc;
+  j["capacity_ah"] = r.capacity_ah;
+  j["propulsion_mass_kg"] = r.propulsion_mass_kg;
+  j["total_mass_kg"] = r.total_mass_kg;
+  Json segs = Json::array();
+  for (const SegmentResult& s : r.segments) {
+    const OperatingPoint& p = s.point;
+    Json g;
+    g["name"] = s.name;
+    g["type"] = SegmentTypeName(s.type);
+    g["point"] = "end (worst case: lowest voltage, highest throttle)";
+    g["duration_s"] = s.duration_s;
+    if (s.type == SegmentType::kCruise) g["airspeed_m_s"] = s.airspeed_m_s;
+    if (s.type != SegmentType::kShaft) {
+      g["thrust_per_rotor_n"] = s.thrust_per_rotor_n;
+      g["tilt_deg"] = s.tilt_deg;
+    }
+    g["rotors"] = s.rotors;
+    g["rpm"] = p.rpm;
+    g["throttle"] = p.throttle;
+    g["throttle_effective"] = p.throttle_effective;
+    g["torque_nm"] = p.torque_nm;
+    g["irms_a"] = p.irms_a;
+    g["idc_a"] = p.idc_a;
+    g["vdc_v"] = p.vdc_v;
+    g["pdc_w"] = p.pdc_w;
+    g["pesc_w"] = p.pesc_w;
+    g["pmech_w"] = p.pmech_w;
+    g["eta_motor"] = p.eta_motor;
+    g["eta_esc"] = p.eta_esc;
+    g["eta_system"] = p.eta_system;
+    g["eta_system_average"] = s.eta_average;
+    g["battery_current_a"] = s.battery_current_a;
+    g["soc_start"] = s.soc_start;
+    g["soc_end"] = s.soc_end;
+    g["energy_wh"] = s.energy_j / 3600.0;
+    g["active_limit"] = s.active_limit.empty() ? Json(nullptr) : Json(s.active_limit);
+    if (!s.active_limit.empty()) g["active_limit_slack"] = s.active_limit_slack;
+    g["range"] = {{"vdc_v", {s.vdc_min_v, s.vdc_max_v}},
+                  {"throttle", {s.throttle_min, s.throttle_max}},
+                  {"idc_a", {s.idc_min_a, s.idc_max_a}}};
+    if (!s.prop_note.empty()) g["prop_note"] = s.prop_note;
+    if (!s.shaft_solver.empty()) g["shaft_solver"] = s.shaft_solver;
+    segs.push_back(g);
+  }
+  j["segments"] = segs;
+  Json v = Json::array();
+  for (const Violation& x : r.violations) {
+    v.push_back({{"constraint", x.constraint}, {"segment", x.segment}, {"value", x.value},
+                 {"limit", x.limit}, {"excess", x.excess()}, {"unit", x.unit}});
+  }
+  j["violations"] = v;
+  j["warnings"] = r.warnings;
+  j["assumed"] = r.assumed;
+  if (!r.solver.empty()) j["solver"] = r.solver;
+  return j;
+}
+
+std::string MissionResultText(const Mission& m, const Combination& c, const MissionResult& r) {
+  std::ostringstream o;
+  o << "motor " << c.motor->id << " + ESC " << c.esc->id << " + prop " << c.prop->id << " + "
+    << c.cells << "S " << c.battery->id << " (" << Fixed(r.capacity_ah, 2) << " Ah)\n";
+  o << "  " << (r.feasible ? "feasible" : "INFEASIBLE") << "; " << ObjectiveLabel(m) << " "
+    << Fixed(Display(m, r.objective), 2) << "; mission " << Fixed(r.endurance_s / 60.0, 2)
+    << " min, " << Fixed(r.energy_wh, 2) << " Wh, final SOC " << Fixed(100 * r.final_soc, 1)
+    << " %; mass " << Fixed(r.total_mass_kg, 3) << " kg (propulsion " << Fixed(r.propulsion_mass_kg, 3)
+    << " kg)\n";
+  o << "  segment (point: end, worst case)   s     rpm  thr %  eff %  torque N*m  Irms A  IDC A   VDC V   PDC W  PESC W  eta_m  eta_e  eta_s  limit\n";
+  for (const SegmentResult& s : r.segments) {
+    const OperatingPoint& p = s.point;
+    o << "  " << std::left << std::setw(12) << s.name.substr(0, 12) << std::setw(7)
+      << SegmentTypeName(s.type) << std::right << std::setw(10) << Fixed(s.duration_s, 0)
+      << std::setw(8) << Fixed(p.rpm, 0) << std::setw(7) << Fixed(100 * p.throttle, 1)
+      << std::setw(7) << Fixed(100 * p.throttle_effective, 1) << std::setw(12)
+      << Fixed(p.torque_nm, 5) << std::setw(8) << Fixed(p.irms_a, 2) << std::setw(7)
+      << Fixed(p.idc_a, 2) << std::setw(8) << Fixed(p.vdc_v, 3) << std::setw(8)
+      << Fixed(p.pdc_w, 1) << std::setw(8) << Fixed(p.pesc_w, 2) << std::setw(7)
+      << Fixed(p.eta_motor, 3) << std::setw(7) << Fixed(p.eta_esc, 3) << std::setw(7)
+      << Fixed(p.eta_system, 3) << "  " << (s.active_limit.empty() ? "-" : s.active_limit) << "\n";
+    o << "      over the segment: VDC " << Fixed(s.vdc_max_v, 2) << " -> " << Fixed(s.vdc_min_v, 2)
+      << " V, throttle " << Fixed(100 * s.throttle_min, 1) << "-" << Fixed(100 * s.throttle_max, 1)
+      << " %, IDC " << Fixed(s.idc_min_a, 2) << "-" << Fixed(s.idc_max_a, 2) << " A, SOC "
+      << Fixed(100 * s.soc_start, 1) << " -> " << Fixed(100 * s.soc_end, 1) << " %";
+    if (s.type == SegmentType::kCruise) o << ", airspeed " << Fixed(s.airspeed_m_s, 2) << " m/s";
+    o << "\n";
+  }
+  for (const Violation& v : r.violations) {
+    o << "  fails " << v.constraint << (v.segment.empty() ? "" : " in '" + v.segment + "'") << ": "
+      << v.value << " " << v.unit << " vs limit " << v.limit << " " << v.unit << " (by "
+      << v.excess() << " " << v.unit << ")\n";
+  }
+  for (const std::string& w : r.warnings) o << "  warning: " << w << "\n";
+  if (!r.solver.empty()) o << "  continuous variables: " << r.solver << "\n";
+  return o.str();
+}
+
+std::string WriteParetoFigure(const Mission& m, const SearchResult& s, const std::string& dir) {
+  MakeOutputDir(dir);
+  std::vector<std::pair<double, double>> pts;
+  for (const auto& p : s.evaluated_mass_objective) pts.emplace_back(p.first, Display(m, p.second));
+  const bool larger_better = m.objective.type != ObjectiveType::kMinEnergy;
+  std::sort(pts.begin(), pts.end());
+  DataBlock all{"all", {}, false}, front{"front", {}, false}, top{"top", {}, false};
+  std::vector<double> ax, ay, fx, fy, tx, ty;
+  double best = larger_better ? -1e300 : 1e300;
+  for (const auto& p : pts) {
+    ax.push_back(p.first);
+    ay.push_back(p.second);
+    const bool better = larger_better ? p.second > best : p.second < best;
+    if (better) {  // non-dominated: lighter ones are all worse
+      best = p.second;
+      fx.push_back(p.first);
+      fy.push_back(p.second);
+    }
+  }
+  for (const auto& b : s.best) {
+    tx.push_back(b.result.propulsion_mass_kg);
+    ty.push_back(Display(m, b.result.objective));
+  }
+  if (ax.empty()) { ax.push_back(kNaN); ay.push_back(kNaN); }
+  if (fx.empty()) { fx.push_back(kNaN); fy.push_back(kNaN); }
+  if (tx.empty()) { tx.push_back(kNaN); ty.push_back(kNaN); }
+  all.series.push_back({ax, ay});
+  front.series.push_back({fx, fy});
+  top.series.push_back({tx, ty});
+  std::ostringstream g;
+  g << "set title \"" << m.name << ": " << ObjectiveLabel(m) << " vs propulsion mass ("
+    << s.searched << " combinations evaluated exactly, " << s.pruned << " pruned)\" noenhanced\n"
+    << "set xlabel 'propulsion mass (motors, ESCs, propellers, battery) [kg]'\nset ylabel \""
+    << ObjectiveLabel(m) << "\" noenhanced\nset grid\nset key bottom right\n"
+    << "plot $all using 1:2 with points pt 7 ps 0.5 lc rgb '#9a9a9a' title 'evaluated', "
+    << "$front using 1:2 with linespoints pt 7 ps 1 lw 2 lc rgb '#d62728' title 'Pareto front', "
+    << "$top using 1:2 with points pt 6 ps 2.5 lw 2 lc rgb '#1f77b4' title 'top picks'\n";
+  const std::string path = dir + "/pareto_front.png";
+  RenderPng(path, {all, front, top}, g.str(), 1000, 700);
+  return path;
+}
+
+std::vector<std::string> WriteSegmentMaps(const Mission& m, const Combination& c,
+                                          const MissionResult& r, const std::string& dir) {
+  MakeOutputDir(dir);
+  const Drive d(c.motor->params, c.esc->params);
+  std::vector<std::string> paths;
+  DataBlock pts{"pts", {}, false};
+  {
+    std::vector<double> rpm, q;
+    for (const SegmentResult& s : r.segments) {
+      rpm.push_back(s.point.rpm);
+      q.push_back(s.point.torque_nm);
+    }
+    pts.series.push_back({rpm, q});
+  }
+  for (std::size_t si = 0; si < r.segments.size(); ++si) {
+    const SegmentResult& s = r.segments[si];
+    const double vdc = s.point.vdc_v;
+    const double w_max = d.NoLoadSpeed(vdc, 1.0);
+    double q_top = 0;
+    for (const SegmentResult& x : r.segments) q_top = std::max(q_top, x.point.torque_nm);
+    q_top *= 2.0;
+    const double i_lim = std::isfinite(c.motor->params.max_current_a) ? c.motor->params.max_current_a : 1e300;
+    DataBlock map{"map", {}, true};
+    const int n = 100;
+    for (int i = 0; i <= n; ++i) {
+      const double w = w_max * i / n;
+      std::vector<double> rpm, q, eta;
+      for (int j = 0; j <= n; ++j) {
+        const double torque = q_top * j / n;
+        const OperatingPoint p = d.Inverse(vdc, torque, w);
+        const bool ok = p.throttle >= 0.0 && p.throttle <= 1.0 && p.irms_a <= i_lim;
+        rpm.push_back(RadPerSecToRpm(w));
+        q.push_back(torque);
+        eta.push_back(ok ? 100 * p.eta_system : kNaN);
+      }
+      map.series.push_back({rpm, q, eta});
+    }
+    DataBlock me{"me", {}, false};
+    me.series.push_back({{s.point.rpm}, {s.point.torque_nm}});
+    DataBlock lim{"lim", {}, false};
+    {
+      // The mission's throttle limit line.
+      std::vector<double> rpm, q;
+      for (int j = 0; j <= 40; ++j) {
+        const double torque = q_top * j / 40;
+        const OperatingPoint p = d.AtTorque(vdc, m.constraints.max_throttle, torque);
+        if (p.omega_rad_s <= 0) break;
+        rpm.push_back(p.rpm);
+        q.push_back(torque);
+      }
+      if (rpm.empty()) { rpm.push_back(kNaN); q.push_back(kNaN); }
+      lim.series.push_back({rpm, q});
+    }
+    std::ostringstream g;
+    g << "set title \"" << c.motor->id << " + " << c.esc->id << " + " << c.prop->id << ": segment '"
+      << s.name << "' (" << SegmentTypeName(s.type) << ") at VDC = " << Fixed(vdc, 2)
+      << " V (its end)\" noenhanced\n"
+      << "set xlabel 'speed [rpm]'\nset ylabel 'torque [N m]'\nset view map\n"
+      << "set palette defined (0 '#2b083b', 0.35 '#3b528b', 0.6 '#21918c', 0.8 '#5ec962', 1 '#fde725')\n"
+      << "set cbrange [0:100]\nset cblabel 'system efficiency Pmech/PDC [%]'\n"
+      << "set key outside bottom center horizontal noenhanced\n"
+      << "set contour base\nset cntrparam levels discrete 40,60,70,80,85,90\n"
+      << "set xrange [0:" << RadPerSecToRpm(w_max) << "]\nset yrange [0:" << q_top << "]\n"
+      << "unset surface\nset table $contours\nsplot $map using 1:2:3 with lines\nunset table\n"
+      << "unset contour\nset surface\n"
+      << "plot $map using 1:2:3 with image notitle, "
+      << "$contours using 1:2 with lines lc rgb 'white' lw 1 title 'contours 40-90 %', "
+      << "$lim using 1:2 with lines lw 2 dt 2 lc rgb 'black' title 'throttle limit "
+      << Fixed(100 * m.constraints.max_throttle, 0) << " %', "
+      << "$pts using 1:2 with points pt 6 ps 2 lw 2 lc rgb 'white' title 'all segments', "
+      << "$me using 1:2 with points pt 7 ps 2.5 lc rgb 'red' title 'this segment'\n";
+    std::string safe = s.name;
+    for (char& ch : safe) if (!std::isalnum(static_cast<unsigned char>(ch))) ch = '_';
+    const std::string path = dir + "/efficiency_map_" + safe + ".png";
+    RenderPng(path, {map, me, lim, pts}, g.str(), 1000, 800);
+    paths.push_back(path);
+  }
+  return paths;
+}
+
+}  // namespace dynosize
