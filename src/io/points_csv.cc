@@ -59,7 +59,12 @@ std::string CheckPointRequest(const PointRequest& r) {
 }
 
 std::vector<PointRequest> ReadPointsCsv(const std::string& path) {
-  const std::string text = ReadTextFile(path, 256u << 20);
+  std::string text = ReadTextFile(path, 256u << 20);
+  // CR-only line ends (a spreadsheet re-save, as for logs) become LF; CRLF keeps its CR, which
+  // Trim removes.
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    if (text[i] == '\r' && (i + 1 == text.size() || text[i + 1] != '\n')) text[i] = '\n';
+  }
   if (const std::string enc = UnsupportedTextEncoding(std::string_view(text).substr(0, 64));
       !enc.empty()) {
     throw DataError(path + ": the file is " + enc + ": save it as UTF-8 text");

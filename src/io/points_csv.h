@@ -1,4 +1,5 @@
-// The point list read by `dynosize simulate --batch FILE`: a CSV with a header naming some of
+// The point list read by `dynosize simulate --batch FILE` (UTF-8, LF, CRLF or CR line ends): a
+// CSV with a header naming some of
 // vdc_v, throttle, torque_nm, rpm (any order; other columns are refused). Each row gives vdc_v and
 // exactly two of throttle, torque_nm, rpm (empty cells are absent): throttle + torque_nm or
 // throttle + rpm for the forward model, torque_nm + rpm for the inverse.

@@ -106,6 +106,9 @@ inline std::vector<BadInputCase> BadInputCases() {
                {"{dir}/cat/c.json:1:", "invalid JSON"}});
   c.push_back({"catalog_utf16_bom", {{"cat/c.json", Utf16LeWithBom(ValidCatalog())}}, list, 65,
                {"{dir}/cat/c.json", "UTF-16", "save it as UTF-8"}});
+  c.push_back({"catalog_utf16_big_endian",
+               {{"cat/c.json", "\xFE\xFF" + Utf16LeWithBom(ValidCatalog()).substr(2).insert(0, 1, '\0')}},
+               list, 65, {"{dir}/cat/c.json", "UTF-16 big-endian (byte-order mark FE FF)"}});
   c.push_back({"catalog_latin1_name",
                {{"cat/c.json", CatalogDoc(MotorBody() + ", \"note_x\": 1", EscBody())}},
                list, 65, {"{dir}/cat/c.json", "motors[0]", "note_x", "unknown key"}});
@@ -177,6 +180,8 @@ inline std::vector<BadInputCase> BadInputCases() {
                {"{dir}/log.csv", "cannot tell the log format"}});
   c.push_back({"canonical_utf16_bom", {{"log.csv", Utf16LeWithBom(CanonicalLog())}}, cal + "{dir}/log.csv",
                65, {"{dir}/log.csv", "UTF-16", "save it as UTF-8"}});
+  c.push_back({"canonical_utf16_without_bom", {{"log.csv", Utf16LeWithBom(CanonicalLog()).substr(2)}},
+               cal + "{dir}/log.csv", 65, {"{dir}/log.csv", "UTF-16 little-endian (NUL after every character)"}});
   c.push_back({"canonical_latin1_in_number",
                {{"log.csv", CanonicalHeader() + "0,7.2,0.3,3000,0.010,0.8\xB5\n" + CanonicalRows()}},
                cal + "{dir}/log.csv", 65, {"{dir}/log.csv", "line 2", "idc_a", "0.8\\xb5", "not a number"}});

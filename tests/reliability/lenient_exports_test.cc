@@ -10,6 +10,7 @@
 #include <string>
 
 #include "common/error.h"
+#include "io/points_csv.h"
 #include "logs/log_reader.h"
 #include "reliability/bad_input_table.h"
 
@@ -84,6 +85,14 @@ TEST(LenientExports, TheCanonicalFormatRefusesTheSameEmptyCell) {
     const std::string m = e.what();
     EXPECT_NE(m.find(p + ": line 2, column \"torque_nm\": \"\": empty cell"), std::string::npos) << m;
   }
+}
+
+TEST(LenientExports, BatchFileWithCarriageReturnLineEndsReads) {
+  const std::string p = Write("points_cr.csv", "vdc_v,throttle,torque_nm\r7.2,0.5,0.01\r7.2,0.6,0.02\r");
+  const auto points = ReadPointsCsv(p);
+  ASSERT_EQ(points.size(), 2u);
+  EXPECT_EQ(points[1].row, 3u);
+  EXPECT_EQ(*points[1].throttle, 0.6);
 }
 
 }  // namespace
