@@ -83,11 +83,11 @@ class Tracker {
       for (Violation& v : r_->violations) {
         if (v.constraint == name) {
           const double rel_old = std::fabs(v.excess()) / std::max(std::fabs(v.limit), 1e-12);
-          if (-slack > rel_old) v = Violation{name, segment, value, limit, unit};
+          if (-slack > rel_old) v = Violation{name, segment, value, limit, unit, at_least};
           return;
         }
       }
-      r_->violations.push_back(Violation{name, segment, value, limit, unit});
+      r_->violations.push_back(Violation{name, segment, value, limit, unit, at_least});
     }
   }
 

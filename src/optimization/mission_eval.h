@@ -53,7 +53,9 @@ struct Violation {
   double value = 0.0;
   double limit = 0.0;
   std::string unit;
-  double excess() const { return value - limit; }
+  bool at_least = false;  // the rule is value >= limit (cut-off voltage, reserve SOC)
+  // By how much it fails, > 0, in the constraint's unit.
+  double excess() const { return at_least ? limit - value : value - limit; }
 };
 
 struct SegmentResult {
