@@ -244,12 +244,19 @@ MissionResult MissionEvaluator::Run(const ContinuousVars& vars, double stretch_s
       }
       torque = ev.torque_nm;
       if (!ev.InData()) seg.prop_note = ev.message;
+      // Static-only data (DriveCalc power laws, static coefficients) say nothing about the
+      // thrust lost to inflow; held at J = 0 they grossly over-state a propeller in fast axial
+      // flow. Up to the mission's max_static_advance_ratio (default 0.2) the static values
+      // are accepted as an approximation (and noted); beyond it the point fails.
+      if (ev.no_forward_flight_data) {
+        track.Check("prop_no_forward_flight_data", s.name, ev.j, k.max_static_advance_ratio, "", false, &seg);
+      }
       // Momentum theory bounds a rotor's shaft power from below: an actuator disk of area A in
       // axial flow V needs P_ideal = T*(V/2 + sqrt((V/2)^2 + T/(2*rho*A))) (Leishman,
       // Principles of Helicopter Aerodynamics, 2nd ed., eqs 2.14 and 2.91; figure of merit
       // <= 1). Propeller data below it are not physical (some DriveCalc power laws are), and
       // would fly on impossible efficiency. The ratio P_ideal/P is the figure of merit (static) or
-      // its axial-flow analogue; above the mission's max_figure_of_merit (default 0.85: small
+      // its axial-flow analogue; above the mission's max_figure_of_merit (default 0.8: small
       // propellers measure 0.5-0.75, Brandt & Selig 2011) the point fails
       // "prop_figure_of_merit".
       {
@@ -486,6 +493,37 @@ MissionResult MissionEvaluator::Solve(double cutoff_score) const {
       return r;
     }
   }
+  if (std::isfinite(cutoff_score) && m_.objective.type == ObjectiveType::kMinEnergy &&
+      !capacity_free && c_.esc->params.c0 == 0.0) {
+    // min_energy with free cruise airspeeds: every other segment's energy does not depend on
+    // them (terminal power N*PDC + P_avionics, and PDC = C1*U*I/kv does not depend on the
+    // voltage when C0 = 0, eqs 57, 59), and a wing-borne cruise needs at least the propulsive
+    // work T*d = W/(L/D)*d (electrical >= shaft >= thrust power) plus the avionics.
+    ContinuousVars v0;
+    v0.airspeed_m_s.assign(m_.segments.size(), 0.0);
+    if (m_.battery.capacity_ah) v0.capacity_ah = m_.battery.capacity_ah->lo;
+    const MissionResult r0 = Run(v0, 0.0);
+    if (r0.segments.size() == m_.segments.size()) {
+      double e_lb = 0;
+      for (std::size_t i = 0; i < m_.segments.size(); ++i) {
+        const Segment& s = m_.segments[i];
+        if (s.type == SegmentType::kCruise && s.airspeed_m_s.free()) {
+          const double d = s.distance_m ? *s.distance_m : *s.duration_s * s.airspeed_m_s.lo;
+          const double t_min = s.distance_m ? d / s.airspeed_m_s.hi : *s.duration_s;
+          const double thrust = s.lift_to_drag > 0 ? r0.total_mass_kg * kStandardGravity / s.lift_to_drag : 0.0;
+          e_lb += thrust * d + m_.vehicle.avionics_power_w * t_min;
+        } else {
+          e_lb += r0.segments[i].energy_j;
+        }
+      }
+      if (e_lb / 3600.0 >= cutoff_score) {
+        MissionResult r;
+        r.bounded_out = true;
+        r.score = e_lb / 3600.0;
+        return r;
+      }
+    }
+  }
   // Free variables, each scaled to [0, 1].
   struct Var { int segment; double lo, hi; };  // segment -1: capacity
   std::vector<Var> free;
@@ -638,6 +676,11 @@ void MissionEvaluator::AddWarnings(MissionResult* r) const {
                               Num(100 * p.eta_system, 3) + " % vs " + Num(100 * best.eta_system, 3) +
                               " %): a smaller motor would do");
       }
+    }
+    if (p.throttle > 0 && p.throttle < 0.2) {
+      r->warnings.push_back("segment '" + s.name + "': throttle only " + Num(100 * p.throttle, 3) +
+                            " %: coarse speed control; a lower-Kv motor or fewer cells would "
+                            "use more of the range");
     }
     if (!s.prop_note.empty()) {
       r->warnings.push_back("segment '" + s.name + "': propeller data held at an edge: " + s.prop_note);

@@ -58,6 +58,7 @@ namespace dynosize {
 //    the top N the whole class is skipped for the pair.
 // R6 (propeller data credibility): see the comment at the rule; the hover point's figure of
 //    merit must not exceed the mission's max_figure_of_merit.
+// R7 (static-only propeller data in fast axial flow): see the comment at the rule.
 // Everything not pruned is evaluated exactly (MissionEvaluator::Solve): the answer is the
 // true top N over the catalog under (M1)-(M3).
 
@@ -300,6 +301,27 @@ SearchResult SearchCatalog(const Mission& m, const Catalog& cat, const SearchOpt
             continue;
           }
         }
+        if (models[pi]->data_kind() != PropDataKind::kTables || props[pi].j_tables.empty()) {
+          // R7: static-only data. The shaft cannot turn faster than the motor's no-load speed
+          // at full throttle and the full-charge voltage with no ESC resistance, so the advance
+          // ratio in a segment with axial airspeed >= V_ax is at least V_ax/(n_max*D); above
+          // the mission's max_static_advance_ratio the segment fails
+          // prop_no_forward_flight_data whatever else is chosen.
+          double w_nl = 0;
+          for (const Drive& d : ideal) w_nl = std::max(w_nl, d.NoLoadSpeed(bo.v_full, 1.0));
+          const double n_max = w_nl / (2.0 * kPi);
+          bool fails = false;
+          for (const Segment& sg : m.segments) {
+            double v_ax = 0;
+            if (sg.type == SegmentType::kClimb && sg.climb_rate_m_s > 0) v_ax = sg.climb_rate_m_s;
+            if (sg.type == SegmentType::kCruise && sg.lift_to_drag > 0) v_ax = sg.airspeed_m_s.lo;
+            if (n_max > 0 && v_ax / (n_max * props[pi].diameter_m) > k.max_static_advance_ratio) fails = true;
+          }
+          if (fails) {
+            prune("prop_no_forward_flight_data", per_pair);
+            continue;
+          }
+        }
         if (props[pi].max_rpm && RadPerSecToRpm(omega_lb) > *props[pi].max_rpm) {
           prune("prop_max_rpm", per_pair);  // R2
           continue;
@@ -323,6 +345,14 @@ SearchResult SearchCatalog(const Mission& m, const Catalog& cat, const SearchOpt
             if (m.objective.type == ObjectiveType::kMinEnergy) {
               double e = 0;
               for (int h : hover) e += p_hover * *m.segments[h].duration_s;
+              // Wing-borne cruise: at least the propulsive work W/(L/D)*d (see
+              // MissionEvaluator::Solve), W at the lightest mass.
+              for (const Segment& sg : m.segments) {
+                if (sg.type == SegmentType::kCruise && sg.lift_to_drag > 0) {
+                  const double d = sg.distance_m ? *sg.distance_m : *sg.duration_s * sg.airspeed_m_s.lo;
+                  e += mass_lb * kStandardGravity / sg.lift_to_drag * d;
+                }
+              }
               bound = e / 3600.0;
             } else if (stretch_is_hover) {
               // Terminal energy = integral of V*I dt <= integral of OCV*I dt = Q*integral of
