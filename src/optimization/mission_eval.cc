@@ -166,7 +166,7 @@ BatteryPackParams MissionEvaluator::PackAt(double capacity_ah) const {
   return p;
 }
 
-MissionResult MissionEvaluator::Run(const ContinuousVars& vars, double stretch_s) const {
+MissionResult MissionEvaluator::Run(const ContinuousVars& vars, double stretch_s, bool screen) const {
   MissionResult r;
   r.min_slack = kInf;
   Tracker track(&r);
@@ -354,6 +354,11 @@ MissionResult MissionEvaluator::Run(const ContinuousVars& vars, double stretch_s
     time_s += seg.duration_s;
     energy_j += e_seg;
     r.segments.push_back(seg);
+    if (screen && !r.violations.empty()) {
+      r.feasible = false;
+      r.score = kInf;
+      return r;
+    }
   }
   r.final_soc = soc;
   track.Check("reserve_soc", "", soc, m_.battery.reserve_soc, "", true);
@@ -481,7 +486,7 @@ MissionResult MissionEvaluator::Solve(double cutoff_score) const {
       bool airspeed_free = false;
       for (const Segment& s : m_.segments) airspeed_free |= s.type == SegmentType::kCruise && s.airspeed_m_s.free();
       if (!airspeed_free) {
-        MissionResult r0 = Run(v0, 0.0);
+        MissionResult r0 = Run(v0, 0.0, true);
         if (!r0.feasible) return r0;
       }
     }
@@ -502,7 +507,10 @@ MissionResult MissionEvaluator::Solve(double cutoff_score) const {
     ContinuousVars v0;
     v0.airspeed_m_s.assign(m_.segments.size(), 0.0);
     if (m_.battery.capacity_ah) v0.capacity_ah = m_.battery.capacity_ah->lo;
-    const MissionResult r0 = Run(v0, 0.0);
+    bool airspeed_free = false;
+    for (const Segment& s : m_.segments) airspeed_free |= s.type == SegmentType::kCruise && s.airspeed_m_s.free();
+    const MissionResult r0 = Run(v0, 0.0, !airspeed_free);
+    if (!airspeed_free && !r0.feasible) return r0;  // nothing free: this is the answer
     if (r0.segments.size() == m_.segments.size()) {
       double e_lb = 0;
       for (std::size_t i = 0; i < m_.segments.size(); ++i) {
