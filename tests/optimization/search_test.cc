@@ -56,7 +56,7 @@ class SearchTest : public ::testing::Test {
     doc["escs"] = Json::array();
     for (const char* id : {"dc_e_252", "dc_e_237", "dc_e_56", "multistar_30a_paper"}) doc["escs"].push_back(full.esc(id).json);
     doc["props"] = Json::array();
-    for (const char* id : {"dc_p_410", "dc_p_372", "dc_p_440", "apc_per3_10x45mr"}) doc["props"].push_back(full.prop(id).json);
+    for (const char* id : {"dc_p_410", "dc_p_372", "dc_p_440", "dc_p_173", "apc_per3_10x45mr"}) doc["props"].push_back(full.prop(id).json);
     doc["batteries"] = Json::array();
     doc["batteries"].push_back(full.battery("dc_b_361").json);
     std::ofstream(dir_ / "catalog" / "small.json") << DumpJson(doc);
@@ -105,7 +105,7 @@ TEST_F(SearchTest, FreeAirspeedOptimumBeatsADenseGrid) {
   j["segments"][1]["airspeed_m_s"] = {4.0, 20.0};
   const Mission m = ParseMission(j, "quad");
   const Catalog cat = Catalog::Load((dir_ / "catalog").string());
-  const Combination c{&cat.motor("dc_m_223"), &cat.esc("dc_e_252"), &cat.prop("dc_p_410"), &cat.battery("dc_b_361"), 4};
+  const Combination c{&cat.motor("dc_m_1020"), &cat.esc("dc_e_56"), &cat.prop("dc_p_173"), &cat.battery("dc_b_361"), 4};
   const MissionEvaluator ev(m, c);
   const MissionResult r = ev.Solve();
   ASSERT_TRUE(r.feasible);
@@ -130,7 +130,7 @@ TEST_F(SearchTest, InfeasibleMissionSaysWhichConstraintAndByHowMuch) {
   const Catalog cat = Catalog::Load((dir_ / "catalog").string());
   const SearchResult s = SearchCatalog(m, cat);
   EXPECT_TRUE(s.best.empty());
-  const Combination c{&cat.motor("dc_m_223"), &cat.esc("dc_e_252"), &cat.prop("dc_p_410"), &cat.battery("dc_b_361"), 4};
+  const Combination c{&cat.motor("dc_m_1020"), &cat.esc("dc_e_56"), &cat.prop("dc_p_173"), &cat.battery("dc_b_361"), 4};
   const MissionResult r = MissionEvaluator(m, c).Solve();
   EXPECT_FALSE(r.feasible);
   ASSERT_FALSE(r.violations.empty());
@@ -139,7 +139,7 @@ TEST_F(SearchTest, InfeasibleMissionSaysWhichConstraintAndByHowMuch) {
   std::ofstream(dir_ / "heavy.json") << DumpJson(j);
   const auto cli = testing_util::RunCli("evaluate " + (dir_ / "heavy.json").string() + " --catalog " +
                                         (dir_ / "catalog").string() +
-                                        " --motor dc_m_223 --esc dc_e_252 --prop dc_p_410 --battery dc_b_361 --cells 4");
+                                        " --motor dc_m_1020 --esc dc_e_56 --prop dc_p_173 --battery dc_b_361 --cells 4");
   EXPECT_EQ(cli.code, 0) << cli.err;  // an infeasible combination is a result, not an error
   EXPECT_NE(cli.out.find("INFEASIBLE"), std::string::npos) << cli.out;
   EXPECT_NE(cli.out.find("fails " + r.violations.front().constraint), std::string::npos) << cli.out;
@@ -149,14 +149,14 @@ TEST_F(SearchTest, InfeasibleMissionSaysWhichConstraintAndByHowMuch) {
 TEST_F(SearchTest, EverySegmentPointIsReproducedBySimulate) {
   const std::string cat = "--catalog " + (dir_ / "catalog").string();
   const auto ev = testing_util::RunCli("evaluate " + (dir_ / "quad.json").string() + " " + cat +
-                                       " --motor dc_m_223 --esc dc_e_252 --prop dc_p_410 --battery dc_b_361 --cells 4 --json");
+                                       " --motor dc_m_1020 --esc dc_e_56 --prop dc_p_173 --battery dc_b_361 --cells 4 --json");
   ASSERT_EQ(ev.code, 0) << ev.err;
   const Json j = Json::parse(ev.out);
   ASSERT_TRUE(j["feasible"].get<bool>());
   ASSERT_EQ(j["segments"].size(), 4u);
   for (const Json& s : j["segments"]) {
     char args[512];
-    std::snprintf(args, sizeof args, "simulate %s --motor dc_m_223 --esc dc_e_252 --vdc %.17g --throttle %.17g --torque %.17g --json",
+    std::snprintf(args, sizeof args, "simulate %s --motor dc_m_1020 --esc dc_e_56 --vdc %.17g --throttle %.17g --torque %.17g --json",
                   cat.c_str(), s["vdc_v"].get<double>(), s["throttle"].get<double>(), s["torque_nm"].get<double>());
     const auto sim = testing_util::RunCli(args);
     ASSERT_EQ(sim.code, 0) << sim.err;
