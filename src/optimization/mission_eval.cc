@@ -695,6 +695,13 @@ void MissionEvaluator::AddWarnings(MissionResult* r) const {
     }
   }
   (void)k;
+  if (!std::isfinite(mp.max_current_a) && !std::isfinite(mp.max_power_w)) {
+    r->warnings.push_back("motor " + c_.motor->id + " has no current or power rating in the "
+                          "catalog: its load could not be checked (the search may favour it)");
+  }
+  if (!std::isfinite(ep.max_current_a)) {
+    r->warnings.push_back("ESC " + c_.esc->id + " has no current rating: its current was not checked");
+  }
   if (!r->assumed.empty()) {
     std::string a;
     for (const auto& x : r->assumed) a += (a.empty() ? "" : "; ") + x;
