@@ -264,8 +264,9 @@ Mission ParseMission(const Json& doc, const std::string& name) {
   if (top.Has("constraints")) {
     const Reader c(top.At("constraints"), name, "$.constraints");
     c.AllowOnly({"max_throttle", "current_margin", "allow_esc_saturation", "enforce_motor_power",
-                 "max_figure_of_merit"});
-    m.constraints.max_figure_of_merit = c.Number("max_figure_of_merit", 0.0, 1.0, true, 0.85);
+                 "max_figure_of_merit", "max_static_advance_ratio"});
+    m.constraints.max_static_advance_ratio = c.Number("max_static_advance_ratio", 0.0, 5.0, false, 0.2);
+    m.constraints.max_figure_of_merit = c.Number("max_figure_of_merit", 0.0, 1.0, true, 0.8);
     m.constraints.max_throttle = c.Number("max_throttle", 0.0, 1.0, true, 0.8);
     m.constraints.current_margin = c.Number("current_margin", 0.0, 0.9, false, 0.1);
     m.constraints.allow_esc_saturation = c.Bool("allow_esc_saturation", false);

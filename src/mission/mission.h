@@ -68,7 +68,9 @@ struct MissionConstraints {
   bool enforce_motor_power = true;   // PAC <= the motor's max_power_w when rated
   // Propeller data whose figure of merit P_ideal/P (momentum theory) exceeds this are not
   // credible: such points fail "prop_figure_of_merit" (optimization/mission_eval.cc).
-  double max_figure_of_merit = 0.85;
+  double max_figure_of_merit = 0.8;
+  // Propellers with static data only may fly at advance ratios J = V/(n*D) up to this.
+  double max_static_advance_ratio = 0.2;
 };
 
 enum class ObjectiveType { kMaxEndurance, kMinEnergy, kMaxEfficiency };

@@ -83,11 +83,11 @@ class Tracker {
       for (Violation& v : r_->violations) {
         if (v.constraint == name) {
           const double rel_old = std::fabs(v.excess()) / std::max(std::fabs(v.limit), 1e-12);
-          if (-slack > rel_old) v = Violation{name, segment, value, limit, unit};
+          if (-slack > rel_old) v = Violation{name, segment, value, limit, unit, at_least};
           return;
         }
       }
-      r_->violations.push_back(Violation{name, segment, value, limit, unit});
+      r_->violations.push_back(Violation{name, segment, value, limit, unit, at_least});
     }
   }
 
@@ -166,7 +166,7 @@ BatteryPackParams MissionEvaluator::PackAt(double capacity_ah) const {
   return p;
 }
 
-MissionResult MissionEvaluator::Run(const ContinuousVars& vars, double stretch_s) const {
+MissionResult MissionEvaluator::Run(const ContinuousVars& vars, double stretch_s, bool screen) const {
   MissionResult r;
   r.min_slack = kInf;
   Tracker track(&r);
@@ -244,12 +244,19 @@ MissionResult MissionEvaluator::Run(const ContinuousVars& vars, double stretch_s
       }
       torque = ev.torque_nm;
       if (!ev.InData()) seg.prop_note = ev.message;
+      // Static-only data (DriveCalc power laws, static coefficients) say nothing about the
+      // thrust lost to inflow; held at J = 0 they grossly over-state a propeller in fast axial
+      // flow. Up to the mission's max_static_advance_ratio (default 0.2) the static values
+      // are accepted as an approximation (and noted); beyond it the point fails.
+      if (ev.no_forward_flight_data) {
+        track.Check("prop_no_forward_flight_data", s.name, ev.j, k.max_static_advance_ratio, "", false, &seg);
+      }
       // Momentum theory bounds a rotor's shaft power from below: an actuator disk of area A in
       // axial flow V needs P_ideal = T*(V/2 + sqrt((V/2)^2 + T/(2*rho*A))) (Leishman,
       // Principles of Helicopter Aerodynamics, 2nd ed., eqs 2.14 and 2.91; figure of merit
       // <= 1). Propeller data below it are not physical (some DriveCalc power laws are), and
       // would fly on impossible efficiency. The ratio P_ideal/P is the figure of merit (static) or
-      // its axial-flow analogue; above the mission's max_figure_of_merit (default 0.85: small
+      // its axial-flow analogue; above the mission's max_figure_of_merit (default 0.8: small
       // propellers measure 0.5-0.75, Brandt & Selig 2011) the point fails
       // "prop_figure_of_merit".
       {
@@ -347,6 +354,11 @@ MissionResult MissionEvaluator::Run(const ContinuousVars& vars, double stretch_s
     time_s += seg.duration_s;
     energy_j += e_seg;
     r.segments.push_back(seg);
+    if (screen && !r.violations.empty()) {
+      r.feasible = false;
+      r.score = kInf;
+      return r;
+    }
   }
   r.final_soc = soc;
   track.Check("reserve_soc", "", soc, m_.battery.reserve_soc, "", true);
@@ -474,7 +486,7 @@ MissionResult MissionEvaluator::Solve(double cutoff_score) const {
       bool airspeed_free = false;
       for (const Segment& s : m_.segments) airspeed_free |= s.type == SegmentType::kCruise && s.airspeed_m_s.free();
       if (!airspeed_free) {
-        MissionResult r0 = Run(v0, 0.0);
+        MissionResult r0 = Run(v0, 0.0, true);
         if (!r0.feasible) return r0;
       }
     }
@@ -484,6 +496,40 @@ MissionResult MissionEvaluator::Solve(double cutoff_score) const {
       r.bounded_out = true;
       r.score = -ub;
       return r;
+    }
+  }
+  if (std::isfinite(cutoff_score) && m_.objective.type == ObjectiveType::kMinEnergy &&
+      !capacity_free && c_.esc->params.c0 == 0.0) {
+    // min_energy with free cruise airspeeds: every other segment's energy does not depend on
+    // them (terminal power N*PDC + P_avionics, and PDC = C1*U*I/kv does not depend on the
+    // voltage when C0 = 0, eqs 57, 59), and a wing-borne cruise needs at least the propulsive
+    // work T*d = W/(L/D)*d (electrical >= shaft >= thrust power) plus the avionics.
+    ContinuousVars v0;
+    v0.airspeed_m_s.assign(m_.segments.size(), 0.0);
+    if (m_.battery.capacity_ah) v0.capacity_ah = m_.battery.capacity_ah->lo;
+    bool airspeed_free = false;
+    for (const Segment& s : m_.segments) airspeed_free |= s.type == SegmentType::kCruise && s.airspeed_m_s.free();
+    const MissionResult r0 = Run(v0, 0.0, !airspeed_free);
+    if (!airspeed_free && !r0.feasible) return r0;  // nothing free: this is the answer
+    if (r0.segments.size() == m_.segments.size()) {
+      double e_lb = 0;
+      for (std::size_t i = 0; i < m_.segments.size(); ++i) {
+        const Segment& s = m_.segments[i];
+        if (s.type == SegmentType::kCruise && s.airspeed_m_s.free()) {
+          const double d = s.distance_m ? *s.distance_m : *s.duration_s * s.airspeed_m_s.lo;
+          const double t_min = s.distance_m ? d / s.airspeed_m_s.hi : *s.duration_s;
+          const double thrust = s.lift_to_drag > 0 ? r0.total_mass_kg * kStandardGravity / s.lift_to_drag : 0.0;
+          e_lb += thrust * d + m_.vehicle.avionics_power_w * t_min;
+        } else {
+          e_lb += r0.segments[i].energy_j;
+        }
+      }
+      if (e_lb / 3600.0 >= cutoff_score) {
+        MissionResult r;
+        r.bounded_out = true;
+        r.score = e_lb / 3600.0;
+        return r;
+      }
     }
   }
   // Free variables, each scaled to [0, 1].
@@ -639,11 +685,23 @@ void MissionEvaluator::AddWarnings(MissionResult* r) const {
                               " %): a smaller motor would do");
       }
     }
+    if (p.throttle > 0 && p.throttle < 0.2) {
+      r->warnings.push_back("segment '" + s.name + "': throttle only " + Num(100 * p.throttle, 3) +
+                            " %: coarse speed control; a lower-Kv motor or fewer cells would "
+                            "use more of the range");
+    }
     if (!s.prop_note.empty()) {
       r->warnings.push_back("segment '" + s.name + "': propeller data held at an edge: " + s.prop_note);
     }
   }
   (void)k;
+  if (!std::isfinite(mp.max_current_a) && !std::isfinite(mp.max_power_w)) {
+    r->warnings.push_back("motor " + c_.motor->id + " has no current or power rating in the "
+                          "catalog: its load could not be checked (the search may favour it)");
+  }
+  if (!std::isfinite(ep.max_current_a)) {
+    r->warnings.push_back("ESC " + c_.esc->id + " has no current rating: its current was not checked");
+  }
   if (!r->assumed.empty()) {
     std::string a;
     for (const auto& x : r->assumed) a += (a.empty() ? "" : "; ") + x;

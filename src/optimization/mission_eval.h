@@ -53,7 +53,9 @@ struct Violation {
   double value = 0.0;
   double limit = 0.0;
   std::string unit;
-  double excess() const { return value - limit; }
+  bool at_least = false;  // the rule is value >= limit (cut-off voltage, reserve SOC)
+  // By how much it fails, > 0, in the constraint's unit.
+  double excess() const { return at_least ? limit - value : value - limit; }
 };
 
 struct SegmentResult {
@@ -130,7 +132,9 @@ class MissionEvaluator {
 
  private:
   BatteryPackParams PackAt(double capacity_ah) const;
-  MissionResult Run(const ContinuousVars& vars, double stretch_s) const;
+  // screen: stop at the end of the first segment that breaks a constraint (the result then
+  // only says "infeasible"; used by Solve(cutoff) to discard search candidates quickly).
+  MissionResult Run(const ContinuousVars& vars, double stretch_s, bool screen = false) const;
   MissionResult WithEndurance(ContinuousVars vars) const;
   double StretchStartCurrent(const MissionResult& r) const;
   // An upper bound of the total mission time over the capacity range (max_endurance).

@@ -58,6 +58,7 @@ namespace dynosize {
 //    the top N the whole class is skipped for the pair.
 // R6 (propeller data credibility): see the comment at the rule; the hover point's figure of
 //    merit must not exceed the mission's max_figure_of_merit.
+// R7 (static-only propeller data in fast axial flow): see the comment at the rule.
 // Everything not pruned is evaluated exactly (MissionEvaluator::Solve): the answer is the
 // true top N over the catalog under (M1)-(M3).
 
@@ -300,6 +301,27 @@ SearchResult SearchCatalog(const Mission& m, const Catalog& cat, const SearchOpt
             continue;
           }
         }
+        if (models[pi]->data_kind() != PropDataKind::kTables || props[pi].j_tables.empty()) {
+          // R7: static-only data. The shaft cannot turn faster than the motor's no-load speed
+          // at full throttle and the full-charge voltage with no ESC resistance, so the advance
+          // ratio in a segment with axial airspeed >= V_ax is at least V_ax/(n_max*D); above
+          // the mission's max_static_advance_ratio the segment fails
+          // prop_no_forward_flight_data whatever else is chosen.
+          double w_nl = 0;
+          for (const Drive& d : ideal) w_nl = std::max(w_nl, d.NoLoadSpeed(bo.v_full, 1.0));
+          const double n_max = w_nl / (2.0 * kPi);
+          bool fails = false;
+          for (const Segment& sg : m.segments) {
+            double v_ax = 0;
+            if (sg.type == SegmentType::kClimb && sg.climb_rate_m_s > 0) v_ax = sg.climb_rate_m_s;
+            if (sg.type == SegmentType::kCruise && sg.lift_to_drag > 0) v_ax = sg.airspeed_m_s.lo;
+            if (n_max > 0 && v_ax / (n_max * props[pi].diameter_m) > k.max_static_advance_ratio) fails = true;
+          }
+          if (fails) {
+            prune("prop_no_forward_flight_data", per_pair);
+            continue;
+          }
+        }
         if (props[pi].max_rpm && RadPerSecToRpm(omega_lb) > *props[pi].max_rpm) {
           prune("prop_max_rpm", per_pair);  // R2
           continue;
@@ -323,6 +345,14 @@ SearchResult SearchCatalog(const Mission& m, const Catalog& cat, const SearchOpt
             if (m.objective.type == ObjectiveType::kMinEnergy) {
               double e = 0;
               for (int h : hover) e += p_hover * *m.segments[h].duration_s;
+              // Wing-borne cruise: at least the propulsive work W/(L/D)*d (see
+              // MissionEvaluator::Solve), W at the lightest mass.
+              for (const Segment& sg : m.segments) {
+                if (sg.type == SegmentType::kCruise && sg.lift_to_drag > 0) {
+                  const double d = sg.distance_m ? *sg.distance_m : *sg.duration_s * sg.airspeed_m_s.lo;
+                  e += mass_lb * kStandardGravity / sg.lift_to_drag * d;
+                }
+              }
               bound = e / 3600.0;
             } else if (stretch_is_hover) {
               // Terminal energy = integral of V*I dt <= integral of OCV*I dt = Q*integral of
@@ -365,7 +395,6 @@ SearchResult SearchCatalog(const Mission& m, const Catalog& cat, const SearchOpt
   }
   const double t_cands = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   long long virtual_evals = 0;
-  std::map<std::string, long long> debug_why;
   std::sort(cands.begin(), cands.end(), [](const Candidate& a, const Candidate& b) {
     if (a.bound != b.bound) return a.bound < b.bound;
     if (a.option != b.option) return a.option < b.option;
@@ -386,16 +415,21 @@ SearchResult SearchCatalog(const Mission& m, const Catalog& cat, const SearchOpt
     out.best.insert(pos, RankedCombination{c, std::move(r)});
     if (static_cast<int>(out.best.size()) > opt.top_n) out.best.pop_back();
   };
-  for (std::size_t ci = 0; ci < cands.size(); ++ci) {
-    const Candidate& cand = cands[ci];
-    if (opt.progress && ci % 64 == 0) opt.progress(static_cast<double>(ci) / static_cast<double>(cands.size()));
-    if (!(cand.bound < nth_best())) {  // R4: every later candidate has a bound at least as bad
-      prune("objective_bound", per_pair * static_cast<long long>(cands.size() - ci));
-      break;
-    }
+  // One candidate pair against a threshold (the N-th best score when its chunk started):
+  // virtual ESC per class first (R5), then the real ESCs, lightest first, skipping dominated
+  // ones. Pruning against a threshold at least the final N-th best is safe.
+  struct Outcome {
+    std::vector<std::pair<Combination, MissionResult>> results;
+    std::map<std::string, long long> pruned;
+    long long searched = 0, virtual_evals = 0;
+  };
+  auto process = [&](const Candidate& cand, std::vector<double> top, Outcome* o) {
+    // `top`: the N best scores when the chunk started, updated with this pair's own results, so
+    // that the threshold tightens within the pair exactly as it would in a sequential search.
+    auto threshold_now = [&]() { return static_cast<int>(top.size()) < opt.top_n ? kInf : top[opt.top_n - 1]; };
+    auto local_prune = [&](const std::string& rule, long long n) { o->pruned[rule] += n; };
     const BatteryOption& bo = options[cand.option];
     Combination c{&motors[cand.motor], nullptr, &props[cand.prop], bo.entry, bo.cells};
-    long long considered = 0;
     for (std::size_t cl = 0; cl < classes.size(); ++cl) {
       const std::vector<int>& list = option_escs[cand.option][cl];
       if (list.empty()) continue;
@@ -404,8 +438,7 @@ SearchResult SearchCatalog(const Mission& m, const Catalog& cat, const SearchOpt
       for (int e : list) {
         if (escs[e].params.max_current_a * margin >= cand.irms_lb) rated.push_back(e);
       }
-      considered += static_cast<long long>(list.size());
-      prune("esc_current", static_cast<long long>(list.size() - rated.size()));
+      local_prune("esc_current", static_cast<long long>(list.size() - rated.size()));
       if (rated.empty()) continue;
       // R5: the virtual ESC of the class.
       EscEntry virt;  // only what the evaluator reads (no copy of the entry's JSON)
@@ -418,15 +451,15 @@ SearchResult SearchCatalog(const Mission& m, const Catalog& cat, const SearchOpt
       {
         Combination vc = c;
         vc.esc = &virt;
-        const MissionResult vr = MissionEvaluator(m, vc, models[cand.prop].get()).Solve(nth_best());
+        const double threshold = threshold_now();
+        const MissionResult vr = MissionEvaluator(m, vc, models[cand.prop].get()).Solve(threshold);
+        ++o->virtual_evals;
         if (vr.bounded_out) {
-          prune("objective_bound", static_cast<long long>(rated.size()));
+          local_prune("objective_bound", static_cast<long long>(rated.size()));
           continue;
         }
-        ++virtual_evals;
-        if (!vr.feasible && !vr.violations.empty()) ++debug_why[vr.violations.front().constraint + "@" + vr.violations.front().segment];
-        if (!vr.feasible || !(vr.score < nth_best())) {
-          prune(vr.feasible ? "objective_bound" : "infeasible_bound", static_cast<long long>(rated.size()));
+        if (!vr.feasible || !(vr.score < threshold)) {
+          local_prune(vr.feasible ? "objective_bound" : "infeasible_bound", static_cast<long long>(rated.size()));
           continue;
         }
       }
@@ -437,33 +470,73 @@ SearchResult SearchCatalog(const Mission& m, const Catalog& cat, const SearchOpt
           if (d.second && Dominates(escs[d.first], escs[e])) { skip = true; break; }
         }
         if (skip) {
-          prune("esc_dominated", 1);
+          local_prune("esc_dominated", 1);
           continue;
         }
         c.esc = &escs[e];
-        MissionResult r = MissionEvaluator(m, c, models[cand.prop].get()).Solve(nth_best());
+        const double threshold = threshold_now();
+        MissionResult r = MissionEvaluator(m, c, models[cand.prop].get()).Solve(threshold);
         if (r.bounded_out) {
-          prune("objective_bound", 1);
+          local_prune("objective_bound", 1);
           done.emplace_back(e, true);
           continue;
         }
-        ++out.searched;
-        const bool out_of_top = !r.feasible || !(r.score < nth_best());
-        insert(c, std::move(r));
-        done.emplace_back(e, out_of_top);
+        ++o->searched;
+        done.emplace_back(e, !r.feasible || !(r.score < threshold));
+        if (r.feasible) {
+          top.insert(std::upper_bound(top.begin(), top.end(), r.score), r.score);
+          o->results.emplace_back(c, std::move(r));
+        }
       }
     }
-    prune("esc_voltage_or_class", 0);
-    (void)considered;
+  };
+  // Chunks of candidates evaluated on two threads against the threshold at the chunk's start,
+  // merged in candidate order: the answer and the counts do not depend on timing. Ipopt (the
+  // shaft segments' solver, MUMPS) is not thread-safe: missions with a free shaft speed run on
+  // one thread.
+  bool free_shaft = false;
+  for (const Segment& sg : m.segments) free_shaft |= sg.type == SegmentType::kShaft && sg.shaft_omega_rad_s.free();
+  const char* threads_env = std::getenv("DYNOSIZE_THREADS");
+  const int workers = free_shaft ? 1 : (threads_env && std::atoi(threads_env) == 1 ? 1 : kThreads);
+  constexpr std::size_t kMaxChunk = 64;
+  std::size_t chunk = 2;  // grows while the threshold settles
+  std::size_t ci = 0;
+  while (ci < cands.size()) {
+    if (opt.progress) opt.progress(static_cast<double>(ci) / static_cast<double>(cands.size()));
+    const double threshold = nth_best();
+    std::vector<double> top;
+    for (const auto& b : out.best) top.push_back(b.result.score);
+    std::size_t end = ci;
+    while (end < cands.size() && end - ci < chunk && cands[end].bound < threshold) ++end;
+    chunk = std::min(kMaxChunk, 2 * chunk);
+    if (end == ci) {  // R4: every later candidate has a bound at least as bad
+      prune("objective_bound", per_pair * static_cast<long long>(cands.size() - ci));
+      break;
+    }
+    std::vector<Outcome> outs(end - ci);
+    auto run = [&](int tid) {
+      for (std::size_t i = ci + static_cast<std::size_t>(tid); i < end; i += static_cast<std::size_t>(workers)) {
+        process(cands[i], top, &outs[i - ci]);
+      }
+    };
+    std::vector<std::thread> pool;
+    for (int t = 1; t < workers; ++t) pool.emplace_back(run, t);
+    run(0);
+    for (auto& th : pool) th.join();
+    for (Outcome& o : outs) {
+      for (const auto& [rule, n] : o.pruned) out.pruned_by[rule] += n;
+      out.searched += o.searched;
+      virtual_evals += o.virtual_evals;
+      for (auto& [c, r] : o.results) insert(c, std::move(r));
+    }
+    ci = end;
   }
   if (opt.progress) opt.progress(1.0);
-  out.pruned_by.erase("esc_voltage_or_class");
   out.pruned = out.combinations - out.searched;
   out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   if (std::getenv("DYNOSIZE_SEARCH_DEBUG")) {
     std::fprintf(stderr, "search: %zu candidate pairs in %.3f s; %lld virtual-ESC and %lld exact evaluations; total %.3f s\n",
                  cands.size(), t_cands, virtual_evals, out.searched, out.seconds);
-    for (const auto& [w, n] : debug_why) std::fprintf(stderr, "  virtual infeasible: %s %lld\n", w.c_str(), n);
   }
   return out;
 }

@@ -183,8 +183,8 @@ std::string WriteParetoFigure(const Mission& m, const SearchResult& s, const std
   front.series.push_back({fx, fy});
   top.series.push_back({tx, ty});
   std::ostringstream g;
-  g << "set title \"" << m.name << ": " << ObjectiveLabel(m) << " vs propulsion mass ("
-    << s.searched << " combinations evaluated exactly, " << s.pruned << " pruned)\" noenhanced\n"
+  g << "set title \"" << m.name << ": " << ObjectiveLabel(m) << " vs propulsion mass\\n"
+    << s.searched << " combinations evaluated exactly, " << s.pruned << " pruned\" noenhanced\n"
     << "set xlabel 'propulsion mass (motors, ESCs, propellers, battery) [kg]'\nset ylabel \""
     << ObjectiveLabel(m) << "\" noenhanced\nset grid\nset key bottom right\n"
     << "plot $all using 1:2 with points pt 7 ps 0.5 lc rgb '#9a9a9a' title 'evaluated', "

@@ -1,0 +1,126 @@
+// The mission reader (strict, one-line errors with the JSON path) and the flight physics.
+#include "mission/mission.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+
+#include "cli_runner.h"
+#include "common/error.h"
+#include "common/units.h"
+#include "mission/flight.h"
+
+namespace dynosize {
+namespace {
+
+const char* kGood = R"({
+  "name": "t",
+  "vehicle": {"mass_kg": 1.0, "rotors": 4, "drag_area_m2": 0.05, "drag_coefficient": 1.0},
+  "battery": {"id": "b", "cells": [3, 4]},
+  "objective": {"type": "max_endurance"},
+  "segments": [
+    {"name": "up", "type": "climb", "rate_m_s": 2, "distance_m": 20},
+    {"name": "go", "type": "cruise", "airspeed_m_s": [5, 15], "distance_m": 1000},
+    {"name": "stay", "type": "hover", "duration_s": 60},
+    {"name": "pump", "type": "shaft", "power_w": 50, "rpm": [3000, 9000], "duration_s": 10}
+  ]
+})";
+
+Mission Parse(const std::string& text) { return ParseMission(ParseJsonText(text, "m.json"), "m.json"); }
+
+std::string ErrorOf(const std::string& text) {
+  try {
+    Parse(text);
+  } catch (const DataError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+std::string Replace(std::string s, const std::string& a, const std::string& b) {
+  const auto pos = s.find(a);
+  EXPECT_NE(pos, std::string::npos) << a;
+  return s.replace(pos, a.size(), b);
+}
+
+TEST(MissionTest, ReadsAGoodMission) {
+  const Mission m = Parse(kGood);
+  EXPECT_EQ(m.vehicle.rotors, 4);
+  EXPECT_EQ(m.battery.cells_min, 3);
+  EXPECT_EQ(m.battery.cells_max, 4);
+  ASSERT_EQ(m.segments.size(), 4u);
+  EXPECT_TRUE(m.segments[1].airspeed_m_s.free());
+  EXPECT_DOUBLE_EQ(m.segments[3].shaft_omega_rad_s.lo, RpmToRadPerSec(3000));
+  // max_endurance without a segment stretches the last hover.
+  EXPECT_EQ(m.objective.segment, "stay");
+  EXPECT_DOUBLE_EQ(m.constraints.max_throttle, 0.8);
+  EXPECT_NEAR(m.rho_kg_m3, 1.225, 1e-3);  // ISA sea level by default
+}
+
+TEST(MissionTest, BadFilesGiveOneLineNamingPathValueAndRule) {
+  struct Case { std::string from, to, expect; };
+  const Case cases[] = {
+      {"\"rotors\": 4", "\"rotors\": 0", "$.vehicle.rotors = 0: must be an integer in [1, 64]"},
+      {"\"mass_kg\": 1.0", "\"mass_kg\": -1", "$.vehicle.mass_kg = -1: must be a number > 0"},
+      {"\"type\": \"hover\"", "\"type\": \"loiter\"", "$.segments[2].type = \"loiter\": must be one of"},
+      {"\"duration_s\": 60", "\"distance_m\": 60", "$.segments[2]: unknown key(s) distance_m"},
+      {"\"rate_m_s\": 2, ", "", "$.segments[0].rate_m_s: missing"},
+      {"\"power_w\": 50", "\"torque_nm\": 0.1, \"power_w\": 50", "give exactly one of power_w and torque_nm"},
+      {"\"max_endurance\"", "\"max_range\"", "$.objective.type = \"max_range\": must be one of"},
+      {"\"airspeed_m_s\": [5, 15]", "\"airspeed_m_s\": [15, 5]", "a range must have min <= max"},
+      {"\"name\": \"go\"", "\"name\": \"up\"", "$.segments[1].name = \"up\": segment names must be unique"},
+      {"\"cells\": [3, 4]", "\"cells\": 3.5", "cell counts must be integers"},
+      {"\"name\": \"t\",", "\"name\": \"t\", \"extra\": 1,", "$: unknown key(s) extra"},
+  };
+  for (const Case& c : cases) {
+    const std::string err = ErrorOf(Replace(kGood, c.from, c.to));
+    EXPECT_NE(err.find(c.expect), std::string::npos) << "got: " << err;
+    EXPECT_EQ(err.find('\n'), std::string::npos) << err;
+    EXPECT_EQ(err.rfind("m.json: ", 0), 0u) << err;
+  }
+}
+
+TEST(MissionTest, CliRefusesABadMissionWithExit65) {
+  namespace fs = std::filesystem;
+  const fs::path dir = fs::temp_directory_path() / ("dynosize_mission_" + std::to_string(getpid()));
+  fs::create_directories(dir);
+  const fs::path f = dir / "bad.json";
+  std::ofstream(f) << Replace(kGood, "\"rotors\": 4", "\"rotors\": \"four\"");
+  const auto r = testing_util::RunCli("evaluate " + f.string() +
+                                      " --motor a --esc b --prop c --battery d");
+  EXPECT_EQ(r.code, 65) << r.err;
+  EXPECT_NE(r.err.find("$.vehicle.rotors = \"four\""), std::string::npos) << r.err;
+  EXPECT_TRUE(r.out.empty());
+  const auto missing = testing_util::RunCli("optimize " + (dir / "none.json").string());
+  EXPECT_EQ(missing.code, 66) << missing.err;
+  fs::remove_all(dir);
+}
+
+TEST(MissionTest, ExamplesParse) {
+  for (const char* f : {"quadcopter_1p5kg.json", "evtol_lift_cruise.json"}) {
+    EXPECT_NO_THROW(ReadMission(std::string(DYNOSIZE_SOURCE_DIR) + "/examples/missions/" + f)) << f;
+  }
+}
+
+// Flight physics: hover carries the weight; forward flight tilts the thrust so that its
+// vertical part carries the weight and its horizontal part the drag.
+TEST(FlightTest, ForceBalance) {
+  const Mission m = Parse(kGood);
+  const double mass = 1.6, w = mass * kStandardGravity;
+  const RotorLoad hover = SegmentRotorLoad(m, m.segments[2], mass, 0.0);
+  EXPECT_DOUBLE_EQ(hover.thrust_per_rotor_n, w / 4);
+  const double v = 12.0;
+  const RotorLoad cruise = SegmentRotorLoad(m, m.segments[1], mass, v);
+  const double drag = 0.5 * m.rho_kg_m3 * v * v * 0.05;
+  EXPECT_NEAR(cruise.thrust_total_n * std::cos(cruise.tilt_rad), w, 1e-12 * w);
+  EXPECT_NEAR(cruise.thrust_total_n * std::sin(cruise.tilt_rad), drag, 1e-12 * w);
+  EXPECT_NEAR(cruise.axial_airspeed_m_s, v * std::sin(cruise.tilt_rad), 1e-12);
+  const RotorLoad climb = SegmentRotorLoad(m, m.segments[0], mass, 0.0);
+  EXPECT_NEAR(climb.thrust_total_n, w + 0.5 * m.rho_kg_m3 * 4.0 * 0.05, 1e-12);
+  EXPECT_DOUBLE_EQ(climb.axial_airspeed_m_s, 2.0);
+}
+
+}  // namespace
+}  // namespace dynosize

@@ -1,0 +1,187 @@
+// The catalog search against exhaustive evaluation on a small catalog, the per-segment optimum
+// against a dense grid, infeasible missions, and every printed point reproduced by `simulate`.
+#include "optimization/search.h"
+
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+
+#include "catalog/catalog.h"
+#include "cli_runner.h"
+#include "common/json_file.h"
+#include "optimization/mission_eval.h"
+
+namespace dynosize {
+namespace {
+
+namespace fs = std::filesystem;
+
+const char* kQuad = R"({
+  "name": "test quad",
+  "vehicle": {"mass_kg": 0.75, "rotors": 4, "drag_area_m2": 0.04, "drag_coefficient": 1.0, "avionics_power_w": 5},
+  "battery": {"id": "dc_b_361", "cells": [3, 4], "reserve_soc": 0.2},
+  "objective": {"type": "max_endurance", "segment": "loiter"},
+  "segments": [
+    {"name": "takeoff", "type": "climb", "rate_m_s": 2, "distance_m": 30},
+    {"name": "outbound", "type": "cruise", "airspeed_m_s": 10, "distance_m": 1000},
+    {"name": "loiter", "type": "hover", "duration_s": 300},
+    {"name": "landing", "type": "climb", "rate_m_s": -1, "distance_m": 30}
+  ]
+})";
+
+// A small catalog written from entries of the bundled one: feasible and infeasible pairs,
+// one propeller whose data break momentum theory, ESCs that dominate each other.
+class SearchTest : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    dir_ = fs::temp_directory_path() / ("dynosize_search_" + std::to_string(getpid()));
+    fs::create_directories(dir_ / "catalog");
+    const Catalog full = Catalog::Load(std::string(DYNOSIZE_SOURCE_DIR) + "/catalog");
+    Json doc;
+    doc["motors"] = Json::array();
+    for (const char* id : {"dc_m_223", "dc_m_1020", "dc_m_1444", "emax_935kv_paper"}) doc["motors"].push_back(full.motor(id).json);
+    int extra = 0;
+    for (const MotorEntry& m : full.motors()) {  // a few more of the right size
+      if (extra < 3 && m.mass_kg && m.kv_rpm_per_v && *m.kv_rpm_per_v > 600 && *m.kv_rpm_per_v < 1000 &&
+          *m.mass_kg > 0.05 && *m.mass_kg < 0.12 && m.id != "dc_m_223" && m.id != "dc_m_1020") {
+        doc["motors"].push_back(m.json);
+        ++extra;
+      }
+    }
+    doc["escs"] = Json::array();
+    for (const char* id : {"dc_e_252", "dc_e_237", "dc_e_56", "multistar_30a_paper"}) doc["escs"].push_back(full.esc(id).json);
+    doc["props"] = Json::array();
+    for (const char* id : {"dc_p_410", "dc_p_372", "dc_p_440", "dc_p_173", "apc_per3_10x45mr"}) doc["props"].push_back(full.prop(id).json);
+    doc["batteries"] = Json::array();
+    doc["batteries"].push_back(full.battery("dc_b_361").json);
+    std::ofstream(dir_ / "catalog" / "small.json") << DumpJson(doc);
+    std::ofstream(dir_ / "quad.json") << kQuad;
+  }
+  static void TearDownTestSuite() { fs::remove_all(dir_); }
+  static fs::path dir_;
+};
+fs::path SearchTest::dir_;
+
+TEST_F(SearchTest, OptimizeEqualsTheBestOfExhaustiveEvaluation) {
+  const Catalog cat = Catalog::Load((dir_ / "catalog").string());
+  const Mission m = ParseMission(ParseJsonText(kQuad, "quad"), "quad");
+  std::vector<std::pair<double, std::string>> all;
+  for (const auto& mo : cat.motors()) {
+    if (!mo.mass_kg) continue;  // the search leaves motors without mass out (counted)
+    for (const auto& e : cat.escs()) {
+      for (const auto& p : cat.props()) {
+        for (int cells : {3, 4}) {
+          const Combination c{&mo, &e, &p, &cat.battery("dc_b_361"), cells};
+          const MissionResult r = MissionEvaluator(m, c).Solve();
+          if (r.feasible) all.emplace_back(r.score, mo.id + "|" + e.id + "|" + p.id + "|" + std::to_string(cells));
+        }
+      }
+    }
+  }
+  ASSERT_GE(all.size(), 3u) << "the small catalog must fly the mission";
+  std::sort(all.begin(), all.end());
+  SearchOptions so;
+  so.top_n = 3;
+  const SearchResult s = SearchCatalog(m, cat, so);
+  ASSERT_EQ(s.best.size(), 3u);
+  for (int i = 0; i < 3; ++i) {
+    const Combination& c = s.best[i].combination;
+    EXPECT_EQ(c.motor->id + "|" + c.esc->id + "|" + c.prop->id + "|" + std::to_string(c.cells), all[i].second) << i;
+    // Same numbers as evaluate: the same code path, bit for bit.
+    EXPECT_EQ(s.best[i].result.score, all[i].first) << i;
+  }
+  EXPECT_EQ(s.searched + s.pruned, s.combinations);
+  EXPECT_GT(s.pruned, 0);
+}
+
+TEST_F(SearchTest, FreeAirspeedOptimumBeatsADenseGrid) {
+  Json j = ParseJsonText(kQuad, "quad");
+  j["objective"] = {{"type", "min_energy"}};
+  j["segments"][1]["airspeed_m_s"] = {4.0, 20.0};
+  const Mission m = ParseMission(j, "quad");
+  const Catalog cat = Catalog::Load((dir_ / "catalog").string());
+  const Combination c{&cat.motor("dc_m_1020"), &cat.esc("dc_e_56"), &cat.prop("dc_p_173"), &cat.battery("dc_b_361"), 4};
+  const MissionEvaluator ev(m, c);
+  const MissionResult r = ev.Solve();
+  ASSERT_TRUE(r.feasible);
+  double grid_best = 1e300, v_best = 0;
+  for (int i = 0; i <= 400; ++i) {
+    ContinuousVars v;
+    v.airspeed_m_s.assign(m.segments.size(), 0.0);
+    v.airspeed_m_s[1] = 4.0 + 16.0 * i / 400.0;
+    const MissionResult g = ev.Simulate(v);
+    if (g.feasible && g.objective < grid_best) { grid_best = g.objective; v_best = v.airspeed_m_s[1]; }
+  }
+  // COBYLA stops at relative_tolerance 1e-6 in the scaled airspeed; the energy is flat at the
+  // optimum, so it matches the grid's best (step 0.04 m/s) to 1e-5 relative or beats it.
+  EXPECT_LE(r.objective, grid_best * (1 + 1e-5));
+  EXPECT_NEAR(r.segments[1].airspeed_m_s, v_best, 0.5);
+}
+
+TEST_F(SearchTest, InfeasibleMissionSaysWhichConstraintAndByHowMuch) {
+  Json j = ParseJsonText(kQuad, "quad");
+  j["vehicle"]["mass_kg"] = 12.0;  // far too heavy for these components
+  const Mission m = ParseMission(j, "quad");
+  const Catalog cat = Catalog::Load((dir_ / "catalog").string());
+  const SearchResult s = SearchCatalog(m, cat);
+  EXPECT_TRUE(s.best.empty());
+  const Combination c{&cat.motor("dc_m_1020"), &cat.esc("dc_e_56"), &cat.prop("dc_p_173"), &cat.battery("dc_b_361"), 4};
+  const MissionResult r = MissionEvaluator(m, c).Solve();
+  EXPECT_FALSE(r.feasible);
+  ASSERT_FALSE(r.violations.empty());
+  for (const Violation& v : r.violations) EXPECT_GT(v.excess(), 0.0) << v.constraint;
+  // The CLI says it in one line per failing constraint, with the amount.
+  std::ofstream(dir_ / "heavy.json") << DumpJson(j);
+  const auto cli = testing_util::RunCli("evaluate " + (dir_ / "heavy.json").string() + " --catalog " +
+                                        (dir_ / "catalog").string() +
+                                        " --motor dc_m_1020 --esc dc_e_56 --prop dc_p_173 --battery dc_b_361 --cells 4");
+  EXPECT_EQ(cli.code, 0) << cli.err;  // an infeasible combination is a result, not an error
+  EXPECT_NE(cli.out.find("INFEASIBLE"), std::string::npos) << cli.out;
+  EXPECT_NE(cli.out.find("fails " + r.violations.front().constraint), std::string::npos) << cli.out;
+  EXPECT_NE(cli.out.find("(by "), std::string::npos) << cli.out;
+}
+
+TEST_F(SearchTest, EverySegmentPointIsReproducedBySimulate) {
+  const std::string cat = "--catalog " + (dir_ / "catalog").string();
+  const auto ev = testing_util::RunCli("evaluate " + (dir_ / "quad.json").string() + " " + cat +
+                                       " --motor dc_m_1020 --esc dc_e_56 --prop dc_p_173 --battery dc_b_361 --cells 4 --json");
+  ASSERT_EQ(ev.code, 0) << ev.err;
+  const Json j = Json::parse(ev.out);
+  ASSERT_TRUE(j["feasible"].get<bool>());
+  ASSERT_EQ(j["segments"].size(), 4u);
+  for (const Json& s : j["segments"]) {
+    char args[512];
+    std::snprintf(args, sizeof args, "simulate %s --motor dc_m_1020 --esc dc_e_56 --vdc %.17g --throttle %.17g --torque %.17g --json",
+                  cat.c_str(), s["vdc_v"].get<double>(), s["throttle"].get<double>(), s["torque_nm"].get<double>());
+    const auto sim = testing_util::RunCli(args);
+    ASSERT_EQ(sim.code, 0) << sim.err;
+    const Json p = Json::parse(sim.out);
+    // The forward model inverts the inverse to rounding (a quadratic's root, 1e-12 relative).
+    for (const char* key : {"rpm", "irms_a", "idc_a", "pdc_w", "pesc_w", "eta_motor", "eta_esc", "eta_system"}) {
+      EXPECT_NEAR(p[key].get<double>(), s[key].get<double>(), 1e-9 * std::fabs(s[key].get<double>()))
+          << s["name"] << " " << key;
+    }
+  }
+  // The optimize CLI prints the same numbers as evaluate for its top pick.
+  const auto opt = testing_util::RunCli("optimize " + (dir_ / "quad.json").string() + " " + cat + " --top 1 --json");
+  ASSERT_EQ(opt.code, 0) << opt.err;
+  const Json o = Json::parse(opt.out);
+  ASSERT_EQ(o["results"].size(), 1u);
+  const Json& best = o["results"][0];
+  const auto ev2 = testing_util::RunCli("evaluate " + (dir_ / "quad.json").string() + " " + cat + " --motor " +
+                                        best["motor"].get<std::string>() + " --esc " + best["esc"].get<std::string>() +
+                                        " --prop " + best["prop"].get<std::string>() + " --battery " +
+                                        best["battery"].get<std::string>() + " --cells " +
+                                        std::to_string(best["cells"].get<int>()) + " --json");
+  ASSERT_EQ(ev2.code, 0) << ev2.err;
+  EXPECT_EQ(Json::parse(ev2.out)["objective"], best["objective"]);
+  EXPECT_EQ(o["searched"].get<long long>() + o["pruned"].get<long long>(), o["combinations"].get<long long>());
+}
+
+}  // namespace
+}  // namespace dynosize
