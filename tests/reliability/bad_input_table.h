@@ -88,6 +88,24 @@ inline std::string Nested(int depth) {
 
 // ------------------------------------------------------------------ the table
 
+// `text` with the first `from` replaced by `to` (the test fails loudly if `from` is absent).
+inline std::string Replace(std::string text, const std::string& from, const std::string& to) {
+  const std::size_t at = text.find(from);
+  if (at == std::string::npos) return "Replace: '" + from + "' not found";
+  return text.replace(at, from.size(), to);
+}
+
+// A valid mission (README, "Mission file"): one cruise and one hover segment.
+inline std::string Mission() {
+  return R"({"name": "t", "vehicle": {"mass_kg": 0.75, "rotors": 4},
+  "battery": {"id": "b", "cells": 4},
+  "constraints": {"max_throttle": 0.8},
+  "objective": {"type": "max_endurance", "segment": "loiter"},
+  "segments": [{"name": "out", "type": "cruise", "airspeed_m_s": 10, "distance_m": 2000},
+               {"name": "loiter", "type": "hover", "duration_s": 300}]}
+)";
+}
+
 inline std::vector<BadInputCase> BadInputCases() {
   const std::string cal = "calibrate --motor-id fm --esc-id fe ";
   const std::string list = "catalog list --catalog {dir}/cat";
@@ -363,6 +381,40 @@ inline std::vector<BadInputCase> BadInputCases() {
                {"{dir}/afile"}});
   c.push_back({"flag_out_unwritable", {{"log.csv", CanonicalLog()}},
                batch + "{src}/examples/points.csv --out /proc/nope/r.csv", 73, {"/proc/nope/r.csv"}});
+
+  // ---- mission JSON (strict; evaluate and optimize read it before the catalog)
+  const std::string eval = "--catalog {dir}/paper evaluate {dir}/m.json --motor m --esc e --prop p --battery b";
+  c.push_back({"mission_empty_file", {{"m.json", ""}}, eval, 65, {"{dir}/m.json", "empty file"}});
+  c.push_back({"mission_truncated", {{"m.json", Mission().substr(0, 80)}}, eval, 65,
+               {"{dir}/m.json:", "invalid JSON", "unexpected end of input"}});
+  c.push_back({"mission_binary_garbage", {{"m.json", Garbage(200, 11)}}, eval, 65, {"{dir}/m.json", "invalid JSON"}});
+  c.push_back({"mission_utf16", {{"m.json", Utf16LeWithBom(Mission())}}, eval, 65, {"{dir}/m.json", "UTF-16"}});
+  c.push_back({"mission_nan_literal", {{"m.json", Replace(Mission(), "\"mass_kg\": 0.75", "\"mass_kg\": NaN")}},
+               eval, 65, {"{dir}/m.json", "mass_kg", "invalid JSON"}});
+  c.push_back({"mission_negative_mass", {{"m.json", Replace(Mission(), "\"mass_kg\": 0.75", "\"mass_kg\": -1")}},
+               eval, 65, {"{dir}/m.json", "vehicle.mass_kg = -1", "> 0"}});
+  c.push_back({"mission_mass_1e308", {{"m.json", Replace(Mission(), "\"mass_kg\": 0.75", "\"mass_kg\": 1e308")}},
+               eval, 65, {"{dir}/m.json", "vehicle.mass_kg", "<= 10000"}});
+  c.push_back({"mission_zero_rotors", {{"m.json", Replace(Mission(), "\"rotors\": 4", "\"rotors\": 0")}},
+               eval, 65, {"{dir}/m.json", "vehicle.rotors = 0", "[1, 64]"}});
+  c.push_back({"mission_throttle_above_one",
+               {{"m.json", Replace(Mission(), "\"max_throttle\": 0.8", "\"max_throttle\": 1.5")}}, eval, 65,
+               {"{dir}/m.json", "constraints.max_throttle = 1.5", "<= 1"}});
+  c.push_back({"mission_duplicate_key", {{"m.json", Replace(Mission(), "\"rotors\": 4", "\"rotors\": 4, \"rotors\": 6")}},
+               eval, 65, {"{dir}/m.json", "rotors", "duplicate key"}});
+  c.push_back({"mission_unknown_key", {{"m.json", Replace(Mission(), "\"rotors\": 4", "\"rotors\": 4, \"rotorz\": 6")}},
+               eval, 65, {"{dir}/m.json", "vehicle", "unknown key", "rotorz"}});
+  c.push_back({"mission_text_in_number",
+               {{"m.json", Replace(Mission(), "\"duration_s\": 300", "\"duration_s\": \"300\"")}}, eval, 65,
+               {"{dir}/m.json", "segments[1].duration_s"}});
+  c.push_back({"mission_unknown_segment_type", {{"m.json", Replace(Mission(), "\"type\": \"hover\"", "\"type\": \"hovver\"")}},
+               eval, 65, {"{dir}/m.json", "segments[1].type = \"hovver\"", "climb, cruise, hover, shaft"}});
+  c.push_back({"mission_zero_duration", {{"m.json", Replace(Mission(), "\"duration_s\": 300", "\"duration_s\": 0")}},
+               eval, 65, {"{dir}/m.json", "segments[1].duration_s = 0", "> 0"}});
+  c.push_back({"mission_objective_names_no_segment",
+               {{"m.json", Replace(Mission(), "\"segment\": \"loiter\"", "\"segment\": \"loitr\"")}}, eval, 65,
+               {"{dir}/m.json", "objective.segment = \"loitr\"", "names no segment"}});
+  c.push_back({"mission_missing", {}, eval, 66, {"{dir}/m.json"}});
   return c;
 }
 
