@@ -74,7 +74,7 @@ constexpr unsigned kSeeds[] = {1, 2, 3, 4, 5, 6, 7, 8};
 TEST(NoLostData, WriterKilledMidWriteLeavesOldOrNewFileWhole) {
   const fs::path dir = FreshDir("kill_library");
   const fs::path path = dir / "catalog.json";
-  std::string current = LargeCatalog(20000, "v0");  // about 3.5 MB: a write takes milliseconds
+  std::string current = LargeCatalog(20000, "v0");  // about 2.7 MB: a write takes milliseconds
   WriteFileAtomic(path.string(), current);
   std::size_t interrupted = 0;
   for (const unsigned seed : kSeeds) {
