@@ -101,6 +101,7 @@ fig() {  # tag, caption, diagnose arguments
   echo
   echo "![curves](img/diagnosis_${tag}_curves.png)"
   echo "![residuals vs throttle](img/diagnosis_${tag}_residuals_vs_throttle.png)"
+  echo "![measured vs predicted](img/diagnosis_${tag}_measured_vs_predicted.png)"
   echo
 }
 fig strawson_a1_11 "Strawson a1_11: speed at 5 % command far above 0.675*VDC*TR - a throttle offset" \

@@ -89,7 +89,7 @@ std::vector<std::string> WriteDiagnosisFigures(const std::string& dir, const log
     std::ostringstream g;
     g << "set multiplot layout 1," << cols.size() << " title "
       << Quote("residuals vs " + std::string(ax.label) + ": " + file + "\\n" + sub.str()) << "\n"
-      << "set grid\nset key top left\nset xlabel '" << ax.label << " [" << ax.unit << "]'\n"
+      << "set grid\nset key top left\nset xtics rotate by -35\nset xlabel '" << ax.label << " [" << ax.unit << "]'\n"
       << "set ylabel 'held-out error (pred - meas)/meas [%]'\n";
     for (std::size_t k = 0; k < cols.size(); ++k) {
       const Column c = cols[k];
@@ -124,7 +124,7 @@ std::vector<std::string> WriteDiagnosisFigures(const std::string& dir, const log
     std::ostringstream g;
     g << "set multiplot layout 1," << cols.size() << " title "
       << Quote("measured vs predicted (held-out): " + file + "\\n" + sub.str()) << "\n"
-      << "set grid\nset key top left\n";
+      << "set grid\nset key top left\nset xtics rotate by -35\n";
     for (std::size_t k = 0; k < cols.size(); ++k) {
       const Column c = cols[k];
       const Axis ax = Describe(c);
