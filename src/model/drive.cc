@@ -220,7 +220,10 @@ OperatingPoint Drive::AtLoad(double vdc_v, double throttle, const TorqueLaw& loa
     return Complete(vdc_v, throttle, 0.0, std::max(u / r_total_ohm_, 0.0), kLimitStalled);
   }
   const double current = (u - motor_.ke_v_s_per_rad * omega) / r_total_ohm_;
-  return Complete(vdc_v, throttle, omega, current, kLimitNone);
+  // Below the no-load current the shaft torque is negative: the load drives the motor. (1 nA of
+  // slack: a zero load must not be flagged through round-off.)
+  return Complete(vdc_v, throttle, omega, current,
+                  current < motor_.io_a - 1e-9 ? kLimitOverrunning : kLimitNone);
 }
 
 [[gnu::noinline]] OperatingPoint Drive::AtLoadExtended(double vdc_v, double throttle, const TorqueLaw& load) const {
@@ -240,7 +243,8 @@ OperatingPoint Drive::AtLoad(double vdc_v, double throttle, const TorqueLaw& loa
     return Complete(vdc_v, throttle, 0.0, std::max(u / r, 0.0), kLimitStalled);
   }
   const double current = (u - motor_.ke_v_s_per_rad * omega) / r;
-  return Complete(vdc_v, throttle, omega, current, kLimitNone);
+  const double io = motor_.io_a + motor_.io1_a_s_per_rad * omega;
+  return Complete(vdc_v, throttle, omega, current, current < io - 1e-9 ? kLimitOverrunning : kLimitNone);
 }
 
 OperatingPoint Drive::AtLoadNonlinear(double vdc_v, double throttle, const TorqueLaw& load) const {

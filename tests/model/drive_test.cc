@@ -199,6 +199,16 @@ TEST(Drive, LimitsAreFlagged) {
   EXPECT_TRUE(d.AtTorque(14.8, 0.5, 0.01).limits & kLimitEscVoltage);
   // Driven beyond no-load speed.
   EXPECT_TRUE(d.AtSpeed(7.2, 0.5, 2.0 * d.NoLoadSpeed(7.2, 0.5)).limits & kLimitOverrunning);
+  // A negative load torque (the load drives the shaft) runs past no-load speed: overrunning,
+  // with the base model and with an extension active (the extended closed-form path).
+  p = d.AtTorque(7.2, 0.5, -0.01);
+  EXPECT_TRUE(p.limits & kLimitOverrunning);
+  EXPECT_GT(p.omega_rad_s, d.NoLoadSpeed(7.2, 0.5));
+  EXPECT_FALSE(d.AtTorque(7.2, 0.5, 0.0).limits & kLimitOverrunning);  // exactly no load: I = Io
+  MotorParams m_ext = m;
+  m_ext.io1_a_s_per_rad = 1e-4;
+  EXPECT_TRUE(Drive(m_ext, e).AtTorque(7.2, 0.5, -0.01).limits & kLimitOverrunning);
+  EXPECT_FALSE(Drive(m_ext, e).AtTorque(7.2, 0.5, 0.01).limits & kLimitOverrunning);
   EXPECT_EQ(LimitNames(kLimitMotorCurrent | kLimitStalled),
             (std::vector<std::string>{"motor_current", "stalled"}));
 }
