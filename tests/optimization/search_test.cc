@@ -123,6 +123,29 @@ TEST_F(SearchTest, FreeAirspeedOptimumBeatsADenseGrid) {
   EXPECT_NEAR(r.segments[1].airspeed_m_s, v_best, 0.5);
 }
 
+TEST_F(SearchTest, FreeCapacityOptimumBeatsADenseGrid) {
+  Json j = ParseJsonText(kQuad, "quad");
+  j["battery"]["capacity_ah"] = {1.5, 9.0};
+  const Mission m = ParseMission(j, "quad");
+  const Catalog cat = Catalog::Load((dir_ / "catalog").string());
+  const Combination c{&cat.motor("dc_m_1020"), &cat.esc("dc_e_56"), &cat.prop("dc_p_173"), &cat.battery("dc_b_361"), 4};
+  const MissionEvaluator ev(m, c);
+  const MissionResult r = ev.Solve();
+  ASSERT_TRUE(r.feasible) << r.solver;
+  double grid_best = 0, c_best = 0;
+  for (int i = 0; i <= 300; ++i) {
+    ContinuousVars v;
+    v.capacity_ah = 1.5 + 7.5 * i / 300.0;
+    v.airspeed_m_s.assign(m.segments.size(), 0.0);
+    const MissionResult g = ev.Simulate(v);
+    if (g.feasible && g.objective > grid_best) { grid_best = g.objective; c_best = v.capacity_ah; }
+  }
+  // Endurance found by regula falsi to 1e-6 relative per capacity, and COBYLA on the capacity
+  // to 1e-6 of its range: within 1e-4 of the grid's best (step 0.025 A*h) or better.
+  EXPECT_GE(r.objective, grid_best * (1 - 1e-4)) << r.solver;
+  EXPECT_NEAR(r.capacity_ah, c_best, 0.3) << r.solver;
+}
+
 TEST_F(SearchTest, InfeasibleMissionSaysWhichConstraintAndByHowMuch) {
   Json j = ParseJsonText(kQuad, "quad");
   j["vehicle"]["mass_kg"] = 12.0;  // far too heavy for these components
