@@ -56,6 +56,24 @@ double MedianAbs(std::vector<double> v) {
 
 Json NumOrNull(double v) { return std::isfinite(v) ? Json(v) : Json(nullptr); }
 
+// A percentage for the text report: "-" when there is none (never "nan").
+std::string PercentText(double v) {
+  if (!std::isfinite(v)) return "-";
+  std::ostringstream s;
+  s << std::setprecision(3) << v;
+  return s.str();
+}
+
+// Numerical guard, independent of the solver's own claim: every reported parameter finite.
+// Returns "" or the first non-finite parameter.
+std::string NonFiniteParameter(const CalibrationResult& r) {
+  for (int k = 0; k < calibration::kParamCount; ++k) {
+    if (!std::isfinite(r.params[k].value)) return calibration::ParamName(static_cast<calibration::Param>(k));
+  }
+  if (!std::isfinite(r.r_total_ohm)) return "r_total_ohm";
+  return "";
+}
+
 // {"median_abs_percent": x, "points": n}
 Json ErrJson(const std::vector<double>& e) {
   return {{"median_abs_percent", NumOrNull(MedianAbs(e))}, {"points", e.size()}};
@@ -65,6 +83,7 @@ int RunDriveCalcAll(const CalibrateOptions& o) {
   if (o.logs.size() != 1) throw UsageError("--drivecalc-all takes one log: DriveCalc's MData.csv");
   logs::LogReadOptions ro;
   ro.format = logs::LogFormat::kDriveCalc;
+  ro.drivecalc_keep_no_load_without_speed = true;  // their no-load current still fixes Io
   const logs::SteadyTable t = logs::ReadLog(o.logs[0], ro);
   const calibration::DriveCalcRefit all = calibration::RefitDriveCalc(t);
   // Names from the imported DriveCalc catalog (dc_m_<id>) when it is there.
@@ -117,6 +136,7 @@ int RunDriveCalcAll(const CalibrateOptions& o) {
       "circuit, io_a from the no-load points. Do not edit by hand.";
   if (std::filesystem::exists(out) && o.force) {
     // A regeneration replaces the generated file as a whole.
+    const FileLock lock(out);
     Json doc;
     doc["comment"] = comment;
     doc["motors"] = motors;
@@ -143,8 +163,8 @@ int RunDriveCalcAll(const CalibrateOptions& o) {
     std::cout << "refitted " << all.fits.size() << " of " << all.motors_seen << " DriveCalc motors ("
               << all.motors_too_few_points << " with too few points, " << all.failures.size()
               << " failed) -> " << out << "\n"
-              << "median rmse: idc " << std::setprecision(3) << Median(rmse_idc) << " %, no-load speed "
-              << Median(rmse_w) << " %\n";
+              << "median rmse: idc " << PercentText(Median(rmse_idc)) << " %, no-load speed "
+              << PercentText(Median(rmse_w)) << " %\n";
     if (o.loo) std::cout << "leave-one-out: " << loo.dump() << "\n";
   }
   return 0;
@@ -162,15 +182,13 @@ int RunCalibrate(const CalibrateOptions& o) {
   ro.format = ParseFormat(o.format);
   ro.column_map = o.column_map;
   ro.drivecalc_motor_id = o.drivecalc_motor;
+  ro.drivecalc_keep_no_load_without_speed = true;
   ro.mapped_drop_rows_with_empty_cells = o.drop_incomplete_rows;
   ro.esc_min_us = o.esc_min_us;
   ro.esc_max_us = o.esc_max_us;
   if (const std::string e = ro.Validate(); !e.empty()) throw UsageError(e);
   std::vector<logs::SteadyTable> tables;
-  for (const auto& l : o.logs) {
-    tables.push_back(logs::ReadLog(l, ro));
-    if (!o.json) std::cerr << tables.back().BriefReport() << "\n";
-  }
+  for (const auto& l : o.logs) tables.push_back(logs::ReadLog(l, ro));
   const logs::SteadyTable table = calibration::MergeLogs(tables);
   CalibrationOptions co;
   if (!o.prior_motor.empty() || !o.prior_esc.empty()) {
@@ -179,6 +197,28 @@ int RunCalibrate(const CalibrateOptions& o) {
     if (!o.prior_esc.empty()) co.esc_prior = cat.esc(o.prior_esc).params;
   }
   const CalibrationResult r = calibration::Calibrate(table, co);
+  // What was read (rows dropped and why), once the fit has run: a refusal stays one line.
+  if (!o.json) {
+    for (const auto& t : tables) std::cerr << t.BriefReport() << "\n";
+  }
+  if (const std::string bad = NonFiniteParameter(r); !bad.empty()) {
+    // The fit failed: its status and message, no numbers; --out is not touched.
+    if (o.json) {
+      Json j;
+      j["status"] = "failed";
+      j["motor"] = nullptr;
+      j["esc"] = nullptr;
+      j["fit"] = {{"mode", r.mode}, {"converged", false}, {"message", r.message},
+                  {"points_used", r.points_used}, {"non_finite_parameter", bad}};
+      j["warnings"] = r.warnings;
+      std::cout << DumpJson(j);
+    } else {
+      std::cout << "calibrate (" << r.mode << "): FAILED: " << r.message << "\n";
+    }
+    throw DataError(Datasets(o.logs) + ": the fit failed (" + bad + " is not a finite number; solver: " +
+                    r.message + "): no parameters reported" +
+                    (o.out.empty() ? std::string() : ", " + o.out + " not changed"));
+  }
 
   calibration::EntryProvenance prov;
   prov.dataset = Datasets(o.logs);

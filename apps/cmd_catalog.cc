@@ -3,11 +3,13 @@
 #include <iomanip>
 #include <iostream>
 #include <sstream>
+#include <utility>
 
 #include "catalog/catalog.h"
 #include "catalog/schema.h"
 #include "commands.h"
 #include "common/error.h"
+#include "common/json_pretty.h"
 #include "common/units.h"
 
 namespace dynosize::cli {
@@ -54,6 +56,21 @@ std::string Clip(const std::string& s, std::size_t n) {
 }  // namespace
 
 int RunCatalogList(const CatalogListOptions& o) {
+  for (const auto& [flag, v] : {std::pair<const char*, std::optional<double>>{"--kv-min", o.kv_min},
+                                {"--kv-max", o.kv_max},
+                                {"--mass-max-kg", o.mass_max_kg},
+                                {"--current-min-a", o.current_min_a}}) {
+    if (v && !(std::isfinite(*v) && *v >= 0.0)) {
+      std::ostringstream s;
+      s << flag << " " << *v << ": must be a finite number >= 0";
+      throw UsageError(s.str());
+    }
+  }
+  if (o.kv_min && o.kv_max && *o.kv_min > *o.kv_max) {
+    std::ostringstream s;
+    s << "--kv-min " << *o.kv_min << " > --kv-max " << *o.kv_max << ": the range is empty";
+    throw UsageError(s.str());
+  }
   if ((o.kv_min || o.kv_max) && !o.kind.empty() && o.kind != "motors") {
     throw UsageError("--kv-min/--kv-max filter motors: use them with --kind motors");
   }
@@ -182,7 +199,7 @@ int RunCatalogShow(const std::string& catalog_dir, const std::string& id) {
       throw UsageError("no catalog entry with id '" + id + "' (see 'dynosize catalog list')");
     }
   }
-  std::cout << DumpJson(out);
+  std::cout << DumpJsonReadable(out);
   return 0;
 }
 

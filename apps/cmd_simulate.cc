@@ -48,6 +48,9 @@ std::string Assumed(const EntryBase& e) {
 }
 
 void PrintPoint(const std::string& title, const OperatingPoint& p) {
+  // Numerical guard: the same finiteness check as the JSON output (report/point_json.h); a
+  // non-finite result of in-range inputs is a bug (InternalError, exit 70), never printed.
+  (void)PointToJson(p);
   std::ostringstream o;
   o << std::fixed;
   o << title << "\n";
@@ -78,7 +81,10 @@ void PrintPoint(const std::string& title, const OperatingPoint& p) {
   std::cout << o.str();
 }
 
+Json SweepJson(const Drive& d, double vdc_v);
+
 void PrintSweep(const std::string& title, const Drive& d, double vdc_v) {
+  CheckJsonFinite(SweepJson(d, vdc_v), "per-throttle table");  // numerical guard, as PrintPoint
   std::ostringstream o;
   o << std::fixed << title << " at VDC = " << std::setprecision(2) << vdc_v << " V\n";
   o << "  TR %  TR_eff %  no-load rpm  stall N*m  maxP rpm  maxP W  best-eta rpm  eta_sys %  Irms A\n";
@@ -127,8 +133,9 @@ int RunSimulate(const SimulateOptions& o) {
   PointRequest req;
   if (o.vdc_v) {
     req.vdc_v = *o.vdc_v;
-    if (!(req.vdc_v > 0.0) || !std::isfinite(req.vdc_v)) {
-      throw UsageError("--vdc " + FlagValue(*o.vdc_v) + ": must be a finite number > 0 V");
+    if (!(req.vdc_v > 0.0 && req.vdc_v <= kMaxRequestVdcV)) {
+      throw UsageError("--vdc " + FlagValue(*o.vdc_v) + ": must be a finite number > 0 V and <= " +
+                       FlagValue(kMaxRequestVdcV) + " V");
     }
   }
   if (point_mode) {
@@ -139,20 +146,25 @@ int RunSimulate(const SimulateOptions& o) {
       if (o.torque_nm || o.rpm) throw UsageError("--torque-law replaces --torque and --rpm");
       if (!o.throttle) throw UsageError("--torque-law needs --throttle");
       for (double c : o.torque_law) {
-        if (!std::isfinite(c)) throw UsageError("--torque-law: coefficients must be finite");
+        if (!(std::fabs(c) <= kMaxTorqueLawCoefficient)) {
+          throw UsageError("--torque-law " + FlagValue(c) + ": coefficients must be finite, at most " +
+                           FlagValue(kMaxTorqueLawCoefficient) + " in magnitude (SI)");
+        }
       }
       if (o.torque_law[2] < 0.0) throw UsageError("--torque-law: C must be >= 0 (a propeller's torque grows with speed)");
-      req.torque_nm = o.torque_law[0];  // for the checks below: one load given
+      req.torque_nm = 0.0;  // for the checks below: one load given (its coefficients are checked above)
     }
     if (o.throttle && !(*o.throttle >= 0.0 && *o.throttle <= 1.0)) {
       throw UsageError("--throttle " + FlagValue(*o.throttle) +
                        ": must be between 0 and 1 (a fraction: 0.6 for 60 %)");
     }
-    if (o.torque_nm && !(*o.torque_nm >= 0.0 && std::isfinite(*o.torque_nm))) {
-      throw UsageError("--torque " + FlagValue(*o.torque_nm) + ": must be a finite number >= 0 N*m");
+    if (o.torque_nm && !(*o.torque_nm >= 0.0 && *o.torque_nm <= kMaxRequestTorqueNm)) {
+      throw UsageError("--torque " + FlagValue(*o.torque_nm) + ": must be a finite number >= 0 N*m and <= " +
+                       FlagValue(kMaxRequestTorqueNm) + " N*m");
     }
-    if (o.rpm && !(*o.rpm >= 0.0 && std::isfinite(*o.rpm))) {
-      throw UsageError("--rpm " + FlagValue(*o.rpm) + ": must be a finite number >= 0");
+    if (o.rpm && !(*o.rpm >= 0.0 && *o.rpm <= kMaxRequestRpm)) {
+      throw UsageError("--rpm " + FlagValue(*o.rpm) + ": must be a finite number >= 0 and <= " +
+                       FlagValue(kMaxRequestRpm));
     }
     if (!CheckPointRequest(req).empty()) {
       throw UsageError("give --throttle with one of --torque, --rpm, --torque-law (forward model), "

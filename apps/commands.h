@@ -58,6 +58,28 @@ struct CalibrateOptions {
 };
 int RunCalibrate(const CalibrateOptions& o);
 
+// `dynosize diagnose LOG [--motor ID --esc ID]`: what the model gets wrong in a measured log,
+// the named cause, the extended model and its cross-validated gain (src/diagnosis/diagnose.h).
+struct DiagnoseCliOptions {
+  std::string catalog_dir;
+  std::string log;
+  std::string motor_id, esc_id;  // catalog entries to start from (optional)
+  std::string format = "auto";
+  std::vector<std::string> column_map;
+  bool drop_incomplete_rows = false;
+  double esc_min_us = 1000.0, esc_max_us = 2000.0;
+  int folds = 5;
+  double alpha = 1e-3;
+  bool json = false;
+  std::string plot_dir;
+  // Write the extended model as catalog entries <id>_motor and <id>_esc into this file
+  // (atomically; an existing id is replaced only with force). Default id: the log's base name.
+  std::string out;
+  std::string id;
+  bool force = false;
+};
+int RunDiagnose(const DiagnoseCliOptions& o);
+
 // `dynosize catalog import --shared DIR --out DIR [--json]`: runs every importer
 // (src/importers/importers.h ImportAll) on DIR/<dataset>/ and writes OUT/<dataset>.json; prints
 // what was kept and dropped per data set (stdout), or the report as JSON.

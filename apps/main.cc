@@ -15,8 +15,19 @@ namespace {
 
 using dynosize::ExitCode;
 
+// One "dynosize: " line per problem (a catalog with several problems lists each on its line).
 int Fail(ExitCode code, const std::string& message) {
-  std::cerr << "dynosize: " << message << "\n";
+  std::string out;
+  std::size_t begin = 0;
+  while (begin <= message.size()) {
+    std::size_t end = message.find('\n', begin);
+    if (end == std::string::npos) end = message.size();
+    std::size_t b = begin;
+    while (b < end && message[b] == ' ') ++b;  // continuation lines are indented in messages
+    if (b < end || out.empty()) out += "dynosize: " + message.substr(b, end - b) + "\n";
+    begin = end + 1;
+  }
+  std::cerr << out;
   return static_cast<int>(code);
 }
 
@@ -124,6 +135,31 @@ int main(int argc, char** argv) {
   auto* schema_cmd = catalog->add_subcommand("schema", "print every catalog key with its unit and rule");
   schema_cmd->add_flag("--json", schema_json, "print the schema as JSON");
 
+  // diagnose
+  cli::DiagnoseCliOptions diag;
+  auto* diagnose = app.add_subcommand(
+      "diagnose",
+      "show what the model gets wrong in a measured log (cross-validated), name the cause "
+      "(saturation, dead band, Io(omega), winding heating, KT droop, supply sag) and the gain");
+  diagnose->add_option("log", diag.log, "steady-state or time-series log of one motor + ESC")->required();
+  diagnose->add_option("--motor", diag.motor_id, "catalog motor to start from (else fitted on the log)");
+  diagnose->add_option("--esc", diag.esc_id, "catalog ESC whose values are held where the log cannot fit them");
+  diagnose->add_option("--format", diag.format, "log format")
+      ->check(CLI::IsMember({"auto", "canonical", "rcbenchmark", "mapped", "drivecalc"}));
+  diagnose->add_option("--map", diag.column_map, "mapped tables: canonical=Header [unit], repeatable");
+  diagnose->add_flag("--drop-incomplete-rows", diag.drop_incomplete_rows,
+                     "mapped: drop rows with an empty mapped cell");
+  diagnose->add_option("--esc-min-us", diag.esc_min_us, "ESC pulse width at throttle 0, us");
+  diagnose->add_option("--esc-max-us", diag.esc_max_us, "ESC pulse width at throttle 1, us");
+  diagnose->add_option("--folds", diag.folds, "k of the k-fold cross-validation (>= 2)");
+  diagnose->add_option("--alpha", diag.alpha, "significance level of the nested F test");
+  diagnose->add_flag("--json", diag.json, "print one JSON object (baseline, findings, ambiguous, extended_model)");
+  diagnose->add_option("--plot", diag.plot_dir, "write residual, measured-vs-predicted and curve figures here");
+  diagnose->add_option("--out", diag.out,
+                       "catalog JSON file to add the extended model to (<id>_motor, <id>_esc; atomic)");
+  diagnose->add_option("--id", diag.id, "id prefix of the --out entries (default: the log's base name)");
+  diagnose->add_flag("--force", diag.force, "replace entries with the same ids in --out");
+
   // evaluate, optimize (issue #6)
   cli::EvaluateOptions eval;
   auto* evaluate = app.add_subcommand(
@@ -151,11 +187,11 @@ int main(int argc, char** argv) {
 
   if (argc > 1 && argv[1][0] != '-') {
     const std::string first = argv[1];
-    if (first != "simulate" && first != "catalog" && first != "calibrate" && first != "evaluate" &&
-        first != "optimize") {
+    if (first != "simulate" && first != "catalog" && first != "calibrate" && first != "diagnose" &&
+        first != "evaluate" && first != "optimize") {
       return Fail(ExitCode::kUsage, "unknown subcommand '" + first +
-                                        "': valid are simulate, calibrate, catalog, evaluate, optimize "
-                                        "(see 'dynosize --help')");
+                                        "': valid are simulate, calibrate, diagnose, catalog, evaluate, "
+                                        "optimize (see 'dynosize --help')");
     }
   }
   try {
@@ -186,6 +222,10 @@ int main(int argc, char** argv) {
     if (*calibrate) {
       cal.catalog_dir = dir;
       return cli::RunCalibrate(cal);
+    }
+    if (*diagnose) {
+      diag.catalog_dir = dir;
+      return cli::RunDiagnose(diag);
     }
     if (*evaluate) {
       eval.catalog_dir = dir;

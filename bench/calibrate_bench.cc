@@ -21,6 +21,7 @@ void BM_RefitDriveCalcAll(benchmark::State& state) {
   }
   dynosize::logs::LogReadOptions o;
   o.format = dynosize::logs::LogFormat::kDriveCalc;
+  o.drivecalc_keep_no_load_without_speed = true;
   const auto table = dynosize::logs::ReadLog(kMData, o);
   std::size_t fitted = 0;
   for (auto _ : state) {

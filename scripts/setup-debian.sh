@@ -3,7 +3,8 @@
 # Package names and versions: ../shared/docs/ecosystem-notes.md.
 set -euo pipefail
 packages=(cmake g++ make pkg-config libeigen3-dev libnlopt-cxx-dev coinor-libipopt-dev
-          nlohmann-json3-dev libcli11-dev googletest libgtest-dev libbenchmark-dev gnuplot-nox jq)
+          nlohmann-json3-dev libcli11-dev googletest libgtest-dev libbenchmark-dev gnuplot-nox jq
+          clang libclang-rt-14-dev)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

@@ -1,7 +1,9 @@
 #!/usr/bin/env bash
 # Regenerates docs/validation.md: leave-one-out prediction errors of `dynosize calibrate` on the
 # real logs in ../shared/data (DriveCalc MData, sjkim T-Motor/Scorpion/A-4220 tables, alspitz and
-# Strawson RCbenchmark logs). Deterministic: the same build and data give the same file.
+# Strawson RCbenchmark logs), then the "Diagnosis" section (scripts/validation_diagnosis.sh:
+# `dynosize diagnose` on every real log with the columns, figures in docs/img). Deterministic:
+# the same build and data give the same file.
 #   usage: scripts/validation.sh [path/to/dynosize] [shared/data dir]
 set -euo pipefail
 here=$(cd "$(dirname "$0")/.." && pwd)
@@ -27,8 +29,9 @@ echo
 echo "## DriveCalc MData (no throttle column: full-throttle points)"
 echo
 "$exe" calibrate --drivecalc-all "$data/drivecalc/MData.csv" --out "$tmp/dc.json" --loo --json > "$tmp/dc_all.json"
-echo "Motors fitted: $(jq .motors_fitted "$tmp/dc_all.json") of $(jq .motors_seen "$tmp/dc_all.json") with rpm"\
-" ($(jq .motors_too_few_points "$tmp/dc_all.json") with fewer than 1 no-load point with rpm + 3 loaded points)."
+echo "Motors fitted: $(jq .motors_fitted "$tmp/dc_all.json") of $(jq .motors_seen "$tmp/dc_all.json")"\
+" ($(jq .motors_too_few_points "$tmp/dc_all.json") with fewer than 1 no-load point + 3 loaded points with rpm)."\
+" No-load points without an rpm reading count: their current fixes Io."
 echo
 echo "| model | idc, loaded points | omega @I, all points | points |"
 echo "|---|---|---|---|"
@@ -91,4 +94,7 @@ echo "Calibrated $ok of $n logs. Median over logs of the per-log median LOO erro
 echo "Logs where KE ran to its lower bound (fit not physical): $kebound."
 } >> "$out"
 cat "$here/docs/validation_notes.md" >> "$out"
+# Diagnosis of the same and further logs (dynosize diagnose), with figures in docs/img.
+"$here/scripts/validation_diagnosis.sh" "$exe" "$data" >> "$out"
+if [ -f "$here/docs/validation_diagnosis_notes.md" ]; then cat "$here/docs/validation_diagnosis_notes.md" >> "$out"; fi
 echo "wrote $out" >&2

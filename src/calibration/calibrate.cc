@@ -38,6 +38,7 @@ struct FitData {
   std::vector<std::size_t> rows;  // rows of the table used
   std::vector<double> vdc, tr, omega, q;
   std::vector<char> torque_known;
+  std::vector<char> speed_known;  // 0: a no-load row whose speed was not measured (omega = 0)
   std::vector<int> term_begin;  // terms of row k: [term_begin[k], term_begin[k+1])
   std::vector<Term> terms;
   std::array<bool, kMeasCount> measured{};
@@ -211,7 +212,10 @@ Prepared Prepare(const SteadyTable& t, const CalibrationOptions& o, const std::v
     const double w = w_all[i];
     const double tr = pr.has_throttle ? t.Get(Column::kThrottle)[i] : o.assumed_throttle;
     const bool nl = has_nl && t.Get(Column::kNoLoad)[i] != 0.0;
-    if (!(w > o.min_speed_fraction * wmax)) {
+    // A no-load row without a speed reading (DriveCalc n = 0) still measures Io: at Q = 0 the
+    // model's current I = Io does not depend on the speed (eq 42). Only its current is compared.
+    const bool speed_unknown = nl && w == 0.0;
+    if (!speed_unknown && !(w > o.min_speed_fraction * wmax)) {
       AddDropLocal(&pr.dropped, "speed below min_speed_fraction of the largest");
       continue;
     }
@@ -229,10 +233,13 @@ Prepared Prepare(const SteadyTable& t, const CalibrationOptions& o, const std::v
     d.omega.push_back(w);
     d.q.push_back(has_q ? t.Get(Column::kTorqueNm)[i] : 0.0);
     d.torque_known.push_back(has_q || nl ? 1 : 0);
+    d.speed_known.push_back(speed_unknown ? 0 : 1);
   }
   const std::size_t n = d.rows.size();
-  if (n < 2) {
-    throw DataError(file + ": only " + std::to_string(n) +
+  std::size_t with_speed = 0;
+  for (char c : d.speed_known) with_speed += c != 0 ? 1 : 0;
+  if (with_speed < 2) {
+    throw DataError(file + ": only " + std::to_string(with_speed) +
                     " row(s) with the motor turning: calibration needs at least 2");
   }
   // Column scales: median magnitude of each measured column over the rows used.
@@ -250,7 +257,7 @@ Prepared Prepare(const SteadyTable& t, const CalibrationOptions& o, const std::v
     for (int m = 0; m < kMeasCount; ++m) {
       if (!d.measured[m]) continue;
       if (m == kMOmega && !d.torque_known[k]) continue;  // speed is the input on this row
-      if (m == kMIdc && !pr.has_throttle && !ac && false) continue;
+      if (m == kMOmega && !d.speed_known[k]) continue;   // speed not measured on this row
       d.terms.push_back({m, t.Get(kMeasColumn[m])[d.rows[k]], inv_scale[m]});
     }
     d.term_begin.push_back(static_cast<int>(d.terms.size()));
@@ -322,12 +329,15 @@ Prepared Prepare(const SteadyTable& t, const CalibrationOptions& o, const std::v
   }
   // Rows unlikely to be saturated for the linear starts (all rows if fewer than 3 qualify).
   std::vector<std::size_t> lin;
+  // Rows without a speed reading cannot enter U = R*I + KE*omega.
   for (std::size_t k = 0; k < n; ++k) {
-    if (d.tr[k] <= 0.85 || !pr.has_throttle) lin.push_back(k);
+    if (d.speed_known[k] && (d.tr[k] <= 0.85 || !pr.has_throttle)) lin.push_back(k);
   }
   if (lin.size() < 3) {
     lin.clear();
-    for (std::size_t k = 0; k < n; ++k) lin.push_back(k);
+    for (std::size_t k = 0; k < n; ++k) {
+      if (d.speed_known[k]) lin.push_back(k);
+    }
   }
   // KE and R from U = R*I + KE*omega (eq 48), or eq 42 with the AC columns.
   {
@@ -875,16 +885,18 @@ CrossValidation LeaveOneOut(const SteadyTable& t, const CalibrationOptions& opti
     }
     for (std::size_t i : test) {
       const double w = t.Get(Column::kOmegaRadS)[i];
-      if (!(w > options.min_speed_fraction * wmax)) continue;
+      const bool no_load = has_nl && t.Get(Column::kNoLoad)[i] != 0.0;
+      const bool speed_unknown = no_load && w == 0.0;  // see Prepare(): current only
+      if (!speed_unknown && !(w > options.min_speed_fraction * wmax)) continue;
       if (t.Has(Column::kThrottle) && t.Get(Column::kThrottle)[i] < options.min_throttle) continue;
       const RowPrediction p = PredictRow(t, i, r.motor, r.esc, options.assumed_throttle);
       const double idc = t.Get(Column::kIdcA)[i];
-      const bool no_load = has_nl && t.Get(Column::kNoLoad)[i] != 0.0;
       if (idc > 0.0 && std::isfinite(p.idc_a)) {
         cv.idc_error_percent.push_back((p.idc_a - idc) / idc * 100.0);
         if (!no_load) cv.idc_loaded_error_percent.push_back(cv.idc_error_percent.back());
       }
-      const bool tq = has_q || (has_nl && t.Get(Column::kNoLoad)[i] != 0.0);
+      if (speed_unknown) continue;
+      const bool tq = has_q || no_load;
       if (std::isfinite(p.omega_from_idc_rad_s)) {
         cv.omega_from_idc_error_percent.push_back((p.omega_from_idc_rad_s - w) / w * 100.0);
       }

@@ -93,6 +93,9 @@ Json EscEntryJson(const std::string& id, const std::string& name, const Calibrat
 
 void WriteCatalogEntries(const std::string& path, const std::vector<Json>& motors, const std::vector<Json>& escs,
                          bool force, const std::string& comment) {
+  // Read, merge and write under one lock: concurrent runs adding to the same catalog file take
+  // turns (the write itself is atomic either way).
+  const FileLock lock(path);
   Json doc;
   std::error_code ec;
   if (std::filesystem::exists(path, ec)) {

@@ -66,20 +66,26 @@ DriveCalcLooErrors DriveCalcLeaveOneOut(const logs::SteadyTable& t, const DriveC
                                 cv.idc_loaded_error_percent.end());
     out.model_omega.insert(out.model_omega.end(), cv.omega_from_idc_error_percent.begin(),
                            cv.omega_from_idc_error_percent.end());
-    for (std::size_t k = 0; k < rows.size(); ++k) {
-      Eigen::MatrixXd a(static_cast<Eigen::Index>(rows.size() - 1), 2);
+    // The baseline fits U = n/Kv + R*I: rows without a speed reading (no-load, n = 0) cannot
+    // enter it, nor be predicted by it.
+    std::vector<std::size_t> with_speed;
+    for (std::size_t i : rows) {
+      if (w[i] != 0.0) with_speed.push_back(i);
+    }
+    for (std::size_t k = 0; k < with_speed.size(); ++k) {
+      Eigen::MatrixXd a(static_cast<Eigen::Index>(with_speed.size() - 1), 2);
       Eigen::VectorXd b(a.rows());
       Eigen::Index j = 0;
-      for (std::size_t q = 0; q < rows.size(); ++q) {
+      for (std::size_t q = 0; q < with_speed.size(); ++q) {
         if (q == k) continue;
-        a(j, 0) = w[rows[q]];
-        a(j, 1) = cur[rows[q]];
-        b[j] = u[rows[q]];
+        a(j, 0) = w[with_speed[q]];
+        a(j, 1) = cur[with_speed[q]];
+        b[j] = u[with_speed[q]];
         ++j;
       }
       const auto s = SolveLinearLeastSquares(a, b);
       const double ke = s.coefficients[0], r = s.coefficients[1];
-      const std::size_t i = rows[k];
+      const std::size_t i = with_speed[k];
       if (nl[i] == 0.0 && r != 0.0) out.baseline_idc_loaded.push_back(((u[i] - ke * w[i]) / r - cur[i]) / cur[i] * 100.0);
       if (ke != 0.0) out.baseline_omega.push_back(((u[i] - r * cur[i]) / ke - w[i]) / w[i] * 100.0);
     }

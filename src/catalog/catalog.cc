@@ -395,6 +395,9 @@ void Catalog::AddDocument(const Json& doc, const std::string& file,
           p.io_a = e["io_a"].get<double>();
           p.max_current_a = Get(e, "max_current_a", p.max_current_a);
           p.max_power_w = Get(e, "max_power_w", p.max_power_w);
+          p.io1_a_s_per_rad = Get(e, "io1_a_s_per_rad", 0.0);
+          p.rth_k_per_w = Get(e, "rth_k_per_w", 0.0);
+          p.kt_droop_per_a = Get(e, "kt_droop_per_a", 0.0);
           m.mass_kg = GetOpt(e, "mass_kg");
           m.loss_torque_nm = GetOpt(e, "loss_torque_nm");
           m.loss_torque_per_omega_nm_s_per_rad = GetOpt(e, "loss_torque_per_omega_nm_s_per_rad");
@@ -413,6 +416,8 @@ void Catalog::AddDocument(const Json& doc, const std::string& file,
           p.sat_slope = e["sat_slope"].get<double>();
           p.max_current_a = Get(e, "max_current_a", p.max_current_a);
           p.vdc_max_v = Get(e, "vdc_max_v", p.vdc_max_v);
+          p.deadband = Get(e, "deadband", 0.0);
+          p.rsupply_ohm = Get(e, "rsupply_ohm", 0.0);
           x.mass_kg = GetOpt(e, "mass_kg");
           x.ipeak_a = GetOpt(e, "ipeak_a");
           index_[id] = {kind, escs_.size()};

@@ -81,6 +81,14 @@ std::vector<KeySpec> Build(ComponentKind kind) {
       add(Num("rm_per_omega_ohm_s_per_rad", false, 0, false, 1,
               "speed-dependent impedance term (DriveCalc K): R(omega) = rm + K*omega, ohm per rad/s"));
       add(Num("max_torque_nm", false, 0, true, 1e4, "peak torque rating, N*m"));
+      // Model extensions of model.md section 9 (src/model/drive.h); absent = 0 = first order.
+      add(Num("io1_a_s_per_rad", false, 0, false, 1,
+              "speed-dependent no-load current Io(omega) = io_a + io1*omega, A per rad/s"));
+      add(Num("rth_k_per_w", false, 0, false, 1000,
+              "winding temperature rise per watt of copper loss, K/W: Rm = rm_ohm*(1 + "
+              "0.00393*rise), rise = rth*P_cu"));
+      add(Num("kt_droop_per_a", false, 0, false, 10,
+              "torque constant droop at high current, KT(I) = kt/(1 + kt_droop*I), 1/A"));
       {
         KeySpec tp;
         tp.key = "test_points";
@@ -98,6 +106,15 @@ std::vector<KeySpec> Build(ComponentKind kind) {
       add(Num("tr_sat", true, 0, true, 1, "throttle above which the ESC saturates (section 7)"));
       add(Num("sat_slope", true, 0, true, 1,
               "fraction of the nominal voltage slope delivered above tr_sat (section 7)"));
+      {
+        KeySpec db = Num("deadband", false, -0.5, false, 0.5,
+                         "throttle dead band: TR_eff = (TR - deadband)/(1 - deadband), clamped "
+                         "at 0, before the saturation knee; negative = a throttle offset");
+        db.max_exclusive = true;
+        add(db);
+      }
+      add(Num("rsupply_ohm", false, 0, false, 10,
+              "resistance between the VDC sense point and the ESC (wires, connectors), ohm"));
       add(Num("max_current_a", false, 0, true, 1e4, "continuous current rating, A"));
       add(Num("vdc_max_v", false, 0, true, 2000, "maximum supply voltage, V"));
       add(Num("mass_kg", false, 0, true, 1000, "mass, kg"));

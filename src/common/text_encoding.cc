@@ -1,5 +1,7 @@
 #include "common/text_encoding.h"
 
+#include <algorithm>
+
 namespace dynosize {
 
 bool IsValidUtf8(std::string_view s) {
@@ -46,6 +48,30 @@ std::string ToUtf8(std::string_view s, bool* was_latin1) {
     }
   }
   return out;
+}
+
+std::string UnsupportedTextEncoding(std::string_view head) {
+  auto at = [&](std::size_t i) { return i < head.size() ? static_cast<unsigned char>(head[i]) : 0x100u; };
+  if (at(0) == 0xFF && at(1) == 0xFE && at(2) == 0 && at(3) == 0) {
+    return "UTF-32 little-endian (byte-order mark FF FE 00 00)";
+  }
+  if (at(0) == 0 && at(1) == 0 && at(2) == 0xFE && at(3) == 0xFF) {
+    return "UTF-32 big-endian (byte-order mark 00 00 FE FF)";
+  }
+  if (at(0) == 0xFF && at(1) == 0xFE) return "UTF-16 little-endian (byte-order mark FF FE)";
+  if (at(0) == 0xFE && at(1) == 0xFF) return "UTF-16 big-endian (byte-order mark FE FF)";
+  // Without a mark: ASCII text in UTF-16 has a NUL in every other byte.
+  const std::size_t n = std::min<std::size_t>(head.size(), 64) & ~std::size_t{1};
+  if (n >= 8) {
+    std::size_t even_nul = 0, odd_nul = 0;
+    for (std::size_t i = 0; i < n; i += 2) {
+      even_nul += head[i] == '\0';
+      odd_nul += head[i + 1] == '\0';
+    }
+    if (odd_nul == n / 2 && even_nul == 0) return "UTF-16 little-endian (NUL after every character)";
+    if (even_nul == n / 2 && odd_nul == 0) return "UTF-16 big-endian (NUL before every character)";
+  }
+  return "";
 }
 
 }  // namespace dynosize

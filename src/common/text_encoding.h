@@ -16,4 +16,10 @@ bool IsValidUtf8(std::string_view s);
 // given) says which.
 std::string ToUtf8(std::string_view s, bool* was_latin1 = nullptr);
 
+// The start of a text file in an encoding dynosize does not read (UTF-16 or UTF-32, told by a
+// byte-order mark or by NUL bytes between ASCII characters, as Windows "Unicode text" exports
+// give): a phrase naming it ("UTF-16 little-endian (byte-order mark FF FE)"), else "".
+// `head` is the first bytes of the file (64 are enough).
+std::string UnsupportedTextEncoding(std::string_view head);
+
 }  // namespace dynosize

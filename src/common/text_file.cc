@@ -1,6 +1,7 @@
 #include "common/text_file.h"
 
 #include <fcntl.h>
+#include <sys/file.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -75,6 +76,27 @@ void WriteFileAtomic(const std::string& path, const std::string& content) {
     ::unlink(tmpl.c_str());
     throw CantCreateError(path + ": cannot rename the temporary file into place: " + reason);
   }
+}
+
+FileLock::FileLock(const std::string& path) {
+  namespace fs = std::filesystem;
+  const fs::path target(path);
+  const std::string lock_path =
+      (target.parent_path() / ("." + target.filename().string() + ".lock")).string();
+  fd_ = ::open(lock_path.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0666);
+  if (fd_ < 0) {
+    throw CantCreateError(lock_path + ": cannot create the lock file: " + std::strerror(errno));
+  }
+  while (::flock(fd_, LOCK_EX) != 0) {
+    if (errno == EINTR) continue;
+    const std::string reason = std::strerror(errno);
+    ::close(fd_);
+    throw CantCreateError(lock_path + ": cannot lock: " + reason);
+  }
+}
+
+FileLock::~FileLock() {
+  if (fd_ >= 0) ::close(fd_);  // closing releases the lock
 }
 
 void MakeOutputDir(const std::string& dir) {

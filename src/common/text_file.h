@@ -19,4 +19,20 @@ void WriteFileAtomic(const std::string& path, const std::string& content);
 // Creates a folder (and its parents) for output; CantCreateError when impossible.
 void MakeOutputDir(const std::string& dir);
 
+// An exclusive advisory lock (flock(2)) on ".<name>.lock" beside `path`, held for the object's lifetime, for
+// read-modify-write of a shared file (calibrate --out adding entries to one catalog): runs
+// that write the same file take turns instead of losing each other's entries. The lock file
+// stays (removing it would race with a waiting run); the kernel releases the lock when the
+// process ends, however it ends. Throws CantCreateError when the lock file cannot be created.
+class FileLock {
+ public:
+  explicit FileLock(const std::string& path);
+  ~FileLock();
+  FileLock(const FileLock&) = delete;
+  FileLock& operator=(const FileLock&) = delete;
+
+ private:
+  int fd_ = -1;
+};
+
 }  // namespace dynosize

@@ -5,7 +5,9 @@
 #include <sstream>
 
 #include "common/error.h"
+#include "common/text_encoding.h"
 #include "common/text_file.h"
+#include "logs/csv_scan.h"
 
 namespace dynosize {
 
@@ -30,14 +32,24 @@ std::vector<std::string> SplitComma(const std::string& line) {
 }  // namespace
 
 std::string CheckPointRequest(const PointRequest& r) {
-  if (!(r.vdc_v > 0.0) || !std::isfinite(r.vdc_v)) return "vdc_v must be a finite number > 0 V";
+  auto value = [](double v) {
+    std::ostringstream s;
+    s << v;
+    return s.str();
+  };
+  if (!(r.vdc_v > 0.0 && r.vdc_v <= kMaxRequestVdcV)) {
+    return "vdc_v = " + value(r.vdc_v) + ": must be > 0 V and <= " + value(kMaxRequestVdcV) + " V";
+  }
   if (r.throttle && !(*r.throttle >= 0.0 && *r.throttle <= 1.0)) {
-    return "throttle must be between 0 and 1 (a fraction, not percent)";
+    return "throttle = " + value(*r.throttle) + ": must be between 0 and 1 (a fraction, not percent)";
   }
-  if (r.torque_nm && !(*r.torque_nm >= 0.0 && std::isfinite(*r.torque_nm))) {
-    return "torque_nm must be a finite number >= 0 N*m";
+  if (r.torque_nm && !(*r.torque_nm >= 0.0 && *r.torque_nm <= kMaxRequestTorqueNm)) {
+    return "torque_nm = " + value(*r.torque_nm) + ": must be >= 0 N*m and <= " +
+           value(kMaxRequestTorqueNm) + " N*m";
   }
-  if (r.rpm && !(*r.rpm >= 0.0 && std::isfinite(*r.rpm))) return "rpm must be a finite number >= 0";
+  if (r.rpm && !(*r.rpm >= 0.0 && *r.rpm <= kMaxRequestRpm)) {
+    return "rpm = " + value(*r.rpm) + ": must be >= 0 and <= " + value(kMaxRequestRpm);
+  }
   const int given = (r.throttle ? 1 : 0) + (r.torque_nm ? 1 : 0) + (r.rpm ? 1 : 0);
   if (given != 2) {
     return "give exactly two of throttle, torque_nm, rpm (throttle+torque_nm or throttle+rpm: "
@@ -47,7 +59,16 @@ std::string CheckPointRequest(const PointRequest& r) {
 }
 
 std::vector<PointRequest> ReadPointsCsv(const std::string& path) {
-  const std::string text = ReadTextFile(path, 256u << 20);
+  std::string text = ReadTextFile(path, 256u << 20);
+  // CR-only line ends (a spreadsheet re-save, as for logs) become LF; CRLF keeps its CR, which
+  // Trim removes.
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    if (text[i] == '\r' && (i + 1 == text.size() || text[i + 1] != '\n')) text[i] = '\n';
+  }
+  if (const std::string enc = UnsupportedTextEncoding(std::string_view(text).substr(0, 64));
+      !enc.empty()) {
+    throw DataError(path + ": the file is " + enc + ": save it as UTF-8 text");
+  }
   std::istringstream in(text);
   std::string line;
   std::size_t line_no = 0;
@@ -68,8 +89,8 @@ std::vector<PointRequest> ReadPointsCsv(const std::string& path) {
     else if (h == "torque_nm") c = kTorque;
     else if (h == "rpm") c = kRpm;
     else {
-      throw DataError(path + ":" + std::to_string(line_no) + ": unknown column \"" + h +
-                      "\": allowed are vdc_v, throttle, torque_nm, rpm");
+      throw DataError(path + ":" + std::to_string(line_no) + ": unknown column " +
+                      logs::QuoteCell(h) + ": allowed are vdc_v, throttle, torque_nm, rpm");
     }
     if (seen[c]) throw DataError(path + ":" + std::to_string(line_no) + ": duplicate column \"" + h + "\"");
     seen[c] = true;
@@ -98,8 +119,8 @@ std::vector<PointRequest> ReadPointsCsv(const std::string& path) {
       const char* e = b + cells[i].size();
       const auto res = std::from_chars(b, e, v);
       if (res.ec != std::errc() || res.ptr != e || !std::isfinite(v)) {
-        throw DataError(where + ": column " + header[i] + " = \"" + cells[i] +
-                        "\": not a finite number");
+        throw DataError(where + ": column " + header[i] + " = " + logs::QuoteCell(cells[i]) +
+                        ": not a finite number");
       }
       switch (cols[i]) {
         case kVdc: r.vdc_v = v; break;

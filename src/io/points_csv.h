@@ -1,4 +1,5 @@
-// The point list read by `dynosize simulate --batch FILE`: a CSV with a header naming some of
+// The point list read by `dynosize simulate --batch FILE` (UTF-8, LF, CRLF or CR line ends): a
+// CSV with a header naming some of
 // vdc_v, throttle, torque_nm, rpm (any order; other columns are refused). Each row gives vdc_v and
 // exactly two of throttle, torque_nm, rpm (empty cells are absent): throttle + torque_nm or
 // throttle + rpm for the forward model, torque_nm + rpm for the inverse.
@@ -17,6 +18,14 @@ struct PointRequest {
   std::optional<double> torque_nm;
   std::optional<double> rpm;
 };
+
+// Upper bounds of requested values (README "What dynosize promises about bad input"): far
+// beyond any electric drive, they keep every product the model forms (powers, squared speeds
+// in the torque law) finite, so that a finite request gives finite results.
+inline constexpr double kMaxRequestVdcV = 1e5;       // 100 kV
+inline constexpr double kMaxRequestTorqueNm = 1e6;   // N*m
+inline constexpr double kMaxRequestRpm = 1e7;        // rpm
+inline constexpr double kMaxTorqueLawCoefficient = 1e6;  // |A|, |B|, |C| of the torque law, SI
 
 // Throws NoInputError / DataError naming file:line, column, value and rule.
 std::vector<PointRequest> ReadPointsCsv(const std::string& path);

@@ -1,5 +1,6 @@
 #include "logs/csv_scan.h"
 
+#include <algorithm>
 #include <cerrno>
 #include <charconv>
 #include <cmath>
@@ -24,7 +25,9 @@ LineReader::LineReader(const std::string& path, std::size_t max_line_bytes)
   }
   file_ = std::fopen(path.c_str(), "rb");
   if (file_ == nullptr) throw NoInputError(path + ": cannot open: " + std::strerror(errno));
-  buf_.resize(kChunkBytes);
+  // A small file gets a small buffer (Fill grows it when a line needs more).
+  const auto size = std::filesystem::file_size(path, ec);
+  buf_.resize(ec ? kChunkBytes : std::clamp<std::size_t>(static_cast<std::size_t>(size) + 1, 64, kChunkBytes));
 }
 
 LineReader::~LineReader() {
@@ -58,6 +61,15 @@ bool LineReader::Fill() {
     return false;
   }
   end_ += n;
+  if (!encoding_checked_) {
+    // Refused before any line is read: UTF-16 text would otherwise reach the header detection
+    // as garbage with NULs. (The first read(2) of a file returns its start: 64 bytes suffice.)
+    encoding_checked_ = true;
+    const std::string enc = UnsupportedTextEncoding(std::string_view(buf_.data(), end_));
+    if (!enc.empty()) {
+      throw DataError(path_ + ": the file is " + enc + ": save it as UTF-8 (or Latin-1) text");
+    }
+  }
   return true;
 }
 
@@ -217,9 +229,12 @@ std::string AsciiLower(std::string_view s) {
 std::string QuoteCell(std::string_view cell) {
   std::string out = "\"";
   const std::size_t limit = 40;
+  // Bytes that are not UTF-8 (Latin-1 text, binary) are escaped too: the message stays readable
+  // and valid UTF-8 on any terminal.
+  const bool utf8 = IsValidUtf8(cell.substr(0, std::min(cell.size(), limit)));
   for (std::size_t i = 0; i < cell.size() && i < limit; ++i) {
     const unsigned char c = static_cast<unsigned char>(cell[i]);
-    if (c < 0x20) {
+    if (c < 0x20 || c == 0x7F || (c >= 0x80 && !utf8)) {
       static const char* hex = "0123456789abcdef";
       out += "\\x";
       out.push_back(hex[c >> 4]);

@@ -50,6 +50,7 @@ class LineReader {
   std::vector<char> buf_;
   std::size_t begin_ = 0, end_ = 0;
   bool eof_ = false;
+  bool encoding_checked_ = false;
   bool skip_lf_ = false;  // the previous line ended with CR at a buffer edge
   std::size_t line_number_ = 0;
   bool saw_lf_ = false, saw_crlf_ = false, saw_cr_ = false, had_bom_ = false;
@@ -86,7 +87,8 @@ HeaderCell SplitHeaderCell(std::string_view cell);
 // Lower-cases ASCII letters (units and names are compared case-insensitively where safe).
 std::string AsciiLower(std::string_view s);
 
-// Quotes a cell for an error message: at most 40 bytes, control characters escaped.
+// Quotes a cell for an error message: at most 40 bytes, control characters and (when the cell
+// is not valid UTF-8) bytes >= 0x80 escaped as \xNN.
 std::string QuoteCell(std::string_view cell);
 
 }  // namespace dynosize::logs

@@ -17,6 +17,11 @@ namespace {
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 // Throttle computed from a pulse width may exceed 0..1 by rounding only.
 constexpr double kThrottleRoundingSlack = 1e-9;
+// Largest magnitude of a value in SI units (after unit conversion). Far beyond any measurement
+// (1e12 A, V, rad/s; time stamps in Unix seconds are 1.7e9), it keeps squares and products
+// the fit forms finite over millions of rows (1e24 * 1e6 << 1.8e308). Beyond it (1e308 in a
+// cell, or kgf * 9.81 overflowing) the cell is a DataError in every format.
+constexpr double kMaxAbsSiValue = 1e12;
 
 // One source column being read.
 struct Slot {
@@ -484,6 +489,12 @@ void ReadRows(LineReader* lr, Plan* plan, const std::string& path, SteadyTable* 
                   "not a number (rule: a finite decimal number with '.' as decimal point)");
       }
       const double si = ToSi(s, v);
+      if (!(std::fabs(si) <= kMaxAbsSiValue)) {
+        std::ostringstream rule;
+        rule << "out of range: " << si << " " << SiUnit(s.quantity)
+             << " after conversion (rule: magnitude at most " << kMaxAbsSiValue << " in SI units)";
+        CellError(path, line_no, s.header, cell, rule.str());
+      }
       if (s.target == Column::kThrottle &&
           (si < -kThrottleRoundingSlack || si > 1.0 + kThrottleRoundingSlack)) {
         if (plan->lenient) {
@@ -589,6 +600,12 @@ void BuildPerRow(SteadyTable* t, const std::vector<Slot*>& chosen, const RawRows
                  bool zero_is_dropout) {
   double vals[kColumnCount];
   const std::size_t n = rows.line.size();
+  // At most n rows: no growth by doubling on the way (peak memory of a million-row log).
+  for (int c = 0; c < kColumnCount; ++c) {
+    if (chosen[c] != nullptr) t->columns[c].reserve(n);
+  }
+  t->source_line.reserve(n);
+  t->samples.reserve(n);
   for (std::size_t r = 0; r < n; ++r) {
     if (rows.esc_outside[r]) {
       AddDrop(t, rows.esc_reason);
@@ -944,7 +961,19 @@ SteadyTable ReadLog(const std::string& path, const LogReadOptions& options) {
     const std::size_t n = t.rows();
     auto& om = t.columns[static_cast<int>(Column::kOmegaRadS)];
     std::vector<char> keep(n);
-    for (std::size_t r = 0; r < n; ++r) keep[r] = om[r] != 0.0;
+    const bool keep_nl = options.drivecalc_keep_no_load_without_speed && t.Has(Column::kNoLoad);
+    std::size_t kept_without_speed = 0;
+    for (std::size_t r = 0; r < n; ++r) {
+      keep[r] = om[r] != 0.0;
+      if (!keep[r] && keep_nl && t.columns[static_cast<int>(Column::kNoLoad)][r] != 0.0) {
+        keep[r] = 1;
+        ++kept_without_speed;
+      }
+    }
+    if (kept_without_speed > 0) {
+      t.notes.push_back(std::to_string(kept_without_speed) +
+                        " no-load points without a speed reading (n = 0) kept: they give Io only");
+    }
     for (int c = 0; c < kColumnCount; ++c) {
       if (!t.info[c].present) continue;
       auto& v = t.columns[c];
@@ -962,7 +991,8 @@ SteadyTable ReadLog(const std::string& path, const LogReadOptions& options) {
         ++w;
       }
     }
-    AddDrop(&t, "points with n = 0 (speed not measured)", n - w);
+    AddDrop(&t, keep_nl ? "loaded points with n = 0 (speed not measured)" : "points with n = 0 (speed not measured)",
+            n - w);
     t.source_line.resize(w);
     t.samples.resize(w);
   }

@@ -75,6 +75,12 @@ struct LogReadOptions {
 
   // kDriveCalc: keep only this motor_id (negative: all motors, with a motor_id column).
   long long drivecalc_motor_id = -1;
+  // kDriveCalc: a point with n = 0 had its speed not measured. Such points are dropped unless
+  // this is set, in which case *no-load* points with n = 0 are kept with omega_rad_s = 0: they
+  // still give the no-load current Io (the model's I at Q = 0 does not depend on the speed,
+  // eq 42), and the calibration treats omega = 0 on a no-load row as "speed not measured".
+  // Loaded points with n = 0 are always dropped.
+  bool drivecalc_keep_no_load_without_speed = false;
 
   // Thrust-stand torque and thrust signs depend on how the motor is mounted: when the median is
   // negative, the column is negated (and a note says so).

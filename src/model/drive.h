@@ -20,6 +20,35 @@
 // ESC saturation (model.md section 7): TR_eff = TR up to tr_sat, tr_sat + sat_slope*(TR -
 // tr_sat) above it; TR_eff is used in both (47) and (57).
 //
+// Extensions of model.md section 9 (issue #5, "diagnose"). Each defaults to 0, which reproduces
+// the first-order model above exactly (same arithmetic, same results):
+//  - throttle dead band (EscParams::deadband): the command is first mapped through the dead
+//    band, d = max(0, (TR - deadband)/(1 - deadband)), and the saturation knee is then applied
+//    to d: TR_eff = d (d <= tr_sat), tr_sat + sat_slope*(d - tr_sat) above. Order: dead band
+//    first, knee second (the knee is where the ESC runs out of duty cycle, a property of the
+//    duty the ESC is asked for, i.e. of the dead-band-corrected command). A negative dead band
+//    is a throttle offset: TR_eff = (TR + o)/(1 + o), o = -deadband, voltage already at TR = 0
+//    (the Strawson / T-Motor stand logs of docs/validation.md).
+//  - speed-dependent no-load current (MotorParams::io1_a_s_per_rad): Io(omega) = io_a +
+//    io1*omega (section 9, QPROP "motor type 2"); Q = KT*(I - Io(omega)). Closed form: it only
+//    adds KT*io1 to the linear term of the speed equation.
+//  - supply resistance (EscParams::rsupply_ohm): wires/connectors between the point where VDC
+//    is measured and the ESC: the ESC sees VDC - rsupply*IDC. With IDC = g*I (57), g = C1*TR_eff
+//    + C0, (48) becomes kv*VDC*TR_eff = (R + kv*rsupply*g*TR_eff)*I + KE*omega: still closed
+//    form, with a throttle-dependent series resistance. PDC stays VDC*IDC at the measuring point.
+//  - winding temperature rise (MotorParams::rth_k_per_w): steady copper temperature rise dT =
+//    rth*P_cu above the temperature at which rm_ohm holds, P_cu = kp*Rm*I^2 (the resistive share
+//    of PAC in (41)/(42)), and Rm = Rm0*(1 + alpha_cu*dT), alpha_cu = 0.00393 /K (copper). Solved
+//    for Rm: Rm(I) = Rm0/(1 - alpha_cu*rth*kp*Rm0*I^2) (thermal runaway where the denominator
+//    reaches 0: such points are flagged kLimitThermalRunaway).
+//  - torque constant droop (MotorParams::kt_droop_per_a): magnetic saturation / armature reaction
+//    lower the torque per ampere at high current, KT(I) = KT0/(1 + kt_droop*|I|). KE is left
+//    unchanged: the back-EMF at a given speed is set by the magnet flux, which the droop
+//    (a load-current effect) leaves at its no-load value in this first-order description.
+// The last two make the circuit nonlinear in I; only when one of them is non-zero is the scalar
+// equation in I solved by a bracketed root finder (Illinois regula falsi; the residual is
+// monotone in I), so the base model keeps its closed forms and its speed.
+//
 // For a brushed motor fed by the paper's voltage regulator (eqs 15-18: the motor sees VDC*TR,
 // the input power is VDC*I) use an ESC with C1 = 0, C0 = 1; an ideal PWM chopper is C1 = 1,
 // C0 = 0.
@@ -37,6 +66,9 @@
 
 namespace dynosize {
 
+// Temperature coefficient of the resistance of copper near 20 C (model.md section 9), 1/K.
+inline constexpr double kAlphaCopperPerK = 0.00393;
+
 enum class MotorType { kBldc, kBrushed };
 
 struct MotorParams {
@@ -44,7 +76,11 @@ struct MotorParams {
   double ke_v_s_per_rad = 0.0;  // back-EMF constant (BLDC: line-line rms volts per rad/s)
   double kt_nm_per_a = 0.0;     // torque constant (BLDC: per rms ampere)
   double rm_ohm = 0.0;          // winding resistance of the quasi-single-phase circuit
-  double io_a = 0.0;            // no-load current
+  double io_a = 0.0;            // no-load current (at omega = 0 when io1_a_s_per_rad != 0)
+  // Extensions (model.md section 9; 0 = the first-order model, see the header comment).
+  double io1_a_s_per_rad = 0.0;  // Io(omega) = io_a + io1*omega
+  double rth_k_per_w = 0.0;      // winding temperature rise per watt of copper loss
+  double kt_droop_per_a = 0.0;   // KT(I) = kt/(1 + kt_droop*|I|)
   // Ratings; +inf when the catalog gives none.
   double max_current_a = std::numeric_limits<double>::infinity();
   double max_power_w = std::numeric_limits<double>::infinity();
@@ -57,6 +93,9 @@ struct EscParams {
   double c0 = 0.0;
   double tr_sat = 1.0;     // throttle above which the ESC saturates (section 7)
   double sat_slope = 1.0;  // fraction of the nominal voltage slope delivered above tr_sat
+  double deadband = 0.0;   // command range that produces no voltage (-1 < deadband < 1;
+                           // negative: a throttle offset)
+  double rsupply_ohm = 0.0;  // wire/connector resistance between the VDC sense point and ESC
   double max_current_a = std::numeric_limits<double>::infinity();
   double vdc_max_v = std::numeric_limits<double>::infinity();
 };
@@ -80,6 +119,7 @@ enum Limit : std::uint32_t {
   kLimitEscVoltage = 1u << 5,        // VDC above the ESC's voltage rating
   kLimitStalled = 1u << 6,           // the load torque exceeds the stall torque: omega = 0
   kLimitOverrunning = 1u << 7,       // omega above no-load speed: the load drives the motor
+  kLimitThermalRunaway = 1u << 8,    // winding temperature rise without a steady state
 };
 
 // Names of the set bits, in bit order ("throttle_above_one", "motor_current", ...).
@@ -103,6 +143,7 @@ struct OperatingPoint {
   double eta_motor = 0.0;
   double eta_esc = 0.0;
   double eta_system = 0.0;
+  double winding_rise_k = 0.0;  // steady copper temperature rise (0 without rth_k_per_w)
   std::uint32_t limits = kLimitNone;
   bool feasible() const { return limits == kLimitNone; }
 };
@@ -126,7 +167,16 @@ class Drive {
   // kv of eq (46): 3/(sqrt(2)*pi) for a BLDC, 1 for a brushed motor.
   double volt_factor() const { return volt_factor_; }
 
-  // Section 7: TR_eff = TR (TR <= tr_sat), tr_sat + sat_slope*(TR - tr_sat) above.
+  // True when a nonlinear extension (rth_k_per_w, kt_droop_per_a) is active.
+  bool nonlinear() const { return nonlinear_; }
+  // Winding resistance at current I (winding temperature rise; rm_ohm without it). Infinite
+  // past thermal runaway.
+  double WindingResistance(double current_a) const;
+  // Torque constant at current I (droop; kt_nm_per_a without it).
+  double TorqueConstant(double current_a) const;
+
+  // Section 7 with the dead band: d = max(0, (TR - deadband)/(1 - deadband)) (d = TR without a
+  // dead band), TR_eff = d (d <= tr_sat), tr_sat + sat_slope*(d - tr_sat) above.
   double EffectiveThrottle(double throttle) const;
   // Inverse of EffectiveThrottle (sat_slope > 0).
   double ThrottleFromEffective(double throttle_effective) const;
@@ -166,6 +216,20 @@ class Drive {
                    OperatingPointBatch* out) const;
 
  private:
+  // Series resistance of (48) at this effective throttle: Rm + RESC + kv*rsupply*g*TR_eff.
+  double SeriesResistance(double throttle_effective) const;
+  // Current that holds the circuit (48) at U - KE*omega = x with the temperature-dependent Rm.
+  double CircuitCurrent(double x_v, double r_series_ohm) const;
+  // Paths with an extension (the first-order paths stay short and inlinable).
+  OperatingPoint AtLoadExtended(double vdc_v, double throttle, const TorqueLaw& load) const;
+  OperatingPoint InverseExtended(double vdc_v, double torque_nm, double omega_rad_s) const;
+  void CompleteExtended(double vdc_v, double throttle, double omega_rad_s, double current_a,
+                        OperatingPoint* p, std::uint32_t* limits) const;
+  // Sets the limit bits shared by every path.
+  void Flag(OperatingPoint* p, std::uint32_t limits) const;
+  // Nonlinear path of AtLoad (temperature rise or droop).
+  OperatingPoint AtLoadNonlinear(double vdc_v, double throttle, const TorqueLaw& load) const;
+
   // Fills every output from (VDC, TR, omega, I); shared by all entry points.
   OperatingPoint Complete(double vdc_v, double throttle, double omega_rad_s, double current_a,
                           std::uint32_t limits) const;
@@ -175,6 +239,9 @@ class Drive {
   double r_total_ohm_;
   double volt_factor_;
   double power_factor_;
+  bool nonlinear_;
+  bool extended_;  // any extension non-zero (else the first-order code paths run unchanged)
+  double thermal_k_per_a2_;  // alpha_cu*rth*kp*Rm0: Rm(I) = Rm0/(1 - thermal_k*I^2)
 };
 
 }  // namespace dynosize

@@ -1,6 +1,7 @@
 #include "report/gnuplot.h"
 
 #include <sys/wait.h>
+#include <unistd.h>
 
 #include <cmath>
 #include <cstdio>
@@ -59,7 +60,9 @@ void RenderPng(const std::string& png_path, const std::vector<DataBlock>& blocks
   namespace fs = std::filesystem;
   const fs::path png(png_path);
   const fs::path script_path = fs::path(png).replace_extension(".gp");
-  const std::string tmp_png = (png.parent_path() / ("." + png.filename().string() + ".tmp")).string();
+  // The process id keeps concurrent runs drawing into one folder off each other's file.
+  const std::string tmp_png = (png.parent_path() / ("." + png.filename().string() + ".tmp-" +
+                                                    std::to_string(::getpid()))).string();
 
   std::ostringstream script;
   script << "# Written by dynosize; run 'gnuplot " << script_path.filename().string()

@@ -45,7 +45,7 @@ TEST(Cli, BadInputGetsOneLineAndExitCode) {
        "unknown motor id 'nope'; closest:"},
       {kPair + "--vdc 7.2 --throttle 0.5 --torque 0.01 --catalog /nonexistent", 66,
        "/nonexistent: no such catalog folder"},
-      {"frobnicate", 64, "unknown subcommand 'frobnicate': valid are simulate, calibrate, catalog"},
+      {"frobnicate", 64, "unknown subcommand 'frobnicate': valid are simulate, calibrate, diagnose, catalog"},
       {kPair + "--batch /nonexistent.csv", 66, "/nonexistent.csv: no such file"},
   };
   for (const auto& c : cases) {

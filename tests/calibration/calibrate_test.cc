@@ -165,6 +165,43 @@ TEST(Calibrate, NoThrottleColumn_FullThrottleEquivalent) {
   EXPECT_FALSE(r.param(Param::kTrSat).identifiable);
 }
 
+// DriveCalc keeps no-load points whose speed was not measured (omega = 0): their current alone
+// fixes Io (eq 42 at Q = 0), and they must not disturb KE and R.
+TEST(Calibrate, NoLoadRowWithoutSpeedFixesIo) {
+  SyntheticSpec s = DefaultSpec();
+  s.ac = false;
+  s.torque = false;
+  s.throttle_column = false;
+  s.throttles = {1.0};
+  s.esc = EscParams{};
+  s.vdc_v = {9.0, 10.0, 11.0, 12.0};
+  s.prop_c = {1.0e-7, 2.0e-7, 3.0e-7};
+  s.noise_rel = 0.0;
+  logs::SteadyTable t = MakeSyntheticLog(s);
+  auto& nl_info = t.info[static_cast<int>(logs::Column::kNoLoad)];
+  nl_info.present = true;
+  t.Mutable(logs::Column::kNoLoad).assign(t.rows(), 0.0);
+  // The appended no-load row: speed not measured, IDC = (C1*TR + C0)*Io (eq 57, ideal ESC).
+  const double idc_no_load = (kIdealIdcPerIrmsPerThrottle * 1.0) * s.motor.io_a;
+  for (int c = 0; c < logs::kColumnCount; ++c) {
+    if (t.info[c].present) t.columns[c].push_back(0.0);
+  }
+  t.Mutable(logs::Column::kVdcV).back() = 11.0;
+  t.Mutable(logs::Column::kIdcA).back() = idc_no_load;
+  t.Mutable(logs::Column::kNoLoad).back() = 1.0;
+  t.source_line.push_back(t.source_line.back() + 1);
+  t.samples.push_back(1);
+  const CalibrationResult r = Calibrate(t);
+  EXPECT_EQ(r.points_used, t.rows());
+  EXPECT_TRUE(r.param(Param::kIo).fitted);
+  // Noise-free data: only the solver's tolerance separates the fit from the truth.
+  EXPECT_NEAR(r.motor.io_a, s.motor.io_a, 1e-3 * s.motor.io_a);
+  ExpectRecovered(r, s, Param::kKe, 1e-3);
+  const CrossValidation cv = LeaveOneOut(t, {}, false);
+  EXPECT_EQ(cv.idc_error_percent.size(), t.rows());           // the no-load row's current counts
+  EXPECT_EQ(cv.omega_from_idc_error_percent.size(), t.rows() - 1);  // its speed does not
+}
+
 TEST(Calibrate, BadLogsGiveClearErrors) {
   SyntheticSpec s = DefaultSpec();
   auto t = MakeSyntheticLog(s);

@@ -47,9 +47,11 @@ TEST(CalibrateRealLogs, DriveCalcRefitPhysicalAndBeatsBaseline) {
   REQUIRE_SHARED();
   logs::LogReadOptions o;
   o.format = logs::LogFormat::kDriveCalc;
+  o.drivecalc_keep_no_load_without_speed = true;
   const auto t = logs::ReadLog(Shared() + "drivecalc/MData.csv", o);
   const DriveCalcRefit all = RefitDriveCalc(t);
-  EXPECT_EQ(all.fits.size(), 1059u);  // >= 1 no-load row with rpm and >= 3 loaded rows
+  // shared/data/drivecalc/README.md: 1,290 motors with a no-load point and >= 3 loaded points.
+  EXPECT_EQ(all.fits.size(), 1290u);
   EXPECT_TRUE(all.failures.empty());
   for (const auto& f : all.fits) {
     EXPECT_GT(f.result.motor.ke_v_s_per_rad, 1e-6) << f.motor_id;

@@ -364,5 +364,24 @@ TEST(DriveCalcLog, MotorFilterNoLoadFlagAndZeroSpeed) {
   EXPECT_TRUE(Contains(e, "no MData row has motor_id 7 (6 rows of other motors)")) << e;
 }
 
+TEST(DriveCalcLog, NoLoadPointsWithoutSpeedKeptOnRequest) {
+  const std::string s =
+      "myid,tbs,motor_id,U,n,I,IsNoLoad,prop_id,Alt,Temp\n"
+      "4,4,2,7.58,0.0,0.34,1,0,0,15.0\n"
+      "5,4,2,7.00,20000.0,3.0,0,0,0,15.0\n"
+      "6,4,2,6.50,0,5.0,0,0,0,15.0\n";
+  LogReadOptions o;
+  o.drivecalc_keep_no_load_without_speed = true;
+  const SteadyTable t = ReadLog(WriteTemp("mdata_nl.csv", s), o);
+  ASSERT_EQ(t.rows(), 2u);  // the no-load row stays, the loaded n = 0 row does not
+  EXPECT_EQ(t.Get(Column::kNoLoad)[0], 1.0);
+  EXPECT_EQ(t.Get(Column::kOmegaRadS)[0], 0.0);
+  ASSERT_EQ(t.dropped.size(), 1u);
+  EXPECT_EQ(t.dropped[0].reason, "loaded points with n = 0 (speed not measured)");
+  EXPECT_EQ(t.dropped[0].count, 1u);
+  ASSERT_EQ(t.notes.size() >= 1, true);
+  EXPECT_TRUE(Contains(t.notes[0], "1 no-load points without a speed reading")) << t.notes[0];
+}
+
 }  // namespace
 }  // namespace dynosize::logs

@@ -1,0 +1,41 @@
+#!/usr/bin/env bash
+# Everything CI checks, in one place (README command 2 and .ci/run call exactly this script):
+#   1. install what is missing (scripts/setup-debian.sh);
+#   2. Release build (build/) and the whole test suite;
+#   3. AddressSanitizer + UndefinedBehaviorSanitizer build with clang (build-asan/), which also
+#      holds the libFuzzer targets of fuzz/;
+#   4. a short fuzz pass over every target (scripts/fuzz.sh, DYNOSIZE_FUZZ_SECONDS in all);
+#   5. the whole test suite again under the sanitizers (the last output is ctest's summary).
+# Any failure stops the script with a non-zero exit code. DYNOSIZE_JOBS sets the build
+# parallelism (default 2: the CI machine has 2 cores).
+set -euo pipefail
+cd "$(dirname "$0")/.."
+jobs=${DYNOSIZE_JOBS:-2}
+fuzz_seconds=${DYNOSIZE_FUZZ_SECONDS:-90}
+t0=$(date +%s)
+stamp() { echo "test-all.sh: $1 at $(( $(date +%s) - t0 )) s" >&2; }
+
+bash scripts/setup-debian.sh
+cmake -S . -B build -DCMAKE_BUILD_TYPE=Release
+cmake --build build -j"$jobs"
+(cd build && ctest --output-on-failure -j2)
+stamp "Release build and tests done"
+
+# -O1: the sanitizers' recommended level (fast to compile, readable reports); assertions stay on
+# (no NDEBUG) as an extra check in this build.
+# A build-asan configured with another compiler cannot switch: start it afresh.
+if [ -f build-asan/CMakeCache.txt ] && ! grep -q '^CMAKE_CXX_COMPILER:.*clang' build-asan/CMakeCache.txt; then
+  rm -rf build-asan
+fi
+CXX=clang++ cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=Release -DCMAKE_CXX_FLAGS_RELEASE=-O1 \
+  -DDYNOSIZE_SANITIZE=ON -DDYNOSIZE_FUZZ=ON -DDYNOSIZE_BUILD_BENCHMARKS=OFF
+cmake --build build-asan -j"$jobs"
+stamp "ASan/UBSan build done"
+
+bash scripts/fuzz.sh build-asan "$fuzz_seconds"
+stamp "fuzz pass done"
+
+export ASAN_OPTIONS=${ASAN_OPTIONS:-detect_leaks=1:abort_on_error=1:strict_string_checks=1}
+export UBSAN_OPTIONS=${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1}
+stamp "ASan/UBSan tests start"
+(cd build-asan && ctest --output-on-failure -j2)

@@ -1,0 +1,1247 @@
+#include "diagnosis/diagnose.h"
+
+#include <Eigen/Core>
+#include <Eigen/QR>
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <iomanip>
+#include <numeric>
+#include <random>
+#include <sstream>
+
+#include "common/error.h"
+#include "common/units.h"
+#include "fit/nonlinear_least_squares.h"
+
+namespace dynosize::diagnosis {
+
+using logs::Column;
+using logs::SteadyTable;
+
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+// ---------------------------------------------------------------------------------------------
+// Parameters. Every model is a subset of these slots made free; the rest are held.
+enum Slot : int {
+  kKe = 0, kKt, kRm, kIo, kResc, kC1, kC0, kTrSat, kSatSlope, kDeadband, kIo1, kRth, kDroop,
+  kRsupply, kSlotCount
+};
+constexpr const char* kSlotName[kSlotCount] = {
+    "ke_v_s_per_rad", "kt_nm_per_a", "rm_ohm",   "io_a",           "resc_ohm",
+    "c1",             "c0",          "tr_sat",   "sat_slope",      "deadband",
+    "io1_a_s_per_rad", "rth_k_per_w", "kt_droop_per_a", "rsupply_ohm"};
+constexpr bool kSlotIsBase[kSlotCount] = {true,  true,  true,  true,  true,  true, true,
+                                          false, false, false, false, false, false, false};
+
+using Values = std::array<double, kSlotCount>;
+using FreeSet = std::array<bool, kSlotCount>;
+
+// Measured columns the model predicts, in this order.
+enum Meas : int { kMOmega = 0, kMIdc, kMIrms, kMVll, kMPac, kMeasCount };
+constexpr Column kMeasColumn[kMeasCount] = {Column::kOmegaRadS, Column::kIdcA, Column::kIrmsA,
+                                            Column::kVllRmsV, Column::kPacW};
+
+struct Term {
+  int meas;
+  double value;
+  double inv_scale;  // 100 / max(|value|, 5 % of the column median): residual in percent
+};
+
+struct Data {
+  std::vector<std::size_t> table_row;
+  std::vector<double> vdc, tr, omega, q;
+  std::vector<char> torque_known;
+  std::vector<int> term_begin;  // terms of row k: [term_begin[k], term_begin[k+1])
+  std::vector<Term> terms;
+  std::array<bool, kMeasCount> measured{};
+  bool tie_kt = true;
+  MotorType motor_type = MotorType::kBldc;
+  std::size_t rows() const { return table_row.size(); }
+};
+
+struct Model {
+  FreeSet free{};
+  Values values{};  // starts for free slots, held values otherwise
+  Values scale{};   // optimisation unit of each slot (x = value/scale)
+  Values lower{}, upper{};
+  bool profile_knee = false;  // tr_sat chosen on a grid
+};
+
+void ToParams(const Data& d, const Values& v, MotorParams* m, EscParams* e) {
+  m->type = d.motor_type;
+  m->ke_v_s_per_rad = v[kKe];
+  m->kt_nm_per_a = d.tie_kt ? kPacPerVllIrms * v[kKe] : v[kKt];
+  m->rm_ohm = v[kRm];
+  m->io_a = v[kIo];
+  m->io1_a_s_per_rad = v[kIo1];
+  m->rth_k_per_w = v[kRth];
+  m->kt_droop_per_a = v[kDroop];
+  e->resc_ohm = v[kResc];
+  e->c1 = v[kC1];
+  e->c0 = v[kC0];
+  e->tr_sat = v[kTrSat];
+  e->sat_slope = v[kSatSlope];
+  e->deadband = v[kDeadband];
+  e->rsupply_ohm = v[kRsupply];
+}
+
+// Predictions of row k (every measured column) by the model with these values.
+bool PredictRow(const Data& d, const Drive& drive, std::size_t k, double* pred) {
+  const OperatingPoint p = d.torque_known[k] ? drive.AtTorque(d.vdc[k], d.tr[k], d.q[k])
+                                             : drive.AtSpeed(d.vdc[k], d.tr[k], d.omega[k]);
+  pred[kMOmega] = p.omega_rad_s;
+  pred[kMIdc] = p.idc_a;
+  pred[kMIrms] = p.irms_a;
+  pred[kMVll] = p.vll_rms_v;
+  pred[kMPac] = p.pac_w;
+  for (int m = 0; m < kMeasCount; ++m) {
+    if (!std::isfinite(pred[m])) return false;
+  }
+  // A stalled prediction (omega = 0) is kept: its large residual steers the fit away, where
+  // rejecting it would stop the fit at a poor start.
+  return (p.limits & kLimitThermalRunaway) == 0;
+}
+
+bool Residuals(const Data& d, const std::vector<std::size_t>& rows, const Values& v, double* r) {
+  MotorParams m;
+  EscParams e;
+  ToParams(d, v, &m, &e);
+  if (!(m.ke_v_s_per_rad > 0.0) || !(m.kt_nm_per_a > 0.0) || !(m.rm_ohm + e.resc_ohm > 0.0)) {
+    return false;
+  }
+  const Drive drive(m, e);
+  double pred[kMeasCount];
+  int out = 0;
+  for (std::size_t k : rows) {
+    if (!PredictRow(d, drive, k, pred)) return false;
+    for (int t = d.term_begin[k]; t < d.term_begin[k + 1]; ++t) {
+      const Term& term = d.terms[t];
+      r[out++] = (pred[term.meas] - term.value) * term.inv_scale;
+    }
+  }
+  return true;
+}
+
+int TermCount(const Data& d, const std::vector<std::size_t>& rows) {
+  int n = 0;
+  for (std::size_t k : rows) n += d.term_begin[k + 1] - d.term_begin[k];
+  return n;
+}
+
+struct FitOut {
+  bool ok = false;
+  Values values{};
+  double sse = 0.0;  // sum of squared percent residuals (trivial loss)
+  int n_terms = 0;
+  int n_free = 0;    // incl. a profiled knee
+  Values stderr_{};
+  double max_corr_ext_base = 0.0;
+  std::string corr_with;
+};
+
+FitOut FitModel(const Data& d, const std::vector<std::size_t>& rows, const Model& model,
+                LossType loss, double loss_scale) {
+  FitOut out;
+  std::vector<int> slots;
+  for (int s = 0; s < kSlotCount; ++s) {
+    if (model.free[s]) slots.push_back(s);
+  }
+  const int n = static_cast<int>(slots.size());
+  out.n_terms = TermCount(d, rows);
+  out.n_free = n + (model.profile_knee ? 1 : 0);
+  out.values = model.values;
+  out.stderr_.fill(kNaN);
+  if (out.n_terms <= out.n_free) return out;
+  const Values base = model.values;
+  const auto& scale = model.scale;
+  auto unpack = [&](const Eigen::VectorXd& x) {
+    Values v = base;
+    for (int j = 0; j < n; ++j) v[slots[j]] = x[j] * scale[slots[j]];
+    return v;
+  };
+  LeastSquaresProblem prob;
+  prob.num_residuals = out.n_terms;
+  prob.num_parameters = n;
+  prob.residuals = NumericDiffResiduals(
+      [&](const Eigen::VectorXd& x, Eigen::VectorXd* r) {
+        return Residuals(d, rows, unpack(x), r->data());
+      },
+      1e-6);
+  prob.lower_bounds.resize(n);
+  prob.upper_bounds.resize(n);
+  Eigen::VectorXd x(n);
+  for (int j = 0; j < n; ++j) {
+    const int s = slots[j];
+    prob.parameter_names.push_back(kSlotName[s]);
+    prob.lower_bounds[j] = model.lower[s] / scale[s];
+    prob.upper_bounds[j] = model.upper[s] / scale[s];
+    x[j] = std::clamp(model.values[s] / scale[s], prob.lower_bounds[j], prob.upper_bounds[j]);
+  }
+  LevenbergMarquardtOptions lo;
+  lo.max_num_iterations = 100;
+  lo.loss = loss;
+  lo.loss_scale = loss_scale;
+  lo.use_geodesic_acceleration = false;
+  lo.function_tolerance = 1e-9;
+  lo.parameter_tolerance = 1e-9;
+  LevenbergMarquardtSummary s;
+  if (n > 0) {
+    s = SolveLeastSquares(prob, lo, &x);
+    if (!s.IsSolutionUsable()) return out;
+  }
+  out.values = unpack(x);
+  Eigen::VectorXd r(out.n_terms);
+  if (!Residuals(d, rows, out.values, r.data())) return out;
+  out.sse = r.squaredNorm();
+  out.ok = std::isfinite(out.sse);
+  if (n > 0 && s.standard_errors.size() == n) {
+    for (int j = 0; j < n; ++j) out.stderr_[slots[j]] = s.standard_errors[j] * scale[slots[j]];
+    if (s.correlation.rows() == n) {
+      for (int a = 0; a < n; ++a) {
+        if (kSlotIsBase[slots[a]]) continue;
+        for (int b = 0; b < n; ++b) {
+          if (!kSlotIsBase[slots[b]]) continue;
+          const double c = std::fabs(s.correlation(a, b));
+          if (std::isfinite(c) && c > out.max_corr_ext_base) {
+            out.max_corr_ext_base = c;
+            out.corr_with = kSlotName[slots[b]];
+          }
+        }
+      }
+    }
+  }
+  return out;
+}
+
+// Fits the model, profiling tr_sat over `knees` when the model asks for it.
+FitOut FitProfiled(const Data& d, const std::vector<std::size_t>& rows, const Model& model,
+                   const std::vector<double>& knees, LossType loss, double loss_scale) {
+  if (!model.profile_knee) return FitModel(d, rows, model, loss, loss_scale);
+  FitOut best;
+  for (double t : knees) {
+    Model m = model;
+    m.values[kTrSat] = t;
+    FitOut f = FitModel(d, rows, m, loss, loss_scale);
+    if (f.ok && (!best.ok || f.sse < best.sse)) best = f;
+  }
+  return best;
+}
+
+double Median(std::vector<double> v) {
+  if (v.empty()) return kNaN;
+  const std::size_t h = v.size() / 2;
+  std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(h), v.end());
+  double m = v[h];
+  if (v.size() % 2 == 0) {
+    m = 0.5 * (m + *std::max_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(h)));
+  }
+  return m;
+}
+
+double Aicc(double sse, int n, int p) {
+  const double nn = n, pp = p;
+  const double base = nn * std::log(std::max(sse, 1e-300) / nn) + 2.0 * pp;
+  return n - p - 1 > 0 ? base + 2.0 * pp * (pp + 1.0) / (nn - pp - 1.0)
+                       : std::numeric_limits<double>::infinity();
+}
+
+// ---------------------------------------------------------------------------------------------
+// Cross-validation.
+struct CvOut {
+  double rms_percent = kNaN;  // all terms, percent residuals
+  std::array<std::vector<double>, kMeasCount> pred;  // per data row
+  int failed_folds = 0;
+};
+
+CvOut CrossValidate(const Data& d, const std::vector<std::size_t>& used,
+                    const std::vector<int>& fold_of, int folds, const Model& model,
+                    const FitOut& full, const std::vector<double>& knees) {
+  CvOut cv;
+  for (auto& p : cv.pred) p.assign(d.rows(), kNaN);
+  double ss = 0.0;
+  int nt = 0;
+  for (int f = 0; f < folds; ++f) {
+    std::vector<std::size_t> train, test;
+    for (std::size_t k : used) (fold_of[k] == f ? test : train).push_back(k);
+    if (test.empty()) continue;
+    Model m = model;
+    m.values = full.values;  // warm start
+    // The knee is re-profiled inside the fold around the full-data knee (its grid neighbours),
+    // so that no score uses a knee chosen on the scored rows' own fit... up to the neighbourhood.
+    std::vector<double> local;
+    if (model.profile_knee) {
+      const auto it = std::find(knees.begin(), knees.end(), full.values[kTrSat]);
+      const std::ptrdiff_t c = it - knees.begin();
+      for (std::ptrdiff_t j = std::max<std::ptrdiff_t>(0, c - 2);
+           j <= std::min<std::ptrdiff_t>(static_cast<std::ptrdiff_t>(knees.size()) - 1, c + 2); ++j) {
+        local.push_back(knees[static_cast<std::size_t>(j)]);
+      }
+    }
+    FitOut fit = FitProfiled(d, train, m, local, LossType::kTrivial, 1.0);
+    if (!fit.ok) {
+      ++cv.failed_folds;
+      fit = full;
+    }
+    MotorParams mp;
+    EscParams ep;
+    ToParams(d, fit.values, &mp, &ep);
+    const Drive drive(mp, ep);
+    double pred[kMeasCount];
+    for (std::size_t k : test) {
+      const bool ok = PredictRow(d, drive, k, pred);
+      for (int t = d.term_begin[k]; t < d.term_begin[k + 1]; ++t) {
+        const Term& term = d.terms[t];
+        const double r = ok ? (pred[term.meas] - term.value) * term.inv_scale : 100.0;
+        ss += r * r;
+        ++nt;
+        cv.pred[term.meas][k] = ok ? pred[term.meas] : kNaN;
+      }
+    }
+  }
+  cv.rms_percent = nt > 0 ? std::sqrt(ss / nt) : kNaN;
+  return cv;
+}
+
+std::vector<ColumnError> ColumnErrors(const Data& d, const std::vector<std::size_t>& used,
+                                      const CvOut& cv) {
+  std::vector<ColumnError> out;
+  for (int m = 0; m < kMeasCount; ++m) {
+    if (!d.measured[m]) continue;
+    ColumnError ce;
+    ce.column = kMeasColumn[m];
+    double sse = 0.0, ss = 0.0;
+    for (std::size_t k : used) {
+      for (int t = d.term_begin[k]; t < d.term_begin[k + 1]; ++t) {
+        if (d.terms[t].meas != m || !std::isfinite(cv.pred[m][k])) continue;
+        const double e = cv.pred[m][k] - d.terms[t].value;
+        sse += e * e;
+        ss += d.terms[t].value * d.terms[t].value;
+        ++ce.points;
+      }
+    }
+    if (ce.points == 0) continue;
+    ce.rmse = std::sqrt(sse / static_cast<double>(ce.points));
+    ce.rmse_percent = ss > 0.0 ? 100.0 * std::sqrt(sse / ss) : kNaN;
+    out.push_back(ce);
+  }
+  return out;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Regularized incomplete beta by Lentz's continued fraction (Numerical Recipes 6.4).
+double BetaContinuedFraction(double a, double b, double x) {
+  const double tiny = 1e-300;
+  double c = 1.0, dd = 1.0 - (a + b) * x / (a + 1.0);
+  if (std::fabs(dd) < tiny) dd = tiny;
+  dd = 1.0 / dd;
+  double h = dd;
+  for (int m = 1; m <= 300; ++m) {
+    const double m2 = 2.0 * m;
+    double aa = m * (b - m) * x / ((a + m2 - 1.0) * (a + m2));
+    dd = 1.0 + aa * dd;
+    if (std::fabs(dd) < tiny) dd = tiny;
+    c = 1.0 + aa / c;
+    if (std::fabs(c) < tiny) c = tiny;
+    dd = 1.0 / dd;
+    h *= dd * c;
+    aa = -(a + m) * (a + b + m) * x / ((a + m2) * (a + m2 + 1.0));
+    dd = 1.0 + aa * dd;
+    if (std::fabs(dd) < tiny) dd = tiny;
+    c = 1.0 + aa / c;
+    if (std::fabs(c) < tiny) c = tiny;
+    dd = 1.0 / dd;
+    const double del = dd * c;
+    h *= del;
+    if (std::fabs(del - 1.0) < 1e-14) break;
+  }
+  return h;
+}
+
+double RegularizedBeta(double a, double b, double x) {
+  if (x <= 0.0) return 0.0;
+  if (x >= 1.0) return 1.0;
+  const double lbt = std::lgamma(a + b) - std::lgamma(a) - std::lgamma(b) + a * std::log(x) +
+                     b * std::log1p(-x);
+  if (x < (a + 1.0) / (a + b + 2.0)) return std::exp(lbt) * BetaContinuedFraction(a, b, x) / a;
+  return 1.0 - std::exp(lbt) * BetaContinuedFraction(b, a, 1.0 - x) / b;
+}
+
+}  // namespace
+
+double FDistributionUpperTail(double f, double d1, double d2) {
+  if (!(f > 0.0)) return 1.0;
+  if (!std::isfinite(f)) return 0.0;
+  return RegularizedBeta(0.5 * d2, 0.5 * d1, d2 / (d2 + d1 * f));
+}
+
+const char* CauseId(Cause c) {
+  switch (c) {
+    case Cause::kEscSaturation: return "esc_saturation";
+    case Cause::kSpeedDependentNoLoadCurrent: return "speed_dependent_no_load_current";
+    case Cause::kWindingTemperatureRise: return "winding_temperature_rise";
+    case Cause::kTorqueConstantDroop: return "torque_constant_droop";
+    case Cause::kThrottleDeadband: return "throttle_deadband";
+    case Cause::kSupplyResistance: return "supply_resistance";
+  }
+  return "?";
+}
+
+const char* CauseDescription(Cause c) {
+  switch (c) {
+    case Cause::kEscSaturation:
+      return "ESC saturation: above tr_sat the ESC delivers only sat_slope of the nominal "
+             "voltage slope (model.md section 7)";
+    case Cause::kSpeedDependentNoLoadCurrent:
+      return "no-load current grows with speed (iron, eddy-current, bearing and windage losses): "
+             "Io = io_a + io1*omega (model.md section 9)";
+    case Cause::kWindingTemperatureRise:
+      return "winding resistance rises with copper temperature heated by I^2*R: Rm = Rm0*(1 + "
+             "0.00393*rth*P_cu) (model.md section 9)";
+    case Cause::kTorqueConstantDroop:
+      return "torque constant falls at high current (magnetic saturation, armature reaction): "
+             "KT = KT0/(1 + kt_droop*I) (model.md section 9)";
+    case Cause::kThrottleDeadband:
+      return "ESC throttle dead band or offset: TR_eff = (TR - deadband)/(1 - deadband); positive: "
+             "the first part of the command range produces no voltage, negative: voltage already "
+             "at zero command (model.md section 9)";
+    case Cause::kSupplyResistance:
+      return "supply sag: VDC is not measured at the ESC; wires and connectors drop "
+             "rsupply*IDC before it (model.md section 9)";
+  }
+  return "?";
+}
+
+bool ParseCause(const std::string& id, Cause* c) {
+  for (int k = 0; k < kCauseCount; ++k) {
+    if (id == CauseId(static_cast<Cause>(k))) {
+      *c = static_cast<Cause>(k);
+      return true;
+    }
+  }
+  return false;
+}
+
+bool DiagnoseOptions::IsValid(std::string* error) const {
+  auto bad = [error](const std::string& m) {
+    *error = m;
+    return false;
+  };
+  if (folds < 2) return bad("folds = " + std::to_string(folds) + ": must be >= 2");
+  if (!(alpha > 0.0 && alpha < 1.0)) return bad("alpha = " + std::to_string(alpha) + ": must be in (0, 1)");
+  if (!(min_gain_percent >= 0.0)) return bad("min_gain_percent must be >= 0");
+  if (!(outlier_sigmas >= 0.0)) return bad("outlier_sigmas must be >= 0");
+  if (max_findings < 0) return bad("max_findings must be >= 0");
+  if (!(assumed_throttle > 0.0 && assumed_throttle <= 1.0)) return bad("assumed_throttle must be in (0, 1]");
+  return true;
+}
+
+namespace {
+
+// Which slots each cause adds.
+std::vector<int> CauseSlots(Cause c) {
+  switch (c) {
+    case Cause::kEscSaturation: return {kSatSlope};  // + the profiled tr_sat
+    case Cause::kSpeedDependentNoLoadCurrent: return {kIo1};
+    case Cause::kWindingTemperatureRise: return {kRth};
+    case Cause::kTorqueConstantDroop: return {kDroop};
+    case Cause::kThrottleDeadband: return {kDeadband};
+    case Cause::kSupplyResistance: return {kRsupply};
+  }
+  return {};
+}
+
+int CauseExtraParams(Cause c) { return c == Cause::kEscSaturation ? 2 : 1; }
+
+void AddCause(Model* m, Cause c) {
+  for (int s : CauseSlots(c)) m->free[s] = true;
+  if (c == Cause::kEscSaturation) {
+    m->profile_knee = true;
+    if (m->values[kSatSlope] >= 1.0) m->values[kSatSlope] = 0.8;
+  } else {
+    const int s = CauseSlots(c)[0];
+    if (m->values[s] == 0.0) m->values[s] = 0.05 * m->scale[s];
+  }
+}
+
+// Fits model `m` (the current model plus candidate `c`) from several starts and keeps the best:
+// the current fit's values, and - for the offset-like dead band and supply resistance, or when
+// a base parameter of the current fit sits on a bound (the first-order model could not follow
+// the data) - the linear starting values of the base model with the candidate's own starts
+// (dead band: +0.05, -0.1, -0.3, i.e. a dead band or a throttle offset).
+FitOut FitCandidate(const Data& d, const std::vector<std::size_t>& rows, const Model& m, Cause c,
+                    const Values& fresh, bool base_at_bound, const std::vector<double>& knees) {
+  std::vector<Model> starts = {m};
+  const bool offset_like = c == Cause::kThrottleDeadband || c == Cause::kSupplyResistance;
+  if (offset_like || base_at_bound) {
+    Model f = m;
+    for (int s = 0; s < kSlotCount; ++s) {
+      if (kSlotIsBase[s]) f.values[s] = fresh[s];
+    }
+    starts.push_back(f);
+  }
+  if (c == Cause::kThrottleDeadband) {
+    const std::size_t k = starts.size();
+    for (std::size_t j = 0; j < k; ++j) {
+      for (double db : {-0.1, -0.3}) {
+        Model v = starts[j];
+        v.values[kDeadband] = std::clamp(db, v.lower[kDeadband], v.upper[kDeadband]);
+        starts.push_back(v);
+      }
+    }
+  }
+  FitOut best;
+  for (const Model& st : starts) {
+    FitOut f = FitProfiled(d, rows, st, knees, LossType::kTrivial, 1.0);
+    if (f.ok && (!best.ok || f.sse < best.sse)) best = f;
+  }
+  return best;
+}
+
+bool BaseAtBound(const Model& m, const Values& v) {
+  for (int s = 0; s < kSlotCount; ++s) {
+    if (!kSlotIsBase[s] || !m.free[s]) continue;
+    const double tol = 1e-6 * std::max(std::fabs(m.upper[s] - m.lower[s]), 1e-12);
+    if (v[s] - m.lower[s] <= tol || m.upper[s] - v[s] <= tol) return true;
+  }
+  return false;
+}
+
+std::string Separation(Cause a, Cause b) {
+  auto is = [&](Cause x, Cause y) { return (a == x && b == y) || (a == y && b == x); };
+  if (is(Cause::kWindingTemperatureRise, Cause::kTorqueConstantDroop)) {
+    return "log the winding temperature (temp_c), or repeat a high-current point after a "
+           "cool-down: a thermal effect drifts with time and temperature, magnetic droop does not";
+  }
+  if (is(Cause::kWindingTemperatureRise, Cause::kSupplyResistance)) {
+    return "measure VDC at the ESC input terminals (supply sag vanishes) or log the winding "
+           "temperature (heating does not)";
+  }
+  if (is(Cause::kEscSaturation, Cause::kThrottleDeadband)) {
+    return "add throttle levels at both ends of the range (below 20 % and between 85 % and 100 %)";
+  }
+  if (is(Cause::kSpeedDependentNoLoadCurrent, Cause::kTorqueConstantDroop)) {
+    return "no-load runs at several speeds (torque = 0) isolate Io(omega); high-torque points at "
+           "low speed isolate KT(I)";
+  }
+  if (is(Cause::kSpeedDependentNoLoadCurrent, Cause::kWindingTemperatureRise)) {
+    return "no-load runs at several speeds (low current, high speed) and locked-rotor-like "
+           "high-torque points at low speed (high current) separate speed from current effects";
+  }
+  if (is(Cause::kSupplyResistance, Cause::kEscSaturation) ||
+      is(Cause::kSupplyResistance, Cause::kThrottleDeadband)) {
+    return "measure VDC at the ESC input terminals, and run the same throttle levels at two "
+           "loads (props): supply sag follows the current, the ESC law follows the throttle";
+  }
+  return "more throttle levels and voltages, a torque column, or the AC-side columns "
+         "(vll_rms_v, irms_a) to see the motor and the ESC separately";
+}
+
+std::vector<double> Levels(const std::vector<double>& tr) {
+  std::vector<double> lv;
+  for (double v : tr) lv.push_back(std::round(v * 1000.0) / 1000.0);
+  std::sort(lv.begin(), lv.end());
+  lv.erase(std::unique(lv.begin(), lv.end()), lv.end());
+  return lv;
+}
+
+}  // namespace
+
+DiagnoseResult Diagnose(const SteadyTable& t, const DiagnoseOptions& o) {
+  std::string why;
+  if (!o.IsValid(&why)) throw UsageError("diagnose options: " + why);
+  DiagnoseResult res;
+  res.file = t.file.empty() ? "log" : t.file;
+  const std::string& file = res.file;
+  if (!t.Has(Column::kOmegaRadS)) {
+    throw DataError(file + ": column omega_rad_s (shaft speed) is absent: the diagnosis compares "
+                    "the model's speed/current with the measured ones and needs the speed");
+  }
+  if (!t.Has(Column::kVdcV)) {
+    throw DataError(file + ": column vdc_v (supply voltage) is absent: the model needs the voltage "
+                    "at the ESC (eq 48)");
+  }
+  const bool has_tr = t.Has(Column::kThrottle);
+  const bool has_q = t.Has(Column::kTorqueNm);
+  const bool has_nl = t.Has(Column::kNoLoad);
+  const bool ac = t.Has(Column::kVllRmsV) && t.Has(Column::kIrmsA);
+  res.mode = ac ? "ac" : (has_tr ? "dc" : "dc_no_throttle");
+
+  // --- Rows and terms.
+  Data d;
+  d.motor_type = o.motor ? o.motor->type : MotorType::kBldc;
+  for (int m = 0; m < kMeasCount; ++m) d.measured[m] = t.Has(kMeasColumn[m]);
+  double wmax = 0.0;
+  for (double w : t.Get(Column::kOmegaRadS)) wmax = std::max(wmax, w);
+  res.row_used.assign(t.rows(), 0);
+  for (std::size_t i = 0; i < t.rows(); ++i) {
+    const double w = t.Get(Column::kOmegaRadS)[i];
+    const double tr = has_tr ? t.Get(Column::kThrottle)[i] : o.assumed_throttle;
+    const double vdc = t.Get(Column::kVdcV)[i];
+    if (!(w > o.min_speed_fraction * wmax) || (has_tr && tr < o.min_throttle) || !(vdc > 0.0)) continue;
+    const bool nl = has_nl && t.Get(Column::kNoLoad)[i] != 0.0;
+    d.table_row.push_back(i);
+    d.vdc.push_back(vdc);
+    d.tr.push_back(tr);
+    d.omega.push_back(w);
+    d.q.push_back(has_q ? t.Get(Column::kTorqueNm)[i] : 0.0);
+    d.torque_known.push_back(has_q || nl ? 1 : 0);
+  }
+  const std::size_t n = d.rows();
+  if (n < 6) {
+    throw DataError(file + ": only " + std::to_string(n) +
+                    " row(s) with the motor turning: the diagnosis needs at least 6");
+  }
+  std::array<double, kMeasCount> inv_scale{};
+  for (int m = 0; m < kMeasCount; ++m) {
+    if (!d.measured[m]) continue;
+    std::vector<double> mag;
+    for (std::size_t i : d.table_row) mag.push_back(std::fabs(t.Get(kMeasColumn[m])[i]));
+    const double med = Median(mag);
+    inv_scale[m] = med > 0.0 ? 100.0 / med : 0.0;
+    if (!(med > 0.0)) d.measured[m] = false;
+  }
+  d.term_begin.push_back(0);
+  for (std::size_t k = 0; k < n; ++k) {
+    for (int m = 0; m < kMeasCount; ++m) {
+      if (!d.measured[m]) continue;
+      if (m == kMOmega && !d.torque_known[k]) continue;  // the speed is this row's input
+      // Percent of the measured value (the noise of dyno sensors is mostly relative), floored
+      // at 5 % of the column's median so that near-zero readings do not dominate.
+      const double val = t.Get(kMeasColumn[m])[d.table_row[k]];
+      const double den = std::max(std::fabs(val), 5.0 / inv_scale[m]);
+      d.terms.push_back({m, val, 100.0 / den});
+    }
+    d.term_begin.push_back(static_cast<int>(d.terms.size()));
+  }
+  if (d.terms.empty()) {
+    throw DataError(file + ": nothing to predict: the log needs idc_a, the AC columns (vll_rms_v, "
+                    "irms_a) or a torque column besides the speed");
+  }
+  for (int m = 0; m < kMeasCount; ++m) {
+    if (d.measured[m] && !(m == kMOmega && !has_q && !has_nl)) res.predicted_columns.push_back(kMeasColumn[m]);
+  }
+  const std::vector<double> levels = has_tr ? Levels(d.tr) : std::vector<double>{};
+  bool any_tk = false;
+  for (char c : d.torque_known) any_tk = any_tk || c;
+
+  // --- Base model: what is free, held values and starts.
+  d.tie_kt = !(has_q && ac);
+  Model base;
+  const MotorParams m0 = o.motor ? *o.motor : MotorParams{};
+  const EscParams e0 = o.esc ? *o.esc : EscParams{};
+  Values& v = base.values;
+  v[kKe] = m0.ke_v_s_per_rad;
+  v[kKt] = m0.kt_nm_per_a;
+  v[kRm] = m0.rm_ohm;
+  v[kIo] = m0.io_a;
+  v[kResc] = e0.resc_ohm;
+  v[kC1] = e0.c1;
+  v[kC0] = e0.c0;
+  // The extensions start from the first-order model whatever the catalog says: the diagnosis
+  // asks whether the data need them.
+  v[kTrSat] = 1.0;
+  v[kSatSlope] = 1.0;
+  v[kDeadband] = 0.0;
+  v[kIo1] = v[kRth] = v[kDroop] = v[kRsupply] = 0.0;
+  FreeSet& fr = base.free;
+  fr[kKe] = fr[kRm] = true;
+  fr[kKt] = !d.tie_kt;
+  fr[kIo] = any_tk;
+  fr[kResc] = ac && has_tr;
+  fr[kC1] = fr[kC0] = d.measured[kMIdc] && has_tr && levels.size() >= 2 && (ac || has_q);
+  // Linear starts when no catalog entry: U = R*I + KE*omega (eq 48) by least squares, I from
+  // the AC current or IDC/(C1*TR + C0).
+  if (!o.motor) {
+    Eigen::MatrixXd a(static_cast<Eigen::Index>(n), 2);
+    Eigen::VectorXd b(static_cast<Eigen::Index>(n));
+    double imax = 0.0;
+    for (std::size_t k = 0; k < n; ++k) {
+      const std::size_t i = d.table_row[k];
+      const double g = std::max(v[kC1] * d.tr[k] + v[kC0], 1e-3);
+      const double cur = ac ? t.Get(Column::kIrmsA)[i]
+                            : (d.measured[kMIdc] ? t.Get(Column::kIdcA)[i] / g : 0.0);
+      imax = std::max(imax, cur);
+      a(static_cast<Eigen::Index>(k), 0) = cur;
+      a(static_cast<Eigen::Index>(k), 1) = d.omega[k];
+      b[static_cast<Eigen::Index>(k)] = kVllRmsPerVdc * d.vdc[k] * d.tr[k];
+    }
+    const Eigen::VectorXd sol = a.colPivHouseholderQr().solve(b);
+    double ke = sol[1], r = sol[0];
+    if (!(ke > 0.0)) ke = (b.array() / a.col(1).array()).maxCoeff();
+    if (!(r > 1e-4)) r = imax > 0.0 ? 0.05 * b.maxCoeff() / imax : 0.1;
+    v[kKe] = ke;
+    v[kRm] = std::max(r - v[kResc], 1e-4);
+    v[kKt] = kPacPerVllIrms * ke;
+    if (any_tk) {
+      double s = 0.0;
+      int c = 0;
+      for (std::size_t k = 0; k < n; ++k) {
+        if (!d.torque_known[k]) continue;
+        const double g = std::max(v[kC1] * d.tr[k] + v[kC0], 1e-3);
+        const double cur = ac ? t.Get(Column::kIrmsA)[d.table_row[k]]
+                              : (d.measured[kMIdc] ? t.Get(Column::kIdcA)[d.table_row[k]] / g : 0.0);
+        s += cur - d.q[k] / v[kKt];
+        ++c;
+      }
+      v[kIo] = c > 0 ? std::max(s / c, 0.0) : 0.0;
+    }
+  }
+  // Scales and bounds (optimisation units: x = value/scale).
+  double imax = 0.0;
+  {
+    MotorParams mp;
+    EscParams ep;
+    ToParams(d, v, &mp, &ep);
+    const Drive drive(mp, ep);
+    for (std::size_t k = 0; k < n; ++k) {
+      const auto p = d.torque_known[k] ? drive.AtTorque(d.vdc[k], d.tr[k], d.q[k])
+                                       : drive.AtSpeed(d.vdc[k], d.tr[k], d.omega[k]);
+      if (std::isfinite(p.irms_a)) imax = std::max(imax, std::fabs(p.irms_a));
+    }
+    if (!(imax > 0.0)) imax = 10.0;
+  }
+  const double rm_s = std::max(v[kRm], 1e-3);
+  Values& sc = base.scale;
+  sc[kKe] = std::max(v[kKe], 1e-6);
+  sc[kKt] = std::max(v[kKt], 1e-6);
+  sc[kRm] = rm_s;
+  sc[kIo] = std::max({v[kIo], 0.02 * imax, 1e-3});
+  sc[kResc] = rm_s;
+  sc[kC1] = 1.0;
+  sc[kC0] = 0.1;
+  sc[kTrSat] = 1.0;
+  sc[kSatSlope] = 1.0;
+  sc[kDeadband] = 0.1;
+  sc[kIo1] = sc[kIo] / std::max(wmax, 1.0);
+  sc[kRth] = 0.1 / (kAlphaCopperPerK * kPacPerVllIrms * rm_s * imax * imax);  // x=1: +10 % Rm
+  sc[kDroop] = 0.1 / imax;                                                  // x=1: -10 % KT
+  sc[kRsupply] = rm_s;
+  const double min_level = levels.empty() ? 1.0 : levels.front();
+  const Values lower = {1e-7, 1e-7, 1e-6, 0.0, 0.0, 0.0, -1.0, 0.0, 0.0, -0.5, 0.0, 0.0, 0.0, 0.0};
+  const Values upper = {10.0, 20.0, 100.0, 200.0, 10.0, 5.0, 1.0, 1.0, 1.0,
+                        std::max(0.0, 0.9 * min_level), 1.0, 1000.0, 10.0, 10.0};
+  base.lower = lower;
+  base.upper = upper;
+  for (int s = 0; s < kSlotCount; ++s) {
+    if (base.free[s]) res.base_free_parameters.push_back(kSlotName[s]);
+  }
+
+  // Knee candidates: midpoints between throttle levels from 0.5 up (or a 0.02 grid when the
+  // throttle is continuous), each with at least one level above.
+  std::vector<double> knees;
+  if (levels.size() >= 3) {
+    if (levels.size() <= 40) {
+      for (std::size_t j = 0; j + 1 < levels.size(); ++j) {
+        const double mid = 0.5 * (levels[j] + levels[j + 1]);
+        if (mid >= 0.5) knees.push_back(mid);
+      }
+    } else {
+      for (double k = 0.5; k < levels.back() - 1e-9; k += 0.02) knees.push_back(k);
+    }
+  }
+
+  // --- Testable candidates.
+  std::vector<Cause> candidates;
+  for (Cause c : o.candidates) {
+    CandidateScore cs;
+    cs.cause = c;
+    std::string reason;
+    switch (c) {
+      case Cause::kEscSaturation:
+        if (!has_tr) reason = "no throttle column";
+        else if (knees.empty()) reason = "fewer than 3 throttle levels or none above 50 %";
+        break;
+      case Cause::kSpeedDependentNoLoadCurrent:
+        if (!any_tk) reason = "no torque column and no no-load rows: with the speed as input the no-load current does not enter the predicted columns";
+        break;
+      case Cause::kTorqueConstantDroop:
+        if (!has_q) reason = "no torque column: the torque constant does not enter the predicted columns";
+        break;
+      case Cause::kThrottleDeadband:
+        if (!has_tr) reason = "no throttle column";
+        else if (levels.size() < 3) reason = "fewer than 3 throttle levels";
+        break;
+      case Cause::kSupplyResistance:
+        if (!has_tr) reason = "no throttle column: at one throttle a supply resistance is indistinguishable from Rm";
+        else if (!d.measured[kMIdc]) reason = "no idc_a column";
+        else if (levels.size() < 3) reason = "fewer than 3 throttle levels";
+        break;
+      case Cause::kWindingTemperatureRise:
+        break;
+    }
+    if (reason.empty()) {
+      candidates.push_back(c);
+    } else {
+      cs.not_testable_reason = reason;
+      res.not_testable.push_back(cs);
+    }
+  }
+
+  // --- Folds.
+  std::vector<int> fold_of(n);
+  {
+    std::vector<std::size_t> perm(n);
+    std::iota(perm.begin(), perm.end(), 0);
+    std::mt19937 rng(o.seed);
+    std::shuffle(perm.begin(), perm.end(), rng);
+    for (std::size_t j = 0; j < n; ++j) fold_of[perm[j]] = static_cast<int>(j % static_cast<std::size_t>(o.folds));
+  }
+  std::vector<std::size_t> used(n);
+  std::iota(used.begin(), used.end(), 0);
+
+  // --- Effective-variance weights. The known inputs (VDC, and the speed or the torque) are
+  // measured with the same relative noise as the outputs, and at low throttle a small error in
+  // U = kv*VDC*TR or in KE*omega is a large error in the current (I = (U - KE*omega)/R is a
+  // small difference there). Each residual is therefore divided by the spread that relative
+  // noise of the output and of the inputs gives it (the "effective variance" of errors-in-
+  // variables fitting): s = sqrt(y^2 + (dy/dVDC*VDC)^2 + (dy/dx*x)^2), x = omega or torque,
+  // with the derivatives of a preliminary fit of the first-order model. Without this the F test
+  // sees heteroscedastic residuals and calls low-throttle noise an effect.
+  {
+    const FitOut pre = FitModel(d, used, base, LossType::kHuber, 1.0);
+    if (pre.ok) {
+      MotorParams mp;
+      EscParams ep;
+      ToParams(d, pre.values, &mp, &ep);
+      const Drive drive(mp, ep);
+      double p0[kMeasCount], pv[kMeasCount], px[kMeasCount];
+      for (std::size_t k = 0; k < n; ++k) {
+        const double h = 1e-4;
+        const bool tk = d.torque_known[k] != 0;
+        const double x = tk ? d.q[k] : d.omega[k];
+        auto predict = [&](double vdc, double xin, double* out) {
+          const OperatingPoint p = tk ? drive.AtTorque(vdc, d.tr[k], xin) : drive.AtSpeed(vdc, d.tr[k], xin);
+          out[kMOmega] = p.omega_rad_s;
+          out[kMIdc] = p.idc_a;
+          out[kMIrms] = p.irms_a;
+          out[kMVll] = p.vll_rms_v;
+          out[kMPac] = p.pac_w;
+        };
+        predict(d.vdc[k], x, p0);
+        predict(d.vdc[k] * (1.0 + h), x, pv);
+        predict(d.vdc[k], x == 0.0 ? h : x * (1.0 + h), px);
+        for (int tt = d.term_begin[k]; tt < d.term_begin[k + 1]; ++tt) {
+          Term& term = d.terms[tt];
+          const double sv = (pv[term.meas] - p0[term.meas]) / h;  // dy/dVDC * VDC
+          const double sx = x == 0.0 ? 0.0 : (px[term.meas] - p0[term.meas]) / h;
+          const double spread = std::sqrt(term.value * term.value + sv * sv + sx * sx);
+          const double floor = 5.0 / inv_scale[term.meas];
+          if (std::isfinite(spread)) term.inv_scale = 100.0 / std::max(spread, floor);
+        }
+      }
+    }
+  }
+
+  // --- Outlier screen with the union model.
+  if (o.outlier_sigmas > 0.0) {
+    Model uni = base;
+    for (Cause c : candidates) AddCause(&uni, c);
+    std::vector<double> coarse;
+    for (std::size_t j = 0; j < knees.size(); j += 2) coarse.push_back(knees[j]);
+    FitOut fu = FitProfiled(d, used, uni, coarse, LossType::kHuber, 1.0);
+    if (!fu.ok) fu = FitModel(d, used, base, LossType::kHuber, 1.0);
+    if (fu.ok) {
+      const int nt = TermCount(d, used);
+      Eigen::VectorXd r(nt);
+      Residuals(d, used, fu.values, r.data());
+      std::vector<double> a(r.data(), r.data() + nt);
+      for (double& x : a) x = std::fabs(x);
+      const double sigma = std::max(1.4826 * Median(a), o.outlier_floor_percent);
+      std::vector<std::size_t> keep;
+      for (std::size_t k = 0; k < n; ++k) {
+        bool out = false;
+        for (int tt = d.term_begin[k]; tt < d.term_begin[k + 1]; ++tt) out = out || std::fabs(r[tt]) > o.outlier_sigmas * sigma;
+        if (out) res.outlier_rows.push_back(d.table_row[k]);
+        else keep.push_back(k);
+      }
+      if (keep.size() >= std::max<std::size_t>(6, n / 2)) {
+        used = keep;
+      } else {
+        res.outlier_rows.clear();
+        res.warnings.push_back("outlier screen flagged more than half of the rows: kept them all");
+      }
+    }
+  }
+  if (!res.outlier_rows.empty()) {
+    res.warnings.push_back(std::to_string(res.outlier_rows.size()) +
+                           " outlier row(s) left out of every fit and score");
+  }
+  res.points_used = used.size();
+  for (std::size_t k : used) res.row_used[d.table_row[k]] = 1;
+
+  // --- Baseline.
+  Model current = base;
+  FitOut cur_fit = FitModel(d, used, current, LossType::kTrivial, 1.0);
+  if (!cur_fit.ok) {
+    throw DataError(file + ": the first-order model could not be fitted to the log (no finite "
+                    "prediction at the start values): check the units of the columns");
+  }
+  current.values = cur_fit.values;
+  if (BaseAtBound(current, cur_fit.values)) {
+    std::string which;
+    for (int s = 0; s < kSlotCount; ++s) {
+      if (!kSlotIsBase[s] || !current.free[s]) continue;
+      const double tol = 1e-6 * std::max(std::fabs(current.upper[s] - current.lower[s]), 1e-12);
+      if (cur_fit.values[s] - current.lower[s] <= tol || current.upper[s] - cur_fit.values[s] <= tol) {
+        which += (which.empty() ? "" : ", ") + std::string(kSlotName[s]);
+      }
+    }
+    res.warnings.push_back("first-order fit has " + which +
+                           " on a physical bound: the first-order model cannot follow this log");
+  }
+  CvOut cur_cv = CrossValidate(d, used, fold_of, o.folds, current, cur_fit, knees);
+  ToParams(d, cur_fit.values, &res.base_motor, &res.base_esc);
+  res.baseline_cv = ColumnErrors(d, used, cur_cv);
+  res.baseline_cv_rms_percent = cur_cv.rms_percent;
+  auto to_table = [&](const CvOut& cv, std::map<Column, std::vector<double>>* out) {
+    for (int m = 0; m < kMeasCount; ++m) {
+      if (!d.measured[m]) continue;
+      std::vector<double> col(t.rows(), kNaN);
+      for (std::size_t k : used) col[d.table_row[k]] = cv.pred[m][k];
+      (*out)[kMeasColumn[m]] = col;
+    }
+  };
+  to_table(cur_cv, &res.baseline_cv_prediction);
+
+  // Worst points and residual structure (baseline, held-out predictions).
+  {
+    std::vector<WorstPoint> all;
+    for (std::size_t k : used) {
+      for (int tt = d.term_begin[k]; tt < d.term_begin[k + 1]; ++tt) {
+        const Term& term = d.terms[tt];
+        const double p = cur_cv.pred[term.meas][k];
+        if (!std::isfinite(p) || term.value == 0.0) continue;
+        WorstPoint w;
+        w.row = d.table_row[k];
+        w.source_line = t.source_line[w.row];
+        w.column = kMeasColumn[term.meas];
+        w.measured = term.value;
+        w.predicted = p;
+        w.error_percent = (p - term.value) / term.value * 100.0;
+        all.push_back(w);
+      }
+    }
+    std::sort(all.begin(), all.end(), [](const WorstPoint& a, const WorstPoint& b) {
+      return std::fabs(a.error_percent) > std::fabs(b.error_percent);
+    });
+    if (all.size() > 5) all.resize(5);
+    res.worst_points = all;
+
+    struct Var {
+      const char* name;
+      Column col;
+    };
+    std::vector<Var> vars;
+    if (has_tr) vars.push_back({"throttle", Column::kThrottle});
+    vars.push_back({"rpm", Column::kOmegaRadS});
+    if (d.measured[kMIrms]) vars.push_back({"current_a", Column::kIrmsA});
+    else if (d.measured[kMIdc]) vars.push_back({"current_a", Column::kIdcA});
+    vars.push_back({"vdc_v", Column::kVdcV});
+    if (has_q) vars.push_back({"torque_nm", Column::kTorqueNm});
+    if (t.Has(Column::kTimeS)) vars.push_back({"time_s", Column::kTimeS});
+    if (t.Has(Column::kTempC)) vars.push_back({"temp_c", Column::kTempC});
+    for (int m = 0; m < kMeasCount; ++m) {
+      if (!d.measured[m]) continue;
+      for (const Var& var : vars) {
+        std::vector<double> xs, ys;
+        for (std::size_t k : used) {
+          const double p = cur_cv.pred[m][k];
+          double meas = kNaN;
+          for (int tt = d.term_begin[k]; tt < d.term_begin[k + 1]; ++tt) {
+            if (d.terms[tt].meas == m) meas = d.terms[tt].value;
+          }
+          if (!std::isfinite(p) || !std::isfinite(meas) || meas == 0.0) continue;
+          xs.push_back(t.Get(var.col)[d.table_row[k]]);
+          ys.push_back((p - meas) / meas * 100.0);
+        }
+        if (xs.size() < 6) continue;
+        const auto [lo_it, hi_it] = std::minmax_element(xs.begin(), xs.end());
+        const double lo = *lo_it, span = *hi_it - *lo_it;
+        if (!(span > 0.0)) continue;
+        const Eigen::Index nn = static_cast<Eigen::Index>(xs.size());
+        Eigen::MatrixXd a(nn, 3);
+        Eigen::VectorXd y(nn);
+        for (Eigen::Index i = 0; i < nn; ++i) {
+          const double u = (xs[static_cast<std::size_t>(i)] - lo) / span;
+          a(i, 0) = 1.0;
+          a(i, 1) = u;
+          a(i, 2) = u * u;
+          y[i] = ys[static_cast<std::size_t>(i)];
+        }
+        const Eigen::VectorXd c3 = a.colPivHouseholderQr().solve(y);
+        const double mean = y.mean();
+        const double sst = (y.array() - mean).square().sum();
+        const double ssr = (a * c3 - y).squaredNorm();
+        ResidualTrend tr;
+        tr.variable = var.name;
+        tr.column = kMeasColumn[m];
+        tr.r2 = sst > 0.0 ? 1.0 - ssr / sst : 0.0;
+        const double df2 = static_cast<double>(nn) - 3.0;
+        tr.p_value = tr.r2 < 1.0 ? FDistributionUpperTail((tr.r2 / 2.0) / ((1.0 - tr.r2) / df2), 2.0, df2) : 0.0;
+        const Eigen::VectorXd c2 = a.leftCols(2).colPivHouseholderQr().solve(y);
+        tr.slope_percent_per_range = c2[1];
+        tr.structured = tr.p_value < o.alpha && tr.r2 >= 0.2;
+        res.residual_trends.push_back(tr);
+      }
+    }
+  }
+
+  // --- Greedy forward selection.
+  std::vector<Cause> remaining = candidates;
+  if (!has_tr && res.baseline_cv_rms_percent > o.no_throttle_max_percent) {
+    // Without a throttle column every row is taken at assumed_throttle; when the model misses
+    // by this much the rows are not such points and any "cause" would explain the wrong
+    // throttle, not the drive.
+    std::ostringstream w;
+    w << std::setprecision(3) << "no throttle column and the first-order model misses by "
+      << res.baseline_cv_rms_percent << " % rms: the rows are not full-throttle points, so no "
+      << "cause is named; diagnose a log that records the throttle";
+    res.warnings.push_back(w.str());
+    remaining.clear();
+  }
+  while (static_cast<int>(res.findings.size()) < o.max_findings && !remaining.empty()) {
+    std::vector<CandidateScore> scores;
+    std::vector<FitOut> fits;
+    std::vector<CvOut> cvs;
+    std::vector<Model> models;
+    const double aicc0 = Aicc(cur_fit.sse, cur_fit.n_terms, cur_fit.n_free);
+    const bool base_at_bound = BaseAtBound(current, cur_fit.values);
+    for (Cause c : remaining) {
+      Model m = current;
+      AddCause(&m, c);
+      FitOut f = FitCandidate(d, used, m, c, base.values, base_at_bound, knees);
+      CandidateScore cs;
+      cs.cause = c;
+      cs.testable = true;
+      CvOut cv;
+      if (f.ok) {
+        m.values = f.values;
+        for (int s : CauseSlots(c)) {
+          cs.parameters[kSlotName[s]] = f.values[s];
+          cs.stderrs[kSlotName[s]] = f.stderr_[s];
+        }
+        if (c == Cause::kEscSaturation) {
+          cs.parameters["tr_sat"] = f.values[kTrSat];
+          double step = 0.02;
+          for (std::size_t j = 0; j + 1 < knees.size(); ++j) {
+            if (knees[j] == f.values[kTrSat]) step = knees[j + 1] - knees[j];
+          }
+          cs.stderrs["tr_sat"] = step / std::sqrt(12.0);  // grid resolution
+        }
+        cs.sse = f.sse;
+        cs.aicc = Aicc(f.sse, f.n_terms, f.n_free);
+        cs.delta_aicc = cs.aicc - aicc0;
+        const int q = CauseExtraParams(c);
+        const double df2 = static_cast<double>(f.n_terms - f.n_free);
+        if (df2 > 0.0 && f.sse < cur_fit.sse) {
+          cs.f_statistic = ((cur_fit.sse - f.sse) / q) / (f.sse / df2);
+          cs.p_value = FDistributionUpperTail(cs.f_statistic, q, df2);
+          if (c == Cause::kEscSaturation) cs.p_value = std::min(1.0, cs.p_value * static_cast<double>(knees.size()));
+        }
+        // The extension's own parameter must be determined: at least 2 standard errors from
+        // its "no effect" value (0; 1 for sat_slope). A parameter the data cannot separate from
+        // the base parameters (|corr| -> 1, huge error) is not a finding, whatever the F test.
+        bool determined = true;
+        for (int sl : CauseSlots(c)) {
+          const double null_value = sl == kSatSlope ? 1.0 : 0.0;
+          const double se = f.stderr_[sl];
+          if (std::isfinite(se) && std::fabs(f.values[sl] - null_value) < 2.0 * se) determined = false;
+          // On a bound of its physical range the parameter is not estimated but clipped: the
+          // misfit is bigger than, or different from, what this mechanism can produce. (A knee
+          // slope of 0 - no voltage gain above the knee - is a physical value, not a clip.)
+          const double tol = 1e-6 * (m.upper[sl] - m.lower[sl]);
+          const bool at_lower = f.values[sl] - m.lower[sl] <= tol && sl != kSatSlope;
+          const bool at_upper = m.upper[sl] - f.values[sl] <= tol && sl != kSatSlope;
+          if (at_lower || at_upper) {
+            determined = false;
+            cs.note = std::string(kSlotName[sl]) + " clipped at the bound of its physical range";
+          }
+        }
+        if (!determined && cs.note.empty()) cs.note = "parameter within 2 standard errors of no effect";
+        const bool pre = cs.p_value < o.alpha && cs.delta_aicc < 0.0 && determined;
+        if (pre) {
+          cv = CrossValidate(d, used, fold_of, o.folds, m, f, knees);
+          cs.cv_rms_percent = cv.rms_percent;
+          cs.gain_percent = 100.0 * (1.0 - cv.rms_percent / cur_cv.rms_percent);
+          cs.significant = cs.gain_percent >= o.min_gain_percent;
+        }
+      }
+      scores.push_back(cs);
+      fits.push_back(f);
+      cvs.push_back(std::move(cv));
+      models.push_back(m);
+    }
+    int best = -1;
+    for (std::size_t j = 0; j < scores.size(); ++j) {
+      if (scores[j].significant && (best < 0 || scores[j].gain_percent > scores[best].gain_percent)) {
+        best = static_cast<int>(j);
+      }
+    }
+    if (best < 0) {
+      res.last_step_scores = scores;
+      break;
+    }
+    const CandidateScore& bs = scores[best];
+    Finding fd;
+    fd.cause = bs.cause;
+    fd.description = CauseDescription(bs.cause);
+    fd.parameters = bs.parameters;
+    fd.stderrs = bs.stderrs;
+    fd.gain_percent = bs.gain_percent;
+    fd.f_statistic = bs.f_statistic;
+    fd.p_value = bs.p_value;
+    fd.delta_aicc = bs.delta_aicc;
+    fd.max_abs_correlation = fits[best].max_corr_ext_base;
+    fd.most_correlated_with = fits[best].corr_with;
+    fd.cv_after = ColumnErrors(d, used, cvs[best]);
+    fd.step_scores = scores;
+    // Rivals: significant and within ambiguity_aicc of the winner.
+    std::vector<Cause> rivals;
+    for (std::size_t j = 0; j < scores.size(); ++j) {
+      if (static_cast<int>(j) == best || !scores[j].significant) continue;
+      if (scores[j].aicc - bs.aicc < o.ambiguity_aicc ||
+          scores[j].gain_percent >= o.ambiguity_gain_ratio * bs.gain_percent) {
+        rivals.push_back(scores[j].cause);
+      }
+    }
+    current = models[best];
+    current.values = fits[best].values;
+    // Extensions added are fitted from now on (the knee stays profiled).
+    cur_fit = fits[best];
+    cur_cv = std::move(cvs[best]);
+    res.findings.push_back(fd);
+    remaining.erase(std::find(remaining.begin(), remaining.end(), bs.cause));
+    // A rival that is no longer significant once the winner is in the model explains the same
+    // thing: the data cannot tell the two apart.
+    for (Cause rc : rivals) {
+      Model m = current;
+      AddCause(&m, rc);
+      const FitOut f = FitCandidate(d, used, m, rc, base.values, base_at_bound, knees);
+      bool still = false;
+      if (f.ok && f.sse < cur_fit.sse) {
+        const int q = CauseExtraParams(rc);
+        const double df2 = static_cast<double>(f.n_terms - f.n_free);
+        const double fs = ((cur_fit.sse - f.sse) / q) / (f.sse / df2);
+        still = FDistributionUpperTail(fs, q, df2) < o.alpha;
+      }
+      if (!still) {
+        Ambiguity a;
+        a.causes = {bs.cause, rc};
+        std::ostringstream s;
+        const auto it = std::find_if(scores.begin(), scores.end(),
+                                     [&](const CandidateScore& x) { return x.cause == rc; });
+        s << std::setprecision(3) << CauseId(bs.cause) << " (gain " << bs.gain_percent << " %, AICc "
+          << bs.aicc << ") and " << CauseId(rc) << " (gain " << it->gain_percent << " %, AICc "
+          << it->aicc << ") both explain the misfit and the second adds nothing once the first is "
+          << "in the model: the data cannot tell them apart";
+        a.reason = s.str();
+        a.measurement = Separation(bs.cause, rc);
+        res.ambiguous.push_back(a);
+        remaining.erase(std::remove(remaining.begin(), remaining.end(), rc), remaining.end());
+      }
+    }
+  }
+  ToParams(d, cur_fit.values, &res.extended_motor, &res.extended_esc);
+  if (!res.findings.empty() && BaseAtBound(current, cur_fit.values)) {
+    res.warnings.push_back("the extended model still has a base parameter on a physical bound: its "
+                           "values describe this log, they are not physical motor constants");
+  }
+  // Ratings and held values from the catalog entries.
+  if (o.motor) {
+    res.extended_motor.max_current_a = o.motor->max_current_a;
+    res.extended_motor.max_power_w = o.motor->max_power_w;
+  }
+  if (o.esc) {
+    res.extended_esc.max_current_a = o.esc->max_current_a;
+    res.extended_esc.vdc_max_v = o.esc->vdc_max_v;
+  }
+  res.extended_cv = ColumnErrors(d, used, cur_cv);
+  res.extended_cv_rms_percent = cur_cv.rms_percent;
+  to_table(cur_cv, &res.extended_cv_prediction);
+  if (cur_cv.failed_folds > 0) {
+    res.warnings.push_back(std::to_string(cur_cv.failed_folds) +
+                           " cross-validation fold(s) could not be fitted: the full fit stood in");
+  }
+  return res;
+}
+
+std::string DiagnoseResult::FullReport() const {
+  std::ostringstream s;
+  s << std::setprecision(4);
+  s << "diagnose " << file << " (" << mode << "): " << points_used << " points";
+  if (!outlier_rows.empty()) s << ", " << outlier_rows.size() << " outlier(s) left out";
+  s << "\nbase model fitted on the log, free: ";
+  for (std::size_t j = 0; j < base_free_parameters.size(); ++j) s << (j ? ", " : "") << base_free_parameters[j];
+  s << "\n\nWhat the first-order model gets wrong (cross-validated, held-out rows):\n";
+  for (const auto& c : baseline_cv) {
+    s << "  " << std::left << std::setw(12) << logs::ColumnName(c.column) << std::right << " rmse "
+      << c.rmse << " (" << c.rmse_percent << " %), " << c.points << " points\n";
+  }
+  s << "  all columns: " << baseline_cv_rms_percent << " % rms (percent of each measured value)\n";
+  if (!worst_points.empty()) {
+    s << "  worst points:\n";
+    for (const auto& w : worst_points) {
+      s << "    line " << w.source_line << " " << logs::ColumnName(w.column) << ": measured "
+        << w.measured << ", predicted " << w.predicted << " (" << std::showpos << w.error_percent
+        << std::noshowpos << " %)\n";
+    }
+  }
+  bool any_trend = false;
+  for (const auto& tr : residual_trends) {
+    if (!tr.structured) continue;
+    if (!any_trend) s << "  residual structure (quadratic trend of the error, R^2, p):\n";
+    any_trend = true;
+    s << "    " << logs::ColumnName(tr.column) << " error vs " << tr.variable << ": R^2 " << tr.r2
+      << ", p " << tr.p_value << ", linear change " << std::showpos << tr.slope_percent_per_range
+      << std::noshowpos << " % over the range\n";
+  }
+  if (!any_trend) s << "  no residual structure against the logged variables\n";
+  s << "\nFindings:\n";
+  if (findings.empty()) {
+    if (any_trend) {
+      s << "  none: the residuals have structure (above) that no candidate explains";
+      std::string closest;
+      for (const auto& c : last_step_scores) {
+        if (c.p_value < 1e-3 && !c.note.empty()) closest += std::string(closest.empty() ? "" : "; ") + CauseId(c.cause) + " (" + c.note + ")";
+      }
+      if (!closest.empty()) s << "; rejected: " << closest;
+      s << "\n";
+    } else {
+      s << "  none: nothing significant beyond noise\n";
+    }
+  }
+  int k = 0;
+  for (const auto& f : findings) {
+    s << "  " << ++k << ". " << CauseId(f.cause) << ": " << f.description << "\n     ";
+    for (const auto& [name, val] : f.parameters) {
+      s << name << " = " << val;
+      const auto e = f.stderrs.find(name);
+      if (e != f.stderrs.end() && std::isfinite(e->second)) s << " +- " << e->second;
+      s << "  ";
+    }
+    s << "\n     gain " << f.gain_percent << " % (CV rms), F " << f.f_statistic << ", p "
+      << f.p_value << ", dAICc " << f.delta_aicc;
+    if (f.max_abs_correlation > 0.0) {
+      s << ", max |corr| " << f.max_abs_correlation << " with " << f.most_correlated_with;
+    }
+    s << "\n     after:";
+    for (const auto& c : f.cv_after) s << " " << logs::ColumnName(c.column) << " " << c.rmse_percent << " %";
+    s << "\n";
+  }
+  for (const auto& a : ambiguous) {
+    s << "  ambiguous: " << a.reason << "\n    to separate them: " << a.measurement << "\n";
+  }
+  for (const auto& nt : not_testable) {
+    s << "  not testable: " << CauseId(nt.cause) << " (" << nt.not_testable_reason << ")\n";
+  }
+  s << "\nExtended model (cross-validated):";
+  for (const auto& c : extended_cv) s << " " << logs::ColumnName(c.column) << " " << c.rmse_percent << " %";
+  s << "; all columns " << extended_cv_rms_percent << " % (baseline " << baseline_cv_rms_percent << " %)\n";
+  for (const auto& w : warnings) s << "warning: " << w << "\n";
+  return s.str();
+}
+
+}  // namespace dynosize::diagnosis
