@@ -341,17 +341,47 @@ SearchResult SearchCatalog(const Mission& m, const Catalog& cat, const SearchOpt
           const double pdc_lb = std::max(0.0, std::min(hi_v.pdc_w, lo_v.pdc_w));
           double bound = -kInf;
           if (!hover.empty()) {
-            const double p_hover = m.vehicle.rotors * pdc_lb + m.vehicle.avionics_power_w;
+            // Each hover segment like hover[0] (same number of working rotors, so the same
+            // per-rotor thrust bound) draws at least n*PDC_lb + P_avionics.
+            const int n0 = SegmentRotorLoad(m, m.segments[hover[0]], mass_lb, 0.0).rotors;
+            auto p_hover_of = [&](int h) {
+              const int n = SegmentRotorLoad(m, m.segments[h], mass_lb, 0.0).rotors;
+              return (n == n0 ? n * pdc_lb : 0.0) + m.vehicle.avionics_power_w;
+            };
             if (m.objective.type == ObjectiveType::kMinEnergy) {
+              // Per segment the larger of: the hover bound above, and momentum theory. A
+              // feasible point has prop power >= P_ideal/max_figure_of_merit (the evaluator's
+              // prop_figure_of_merit constraint), P_ideal = T*(V/2 + sqrt(V^2/4 + T/(2*rho*A)))
+              // per rotor, and PDC >= Pmech when the motor has KT <= sqrt(27/10)*KE and the
+              // ESC C1 >= (3/pi)*sqrt(27/20), C0 >= 0 (then eta_motor, eta_esc <= 1, eqs
+              // 41-59). V is the axial inflow (0 for static-only data: P_ideal rises with V).
+              const bool lossy = mp.kt_nm_per_a <= kPacPerVllIrms * mp.ke_v_s_per_rad &&
+                                 classes[ci].c1 >= kIdealIdcPerIrmsPerThrottle && classes[ci].c0 >= 0.0;
+              const bool axial_data = !props[pi].j_tables.empty();
+              const double area = 0.25 * kPi * props[pi].diameter_m * props[pi].diameter_m;
               double e = 0;
-              for (int h : hover) e += p_hover * *m.segments[h].duration_s;
-              // Wing-borne cruise: at least the propulsive work W/(L/D)*d (see
-              // MissionEvaluator::Solve), W at the lightest mass.
-              for (const Segment& sg : m.segments) {
-                if (sg.type == SegmentType::kCruise && sg.lift_to_drag > 0) {
-                  const double d = sg.distance_m ? *sg.distance_m : *sg.duration_s * sg.airspeed_m_s.lo;
-                  e += mass_lb * kStandardGravity / sg.lift_to_drag * d;
+              for (std::size_t si = 0; si < m.segments.size(); ++si) {
+                const Segment& sg = m.segments[si];
+                double e_seg = 0;
+                if (sg.type == SegmentType::kHover) {
+                  e_seg = p_hover_of(static_cast<int>(si)) * *sg.duration_s;
                 }
+                const bool fixed_v = sg.type != SegmentType::kCruise || !sg.airspeed_m_s.free() || sg.lift_to_drag > 0;
+                if (lossy && sg.type != SegmentType::kShaft && fixed_v) {
+                  const double v = sg.type == SegmentType::kCruise ? sg.airspeed_m_s.hi : 0.0;
+                  const RotorLoad ld = SegmentRotorLoad(m, sg, mass_lb, v);
+                  if (sg.type != SegmentType::kCruise || sg.lift_to_drag > 0) {
+                    double t = 0;
+                    if (sg.duration_s) t = *sg.duration_s;
+                    else if (sg.type == SegmentType::kClimb) t = *sg.distance_m / std::fabs(sg.climb_rate_m_s);
+                    else t = *sg.distance_m / v;
+                    const double va = axial_data ? 0.5 * ld.axial_airspeed_m_s : 0.0;
+                    const double tr = ld.thrust_per_rotor_n;
+                    const double p_ideal = tr * (va + std::sqrt(va * va + tr / (2.0 * m.rho_kg_m3 * area)));
+                    e_seg = std::max(e_seg, (ld.rotors * p_ideal / k.max_figure_of_merit + m.vehicle.avionics_power_w) * t);
+                  }
+                }
+                e += e_seg;
               }
               bound = e / 3600.0;
             } else if (stretch_is_hover) {
@@ -359,10 +389,11 @@ SearchResult SearchCatalog(const Mission& m, const Catalog& cat, const SearchOpt
               // OCV(s) ds over [reserve, 1] (coulomb counting): the energy budget.
               double e_other = 0;
               for (int h : hover) {
-                if (h != m.objective.segment_index) e_other += p_hover * *m.segments[h].duration_s;
+                if (h != m.objective.segment_index) e_other += p_hover_of(h) * *m.segments[h].duration_s;
               }
+              const double p_stretch = p_hover_of(m.objective.segment_index);
               const double e_max = bo.ocv_integral_v * AhToCoulomb(bo.capacity_hi_ah);
-              bound = p_hover > 0 ? -(t_fixed_max + std::max(0.0, e_max - e_other) / p_hover) : -kInf;
+              bound = p_stretch > 0 ? -(t_fixed_max + std::max(0.0, e_max - e_other) / p_stretch) : -kInf;
             }
           }
           any = true;

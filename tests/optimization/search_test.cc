@@ -56,7 +56,7 @@ class SearchTest : public ::testing::Test {
     doc["escs"] = Json::array();
     for (const char* id : {"dc_e_252", "dc_e_237", "dc_e_56", "multistar_30a_paper"}) doc["escs"].push_back(full.esc(id).json);
     doc["props"] = Json::array();
-    for (const char* id : {"dc_p_410", "dc_p_372", "dc_p_440", "dc_p_173", "apc_per3_10x45mr"}) doc["props"].push_back(full.prop(id).json);
+    for (const char* id : {"dc_p_410", "dc_p_372", "dc_p_440", "dc_p_173", "apc_per3_10x45mr", "apc_per3_15x8e"}) doc["props"].push_back(full.prop(id).json);
     doc["batteries"] = Json::array();
     doc["batteries"].push_back(full.battery("dc_b_361").json);
     std::ofstream(dir_ / "catalog" / "small.json") << DumpJson(doc);
@@ -67,12 +67,25 @@ class SearchTest : public ::testing::Test {
 };
 fs::path SearchTest::dir_;
 
-TEST_F(SearchTest, OptimizeEqualsTheBestOfExhaustiveEvaluation) {
-  const Catalog cat = Catalog::Load((dir_ / "catalog").string());
-  const Mission m = ParseMission(ParseJsonText(kQuad, "quad"), "quad");
+const char* kLiftCruise = R"({
+  "name": "test lift + cruise",
+  "vehicle": {"mass_kg": 0.6, "rotors": 5, "drag_area_m2": 0.03, "drag_coefficient": 1.0, "avionics_power_w": 4},
+  "battery": {"id": "dc_b_361", "cells": [3, 4], "reserve_soc": 0.25},
+  "objective": {"type": "min_energy"},
+  "segments": [
+    {"name": "up", "type": "climb", "rate_m_s": 1.5, "distance_m": 20, "rotors": 4},
+    {"name": "hover", "type": "hover", "duration_s": 30, "rotors": 4},
+    {"name": "cruise", "type": "cruise", "airspeed_m_s": 12, "lift_to_drag": 6, "distance_m": 3000, "rotors": 1},
+    {"name": "down", "type": "climb", "rate_m_s": -1, "distance_m": 20, "rotors": 4}
+  ]
+})";
+
+// The search's top N against every combination evaluated (motors without mass are left out by
+// both). Returns how many combinations were feasible.
+std::size_t CheckAgainstExhaustive(const Catalog& cat, const Mission& m) {
   std::vector<std::pair<double, std::string>> all;
   for (const auto& mo : cat.motors()) {
-    if (!mo.mass_kg) continue;  // the search leaves motors without mass out (counted)
+    if (!mo.mass_kg) continue;
     for (const auto& e : cat.escs()) {
       for (const auto& p : cat.props()) {
         for (int cells : {3, 4}) {
@@ -83,20 +96,31 @@ TEST_F(SearchTest, OptimizeEqualsTheBestOfExhaustiveEvaluation) {
       }
     }
   }
-  ASSERT_GE(all.size(), 3u) << "the small catalog must fly the mission";
   std::sort(all.begin(), all.end());
   SearchOptions so;
   so.top_n = 3;
   const SearchResult s = SearchCatalog(m, cat, so);
-  ASSERT_EQ(s.best.size(), 3u);
-  for (int i = 0; i < 3; ++i) {
+  EXPECT_EQ(s.best.size(), std::min<std::size_t>(3, all.size()));
+  for (std::size_t i = 0; i < s.best.size() && i < all.size(); ++i) {
     const Combination& c = s.best[i].combination;
     EXPECT_EQ(c.motor->id + "|" + c.esc->id + "|" + c.prop->id + "|" + std::to_string(c.cells), all[i].second) << i;
-    // Same numbers as evaluate: the same code path, bit for bit.
-    EXPECT_EQ(s.best[i].result.score, all[i].first) << i;
+    EXPECT_EQ(s.best[i].result.score, all[i].first) << i;  // same code path, bit for bit
   }
   EXPECT_EQ(s.searched + s.pruned, s.combinations);
   EXPECT_GT(s.pruned, 0);
+  return all.size();
+}
+
+TEST_F(SearchTest, MinEnergyLiftCruiseEqualsExhaustiveEvaluation) {
+  const Catalog cat = Catalog::Load((dir_ / "catalog").string());
+  const Mission m = ParseMission(ParseJsonText(kLiftCruise, "lift"), "lift");
+  EXPECT_GE(CheckAgainstExhaustive(cat, m), 1u) << "the small catalog must fly the mission";
+}
+
+TEST_F(SearchTest, OptimizeEqualsTheBestOfExhaustiveEvaluation) {
+  const Catalog cat = Catalog::Load((dir_ / "catalog").string());
+  const Mission m = ParseMission(ParseJsonText(kQuad, "quad"), "quad");
+  EXPECT_GE(CheckAgainstExhaustive(cat, m), 3u);
 }
 
 TEST_F(SearchTest, FreeAirspeedOptimumBeatsADenseGrid) {
@@ -121,6 +145,29 @@ TEST_F(SearchTest, FreeAirspeedOptimumBeatsADenseGrid) {
   // optimum, so it matches the grid's best (step 0.04 m/s) to 1e-5 relative or beats it.
   EXPECT_LE(r.objective, grid_best * (1 + 1e-5));
   EXPECT_NEAR(r.segments[1].airspeed_m_s, v_best, 0.5);
+}
+
+TEST_F(SearchTest, FreeCapacityOptimumBeatsADenseGrid) {
+  Json j = ParseJsonText(kQuad, "quad");
+  j["battery"]["capacity_ah"] = {1.5, 9.0};
+  const Mission m = ParseMission(j, "quad");
+  const Catalog cat = Catalog::Load((dir_ / "catalog").string());
+  const Combination c{&cat.motor("dc_m_1020"), &cat.esc("dc_e_56"), &cat.prop("dc_p_173"), &cat.battery("dc_b_361"), 4};
+  const MissionEvaluator ev(m, c);
+  const MissionResult r = ev.Solve();
+  ASSERT_TRUE(r.feasible) << r.solver;
+  double grid_best = 0, c_best = 0;
+  for (int i = 0; i <= 300; ++i) {
+    ContinuousVars v;
+    v.capacity_ah = 1.5 + 7.5 * i / 300.0;
+    v.airspeed_m_s.assign(m.segments.size(), 0.0);
+    const MissionResult g = ev.Simulate(v);
+    if (g.feasible && g.objective > grid_best) { grid_best = g.objective; c_best = v.capacity_ah; }
+  }
+  // Endurance found by regula falsi to 1e-6 relative per capacity, and COBYLA on the capacity
+  // to 1e-6 of its range: within 1e-4 of the grid's best (step 0.025 A*h) or better.
+  EXPECT_GE(r.objective, grid_best * (1 - 1e-4)) << r.solver;
+  EXPECT_NEAR(r.capacity_ah, c_best, 0.3) << r.solver;
 }
 
 TEST_F(SearchTest, InfeasibleMissionSaysWhichConstraintAndByHowMuch) {
