@@ -25,15 +25,6 @@ namespace {
 using calibration::CalibrationOptions;
 using calibration::CalibrationResult;
 
-logs::LogFormat ParseFormat(const std::string& f) {
-  if (f == "auto") return logs::LogFormat::kAuto;
-  if (f == "canonical") return logs::LogFormat::kCanonical;
-  if (f == "rcbenchmark") return logs::LogFormat::kRcbenchmark;
-  if (f == "mapped") return logs::LogFormat::kMapped;
-  if (f == "drivecalc") return logs::LogFormat::kDriveCalc;
-  throw UsageError("--format '" + f + "': valid are auto, canonical, rcbenchmark, mapped, drivecalc");
-}
-
 std::string BaseName(const std::string& p) { return std::filesystem::path(p).filename().string(); }
 
 std::string Datasets(const std::vector<std::string>& logs) {
@@ -179,7 +170,7 @@ int RunCalibrate(const CalibrateOptions& o) {
     throw UsageError("calibrate: --motor-id and --esc-id are required (ids of the fitted entries)");
   }
   logs::LogReadOptions ro;
-  ro.format = ParseFormat(o.format);
+  ro.format = logs::LogFormatFromName(o.format);
   ro.column_map = o.column_map;
   ro.drivecalc_motor_id = o.drivecalc_motor;
   ro.drivecalc_keep_no_load_without_speed = true;

@@ -23,15 +23,6 @@ namespace {
 using diagnosis::CauseId;
 using diagnosis::ColumnError;
 
-logs::LogFormat ParseLogFormat(const std::string& f) {
-  if (f == "auto") return logs::LogFormat::kAuto;
-  if (f == "canonical") return logs::LogFormat::kCanonical;
-  if (f == "rcbenchmark") return logs::LogFormat::kRcbenchmark;
-  if (f == "mapped") return logs::LogFormat::kMapped;
-  if (f == "drivecalc") return logs::LogFormat::kDriveCalc;
-  throw UsageError("--format '" + f + "': valid are auto, canonical, rcbenchmark, mapped, drivecalc");
-}
-
 Json Num(double v) { return std::isfinite(v) ? Json(v) : Json(nullptr); }
 
 Json CvJson(const std::vector<ColumnError>& cv, bool percent) {
@@ -148,7 +139,7 @@ void WriteExtendedEntries(const DiagnoseCliOptions& o, const diagnosis::Diagnose
 
 int RunDiagnose(const DiagnoseCliOptions& o) {
   logs::LogReadOptions ro;
-  ro.format = ParseLogFormat(o.format);
+  ro.format = logs::LogFormatFromName(o.format);
   ro.column_map = o.column_map;
   ro.mapped_drop_rows_with_empty_cells = o.drop_incomplete_rows;
   ro.esc_min_us = o.esc_min_us;

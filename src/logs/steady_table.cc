@@ -36,6 +36,14 @@ const char* LogFormatName(LogFormat f) {
   return "?";
 }
 
+LogFormat LogFormatFromName(const std::string& name) {
+  for (LogFormat f : {LogFormat::kAuto, LogFormat::kCanonical, LogFormat::kRcbenchmark, LogFormat::kMapped,
+                      LogFormat::kDriveCalc}) {
+    if (name == LogFormatName(f)) return f;
+  }
+  throw UsageError("--format '" + name + "': valid are auto, canonical, rcbenchmark, mapped, drivecalc");
+}
+
 const std::vector<double>& SteadyTable::Get(Column c) const {
   if (!Has(c)) {
     throw InternalError(std::string("SteadyTable::Get: column ") + ColumnName(c) +

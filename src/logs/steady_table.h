@@ -36,6 +36,8 @@ const char* ColumnName(Column c);
 
 enum class LogFormat { kAuto, kCanonical, kRcbenchmark, kMapped, kDriveCalc };
 const char* LogFormatName(LogFormat f);  // "auto", "canonical", "rcbenchmark", "mapped", "drivecalc"
+// The inverse of LogFormatName; UsageError ("--format 'x': valid are ...") for any other name.
+LogFormat LogFormatFromName(const std::string& name);
 
 // Where a column came from.
 struct ColumnInfo {

@@ -5,6 +5,7 @@
 
 #include "common/text_file.h"
 #include "common/units.h"
+#include "report/column_axis.h"
 #include "report/gnuplot.h"
 
 namespace dynosize {
@@ -13,22 +14,6 @@ namespace {
 
 using logs::Column;
 
-struct Series {
-  const char* label;
-  const char* unit;
-  double scale;  // SI -> shown unit
-};
-
-Series Describe(Column c) {
-  switch (c) {
-    case Column::kOmegaRadS: return {"speed", "rpm", 1.0 / kRadPerSecPerRpm};
-    case Column::kIdcA: return {"DC current IDC", "A", 1.0};
-    case Column::kIrmsA: return {"rms phase current Irms", "A", 1.0};
-    case Column::kVllRmsV: return {"line-line rms voltage VLL", "V", 1.0};
-    case Column::kPacW: return {"AC power PAC", "W", 1.0};
-    default: return {logs::ColumnName(c), "", 1.0};
-  }
-}
 
 double Predicted(const calibration::RowPrediction& p, Column c) {
   switch (c) {
@@ -69,7 +54,7 @@ std::vector<std::string> WriteCalibrationFigures(const std::string& dir, const l
   }
   if (file.size() > 90) file = file.substr(0, 87) + "...";
   for (const auto& f : r.fit) {
-    const Series s = Describe(f.column);
+    const ColumnAxis s = DescribeColumn(f.column);
     std::vector<double> meas, pred, res, tr, rpm;
     for (std::size_t i = 0; i < t.rows(); ++i) {
       const auto p = calibration::PredictRow(t, i, r.motor, r.esc);

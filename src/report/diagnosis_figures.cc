@@ -7,6 +7,7 @@
 
 #include "common/text_file.h"
 #include "common/units.h"
+#include "report/column_axis.h"
 #include "report/gnuplot.h"
 
 namespace dynosize {
@@ -15,27 +16,6 @@ namespace {
 
 using logs::Column;
 
-struct Axis {
-  const char* label;
-  const char* unit;
-  double scale;  // SI -> shown unit
-};
-
-Axis Describe(Column c) {
-  switch (c) {
-    case Column::kOmegaRadS: return {"speed", "rpm", 1.0 / kRadPerSecPerRpm};
-    case Column::kIdcA: return {"DC current IDC", "A", 1.0};
-    case Column::kIrmsA: return {"rms phase current Irms", "A", 1.0};
-    case Column::kVllRmsV: return {"line-line rms voltage VLL", "V", 1.0};
-    case Column::kPacW: return {"AC power PAC", "W", 1.0};
-    case Column::kThrottle: return {"throttle", "%", 100.0};
-    case Column::kVdcV: return {"supply voltage VDC", "V", 1.0};
-    case Column::kTorqueNm: return {"torque", "N*m", 1.0};
-    case Column::kTimeS: return {"time", "s", 1.0};
-    case Column::kTempC: return {"temperature", "C", 1.0};
-    default: return {logs::ColumnName(c), "", 1.0};
-  }
-}
 
 std::string Quote(const std::string& s) {
   std::string q = "\"";
@@ -84,7 +64,7 @@ std::vector<std::string> WriteDiagnosisFigures(const std::string& dir, const log
     if (t.Has(c)) vars.push_back(c);
   }
   for (Column var : vars) {
-    const Axis ax = Describe(var);
+    const ColumnAxis ax = DescribeColumn(var);
     std::vector<DataBlock> blocks;
     std::ostringstream g;
     g << "set multiplot layout 1," << cols.size() << " title "
@@ -107,7 +87,7 @@ std::vector<std::string> WriteDiagnosisFigures(const std::string& dir, const log
       b.name = "r" + std::to_string(k);
       b.series.push_back({x, eb, ee});
       blocks.push_back(b);
-      g << "set title '" << Describe(c).label << "'\n"
+      g << "set title '" << DescribeColumn(c).label << "'\n"
         << "plot $" << b.name << " using 1:2 with points pt 7 ps 0.7 lc rgb '#d95f0e' title 'first-order', "
         << "$" << b.name << " using 1:3 with points pt 9 ps 0.8 lc rgb '#1f3b99' title 'extended', "
         << "0 with lines lc rgb 'gray' notitle\n";
@@ -127,7 +107,7 @@ std::vector<std::string> WriteDiagnosisFigures(const std::string& dir, const log
       << "set grid\nset key top left\nset xtics rotate by -35\n";
     for (std::size_t k = 0; k < cols.size(); ++k) {
       const Column c = cols[k];
-      const Axis ax = Describe(c);
+      const ColumnAxis ax = DescribeColumn(c);
       std::vector<double> m, pb, pe;
       for (std::size_t i = 0; i < t.rows(); ++i) {
         const double mv = t.Get(c)[i];
@@ -158,7 +138,7 @@ std::vector<std::string> WriteDiagnosisFigures(const std::string& dir, const log
   // three times the median) ringed.
   {
     const Column xcol = t.Has(Column::kThrottle) ? Column::kThrottle : Column::kOmegaRadS;
-    const Axis xa = Describe(xcol);
+    const ColumnAxis xa = DescribeColumn(xcol);
     std::vector<DataBlock> blocks;
     std::ostringstream g;
     g << "set multiplot layout 1," << cols.size() << " title "
@@ -168,7 +148,7 @@ std::vector<std::string> WriteDiagnosisFigures(const std::string& dir, const log
     for (std::size_t k = 0; k < cols.size(); ++k) {
       const Column c = cols[k];
       if (c == xcol) continue;
-      const Axis ax = Describe(c);
+      const ColumnAxis ax = DescribeColumn(c);
       std::vector<double> errs;
       for (std::size_t i = 0; i < t.rows(); ++i) {
         const double b = r.baseline_cv_prediction.at(c)[i];
