@@ -81,17 +81,22 @@ for f in "$data"/strawson_fpv_motor_prop/rawdata/*.csv; do
   n=$((n + 1))
   if "$exe" calibrate "$f" --motor-id m --esc-id e --loo --json > "$tmp/s.json" 2>/dev/null; then
     ok=$((ok + 1))
-    jq -r '.leave_one_out.idc.median_abs_percent // empty' "$tmp/s.json" >> "$tmp/idc"
-    jq -r '.leave_one_out.omega_from_idc.median_abs_percent // empty' "$tmp/s.json" >> "$tmp/w"
+    # A fit with KE on its bound predicts speed from current with a meaningless KE: its errors
+    # are counted apart, not mixed into the medians.
     if jq -e '.warnings | map(select(startswith("ke_v_s_per_rad is at its bound"))) | length > 0' "$tmp/s.json" >/dev/null; then
       kebound=$((kebound + 1))
+    else
+      jq -r '.leave_one_out.idc.median_abs_percent // empty' "$tmp/s.json" >> "$tmp/idc"
+      jq -r '.leave_one_out.omega_from_idc.median_abs_percent // empty' "$tmp/s.json" >> "$tmp/w"
     fi
   fi
 done
 med() { sort -g "$1" | awk '{a[NR]=$1} END{if (NR == 0) print "-"; else if (NR % 2) printf "%.2f", a[(NR+1)/2]; else printf "%.2f", (a[NR/2]+a[NR/2+1])/2}'; }
 {
-echo "Calibrated $ok of $n logs. Median over logs of the per-log median LOO error: idc $(med "$tmp/idc") %, omega @I $(med "$tmp/w") %."
-echo "Logs where KE ran to its lower bound (fit not physical): $kebound."
+echo "Calibrated $ok of $n logs. In $kebound of them KE ran to its lower bound: the first-order model cannot"
+echo "follow their low-throttle speed, the fit is not physical and its errors are not summarised here (the"
+echo "throttle offset that explains them is in the Diagnosis section below)."
+echo "Over the other $((ok - kebound)) logs, median of the per-log median LOO error: idc $(med "$tmp/idc") %, omega @I $(med "$tmp/w") %."
 } >> "$out"
 cat "$here/docs/validation_notes.md" >> "$out"
 # Diagnosis of the same and further logs (dynosize diagnose), with figures in docs/img.
