@@ -45,7 +45,6 @@ double MedianAbs(std::vector<double> v) {
   return Median(v);
 }
 
-Json NumOrNull(double v) { return std::isfinite(v) ? Json(v) : Json(nullptr); }
 
 // A percentage for the text report: "-" when there is none (never "nan").
 std::string PercentText(double v) {
@@ -67,7 +66,7 @@ std::string NonFiniteParameter(const CalibrationResult& r) {
 
 // {"median_abs_percent": x, "points": n}
 Json ErrJson(const std::vector<double>& e) {
-  return {{"median_abs_percent", NumOrNull(MedianAbs(e))}, {"points", e.size()}};
+  return {{"median_abs_percent", NumberOrNull(MedianAbs(e))}, {"points", e.size()}};
 }
 
 int RunDriveCalcAll(const CalibrateOptions& o) {

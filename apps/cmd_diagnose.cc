@@ -23,17 +23,16 @@ namespace {
 using diagnosis::CauseId;
 using diagnosis::ColumnError;
 
-Json Num(double v) { return std::isfinite(v) ? Json(v) : Json(nullptr); }
 
 Json CvJson(const std::vector<ColumnError>& cv, bool percent) {
   Json j = Json::object();
-  for (const auto& c : cv) j[logs::ColumnName(c.column)] = Num(percent ? c.rmse_percent : c.rmse);
+  for (const auto& c : cv) j[logs::ColumnName(c.column)] = NumberOrNull(percent ? c.rmse_percent : c.rmse);
   return j;
 }
 
 Json MapJson(const std::map<std::string, double>& m) {
   Json j = Json::object();
-  for (const auto& [k, v] : m) j[k] = Num(v);
+  for (const auto& [k, v] : m) j[k] = NumberOrNull(v);
   return j;
 }
 
@@ -67,11 +66,11 @@ Json ScoreJson(const diagnosis::CandidateScore& s) {
   Json j;
   j["cause"] = CauseId(s.cause);
   j["parameters"] = MapJson(s.parameters);
-  j["f_statistic"] = Num(s.f_statistic);
-  j["p_value"] = Num(s.p_value);
-  j["delta_aicc"] = Num(s.delta_aicc);
-  j["cv_rms_percent"] = s.cv_rms_percent > 0.0 ? Num(s.cv_rms_percent) : Json(nullptr);
-  j["gain_percent"] = Num(s.gain_percent);
+  j["f_statistic"] = NumberOrNull(s.f_statistic);
+  j["p_value"] = NumberOrNull(s.p_value);
+  j["delta_aicc"] = NumberOrNull(s.delta_aicc);
+  j["cv_rms_percent"] = s.cv_rms_percent > 0.0 ? NumberOrNull(s.cv_rms_percent) : Json(nullptr);
+  j["gain_percent"] = NumberOrNull(s.gain_percent);
   j["significant"] = s.significant;
   if (!s.note.empty()) j["note"] = s.note;
   return j;
@@ -175,7 +174,7 @@ int RunDiagnose(const DiagnoseCliOptions& o) {
   j["outlier_rows"] = r.outlier_rows.size();
   j["baseline"] = {{"cv_rmse", CvJson(r.baseline_cv, false)},
                    {"cv_rmse_percent", CvJson(r.baseline_cv, true)},
-                   {"cv_rms_percent_all", Num(r.baseline_cv_rms_percent)},
+                   {"cv_rms_percent_all", NumberOrNull(r.baseline_cv_rms_percent)},
                    {"free_parameters", r.base_free_parameters},
                    {"motor", MotorJson(r.base_motor)},
                    {"esc", EscJson(r.base_esc)}};
@@ -187,8 +186,8 @@ int RunDiagnose(const DiagnoseCliOptions& o) {
   j["baseline"]["worst_points"] = worst;
   Json trends = Json::array();
   for (const auto& t : r.residual_trends) {
-    trends.push_back({{"column", logs::ColumnName(t.column)}, {"variable", t.variable}, {"r2", Num(t.r2)},
-                      {"p_value", Num(t.p_value)}, {"slope_percent_per_range", Num(t.slope_percent_per_range)},
+    trends.push_back({{"column", logs::ColumnName(t.column)}, {"variable", t.variable}, {"r2", NumberOrNull(t.r2)},
+                      {"p_value", NumberOrNull(t.p_value)}, {"slope_percent_per_range", NumberOrNull(t.slope_percent_per_range)},
                       {"structured", t.structured}});
   }
   j["baseline"]["residual_structure"] = trends;
@@ -201,13 +200,13 @@ int RunDiagnose(const DiagnoseCliOptions& o) {
     fj["stderr"] = MapJson(f.stderrs);
     fj["cv_rmse_after"] = CvJson(f.cv_after, false);
     fj["cv_rmse_percent_after"] = CvJson(f.cv_after, true);
-    fj["gain_percent"] = Num(f.gain_percent);
+    fj["gain_percent"] = NumberOrNull(f.gain_percent);
     Json steps = Json::array();
     for (const auto& s : f.step_scores) steps.push_back(ScoreJson(s));
-    fj["evidence"] = {{"f_statistic", Num(f.f_statistic)},
-                      {"p_value", Num(f.p_value)},
-                      {"delta_aicc", Num(f.delta_aicc)},
-                      {"max_abs_correlation_with_base", Num(f.max_abs_correlation)},
+    fj["evidence"] = {{"f_statistic", NumberOrNull(f.f_statistic)},
+                      {"p_value", NumberOrNull(f.p_value)},
+                      {"delta_aicc", NumberOrNull(f.delta_aicc)},
+                      {"max_abs_correlation_with_base", NumberOrNull(f.max_abs_correlation)},
                       {"most_correlated_with", f.most_correlated_with},
                       {"candidates", steps}};
     findings.push_back(fj);
@@ -230,7 +229,7 @@ int RunDiagnose(const DiagnoseCliOptions& o) {
                          {"esc", EscJson(r.extended_esc)},
                          {"cv_rmse", CvJson(r.extended_cv, false)},
                          {"cv_rmse_percent", CvJson(r.extended_cv, true)},
-                         {"cv_rms_percent_all", Num(r.extended_cv_rms_percent)}};
+                         {"cv_rms_percent_all", NumberOrNull(r.extended_cv_rms_percent)}};
   j["warnings"] = r.warnings;
   std::cout << DumpJson(j);
   return 0;

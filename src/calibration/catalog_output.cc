@@ -12,7 +12,6 @@ namespace dynosize::calibration {
 
 namespace {
 
-Json NumOrNull(double v) { return std::isfinite(v) ? Json(v) : Json(nullptr); }
 
 // Rounds to 6 significant digits: the fit's errors are far larger, and the files stay readable.
 double Sig6(double v) {
@@ -140,8 +139,8 @@ void WriteCatalogEntries(const std::string& path, const std::vector<Json>& motor
 
 Json StandardErrorsJson(const CalibrationResult& r) {
   Json j = Json::object();
-  for (int k = 0; k < kParamCount; ++k) j[ParamName(static_cast<Param>(k))] = NumOrNull(r.params[k].standard_error);
-  j["r_total_ohm"] = NumOrNull(r.r_total_standard_error);
+  for (int k = 0; k < kParamCount; ++k) j[ParamName(static_cast<Param>(k))] = NumberOrNull(r.params[k].standard_error);
+  j["r_total_ohm"] = NumberOrNull(r.r_total_standard_error);
   return j;
 }
 
@@ -162,8 +161,8 @@ Json FitJson(const CalibrationResult& r) {
   Json d = Json::array();
   for (const auto& x : r.dropped) d.push_back({{"reason", x.reason}, {"count", x.count}});
   j["dropped"] = d;
-  j["condition_number"] = NumOrNull(r.condition_number);
-  j["r_total_ohm"] = NumOrNull(r.r_total_ohm);
+  j["condition_number"] = NumberOrNull(r.condition_number);
+  j["r_total_ohm"] = NumberOrNull(r.r_total_ohm);
   Json notes = Json::object();
   for (int k = 0; k < kParamCount; ++k) {
     if (!r.params[k].note.empty()) notes[ParamName(static_cast<Param>(k))] = r.params[k].note;
@@ -172,9 +171,9 @@ Json FitJson(const CalibrationResult& r) {
   Json cols = Json::object();
   for (const auto& f : r.fit) {
     cols[logs::ColumnName(f.column)] = {{"points", f.points},
-                                        {"rmse", NumOrNull(f.rmse)},
-                                        {"rmse_percent", NumOrNull(f.rmse_percent)},
-                                        {"median_abs_percent", NumOrNull(f.median_abs_percent)}};
+                                        {"rmse", NumberOrNull(f.rmse)},
+                                        {"rmse_percent", NumberOrNull(f.rmse_percent)},
+                                        {"median_abs_percent", NumberOrNull(f.median_abs_percent)}};
   }
   j["columns"] = cols;
   j["unidentifiable_directions"] = r.unidentifiable_directions;

@@ -2,6 +2,7 @@
 // and error positions (file:line:column), shared by the catalog and mission readers.
 #pragma once
 
+#include <cmath>
 #include <cstddef>
 #include <string>
 
@@ -31,5 +32,9 @@ std::string DumpJson(const Json& value, int indent = 2);
 
 // Throws InternalError if any number in `value` is NaN or infinite; `what` names the document.
 void CheckJsonFinite(const Json& value, const std::string& what);
+
+// The output contract for a value that may be missing (a standard error of a held parameter, an
+// error median over no points): the number when finite, else JSON null - never NaN.
+inline Json NumberOrNull(double v) { return std::isfinite(v) ? Json(v) : Json(nullptr); }
 
 }  // namespace dynosize
