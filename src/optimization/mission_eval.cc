@@ -68,8 +68,9 @@ class Tracker {
  public:
   explicit Tracker(MissionResult* r) : r_(r) {}
   // value <= limit (or >= when `at_least`); relative slack (limit - value)/|limit|.
-  void Check(const std::string& name, const std::string& segment, double value, double limit,
-             const std::string& unit, bool at_least = false, SegmentResult* seg = nullptr) {
+  // `name` and `unit` are literals: no string is built unless the check fails.
+  void Check(const char* name, const std::string& segment, double value, double limit,
+             const char* unit, bool at_least = false, SegmentResult* seg = nullptr) {
     if (!std::isfinite(limit)) return;
     double slack = (limit - value) / std::max(std::fabs(limit), 1e-12);
     if (at_least) slack = -slack;
@@ -243,7 +244,7 @@ MissionResult MissionEvaluator::Run(const ContinuousVars& vars, double stretch_s
         return r;
       }
       torque = ev.torque_nm;
-      if (!ev.InData()) seg.prop_note = ev.message;
+      if (!ev.InData()) seg.prop_note = ev.Message();
       // Static-only data (DriveCalc power laws, static coefficients) say nothing about the
       // thrust lost to inflow; held at J = 0 they grossly over-state a propeller in fast axial
       // flow. Up to the mission's max_static_advance_ratio (default 0.2) the static values
@@ -274,22 +275,36 @@ MissionResult MissionEvaluator::Run(const ContinuousVars& vars, double stretch_s
     }
     const int n_active = seg.rotors;
     double last_sag_v = 0.0;
-    // The operating point at a state of charge: terminal voltage from the fixed point
-    // V = OCV(soc) - R*(N*IDC(V) + P_avionics/V); contraction factor = R*I/V (the sag ratio).
+    // The power asked of the pack at the last voltage tried, and the most it can give then
+    // (a source OCV behind R delivers at most OCV^2/(4*R)).
+    double demanded_w = 0.0, deliverable_w = 0.0;
+    // The operating point at a state of charge: the terminal voltage V solves
+    //   V = OCV(soc) - R*I_batt,  V*I_batt = N*PDC(V) + P_avionics.
+    // PDC = C1*U*Irms/kv + C0*VDC*Irms (eqs 57, 59) depends on V only through the C0 term (and
+    // saturation), so each step solves the quadratic V^2 - OCV*V + R*P = 0 for its upper (stable)
+    // root with P at the current V: exact in one step when C0 = 0, a fast contraction otherwise.
+    // No real root: the pack cannot deliver the power.
     auto point_at = [&](double soc_now, OperatingPoint* op, double* v, double* i_batt) {
       const double ocv = pack.OcvV(soc_now);
+      const double r_pack = pack.ri_ohm();
       // Warm start from the previous instant's sag (the current changes little in a segment).
       double vv = last_sag_v > 0 && last_sag_v < 0.5 * ocv ? ocv - last_sag_v : ocv;
-      for (int it = 0; it < 60; ++it) {
+      for (int it = 0; it < 30; ++it) {
         *op = drive_.Inverse(vv, torque, omega);
-        *i_batt = n_active * op->idc_a + m_.vehicle.avionics_power_w / vv;
-        const double next = ocv - pack.ri_ohm() * *i_batt;
-        if (!(next > 0.2 * ocv)) return false;
+        const double p_w = n_active * op->idc_a * vv + m_.vehicle.avionics_power_w;
+        const double disc = ocv * ocv - 4.0 * r_pack * p_w;
+        demanded_w = p_w;
+        deliverable_w = ocv * ocv / (4.0 * r_pack);
+        if (!(disc >= 0.0)) return false;
+        const double next = 0.5 * (ocv + std::sqrt(disc));
+        if (next == vv) break;
         const bool done = std::fabs(next - vv) < 1e-10 * ocv;
         vv = next;
-        if (done) break;
+        if (done) {
+          *op = drive_.Inverse(vv, torque, omega);
+          break;
+        }
       }
-      *op = drive_.Inverse(vv, torque, omega);
       *i_batt = n_active * op->idc_a + m_.vehicle.avionics_power_w / vv;
       *v = vv;
       last_sag_v = ocv - vv;
@@ -337,8 +352,8 @@ MissionResult MissionEvaluator::Run(const ContinuousVars& vars, double stretch_s
       seg.idc_max_a = std::max(seg.idc_max_a, op.idc_a);
     }
     if (!ok) {
-      // The pack cannot hold the voltage for this current.
-      track.Check("battery_voltage", s.name, 0.0, 0.2 * pack.OcvV(soc), "V", true, &seg);
+      // The pack cannot deliver this power.
+      track.Check("battery_power", s.name, demanded_w, deliverable_w, "W", false, &seg);
       r.segments.push_back(seg);
       r.feasible = false;
       r.score = kInf;

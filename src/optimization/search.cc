@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <cmath>
 #include <limits>
 #include <memory>
@@ -97,6 +98,26 @@ struct Candidate {
   double bound;  // lower bound of the score (smaller is better)
   int motor, prop, option;
   double irms_lb;
+};
+
+// Counts per pruning rule without building a string per pruned pair (rule names are literals).
+class RuleCounts {
+ public:
+  void Add(const char* rule, long long n) {
+    for (auto& [name, count] : counts_) {
+      if (std::strcmp(name, rule) == 0) {
+        count += n;
+        return;
+      }
+    }
+    counts_.emplace_back(rule, n);
+  }
+  void MergeInto(std::map<std::string, long long>* out) const {
+    for (const auto& [name, count] : counts_) (*out)[name] += count;
+  }
+
+ private:
+  std::vector<std::pair<const char*, long long>> counts_;
 };
 
 bool Dominates(const EscEntry& a, const EscEntry& b) {
@@ -245,16 +266,16 @@ SearchResult SearchCatalog(const Mission& m, const Catalog& cat, const SearchOpt
   // merged below and sorted with a full tie-break, so the result does not depend on timing.
   constexpr int kThreads = 2;
   std::vector<std::vector<Candidate>> thread_cands(kThreads);
-  std::vector<std::map<std::string, long long>> thread_pruned(kThreads);
+  std::vector<RuleCounts> thread_pruned(kThreads);
   std::vector<long long> thread_skipped(kThreads, 0);
   auto work = [&](int tid) {
   std::vector<Candidate>& cands = thread_cands[tid];
-  auto prune = [&](const std::string& rule, long long n) { thread_pruned[tid][rule] += n; };
+  auto prune_pair = [&](const char* rule, long long n) { thread_pruned[tid].Add(rule, n); };
   for (std::size_t mi = static_cast<std::size_t>(tid); mi < motors.size(); mi += kThreads) {
     const MotorEntry& mo = motors[mi];
     if (!mo.mass_kg) {
       ++thread_skipped[tid];
-      prune("motor_without_mass", per_pair * static_cast<long long>(props.size() * options.size()));
+      prune_pair("motor_without_mass", per_pair * static_cast<long long>(props.size() * options.size()));
       continue;
     }
     const MotorParams& mp = mo.params;
@@ -272,12 +293,14 @@ SearchResult SearchCatalog(const Mission& m, const Catalog& cat, const SearchOpt
         const double mass_lb = m.vehicle.mass_kg + bo.mass_lo_kg +
                                m.vehicle.rotors * (*mo.mass_kg + g.mass_kg + option_min_esc_mass[o]);
         double omega_lb = 0, q_lb = 0;
+        int lb_idx = 0;  // grid index of omega_lb
         Candidate cand{0.0, static_cast<int>(mi), static_cast<int>(pi), static_cast<int>(o), 0.0};
         if (!hover.empty() && g.monotone) {
           const RotorLoad load = SegmentRotorLoad(m, m.segments[hover[0]], mass_lb, 0.0);
           const double* it = std::upper_bound(g.thrust, g.thrust + kGrid, load.thrust_per_rotor_n);
           const int idx = static_cast<int>(it - g.thrust) - 1;  // last grid thrust <= T_lb
           if (idx >= 0) {
+            lb_idx = idx;
             omega_lb = g.omega[idx];
             q_lb = g.torque_suffix_min[idx];
           }
@@ -292,12 +315,10 @@ SearchResult SearchCatalog(const Mission& m, const Catalog& cat, const SearchOpt
           const RotorLoad load = SegmentRotorLoad(m, m.segments[hover[0]], mass_ub, 0.0);
           const double* it = std::lower_bound(g.thrust, g.thrust + kGrid, load.thrust_per_rotor_n);
           const int hi_idx = std::min(static_cast<int>(it - g.thrust), kGrid - 1);
-          int lo_idx = 0;
-          while (lo_idx < kGrid - 1 && g.omega[lo_idx] < omega_lb) ++lo_idx;
           double fom_min = kInf;
-          for (int i = lo_idx; i <= hi_idx; ++i) fom_min = std::min(fom_min, g.fom[i]);
+          for (int i = lb_idx; i <= hi_idx; ++i) fom_min = std::min(fom_min, g.fom[i]);
           if (it != g.thrust + kGrid && fom_min > 1.02 * k.max_figure_of_merit) {
-            prune("prop_figure_of_merit", per_pair);
+            prune_pair("prop_figure_of_merit", per_pair);
             continue;
           }
         }
@@ -318,18 +339,18 @@ SearchResult SearchCatalog(const Mission& m, const Catalog& cat, const SearchOpt
             if (n_max > 0 && v_ax / (n_max * props[pi].diameter_m) > k.max_static_advance_ratio) fails = true;
           }
           if (fails) {
-            prune("prop_no_forward_flight_data", per_pair);
+            prune_pair("prop_no_forward_flight_data", per_pair);
             continue;
           }
         }
         if (props[pi].max_rpm && RadPerSecToRpm(omega_lb) > *props[pi].max_rpm) {
-          prune("prop_max_rpm", per_pair);  // R2
+          prune_pair("prop_max_rpm", per_pair);  // R2
           continue;
         }
         // R3 and R4 over the ESC classes: the pair survives if any class can.
         bool any = false;
         double best_bound = kInf, irms_lb = kInf;
-        std::string why = "throttle";
+        const char* why = "throttle";
         for (std::size_t ci = 0; ci < classes.size(); ++ci) {
           if (option_escs[o][ci].empty()) continue;
           const OperatingPoint hi_v = ideal[ci].Inverse(bo.v_full, q_lb, omega_lb);
@@ -401,7 +422,7 @@ SearchResult SearchCatalog(const Mission& m, const Catalog& cat, const SearchOpt
           irms_lb = std::min(irms_lb, hi_v.irms_a);
         }
         if (!any) {
-          prune(why, per_pair);
+          prune_pair(why, per_pair);
           continue;
         }
         cand.bound = best_bound;
@@ -421,17 +442,31 @@ SearchResult SearchCatalog(const Mission& m, const Catalog& cat, const SearchOpt
   for (int t = 0; t < kThreads; ++t) {
     cands.insert(cands.end(), thread_cands[t].begin(), thread_cands[t].end());
     std::vector<Candidate>().swap(thread_cands[t]);
-    for (const auto& [rule, n] : thread_pruned[t]) out.pruned_by[rule] += n;
+    thread_pruned[t].MergeInto(&out.pruned_by);
     out.skipped_without_mass += thread_skipped[t];
   }
   const double t_cands = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   long long virtual_evals = 0;
-  std::sort(cands.begin(), cands.end(), [](const Candidate& a, const Candidate& b) {
-    if (a.bound != b.bound) return a.bound < b.bound;
-    if (a.option != b.option) return a.option < b.option;
-    if (a.motor != b.motor) return a.motor < b.motor;
-    return a.prop < b.prop;
-  });
+  // Candidates best bound first, with a full tie-break (a strict total order, so the order is
+  // unique). The search usually stops after a small fraction of them, so they are drawn from a
+  // heap on demand instead of sorted whole.
+  auto after = [](const Candidate& a, const Candidate& b) {
+    if (a.bound != b.bound) return a.bound > b.bound;
+    if (a.option != b.option) return a.option > b.option;
+    if (a.motor != b.motor) return a.motor > b.motor;
+    return a.prop > b.prop;
+  };
+  std::make_heap(cands.begin(), cands.end(), after);
+  std::size_t heap_size = cands.size();
+  std::vector<Candidate> ordered;
+  auto candidate_at = [&](std::size_t i) -> const Candidate* {  // the i-th best, or null
+    while (ordered.size() <= i && heap_size > 0) {
+      std::pop_heap(cands.begin(), cands.begin() + static_cast<std::ptrdiff_t>(heap_size), after);
+      ordered.push_back(cands[--heap_size]);
+    }
+    return i < ordered.size() ? &ordered[i] : nullptr;
+  };
+  const std::size_t n_cands = cands.size();
 
   // Branch and bound over the surviving pairs.
   auto nth_best = [&]() {
@@ -532,22 +567,22 @@ SearchResult SearchCatalog(const Mission& m, const Catalog& cat, const SearchOpt
   constexpr std::size_t kMaxChunk = 64;
   std::size_t chunk = 2;  // grows while the threshold settles
   std::size_t ci = 0;
-  while (ci < cands.size()) {
-    if (opt.progress) opt.progress(static_cast<double>(ci) / static_cast<double>(cands.size()));
+  while (ci < n_cands) {
+    if (opt.progress) opt.progress(static_cast<double>(ci) / static_cast<double>(n_cands));
     const double threshold = nth_best();
     std::vector<double> top;
     for (const auto& b : out.best) top.push_back(b.result.score);
     std::size_t end = ci;
-    while (end < cands.size() && end - ci < chunk && cands[end].bound < threshold) ++end;
+    while (end - ci < chunk && candidate_at(end) && candidate_at(end)->bound < threshold) ++end;
     chunk = std::min(kMaxChunk, 2 * chunk);
     if (end == ci) {  // R4: every later candidate has a bound at least as bad
-      prune("objective_bound", per_pair * static_cast<long long>(cands.size() - ci));
+      prune("objective_bound", per_pair * static_cast<long long>(n_cands - ci));
       break;
     }
     std::vector<Outcome> outs(end - ci);
     auto run = [&](int tid) {
       for (std::size_t i = ci + static_cast<std::size_t>(tid); i < end; i += static_cast<std::size_t>(workers)) {
-        process(cands[i], top, &outs[i - ci]);
+        process(ordered[i], top, &outs[i - ci]);
       }
     };
     std::vector<std::thread> pool;
@@ -567,7 +602,7 @@ SearchResult SearchCatalog(const Mission& m, const Catalog& cat, const SearchOpt
   out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   if (std::getenv("DYNOSIZE_SEARCH_DEBUG")) {
     std::fprintf(stderr, "search: %zu candidate pairs in %.3f s; %lld virtual-ESC and %lld exact evaluations; total %.3f s\n",
-                 cands.size(), t_cands, virtual_evals, out.searched, out.seconds);
+                 n_cands, t_cands, virtual_evals, out.searched, out.seconds);
   }
   return out;
 }

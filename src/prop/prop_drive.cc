@@ -44,7 +44,7 @@ PropDrivePoint SolveDriveWithProp(const Drive& drive, const PropModel& prop, dou
     r.message = "no convergence in " + std::to_string(options.max_iterations) + " iterations";
   }
   r.prop = prop.Evaluate(std::max(omega, 0.0), rho_kg_m3, airspeed_m_s);
-  if (r.converged && !r.prop.InData()) r.message = r.prop.message;
+  if (r.converged && !r.prop.InData()) r.message = r.prop.Message();
   return r;
 }
 

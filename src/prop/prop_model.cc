@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <sstream>
+#include <vector>
 
 #include "common/error.h"
 #include "common/units.h"
@@ -92,30 +93,22 @@ PropModel::PropModel(const PropEntry& entry) : entry_(entry) {
 
 void PropModel::TableCoefficients(double rpm, double j, PropEvaluation* ev) const {
   const PropStaticTable& st = entry_.static_table;
-  const bool have_static = !st.rpm.empty();
-  std::ostringstream msg;
-  if (j == 0.0 || entry_.j_tables.empty()) {
-    if (have_static) {
-      const Interp ct = Lerp(st.rpm, st.ct, rpm), cp = Lerp(st.rpm, st.cp, rpm);
-      ev->ct = ct.value;
-      ev->cp = cp.value;
-      if (ct.outside) {
-        ev->rpm_outside_data = true;
-        msg << "rpm " << Num(rpm) << " outside the static data " << Num(st.rpm.front()) << "-"
-            << Num(st.rpm.back()) << "; ";
-      }
-      if (j > 0.0) {
-        ev->no_forward_flight_data = true;
-        msg << "J = " << Num(j) << " but only static data: static coefficients used; ";
-      }
-      ev->message = msg.str();
-      if (!ev->message.empty()) ev->message.resize(ev->message.size() - 2);
-      return;
-    }
+  if (!st.rpm.empty() && (j == 0.0 || entry_.j_tables.empty())) {
+    const Interp ct = Lerp(st.rpm, st.ct, rpm), cp = Lerp(st.rpm, st.cp, rpm);
+    ev->ct = ct.value;
+    ev->cp = cp.value;
+    ev->data_rpm_lo = st.rpm.front();
+    ev->data_rpm_hi = st.rpm.back();
+    ev->rpm_outside_data = ct.outside;
+    ev->no_forward_flight_data = j > 0.0;
+    return;
   }
   // Forward flight (or static without a static table): interpolate each sweep at J, then
   // between the two sweeps that bracket rpm.
   const auto& sweeps = sweeps_;
+  ev->from_sweeps = true;
+  ev->data_rpm_lo = sweeps.front().rpm;
+  ev->data_rpm_hi = sweeps.back().rpm;
   auto sweep_at = [&](const PropSweep& s, double* ct, double* cp) {
     const Interp a = Lerp(s.j, s.ct, j), b = Lerp(s.j, s.cp, j);
     *ct = a.value;
@@ -130,10 +123,6 @@ void PropModel::TableCoefficients(double rpm, double j, PropEvaluation* ev) cons
     const PropSweep& s = sweeps[hi == 0 ? 0 : sweeps.size() - 1];
     j_out = sweep_at(s, &ct, &cp);
     ev->rpm_outside_data = rpm < sweeps.front().rpm || rpm > sweeps.back().rpm;
-    if (ev->rpm_outside_data) {
-      msg << "rpm " << Num(rpm) << " outside the forward-flight sweeps " << Num(sweeps.front().rpm)
-          << "-" << Num(sweeps.back().rpm) << "; ";
-    }
   } else {
     const PropSweep& a = sweeps[hi - 1];
     const PropSweep& b = sweeps[hi];
@@ -145,14 +134,32 @@ void PropModel::TableCoefficients(double rpm, double j, PropEvaluation* ev) cons
     cp = cpa + t * (cpb - cpa);
     j_out = oa || ob;
   }
-  if (j_out) {
-    ev->j_outside_data = true;
-    msg << "J = " << Num(j) << " outside the measured advance ratios; edge coefficients held; ";
-  }
+  ev->j_outside_data = j_out;
   ev->ct = ct;
   ev->cp = cp;
-  ev->message = msg.str();
-  if (!ev->message.empty()) ev->message.resize(ev->message.size() - 2);
+}
+
+std::string PropEvaluation::Message() const {
+  if (at_rest_in_flow) return "shaft at rest in a flow: windmilling is not modelled";
+  std::vector<std::string> parts;
+  if (rpm_outside_data) {
+    if (data == PropDataKind::kPowerLaw) {
+      parts.push_back("rpm " + Num(rpm) + " above the propeller's limit " + Num(data_rpm_hi));
+    } else {
+      parts.push_back("rpm " + Num(rpm) + (from_sweeps ? " outside the forward-flight sweeps " : " outside the static data ") +
+                      Num(data_rpm_lo) + "-" + Num(data_rpm_hi));
+    }
+  }
+  if (no_forward_flight_data) {
+    const char* what = data == PropDataKind::kTables         ? "static data: static coefficients used"
+                       : data == PropDataKind::kCoefficients ? "static coefficients: static values used"
+                                                             : "static power laws: static values used";
+    parts.push_back("J = " + Num(j) + " but only " + what);
+  }
+  if (j_outside_data) parts.push_back("J = " + Num(j) + " outside the measured advance ratios; edge coefficients held");
+  std::string out;
+  for (const std::string& p : parts) out += (out.empty() ? "" : "; ") + p;
+  return out;
 }
 
 PropEvaluation PropModel::Evaluate(double omega_rad_s, double rho_kg_m3,
@@ -176,9 +183,10 @@ PropEvaluation PropModel::Evaluate(double omega_rad_s, double rho_kg_m3,
   ev.airspeed_m_s = airspeed_m_s;
   ev.data = kind_;
   const double d = entry_.diameter_m;
+  const double d4 = d * d * d * d, d5 = d4 * d;
   const double n = omega_rad_s / (2.0 * kPi);  // rev/s
   if (n == 0.0) {
-    if (airspeed_m_s > 0) ev.message = "shaft at rest in a flow: windmilling is not modelled";
+    ev.at_rest_in_flow = airspeed_m_s > 0;
     return ev;
   }
   ev.j = airspeed_m_s / (n * d);
@@ -189,10 +197,7 @@ PropEvaluation PropModel::Evaluate(double omega_rad_s, double rho_kg_m3,
     case PropDataKind::kCoefficients:
       ev.ct = *entry_.ct_static;
       ev.cp = *entry_.cp_static;
-      if (ev.j > 0) {
-        ev.no_forward_flight_data = true;
-        ev.message = "J = " + Num(ev.j) + " but only static coefficients: static values used";
-      }
+      ev.no_forward_flight_data = ev.j > 0;
       break;
     case PropDataKind::kPowerLaw: {
       // DriveCalc: T [N] = a*(rpm/1000)^b, P [W] = c*(rpm/1000)^d at law rho, linear in rho;
@@ -201,25 +206,19 @@ PropEvaluation PropModel::Evaluate(double omega_rad_s, double rho_kg_m3,
       const double k = ev.rpm / 1000.0;
       const double t = law.thrust_law_n * std::pow(k, law.thrust_law_exp) * rho_kg_m3 / law.rho_kg_m3;
       const double p = law.power_law_w * std::pow(k, law.power_law_exp) * rho_kg_m3 / law.rho_kg_m3;
-      ev.ct = t / (rho_kg_m3 * n * n * std::pow(d, 4));
-      ev.cp = p / (rho_kg_m3 * n * n * n * std::pow(d, 5));
-      std::string msg;
-      if (entry_.max_rpm && ev.rpm > *entry_.max_rpm) {
-        ev.rpm_outside_data = true;
-        msg = "rpm " + Num(ev.rpm) + " above the propeller's limit " + Num(*entry_.max_rpm);
+      ev.ct = t / (rho_kg_m3 * n * n * d4);
+      ev.cp = p / (rho_kg_m3 * n * n * n * d5);
+      if (entry_.max_rpm) {
+        ev.data_rpm_hi = *entry_.max_rpm;
+        ev.rpm_outside_data = ev.rpm > *entry_.max_rpm;
       }
-      if (ev.j > 0) {
-        ev.no_forward_flight_data = true;
-        msg += std::string(msg.empty() ? "" : "; ") + "J = " + Num(ev.j) +
-               " but only static power laws: static values used";
-      }
-      ev.message = msg;
+      ev.no_forward_flight_data = ev.j > 0;
       break;
     }
   }
   // UIUC definitions: T = CT*rho*n^2*D^4, P = CP*rho*n^3*D^5, Q = P/omega.
-  ev.thrust_n = ev.ct * rho_kg_m3 * n * n * std::pow(d, 4);
-  ev.power_w = ev.cp * rho_kg_m3 * n * n * n * std::pow(d, 5);
+  ev.thrust_n = ev.ct * rho_kg_m3 * n * n * d4;
+  ev.power_w = ev.cp * rho_kg_m3 * n * n * n * d5;
   ev.torque_nm = ev.power_w / omega_rad_s;
   return ev;
 }
@@ -253,7 +252,7 @@ LocalTorqueFit PropModel::FitTorqueLaw(double omega0_rad_s, double rho_kg_m3, do
     q[i] = ev.torque_nm;
     if (!ev.InData()) {
       fit.in_data = false;
-      if (fit.message.empty()) fit.message = ev.message;
+      if (fit.message.empty()) fit.message = ev.Message();
     }
   }
   // Newton divided differences of the three points, expanded to a + b*w + c*w^2.

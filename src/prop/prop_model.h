@@ -43,8 +43,14 @@ struct PropEvaluation {
   bool j_outside_data = false;          // advance ratio beyond the measured sweep(s)
   bool no_forward_flight_data = false;  // airspeed > 0 but only static data exist
   bool InData() const { return !rpm_outside_data && !j_outside_data && !no_forward_flight_data; }
-  // "" when in the data, else one sentence naming the limit ("rpm 1200 below the data 2484-6804").
-  std::string message;
+  // What the flags refer to, kept as numbers so that evaluations in a solver's inner loop do
+  // not format text; Message() writes the sentence when someone reads it.
+  bool at_rest_in_flow = false;  // n = 0 with airspeed > 0 (windmilling is not modelled)
+  bool from_sweeps = false;      // kTables: the forward-flight sweeps were used, not the static table
+  double data_rpm_lo = 0.0, data_rpm_hi = 0.0;  // the rpm range of that data (power law: max_rpm)
+  // "" when in the data, else one sentence naming the limit ("rpm 1200 outside the static data
+  // 2484-6804").
+  std::string Message() const;
 };
 
 // The load law Q(omega) = a + b*omega + c*omega^2 of model/drive.h, a quadratic through the

@@ -31,7 +31,7 @@ TEST(PropDriveTest, PaperMotorOnAUiucPropBalancesTorque) {
     const OperatingPoint at = drive.AtSpeed(11.1, 0.8, p.drive.omega_rad_s);
     EXPECT_NEAR(at.torque_nm, p.prop.torque_nm, kBalanceRel * p.prop.torque_nm);
     EXPECT_GT(p.prop.thrust_n, 0.0);
-    EXPECT_TRUE(p.prop.InData()) << p.prop.message;
+    EXPECT_TRUE(p.prop.InData()) << p.prop.Message();
   }
 }
 

@@ -57,7 +57,7 @@ TEST(PropModelTest, PowerLawSaysSoOutsideItsData) {
   const PropModel m(PowerLawProp());
   const PropEvaluation fast = m.Evaluate(RpmToRadPerSec(50000), 1.225, 0.0);
   EXPECT_TRUE(fast.rpm_outside_data);
-  EXPECT_NE(fast.message.find("above the propeller's limit"), std::string::npos) << fast.message;
+  EXPECT_NE(fast.Message().find("above the propeller's limit"), std::string::npos) << fast.Message();
   const PropEvaluation fwd = m.Evaluate(RpmToRadPerSec(20000), 1.225, 10.0);
   EXPECT_TRUE(fwd.no_forward_flight_data);
   EXPECT_FALSE(fwd.InData());
@@ -108,7 +108,7 @@ TEST(PropModelTest, TablesInterpolateByHand) {
   EXPECT_NEAR(fw.j, 0.3, 1e-12);
   EXPECT_NEAR(fw.ct, 0.085, 1e-12);
   EXPECT_NEAR(fw.cp, 0.040, 1e-12);
-  EXPECT_TRUE(fw.InData()) << fw.message;
+  EXPECT_TRUE(fw.InData()) << fw.Message();
   const PropEvaluation byj = m.EvaluateAtAdvanceRatio(RpmToRadPerSec(4000), rho, 0.3);
   EXPECT_NEAR(byj.ct, 0.085, 1e-12);
   EXPECT_NEAR(byj.airspeed_m_s, v, 1e-12);
@@ -123,7 +123,7 @@ TEST(PropModelTest, TablesFlagEverythingOutsideTheData) {
   const PropEvaluation slow = m.Evaluate(RpmToRadPerSec(1000), 1.2, 0.0);
   EXPECT_TRUE(slow.rpm_outside_data);
   EXPECT_NEAR(slow.ct, 0.10, 1e-12);  // held at the edge, not extrapolated
-  EXPECT_NE(slow.message.find("outside the static data"), std::string::npos) << slow.message;
+  EXPECT_NE(slow.Message().find("outside the static data"), std::string::npos) << slow.Message();
   const PropEvaluation fastj = m.Evaluate(RpmToRadPerSec(4000), 1.2, 0.9 * (4000.0 / 60) * 0.254);
   EXPECT_TRUE(fastj.j_outside_data);
   const PropEvaluation hi = m.Evaluate(RpmToRadPerSec(7000), 1.2, 0.3 * (7000.0 / 60) * 0.254);
@@ -205,7 +205,7 @@ TEST(PropModelUiucTest, StaticHeldOutPoints) {
     const PropModel m(train);
     for (std::size_t i : held) {
       const PropEvaluation ev = m.Evaluate(RpmToRadPerSec(p.static_table.rpm[i]), 1.225, 0.0);
-      ASSERT_TRUE(ev.InData()) << p.id << " " << ev.message;
+      ASSERT_TRUE(ev.InData()) << p.id << " " << ev.Message();
       ct_err.Add(ev.ct, p.static_table.ct[i]);
       cp_err.Add(ev.cp, p.static_table.cp[i]);
     }
