@@ -170,13 +170,13 @@ BatteryPackParams MissionEvaluator::PackAt(double capacity_ah) const {
 MissionResult MissionEvaluator::Run(const ContinuousVars& vars, double stretch_s, bool screen) const {
   MissionResult r;
   r.min_slack = kInf;
+  r.segments.reserve(m_.segments.size());
   Tracker track(&r);
   const MissionConstraints& k = m_.constraints;
   const BatteryPack pack(PackAt(vars.capacity_ah));
   r.capacity_ah = pack.capacity_ah();
   r.total_mass_kg = fixed_mass_kg_ + pack.mass_kg();
   r.propulsion_mass_kg = r.total_mass_kg - m_.vehicle.mass_kg;
-  r.assumed = assumed_;
   DischargeOptions dopt;
   if (m_.battery.cutoff_cell_v) dopt.cutoff_cell_v = *m_.battery.cutoff_cell_v;
   const double cutoff_v = pack.cutoff_v(dopt);
@@ -447,15 +447,43 @@ MissionResult MissionEvaluator::WithEndurance(ContinuousVars vars) const {
   return lo_r;
 }
 
-double MissionEvaluator::EnduranceUpperBound() const {
+namespace {
+
+// Constraints that cannot recover with more mass (search.cc, M3: more mass needs more speed,
+// torque, current, power and throttle in every segment): violated at one capacity, they are
+// violated at every larger one.
+bool RisesWithMass(const std::string& constraint) {
+  static const char* const kNames[] = {"esc_voltage",    "thrust",        "max_throttle", "esc_saturation",
+                                       "motor_current", "esc_current",   "motor_power",  "prop_max_rpm"};
+  for (const char* name : kNames) {
+    if (constraint == name) return true;
+  }
+  return false;
+}
+
+}  // namespace
+
+double MissionEvaluator::EnduranceUpperBound(double target_s) const {
   // max_endurance with the stretched segment at a fixed airspeed (hover, or cruise with one
-  // airspeed): over capacities C in [C_a, C_b] (the range cut in kBoundIntervals pieces),
+  // airspeed): over capacities C in a piece [C_a, C_b] of the range,
   //   t_total(C) <= t_fixed_max + Q(C_b)*integral of OCV over [reserve, 1] / P_stretch(C_a)
   // because more capacity means more mass and so no less power in every segment (M3 of
   // search.cc), and the terminal energy is at most the OCV-weighted charge above the reserve
   // (the power P_stretch does not fall as the voltage sags: exact for C0 = 0, eq 59).
   // P_stretch(C_a) is the terminal power at the start of the stretch, from one Run.
-  constexpr int kBoundIntervals = 6;
+  // When the ESC has C0 = 0 and no supply resistance, every segment's terminal power
+  // N*PDC + P_avionics = N*C1*U*Irms/kv + P_avionics (eqs 48, 57, 59) does not depend on the
+  // voltage, so the other segments' energy at C_a, E_other(C_a), is a lower bound of theirs at
+  // any larger capacity (M3), and the stretch gets only what is left of the budget:
+  //   t_total(C) <= t_fixed_max + (Q(C_b)*integral of OCV - E_other(C_a)) / P_stretch(C_a).
+  // The OCV
+  // curve per SOC does not depend on the capacity (PackAt scales charge, mass, resistance and
+  // rating only), so the integral is computed once.
+  // The range starts in kBoundPieces pieces; while the largest piece bound is at least
+  // `target_s`, that piece is halved (one more Run), up to kMaxBoundRuns Runs: the bound only
+  // tightens as far as it takes to prove "cannot reach target_s".
+  constexpr int kBoundPieces = 6;
+  constexpr int kMaxBoundRuns = 24;
   const Segment& st = m_.segments[m_.objective.segment_index];
   if (st.type == SegmentType::kCruise && st.airspeed_m_s.free()) return kInf;
   double t_fixed_max = 0;
@@ -469,43 +497,81 @@ double MissionEvaluator::EnduranceUpperBound() const {
   const bool free_c = m_.battery.capacity_ah && m_.battery.capacity_ah->free();
   const double c_lo = m_.battery.capacity_ah ? m_.battery.capacity_ah->lo : base_capacity_ah_;
   const double c_hi = m_.battery.capacity_ah ? m_.battery.capacity_ah->hi : base_capacity_ah_;
-  const int pieces = free_c ? kBoundIntervals : 1;
-  double best = -kInf;
-  for (int i = 0; i < pieces; ++i) {
-    const double ca = c_lo + (c_hi - c_lo) * i / pieces;
-    const double cb = c_lo + (c_hi - c_lo) * (i + 1) / pieces;
+  const double ocv_integral_v = OcvIntegralUpperBound(BatteryPack(PackAt(c_lo)), m_.battery.reserve_soc);
+  const bool energy_fixed = c_.esc->params.c0 == 0.0 && c_.esc->params.rsupply_ohm == 0.0;
+  int runs = 0;
+  double infeasible_from = kInf;  // every capacity from here up breaks a RisesWithMass constraint
+  struct Piece { double ca, cb, p_ca, e_other_ca; };
+  // The piece [c, cb] (P_stretch and E_other at c; P = 0 when no bound can be given there);
+  // sets infeasible_from.
+  auto piece_at = [&](double c, double cb) {
+    Piece pc{c, cb, 0.0, 0.0};
     ContinuousVars v;
-    v.capacity_ah = ca;
+    v.capacity_ah = c;
     v.airspeed_m_s.assign(m_.segments.size(), 0.0);
     for (std::size_t k = 0; k < m_.segments.size(); ++k) v.airspeed_m_s[k] = m_.segments[k].airspeed_m_s.lo;
+    ++runs;
     const MissionResult r = Run(v, 0.0);
-    if (r.segments.size() <= static_cast<std::size_t>(m_.objective.segment_index)) return kInf;
+    for (const Violation& x : r.violations) {
+      if (RisesWithMass(x.constraint)) infeasible_from = std::min(infeasible_from, c);
+    }
+    if (r.segments.size() <= static_cast<std::size_t>(m_.objective.segment_index)) return pc;
     const SegmentResult& s = r.segments[m_.objective.segment_index];
-    const double p_start = s.battery_current_start_a * s.vdc_max_v;
-    if (!(p_start > 0)) return kInf;
-    // Energy budget (search.cc R4): terminal energy <= Q * integral of OCV over [reserve, 1].
-    const double e_max = OcvIntegralUpperBound(BatteryPack(PackAt(cb)), m_.battery.reserve_soc) * AhToCoulomb(cb);
-    best = std::max(best, t_fixed_max + e_max / p_start);
+    const double p = s.battery_current_start_a * s.vdc_max_v;
+    pc.p_ca = p > 0 ? p : 0.0;
+    if (energy_fixed && r.segments.size() == m_.segments.size()) {
+      for (const SegmentResult& x : r.segments) pc.e_other_ca += x.energy_j;  // the stretch: 0 s
+    }
+    return pc;
+  };
+  auto bound_of = [&](const Piece& pc) {
+    if (pc.ca >= infeasible_from) return -kInf;
+    if (!(pc.p_ca > 0)) return kInf;
+    return t_fixed_max + std::max(0.0, ocv_integral_v * AhToCoulomb(pc.cb) - pc.e_other_ca) / pc.p_ca;
+  };
+  std::vector<Piece> pieces;
+  const int n0 = free_c ? kBoundPieces : 1;
+  for (int i = 0; i < n0; ++i) {
+    const double ca = c_lo + (c_hi - c_lo) * i / n0;
+    const double cb = c_lo + (c_hi - c_lo) * (i + 1) / n0;
+    pieces.push_back(piece_at(ca, cb));
   }
-  return best;
+  while (true) {
+    std::size_t worst = 0;
+    for (std::size_t i = 1; i < pieces.size(); ++i) {
+      if (bound_of(pieces[i]) > bound_of(pieces[worst])) worst = i;
+    }
+    const double ub = bound_of(pieces[worst]);
+    if (!free_c || ub < target_s || runs >= kMaxBoundRuns || !std::isfinite(ub)) return ub;
+    const Piece pc = pieces[worst];
+    const double mid = 0.5 * (pc.ca + pc.cb);
+    pieces[worst].cb = mid;
+    pieces.push_back(piece_at(mid, pc.cb));
+  }
 }
 
-MissionResult MissionEvaluator::Solve(double cutoff_score) const {
+MissionResult MissionEvaluator::Solve(double cutoff_score, bool explain) const {
   const bool capacity_free = m_.battery.capacity_ah && m_.battery.capacity_ah->free();
   if (std::isfinite(cutoff_score) && m_.objective.type == ObjectiveType::kMaxEndurance) {
-    if (!capacity_free) {
-      // One simulation decides most candidates of a search: infeasible before any stretch.
-      ContinuousVars v0;
-      v0.airspeed_m_s.assign(m_.segments.size(), 0.0);
-      if (m_.battery.capacity_ah) v0.capacity_ah = m_.battery.capacity_ah->lo;
-      bool airspeed_free = false;
-      for (const Segment& s : m_.segments) airspeed_free |= s.type == SegmentType::kCruise && s.airspeed_m_s.free();
-      if (!airspeed_free) {
-        MissionResult r0 = Run(v0, 0.0, true);
-        if (!r0.feasible) return r0;
+    // One simulation decides most candidates of a search: infeasible before any stretch.
+    // With a capacity range it is run at the smallest capacity (the lightest vehicle), and
+    // decides only through constraints that cannot improve with more mass (search.cc, M3:
+    // more mass needs more speed, torque, current, power and throttle in every segment).
+    ContinuousVars v0;
+    v0.airspeed_m_s.assign(m_.segments.size(), 0.0);
+    if (m_.battery.capacity_ah) v0.capacity_ah = m_.battery.capacity_ah->lo;
+    bool airspeed_free = false;
+    for (const Segment& s : m_.segments) airspeed_free |= s.type == SegmentType::kCruise && s.airspeed_m_s.free();
+    if (!airspeed_free) {
+      MissionResult r0 = Run(v0, 0.0, true);
+      if (!r0.feasible) {
+        if (!capacity_free) return r0;
+        for (const Violation& v : r0.violations) {
+          if (RisesWithMass(v.constraint)) return r0;
+        }
       }
     }
-    const double ub = EnduranceUpperBound();
+    const double ub = EnduranceUpperBound(-cutoff_score);
     if (-ub >= cutoff_score) {
       MissionResult r;
       r.bounded_out = true;
@@ -572,7 +638,7 @@ MissionResult MissionEvaluator::Solve(double cutoff_score) const {
   };
   if (free.empty()) {
     MissionResult r = WithEndurance(vars_at(nullptr));
-    AddWarnings(&r);
+    if (explain) AddWarnings(&r);
     return r;
   }
 
@@ -644,6 +710,7 @@ MissionResult MissionEvaluator::Solve(double cutoff_score) const {
   MissionResult r = WithEndurance(vars_at(xs.data()));
   const MissionResult grid = WithEndurance(vars_at(best_x.data()));
   if (!(r.feasible && r.score <= grid.score) && grid.feasible) r = grid;  // never worse than the grid
+  if (!explain) return r;
   std::ostringstream msg;
   msg << sr.BriefReport();
   for (int i = 0; i < n; ++i) msg << (i ? ", " : "; ") << p.variable_names[i] << " = "
@@ -660,6 +727,7 @@ MissionResult MissionEvaluator::Simulate(const ContinuousVars& vars) const {
 }
 
 void MissionEvaluator::AddWarnings(MissionResult* r) const {
+  r->assumed = assumed_;
   const MissionConstraints& k = m_.constraints;
   const MotorParams& mp = c_.motor->params;
   const EscParams& ep = c_.esc->params;

@@ -124,7 +124,10 @@ class MissionEvaluator {
   // (Ipopt). This is what `evaluate` and `optimize` report.
   // With cutoff_score: stop early (bounded_out) once a bound proves score >= cutoff_score
   // (max_endurance only; see EnduranceUpperBound in the .cc).
-  MissionResult Solve(double cutoff_score = std::numeric_limits<double>::infinity()) const;
+  // explain = false leaves out the warnings and the continuous solver's report (text nobody
+  // reads for the search's screening evaluations); the numbers are the same.
+  MissionResult Solve(double cutoff_score = std::numeric_limits<double>::infinity(),
+                      bool explain = true) const;
 
   double fixed_mass_kg() const { return fixed_mass_kg_; }  // everything but the battery
   double BatteryMassKg(double capacity_ah) const;
@@ -137,9 +140,10 @@ class MissionEvaluator {
   MissionResult Run(const ContinuousVars& vars, double stretch_s, bool screen = false) const;
   MissionResult WithEndurance(ContinuousVars vars) const;
   double StretchStartCurrent(const MissionResult& r) const;
-  // An upper bound of the total mission time over the capacity range (max_endurance).
-  double EnduranceUpperBound() const;
-  // The warnings a designer expects (hover throttle over the limit, currents near a rating,
+  // An upper bound of the total mission time over the capacity range (max_endurance), tightened
+  // until it falls below target_s or a budget of simulations is spent.
+  double EnduranceUpperBound(double target_s) const;
+  // The assumed catalog values and the warnings a designer expects (hover throttle over the limit, currents near a rating,
   // ESC saturation, a motor running far below its efficient load, assumed parameters).
   void AddWarnings(MissionResult* r) const;
 

@@ -44,11 +44,15 @@ namespace dynosize {
 // R4 (objective bound, branch and bound): with the same bounds the power drawn in a hover
 //    segment is at least N*PDC_lb + P_avionics, PDC_lb the smaller of the zero-resistance
 //    drive's PDC at the full-charge and the cut-off voltage (PDC = C1*U*I/kv + C0*VDC*I is
-//    linear in VDC, eqs 57, 59). min_energy: the energy is at least the sum over hover segments
-//    of that power times their duration. max_endurance with a hover segment stretched: the
-//    coulomb count gives t_stretch <= ((1 - reserve)*Q_max - charge of the other hover
-//    segments) / I_lb with I_lb = (N*PDC_lb + P_avionics)/OCV_full, Q_max the largest capacity;
-//    the fixed segments add at most their longest durations. Pairs are evaluated best bound
+//    linear in VDC, eqs 57, 59). So is the power of a climb or fixed-airspeed cruise segment
+//    whose per-rotor thrust is at least the hover bound's, when the propeller has static-only
+//    data (read at J = 0 in any inflow: the same speed-thrust curve). Every segment draws at
+//    least P_avionics. min_energy: the energy is at least the sum over segments of that power
+//    times their shortest duration (and of the momentum bound below). max_endurance with a
+//    hover segment stretched: the terminal energy of the whole mission is at most
+//    Q_max*integral of OCV(s) ds over [reserve, 1] (Q_max the largest capacity); the other
+//    segments take at least their energy bounds, the stretch gets the rest at no less than its
+//    power bound; the fixed segments add at most their longest durations. Pairs are evaluated best bound
 //    first and the search stops when the next bound cannot beat the N-th best found (every
 //    later pair has a worse bound). max_efficiency has no such bound (it is not pruned by R4).
 // R5 (ESC dominance): within one pair, an ESC with the same C1, C0, tr_sat, sat_slope as an
@@ -362,12 +366,30 @@ SearchResult SearchCatalog(const Mission& m, const Catalog& cat, const SearchOpt
           const double pdc_lb = std::max(0.0, std::min(hi_v.pdc_w, lo_v.pdc_w));
           double bound = -kInf;
           if (!hover.empty()) {
-            // Each hover segment like hover[0] (same number of working rotors, so the same
-            // per-rotor thrust bound) draws at least n*PDC_lb + P_avionics.
-            const int n0 = SegmentRotorLoad(m, m.segments[hover[0]], mass_lb, 0.0).rotors;
-            auto p_hover_of = [&](int h) {
-              const int n = SegmentRotorLoad(m, m.segments[h], mass_lb, 0.0).rotors;
-              return (n == n0 ? n * pdc_lb : 0.0) + m.vehicle.avionics_power_w;
+            // The terminal power of a segment is at least N*PDC_lb + P_avionics when each of
+            // its N rotors must give at least T_lb (hover[0]'s per-rotor thrust at the lightest
+            // mass, which defines omega_lb and Q_lb) from the same speed-thrust curve: hover
+            // segments, and climb or fixed-airspeed cruise segments of a propeller with static-
+            // only data (the evaluator reads them at J = 0 in any inflow, so speed and torque
+            // are at least omega_lb and Q_lb there too, M1, M2). Any other segment draws at
+            // least P_avionics.
+            const double t_lb = SegmentRotorLoad(m, m.segments[hover[0]], mass_lb, 0.0).thrust_per_rotor_n;
+            const bool static_only = models[pi]->data_kind() != PropDataKind::kTables || props[pi].j_tables.empty();
+            auto p_lb_of = [&](std::size_t si) {
+              const Segment& sg = m.segments[si];
+              const bool fixed_v = sg.type != SegmentType::kCruise || !sg.airspeed_m_s.free();
+              if (sg.type == SegmentType::kHover ||
+                  (static_only && fixed_v && (sg.type == SegmentType::kClimb || sg.type == SegmentType::kCruise))) {
+                const RotorLoad ld = SegmentRotorLoad(m, sg, mass_lb, sg.type == SegmentType::kCruise ? sg.airspeed_m_s.lo : 0.0);
+                if (ld.thrust_per_rotor_n >= t_lb) return ld.rotors * pdc_lb + m.vehicle.avionics_power_w;
+              }
+              return m.vehicle.avionics_power_w;
+            };
+            // The shortest a segment can last (free airspeed: at its top speed).
+            auto t_min_of = [&](const Segment& sg) {
+              if (sg.duration_s) return *sg.duration_s;
+              if (sg.type == SegmentType::kClimb) return *sg.distance_m / std::fabs(sg.climb_rate_m_s);
+              return *sg.distance_m / sg.airspeed_m_s.hi;
             };
             if (m.objective.type == ObjectiveType::kMinEnergy) {
               // Per segment the larger of: the hover bound above, and momentum theory. A
@@ -383,10 +405,7 @@ SearchResult SearchCatalog(const Mission& m, const Catalog& cat, const SearchOpt
               double e = 0;
               for (std::size_t si = 0; si < m.segments.size(); ++si) {
                 const Segment& sg = m.segments[si];
-                double e_seg = 0;
-                if (sg.type == SegmentType::kHover) {
-                  e_seg = p_hover_of(static_cast<int>(si)) * *sg.duration_s;
-                }
+                double e_seg = p_lb_of(si) * t_min_of(sg);
                 const bool fixed_v = sg.type != SegmentType::kCruise || !sg.airspeed_m_s.free() || sg.lift_to_drag > 0;
                 if (lossy && sg.type != SegmentType::kShaft && fixed_v) {
                   const double v = sg.type == SegmentType::kCruise ? sg.airspeed_m_s.hi : 0.0;
@@ -409,10 +428,10 @@ SearchResult SearchCatalog(const Mission& m, const Catalog& cat, const SearchOpt
               // Terminal energy = integral of V*I dt <= integral of OCV*I dt = Q*integral of
               // OCV(s) ds over [reserve, 1] (coulomb counting): the energy budget.
               double e_other = 0;
-              for (int h : hover) {
-                if (h != m.objective.segment_index) e_other += p_hover_of(h) * *m.segments[h].duration_s;
+              for (std::size_t si = 0; si < m.segments.size(); ++si) {
+                if (static_cast<int>(si) != m.objective.segment_index) e_other += p_lb_of(si) * t_min_of(m.segments[si]);
               }
-              const double p_stretch = p_hover_of(m.objective.segment_index);
+              const double p_stretch = p_lb_of(static_cast<std::size_t>(m.objective.segment_index));
               const double e_max = bo.ocv_integral_v * AhToCoulomb(bo.capacity_hi_ah);
               bound = p_stretch > 0 ? -(t_fixed_max + std::max(0.0, e_max - e_other) / p_stretch) : -kInf;
             }
@@ -518,8 +537,7 @@ SearchResult SearchCatalog(const Mission& m, const Catalog& cat, const SearchOpt
         Combination vc = c;
         vc.esc = &virt;
         const double threshold = threshold_now();
-        const MissionResult vr = MissionEvaluator(m, vc, models[cand.prop].get()).Solve(threshold);
-        ++o->virtual_evals;
+        const MissionResult vr = MissionEvaluator(m, vc, models[cand.prop].get()).Solve(threshold, false);
         if (vr.bounded_out) {
           local_prune("objective_bound", static_cast<long long>(rated.size()));
           continue;

@@ -123,6 +123,50 @@ TEST_F(SearchTest, OptimizeEqualsTheBestOfExhaustiveEvaluation) {
   EXPECT_GE(CheckAgainstExhaustive(cat, m), 3u);
 }
 
+// A capacity range: the evaluator's bounds (bisected over the range, the other segments'
+// energy subtracted from the budget) and the search's must not cut off the best combinations.
+TEST_F(SearchTest, CapacityRangeEqualsExhaustiveEvaluation) {
+  const Catalog cat = Catalog::Load((dir_ / "catalog").string());
+  Json j = ParseJsonText(kQuad, "quad");
+  j["battery"]["capacity_ah"] = {2.0, 6.0};
+  const Mission m = ParseMission(j, "quad");
+  EXPECT_GE(CheckAgainstExhaustive(cat, m), 3u);
+}
+
+// The evaluator's early exits are proofs: for every combination, a cutoff just worse than its
+// true score must neither be "bounded out" nor "infeasible" (a bound below the true endurance,
+// or a screening rule that is not monotone, would fail here).
+TEST_F(SearchTest, EarlyExitsNeverCutOffAFeasibleScore) {
+  const Catalog cat = Catalog::Load((dir_ / "catalog").string());
+  for (const bool capacity_range : {false, true}) {
+    Json j = ParseJsonText(kQuad, "quad");
+    if (capacity_range) j["battery"]["capacity_ah"] = {2.0, 6.0};
+    const Mission m = ParseMission(j, "quad");
+    int checked = 0;
+    for (const auto& mo : cat.motors()) {
+      if (!mo.mass_kg) continue;
+      for (const auto& e : cat.escs()) {
+        for (const auto& p : cat.props()) {
+          for (int cells : {3, 4}) {
+            const Combination c{&mo, &e, &p, &cat.battery("dc_b_361"), cells};
+            const MissionResult full = MissionEvaluator(m, c).Solve();
+            if (!full.feasible) continue;
+            // 1e-6 relative: far above the solver's tolerance on the stretch (1e-6 of the
+            // duration only when the stretch is the whole mission) yet far below any bound gap.
+            const double cutoff = full.score + 1e-6 * std::fabs(full.score);
+            const MissionResult cut = MissionEvaluator(m, c).Solve(cutoff);
+            EXPECT_FALSE(cut.bounded_out) << mo.id << " " << e.id << " " << p.id << " " << cells;
+            EXPECT_TRUE(cut.feasible) << mo.id << " " << e.id << " " << p.id << " " << cells;
+            EXPECT_EQ(cut.score, full.score);
+            ++checked;
+          }
+        }
+      }
+    }
+    EXPECT_GE(checked, 3) << "capacity range " << capacity_range;
+  }
+}
+
 TEST_F(SearchTest, FreeAirspeedOptimumBeatsADenseGrid) {
   Json j = ParseJsonText(kQuad, "quad");
   j["objective"] = {{"type", "min_energy"}};
