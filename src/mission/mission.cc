@@ -209,7 +209,8 @@ Mission ParseMission(const Json& doc, const std::string& name) {
 
   if (!top.Has("vehicle")) top.FailMissing("vehicle", "an object is required");
   const Reader v(top.At("vehicle"), name, "$.vehicle");
-  v.AllowOnly({"mass_kg", "rotors", "coaxial", "drag_area_m2", "drag_coefficient", "avionics_power_w"});
+  v.AllowOnly({"mass_kg", "rotors", "coaxial", "drag_area_m2", "drag_coefficient", "avionics_power_w",
+               "max_prop_diameter_m"});
   m.vehicle.mass_kg = v.Number("mass_kg", 0.0, 1e4, true);
   m.vehicle.rotors = v.Integer("rotors", 1, 64, std::nullopt);
   m.vehicle.coaxial = v.Bool("coaxial", false);
@@ -219,6 +220,7 @@ Mission ParseMission(const Json& doc, const std::string& name) {
   m.vehicle.drag_area_m2 = v.Number("drag_area_m2", 0.0, 100.0, false, 0.0);
   m.vehicle.drag_coefficient = v.Number("drag_coefficient", 0.0, 5.0, false, 0.0);
   m.vehicle.avionics_power_w = v.Number("avionics_power_w", 0.0, 1e5, false, 0.0);
+  m.vehicle.max_prop_diameter_m = v.OptNumber("max_prop_diameter_m", 0.0, 100.0, true);
 
   if (top.Has("air")) {
     const Reader a(top.At("air"), name, "$.air");
@@ -263,11 +265,16 @@ Mission ParseMission(const Json& doc, const std::string& name) {
 
   if (top.Has("constraints")) {
     const Reader c(top.At("constraints"), name, "$.constraints");
-    c.AllowOnly({"max_throttle", "current_margin", "allow_esc_saturation", "enforce_motor_power",
-                 "max_figure_of_merit", "max_static_advance_ratio"});
+    c.AllowOnly({"max_throttle", "min_hover_throttle", "current_margin", "allow_esc_saturation",
+                 "enforce_motor_power", "max_figure_of_merit", "max_static_advance_ratio"});
     m.constraints.max_static_advance_ratio = c.Number("max_static_advance_ratio", 0.0, 5.0, false, 0.2);
     m.constraints.max_figure_of_merit = c.Number("max_figure_of_merit", 0.0, 1.0, true, 0.8);
     m.constraints.max_throttle = c.Number("max_throttle", 0.0, 1.0, true, 0.8);
+    m.constraints.min_hover_throttle = c.Number("min_hover_throttle", 0.0, 1.0, false, 0.0);
+    if (m.constraints.min_hover_throttle >= m.constraints.max_throttle) {
+      c.Fail("$.constraints.min_hover_throttle", c.At("min_hover_throttle"),
+             "must be below max_throttle");
+    }
     m.constraints.current_margin = c.Number("current_margin", 0.0, 0.9, false, 0.1);
     m.constraints.allow_esc_saturation = c.Bool("allow_esc_saturation", false);
     m.constraints.enforce_motor_power = c.Bool("enforce_motor_power", true);

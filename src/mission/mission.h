@@ -51,6 +51,8 @@ struct Vehicle {
   double drag_area_m2 = 0.0;   // reference area of the body drag, m^2 (0: no drag)
   double drag_coefficient = 0.0;
   double avionics_power_w = 0.0;  // drawn from the battery throughout
+  // The largest propeller the frame takes (arm length, rotor spacing); no limit when absent.
+  std::optional<double> max_prop_diameter_m;
 };
 
 struct MissionBattery {
@@ -63,6 +65,11 @@ struct MissionBattery {
 
 struct MissionConstraints {
   double max_throttle = 0.8;         // control authority: hover/climb throttle at most this
+  // Speed-control resolution: in hover segments the throttle at the full-charge voltage (no
+  // sag: the lowest the hover can need) at least this; 0 = no limit. The catalog ESCs' assumed
+  // C1, C0 are the ideal ESC's (no low-throttle switching loss), which otherwise favours big
+  // propellers on high-Kv motors at 10-15 % hover throttle.
+  double min_hover_throttle = 0.0;
   double current_margin = 0.1;       // currents <= (1 - margin) * rating (motor, ESC, battery)
   bool allow_esc_saturation = false; // throttle above the ESC's tr_sat is allowed
   bool enforce_motor_power = true;   // PAC <= the motor's max_power_w when rated

@@ -186,6 +186,9 @@ MissionResult MissionEvaluator::Run(const ContinuousVars& vars, double stretch_s
   const MotorParams& mp = c_.motor->params;
   const EscParams& ep = c_.esc->params;
   track.Check("esc_voltage", "", v_full, ep.vdc_max_v, "V");
+  if (m_.vehicle.max_prop_diameter_m) {
+    track.Check("prop_diameter", "", c_.prop->diameter_m, *m_.vehicle.max_prop_diameter_m, "m");
+  }
   const double w_motor_max = std::max(drive_.NoLoadSpeed(v_full, 1.0), 1.0);
 
   double soc = 1.0;
@@ -271,6 +274,12 @@ MissionResult MissionEvaluator::Run(const ContinuousVars& vars, double stretch_s
       }
       if (c_.prop->max_rpm) {
         track.Check("prop_max_rpm", s.name, RadPerSecToRpm(omega), *c_.prop->max_rpm, "rpm", false, &seg);
+      }
+      if (s.type == SegmentType::kHover && k.min_hover_throttle > 0) {
+        // At the full-charge voltage without sag: the lowest throttle this hover can need, and
+        // the same at every moment of the mission (so the stretch stays monotone).
+        const OperatingPoint full = drive_.Inverse(v_full, torque, omega);
+        track.Check("min_hover_throttle", s.name, full.throttle, k.min_hover_throttle, "", true, &seg);
       }
     }
     const int n_active = seg.rotors;
@@ -453,7 +462,7 @@ namespace {
 // torque, current, power and throttle in every segment): violated at one capacity, they are
 // violated at every larger one.
 bool RisesWithMass(const std::string& constraint) {
-  static const char* const kNames[] = {"esc_voltage",    "thrust",        "max_throttle", "esc_saturation",
+  static const char* const kNames[] = {"esc_voltage", "prop_diameter", "thrust", "max_throttle", "esc_saturation",
                                        "motor_current", "esc_current",   "motor_power",  "prop_max_rpm"};
   for (const char* name : kNames) {
     if (constraint == name) return true;

@@ -29,6 +29,8 @@ namespace dynosize {
 // Bounds on one (motor, propeller, battery option) pair use the lightest the vehicle can be
 // with them: the lightest ESC that can take the cell count and the smallest battery capacity.
 //
+// R0 (frame): a propeller larger than the vehicle's max_prop_diameter_m fails prop_diameter
+//    whatever else is chosen.
 // R1 (ratings, ESC voltage): an ESC whose vdc_max_v is below the full-charge OCV of the cells
 //    fails the esc_voltage constraint whatever else is chosen.
 // R2 (thrust / prop speed): in every hover segment each rotor gives at least T_lb, the thrust
@@ -60,7 +62,9 @@ namespace dynosize {
 //    rating scores no better (M2, M3) and is infeasible if the other is; so when the other is
 //    infeasible or not in the top N, it is skipped. A virtual ESC of zero resistance, the
 //    lightest mass and no current limit dominates all ESCs of a class: when it cannot enter
-//    the top N the whole class is skipped for the pair.
+//    the top N the whole class is skipped for the pair. min_hover_throttle is the one
+//    constraint that more resistance or mass helps: the virtual ESC is evaluated without it,
+//    and an ESC that fails it does not rule out the ESCs it dominates.
 // R6 (propeller data credibility): see the comment at the rule; the hover point's figure of
 //    merit must not exceed the mission's max_figure_of_merit.
 // R7 (static-only propeller data in fast axial flow): see the comment at the rule.
@@ -123,6 +127,15 @@ class RuleCounts {
  private:
   std::vector<std::pair<const char*, long long>> counts_;
 };
+
+// A result that breaks min_hover_throttle (possibly among others) says nothing about a
+// dominated ESC, whose higher throttle may meet it (R5).
+bool FailsMinHoverThrottle(const MissionResult& r) {
+  for (const Violation& v : r.violations) {
+    if (v.constraint == "min_hover_throttle") return true;
+  }
+  return false;
+}
 
 bool Dominates(const EscEntry& a, const EscEntry& b) {
   return EscMassKg(a) <= EscMassKg(b) && a.params.resc_ohm <= b.params.resc_ohm &&
@@ -294,6 +307,10 @@ SearchResult SearchCatalog(const Mission& m, const Catalog& cat, const SearchOpt
       }
       for (std::size_t pi = 0; pi < props.size(); ++pi) {
         const PropGrid& g = grids[pi];
+        if (m.vehicle.max_prop_diameter_m && props[pi].diameter_m > *m.vehicle.max_prop_diameter_m) {
+          prune_pair("prop_diameter", per_pair);  // R0
+          continue;
+        }
         const double mass_lb = m.vehicle.mass_kg + bo.mass_lo_kg +
                                m.vehicle.rotors * (*mo.mass_kg + g.mass_kg + option_min_esc_mass[o]);
         double omega_lb = 0, q_lb = 0;
@@ -508,6 +525,12 @@ SearchResult SearchCatalog(const Mission& m, const Catalog& cat, const SearchOpt
     std::map<std::string, long long> pruned;
     long long searched = 0, virtual_evals = 0;
   };
+  // The virtual ESC (and so the class check) uses the mission without min_hover_throttle: a
+  // real ESC's resistance and mass raise the throttle, so that lower limit is the one
+  // constraint the virtual ESC may fail when a real one passes (R5). Relaxing it keeps the
+  // check a bound.
+  Mission relaxed = m;
+  relaxed.constraints.min_hover_throttle = 0.0;
   auto process = [&](const Candidate& cand, std::vector<double> top, Outcome* o) {
     // `top`: the N best scores when the chunk started, updated with this pair's own results, so
     // that the threshold tightens within the pair exactly as it would in a sequential search.
@@ -537,7 +560,8 @@ SearchResult SearchCatalog(const Mission& m, const Catalog& cat, const SearchOpt
         Combination vc = c;
         vc.esc = &virt;
         const double threshold = threshold_now();
-        const MissionResult vr = MissionEvaluator(m, vc, models[cand.prop].get()).Solve(threshold, false);
+        const MissionResult vr = MissionEvaluator(relaxed, vc, models[cand.prop].get()).Solve(threshold, false);
+        ++o->virtual_evals;
         if (vr.bounded_out) {
           local_prune("objective_bound", static_cast<long long>(rated.size()));
           continue;
@@ -566,7 +590,7 @@ SearchResult SearchCatalog(const Mission& m, const Catalog& cat, const SearchOpt
           continue;
         }
         ++o->searched;
-        done.emplace_back(e, !r.feasible || !(r.score < threshold));
+        done.emplace_back(e, r.feasible ? !(r.score < threshold) : !FailsMinHoverThrottle(r));
         if (r.feasible) {
           top.insert(std::upper_bound(top.begin(), top.end(), r.score), r.score);
           o->results.emplace_back(c, std::move(r));

@@ -133,6 +133,26 @@ TEST_F(SearchTest, CapacityRangeEqualsExhaustiveEvaluation) {
   EXPECT_GE(CheckAgainstExhaustive(cat, m), 3u);
 }
 
+// min_hover_throttle is the one constraint a heavier, more resistive ESC helps: the search must
+// not let a failing ESC (or the virtual one) rule out the ESCs it dominates.
+TEST_F(SearchTest, MinHoverThrottleEqualsExhaustiveEvaluation) {
+  const Catalog cat = Catalog::Load((dir_ / "catalog").string());
+  Json j = ParseJsonText(kQuad, "quad");
+  const Mission free_m = ParseMission(j, "quad");
+  j["constraints"]["min_hover_throttle"] = 0.4;
+  const Mission m = ParseMission(j, "quad");
+  SearchOptions so;
+  so.top_n = 3;
+  const SearchResult unconstrained = SearchCatalog(free_m, cat, so);
+  ASSERT_FALSE(unconstrained.best.empty());
+  const MissionResult r = MissionEvaluator(m, unconstrained.best[0].combination).Solve();
+  ASSERT_FALSE(r.feasible) << "the limit must bind on this catalog";
+  bool named = false;
+  for (const Violation& v : r.violations) named |= v.constraint == "min_hover_throttle";
+  EXPECT_TRUE(named);
+  EXPECT_GE(CheckAgainstExhaustive(cat, m), 3u);
+}
+
 // The evaluator's early exits are proofs: for every combination, a cutoff just worse than its
 // true score must neither be "bounded out" nor "infeasible" (a bound below the true endurance,
 // or a screening rule that is not monotone, would fail here).
@@ -141,6 +161,7 @@ TEST_F(SearchTest, EarlyExitsNeverCutOffAFeasibleScore) {
   for (const bool capacity_range : {false, true}) {
     Json j = ParseJsonText(kQuad, "quad");
     if (capacity_range) j["battery"]["capacity_ah"] = {2.0, 6.0};
+    if (capacity_range) j["constraints"]["min_hover_throttle"] = 0.3;
     const Mission m = ParseMission(j, "quad");
     int checked = 0;
     for (const auto& mo : cat.motors()) {

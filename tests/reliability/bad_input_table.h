@@ -400,6 +400,9 @@ inline std::vector<BadInputCase> BadInputCases() {
   c.push_back({"mission_throttle_above_one",
                {{"m.json", Replace(Mission(), "\"max_throttle\": 0.8", "\"max_throttle\": 1.5")}}, eval, 65,
                {"{dir}/m.json", "constraints.max_throttle = 1.5", "<= 1"}});
+  c.push_back({"mission_min_hover_throttle_above_max",
+               {{"m.json", Replace(Mission(), "\"max_throttle\": 0.8", "\"max_throttle\": 0.8, \"min_hover_throttle\": 0.85")}},
+               eval, 65, {"{dir}/m.json", "constraints.min_hover_throttle = 0.85", "below max_throttle"}});
   c.push_back({"mission_duplicate_key", {{"m.json", Replace(Mission(), "\"rotors\": 4", "\"rotors\": 4, \"rotors\": 6")}},
                eval, 65, {"{dir}/m.json", "rotors", "duplicate key"}});
   c.push_back({"mission_unknown_key", {{"m.json", Replace(Mission(), "\"rotors\": 4", "\"rotors\": 4, \"rotorz\": 6")}},
