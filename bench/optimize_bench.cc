@@ -1,5 +1,6 @@
-// `optimize` on the full bundled catalog for each example mission (issue #6): wall time, and
-// how many combinations were evaluated exactly and pruned. One iteration each (a search takes
+// `optimize` on the full bundled catalog for each example mission (issue #6), and the
+// quadcopter with its battery capacity sized: wall time, and how many combinations were
+// evaluated exactly and pruned. One iteration each (a search takes
 // seconds). Run: build/optimize_bench --benchmark_repetitions=3
 // --benchmark_report_aggregates_only=true
 #include <benchmark/benchmark.h>
@@ -10,10 +11,13 @@
 
 namespace {
 
-void RunExample(benchmark::State& state, const char* file) {
+// capacity_hi_ah > 0: the example with its battery capacity sized over [2 Ah, capacity_hi_ah]
+// (a continuous variable per combination) instead of the catalog cells' own.
+void RunExample(benchmark::State& state, const char* file, double capacity_hi_ah = 0.0) {
   const dynosize::Catalog cat = dynosize::Catalog::Load(DYNOSIZE_SOURCE_DIR "/catalog");
-  const dynosize::Mission m =
+  dynosize::Mission m =
       dynosize::ReadMission(std::string(DYNOSIZE_SOURCE_DIR "/examples/missions/") + file);
+  if (capacity_hi_ah > 0) m.battery.capacity_ah = dynosize::Range{2.0, capacity_hi_ah};
   dynosize::SearchResult s;
   for (auto _ : state) {
     dynosize::SearchOptions o;
@@ -29,7 +33,9 @@ void RunExample(benchmark::State& state, const char* file) {
 
 void BM_OptimizeQuadcopter(benchmark::State& state) { RunExample(state, "quadcopter_1p5kg.json"); }
 void BM_OptimizeEvtol(benchmark::State& state) { RunExample(state, "evtol_lift_cruise.json"); }
+void BM_OptimizeQuadcopterSizing(benchmark::State& state) { RunExample(state, "quadcopter_1p5kg.json", 8.0); }
 BENCHMARK(BM_OptimizeQuadcopter)->Unit(benchmark::kSecond)->Iterations(1)->UseRealTime();
+BENCHMARK(BM_OptimizeQuadcopterSizing)->Unit(benchmark::kSecond)->Iterations(1)->UseRealTime();
 BENCHMARK(BM_OptimizeEvtol)->Unit(benchmark::kSecond)->Iterations(1)->UseRealTime();
 
 }  // namespace
