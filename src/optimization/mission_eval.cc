@@ -458,12 +458,13 @@ MissionResult MissionEvaluator::WithEndurance(ContinuousVars vars) const {
 
 namespace {
 
-// Constraints that cannot recover with more mass (search.cc, M3: more mass needs more speed,
-// torque, current, power and throttle in every segment): violated at one capacity, they are
-// violated at every larger one.
+// Constraints that cannot recover with a larger capacity: the ESC voltage and the frame do not
+// depend on it, and the thrust, propeller speed and PAC = sqrt(27/10)*(Rm*I + KE*omega)*I
+// (eqs 41, 42, 47, 48) depend only on the shaft's speed and torque, which rise with the mass
+// (search.cc, M3). Violated at one capacity, they are violated at every larger one. Throttle
+// and IDC are not in the list: a larger pack also sags less, which lowers both.
 bool RisesWithMass(const std::string& constraint) {
-  static const char* const kNames[] = {"esc_voltage", "prop_diameter", "thrust", "max_throttle", "esc_saturation",
-                                       "motor_current", "esc_current",   "motor_power",  "prop_max_rpm"};
+  static const char* const kNames[] = {"esc_voltage", "prop_diameter", "thrust", "motor_power", "prop_max_rpm"};
   for (const char* name : kNames) {
     if (constraint == name) return true;
   }
@@ -485,9 +486,8 @@ double MissionEvaluator::EnduranceUpperBound(double target_s) const {
   // voltage, so the other segments' energy at C_a, E_other(C_a), is a lower bound of theirs at
   // any larger capacity (M3), and the stretch gets only what is left of the budget:
   //   t_total(C) <= t_fixed_max + (Q(C_b)*integral of OCV - E_other(C_a)) / P_stretch(C_a).
-  // The OCV
-  // curve per SOC does not depend on the capacity (PackAt scales charge, mass, resistance and
-  // rating only), so the integral is computed once.
+  // The OCV curve per SOC does not depend on the capacity (PackAt scales charge, mass,
+  // resistance and rating only), so the integral is computed once.
   // The range starts in kBoundPieces pieces; while the largest piece bound is at least
   // `target_s`, that piece is halved (one more Run), up to kMaxBoundRuns Runs: the bound only
   // tightens as far as it takes to prove "cannot reach target_s".
@@ -564,8 +564,7 @@ MissionResult MissionEvaluator::Solve(double cutoff_score, bool explain) const {
   if (std::isfinite(cutoff_score) && m_.objective.type == ObjectiveType::kMaxEndurance) {
     // One simulation decides most candidates of a search: infeasible before any stretch.
     // With a capacity range it is run at the smallest capacity (the lightest vehicle), and
-    // decides only through constraints that cannot improve with more mass (search.cc, M3:
-    // more mass needs more speed, torque, current, power and throttle in every segment).
+    // decides only through constraints that no larger capacity can cure (RisesWithMass).
     ContinuousVars v0;
     v0.airspeed_m_s.assign(m_.segments.size(), 0.0);
     if (m_.battery.capacity_ah) v0.capacity_ah = m_.battery.capacity_ah->lo;

@@ -80,30 +80,39 @@ const char* kLiftCruise = R"({
   ]
 })";
 
-// The search's top N against every combination evaluated (motors without mass are left out by
-// both). Returns how many combinations were feasible.
-std::size_t CheckAgainstExhaustive(const Catalog& cat, const Mission& m) {
-  std::vector<std::pair<double, std::string>> all;
+// Every combination of the small catalog with the test battery, 3S and 4S (motors without mass
+// are left out, as the search does).
+template <typename F>
+void ForEachCombination(const Catalog& cat, F&& f) {
   for (const auto& mo : cat.motors()) {
     if (!mo.mass_kg) continue;
     for (const auto& e : cat.escs()) {
       for (const auto& p : cat.props()) {
-        for (int cells : {3, 4}) {
-          const Combination c{&mo, &e, &p, &cat.battery("dc_b_361"), cells};
-          const MissionResult r = MissionEvaluator(m, c).Solve();
-          if (r.feasible) all.emplace_back(r.score, mo.id + "|" + e.id + "|" + p.id + "|" + std::to_string(cells));
-        }
+        for (int cells : {3, 4}) f(Combination{&mo, &e, &p, &cat.battery("dc_b_361"), cells});
       }
     }
   }
+}
+
+std::string Name(const Combination& c) {
+  return c.motor->id + "|" + c.esc->id + "|" + c.prop->id + "|" + std::to_string(c.cells);
+}
+
+// The search's top N against every combination evaluated. Returns how many combinations were
+// feasible.
+std::size_t CheckAgainstExhaustive(const Catalog& cat, const Mission& m) {
+  std::vector<std::pair<double, std::string>> all;
+  ForEachCombination(cat, [&](const Combination& c) {
+    const MissionResult r = MissionEvaluator(m, c).Solve();
+    if (r.feasible) all.emplace_back(r.score, Name(c));
+  });
   std::sort(all.begin(), all.end());
   SearchOptions so;
   so.top_n = 3;
   const SearchResult s = SearchCatalog(m, cat, so);
   EXPECT_EQ(s.best.size(), std::min<std::size_t>(3, all.size()));
   for (std::size_t i = 0; i < s.best.size() && i < all.size(); ++i) {
-    const Combination& c = s.best[i].combination;
-    EXPECT_EQ(c.motor->id + "|" + c.esc->id + "|" + c.prop->id + "|" + std::to_string(c.cells), all[i].second) << i;
+    EXPECT_EQ(Name(s.best[i].combination), all[i].second) << i;
     EXPECT_EQ(s.best[i].result.score, all[i].first) << i;  // same code path, bit for bit
   }
   EXPECT_EQ(s.searched + s.pruned, s.combinations);
@@ -164,26 +173,18 @@ TEST_F(SearchTest, EarlyExitsNeverCutOffAFeasibleScore) {
     if (capacity_range) j["constraints"]["min_hover_throttle"] = 0.3;
     const Mission m = ParseMission(j, "quad");
     int checked = 0;
-    for (const auto& mo : cat.motors()) {
-      if (!mo.mass_kg) continue;
-      for (const auto& e : cat.escs()) {
-        for (const auto& p : cat.props()) {
-          for (int cells : {3, 4}) {
-            const Combination c{&mo, &e, &p, &cat.battery("dc_b_361"), cells};
-            const MissionResult full = MissionEvaluator(m, c).Solve();
-            if (!full.feasible) continue;
-            // 1e-6 relative: far above the solver's tolerance on the stretch (1e-6 of the
-            // duration only when the stretch is the whole mission) yet far below any bound gap.
-            const double cutoff = full.score + 1e-6 * std::fabs(full.score);
-            const MissionResult cut = MissionEvaluator(m, c).Solve(cutoff);
-            EXPECT_FALSE(cut.bounded_out) << mo.id << " " << e.id << " " << p.id << " " << cells;
-            EXPECT_TRUE(cut.feasible) << mo.id << " " << e.id << " " << p.id << " " << cells;
-            EXPECT_EQ(cut.score, full.score);
-            ++checked;
-          }
-        }
-      }
-    }
+    ForEachCombination(cat, [&](const Combination& c) {
+      const MissionResult full = MissionEvaluator(m, c).Solve();
+      if (!full.feasible) return;
+      // A valid early exit proves score >= cutoff, impossible here; the 1e-6 (relative)
+      // margin keeps a bound that is exactly tight from counting as a failure.
+      const double cutoff = full.score + 1e-6 * std::fabs(full.score);
+      const MissionResult cut = MissionEvaluator(m, c).Solve(cutoff);
+      EXPECT_FALSE(cut.bounded_out) << Name(c);
+      EXPECT_TRUE(cut.feasible) << Name(c);
+      EXPECT_EQ(cut.score, full.score) << Name(c);
+      ++checked;
+    });
     EXPECT_GE(checked, 3) << "capacity range " << capacity_range;
   }
 }
