@@ -144,9 +144,9 @@ std::string MissionResultText(const Mission& m, const Combination& c, const Miss
     o << "\n";
   }
   for (const Violation& v : r.violations) {
+    const std::string unit = v.unit.empty() ? "" : " " + v.unit;  // throttle, SOC: no unit
     o << "  fails " << v.constraint << (v.segment.empty() ? "" : " in '" + v.segment + "'") << ": "
-      << v.value << " " << v.unit << " vs limit " << v.limit << " " << v.unit << " (by "
-      << v.excess() << " " << v.unit << ")\n";
+      << v.value << unit << " vs limit " << v.limit << unit << " (by " << v.excess() << unit << ")\n";
   }
   for (const std::string& w : r.warnings) o << "  warning: " << w << "\n";
   if (!r.solver.empty()) o << "  continuous variables: " << r.solver << "\n";
