@@ -41,6 +41,26 @@ struct RotorLoad {
   int rotors = 0;
 };
 
+// How long a segment lasts when flown at `airspeed_m_s` (used by cruise segments given by
+// distance): its duration_s, distance/|climb rate|, or distance/airspeed.
+inline double SegmentDurationS(const Segment& s, double airspeed_m_s) {
+  if (s.duration_s) return *s.duration_s;
+  if (s.type == SegmentType::kClimb) return *s.distance_m / std::fabs(s.climb_rate_m_s);
+  return *s.distance_m / airspeed_m_s;
+}
+
+// The longest the segments other than the max_endurance stretch can last (cruise at the low end
+// of its airspeed range).
+inline double LongestFixedDurationS(const Mission& m) {
+  double t = 0;
+  for (std::size_t i = 0; i < m.segments.size(); ++i) {
+    const bool stretched = m.objective.type == ObjectiveType::kMaxEndurance &&
+                           static_cast<int>(i) == m.objective.segment_index;
+    if (!stretched) t += SegmentDurationS(m.segments[i], m.segments[i].airspeed_m_s.lo);
+  }
+  return t;
+}
+
 inline RotorLoad SegmentRotorLoad(const Mission& m, const Segment& s, double total_mass_kg,
                                   double airspeed_m_s) {
   RotorLoad r;

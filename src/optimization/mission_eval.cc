@@ -206,15 +206,7 @@ MissionResult MissionEvaluator::Run(const ContinuousVars& vars, double stretch_s
                            : 0.0;
     const bool stretched = m_.objective.type == ObjectiveType::kMaxEndurance &&
                            static_cast<int>(si) == m_.objective.segment_index;
-    if (stretched) {
-      seg.duration_s = stretch_s;
-    } else if (s.duration_s) {
-      seg.duration_s = *s.duration_s;
-    } else if (s.type == SegmentType::kClimb) {
-      seg.duration_s = *s.distance_m / std::fabs(s.climb_rate_m_s);
-    } else {
-      seg.duration_s = *s.distance_m / seg.airspeed_m_s;
-    }
+    seg.duration_s = stretched ? stretch_s : SegmentDurationS(s, seg.airspeed_m_s);
     const RotorLoad load = SegmentRotorLoad(m_, s, r.total_mass_kg, seg.airspeed_m_s);
     seg.rotors = s.type == SegmentType::kShaft ? m_.vehicle.rotors : load.rotors;
     seg.thrust_per_rotor_n = s.type == SegmentType::kShaft ? 0.0 : load.thrust_per_rotor_n;
@@ -495,14 +487,7 @@ double MissionEvaluator::EnduranceUpperBound(double target_s) const {
   constexpr int kMaxBoundRuns = 24;
   const Segment& st = m_.segments[m_.objective.segment_index];
   if (st.type == SegmentType::kCruise && st.airspeed_m_s.free()) return kInf;
-  double t_fixed_max = 0;
-  for (std::size_t i = 0; i < m_.segments.size(); ++i) {
-    const Segment& s = m_.segments[i];
-    if (static_cast<int>(i) == m_.objective.segment_index) continue;
-    if (s.duration_s) t_fixed_max += *s.duration_s;
-    else if (s.type == SegmentType::kClimb) t_fixed_max += *s.distance_m / std::fabs(s.climb_rate_m_s);
-    else t_fixed_max += *s.distance_m / s.airspeed_m_s.lo;
-  }
+  const double t_fixed_max = LongestFixedDurationS(m_);
   const bool free_c = m_.battery.capacity_ah && m_.battery.capacity_ah->free();
   const double c_lo = m_.battery.capacity_ah ? m_.battery.capacity_ah->lo : base_capacity_ah_;
   const double c_hi = m_.battery.capacity_ah ? m_.battery.capacity_ah->hi : base_capacity_ah_;

@@ -264,17 +264,10 @@ SearchResult SearchCatalog(const Mission& m, const Catalog& cat, const SearchOpt
 
   // Hover segments (R2-R4) and the fixed durations (R4).
   std::vector<int> hover;
-  double t_fixed_max = 0;
   for (std::size_t i = 0; i < m.segments.size(); ++i) {
-    const Segment& s = m.segments[i];
-    if (s.type == SegmentType::kHover) hover.push_back(static_cast<int>(i));
-    const bool stretched = m.objective.type == ObjectiveType::kMaxEndurance &&
-                           static_cast<int>(i) == m.objective.segment_index;
-    if (stretched) continue;
-    if (s.duration_s) t_fixed_max += *s.duration_s;
-    else if (s.type == SegmentType::kClimb) t_fixed_max += *s.distance_m / std::fabs(s.climb_rate_m_s);
-    else t_fixed_max += *s.distance_m / s.airspeed_m_s.lo;
+    if (m.segments[i].type == SegmentType::kHover) hover.push_back(static_cast<int>(i));
   }
+  const double t_fixed_max = LongestFixedDurationS(m);
   const bool stretch_is_hover = m.objective.type == ObjectiveType::kMaxEndurance &&
                                 m.segments[m.objective.segment_index].type == SegmentType::kHover;
   const double tr_limit = std::min(k.max_throttle, 1.0);
@@ -403,11 +396,7 @@ SearchResult SearchCatalog(const Mission& m, const Catalog& cat, const SearchOpt
               return m.vehicle.avionics_power_w;
             };
             // The shortest a segment can last (free airspeed: at its top speed).
-            auto t_min_of = [&](const Segment& sg) {
-              if (sg.duration_s) return *sg.duration_s;
-              if (sg.type == SegmentType::kClimb) return *sg.distance_m / std::fabs(sg.climb_rate_m_s);
-              return *sg.distance_m / sg.airspeed_m_s.hi;
-            };
+            auto t_min_of = [&](const Segment& sg) { return SegmentDurationS(sg, sg.airspeed_m_s.hi); };
             if (m.objective.type == ObjectiveType::kMinEnergy) {
               // Per segment the larger of: the hover bound above, and momentum theory. A
               // feasible point has prop power >= P_ideal/max_figure_of_merit (the evaluator's
@@ -428,10 +417,7 @@ SearchResult SearchCatalog(const Mission& m, const Catalog& cat, const SearchOpt
                   const double v = sg.type == SegmentType::kCruise ? sg.airspeed_m_s.hi : 0.0;
                   const RotorLoad ld = SegmentRotorLoad(m, sg, mass_lb, v);
                   if (sg.type != SegmentType::kCruise || sg.lift_to_drag > 0) {
-                    double t = 0;
-                    if (sg.duration_s) t = *sg.duration_s;
-                    else if (sg.type == SegmentType::kClimb) t = *sg.distance_m / std::fabs(sg.climb_rate_m_s);
-                    else t = *sg.distance_m / v;
+                    const double t = SegmentDurationS(sg, v);
                     const double va = axial_data ? 0.5 * ld.axial_airspeed_m_s : 0.0;
                     const double tr = ld.thrust_per_rotor_n;
                     const double p_ideal = tr * (va + std::sqrt(va * va + tr / (2.0 * m.rho_kg_m3 * area)));
