@@ -1,4 +1,5 @@
 #include "model/drive.h"
+#include "model/physics.h"
 
 #include <algorithm>
 #include <cmath>
@@ -31,7 +32,7 @@ std::vector<std::string> LimitNames(std::uint32_t limits) {
                                        "motor_current",      "esc_current",
                                        "motor_power",        "esc_voltage",
                                        "stalled",            "overrunning",
-                                       "thermal_runaway"};
+                                       "thermal_runaway",    "creates_energy"};
   std::vector<std::string> names;
   for (std::uint32_t bit = 0; bit < sizeof(kNames) / sizeof(kNames[0]); ++bit) {
     if (limits & (1u << bit)) names.emplace_back(kNames[bit]);
@@ -171,6 +172,7 @@ void Drive::Flag(OperatingPoint* p, std::uint32_t limits) const {
   if (i_max > esc_.max_current_a) limits |= kLimitEscCurrent;
   if (p->pac_w > motor_.max_power_w) limits |= kLimitMotorPower;
   if (p->vdc_v > esc_.vdc_max_v) limits |= kLimitEscVoltage;
+  if (PointCreatesEnergy(*p)) limits |= kLimitCreatesEnergy;  // model.md section 10
   p->limits = limits;
 }
 

@@ -120,6 +120,8 @@ enum Limit : std::uint32_t {
   kLimitStalled = 1u << 6,           // the load torque exceeds the stall torque: omega = 0
   kLimitOverrunning = 1u << 7,       // omega above no-load speed: the load drives the motor
   kLimitThermalRunaway = 1u << 8,    // winding temperature rise without a steady state
+  kLimitCreatesEnergy = 1u << 9,     // PESC < 0 or eta_motor > 1: parameters that break
+                                     // model.md section 10 (model/physics.h)
 };
 
 // Names of the set bits, in bit order ("throttle_above_one", "motor_current", ...).

@@ -1,0 +1,84 @@
+// Physical validity of the model's parameters and points (../shared/docs/model.md section 10):
+// the one place that decides whether an ESC, a motor, an operating point or a propeller point
+// creates energy or beats momentum theory. The fit (identification), the catalog reader, the
+// operating point (Drive::Flag) and the mission evaluator all ask these functions, so the rule
+// exists once.
+//
+// ESC. With K = kv (3/(sqrt(2)*pi) for a BLDC, 1 brushed) and kp (sqrt(27/10) BLDC, 1 brushed),
+// eqs (47), (51), (57), (59), (52) give
+//     PESC = PDC - PAC = Irms * [ VDC*((C1 - K*kp)*TR_eff + C0) + kp*RESC*Irms ].
+// The bracket is linear in TR_eff in [0, 1] and the RESC term is >= 0 (vanishing as Irms -> 0),
+// so PESC >= 0 for every throttle and every current exactly when
+//     RESC >= 0,   C0 >= 0   and   C1 + C0 >= K*kp                 (BLDC: K*kp = 1.1095, eq 56)
+// The ideal ESC of eq (56) sits on the boundary (PESC = RESC losses only).
+//
+// Motor. eta_motor = Pmech/PAC = [KT/(kp*KE)] * [KE*omega/(Rm*I + KE*omega)] * (1 - Io/I)
+// (eqs 41, 42), below 1 for Rm >= 0, Io >= 0 only if KT <= kp*KE; a larger KT means waveforms
+// other than the paper's trapezoid/rectangle and needs AC measurements to justify it. The
+// speed-dependent no-load current of section 9 must not turn negative (io1 >= 0), and KT droop
+// only lowers KT, so it cannot break the rule.
+//
+// Propeller. Momentum theory (Leishman, Principles of Helicopter Aerodynamics, 2nd ed., eq 2.14
+// and 3.25): hovering thrust T needs at least P_ideal = T^1.5/sqrt(2*rho*A), A = pi*D^2/4; in
+// axial flow V, P_ideal = T*(V/2 + sqrt(V^2/4 + T/(2*rho*A))). FM = P_ideal/P <= 1.
+#pragma once
+
+#include <cmath>
+#include <string>
+
+#include "model/drive.h"
+
+namespace dynosize {
+
+// K*kp of the ESC rule above: (3/pi)*sqrt(27/20) for a BLDC (eq 56), 1 for a brushed motor.
+inline double IdealIdcPerIrmsPerThrottle(MotorType type) {
+  return type == MotorType::kBldc ? kIdealIdcPerIrmsPerThrottle : 1.0;
+}
+// kp of eq (41): the largest KT/KE that keeps eta_motor <= 1.
+inline double MaxKtPerKe(MotorType type) {
+  return type == MotorType::kBldc ? kPacPerVllIrms : 1.0;
+}
+
+// Relative slack for numbers that sit on a boundary up to rounding (the ideal ESC, KT set to
+// sqrt(27/10)*KE): 1e-9 is far above double rounding of a few operations (1e-15) and far below
+// any physical effect a catalog can state.
+inline constexpr double kPhysicsRelTol = 1e-9;
+
+// The smaller of C0 and C1 + C0 - K*kp: >= 0 exactly when the ESC cannot create energy.
+inline double EscEnergyMargin(const EscParams& esc, MotorType type = MotorType::kBldc) {
+  return std::fmin(esc.c0, esc.c1 + esc.c0 - IdealIdcPerIrmsPerThrottle(type));
+}
+
+// "" when the ESC constants cannot create energy at any throttle and current, else one sentence
+// naming the broken inequality and the numbers ("c1 + c0 = 0.53 < 1.1095: ...").
+std::string EscEnergyViolation(const EscParams& esc, MotorType type = MotorType::kBldc);
+
+// "" when the motor cannot have eta_motor > 1 at any point, else one sentence (KT > kp*KE,
+// negative Rm or Io, io1 < 0).
+std::string MotorEnergyViolation(const MotorParams& motor);
+
+// True when a computed operating point creates energy: PESC < 0 or eta_motor > 1 (beyond
+// kPhysicsRelTol of the powers involved). Cheap: Drive::Flag calls it for every point.
+inline bool PointCreatesEnergy(const OperatingPoint& p) {
+  const double tol_w = kPhysicsRelTol * (std::fabs(p.pdc_w) + std::fabs(p.pac_w)) + 1e-12;
+  return p.pesc_w < -tol_w || (p.pac_w > 0.0 && p.pmech_w > p.pac_w + tol_w);
+}
+
+// Momentum-theory minimum shaft power for thrust T [N] from a rotor disk of diameter D [m] in
+// axial inflow V [m/s] (V = 0: hover) at density rho [kg/m^3].
+inline double IdealRotorPowerW(double thrust_n, double diameter_m, double rho_kg_m3,
+                               double axial_airspeed_m_s = 0.0) {
+  if (!(thrust_n > 0.0)) return 0.0;
+  const double area_m2 = kPi * diameter_m * diameter_m / 4.0;
+  const double half_v = axial_airspeed_m_s / 2.0;
+  return thrust_n * (half_v + std::sqrt(half_v * half_v + thrust_n / (2.0 * rho_kg_m3 * area_m2)));
+}
+
+// Figure of merit P_ideal/P (its axial-flow analogue when V > 0); 0 when P <= 0.
+inline double FigureOfMerit(double thrust_n, double power_w, double diameter_m,
+                            double rho_kg_m3, double axial_airspeed_m_s = 0.0) {
+  if (!(power_w > 0.0)) return 0.0;
+  return IdealRotorPowerW(thrust_n, diameter_m, rho_kg_m3, axial_airspeed_m_s) / power_w;
+}
+
+}  // namespace dynosize
