@@ -522,9 +522,15 @@ bool ReadCell(Slot& s, std::string_view cell, const Plan& plan, const LogReadOpt
     s.values.push_back(kNaN);
     return false;
   }
-  const bool ok = o.decimal_comma ? ParseDoubleDecimalComma(cell, &v) : ParseDouble(cell, &v);
+  // Manufacturer tables write throttle as "40.00%" (dronebuildcalc): a percent sign on a
+  // throttle cell means percent, whatever the column's unit (a pulse width excepted).
+  std::string_view number = Trim(cell);
+  const bool percent = s.target == Column::kThrottle && !s.pulse && !s.scale_from_values &&
+                       number.size() > 1 && number.back() == '%';
+  if (percent) number.remove_suffix(1);
+  const bool ok = o.decimal_comma ? ParseDoubleDecimalComma(number, &v) : ParseDouble(number, &v);
   if (!ok) CellError(path, line_no, s.header, cell, NotANumberRule(cell, o.decimal_comma));
-  const double si = ToSi(s, v);
+  const double si = percent ? v * 0.01 : ToSi(s, v);
   if (!(std::fabs(si) <= kMaxAbsSiValue)) {
     std::ostringstream rule;
     rule << "out of range: " << si << " " << SiUnit(s.quantity)

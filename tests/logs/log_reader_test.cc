@@ -235,12 +235,15 @@ TEST(RcbenchmarkLog, EscEndPointsAndUnitlessCommand) {
   EXPECT_EQ(t2.rows(), 2u);
   EXPECT_TRUE(Contains(t2.dropped.at(0).reason, "ESC signal outside the end points 1300-1900 us"))
       << t2.dropped.at(0).reason;
-  // "ESC signal" without a unit (bhabas_sar_motor_sysid): throttle absent unless told.
+  // "ESC signal" without a unit, values 1200..1600: a pulse width (the scale follows the
+  // values; stand_exports_test.cc checks the 0..2000 command units of bhabas_sar_motor_sysid).
   std::string u = s;
   u.replace(u.find("ESC signal (us)"), 15, "ESC signal");
   const SteadyTable t3 = ReadLog(WriteTemp("rcb_unitless.csv", u));
-  EXPECT_FALSE(t3.Has(Column::kThrottle));
-  EXPECT_TRUE(Contains(t3.info[static_cast<int>(Column::kThrottle)].note, "has no unit")) << t3.FullReport();
+  ASSERT_TRUE(t3.Has(Column::kThrottle)) << t3.FullReport();
+  EXPECT_NEAR(t3.Get(Column::kThrottle)[0], 0.2, 1e-15);
+  EXPECT_TRUE(Contains(t3.info[static_cast<int>(Column::kThrottle)].note, "read as a pulse width in us"))
+      << t3.FullReport();
   LogReadOptions o4;
   o4.esc_unitless_min = 0;
   o4.esc_unitless_max = 2000;
