@@ -126,7 +126,11 @@ TEST(RealLogs, BhabasSarMotorSysid) {
     EXPECT_NE(t.info[static_cast<int>(Column::kThrottle)].note.find("command units 0..2000"), std::string::npos)
         << t.FullReport();
     EXPECT_EQ(t.info[static_cast<int>(Column::kOmegaRadS)].source_unit, "rad/s");
-    for (const double x : t.Get(Column::kThrottle)) EXPECT_LE(x, 0.9) << f;  // steps up to 1800 of 2000
+    if (f.find("StepsTestV2_2024-02-06_130449") != std::string::npos) {
+      // Steps of 100 command units from 0 (the motor-off row, speed 0, is dropped): 100/2000.
+      EXPECT_EQ(t.Get(Column::kThrottle)[0], 0.05) << t.FullReport();
+      EXPECT_EQ(t.Get(Column::kThrottle).back(), 0.9);  // 1800 of 2000
+    }
   }
   // The explicit range still wins.
   LogReadOptions o;
@@ -150,11 +154,17 @@ TEST(RealLogs, TytoDatabaseQuotedExports) {
                 t.Has(Column::kVdcV) && t.Has(Column::kOmegaRadS))
         << t.FullReport();
     EXPECT_EQ(t.info[static_cast<int>(Column::kOmegaRadS)].source_header, "Rotation speed (rpm)");
-    // Every row but the motor-off one (1000 us, 0 rpm) is a point.
-    EXPECT_EQ(t.rows() + 1, t.data_rows_read) << t.BriefReport();
+    // Every row is a point or counted: the motor-off one (1000 us, 0 rpm) in each file, and
+    // NeuMotor's 2050 and 2100 us steps beyond the default end point 2000 us.
+    EXPECT_EQ(t.rows() + t.DroppedTotal(), t.data_rows_read) << t.BriefReport();
+    EXPECT_EQ(t.DroppedTotal(), f.find("NeuMotor") != std::string::npos ? 3u : 1u) << t.BriefReport();
     rows += t.rows();
   }
-  EXPECT_EQ(rows, 158u);  // README: 158 spinning steady rows
+  EXPECT_EQ(rows, 156u);  // README: 158 spinning steady rows, 2 of them above 2000 us
+  LogReadOptions o;
+  o.esc_max_us = 2100;
+  EXPECT_EQ(ReadLog(SharedData() + "tytodb_tmotor16x54_9motors/T-motor_16x54_static_NeuMotor 3819.csv", o).rows(),
+            20u);
 }
 
 TEST(RealLogs, ElodinStandExports) {
@@ -175,7 +185,7 @@ TEST(RealLogs, JmajewExtractedPointsOneReportAtATime) {
   const std::string f = SharedData() + "jmajew_thrusttool_6motors/extracted_steady_points.csv";
   const SteadyTable t = ReadAndPrint(f, o);
   EXPECT_EQ(t.rows(), 75u);  // 5 runs x 15 steps (README)
-  EXPECT_EQ(t.Get(Column::kThrottle)[0], 0.2);  // written "2e+01"
+  EXPECT_NEAR(t.Get(Column::kThrottle)[0], 0.2, 1e-15);  // written "2e+01"
   // Torque in g*cm: the report's first step, 77.87 g*cm.
   EXPECT_NEAR(t.Get(Column::kTorqueNm)[0], 77.87 * 9.80665e-5, 1e-12);
   o.row_filter = {"motor_dir=tmotor-mt2212", "cells_from_path=4"};
@@ -205,7 +215,7 @@ TEST(RealLogs, DronebuildcalcOneMotorAtATime) {
   o.row_filter = {"Brand=Uangel", "Motor=A2807"};
   const SteadyTable t = ReadAndPrint(SharedData() + "dronebuildcalc_mfr_tables/motordata.csv", o);
   EXPECT_GE(t.rows(), 3u);
-  EXPECT_EQ(t.Get(Column::kThrottle)[0], 0.4);  // written "40.00%"
+  EXPECT_NEAR(t.Get(Column::kThrottle)[0], 0.4, 1e-15);  // written "40.00%"
 }
 
 TEST(RealLogs, HeinzgerhardLargeMotor) {
