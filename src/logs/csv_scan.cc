@@ -152,12 +152,11 @@ void SplitFields(std::string_view line, char delim, std::vector<std::string_view
     }
     return;
   }
-  // Most lines hold no quote at all: one memchr decides, and they take the plain loop.
-  const bool quotes = line.find('"') != std::string_view::npos;
   const std::size_t n = line.size();
   std::size_t start = 0;
   for (;;) {
-    if (quotes) {
+    // Only a field that begins with a quote or a blank can be quoted: one test per field.
+    if (start < n && (line[start] == '"' || line[start] == ' ' || line[start] == '\t')) {
       std::size_t q = start;
       while (q < n && (line[q] == ' ' || line[q] == '\t')) ++q;
       if (q < n && line[q] == '"') {

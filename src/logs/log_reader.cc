@@ -508,10 +508,11 @@ bool RowHasText(const Plan& plan, const std::vector<std::string_view>& fields, s
 
 // Parses one used cell into its slot (SI value, NaN for an allowed empty cell); returns true
 // when a lenient format's throttle lies outside the end points (the row is then dropped).
-bool ReadCell(Slot& s, std::string_view cell, const Plan& plan, const LogReadOptions& o,
+inline bool ReadCell(Slot& s, std::string_view cell, const Plan& plan, const LogReadOptions& o,
               const std::string& path, std::size_t line_no) {
   double v = 0.0;
-  if (Trim(cell).empty()) {
+  std::string_view number = Trim(cell);
+  if (number.empty()) {
     if (!plan.lenient && !plan.empty_cells_ok) {
       CellError(path, line_no, s.header, cell,
                 std::string("empty cell (rule: the ") + LogFormatName(plan.format) +
@@ -524,7 +525,6 @@ bool ReadCell(Slot& s, std::string_view cell, const Plan& plan, const LogReadOpt
   }
   // Manufacturer tables write throttle as "40.00%" (dronebuildcalc): a percent sign on a
   // throttle cell means percent, whatever the column's unit (a pulse width excepted).
-  std::string_view number = Trim(cell);
   const bool percent = s.target == Column::kThrottle && !s.pulse && !s.scale_from_values &&
                        number.size() > 1 && number.back() == '%';
   if (percent) number.remove_suffix(1);

@@ -391,7 +391,8 @@ inline std::vector<BadInputCase> BadInputCases() {
                64, {"emax_1900kv_papr", "emax_1900kv_paper"}});
   c.push_back({"flag_batch_missing", {}, batch + "{dir}/none.csv", 66, {"{dir}/none.csv", "no such file"}});
   c.push_back({"flag_calibrate_esc_endpoints", {{"log.csv", CanonicalLog()}},
-               cal + "--esc-min-us 2000 --esc-max-us 1000 {dir}/log.csv", 64, {"--esc-min-us 2000", "--esc-max-us 1000", "need finite values with --esc-max-us > --esc-min-us"}});
+               cal + "--esc-min-us 2000 --esc-max-us 1000 {dir}/log.csv", 64,
+               {"--esc-min-us 2000", "--esc-max-us 1000", "need finite values with --esc-max-us > --esc-min-us"}});
   c.push_back({"flag_calibrate_format", {{"log.csv", CanonicalLog()}}, cal + "--format excel {dir}/log.csv", 64,
                {"--format", "excel"}});
   c.push_back({"flag_calibrate_no_ids", {{"log.csv", CanonicalLog()}}, "calibrate {dir}/log.csv", 64,
