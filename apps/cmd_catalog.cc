@@ -194,7 +194,7 @@ int RunCatalogShow(const std::string& catalog_dir, const std::string& id) {
     out = p.json;
     const PropValidRange r = ValidRange(p);
     const PropFmScan s = ScanFigureOfMerit(p);
-    const FmClass& env = FmEnvelopeFor(p.diameter_m);
+    const FmEnvelopeClass& env = FmEnvelopeFor(p.diameter_m);
     Json si;
     si["valid_rpm"] = {r.rpm_lo, r.rpm_hi};
     si["valid_rpm_assumed"] = r.rpm_assumed;

@@ -158,9 +158,9 @@ std::string PropMomentumViolation(const PropEntry& e) {
   return "";
 }
 
-std::vector<FmClass> ComputeFmEnvelope(const std::vector<const PropEntry*>& measured) {
-  std::vector<FmClass> out = FmEnvelope();
-  for (FmClass& c : out) {
+std::vector<FmEnvelopeClass> ComputeFmEnvelope(const std::vector<const PropEntry*>& measured) {
+  std::vector<FmEnvelopeClass> out = FmEnvelope();
+  for (FmEnvelopeClass& c : out) {
     std::vector<double> v;
     for (const PropEntry* e : measured) {
       if (e->static_table.rpm.empty() || e->diameter_m < c.d_lo_m || e->diameter_m >= c.d_hi_m) continue;
@@ -181,10 +181,10 @@ std::vector<FmClass> ComputeFmEnvelope(const std::vector<const PropEntry*>& meas
   return out;
 }
 
-const std::vector<FmClass>& FmEnvelope() {
+const std::vector<FmEnvelopeClass>& FmEnvelope() {
   // Generated from catalog/uiuc_propdb.json by ComputeFmEnvelope (per-propeller median static
   // FM; quantiles type 7); tests/catalog/prop_credibility_test.cc checks these numbers.
-  static const std::vector<FmClass> kClasses = {
+  static const std::vector<FmEnvelopeClass> kClasses = {
       {0.0, 0.1524, "D < 6 in", 39, 0.3875, 0.4782, 0.5724, 0.6261},
       {0.1524, 0.2286, "6 in <= D < 9 in", 23, 0.2405, 0.4062, 0.5967, 0.6424},
       {0.2286, 0.3048, "9 in <= D < 12 in", 149, 0.4066, 0.5683, 0.6536, 0.7192},
@@ -193,9 +193,9 @@ const std::vector<FmClass>& FmEnvelope() {
   return kClasses;
 }
 
-const FmClass& FmEnvelopeFor(double diameter_m) {
+const FmEnvelopeClass& FmEnvelopeFor(double diameter_m) {
   const auto& classes = FmEnvelope();
-  for (const FmClass& c : classes) {
+  for (const FmEnvelopeClass& c : classes) {
     if (diameter_m < c.d_hi_m) return c;
   }
   return classes.back();

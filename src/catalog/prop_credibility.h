@@ -65,7 +65,7 @@ PropFmScan ScanFigureOfMerit(const PropEntry& entry);
 std::string PropMomentumViolation(const PropEntry& entry);
 
 // The distribution of measured propellers' median FM in one diameter class.
-struct FmClass {
+struct FmEnvelopeClass {
   double d_lo_m = 0.0, d_hi_m = 0.0;  // [lo, hi)
   const char* label = "";
   int n_props = 0;
@@ -73,12 +73,12 @@ struct FmClass {
 };
 
 // The class of a diameter (every positive diameter has one).
-const FmClass& FmEnvelopeFor(double diameter_m);
+const FmEnvelopeClass& FmEnvelopeFor(double diameter_m);
 // All classes, by increasing diameter.
-const std::vector<FmClass>& FmEnvelope();
+const std::vector<FmEnvelopeClass>& FmEnvelope();
 // The envelope computed from a set of measured propellers (what FmEnvelope() holds when given
 // UIUC's entries); props without a static table are skipped.
-std::vector<FmClass> ComputeFmEnvelope(const std::vector<const PropEntry*>& measured);
+std::vector<FmEnvelopeClass> ComputeFmEnvelope(const std::vector<const PropEntry*>& measured);
 
 // True when a name says the blades fold ("folding", "klapp", "CAM Carbon", Aeronaut "CAM"
 // folders, UIUC family "ancf"): such propellers are for gliders, not multirotor lift.

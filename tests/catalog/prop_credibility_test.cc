@@ -134,7 +134,7 @@ TEST(FmEnvelope, ClassesCoverEveryDiameter) {
   EXPECT_STREQ(FmEnvelopeFor(0.05).label, "D < 6 in");
   EXPECT_STREQ(FmEnvelopeFor(0.254).label, "9 in <= D < 12 in");
   EXPECT_STREQ(FmEnvelopeFor(2.0).label, "D >= 12 in");
-  for (const FmClass& c : FmEnvelope()) {
+  for (const FmEnvelopeClass& c : FmEnvelope()) {
     EXPECT_LT(c.p10, c.p50);
     EXPECT_LT(c.p50, c.p90);
     EXPECT_LE(c.p90, c.max);
