@@ -7,10 +7,14 @@
 
 #include <cmath>
 #include <filesystem>
+#include <fstream>
+
+#include <unistd.h>
 
 #include "catalog/catalog.h"
 #include "common/json_file.h"
 #include "common/units.h"
+#include "cli_runner.h"
 
 namespace dynosize {
 namespace {
@@ -195,6 +199,36 @@ TEST(BundledCatalogCredibility, NoPropellerAboveItsEnvelope) {
   }
   EXPECT_GT(derated, 0);
   EXPECT_GT(folding, 0);
+}
+
+}  // namespace
+}  // namespace dynosize
+
+namespace dynosize {
+namespace {
+
+// `dynosize catalog validate` on a folder with an ESC that creates energy and a propeller that
+// beats momentum theory: exit 65 (bad data), one line each naming file, entry and rule; and
+// every other command refuses to load the folder.
+TEST(PhysicsAtTheDoorCli, ValidateNamesEachRefusal) {
+  namespace fs = std::filesystem;
+  const fs::path dir = fs::temp_directory_path() / ("dynosize_physics_door_" + std::to_string(getpid()));
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  std::ofstream(dir / "bad.json") << R"({"escs": [{"id": "e_bad", "name": "ESC", "resc_ohm": 0.01,
+    "c1": 1.0, "c0": 0.0, "tr_sat": 0.9, "sat_slope": 0.6, "source": {"dataset": "t"}}],
+    "props": [{"id": "p_bad", "name": "c", "diameter_m": 0.2, "ct_static": 0.2,
+    "cp_static": 0.05, "source": {"dataset": "t"}}]})";
+  const auto v = testing_util::RunCli("catalog validate " + dir.string());
+  EXPECT_EQ(v.code, 65) << v.err;
+  EXPECT_NE(v.out.find("bad.json: escs[0] id=e_bad: creates energy: c1 + c0 = 1 < 1.1095"),
+            std::string::npos) << v.out;
+  EXPECT_NE(v.out.find("bad.json: props[0] id=p_bad: static figure of merit 1.427"),
+            std::string::npos) << v.out;
+  EXPECT_NE(v.err.find("2 problems"), std::string::npos) << v.err;
+  const auto l = testing_util::RunCli("--catalog " + dir.string() + " catalog list");
+  EXPECT_EQ(l.code, 65) << l.err;
+  fs::remove_all(dir);
 }
 
 }  // namespace
