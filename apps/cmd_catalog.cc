@@ -104,15 +104,21 @@ int RunCatalogList(const CatalogListOptions& o) {
     out << "  " << std::left << std::setw(28) << "id" << std::setw(40) << "name" << std::right
         << std::setw(6) << "type" << std::setw(8) << "Kv" << std::setw(10) << "KE mV*s"
         << std::setw(9) << "Rm mOhm" << std::setw(7) << "Io A" << std::setw(8) << "Imax A"
-        << std::setw(8) << "mass g" << "\n";
+        << std::setw(8) << "mass g" << "  " << std::left << std::setw(20) << "tier" << "notes\n";
     for (const auto* m : motors) {
+      std::string notes;
+      for (const auto& k : m->assumed_keys) {
+        if (k == "max_power_w") notes += "rating from mass ";
+      }
+      if (!m->exclude_reason.empty()) notes += "excluded: " + m->exclude_reason;
       out << "  " << std::left << std::setw(28) << Clip(m->id, 27) << std::setw(40) << Clip(m->name, 39)
           << std::right << std::setw(6) << (m->params.type == MotorType::kBldc ? "bldc" : "dc")
           << std::setw(8) << Cell(m->kv_rpm_per_v, 1, 0) << std::setw(10)
           << Cell(m->params.ke_v_s_per_rad, 1e3, 3) << std::setw(9) << Cell(m->params.rm_ohm, 1e3, 1)
           << std::setw(7) << Cell(m->params.io_a, 1, 2) << std::setw(8)
           << Cell(std::isfinite(m->params.max_current_a) ? std::optional<double>(m->params.max_current_a) : std::nullopt, 1, 1)
-          << std::setw(8) << Cell(m->mass_kg, 1e3, 0) << "\n";
+          << std::setw(8) << Cell(m->mass_kg, 1e3, 0) << "  " << std::left << std::setw(20)
+          << TierName(m->tier) << notes << "\n";
     }
   }
   if ((all && !motor_filter) || o.kind == "escs") {
