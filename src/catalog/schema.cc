@@ -43,7 +43,9 @@ std::vector<KeySpec> Common() {
   source.key = "source";
   source.type = ValueType::kObject;
   source.required = true;
-  source.doc = "where the numbers came from: {dataset, reference, values: {key: method}, note}";
+  source.doc = "where the numbers came from: {dataset, reference, values: {key: method}, note, "
+               "tier: measured | manufacturer_computed | manufacturer_stated | user_contributed | "
+               "assumed}";
   return {Str("id", true, "unique id across the catalog ([A-Za-z0-9_.+-], 1-120 characters)"),
           Str("name", true, "human-readable name"), source,
           Str("exclude", false,
