@@ -48,12 +48,17 @@ void ImportMotors(const std::string& dir, ImportedDataset* out) {
   std::map<std::string, int> name_count;
   for (const auto& r : t.rows) ++name_count[CleanName(t.Field(r, t.Column("Model")))];
   std::set<std::string> seen;
-  std::size_t restored = 0;
+  std::size_t restored = 0, stray_marks = 0;
   for (std::size_t k = 0; k < t.rows.size(); ++k) {
     const Row row{&t, &t.rows[k], file};
     const std::string raw = CleanName(row.Str("Model"));
     std::string name = RestoreDiameterSign(raw);
     if (name != raw) ++restored;
+    // 41 Scorpion names start with '?': a character lost in the source's encoding.
+    if (name.size() > 1 && name[0] == '?' && std::isalpha(static_cast<unsigned char>(name[1]))) {
+      name.erase(0, 1);
+      ++stray_marks;
+    }
     const std::string ex = row.Where() + " " + name;
     if (!seen.insert(RowKey(*row.r)).second) {
       out->report.Drop("motors", "exact duplicate row", ex);
@@ -100,6 +105,10 @@ void ImportMotors(const std::string& dir, ImportedDataset* out) {
   if (restored) {
     out->report.notes.push_back(file + ": " + std::to_string(restored) +
                                 " names with '?' for the diameter sign restored to '\xC3\xB8'");
+  }
+  if (stray_marks) {
+    out->report.notes.push_back(file + ": " + std::to_string(stray_marks) +
+                                " names with a leading '?' (a character lost in the source) cleaned");
   }
   out->report.notes.push_back("Non-Dominated-Motors.csv and Non-Dominated-ESC.csv not imported: "
                               "Pareto subsets of Motors_Data.csv and ESC_data.csv");
