@@ -150,6 +150,8 @@ void CheckCoefficientTable(const Json& t, const std::string& path, bool sweep, B
 }
 
 
+DataTier InferTierFromValues(ComponentKind kind, const Json& src);
+
 DataTier TierFromName(const std::string& name) {
   const auto& names = TierNames();
   for (std::size_t i = 0; i < names.size(); ++i) {
@@ -161,8 +163,18 @@ DataTier TierFromName(const std::string& name) {
 // The tier of an entry that does not state one: from how its performance numbers were obtained
 // (source.values of the key that carries the performance): measured/fitted -> measured,
 // computed -> manufacturer_computed, datasheet/derived -> manufacturer_stated, assumed or not
-// stated -> assumed.
+// stated -> assumed. DriveCalc's numbers are user submissions whatever the method (its
+// measurement points included): a data set that names DriveCalc is at best user_contributed.
 DataTier InferTier(ComponentKind kind, const Json& src) {
+  DataTier t = InferTierFromValues(kind, src);
+  const std::string dataset = src.value("dataset", std::string());
+  if (dataset.find("DriveCalc") != std::string::npos && t < DataTier::kUserContributed) {
+    t = DataTier::kUserContributed;
+  }
+  return t;
+}
+
+DataTier InferTierFromValues(ComponentKind kind, const Json& src) {
   const auto vals = src.find("values");
   if (vals == src.end() || !vals->is_object()) return DataTier::kAssumed;
   std::vector<const char*> keys;

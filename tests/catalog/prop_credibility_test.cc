@@ -119,7 +119,10 @@ TEST(Tiers, StatedInferredAndChecked) {
     {"id": "b", "name": "b", "type": "bldc", "kv_rpm_per_v": 900, "rm_ohm": 0.1, "io_a": 0.5,
      "exclude": "no rating", "source": {"dataset": "t", "values": {"rm_ohm": "fitted"}}},
     {"id": "c", "name": "c", "type": "bldc", "kv_rpm_per_v": 900, "rm_ohm": 0.1, "io_a": 0.5,
-     "source": {"dataset": "t"}}]})", &c).empty());
+     "source": {"dataset": "t"}},
+    {"id": "d", "name": "d", "type": "bldc", "kv_rpm_per_v": 900, "rm_ohm": 0.1, "io_a": 0.5,
+     "source": {"dataset": "DriveCalc MData", "values": {"rm_ohm": "fitted"}}}]})", &c).empty());
+  EXPECT_EQ(c.motor("d").tier, DataTier::kUserContributed);  // DriveCalc: user submissions
   EXPECT_EQ(c.motor("a").tier, DataTier::kManufacturerComputed);
   EXPECT_TRUE(c.motor("a").tier_stated);
   EXPECT_EQ(c.motor("b").tier, DataTier::kMeasured);  // fitted -> measured
