@@ -20,8 +20,11 @@
 //
 // The reader is strict (schema.h lists every key, its type, unit and range): unknown keys,
 // missing keys, wrong types, non-finite or out-of-range values and duplicate ids are errors that
-// name the file, the entry (index and id), the key, the value and the rule. Load() refuses a
-// catalog with any problem; Validate() returns every problem in the folder.
+// name the file, the entry (index and id), the key, the value and the rule. Physics at the door
+// (model.md section 10, model/physics.h, catalog/prop_credibility.h): an ESC or a motor whose
+// constants create energy, or a propeller whose figure of merit exceeds 1 anywhere in its valid
+// range, is a problem too. Load() refuses a catalog with any problem; Validate() returns every
+// problem in the folder.
 #pragma once
 
 #include <cstddef>
