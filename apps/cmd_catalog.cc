@@ -6,6 +6,7 @@
 #include <utility>
 
 #include "catalog/catalog.h"
+#include "catalog/prop_credibility.h"
 #include "catalog/schema.h"
 #include "commands.h"
 #include "common/error.h"
@@ -103,15 +104,21 @@ int RunCatalogList(const CatalogListOptions& o) {
     out << "  " << std::left << std::setw(28) << "id" << std::setw(40) << "name" << std::right
         << std::setw(6) << "type" << std::setw(8) << "Kv" << std::setw(10) << "KE mV*s"
         << std::setw(9) << "Rm mOhm" << std::setw(7) << "Io A" << std::setw(8) << "Imax A"
-        << std::setw(8) << "mass g" << "\n";
+        << std::setw(8) << "mass g" << "  " << std::left << std::setw(20) << "tier" << "notes\n";
     for (const auto* m : motors) {
+      std::string notes;
+      for (const auto& k : m->assumed_keys) {
+        if (k == "max_power_w") notes += "rating from mass ";
+      }
+      if (!m->exclude_reason.empty()) notes += "excluded: " + m->exclude_reason;
       out << "  " << std::left << std::setw(28) << Clip(m->id, 27) << std::setw(40) << Clip(m->name, 39)
           << std::right << std::setw(6) << (m->params.type == MotorType::kBldc ? "bldc" : "dc")
           << std::setw(8) << Cell(m->kv_rpm_per_v, 1, 0) << std::setw(10)
           << Cell(m->params.ke_v_s_per_rad, 1e3, 3) << std::setw(9) << Cell(m->params.rm_ohm, 1e3, 1)
           << std::setw(7) << Cell(m->params.io_a, 1, 2) << std::setw(8)
           << Cell(std::isfinite(m->params.max_current_a) ? std::optional<double>(m->params.max_current_a) : std::nullopt, 1, 1)
-          << std::setw(8) << Cell(m->mass_kg, 1e3, 0) << "\n";
+          << std::setw(8) << Cell(m->mass_kg, 1e3, 0) << "  " << std::left << std::setw(20)
+          << TierName(m->tier) << notes << "\n";
     }
   }
   if ((all && !motor_filter) || o.kind == "escs") {
@@ -135,11 +142,17 @@ int RunCatalogList(const CatalogListOptions& o) {
   if ((all && !motor_filter) || o.kind == "props") {
     out << "props (" << props.size() << ")\n";
     out << "  " << std::left << std::setw(28) << "id" << std::setw(40) << "name" << std::right
-        << std::setw(10) << "diam in" << std::setw(10) << "pitch in" << std::setw(8) << "mass g" << "\n";
+        << std::setw(10) << "diam in" << std::setw(10) << "pitch in" << std::setw(8) << "mass g"
+        << std::setw(8) << "FM max" << "  " << std::left << std::setw(22) << "tier" << "notes\n";
     for (const auto* p : props) {
+      std::string notes;
+      if (p->folding) notes += "folding ";
+      if (p->power_derate_factor > 1.0) notes += "derated x" + Cell(p->power_derate_factor, 1, 3) + " ";
       out << "  " << std::left << std::setw(28) << Clip(p->id, 27) << std::setw(40) << Clip(p->name, 39)
           << std::right << std::setw(10) << Cell(p->diameter_m, 1 / 0.0254, 1) << std::setw(10)
-          << Cell(p->pitch_m, 1 / 0.0254, 1) << std::setw(8) << Cell(p->mass_kg, 1e3, 0) << "\n";
+          << Cell(p->pitch_m, 1 / 0.0254, 1) << std::setw(8) << Cell(p->mass_kg, 1e3, 0)
+          << std::setw(8) << Cell(ScanFigureOfMerit(*p).fm_max, 1, 3) << "  " << std::left
+          << std::setw(22) << TierName(p->tier) << notes << "\n";
     }
   }
   if ((all && !motor_filter) || o.kind == "batteries") {
@@ -181,16 +194,31 @@ int RunCatalogShow(const std::string& catalog_dir, const std::string& id) {
     si["file"] = e.file;
     out["derived"] = si;
   }
-  auto plain = [&](const auto& entries) {
-    for (const auto& e : entries) {
-      if (e.id != id) continue;
-      found = true;
-      out = e.json;
-      out["derived"] = Json{{"file", e.file}};
-    }
-  };
-  plain(cat.props());
-  plain(cat.batteries());
+  for (const auto& p : cat.props()) {
+    if (p.id != id) continue;
+    found = true;
+    out = p.json;
+    const PropValidRange r = ValidRange(p);
+    const PropFmScan s = ScanFigureOfMerit(p);
+    const FmEnvelopeClass& env = FmEnvelopeFor(p.diameter_m);
+    Json si;
+    si["valid_rpm"] = {r.rpm_lo, r.rpm_hi};
+    si["valid_rpm_assumed"] = r.rpm_assumed;
+    si["valid_j_max"] = r.j_hi;
+    si["static_fm"] = {{"min", s.fm_min}, {"median", s.fm_median}, {"max", s.fm_max},
+                       {"rpm_at_max", s.rpm_at_max}};
+    si["fm_envelope_of_class"] = {{"class", env.label}, {"measured_props", env.n_props},
+                                  {"p10", env.p10}, {"p50", env.p50}, {"p90", env.p90},
+                                  {"max", env.max}};
+    si["file"] = p.file;
+    out["derived"] = si;
+  }
+  for (const auto& b : cat.batteries()) {
+    if (b.id != id) continue;
+    found = true;
+    out = b.json;
+    out["derived"] = Json{{"file", b.file}};
+  }
   if (!found) {
     // Ask the typed lookups for their "closest ids" message.
     try {
@@ -215,6 +243,31 @@ int RunCatalogValidate(const std::string& dir, bool json) {
     std::cout << dir << ": valid: " << cat.motors().size() << " motors, " << cat.escs().size()
               << " ESCs, " << cat.props().size() << " props, " << cat.batteries().size()
               << " batteries\n";
+    // What the physics rules and the importers' audit left, in numbers.
+    std::size_t tiers[5] = {0, 0, 0, 0, 0}, excluded = 0, derated = 0, folding = 0, estimated = 0;
+    auto count = [&](const EntryBase& e) {
+      ++tiers[static_cast<int>(e.tier)];
+      excluded += !e.exclude_reason.empty();
+    };
+    for (const auto& m : cat.motors()) {
+      count(m);
+      for (const auto& k : m.assumed_keys) estimated += k == "max_power_w";
+    }
+    for (const auto& e : cat.escs()) count(e);
+    for (const auto& b : cat.batteries()) count(b);
+    for (const auto& p : cat.props()) {
+      count(p);
+      derated += p.power_derate_factor > 1.0;
+      folding += p.folding;
+    }
+    std::cout << "  tiers: ";
+    for (int t = 0; t < 5; ++t) {
+      std::cout << (t ? ", " : "") << tiers[t] << " " << TierName(static_cast<DataTier>(t));
+    }
+    std::cout << "\n  no entry creates energy or beats momentum theory (model.md section 10); "
+              << derated << " props derated to the FM envelope of measured props, " << folding
+              << " folding; " << estimated << " motor ratings estimated from mass; " << excluded
+              << " entries excluded by default\n";
   } else {
     for (const auto& p : problems) std::cout << p << "\n";
     std::cerr << dir << ": " << problems.size() << " problem" << (problems.size() == 1 ? "" : "s") << "\n";

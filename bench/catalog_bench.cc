@@ -3,7 +3,10 @@
 // --benchmark_report_aggregates_only=true  (the median is the number to quote).
 #include <benchmark/benchmark.h>
 
+#include <algorithm>
+
 #include "catalog/catalog.h"
+#include "catalog/prop_credibility.h"
 #include "prop/prop_model.h"
 #include "common/units.h"
 
@@ -29,6 +32,18 @@ void BM_ValidateBundledCatalog(benchmark::State& state) {
   }
 }
 BENCHMARK(BM_ValidateBundledCatalog)->Unit(benchmark::kMillisecond);
+
+// The figure-of-merit scan of every propeller (part of Load: the momentum-theory check).
+void BM_ScanFigureOfMeritAllProps(benchmark::State& state) {
+  const dynosize::Catalog c = dynosize::Catalog::Load(kCatalog);
+  for (auto _ : state) {
+    double worst = 0.0;
+    for (const auto& p : c.props()) worst = std::max(worst, dynosize::ScanFigureOfMerit(p).fm_max);
+    benchmark::DoNotOptimize(worst);
+  }
+  state.counters["props"] = static_cast<double>(c.props().size());
+}
+BENCHMARK(BM_ScanFigureOfMeritAllProps)->Unit(benchmark::kMillisecond);
 
 // One propeller evaluation from measured tables (UIUC, forward flight).
 void BM_PropEvaluateUiuc(benchmark::State& state) {

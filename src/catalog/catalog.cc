@@ -6,15 +6,20 @@
 #include <set>
 #include <sstream>
 
+#include "catalog/prop_credibility.h"
 #include "catalog/schema.h"
 #include "common/error.h"
 #include "common/units.h"
+#include "model/physics.h"
 
 namespace dynosize {
 
 namespace {
 
 constexpr std::size_t kMaxProblemsInError = 20;
+// Relative rounding of a ratio of two numbers written with 6 significant digits (each within
+// 5e-6 of its value): 1e-5.
+constexpr double kCatalogRoundingRel = 1e-5;
 
 std::string ValueText(const Json& v) {
   std::string s = v.dump();
@@ -144,7 +149,362 @@ void CheckCoefficientTable(const Json& t, const std::string& path, bool sweep, B
   }
 }
 
+
+DataTier InferTierFromValues(ComponentKind kind, const Json& src);
+
+DataTier TierFromName(const std::string& name) {
+  const auto& names = TierNames();
+  for (std::size_t i = 0; i < names.size(); ++i) {
+    if (names[i] == name) return static_cast<DataTier>(i);
+  }
+  return DataTier::kAssumed;
+}
+
+// The tier of an entry that does not state one: from how its performance numbers were obtained
+// (source.values of the key that carries the performance): measured/fitted -> measured,
+// computed -> manufacturer_computed, datasheet/derived -> manufacturer_stated, assumed or not
+// stated -> assumed. DriveCalc's numbers are user submissions whatever the method (its
+// measurement points included): a data set that names DriveCalc is at best user_contributed.
+DataTier InferTier(ComponentKind kind, const Json& src) {
+  DataTier t = InferTierFromValues(kind, src);
+  const std::string dataset = src.value("dataset", std::string());
+  if (dataset.find("DriveCalc") != std::string::npos && t < DataTier::kUserContributed) {
+    t = DataTier::kUserContributed;
+  }
+  return t;
+}
+
+DataTier InferTierFromValues(ComponentKind kind, const Json& src) {
+  const auto vals = src.find("values");
+  if (vals == src.end() || !vals->is_object()) return DataTier::kAssumed;
+  std::vector<const char*> keys;
+  switch (kind) {
+    case ComponentKind::kMotor: keys = {"rm_ohm", "ke_v_s_per_rad", "kv_rpm_per_v"}; break;
+    case ComponentKind::kEsc: keys = {"c1", "resc_ohm"}; break;
+    case ComponentKind::kProp:
+      keys = {"static_table", "j_tables", "ct_static", "thrust_law_n"};
+      break;
+    case ComponentKind::kBattery: keys = {"ri_ohm", "capacity_ah"}; break;
+  }
+  for (const char* k : keys) {
+    const auto m = vals->find(k);
+    if (m == vals->end() || !m->is_string()) continue;
+    const std::string method = m->get<std::string>();
+    if (method == "measured" || method == "fitted") return DataTier::kMeasured;
+    if (method == "computed") return DataTier::kManufacturerComputed;
+    if (method == "datasheet" || method == "derived") return DataTier::kManufacturerStated;
+    return DataTier::kAssumed;
+  }
+  return DataTier::kAssumed;
+}
+
+MotorEntry MotorFromJson(const Json& e, EntryBase base) {
+  MotorEntry m;
+  static_cast<EntryBase&>(m) = std::move(base);
+  MotorParams& p = m.params;
+  p.type = e["type"].get<std::string>() == "brushed" ? MotorType::kBrushed : MotorType::kBldc;
+  m.kv_rpm_per_v = GetOpt(e, "kv_rpm_per_v");
+  const double ke_from_kv =
+      m.kv_rpm_per_v ? (p.type == MotorType::kBldc ? KeFromKvBldc(*m.kv_rpm_per_v)
+                                                   : KeFromKvBrushed(*m.kv_rpm_per_v))
+                     : 0.0;
+  p.ke_v_s_per_rad = Get(e, "ke_v_s_per_rad", ke_from_kv);
+  // Section 5: ideal waveforms give KT = sqrt(27/10)*KE; a DC machine KT = KE (SI).
+  p.kt_nm_per_a = Get(e, "kt_nm_per_a", p.type == MotorType::kBldc
+                                            ? kPacPerVllIrms * p.ke_v_s_per_rad
+                                            : p.ke_v_s_per_rad);
+  p.rm_ohm = e["rm_ohm"].get<double>();
+  p.io_a = e["io_a"].get<double>();
+  p.max_current_a = Get(e, "max_current_a", p.max_current_a);
+  p.max_power_w = Get(e, "max_power_w", p.max_power_w);
+  p.io1_a_s_per_rad = Get(e, "io1_a_s_per_rad", 0.0);
+  p.rth_k_per_w = Get(e, "rth_k_per_w", 0.0);
+  p.kt_droop_per_a = Get(e, "kt_droop_per_a", 0.0);
+  m.mass_kg = GetOpt(e, "mass_kg");
+  m.loss_torque_nm = GetOpt(e, "loss_torque_nm");
+  m.loss_torque_per_omega_nm_s_per_rad = GetOpt(e, "loss_torque_per_omega_nm_s_per_rad");
+  return m;
+}
+
+EscEntry EscFromJson(const Json& e, EntryBase base) {
+  EscEntry x;
+  static_cast<EntryBase&>(x) = std::move(base);
+  EscParams& p = x.params;
+  p.resc_ohm = e["resc_ohm"].get<double>();
+  p.c1 = e["c1"].get<double>();
+  p.c0 = e["c0"].get<double>();
+  p.tr_sat = e["tr_sat"].get<double>();
+  p.sat_slope = e["sat_slope"].get<double>();
+  p.max_current_a = Get(e, "max_current_a", p.max_current_a);
+  p.vdc_max_v = Get(e, "vdc_max_v", p.vdc_max_v);
+  p.deadband = Get(e, "deadband", 0.0);
+  p.rsupply_ohm = Get(e, "rsupply_ohm", 0.0);
+  x.mass_kg = GetOpt(e, "mass_kg");
+  x.ipeak_a = GetOpt(e, "ipeak_a");
+  return x;
+}
+
+PropEntry PropFromJson(const Json& e, EntryBase base) {
+  PropEntry x;
+  static_cast<EntryBase&>(x) = std::move(base);
+  x.diameter_m = e["diameter_m"].get<double>();
+  x.pitch_m = GetOpt(e, "pitch_m");
+  x.mass_kg = GetOpt(e, "mass_kg");
+  if (const auto b = e.find("blades"); b != e.end()) x.blades = b->get<int>();
+  x.max_rpm = GetOpt(e, "max_rpm");
+  x.rpm_min = GetOpt(e, "rpm_min");
+  x.rpm_max = GetOpt(e, "rpm_max");
+  if (const auto f = e.find("folding"); f != e.end()) x.folding = f->get<bool>();
+  x.power_derate_factor = Get(e, "power_derate_factor", 1.0);
+  if (e.contains("thrust_law_n")) {
+    PropPowerLaw law;
+    law.thrust_law_n = e["thrust_law_n"].get<double>();
+    law.thrust_law_exp = e["thrust_law_exp"].get<double>();
+    law.power_law_w = e["power_law_w"].get<double>();
+    law.power_law_exp = e["power_law_exp"].get<double>();
+    law.rho_kg_m3 = e["law_rho_kg_m3"].get<double>();
+    x.power_law = law;
+  }
+  x.ct_static = GetOpt(e, "ct_static");
+  x.cp_static = GetOpt(e, "cp_static");
+  if (const auto st = e.find("static_table"); st != e.end()) {
+    x.static_table.rpm = (*st)["rpm"].get<std::vector<double>>();
+    x.static_table.ct = (*st)["ct"].get<std::vector<double>>();
+    x.static_table.cp = (*st)["cp"].get<std::vector<double>>();
+  }
+  if (const auto jt = e.find("j_tables"); jt != e.end()) {
+    for (const Json& t : *jt) {
+      PropSweep sw;
+      sw.rpm = t["rpm"].get<double>();
+      sw.j = t["j"].get<std::vector<double>>();
+      sw.ct = t["ct"].get<std::vector<double>>();
+      sw.cp = t["cp"].get<std::vector<double>>();
+      x.j_tables.push_back(std::move(sw));
+    }
+  }
+  return x;
+}
+
+BatteryEntry BatteryFromJson(const Json& e, EntryBase base) {
+  BatteryEntry x;
+  static_cast<EntryBase&>(x) = std::move(base);
+  x.mass_kg = GetOpt(e, "mass_kg");
+  static const std::pair<const char*, BatteryChemistry> kChem[] = {
+      {"lipo", BatteryChemistry::kLiPo}, {"liion", BatteryChemistry::kLiIon},
+      {"lifepo4", BatteryChemistry::kLiFePo4}, {"nimh", BatteryChemistry::kNiMh},
+      {"nicd", BatteryChemistry::kNiCd}};
+  const std::string chem = e["chemistry"].get<std::string>();
+  for (const auto& [name, value] : kChem) {
+    if (chem == name) x.chemistry = value;
+  }
+  x.cells_series = e["cells_series"].get<int>();
+  if (const auto p = e.find("cells_parallel"); p != e.end()) x.cells_parallel = p->get<int>();
+  x.capacity_ah = e["capacity_ah"].get<double>();
+  x.voltage_nominal_v = e["voltage_nominal_v"].get<double>();
+  x.ri_ohm = GetOpt(e, "ri_ohm");
+  x.max_current_a = GetOpt(e, "max_current_a");
+  x.peak_current_a = GetOpt(e, "peak_current_a");
+  return x;
+}
+
+// source: {dataset (required), reference, values: {key: method}, note, tier}.
+template <typename Bad>
+void CheckSource(const Json& e, const Json* src, Bad bad) {
+  for (auto k = src->begin(); k != src->end(); ++k) {
+    const std::string& sk = k.key();
+    if (sk == "dataset" || sk == "reference" || sk == "note") {
+      if (!k->is_string()) bad("source." + sk, "must be a string", &*k);
+    } else if (sk == "values") {
+      if (!k->is_object()) {
+        bad("source.values", "must be an object {key: method}");
+        continue;
+      }
+      for (auto m = k->begin(); m != k->end(); ++m) {
+        const auto& methods = ProvenanceMethods();
+        if (!e.contains(m.key())) {
+          bad("source.values." + m.key(), "names a key the entry does not have");
+        } else if (!m->is_string() ||
+                   std::find(methods.begin(), methods.end(), m->get<std::string>()) ==
+                       methods.end()) {
+          bad("source.values." + m.key(),
+              "must be one of datasheet, measured, computed, fitted, derived, assumed", &*m);
+        }
+      }
+    } else if (sk == "tier") {
+      const auto& tiers = TierNames();
+      if (!k->is_string() ||
+          std::find(tiers.begin(), tiers.end(), k->get<std::string>()) == tiers.end()) {
+        bad("source.tier",
+            "must be one of measured, manufacturer_computed, manufacturer_stated, "
+            "user_contributed, assumed",
+            &*k);
+      }
+    } else {
+      bad("source." + sk,
+          "unknown key: allowed are dataset, reference, values, note, tier", &*k);
+    }
+  }
+  if (!src->contains("dataset")) bad("source.dataset", "missing (required)");
+}
+
+// Performance data and tables of a propeller; `problems` gets lines under `where`.
+template <typename Bad>
+void CheckPropKeys(const Json& e, const std::string& where, Bad bad,
+                   std::vector<std::string>* problems) {
+  auto bad_path = [&](const std::string& key, const std::string& rule) {
+    problems->push_back(where + ": key '" + key + "': " + rule);
+  };
+  if (const auto st = e.find("static_table"); st != e.end() && st->is_object()) {
+    CheckCoefficientTable(*st, "static_table", false, bad_path);
+  }
+  if (const auto jt = e.find("j_tables"); jt != e.end() && jt->is_array()) {
+    double prev_rpm = 0.0;
+    for (std::size_t k = 0; k < jt->size(); ++k) {
+      const std::string path = "j_tables[" + std::to_string(k) + "]";
+      const Json& t = (*jt)[k];
+      if (!t.is_object()) {
+        bad_path(path, "must be an object {rpm, j, ct, cp}");
+        continue;
+      }
+      CheckCoefficientTable(t, path, true, bad_path);
+      const auto r = t.find("rpm");
+      if (r != t.end() && r->is_number()) {
+        if (!(r->get<double>() > prev_rpm)) {
+          bad_path(path + ".rpm", "sweeps must be sorted by strictly increasing rpm");
+        }
+        prev_rpm = r->get<double>();
+      }
+    }
+  }
+  const bool t_law = e.contains("thrust_law_n"), p_law = e.contains("power_law_w");
+  for (const char* k : {"thrust_law_exp", "power_law_exp", "law_rho_kg_m3"}) {
+    if ((t_law || p_law) && !e.contains(k)) bad(k, "missing: the power laws need it");
+  }
+  if (t_law != p_law) bad(t_law ? "power_law_w" : "thrust_law_n",
+                          "missing: thrust and power laws come together");
+  if (e.contains("ct_static") != e.contains("cp_static")) {
+    bad(e.contains("ct_static") ? "cp_static" : "ct_static",
+        "missing: ct_static and cp_static come together");
+  }
+  if (!t_law && !e.contains("ct_static") && !e.contains("static_table") &&
+      !e.contains("j_tables")) {
+    bad("thrust_law_n", "missing: a propeller needs performance data (power laws, "
+                        "ct_static/cp_static, static_table or j_tables)");
+  }
+}
+
+// test_points of a motor (published operating points).
+template <typename Bad>
+void CheckTestPoints(const Json& e, Bad bad) {
+  if (const auto tp = e.find("test_points"); tp != e.end() && tp->is_array()) {
+    for (std::size_t k = 0; k < tp->size(); ++k) {
+      const std::string path = "test_points[" + std::to_string(k) + "]";
+      const Json& pt = (*tp)[k];
+      if (!pt.is_object()) {
+        bad(path, "must be an object {vdc_v, idc_a, throttle, rpm, torque_nm, thrust_n, prop}");
+        continue;
+      }
+      for (const char* req : {"vdc_v", "idc_a"}) {
+        if (!pt.contains(req)) bad(path + "." + req, "missing (required)");
+      }
+      for (auto f = pt.begin(); f != pt.end(); ++f) {
+        const std::string& fk = f.key();
+        if (fk == "prop") {
+          if (!f->is_string()) bad(path + ".prop", "must be a string");
+          continue;
+        }
+        double lo = 0, hi = 1e7;
+        if (fk == "throttle") hi = 1;
+        else if (fk != "vdc_v" && fk != "idc_a" && fk != "rpm" && fk != "torque_nm" &&
+                 fk != "thrust_n") {
+          bad(path + "." + fk, "unknown key: allowed are vdc_v, idc_a, throttle, rpm, "
+                               "torque_nm, thrust_n, prop");
+          continue;
+        }
+        if (!f->is_number() || !std::isfinite(f->get<double>()) || f->get<double>() < lo ||
+            f->get<double>() > hi) {
+          std::ostringstream rule;
+          rule << "must be a number in [" << lo << ", " << hi << "], found "
+               << ValueText(*f);
+          bad(path + "." + fk, rule.str());
+        }
+      }
+    }
+  }
+}
+
 }  // namespace
+
+const char* TierName(DataTier tier) {
+  return TierNames()[static_cast<std::size_t>(tier)].c_str();
+}
+
+const std::vector<std::string>& TierNames() {
+  static const std::vector<std::string> kNames = {"measured", "manufacturer_computed",
+                                                  "manufacturer_stated", "user_contributed",
+                                                  "assumed"};
+  return kNames;
+}
+
+PropEntry PropEntryFromJson(const Json& e) {
+  EntryBase base;
+  base.id = e.value("id", std::string());
+  base.name = e.value("name", std::string());
+  base.json = e;
+  return PropFromJson(e, std::move(base));
+}
+
+// Physics at the door (model.md section 10, model/physics.h, catalog/prop_credibility.h): an
+// entry that creates energy or beats momentum theory is refused, whatever its source.
+std::string Catalog::AddEntry(ComponentKind kind, const Json& e, EntryBase base) {
+  const std::string id = base.id;
+  switch (kind) {
+    case ComponentKind::kMotor: {
+      MotorEntry m = MotorFromJson(e, std::move(base));
+      // Catalog numbers carry 6 significant digits: a KT written as sqrt(27/10)*KE may exceed
+      // it by the rounding of two numbers (< 1e-5 relative). Such a KT is on the boundary of
+      // model.md section 10, and is set exactly onto it so that no point can gain energy from
+      // the last digit.
+      MotorParams& p = m.params;
+      const double kt_max = MaxKtPerKe(p.type) * p.ke_v_s_per_rad;
+      if (p.kt_nm_per_a > kt_max && p.kt_nm_per_a <= kt_max * (1.0 + kCatalogRoundingRel)) {
+        p.kt_nm_per_a = kt_max;
+      }
+      const std::string v = MotorEnergyViolation(p);
+      if (!v.empty()) return "creates energy: " + v;
+      index_[id] = {kind, motors_.size()};
+      motors_.push_back(std::move(m));
+      break;
+    }
+    case ComponentKind::kEsc: {
+      EscEntry x = EscFromJson(e, std::move(base));
+      const std::string v = EscEnergyViolation(x.params);
+      if (!v.empty()) return "creates energy: " + v;
+      index_[id] = {kind, escs_.size()};
+      escs_.push_back(std::move(x));
+      break;
+    }
+    case ComponentKind::kProp: {
+      PropEntry x = PropFromJson(e, std::move(base));
+      if (x.rpm_min && x.rpm_max && !(*x.rpm_max >= *x.rpm_min)) {
+        return "key 'rpm_max' = " + ValueText(e["rpm_max"]) + ": must be >= rpm_min " +
+               ValueText(e["rpm_min"]);
+      }
+      const std::string v = PropMomentumViolation(x);
+      if (!v.empty()) return v;
+      index_[id] = {kind, props_.size()};
+      props_.push_back(std::move(x));
+      break;
+    }
+    case ComponentKind::kBattery: {
+      BatteryEntry x = BatteryFromJson(e, std::move(base));
+      index_[id] = {kind, batteries_.size()};
+      batteries_.push_back(std::move(x));
+      break;
+    }
+  }
+  return "";
+}
 
 const char* KindArrayName(ComponentKind kind) {
   switch (kind) {
@@ -234,116 +594,13 @@ void Catalog::AddDocument(const Json& doc, const std::string& file,
       }
       // source: {dataset (required), reference, values: {key: method}, note}.
       const auto src = e.find("source");
-      if (src != e.end() && src->is_object()) {
-        for (auto k = src->begin(); k != src->end(); ++k) {
-          const std::string& sk = k.key();
-          if (sk == "dataset" || sk == "reference" || sk == "note") {
-            if (!k->is_string()) bad("source." + sk, "must be a string", &*k);
-          } else if (sk == "values") {
-            if (!k->is_object()) {
-              bad("source.values", "must be an object {key: method}");
-              continue;
-            }
-            for (auto m = k->begin(); m != k->end(); ++m) {
-              const auto& methods = ProvenanceMethods();
-              if (!e.contains(m.key())) {
-                bad("source.values." + m.key(), "names a key the entry does not have");
-              } else if (!m->is_string() ||
-                         std::find(methods.begin(), methods.end(), m->get<std::string>()) ==
-                             methods.end()) {
-                bad("source.values." + m.key(),
-                    "must be one of datasheet, measured, computed, fitted, derived, assumed", &*m);
-              }
-            }
-          } else {
-            bad("source." + sk, "unknown key: allowed are dataset, reference, values, note", &*k);
-          }
-        }
-        if (!src->contains("dataset")) bad("source.dataset", "missing (required)");
-      }
+      if (src != e.end() && src->is_object()) CheckSource(e, &*src, bad);
       if (kind == ComponentKind::kMotor && !e.contains("ke_v_s_per_rad") &&
           !e.contains("kv_rpm_per_v")) {
         bad("ke_v_s_per_rad", "missing: a motor needs ke_v_s_per_rad or kv_rpm_per_v");
       }
-      if (kind == ComponentKind::kProp) {
-        auto bad_path = [&](const std::string& key, const std::string& rule) {
-          problems->push_back(where + ": key '" + key + "': " + rule);
-        };
-        if (const auto st = e.find("static_table"); st != e.end() && st->is_object()) {
-          CheckCoefficientTable(*st, "static_table", false, bad_path);
-        }
-        if (const auto jt = e.find("j_tables"); jt != e.end() && jt->is_array()) {
-          double prev_rpm = 0.0;
-          for (std::size_t k = 0; k < jt->size(); ++k) {
-            const std::string path = "j_tables[" + std::to_string(k) + "]";
-            const Json& t = (*jt)[k];
-            if (!t.is_object()) {
-              bad_path(path, "must be an object {rpm, j, ct, cp}");
-              continue;
-            }
-            CheckCoefficientTable(t, path, true, bad_path);
-            const auto r = t.find("rpm");
-            if (r != t.end() && r->is_number()) {
-              if (!(r->get<double>() > prev_rpm)) {
-                bad_path(path + ".rpm", "sweeps must be sorted by strictly increasing rpm");
-              }
-              prev_rpm = r->get<double>();
-            }
-          }
-        }
-        const bool t_law = e.contains("thrust_law_n"), p_law = e.contains("power_law_w");
-        for (const char* k : {"thrust_law_exp", "power_law_exp", "law_rho_kg_m3"}) {
-          if ((t_law || p_law) && !e.contains(k)) bad(k, "missing: the power laws need it");
-        }
-        if (t_law != p_law) bad(t_law ? "power_law_w" : "thrust_law_n",
-                                "missing: thrust and power laws come together");
-        if (e.contains("ct_static") != e.contains("cp_static")) {
-          bad(e.contains("ct_static") ? "cp_static" : "ct_static",
-              "missing: ct_static and cp_static come together");
-        }
-        if (!t_law && !e.contains("ct_static") && !e.contains("static_table") &&
-            !e.contains("j_tables")) {
-          bad("thrust_law_n", "missing: a propeller needs performance data (power laws, "
-                              "ct_static/cp_static, static_table or j_tables)");
-        }
-      }
-      if (kind == ComponentKind::kMotor) {
-        if (const auto tp = e.find("test_points"); tp != e.end() && tp->is_array()) {
-          for (std::size_t k = 0; k < tp->size(); ++k) {
-            const std::string path = "test_points[" + std::to_string(k) + "]";
-            const Json& pt = (*tp)[k];
-            if (!pt.is_object()) {
-              bad(path, "must be an object {vdc_v, idc_a, throttle, rpm, torque_nm, thrust_n, prop}");
-              continue;
-            }
-            for (const char* req : {"vdc_v", "idc_a"}) {
-              if (!pt.contains(req)) bad(path + "." + req, "missing (required)");
-            }
-            for (auto f = pt.begin(); f != pt.end(); ++f) {
-              const std::string& fk = f.key();
-              if (fk == "prop") {
-                if (!f->is_string()) bad(path + ".prop", "must be a string");
-                continue;
-              }
-              double lo = 0, hi = 1e7;
-              if (fk == "throttle") hi = 1;
-              else if (fk != "vdc_v" && fk != "idc_a" && fk != "rpm" && fk != "torque_nm" &&
-                       fk != "thrust_n") {
-                bad(path + "." + fk, "unknown key: allowed are vdc_v, idc_a, throttle, rpm, "
-                                     "torque_nm, thrust_n, prop");
-                continue;
-              }
-              if (!f->is_number() || !std::isfinite(f->get<double>()) || f->get<double>() < lo ||
-                  f->get<double>() > hi) {
-                std::ostringstream rule;
-                rule << "must be a number in [" << lo << ", " << hi << "], found "
-                     << ValueText(*f);
-                bad(path + "." + fk, rule.str());
-              }
-            }
-          }
-        }
-      }
+      if (kind == ComponentKind::kProp) CheckPropKeys(e, where, bad, problems);
+      if (kind == ComponentKind::kMotor) CheckTestPoints(e, bad);
       if (kind == ComponentKind::kBattery) {
         const auto s_it = e.find("cells_series");
         const auto v_it = e.find("voltage_nominal_v");
@@ -375,116 +632,17 @@ void Catalog::AddDocument(const Json& doc, const std::string& file,
           if (m->get<std::string>() == "assumed") base.assumed_keys.push_back(m.key());
         }
       }
-      switch (kind) {
-        case ComponentKind::kMotor: {
-          MotorEntry m;
-          static_cast<EntryBase&>(m) = std::move(base);
-          MotorParams& p = m.params;
-          p.type = e["type"].get<std::string>() == "brushed" ? MotorType::kBrushed : MotorType::kBldc;
-          m.kv_rpm_per_v = GetOpt(e, "kv_rpm_per_v");
-          const double ke_from_kv =
-              m.kv_rpm_per_v ? (p.type == MotorType::kBldc ? KeFromKvBldc(*m.kv_rpm_per_v)
-                                                           : KeFromKvBrushed(*m.kv_rpm_per_v))
-                             : 0.0;
-          p.ke_v_s_per_rad = Get(e, "ke_v_s_per_rad", ke_from_kv);
-          // Section 5: ideal waveforms give KT = sqrt(27/10)*KE; a DC machine KT = KE (SI).
-          p.kt_nm_per_a = Get(e, "kt_nm_per_a", p.type == MotorType::kBldc
-                                                    ? kPacPerVllIrms * p.ke_v_s_per_rad
-                                                    : p.ke_v_s_per_rad);
-          p.rm_ohm = e["rm_ohm"].get<double>();
-          p.io_a = e["io_a"].get<double>();
-          p.max_current_a = Get(e, "max_current_a", p.max_current_a);
-          p.max_power_w = Get(e, "max_power_w", p.max_power_w);
-          p.io1_a_s_per_rad = Get(e, "io1_a_s_per_rad", 0.0);
-          p.rth_k_per_w = Get(e, "rth_k_per_w", 0.0);
-          p.kt_droop_per_a = Get(e, "kt_droop_per_a", 0.0);
-          m.mass_kg = GetOpt(e, "mass_kg");
-          m.loss_torque_nm = GetOpt(e, "loss_torque_nm");
-          m.loss_torque_per_omega_nm_s_per_rad = GetOpt(e, "loss_torque_per_omega_nm_s_per_rad");
-          index_[id] = {kind, motors_.size()};
-          motors_.push_back(std::move(m));
-          break;
-        }
-        case ComponentKind::kEsc: {
-          EscEntry x;
-          static_cast<EntryBase&>(x) = std::move(base);
-          EscParams& p = x.params;
-          p.resc_ohm = e["resc_ohm"].get<double>();
-          p.c1 = e["c1"].get<double>();
-          p.c0 = e["c0"].get<double>();
-          p.tr_sat = e["tr_sat"].get<double>();
-          p.sat_slope = e["sat_slope"].get<double>();
-          p.max_current_a = Get(e, "max_current_a", p.max_current_a);
-          p.vdc_max_v = Get(e, "vdc_max_v", p.vdc_max_v);
-          p.deadband = Get(e, "deadband", 0.0);
-          p.rsupply_ohm = Get(e, "rsupply_ohm", 0.0);
-          x.mass_kg = GetOpt(e, "mass_kg");
-          x.ipeak_a = GetOpt(e, "ipeak_a");
-          index_[id] = {kind, escs_.size()};
-          escs_.push_back(std::move(x));
-          break;
-        }
-        case ComponentKind::kProp: {
-          PropEntry x;
-          static_cast<EntryBase&>(x) = std::move(base);
-          x.diameter_m = e["diameter_m"].get<double>();
-          x.pitch_m = GetOpt(e, "pitch_m");
-          x.mass_kg = GetOpt(e, "mass_kg");
-          if (const auto b = e.find("blades"); b != e.end()) x.blades = b->get<int>();
-          x.max_rpm = GetOpt(e, "max_rpm");
-          if (e.contains("thrust_law_n")) {
-            PropPowerLaw law;
-            law.thrust_law_n = e["thrust_law_n"].get<double>();
-            law.thrust_law_exp = e["thrust_law_exp"].get<double>();
-            law.power_law_w = e["power_law_w"].get<double>();
-            law.power_law_exp = e["power_law_exp"].get<double>();
-            law.rho_kg_m3 = e["law_rho_kg_m3"].get<double>();
-            x.power_law = law;
-          }
-          x.ct_static = GetOpt(e, "ct_static");
-          x.cp_static = GetOpt(e, "cp_static");
-          if (const auto st = e.find("static_table"); st != e.end()) {
-            x.static_table.rpm = (*st)["rpm"].get<std::vector<double>>();
-            x.static_table.ct = (*st)["ct"].get<std::vector<double>>();
-            x.static_table.cp = (*st)["cp"].get<std::vector<double>>();
-          }
-          if (const auto jt = e.find("j_tables"); jt != e.end()) {
-            for (const Json& t : *jt) {
-              PropSweep sw;
-              sw.rpm = t["rpm"].get<double>();
-              sw.j = t["j"].get<std::vector<double>>();
-              sw.ct = t["ct"].get<std::vector<double>>();
-              sw.cp = t["cp"].get<std::vector<double>>();
-              x.j_tables.push_back(std::move(sw));
-            }
-          }
-          index_[id] = {kind, props_.size()};
-          props_.push_back(std::move(x));
-          break;
-        }
-        case ComponentKind::kBattery: {
-          BatteryEntry x;
-          static_cast<EntryBase&>(x) = std::move(base);
-          x.mass_kg = GetOpt(e, "mass_kg");
-          static const std::pair<const char*, BatteryChemistry> kChem[] = {
-              {"lipo", BatteryChemistry::kLiPo}, {"liion", BatteryChemistry::kLiIon},
-              {"lifepo4", BatteryChemistry::kLiFePo4}, {"nimh", BatteryChemistry::kNiMh},
-              {"nicd", BatteryChemistry::kNiCd}};
-          const std::string chem = e["chemistry"].get<std::string>();
-          for (const auto& [name, value] : kChem) {
-            if (chem == name) x.chemistry = value;
-          }
-          x.cells_series = e["cells_series"].get<int>();
-          if (const auto p = e.find("cells_parallel"); p != e.end()) x.cells_parallel = p->get<int>();
-          x.capacity_ah = e["capacity_ah"].get<double>();
-          x.voltage_nominal_v = e["voltage_nominal_v"].get<double>();
-          x.ri_ohm = GetOpt(e, "ri_ohm");
-          x.max_current_a = GetOpt(e, "max_current_a");
-          x.peak_current_a = GetOpt(e, "peak_current_a");
-          index_[id] = {kind, batteries_.size()};
-          batteries_.push_back(std::move(x));
-          break;
-        }
+      if (const auto t = src->find("tier"); t != src->end()) {
+        base.tier = TierFromName(t->get<std::string>());
+        base.tier_stated = true;
+      } else {
+        base.tier = InferTier(kind, *src);
+      }
+      if (const auto x = e.find("exclude"); x != e.end()) base.exclude_reason = x->get<std::string>();
+      const std::string violation = AddEntry(kind, e, std::move(base));
+      if (!violation.empty()) {
+        problems->push_back(where + ": " + violation);
+        id_file_.erase(id);
       }
     }
   }

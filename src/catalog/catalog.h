@@ -8,12 +8,23 @@
 //                                           one of datasheet | measured | computed | fitted |
 //                                           derived | assumed ("computed": a manufacturer's own
 //                                           simulation, e.g. APC PER3 blade-element tables)
-//              "note": "..."}               optional
+//              "note": "...",               optional
+//              "tier": "measured"}          optional: the trust tier of the entry's data, one
+//                                           of measured | manufacturer_computed |
+//                                           manufacturer_stated | user_contributed | assumed
+//                                           (best first; catalog/conventions.h); inferred from
+//                                           "values" when absent
+//
+// Any entry may carry "exclude": "reason": it stays in the catalog for reference, but searches
+// skip it by default (e.g. a motor with no rating and no mass to estimate one from).
 //
 // The reader is strict (schema.h lists every key, its type, unit and range): unknown keys,
 // missing keys, wrong types, non-finite or out-of-range values and duplicate ids are errors that
-// name the file, the entry (index and id), the key, the value and the rule. Load() refuses a
-// catalog with any problem; Validate() returns every problem in the folder.
+// name the file, the entry (index and id), the key, the value and the rule. Physics at the door
+// (model.md section 10, model/physics.h, catalog/prop_credibility.h): an ESC or a motor whose
+// constants create energy, or a propeller whose figure of merit exceeds 1 anywhere in its valid
+// range, is a problem too. Load() refuses a catalog with any problem; Validate() returns every
+// problem in the folder.
 #pragma once
 
 #include <cstddef>
@@ -29,6 +40,19 @@ namespace dynosize {
 
 enum class ComponentKind { kMotor, kEsc, kProp, kBattery };
 
+// Trust tier of an entry's data, best first (catalog/conventions.h).
+enum class DataTier {
+  kMeasured = 0,
+  kManufacturerComputed = 1,
+  kManufacturerStated = 2,
+  kUserContributed = 3,
+  kAssumed = 4,
+};
+// "measured", "manufacturer_computed", "manufacturer_stated", "user_contributed", "assumed".
+const char* TierName(DataTier tier);
+// All tier names, best first (the schema's choices).
+const std::vector<std::string>& TierNames();
+
 // "motors", "escs", "props", "batteries".
 const char* KindArrayName(ComponentKind kind);
 // "motor", "ESC", "propeller", "battery".
@@ -41,6 +65,11 @@ struct EntryBase {
   Json json;         // the entry exactly as in the file
   // Keys whose source.values says "assumed" (results built on them must say so).
   std::vector<std::string> assumed_keys;
+  // source.tier, or inferred from source.values when the file does not state it.
+  DataTier tier = DataTier::kAssumed;
+  bool tier_stated = false;
+  // "exclude" of the file: why searches skip this entry by default ("" = usable).
+  std::string exclude_reason;
 };
 
 struct MotorEntry : EntryBase {
@@ -92,6 +121,15 @@ struct PropEntry : EntryBase {
   std::optional<double> mass_kg;
   std::optional<int> blades;
   std::optional<double> max_rpm;
+  // Valid rpm range stated for power laws and constant coefficients (tables carry their own);
+  // catalog/prop_credibility.h ValidRange() gives the range of every entry.
+  std::optional<double> rpm_min;
+  std::optional<double> rpm_max;
+  // The blades fold (glider propeller): not for multirotor lift unless a mission allows it.
+  bool folding = false;
+  // Factor (>= 1) by which the importer raised the power data (power_law_w, cp) to bring the
+  // entry's figure of merit down to the envelope of measured propellers; 1 = not derated.
+  double power_derate_factor = 1.0;
   std::optional<PropPowerLaw> power_law;
   std::optional<double> ct_static;
   std::optional<double> cp_static;
@@ -112,6 +150,10 @@ struct BatteryEntry : EntryBase {
   std::optional<double> peak_current_a;
   std::optional<double> mass_kg;
 };
+
+// The typed form of one propeller entry that already passed the schema (importers use it to
+// audit what they write); no physics checks.
+PropEntry PropEntryFromJson(const Json& entry);
 
 class Catalog {
  public:
@@ -143,6 +185,10 @@ class Catalog {
   }
 
  private:
+  // Converts a valid entry to its typed form and adds it, unless it breaks a physical rule
+  // (model.md section 10): returns that rule's sentence then, "" when added.
+  std::string AddEntry(ComponentKind kind, const Json& e, EntryBase base);
+
   template <typename Entry>
   const Entry& Find(const std::vector<Entry>& entries, ComponentKind kind,
                     const std::string& id) const;

@@ -43,9 +43,13 @@ std::vector<KeySpec> Common() {
   source.key = "source";
   source.type = ValueType::kObject;
   source.required = true;
-  source.doc = "where the numbers came from: {dataset, reference, values: {key: method}, note}";
+  source.doc = "where the numbers came from: {dataset, reference, values: {key: method}, note, "
+               "tier: measured | manufacturer_computed | manufacturer_stated | user_contributed | "
+               "assumed}";
   return {Str("id", true, "unique id across the catalog ([A-Za-z0-9_.+-], 1-120 characters)"),
-          Str("name", true, "human-readable name"), source};
+          Str("name", true, "human-readable name"), source,
+          Str("exclude", false,
+              "why searches skip this entry by default (kept for reference), e.g. no rating")};
 }
 
 std::vector<KeySpec> Build(ComponentKind kind) {
@@ -60,7 +64,12 @@ std::vector<KeySpec> Build(ComponentKind kind) {
       add(Num("kt_nm_per_a", false, 0, true, 20,
               "torque constant, N*m/A (BLDC: per rms ampere); sqrt(27/10)*ke when absent (BLDC), "
               "ke (brushed)"));
-      add(Num("rm_ohm", true, 0, true, 100, "winding resistance of eq (42), ohm"));
+      add(Num("rm_ohm", true, 0, true, 100,
+              "resistance of the rms circuit of eq (42)/(48), ohm; = 0.7492 x rm_dc_ohm "
+              "(catalog/conventions.h)"));
+      add(Num("rm_dc_ohm", false, 0, true, 100,
+              "the source's resistance of the DC equivalent circuit VDC = R*IDC + n/Kv "
+              "(datasheet, DriveCalc, stand-table fit), ohm; kept for provenance"));
       add(Num("io_a", true, 0, false, 200, "no-load current of eq (42), A"));
       add(Num("kv_rpm_per_v", false, 0, true, 1e5, "datasheet Kv, rpm per DC volt"));
       add(Num("mass_kg", false, 0, true, 1000, "mass, kg"));
@@ -129,6 +138,20 @@ std::vector<KeySpec> Build(ComponentKind kind) {
       add(Int("blades", false, 1, 12, "number of blades"));
       add(Num("mass_kg", false, 0, true, 1000, "mass, kg"));
       add(Num("max_rpm", false, 0, true, 1e6, "manufacturer's speed limit, rpm"));
+      add(Num("rpm_min", false, 0, true, 1e6,
+              "lowest speed at which the power laws / coefficients hold, rpm (tables: their data)"));
+      add(Num("rpm_max", false, 0, true, 1e6,
+              "highest speed at which the power laws / coefficients hold, rpm"));
+      {
+        KeySpec f;
+        f.key = "folding";
+        f.type = ValueType::kBool;
+        f.doc = "the blades fold (glider propeller): not for multirotor lift by default";
+        add(f);
+      }
+      add(Num("power_derate_factor", false, 1, false, 10,
+              "factor applied by the importer to the power data (power_law_w, cp) to bring the "
+              "figure of merit to the envelope of measured propellers (prop_credibility.h)"));
       add(Num("thrust_law_n", false, 0, true, 1e6,
               "power law T = thrust_law_n*(rpm/1000)^thrust_law_exp at law_rho_kg_m3, static "
               "thrust in N at 1000 rpm (DriveCalc a, converted from g)"));

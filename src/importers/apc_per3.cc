@@ -143,8 +143,8 @@ ImportedDataset ImportApcPer3(const std::string& dir) {
     b.Set("static_table", {{"rpm", st_rpm}, {"ct", st_ct}, {"cp", st_cp}}, "computed");
     if (!jt.empty()) b.Set("j_tables", jt, "computed");
     b.Source(kDataset, f, "computed by APC (blade-element), not measured; D and pitch from the file name");
-    out.props.push_back(b.Build());
-    out.report.Keep("props");
+    b.Tier("manufacturer_computed");
+    KeepAuditedProp(b.Build(), f, &out);
   }
   out.report.notes.push_back(std::to_string(low_total) + " low-rpm sweeps (static torque < 0.02 "
                              "N*m, printed to 0.001 N*m) left out over " +

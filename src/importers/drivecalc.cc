@@ -8,6 +8,7 @@
 #include <set>
 
 #include "catalog/esc_prior.h"
+#include "catalog/prop_credibility.h"
 #include "common/atmosphere.h"
 #include "common/units.h"
 #include "importers/csv.h"
@@ -58,18 +59,64 @@ bool LooksBrushed(const std::string& name) {
   return std::regex_search(name, kBrushed);
 }
 
+// Letters and digits only, lowercase: "Welgard A28/14/06" and "Welgard A2814/06" agree.
+std::string NameKey(const std::string& name) {
+  std::string k;
+  for (unsigned char c : name) {
+    if (std::isalnum(c)) k.push_back(static_cast<char>(std::tolower(c)));
+  }
+  return k;
+}
+
+// Groups rows that are the same product under several ids: any of the keys of a row seen
+// before puts it in that row's group. Returns, per row, the index of its group's first row.
+std::vector<std::size_t> GroupDuplicates(const std::vector<std::vector<std::string>>& keys) {
+  std::map<std::string, std::size_t> first;
+  std::vector<std::size_t> group(keys.size());
+  for (std::size_t i = 0; i < keys.size(); ++i) {
+    group[i] = i;
+    for (const auto& k : keys[i]) {
+      if (k.empty()) continue;
+      const auto it = first.find(k);
+      if (it != first.end()) {
+        group[i] = group[it->second];
+        break;
+      }
+    }
+    for (const auto& k : keys[i]) {
+      if (!k.empty()) first.emplace(k, i);
+    }
+  }
+  return group;
+}
+
+// "; same product as myid 1156 (merged)" for the kept row of a group, "" otherwise.
+std::string MergedNote(const std::vector<std::size_t>& group, std::size_t i,
+                       const std::vector<std::string>& myids, std::string* reference) {
+  std::string others;
+  for (std::size_t k = i + 1; k < group.size(); ++k) {
+    if (group[k] == i) others += (others.empty() ? "" : ", ") + myids[k];
+  }
+  if (others.empty()) return "";
+  *reference += " (merged: also myid " + others + ")";
+  return "; the same product is listed as myid " + others + ": merged, values of myid " +
+         myids[i] + " kept";
+}
+
 void ImportMotors(const std::string& dir, ImportedDataset* out) {
   const CsvTable t = ReadCsv(dir + "/Motors.csv");
   if (t.was_latin1) out->report.notes.push_back("Motors.csv decoded as Latin-1");
-  std::map<std::string, std::string> seen;  // exact-duplicate key -> id kept
+  // Pass 1: rows that are motors at all, and their duplicate keys.
+  std::vector<const CsvRow*> rows;
+  std::vector<std::vector<std::string>> keys;
+  std::vector<std::string> myids;
   for (const auto& r : t.rows) {
     const Row row{&t, &r};
     const std::string name = CleanName(row.Str("Name"));
     const std::string example = row.Where() + " " + name;
     bool ok = true;
-    const double kv = row.Num("kV", &ok), rm = row.Num("Rm", &ok), imax = row.Num("Imax", &ok),
-                 weight_g = row.Num("Weight", &ok), k = row.Num("K", &ok),
-                 mvk = row.Num("MvK", &ok), kl = row.Num("kL", &ok);
+    const double kv = row.Num("kV", &ok), rm = row.Num("Rm", &ok);
+    for (const char* col : {"Imax", "Weight", "K", "MvK", "kL"}) row.Num(col, &ok);
     if (!ok) {
       out->report.Drop("motors", "malformed number", example);
       continue;
@@ -86,15 +133,26 @@ void ImportMotors(const std::string& dir, ImportedDataset* out) {
       out->report.Drop("motors", "Rm = 0 placeholder", example);
       continue;
     }
-    const std::string dup_key = name + "|" + row.Str("kV") + "|" + row.Str("Rm") + "|" +
-                                row.Str("Weight") + "|" + row.Str("MvK") + "|" + row.Str("kL");
-    const std::string id = "dc_m_" + row.Str("myid");
-    if (const auto d = seen.find(dup_key); d != seen.end()) {
-      out->report.Drop("motors", "exact duplicate (same name, kV, Rm, weight, losses)",
-                       example + " = " + d->second);
+    rows.push_back(&r);
+    myids.push_back(row.Str("myid"));
+    // The same numbers to every stated digit (kV, Rm, mass, losses) or the same name and kV.
+    keys.push_back({"n|" + row.Str("kV") + "|" + row.Str("Rm") + "|" + row.Str("Weight") + "|" +
+                        row.Str("MvK") + "|" + row.Str("kL"),
+                    "k|" + NameKey(name) + "|" + row.Str("kV")});
+  }
+  const std::vector<std::size_t> group = GroupDuplicates(keys);
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    const Row row{&t, rows[i]};
+    const std::string name = CleanName(row.Str("Name"));
+    if (group[i] != i) {
+      out->report.Drop("motors", "same product as another id: merged into it",
+                       row.Where() + " " + name + " -> dc_m_" + myids[group[i]]);
       continue;
     }
-    seen[dup_key] = id;
+    bool ok = true;
+    const double kv = row.Num("kV", &ok), rm = row.Num("Rm", &ok), imax = row.Num("Imax", &ok),
+                 weight_g = row.Num("Weight", &ok), k = row.Num("K", &ok),
+                 mvk = row.Num("MvK", &ok), kl = row.Num("kL", &ok);
     const bool brushed = LooksBrushed(name);
     // model.md section 8 (BLDC) / DC machine: KE from Kv; section 5: KT = sqrt(27/10)*KE (BLDC).
     const double ke = brushed ? KeFromKvBrushed(kv) : KeFromKvBldc(kv);
@@ -104,10 +162,13 @@ void ImportMotors(const std::string& dir, ImportedDataset* out) {
     const double omega_ref = RpmToRadPerSec(kv * kIoTestVoltageV);
     const double io = (mvk + kl * omega_ref) / kt;
 
-    EntryBuilder b(id, name);
+    EntryBuilder b("dc_m_" + myids[i], name);
     b.Set("type", brushed ? "brushed" : "bldc", "derived");
     b.SetNum("kv_rpm_per_v", kv, "datasheet");
-    b.SetNum("rm_ohm", rm, "datasheet");
+    // DriveCalc's Rm is the R of its DC model U = n/Kv + R*I (catalog/conventions.h); a brushed
+    // motor's circuit is that DC circuit itself.
+    if (brushed) b.SetNum("rm_ohm", rm, "datasheet");
+    else SetResistanceFromDc(&b, rm, "datasheet");
     b.SetNum("io_a", io, "derived", 4);
     b.Set("io_test_voltage_v", kIoTestVoltageV, "derived");  // our evaluation point, see kIoTestVoltageV
     if (mvk > 0) b.SetNum("loss_torque_nm", mvk, "datasheet");
@@ -115,11 +176,17 @@ void ImportMotors(const std::string& dir, ImportedDataset* out) {
     if (k > 0) b.SetNum("rm_per_omega_ohm_s_per_rad", k, "datasheet");
     if (imax > 0) b.SetNum("max_current_a", imax, "datasheet");
     if (weight_g > 0) b.SetNum("mass_kg", GramsToKg(weight_g), "datasheet");
-    // The long explanation lives in the document comment and catalog/README.md.
-    std::string note = "rm_ohm: DB Rm, ~1.6x below a fit of DriveCalc's own measurements";
+    std::string note = brushed ? "rm_ohm: DB Rm" : "rm_ohm = 0.7492 x DB Rm (DC circuit)";
+    note += ", DB Rm ~1.6x below a fit of DriveCalc's own measurements";
+    note += SetRatingOrExclude(&b, imax > 0,
+                               weight_g > 0 ? std::optional<double>(GramsToKg(weight_g)) : std::nullopt,
+                               brushed);
     if (brushed) note += "; brushed (by name)";
     if (name.find(':') != std::string::npos) note += "; geared (ratio in name), Kv of the motor";
-    b.Source(kDataset, Ref("Motors.csv", row), note);
+    std::string reference = Ref("Motors.csv", row);
+    note += MergedNote(group, i, myids, &reference);
+    b.Source(kDataset, reference, note);
+    b.Tier("user_contributed");
     out->motors.push_back(b.Build());
     out->report.Keep("motors");
   }
@@ -128,7 +195,16 @@ void ImportMotors(const std::string& dir, ImportedDataset* out) {
 void ImportEscs(const std::string& dir, ImportedDataset* out) {
   const CsvTable t = ReadCsv(dir + "/ESC.csv");
   const EscPrior& prior = DefaultEscPrior();
+  std::vector<std::vector<std::string>> keys;
+  std::vector<std::string> myids;
   for (const auto& r : t.rows) {
+    const Row row{&t, &r};
+    myids.push_back(row.Str("myid"));
+    keys.push_back({NameKey(CleanName(row.Str("Name"))) + "|" + row.Str("Imax")});
+  }
+  const std::vector<std::size_t> group = GroupDuplicates(keys);
+  for (std::size_t i = 0; i < t.rows.size(); ++i) {
+    const auto& r = t.rows[i];
     const Row row{&t, &r};
     const std::string name = CleanName(row.Str("Name"));
     const std::string example = row.Where() + " " + name;
@@ -142,6 +218,11 @@ void ImportEscs(const std::string& dir, ImportedDataset* out) {
     }
     if (!(imax > 0)) {
       out->report.Drop("escs", "Imax = 0 placeholder (no current rating)", example);
+      continue;
+    }
+    if (group[i] != i) {
+      out->report.Drop("escs", "same product as another id: merged into it",
+                       example + " -> dc_e_" + myids[group[i]]);
       continue;
     }
     EntryBuilder b("dc_e_" + row.Str("myid"), name);
@@ -167,7 +248,11 @@ void ImportEscs(const std::string& dir, ImportedDataset* out) {
       b.SetNum("vdc_max_v", 4.2 * lipo_max, "derived");
     }
     if (ipeak > 0 && ipeak < imax) note += "Ipeak < Imax in the source, left out; ";
-    b.Source(kDataset, Ref("ESC.csv", row), note + "c1, c0, tr_sat, sat_slope: esc_prior.h");
+    std::string reference = Ref("ESC.csv", row);
+    note += "c1, c0, tr_sat, sat_slope: esc_prior.h";
+    note += MergedNote(group, i, myids, &reference);
+    b.Source(kDataset, reference, note);
+    b.Tier("user_contributed");
     out->escs.push_back(b.Build());
     out->report.Keep("escs");
   }
@@ -227,6 +312,7 @@ void ImportBatteries(const std::string& dir, ImportedDataset* out) {
     if (ri_mohm <= 0) note += "Ri = 0 placeholder, left out; ";
     if (!note.empty()) note.resize(note.size() - 2);
     b.Source(kDataset, Ref("Batteries.csv", row), note);
+    b.Tier("user_contributed");
     out->batteries.push_back(b.Build());
     out->report.Keep("batteries");
   }
@@ -239,10 +325,37 @@ double LawDensity(double alt_m, double temp_c, bool* assumed) {
   return *assumed ? kIsaSeaLevelRhoKgM3 : AirDensityKgM3(alt_m, temp_c);
 }
 
+// Speed range of DriveCalc's own measurements (MData.csv, loaded points with rpm) per
+// propeller id: the range over which a propeller's power laws were seen to hold.
+std::map<std::string, std::pair<double, double>> MeasuredRpmRanges(const std::string& dir) {
+  std::map<std::string, std::pair<double, double>> out;
+  const CsvTable t = ReadCsv(dir + "/MData.csv");
+  const std::size_t c_n = t.Column("n"), c_p = t.Column("prop_id"), c_nl = t.Column("IsNoLoad");
+  for (const auto& r : t.rows) {
+    const std::string prop = t.Field(r, c_p);
+    const auto n = ParseNumber(t.Field(r, c_n));
+    if (prop.empty() || prop == "0" || t.Field(r, c_nl) == "1" || !n || !(*n > 0)) continue;
+    auto it = out.find(prop);
+    if (it == out.end()) out.emplace(prop, std::make_pair(*n, *n));
+    else it->second = {std::min(it->second.first, *n), std::max(it->second.second, *n)};
+  }
+  return out;
+}
+
 void ImportProps(const std::string& dir, ImportedDataset* out) {
   const CsvTable t = ReadCsv(dir + "/Props.csv");
+  const auto measured = MeasuredRpmRanges(dir);
+  std::vector<std::vector<std::string>> keys;
+  std::vector<std::string> myids;
   for (const auto& r : t.rows) {
     const Row row{&t, &r};
+    myids.push_back(row.Str("myid"));
+    keys.push_back({NameKey(CleanName(row.Str("Name"))) + "|" + row.Str("Dia") + "|" + row.Str("Pitch")});
+  }
+  const std::vector<std::size_t> group = GroupDuplicates(keys);
+  std::size_t folding_count = 0, measured_range = 0;
+  for (std::size_t i = 0; i < t.rows.size(); ++i) {
+    const Row row{&t, &t.rows[i]};
     bool ok = true;
     const double dia_in = row.Num("Dia", &ok), pitch_in = row.Num("Pitch", &ok),
                  a = row.Num("a", &ok), bexp = row.Num("b", &ok), c = row.Num("c", &ok),
@@ -268,13 +381,19 @@ void ImportProps(const std::string& dir, ImportedDataset* out) {
       out->report.Drop("props", "no power law (c = 0 or d = 0)", example);
       continue;
     }
+    if (group[i] != i) {
+      out->report.Drop("props", "same product as another id: merged into it",
+                       example + " -> dc_p_" + myids[group[i]]);
+      continue;
+    }
     // Both laws are brought to sea-level ISA density (T and P scale linearly with rho, from
     // T = CT*rho*n^2*D^4 and P = CP*rho*n^3*D^5).
     bool t_assumed = false, p_assumed = false;
     const double rho_t = LawDensity(alt_t, tmp_t, &t_assumed);
     const double rho_p = LawDensity(alt_p, tmp_p, &p_assumed);
-    EntryBuilder b("dc_p_" + row.Str("myid"), name);
-    b.SetNum("diameter_m", InchToMeter(dia_in), "datasheet");
+    const double diameter_m = InchToMeter(dia_in);
+    EntryBuilder b("dc_p_" + myids[i], name);
+    b.SetNum("diameter_m", diameter_m, "datasheet");
     if (pitch_in > 0) b.SetNum("pitch_m", InchToMeter(pitch_in), "datasheet");
     b.SetNum("thrust_law_n", GramForceToNewton(a) * kIsaSeaLevelRhoKgM3 / rho_t, "derived");
     b.SetNum("thrust_law_exp", bexp, "datasheet");
@@ -282,15 +401,43 @@ void ImportProps(const std::string& dir, ImportedDataset* out) {
     b.SetNum("power_law_exp", d, "datasheet");
     b.Set("law_rho_kg_m3", kIsaSeaLevelRhoKgM3, "derived");
     if (max_rpm > 0) b.SetNum("max_rpm", max_rpm, "datasheet");
+    // Valid range (catalog/prop_credibility.h): DriveCalc's own measurements with this
+    // propeller, else the assumed tip-speed band capped by the stated MaxRPM.
+    std::string range_note;
+    if (const auto m = measured.find(myids[i]); m != measured.end()) {
+      b.SetNum("rpm_min", m->second.first, "measured", 5);
+      b.SetNum("rpm_max", m->second.second, "measured", 5);
+      range_note = "rpm range: DriveCalc's measurements with this prop (MData)";
+      ++measured_range;
+    } else {
+      const double lo = RadPerSecToRpm(kDefaultTipSpeedLoMS / (diameter_m / 2.0));
+      double hi = RadPerSecToRpm(kDefaultTipSpeedHiMS / (diameter_m / 2.0));
+      if (max_rpm > 0) hi = std::min(hi, max_rpm);
+      b.SetNum("rpm_min", lo, "assumed", 4);
+      b.SetNum("rpm_max", std::max(hi, lo), max_rpm > 0 && hi == max_rpm ? "datasheet" : "assumed", 4);
+      range_note = "rpm range: no measurements, tip speed 40-230 m/s assumed (MaxRPM cap)";
+    }
+    const bool folding = folder > 0 || NameSaysFolding(name);
+    if (folding) {
+      b.Set("folding", true, folder > 0 ? "datasheet" : "derived");
+      ++folding_count;
+    }
     std::string note = "thrust: " + row.Str("srcThr") + " at " + row.Str("AltThr") + " m " +
                        row.Str("TmpThr") + " C; power: " + row.Str("srcPwr") + " at " +
                        row.Str("AltPwr") + " m " + row.Str("TmpPwr") + " C";
     if (t_assumed || p_assumed) note += " (0 m 0 C = not stated: sea level assumed)";
-    if (folder > 0) note += "; folding";
-    b.Source(kDataset, Ref("Props.csv", row), note);
-    out->props.push_back(b.Build());
-    out->report.Keep("props");
+    note += "; " + range_note;
+    if (folding) note += "; folding";
+    std::string reference = Ref("Props.csv", row);
+    note += MergedNote(group, i, myids, &reference);
+    b.Source(kDataset, reference, note);
+    b.Tier("user_contributed");
+    KeepAuditedProp(b.Build(), example, out);
   }
+  out->report.notes.push_back(
+      "Props.csv: valid rpm range from DriveCalc's measurements (MData) for " +
+      std::to_string(measured_range) + " props, assumed tip-speed band for the rest; " +
+      std::to_string(folding_count) + " folding (Folder column or name)");
 }
 
 }  // namespace
@@ -305,14 +452,19 @@ ImportedDataset ImportDriveCalc(const std::string& dir) {
       "github.com/dariomangoni/DriveCalculatorMatlab commit 4451ac8; user-contributed entries, "
       "redistribution terms unclear). 'datasheet' = the value as stored in the DB. Units "
       "converted: g -> kg, mOhm -> ohm, mAh -> Ah, in -> m, gf -> N. Motors: ke/kt from kV "
-      "(model.md sections 5, 8); rm_ohm is DriveCalc's stored Rm, which a fit of DriveCalc's own "
+      "(model.md sections 5, 8); rm_dc_ohm is DriveCalc's stored Rm, which a fit of DriveCalc's own "
       "measurement points (MData) finds ~1.6x too small (deciles 1.1-3.9x): a lower bound until "
       "refitted; io_a = (MvK + kL*omega)/kt at the no-load speed at 10 V DC (model.md section 9), "
       "in rms amperes; MvK, kL, K kept as loss_torque_nm, loss_torque_per_omega_nm_s_per_rad, "
       "rm_per_omega_ohm_s_per_rad. ESCs: c1, c0, tr_sat, sat_slope (and resc_ohm where R = 0) "
       "from the esc_prior.h prior, marked assumed. Batteries: one cell position each, per-cell "
       "values. Props: static power laws rescaled from the stated altitude/temperature to "
-      "1.225 kg/m^3; no forward-flight data. Do not edit by hand: see catalog/README.md.";
+      "1.225 kg/m^3; no forward-flight data; valid rpm range rpm_min/rpm_max from DriveCalc's own "
+      "measurements with the prop (MData) or an assumed tip-speed band; props whose figure of "
+      "merit exceeds the envelope of measured props of their size class are derated "
+      "(power_derate_factor), FM > 1 dropped. Motors: rm_ohm = 0.7492 x DB Rm (the DC circuit's "
+      "R, kept as rm_dc_ohm; catalog/conventions.h); same product under several ids merged. "
+      "Do not edit by hand: see catalog/README.md.";
   ImportMotors(dir, &out);
   ImportEscs(dir, &out);
   ImportBatteries(dir, &out);

@@ -6,6 +6,8 @@
 #include <cstdio>
 #include <sstream>
 
+#include "catalog/conventions.h"
+#include "catalog/prop_credibility.h"
 #include "common/error.h"
 
 namespace dynosize {
@@ -71,6 +73,11 @@ std::string ImportReport::FullReport() const {
       }
       out << "\n";
     }
+    if (d.props_derated > 0) {
+      out << "  derated " << d.props_derated << " props above the FM envelope (e.g. ";
+      for (std::size_t i = 0; i < d.derated_examples.size(); ++i) out << (i ? "; " : "") << d.derated_examples[i];
+      out << ")\n";
+    }
     for (const auto& n : d.notes) out << "  note    " << n << "\n";
   }
   out << BriefReport() << "\n";
@@ -90,6 +97,7 @@ Json ImportReport::ToJson() const {
       dj["dropped"].push_back(
           {{"kind", x.kind}, {"reason", x.reason}, {"count", x.count}, {"examples", x.examples}});
     }
+    dj["props_derated"] = d.props_derated;
     dj["notes"] = d.notes;
     j.push_back(dj);
   }
@@ -184,6 +192,11 @@ EntryBuilder& EntryBuilder::Source(const std::string& dataset, const std::string
   return *this;
 }
 
+EntryBuilder& EntryBuilder::Tier(const std::string& tier) {
+  tier_ = tier;
+  return *this;
+}
+
 Json EntryBuilder::Build() const {
   Json e = entry_;
   Json src = Json::object();
@@ -191,8 +204,78 @@ Json EntryBuilder::Build() const {
   if (!reference_.empty()) src["reference"] = reference_;
   if (!values_.empty()) src["values"] = values_;
   if (!note_.empty()) src["note"] = note_;
+  if (!tier_.empty()) src["tier"] = tier_;
   e["source"] = src;
   return e;
+}
+
+void SetResistanceFromDc(EntryBuilder* b, double r_dc_ohm, const std::string& method, int digits) {
+  b->SetNum("rm_ohm", RmsCircuitResistanceFromDc(r_dc_ohm), "derived", digits);
+  b->SetNum("rm_dc_ohm", r_dc_ohm, method, digits);
+}
+
+std::string SetRatingOrExclude(EntryBuilder* b, bool has_rating, std::optional<double> mass_kg,
+                               bool brushed) {
+  if (has_rating) return "";
+  if (mass_kg && !brushed) {
+    b->SetNum("max_power_w", EstimatedMotorPowerW(*mass_kg), "assumed", 3);
+    return "; no rating in the source: max_power_w estimated from the mass (outrunner law "
+           "10.81*m[g]^0.878 W, catalog/conventions.h)";
+  }
+  b->Set("exclude", brushed ? "no current or power rating (brushed: the outrunner mass law does "
+                              "not apply)"
+                            : "no current or power rating and no mass to estimate one from",
+         "");
+  return "; excluded by default: no rating";
+}
+
+PropAudit AuditProp(Json* entry) {
+  PropAudit a;
+  const PropEntry p = PropEntryFromJson(*entry);
+  const PropFmScan scan = ScanFigureOfMerit(p);
+  a.fm_max = scan.fm_max;
+  a.envelope_max = FmEnvelopeFor(p.diameter_m).max;
+  const std::string violation = PropMomentumViolation(p);
+  if (!violation.empty()) {
+    a.refused = true;
+    a.why = violation;
+    return a;
+  }
+  if (!(scan.fm_max > a.envelope_max)) return a;
+  // Rounded up at 5 decimals, so that the derated entry sits at or below the envelope.
+  a.factor = std::ceil(scan.fm_max / a.envelope_max * 1e5) / 1e5;
+  if (!(a.factor > 1.0)) {  // above by less than the digits kept: leave the data as stated
+    a.factor = 1.0;
+    return a;
+  }
+  a.derated = true;
+  Json& e = *entry;
+  // 7 digits: the 6-digit rounding of a scaled number could undo the last 5e-6 of the factor.
+  auto scale = [&](Json& v) { v = RoundSig(v.get<double>() * a.factor, 7); };
+  if (e.contains("power_law_w")) scale(e["power_law_w"]);
+  if (e.contains("cp_static")) scale(e["cp_static"]);
+  if (e.contains("static_table")) {
+    for (Json& v : e["static_table"]["cp"]) scale(v);
+  }
+  if (e.contains("j_tables")) {
+    for (Json& t : e["j_tables"]) {
+      for (Json& v : t["cp"]) scale(v);
+    }
+  }
+  e["power_derate_factor"] = a.factor;
+  // Keep "source" last (EntryBuilder's layout) and record the method.
+  Json src = e["source"];
+  e.erase("source");
+  src["values"]["power_derate_factor"] = "derived";
+  char buf[200];
+  std::snprintf(buf, sizeof buf,
+                "power data x%.4g: static FM up to %.3f in its valid range, above the %.3f of the "
+                "best measured propeller of its class (prop_credibility.h)",
+                a.factor, scan.fm_max, a.envelope_max);
+  const std::string note = src.value("note", std::string());
+  src["note"] = note.empty() ? std::string(buf) : note + "; " + buf;
+  e["source"] = src;
+  return a;
 }
 
 std::string FormatCatalogDocument(const std::string& comment, const Json& motors,

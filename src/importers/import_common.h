@@ -5,6 +5,7 @@
 
 #include <cstddef>
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -27,6 +28,10 @@ struct DatasetReport {
   std::map<std::string, std::size_t> kept;  // kind -> entries written
   std::vector<DropCount> dropped;           // in the order first seen
   std::vector<std::string> notes;           // cleaning done without dropping (unit fixes, ...)
+  // Propellers whose power data were raised to the envelope of measured propellers (AuditProp),
+  // with the first few "id xfactor" as examples.
+  std::size_t props_derated = 0;
+  std::vector<std::string> derated_examples;
 
   void Keep(const std::string& kind) { ++kept[kind]; }
   void Drop(const std::string& kind, const std::string& reason, const std::string& example);
@@ -67,13 +72,42 @@ class EntryBuilder {
                        int digits = 6);
   EntryBuilder& Source(const std::string& dataset, const std::string& reference,
                        const std::string& note);
+  // source.tier: measured | manufacturer_computed | manufacturer_stated | user_contributed |
+  // assumed (catalog/conventions.h).
+  EntryBuilder& Tier(const std::string& tier);
   Json Build() const;
 
  private:
   Json entry_;
   Json values_ = Json::object();
-  std::string dataset_, reference_, note_;
+  std::string dataset_, reference_, note_, tier_;
 };
+
+// The figure-of-merit audit of a propeller entry that is not measured (catalog/
+// prop_credibility.h): an entry whose static FM exceeds 1 anywhere in its valid range is
+// refused (returns false, reason in *why); one above the envelope of measured propellers of
+// its size class gets its power data (power_law_w, cp_static, static_table.cp, j_tables.cp)
+// multiplied by fm_max/envelope_max, "power_derate_factor" set and a note appended. Counts go
+// to report->notes through the caller.
+struct PropAudit {
+  bool refused = false;
+  bool derated = false;
+  double fm_max = 0.0;        // before derating
+  double envelope_max = 0.0;  // of the size class
+  double factor = 1.0;
+  std::string why;
+};
+PropAudit AuditProp(Json* entry);
+
+// Motor ratings (catalog/conventions.h): with a rating, nothing; without one, a BLDC motor
+// with a mass gets max_power_w from the outrunner specific-power law ("assumed"), any other
+// gets "exclude". Returns the text to append to source.note ("" or "; ...").
+std::string SetRatingOrExclude(EntryBuilder* b, bool has_rating, std::optional<double> mass_kg,
+                               bool brushed);
+
+// Resistance convention (catalog/conventions.h): sets rm_dc_ohm (the source's DC-circuit
+// resistance, with its method) and rm_ohm = 0.7492*rm_dc_ohm ("derived").
+void SetResistanceFromDc(EntryBuilder* b, double r_dc_ohm, const std::string& method, int digits = 6);
 
 // Writes a catalog document {"comment": ..., "motors": [...], ...} with one entry per line
 // (compact JSON inside the entry), the kinds in the order motors, escs, props, batteries, and a

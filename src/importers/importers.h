@@ -25,6 +25,10 @@ struct ImportedDataset {
   Json batteries = Json::array();
 };
 
+// Audits a propeller entry that is not measured (AuditProp of import_common.h) and keeps it
+// in out->props (counting a derating) or drops it with the reason (FM > 1 in its valid range).
+void KeepAuditedProp(Json entry, const std::string& example, ImportedDataset* out);
+
 // shared/data/drivecalc: Motors.csv, ESC.csv, Batteries.csv, Props.csv.
 ImportedDataset ImportDriveCalc(const std::string& dir);
 // shared/data/fastuav_catalogues: Motors_Data.csv, ESC_data.csv,
@@ -38,6 +42,12 @@ ImportedDataset ImportApcPer3(const std::string& dir);
 ImportedDataset ImportSjkimTables(const std::string& dir);
 ImportedDataset ImportDroneBuildCalc(const std::string& dir);
 ImportedDataset ImportCtuMrs(const std::string& dir);
+
+// UIUC volume 3 (Aeronaut CAM folders, family "ancf"): the flat CSV lost a decimal point of
+// some sizes ("ancf 125.0x6.0" = 12.5 x 6.0 in has P = 0.6, "ancf 13.0x65.0" = 13 x 6.5 in has
+// D = 1.3). Decodes diameter and pitch [in] from the blade name into *d_in, *p_in; returns true
+// when they differ from the columns passed in. Other families: false, unchanged.
+bool DecodeUiucFolderSize(const std::string& blade_name, double* d_in, double* p_in);
 
 // Runs every importer on shared_data_dir/<dataset>/ and writes out_catalog_dir/<dataset>.json
 // (atomically, deterministic bytes). Ids must be unique across all data sets and the files

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <map>
 
+#include "catalog/prop_credibility.h"
 #include "common/units.h"
 #include "importers/csv.h"
 #include "importers/importers.h"
@@ -94,7 +95,16 @@ void ImportVolume(const std::string& dir, int volume, ImportedDataset* out) {
     pr.points.push_back({*n, *j, *ct, *cp});
   }
   std::size_t merged_runs = 0, merged_points = 0;
-  for (const Prop& pr : props) {
+  for (Prop& pr : props) {
+    const double d_col = pr.d_in, p_col = pr.p_in;
+    const bool size_fixed = DecodeUiucFolderSize(pr.blade_name, &pr.d_in, &pr.p_in);
+    if (size_fixed) {
+      char buf[200];
+      std::snprintf(buf, sizeof buf, "%s: D, P columns %g x %g in corrected to %g x %g in from the "
+                    "name (decimal point lost in the flat CSV)", pr.blade_name.c_str(), d_col,
+                    p_col, pr.d_in, pr.p_in);
+      out->report.notes.push_back(file + ": " + buf);
+    }
     std::vector<std::pair<double, std::pair<double, double>>> st;
     std::vector<Point> fwd;
     for (const Point& q : pr.points) {
@@ -132,14 +142,20 @@ void ImportVolume(const std::string& dir, int volume, ImportedDataset* out) {
     const std::string vol = std::to_string(volume);
     EntryBuilder b("uiuc_v" + vol + "_" + Slug(pr.prop_name),
                    "UIUC vol " + vol + " " + pr.blade_name + " (" + blades + " blades)");
-    b.SetNum("diameter_m", InchToMeter(pr.d_in), "datasheet");
-    if (pr.p_in > 0) b.SetNum("pitch_m", InchToMeter(pr.p_in), "datasheet");
+    b.SetNum("diameter_m", InchToMeter(pr.d_in), size_fixed ? "derived" : "datasheet");
+    if (pr.p_in > 0) b.SetNum("pitch_m", InchToMeter(pr.p_in), size_fixed ? "derived" : "datasheet");
+    const bool folding = NameSaysFolding(pr.blade_name + " ");
+    if (folding) b.Set("folding", true, "derived");
     b.Set("blades", pr.blades, "datasheet");
     if (!rpm.empty()) b.Set("static_table", {{"rpm", rpm}, {"ct", ct}, {"cp", cp}}, "measured");
     if (!sweeps.empty()) b.Set("j_tables", sweeps, "measured");
+    std::string note = rpm.empty() ? "no static test in the data set" : "";
+    auto add = [&note](const std::string& s) { note += (note.empty() ? "" : "; ") + s; };
+    if (size_fixed) add("D and pitch decoded from the name (the flat CSV lost a decimal point)");
+    if (folding) add("folding (UIUC family ancf: Aeronaut CAM folding blades)");
     b.Source(kDataset, file + " lines " + std::to_string(pr.first_line) + "-" +
-                           std::to_string(pr.last_line) + " (" + pr.prop_name + ")",
-             rpm.empty() ? "no static test in the data set" : "");
+                           std::to_string(pr.last_line) + " (" + pr.prop_name + ")", note);
+    b.Tier("measured");
     out->props.push_back(b.Build());
     out->report.Keep("props");
   }
@@ -152,6 +168,24 @@ void ImportVolume(const std::string& dir, int volume, ImportedDataset* out) {
 }
 
 }  // namespace
+
+bool DecodeUiucFolderSize(const std::string& blade_name, double* d_in, double* p_in) {
+  // "ancf 125.0x6.0": the UIUC file name ancf_125x6 (12.5 x 6.0 in) with the decimal point of
+  // the diameter dropped, and "ancf 13.0x65.0" (13 x 6.5 in) the one of the pitch. No Aeronaut
+  // CAM folder is 100 in across or has a 20 in pitch, so such numbers are tenths.
+  if (blade_name.rfind("ancf ", 0) != 0) return false;
+  const std::string size = blade_name.substr(5);
+  const auto x = size.find('x');
+  if (x == std::string::npos) return false;
+  const auto a = ParseNumber(size.substr(0, x)), b = ParseNumber(size.substr(x + 1));
+  if (!a || !b || !(*a > 0) || !(*b > 0)) return false;
+  const double d = *a >= 100.0 ? *a / 10.0 : *a;
+  const double p = *b >= 20.0 ? *b / 10.0 : *b;
+  const bool changed = std::fabs(d - *d_in) > 1e-9 || std::fabs(p - *p_in) > 1e-9;
+  *d_in = d;
+  *p_in = p;
+  return changed;
+}
 
 ImportedDataset ImportUiuc(const std::string& dir) {
   ImportedDataset out;

@@ -89,6 +89,7 @@ PropModel::PropModel(const PropEntry& entry) : entry_(entry) {
   if (!(entry_.diameter_m > 0)) {
     throw UsageError("propeller '" + entry_.id + "': diameter_m must be > 0");
   }
+  range_ = ValidRange(entry_);
 }
 
 void PropModel::TableCoefficients(double rpm, double j, PropEvaluation* ev) const {
@@ -143,8 +144,10 @@ std::string PropEvaluation::Message() const {
   if (at_rest_in_flow) return "shaft at rest in a flow: windmilling is not modelled";
   std::vector<std::string> parts;
   if (rpm_outside_data) {
-    if (data == PropDataKind::kPowerLaw) {
-      parts.push_back("rpm " + Num(rpm) + " above the propeller's limit " + Num(data_rpm_hi));
+    if (data != PropDataKind::kTables) {
+      auto whole = [](double x) { return std::to_string(std::lround(x)); };
+      parts.push_back("rpm " + whole(rpm) + " outside the valid range " + whole(data_rpm_lo) + "-" +
+                      whole(data_rpm_hi) + " of the propeller's data; edge coefficients held");
     } else {
       parts.push_back("rpm " + Num(rpm) + (from_sweeps ? " outside the forward-flight sweeps " : " outside the static data ") +
                       Num(data_rpm_lo) + "-" + Num(data_rpm_hi));
@@ -198,20 +201,28 @@ PropEvaluation PropModel::Evaluate(double omega_rad_s, double rho_kg_m3,
       ev.ct = *entry_.ct_static;
       ev.cp = *entry_.cp_static;
       ev.no_forward_flight_data = ev.j > 0;
+      if (!range_.rpm_assumed) {  // a stated range: say when the speed leaves it
+        ev.data_rpm_lo = range_.rpm_lo;
+        ev.data_rpm_hi = range_.rpm_hi;
+        ev.rpm_outside_data = ev.rpm < range_.rpm_lo || ev.rpm > range_.rpm_hi;
+      }
       break;
     case PropDataKind::kPowerLaw: {
       // DriveCalc: T [N] = a*(rpm/1000)^b, P [W] = c*(rpm/1000)^d at law rho, linear in rho;
-      // expressed as CT, CP through the UIUC definitions.
+      // expressed as CT, CP through the UIUC definitions. Outside the valid range
+      // (catalog/prop_credibility.h) the coefficients are held at the edge, not extrapolated:
+      // the laws' figure of merit drifts with rpm and beats momentum theory far from the data.
       const PropPowerLaw& law = *entry_.power_law;
-      const double k = ev.rpm / 1000.0;
+      const double rpm_eval = std::clamp(ev.rpm, range_.rpm_lo, range_.rpm_hi);
+      const double n_eval = rpm_eval / 60.0;
+      const double k = rpm_eval / 1000.0;
       const double t = law.thrust_law_n * std::pow(k, law.thrust_law_exp) * rho_kg_m3 / law.rho_kg_m3;
       const double p = law.power_law_w * std::pow(k, law.power_law_exp) * rho_kg_m3 / law.rho_kg_m3;
-      ev.ct = t / (rho_kg_m3 * n * n * d4);
-      ev.cp = p / (rho_kg_m3 * n * n * n * d5);
-      if (entry_.max_rpm) {
-        ev.data_rpm_hi = *entry_.max_rpm;
-        ev.rpm_outside_data = ev.rpm > *entry_.max_rpm;
-      }
+      ev.ct = t / (rho_kg_m3 * n_eval * n_eval * d4);
+      ev.cp = p / (rho_kg_m3 * n_eval * n_eval * n_eval * d5);
+      ev.data_rpm_lo = range_.rpm_lo;
+      ev.data_rpm_hi = range_.rpm_hi;
+      ev.rpm_outside_data = rpm_eval != ev.rpm;
       ev.no_forward_flight_data = ev.j > 0;
       break;
     }

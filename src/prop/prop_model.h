@@ -11,7 +11,7 @@
 //      above J = 0 is joined to the static table at its rpm.
 //   2. constant coefficients ct_static, cp_static (static only, no rpm dependence).
 //   3. DriveCalc power laws T = a*(rpm/1000)^b, P = c*(rpm/1000)^d at law_rho, scaled by rho
-//      (static only).
+//      (static only), within the entry's valid rpm range (catalog/prop_credibility.h).
 // Outside the data the model does not extrapolate silently: it holds the coefficients at the
 // nearest edge of the data and says so in PropEvaluation (rpm_outside_data, j_outside_data,
 // no_forward_flight_data).
@@ -20,6 +20,7 @@
 #include <string>
 
 #include "catalog/catalog.h"
+#include "catalog/prop_credibility.h"
 #include "model/drive.h"
 
 namespace dynosize {
@@ -93,6 +94,8 @@ class PropModel {
   // j_tables with the static point (J = 0, from static_table at the sweep's rpm) prepended
   // when the sweep starts above J = 0; built once in the constructor.
   std::vector<PropSweep> sweeps_;
+  // The data's valid range (power laws: rpm_min/rpm_max or the assumed tip-speed band).
+  PropValidRange range_;
 };
 
 }  // namespace dynosize

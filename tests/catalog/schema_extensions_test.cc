@@ -32,10 +32,12 @@ std::string Join(const std::vector<std::string>& ps) {
 
 const char* kSrc = R"("source": {"dataset": "test", "values": {"diameter_m": "computed"}})";
 
+// (The sweep's CP must leave the axial-flow figure of merit below 1: at J = 0.4,
+// CT*(J/2 + sqrt(J^2/4 + 2*CT/pi))/CP = 0.07*0.491/0.045 = 0.76; catalog/prop_credibility.h.)
 TEST(SchemaExtensionsTest, ValidPropWithTablesLoads) {
   const auto ps = Problems(std::string(R"({"props": [{"id": "p", "name": "p", "diameter_m": 0.25,
     "static_table": {"rpm": [2000, 4000], "ct": [0.1, 0.11], "cp": [0.04, 0.042]},
-    "j_tables": [{"rpm": 3000, "j": [0.2, 0.4], "ct": [0.09, 0.07], "cp": [0.04, 0.03]}], )") +
+    "j_tables": [{"rpm": 3000, "j": [0.2, 0.4], "ct": [0.09, 0.07], "cp": [0.05, 0.045]}], )") +
                            kSrc + "}]}");
   EXPECT_TRUE(ps.empty()) << Join(ps);
 }

@@ -8,6 +8,7 @@
 #include <unistd.h>
 
 #include "catalog/catalog.h"
+#include "catalog/prop_credibility.h"
 #include "importers/importers.h"
 
 namespace dynosize {
@@ -49,7 +50,15 @@ class DriveCalcExcerptTest : public ::testing::Test {
           "1,4,APC E,4.1,4.1,0.5022887,2.046544,200,20.0,Dr Kiwi,0.0054099,3.090473,120,18.0,"
           "DC generated,41319.2,24023.3,0,0.0,46341,0,15,2009-09-16\n"
           "102,4,APC Sport,11.0,8.0,0.0,0.0,0,15.0,,0.5010857,3.060167,155,20.0,DC generated,0,"
-          "17272,0,0.0,0,0,0,2009-01-01\n");
+          "17272,0,0.0,0,0,0,2009-01-01\n"
+          // A folding prop whose laws promise FM 0.91 at 4000 rpm (above the envelope: derated)
+          // and its duplicate under another id (merged).
+          "127,4,AeroCarbon,12.5,10.0,9.5,2.0,0,0,x,0.072,3.0,0,0,x,0,0,1,0.0,0,0,0,2009-01-01\n"
+          "128,4,AeroCarbon,12.5,10.0,9.0,2.0,0,0,x,0.06,3.0,0,0,x,0,0,1,0.0,0,0,0,2009-01-01\n"
+          // FM = 1.6 everywhere: beats momentum theory, refused.
+          "140,4,Miracle,10.0,5.0,30.0,2.0,0,0,x,0.05,3.0,0,0,x,0,0,0,0.0,0,0,0,2009-01-01\n");
+    Write("MData.csv", "motor_id,U,n,I,IsNoLoad,prop_id,Alt,Temp\n"
+                       "1,10,20000,5,0,1,0,0\n1,11,25000,6,0,1,0,0\n1,10,30000,1,1,1,0,0\n");
     data_ = ImportDriveCalc(dir_);
   }
   void Write(const std::string& name, const std::string& text) {
@@ -60,12 +69,15 @@ class DriveCalcExcerptTest : public ::testing::Test {
 };
 
 TEST_F(DriveCalcExcerptTest, MotorValuesByHand) {
-  ASSERT_EQ(data_.motors.size(), 2u);  // duplicate (myid 7) and Rm = 0 (myid 8) dropped
+  ASSERT_EQ(data_.motors.size(), 2u);  // duplicate (myid 7) merged, Rm = 0 (myid 8) dropped
   const Json& m = data_.motors[0];
   EXPECT_EQ(m["id"], "dc_m_1");
   EXPECT_EQ(m["type"], "bldc");
   EXPECT_NEAR(m["kv_rpm_per_v"].get<double>(), 5624.754246532947, kSixDigits * 5624.75);
-  EXPECT_NEAR(m["rm_ohm"].get<double>(), 0.09715478431947354, kSixDigits * 0.0971548);
+  // DriveCalc's Rm is the DC circuit's (U = n/Kv + R*I): kept as rm_dc_ohm, and rm_ohm is the
+  // rms circuit's K*g*R_dc = 0.675237*1.109528*R_dc = 0.7491946*R_dc (catalog/conventions.h).
+  EXPECT_NEAR(m["rm_dc_ohm"].get<double>(), 0.09715478431947354, kSixDigits * 0.0971548);
+  EXPECT_NEAR(m["rm_ohm"].get<double>(), 0.7491946 * 0.09715478431947354, kSixDigits * 0.0728);
   EXPECT_NEAR(m["mass_kg"].get<double>(), 0.009, 1e-15);
   // io = (MvK + kL*omega_10V)/kt, omega_10V = Kv*10*pi/30, kt = 1.10953/(Kv*pi/30):
   // 3.2164405930e-7 * (589.0264)^2 * 10 / 1.1095280 = 1.00578 A (4 digits kept).
@@ -73,11 +85,18 @@ TEST_F(DriveCalcExcerptTest, MotorValuesByHand) {
   const double io_hand = 3.2164405930089476e-07 * w * w * 10 / 1.1095279993106997;
   EXPECT_NEAR(io_hand, 1.00578, 1e-5);
   EXPECT_NEAR(m["io_a"].get<double>(), 1.006, 1e-12);
-  EXPECT_EQ(m["source"]["values"]["rm_ohm"], "datasheet");
+  EXPECT_EQ(m["source"]["values"]["rm_ohm"], "derived");
+  EXPECT_EQ(m["source"]["values"]["rm_dc_ohm"], "datasheet");
   EXPECT_EQ(m["source"]["values"]["io_a"], "derived");
+  EXPECT_EQ(m["source"]["tier"], "user_contributed");
+  // The same product under two ids becomes one entry that names both rows.
+  EXPECT_NE(m["source"]["reference"].get<std::string>().find("also myid 7"), std::string::npos)
+      << m["source"]["reference"];
   // Latin-1 name decoded, brushed by name.
   EXPECT_EQ(data_.motors[1]["name"], "GWS B\xC3\xBCrsti 300");
   EXPECT_EQ(data_.motors[1]["type"], "brushed");
+  EXPECT_FALSE(data_.motors[1].contains("rm_dc_ohm"));  // a brushed motor's circuit is the DC one
+  EXPECT_NEAR(data_.motors[1]["rm_ohm"].get<double>(), 1.2, 1e-15);
   EXPECT_EQ(data_.report.DroppedCount("motors"), 2u);
 }
 
@@ -105,8 +124,12 @@ TEST_F(DriveCalcExcerptTest, BatteriesAndProps) {
   EXPECT_NEAR(b["ri_ohm"].get<double>(), 0.033, 1e-15);
   EXPECT_EQ(data_.batteries[1]["chemistry"], "nimh");
   EXPECT_EQ(data_.batteries[1]["source"]["values"]["chemistry"], "assumed");
-  ASSERT_EQ(data_.props.size(), 1u);  // APC Sport has no thrust law
+  ASSERT_EQ(data_.props.size(), 2u);  // APC Sport: no thrust law; 128 merged; 140 FM > 1
   const Json& p = data_.props[0];
+  // Valid range from DriveCalc's loaded measurements with this prop (the no-load row is not).
+  EXPECT_EQ(p["rpm_min"].get<double>(), 20000.0);
+  EXPECT_EQ(p["rpm_max"].get<double>(), 25000.0);
+  EXPECT_EQ(p["source"]["values"]["rpm_min"], "measured");
   EXPECT_EQ(p["name"], "APC E 4.1x4.1");
   EXPECT_NEAR(p["diameter_m"].get<double>(), 0.10414, 1e-15);
   // a = 0.5022887 g at 200 m, 20 C: p = 101325*(1 - 2.25577e-5*200)^5.25588 = 98945 Pa,
@@ -116,6 +139,36 @@ TEST_F(DriveCalcExcerptTest, BatteriesAndProps) {
   EXPECT_NEAR(p["thrust_law_n"].get<double>(), 0.5022887 * 9.80665e-3 * 1.225 / rho,
               kSixDigits * 0.005132);
   EXPECT_NEAR(p["thrust_law_exp"].get<double>(), 2.04654, 1e-12);
+}
+
+TEST_F(DriveCalcExcerptTest, PropAuditFoldingAndDuplicates) {
+  ASSERT_EQ(data_.props.size(), 2u);
+  const Json& f = data_.props[1];
+  EXPECT_EQ(f["id"], "dc_p_127");
+  EXPECT_TRUE(f["folding"].get<bool>());
+  EXPECT_EQ(f["source"]["values"]["folding"], "datasheet");  // the Folder column
+  // No measurements: rpm range = tip speed 40-230 m/s on D = 0.3175 m: 2406-13836 rpm.
+  EXPECT_NEAR(f["rpm_min"].get<double>(), 40.0 / 0.15875 * 30 / M_PI, 1.0);
+  EXPECT_EQ(f["source"]["values"]["rpm_min"], "assumed");
+  // T = 9.5 gf*k^2, P = 0.072 W*k^3 (k = rpm/1000) at 1.225 kg/m^3: FM ~ k^(1.5*2 - 3) is the
+  // same at every speed, FM = T^1.5/(P*sqrt(2*rho*A)) = 0.0931632^1.5/(0.072*0.440420) = 0.897.
+  // Above the largest median FM of measured props of D >= 12 in (the envelope), so the power
+  // law is raised by fm/envelope and the entry says by how much.
+  const double t = 9.5 * 9.80665e-3, a = M_PI * 0.3175 * 0.3175 / 4;
+  const double fm = std::pow(t, 1.5) / (0.072 * std::sqrt(2 * 1.225 * a));
+  ASSERT_GT(fm, 0.76);
+  ASSERT_LT(fm, 1.0);
+  const double factor = f["power_derate_factor"].get<double>();
+  EXPECT_NEAR(factor, fm / FmEnvelopeFor(0.3175).max, 1e-3);
+  EXPECT_NEAR(f["power_law_w"].get<double>(), 0.072 * factor, 1e-6);
+  EXPECT_EQ(data_.report.props_derated, 1u);
+  EXPECT_NE(f["source"]["reference"].get<std::string>().find("also myid 128"), std::string::npos);
+  // The miracle prop is dropped with the rule it breaks.
+  bool refused = false;
+  for (const auto& d : data_.report.dropped) {
+    if (d.reason.find("FM > 1") != std::string::npos) refused = d.examples[0].find("Miracle") != std::string::npos;
+  }
+  EXPECT_TRUE(refused);
 }
 
 TEST_F(DriveCalcExcerptTest, OutputValidatesAsACatalog) {

@@ -57,10 +57,31 @@ TEST(PropModelTest, PowerLawSaysSoOutsideItsData) {
   const PropModel m(PowerLawProp());
   const PropEvaluation fast = m.Evaluate(RpmToRadPerSec(50000), 1.225, 0.0);
   EXPECT_TRUE(fast.rpm_outside_data);
-  EXPECT_NE(fast.Message().find("above the propeller's limit"), std::string::npos) << fast.Message();
+  EXPECT_NE(fast.Message().find("outside the valid range"), std::string::npos) << fast.Message();
   const PropEvaluation fwd = m.Evaluate(RpmToRadPerSec(20000), 1.225, 10.0);
   EXPECT_TRUE(fwd.no_forward_flight_data);
   EXPECT_FALSE(fwd.InData());
+}
+
+// Outside its valid rpm range a power law is held at the edge (coefficients constant), not
+// extrapolated: the laws' FM drifts with rpm and would beat momentum theory far away.
+TEST(PropModelTest, PowerLawHeldAtTheEdgeOfItsValidRange) {
+  PropEntry p = PowerLawProp();
+  p.rpm_min = 15000;
+  p.rpm_max = 30000;
+  const PropModel m(p);
+  const PropEvaluation edge = m.Evaluate(RpmToRadPerSec(15000), 1.225, 0.0);
+  const PropEvaluation low = m.Evaluate(RpmToRadPerSec(5000), 1.225, 0.0);
+  EXPECT_TRUE(edge.InData());
+  EXPECT_TRUE(low.rpm_outside_data);
+  EXPECT_NEAR(low.ct, edge.ct, kExactRel * edge.ct);
+  EXPECT_NEAR(low.cp, edge.cp, kExactRel * edge.cp);
+  // Coefficients held: T scales with n^2 from the edge, not with the law's n^2.046544.
+  const double t_held = edge.thrust_n * (5000.0 / 15000.0) * (5000.0 / 15000.0);
+  EXPECT_NEAR(low.thrust_n, t_held, kExactRel * t_held);
+  const double t_law = 0.5022887 * std::pow(5.0, 2.046544) * 9.80665e-3;
+  EXPECT_GT(std::fabs(low.thrust_n - t_law), 1e-3 * t_law);  // the difference is visible
+  EXPECT_NE(low.Message().find("rpm 5000 outside the valid range 15000-30000"), std::string::npos) << low.Message();
 }
 
 TEST(PropModelTest, RejectsBadInputNamingTheValue) {
