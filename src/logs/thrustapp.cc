@@ -53,7 +53,9 @@ bool ThrustAppLines::TakeRow(std::string_view line, bool bracketed_std) {
   } else {
     std::vector<std::string_view> fields;
     SplitFields(line, ',', &fields);
-    for (const std::size_t c : col_) cells.push_back(c < fields.size() ? fields[c] : std::string_view());
+    for (const std::size_t c : col_) {
+      cells.push_back(c != kNoColumn && c < fields.size() ? fields[c] : std::string_view());
+    }
   }
   row_.clear();
   for (std::size_t i = 0; i < cells.size(); ++i) {
@@ -87,10 +89,12 @@ bool ThrustAppLines::Next(std::string_view* out) {
         for (std::size_t i = 0; i < names.size(); ++i) {
           if (Trim(names[i]) == want[k]) found = i;
         }
+        // Thrust and torque are optional (an empty column: absent from the table, said so).
+        if (found == names.size() && (k == 1 || k == 2)) found = kNoColumn;
         if (found == names.size()) {
           throw DataError(reader_->path() + ": line " + std::to_string(reader_->line_number()) +
                           ": ThrustApp table header " + QuoteCell(t) + " has no column \"" +
-                          want[k] + "\" (expected out, th, tq, rpm, v, a)");
+                          want[k] + "\" (expected out, rpm, v, a; th and tq if measured)");
         }
         col_[k] = found;
       }

@@ -56,6 +56,7 @@ class ThrustAppLines {
   bool in_tex_table_ = false;   // between \begin{filecontents*} and \end{filecontents*}
   bool expect_tex_header_ = false;
   bool in_txt_table_ = false;   // after a summary header "level [%] ... Pin [W]" until a blank line
+  static constexpr std::size_t kNoColumn = static_cast<std::size_t>(-1);  // th or tq not written
   std::size_t col_[6] = {0, 1, 3, 5, 7, 9};  // out, th, tq, rpm, v, a in a .tex table
   std::size_t tables_ = 0;
   std::string motor_, kv_, prop_;

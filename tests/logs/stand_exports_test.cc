@@ -417,10 +417,17 @@ TEST(ThrustAppReport, TextExportSummaryTablesOnly) {
 
 TEST(ThrustAppReport, ErrorsNameTheFileLineAndFlag) {
   std::string bad = kThrustAppTex;
-  bad.replace(bad.rfind("out, th, th_err, tq,"), 20, "out, th, th_err, tqq,");
+  bad.replace(bad.rfind(" rpm, rpm_err,"), 14, " rev, rev_err,");
   const std::string e = ErrorOf(WriteTemp("bad_report.tex", bad));
   EXPECT_TRUE(Contains(e, "bad_report.tex: line 13: ThrustApp table header")) << e;
-  EXPECT_TRUE(Contains(e, "has no column \"tq\"")) << e;
+  EXPECT_TRUE(Contains(e, "has no column \"rpm\"")) << e;
+  // Torque (and thrust) are optional: a report without "tq" reads without torque.
+  std::string no_tq = kThrustAppTex;
+  for (std::size_t at; (at = no_tq.find("tq,     tq_err,")) != std::string::npos;) no_tq.replace(at, 15, "xx,     xx_err,");
+  for (std::size_t at; (at = no_tq.find(" tq, tq_err,")) != std::string::npos;) no_tq.replace(at, 12, " xx, xx_err,");
+  const SteadyTable nt = ReadLog(WriteTemp("no_tq_report.tex", no_tq));
+  EXPECT_FALSE(nt.Has(Column::kTorqueNm)) << nt.FullReport();
+  EXPECT_EQ(nt.rows(), 4u);
   LogReadOptions o;
   o.format = LogFormat::kThrustApp;
   EXPECT_TRUE(Contains(ErrorOf(WriteTemp("not_report.csv", "a,b\n1,2\n"), o), "not a ThrustApp report"));

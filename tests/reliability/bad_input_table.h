@@ -330,6 +330,16 @@ inline std::vector<BadInputCase> BadInputCases() {
                {{"ty.csv", "\"Time (s)\",\"Throttle (\xC2\xB5s)\",\"Rotation speed (rpm)\",\"Voltage (V)\","
                            "\"Current (A)\"\n\"1\",\"1200\",\"3000\",\"24\",\"1\"\n\"5\",\"1300\",\"4000\",\"24\",\"x\"\n"}},
                cal + "{dir}/ty.csv", 65, {"{dir}/ty.csv", "line 3", "Current (A)", "\"x\"", "not a number"}});
+  c.push_back({"thrustapp_format_on_a_table", {{"t.csv", "Volt,Amp\n7,1\n7,2\n"}},
+               cal + "--format thrustapp {dir}/t.csv", 65, {"{dir}/t.csv", "line 1", "not a ThrustApp report"}});
+  c.push_back({"thrustapp_with_map",
+               {{"r.tex", "\\documentclass{article}\n\\begin{filecontents*}{table1.dat}\nout,th,tq,rpm,v,a\n"
+                          "20,1,1,1000,12,1\n\\end{filecontents*}\n"}},
+               cal + "--map idc_a=a {dir}/r.tex", 64, {"--map", "ThrustApp report", "drop --map"}});
+  c.push_back({"thrustapp_header_without_voltage",
+               {{"r.tex", "\\documentclass{article}\n\\begin{filecontents*}{table1.dat}\nout,th,tq,rpm,a\n"
+                          "20,1,1,1000,1\n\\end{filecontents*}\n"}},
+               cal + "{dir}/r.tex", 65, {"{dir}/r.tex", "line 3", "ThrustApp table header", "no column \"v\""}});
   c.push_back({"mapped_bad_unit", {{"t.csv", "Volt,Amp\n7,1\n"}}, cal + "--map \"idc_a=Amp [parsec]\" {dir}/t.csv",
                64, {"idc_a=Amp [parsec]", "\"parsec\"", "valid"}});
 
