@@ -318,6 +318,12 @@ inline std::vector<BadInputCase> BadInputCases() {
   c.push_back({"mapped_where_no_column", {{"t.csv", "Motor,Volt,Amp\nA,7,1\nA,7,2\n"}},
                cal + "--map idc_a=Amp --where Engine=B {dir}/t.csv", 65,
                {"{dir}/t.csv", "line 1", "--where \"Engine=B\"", "no column \"Engine\""}});
+  c.push_back({"diagnose_where_no_match", {{"t.csv", "Motor,Volt,Amp\nA,7,1\nA,7,2\n"}},
+               "diagnose --map idc_a=Amp --where Motor=B {dir}/t.csv", 65,
+               {"{dir}/t.csv", "no row has Motor=B", "--where"}});
+  c.push_back({"diagnose_decimal_comma_with_point", {{"t.csv", "Volt;Amp\n7,2;1,5\n7,1;2.5\n"}},
+               "diagnose --map idc_a=Amp --map vdc_v=Volt --decimal-comma {dir}/t.csv", 65,
+               {"{dir}/t.csv", "line 3", "not a number with --decimal-comma"}});
   c.push_back({"mapped_where_syntax", {{"t.csv", "Motor,Volt,Amp\nA,7,1\nA,7,2\n"}},
                cal + "--map idc_a=Amp --where Motor {dir}/t.csv", 64, {"--where \"Motor\"", "Header=value"}});
   c.push_back({"mapped_decimal_comma_with_point", {{"t.csv", "Volt;Amp\n7,2;1,5\n7,1;2.5\n"}},
