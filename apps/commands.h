@@ -38,7 +38,7 @@ struct CalibrateOptions {
   std::string catalog_dir;
   std::vector<std::string> logs;
   std::string motor_id, esc_id;     // ids of the fitted entries
-  std::string format = "auto";      // auto | canonical | rcbenchmark | mapped | drivecalc
+  std::string format = "auto";      // auto | canonical | rcbenchmark | mapped | drivecalc | thrustapp
   std::vector<std::string> column_map;  // mapped tables: canonical=Header [unit]
   long long drivecalc_motor = -1;   // drivecalc: one motor id
   bool drop_incomplete_rows = false;  // drop rows with an empty or text cell in a used column

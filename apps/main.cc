@@ -79,7 +79,7 @@ int main(int argc, char** argv) {
   calibrate->add_option("--motor-id", cal.motor_id, "id of the fitted motor entry");
   calibrate->add_option("--esc-id", cal.esc_id, "id of the fitted ESC entry");
   calibrate->add_option("--format", cal.format, "log format")
-      ->check(CLI::IsMember({"auto", "canonical", "rcbenchmark", "mapped", "drivecalc"}));
+      ->check(CLI::IsMember({"auto", "canonical", "rcbenchmark", "mapped", "drivecalc", "thrustapp"}));
   calibrate->add_option("--map", cal.column_map,
                         "mapped tables: canonical_name=Source Header [unit] (repeatable)");
   calibrate->add_flag("--drop-incomplete-rows", cal.drop_incomplete_rows,
@@ -151,7 +151,7 @@ int main(int argc, char** argv) {
   diagnose->add_option("--motor", diag.motor_id, "catalog motor to start from (else fitted on the log)");
   diagnose->add_option("--esc", diag.esc_id, "catalog ESC whose values are held where the log cannot fit them");
   diagnose->add_option("--format", diag.format, "log format")
-      ->check(CLI::IsMember({"auto", "canonical", "rcbenchmark", "mapped", "drivecalc"}));
+      ->check(CLI::IsMember({"auto", "canonical", "rcbenchmark", "mapped", "drivecalc", "thrustapp"}));
   diagnose->add_option("--map", diag.column_map, "mapped tables: canonical=Header [unit], repeatable");
   diagnose->add_flag("--drop-incomplete-rows", diag.drop_incomplete_rows,
                      "drop rows with an empty or text cell in a used column");

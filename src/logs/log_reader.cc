@@ -9,6 +9,7 @@
 #include "common/units.h"
 #include "logs/csv_scan.h"
 #include "logs/log_units.h"
+#include "logs/thrustapp.h"
 
 namespace dynosize::logs {
 
@@ -144,6 +145,7 @@ bool IsSpeedName(const std::string& name) {
 }
 
 LogFormat Detect(const Header& h, const LogReadOptions& o, const std::string& path) {
+  if (IsThrustAppStart(h.raw_line_utf8)) return LogFormat::kThrustApp;
   if (!o.column_map.empty()) return LogFormat::kMapped;
   if (HasCell(h, "time_s") && HasCell(h, "idc_a")) return LogFormat::kCanonical;
   if (HasCell(h, "motor_id") && HasCell(h, "U") && HasCell(h, "n") && HasCell(h, "I") &&
@@ -433,6 +435,22 @@ Plan PlanMapped(const Header& h, bool header_is_data, const LogReadOptions& o,
   return p;
 }
 
+// ThrustApp reports (thrustapp.h): the step tables, in the units of the data set's README.
+Plan PlanThrustApp(const LogReadOptions& o, const std::string& path, SteadyTable* t) {
+  if (!o.column_map.empty()) {
+    throw UsageError("--map is given for a ThrustApp report: its columns are fixed (out %, thrust "
+                     "g, torque g*cm, rpm, V, A); drop --map");
+  }
+  LogReadOptions fixed;
+  fixed.column_map = {"throttle=out [%]", "thrust_n=th [g]", "torque_nm=tq [G cm]", "rpm=rpm",
+                      "vdc_v=v [V]", "idc_a=a [A]"};
+  Plan p = PlanMapped(ParseHeader(ThrustAppLines::kHeader), false, fixed, path);
+  p.format = LogFormat::kThrustApp;
+  p.empty_cells_ok = true;  // "nan" rpm (telemetry dropout): the step is dropped and counted
+  t->delimiter = ',';
+  return p;
+}
+
 // ---------------------------------------------------------------- row reading
 
 struct RawRows {
@@ -625,7 +643,9 @@ void ReportReadCounts(const ReadCounts& n, const Plan& plan, const std::string& 
   }
 }
 
-void ReadRows(LineReader* lr, Plan* plan, const std::string& path, SteadyTable* t,
+// `Lines`: LineReader, or ThrustAppLines (a report's step tables as rows).
+template <class Lines>
+void ReadRows(Lines* lr, Plan* plan, const std::string& path, SteadyTable* t,
               RawRows* rows, std::string_view first_data_line, const LogReadOptions& o) {
   std::vector<std::string_view> fields;
   fields.reserve(64);
@@ -1185,14 +1205,27 @@ SteadyTable ReadLog(const std::string& path, const LogReadOptions& options) {
       if (header_is_data) first_data = std::string(line);
       break;
     }
+    case LogFormat::kThrustApp: plan = PlanThrustApp(options, path, &t); break;
     case LogFormat::kAuto: throw InternalError("ReadLog: format still auto");
   }
   if (options.mapped_drop_rows_with_empty_cells && fmt == LogFormat::kMapped) {
     plan.empty_cells_ok = true;
   }
-  ResolveFilters(h, !first_data.empty(), options, path, &plan);
   RawRows rows;
-  ReadRows(&lr, &plan, path, &t, &rows, first_data, options);
+  if (fmt == LogFormat::kThrustApp) {
+    if (!IsThrustAppStart(h.raw_line_utf8)) {
+      throw DataError(path + ": line 1: " + QuoteCell(h.raw_line_utf8) +
+                      ": not a ThrustApp report (--format thrustapp: a .tex report starts with "
+                      "\\documentclass, a .txt export with \"## Tool info\")");
+    }
+    ResolveFilters(ParseHeader(ThrustAppLines::kHeader), false, options, path, &plan);
+    ThrustAppLines tl(&lr);
+    ReadRows(&tl, &plan, path, &t, &rows, first_data, options);
+    t.notes.push_back(tl.Summary());
+  } else {
+    ResolveFilters(h, !first_data.empty(), options, path, &plan);
+    ReadRows(&lr, &plan, path, &t, &rows, first_data, options);
+  }
   ScaleUnitlessCommand(&plan, &rows, &t, options);
   t.line_ends = LineEnds(lr);
   t.had_bom = lr.had_bom();

@@ -32,16 +32,17 @@ const char* LogFormatName(LogFormat f) {
     case LogFormat::kRcbenchmark: return "rcbenchmark";
     case LogFormat::kMapped: return "mapped";
     case LogFormat::kDriveCalc: return "drivecalc";
+    case LogFormat::kThrustApp: return "thrustapp";
   }
   return "?";
 }
 
 LogFormat LogFormatFromName(const std::string& name) {
   for (LogFormat f : {LogFormat::kAuto, LogFormat::kCanonical, LogFormat::kRcbenchmark, LogFormat::kMapped,
-                      LogFormat::kDriveCalc}) {
+                      LogFormat::kDriveCalc, LogFormat::kThrustApp}) {
     if (name == LogFormatName(f)) return f;
   }
-  throw UsageError("--format '" + name + "': valid are auto, canonical, rcbenchmark, mapped, drivecalc");
+  throw UsageError("--format '" + name + "': valid are auto, canonical, rcbenchmark, mapped, drivecalc, thrustapp");
 }
 
 const std::vector<double>& SteadyTable::Get(Column c) const {

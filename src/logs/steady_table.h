@@ -34,8 +34,9 @@ inline constexpr int kColumnCount = 13;
 // The canonical CSV name of a column ("time_s", "omega_rad_s", ...).
 const char* ColumnName(Column c);
 
-enum class LogFormat { kAuto, kCanonical, kRcbenchmark, kMapped, kDriveCalc };
-const char* LogFormatName(LogFormat f);  // "auto", "canonical", "rcbenchmark", "mapped", "drivecalc"
+enum class LogFormat { kAuto, kCanonical, kRcbenchmark, kMapped, kDriveCalc, kThrustApp };
+// "auto", "canonical", "rcbenchmark", "mapped", "drivecalc", "thrustapp"
+const char* LogFormatName(LogFormat f);
 // The inverse of LogFormatName; UsageError ("--format 'x': valid are ...") for any other name.
 LogFormat LogFormatFromName(const std::string& name);
 

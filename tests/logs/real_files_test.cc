@@ -192,6 +192,29 @@ TEST(RealLogs, JmajewExtractedPointsOneReportAtATime) {
   EXPECT_EQ(ReadAndPrint(f, o).rows(), 150u);  // two 4S reports of 5 x 15
 }
 
+TEST(RealLogs, JmajewThrustAppReports) {
+  REQUIRE_SHARED();
+  std::vector<std::string> files;
+  for (const auto& e :
+       std::filesystem::recursive_directory_iterator(SharedData() + "jmajew_thrusttool_6motors")) {
+    const std::string ext = e.path().extension().string();
+    if (e.is_regular_file() && (ext == ".tex" || ext == ".txt")) files.push_back(e.path().string());
+  }
+  std::sort(files.begin(), files.end());
+  EXPECT_EQ(files.size(), 37u);  // 34 reports, 3 text exports
+  std::size_t steps = 0;
+  for (const auto& f : files) {
+    const SteadyTable t = ReadAndPrint(f);
+    EXPECT_EQ(t.format, LogFormat::kThrustApp) << f;
+    EXPECT_TRUE(t.Has(Column::kTorqueNm) && t.Has(Column::kThrustN) && t.Has(Column::kThrottle)) << f;
+    const bool comparison = f.find("duct_comp") != std::string::npos;
+    if (f.size() > 4 && f.substr(f.size() - 4) == ".tex" && !comparison) steps += t.data_rows_read;
+  }
+  // README: 1617 step means in the extracted CSV, taken from the same reports (the duct
+  // comparison report excluded).
+  EXPECT_EQ(steps, 1617u);
+}
+
 TEST(RealLogs, CtuMrsOneMotorAtATime) {
   REQUIRE_SHARED();
   LogReadOptions o;

@@ -334,5 +334,107 @@ TEST(TorqueOptional, RcbenchmarkWithoutTorqueSaysWhatIsAbsent) {
   EXPECT_TRUE(Contains(b, "columns: throttle vdc_v idc_a omega_rad_s thrust_n; absent: torque_nm")) << b;
 }
 
+// ------------------------------------------------------------------ ThrustApp reports
+
+// The shape of jmajew_thrusttool_6motors: a LaTeX report with step tables as filecontents
+// blocks (one commented out, as in the duct comparison), and the text export of the same runs
+// with bracketed standard deviations, a telemetry dropout "nan" and raw samples after them.
+const std::string kThrustAppTex =
+    "\\documentclass[10pt]{article}\n"
+    "\\usepackage{filecontents}\n"
+    "% \\begin{filecontents*}{table0.dat}\n"
+    "% out, th, th_err, tq, tq_err, rpm, rpm_err, v, v_err, a, a_err, pin, theff\n"
+    "%    2e+01, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1\n"
+    "% \\end{filecontents*}\n"
+    "\\begin{filecontents*}{table1.dat}\n"
+    "out,      th,    th_err, tq,     tq_err,  rpm,   rpm_err,  v,    v_err,   a,     a_err,   pin,  theff\n"
+    "    2e+01,       39.19,       2.429,       77.87,       2.069,        4139,         9.0,      12.540,"
+    "      0.0049,       0.334,      0.0066,       4.188,       9.358\n"
+    "       60,      306.90,       2.435,      477.78,       2.104,       10630,        77.9,      12.363,"
+    "      0.0056,       3.084,      0.0359,      38.122,       8.050\n"
+    "\\end{filecontents*}\n"
+    "\\begin{filecontents*}{table2.dat}\n"
+    "out, th, th_err, tq, tq_err, rpm, rpm_err, v, v_err, a, a_err, pin, theff,\n"
+    "20, 37.82, 2.059, 75.69, 2.378, 4106, 7.1, 12.407, 0.0044, 0.328, 0.0085, 4.069, 9.295,\n"
+    "100, 680.1, 3.1, 1015.0, 3.2, 15700, 90.0, 11.80, 0.006, 14.40, 0.04, 169.9, 4.0,\n"
+    "\\end{filecontents*}\n"
+    "\\begin{document}\n"
+    "\\begin{tabular}{ll}\n"
+    "Motor:        & T-Motor MN2206-13\\\\ \n"
+    "KV:           & 2000\\\\ \n"
+    "Propeler:     & HQProp 6x4x3\\\\ \n"
+    "\\end{tabular}\n";
+
+const std::string kThrustAppTxt =
+    "## Tool info\r\n"
+    "Board:      Custom STM32F401RE thrustBoard v2\r\n"
+    "## Measurement info\r\n"
+    "Motor :        T-Motor MT2212-16\r\n"
+    "KV :           750\r\n"
+    "## Measurement - 1\r\n"
+    "level [%]      thrust [G]   torque [G cm]     rpm [1/min]        volt [V]        curr [A]   Pin [W] Eff [G/W]\r\n"
+    "       20   24.53 [1.701]   48.08 [2.579]      1659 [7.4]  12.546 [0.003]   0.110 [0.006]     1.386    17.697\r\n"
+    "       25   35.53 [1.708]   74.59 [2.560]      2071 [8.3]  12.544 [0.004]   0.182 [0.006]     2.287    15.537\r\n"
+    "\r\n"
+    "## Measurement - 2\r\n"
+    "level [%]      thrust [G]   torque [G cm]     rpm [1/min]        volt [V]        curr [A]   Pin [W] Eff [G/W]\r\n"
+    "       20   23.19 [2.065]   47.55 [2.765]       nan [nan]  12.483 [0.003]   0.111 [0.006]     1.390    16.687\r\n"
+    "       25   31.94 [2.067]   74.07 [2.768]      2060 [7.7]  12.481 [0.005]   0.182 [0.006]     2.265    14.100\r\n"
+    "\r\n"
+    "## Measurement - 1\r\n"
+    "     level [%]    thrust [G] torque [G cm]   rpm [1/min]      volt [V]      curr [A]\r\n"
+    "             0      -2.50735      -20.2577             0       12.5464     0.0627197\r\n"
+    "            20       24.1          48.0              1650       12.54       0.11\r\n";
+
+TEST(ThrustAppReport, LatexReportStepTables) {
+  const SteadyTable t = ReadLog(WriteTemp("report.tex", kThrustAppTex));
+  EXPECT_EQ(t.format, LogFormat::kThrustApp);
+  ASSERT_EQ(t.rows(), 4u) << t.FullReport();  // the commented-out table is not read
+  EXPECT_EQ(t.source_line[0], 9u);            // line numbers of the file
+  EXPECT_NEAR(t.Get(Column::kThrottle)[0], 0.2, 1e-15);  // "2e+01" percent
+  EXPECT_NEAR(t.Get(Column::kThrustN)[1], 306.90 * kNewtonPerGramForce, 306.90 * kNewtonPerGramForce * kParseRelTol);
+  EXPECT_NEAR(t.Get(Column::kTorqueNm)[0], 77.87 * 9.80665e-5, 77.87 * 9.80665e-5 * kParseRelTol);
+  EXPECT_EQ(t.Get(Column::kVdcV)[3], 11.80);
+  EXPECT_EQ(t.Get(Column::kIdcA)[2], 0.328);
+  bool noted = false;
+  for (const auto& n : t.notes) {
+    noted = noted || Contains(n, "motor \"T-Motor MN2206-13\", KV label 2000, propeller \"HQProp 6x4x3\"; 2 runs");
+  }
+  EXPECT_TRUE(noted) << t.FullReport();
+}
+
+TEST(ThrustAppReport, TextExportSummaryTablesOnly) {
+  const SteadyTable t = ReadLog(WriteTemp("report.txt", kThrustAppTxt));
+  EXPECT_EQ(t.format, LogFormat::kThrustApp);
+  // Two runs of two steps; the "nan" rpm step is dropped and counted; raw samples are not read.
+  ASSERT_EQ(t.rows(), 3u) << t.FullReport();
+  EXPECT_EQ(t.DroppedTotal(), 1u);
+  EXPECT_TRUE(Contains(t.dropped.at(0).reason, "empty \"rpm\" cell")) << t.BriefReport();
+  EXPECT_NEAR(t.Get(Column::kOmegaRadS)[2], 2060 * kPi / 30.0, 2060 * kPi / 30.0 * kParseRelTol);
+  EXPECT_EQ(t.Get(Column::kIdcA)[1], 0.182);
+  EXPECT_EQ(t.line_ends, "CRLF");
+}
+
+TEST(ThrustAppReport, ErrorsNameTheFileLineAndFlag) {
+  std::string bad = kThrustAppTex;
+  bad.replace(bad.rfind(" rpm, rpm_err,"), 14, " rev, rev_err,");
+  const std::string e = ErrorOf(WriteTemp("bad_report.tex", bad));
+  EXPECT_TRUE(Contains(e, "bad_report.tex: line 13: ThrustApp table header")) << e;
+  EXPECT_TRUE(Contains(e, "has no column \"rpm\"")) << e;
+  // Torque (and thrust) are optional: a report without "tq" reads without torque.
+  std::string no_tq = kThrustAppTex;
+  for (std::size_t at; (at = no_tq.find("tq,     tq_err,")) != std::string::npos;) no_tq.replace(at, 15, "xx,     xx_err,");
+  for (std::size_t at; (at = no_tq.find(" tq, tq_err,")) != std::string::npos;) no_tq.replace(at, 12, " xx, xx_err,");
+  const SteadyTable nt = ReadLog(WriteTemp("no_tq_report.tex", no_tq));
+  EXPECT_FALSE(nt.Has(Column::kTorqueNm)) << nt.FullReport();
+  EXPECT_EQ(nt.rows(), 4u);
+  LogReadOptions o;
+  o.format = LogFormat::kThrustApp;
+  EXPECT_TRUE(Contains(ErrorOf(WriteTemp("not_report.csv", "a,b\n1,2\n"), o), "not a ThrustApp report"));
+  o.format = LogFormat::kAuto;
+  o.column_map = {"idc_a=a"};
+  EXPECT_THROW(ReadLog(WriteTemp("map_report.tex", kThrustAppTex), o), UsageError);
+}
+
 }  // namespace
 }  // namespace dynosize::logs

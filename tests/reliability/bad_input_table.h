@@ -318,6 +318,12 @@ inline std::vector<BadInputCase> BadInputCases() {
   c.push_back({"mapped_where_no_column", {{"t.csv", "Motor,Volt,Amp\nA,7,1\nA,7,2\n"}},
                cal + "--map idc_a=Amp --where Engine=B {dir}/t.csv", 65,
                {"{dir}/t.csv", "line 1", "--where \"Engine=B\"", "no column \"Engine\""}});
+  c.push_back({"diagnose_where_no_match", {{"t.csv", "Motor,Volt,Amp\nA,7,1\nA,7,2\n"}},
+               "diagnose --map idc_a=Amp --where Motor=B {dir}/t.csv", 65,
+               {"{dir}/t.csv", "no row has Motor=B", "--where"}});
+  c.push_back({"diagnose_decimal_comma_with_point", {{"t.csv", "Volt;Amp\n7,2;1,5\n7,1;2.5\n"}},
+               "diagnose --map idc_a=Amp --map vdc_v=Volt --decimal-comma {dir}/t.csv", 65,
+               {"{dir}/t.csv", "line 3", "not a number with --decimal-comma"}});
   c.push_back({"mapped_where_syntax", {{"t.csv", "Motor,Volt,Amp\nA,7,1\nA,7,2\n"}},
                cal + "--map idc_a=Amp --where Motor {dir}/t.csv", 64, {"--where \"Motor\"", "Header=value"}});
   c.push_back({"mapped_decimal_comma_with_point", {{"t.csv", "Volt;Amp\n7,2;1,5\n7,1;2.5\n"}},
@@ -330,6 +336,16 @@ inline std::vector<BadInputCase> BadInputCases() {
                {{"ty.csv", "\"Time (s)\",\"Throttle (\xC2\xB5s)\",\"Rotation speed (rpm)\",\"Voltage (V)\","
                            "\"Current (A)\"\n\"1\",\"1200\",\"3000\",\"24\",\"1\"\n\"5\",\"1300\",\"4000\",\"24\",\"x\"\n"}},
                cal + "{dir}/ty.csv", 65, {"{dir}/ty.csv", "line 3", "Current (A)", "\"x\"", "not a number"}});
+  c.push_back({"thrustapp_format_on_a_table", {{"t.csv", "Volt,Amp\n7,1\n7,2\n"}},
+               cal + "--format thrustapp {dir}/t.csv", 65, {"{dir}/t.csv", "line 1", "not a ThrustApp report"}});
+  c.push_back({"thrustapp_with_map",
+               {{"r.tex", "\\documentclass{article}\n\\begin{filecontents*}{table1.dat}\nout,th,tq,rpm,v,a\n"
+                          "20,1,1,1000,12,1\n\\end{filecontents*}\n"}},
+               cal + "--map idc_a=a {dir}/r.tex", 64, {"--map", "ThrustApp report", "drop --map"}});
+  c.push_back({"thrustapp_header_without_voltage",
+               {{"r.tex", "\\documentclass{article}\n\\begin{filecontents*}{table1.dat}\nout,th,tq,rpm,a\n"
+                          "20,1,1,1000,1\n\\end{filecontents*}\n"}},
+               cal + "{dir}/r.tex", 65, {"{dir}/r.tex", "line 3", "ThrustApp table header", "no column \"v\""}});
   c.push_back({"mapped_bad_unit", {{"t.csv", "Volt,Amp\n7,1\n"}}, cal + "--map \"idc_a=Amp [parsec]\" {dir}/t.csv",
                64, {"idc_a=Amp [parsec]", "\"parsec\"", "valid"}});
 
