@@ -5,6 +5,7 @@
 
 #include <cmath>
 
+#include "common/error.h"
 #include "common/units.h"
 #include "stand/dc_baseline.h"
 #include "stand/prop_point.h"
@@ -247,8 +248,11 @@ TEST(StandPredict, EachModelReproducesItsOwnTable) {
   // The baseline with the same label Kv (section 8), R = Rm + RESC and Io.
   const DcMotor dc{kVllRmsPerVdc / (m.ke_v_s_per_rad * kRadPerSecPerRpm), m.rm_ohm + 0.02, m.io_a};
   const stand::StandResult r = stand::PredictStand(t, drive, dc, &prop, {});
-  ASSERT_TRUE(r.mode_used[stand::kAtMeasuredRpm] && r.mode_used[stand::kFromThrottle]);
-  for (int mode = 0; mode < 2; ++mode) {
+  ASSERT_TRUE(r.mode_used[stand::kAtMeasuredRpm] && r.mode_used[stand::kFromThrottle] &&
+              r.mode_used[stand::kAtMeasuredTorque]);
+  // The measured torque is the propeller's here, so the motor-alone mode must match too.
+  EXPECT_LT(stand::FindError(r, stand::kAtMeasuredTorque, stand::kDynosize, "idc_a")->mae, 1e-6);
+  for (int mode : {stand::kAtMeasuredRpm, stand::kFromThrottle}) {
     for (const char* col : {"idc_a", "thrust_n"}) {
       const auto* e = stand::FindError(r, mode, stand::kDynosize, col);
       ASSERT_NE(e, nullptr) << mode << col;
