@@ -190,10 +190,11 @@ std::vector<std::string> PrintPropTable(const std::string& title, double vdc_v, 
     const OperatingPoint& p = r.point.drive;
     std::string flags;
     for (const auto& n : LimitNames(p.limits)) flags += (flags.empty() ? "" : ",") + n;
+    if (p.saturated) flags += (flags.empty() ? "" : ",") + std::string("esc_saturated");
     if (!r.point.converged || !r.point.prop.InData()) {
       flags += (flags.empty() ? "" : ",") + std::string(r.point.converged ? "prop_data_edge" : "not_converged");
       std::ostringstream n;
-      n << "TR " << std::setprecision(0) << 100 * r.throttle << " %: "
+      n << std::fixed << "TR " << std::setprecision(0) << 100 * r.throttle << " %: "
         << (r.point.converged ? r.point.prop.Message() : r.point.message);
       notes.push_back(n.str());
     }

@@ -45,7 +45,8 @@ std::string WriteThrottleTableFigure(const std::vector<ThrottleTableRow>& rows, 
   b.series.push_back({tr, thrust_g, idc, rpm});
   std::ostringstream s;
   s << "set multiplot layout 2,1 title " << Quote(title + "\\nthrust and DC current vs throttle (prop torque law, eqs 48-59)")
-    << "\nset xlabel 'throttle [%]'\nset xrange [0:100]\nset grid\nset key left top\n"
+    << "\nset xlabel 'throttle [%]'\nset xrange [0:100]\nset grid\nset key left top inside\n"
+    << "set lmargin 12\nset rmargin 12\n"
     << "set ylabel 'thrust [gf]'\nset y2label 'speed [rpm]'\nset ytics nomirror\nset y2tics\n"
     << "plot $tab using 1:2 with linespoints lw 2 pt 7 lc rgb '#d95f0e' title 'thrust', "
     << "$tab using 1:4 axes x1y2 with lines lw 1 dt 2 lc rgb 'gray40' title 'speed (right axis)'\n"
