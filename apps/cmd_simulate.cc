@@ -460,6 +460,20 @@ int RunSimulate(const SimulateOptions& o) {
   } else {
     PrintSweep(title, drive, req.vdc_v);
   }
+  // The table has no feasibility column: say it when its points create energy (model.md
+  // section 10; the JSON carries the limit per point).
+  if (!o.json) {
+    int bad = 0, rows = 0;
+    for (const auto& r : SummarizeThrottles(drive, req.vdc_v)) {
+      ++rows;
+      bad += (r.at_max_efficiency.limits & kLimitCreatesEnergy) ? 1 : 0;
+    }
+    if (bad) {
+      std::cerr << "warning: the best-efficiency point creates energy (PESC < 0 or eta_motor > 1, limit "
+                   "creates_energy) at " << bad << " of " << rows
+                << " throttles: these motor/ESC constants break model.md section 10\n";
+    }
+  }
   note_assumed();
   return 0;
 }

@@ -172,7 +172,7 @@ std::vector<std::string> WriteDriveFigures(const Drive& d, const DriveFigureOpti
     std::ostringstream s;
     s << palette << "set multiplot layout 3,1 title "
       << Title(o, "efficiencies vs speed per throttle; " + limit_note +
-                      (above ? "\nABOVE 100 %: these parameters create energy (model.md section 10)" : ""))
+                      (above ? "\\nABOVE 100 %: these parameters create energy (model.md section 10)" : ""))
       << "\n"
       << "set xlabel 'speed [rpm]'\nset yrange [0:" << (above ? Fmt(1.05 * eta_max, 4) : "100") << "]\n"
       << "set arrow from graph 0, first 100 to graph 1, first 100 nohead dt 2 lw 2 lc rgb 'red'\n"
@@ -237,7 +237,8 @@ std::vector<std::string> WriteDriveFigures(const Drive& d, const DriveFigureOpti
       << "unset surface\nset table $contours\nsplot $map using 1:2:3 with lines\nunset table\n"
       << "unset contour\nset surface\n"
       << "plot $map using 1:2:3 with image notitle, "
-      << "$contours using 1:2 with lines lc rgb 'white' lw 1 title 'contours 40/60/70/80/85/90 %', "
+      << "$contours using 1:2 with lines lc rgb 'white' lw 1 title 'contours 40/60/70/80/85/90"
+      << (map_above ? "/100" : "") << " %', "
       << "$full using 1:2 with lines lw 2 lc rgb 'black' title 'full throttle', "
       << "$best using 1:2 with linespoints pt 7 ps 1 lc rgb 'red' title 'max efficiency per throttle (eq 14 analogue)'\n";
     const std::string path = dir + "/efficiency_map.png";

@@ -4,6 +4,8 @@
 #include <unistd.h>
 
 #include <cmath>
+#include <cstdlib>
+#include <iterator>
 #include <filesystem>
 #include <fstream>
 
@@ -168,6 +170,19 @@ TEST_F(StandCli, SimulateNeverCallsAnEnergyCreatingPointFeasible) {
   const CliRun pr = RunCli(base + "--prop p --throttle 0.6 --json");
   ASSERT_EQ(pr.code, 0) << pr.err;
   EXPECT_FALSE(ParseJsonText(pr.out, "stdout")["feasible"].get<bool>());
+  // The per-throttle table has no feasibility column: a warning says it.
+  const CliRun sw = RunCli(base);
+  ASSERT_EQ(sw.code, 0) << sw.err;
+  EXPECT_NE(sw.err.find("warning: the best-efficiency point creates energy"), std::string::npos) << sw.err;
+  // The figures show efficiencies above 100 % instead of clipping them at 100.
+  if (std::system("command -v gnuplot > /dev/null 2>&1") == 0) {
+    const CliRun pl = RunCli(base + "--plot " + (dir_ / "fig").string());
+    ASSERT_EQ(pl.code, 0) << pl.err;
+    std::ifstream gp(dir_ / "fig" / "efficiency_vs_rpm.gp");
+    const std::string script((std::istreambuf_iterator<char>(gp)), std::istreambuf_iterator<char>());
+    EXPECT_NE(script.find("ABOVE 100 %"), std::string::npos);
+    EXPECT_EQ(script.find("set yrange [0:100]"), std::string::npos);
+  }
 }
 
 TEST_F(StandCli, ValidateStandBadInput) {
