@@ -248,6 +248,15 @@ int RunValidateStand(const ValidateStandOptions& o) {
               << ")\n";
   }
   if (!figure.empty()) std::cerr << "wrote " << figure << "\n";
+  std::string assumed;
+  for (const EntryBase* e : {static_cast<const EntryBase*>(&motor), static_cast<const EntryBase*>(&esc),
+                             static_cast<const EntryBase*>(prop_entry)}) {
+    if (!e || e->assumed_keys.empty()) continue;
+    std::string keys;
+    for (const auto& k : e->assumed_keys) keys += (keys.empty() ? "" : ", ") + k;
+    assumed += (assumed.empty() ? "" : "; ") + e->id + ": " + keys;
+  }
+  if (!assumed.empty()) std::cerr << "note: predictions rest on assumed catalog values (" << assumed << ")\n";
   return 0;
 }
 
