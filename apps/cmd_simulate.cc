@@ -195,7 +195,7 @@ std::vector<std::string> PrintPropTable(const std::string& title, double vdc_v, 
       flags += (flags.empty() ? "" : ",") + std::string(r.point.converged ? "prop_data_edge" : "not_converged");
       std::ostringstream n;
       n << std::fixed << "TR " << std::setprecision(0) << 100 * r.throttle << " %: "
-        << (r.point.converged ? r.point.prop.Message() : r.point.message);
+        << (r.point.converged ? "propeller data held at an edge: " + r.point.prop.Message() : r.point.message);
       notes.push_back(n.str());
     }
     o << std::setprecision(0) << std::setw(6) << 100 * r.throttle << std::setw(8) << p.rpm
@@ -277,7 +277,13 @@ int RunSimulateProp(const SimulateOptions& o) {
       std::cout << DumpJson(j);
     } else {
       PrintPoint(title, pp.drive, PropLines(pp, prop_entry, o.rho_kg_m3));
-      if (!pp.note.empty()) notes.push_back(pp.note);
+      if (!pp.converged) {
+        notes.push_back(pp.note);
+      } else if (!pp.prop.InData()) {
+        notes.push_back("propeller data held at an edge: " + pp.prop.Message());
+      } else if (!pp.note.empty()) {
+        notes.push_back(pp.note);
+      }
     }
   } else {
     const auto rows = PropThrottleTable(drive, prop, req.vdc_v, o.rho_kg_m3);
@@ -302,7 +308,7 @@ int RunSimulateProp(const SimulateOptions& o) {
     }
   }
   if (!o.json) {
-    for (const auto& n : notes) std::cerr << "note: propeller data held at an edge: " << n << "\n";
+    for (const auto& n : notes) std::cerr << "note: " << n << "\n";
     if (!assumed.empty()) std::cerr << "note: results rest on assumed catalog values (" << assumed << ")\n";
   }
   return 0;

@@ -99,6 +99,12 @@ TEST_F(StandCli, PropForwardAndThrustAndTable) {
   const Json jt = ParseJsonText(tj.out, "stdout");
   ASSERT_EQ(jt["throttles"].size(), 10u);
   EXPECT_NEAR(jt["throttles"][6]["omega_rad_s"].get<double>(), w, 1e-8 * w);  // TR 70 %
+  if (std::system("command -v gnuplot > /dev/null 2>&1") == 0) {
+    const CliRun pl = RunCli(Sim("--prop p --vdc 12 --plot " + (dir_ / "fig").string()));
+    ASSERT_EQ(pl.code, 0) << pl.err;
+    EXPECT_GT(fs::file_size(dir_ / "fig" / "thrust_current_vs_throttle.png"), 1000u);
+    EXPECT_NE(pl.err.find("wrote "), std::string::npos) << pl.err;
+  }
 }
 
 TEST_F(StandCli, PropBadInputIsOneLine) {
