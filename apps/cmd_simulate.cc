@@ -231,6 +231,40 @@ PropPoint BatchPropPoint(const Catalog& catalog, const Drive& drive, const std::
   }
 }
 
+// simulate --batch: one output row per input row (rows may name a propeller).
+void RunBatch(const SimulateOptions& o, const Catalog& catalog, const Drive& drive) {
+  const auto requests = ReadPointsCsv(o.batch_csv);
+  bool with_prop = false;
+  for (const auto& r : requests) with_prop = with_prop || !r.prop.empty();
+  std::ostringstream csv;
+  const auto& cols = PointCsvColumns();
+  for (std::size_t i = 0; i < cols.size(); ++i) csv << (i ? "," : "") << cols[i];
+  csv << (with_prop ? ",prop,thrust_n,g_per_w\n" : "\n");
+  std::size_t infeasible = 0;
+  std::map<std::string, PropModel> props;  // built once per propeller id
+  for (const auto& r : requests) {
+    if (r.prop.empty()) {
+      const OperatingPoint p = Solve(drive, r, {});
+      if (!p.feasible()) ++infeasible;
+      csv << PointToCsvRow(p) << (with_prop ? ",,,\n" : "\n");
+      continue;
+    }
+    const PropPoint pp = BatchPropPoint(catalog, drive, o.batch_csv, r, &props);
+    if (!pp.drive.feasible()) ++infeasible;
+    std::ostringstream extra;
+    extra.precision(10);
+    extra << "," << r.prop << "," << pp.thrust_n << "," << pp.g_per_w;
+    csv << PointToCsvRow(pp.drive) << extra.str() << "\n";
+  }
+  if (o.out_csv.empty()) {
+    std::cout << csv.str();
+  } else {
+    WriteFileAtomic(o.out_csv, csv.str());
+    std::cerr << "wrote " << requests.size() << " points to " << o.out_csv << " ("
+              << infeasible << " infeasible)\n";
+  }
+}
+
 // simulate --prop: a point (--throttle, --rpm or --thrust-n) or the table over throttle.
 int RunSimulateProp(const SimulateOptions& o) {
   if (o.prop_id.empty()) throw UsageError("--thrust-n needs --prop (the propeller that gives the thrust)");
@@ -404,36 +438,7 @@ int RunSimulate(const SimulateOptions& o) {
   }
 
   if (!o.batch_csv.empty()) {
-    const auto requests = ReadPointsCsv(o.batch_csv);
-    bool with_prop = false;
-    for (const auto& r : requests) with_prop = with_prop || !r.prop.empty();
-    std::ostringstream csv;
-    const auto& cols = PointCsvColumns();
-    for (std::size_t i = 0; i < cols.size(); ++i) csv << (i ? "," : "") << cols[i];
-    csv << (with_prop ? ",prop,thrust_n,g_per_w\n" : "\n");
-    std::size_t infeasible = 0;
-    std::map<std::string, PropModel> props;  // built once per propeller id
-    for (const auto& r : requests) {
-      if (r.prop.empty()) {
-        const OperatingPoint p = Solve(drive, r, {});
-        if (!p.feasible()) ++infeasible;
-        csv << PointToCsvRow(p) << (with_prop ? ",,,\n" : "\n");
-        continue;
-      }
-      const PropPoint pp = BatchPropPoint(catalog, drive, o.batch_csv, r, &props);
-      if (!pp.drive.feasible()) ++infeasible;
-      std::ostringstream extra;
-      extra.precision(10);
-      extra << "," << r.prop << "," << pp.thrust_n << "," << pp.g_per_w;
-      csv << PointToCsvRow(pp.drive) << extra.str() << "\n";
-    }
-    if (o.out_csv.empty()) {
-      std::cout << csv.str();
-    } else {
-      WriteFileAtomic(o.out_csv, csv.str());
-      std::cerr << "wrote " << requests.size() << " points to " << o.out_csv << " ("
-                << infeasible << " infeasible)\n";
-    }
+    RunBatch(o, catalog, drive);
     note_assumed();
     return 0;
   }

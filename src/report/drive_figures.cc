@@ -84,6 +84,68 @@ std::string Title(const DriveFigureOptions& o, const std::string& what) {
   return "\"" + q + "\"";
 }
 
+// System efficiency map over torque and speed (inverse model), with the per-throttle
+// maximum-efficiency points (analogue of eq 14) and the full-throttle line; returns the PNG path.
+std::string EfficiencyMapFigure(const Drive& d, const DriveFigureOptions& o, const std::string& dir) {
+  const double w_max = d.NoLoadSpeed(o.vdc_v, 1.0);
+  const double q_max = MaxTorque(d, o.vdc_v, 1.0, o.current_limit_a);
+  DataBlock map;
+  map.name = "map";
+  map.grid = true;
+  const int n = 120;
+  for (int i = 0; i <= n; ++i) {
+    const double w = w_max * i / n;
+    std::vector<double> rpm, q, eta;
+    for (int j = 0; j <= n; ++j) {
+      const double torque = q_max * j / n;
+      const OperatingPoint p = d.Inverse(o.vdc_v, torque, w);
+      const bool ok = p.throttle >= 0.0 && p.throttle <= 1.0 && p.irms_a <= o.current_limit_a;
+      rpm.push_back(p.rpm);
+      q.push_back(torque);
+      eta.push_back(ok ? 100 * p.eta_system : kNaN);
+    }
+    map.series.push_back({rpm, q, eta});
+  }
+  // Not clipped at 100 % (as figure 4).
+  const double map_max = MaxFinite(map, {2});
+  const bool map_above = map_max > 100.0;
+  DataBlock best;
+  best.name = "best";
+  std::vector<double> br, bq;
+  for (const auto& row : SummarizeThrottles(d, o.vdc_v, o.throttle_steps)) {
+    if (row.at_max_efficiency.irms_a > o.current_limit_a) continue;
+    br.push_back(row.max_efficiency_rpm);
+    bq.push_back(row.at_max_efficiency.torque_nm);
+  }
+  best.series.push_back({br, bq});
+  const DataBlock full = ThrottleLines(d, o, "unused", 2, [](const OperatingPoint& p) {
+    return std::vector<double>{p.rpm, p.torque_nm};
+  });
+  DataBlock top;
+  top.name = "full";
+  top.series.push_back(full.series.back());
+  std::ostringstream s;
+  s << "set title " << Title(o, "system efficiency Pmech/PDC [%] over torque and speed (inverse model)") << "\n"
+    << "set xlabel 'speed [rpm]'\nset ylabel 'torque [N m]'\nset view map\n"
+    << "set palette defined (0 '#2b083b', 0.35 '#3b528b', 0.6 '#21918c', 0.8 '#5ec962', 1 '#fde725')\n"
+    << "set cbrange [0:" << (map_above ? Fmt(map_max, 4) : "100") << "]\n"
+    << "set cblabel 'eta system [%]" << (map_above ? " (above 100: creates energy)" : "") << "'\n"
+    << "set key outside bottom center horizontal\n"
+    << "set contour base\nset cntrparam levels discrete 40,60,70,80,85,90"
+    << (map_above ? ",100" : "") << "\nset cntrlabel onecolor\n"
+    << "set xrange [0:" << RadPerSecToRpm(w_max) << "]\nset yrange [0:" << q_max << "]\n"
+    << "unset surface\nset table $contours\nsplot $map using 1:2:3 with lines\nunset table\n"
+    << "unset contour\nset surface\n"
+    << "plot $map using 1:2:3 with image notitle, "
+    << "$contours using 1:2 with lines lc rgb 'white' lw 1 title 'contours 40/60/70/80/85/90"
+    << (map_above ? "/100" : "") << " %', "
+    << "$full using 1:2 with lines lw 2 lc rgb 'black' title 'full throttle', "
+    << "$best using 1:2 with linespoints pt 7 ps 1 lc rgb 'red' title 'max efficiency per throttle (eq 14 analogue)'\n";
+  const std::string path = dir + "/efficiency_map.png";
+  RenderPng(path, {map, best, top}, s.str(), 1000, 800);
+  return path;
+}
+
 }  // namespace
 
 std::vector<std::string> WriteDriveFigures(const Drive& d, const DriveFigureOptions& opt,
@@ -184,67 +246,8 @@ std::vector<std::string> WriteDriveFigures(const Drive& d, const DriveFigureOpti
     RenderPng(path, {b}, s.str(), 1000, 1100);
     written.push_back(path);
   }
-  // 5. System efficiency map over torque and speed (inverse model), with the per-throttle
-  // maximum-efficiency points (analogue of eq 14) and the full-throttle line.
-  {
-    const double w_max = d.NoLoadSpeed(o.vdc_v, 1.0);
-    const double q_max = MaxTorque(d, o.vdc_v, 1.0, o.current_limit_a);
-    DataBlock map;
-    map.name = "map";
-    map.grid = true;
-    const int n = 120;
-    for (int i = 0; i <= n; ++i) {
-      const double w = w_max * i / n;
-      std::vector<double> rpm, q, eta;
-      for (int j = 0; j <= n; ++j) {
-        const double torque = q_max * j / n;
-        const OperatingPoint p = d.Inverse(o.vdc_v, torque, w);
-        const bool ok = p.throttle >= 0.0 && p.throttle <= 1.0 && p.irms_a <= o.current_limit_a;
-        rpm.push_back(p.rpm);
-        q.push_back(torque);
-        eta.push_back(ok ? 100 * p.eta_system : kNaN);
-      }
-      map.series.push_back({rpm, q, eta});
-    }
-    // Not clipped at 100 % (as figure 4).
-    const double map_max = MaxFinite(map, {2});
-    const bool map_above = map_max > 100.0;
-    DataBlock best;
-    best.name = "best";
-    std::vector<double> br, bq;
-    for (const auto& row : SummarizeThrottles(d, o.vdc_v, o.throttle_steps)) {
-      if (row.at_max_efficiency.irms_a > o.current_limit_a) continue;
-      br.push_back(row.max_efficiency_rpm);
-      bq.push_back(row.at_max_efficiency.torque_nm);
-    }
-    best.series.push_back({br, bq});
-    const DataBlock full = ThrottleLines(d, o, "unused", 2, [](const OperatingPoint& p) {
-      return std::vector<double>{p.rpm, p.torque_nm};
-    });
-    DataBlock top;
-    top.name = "full";
-    top.series.push_back(full.series.back());
-    std::ostringstream s;
-    s << "set title " << Title(o, "system efficiency Pmech/PDC [%] over torque and speed (inverse model)") << "\n"
-      << "set xlabel 'speed [rpm]'\nset ylabel 'torque [N m]'\nset view map\n"
-      << "set palette defined (0 '#2b083b', 0.35 '#3b528b', 0.6 '#21918c', 0.8 '#5ec962', 1 '#fde725')\n"
-      << "set cbrange [0:" << (map_above ? Fmt(map_max, 4) : "100") << "]\n"
-      << "set cblabel 'eta system [%]" << (map_above ? " (above 100: creates energy)" : "") << "'\n"
-      << "set key outside bottom center horizontal\n"
-      << "set contour base\nset cntrparam levels discrete 40,60,70,80,85,90"
-      << (map_above ? ",100" : "") << "\nset cntrlabel onecolor\n"
-      << "set xrange [0:" << RadPerSecToRpm(w_max) << "]\nset yrange [0:" << q_max << "]\n"
-      << "unset surface\nset table $contours\nsplot $map using 1:2:3 with lines\nunset table\n"
-      << "unset contour\nset surface\n"
-      << "plot $map using 1:2:3 with image notitle, "
-      << "$contours using 1:2 with lines lc rgb 'white' lw 1 title 'contours 40/60/70/80/85/90"
-      << (map_above ? "/100" : "") << " %', "
-      << "$full using 1:2 with lines lw 2 lc rgb 'black' title 'full throttle', "
-      << "$best using 1:2 with linespoints pt 7 ps 1 lc rgb 'red' title 'max efficiency per throttle (eq 14 analogue)'\n";
-    const std::string path = dir + "/efficiency_map.png";
-    RenderPng(path, {map, best, top}, s.str(), 1000, 800);
-    written.push_back(path);
-  }
+  // 5. System efficiency map over torque and speed (inverse model).
+  written.push_back(EfficiencyMapFigure(d, o, dir));
   return written;
 }
 
