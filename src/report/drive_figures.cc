@@ -236,7 +236,7 @@ std::vector<std::string> WriteDriveFigures(const Drive& d, const DriveFigureOpti
       << Title(o, "efficiencies vs speed per throttle; " + limit_note +
                       (above ? "\\nABOVE 100 %: these parameters create energy (model.md section 10)" : ""))
       << "\n"
-      << "set xlabel 'speed [rpm]'\nset yrange [0:" << (above ? Fmt(1.05 * eta_max, 4) : "100") << "]\n"
+      << "set xlabel 'speed [rpm]'\nset yrange [0:" << (above ? Fmt(1.05 * eta_max, 4) : "105") << "]\n"
       << "set arrow from graph 0, first 100 to graph 1, first 100 nohead dt 2 lw 2 lc rgb 'red'\n"
       << "set ylabel 'motor [%]'\nplot " << ForEachThrottle(o, "eta", "1:2") << "\n"
       << "set ylabel 'ESC [%]'\nplot " << ForEachThrottle(o, "eta", "1:3") << "\n"
