@@ -151,6 +151,11 @@ for c in "${motor_cases[@]}"; do
 " $(better $c at_measured_rpm idc_a) | $(pair $c at_measured_rpm throttle) |"
 done
 echo
+echo "The A-4220 table's \`Throttle\` column is not the ESC command (sjkim's README: it differs from the"
+echo "spreadsheet; 0.618 at 1236 us), so its forward numbers say nothing about either model. The Scorpion's"
+echo "current error (about 24 % for both models) is in its catalog numbers: the label Kv, the fitted R and"
+echo "the assumed Io together do not reproduce its table at any convention."
+echo
 if [ "$preview" = yes ]; then
   echo "## What the resistance-convention fix should do"
   echo
@@ -203,12 +208,19 @@ echo "  remaining few tenths come from io_a, which these entries store as an rms
 echo "  catalog/README.md) while the DC model uses it as a DC current."
 fi
 echo "- **Forward from the throttle** tests the ESC's throttle map more than the motor: at 40 % command the"
-echo "  T-Motor tables already turn at or above the no-load speed Kv*0.4*VDC of a linear PWM duty (AT4125:"
-echo "  4943 rpm measured, 4834 rpm no-load), so no model with duty = throttle can match them, and the"
+echo "  T-Motor tables turn loaded near or above the no-load speed Kv*0.4*VDC of a linear PWM duty (AT4125:"
+echo "  4943 rpm measured, 4834 rpm no-load; AT3520 + 13x6.5: 4834 against 4948), so no model with"
+echo "  duty = throttle can match them, and the"
 echo "  \"throttle needed\" column (the inverse at the measured rpm and torque) is 4-6 points above the command"
-echo "  even for the DC model. dynosize loses more here because the catalog ESC prior also puts a"
-echo "  saturation knee at 90 % (slope 0.61, assumed) and, with the current convention, too much copper loss."
-echo "  A measured ESC entry (\`dynosize calibrate\` on the table with throttle) is the cure, not the motor model."
+echo "  even for the DC model. dynosize loses more here for the reason above: with the DC resistance as"
+echo "  rm_ohm its loaded speed drop R*I is 1.335 x the DC model's."
+if [ "$preview" = yes ]; then
+echo "  With rm_ohm x 0.7492 its forward rpm error is within 0.5 points of the DC model's (mean"
+echo "  $(mean _rms from_throttle dynosize rpm) % against $(mean "" from_throttle plain_dc rpm) %); the rest is io_a and the saturation knee that the catalog ESC prior"
+echo "  assumes at 90 % (slope 0.61), which touches only the 100 % rows."
+fi
+echo "  For the throttle map itself, a measured ESC entry (\`dynosize calibrate\` on a table with throttle)"
+echo "  is the cure, not the motor model."
 echo "- **The goals** (thrust <= 8 % and DC current <= 10 % at the measured rpm, never worse than the"
 echo "  plain DC model): thrust is met for 4 of 5 entries. The current is limited by the propeller entries'"
 echo "  torque (12-19 % off for three of five), which neither model can fix; on the motor + ESC alone the"
