@@ -152,9 +152,10 @@ for c in "${motor_cases[@]}"; do
 done
 echo
 echo "The A-4220 table's \`Throttle\` column is not the ESC command (sjkim's README: it differs from the"
-echo "spreadsheet; 0.618 at 1236 us), so its forward numbers say nothing about either model. The Scorpion's"
-echo "current error (about 24 % for both models) is in its catalog numbers: the label Kv, the fitted R and"
-echo "the assumed Io together do not reproduce its table at any convention."
+echo "spreadsheet; 0.618 at 1236 us), so its forward numbers say nothing about either model. Both models"
+echo "under-predict the Scorpion's current by about 24 %: at 40 % throttle the table draws 159 W for 64 W at"
+echo "the shaft (40 % efficient), losses that its catalog entry (label Kv, fitted R, assumed Io) does not"
+echo "hold: a speed-dependent no-load current and part-throttle ESC losses (model.md section 9)."
 echo
 if [ "$preview" = yes ]; then
   echo "## What the resistance-convention fix should do"
