@@ -209,7 +209,9 @@ int RunValidateStand(const ValidateStandOptions& o) {
   const logs::SteadyTable log = logs::ReadLog(o.table, ro);
   const stand::StandTable table = stand::StandTableFromLog(log, so);
   const Drive drive(motor.params, esc.params);
-  const DcMotor dc = DcMotorFromCatalog(motor, esc);
+  const DcBaselineNumbers numbers =
+      o.baseline == "dc-equivalent" ? DcBaselineNumbers::kDcEquivalent : DcBaselineNumbers::kAsStored;
+  const DcMotor dc = DcMotorFromCatalog(motor, esc, numbers);
   std::optional<PropModel> prop;
   if (prop_entry) prop.emplace(*prop_entry);
   const stand::StandResult result = stand::PredictStand(table, drive, dc, prop ? &*prop : nullptr, po);
@@ -226,7 +228,7 @@ int RunValidateStand(const ValidateStandOptions& o) {
     j["prop"] = prop_entry ? Json(prop_entry->id) : Json(nullptr);
     j["rho_kg_m3"] = po.rho_kg_m3;
     j["baseline"] = {{"kv_rpm_per_v", dc.kv_rpm_per_v}, {"r_ohm", dc.r_ohm}, {"io_a", dc.io_a},
-                     {"kt_nm_per_a", dc.kt_nm_per_a()}};
+                     {"kt_nm_per_a", dc.kt_nm_per_a()}, {"numbers", o.baseline}};
     j["figures"] = figure.empty() ? Json::array() : Json::array({figure});
     CheckJsonFinite(j, "validate-stand result");
     std::cout << DumpJson(j);
@@ -234,8 +236,10 @@ int RunValidateStand(const ValidateStandOptions& o) {
   }
   CheckJsonFinite(ResultJson(table, result), "validate-stand result");  // numerical guard
   PrintSummary(table, result, title);
-  std::cout << "\n  plain DC model: label Kv " << Pct(dc.kv_rpm_per_v, 1) << " rpm/V, R = Rm + RESC = "
-            << Pct(1000.0 * dc.r_ohm, 2) << " mOhm, Io " << Pct(dc.io_a, 3)
+  std::cout << "\n  plain DC model: label Kv " << Pct(dc.kv_rpm_per_v, 1) << " rpm/V, R = "
+            << (numbers == DcBaselineNumbers::kAsStored ? "Rm + RESC = " : "(Rm + RESC)/0.7492 = ")
+            << Pct(1000.0 * dc.r_ohm, 2) << " mOhm, Io " << (numbers == DcBaselineNumbers::kAsStored ? "" : "1.1095*io_a = ")
+            << Pct(dc.io_a, 3)
             << " A: I = Io + Q/KT_dc, KT_dc = 60/(2*pi*Kv), U = n/Kv + R*I, IDC = U*I/VDC\n";
   if (o.rows) PrintRows(table, result);
   if (result.rows_outside_prop_data) {

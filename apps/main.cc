@@ -212,6 +212,10 @@ int main(int argc, char** argv) {
   validate_stand->add_option("--vdc", vst.vdc_v, "supply voltage, V, for tables without a voltage column");
   validate_stand->add_option("--lines", vst.lines, "FIRST-LAST: only rows from these lines of the file");
   validate_stand->add_option("--rho-kg-m3", vst.rho_kg_m3, "air density, kg/m^3 (default 1.225)");
+  validate_stand->add_option("--baseline", vst.baseline,
+                             "the plain DC model's R and Io: as-stored (rm_ohm + resc_ohm, io_a) or "
+                             "dc-equivalent ((Rm + RESC)/0.7492, 1.1095*io_a: the rms numbers' DC equivalents)")
+      ->check(CLI::IsMember({"as-stored", "dc-equivalent"}));
   validate_stand->add_flag("--rows", vst.rows, "also print every row's measured and predicted values");
   validate_stand->add_flag("--json", vst.json, "print one JSON object");
   validate_stand->add_option("--plot", vst.plot_dir, "write the measured-vs-predicted figure here");

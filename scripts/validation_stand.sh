@@ -31,7 +31,7 @@ a4220=(--format mapped --drop-incomplete-rows --map throttle=Throttle --map vdc_
 case_run() {
   local slug=$1 label=$2 cat=$3 table=$4 motor=$5 prop=$6; shift 6
   local p=(); [ "$prop" != - ] && p=(--prop "$prop")
-  local plot=(); [ "$cat" = "$here/catalog" ] && plot=(--plot "$img/$slug")
+  local plot=(); [ "$cat" = "$here/catalog" ] && [ -z "$suffix" ] && plot=(--plot "$img/$slug")
   "$exe" validate-stand --catalog "$cat" "$table" --motor "$motor" --esc $esc "${p[@]}" "$@" "${plot[@]}" \
     --json > "$tmp/$slug.json" 2> "$tmp/$slug.err" || { cat "$tmp/$slug.err" >&2; exit 70; }
   echo "$label" > "$tmp/$slug.label"
@@ -57,17 +57,21 @@ rm -rf "$img"
 mkdir -p "$img"
 cat_main=$here/catalog
 prop_cases=(at3520_13x6.5_dc_p_131 at3520_14x7_apc_per3_14x7e at3520_14x7_dc_p_145 at4125_15x8_apc_per3_15x8e at4125_15x8_dc_p_261)
-run_props() {  # CATALOG_DIR SUFFIX
+suffix=""
+run_props() {  # CATALOG_DIR SUFFIX [extra validate-stand args...]
+  suffix=$2
+  local extra=("${@:3}")
   case_run "at3520_13x6.5_dc_p_131$2" "AT3520 550KV + APC 13x6.5 | dc_p_131 APC E 13.0x6.5 (DriveCalc law)" "$1" \
-    "$s/TMotor_AT3520_550kv.csv" sj_m_tmotor_at3520_550kv dc_p_131 "${tm[@]}" --lines 2-12
+    "$s/TMotor_AT3520_550kv.csv" sj_m_tmotor_at3520_550kv dc_p_131 "${tm[@]}" --lines 2-12 "${extra[@]}"
   case_run "at3520_14x7_apc_per3_14x7e$2" "AT3520 550KV + APC 14x7 | apc_per3_14x7e APC 14x7E (PER3, computed)" "$1" \
-    "$s/TMotor_AT3520_550kv.csv" sj_m_tmotor_at3520_550kv apc_per3_14x7e "${tm[@]}" --lines 13-23
+    "$s/TMotor_AT3520_550kv.csv" sj_m_tmotor_at3520_550kv apc_per3_14x7e "${tm[@]}" --lines 13-23 "${extra[@]}"
   case_run "at3520_14x7_dc_p_145$2" "AT3520 550KV + APC 14x7 | dc_p_145 APC E 14.0x7.0 (DriveCalc law)" "$1" \
-    "$s/TMotor_AT3520_550kv.csv" sj_m_tmotor_at3520_550kv dc_p_145 "${tm[@]}" --lines 13-23
+    "$s/TMotor_AT3520_550kv.csv" sj_m_tmotor_at3520_550kv dc_p_145 "${tm[@]}" --lines 13-23 "${extra[@]}"
   case_run "at4125_15x8_apc_per3_15x8e$2" "AT4125 540KV + APC 15x8 | apc_per3_15x8e APC 15x8E (PER3, computed)" "$1" \
-    "$s/TMotor_AT4125_540kv.csv" sj_m_tmotor_at4125_540kv apc_per3_15x8e "${tm[@]}"
+    "$s/TMotor_AT4125_540kv.csv" sj_m_tmotor_at4125_540kv apc_per3_15x8e "${tm[@]}" "${extra[@]}"
   case_run "at4125_15x8_dc_p_261$2" "AT4125 540KV + APC 15x8 | dc_p_261 APC E 15.0x8.0 (DriveCalc law)" "$1" \
-    "$s/TMotor_AT4125_540kv.csv" sj_m_tmotor_at4125_540kv dc_p_261 "${tm[@]}"
+    "$s/TMotor_AT4125_540kv.csv" sj_m_tmotor_at4125_540kv dc_p_261 "${tm[@]}" "${extra[@]}"
+  suffix=""
 }
 run_props "$cat_main" ""
 motor_cases=(at2814_1200kv scorpion_1100kv a4220_540kv)
@@ -88,6 +92,9 @@ if [ "$rm_now" = "0.081" ]; then
   jq '.motors |= map(.rm_ohm *= 0.7492)' "$cat_main/sjkim_mfr_tables.json" > "$tmp/cat/sjkim_mfr_tables.json"
   run_props "$tmp/cat" "_rms"
 fi
+# The DC model with the DC equivalents of the catalog's numbers ((Rm + RESC)/0.7492, 1.1095*Io):
+# one model with the rms model under an ideal ESC, so what is left is the ESC model.
+run_props "$cat_main" "_dceq" --baseline dc-equivalent
 
 label() { cut -d'|' -f"$2" "$tmp/$1.label" | sed 's/^ *//; s/ *$//'; }
 rows() { jq .rows_used "$tmp/$1.json"; }
@@ -227,6 +234,22 @@ echo "  plain DC model): thrust is met for 4 of 5 entries. The current is limite
 echo "  torque (12-19 % off for three of five), which neither model can fix; on the motor + ESC alone the"
 echo "  convention fix brings dynosize level with the DC model (within 0.4 points), which is as good as it can"
 echo "  get with the same numbers: the two models differ only where the ESC is not ideal."
+echo
+echo "## The DC model with the DC equivalents of the catalog's numbers"
+echo
+echo "\`--baseline dc-equivalent\`: R = (Rm + RESC)/0.7492, Io = 1.1095*io_a. Under an ideal, unsaturated ESC the"
+echo "two models then give the same DC current at any speed and torque (test"
+echo "\`StandDcBaseline.DcEquivalentNumbersReproduceTheRmsModel\`), so the columns below differ only by the"
+echo "catalog ESC prior's saturation knee. This is the fair comparison once the catalog stores rms values;"
+echo "with the DC resistance stored as rm_ohm (today's sjkim entries) both models carry the 1.335 x copper loss."
+echo
+echo "| table | propeller entry | IDC @rpm | IDC @rpm+Q | rpm fwd | IDC fwd |"
+echo "|---|---|---|---|---|---|"
+for c in "${prop_cases[@]}"; do
+  r=${c}_dceq
+  echo "| $(label $c 1) | $(label $c 2) | $(pair $r at_measured_rpm idc_a) | $(pair $r at_measured_rpm_and_torque idc_a) |"\
+" $(pair $r from_throttle rpm) | $(pair $r from_throttle idc_a) |"
+done
 echo
 cat <<'EOF'
 ## Stand tables that cannot be matched

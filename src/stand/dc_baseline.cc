@@ -12,7 +12,7 @@ double DcMotor::kt_nm_per_a() const {
   return 1.0 / (kv_rpm_per_v * kRadPerSecPerRpm);
 }
 
-DcMotor DcMotorFromCatalog(const MotorEntry& motor, const EscEntry& esc) {
+DcMotor DcMotorFromCatalog(const MotorEntry& motor, const EscEntry& esc, DcBaselineNumbers numbers) {
   DcMotor m;
   if (motor.kv_rpm_per_v) {
     m.kv_rpm_per_v = *motor.kv_rpm_per_v;
@@ -23,6 +23,13 @@ DcMotor DcMotorFromCatalog(const MotorEntry& motor, const EscEntry& esc) {
   }
   m.r_ohm = motor.params.rm_ohm + esc.params.resc_ohm;
   m.io_a = motor.params.io_a;
+  if (numbers == DcBaselineNumbers::kDcEquivalent && motor.params.type == MotorType::kBldc) {
+    // PDC = KT*Io*w + Q*w + kp*R*Irms^2 with KT = K*kp*KT_dc (eq 56 constant) equals the DC
+    // model's KT_dc*Io_dc*w + Q*w + R_dc*I^2 for Io_dc = K*kp*Io and R_dc = kp*R/(K*kp)^2.
+    const double kkp = kIdealIdcPerIrmsPerThrottle;
+    m.r_ohm *= kPacPerVllIrms / (kkp * kkp);
+    m.io_a *= kkp;
+  }
   return m;
 }
 

@@ -29,9 +29,22 @@ struct DcMotor {
   double kt_nm_per_a() const;
 };
 
+// Which numbers the baseline gets.
+enum class DcBaselineNumbers {
+  // The catalog's numbers as stored: R = rm_ohm + resc_ohm, Io = io_a ("the same numbers").
+  kAsStored,
+  // Their DC equivalents under the rms circuit's convention: R = (rm_ohm + resc_ohm)*kp/(K*kp)^2
+  // = (Rm + RESC)/0.7492 and Io = K*kp*io_a = 1.1095*io_a (K = 3/(sqrt(2)*pi), kp = sqrt(27/10);
+  // model.md sections 5, 6, 10). With these, an ideal unsaturated ESC gives the rms model's DC
+  // current exactly at any (speed, torque): the comparison then isolates the ESC model. Brushed
+  // motors need no conversion (K = kp = 1).
+  kDcEquivalent,
+};
+
 // The baseline for a catalog motor + ESC: label Kv (the catalog's kv_rpm_per_v, else derived
-// from KE by model.md section 8), R = rm_ohm + resc_ohm, Io = io_a.
-DcMotor DcMotorFromCatalog(const MotorEntry& motor, const EscEntry& esc);
+// from KE by model.md section 8) and R, Io as chosen above.
+DcMotor DcMotorFromCatalog(const MotorEntry& motor, const EscEntry& esc,
+                           DcBaselineNumbers numbers = DcBaselineNumbers::kAsStored);
 
 struct DcPoint {
   double omega_rad_s = 0.0;

@@ -213,6 +213,35 @@ TEST(StandDcBaseline, RmsModelEqualsDcModelAtTheConvertedResistance) {
             DcAtSpeedTorque(dc, 22.0, RpmToRadPerSec(6000.0), 0.5).idc_a * 1.01);
 }
 
+// The DC equivalents of the rms numbers (R/0.7492, 1.1095*Io) make the two models one model
+// under an ideal, unsaturated ESC: the same DC current and duty at any speed and torque.
+TEST(StandDcBaseline, DcEquivalentNumbersReproduceTheRmsModel) {
+  MotorEntry motor;
+  motor.kv_rpm_per_v = 550.0;
+  motor.params.ke_v_s_per_rad = KeFromKvBldc(550.0);
+  motor.params.kt_nm_per_a = kPacPerVllIrms * motor.params.ke_v_s_per_rad;
+  motor.params.rm_ohm = 0.104;
+  motor.params.io_a = 0.86;
+  EscEntry esc;
+  esc.params.resc_ohm = 0.001;
+  const Drive drive(motor.params, esc.params);
+  const DcMotor as_stored = DcMotorFromCatalog(motor, esc);
+  EXPECT_DOUBLE_EQ(as_stored.r_ohm, 0.105);
+  EXPECT_DOUBLE_EQ(as_stored.io_a, 0.86);
+  const DcMotor dc = DcMotorFromCatalog(motor, esc, DcBaselineNumbers::kDcEquivalent);
+  EXPECT_NEAR(dc.r_ohm, 0.105 / 0.7492, 1e-4 * dc.r_ohm);
+  EXPECT_NEAR(dc.io_a, 0.86 * 1.1095, 1e-4);
+  for (double rpm : {2000.0, 5000.0, 9000.0}) {
+    for (double q : {0.05, 0.3, 0.7}) {
+      const double w = RpmToRadPerSec(rpm);
+      const OperatingPoint p = drive.Inverse(22.0, q, w);
+      const DcPoint b = DcAtSpeedTorque(dc, 22.0, w, q);
+      EXPECT_NEAR(p.idc_a, b.idc_a, 1e-12 * b.idc_a) << rpm << " " << q;
+      EXPECT_NEAR(p.throttle, b.duty, 1e-12) << rpm << " " << q;
+    }
+  }
+}
+
 stand::StandTable TableFrom(const std::vector<PropPoint>& points, bool with_torque) {
   stand::StandTable t;
   t.file = "generated";
