@@ -51,7 +51,8 @@ std::string Assumed(const EntryBase& e) {
   return s;
 }
 
-void PrintPoint(const std::string& title, const OperatingPoint& p, const std::string& extra = "") {
+void PrintPoint(const std::string& title, const OperatingPoint& p, const std::string& extra = "",
+                const std::vector<std::string>& extra_limits = {}) {
   // Numerical guard: the same finiteness check as the JSON output (report/point_json.h); a
   // non-finite result of in-range inputs is a bug (InternalError, exit 70), never printed.
   (void)PointToJson(p);
@@ -75,10 +76,12 @@ void PrintPoint(const std::string& title, const OperatingPoint& p, const std::st
   o << "  efficiency     motor " << 100 * p.eta_motor << " %, ESC " << 100 * p.eta_esc
     << " %, system " << 100 * p.eta_system << " %\n";
   o << extra;
-  o << "  feasible       " << (p.feasible() ? "yes" : "NO");
-  if (!p.feasible()) {
+  const bool feasible = p.feasible() && extra_limits.empty();
+  o << "  feasible       " << (feasible ? "yes" : "NO");
+  if (!feasible) {
     o << " (";
-    const auto names = LimitNames(p.limits);
+    auto names = LimitNames(p.limits);
+    names.insert(names.end(), extra_limits.begin(), extra_limits.end());
     for (std::size_t i = 0; i < names.size(); ++i) o << (i ? ", " : "") << names[i];
     o << ")";
   }
@@ -143,6 +146,12 @@ Json PropPointJson(const PropPoint& pp) {
   Json j = PointToJson(pp.drive);
   j["thrust_n"] = pp.thrust_n;
   j["g_per_w"] = pp.g_per_w;
+  j["figure_of_merit"] = pp.figure_of_merit;
+  if (pp.figure_of_merit > 1.0) {
+    // Momentum theory is a limit like the drive's (model.md section 10): not feasible.
+    j["feasible"] = false;
+    j["limits"].push_back("beats_momentum_theory");
+  }
   j["prop_in_data"] = pp.prop.InData();
   if (!pp.prop.InData()) j["prop_note"] = pp.prop.Message();
   j["converged"] = pp.converged;
@@ -159,6 +168,8 @@ std::string PropLines(const PropPoint& pp, const PropEntry& prop, double rho_kg_
     << std::setprecision(0) << pp.thrust_n / kNewtonPerGramForce << " gf)\n";
   o << std::setprecision(2) << "  g/W            " << std::setw(10) << pp.g_per_w
     << " gf per DC watt\n";
+  o << std::setprecision(3) << "  figure of merit" << std::setw(10) << pp.figure_of_merit
+    << " (momentum theory: < 1; measured small props <= 0.75)\n";
   return o.str();
 }
 
@@ -172,6 +183,7 @@ Json PropTableJson(const std::vector<ThrottleTableRow>& rows) {
     pp.note = r.point.message;
     pp.thrust_n = r.thrust_n;
     pp.g_per_w = r.g_per_w;
+    pp.figure_of_merit = r.figure_of_merit;
     out.push_back(PropPointJson(pp));
   }
   return out;
@@ -185,12 +197,13 @@ std::vector<std::string> PrintPropTable(const std::string& title, double vdc_v, 
   std::ostringstream o;
   o << std::fixed << title << " at VDC = " << std::setprecision(2) << vdc_v << " V, rho = "
     << std::setprecision(3) << rho_kg_m3 << " kg/m^3, static\n";
-  o << "  TR %     rpm  thrust N  thrust gf    IDC A    PDC W  Pmech W    g/W  eta_sys %  limits\n";
+  o << "  TR %     rpm  thrust N  thrust gf    IDC A    PDC W  Pmech W    g/W  eta_sys %     FM  limits\n";
   for (const auto& r : rows) {
     const OperatingPoint& p = r.point.drive;
     std::string flags;
     for (const auto& n : LimitNames(p.limits)) flags += (flags.empty() ? "" : ",") + n;
     if (p.saturated) flags += (flags.empty() ? "" : ",") + std::string("esc_saturated");
+    if (r.figure_of_merit > 1.0) flags += (flags.empty() ? "" : ",") + std::string("beats_momentum_theory");
     if (!r.point.converged || !r.point.prop.InData()) {
       flags += (flags.empty() ? "" : ",") + std::string(r.point.converged ? "prop_data_edge" : "not_converged");
       std::ostringstream n;
@@ -203,7 +216,8 @@ std::vector<std::string> PrintPropTable(const std::string& title, double vdc_v, 
       << r.thrust_n / kNewtonPerGramForce << std::setprecision(2) << std::setw(9) << p.idc_a
       << std::setprecision(1) << std::setw(9) << p.pdc_w << std::setw(9) << p.pmech_w
       << std::setprecision(2) << std::setw(7) << r.g_per_w << std::setprecision(1) << std::setw(11)
-      << 100 * p.eta_system << "  " << (flags.empty() ? "-" : flags) << "\n";
+      << 100 * p.eta_system << std::setprecision(3) << std::setw(7) << r.figure_of_merit << "  "
+      << (flags.empty() ? "-" : flags) << "\n";
   }
   std::cout << o.str();
   return notes;
@@ -250,11 +264,19 @@ void RunBatch(const SimulateOptions& o, const Catalog& catalog, const Drive& dri
       continue;
     }
     const PropPoint pp = BatchPropPoint(catalog, drive, o.batch_csv, r, &props);
-    if (!pp.drive.feasible()) ++infeasible;
+    const Json j = PropPointJson(pp);
+    if (!j["feasible"].get<bool>()) ++infeasible;
     std::ostringstream extra;
     extra.precision(10);
     extra << "," << r.prop << "," << pp.thrust_n << "," << pp.g_per_w;
-    csv << PointToCsvRow(pp.drive) << extra.str() << "\n";
+    std::string row = PointToCsvRow(pp.drive);
+    if (pp.figure_of_merit > 1.0) {
+      // The last two columns are feasible and limits (report/point_json.h): as the JSON says.
+      std::string limits;
+      for (const auto& n : j["limits"]) limits += (limits.empty() ? "" : ";") + n.get<std::string>();
+      row = row.substr(0, row.rfind(',', row.rfind(',') - 1)) + ",0," + limits;
+    }
+    csv << row << extra.str() << "\n";
   }
   if (o.out_csv.empty()) {
     std::cout << csv.str();
@@ -310,7 +332,15 @@ int RunSimulateProp(const SimulateOptions& o) {
       if (!assumed.empty()) j["assumed"] = assumed;
       std::cout << DumpJson(j);
     } else {
-      PrintPoint(title, pp.drive, PropLines(pp, prop_entry, o.rho_kg_m3));
+      PrintPoint(title, pp.drive, PropLines(pp, prop_entry, o.rho_kg_m3),
+                 pp.figure_of_merit > 1.0 ? std::vector<std::string>{"beats_momentum_theory"}
+                                          : std::vector<std::string>{});
+      if (pp.figure_of_merit > 1.0) {
+        std::ostringstream w;
+        w << "figure of merit " << pp.figure_of_merit
+          << " > 1: the propeller data beat momentum theory here (model.md section 10)";
+        notes.push_back(w.str());
+      }
       if (!pp.converged) {
         notes.push_back(pp.note);
       } else if (!pp.prop.InData()) {

@@ -5,6 +5,7 @@
 #include "common/error.h"
 #include "common/units.h"
 #include "io/points_csv.h"
+#include "model/physics.h"
 #include "prop/prop_drive.h"
 #include "stand/prop_speed.h"
 #include "stand/throttle_table.h"
@@ -75,6 +76,7 @@ PropPoint SolvePropPoint(const Drive& drive, const PropModel& prop, const PropPo
   }
   out.thrust_n = out.prop.thrust_n;
   out.g_per_w = GramsPerWatt(out.thrust_n, out.drive.pdc_w);
+  out.figure_of_merit = FigureOfMerit(out.thrust_n, out.prop.power_w, prop.diameter_m(), r.rho_kg_m3);
   return out;
 }
 

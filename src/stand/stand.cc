@@ -5,6 +5,7 @@
 
 #include "common/error.h"
 #include "common/units.h"
+#include "model/physics.h"
 #include "prop/prop_drive.h"
 
 namespace dynosize::stand {
@@ -126,7 +127,15 @@ void PredictAtRpm(const StandRow& row, const Drive& drive, const DcMotor& dc,
   }
   out->pred[kAtMeasuredRpm][kDynosize] = FromDrive(drive.Inverse(row.vdc_v, q, w));
   out->pred[kAtMeasuredRpm][kPlainDc] = FromDc(DcAtSpeedTorque(dc, row.vdc_v, w, q));
-  for (auto& p : out->pred[kAtMeasuredRpm]) p.thrust_n = thrust;
+  const bool beats_momentum =
+      prop && FigureOfMerit(*thrust, q * w, prop->diameter_m(), o.rho_kg_m3) > 1.0;
+  for (auto& p : out->pred[kAtMeasuredRpm]) {
+    p.thrust_n = thrust;
+    if (beats_momentum) {  // model.md section 10: not a credible point
+      p.feasible = false;
+      p.limits.push_back("beats_momentum_theory");
+    }
+  }
   if (prop && row.torque_nm) {
     // The motor + ESC alone: the measured torque instead of the propeller's.
     const double qm = *row.torque_nm;

@@ -1,6 +1,7 @@
 #include "stand/throttle_table.h"
 
 #include "common/units.h"
+#include "model/physics.h"
 
 namespace dynosize {
 
@@ -18,6 +19,7 @@ std::vector<ThrottleTableRow> PropThrottleTable(const Drive& drive, const PropMo
     r.point = SolveDriveWithProp(drive, prop, vdc_v, r.throttle, rho_kg_m3);
     r.thrust_n = r.point.prop.thrust_n;
     r.g_per_w = GramsPerWatt(r.thrust_n, r.point.drive.pdc_w);
+    r.figure_of_merit = FigureOfMerit(r.thrust_n, r.point.prop.power_w, prop.diameter_m(), rho_kg_m3);
     rows.push_back(std::move(r));
   }
   return rows;

@@ -18,6 +18,7 @@ struct ThrottleTableRow {
   PropDrivePoint point;
   double thrust_n = 0.0;
   double g_per_w = 0.0;  // thrust in gram-force per DC watt (0 when PDC <= 0)
+  double figure_of_merit = 0.0;  // T^1.5/(P_shaft*sqrt(2*rho*A)), model/physics.h
 };
 
 // Thrust in gram-force per watt of DC power: the datasheets' "efficiency (g/W)".

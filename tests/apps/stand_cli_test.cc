@@ -26,8 +26,10 @@ int Lines(const std::string& s) {
   return n;
 }
 
-// A catalog folder with one motor, two ESCs (one that creates energy: c1 + c0 < 1.1095) and a
-// propeller with power laws T = 2 N*(rpm/1000)^2, P = 1.5 W*(rpm/1000)^3 (so Q = k*omega^2).
+// A catalog folder with one motor, two ESCs (one that creates energy: c1 + c0 < 1.1095) and two
+// propellers with power laws (so Q = k*omega^2): p, T = 0.2 N*(rpm/1000)^2, P = 0.42 W*(rpm/1000)^3
+// (figure of merit 0.60 at every speed), and "hot", T = 2 N*(rpm/1000)^2, P = 1.5 W*(rpm/1000)^3
+// (figure of merit 5.3: beats momentum theory).
 class StandCli : public ::testing::Test {
  protected:
   void SetUp() override {
@@ -41,7 +43,10 @@ class StandCli : public ::testing::Test {
             "tr_sat": 1, "sat_slope": 1, "source": {"dataset": "test"}},
            {"id": "bad", "name": "ESC that creates energy", "resc_ohm": 0.02, "c1": 0.5, "c0": 0,
             "tr_sat": 1, "sat_slope": 1, "source": {"dataset": "test"}}],
-  "props": [{"id": "p", "name": "power-law prop", "diameter_m": 0.254, "thrust_law_n": 2.0,
+  "props": [{"id": "p", "name": "power-law prop", "diameter_m": 0.254, "thrust_law_n": 0.2,
+             "thrust_law_exp": 2.0, "power_law_w": 0.42, "power_law_exp": 3.0, "law_rho_kg_m3": 1.225,
+             "source": {"dataset": "test"}},
+            {"id": "hot", "name": "too good", "diameter_m": 0.254, "thrust_law_n": 2.0,
              "thrust_law_exp": 2.0, "power_law_w": 1.5, "power_law_exp": 3.0, "law_rho_kg_m3": 1.225,
              "source": {"dataset": "test"}}]})";
   }
@@ -56,18 +61,21 @@ TEST_F(StandCli, PropAtRpmJsonMatchesHandComputation) {
   const CliRun r = RunCli(Sim("--prop p --vdc 12 --rpm 4000 --json"));
   ASSERT_EQ(r.code, 0) << r.err;
   const Json j = ParseJsonText(r.out, "stdout");
-  // Hand computation: T = 2*4^2, P = 1.5*4^3, Q = P/omega; Irms = Io + Q/KT (42), VLL = Rm*I +
+  // Hand computation: T = 0.2*4^2, P = 0.42*4^3, Q = P/omega; Irms = Io + Q/KT (42), VLL = Rm*I +
   // KE*omega, TR = (VLL + RESC*I)/(0.6752*VDC) (47, 48), IDC = 1.1095*TR*I (57).
-  const double omega = 4000.0 * kPi / 30.0, q = 96.0 / omega;
+  const double omega = 4000.0 * kPi / 30.0, power = 0.42 * 64.0, q = power / omega;
   const double i = 0.5 + q / 0.016431676725154984;
   const double tr = (0.1 * i + 0.01 * omega + 0.02 * i) / (kVllRmsPerVdc * 12.0);
   const double idc = kIdealIdcPerIrmsPerThrottle * tr * i;
-  EXPECT_NEAR(j["thrust_n"].get<double>(), 32.0, 1e-9);
+  EXPECT_NEAR(j["thrust_n"].get<double>(), 3.2, 1e-9);
   EXPECT_NEAR(j["torque_nm"].get<double>(), q, 1e-12);
   EXPECT_NEAR(j["throttle"].get<double>(), tr, 1e-9);
   EXPECT_NEAR(j["idc_a"].get<double>(), idc, 1e-9 * idc);
-  EXPECT_NEAR(j["pmech_w"].get<double>(), 96.0, 1e-9);
-  EXPECT_NEAR(j["g_per_w"].get<double>(), 32.0 / kNewtonPerGramForce / (12.0 * idc), 1e-6);
+  EXPECT_NEAR(j["pmech_w"].get<double>(), power, 1e-9);
+  EXPECT_NEAR(j["g_per_w"].get<double>(), 3.2 / kNewtonPerGramForce / (12.0 * idc), 1e-6);
+  // FM = T^1.5/(P*sqrt(2*rho*A)), A = pi*D^2/4 (momentum theory, model.md section 10).
+  const double area = kPi * 0.254 * 0.254 / 4.0;
+  EXPECT_NEAR(j["figure_of_merit"].get<double>(), std::pow(3.2, 1.5) / (power * std::sqrt(2 * 1.225 * area)), 1e-9);
   EXPECT_EQ(j["prop"], "p");
   EXPECT_TRUE(j["prop_in_data"].get<bool>());
   EXPECT_TRUE(j["feasible"].get<bool>());
@@ -78,7 +86,7 @@ TEST_F(StandCli, PropForwardAndThrustAndTable) {
   const CliRun f = RunCli(Sim("--prop p --vdc 12 --throttle 0.7 --json"));
   ASSERT_EQ(f.code, 0) << f.err;
   const Json jf = ParseJsonText(f.out, "stdout");
-  const double k = 1.5 * std::pow(30.0 / (kPi * 1000.0), 3.0), rt = 0.12, kt = 0.016431676725154984;
+  const double k = 0.42 * std::pow(30.0 / (kPi * 1000.0), 3.0), rt = 0.12, kt = 0.016431676725154984;
   const double a = k * rt / kt, c = rt * 0.5 - kVllRmsPerVdc * 12.0 * 0.7;
   const double w = (-0.01 + std::sqrt(1e-4 - 4 * a * c)) / (2 * a);
   EXPECT_NEAR(jf["omega_rad_s"].get<double>(), w, 1e-8 * w);
@@ -91,7 +99,7 @@ TEST_F(StandCli, PropForwardAndThrustAndTable) {
   // Without a load: the table over throttle, 10 rows, text and JSON.
   const CliRun tab = RunCli(Sim("--prop p --vdc 12"));
   ASSERT_EQ(tab.code, 0) << tab.err;
-  EXPECT_NE(tab.out.find("TR %     rpm  thrust N  thrust gf    IDC A    PDC W  Pmech W    g/W  eta_sys %"),
+  EXPECT_NE(tab.out.find("TR %     rpm  thrust N  thrust gf    IDC A    PDC W  Pmech W    g/W  eta_sys %     FM"),
             std::string::npos) << tab.out;
   EXPECT_EQ(Lines(tab.out), 12);
   const CliRun tj = RunCli(Sim("--prop p --vdc 12 --json"));
@@ -105,6 +113,26 @@ TEST_F(StandCli, PropForwardAndThrustAndTable) {
     EXPECT_GT(fs::file_size(dir_ / "fig" / "thrust_current_vs_throttle.png"), 1000u);
     EXPECT_NE(pl.err.find("wrote "), std::string::npos) << pl.err;
   }
+}
+
+// Propeller data that beat momentum theory (FM > 1) never give a feasible result.
+TEST_F(StandCli, FigureOfMeritAboveOneIsNotFeasible) {
+  const CliRun j = RunCli(Sim("--prop hot --vdc 12 --rpm 3000 --json"));
+  ASSERT_EQ(j.code, 0) << j.err;
+  const Json p = ParseJsonText(j.out, "stdout");
+  EXPECT_GT(p["figure_of_merit"].get<double>(), 1.0);
+  EXPECT_FALSE(p["feasible"].get<bool>());
+  EXPECT_NE(p["limits"].dump().find("beats_momentum_theory"), std::string::npos) << p.dump();
+  const CliRun t = RunCli(Sim("--prop hot --vdc 12 --rpm 3000"));
+  EXPECT_NE(t.out.find("feasible       NO (beats_momentum_theory)"), std::string::npos) << t.out;
+  EXPECT_NE(t.err.find("beat momentum theory"), std::string::npos) << t.err;
+  const CliRun tab = RunCli(Sim("--prop hot --vdc 12"));
+  EXPECT_NE(tab.out.find("beats_momentum_theory"), std::string::npos) << tab.out;
+  std::ofstream(dir_ / "hot.csv") << "vdc_v,rpm,prop\n12,3000,hot\n12,3000,p\n";
+  const CliRun b = RunCli(Sim("--batch " + (dir_ / "hot.csv").string()));
+  ASSERT_EQ(b.code, 0) << b.err;
+  EXPECT_NE(b.out.find(",0,beats_momentum_theory,hot,"), std::string::npos) << b.out;
+  EXPECT_NE(b.out.find(",1,,p,"), std::string::npos) << b.out;
 }
 
 TEST_F(StandCli, PropBadInputIsOneLine) {
@@ -138,7 +166,7 @@ TEST_F(StandCli, BatchRowsNamePropellers) {
   ASSERT_EQ(r.code, 0) << r.err;
   EXPECT_EQ(Lines(r.out), 4);
   EXPECT_NE(r.out.find(",limits,prop,thrust_n,g_per_w\n"), std::string::npos) << r.out;
-  EXPECT_NE(r.out.find(",p,32,"), std::string::npos) << r.out;  // thrust at 4000 rpm
+  EXPECT_NE(r.out.find(",p,3.2,"), std::string::npos) << r.out;  // thrust at 4000 rpm
   // The thrust row: the propeller's thrust at the speed solved to 1e-10 (printed to 10 digits).
   const auto at = r.out.rfind(",p,");
   ASSERT_NE(at, std::string::npos) << r.out;
