@@ -345,6 +345,43 @@ TEST(StandPredict, MissingLoadOrSpeedIsADataError) {
   }
 }
 
+TEST(StandTableRows, LineRangeAndRowsAtRestAreCounted) {
+  logs::SteadyTable log;
+  log.file = "t.csv";
+  auto put = [&](logs::Column c, std::vector<double> v) {
+    log.info[static_cast<int>(c)].present = true;
+    log.Mutable(c) = std::move(v);
+  };
+  put(logs::Column::kIdcA, {0.5, 2.0, 3.0, 4.0});
+  put(logs::Column::kOmegaRadS, {0.0, 300.0, 400.0, 500.0});
+  put(logs::Column::kThrottle, {0.1, 0.4, 0.5, 0.6});
+  log.source_line = {2, 3, 4, 5};
+  stand::StandReadOptions o;
+  o.vdc_v = 11.1;  // the table has no voltage column
+  const stand::StandTable all = stand::StandTableFromLog(log, o);
+  ASSERT_EQ(all.rows.size(), 3u);  // line 2 turns at 0 rpm
+  EXPECT_TRUE(all.vdc_from_option);
+  EXPECT_DOUBLE_EQ(all.rows[0].vdc_v, 11.1);
+  ASSERT_EQ(all.dropped.size(), 1u);
+  EXPECT_EQ(all.dropped[0].count, 1u);
+  o.first_line = 4;
+  o.last_line = 4;
+  const stand::StandTable one = stand::StandTableFromLog(log, o);
+  ASSERT_EQ(one.rows.size(), 1u);
+  EXPECT_EQ(one.rows[0].line, 4u);
+  EXPECT_DOUBLE_EQ(*one.rows[0].throttle, 0.5);
+  o.first_line = 9;
+  o.last_line = 0;
+  EXPECT_THROW(stand::StandTableFromLog(log, o), DataError);  // nothing left
+  o = {};
+  try {
+    stand::StandTableFromLog(log, o);
+    FAIL() << "expected a DataError";
+  } catch (const DataError& e) {
+    EXPECT_NE(std::string(e.what()).find("t.csv: no supply-voltage column (vdc_v)"), std::string::npos) << e.what();
+  }
+}
+
 TEST(StandThrottleTable, TenStepsRisingThrustAndCurrent) {
   const Drive drive(TestMotor(), TestEsc());
   const PropModel prop(TableProp());
