@@ -200,7 +200,7 @@ std::vector<ColumnError> Errors(const StandTable& t, const StandResult& r, int m
     if (row.idc_a) idc.Add(p.idc_a, *row.idc_a, true);
     if (mode == kFromThrottle && row.omega_rad_s) rpm.Add(p.rpm, RadPerSecToRpm(*row.omega_rad_s), true);
     // The torque is an output only where a propeller sets the load (else it is the input).
-    if (row.torque_nm && r.load[mode].rfind("propeller", 0) == 0) torque.Add(p.torque_nm, *row.torque_nm, true);
+    if (row.torque_nm && r.prop_load[mode]) torque.Add(p.torque_nm, *row.torque_nm, true);
     if (mode != kFromThrottle && row.throttle) thr.Add(p.throttle, *row.throttle, false);
   }
   std::vector<ColumnError> out;
@@ -228,6 +228,7 @@ StandResult PredictStand(const StandTable& t, const Drive& drive, const DcMotor&
   const std::string load = prop ? "propeller " + prop->entry().id : "measured torque";
   r.load[kAtMeasuredRpm] = load;
   r.load[kAtMeasuredTorque] = "measured torque";
+  r.prop_load[kAtMeasuredRpm] = r.prop_load[kFromThrottle] = prop != nullptr;
   r.load[kFromThrottle] = prop ? load : "measured torque, held constant";
   r.rows.resize(t.rows.size());
   for (std::size_t i = 0; i < t.rows.size(); ++i) {

@@ -103,6 +103,7 @@ struct StandResult {
   std::vector<StandRowResult> rows;  // one per StandTable row
   bool mode_used[kStandModes] = {false, false, false};
   std::string load[kStandModes];  // what loads the motor ("propeller x", "measured torque")
+  bool prop_load[kStandModes] = {false, false, false};  // the propeller's torque (an output)
   std::vector<ColumnError> errors[kStandModes][2];  // [StandMode][StandModel]
   std::size_t rows_outside_prop_data = 0;
   std::size_t rows_infeasible[kStandModes] = {0, 0, 0};  // dynosize points flagged, per mode
