@@ -174,6 +174,8 @@ int RunCalibrate(const CalibrateOptions& o) {
   ro.drivecalc_motor_id = o.drivecalc_motor;
   ro.drivecalc_keep_no_load_without_speed = true;
   ro.mapped_drop_rows_with_empty_cells = o.drop_incomplete_rows;
+  ro.decimal_comma = o.decimal_comma;
+  ro.row_filter = o.where;
   ro.esc_min_us = o.esc_min_us;
   ro.esc_max_us = o.esc_max_us;
   if (const std::string e = ro.Validate(); !e.empty()) throw UsageError(e);

@@ -66,7 +66,9 @@ struct CalibrateOptions {
   std::string format = "auto";      // auto | canonical | rcbenchmark | mapped | drivecalc
   std::vector<std::string> column_map;  // mapped tables: canonical=Header [unit]
   long long drivecalc_motor = -1;   // drivecalc: one motor id
-  bool drop_incomplete_rows = false;  // mapped: drop rows with an empty mapped cell
+  bool drop_incomplete_rows = false;  // drop rows with an empty or text cell in a used column
+  bool decimal_comma = false;          // numbers written 1,5 (logs::LogReadOptions::decimal_comma)
+  std::vector<std::string> where;      // Header=value row filters (logs::LogReadOptions::row_filter)
   double esc_min_us = 1000.0, esc_max_us = 2000.0;
   std::string prior_motor, prior_esc;  // catalog ids anchoring / filling in the fit
   std::string out;                  // catalog file to add the entries to
@@ -92,6 +94,8 @@ struct DiagnoseCliOptions {
   std::string format = "auto";
   std::vector<std::string> column_map;
   bool drop_incomplete_rows = false;
+  bool decimal_comma = false;      // as in CalibrateOptions
+  std::vector<std::string> where;  // as in CalibrateOptions
   double esc_min_us = 1000.0, esc_max_us = 2000.0;
   int folds = 5;
   double alpha = 1e-3;

@@ -88,7 +88,13 @@ int main(int argc, char** argv) {
   calibrate->add_option("--map", cal.column_map,
                         "mapped tables: canonical_name=Source Header [unit] (repeatable)");
   calibrate->add_flag("--drop-incomplete-rows", cal.drop_incomplete_rows,
-                      "mapped tables: drop (and count) rows with an empty mapped cell instead of failing");
+                      "drop (and count) rows with an empty or text cell (e.g. a trailer row) in a used "
+                      "column instead of failing");
+  calibrate->add_flag("--decimal-comma", cal.decimal_comma,
+                      "numbers are written with a decimal comma (1,5; cells separated by ';' or tabs)");
+  calibrate->add_option("--where", cal.where,
+                        "keep only rows whose column reads a value: Header=value (repeatable; one motor "
+                        "of a multi-motor table)");
   calibrate->add_option("--drivecalc-motor", cal.drivecalc_motor, "drivecalc: only this motor_id");
   calibrate->add_option("--esc-min-us", cal.esc_min_us, "ESC pulse width at throttle 0, us");
   calibrate->add_option("--esc-max-us", cal.esc_max_us, "ESC pulse width at throttle 1, us");
@@ -153,7 +159,9 @@ int main(int argc, char** argv) {
       ->check(CLI::IsMember({"auto", "canonical", "rcbenchmark", "mapped", "drivecalc"}));
   diagnose->add_option("--map", diag.column_map, "mapped tables: canonical=Header [unit], repeatable");
   diagnose->add_flag("--drop-incomplete-rows", diag.drop_incomplete_rows,
-                     "mapped: drop rows with an empty mapped cell");
+                     "drop rows with an empty or text cell in a used column");
+  diagnose->add_flag("--decimal-comma", diag.decimal_comma, "numbers are written with a decimal comma (1,5)");
+  diagnose->add_option("--where", diag.where, "keep only rows whose column reads a value: Header=value");
   diagnose->add_option("--esc-min-us", diag.esc_min_us, "ESC pulse width at throttle 0, us");
   diagnose->add_option("--esc-max-us", diag.esc_max_us, "ESC pulse width at throttle 1, us");
   diagnose->add_option("--folds", diag.folds, "k of the k-fold cross-validation (>= 2)");

@@ -76,6 +76,57 @@ const std::string& RcbenchmarkFile() {
   return path;
 }
 
+// Tyto Flight Stand style: every cell quoted, one averaged row per step; written with decimal
+// commas and ';' (a spreadsheet re-save in a decimal-comma locale) when `decimal_comma`. Rows
+// 4.5 s apart: read row by row (no plateau search), so this times the quoted-cell splitter
+// and the number parsers.
+const std::string& TytoFile(bool decimal_comma) {
+  static const std::string paths[2] = {
+      TempPath("dynosize_bench_tyto.csv"), TempPath("dynosize_bench_tyto_decimal_comma.csv")};
+  static bool written[2] = {false, false};
+  const std::string& p = paths[decimal_comma ? 1 : 0];
+  if (written[decimal_comma ? 1 : 0]) return p;
+  written[decimal_comma ? 1 : 0] = true;
+  std::ofstream out(p, std::ios::binary);
+  const char d = decimal_comma ? ';' : ',';
+  const char* names[] = {"Time (s)", "Throttle (\xC2\xB5s)", "Rotation speed (rpm)", "Thrust (kgf)",
+                         "Torque (N\xE2\x8B\x85m)", "Voltage (V)", "Current (A)", "Electrical power (W)"};
+  for (int k = 0; k < 8; ++k) out << (k ? std::string(1, d) : "") << '"' << names[k] << '"';
+  out << "\n";
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> u(0.05, 1.0);
+  char line[512];
+  for (std::size_t i = 0; i < kRows; ++i) {
+    const double tr = u(rng);
+    int n = std::snprintf(line, sizeof line,
+                          "\"%.4f\"%c\"%.0f\"%c\"%.3f\"%c\"%.6f\"%c\"%.6f\"%c\"%.5f\"%c\"%.5f\"%c\"%.3f\"\n",
+                          4.5 * static_cast<double>(i), d, 1000.0 + 1000.0 * tr, d, 7000.0 * tr, d,
+                          3.2 * tr * tr, d, 0.6 * tr * tr, d, 25.0 - tr, d, 24.0 * tr * tr, d,
+                          (25.0 - tr) * 24.0 * tr * tr);
+    if (decimal_comma) {
+      for (int k = 0; k < n; ++k) line[k] = line[k] == '.' ? ',' : line[k];
+    }
+    out.write(line, n);
+  }
+  return p;
+}
+
+void BM_ReadTytoQuoted(benchmark::State& state) {
+  const bool dc = state.range(0) != 0;
+  const std::string& p = TytoFile(dc);
+  dynosize::logs::LogReadOptions o;
+  o.decimal_comma = dc;
+  std::size_t rows = 0;
+  for (auto _ : state) {
+    const auto t = dynosize::logs::ReadLog(p, o);
+    rows = t.rows();
+    benchmark::DoNotOptimize(rows);
+  }
+  state.counters["rows_per_s"] =
+      benchmark::Counter(static_cast<double>(kRows), benchmark::Counter::kIsIterationInvariantRate);
+  state.counters["points"] = static_cast<double>(rows);
+}
+
 void BM_ReadCanonical(benchmark::State& state) {
   const std::string& p = CanonicalFile();
   std::size_t rows = 0;
@@ -108,6 +159,8 @@ void BM_ReadRcbenchmarkStepTest(benchmark::State& state) {
 
 BENCHMARK(BM_ReadCanonical)->Unit(benchmark::kMillisecond)->Repetitions(5)->ReportAggregatesOnly(true);
 BENCHMARK(BM_ReadRcbenchmarkStepTest)->Unit(benchmark::kMillisecond)->Repetitions(5)->ReportAggregatesOnly(true);
+// Arg 0: decimal points and ','; arg 1: decimal commas and ';' (--decimal-comma).
+BENCHMARK(BM_ReadTytoQuoted)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond)->Repetitions(5)->ReportAggregatesOnly(true);
 
 }  // namespace
 

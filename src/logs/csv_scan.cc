@@ -152,8 +152,40 @@ void SplitFields(std::string_view line, char delim, std::vector<std::string_view
     }
     return;
   }
+  const std::size_t n = line.size();
   std::size_t start = 0;
   for (;;) {
+    // Only a field that begins with a quote or a blank can be quoted: one test per field.
+    if (start < n && (line[start] == '"' || line[start] == ' ' || line[start] == '\t')) {
+      std::size_t q = start;
+      while (q < n && (line[q] == ' ' || line[q] == '\t')) ++q;
+      if (q < n && line[q] == '"') {
+        std::size_t i = q + 1;
+        std::size_t close = std::string_view::npos;
+        while (i < n) {
+          if (line[i] == '"') {
+            if (i + 1 < n && line[i + 1] == '"') {
+              i += 2;  // an escaped quote inside the field
+              continue;
+            }
+            close = i;
+            break;
+          }
+          ++i;
+        }
+        if (close != std::string_view::npos) {
+          std::size_t after = close + 1;
+          while (after < n && (line[after] == ' ' || line[after] == '\t')) ++after;
+          if (after == n || line[after] == delim) {
+            fields->push_back(line.substr(q + 1, close - q - 1));
+            if (after == n) return;
+            start = after + 1;
+            continue;
+          }
+        }
+        // Not a well-formed quoted field: plain text up to the next delimiter.
+      }
+    }
     const std::size_t pos = line.find(delim, start);
     if (pos == std::string_view::npos) {
       fields->push_back(line.substr(start));
@@ -184,9 +216,29 @@ bool ParseDouble(std::string_view cell, double* value) {
   return std::isfinite(*value);
 }
 
+bool ParseDoubleDecimalComma(std::string_view cell, double* value) {
+  cell = Trim(cell);
+  // A number is short: a longer cell is text (and would not fit the copy below).
+  constexpr std::size_t kMaxNumberChars = 64;
+  if (cell.size() > kMaxNumberChars) return false;
+  char buf[kMaxNumberChars];
+  std::size_t commas = 0;
+  for (std::size_t i = 0; i < cell.size(); ++i) {
+    const char c = cell[i];
+    if (c == '.') return false;  // a thousands separator, or a decimal point: ambiguous here
+    if (c == ',') ++commas;
+    buf[i] = c == ',' ? '.' : c;
+  }
+  if (commas > 1) return false;
+  return ParseDouble(std::string_view(buf, cell.size()), value);
+}
+
 char DetectDelimiter(std::string_view header_line) {
   std::size_t comma = 0, semi = 0, tab = 0;
+  bool quoted = false;
   for (const char c : header_line) {
+    if (c == '"') quoted = !quoted;
+    if (quoted) continue;
     if (c == ',') ++comma;
     if (c == ';') ++semi;
     if (c == '\t') ++tab;

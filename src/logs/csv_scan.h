@@ -58,7 +58,11 @@ class LineReader {
 
 // Splits `line` at `delim` into `fields` (reused: no allocation once it has grown). With
 // delim == ' ' any run of spaces and tabs separates fields and leading/trailing blanks are
-// ignored. Double quotes are not interpreted (no supported format quotes numbers).
+// ignored. Otherwise a field that starts with a double quote (after blanks) and ends with one
+// (before blanks and the delimiter) is a quoted field, RFC 4180 style (Tyto Flight Stand
+// exports quote every cell): the view is its content without the quotes, delimiters inside it
+// do not split, and an escaped quote stays written as "" in the view (a quoted field never
+// spans lines). A quote that does not close a field this way is ordinary text.
 void SplitFields(std::string_view line, char delim, std::vector<std::string_view>* fields);
 
 // Removes leading and trailing spaces and tabs.
@@ -68,11 +72,15 @@ std::string_view Trim(std::string_view s);
 // Leading/trailing blanks and a leading '+' are accepted; "nan", "inf", hex, a decimal comma or
 // any other text make it return false.
 bool ParseDouble(std::string_view cell, double* value);
+// The same with a decimal comma (Excel exports in locales that write 1,5): exactly the cells
+// ParseDouble accepts with their one ',' in place of '.'. A cell holding a '.' is refused: with
+// decimal commas a '.' is a thousands separator ("1.234,5"), and "1.234" would be ambiguous.
+bool ParseDoubleDecimalComma(std::string_view cell, double* value);
 
 // IsValidUtf8 and ToUtf8 (Latin-1 fallback) come from common/text_encoding.h.
 
-// Picks the field delimiter of a header line: ',' ';' or '\t' (the most frequent), else ' '
-// (whitespace-separated).
+// Picks the field delimiter of a header line: ',' ';' or '\t' (the most frequent outside
+// double quotes), else ' ' (whitespace-separated).
 char DetectDelimiter(std::string_view header_line);
 
 // A header cell split into name and unit. Recognised forms: "Name (unit)", "Name [unit]",

@@ -33,6 +33,8 @@ struct Slot {
   UnitConversion conv;
   double pulse_min = 0.0, pulse_max = 0.0;  // throttle from a pulse width / command units
   bool pulse = false;
+  // A command column without a unit: values kept raw, scaled after reading (ScaleUnitlessCommand).
+  bool scale_from_values = false;
   std::vector<double> values;  // SI, NaN for an empty cell (lenient formats only)
   bool active = true;
 };
@@ -45,6 +47,12 @@ struct Plan {
   bool has_header = true;
   std::size_t header_cells = 0;
   std::vector<std::string> header_for_errors;  // header cell per field (UTF-8)
+  // --where: keep rows whose cell `field` reads `value`.
+  struct RowFilter {
+    std::size_t field = 0;
+    std::string header, value;
+  };
+  std::vector<RowFilter> filters;
 };
 
 [[noreturn]] void CellError(const std::string& path, std::size_t line, const std::string& column,
@@ -126,6 +134,15 @@ bool HasCell(const Header& h, const char* name) {
   return false;
 }
 
+// Header names (lower case, unit split off) of the RCbenchmark / Tyto family.
+bool IsCommandName(const std::string& name) {
+  return name == "esc signal" || name == "esc" || name == "esc throttle" || name == "esc command";
+}
+bool IsSpeedName(const std::string& name) {
+  return name == "motor electrical speed" || name == "motor optical speed" ||
+         name == "rotation speed" || name == "motor speed";
+}
+
 LogFormat Detect(const Header& h, const LogReadOptions& o, const std::string& path) {
   if (!o.column_map.empty()) return LogFormat::kMapped;
   if (HasCell(h, "time_s") && HasCell(h, "idc_a")) return LogFormat::kCanonical;
@@ -133,18 +150,27 @@ LogFormat Detect(const Header& h, const LogReadOptions& o, const std::string& pa
       HasCell(h, "IsNoLoad")) {
     return LogFormat::kDriveCalc;
   }
+  // A stand export names its command or speed column and writes units in the header; a
+  // hand-made table that happens to have "ESC throttle (us)" but a bare "Current" (sjkim's
+  // A4220) is not one: its other columns have no units to read, so it needs a map.
+  bool stand_column = false, bare_current = false;
   for (const auto& c : h.cells) {
-    const std::string name = AsciiLower(SplitHeaderCell(c).name);
-    if (name == "esc signal" || name == "esc" || name == "motor electrical speed" ||
-        name == "motor optical speed") {
-      return LogFormat::kRcbenchmark;
+    const HeaderCell hc = SplitHeaderCell(c);
+    const std::string name = AsciiLower(hc.name);
+    if (IsCommandName(name) || IsSpeedName(name)) stand_column = true;
+    if (name == "throttle" && !hc.unit.empty() && ParseUnit(Quantity::kThrottle, hc.unit)) {
+      stand_column = true;  // Tyto Flight Stand: "Throttle (µs)"
     }
+    if (name == "current" && hc.unit.empty()) bare_current = true;
   }
+  if (stand_column && !bare_current) return LogFormat::kRcbenchmark;
   throw DataError(path + ": line 1: cannot tell the log format from the header " +
                   QuoteCell(h.raw_line_utf8) +
-                  ". Known: canonical (header with time_s and idc_a), rcbenchmark (\"ESC signal "
-                  "(us)\", \"Motor ... Speed (RPM)\"), drivecalc (motor_id,U,n,I,IsNoLoad); any "
-                  "other table needs a column map (LogReadOptions::column_map)");
+                  ". Known: canonical (header with time_s and idc_a), rcbenchmark/Tyto (\"ESC "
+                  "signal (us)\" or \"Throttle (us)\", \"Motor ... Speed (RPM)\" or \"Rotation "
+                  "speed (rpm)\", \"Current (A)\"), drivecalc (motor_id,U,n,I,IsNoLoad); read any "
+                  "other table with --format mapped --map canonical=Header, e.g. --map "
+                  "idc_a=Current --map rpm=RPM (one --map per column)");
 }
 
 // ---------------------------------------------------------------- plans per format
@@ -216,20 +242,20 @@ Plan PlanRcbenchmark(const Header& h, const LogReadOptions& o, const std::string
     s.unit = hc.unit;
     if (name == "time") {
       s.target = Column::kTimeS, s.quantity = Quantity::kTime;
-    } else if (name == "esc signal" || name == "esc") {
+    } else if (IsCommandName(name) || name == "throttle") {
       s.target = Column::kThrottle, s.quantity = Quantity::kThrottle;
       if (hc.unit.empty()) {
+        s.conv = UnitConversion{};
         if (o.esc_unitless_max > o.esc_unitless_min) {
           s.pulse = true, s.pulse_min = o.esc_unitless_min, s.pulse_max = o.esc_unitless_max;
-          t->info[static_cast<int>(Column::kThrottle)].note =
-              "from unitless command units through esc_unitless_min/max";
-          p.slots.push_back(std::move(s));
+          std::ostringstream note;
+          note << "no unit: read as command units " << o.esc_unitless_min << ".."
+               << o.esc_unitless_max << " as configured";
+          t->info[static_cast<int>(Column::kThrottle)].note = note.str();
         } else {
-          t->info[static_cast<int>(Column::kThrottle)].note =
-              "\"" + h.cells[i] + "\" has no unit (command units, not us): set "
-              "LogReadOptions::esc_unitless_min/max to derive throttle";
-          t->notes.push_back("throttle absent: " + t->info[static_cast<int>(Column::kThrottle)].note);
+          s.scale_from_values = true;  // decided from the values once read
         }
+        p.slots.push_back(std::move(s));
         continue;
       }
       const auto u = ParseUnit(Quantity::kThrottle, hc.unit);
@@ -246,7 +272,7 @@ Plan PlanRcbenchmark(const Header& h, const LogReadOptions& o, const std::string
       s.target = Column::kIdcA, s.quantity = Quantity::kCurrent;
     } else if (name == "motor optical speed") {
       s.target = Column::kOmegaRadS, s.quantity = Quantity::kSpeed;
-    } else if (name == "motor electrical speed") {
+    } else if (IsSpeedName(name)) {
       s.target = Column::kOmegaRadS, s.quantity = Quantity::kSpeed;
     } else if (name.find("temp") != std::string::npos &&
                ParseUnit(Quantity::kTemperature, hc.unit) && !have_temp) {
@@ -415,6 +441,190 @@ struct RawRows {
   std::string esc_reason;
 };
 
+// A cell that does not begin like a number (digit, sign, '.'): an annotation such as "PEAK
+// THRUST" or "n/a", which --drop-incomplete-rows drops. "1.2.3" begins like one: an error.
+bool IsTextCell(std::string_view cell) {
+  cell = Trim(cell);
+  if (cell.empty()) return false;
+  const char c = cell.front();
+  return !((c >= '0' && c <= '9') || c == '-' || c == '+' || c == '.' || c == ',');
+}
+
+// The rule named when a cell is not a number, with the likely fix.
+std::string NotANumberRule(std::string_view cell, bool decimal_comma) {
+  double v = 0.0;
+  if (decimal_comma) {
+    if (cell.find('.') != std::string_view::npos && ParseDouble(cell, &v)) {
+      return "not a number with --decimal-comma (a '.' reads as a thousands separator: drop "
+             "--decimal-comma if the file uses decimal points)";
+    }
+    return "not a number (rule: a finite decimal number with ',' as decimal point, "
+           "--decimal-comma)";
+  }
+  if (cell.find(',') != std::string_view::npos && ParseDoubleDecimalComma(cell, &v)) {
+    return "not a number (rule: '.' as decimal point; a decimal comma? read the file with "
+           "--decimal-comma)";
+  }
+  return "not a number (rule: a finite decimal number with '.' as decimal point)";
+}
+
+// Counts of rows left out while reading, reported once at the end.
+struct ReadCounts {
+  std::size_t other_motor_rows = 0, short_rows = 0, esc_outside = 0, filtered = 0, text_rows = 0;
+  std::string first_text;                 // "line 13, column "X": "PEAK THRUST""
+  std::vector<std::string> filter_seen;   // distinct values of the --where columns (first 8)
+};
+
+// --where: true when the row is kept.
+bool RowSelected(const Plan& plan, const std::vector<std::string_view>& fields, ReadCounts* n) {
+  for (const Plan::RowFilter& f : plan.filters) {
+    const std::string_view cell = f.field < fields.size() ? Trim(fields[f.field]) : std::string_view();
+    if (cell != f.value) {
+      if (n->filter_seen.size() < 8 &&
+          std::find(n->filter_seen.begin(), n->filter_seen.end(), cell) == n->filter_seen.end()) {
+        n->filter_seen.emplace_back(cell);
+      }
+      ++n->filtered;
+      return false;
+    }
+  }
+  return true;
+}
+
+// --drop-incomplete-rows: true when a used cell holds text (the row is dropped and counted).
+bool RowHasText(const Plan& plan, const std::vector<std::string_view>& fields, std::size_t line_no,
+                ReadCounts* n) {
+  for (const Slot& s : plan.slots) {
+    if (s.field < fields.size() && IsTextCell(fields[s.field])) {
+      if (n->text_rows++ == 0) {
+        n->first_text = "line " + std::to_string(line_no) + ", column \"" + s.header + "\": " +
+                        QuoteCell(Trim(fields[s.field]));
+      }
+      return true;
+    }
+  }
+  return false;
+}
+
+// Parses one used cell into its slot (SI value, NaN for an allowed empty cell); returns true
+// when a lenient format's throttle lies outside the end points (the row is then dropped).
+inline bool ReadCell(Slot& s, std::string_view cell, const Plan& plan, const LogReadOptions& o,
+              const std::string& path, std::size_t line_no) {
+  double v = 0.0;
+  std::string_view number = Trim(cell);
+  if (number.empty()) {
+    if (!plan.lenient && !plan.empty_cells_ok) {
+      CellError(path, line_no, s.header, cell,
+                std::string("empty cell (rule: the ") + LogFormatName(plan.format) +
+                    " format has no optional cells" +
+                    (plan.format == LogFormat::kMapped ? "; --drop-incomplete-rows drops such rows)"
+                                                       : ")"));
+    }
+    s.values.push_back(kNaN);
+    return false;
+  }
+  // Manufacturer tables write throttle as "40.00%" (dronebuildcalc): a percent sign on a
+  // throttle cell means percent, whatever the column's unit (a pulse width excepted).
+  const bool percent = s.target == Column::kThrottle && !s.pulse && !s.scale_from_values &&
+                       number.size() > 1 && number.back() == '%';
+  if (percent) number.remove_suffix(1);
+  const bool ok = o.decimal_comma ? ParseDoubleDecimalComma(number, &v) : ParseDouble(number, &v);
+  if (!ok) CellError(path, line_no, s.header, cell, NotANumberRule(cell, o.decimal_comma));
+  const double si = percent ? v * 0.01 : ToSi(s, v);
+  if (!(std::fabs(si) <= kMaxAbsSiValue)) {
+    std::ostringstream rule;
+    rule << "out of range: " << si << " " << SiUnit(s.quantity)
+         << " after conversion (rule: magnitude at most " << kMaxAbsSiValue << " in SI units)";
+    CellError(path, line_no, s.header, cell, rule.str());
+  }
+  if (s.target == Column::kThrottle && !s.scale_from_values &&
+      (si < -kThrottleRoundingSlack || si > 1.0 + kThrottleRoundingSlack)) {
+    if (plan.lenient) {
+      // Stand scripts send e.g. 980 us (arming, motor off) or 2100 us: no throttle point.
+      s.values.push_back(kNaN);
+      return true;
+    }
+    if (s.pulse) {
+      std::ostringstream rule;
+      rule << "outside the ESC end points " << s.pulse_min << " .. " << s.pulse_max
+           << " us (set --esc-min-us/--esc-max-us to the end points the ESC was calibrated to)";
+      CellError(path, line_no, s.header, cell, rule.str());
+    }
+    CellError(path, line_no, s.header, cell, "throttle outside 0..1");
+  }
+  s.values.push_back(si);
+  return false;
+}
+
+// Checks the cell count of a row; false when the row is skipped (counted).
+bool RowShapeOk(const Plan& plan, const std::vector<std::string_view>& fields, std::size_t max_field,
+                const std::string& path, std::size_t line_no, const LogReadOptions& o,
+                bool line_has_comma, SteadyTable* t, ReadCounts* n) {
+  if (plan.lenient || (plan.empty_cells_ok && fields.size() <= max_field)) {
+    if (fields.size() <= max_field) {
+      ++n->short_rows;
+      return false;
+    }
+    // A trailing delimiter gives one empty extra cell: that is the format, not an extra.
+    std::size_t cells = fields.size();
+    if (cells > plan.header_cells && Trim(fields[cells - 1]).empty()) --cells;
+    if (plan.lenient && cells > plan.header_cells) ++t->rows_with_extra_cells;
+    if (plan.lenient) return true;
+  }
+  if (plan.has_header && fields.size() != plan.header_cells) {
+    throw DataError(path + ": line " + std::to_string(line_no) + ": " + std::to_string(fields.size()) +
+                    " cells, the header has " + std::to_string(plan.header_cells) +
+                    " (rule: one cell per header column in every row" +
+                    (!o.decimal_comma && fields.size() > plan.header_cells && line_has_comma
+                         ? "; decimal commas? save with ';' between cells and use --decimal-comma"
+                         : "") +
+                    ")");
+  }
+  if (fields.size() <= max_field) {
+    throw DataError(path + ": line " + std::to_string(line_no) + ": " + std::to_string(fields.size()) +
+                    " cells, column " + std::to_string(max_field + 1) +
+                    " is mapped (rule: every row has it)");
+  }
+  return true;
+}
+
+void ReportReadCounts(const ReadCounts& n, const Plan& plan, const std::string& path,
+                      const LogReadOptions& o, SteadyTable* t, RawRows* rows) {
+  AddDrop(t, "rows shorter than the header", n.short_rows);
+  if (n.text_rows > 0) {
+    AddDrop(t, "rows with text where a number belongs (--drop-incomplete-rows; first: " +
+                   n.first_text + ")",
+            n.text_rows);
+  }
+  {
+    std::ostringstream s;
+    s << "rows with the ESC signal outside the end points " << o.esc_min_us << "-"
+      << o.esc_max_us << " us (arming / beyond full throttle; --esc-min-us/--esc-max-us)";
+    rows->esc_reason = s.str();
+  }
+  if (!plan.filters.empty()) {
+    std::string what;
+    for (const auto& f : plan.filters) what += (what.empty() ? "" : ", ") + f.header + "=" + f.value;
+    if (rows->line.empty()) {
+      std::string seen;
+      for (const auto& v : n.filter_seen) seen += (seen.empty() ? "\"" : ", \"") + v + "\"";
+      throw DataError(path + ": no row has " + what + " (--where; " + std::to_string(n.filtered) +
+                      " rows of other values" + (seen.empty() ? "" : ", e.g. " + seen) + ")");
+    }
+    t->notes.push_back(std::to_string(n.filtered) + " rows of other values skipped (--where " +
+                       what + ")");
+  }
+  if (plan.format == LogFormat::kDriveCalc && o.drivecalc_motor_id >= 0) {
+    if (rows->line.empty()) {
+      throw DataError(path + ": no MData row has motor_id " + std::to_string(o.drivecalc_motor_id) +
+                      " (" + std::to_string(n.other_motor_rows) + " rows of other motors)");
+    }
+    t->notes.push_back(std::to_string(n.other_motor_rows) +
+                       " rows of other motors skipped (--drivecalc-motor " +
+                       std::to_string(o.drivecalc_motor_id) + ")");
+  }
+}
+
 void ReadRows(LineReader* lr, Plan* plan, const std::string& path, SteadyTable* t,
               RawRows* rows, std::string_view first_data_line, const LogReadOptions& o) {
   std::vector<std::string_view> fields;
@@ -426,38 +636,25 @@ void ReadRows(LineReader* lr, Plan* plan, const std::string& path, SteadyTable* 
   for (std::size_t k = 0; k < plan->slots.size(); ++k) {
     if (plan->slots[k].target == Column::kMotorId) motor_slot = k;
   }
-  std::size_t other_motor_rows = 0;
-  std::size_t short_rows = 0;
-  std::size_t esc_outside = 0;
+  ReadCounts counts;
+  const bool comma_split_risk = o.decimal_comma && t->delimiter == ',';
 
   auto process = [&](std::string_view line, std::size_t line_no) {
     if (Trim(line).empty() || Trim(line).front() == '#') {
       ++t->blank_or_comment_lines;
       return;
     }
-    ++t->data_rows_read;
     SplitFields(line, t->delimiter, &fields);
-    if (!plan->lenient) {
-      if (plan->has_header && fields.size() != plan->header_cells) {
-        throw DataError(path + ": line " + std::to_string(line_no) + ": " +
-                        std::to_string(fields.size()) + " cells, the header has " +
-                        std::to_string(plan->header_cells) +
-                        " (rule: one cell per header column in every row)");
-      }
-      if (fields.size() <= max_field) {
-        throw DataError(path + ": line " + std::to_string(line_no) + ": " +
-                        std::to_string(fields.size()) + " cells, column " +
-                        std::to_string(max_field + 1) + " is mapped (rule: every row has it)");
-      }
-    } else {
-      if (fields.size() <= max_field) {
-        ++short_rows;
-        return;
-      }
-      // A trailing delimiter gives one empty extra cell: that is the format, not an extra.
-      std::size_t n = fields.size();
-      if (n > plan->header_cells && Trim(fields[n - 1]).empty()) --n;
-      if (n > plan->header_cells) ++t->rows_with_extra_cells;
+    if (!plan->filters.empty() && !RowSelected(*plan, fields, &counts)) return;
+    ++t->data_rows_read;
+    if (comma_split_risk && line.find('"') == std::string_view::npos) {
+      throw DataError(path + ": line " + std::to_string(line_no) +
+                      ": --decimal-comma, but cells are separated by ',' and this row is not "
+                      "quoted: every decimal comma would split a number (quote the cells, or "
+                      "save the file with ';' between cells)");
+    }
+    if (!RowShapeOk(*plan, fields, max_field, path, line_no, o, t->delimiter == ',', t, &counts)) {
+      return;
     }
     if (drivecalc_filter) {
       double id = 0;
@@ -466,53 +663,18 @@ void ReadRows(LineReader* lr, Plan* plan, const std::string& path, SteadyTable* 
         CellError(path, line_no, "motor_id", cell, "not a number");
       }
       if (static_cast<long long>(id) != o.drivecalc_motor_id) {
-        ++other_motor_rows;
+        ++counts.other_motor_rows;
         --t->data_rows_read;
         return;
       }
     }
+    if (o.mapped_drop_rows_with_empty_cells && RowHasText(*plan, fields, line_no, &counts)) return;
     char row_outside = 0;
     for (Slot& s : plan->slots) {
-      const std::string_view cell = fields[s.field];
-      double v = 0.0;
-      if (Trim(cell).empty()) {
-        if (!plan->lenient && !plan->empty_cells_ok) {
-          CellError(path, line_no, s.header, cell,
-                    std::string("empty cell (rule: the ") + LogFormatName(plan->format) +
-                        " format has no optional cells)");
-        }
-        s.values.push_back(kNaN);
-        continue;
+      if (ReadCell(s, fields[s.field], *plan, o, path, line_no)) {
+        row_outside = 1;
+        ++counts.esc_outside;
       }
-      if (!ParseDouble(cell, &v)) {
-        CellError(path, line_no, s.header, cell,
-                  "not a number (rule: a finite decimal number with '.' as decimal point)");
-      }
-      const double si = ToSi(s, v);
-      if (!(std::fabs(si) <= kMaxAbsSiValue)) {
-        std::ostringstream rule;
-        rule << "out of range: " << si << " " << SiUnit(s.quantity)
-             << " after conversion (rule: magnitude at most " << kMaxAbsSiValue << " in SI units)";
-        CellError(path, line_no, s.header, cell, rule.str());
-      }
-      if (s.target == Column::kThrottle &&
-          (si < -kThrottleRoundingSlack || si > 1.0 + kThrottleRoundingSlack)) {
-        if (plan->lenient) {
-          // Stand scripts send e.g. 980 us (arming, motor off) or 2100 us: no throttle point.
-          s.values.push_back(kNaN);
-          ++esc_outside;
-          row_outside = 1;
-          continue;
-        }
-        if (s.pulse) {
-          CellError(path, line_no, s.header, cell,
-                    "outside the ESC end points " + std::to_string(s.pulse_min) + " .. " +
-                        std::to_string(s.pulse_max) +
-                        " (set LogReadOptions esc_min_us/esc_max_us, or esc_unitless_min/max)");
-        }
-        CellError(path, line_no, s.header, cell, "throttle outside 0..1");
-      }
-      s.values.push_back(si);
     }
     rows->line.push_back(line_no);
     rows->esc_outside.push_back(row_outside);
@@ -526,23 +688,56 @@ void ReadRows(LineReader* lr, Plan* plan, const std::string& path, SteadyTable* 
     ++t->lines_read;
     process(line, lr->line_number());
   }
-  AddDrop(t, "rows shorter than the header", short_rows);
-  {
-    std::ostringstream s;
-    s << "rows with the ESC signal outside the end points " << o.esc_min_us << "-"
-      << o.esc_max_us << " us (arming / beyond full throttle)";
-    rows->esc_reason = s.str();
-  }
+  ReportReadCounts(counts, *plan, path, o, t, rows);
   if (drivecalc_filter) {
-    if (rows->line.empty()) {
-      throw DataError(path + ": no MData row has motor_id " +
-                      std::to_string(o.drivecalc_motor_id) + " (" +
-                      std::to_string(other_motor_rows) + " rows of other motors)");
-    }
-    t->notes.push_back(std::to_string(other_motor_rows) + " rows of other motors skipped (motor_id filter " +
-                       std::to_string(o.drivecalc_motor_id) + ")");
     for (Slot& s : plan->slots) {
       if (s.target == Column::kMotorId) s.active = false;
+    }
+  }
+}
+
+// A command column without a unit: the scale is read from its values (log_reader.h). Values
+// outside 0..1 after scaling drop their rows as the end points do (lenient formats only).
+void ScaleUnitlessCommand(Plan* plan, RawRows* rows, SteadyTable* t, const LogReadOptions& o) {
+  for (Slot& s : plan->slots) {
+    if (!s.scale_from_values) continue;
+    double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+    for (const double v : s.values) {
+      if (!std::isnan(v)) lo = std::min(lo, v), hi = std::max(hi, v);
+    }
+    ColumnInfo& ci = t->info[static_cast<int>(Column::kThrottle)];
+    if (!(hi >= lo)) continue;  // empty in every row: ResolveColumns says so
+    constexpr double kPulseLowUs = 800.0, kPulseHighUs = 2200.0, kCommandMax = 2000.0;
+    double offset = 0.0, span = 1.0;
+    std::ostringstream note;
+    note << "\"" << s.header << "\" has no unit; values " << lo << ".." << hi;
+    if (lo >= 0.0 && hi <= 1.0) {
+      note << " read as a fraction 0..1";
+    } else if (lo >= kPulseLowUs && hi <= kPulseHighUs) {
+      offset = o.esc_min_us;
+      span = o.esc_max_us - o.esc_min_us;
+      note << " read as a pulse width in us (" << offset << ".." << offset + span
+           << ", --esc-min-us/--esc-max-us)";
+    } else if (lo >= 0.0 && hi <= kCommandMax) {
+      span = kCommandMax;
+      note << " read as command units 0..2000 (RCbenchmark scripts' unitless ESC command)";
+    } else {
+      note << ": not a fraction, a pulse width or 0..2000 command units";
+      ci.note = note.str();
+      t->notes.push_back("throttle absent: " + ci.note);
+      s.active = false;
+      continue;
+    }
+    ci.note = note.str();
+    t->notes.push_back("throttle: " + ci.note);
+    for (std::size_t r = 0; r < s.values.size(); ++r) {
+      double& v = s.values[r];
+      if (std::isnan(v)) continue;
+      v = (v - offset) / span;
+      if (v < -kThrottleRoundingSlack || v > 1.0 + kThrottleRoundingSlack) {
+        v = kNaN;
+        rows->esc_outside[r] = 1;
+      }
     }
   }
 }
@@ -733,7 +928,7 @@ void BuildPlateaus(SteadyTable* t, const std::vector<Slot*>& chosen, const RawRo
       }
     }
   }
-  AddDrop(t, "samples in steps shorter than min_samples after the transient", short_samples);
+  AddDrop(t, "samples in steps too short to average after the transient (plateau minimum sample count)", short_samples);
   AddDrop(t, "samples not steady (signal search)", unsteady);
   if (short_plateaus > 0) {
     t->notes.push_back(std::to_string(short_plateaus) + " steps/runs too short to be plateaus");
@@ -837,6 +1032,81 @@ bool LooksNumeric(const Header& h) {
   return true;
 }
 
+// DriveCalc: points whose speed was not measured (n = 0) are not operating points (see
+// LogReadOptions::drivecalc_keep_no_load_without_speed for the no-load exception).
+void DropDriveCalcWithoutSpeed(SteadyTable* t, const LogReadOptions& options) {
+  std::size_t w = 0;
+  const std::size_t n = t->rows();
+  auto& om = t->columns[static_cast<int>(Column::kOmegaRadS)];
+  std::vector<char> keep(n);
+  const bool keep_nl = options.drivecalc_keep_no_load_without_speed && t->Has(Column::kNoLoad);
+  std::size_t kept_without_speed = 0;
+  for (std::size_t r = 0; r < n; ++r) {
+    keep[r] = om[r] != 0.0;
+    if (!keep[r] && keep_nl && t->columns[static_cast<int>(Column::kNoLoad)][r] != 0.0) {
+      keep[r] = 1;
+      ++kept_without_speed;
+    }
+  }
+  if (kept_without_speed > 0) {
+    t->notes.push_back(std::to_string(kept_without_speed) +
+                      " no-load points without a speed reading (n = 0) kept: they give Io only");
+  }
+  for (int c = 0; c < kColumnCount; ++c) {
+    if (!t->info[c].present) continue;
+    auto& v = t->columns[c];
+    w = 0;
+    for (std::size_t r = 0; r < n; ++r) {
+      if (keep[r]) v[w++] = v[r];
+    }
+    v.resize(w);
+  }
+  w = 0;
+  for (std::size_t r = 0; r < n; ++r) {
+    if (keep[r]) {
+      t->source_line[w] = t->source_line[r];
+      t->samples[w] = t->samples[r];
+      ++w;
+    }
+  }
+  AddDrop(t, keep_nl ? "loaded points with n = 0 (speed not measured)" : "points with n = 0 (speed not measured)",
+          n - w);
+  t->source_line.resize(w);
+  t->samples.resize(w);
+}
+
+// --where: the columns named by LogReadOptions::row_filter.
+void ResolveFilters(const Header& h, bool header_is_data, const LogReadOptions& o,
+                    const std::string& path, Plan* plan) {
+  for (const std::string& entry : o.row_filter) {
+    const std::size_t eq = entry.find('=');
+    const std::string key(Trim(std::string_view(entry).substr(0, eq)));
+    Plan::RowFilter f;
+    f.header = key;
+    f.value = std::string(Trim(std::string_view(entry).substr(eq + 1)));
+    f.field = h.cells.size();
+    double k = 0;
+    if (key.size() > 1 && key[0] == '#' && ParseDouble(key.substr(1), &k) && k >= 1 &&
+        k == std::floor(k) && k <= 1e6) {
+      f.field = static_cast<std::size_t>(k) - 1;
+    } else {
+      for (std::size_t i = 0; i < h.cells.size() && !header_is_data; ++i) {
+        if (h.cells[i] == key || (f.field == h.cells.size() && SplitHeaderCell(h.cells[i]).name == key)) {
+          f.field = i;
+        }
+      }
+      if (f.field >= h.cells.size()) {
+        std::vector<std::string> have;
+        for (const auto& c : h.cells) have.push_back("\"" + c + "\"");
+        throw DataError(path + ": line 1: --where \"" + entry + "\": no column \"" + key +
+                        "\" in the header; columns: " +
+                        (header_is_data ? std::string("(no header: use #k)") : JoinSorted(have)));
+      }
+    }
+    plan->filters.push_back(std::move(f));
+  }
+}
+
 }  // namespace
 
 std::string LogReadOptions::Validate() const {
@@ -846,21 +1116,27 @@ std::string LogReadOptions::Validate() const {
     return s.str();
   };
   if (!(esc_max_us > esc_min_us) || !std::isfinite(esc_min_us) || !std::isfinite(esc_max_us)) {
-    return "LogReadOptions.esc_min_us/esc_max_us = " + num(esc_min_us) + "/" + num(esc_max_us) +
-           ": need finite values with esc_max_us > esc_min_us";
+    return "--esc-min-us " + num(esc_min_us) + " --esc-max-us " + num(esc_max_us) +
+           ": need finite values with --esc-max-us > --esc-min-us";
   }
   if (esc_unitless_max != 0.0 || esc_unitless_min != 0.0) {
     if (!(esc_unitless_max > esc_unitless_min)) {
-      return "LogReadOptions.esc_unitless_min/max = " + num(esc_unitless_min) + "/" +
-             num(esc_unitless_max) + ": need esc_unitless_max > esc_unitless_min";
+      return "unitless ESC command range " + num(esc_unitless_min) + ".." +
+             num(esc_unitless_max) + " (LogReadOptions esc_unitless_min/max): need max > min";
     }
   }
   if (!column_map.empty() && format != LogFormat::kAuto && format != LogFormat::kMapped) {
-    return std::string("LogReadOptions.column_map is given with format ") + LogFormatName(format) +
-           ": a column map needs format mapped (or auto)";
+    return std::string("--map is given with --format ") + LogFormatName(format) +
+           ": a column map needs --format mapped (or auto)";
   }
   if (format == LogFormat::kMapped && column_map.empty()) {
-    return "LogReadOptions.format = mapped without a column_map";
+    return "--format mapped without --map: name each column, e.g. --map idc_a=Current";
+  }
+  for (const std::string& f : row_filter) {
+    const std::size_t eq = f.find('=');
+    if (eq == std::string::npos || Trim(std::string_view(f).substr(0, eq)).empty()) {
+      return "--where \"" + f + "\": expected Header=value, e.g. --where \"motor=T-Motor MN2206\"";
+    }
   }
   if (max_line_bytes < 64) return "LogReadOptions.max_line_bytes must be >= 64";
   return plateau.Validate();
@@ -906,14 +1182,18 @@ SteadyTable ReadLog(const std::string& path, const LogReadOptions& options) {
       }
       const bool header_is_data = all_hash && LooksNumeric(h);
       plan = PlanMapped(h, header_is_data, options, path);
-      plan.empty_cells_ok = options.mapped_drop_rows_with_empty_cells;
       if (header_is_data) first_data = std::string(line);
       break;
     }
     case LogFormat::kAuto: throw InternalError("ReadLog: format still auto");
   }
+  if (options.mapped_drop_rows_with_empty_cells && fmt == LogFormat::kMapped) {
+    plan.empty_cells_ok = true;
+  }
+  ResolveFilters(h, !first_data.empty(), options, path, &plan);
   RawRows rows;
   ReadRows(&lr, &plan, path, &t, &rows, first_data, options);
+  ScaleUnitlessCommand(&plan, &rows, &t, options);
   t.line_ends = LineEnds(lr);
   t.had_bom = lr.had_bom();
 
@@ -944,7 +1224,7 @@ SteadyTable ReadLog(const std::string& path, const LogReadOptions& options) {
         plateaus = false;
         std::ostringstream s;
         s << "one steady point per row (median interval " << dt
-          << " s >= summary_min_interval_s): no plateau search";
+          << " s, at least the plateau summary interval): no plateau search";
         t.notes.push_back(s.str());
       }
     }
@@ -956,46 +1236,7 @@ SteadyTable ReadLog(const std::string& path, const LogReadOptions& options) {
     BuildPerRow(&t, chosen, rows, fmt == LogFormat::kRcbenchmark);
   }
   // DriveCalc: points whose speed was not measured (n = 0) are not operating points.
-  if (fmt == LogFormat::kDriveCalc && t.Has(Column::kOmegaRadS)) {
-    std::size_t w = 0;
-    const std::size_t n = t.rows();
-    auto& om = t.columns[static_cast<int>(Column::kOmegaRadS)];
-    std::vector<char> keep(n);
-    const bool keep_nl = options.drivecalc_keep_no_load_without_speed && t.Has(Column::kNoLoad);
-    std::size_t kept_without_speed = 0;
-    for (std::size_t r = 0; r < n; ++r) {
-      keep[r] = om[r] != 0.0;
-      if (!keep[r] && keep_nl && t.columns[static_cast<int>(Column::kNoLoad)][r] != 0.0) {
-        keep[r] = 1;
-        ++kept_without_speed;
-      }
-    }
-    if (kept_without_speed > 0) {
-      t.notes.push_back(std::to_string(kept_without_speed) +
-                        " no-load points without a speed reading (n = 0) kept: they give Io only");
-    }
-    for (int c = 0; c < kColumnCount; ++c) {
-      if (!t.info[c].present) continue;
-      auto& v = t.columns[c];
-      w = 0;
-      for (std::size_t r = 0; r < n; ++r) {
-        if (keep[r]) v[w++] = v[r];
-      }
-      v.resize(w);
-    }
-    w = 0;
-    for (std::size_t r = 0; r < n; ++r) {
-      if (keep[r]) {
-        t.source_line[w] = t.source_line[r];
-        t.samples[w] = t.samples[r];
-        ++w;
-      }
-    }
-    AddDrop(&t, keep_nl ? "loaded points with n = 0 (speed not measured)" : "points with n = 0 (speed not measured)",
-            n - w);
-    t.source_line.resize(w);
-    t.samples.resize(w);
-  }
+  if (fmt == LogFormat::kDriveCalc && t.Has(Column::kOmegaRadS)) DropDriveCalcWithoutSpeed(&t, options);
   if (fmt == LogFormat::kCanonical) CheckCanonicalRanges(t, path);
   if (options.normalize_signs && fmt != LogFormat::kCanonical) NormalizeSigns(&t);
   // What the fit can identify.

@@ -8,23 +8,32 @@
 //    unknown or repeated column, a row with a different cell count, an empty cell or text in a
 //    number, throttle outside 0..1, vdc_v <= 0, negative vll_rms_v / irms_a are DataErrors
 //    naming file, line, column, value and rule. Detected by a header holding time_s and idc_a.
-//  - kRcbenchmark: RCbenchmark / Tyto Robotics exports (Series 1520/1580/1585/1780), and the
-//    same files re-saved by a spreadsheet. Headers "Name (unit)", units parsed (gf/kgf/N,
-//    RPM/rad/s, ...). Throttle = (ESC signal - esc_min_us)/(esc_max_us - esc_min_us). Time
+//  - kRcbenchmark: RCbenchmark / Tyto Robotics exports (Series 1520/1580/1585/1780, and the
+//    Tyto Flight Stand software, which quotes every cell), and the same files re-saved by a
+//    spreadsheet. Headers "Name (unit)", units parsed (gf/kgf/N, RPM/rad/s, N*m/N.m/N⋅m, ...).
+//    Command column: "ESC signal", "ESC", "ESC throttle", "ESC command" or "Throttle" (with a
+//    unit: us, %, or a fraction). Throttle = (us - esc_min_us)/(esc_max_us - esc_min_us) for a
+//    pulse width. A command without a unit (bhabas_sar_motor_sysid: "ESC signal", 0..2000
+//    command units) is scaled from its values (see ReadLog's note): values within 0..1 are a
+//    fraction, values within 800..2200 a pulse width in us, values within 0..2000 otherwise
+//    command units of 0..2000; else throttle is absent, with a note. Speed: "Motor Optical
+//    Speed", "Motor Electrical Speed", "Rotation speed", "Motor speed" (optical first). Time
 //    series are cut into plateaus (plateau.h); logs already holding one averaged row per step
 //    (median interval >= plateau.summary_min_interval_s) are read row by row. Lenient where the
 //    real files demand it: empty cells (asynchronous sensors) are skipped and counted; rows
 //    with more cells than the header (commas inside "App message", script columns) keep their
 //    named cells; blank and '#' comment lines are skipped and counted. Text in a number is
-//    still a DataError. Detected by a header cell "ESC signal", "ESC (...)" or "Motor ...
-//    Speed (...)".
+//    still a DataError (unless mapped_drop_rows_with_empty_cells). Detected by a command or
+//    speed column above, with the current column (if any) carrying a unit ("Current (A)").
 //  - kMapped: any table with a header (or none) through LogReadOptions::column_map.
 //  - kDriveCalc: DriveCalc's MData table (motor_id, U, n, I, IsNoLoad, ...): U -> vdc_v,
 //    n -> omega_rad_s, I -> idc_a, IsNoLoad -> no_load, Temp -> temp_c. Points with n = 0
 //    (speed not measured) are dropped and counted. Detected by motor_id, U, n, I, IsNoLoad.
 //
-// Every format: a UTF-8 BOM, LF/CRLF/CR line ends and a Latin-1 header are accepted, blank
-// lines and lines starting with '#' are skipped (counted in blank_or_comment_lines); the table
+// Every format: a UTF-8 BOM, LF/CRLF/CR line ends, a Latin-1 header and quoted cells
+// ("1.5", RFC 4180; csv_scan.h) are accepted, blank lines and lines starting with '#' are
+// skipped (counted in blank_or_comment_lines); torque is optional everywhere (it identifies KT;
+// without it the fit uses KT = sqrt(27/10)*KE and says so); the table
 // must end with at least 2 rows, not all identical, idc_a present and not all zero - else a
 // DataError. A missing file is a NoInputError; invalid options a UsageError.
 // Memory: the file is read through a fixed buffer; only the parsed numbers are kept.
@@ -53,22 +62,38 @@ struct LogReadOptions {
   double esc_min_us = 1000.0;
   double esc_max_us = 2000.0;
   // An ESC command column without a unit (bhabas_sar_motor_sysid: "ESC signal", 0..2000
-  // command units) is not a pulse width: throttle is derived from it only when these are set
-  // (esc_unitless_max > esc_unitless_min); otherwise throttle is absent, with a note.
+  // command units): when these are set (esc_unitless_max > esc_unitless_min), throttle =
+  // (value - min)/(max - min); otherwise the scale is decided from the values (see kRcbenchmark).
   double esc_unitless_min = 0.0;
   double esc_unitless_max = 0.0;
 
-  // kMapped: "canonical_name=Source Header [unit]" pairs, e.g. "thrust_n=Thrust [g]",
+  // kMapped (CLI --map): "canonical_name=Source Header [unit]" pairs, e.g. "thrust_n=Thrust [g]",
   // "rpm=Rpm", "torque_nm=#2 [N*m]". canonical_name is a canonical column name (rpm allowed
   // for omega). The source is a header cell (matched whole, or by its name without unit) or
   // "#k", the k-th column (1-based) of a file without header. The unit in brackets overrides
   // the header's; without either the canonical column's own unit is assumed. Giving a map
   // with format kAuto selects kMapped.
   std::vector<std::string> column_map;
-  // kMapped is strict like the canonical format. Hand-made tables sometimes carry annotation
-  // rows ("6s Lipo,,PEAK THRUST" in sjkim's A4220 table): with this set, a row with an empty
-  // mapped cell is dropped and counted instead (text in a number stays an error).
+  // CLI --drop-incomplete-rows. kMapped is strict like the canonical format, and kRcbenchmark
+  // refuses text in a number. Hand-made tables carry annotation and trailer rows ("6s
+  // Lipo,,PEAK THRUST,,," in sjkim's A4220 table): with this set, a row whose used cell is
+  // empty or text (a cell that does not begin like a number: not a digit, sign or '.') is
+  // dropped and counted, with the first such lines named. A malformed number ("1.2.3", "12 A")
+  // stays an error: it is a broken value, not an annotation.
   bool mapped_drop_rows_with_empty_cells = false;
+
+  // CLI --decimal-comma: numbers are written with a decimal comma ("1,5"), as Excel writes
+  // them in many locales. The cells are then separated by ';' or tabs (the usual pairing); a
+  // ','-separated file must quote every cell holding a comma, else the row is a DataError. A
+  // cell holding '.' is refused in this mode (a thousands separator: ambiguous).
+  bool decimal_comma = false;
+
+  // CLI --where "Header=value" (repeatable, all must hold): keep only the rows whose cell in
+  // that column reads exactly `value` (blanks trimmed; quotes removed). For tables of several
+  // motors in one file (ctu_mrs_motor_tests: motor; dronebuildcalc: Motor; jmajew's
+  // extracted_steady_points.csv: source_file). Rows of other values are counted in a note; no
+  // row matching is a DataError naming the values seen.
+  std::vector<std::string> row_filter;
 
   TimeSeriesMode time_series = TimeSeriesMode::kAuto;
   PlateauOptions plateau;

@@ -38,6 +38,8 @@ const UnitRow kUnits[] = {
     {Quantity::kTorque, "mnm", 1e-3, 0.0, false},
     {Quantity::kTorque, "nmm", 1e-3, 0.0, false},
     {Quantity::kTorque, "kgfcm", kNmPerKilogramForceCm, 0.0, false},
+    {Quantity::kTorque, "gfcm", kNmPerKilogramForceCm * 1e-3, 0.0, false},  // jmajew's "G cm"
+    {Quantity::kTorque, "gcm", kNmPerKilogramForceCm * 1e-3, 0.0, false},
     {Quantity::kTorque, "ozfin", kNmPerOunceForceInch, 0.0, false},
     {Quantity::kTorque, "ozin", kNmPerOunceForceInch, 0.0, false},
     {Quantity::kTorque, "lbfft", kNmPerPoundForceFoot, 0.0, false},

@@ -87,6 +87,16 @@ std::string SteadyTable::BriefReport() const {
     }
     out << ")";
   }
+  // Which columns the fit gets: what it can identify follows from them (steady_table.h).
+  std::string found, missing;
+  for (const Column c : {Column::kThrottle, Column::kVdcV, Column::kIdcA, Column::kOmegaRadS,
+                         Column::kTorqueNm, Column::kThrustN, Column::kVllRmsV, Column::kIrmsA,
+                         Column::kPacW}) {
+    std::string& to = Has(c) ? found : missing;
+    to += std::string(to.empty() ? "" : " ") + ColumnName(c);
+  }
+  out << "; columns: " << (found.empty() ? "none" : found);
+  if (!missing.empty()) out << "; absent: " << missing;
   return out.str();
 }
 

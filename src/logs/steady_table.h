@@ -87,7 +87,8 @@ struct SteadyTable {
   std::vector<double>& Mutable(Column c) { return columns[static_cast<int>(c)]; }
   std::size_t DroppedTotal() const;
 
-  // One line: "file: rcbenchmark, 4814 rows read, 20 plateaus, dropped 12 (...)".
+  // One line: "file: rcbenchmark, 4814 rows read, 20 plateaus, dropped 12 (...); columns:
+  // throttle vdc_v idc_a omega_rad_s thrust_n; absent: torque_nm vll_rms_v irms_a pac_w".
   std::string BriefReport() const;
   // A table of columns (source header, unit, present/absent and why) and the drop counts.
   std::string FullReport() const;

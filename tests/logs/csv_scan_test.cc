@@ -69,6 +69,42 @@ TEST(ParseDouble, AcceptsDecimalsRejectsText) {
   }
 }
 
+TEST(ParseDouble, DecimalComma) {
+  double v = 0;
+  EXPECT_TRUE(ParseDoubleDecimalComma(" 1,5 ", &v));
+  EXPECT_EQ(v, 1.5);
+  EXPECT_TRUE(ParseDoubleDecimalComma("-2,5E-3", &v));
+  EXPECT_EQ(v, -2.5e-3);
+  EXPECT_TRUE(ParseDoubleDecimalComma("1236", &v));
+  EXPECT_EQ(v, 1236.0);
+  // '.' is a thousands separator with decimal commas: refused, never misread.
+  for (const char* bad : {"1.5", "1.234,5", "1,2,3", "", "nan", "1,5x", ","}) {
+    EXPECT_FALSE(ParseDoubleDecimalComma(bad, &v)) << bad;
+  }
+  EXPECT_FALSE(ParseDoubleDecimalComma(std::string(70, '1'), &v));  // longer than any number
+}
+
+std::vector<std::string> Split(std::string_view line, char delim) {
+  std::vector<std::string_view> f;
+  SplitFields(line, delim, &f);
+  return std::vector<std::string>(f.begin(), f.end());
+}
+
+TEST(SplitFields, QuotedFields) {
+  using V = std::vector<std::string>;
+  EXPECT_EQ(Split("a,b,,c", ','), (V{"a", "b", "", "c"}));
+  EXPECT_EQ(Split("\"Time (s)\",\"Thrust (kgf)\"", ','), (V{"Time (s)", "Thrust (kgf)"}));
+  EXPECT_EQ(Split("\"1,5\";\"2\";3", ';'), (V{"1,5", "2", "3"}));
+  EXPECT_EQ(Split("\"a,b\",c", ','), (V{"a,b", "c"}));                 // delimiter inside quotes
+  EXPECT_EQ(Split(" \"x\" ,\"\"", ','), (V{"x", ""}));               // blanks around, empty quoted
+  EXPECT_EQ(Split("\"say \"\"hi\"\"\",1", ','), (V{"say \"\"hi\"\"", "1"}));  // escaped quote kept
+  // A quote that does not close a field is text: the row splits as it would without quotes.
+  EXPECT_EQ(Split("msg \"a,b", ','), (V{"msg \"a", "b"}));
+  EXPECT_EQ(Split("\"open,1,2", ','), (V{"\"open", "1", "2"}));
+  EXPECT_EQ(Split("\"ab\"c,1", ','), (V{"\"ab\"c", "1"}));
+  EXPECT_EQ(DetectDelimiter("\"a,b\";\"c\";\"d\""), ';');  // commas inside quotes do not count
+}
+
 TEST(HeaderText, Latin1IsConvertedAndUnitsSplit) {
   bool latin1 = false;
   EXPECT_EQ(ToUtf8("ESC signal (\xB5s)", &latin1), "ESC signal (\xC2\xB5s)");
@@ -109,6 +145,8 @@ TEST(LogUnits, SpellingsAndFactors) {
   EXPECT_DOUBLE_EQ(ParseUnit(Quantity::kTemperature, "\xC2\xBA" "C")->scale, 1.0);  // ºC
   EXPECT_DOUBLE_EQ(ParseUnit(Quantity::kTemperature, "K")->offset, -273.15);
   EXPECT_FALSE(ParseUnit(Quantity::kForce, "N\xC2\xB7m"));
+  EXPECT_DOUBLE_EQ(ParseUnit(Quantity::kTorque, "G cm")->scale, 9.80665e-5);  // jmajew's torque
+  EXPECT_EQ(ParseUnit(Quantity::kTorque, "N\xE2\x8B\x85m")->scale, 1.0);       // Tyto's U+22C5
   EXPECT_FALSE(ParseUnit(Quantity::kVoltage, ""));
   EXPECT_NE(ValidUnits(Quantity::kForce).find("kgf"), std::string::npos);
 }

@@ -119,16 +119,103 @@ TEST(RealLogs, DiegosdantonioTinywhoop) {
 
 TEST(RealLogs, BhabasSarMotorSysid) {
   REQUIRE_SHARED();
-  LogReadOptions o;
-  o.esc_unitless_min = 0.0;  // README: ESC signal in 0..2000 command units, not us
-  o.esc_unitless_max = 2000.0;
+  // README: "ESC signal" has no unit, 0..2000 command units (not us): detected from the values.
   for (const auto& f : CsvFilesIn("bhabas_sar_motor_sysid")) {
-    const SteadyTable plain = ReadLog(f);
-    EXPECT_FALSE(plain.Has(Column::kThrottle)) << f;  // unitless command: not guessed
-    const SteadyTable t = ReadAndPrint(f, o);
-    EXPECT_TRUE(t.Has(Column::kThrottle)) << f;
+    const SteadyTable t = ReadAndPrint(f);
+    ASSERT_TRUE(t.Has(Column::kThrottle)) << f;
+    EXPECT_NE(t.info[static_cast<int>(Column::kThrottle)].note.find("command units 0..2000"), std::string::npos)
+        << t.FullReport();
     EXPECT_EQ(t.info[static_cast<int>(Column::kOmegaRadS)].source_unit, "rad/s");
+    if (f.find("StepsTestV2_2024-02-06_130449") != std::string::npos) {
+      // Steps of 100 command units from 0 (the motor-off row, speed 0, is dropped): 100/2000.
+      EXPECT_EQ(t.Get(Column::kThrottle)[0], 0.05) << t.FullReport();
+      EXPECT_EQ(t.Get(Column::kThrottle).back(), 0.9);  // 1800 of 2000
+    }
   }
+  // The explicit range still wins.
+  LogReadOptions o;
+  o.esc_unitless_min = 0.0;
+  o.esc_unitless_max = 1000.0;
+  const SteadyTable t =
+      ReadLog(SharedData() + "bhabas_sar_motor_sysid/Motor_SO_V5/StepsTestV2_2024-02-06_103903.csv", o);
+  EXPECT_NE(t.info[static_cast<int>(Column::kThrottle)].note.find("as configured"), std::string::npos);
+}
+
+TEST(RealLogs, TytoDatabaseQuotedExports) {
+  REQUIRE_SHARED();
+  const auto files = CsvFilesIn("tytodb_tmotor16x54_9motors");
+  EXPECT_EQ(files.size(), 9u);
+  std::size_t rows = 0;
+  for (const auto& f : files) {
+    const SteadyTable t = ReadAndPrint(f);
+    EXPECT_EQ(t.format, LogFormat::kRcbenchmark) << f;
+    EXPECT_FALSE(t.time_series) << f;  // one averaged row per step
+    EXPECT_TRUE(t.Has(Column::kThrottle) && t.Has(Column::kTorqueNm) && t.Has(Column::kThrustN) &&
+                t.Has(Column::kVdcV) && t.Has(Column::kOmegaRadS))
+        << t.FullReport();
+    EXPECT_EQ(t.info[static_cast<int>(Column::kOmegaRadS)].source_header, "Rotation speed (rpm)");
+    // Every row is a point or counted: the motor-off one (1000 us, 0 rpm) in each file, and
+    // NeuMotor's 2050 and 2100 us steps beyond the default end point 2000 us.
+    EXPECT_EQ(t.rows() + t.DroppedTotal(), t.data_rows_read) << t.BriefReport();
+    EXPECT_EQ(t.DroppedTotal(), f.find("NeuMotor") != std::string::npos ? 3u : 1u) << t.BriefReport();
+    rows += t.rows();
+  }
+  EXPECT_EQ(rows, 156u);  // README: 158 spinning steady rows, 2 of them above 2000 us
+  LogReadOptions o;
+  o.esc_max_us = 2100;
+  EXPECT_EQ(ReadLog(SharedData() + "tytodb_tmotor16x54_9motors/T-motor_16x54_static_NeuMotor 3819.csv", o).rows(),
+            20u);
+}
+
+TEST(RealLogs, ElodinStandExports) {
+  REQUIRE_SHARED();
+  for (const auto& f : CsvFilesIn("elodin_2300kv_6x3_4s")) {
+    const SteadyTable t = ReadAndPrint(f);
+    EXPECT_EQ(t.format, LogFormat::kRcbenchmark) << f;
+    EXPECT_TRUE(t.Has(Column::kThrottle) && t.Has(Column::kTorqueNm) && t.Has(Column::kThrustN)) << f;
+  }
+}
+
+TEST(RealLogs, JmajewExtractedPointsOneReportAtATime) {
+  REQUIRE_SHARED();
+  LogReadOptions o;
+  o.column_map = {"throttle=out_pct [%]", "thrust_n=thrust_g [g]", "torque_nm=torque_gcm [G cm]",
+                  "rpm=rpm", "vdc_v=volt_V", "idc_a=curr_A"};
+  o.row_filter = {"source_file=tmotor-mn2206/grp01__mn2206_hqprop6x4x3_3s.tex"};
+  const std::string f = SharedData() + "jmajew_thrusttool_6motors/extracted_steady_points.csv";
+  const SteadyTable t = ReadAndPrint(f, o);
+  EXPECT_EQ(t.rows(), 75u);  // 5 runs x 15 steps (README)
+  EXPECT_NEAR(t.Get(Column::kThrottle)[0], 0.2, 1e-15);  // written "2e+01"
+  // Torque in g*cm: the report's first step, 77.87 g*cm.
+  EXPECT_NEAR(t.Get(Column::kTorqueNm)[0], 77.87 * 9.80665e-5, 1e-12);
+  o.row_filter = {"motor_dir=tmotor-mt2212", "cells_from_path=4"};
+  EXPECT_EQ(ReadAndPrint(f, o).rows(), 150u);  // two 4S reports of 5 x 15
+}
+
+TEST(RealLogs, CtuMrsOneMotorAtATime) {
+  REQUIRE_SHARED();
+  LogReadOptions o;
+  o.column_map = {"throttle=throttle_pct_nominal [%]", "thrust_n=thrust_g [g]", "rpm=rpm",
+                  "vdc_v=voltage_V", "idc_a=current_A"};
+  const std::string f = SharedData() + "ctu_mrs_motor_tests/ctu_mrs_motor_tests.csv";
+  std::size_t rows = 0;
+  for (const char* m : {"Readytosky 2312 920KV", "T-Motor 3110 780KV", "Tarot 4114 320KV"}) {
+    o.row_filter = {std::string("motor=") + m};
+    const SteadyTable t = ReadAndPrint(f, o);
+    EXPECT_FALSE(t.Has(Column::kTorqueNm));  // no torque (README)
+    rows += t.rows();
+  }
+  EXPECT_EQ(rows, 60u);
+}
+
+TEST(RealLogs, DronebuildcalcOneMotorAtATime) {
+  REQUIRE_SHARED();
+  LogReadOptions o;
+  o.column_map = {"throttle=T", "vdc_v=V", "idc_a=A", "rpm=RPM", "thrust_n=Thrust g [g]"};
+  o.row_filter = {"Brand=Uangel", "Motor=A2807"};
+  const SteadyTable t = ReadAndPrint(SharedData() + "dronebuildcalc_mfr_tables/motordata.csv", o);
+  EXPECT_GE(t.rows(), 3u);
+  EXPECT_NEAR(t.Get(Column::kThrottle)[0], 0.4, 1e-15);  // written "40.00%"
 }
 
 TEST(RealLogs, HeinzgerhardLargeMotor) {
@@ -172,6 +259,22 @@ TEST(RealLogs, SjkimManufacturerTables) {
   EXPECT_EQ(t.rows(), 11u);
   EXPECT_EQ(t.DroppedTotal(), 2u);
   EXPECT_NEAR(t.Get(Column::kThrustN)[0], 0.57 * 9.80665, 1e-12);
+  // Through the "ESC throttle (us)" column the trailer row "6s Lipo,,PEAK THRUST" is text in
+  // the command column: dropped under --drop-incomplete-rows, and the peak-thrust row kept.
+  o.column_map[0] = "throttle=ESC throttle (us)";
+  const SteadyTable us = ReadAndPrint(d + "A4220_540kv_stand_test.csv", o);
+  EXPECT_EQ(us.rows(), 12u);
+  ASSERT_EQ(us.dropped.size(), 1u);
+  EXPECT_NE(us.dropped[0].reason.find("line 13, column \"ESC throttle (us)\": \"PEAK THRUST\""),
+            std::string::npos)
+      << us.BriefReport();
+  o.mapped_drop_rows_with_empty_cells = false;
+  try {
+    ReadLog(d + "A4220_540kv_stand_test.csv", o);
+    ADD_FAILURE() << "no error";
+  } catch (const DataError& e) {
+    EXPECT_NE(std::string(e.what()).find("\"PEAK THRUST\": not a number"), std::string::npos) << e.what();
+  }
 }
 
 TEST(RealLogs, MitKde2814) {

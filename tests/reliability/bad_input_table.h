@@ -217,7 +217,10 @@ inline std::vector<BadInputCase> BadInputCases() {
                cal + "{dir}/log.csv", 65, {"{dir}/log.csv", "line 2", "column \"rpm\"", "\"fast\"", "not a number"}});
   c.push_back({"canonical_decimal_comma",
                {{"log.csv", CanonicalHeader() + "0,7.2,0.3,3000,0.010,\"0,8\"\n"}},
-               cal + "{dir}/log.csv", 65, {"{dir}/log.csv", "line 2", "7 cells, the header has 6"}});
+               cal + "{dir}/log.csv", 65, {"{dir}/log.csv", "line 2", "idc_a", "\"0,8\"", "--decimal-comma"}});
+  c.push_back({"canonical_decimal_comma_unquoted",
+               {{"log.csv", CanonicalHeader() + "0,7.2,0.3,3000,0.010,0,8\n"}},
+               cal + "{dir}/log.csv", 65, {"{dir}/log.csv", "line 2", "7 cells, the header has 6", "--decimal-comma"}});
   c.push_back({"canonical_empty_cell",
                {{"log.csv", CanonicalHeader() + "0,7.2,0.3,,0.010,0.8\n" + CanonicalRows()}},
                cal + "{dir}/log.csv", 65, {"{dir}/log.csv", "line 2", "rpm", "empty cell"}});
@@ -306,6 +309,27 @@ inline std::vector<BadInputCase> BadInputCases() {
   c.push_back({"mapped_empty_cell",
                {{"t.csv", "Volt,Amp\n7,1\n7,\n"}}, cal + "--map idc_a=Amp --map vdc_v=Volt {dir}/t.csv", 65,
                {"{dir}/t.csv", "line 3", "Amp", "empty cell"}});
+  c.push_back({"log_unknown_format_names_the_flags", {{"t.csv", "Volt,Amp\n7,1\n7,2\n"}}, cal + "{dir}/t.csv", 65,
+               {"{dir}/t.csv", "line 1", "cannot tell the log format", "--format mapped --map"}});
+  c.push_back({"mapped_where_no_match",
+               {{"t.csv", "Motor,Volt,Amp\nA,7,1\nA,7,2\n"}},
+               cal + "--map idc_a=Amp --where Motor=B {dir}/t.csv", 65,
+               {"{dir}/t.csv", "no row has Motor=B", "--where", "\"A\""}});
+  c.push_back({"mapped_where_no_column", {{"t.csv", "Motor,Volt,Amp\nA,7,1\nA,7,2\n"}},
+               cal + "--map idc_a=Amp --where Engine=B {dir}/t.csv", 65,
+               {"{dir}/t.csv", "line 1", "--where \"Engine=B\"", "no column \"Engine\""}});
+  c.push_back({"mapped_where_syntax", {{"t.csv", "Motor,Volt,Amp\nA,7,1\nA,7,2\n"}},
+               cal + "--map idc_a=Amp --where Motor {dir}/t.csv", 64, {"--where \"Motor\"", "Header=value"}});
+  c.push_back({"mapped_decimal_comma_with_point", {{"t.csv", "Volt;Amp\n7,2;1,5\n7,1;2.5\n"}},
+               cal + "--map idc_a=Amp --map vdc_v=Volt --decimal-comma {dir}/t.csv", 65,
+               {"{dir}/t.csv", "line 3", "Amp", "\"2.5\"", "not a number with --decimal-comma"}});
+  c.push_back({"mapped_decimal_comma_comma_separated", {{"t.csv", "Volt,Amp\n7,2,1,5\n7,1,2,5\n"}},
+               cal + "--map idc_a=Amp --map vdc_v=Volt --decimal-comma {dir}/t.csv", 65,
+               {"{dir}/t.csv", "line 2", "--decimal-comma, but cells are separated by ','"}});
+  c.push_back({"tyto_quoted_text_in_number",
+               {{"ty.csv", "\"Time (s)\",\"Throttle (\xC2\xB5s)\",\"Rotation speed (rpm)\",\"Voltage (V)\","
+                           "\"Current (A)\"\n\"1\",\"1200\",\"3000\",\"24\",\"1\"\n\"5\",\"1300\",\"4000\",\"24\",\"x\"\n"}},
+               cal + "{dir}/ty.csv", 65, {"{dir}/ty.csv", "line 3", "Current (A)", "\"x\"", "not a number"}});
   c.push_back({"mapped_bad_unit", {{"t.csv", "Volt,Amp\n7,1\n"}}, cal + "--map \"idc_a=Amp [parsec]\" {dir}/t.csv",
                64, {"idc_a=Amp [parsec]", "\"parsec\"", "valid"}});
 
@@ -367,7 +391,8 @@ inline std::vector<BadInputCase> BadInputCases() {
                64, {"emax_1900kv_papr", "emax_1900kv_paper"}});
   c.push_back({"flag_batch_missing", {}, batch + "{dir}/none.csv", 66, {"{dir}/none.csv", "no such file"}});
   c.push_back({"flag_calibrate_esc_endpoints", {{"log.csv", CanonicalLog()}},
-               cal + "--esc-min-us 2000 --esc-max-us 1000 {dir}/log.csv", 64, {"esc_min_us", "2000", "1000"}});
+               cal + "--esc-min-us 2000 --esc-max-us 1000 {dir}/log.csv", 64,
+               {"--esc-min-us 2000", "--esc-max-us 1000", "need finite values with --esc-max-us > --esc-min-us"}});
   c.push_back({"flag_calibrate_format", {{"log.csv", CanonicalLog()}}, cal + "--format excel {dir}/log.csv", 64,
                {"--format", "excel"}});
   c.push_back({"flag_calibrate_no_ids", {{"log.csv", CanonicalLog()}}, "calibrate {dir}/log.csv", 64,
