@@ -187,6 +187,8 @@ int RunValidateStand(const ValidateStandOptions& o) {
   ro.format = logs::LogFormatFromName(o.format);
   ro.column_map = o.column_map;
   ro.mapped_drop_rows_with_empty_cells = o.drop_incomplete_rows;
+  ro.decimal_comma = o.decimal_comma;
+  ro.row_filter = o.where;
   ro.esc_min_us = o.esc_min_us;
   ro.esc_max_us = o.esc_max_us;
   if (const std::string e = ro.Validate(); !e.empty()) throw UsageError(e);

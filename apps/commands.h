@@ -37,6 +37,8 @@ struct ValidateStandOptions {
   std::string format = "auto";
   std::vector<std::string> column_map;
   bool drop_incomplete_rows = false;
+  bool decimal_comma = false;      // as in CalibrateOptions
+  std::vector<std::string> where;  // as in CalibrateOptions
   double esc_min_us = 1000.0, esc_max_us = 2000.0;
   std::optional<double> vdc_v;  // for tables without a voltage column
   std::string lines;            // "FIRST-LAST": keep rows from these file lines

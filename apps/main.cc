@@ -214,7 +214,11 @@ int main(int argc, char** argv) {
       ->check(CLI::IsMember({"auto", "canonical", "rcbenchmark", "mapped"}));
   validate_stand->add_option("--map", vst.column_map, "mapped tables: canonical=Header [unit], repeatable");
   validate_stand->add_flag("--drop-incomplete-rows", vst.drop_incomplete_rows,
-                           "mapped: drop rows with an empty mapped cell");
+                           "drop rows with an empty or text cell in a used column");
+  validate_stand->add_flag("--decimal-comma", vst.decimal_comma, "numbers are written with a decimal comma (1,5)");
+  validate_stand->add_option("--where", vst.where,
+                             "keep only rows whose column reads a value: Header=value (one propeller of a "
+                             "multi-propeller table)");
   validate_stand->add_option("--esc-min-us", vst.esc_min_us, "ESC pulse width at throttle 0, us");
   validate_stand->add_option("--esc-max-us", vst.esc_max_us, "ESC pulse width at throttle 1, us");
   validate_stand->add_option("--vdc", vst.vdc_v, "supply voltage, V, for tables without a voltage column");

@@ -24,8 +24,9 @@ at2814=(--format mapped --map throttle=Throttle --map vdc_v=Voltage --map idc_a=
         --map "torque_nm=Torque [N*m]" --map "thrust_n=Thrust [g]")
 scorpion=(--format mapped --map throttle=throttle --map vdc_v=voltage_V --map idc_a=current_A --map rpm=rpm
           --map torque_nm=torque_Nm)
-a4220=(--format mapped --drop-incomplete-rows --map throttle=Throttle --map vdc_v=Voltage --map idc_a=Current
-       --map rpm=RPM --map torque_nm=Torque --map "thrust_n=Thrust [kgf]")
+# A-4220: the ESC pulse width is the command (its "Throttle" column is not: 0.618 at 1236 us).
+a4220=(--format mapped --drop-incomplete-rows --map "throttle=ESC throttle (us) [us]" --map vdc_v=Voltage
+       --map idc_a=Current --map rpm=RPM --map torque_nm=Torque --map "thrust_n=Thrust [kgf]")
 
 # case SLUG LABEL CATALOG_DIR TABLE MOTOR PROP|- [extra args...]: writes $tmp/SLUG.json
 case_run() {
@@ -77,11 +78,11 @@ run_props() {  # CATALOG_DIR SUFFIX [extra validate-stand args...]
   suffix=$2
   local extra=("${@:3}")
   case_run "at3520_13x6.5_dc_p_131$2" "AT3520 550KV + APC 13x6.5 | dc_p_131 APC E 13.0x6.5 (DriveCalc law)" "$1" \
-    "$s/TMotor_AT3520_550kv.csv" sj_m_tmotor_at3520_550kv dc_p_131 "${tm[@]}" --lines 2-12 "${extra[@]}"
+    "$s/TMotor_AT3520_550kv.csv" sj_m_tmotor_at3520_550kv dc_p_131 "${tm[@]}" --where "prop=APC 13x6.5" "${extra[@]}"
   case_run "at3520_14x7_apc_per3_14x7e$2" "AT3520 550KV + APC 14x7 | apc_per3_14x7e APC 14x7E (PER3, computed)" "$1" \
-    "$s/TMotor_AT3520_550kv.csv" sj_m_tmotor_at3520_550kv apc_per3_14x7e "${tm[@]}" --lines 13-23 "${extra[@]}"
+    "$s/TMotor_AT3520_550kv.csv" sj_m_tmotor_at3520_550kv apc_per3_14x7e "${tm[@]}" --where "prop=APC 14x7" "${extra[@]}"
   case_run "at3520_14x7_dc_p_145$2" "AT3520 550KV + APC 14x7 | dc_p_145 APC E 14.0x7.0 (DriveCalc law)" "$1" \
-    "$s/TMotor_AT3520_550kv.csv" sj_m_tmotor_at3520_550kv dc_p_145 "${tm[@]}" --lines 13-23 "${extra[@]}"
+    "$s/TMotor_AT3520_550kv.csv" sj_m_tmotor_at3520_550kv dc_p_145 "${tm[@]}" --where "prop=APC 14x7" "${extra[@]}"
   case_run "at4125_15x8_apc_per3_15x8e$2" "AT4125 540KV + APC 15x8 | apc_per3_15x8e APC 15x8E (PER3, computed)" "$1" \
     "$s/TMotor_AT4125_540kv.csv" sj_m_tmotor_at4125_540kv apc_per3_15x8e "${tm[@]}" "${extra[@]}"
   case_run "at4125_15x8_dc_p_261$2" "AT4125 540KV + APC 15x8 | dc_p_261 APC E 15.0x8.0 (DriveCalc law)" "$1" \
@@ -177,8 +178,8 @@ for c in "${motor_cases[@]}"; do
 " $(better $c at_measured_rpm idc_a) | $(pair $c at_measured_rpm throttle) |"
 done
 echo
-echo "The A-4220 table's \`Throttle\` column is not the ESC command (sjkim's README: it differs from the"
-echo "spreadsheet; 0.618 at 1236 us), so its forward numbers say nothing about either model. Both models"
+echo "The A-4220 table's throttle is read from its ESC pulse width (1000-2000 us): its \`Throttle\` column is"
+echo "not the command (sjkim's README: it differs from the spreadsheet; 0.618 at 1236 us). Both models"
 echo "under-predict the Scorpion's current by about 24 %: at 40 % throttle the table draws 159 W for 64 W at"
 echo "the shaft (40 % efficient), losses that its catalog entry (label Kv, fitted R, assumed Io) does not"
 echo "hold: a speed-dependent no-load current and part-throttle ESC losses (model.md section 9)."

@@ -11,32 +11,35 @@ $p0 << EOD
 56.31 67.7931354 62.5020531
 67.99 82.7165544 75.9751924
 97.1 119.638559 108.972866
+101.2 126.754139 115.32685
 EOD
 $p1 << EOD
-2944 7461.61266 7594.25376
-3909 7755.2846 7964.34932
-4678 7918.46901 8210.32598
-5434 8025.89994 8413.28644
-6040 8082.8401 8559.3875
-6502 8058.35561 8617.69527
-6968 8044.87361 8687.00553
-7504 7964.78372 8721.55108
-7921 7884.38686 8739.12144
-8321 7600.93548 8711.52639
+2944 2539.77186 2672.41296
+3909 3442.6286 3651.69332
+4678 4120.70301 4412.55998
+5434 4759.65594 5147.04244
+6040 5266.8346 5743.382
+6502 5596.57121 6155.91087
+6968 5969.91281 6612.04473
+7504 6342.40232 7099.16968
+7921 6642.97505 7495.27194
+8321 6894.7279 7855.29159
 8999 6971.49626 8650.44528
+9204 6924.03635 8660.25246
 EOD
 $p2 << EOD
-2.95 6.89435248 6.76573227
-6.29 11.9312721 11.7928619
-10.48 17.8189908 17.6723499
-16.38 25.1626864 25.0076042
-22.75 32.4991056 32.3368306
-28.76 39.553652 39.3857455
-36.09 47.1461581 46.9720988
-46.5 57.9856966 57.8043342
-56.31 67.57331 67.4004272
-67.99 77.8034764 78.6332421
+2.95 2.6327948 2.58367769
+6.29 5.92078163 5.8520969
+10.48 10.344879 10.2597461
+16.38 16.5499548 16.4479544
+22.75 23.3059654 23.1895937
+28.76 30.0637181 29.9360967
+36.09 37.8973902 37.7574765
+46.5 49.3976887 49.2431871
+56.31 60.119872 59.9530729
+67.99 72.9849459 72.8054294
 97.1 102.017687 105.949549
+101.2 106.365157 110.473442
 EOD
 set terminal pngcairo size 1200,1200 font 'DejaVu Sans,11' noenhanced
 if (!exists('outfile')) outfile = 'stand_measured_vs_predicted.png'
@@ -48,23 +51,23 @@ set multiplot layout 2,2 title "A4220_540kv_stand_test.csv: A-4220 540KV + Castl
 set grid
 set key left top inside
 set size ratio -1
-set title "DC current at the measured rpm\nMAE dynosize 14.4 %, plain DC 7.56 %"
+set title "DC current at the measured rpm\nMAE dynosize 15.3 %, plain DC 8.09 %"
 set xlabel 'measured [A]'
 set ylabel 'predicted [A]'
-set xrange [0:125.62]
-set yrange [0:125.62]
+set xrange [0:133.092]
+set yrange [0:133.092]
 plot x with lines lc rgb 'black' title '1:1', 1.1*x with lines dt 2 lc rgb 'gray50' title '+-10 %', 0.9*x with lines dt 2 lc rgb 'gray50' notitle, $p0 using 1:2 with points pt 7 ps 1.2 lc rgb '#d95f0e' title 'dynosize', $p0 using 1:3 with points pt 5 ps 1.0 lc rgb '#1f3b99' title 'plain DC'
-set title "speed from the throttle\nMAE dynosize 43.6 %, plain DC 47.8 %"
+set title "speed from the throttle\nMAE dynosize 15.6 %, plain DC 5.69 %"
 set xlabel 'measured [rpm]'
 set ylabel 'predicted [rpm]'
-set xrange [0:9448.95]
-set yrange [0:9448.95]
+set xrange [0:9664.2]
+set yrange [0:9664.2]
 plot x with lines lc rgb 'black' title '1:1', 1.1*x with lines dt 2 lc rgb 'gray50' title '+-10 %', 0.9*x with lines dt 2 lc rgb 'gray50' notitle, $p1 using 1:2 with points pt 7 ps 1.2 lc rgb '#d95f0e' title 'dynosize', $p1 using 1:3 with points pt 5 ps 1.0 lc rgb '#1f3b99' title 'plain DC'
-set title "DC current from the throttle\nMAE dynosize 47.5 %, plain DC 46.9 %"
+set title "DC current from the throttle\nMAE dynosize 5.12 %, plain DC 5.86 %"
 set xlabel 'measured [A]'
 set ylabel 'predicted [A]'
-set xrange [0:111.247]
-set yrange [0:111.247]
+set xrange [0:115.997]
+set yrange [0:115.997]
 plot x with lines lc rgb 'black' title '1:1', 1.1*x with lines dt 2 lc rgb 'gray50' title '+-10 %', 0.9*x with lines dt 2 lc rgb 'gray50' notitle, $p2 using 1:2 with points pt 7 ps 1.2 lc rgb '#d95f0e' title 'dynosize', $p2 using 1:3 with points pt 5 ps 1.0 lc rgb '#1f3b99' title 'plain DC'
 unset multiplot
 
