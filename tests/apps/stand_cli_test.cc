@@ -250,6 +250,25 @@ TEST_F(StandCli, ValidateStandBadInput) {
   EXPECT_EQ(ParseJsonText(ok.out, "stdout")["rows_used"].get<int>(), 2);
 }
 
+// One propeller's block of a table that holds several (sjkim's AT3520 table): --where or --lines.
+TEST_F(StandCli, ValidateStandSelectsRowsByColumnOrLines) {
+  std::ofstream(dir_ / "two.csv") << "prop,vdc_v,rpm,idc_a\nA,12,3000,1\nA,12,4000,2\nB,12,3000,1.5\n"
+                                     "B,12,4000,2.5\nB,12,5000,4\n";
+  const std::string base = "validate-stand --catalog " + (dir_ / "cat").string() + " --motor m --esc e --prop p " +
+                           (dir_ / "two.csv").string() +
+                           " --format mapped --map vdc_v=vdc_v --map rpm=rpm --map idc_a=idc_a --json";
+  const CliRun w = RunCli(base + " --where prop=B");
+  ASSERT_EQ(w.code, 0) << w.err;
+  const Json jw = ParseJsonText(w.out, "stdout");
+  EXPECT_EQ(jw["rows_used"].get<int>(), 3);
+  EXPECT_EQ(jw["rows"][0]["line"].get<int>(), 4);
+  const CliRun l = RunCli(base + " --lines 2-3");
+  ASSERT_EQ(l.code, 0) << l.err;
+  const Json jl = ParseJsonText(l.out, "stdout");
+  EXPECT_EQ(jl["rows_used"].get<int>(), 2);
+  EXPECT_EQ(jl["dropped"]["outside the line range"].get<int>(), 3);
+}
+
 // A real table: T-Motor AT4125 with APC 15x8 (sjkim), the catalog's APC 15x8E (PER3).
 TEST(StandCliReal, At4125WithApc15x8) {
   const std::string table = std::string(DYNOSIZE_SHARED_DIR) + "/data/sjkim_mfr_motor_tables/TMotor_AT4125_540kv.csv";
