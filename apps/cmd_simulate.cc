@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <iomanip>
 #include <iostream>
+#include <map>
 #include <sstream>
 
 #include "catalog/catalog.h"
@@ -16,6 +17,9 @@
 #include "model/sweep.h"
 #include "report/drive_figures.h"
 #include "report/point_json.h"
+#include "report/stand_figures.h"
+#include "stand/prop_point.h"
+#include "stand/throttle_table.h"
 
 namespace dynosize::cli {
 
@@ -47,7 +51,8 @@ std::string Assumed(const EntryBase& e) {
   return s;
 }
 
-void PrintPoint(const std::string& title, const OperatingPoint& p) {
+void PrintPoint(const std::string& title, const OperatingPoint& p, const std::string& extra = "",
+                const std::vector<std::string>& extra_limits = {}) {
   // Numerical guard: the same finiteness check as the JSON output (report/point_json.h); a
   // non-finite result of in-range inputs is a bug (InternalError, exit 70), never printed.
   (void)PointToJson(p);
@@ -70,10 +75,13 @@ void PrintPoint(const std::string& title, const OperatingPoint& p) {
   o << "  PESC (loss)    " << std::setw(10) << p.pesc_w << " W\n";
   o << "  efficiency     motor " << 100 * p.eta_motor << " %, ESC " << 100 * p.eta_esc
     << " %, system " << 100 * p.eta_system << " %\n";
-  o << "  feasible       " << (p.feasible() ? "yes" : "NO");
-  if (!p.feasible()) {
+  o << extra;
+  const bool feasible = p.feasible() && extra_limits.empty();
+  o << "  feasible       " << (feasible ? "yes" : "NO");
+  if (!feasible) {
     o << " (";
-    const auto names = LimitNames(p.limits);
+    auto names = LimitNames(p.limits);
+    names.insert(names.end(), extra_limits.begin(), extra_limits.end());
     for (std::size_t i = 0; i < names.size(); ++i) o << (i ? ", " : "") << names[i];
     o << ")";
   }
@@ -119,9 +127,266 @@ Json SweepJson(const Drive& d, double vdc_v) {
   return rows;
 }
 
+
+// "motor m: rm_ohm, io_a; ESC e: c1; propeller p: mass_kg" (only the parts with assumed keys).
+std::string AssumedNote(const MotorEntry& motor, const EscEntry& esc, const PropEntry* prop) {
+  std::string assumed;
+  const auto add = [&](const char* what, const EntryBase& e) {
+    if (e.assumed_keys.empty()) return;
+    assumed += (assumed.empty() ? "" : "; ") + std::string(what) + " " + e.id + ": " + Assumed(e);
+  };
+  add("motor", motor);
+  add("ESC", esc);
+  if (prop) add("propeller", *prop);
+  return assumed;
+}
+
+// The point JSON of simulate plus the propeller's outputs.
+Json PropPointJson(const PropPoint& pp) {
+  Json j = PointToJson(pp.drive);
+  j["thrust_n"] = pp.thrust_n;
+  j["g_per_w"] = pp.g_per_w;
+  j["figure_of_merit"] = pp.figure_of_merit;
+  if (pp.figure_of_merit > 1.0) {
+    // Momentum theory is a limit like the drive's (model.md section 10): not feasible.
+    j["feasible"] = false;
+    j["limits"].push_back("beats_momentum_theory");
+  }
+  j["prop_in_data"] = pp.prop.InData();
+  if (!pp.prop.InData()) j["prop_note"] = pp.prop.Message();
+  j["converged"] = pp.converged;
+  if (!pp.converged) j["message"] = pp.note;
+  CheckJsonFinite(j, "operating point");
+  return j;
+}
+
+std::string PropLines(const PropPoint& pp, const PropEntry& prop, double rho_kg_m3) {
+  std::ostringstream o;
+  o << std::fixed << "  propeller      " << prop.name << " (" << prop.id << "), D = " << std::setprecision(4)
+    << prop.diameter_m << " m, rho = " << std::setprecision(3) << rho_kg_m3 << " kg/m^3, static\n";
+  o << std::setprecision(2) << "  thrust         " << std::setw(10) << pp.thrust_n << " N  ("
+    << std::setprecision(0) << pp.thrust_n / kNewtonPerGramForce << " gf)\n";
+  o << std::setprecision(2) << "  g/W            " << std::setw(10) << pp.g_per_w
+    << " gf per DC watt\n";
+  o << std::setprecision(3) << "  figure of merit" << std::setw(10) << pp.figure_of_merit
+    << " (momentum theory: < 1; measured small props <= 0.75)\n";
+  return o.str();
+}
+
+Json PropTableJson(const std::vector<ThrottleTableRow>& rows) {
+  Json out = Json::array();
+  for (const auto& r : rows) {
+    PropPoint pp;
+    pp.drive = r.point.drive;
+    pp.prop = r.point.prop;
+    pp.converged = r.point.converged;
+    pp.note = r.point.message;
+    pp.thrust_n = r.thrust_n;
+    pp.g_per_w = r.g_per_w;
+    pp.figure_of_merit = r.figure_of_merit;
+    out.push_back(PropPointJson(pp));
+  }
+  return out;
+}
+
+// The manufacturer-style table; returns the notes (propeller data at an edge, no convergence).
+std::vector<std::string> PrintPropTable(const std::string& title, double vdc_v, double rho_kg_m3,
+                                        const std::vector<ThrottleTableRow>& rows) {
+  (void)PropTableJson(rows);  // numerical guard, as PrintPoint
+  std::vector<std::string> notes;
+  std::ostringstream o;
+  o << std::fixed << title << " at VDC = " << std::setprecision(2) << vdc_v << " V, rho = "
+    << std::setprecision(3) << rho_kg_m3 << " kg/m^3, static\n";
+  o << "  TR %     rpm  thrust N  thrust gf    IDC A    PDC W  Pmech W    g/W  eta_sys %     FM  limits\n";
+  for (const auto& r : rows) {
+    const OperatingPoint& p = r.point.drive;
+    std::string flags;
+    for (const auto& n : LimitNames(p.limits)) flags += (flags.empty() ? "" : ",") + n;
+    if (p.saturated) flags += (flags.empty() ? "" : ",") + std::string("esc_saturated");
+    if (r.figure_of_merit > 1.0) flags += (flags.empty() ? "" : ",") + std::string("beats_momentum_theory");
+    if (!r.point.converged || !r.point.prop.InData()) {
+      flags += (flags.empty() ? "" : ",") + std::string(r.point.converged ? "prop_data_edge" : "not_converged");
+      std::ostringstream n;
+      n << std::fixed << "TR " << std::setprecision(0) << 100 * r.throttle << " %: "
+        << (r.point.converged ? "propeller data held at an edge: " + r.point.prop.Message() : r.point.message);
+      notes.push_back(n.str());
+    }
+    o << std::setprecision(0) << std::setw(6) << 100 * r.throttle << std::setw(8) << p.rpm
+      << std::setprecision(2) << std::setw(10) << r.thrust_n << std::setprecision(0) << std::setw(11)
+      << r.thrust_n / kNewtonPerGramForce << std::setprecision(2) << std::setw(9) << p.idc_a
+      << std::setprecision(1) << std::setw(9) << p.pdc_w << std::setw(9) << p.pmech_w
+      << std::setprecision(2) << std::setw(7) << r.g_per_w << std::setprecision(1) << std::setw(11)
+      << 100 * p.eta_system << std::setprecision(3) << std::setw(7) << r.figure_of_merit << "  "
+      << (flags.empty() ? "-" : flags) << "\n";
+  }
+  std::cout << o.str();
+  return notes;
+}
+
+
+// A batch row that names a propeller: an unknown id or an unreachable thrust is bad data in the
+// file (exit 65, file:line), not a command-line error.
+PropPoint BatchPropPoint(const Catalog& catalog, const Drive& drive, const std::string& file,
+                         const PointRequest& r, std::map<std::string, PropModel>* props) {
+  const std::string where = file + ":" + std::to_string(r.row) + ": ";
+  try {
+    auto it = props->find(r.prop);
+    if (it == props->end()) it = props->emplace(r.prop, PropModel(catalog.prop(r.prop))).first;
+    PropPointRequest q;
+    q.vdc_v = r.vdc_v;
+    q.throttle = r.throttle;
+    q.rpm = r.rpm;
+    q.thrust_n = r.thrust_n;
+    PropPoint pp = SolvePropPoint(drive, it->second, q);
+    (void)PropPointJson(pp);  // numerical guard
+    return pp;
+  } catch (const UsageError& e) {
+    throw DataError(where + e.what());
+  }
+}
+
+// simulate --batch: one output row per input row (rows may name a propeller).
+void RunBatch(const SimulateOptions& o, const Catalog& catalog, const Drive& drive) {
+  const auto requests = ReadPointsCsv(o.batch_csv);
+  bool with_prop = false;
+  for (const auto& r : requests) with_prop = with_prop || !r.prop.empty();
+  std::ostringstream csv;
+  const auto& cols = PointCsvColumns();
+  for (std::size_t i = 0; i < cols.size(); ++i) csv << (i ? "," : "") << cols[i];
+  csv << (with_prop ? ",prop,thrust_n,g_per_w\n" : "\n");
+  std::size_t infeasible = 0;
+  std::map<std::string, PropModel> props;  // built once per propeller id
+  for (const auto& r : requests) {
+    if (r.prop.empty()) {
+      const OperatingPoint p = Solve(drive, r, {});
+      if (!p.feasible()) ++infeasible;
+      csv << PointToCsvRow(p) << (with_prop ? ",,,\n" : "\n");
+      continue;
+    }
+    const PropPoint pp = BatchPropPoint(catalog, drive, o.batch_csv, r, &props);
+    const Json j = PropPointJson(pp);
+    if (!j["feasible"].get<bool>()) ++infeasible;
+    std::ostringstream extra;
+    extra.precision(10);
+    extra << "," << r.prop << "," << pp.thrust_n << "," << pp.g_per_w;
+    std::string row = PointToCsvRow(pp.drive);
+    if (pp.figure_of_merit > 1.0) {
+      // The last two columns are feasible and limits (report/point_json.h): as the JSON says.
+      std::string limits;
+      for (const auto& n : j["limits"]) limits += (limits.empty() ? "" : ";") + n.get<std::string>();
+      row = row.substr(0, row.rfind(',', row.rfind(',') - 1)) + ",0," + limits;
+    }
+    csv << row << extra.str() << "\n";
+  }
+  if (o.out_csv.empty()) {
+    std::cout << csv.str();
+  } else {
+    WriteFileAtomic(o.out_csv, csv.str());
+    std::cerr << "wrote " << requests.size() << " points to " << o.out_csv << " ("
+              << infeasible << " infeasible)\n";
+  }
+}
+
+// simulate --prop: a point (--throttle, --rpm or --thrust-n) or the table over throttle.
+int RunSimulateProp(const SimulateOptions& o) {
+  if (o.prop_id.empty()) throw UsageError("--thrust-n needs --prop (the propeller that gives the thrust)");
+  if (!o.batch_csv.empty()) {
+    throw UsageError("--prop does not go with --batch: name the propeller per row in a 'prop' column");
+  }
+  if (o.torque_nm || !o.torque_law.empty()) {
+    throw UsageError("--prop is the load: do not combine it with --torque or --torque-law");
+  }
+  if (!o.out_csv.empty()) throw UsageError("--out goes with --batch");
+  if (!o.vdc_v) throw UsageError("--vdc is required (supply voltage, V)");
+  PropPointRequest req;
+  req.vdc_v = *o.vdc_v;
+  req.throttle = o.throttle;
+  req.rpm = o.rpm;
+  req.thrust_n = o.thrust_n;
+  req.rho_kg_m3 = o.rho_kg_m3;
+  const bool point_mode = o.throttle || o.rpm || o.thrust_n;
+  {
+    PropPointRequest check = req;
+    if (!point_mode) check.throttle = 0.5;  // the table: only VDC and rho to check
+    if (const std::string rule = CheckPropPointRequest(check); !rule.empty()) {
+      throw UsageError("--prop: " + rule + " (flags --throttle, --rpm, --thrust-n, --vdc, --rho-kg-m3)");
+    }
+  }
+  const Catalog catalog = Catalog::Load(o.catalog_dir);
+  const MotorEntry& motor = catalog.motor(o.motor_id);
+  const EscEntry& esc = catalog.esc(o.esc_id);
+  const PropEntry& prop_entry = catalog.prop(o.prop_id);
+  const Drive drive(motor.params, esc.params);
+  const PropModel prop(prop_entry);
+  const std::string title = motor.name + " + " + esc.name + " + " + prop_entry.name;
+  const std::string assumed = AssumedNote(motor, esc, &prop_entry);
+  std::vector<std::string> notes;
+  if (point_mode) {
+    const PropPoint pp = SolvePropPoint(drive, prop, req);
+    if (o.json) {
+      Json j = PropPointJson(pp);
+      j["motor"] = motor.id;
+      j["esc"] = esc.id;
+      j["prop"] = prop_entry.id;
+      j["rho_kg_m3"] = o.rho_kg_m3;
+      if (!assumed.empty()) j["assumed"] = assumed;
+      std::cout << DumpJson(j);
+    } else {
+      PrintPoint(title, pp.drive, PropLines(pp, prop_entry, o.rho_kg_m3),
+                 pp.figure_of_merit > 1.0 ? std::vector<std::string>{"beats_momentum_theory"}
+                                          : std::vector<std::string>{});
+      if (pp.figure_of_merit > 1.0) {
+        std::ostringstream w;
+        w << "figure of merit " << pp.figure_of_merit
+          << " > 1: the propeller data beat momentum theory here (model.md section 10)";
+        notes.push_back(w.str());
+      }
+      if (!pp.converged) {
+        notes.push_back(pp.note);
+      } else if (!pp.prop.InData()) {
+        notes.push_back("propeller data held at an edge: " + pp.prop.Message());
+      } else if (!pp.note.empty()) {
+        notes.push_back(pp.note);
+      }
+    }
+  } else {
+    const auto rows = PropThrottleTable(drive, prop, req.vdc_v, o.rho_kg_m3);
+    std::string figure;
+    if (!o.plot_dir.empty()) {
+      figure = WriteThrottleTableFigure(rows, title + " at VDC = " + FlagValue(req.vdc_v) + " V", o.plot_dir);
+    }
+    if (o.json) {
+      Json j;
+      j["motor"] = motor.id;
+      j["esc"] = esc.id;
+      j["prop"] = prop_entry.id;
+      j["vdc_v"] = req.vdc_v;
+      j["rho_kg_m3"] = o.rho_kg_m3;
+      j["throttles"] = PropTableJson(rows);
+      j["figures"] = figure.empty() ? Json::array() : Json::array({figure});
+      if (!assumed.empty()) j["assumed"] = assumed;
+      std::cout << DumpJson(j);
+    } else {
+      notes = PrintPropTable(title, req.vdc_v, o.rho_kg_m3, rows);
+      if (!figure.empty()) std::cerr << "wrote " << figure << "\n";
+    }
+  }
+  if (!o.json) {
+    for (const auto& n : notes) std::cerr << "note: " << n << "\n";
+    if (!assumed.empty()) std::cerr << "note: results rest on assumed catalog values (" << assumed << ")\n";
+  }
+  return 0;
+}
+
 }  // namespace
 
 int RunSimulate(const SimulateOptions& o) {
+  if (!o.prop_id.empty() || o.thrust_n) {
+    if (!o.batch_csv.empty() && o.prop_id.empty()) {
+      throw UsageError("--thrust-n does not go with --batch: use a thrust_n column");
+    }
+    return RunSimulateProp(o);
+  }
   // Check the command line before reading anything.
   const bool point_mode = o.throttle || o.torque_nm || o.rpm || !o.torque_law.empty();
   if (!o.batch_csv.empty() && (point_mode || o.vdc_v)) {
@@ -203,24 +468,7 @@ int RunSimulate(const SimulateOptions& o) {
   }
 
   if (!o.batch_csv.empty()) {
-    const auto requests = ReadPointsCsv(o.batch_csv);
-    std::ostringstream csv;
-    const auto& cols = PointCsvColumns();
-    for (std::size_t i = 0; i < cols.size(); ++i) csv << (i ? "," : "") << cols[i];
-    csv << "\n";
-    std::size_t infeasible = 0;
-    for (const auto& r : requests) {
-      const OperatingPoint p = Solve(drive, r, {});
-      if (!p.feasible()) ++infeasible;
-      csv << PointToCsvRow(p) << "\n";
-    }
-    if (o.out_csv.empty()) {
-      std::cout << csv.str();
-    } else {
-      WriteFileAtomic(o.out_csv, csv.str());
-      std::cerr << "wrote " << requests.size() << " points to " << o.out_csv << " ("
-                << infeasible << " infeasible)\n";
-    }
+    RunBatch(o, catalog, drive);
     note_assumed();
     return 0;
   }
@@ -252,6 +500,20 @@ int RunSimulate(const SimulateOptions& o) {
     std::cout << DumpJson(j);
   } else {
     PrintSweep(title, drive, req.vdc_v);
+  }
+  // The table has no feasibility column: say it when its points create energy (model.md
+  // section 10; the JSON carries the limit per point).
+  if (!o.json) {
+    int bad = 0, rows = 0;
+    for (const auto& r : SummarizeThrottles(drive, req.vdc_v)) {
+      ++rows;
+      bad += (r.at_max_efficiency.limits & kLimitCreatesEnergy) ? 1 : 0;
+    }
+    if (bad) {
+      std::cerr << "warning: the best-efficiency point creates energy (PESC < 0 or eta_motor > 1, limit "
+                   "creates_energy) at " << bad << " of " << rows
+                << " throttles: these motor/ESC constants break model.md section 10\n";
+    }
   }
   note_assumed();
   return 0;

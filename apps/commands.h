@@ -20,8 +20,35 @@ struct SimulateOptions {
   std::vector<double> torque_law;  // a, b, c of Q = a + b*omega + c*omega^2 (SI)
   std::string batch_csv, out_csv, plot_dir;
   bool json = false;
+  // A catalog propeller as the load (issue 13): with --throttle (forward), --rpm or --thrust-n
+  // (the throttle solved), or alone (the manufacturer-style table over throttle).
+  std::string prop_id;
+  std::optional<double> thrust_n;
+  double rho_kg_m3 = 1.225;
 };
 int RunSimulate(const SimulateOptions& o);
+
+// `dynosize validate-stand TABLE --motor M --esc E [--prop P]`: a measured stand table predicted
+// row by row, dynosize against the plain first-order DC model (src/stand/stand.h).
+struct ValidateStandOptions {
+  std::string catalog_dir;
+  std::string table;
+  std::string motor_id, esc_id, prop_id;
+  std::string format = "auto";
+  std::vector<std::string> column_map;
+  bool drop_incomplete_rows = false;
+  bool decimal_comma = false;      // as in CalibrateOptions
+  std::vector<std::string> where;  // as in CalibrateOptions
+  double esc_min_us = 1000.0, esc_max_us = 2000.0;
+  std::optional<double> vdc_v;  // for tables without a voltage column
+  std::string lines;            // "FIRST-LAST": keep rows from these file lines
+  double rho_kg_m3 = 1.225;
+  std::string baseline = "as-stored";  // the DC model's numbers: as-stored | dc-equivalent
+  bool json = false;
+  bool rows = false;            // text: also print every row
+  std::string plot_dir;
+};
+int RunValidateStand(const ValidateStandOptions& o);
 
 struct CatalogListOptions {
   std::string catalog_dir;

@@ -64,6 +64,11 @@ int main(int argc, char** argv) {
                        "CSV of points (header: vdc_v,throttle,torque_nm,rpm; two of the last three per row)");
   simulate->add_option("--out", sim.out_csv, "with --batch: write the results CSV here (default stdout)");
   simulate->add_option("--plot", sim.plot_dir, "write the pair's figures (PNG + gnuplot script) into this folder");
+  simulate->add_option("--prop", sim.prop_id,
+                       "catalog propeller as the load: with --throttle (forward), --rpm or --thrust-n "
+                       "(throttle solved), or alone (the table over throttle: thrust, current, rpm, g/W)");
+  simulate->add_option("--thrust-n", sim.thrust_n, "with --prop: the static thrust to hold, N");
+  simulate->add_option("--rho-kg-m3", sim.rho_kg_m3, "with --prop: air density, kg/m^3 (default 1.225)");
   simulate->add_flag("--json", sim.json, "print one JSON object");
   simulate->callback([&] {
     sim.catalog_dir = catalog_dir;
@@ -193,13 +198,47 @@ int main(int argc, char** argv) {
   optimize->add_option("--plot", optim.plot_dir,
                        "write the Pareto front and the top pick's efficiency maps here");
 
+  // validate-stand (issue 13 item 6)
+  cli::ValidateStandOptions vst;
+  auto* validate_stand = app.add_subcommand(
+      "validate-stand",
+      "predict a measured stand table (thrust, current, rpm, torque) row by row from catalog "
+      "entries, dynosize beside the plain first-order DC model");
+  validate_stand->add_option("table", vst.table, "stand table (canonical, RCbenchmark/Tyto or mapped CSV)")->required();
+  validate_stand->add_option("--motor", vst.motor_id, "motor id from the catalog")->required();
+  validate_stand->add_option("--esc", vst.esc_id, "ESC id from the catalog")->required();
+  validate_stand->add_option("--prop", vst.prop_id,
+                             "propeller id from the catalog (the table's propeller); without it the "
+                             "measured torque is the load");
+  validate_stand->add_option("--format", vst.format, "table format")
+      ->check(CLI::IsMember({"auto", "canonical", "rcbenchmark", "mapped"}));
+  validate_stand->add_option("--map", vst.column_map, "mapped tables: canonical=Header [unit], repeatable");
+  validate_stand->add_flag("--drop-incomplete-rows", vst.drop_incomplete_rows,
+                           "drop rows with an empty or text cell in a used column");
+  validate_stand->add_flag("--decimal-comma", vst.decimal_comma, "numbers are written with a decimal comma (1,5)");
+  validate_stand->add_option("--where", vst.where,
+                             "keep only rows whose column reads a value: Header=value (one propeller of a "
+                             "multi-propeller table)");
+  validate_stand->add_option("--esc-min-us", vst.esc_min_us, "ESC pulse width at throttle 0, us");
+  validate_stand->add_option("--esc-max-us", vst.esc_max_us, "ESC pulse width at throttle 1, us");
+  validate_stand->add_option("--vdc", vst.vdc_v, "supply voltage, V, for tables without a voltage column");
+  validate_stand->add_option("--lines", vst.lines, "FIRST-LAST: only rows from these lines of the file");
+  validate_stand->add_option("--rho-kg-m3", vst.rho_kg_m3, "air density, kg/m^3 (default 1.225)");
+  validate_stand->add_option("--baseline", vst.baseline,
+                             "the plain DC model's R and Io: as-stored (rm_ohm + resc_ohm, io_a) or "
+                             "dc-equivalent ((Rm + RESC)/0.7492, 1.1095*io_a: the rms numbers' DC equivalents)")
+      ->check(CLI::IsMember({"as-stored", "dc-equivalent"}));
+  validate_stand->add_flag("--rows", vst.rows, "also print every row's measured and predicted values");
+  validate_stand->add_flag("--json", vst.json, "print one JSON object");
+  validate_stand->add_option("--plot", vst.plot_dir, "write the measured-vs-predicted figure here");
+
   if (argc > 1 && argv[1][0] != '-') {
     const std::string first = argv[1];
     if (first != "simulate" && first != "catalog" && first != "calibrate" && first != "diagnose" &&
-        first != "evaluate" && first != "optimize") {
+        first != "evaluate" && first != "optimize" && first != "validate-stand") {
       return Fail(ExitCode::kUsage, "unknown subcommand '" + first +
                                         "': valid are simulate, calibrate, diagnose, catalog, evaluate, "
-                                        "optimize (see 'dynosize --help')");
+                                        "optimize, validate-stand (see 'dynosize --help')");
     }
   }
   try {
@@ -242,6 +281,10 @@ int main(int argc, char** argv) {
     if (*optimize) {
       optim.catalog_dir = dir;
       return cli::RunOptimize(optim);
+    }
+    if (*validate_stand) {
+      vst.catalog_dir = dir;
+      return cli::RunValidateStand(vst);
     }
     if (*list_cmd) {
       list.catalog_dir = dir;

@@ -50,6 +50,19 @@ std::string CheckPointRequest(const PointRequest& r) {
   if (r.rpm && !(*r.rpm >= 0.0 && *r.rpm <= kMaxRequestRpm)) {
     return "rpm = " + value(*r.rpm) + ": must be >= 0 and <= " + value(kMaxRequestRpm);
   }
+  if (!r.prop.empty()) {
+    if (r.torque_nm) return "a row with a prop takes its load from the propeller: leave torque_nm empty";
+    const int given = (r.throttle ? 1 : 0) + (r.rpm ? 1 : 0) + (r.thrust_n ? 1 : 0);
+    if (given != 1) {
+      return "a row with a prop gives exactly one of throttle (forward), rpm or thrust_n (the "
+             "throttle solved)";
+    }
+    if (r.thrust_n && !(*r.thrust_n > 0.0 && *r.thrust_n <= kMaxRequestThrustN)) {
+      return "thrust_n = " + value(*r.thrust_n) + ": must be > 0 N and <= " + value(kMaxRequestThrustN) + " N";
+    }
+    return "";
+  }
+  if (r.thrust_n) return "thrust_n needs a prop (a catalog propeller id) in the row";
   const int given = (r.throttle ? 1 : 0) + (r.torque_nm ? 1 : 0) + (r.rpm ? 1 : 0);
   if (given != 2) {
     return "give exactly two of throttle, torque_nm, rpm (throttle+torque_nm or throttle+rpm: "
@@ -79,18 +92,20 @@ std::vector<PointRequest> ReadPointsCsv(const std::string& path) {
     if (!Trim(line).empty()) header = SplitComma(line);
   }
   if (header.empty()) throw DataError(path + ": empty file: expected a header line");
-  enum Col { kVdc, kThrottle, kTorque, kRpm };
+  enum Col { kVdc, kThrottle, kTorque, kRpm, kProp, kThrust };
   std::vector<Col> cols;
-  bool seen[4] = {false, false, false, false};
+  bool seen[6] = {false, false, false, false, false, false};
   for (const auto& h : header) {
     Col c;
     if (h == "vdc_v") c = kVdc;
     else if (h == "throttle") c = kThrottle;
     else if (h == "torque_nm") c = kTorque;
     else if (h == "rpm") c = kRpm;
+    else if (h == "prop") c = kProp;
+    else if (h == "thrust_n") c = kThrust;
     else {
       throw DataError(path + ":" + std::to_string(line_no) + ": unknown column " +
-                      logs::QuoteCell(h) + ": allowed are vdc_v, throttle, torque_nm, rpm");
+                      logs::QuoteCell(h) + ": allowed are vdc_v, throttle, torque_nm, rpm, prop, thrust_n");
     }
     if (seen[c]) throw DataError(path + ":" + std::to_string(line_no) + ": duplicate column \"" + h + "\"");
     seen[c] = true;
@@ -114,6 +129,10 @@ std::vector<PointRequest> ReadPointsCsv(const std::string& path) {
         if (cols[i] == kVdc) throw DataError(where + ": column vdc_v is empty: a value is required");
         continue;
       }
+      if (cols[i] == kProp) {
+        r.prop = cells[i];  // an id; the catalog lookup names the closest ids when unknown
+        continue;
+      }
       double v = 0.0;
       const char* b = cells[i].data();
       const char* e = b + cells[i].size();
@@ -127,6 +146,8 @@ std::vector<PointRequest> ReadPointsCsv(const std::string& path) {
         case kThrottle: r.throttle = v; break;
         case kTorque: r.torque_nm = v; break;
         case kRpm: r.rpm = v; break;
+        case kThrust: r.thrust_n = v; break;
+        case kProp: break;
       }
     }
     const std::string rule = CheckPointRequest(r);

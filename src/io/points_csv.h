@@ -1,8 +1,11 @@
 // The point list read by `dynosize simulate --batch FILE` (UTF-8, LF, CRLF or CR line ends): a
 // CSV with a header naming some of
-// vdc_v, throttle, torque_nm, rpm (any order; other columns are refused). Each row gives vdc_v and
-// exactly two of throttle, torque_nm, rpm (empty cells are absent): throttle + torque_nm or
-// throttle + rpm for the forward model, torque_nm + rpm for the inverse.
+// vdc_v, throttle, torque_nm, rpm, prop, thrust_n (any order; other columns are refused). Each row
+// gives vdc_v and (empty cells are absent)
+//  - without a prop: exactly two of throttle, torque_nm, rpm: throttle + torque_nm or
+//    throttle + rpm for the forward model, torque_nm + rpm for the inverse;
+//  - with a prop (a catalog propeller id, whose torque law is the load): exactly one of
+//    throttle (forward), rpm or thrust_n (the throttle solved), and no torque_nm.
 #pragma once
 
 #include <optional>
@@ -17,6 +20,8 @@ struct PointRequest {
   std::optional<double> throttle;
   std::optional<double> torque_nm;
   std::optional<double> rpm;
+  std::string prop;                  // catalog propeller id; "" = none
+  std::optional<double> thrust_n;    // only with a prop
 };
 
 // Upper bounds of requested values (README "What dynosize promises about bad input"): far
@@ -26,6 +31,7 @@ inline constexpr double kMaxRequestVdcV = 1e5;       // 100 kV
 inline constexpr double kMaxRequestTorqueNm = 1e6;   // N*m
 inline constexpr double kMaxRequestRpm = 1e7;        // rpm
 inline constexpr double kMaxTorqueLawCoefficient = 1e6;  // |A|, |B|, |C| of the torque law, SI
+inline constexpr double kMaxRequestThrustN = 1e6;    // N
 
 // Throws NoInputError / DataError naming file:line, column, value and rule.
 std::vector<PointRequest> ReadPointsCsv(const std::string& path);

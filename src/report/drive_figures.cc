@@ -51,6 +51,19 @@ DataBlock ThrottleLines(const Drive& d, const DriveFigureOptions& o, const std::
   return b;
 }
 
+// The largest finite value of the given columns over all series (0 when none).
+double MaxFinite(const DataBlock& b, const std::vector<std::size_t>& columns) {
+  double m = 0.0;
+  for (const auto& series : b.series) {
+    for (std::size_t c : columns) {
+      for (double v : series[c]) {
+        if (std::isfinite(v)) m = std::max(m, v);
+      }
+    }
+  }
+  return m;
+}
+
 // "plot for [k=0:N-1] $x index k using ... title sprintf('%d %%', 10*(k+1))".
 std::string ForEachThrottle(const DriveFigureOptions& o, const std::string& block,
                             const std::string& using_clause) {
@@ -69,6 +82,68 @@ std::string Title(const DriveFigureOptions& o, const std::string& what) {
     if (c == '"') q += "\\\""; else q += c;
   }
   return "\"" + q + "\"";
+}
+
+// System efficiency map over torque and speed (inverse model), with the per-throttle
+// maximum-efficiency points (analogue of eq 14) and the full-throttle line; returns the PNG path.
+std::string EfficiencyMapFigure(const Drive& d, const DriveFigureOptions& o, const std::string& dir) {
+  const double w_max = d.NoLoadSpeed(o.vdc_v, 1.0);
+  const double q_max = MaxTorque(d, o.vdc_v, 1.0, o.current_limit_a);
+  DataBlock map;
+  map.name = "map";
+  map.grid = true;
+  const int n = 120;
+  for (int i = 0; i <= n; ++i) {
+    const double w = w_max * i / n;
+    std::vector<double> rpm, q, eta;
+    for (int j = 0; j <= n; ++j) {
+      const double torque = q_max * j / n;
+      const OperatingPoint p = d.Inverse(o.vdc_v, torque, w);
+      const bool ok = p.throttle >= 0.0 && p.throttle <= 1.0 && p.irms_a <= o.current_limit_a;
+      rpm.push_back(p.rpm);
+      q.push_back(torque);
+      eta.push_back(ok ? 100 * p.eta_system : kNaN);
+    }
+    map.series.push_back({rpm, q, eta});
+  }
+  // Not clipped at 100 % (as figure 4).
+  const double map_max = MaxFinite(map, {2});
+  const bool map_above = map_max > 100.0;
+  DataBlock best;
+  best.name = "best";
+  std::vector<double> br, bq;
+  for (const auto& row : SummarizeThrottles(d, o.vdc_v, o.throttle_steps)) {
+    if (row.at_max_efficiency.irms_a > o.current_limit_a) continue;
+    br.push_back(row.max_efficiency_rpm);
+    bq.push_back(row.at_max_efficiency.torque_nm);
+  }
+  best.series.push_back({br, bq});
+  const DataBlock full = ThrottleLines(d, o, "unused", 2, [](const OperatingPoint& p) {
+    return std::vector<double>{p.rpm, p.torque_nm};
+  });
+  DataBlock top;
+  top.name = "full";
+  top.series.push_back(full.series.back());
+  std::ostringstream s;
+  s << "set title " << Title(o, "system efficiency Pmech/PDC [%] over torque and speed (inverse model)") << "\n"
+    << "set xlabel 'speed [rpm]'\nset ylabel 'torque [N m]'\nset view map\n"
+    << "set palette defined (0 '#2b083b', 0.35 '#3b528b', 0.6 '#21918c', 0.8 '#5ec962', 1 '#fde725')\n"
+    << "set cbrange [0:" << (map_above ? Fmt(map_max, 4) : "100") << "]\n"
+    << "set cblabel 'eta system [%]" << (map_above ? " (above 100: creates energy)" : "") << "'\n"
+    << "set key outside bottom center horizontal\n"
+    << "set contour base\nset cntrparam levels discrete 40,60,70,80,85,90"
+    << (map_above ? ",100" : "") << "\nset cntrlabel onecolor\n"
+    << "set xrange [0:" << RadPerSecToRpm(w_max) << "]\nset yrange [0:" << q_max << "]\n"
+    << "unset surface\nset table $contours\nsplot $map using 1:2:3 with lines\nunset table\n"
+    << "unset contour\nset surface\n"
+    << "plot $map using 1:2:3 with image notitle, "
+    << "$contours using 1:2 with lines lc rgb 'white' lw 1 title 'contours 40/60/70/80/85/90"
+    << (map_above ? "/100" : "") << " %', "
+    << "$full using 1:2 with lines lw 2 lc rgb 'black' title 'full throttle', "
+    << "$best using 1:2 with linespoints pt 7 ps 1 lc rgb 'red' title 'max efficiency per throttle (eq 14 analogue)'\n";
+  const std::string path = dir + "/efficiency_map.png";
+  RenderPng(path, {map, best, top}, s.str(), 1000, 800);
+  return path;
 }
 
 }  // namespace
@@ -152,10 +227,17 @@ std::vector<std::string> WriteDriveFigures(const Drive& d, const DriveFigureOpti
     const DataBlock b = ThrottleLines(d, o, "eta", 4, [](const OperatingPoint& p) {
       return std::vector<double>{p.rpm, 100 * p.eta_motor, 100 * p.eta_esc, 100 * p.eta_system};
     });
+    // Efficiencies above 100 % are drawn, not clipped (issue 13): a point above the dashed
+    // 100 % line creates energy (model.md section 10) and must be seen.
+    const double eta_max = MaxFinite(b, {1, 2, 3});
+    const bool above = eta_max > 100.0;
     std::ostringstream s;
     s << palette << "set multiplot layout 3,1 title "
-      << Title(o, "efficiencies vs speed per throttle; " + limit_note) << "\n"
-      << "set xlabel 'speed [rpm]'\nset yrange [0:100]\n"
+      << Title(o, "efficiencies vs speed per throttle; " + limit_note +
+                      (above ? "\\nABOVE 100 %: these parameters create energy (model.md section 10)" : ""))
+      << "\n"
+      << "set xlabel 'speed [rpm]'\nset yrange [0:" << (above ? Fmt(1.05 * eta_max, 4) : "105") << "]\n"
+      << "set arrow from graph 0, first 100 to graph 1, first 100 nohead dt 2 lw 2 lc rgb 'red'\n"
       << "set ylabel 'motor [%]'\nplot " << ForEachThrottle(o, "eta", "1:2") << "\n"
       << "set ylabel 'ESC [%]'\nplot " << ForEachThrottle(o, "eta", "1:3") << "\n"
       << "set ylabel 'system [%]'\nplot " << ForEachThrottle(o, "eta", "1:4") << "\n"
@@ -164,60 +246,8 @@ std::vector<std::string> WriteDriveFigures(const Drive& d, const DriveFigureOpti
     RenderPng(path, {b}, s.str(), 1000, 1100);
     written.push_back(path);
   }
-  // 5. System efficiency map over torque and speed (inverse model), with the per-throttle
-  // maximum-efficiency points (analogue of eq 14) and the full-throttle line.
-  {
-    const double w_max = d.NoLoadSpeed(o.vdc_v, 1.0);
-    const double q_max = MaxTorque(d, o.vdc_v, 1.0, o.current_limit_a);
-    DataBlock map;
-    map.name = "map";
-    map.grid = true;
-    const int n = 120;
-    for (int i = 0; i <= n; ++i) {
-      const double w = w_max * i / n;
-      std::vector<double> rpm, q, eta;
-      for (int j = 0; j <= n; ++j) {
-        const double torque = q_max * j / n;
-        const OperatingPoint p = d.Inverse(o.vdc_v, torque, w);
-        const bool ok = p.throttle >= 0.0 && p.throttle <= 1.0 && p.irms_a <= o.current_limit_a;
-        rpm.push_back(p.rpm);
-        q.push_back(torque);
-        eta.push_back(ok ? 100 * p.eta_system : kNaN);
-      }
-      map.series.push_back({rpm, q, eta});
-    }
-    DataBlock best;
-    best.name = "best";
-    std::vector<double> br, bq;
-    for (const auto& row : SummarizeThrottles(d, o.vdc_v, o.throttle_steps)) {
-      if (row.at_max_efficiency.irms_a > o.current_limit_a) continue;
-      br.push_back(row.max_efficiency_rpm);
-      bq.push_back(row.at_max_efficiency.torque_nm);
-    }
-    best.series.push_back({br, bq});
-    const DataBlock full = ThrottleLines(d, o, "unused", 2, [](const OperatingPoint& p) {
-      return std::vector<double>{p.rpm, p.torque_nm};
-    });
-    DataBlock top;
-    top.name = "full";
-    top.series.push_back(full.series.back());
-    std::ostringstream s;
-    s << "set title " << Title(o, "system efficiency Pmech/PDC [%] over torque and speed (inverse model)") << "\n"
-      << "set xlabel 'speed [rpm]'\nset ylabel 'torque [N m]'\nset view map\n"
-      << "set palette defined (0 '#2b083b', 0.35 '#3b528b', 0.6 '#21918c', 0.8 '#5ec962', 1 '#fde725')\n"
-      << "set cbrange [0:100]\nset cblabel 'eta system [%]'\nset key outside bottom center horizontal\n"
-      << "set contour base\nset cntrparam levels discrete 40,60,70,80,85,90\nset cntrlabel onecolor\n"
-      << "set xrange [0:" << RadPerSecToRpm(w_max) << "]\nset yrange [0:" << q_max << "]\n"
-      << "unset surface\nset table $contours\nsplot $map using 1:2:3 with lines\nunset table\n"
-      << "unset contour\nset surface\n"
-      << "plot $map using 1:2:3 with image notitle, "
-      << "$contours using 1:2 with lines lc rgb 'white' lw 1 title 'contours 40/60/70/80/85/90 %', "
-      << "$full using 1:2 with lines lw 2 lc rgb 'black' title 'full throttle', "
-      << "$best using 1:2 with linespoints pt 7 ps 1 lc rgb 'red' title 'max efficiency per throttle (eq 14 analogue)'\n";
-    const std::string path = dir + "/efficiency_map.png";
-    RenderPng(path, {map, best, top}, s.str(), 1000, 800);
-    written.push_back(path);
-  }
+  // 5. System efficiency map over torque and speed (inverse model).
+  written.push_back(EfficiencyMapFigure(d, o, dir));
   return written;
 }
 
