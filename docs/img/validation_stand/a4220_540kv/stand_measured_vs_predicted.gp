@@ -1,31 +1,31 @@
 # Written by dynosize; run 'gnuplot stand_measured_vs_predicted.gp' to redraw.
 $p0 << EOD
-2.95 2.98279424 2.81444336
-6.29 6.57075715 6.20654171
-10.48 11.4416553 10.7778406
-16.38 18.3281271 17.1999669
-22.75 25.8300435 24.1530986
-28.76 33.554056 31.2645724
-36.09 42.3461859 39.3382261
-46.5 55.5465573 51.3794369
-56.31 67.7931354 62.5020531
-67.99 82.7165544 75.9751924
-97.1 119.638559 108.972866
-101.2 126.754139 115.32685
+2.95 2.87557694 2.73708576
+6.29 6.29320203 6.00339508
+10.48 10.8891296 10.3706757
+16.38 17.3395465 16.4684276
+22.75 24.3192514 23.0324944
+28.76 31.4555296 29.7056847
+36.09 39.5560006 37.263237
+46.5 51.634896 48.4671394
+56.31 62.7911162 58.775326
+67.99 76.3040553 71.1945782
+97.1 109.397689 101.330526
+101.2 115.767555 107.126699
 EOD
 $p1 << EOD
-2944 2539.77186 2672.41296
-3909 3442.6286 3651.69332
-4678 4120.70301 4412.55998
-5434 4759.65594 5147.04244
-6040 5266.8346 5743.382
-6502 5596.57121 6155.91087
-6968 5969.91281 6612.04473
-7504 6342.40232 7099.16968
-7921 6642.97505 7495.27194
-8321 6894.7279 7855.29159
-8999 6971.49626 8650.44528
-9204 6924.03635 8660.25246
+2944 2663.60134 2763.45475
+3909 3641.78036 3799.16616
+4678 4401.4539 4621.16646
+5434 5134.55968 5426.18773
+6040 5729.61434 6088.36351
+6502 6140.95008 6562.02601
+6968 6595.89082 7079.2935
+7504 7081.36375 7651.06502
+7921 7476.08933 8117.70609
+8321 7834.54875 8557.66972
+8999 8149.83765 9531.52173
+9204 8152.5926 9578.94961
 EOD
 $p2 << EOD
 2.95 2.6327948 2.58367769
@@ -51,17 +51,17 @@ set multiplot layout 2,2 title "A4220_540kv_stand_test.csv: A-4220 540KV + Castl
 set grid
 set key left top inside
 set size ratio -1
-set title "DC current at the measured rpm\nMAE dynosize 15.3 %, plain DC 8.09 %"
+set title "DC current at the measured rpm\nMAE dynosize 8.34 %, plain DC 3.72 %"
 set xlabel 'measured [A]'
 set ylabel 'predicted [A]'
-set xrange [0:133.092]
-set yrange [0:133.092]
+set xrange [0:121.556]
+set yrange [0:121.556]
 plot x with lines lc rgb 'black' title '1:1', 1.1*x with lines dt 2 lc rgb 'gray50' title '+-10 %', 0.9*x with lines dt 2 lc rgb 'gray50' notitle, $p0 using 1:2 with points pt 7 ps 1.2 lc rgb '#d95f0e' title 'dynosize', $p0 using 1:3 with points pt 5 ps 1.0 lc rgb '#1f3b99' title 'plain DC'
-set title "speed from the throttle\nMAE dynosize 15.6 %, plain DC 5.69 %"
+set title "speed from the throttle\nMAE dynosize 6.81 %, plain DC 2.58 %"
 set xlabel 'measured [rpm]'
 set ylabel 'predicted [rpm]'
-set xrange [0:9664.2]
-set yrange [0:9664.2]
+set xrange [0:10057.9]
+set yrange [0:10057.9]
 plot x with lines lc rgb 'black' title '1:1', 1.1*x with lines dt 2 lc rgb 'gray50' title '+-10 %', 0.9*x with lines dt 2 lc rgb 'gray50' notitle, $p1 using 1:2 with points pt 7 ps 1.2 lc rgb '#d95f0e' title 'dynosize', $p1 using 1:3 with points pt 5 ps 1.0 lc rgb '#1f3b99' title 'plain DC'
 set title "DC current from the throttle\nMAE dynosize 5.12 %, plain DC 5.86 %"
 set xlabel 'measured [A]'

@@ -1,29 +1,29 @@
 # Written by dynosize; run 'gnuplot stand_measured_vs_predicted.gp' to redraw.
 $p0 << EOD
-11.63 10.9288989 10.2532131
-13.82 13.2834821 12.4357354
-15.84 15.5884787 14.5695994
-18.17 18.0545625 16.8365627
-20.4 20.6452103 19.2094078
-22.93 23.8409067 22.1278118
-26 27.8067186 25.7430145
-30.26 33.1694253 30.603072
-34.78 39.1640108 36.0361314
-45.13 51.7360157 47.3646672
-49.57 57.0980545 52.1760358
+11.63 10.330082 9.80959211
+13.82 12.5207376 11.8699543
+15.84 14.6621943 13.8818806
+18.17 16.9367922 16.0060098
+20.4 19.3173881 18.2221148
+22.93 22.2450732 20.9404613
+26 25.8715564 24.3022944
+30.26 30.7464052 28.7979594
+34.78 36.1956126 33.8235431
+45.13 47.5572052 44.2474371
+49.57 52.3824791 48.6575469
 EOD
 $p1 << EOD
-8205 4910.29644 5506.40896
-8704 5497.54962 6168.18817
-9162 6117.28142 6854.60114
-9519 6711.17391 7519.09723
-9844 7300.2664 8178.79332
-10207 7837.64098 8798.53875
-10630 8306.49763 9361.53354
-11085 8649.67914 9826.31014
-11611 8984.46066 10282.6867
-12479 9643.3416 11172.9906
-12788 10255.7096 12552.3022
+8205 5487.95292 5936.7635
+8704 6148.63234 6653.55325
+9162 6834.0613 7389.18619
+9519 7497.51549 8105.79753
+9844 8156.16969 8817.60887
+10207 8774.69958 9498.15543
+10630 9336.30517 10130.6372
+11085 9799.28739 10685.1679
+11611 10253.8696 11231.2985
+12479 11140.7583 12292.4246
+12788 11842.0107 13738.3279
 EOD
 $p2 << EOD
 11.63 7.51350533 7.47143303
@@ -48,17 +48,17 @@ set multiplot layout 2,2 title "TMotor_AT2814_1200kv.csv: T-Motor AT2814 1200KV 
 set grid
 set key left top inside
 set size ratio -1
-set title "DC current at the measured rpm\nMAE dynosize 6.94 %, plain DC 5.68 %"
+set title "DC current at the measured rpm\nMAE dynosize 5.48 %, plain DC 8.3 %"
 set xlabel 'measured [A]'
 set ylabel 'predicted [A]'
-set xrange [0:59.953]
-set yrange [0:59.953]
+set xrange [0:55.0016]
+set yrange [0:55.0016]
 plot x with lines lc rgb 'black' title '1:1', 1.1*x with lines dt 2 lc rgb 'gray50' title '+-10 %', 0.9*x with lines dt 2 lc rgb 'gray50' notitle, $p0 using 1:2 with points pt 7 ps 1.2 lc rgb '#d95f0e' title 'dynosize', $p0 using 1:3 with points pt 5 ps 1.0 lc rgb '#1f3b99' title 'plain DC'
-set title "speed from the throttle\nMAE dynosize 27.1 %, plain DC 16.9 %"
+set title "speed from the throttle\nMAE dynosize 17.6 %, plain DC 11.2 %"
 set xlabel 'measured [rpm]'
 set ylabel 'predicted [rpm]'
-set xrange [0:13427.4]
-set yrange [0:13427.4]
+set xrange [0:14425.2]
+set yrange [0:14425.2]
 plot x with lines lc rgb 'black' title '1:1', 1.1*x with lines dt 2 lc rgb 'gray50' title '+-10 %', 0.9*x with lines dt 2 lc rgb 'gray50' notitle, $p1 using 1:2 with points pt 7 ps 1.2 lc rgb '#d95f0e' title 'dynosize', $p1 using 1:3 with points pt 5 ps 1.0 lc rgb '#1f3b99' title 'plain DC'
 set title "DC current from the throttle\nMAE dynosize 15.7 %, plain DC 16.3 %"
 set xlabel 'measured [A]'

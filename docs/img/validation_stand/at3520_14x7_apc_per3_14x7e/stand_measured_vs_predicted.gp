@@ -1,16 +1,16 @@
 # Written by dynosize; run 'gnuplot stand_measured_vs_predicted.gp' to redraw.
 $p0 << EOD
-5.15 4.94934377 4.64972729
-6.71 6.63897273 6.22574938
-8.5 8.53714313 7.9897249
-11.18 11.0944864 10.3576895
-13.7 13.6965832 12.7586623
-16.9 17.2507099 16.0268625
-20.26 20.6899005 19.1792264
-24.56 24.7007801 22.8442794
-29.2 28.8594166 26.6340009
-38.47 37.7987651 34.7483095
-44.28 42.2286144 38.756727
+5.15 4.70307644 4.46951504
+6.71 6.28776043 5.96790748
+8.5 8.06051064 7.63896153
+11.18 10.4393308 9.87449431
+13.7 12.8505162 12.1336959
+16.9 16.1318112 15.1991179
+20.26 19.2961974 18.1470953
+24.56 22.9746639 21.5647758
+29.2 26.7778027 25.0898237
+38.47 34.9196462 32.6100373
+44.28 38.9413179 36.3142648
 EOD
 $p1 << EOD
 973 932.905406 932.905406
@@ -26,43 +26,43 @@ $p1 << EOD
 4116 3749.60634 3749.60634
 EOD
 $p2 << EOD
-5.15 5.27109362 4.94297538
-6.71 7.07987932 6.62577532
-8.5 9.29668034 8.67558289
-11.18 12.5290391 11.6459189
-13.7 15.8743107 14.7054358
-16.9 20.0913361 18.5550807
-20.26 24.4871996 22.5458752
-24.56 30.2863238 27.7746135
-29.2 36.8919394 33.6946034
-38.47 49.8539018 45.2793925
-44.28 58.1128292 52.5858265
+5.15 4.99112687 4.73661601
+6.71 6.68056089 6.33066243
+8.5 8.73718462 8.26121664
+11.18 11.7160551 11.0426384
+13.7 14.7833556 13.8948269
+16.9 18.6420442 17.4770457
+20.26 22.6413288 21.1717378
+24.56 27.8801756 25.9819816
+29.2 33.8107571 31.3975841
+38.47 45.4148502 41.9673957
+44.28 52.7325165 48.570063
 EOD
 $p3 << EOD
-4423 3998.02328 4184.80372
-4888 4425.26104 4642.2113
-5313 4840.45437 5087.74025
-5785 5236.28912 5513.21087
-6192 5625.29411 5934.23904
-6664 5999.81996 6340.03142
-7056 6361.24786 6733.41308
-7454 6710.72265 7114.2977
-7818 7048.30652 7482.18564
-8481 7697.58996 8193.24594
-8762 8074.99425 8885.18582
+4423 4178.05308 4337.56325
+4888 4635.35472 4822.32516
+5313 5080.81591 5294.86943
+5785 5506.15985 5749.20037
+6192 5927.04638 6199.84652
+6664 6332.7043 6635.68317
+7056 6725.92928 7059.27388
+7454 7106.67841 7469.68046
+7818 7474.40206 7867.88811
+8481 8185.16018 8638.03237
+8762 8598.15643 9389.63746
 EOD
 $p4 << EOD
-5.15 3.69646177 3.96361703
-6.71 4.96332634 5.35697944
-8.5 6.45960479 7.01629709
-11.18 8.19104456 8.9551009
-13.7 10.1982456 11.2048906
-16.9 12.4517906 13.74829
-20.26 14.9655446 16.5921538
-24.56 17.7346169 19.7406068
-29.2 20.7587102 23.2001492
-38.47 27.6519869 31.115502
-44.28 32.3826377 40.5365478
+5.15 3.99439858 4.22674802
+6.71 5.39126451 5.73915461
+8.5 7.05369037 7.56173658
+11.18 8.99581115 9.69261557
+13.7 11.2488651 12.1802959
+16.9 13.7953373 15.0033712
+20.26 16.642328 18.1730439
+24.56 19.7935784 21.7054486
+29.2 23.2560595 25.5904677
+38.47 31.1765525 34.5555994
+44.28 36.6545141 45.313637
 EOD
 set terminal pngcairo size 1200,1800 font 'DejaVu Sans,11' noenhanced
 if (!exists('outfile')) outfile = 'stand_measured_vs_predicted.png'
@@ -74,7 +74,7 @@ set multiplot layout 3,2 title "TMotor_AT3520_550kv.csv: T-Motor AT3520 550KV + 
 set grid
 set key left top inside
 set size ratio -1
-set title "DC current at the measured rpm\nMAE dynosize 1.68 %, plain DC 7.78 %"
+set title "DC current at the measured rpm\nMAE dynosize 7.12 %, plain DC 12.5 %"
 set xlabel 'measured [A]'
 set ylabel 'predicted [A]'
 set xrange [0:46.494]
@@ -86,23 +86,23 @@ set ylabel 'predicted [gf]'
 set xrange [0:4321.8]
 set yrange [0:4321.8]
 plot x with lines lc rgb 'black' title '1:1', 1.1*x with lines dt 2 lc rgb 'gray50' title '+-10 %', 0.9*x with lines dt 2 lc rgb 'gray50' notitle, $p1 using 1:2 with points pt 7 ps 1.2 lc rgb '#d95f0e' title 'dynosize', $p1 using 1:3 with points pt 5 ps 1.0 lc rgb '#1f3b99' title 'plain DC'
-set title "DC current at the measured rpm and torque\nMAE dynosize 17.8 %, plain DC 9.53 %"
+set title "DC current at the measured rpm and torque\nMAE dynosize 9.78 %, plain DC 5.38 %"
 set xlabel 'measured [A]'
 set ylabel 'predicted [A]'
-set xrange [0:61.0185]
-set yrange [0:61.0185]
+set xrange [0:55.3691]
+set yrange [0:55.3691]
 plot x with lines lc rgb 'black' title '1:1', 1.1*x with lines dt 2 lc rgb 'gray50' title '+-10 %', 0.9*x with lines dt 2 lc rgb 'gray50' notitle, $p2 using 1:2 with points pt 7 ps 1.2 lc rgb '#d95f0e' title 'dynosize', $p2 using 1:3 with points pt 5 ps 1.0 lc rgb '#1f3b99' title 'plain DC'
-set title "speed from the throttle\nMAE dynosize 9.39 %, plain DC 4.24 %"
+set title "speed from the throttle\nMAE dynosize 4.39 %, plain DC 1.34 %"
 set xlabel 'measured [rpm]'
 set ylabel 'predicted [rpm]'
-set xrange [3598.22:9329.45]
-set yrange [3598.22:9329.45]
+set xrange [3760.25:9859.12]
+set yrange [3760.25:9859.12]
 plot x with lines lc rgb 'black' title '1:1', 1.1*x with lines dt 2 lc rgb 'gray50' title '+-10 %', 0.9*x with lines dt 2 lc rgb 'gray50' notitle, $p3 using 1:2 with points pt 7 ps 1.2 lc rgb '#d95f0e' title 'dynosize', $p3 using 1:3 with points pt 5 ps 1.0 lc rgb '#1f3b99' title 'plain DC'
-set title "DC current from the throttle\nMAE dynosize 26.8 %, plain DC 18.5 %"
+set title "DC current from the throttle\nMAE dynosize 19 %, plain DC 11.4 %"
 set xlabel 'measured [A]'
 set ylabel 'predicted [A]'
-set xrange [0:46.494]
-set yrange [0:46.494]
+set xrange [0:47.5793]
+set yrange [0:47.5793]
 plot x with lines lc rgb 'black' title '1:1', 1.1*x with lines dt 2 lc rgb 'gray50' title '+-10 %', 0.9*x with lines dt 2 lc rgb 'gray50' notitle, $p4 using 1:2 with points pt 7 ps 1.2 lc rgb '#d95f0e' title 'dynosize', $p4 using 1:3 with points pt 5 ps 1.0 lc rgb '#1f3b99' title 'plain DC'
 unset multiplot
 

@@ -1,17 +1,17 @@
 # Written by dynosize; run 'gnuplot stand_measured_vs_predicted.gp' to redraw.
 $p0 << EOD
-11.21 9.9175223 9.35983496
-13.58 12.3175318 11.6088151
-16.21 14.8211267 13.9488315
-19.14 17.5841545 16.525318
-23.2 21.493369 20.1606247
-27.69 26.224373 24.5472728
-32.79 31.1665826 29.1164933
-38.58 36.6225018 34.1468867
-45.8 42.9699185 39.9838164
-52.89 49.1425751 45.6437041
-62.57 54.6527408 50.6851087
-72.77 61.1839213 56.648739
+11.21 9.45066703 9.01551128
+13.58 11.7094568 11.1594677
+16.21 14.0587989 13.3846657
+19.14 16.6448827 15.8293556
+23.2 20.2928446 19.2699459
+27.69 24.6937887 23.4104475
+32.79 29.2770821 27.71187
+38.58 34.3222641 32.4356787
+45.8 40.1756696 37.9037383
+52.89 45.850993 43.192169
+62.57 50.9058074 47.893399
+72.77 56.8849721 53.4445647
 EOD
 $p1 << EOD
 1674 1594.20996 1594.20996
@@ -28,46 +28,46 @@ $p1 << EOD
 5537 5275.44526 5275.44526
 EOD
 $p2 << EOD
-11.21 10.6456587 10.0270664
-13.58 13.3178005 12.5221314
-16.21 16.3002438 15.2946491
-19.14 19.7215218 18.4634011
-23.2 24.6921609 23.0489726
-27.69 30.1961496 28.1203927
-32.79 36.6175894 34.0017971
-38.58 44.0250657 40.7564574
-45.8 52.8201588 48.7459809
-52.89 61.7204483 56.7950315
-62.57 73.9808106 67.7464819
-72.77 86.5498218 78.9588207
+11.21 10.1200181 9.63903487
+13.58 12.6255655 12.0101498
+16.21 15.4086132 14.6341799
+19.14 18.5885856 17.6231087
+23.2 23.1893674 21.9328777
+27.69 28.2768014 26.6934943
+32.79 34.1757126 32.1848421
+38.58 40.9496669 38.4664006
+45.8 48.9612668 45.8706224
+52.89 57.0319929 53.2997771
+62.57 68.0127169 63.294753
+72.77 79.2546455 73.5149148
 EOD
 $p3 << EOD
-4943 4025.12855 4190.88257
-5313 4460.89832 4654.10095
-5650 4892.3167 5113.94789
-5978 5312.04384 5562.96108
-6382 5721.58234 6003.09281
-6806 6121.79711 6433.69431
-7193 6512.65704 6856.25329
-7571 6895.51632 7270.49059
-7963 7269.97879 7677.01796
-8301 7636.89111 8076.00896
-8577 7996.97886 8465.75968
-8879 8423.53641 9224.66086
+4943 4183.32494 4322.91253
+5313 4646.26358 4810.38574
+5650 5105.83676 5295.4099
+5978 5554.52314 5771.36571
+6382 5994.31633 6238.83701
+6806 6424.57197 6698.11027
+7193 6846.75597 7149.70323
+7571 7260.63218 7593.52936
+7963 7666.76374 8030.32838
+8301 8065.42808 8457.92425
+8577 8454.7729 8878.8373
+8879 8920.70811 9699.50248
 EOD
 $p4 << EOD
-11.21 5.47482535 5.81027487
-13.58 7.36802014 7.87112856
-16.21 9.63975045 10.3641837
-19.14 12.3108885 13.3155015
-23.2 15.3958519 16.7353278
-27.69 18.9109867 20.6632723
-32.79 22.8803244 25.1081007
-38.58 27.3104225 30.1017854
-45.8 32.2269485 35.6614641
-52.89 37.6390364 41.8099229
-62.57 43.5547992 48.6073236
-72.77 51.5363152 64.1133501
+11.21 5.85320929 6.13683262
+13.58 7.91650836 8.35000355
+16.21 10.4107079 11.0509349
+19.14 13.3624665 14.2561937
+23.2 16.7816076 17.9960919
+27.69 20.7075451 22.3032392
+32.79 25.1493746 27.2036658
+38.58 30.1383038 32.7338971
+45.8 35.6922242 38.9111381
+52.89 41.8319552 45.8225401
+62.57 48.6201694 53.4414559
+72.77 57.748835 70.9555651
 EOD
 set terminal pngcairo size 1200,1800 font 'DejaVu Sans,11' noenhanced
 if (!exists('outfile')) outfile = 'stand_measured_vs_predicted.png'
@@ -79,7 +79,7 @@ set multiplot layout 3,2 title "TMotor_AT4125_540kv.csv: T-Motor AT4125 540KV + 
 set grid
 set key left top inside
 set size ratio -1
-set title "DC current at the measured rpm\nMAE dynosize 8.5 %, plain DC 14.4 %"
+set title "DC current at the measured rpm\nMAE dynosize 13.9 %, plain DC 18.5 %"
 set xlabel 'measured [A]'
 set ylabel 'predicted [A]'
 set xrange [0:76.4085]
@@ -91,19 +91,19 @@ set ylabel 'predicted [gf]'
 set xrange [0:5813.85]
 set yrange [0:5813.85]
 plot x with lines lc rgb 'black' title '1:1', 1.1*x with lines dt 2 lc rgb 'gray50' title '+-10 %', 0.9*x with lines dt 2 lc rgb 'gray50' notitle, $p1 using 1:2 with points pt 7 ps 1.2 lc rgb '#d95f0e' title 'dynosize', $p1 using 1:3 with points pt 5 ps 1.0 lc rgb '#1f3b99' title 'plain DC'
-set title "DC current at the measured rpm and torque\nMAE dynosize 10.1 %, plain DC 5.8 %"
+set title "DC current at the measured rpm and torque\nMAE dynosize 5.79 %, plain DC 4.79 %"
 set xlabel 'measured [A]'
 set ylabel 'predicted [A]'
-set xrange [0:90.8773]
-set yrange [0:90.8773]
+set xrange [0:83.2174]
+set yrange [0:83.2174]
 plot x with lines lc rgb 'black' title '1:1', 1.1*x with lines dt 2 lc rgb 'gray50' title '+-10 %', 0.9*x with lines dt 2 lc rgb 'gray50' notitle, $p2 using 1:2 with points pt 7 ps 1.2 lc rgb '#d95f0e' title 'dynosize', $p2 using 1:3 with points pt 5 ps 1.0 lc rgb '#1f3b99' title 'plain DC'
-set title "speed from the throttle\nMAE dynosize 10.5 %, plain DC 6.3 %"
+set title "speed from the throttle\nMAE dynosize 6.14 %, plain DC 4.33 %"
 set xlabel 'measured [rpm]'
 set ylabel 'predicted [rpm]'
-set xrange [3622.62:9685.89]
-set yrange [3622.62:9685.89]
+set xrange [3764.99:10184.5]
+set yrange [3764.99:10184.5]
 plot x with lines lc rgb 'black' title '1:1', 1.1*x with lines dt 2 lc rgb 'gray50' title '+-10 %', 0.9*x with lines dt 2 lc rgb 'gray50' notitle, $p3 using 1:2 with points pt 7 ps 1.2 lc rgb '#d95f0e' title 'dynosize', $p3 using 1:3 with points pt 5 ps 1.0 lc rgb '#1f3b99' title 'plain DC'
-set title "DC current from the throttle\nMAE dynosize 34.7 %, plain DC 27.7 %"
+set title "DC current from the throttle\nMAE dynosize 28.3 %, plain DC 21.7 %"
 set xlabel 'measured [A]'
 set ylabel 'predicted [A]'
 set xrange [0:76.4085]

@@ -1,21 +1,21 @@
 # Written by dynosize; run 'gnuplot stand_measured_vs_predicted.gp' to redraw.
 $p0 << EOD
-11.21 13.9503699 13.0283517
-13.58 17.4856217 16.2923391
-16.21 21.1984538 19.7088922
-19.14 25.3271793 23.4967406
-23.2 31.1733106 28.8427359
-27.69 38.2951131 35.3319406
-32.79 45.7581578 42.1089245
-38.58 54.0103681 49.5790735
-45.8 63.6527538 58.2808686
-52.89 72.9177553 66.6184907
-62.57 81.1776351 74.0343788
-72.77 90.9706057 82.8078817
+11.21 13.1309776 12.421684
+13.58 16.4075057 15.4929089
+16.21 19.8362356 18.6976453
+19.14 23.6368583 22.2407454
+23.2 28.9999563 27.2262486
+27.69 35.5088958 33.2578605
+32.79 42.3056488 39.5371747
+38.58 49.7968785 46.4387591
+45.8 58.5225486 54.4554561
+52.89 66.882538 62.1165828
+62.57 74.3180019 68.9161238
+72.77 83.1143616 76.9444433
 EOD
 $p1 << EOD
-1674 1711.50676 1711.50676
-1929 2018.84554 2018.84554
+1674 1776.67009 1776.67009
+1929 2052.60415 2052.60415
 2205 2323.86185 2323.86185
 2492 2644.12158 2644.12158
 2864 3070.86259 3070.86259
@@ -24,50 +24,50 @@ $p1 << EOD
 4081 4539.58254 4539.58254
 4541 5095.3622 5095.3622
 4951 5603.77227 5603.77227
-5163 6039.21336 6039.21336
-5537 6536.7927 6536.7927
+5163 6004.50336 6004.50336
+5537 6434.79009 6434.79009
 EOD
 $p2 << EOD
-11.21 10.6456587 10.0270664
-13.58 13.3178005 12.5221314
-16.21 16.3002438 15.2946491
-19.14 19.7215218 18.4634011
-23.2 24.6921609 23.0489726
-27.69 30.1961496 28.1203927
-32.79 36.6175894 34.0017971
-38.58 44.0250657 40.7564574
-45.8 52.8201588 48.7459809
-52.89 61.7204483 56.7950315
-62.57 73.9808106 67.7464819
-72.77 86.5498218 78.9588207
+11.21 10.1200181 9.63903487
+13.58 12.6255655 12.0101498
+16.21 15.4086132 14.6341799
+19.14 18.5885856 17.6231087
+23.2 23.1893674 21.9328777
+27.69 28.2768014 26.6934943
+32.79 34.1757126 32.1848421
+38.58 40.9496669 38.4664006
+45.8 48.9612668 45.8706224
+52.89 57.0319929 53.2997771
+62.57 68.0127169 63.294753
+72.77 79.2546455 73.5149148
 EOD
 $p3 << EOD
-4943 3860.43105 4046.27562
-5313 4261.9785 4477.76323
-5650 4656.79575 4903.76839
-5978 5040.06263 5318.84293
-6382 5412.73719 5723.78741
-6806 5775.65193 6119.3092
-7193 6129.53571 6506.03696
-7571 6475.03094 6884.53242
-7963 6812.70729 7255.29996
-8301 7143.07273 7618.79444
-8577 7466.58253 7975.42779
-8879 7852.57311 8669.57601
+4943 4038.75279 4199.23474
+5313 4469.94208 4658.17767
+5650 4895.61953 5113.0857
+5978 5310.34551 5557.92476
+6382 5714.92413 5993.33526
+6806 6110.06569 6419.89246
+7193 6496.40129 6838.11541
+7571 6874.49466 7248.47433
+7963 7244.85187 7651.39683
+8301 7607.92919 8047.27311
+8577 7964.13975 8436.4604
+8879 8389.96072 9196.05413
 EOD
 $p4 << EOD
-11.21 6.58946587 7.1165707
-13.58 8.88255197 9.66317859
-16.21 11.6322002 12.7374843
-19.14 14.8418726 16.3476827
-23.2 18.5311574 20.5199537
-27.69 22.7177815 25.27823
-32.79 27.4178824 30.6444926
-38.58 32.6462279 36.6390172
-45.8 38.4163968 43.2805788
-52.89 44.7409272 50.5866243
-62.57 51.6314414 58.5734189
-72.77 60.8199791 76.6491415
+11.21 7.15356198 7.62164904
+13.58 9.70067042 10.4057581
+16.21 12.7742036 13.7870566
+19.14 16.3823145 17.7795901
+23.2 20.5510927 22.4171573
+27.69 25.3043829 27.7309833
+32.79 30.664082 33.7500214
+38.58 36.6503846 40.501208
+45.8 43.2819878 48.0096804
+52.89 50.576264 56.2989631
+62.57 58.5494072 65.3911291
+72.77 69.2178934 86.0659664
 EOD
 set terminal pngcairo size 1200,1800 font 'DejaVu Sans,11' noenhanced
 if (!exists('outfile')) outfile = 'stand_measured_vs_predicted.png'
@@ -79,35 +79,35 @@ set multiplot layout 3,2 title "TMotor_AT4125_540kv.csv: T-Motor AT4125 540KV + 
 set grid
 set key left top inside
 set size ratio -1
-set title "DC current at the measured rpm\nMAE dynosize 33.3 %, plain DC 22.9 %"
+set title "DC current at the measured rpm\nMAE dynosize 23.5 %, plain DC 15.6 %"
 set xlabel 'measured [A]'
 set ylabel 'predicted [A]'
-set xrange [0:95.5191]
-set yrange [0:95.5191]
+set xrange [0:87.2701]
+set yrange [0:87.2701]
 plot x with lines lc rgb 'black' title '1:1', 1.1*x with lines dt 2 lc rgb 'gray50' title '+-10 %', 0.9*x with lines dt 2 lc rgb 'gray50' notitle, $p0 using 1:2 with points pt 7 ps 1.2 lc rgb '#d95f0e' title 'dynosize', $p0 using 1:3 with points pt 5 ps 1.0 lc rgb '#1f3b99' title 'plain DC'
-set title "thrust at the measured rpm\nMAE dynosize 9.82 %, plain DC 9.82 %"
+set title "thrust at the measured rpm\nMAE dynosize 10.1 %, plain DC 10.1 %"
 set xlabel 'measured [gf]'
 set ylabel 'predicted [gf]'
-set xrange [0:6863.63]
-set yrange [0:6863.63]
+set xrange [0:6756.53]
+set yrange [0:6756.53]
 plot x with lines lc rgb 'black' title '1:1', 1.1*x with lines dt 2 lc rgb 'gray50' title '+-10 %', 0.9*x with lines dt 2 lc rgb 'gray50' notitle, $p1 using 1:2 with points pt 7 ps 1.2 lc rgb '#d95f0e' title 'dynosize', $p1 using 1:3 with points pt 5 ps 1.0 lc rgb '#1f3b99' title 'plain DC'
-set title "DC current at the measured rpm and torque\nMAE dynosize 10.1 %, plain DC 5.8 %"
+set title "DC current at the measured rpm and torque\nMAE dynosize 5.79 %, plain DC 4.79 %"
 set xlabel 'measured [A]'
 set ylabel 'predicted [A]'
-set xrange [0:90.8773]
-set yrange [0:90.8773]
+set xrange [0:83.2174]
+set yrange [0:83.2174]
 plot x with lines lc rgb 'black' title '1:1', 1.1*x with lines dt 2 lc rgb 'gray50' title '+-10 %', 0.9*x with lines dt 2 lc rgb 'gray50' notitle, $p2 using 1:2 with points pt 7 ps 1.2 lc rgb '#d95f0e' title 'dynosize', $p2 using 1:3 with points pt 5 ps 1.0 lc rgb '#1f3b99' title 'plain DC'
-set title "speed from the throttle\nMAE dynosize 15.6 %, plain DC 10.3 %"
+set title "speed from the throttle\nMAE dynosize 10.7 %, plain DC 6.42 %"
 set xlabel 'measured [rpm]'
 set ylabel 'predicted [rpm]'
-set xrange [3474.39:9322.95]
-set yrange [3474.39:9322.95]
+set xrange [3634.88:9655.86]
+set yrange [3634.88:9655.86]
 plot x with lines lc rgb 'black' title '1:1', 1.1*x with lines dt 2 lc rgb 'gray50' title '+-10 %', 0.9*x with lines dt 2 lc rgb 'gray50' notitle, $p3 using 1:2 with points pt 7 ps 1.2 lc rgb '#d95f0e' title 'dynosize', $p3 using 1:3 with points pt 5 ps 1.0 lc rgb '#1f3b99' title 'plain DC'
-set title "DC current from the throttle\nMAE dynosize 21.8 %, plain DC 12.9 %"
+set title "DC current from the throttle\nMAE dynosize 12.8 %, plain DC 10.2 %"
 set xlabel 'measured [A]'
 set ylabel 'predicted [A]'
-set xrange [0:80.4816]
-set yrange [0:80.4816]
+set xrange [0:90.3693]
+set yrange [0:90.3693]
 plot x with lines lc rgb 'black' title '1:1', 1.1*x with lines dt 2 lc rgb 'gray50' title '+-10 %', 0.9*x with lines dt 2 lc rgb 'gray50' notitle, $p4 using 1:2 with points pt 7 ps 1.2 lc rgb '#d95f0e' title 'dynosize', $p4 using 1:3 with points pt 5 ps 1.0 lc rgb '#1f3b99' title 'plain DC'
 unset multiplot
 
