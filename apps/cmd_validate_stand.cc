@@ -210,10 +210,12 @@ int RunValidateStand(const ValidateStandOptions& o) {
   const PropEntry* prop_entry = o.prop_id.empty() ? nullptr : &catalog.prop(o.prop_id);
   const logs::SteadyTable log = logs::ReadLog(o.table, ro);
   const stand::StandTable table = stand::StandTableFromLog(log, so);
-  const Drive drive(motor.params, esc.params);
+  EscEntry esc_used = esc;
+  if (o.ideal_esc) esc_used.params = stand::IdealEsc(esc.params, motor.params.type);
+  const Drive drive(motor.params, esc_used.params);
   const DcBaselineNumbers numbers =
-      o.baseline == "dc-equivalent" ? DcBaselineNumbers::kDcEquivalent : DcBaselineNumbers::kAsStored;
-  const DcMotor dc = DcMotorFromCatalog(motor, esc, numbers);
+      o.baseline == "as-stored" ? DcBaselineNumbers::kAsStored : DcBaselineNumbers::kDatasheet;
+  const DcMotor dc = DcMotorFromCatalog(motor, esc_used, numbers);
   std::optional<PropModel> prop;
   if (prop_entry) prop.emplace(*prop_entry);
   const stand::StandResult result = stand::PredictStand(table, drive, dc, prop ? &*prop : nullptr, po);
@@ -230,7 +232,8 @@ int RunValidateStand(const ValidateStandOptions& o) {
     j["prop"] = prop_entry ? Json(prop_entry->id) : Json(nullptr);
     j["rho_kg_m3"] = po.rho_kg_m3;
     j["baseline"] = {{"kv_rpm_per_v", dc.kv_rpm_per_v}, {"r_ohm", dc.r_ohm}, {"io_a", dc.io_a},
-                     {"kt_nm_per_a", dc.kt_nm_per_a()}, {"numbers", o.baseline}};
+                     {"kt_nm_per_a", dc.kt_nm_per_a()}, {"numbers", DcBaselineName(numbers)}};
+    j["ideal_esc"] = o.ideal_esc;
     j["figures"] = figure.empty() ? Json::array() : Json::array({figure});
     CheckJsonFinite(j, "validate-stand result");
     std::cout << DumpJson(j);
@@ -239,10 +242,13 @@ int RunValidateStand(const ValidateStandOptions& o) {
   CheckJsonFinite(ResultJson(table, result), "validate-stand result");  // numerical guard
   PrintSummary(table, result, title);
   std::cout << "\n  plain DC model: label Kv " << Pct(dc.kv_rpm_per_v, 1) << " rpm/V, R = "
-            << (numbers == DcBaselineNumbers::kAsStored ? "Rm + RESC = " : "(Rm + RESC)/0.7492 = ")
-            << Pct(1000.0 * dc.r_ohm, 2) << " mOhm, Io " << (numbers == DcBaselineNumbers::kAsStored ? "" : "1.1095*io_a = ")
-            << Pct(dc.io_a, 3)
-            << " A: I = Io + Q/KT_dc, KT_dc = 60/(2*pi*Kv), U = n/Kv + R*I, IDC = U*I/VDC\n";
+            << (numbers == DcBaselineNumbers::kAsStored ? "rm_ohm + resc_ohm = " : "R_dc + RESC_dc = ")
+            << Pct(1000.0 * dc.r_ohm, 2) << " mOhm, Io " << (numbers == DcBaselineNumbers::kAsStored ? "io_a = " : "Io_dc = ")
+            << Pct(dc.io_a, 3) << " A (--baseline " << DcBaselineName(numbers)
+            << "): I = Io + Q/KT_dc, KT_dc = 60/(2*pi*Kv), U = n/Kv + R*I, IDC = U*I/VDC\n";
+  if (o.ideal_esc) {
+    std::cout << "  ESC: ideal in both models (--ideal-esc: no resistance, no saturation knee, eq 56)\n";
+  }
   if (o.rows) PrintRows(table, result);
   if (result.rows_outside_prop_data) {
     std::cerr << "note: " << result.rows_outside_prop_data

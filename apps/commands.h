@@ -43,7 +43,8 @@ struct ValidateStandOptions {
   std::optional<double> vdc_v;  // for tables without a voltage column
   std::string lines;            // "FIRST-LAST": keep rows from these file lines
   double rho_kg_m3 = 1.225;
-  std::string baseline = "as-stored";  // the DC model's numbers: as-stored | dc-equivalent
+  std::string baseline = "datasheet";  // the DC model's numbers: datasheet | as-stored
+  bool ideal_esc = false;       // the ESC as eq (56)'s ideal chopper (stand::IdealEsc)
   bool json = false;
   bool rows = false;            // text: also print every row
   std::string plot_dir;

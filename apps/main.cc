@@ -225,9 +225,13 @@ int main(int argc, char** argv) {
   validate_stand->add_option("--lines", vst.lines, "FIRST-LAST: only rows from these lines of the file");
   validate_stand->add_option("--rho-kg-m3", vst.rho_kg_m3, "air density, kg/m^3 (default 1.225)");
   validate_stand->add_option("--baseline", vst.baseline,
-                             "the plain DC model's R and Io: as-stored (rm_ohm + resc_ohm, io_a) or "
-                             "dc-equivalent ((Rm + RESC)/0.7492, 1.1095*io_a: the rms numbers' DC equivalents)")
-      ->check(CLI::IsMember({"as-stored", "dc-equivalent"}));
+                             "the plain DC model's R and Io: datasheet (default: what a DC calculator is given, "
+                             "R = rm_dc_ohm (else rm_ohm/0.7492) + resc_ohm/0.7492, Io = 1.1095*io_a) or "
+                             "as-stored (the catalog's rms numbers unchanged: rm_ohm + resc_ohm, io_a)")
+      ->check(CLI::IsMember({"datasheet", "as-stored"}));
+  validate_stand->add_flag("--ideal-esc", vst.ideal_esc,
+                           "treat the ESC as ideal (no resistance, no saturation knee, eq 56) in both models: for "
+                           "a motor whose R was fitted on stand rows with the table's ESC in the loop");
   validate_stand->add_flag("--rows", vst.rows, "also print every row's measured and predicted values");
   validate_stand->add_flag("--json", vst.json, "print one JSON object");
   validate_stand->add_option("--plot", vst.plot_dir, "write the measured-vs-predicted figure here");

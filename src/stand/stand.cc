@@ -256,4 +256,12 @@ const ColumnError* FindError(const StandResult& r, int mode, int model, const st
   return nullptr;
 }
 
+EscParams IdealEsc(const EscParams& esc, MotorType type) {
+  EscParams e;  // the defaults are the ideal ESC of eq (56) for a BLDC
+  e.c1 = IdealIdcPerIrmsPerThrottle(type);
+  e.max_current_a = esc.max_current_a;
+  e.vdc_max_v = esc.vdc_max_v;
+  return e;
+}
+
 }  // namespace dynosize::stand

@@ -115,6 +115,14 @@ struct StandResult {
 StandResult PredictStand(const StandTable& table, const Drive& drive, const DcMotor& dc,
                          const PropModel* prop, const StandOptions& options);
 
+// The ESC as eq (56)'s ideal chopper: RESC = 0, C1 = K*kp, C0 = 0, no saturation knee, no
+// deadband, no supply resistance; the current and voltage limits are kept. For a stand table
+// whose ESC is not in the catalog and whose motor resistance was fitted on full-throttle rows
+// with that ESC in the loop (V = R*I + rpm/Kv, importers/mfr_tables.cc): the fit already holds
+// the ESC's drop, so a catalog ESC's resistance and the prior's knee (tr_sat 0.9, slope 0.61)
+// would count it twice.
+EscParams IdealEsc(const EscParams& esc, MotorType type);
+
 // The error of `column` in (mode, model); nullptr when not computed.
 const ColumnError* FindError(const StandResult& r, int mode, int model, const std::string& column);
 

@@ -5,6 +5,7 @@
 
 #include <cmath>
 
+#include "catalog/conventions.h"
 #include "common/error.h"
 #include "common/units.h"
 #include "stand/dc_baseline.h"
@@ -213,9 +214,10 @@ TEST(StandDcBaseline, RmsModelEqualsDcModelAtTheConvertedResistance) {
             DcAtSpeedTorque(dc, 22.0, RpmToRadPerSec(6000.0), 0.5).idc_a * 1.01);
 }
 
-// The DC equivalents of the rms numbers (R/0.7492, 1.1095*Io) make the two models one model
-// under an ideal, unsaturated ESC: the same DC current and duty at any speed and torque.
-TEST(StandDcBaseline, DcEquivalentNumbersReproduceTheRmsModel) {
+// The default baseline gets what a DC calculator is given: the DC equivalents of the catalog's rms
+// numbers (R/0.7492, 1.1095*Io; catalog/conventions.h). They make the two models one model under
+// an ideal, unsaturated ESC: the same DC current and duty at any speed and torque.
+TEST(StandDcBaseline, DatasheetNumbersReproduceTheRmsModel) {
   MotorEntry motor;
   motor.kv_rpm_per_v = 550.0;
   motor.params.ke_v_s_per_rad = KeFromKvBldc(550.0);
@@ -225,10 +227,11 @@ TEST(StandDcBaseline, DcEquivalentNumbersReproduceTheRmsModel) {
   EscEntry esc;
   esc.params.resc_ohm = 0.001;
   const Drive drive(motor.params, esc.params);
-  const DcMotor as_stored = DcMotorFromCatalog(motor, esc);
+  const DcMotor as_stored = DcMotorFromCatalog(motor, esc, DcBaselineNumbers::kAsStored);
   EXPECT_DOUBLE_EQ(as_stored.r_ohm, 0.105);
   EXPECT_DOUBLE_EQ(as_stored.io_a, 0.86);
-  const DcMotor dc = DcMotorFromCatalog(motor, esc, DcBaselineNumbers::kDcEquivalent);
+  const DcMotor dc = DcMotorFromCatalog(motor, esc);  // the default: kDatasheet
+  // 0.7492 and 1.1095 written out: the factors of catalog/conventions.h to 4-5 digits.
   EXPECT_NEAR(dc.r_ohm, 0.105 / 0.7492, 1e-4 * dc.r_ohm);
   EXPECT_NEAR(dc.io_a, 0.86 * 1.1095, 1e-4);
   for (double rpm : {2000.0, 5000.0, 9000.0}) {
@@ -240,6 +243,68 @@ TEST(StandDcBaseline, DcEquivalentNumbersReproduceTheRmsModel) {
       EXPECT_NEAR(p.throttle, b.duty, 1e-12) << rpm << " " << q;
     }
   }
+}
+
+// An entry that keeps its source's DC resistance (rm_dc_ohm, the importers' provenance) gives it
+// to the baseline as is; the ESC's resistance is converted like Rm (in series in eq 48). A
+// brushed motor has one circuit: no conversion.
+TEST(StandDcBaseline, DatasheetResistanceIsTheStoredDcNumber) {
+  MotorEntry motor;
+  motor.kv_rpm_per_v = 540.0;
+  motor.params.ke_v_s_per_rad = KeFromKvBldc(540.0);
+  motor.params.kt_nm_per_a = kPacPerVllIrms * motor.params.ke_v_s_per_rad;
+  motor.params.rm_ohm = 0.0607;  // 0.7492 x 0.081 rounded to 3 digits, as the importer stores it
+  motor.params.io_a = 1.4;
+  motor.json = Json{{"id", "m"}, {"rm_ohm", 0.0607}, {"rm_dc_ohm", 0.081}};
+  EscEntry esc;
+  esc.params.resc_ohm = 0.002;
+  const DcMotor dc = DcMotorFromCatalog(motor, esc);
+  EXPECT_DOUBLE_EQ(dc.r_ohm, 0.081 + 0.002 / kRmsPerDcResistance);
+  EXPECT_DOUBLE_EQ(dc.io_a, 1.4 * kIdealIdcPerIrmsPerThrottle);
+  EXPECT_DOUBLE_EQ(dc.kv_rpm_per_v, 540.0);
+  // Without rm_dc_ohm: the DC equivalent of rm_ohm, which differs from 0.081 by its rounding.
+  motor.json = Json{{"id", "m"}, {"rm_ohm", 0.0607}};
+  const DcMotor derived = DcMotorFromCatalog(motor, esc);
+  EXPECT_NEAR(derived.r_ohm, 0.081 + 0.002 / 0.7492, 1e-3 * derived.r_ohm);
+  EXPECT_NE(derived.r_ohm, dc.r_ohm);
+  motor.params.type = MotorType::kBrushed;
+  const DcMotor brushed = DcMotorFromCatalog(motor, esc);
+  EXPECT_DOUBLE_EQ(brushed.r_ohm, 0.0627);
+  EXPECT_DOUBLE_EQ(brushed.io_a, 1.4);
+}
+
+// --ideal-esc: eq (56)'s chopper, limits kept; with it and the datasheet baseline, the rms model
+// and the DC model agree also above the catalog prior's knee (tr_sat 0.9), forward from the throttle.
+TEST(StandDcBaseline, IdealEscRemovesTheKneeAndTheResistance) {
+  EscParams prior;
+  prior.resc_ohm = 0.001;
+  prior.c1 = 1.10953;
+  prior.tr_sat = 0.9;
+  prior.sat_slope = 0.61;
+  prior.max_current_a = 125.0;
+  const EscParams ideal = stand::IdealEsc(prior, MotorType::kBldc);
+  EXPECT_EQ(ideal.resc_ohm, 0.0);
+  EXPECT_EQ(ideal.c1, kIdealIdcPerIrmsPerThrottle);
+  EXPECT_EQ(ideal.c0, 0.0);
+  EXPECT_EQ(ideal.tr_sat, 1.0);
+  EXPECT_EQ(ideal.max_current_a, 125.0);
+  EXPECT_EQ(stand::IdealEsc(prior, MotorType::kBrushed).c1, 1.0);
+  MotorEntry motor;
+  motor.kv_rpm_per_v = 550.0;
+  motor.params.ke_v_s_per_rad = KeFromKvBldc(550.0);
+  motor.params.kt_nm_per_a = kPacPerVllIrms * motor.params.ke_v_s_per_rad;
+  motor.params.rm_ohm = 0.104;
+  motor.params.io_a = 0.86;
+  EscEntry esc;
+  esc.params = ideal;
+  const DcMotor dc = DcMotorFromCatalog(motor, esc);
+  const double q = 0.6;
+  const OperatingPoint with_ideal = Drive(motor.params, ideal).AtTorque(22.0, 1.0, q);
+  const DcPoint b = DcAtThrottleTorque(dc, 22.0, 1.0, q);
+  EXPECT_NEAR(with_ideal.omega_rad_s, b.omega_rad_s, 1e-9 * b.omega_rad_s);
+  EXPECT_NEAR(with_ideal.idc_a, b.idc_a, 1e-9 * b.idc_a);
+  // The prior's knee delivers 0.9 + 0.61*0.1 = 96.1 % of the voltage at full throttle: slower.
+  EXPECT_LT(Drive(motor.params, prior).AtTorque(22.0, 1.0, q).omega_rad_s, 0.99 * b.omega_rad_s);
 }
 
 stand::StandTable TableFrom(const std::vector<PropPoint>& points, bool with_torque) {

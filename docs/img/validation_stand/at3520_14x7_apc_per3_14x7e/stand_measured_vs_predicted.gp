@@ -1,16 +1,16 @@
 # Written by dynosize; run 'gnuplot stand_measured_vs_predicted.gp' to redraw.
 $p0 << EOD
-5.15 4.70307644 4.46951504
-6.71 6.28776043 5.96790748
-8.5 8.06051064 7.63896153
-11.18 10.4393308 9.87449431
-13.7 12.8505162 12.1336959
-16.9 16.1318112 15.1991179
-20.26 19.2961974 18.1470953
-24.56 22.9746639 21.5647758
-29.2 26.7778027 25.0898237
-38.47 34.9196462 32.6100373
-44.28 38.9413179 36.3142648
+5.15 4.70307644 4.70406509
+6.71 6.28776043 6.28916986
+8.5 8.06051064 8.06242265
+11.18 10.4393308 10.4419579
+13.7 12.8505162 12.8539076
+16.9 16.1318112 16.1362945
+20.26 19.2961974 19.3017801
+24.56 22.9746639 22.9815762
+29.2 26.7778027 26.7861365
+38.47 34.9196462 34.9311679
+44.28 38.9413179 38.9544708
 EOD
 $p1 << EOD
 973 932.905406 932.905406
@@ -26,43 +26,43 @@ $p1 << EOD
 4116 3749.60634 3749.60634
 EOD
 $p2 << EOD
-5.15 4.99112687 4.73661601
-6.71 6.68056089 6.33066243
-8.5 8.73718462 8.26121664
-11.18 11.7160551 11.0426384
-13.7 14.7833556 13.8948269
-16.9 18.6420442 17.4770457
-20.26 22.6413288 21.1717378
-24.56 27.8801756 25.9819816
-29.2 33.8107571 31.3975841
-38.47 45.4148502 41.9673957
-44.28 52.7325165 48.570063
+5.15 4.99112687 4.99222216
+6.71 6.68056089 6.68212389
+8.5 8.73718462 8.73937571
+11.18 11.7160551 11.7192406
+13.7 14.7833556 14.787632
+16.9 18.6420442 18.6477271
+20.26 22.6413288 22.6485688
+24.56 27.8801756 27.889616
+29.2 33.8107571 33.8228493
+38.47 45.4148502 45.4322775
+44.28 52.7325165 52.7536432
 EOD
 $p3 << EOD
-4423 4178.05308 4337.56325
-4888 4635.35472 4822.32516
-5313 5080.81591 5294.86943
-5785 5506.15985 5749.20037
-6192 5927.04638 6199.84652
-6664 6332.7043 6635.68317
-7056 6725.92928 7059.27388
-7454 7106.67841 7469.68046
-7818 7474.40206 7867.88811
-8481 8185.16018 8638.03237
-8762 8598.15643 9389.63746
+4423 4178.05308 4177.28709
+4888 4635.35472 4634.45655
+5313 5080.81591 5079.78918
+5785 5506.15985 5504.99533
+6192 5927.04638 5925.73938
+6664 6332.7043 6331.25716
+7056 6725.92928 6724.33888
+7454 7106.67841 7104.95093
+7818 7474.40206 7472.53267
+8481 8185.16018 8183.01686
+8762 8598.15643 8874.31204
 EOD
 $p4 << EOD
-5.15 3.99439858 4.22674802
-6.71 5.39126451 5.73915461
-8.5 7.05369037 7.56173658
-11.18 8.99581115 9.69261557
-13.7 11.2488651 12.1802959
-16.9 13.7953373 15.0033712
-20.26 16.642328 18.1730439
-24.56 19.7935784 21.7054486
-29.2 23.2560595 25.5904677
-38.47 31.1765525 34.5555994
-44.28 36.6545141 45.313637
+5.15 3.99439858 3.99311618
+6.71 5.39126451 5.38941227
+8.5 7.05369037 7.05106697
+11.18 8.99581115 8.9922811
+13.7 11.2488651 11.2442346
+16.9 13.7953373 13.7893853
+20.26 16.642328 16.6348694
+24.56 19.7935784 19.7843387
+29.2 23.2560595 23.2448569
+38.47 31.1765525 31.1605519
+44.28 36.6545141 40.5807294
 EOD
 set terminal pngcairo size 1200,1800 font 'DejaVu Sans,11' noenhanced
 if (!exists('outfile')) outfile = 'stand_measured_vs_predicted.png'
@@ -74,7 +74,7 @@ set multiplot layout 3,2 title "TMotor_AT3520_550kv.csv: T-Motor AT3520 550KV + 
 set grid
 set key left top inside
 set size ratio -1
-set title "DC current at the measured rpm\nMAE dynosize 7.12 %, plain DC 12.5 %"
+set title "DC current at the measured rpm\nMAE dynosize 7.12 %, plain DC 7.09 %"
 set xlabel 'measured [A]'
 set ylabel 'predicted [A]'
 set xrange [0:46.494]
@@ -86,23 +86,23 @@ set ylabel 'predicted [gf]'
 set xrange [0:4321.8]
 set yrange [0:4321.8]
 plot x with lines lc rgb 'black' title '1:1', 1.1*x with lines dt 2 lc rgb 'gray50' title '+-10 %', 0.9*x with lines dt 2 lc rgb 'gray50' notitle, $p1 using 1:2 with points pt 7 ps 1.2 lc rgb '#d95f0e' title 'dynosize', $p1 using 1:3 with points pt 5 ps 1.0 lc rgb '#1f3b99' title 'plain DC'
-set title "DC current at the measured rpm and torque\nMAE dynosize 9.78 %, plain DC 5.38 %"
+set title "DC current at the measured rpm and torque\nMAE dynosize 9.78 %, plain DC 9.8 %"
 set xlabel 'measured [A]'
 set ylabel 'predicted [A]'
-set xrange [0:55.3691]
-set yrange [0:55.3691]
+set xrange [0:55.3913]
+set yrange [0:55.3913]
 plot x with lines lc rgb 'black' title '1:1', 1.1*x with lines dt 2 lc rgb 'gray50' title '+-10 %', 0.9*x with lines dt 2 lc rgb 'gray50' notitle, $p2 using 1:2 with points pt 7 ps 1.2 lc rgb '#d95f0e' title 'dynosize', $p2 using 1:3 with points pt 5 ps 1.0 lc rgb '#1f3b99' title 'plain DC'
-set title "speed from the throttle\nMAE dynosize 4.39 %, plain DC 1.34 %"
+set title "speed from the throttle\nMAE dynosize 4.39 %, plain DC 4.35 %"
 set xlabel 'measured [rpm]'
 set ylabel 'predicted [rpm]'
-set xrange [3760.25:9859.12]
-set yrange [3760.25:9859.12]
+set xrange [3759.56:9318.03]
+set yrange [3759.56:9318.03]
 plot x with lines lc rgb 'black' title '1:1', 1.1*x with lines dt 2 lc rgb 'gray50' title '+-10 %', 0.9*x with lines dt 2 lc rgb 'gray50' notitle, $p3 using 1:2 with points pt 7 ps 1.2 lc rgb '#d95f0e' title 'dynosize', $p3 using 1:3 with points pt 5 ps 1.0 lc rgb '#1f3b99' title 'plain DC'
-set title "DC current from the throttle\nMAE dynosize 19 %, plain DC 11.4 %"
+set title "DC current from the throttle\nMAE dynosize 19 %, plain DC 18.2 %"
 set xlabel 'measured [A]'
 set ylabel 'predicted [A]'
-set xrange [0:47.5793]
-set yrange [0:47.5793]
+set xrange [0:46.494]
+set yrange [0:46.494]
 plot x with lines lc rgb 'black' title '1:1', 1.1*x with lines dt 2 lc rgb 'gray50' title '+-10 %', 0.9*x with lines dt 2 lc rgb 'gray50' notitle, $p4 using 1:2 with points pt 7 ps 1.2 lc rgb '#d95f0e' title 'dynosize', $p4 using 1:3 with points pt 5 ps 1.0 lc rgb '#1f3b99' title 'plain DC'
 unset multiplot
 

@@ -1,30 +1,30 @@
 # Written by dynosize; run 'gnuplot stand_measured_vs_predicted.gp' to redraw.
 $p0 << EOD
-6.6 3.35520345 3.24954245
-11.2 6.56135509 6.35895501
-17.3 11.645344 11.2584844
-25.3 19.5304342 18.7949478
-35.3 30.708327 29.3626837
-46.7 46.0585362 43.7681214
-58.5 63.5955498 60.0340583
+6.6 3.35520345 3.35524289
+11.2 6.56135509 6.56145947
+17.3 11.645344 11.6455827
+25.3 19.5304342 19.5309386
+35.3 30.708327 30.7093099
+46.7 46.0585362 46.0602681
+58.5 63.5955498 63.5983012
 EOD
 $p1 << EOD
-10231 9897.16786 10082.2909
-12228 12072.6443 12363.2369
-14114 14029.9587 14458.6662
-15885 15763.0487 16375.0723
-17285 17183.9143 18024.4554
-18862 18408.6178 19510.3217
-19862 18457.744 20797.6841
+10231 9897.16786 9897.01954
+12228 12072.6443 12072.4077
+14114 14029.9587 14029.6066
+15885 15763.0487 15762.5432
+17285 17183.9143 17183.2176
+18862 18408.6178 18407.7027
+19862 18457.744 19426.1441
 EOD
 $p2 << EOD
-6.6 3.25279972 3.20460154
-11.2 6.48503036 6.42477826
-17.3 11.5833704 11.511061
-25.3 19.4002402 19.3158686
-35.3 30.5576762 30.4612364
-46.7 45.1593511 45.050837
-58.5 60.064993 62.3820007
+6.6 3.25279972 3.25279385
+11.2 6.48503036 6.48501866
+17.3 11.5833704 11.5833495
+25.3 19.4002402 19.4002052
+35.3 30.5576762 30.5576211
+46.7 45.1593511 45.1592697
+58.5 60.064993 62.5024815
 EOD
 set terminal pngcairo size 1200,1200 font 'DejaVu Sans,11' noenhanced
 if (!exists('outfile')) outfile = 'stand_measured_vs_predicted.png'
@@ -36,23 +36,23 @@ set multiplot layout 2,2 title "Scorpion_1100kv.csv: Scorpion 1100KV + Castle Ph
 set grid
 set key left top inside
 set size ratio -1
-set title "DC current at the measured rpm\nMAE dynosize 24.2 %, plain DC 25.8 %"
+set title "DC current at the measured rpm\nMAE dynosize 24.2 %, plain DC 24.2 %"
 set xlabel 'measured [A]'
 set ylabel 'predicted [A]'
-set xrange [0:66.7753]
-set yrange [0:66.7753]
+set xrange [0:66.7782]
+set yrange [0:66.7782]
 plot x with lines lc rgb 'black' title '1:1', 1.1*x with lines dt 2 lc rgb 'gray50' title '+-10 %', 0.9*x with lines dt 2 lc rgb 'gray50' notitle, $p0 using 1:2 with points pt 7 ps 1.2 lc rgb '#d95f0e' title 'dynosize', $p0 using 1:3 with points pt 5 ps 1.0 lc rgb '#1f3b99' title 'plain DC'
-set title "speed from the throttle\nMAE dynosize 2.28 %, plain DC 2.93 %"
+set title "speed from the throttle\nMAE dynosize 2.28 %, plain DC 1.59 %"
 set xlabel 'measured [rpm]'
 set ylabel 'predicted [rpm]'
-set xrange [8907.45:21837.6]
-set yrange [8907.45:21837.6]
+set xrange [8907.32:20855.1]
+set yrange [8907.32:20855.1]
 plot x with lines lc rgb 'black' title '1:1', 1.1*x with lines dt 2 lc rgb 'gray50' title '+-10 %', 0.9*x with lines dt 2 lc rgb 'gray50' notitle, $p1 using 1:2 with points pt 7 ps 1.2 lc rgb '#d95f0e' title 'dynosize', $p1 using 1:3 with points pt 5 ps 1.0 lc rgb '#1f3b99' title 'plain DC'
-set title "DC current from the throttle\nMAE dynosize 24.1 %, plain DC 25 %"
+set title "DC current from the throttle\nMAE dynosize 24.1 %, plain DC 24.7 %"
 set xlabel 'measured [A]'
 set ylabel 'predicted [A]'
-set xrange [0:65.5011]
-set yrange [0:65.5011]
+set xrange [0:65.6276]
+set yrange [0:65.6276]
 plot x with lines lc rgb 'black' title '1:1', 1.1*x with lines dt 2 lc rgb 'gray50' title '+-10 %', 0.9*x with lines dt 2 lc rgb 'gray50' notitle, $p2 using 1:2 with points pt 7 ps 1.2 lc rgb '#d95f0e' title 'dynosize', $p2 using 1:3 with points pt 5 ps 1.0 lc rgb '#1f3b99' title 'plain DC'
 unset multiplot
 
