@@ -223,7 +223,11 @@ int RunValidateStand(const ValidateStandOptions& o) {
   const std::string title = std::filesystem::path(o.table).filename().string() + ": " + motor.name + " + " + esc.name +
                             (prop_entry ? " + " + prop_entry->name : std::string(" (measured torque as the load)"));
   std::string figure;
-  if (!o.plot_dir.empty()) figure = WriteStandFigure(table, result, title, o.plot_dir);
+  if (!o.plot_dir.empty()) {
+    const std::string settings = std::string(numbers == DcBaselineNumbers::kAsStored ? " [--baseline as-stored]" : "") +
+                                 (o.ideal_esc ? " [--ideal-esc]" : "");
+    figure = WriteStandFigure(table, result, title + settings, o.plot_dir);
+  }
   if (o.json) {
     Json j = ResultJson(table, result);
     j["table"] = o.table;

@@ -122,7 +122,7 @@ std::string WriteStandFigure(const stand::StandTable& t, const stand::StandResul
   if (n == 0) return "";  // nothing measured that a model predicts
   const int cols = n > 1 ? 2 : 1, rows = (n + 1) / 2;
   s << "set multiplot layout " << std::max(rows, 1) << "," << cols << " title "
-    << Quote(title + "\\nmeasured vs predicted: dynosize (rms model, eqs 42-59) and the plain DC model (label Kv, same R and Io)")
+    << Quote(title + "\\nmeasured vs predicted: dynosize (rms model, eqs 42-59) and the plain DC model (label Kv, datasheet R and Io)")
     << "\nset grid\nset key left top inside\nset size ratio -1\n";
   int k = 0;
   for (const auto& [p, column] : candidates) {

@@ -308,9 +308,10 @@ TEST(StandCliReal, At4125IdealEscAndBaselineChoice) {
   const Json& last_p = jp["rows"].back()["from_throttle"];
   const Json& last_i = ji["rows"].back()["from_throttle"];
   ASSERT_EQ(jp["rows"].back()["measured"]["throttle"].get<double>(), 1.0);
-  // Ideal ESC: dynosize = DC model (1e-6 relative: a bisection to 1e-10 and a Newton solve).
+  // Ideal ESC: dynosize = DC model up to the rounding of rm_ohm (3 digits: 0.0607 against
+  // 0.7492 x 0.081 = 0.06069, 0.02 % of R; the R*I drop is a third of VDC): 2e-4 relative.
   EXPECT_NEAR(last_i["dynosize"]["rpm"].get<double>(), last_i["plain_dc"]["rpm"].get<double>(),
-              1e-6 * last_i["plain_dc"]["rpm"].get<double>());
+              2e-4 * last_i["plain_dc"]["rpm"].get<double>());
   // The prior's knee: at least 3 % slower at full throttle than the DC model (96.1 % of the voltage).
   EXPECT_LT(last_p["dynosize"]["rpm"].get<double>(), 0.97 * last_p["plain_dc"]["rpm"].get<double>());
   // as-stored: R = rm_ohm + resc_ohm, the rms numbers.
