@@ -323,7 +323,7 @@ done
 echo
 echo "The A-4220 table's throttle is read from its ESC pulse width (1000-2000 us). Its \`Throttle\` column"
 echo "is not the command: sjkim's README says it differs from the spreadsheet (0.618 at 1236 us)."
-echo "Both models under-predict the Scorpion's current (DC model bias"
+echo "Both models miss the Scorpion's current by the same amount (DC model bias"
 echo "$(bias scorpion_1100kv_ideal at_measured_rpm idc_a) % at the measured rpm and torque). Its table loses more than its"
 echo "catalog entry holds (label Kv, fitted R, assumed Io): a speed-dependent no-load current and"
 echo "part-throttle ESC losses (model.md section 9)."

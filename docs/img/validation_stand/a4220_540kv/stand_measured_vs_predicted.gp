@@ -47,7 +47,7 @@ set output outfile
 set encoding utf8
 set grid lc rgb '#dddddd'
 set key outside right top
-set multiplot layout 2,2 title "A4220_540kv_stand_test.csv: A-4220 540KV + Castle Phoenix 125 (measured torque as the load)\nmeasured vs predicted: dynosize (rms model, eqs 42-59) and the plain DC model (label Kv, same R and Io)"
+set multiplot layout 2,2 title "A4220_540kv_stand_test.csv: A-4220 540KV + Castle Phoenix 125 (measured torque as the load)\nmeasured vs predicted: dynosize (rms model, eqs 42-59) and the plain DC model (label Kv, datasheet R and Io)"
 set grid
 set key left top inside
 set size ratio -1

@@ -75,7 +75,7 @@ set output outfile
 set encoding utf8
 set grid lc rgb '#dddddd'
 set key outside right top
-set multiplot layout 3,2 title "TMotor_AT4125_540kv.csv: T-Motor AT4125 540KV + Castle Phoenix 125 + APC E 15.0x8.0\nmeasured vs predicted: dynosize (rms model, eqs 42-59) and the plain DC model (label Kv, same R and Io)"
+set multiplot layout 3,2 title "TMotor_AT4125_540kv.csv: T-Motor AT4125 540KV + Castle Phoenix 125 + APC E 15.0x8.0\nmeasured vs predicted: dynosize (rms model, eqs 42-59) and the plain DC model (label Kv, datasheet R and Io)"
 set grid
 set key left top inside
 set size ratio -1
