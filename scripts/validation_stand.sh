@@ -245,7 +245,9 @@ echo
 echo "At @rpm and @rpm+Q both models see the same speed and torque. The ESC's knee does not enter there:"
 echo "the DC current follows from the voltage the motor needs, eq (57) with the effective throttle. Only"
 echo "the ESC's resistance separates them ($resc_mohm mOhm against R_dc of $r_range mOhm) and the two IDC columns"
-echo "agree within $idc_gap points. Forward from the throttle the prior's knee delivers $knee"
+echo "agree within $idc_gap points. The throttle needed at those points does see the knee: above tr_sat"
+echo "the prior asks for more command for the same voltage, hence the \"throttle\" entries in the last"
+echo "column. Forward from the throttle the prior's knee delivers $knee"
 echo "of the voltage at a 100 % command. Mean rpm error on the 100 % rows,"
 echo "forward, dynosize / DC model (catalog prior):"
 echo
