@@ -31,6 +31,11 @@ scorpion=(--format mapped --map throttle=throttle --map vdc_v=voltage_V --map id
 a4220=(--format mapped --drop-incomplete-rows --map "throttle=ESC throttle (us) [us]" --map vdc_v=Voltage
        --map idc_a=Current --map rpm=RPM --map torque_nm=Torque --map "thrust_n=Thrust [kgf]")
 
+# MIT KDE2814XF-775 (no header, no voltage column: a 3S pack, nominal 11.1 V assumed).
+mit=(--format mapped --map "throttle=#1 [us]" --map "torque_nm=#2 [N*m]" --map "thrust_n=#3 [N]" --map rpm=#4
+     --map "idc_a=#5 [A]" --vdc 11.1)
+m=$data/mit_multicopter_kde2814
+
 # case_run SLUG SUFFIX LABEL TABLE MOTOR PROP|- [extra args...]: writes $tmp/SLUG$SUFFIX.json.
 # Figures only for the runs without a suffix (the catalog ESC prior, the default baseline).
 case_run() {
@@ -52,7 +57,7 @@ case_run() {
 }
 prop_cases=(at3520_13x6.5_dc_p_131 at3520_14x7_apc_per3_14x7e at3520_14x7_dc_p_145 at4125_15x8_apc_per3_15x8e
             at4125_15x8_dc_p_261)
-motor_cases=(at2814_1200kv scorpion_1100kv a4220_540kv)
+motor_cases=(at2814_1200kv scorpion_1100kv a4220_540kv kde2814_14in kde2814_10in)
 run_all() {  # SUFFIX [extra validate-stand args...]
   local x=$1; shift
   case_run at3520_13x6.5_dc_p_131 "$x" "AT3520 550KV + APC 13x6.5 | dc_p_131 APC E 13.0x6.5 (DriveCalc law)" \
@@ -71,6 +76,12 @@ run_all() {  # SUFFIX [extra validate-stand args...]
     sj_m_scorpion_1100kv - "${scorpion[@]}" "$@"
   case_run a4220_540kv "$x" "A-4220 540KV + Falcon 15x10E (not in the catalog)" "$s/A4220_540kv_stand_test.csv" \
     sj_m_a4220_540kv - "${a4220[@]}" "$@"
+  if [ -d "$m" ]; then
+    case_run kde2814_14in "$x" "KDE2814XF-775 + 14x4.8 CF (MIT; VDC 11.1 V assumed)" "$m/motor_14inch_prop.txt" \
+      fu_m_105 - "${mit[@]}" "$@"
+    case_run kde2814_10in "$x" "KDE2814XF-775 + 10x3.3 CF (MIT; VDC 11.1 V assumed)" "$m/motor_10inch_prop.txt" \
+      fu_m_105 - "${mit[@]}" "$@"
+  fi
 }
 rm -rf "$img"
 mkdir -p "$img"
@@ -150,6 +161,7 @@ baseline_of() {  # FILE: "R mOhm, Io A"
   jq -r '.baseline | "\(.r_ohm * 1e4 | round / 10) mOhm, Io \(.io_a * 1000 | round / 1000) A"' "$tmp/$1.json"
 }
 label() {
+  [ -f "$tmp/$1.label" ] || { echo "$1 (data not found)"; return; }
   local l; l=$(cut -d'|' -f"$2" "$tmp/$1.label" | sed 's/^ *//; s/ *$//')
   if [ "$2" = 2 ] && [ -f "$tmp/$1.missing" ]; then l="$l: **$(cat "$tmp/$1.missing") not in the catalog**"; fi
   echo "$l"
@@ -330,6 +342,22 @@ echo "$(bias scorpion_1100kv_ideal at_measured_rpm idc_a) % at the measured rpm 
 echo "catalog entry holds (label Kv, fitted R, assumed Io): a speed-dependent no-load current and"
 echo "part-throttle ESC losses (model.md section 9)."
 echo
+eff_max() {  # FILE: the largest shaft power / (VDC*IDC) over the rows, percent
+  jq -r '[.rows[] | .measured.torque_nm * .measured.rpm * 3.141592653589793 / 30 / (.vdc_v * .measured.idc_a) * 100]
+    | if length == 0 then "-" else max | round | tostring end' "$tmp/$1.json"
+}
+if [ -f "$tmp/kde2814_10in.label" ]; then
+echo "The MIT tables (KDE2814XF-775, catalog entry fu_m_105 from KDE's datasheet via FAST-UAV; Castle"
+echo "QuadPack 35, not in the catalog) have no voltage column: VDC is the 3S pack's nominal 11.1 V, an"
+echo "assumption. Both the current at the measured rpm and torque and the forward speed scale with it."
+echo "With 11.1 V the 10-inch sweep's shaft power reaches $(eff_max kde2814_10in) % of VDC*IDC (14-inch:"
+echo "$(eff_max kde2814_14in) %), more than a motor of this size and its ESC deliver: that pack was probably nearer"
+echo "its full 12.6 V. The two sweeps of the same motor and ESC therefore cannot both be read at one"
+echo "voltage, so the gap between them says little about the model."
+echo "The forward rpm error is large in relative terms because of the slow rows: a few points of throttle"
+echo "(the ESC's pulse-width map) are a large share of 800-1500 rpm."
+echo
+fi
 echo "## The DC model fed the catalog's rms numbers (\`--baseline as-stored\`)"
 echo
 echo "The DC model with R = rm_ohm + resc_ohm and Io = io_a: 0.7492 x the datasheet R and 0.90 x its"
@@ -357,10 +385,9 @@ cat <<'EOF'
   motors are in the catalog, but no propeller of the same product is. The catalog's nearest ones
   (APC 10x4.5MR, EPP1045, DJI CF 15x5.0) are other products, and the tables have no torque
   column, so the load at a row is unknown.
-- **MIT KDE2814XF-775** (10x3.3 and 14x4.8 carbon propellers, maker not stated): the motor is not in
-  the catalog. The table gives its label Kv (775, from the name) but no resistance and no voltage
-  column (a 3S pack). It has torque, rpm and current, so with a catalog entry (KDE's datasheet R)
-  and `--vdc` it could run @rpm+Q.
+- **MIT KDE2814XF-775** propellers (10x3.3 and 14x4.8 carbon, maker not stated): not in the catalog,
+  so the MIT tables run above with their measured torque as the load (motor fu_m_105), not through a
+  propeller entry.
 - **Tyto database, T-Motor 16x5.4** (KDE 4014XF, NeuMotor 3819, T-Motor Antigravity 5008, MN501-S,
   MN4014, U5, U7 x3): none of the nine motors is in the catalog, and neither is the T-Motor 16x5.4
   propeller (the catalog's APC 16x5.5MR is another product). The tables give label Kv in the file
