@@ -10,6 +10,9 @@
 
 #include "calibration/catalog_output.h"
 #include "calibration/drivecalc_refit.h"
+#include "calibration/prop_static.h"
+#include "common/units.h"
+#include "identification/verdict.h"
 #include "catalog/catalog.h"
 #include "commands.h"
 #include "common/error.h"
@@ -67,6 +70,26 @@ std::string NonFiniteParameter(const CalibrationResult& r) {
 // {"median_abs_percent": x, "points": n}
 Json ErrJson(const std::vector<double>& e) {
   return {{"median_abs_percent", NumberOrNull(MedianAbs(e))}, {"points", e.size()}};
+}
+
+void CheckPropOptions(const CalibrateOptions& o) {
+  if (o.prop_id.empty()) {
+    if (o.prop_diameter_in || o.prop_pitch_in) throw UsageError("calibrate: --prop-diameter-in/--prop-pitch-in need --prop-id");
+    return;
+  }
+  if (!o.prop_diameter_in || !(*o.prop_diameter_in > 0.0)) {
+    throw UsageError("calibrate: --prop-id needs --prop-diameter-in > 0 (inch)");
+  }
+  if (o.prop_pitch_in && !(*o.prop_pitch_in > 0.0)) throw UsageError("calibrate: --prop-pitch-in must be > 0 (inch)");
+}
+
+// The static propeller entry of --prop-id (calibration/prop_static.h).
+Json PropEntry(const CalibrateOptions& o, const logs::SteadyTable& table, const calibration::EntryProvenance& prov) {
+  calibration::PropStaticOptions po;
+  po.diameter_m = InchToMeter(*o.prop_diameter_in);
+  if (o.prop_pitch_in) po.pitch_m = InchToMeter(*o.prop_pitch_in);
+  const calibration::PropStaticTable pt = calibration::FitPropStatic(table, po);
+  return calibration::PropEntryJson(o.prop_id, o.prop_id + " (measured)", pt, po, prov);
 }
 
 int RunDriveCalcAll(const CalibrateOptions& o) {
@@ -181,6 +204,12 @@ int RunCalibrate(const CalibrateOptions& o) {
   for (const auto& l : o.logs) tables.push_back(logs::ReadLog(l, ro));
   const logs::SteadyTable table = calibration::MergeLogs(tables);
   CalibrationOptions co;
+  co.labels.kv_rpm_per_v = o.kv_label;
+  co.labels.rm_ohm = o.rm_label;
+  co.labels.io_a = o.io_label;
+  co.labels.io_v = o.io_label_v;
+  if (const std::string e = co.labels.Validate(); !e.empty()) throw UsageError("calibrate: " + e);
+  CheckPropOptions(o);
   if (!o.prior_motor.empty() || !o.prior_esc.empty()) {
     const Catalog cat = Catalog::Load(o.catalog_dir);
     if (!o.prior_motor.empty()) co.motor_prior = cat.motor(o.prior_motor).params;
@@ -209,39 +238,43 @@ int RunCalibrate(const CalibrateOptions& o) {
                     r.message + "): no parameters reported" +
                     (o.out.empty() ? std::string() : ", " + o.out + " not changed"));
   }
+  // The status contract: checks over the fit, the label and the held-out (cross-validated) error.
+  const calibration::CrossValidation cv = calibration::CrossValidateForVerdict(table, co);
+  const identification::Verdict verdict = calibration::JudgeCalibration(r, table, co, &cv);
 
   calibration::EntryProvenance prov;
   prov.dataset = Datasets(o.logs);
   std::ostringstream ref;
-  ref << "dynosize calibrate (" << r.mode << "), " << r.points_used << " points";
+  ref << "dynosize calibrate (" << r.mode << "), " << r.points_used << " points, status "
+      << identification::StatusName(verdict.status);
   prov.reference = ref.str();
-  const Json motor = calibration::MotorEntryJson(o.motor_id, o.motor_id + " (fitted)", r, prov);
-  const Json esc = calibration::EscEntryJson(o.esc_id, o.esc_id + " (fitted)", r, prov);
+  Json motor = calibration::MotorEntryJson(o.motor_id, o.motor_id + " (fitted)", r, prov);
+  Json esc = calibration::EscEntryJson(o.esc_id, o.esc_id + " (fitted)", r, prov);
+  calibration::AddRatings(&motor, {o.mass_kg, o.max_current_a, o.max_power_w, o.kv_label, std::nullopt});
+  calibration::AddRatings(&esc, {o.esc_mass_kg, o.esc_max_current_a, std::nullopt, std::nullopt, o.esc_vdc_max_v});
+  std::vector<Json> props;
+  if (!o.prop_id.empty()) props.push_back(PropEntry(o, table, prov));
 
   Json loo;
   if (o.loo) {
-    const auto cv = calibration::LeaveOneOut(table, co, true);
+    const auto lcv = calibration::LeaveOneOut(table, co, true);
     loo["by"] = table.Has(logs::Column::kThrottle) ? "throttle level" : "row";
-    loo["folds"] = cv.folds;
-    loo["failed_folds"] = cv.failed_folds;
-    loo["idc"] = ErrJson(cv.idc_error_percent);
-    loo["omega_at_torque"] = ErrJson(cv.omega_error_percent);
-    loo["omega_from_idc"] = ErrJson(cv.omega_from_idc_error_percent);
+    loo["folds"] = lcv.folds;
+    loo["failed_folds"] = lcv.failed_folds;
+    loo["idc"] = ErrJson(lcv.idc_error_percent);
+    loo["omega_at_torque"] = ErrJson(lcv.omega_error_percent);
+    loo["omega_from_idc"] = ErrJson(lcv.omega_from_idc_error_percent);
   }
   if (!o.plot_dir.empty()) {
     for (const auto& f : WriteCalibrationFigures(o.plot_dir, table, r)) {
       if (!o.json) std::cerr << "wrote " << f << "\n";
     }
   }
-  if (!o.out.empty()) {
-    calibration::WriteCatalogEntries(o.out, {motor}, {esc}, o.force,
-                                     "Entries fitted by dynosize calibrate from dynamometer logs.");
-    if (!o.json) std::cerr << "wrote " << o.motor_id << ", " << o.esc_id << " to " << o.out << "\n";
-  }
   if (o.json) {
-    Json j;
+    Json j = calibration::VerdictJson(verdict);
     j["motor"] = motor;
     j["esc"] = esc;
+    if (!props.empty()) j["prop"] = props[0];
     j["stderr"] = calibration::StandardErrorsJson(r);
     j["identifiable"] = calibration::IdentifiableJson(r);
     j["fit"] = calibration::FitJson(r);
@@ -251,6 +284,24 @@ int RunCalibrate(const CalibrateOptions& o) {
   } else {
     std::cout << r.FullReport();
     if (o.loo) std::cout << "leave-one-out: " << loo.dump() << "\n";
+    std::cout << verdict.summary << "\n";
+    if (!verdict.advice.empty()) std::cout << "next: " << verdict.advice << "\n";
+  }
+  if (!o.out.empty()) {
+    // Only an entry with status ok is written; --force replaces ids, it never admits a refused fit.
+    if (verdict.status != identification::Status::kOk) {
+      const identification::Check* c = verdict.FirstFailed();
+      std::ostringstream m;
+      m << Datasets(o.logs) << ": " << o.out << " not written: status " << identification::StatusName(verdict.status);
+      if (c != nullptr) m << ", check " << c->name << " failed (" << c->value << " vs limit " << c->limit << ")";
+      throw DataError(m.str());
+    }
+    calibration::WriteCatalogEntries(o.out, {motor}, {esc}, o.force,
+                                     "Entries fitted by dynosize calibrate from dynamometer logs.", props);
+    if (!o.json) {
+      std::cerr << "wrote " << o.motor_id << ", " << o.esc_id << (props.empty() ? "" : ", " + o.prop_id) << " to "
+                << o.out << "\n";
+    }
   }
   return 0;
 }

@@ -134,6 +134,20 @@ void WriteExtendedEntries(const DiagnoseCliOptions& o, const diagnosis::Diagnose
   if (!o.json) std::cerr << "wrote " << id << "_motor, " << id << "_esc to " << o.out << "\n";
 }
 
+// --out writes the extended model only when its status is ok (the same rule as calibrate):
+// otherwise exit 65 with one line naming the failed check, and the file is not touched.
+void WriteIfOk(const DiagnoseCliOptions& o, const diagnosis::DiagnoseResult& r) {
+  if (o.out.empty()) return;
+  if (r.verdict.status != identification::Status::kOk) {
+    const identification::Check* c = r.verdict.FirstFailed();
+    std::ostringstream m;
+    m << o.log << ": " << o.out << " not written: status " << identification::StatusName(r.verdict.status);
+    if (c != nullptr) m << ", check " << c->name << " failed (" << c->value << " vs limit " << c->limit << ")";
+    throw DataError(m.str());
+  }
+  WriteExtendedEntries(o, r);
+}
+
 }  // namespace
 
 int RunDiagnose(const DiagnoseCliOptions& o) {
@@ -147,6 +161,8 @@ int RunDiagnose(const DiagnoseCliOptions& o) {
   diagnosis::DiagnoseOptions opt;
   opt.folds = o.folds;
   opt.alpha = o.alpha;
+  opt.kv_label_rpm_per_v = o.kv_label;
+  if (o.kv_label && !(*o.kv_label > 0.0)) throw UsageError("diagnose: --kv-label must be > 0 (rpm per volt)");
   if (!o.motor_id.empty() || !o.esc_id.empty()) {
     const Catalog cat = Catalog::Load(o.catalog_dir);
     if (!o.motor_id.empty()) opt.motor = cat.motor(o.motor_id).params;
@@ -162,12 +178,12 @@ int RunDiagnose(const DiagnoseCliOptions& o) {
       if (!o.json) std::cerr << "wrote " << f << "\n";
     }
   }
-  if (!o.out.empty()) WriteExtendedEntries(o, r);
   if (!o.json) {
     std::cout << r.FullReport();
+    WriteIfOk(o, r);
     return 0;
   }
-  Json j;
+  Json j = calibration::VerdictJson(r.verdict);
   j["file"] = r.file;
   j["mode"] = r.mode;
   j["points_used"] = r.points_used;
@@ -231,7 +247,12 @@ int RunDiagnose(const DiagnoseCliOptions& o) {
                          {"cv_rmse_percent", CvJson(r.extended_cv, true)},
                          {"cv_rms_percent_all", NumberOrNull(r.extended_cv_rms_percent)}};
   j["warnings"] = r.warnings;
+  j["dropped_rows"] = r.outlier_reasons;
+  j["cross_validation"] = {{"folds", r.cv_folds}, {"leave_one_out", r.leave_one_out},
+                           {"baseline_failed_folds", r.baseline_cv_failed_folds},
+                           {"extended_failed_folds", r.extended_cv_failed_folds}};
   std::cout << DumpJson(j);
+  WriteIfOk(o, r);
   return 0;
 }
 

@@ -110,6 +110,58 @@ TEST(CalibrateCli, OutForceAndUntouchedOnFailure) {
   EXPECT_NO_THROW(Catalog::Load(cat_dir));
 }
 
+// The status contract: --out writes only an "ok" entry; a refused fit exits 65 with one line
+// naming the failed check and leaves the catalog file as it was, --force or not.
+TEST(CalibrateCli, OutRefusesAFitThatIsNotOk) {
+  const std::string dir = TempDir("refuse");
+  const std::string log = WriteCanonicalLog(dir);  // a ~900 rpm/V motor
+  const std::string out = dir + "/fitted.json";
+  // Label 2000 rpm/V: the fit lands far from it (the data determine KE much better than 10 %).
+  CliRun r = Exec("calibrate " + log + " --motor-id m --esc-id e --kv-label 2000 --json --out " + out);
+  EXPECT_EQ(r.code, 65) << r.err;
+  EXPECT_FALSE(fs::exists(out));
+  EXPECT_NE(r.err.find("not written: status failed, check kv_vs_label failed"), std::string::npos) << r.err;
+  const Json j = ParseJsonText(r.out, "stdout");
+  EXPECT_EQ(j["status"], "failed");
+  bool seen = false;
+  for (const auto& c : j["checks"]) {
+    if (c["name"] == "kv_vs_label") {
+      seen = true;
+      EXPECT_FALSE(c["passed"].get<bool>());
+      EXPECT_DOUBLE_EQ(c["limit"].get<double>(), 25.0);
+    }
+  }
+  EXPECT_TRUE(seen);
+  // An existing file stays byte-identical, also with --force.
+  r = Exec("calibrate " + log + " --motor-id m --esc-id e --kv-label 900 --out " + out);
+  ASSERT_EQ(r.code, 0) << r.err;
+  const std::string before = Slurp(out);
+  r = Exec("calibrate " + log + " --motor-id m --esc-id e --kv-label 2000 --force --out " + out);
+  EXPECT_EQ(r.code, 65) << r.err;
+  EXPECT_EQ(Slurp(out), before);
+}
+
+// Entries ready for sizing: ratings, mass and the label in the written entries.
+TEST(CalibrateCli, RatingsAreStored) {
+  const std::string dir = TempDir("ratings");
+  const std::string log = WriteCanonicalLog(dir);
+  const std::string cat_dir = dir + "/cat";
+  fs::create_directories(cat_dir);
+  const std::string out = cat_dir + "/fitted.json";
+  const CliRun r = Exec("calibrate " + log + " --motor-id m --esc-id e --kv-label 900 --mass-kg 0.085 " +
+                        "--max-current-a 30 --max-power-w 400 --esc-max-current-a 35 --esc-vdc-max-v 25.2 --json --out " + out);
+  ASSERT_EQ(r.code, 0) << r.err;
+  const Json j = ParseJsonText(r.out, "stdout");
+  EXPECT_EQ(j["status"], "ok") << j["summary"];
+  const Catalog cat = Catalog::Load(cat_dir);
+  EXPECT_DOUBLE_EQ(cat.motor("m").params.max_current_a, 30.0);
+  EXPECT_DOUBLE_EQ(cat.esc("e").params.max_current_a, 35.0);
+  const Json doc = ReadJsonFile(out);
+  EXPECT_DOUBLE_EQ(doc["motors"][0]["mass_kg"].get<double>(), 0.085);
+  EXPECT_DOUBLE_EQ(doc["motors"][0]["kv_rpm_per_v"].get<double>(), 900.0);
+  EXPECT_EQ(doc["motors"][0]["source"]["values"]["mass_kg"], "datasheet");
+}
+
 TEST(CalibrateCli, MissingIdsIsUsageError) {
   const std::string dir = TempDir("ids");
   const std::string log = WriteCanonicalLog(dir);

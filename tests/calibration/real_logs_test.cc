@@ -75,7 +75,11 @@ TEST(CalibrateRealLogs, TMotorAt3520MatchesDatasheetKv) {
   const auto t = logs::ReadLog(Shared() + "sjkim_mfr_motor_tables/TMotor_AT3520_550kv.csv", o);
   const CalibrationResult r = Calibrate(t);
   EXPECT_TRUE(r.converged);
-  EXPECT_NEAR(KvOf(r), 550.0, 0.03 * 550.0);  // datasheet 550 rpm/V
+  // Datasheet 550 rpm/V. The base fit now includes the throttle offset of model.md section 9
+  // when the F test keeps it (here it does), and the offset trades with KE and the knee: the
+  // fitted Kv lands about 9 % below the label, well inside the 25 % of model.md section 10.
+  constexpr double kKvRelTol = 0.10;
+  EXPECT_NEAR(KvOf(r), 550.0, kKvRelTol * 550.0);
   EXPECT_GT(r.motor.io_a, 0.0);
   EXPECT_GT(r.r_total_ohm, 0.0);
   EXPECT_TRUE(r.param(Param::kTrSat).identifiable);  // two props, 11 throttle levels

@@ -118,6 +118,10 @@ TEST(DiagnoseTest, IndistinguishableCausesAreReportedAsAmbiguous) {
   co.torque = false;
   co.vdc_v = {14.8};
   co.props = 1;
+  // 14 rows: the outlier screen may drop at most 10 % of them (one row, issue 12), and two wrong
+  // rows on this single path bend it as much as the effect does: no outliers here (the screen
+  // has its own tests).
+  co.outliers = 0;
   const Campaign c = MakeCampaign(301, {Cause::kSupplyResistance}, co);
   const DiagnoseResult r = Diagnose(c.table);
   SCOPED_TRACE(r.FullReport());
