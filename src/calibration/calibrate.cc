@@ -44,6 +44,10 @@ struct FitData {
   std::vector<double> vdc, tr, omega, q;
   std::vector<char> torque_known;
   std::vector<char> speed_known;  // 0: a no-load row whose speed was not measured (omega = 0)
+  // DC logs with a throttle but neither torque nor AC columns: the measured current is the row's
+  // input and the speed is predicted (the well-conditioned direction: I = (U - KE*omega)/R is a
+  // small difference at low throttle, omega = (U - R*I)/KE is not). NaN where not an input.
+  std::vector<double> idc_in;
   std::vector<int> term_begin;  // terms of row k: [term_begin[k], term_begin[k+1])
   std::vector<Term> terms;
   std::array<bool, kMeasCount> measured{};
@@ -92,7 +96,8 @@ std::array<double, kParamCount> ToInternal(const MotorParams& m, const EscParams
 // KT or resistance).
 template <typename T>
 bool PredictGeneric(const T* p, double tr_sat, double vdc, double tr, double omega,
-                    double q, bool torque_known, T* pred, T* q_pred) {
+                    double q, bool torque_known, T* pred, T* q_pred,
+                    double idc_in = std::numeric_limits<double>::quiet_NaN()) {
   const T& ke = p[0];
   const T kt = KtFromRatio(ke, p[kKtI]);
   const T& rm = p[2];
@@ -110,6 +115,13 @@ bool PredictGeneric(const T* p, double tr_sat, double vdc, double tr, double ome
     i = q / kt + io;
     w = (u - r * i) / ke;
     *q_pred = T(q);
+  } else if (idc_in == idc_in) {
+    // The measured DC current is the input: I = IDC/(C1*TR_eff + C0) (57), speed from (48).
+    const T g = c1 * tre + c0;
+    if (!(g > 1e-6)) return false;
+    i = idc_in / g;
+    w = (u - r * i) / ke;
+    *q_pred = kt * (i - io);
   } else {
     w = T(omega);
     i = (u - ke * omega) / r;
@@ -141,7 +153,7 @@ bool Residuals(const FitData& d, const Layout& lay, const std::array<double, kPa
   T qp;
   for (std::size_t k = 0; k < d.rows.size(); ++k) {
     if (!PredictGeneric(p, tr_sat, d.vdc[k], d.tr[k], d.omega[k], d.q[k],
-                        d.torque_known[k] != 0, pred, &qp)) {
+                        d.torque_known[k] != 0, pred, &qp, d.idc_in[k])) {
       return false;
     }
     for (int t = d.term_begin[k]; t < d.term_begin[k + 1]; ++t) {
@@ -282,6 +294,8 @@ Prepared Prepare(const SteadyTable& t, const CalibrationOptions& o, const std::v
     d.q.push_back(has_q ? t.Get(Column::kTorqueNm)[i] : 0.0);
     d.torque_known.push_back(has_q || nl ? 1 : 0);
     d.speed_known.push_back(speed_unknown ? 0 : 1);
+    const bool current_input = pr.has_throttle && !has_q && !ac && !nl && !speed_unknown && idc_all[i] > 0.0;
+    d.idc_in.push_back(current_input ? idc_all[i] : kNaN);
   }
   const std::size_t n = d.rows.size();
   std::size_t with_speed = 0;
@@ -304,8 +318,10 @@ Prepared Prepare(const SteadyTable& t, const CalibrationOptions& o, const std::v
   for (std::size_t k = 0; k < n; ++k) {
     for (int m = 0; m < kMeasCount; ++m) {
       if (!d.measured[m]) continue;
-      if (m == kMOmega && !d.torque_known[k]) continue;  // speed is the input on this row
+      const bool current_input = d.idc_in[k] == d.idc_in[k];
+      if (m == kMOmega && !d.torque_known[k] && !current_input) continue;  // speed is the input
       if (m == kMOmega && !d.speed_known[k]) continue;   // speed not measured on this row
+      if (m == kMIdc && current_input) continue;         // the current is the input
       d.terms.push_back({m, t.Get(kMeasColumn[m])[d.rows[k]], inv_scale[m]});
     }
     d.term_begin.push_back(static_cast<int>(d.terms.size()));
@@ -641,7 +657,7 @@ std::vector<double> RowResidualMax(const Prepared& pr, const std::array<double, 
   double qp;
   for (std::size_t k = 0; k < d.rows.size(); ++k) {
     if (!PredictGeneric(p.data(), p[7], d.vdc[k], d.tr[k], d.omega[k], d.q[k], d.torque_known[k] != 0,
-                        pred, &qp)) {
+                        pred, &qp, d.idc_in[k])) {
       continue;
     }
     for (int t = d.term_begin[k]; t < d.term_begin[k + 1]; ++t) {
@@ -1273,9 +1289,17 @@ identification::Verdict JudgeCalibration(const CalibrationResult& r, const Stead
       for (double& x : v) x = std::fabs(x);
       return Median(v);
     };
-    h.median_abs_current_percent = med_abs(cv->idc_error_percent);
-    h.median_abs_speed_percent =
-        !cv->omega_error_percent.empty() ? med_abs(cv->omega_error_percent) : med_abs(cv->omega_from_idc_error_percent);
+    const bool current_input = table.Has(Column::kThrottle) && !table.Has(Column::kTorqueNm) &&
+                               !(table.Has(Column::kVllRmsV) && table.Has(Column::kIrmsA));
+    if (current_input) {
+      // The fit predicts the speed from the measured current (Prepare): that is its held-out test.
+      h.median_abs_current_percent = med_abs(cv->omega_from_idc_error_percent);
+      h.primary_quantity = "speed predicted from the measured current";
+    } else {
+      h.median_abs_current_percent = med_abs(cv->idc_error_percent);
+      h.median_abs_speed_percent = !cv->omega_error_percent.empty() ? med_abs(cv->omega_error_percent)
+                                                                     : med_abs(cv->omega_from_idc_error_percent);
+    }
     in.held_out = h;
   }
   in.has_torque = table.Has(Column::kTorqueNm);

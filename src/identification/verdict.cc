@@ -174,8 +174,11 @@ Verdict Judge(const VerdictInputs& in) {
     unident = unident || !folds_ok;
     const double e = h.median_abs_current_percent;
     const bool err_ok = std::isfinite(e) && e <= kMaxHeldOutCurrentPercent;
-    std::string d = "median |error| of the held-out DC current";
-    if (std::isfinite(h.median_abs_speed_percent)) d += "; speed " + Num(h.median_abs_speed_percent) + " %";
+    std::string d = "median |error| of the held-out " +
+                    (h.primary_quantity.empty() ? std::string("DC current") : h.primary_quantity);
+    if (h.primary_quantity.empty() && std::isfinite(h.median_abs_speed_percent)) {
+      d += "; speed " + Num(h.median_abs_speed_percent) + " %";
+    }
     if (!std::isfinite(e)) d = "no held-out prediction could be made";
     Add(&v, "held_out_error", err_ok, e, kMaxHeldOutCurrentPercent, d);
     failed = failed || (!err_ok && folds_ok);

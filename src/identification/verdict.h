@@ -18,7 +18,9 @@
 //   kv_vs_label                   |Kv_fit/Kv_label - 1|, percent (with a label)   (limit 25)
 //   esc_efficiency                largest eta_esc over the fitted envelope        (limit 1)
 //   motor_efficiency              largest eta_motor over the fitted envelope      (limit 1)
-//   held_out_error                median |error| of the held-out current, percent (limit 10)
+//   held_out_error                median |error| of the held-out current (or, for logs without
+//                                 torque and AC columns, of the speed predicted from the
+//                                 measured current), percent                     (limit 10)
 //   cross_validation_folds        folds that could be fitted (small tables: each point left out
 //                                 in turn; a fold that cannot be fitted fails it) (limit: all)
 // The efficiency checks evaluate model::Drive over the envelope (VDC range of the log, throttle
@@ -68,6 +70,9 @@ struct HeldOut {
   double median_abs_current_percent = std::numeric_limits<double>::quiet_NaN();
   double median_abs_speed_percent = std::numeric_limits<double>::quiet_NaN();
   bool leave_one_out = false;  // each point (or throttle level) left out in turn
+  // What median_abs_current_percent measures when it is not the DC current (logs without torque
+  // or AC columns predict the speed from the measured current); "" = the DC current.
+  std::string primary_quantity;
 };
 
 struct VerdictInputs {
