@@ -12,6 +12,7 @@
 #include "calibration/drivecalc_refit.h"
 #include "calibration/prop_static.h"
 #include "common/units.h"
+#include "fit/statistics.h"
 #include "identification/verdict.h"
 #include "catalog/catalog.h"
 #include "commands.h"
@@ -36,17 +37,8 @@ std::string Datasets(const std::vector<std::string>& logs) {
   return s;
 }
 
-double Median(std::vector<double> v) {
-  if (v.empty()) return std::nan("");
-  std::sort(v.begin(), v.end());
-  const std::size_t h = v.size() / 2;
-  return v.size() % 2 ? v[h] : 0.5 * (v[h - 1] + v[h]);
-}
-
-double MedianAbs(std::vector<double> v) {
-  for (double& x : v) x = std::fabs(x);
-  return Median(v);
-}
+using fit::Median;
+using fit::MedianAbs;
 
 
 // A percentage for the text report: "-" when there is none (never "nan").
@@ -279,6 +271,15 @@ int RunCalibrate(const CalibrateOptions& o) {
     j["identifiable"] = calibration::IdentifiableJson(r);
     j["fit"] = calibration::FitJson(r);
     j["warnings"] = r.warnings;
+    j["held_out"] = {{"leave_one_out", cv.leave_one_out},
+                     {"folds", cv.folds},
+                     {"failed_folds", cv.failed_folds},
+                     {"idc", ErrJson(cv.idc_error_percent)},
+                     {"omega_at_torque", ErrJson(cv.omega_error_percent)},
+                     {"omega_from_idc", ErrJson(cv.omega_from_idc_error_percent)}};
+    Json dropped = Json::array();
+    for (const auto& d : r.dropped_rows) dropped.push_back({{"line", d.source_line}, {"reason", d.reason}});
+    j["dropped_rows"] = dropped;
     if (o.loo) j["leave_one_out"] = loo;
     std::cout << DumpJson(j);
   } else {

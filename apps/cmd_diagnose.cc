@@ -104,31 +104,28 @@ void WriteExtendedEntries(const DiagnoseCliOptions& o, const diagnosis::Diagnose
   ref << "dynosize diagnose (" << r.mode << "), " << r.points_used << " points; findings:";
   for (const auto& f : r.findings) ref << " " << CauseId(f.cause);
   if (r.findings.empty()) ref << " none";
-  Json motor = MotorJson(r.extended_motor);
-  Json esc = EscJson(r.extended_esc);
-  Json mv = Json::object(), ev = Json::object();
+  auto method = [&](const std::string& key) -> std::string {
+    if (key == "kt_nm_per_a" && !fitted(key)) return "derived";
+    return fitted(key) ? "fitted" : "assumed";
+  };
+  std::vector<calibration::EntryValue> mv = {{"type", 0.0, "assumed",
+                                              r.extended_motor.type == MotorType::kBldc ? "bldc" : "brushed"}};
+  const Json motor = MotorJson(r.extended_motor);
   for (auto it = motor.begin(); it != motor.end(); ++it) {
-    if (it.key() == "type") continue;
-    mv[it.key()] = it.key() == "kt_nm_per_a" && !fitted("kt_nm_per_a") ? "derived"
-                   : fitted(it.key())                                  ? "fitted"
-                                                                       : "assumed";
+    if (it.key() != "type") mv.push_back({it.key(), it.value().get<double>(), method(it.key()), ""});
   }
-  for (auto it = esc.begin(); it != esc.end(); ++it) ev[it.key()] = fitted(it.key()) ? "fitted" : "assumed";
-  const std::string dataset = std::filesystem::path(o.log).filename().string();
-  Json m;
-  m["id"] = id + "_motor";
-  m["name"] = id + " motor (diagnosed, extended model)";
-  for (auto it = motor.begin(); it != motor.end(); ++it) m[it.key()] = it.value();
+  std::vector<calibration::EntryValue> ev;
+  const Json esc = EscJson(r.extended_esc);
+  for (auto it = esc.begin(); it != esc.end(); ++it) ev.push_back({it.key(), it.value().get<double>(), method(it.key()), ""});
+  calibration::EntryProvenance prov;
+  prov.dataset = std::filesystem::path(o.log).filename().string();
+  prov.reference = ref.str();
   std::string note;
   for (const auto& w : r.warnings) note += (note.empty() ? "" : "; ") + w;
-  m["source"] = {{"dataset", dataset}, {"reference", ref.str()}, {"values", mv}};
-  if (!note.empty()) m["source"]["note"] = note;
-  Json e;
-  e["id"] = id + "_esc";
-  e["name"] = id + " ESC (diagnosed, extended model)";
-  for (auto it = esc.begin(); it != esc.end(); ++it) e[it.key()] = it.value();
-  e["source"] = {{"dataset", dataset}, {"reference", ref.str()}, {"values", ev}};
-  if (!note.empty()) e["source"]["note"] = note;
+  const Json m = calibration::ComponentEntryJson(id + "_motor", id + " motor (diagnosed, extended model)", mv, prov,
+                                                 note, "motor");
+  const Json e = calibration::ComponentEntryJson(id + "_esc", id + " ESC (diagnosed, extended model)", ev, prov,
+                                                 note, "ESC");
   calibration::WriteCatalogEntries(o.out, {m}, {e}, o.force,
                                    "Extended models fitted by dynosize diagnose from dynamometer logs.");
   if (!o.json) std::cerr << "wrote " << id << "_motor, " << id << "_esc to " << o.out << "\n";

@@ -11,6 +11,7 @@
 #include "common/error.h"
 #include "common/units.h"
 #include "fit/linear_least_squares.h"
+#include "fit/statistics.h"
 
 namespace dynosize::calibration {
 
@@ -53,14 +54,7 @@ struct FitData {
   std::array<bool, kMeasCount> measured{};
 };
 
-double Median(std::vector<double> v) {
-  if (v.empty()) return kNaN;
-  const std::size_t h = v.size() / 2;
-  std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(h), v.end());
-  double m = v[h];
-  if (v.size() % 2 == 0) m = 0.5 * (m + *std::max_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(h)));
-  return m;
-}
+using fit::Median;
 
 // Dead band / throttle offset, then the saturation knee of section 7 (model::Drive's
 // EffectiveThrottle, generic for dual numbers): d = max(0, (TR - db)/(1 - db)), TR_eff = d up to
@@ -1179,47 +1173,6 @@ CrossValidation LeaveOneOut(const SteadyTable& t, const CalibrationOptions& opti
     }
   }
   return cv;
-}
-
-SteadyTable SelectRows(const SteadyTable& t, const std::vector<std::size_t>& keep) {
-  SteadyTable out = t;
-  for (int c = 0; c < logs::kColumnCount; ++c) {
-    auto& col = out.columns[c];
-    col.clear();
-    if (!t.info[c].present) continue;
-    for (std::size_t i : keep) col.push_back(t.columns[c][i]);
-  }
-  out.source_line.clear();
-  out.samples.clear();
-  for (std::size_t i : keep) {
-    out.source_line.push_back(t.source_line[i]);
-    out.samples.push_back(i < t.samples.size() ? t.samples[i] : 1);
-  }
-  return out;
-}
-
-SteadyTable MergeLogs(const std::vector<SteadyTable>& tables) {
-  if (tables.empty()) throw UsageError("no log to calibrate");
-  if (tables.size() == 1) return tables[0];
-  SteadyTable out = tables[0];
-  for (std::size_t k = 1; k < tables.size(); ++k) {
-    const SteadyTable& t = tables[k];
-    out.file += ", " + t.file;
-    for (int c = 0; c < logs::kColumnCount; ++c) {
-      if (!out.info[c].present) continue;
-      if (!t.info[c].present) {
-        out.info[c].present = false;
-        out.info[c].note = std::string("absent from ") + t.file;
-        out.columns[c].clear();
-        continue;
-      }
-      out.columns[c].insert(out.columns[c].end(), t.columns[c].begin(), t.columns[c].end());
-    }
-    out.source_line.insert(out.source_line.end(), t.source_line.begin(), t.source_line.end());
-    for (std::size_t i = 0; i < t.rows(); ++i) out.samples.push_back(i < t.samples.size() ? t.samples[i] : 1);
-    for (const auto& d : t.dropped) logs::AddDrop(&out, d.reason, d.count);
-  }
-  return out;
 }
 
 }  // namespace dynosize::calibration

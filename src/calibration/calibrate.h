@@ -57,6 +57,7 @@
 #include "identification/parameters.h"
 #include "identification/verdict.h"
 #include "logs/steady_table.h"
+#include "logs/table_ops.h"
 #include "model/drive.h"
 
 namespace dynosize::calibration {
@@ -215,12 +216,8 @@ identification::Verdict JudgeCalibration(const CalibrationResult& r, const logs:
 // throttle, else by row) up to 15 groups, else 10 interleaved folds.
 CrossValidation CrossValidateForVerdict(const logs::SteadyTable& table, const CalibrationOptions& options);
 
-// Rows of several logs of one motor + ESC pair as one table: the columns present in every log
-// (a column missing from one is absent, with a note), file = the names joined by ", ".
-// Throws UsageError for an empty list.
-logs::SteadyTable MergeLogs(const std::vector<logs::SteadyTable>& tables);
-
-// The rows `keep` of `table` (every present column, source lines, samples; metadata kept).
-logs::SteadyTable SelectRows(const logs::SteadyTable& table, const std::vector<std::size_t>& keep);
+// Table operations (moved to logs/table_ops.h; kept here for the callers of this namespace).
+using logs::MergeLogs;
+using logs::SelectRows;
 
 }  // namespace dynosize::calibration

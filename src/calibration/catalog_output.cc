@@ -55,59 +55,55 @@ Json Source(const EntryProvenance& p, const Json& values, const std::string& aut
 
 }  // namespace
 
-Json MotorEntryJson(const std::string& id, const std::string& name, const CalibrationResult& r,
-                    const EntryProvenance& p) {
+Json ComponentEntryJson(const std::string& id, const std::string& name, const std::vector<EntryValue>& values,
+                        const EntryProvenance& p, const std::string& auto_note, const std::string& kind) {
   Json e;
   e["id"] = id;
   e["name"] = name;
-  e["type"] = "bldc";
-  e["ke_v_s_per_rad"] = Sig6(r.motor.ke_v_s_per_rad);
-  e["kt_nm_per_a"] = Sig6(r.motor.kt_nm_per_a);
-  e["rm_ohm"] = Sig6(r.motor.rm_ohm);
-  e["io_a"] = Sig6(r.motor.io_a);
-  e["kv_rpm_per_v"] = Sig6(kVllRmsPerVdc / (r.motor.ke_v_s_per_rad * kRadPerSecPerRpm));
-  Json v;
-  v["type"] = "assumed";
-  v["ke_v_s_per_rad"] = Method(r.param(Param::kKe));
-  v["kt_nm_per_a"] = r.param(Param::kKt).fitted ? "fitted" : "derived";
-  v["rm_ohm"] = Method(r.param(Param::kRm));
-  v["io_a"] = Method(r.param(Param::kIo));
-  v["kv_rpm_per_v"] = "derived";
+  Json v = Json::object();
+  for (const auto& x : values) {
+    if (x.text.empty()) {
+      e[x.key] = Sig6(x.value);
+    } else {
+      e[x.key] = x.text;
+    }
+    v[x.key] = x.method;
+  }
+  e["source"] = Source(p, v, auto_note);
+  CheckJsonFinite(e, kind + " entry " + id);
+  return e;
+}
+
+Json MotorEntryJson(const std::string& id, const std::string& name, const CalibrationResult& r,
+                    const EntryProvenance& p) {
+  const std::vector<EntryValue> values = {
+      {"type", 0.0, "assumed", "bldc"},
+      {"ke_v_s_per_rad", r.motor.ke_v_s_per_rad, Method(r.param(Param::kKe)), ""},
+      {"kt_nm_per_a", r.motor.kt_nm_per_a, r.param(Param::kKt).fitted ? "fitted" : "derived", ""},
+      {"rm_ohm", r.motor.rm_ohm, Method(r.param(Param::kRm)), ""},
+      {"io_a", r.motor.io_a, Method(r.param(Param::kIo)), ""},
+      {"kv_rpm_per_v", kVllRmsPerVdc / (r.motor.ke_v_s_per_rad * kRadPerSecPerRpm), "derived", ""}};
   std::string note = HeldNote(r, {Param::kIo});
   const std::string un = UnidentifiedNote(r, {Param::kKe, Param::kKt, Param::kRm, Param::kIo});
   if (!un.empty()) note += (note.empty() ? "" : "; ") + un;
-  e["source"] = Source(p, v, note);
-  CheckJsonFinite(e, "motor entry " + id);
-  return e;
+  return ComponentEntryJson(id, name, values, p, note, "motor");
 }
 
 Json EscEntryJson(const std::string& id, const std::string& name, const CalibrationResult& r,
                   const EntryProvenance& p) {
-  Json e;
-  e["id"] = id;
-  e["name"] = name;
-  e["resc_ohm"] = Sig6(r.esc.resc_ohm);
-  e["c1"] = Sig6(r.esc.c1);
-  e["c0"] = Sig6(r.esc.c0);
-  e["tr_sat"] = Sig6(r.esc.tr_sat);
-  e["sat_slope"] = Sig6(r.esc.sat_slope);
-  Json v;
-  v["resc_ohm"] = Method(r.param(Param::kResc));
-  v["c1"] = Method(r.param(Param::kC1));
-  v["c0"] = Method(r.param(Param::kC0));
-  v["tr_sat"] = Method(r.param(Param::kTrSat));
-  v["sat_slope"] = Method(r.param(Param::kSatSlope));
+  std::vector<EntryValue> values = {{"resc_ohm", r.esc.resc_ohm, Method(r.param(Param::kResc)), ""},
+                                    {"c1", r.esc.c1, Method(r.param(Param::kC1)), ""},
+                                    {"c0", r.esc.c0, Method(r.param(Param::kC0)), ""},
+                                    {"tr_sat", r.esc.tr_sat, Method(r.param(Param::kTrSat)), ""},
+                                    {"sat_slope", r.esc.sat_slope, Method(r.param(Param::kSatSlope)), ""}};
   if (r.esc.deadband != 0.0 || r.param(Param::kDeadband).fitted) {
-    e["deadband"] = Sig6(r.esc.deadband);
-    v["deadband"] = Method(r.param(Param::kDeadband));
+    values.push_back({"deadband", r.esc.deadband, Method(r.param(Param::kDeadband)), ""});
   }
   const std::vector<Param> ps = {Param::kResc, Param::kC1, Param::kC0, Param::kTrSat, Param::kSatSlope};
   std::string note = HeldNote(r, ps);
   const std::string un = UnidentifiedNote(r, ps);
   if (!un.empty()) note += (note.empty() ? "" : "; ") + un;
-  e["source"] = Source(p, v, note);
-  CheckJsonFinite(e, "ESC entry " + id);
-  return e;
+  return ComponentEntryJson(id, name, values, p, note, "ESC");
 }
 
 void WriteCatalogEntries(const std::string& path, const std::vector<Json>& motors, const std::vector<Json>& escs,

@@ -40,6 +40,21 @@ Json VerdictJson(const identification::Verdict& v);
 Json PropEntryJson(const std::string& id, const std::string& name, const PropStaticTable& table,
                    const PropStaticOptions& options, const EntryProvenance& p);
 
+// One value of a catalog entry and how it was obtained ("fitted", "assumed", "derived",
+// "datasheet", "measured"): a number (rounded to 6 significant digits) or, when text is not
+// empty, a string.
+struct EntryValue {
+  std::string key;
+  double value = 0.0;
+  std::string method;
+  std::string text;
+};
+// The one writer of catalog entries from identified parameters (calibrate and diagnose):
+// {"id", "name", <values>, "source": {"dataset", "reference", "values": {key: method}, "note"}}.
+// Throws DataError naming the entry when a value is not finite.
+Json ComponentEntryJson(const std::string& id, const std::string& name, const std::vector<EntryValue>& values,
+                        const EntryProvenance& p, const std::string& auto_note, const std::string& kind);
+
 // {"id", "name", "type": "bldc", "ke_v_s_per_rad", "kt_nm_per_a", "rm_ohm", "io_a",
 //  "kv_rpm_per_v", "source"}.
 Json MotorEntryJson(const std::string& id, const std::string& name, const CalibrationResult& r,

@@ -53,6 +53,7 @@
 #include <string>
 #include <vector>
 
+#include "fit/statistics.h"
 #include "identification/verdict.h"
 #include "logs/steady_table.h"
 #include "model/drive.h"
@@ -227,7 +228,7 @@ struct DiagnoseResult {
 // predicted column, enough rows), UsageError for invalid options.
 DiagnoseResult Diagnose(const logs::SteadyTable& table, const DiagnoseOptions& options = {});
 
-// Upper tail of the F(d1, d2) distribution (p value of an F statistic).
-double FDistributionUpperTail(double f, double d1, double d2);
+// Upper tail of the F(d1, d2) distribution (p value of an F statistic): fit/statistics.h.
+using fit::FDistributionUpperTail;
 
 }  // namespace dynosize::diagnosis
