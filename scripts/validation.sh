@@ -211,8 +211,12 @@ evenodd() {  # name, file, label, throttle, vdc, idc, rpm, torque header names
     $col[a] != "" && $col[e] + 0 > 0 {line = $col[a] "," $col[b] "," $col[c] "," $col[e] "," $col[g]; if (k++ % 2 == 0) print line > ev; else print line > od}' "$f"
   { echo "throttle,vdc_v,idc_a,rpm,torque_nm"; cat "$even.body"; } > "$even.csv"
   "$exe" calibrate "$even.csv" --format mapped --map throttle=throttle --map vdc_v=vdc_v --map idc_a=idc_a --map rpm=rpm \
-    --map torque_nm=torque_nm --kv-label "$kv" --motor-id m --esc-id e --json --out "$d/fitted.json" > "$tmp/eo.json" 2> /dev/null || true
+    --map torque_nm=torque_nm --kv-label "$kv" --motor-id m --esc-id e --json --out "$d/fitted.json" > "$tmp/eo.json" 2> "$tmp/eo.err" || true
   local st kvfit
+  if [ ! -s "$tmp/eo.json" ]; then
+    echo "| $name | $kv | not fitted | - | - | - | $(grep -c . "$even.body") even rows: $(head -c 120 "$tmp/eo.err" | sed 's/^dynosize: [^:]*: //' | tr '\n|' ' /') |" >> "$out"
+    return
+  fi
   st=$(jq -r .status "$tmp/eo.json" 2>/dev/null || echo "-")
   kvfit=$(jq -r '.motor.ke_v_s_per_rad as $k | 0.67523723711782957 / ($k * 0.10471975511965977) | round' "$tmp/eo.json" 2>/dev/null || echo "-")
   if [ ! -f "$d/fitted.json" ]; then
