@@ -6,6 +6,7 @@
 #include <unistd.h>
 
 #include <array>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -16,6 +17,7 @@
 #include "catalog/catalog.h"
 #include "cli_runner.h"
 #include "common/json_file.h"
+#include "common/units.h"
 
 namespace dynosize::calibration {
 namespace {
@@ -160,6 +162,51 @@ TEST(CalibrateCli, RatingsAreStored) {
   EXPECT_DOUBLE_EQ(doc["motors"][0]["mass_kg"].get<double>(), 0.085);
   EXPECT_DOUBLE_EQ(doc["motors"][0]["kv_rpm_per_v"].get<double>(), 900.0);
   EXPECT_EQ(doc["motors"][0]["source"]["values"]["mass_kg"], "datasheet");
+}
+
+// A log with thrust and torque also gives a static propeller entry (--prop-id): CT, CP vs rpm
+// that the catalog loads; a thrust that beats momentum theory (FM > 1) is refused with exit 65.
+TEST(CalibrateCli, PropEntryFromThrustAndTorque) {
+  const std::string dir = TempDir("prop");
+  auto t = testing_util::MakeSyntheticLog(testing_util::DefaultSpec());
+  // Thrust T = k*omega^2 with k chosen for a figure of merit of 0.6 on the first propeller (10 in):
+  // FM = k^1.5/(c*sqrt(2*rho*A)) with Q = c*omega^2.
+  const double area = kPi * 0.254 * 0.254 / 4.0, c = 2.0e-7;
+  auto write = [&](double fm, const std::string& path) {
+    const double k = std::pow(fm * c * std::sqrt(2.0 * 1.225 * area), 2.0 / 3.0);
+    std::ofstream f(path);
+    f << "time_s,vdc_v,throttle,omega_rad_s,torque_nm,idc_a,thrust_n\n" << std::setprecision(10);
+    for (std::size_t i = 0; i < t.rows(); ++i) {
+      const double w = t.Get(Column::kOmegaRadS)[i];
+      f << t.Get(Column::kTimeS)[i] << "," << t.Get(Column::kVdcV)[i] << "," << t.Get(Column::kThrottle)[i] << ","
+        << w << "," << t.Get(Column::kTorqueNm)[i] << "," << t.Get(Column::kIdcA)[i] << "," << k * w * w << "\n";
+    }
+  };
+  const std::string log = dir + "/thrust.csv";
+  write(0.6, log);
+  const std::string cat_dir = dir + "/cat";
+  fs::create_directories(cat_dir);
+  const std::string out = cat_dir + "/fitted.json";
+  CliRun r = Exec("calibrate " + log + " --motor-id m --esc-id e --kv-label 900 --prop-id p10 --prop-diameter-in 10 " +
+                  "--prop-pitch-in 4.5 --json --out " + out);
+  ASSERT_EQ(r.code, 0) << r.err;
+  const Json doc = ReadJsonFile(out);
+  ASSERT_EQ(doc["props"].size(), 1u);
+  const Json& p = doc["props"][0];
+  EXPECT_EQ(p["id"], "p10");
+  EXPECT_NEAR(p["diameter_m"].get<double>(), 0.254, 1e-9);
+  const auto& rpm = p["static_table"]["rpm"];
+  ASSERT_GE(rpm.size(), 3u);
+  for (std::size_t k = 1; k < rpm.size(); ++k) EXPECT_GT(rpm[k].get<double>(), rpm[k - 1].get<double>());
+  EXPECT_NO_THROW(Catalog::Load(cat_dir));
+  // FM = 3 on the first propeller: momentum theory says no; nothing is written.
+  const std::string bad = dir + "/fm3.csv";
+  write(3.0, bad);
+  const std::string before = Slurp(out);
+  r = Exec("calibrate " + bad + " --motor-id m2 --esc-id e2 --kv-label 900 --prop-id p10b --prop-diameter-in 10 --out " + out);
+  EXPECT_EQ(r.code, 65) << r.err;
+  EXPECT_NE(r.err.find("figure of merit"), std::string::npos) << r.err;
+  EXPECT_EQ(Slurp(out), before);
 }
 
 TEST(CalibrateCli, MissingIdsIsUsageError) {
