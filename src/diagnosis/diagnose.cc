@@ -797,9 +797,27 @@ DiagnoseResult Diagnose(const SteadyTable& t, const DiagnoseOptions& o) {
   // Physical box of identification/parameters.h; the KT and c1 slots are bounded as the ratio
   // KT/(kp*KE) <= 1 and the excess c1 + c0 - 1.1095 >= 0 (model.md section 10), c0 >= 0.
   namespace id = identification;
-  const Values lower = {1e-7, id::kKtRatioLower, 1e-6, 0.0, 0.0, id::kEscExcessLower, 0.0, 0.0, 0.0, -0.5, 0.0, 0.0, 0.0, 0.0};
-  const Values upper = {10.0, id::kKtRatioUpper, 100.0, 200.0, 10.0, id::kEscExcessUpper, 1.0, 1.0, 1.0,
-                        std::max(0.0, 0.9 * min_level), 1.0, 1000.0, 10.0, 10.0};
+  // Slots 0..9 are the base parameters of identification/parameters.h in the same order (checked
+  // below); the extension slots follow with their own physical ranges.
+  static_assert(kDeadband == static_cast<int>(id::BaseParam::kDeadband) && kIo1 == id::kBaseParamCount);
+  Values lower{}, upper{};
+  for (int k = 0; k < id::kBaseParamCount; ++k) {
+    lower[k] = id::kBaseLower[k];
+    upper[k] = id::kBaseUpper[k];
+  }
+  lower[kKt] = id::kKtRatioLower;
+  upper[kKt] = id::kKtRatioUpper;
+  lower[kC1] = id::kEscExcessLower;
+  upper[kC1] = id::kEscExcessUpper;
+  upper[kDeadband] = std::min(upper[kDeadband], std::max(0.0, 0.9 * min_level));  // below the lowest level
+  lower[kIo1] = 0.0;   // Io must not fall with speed (section 10: no energy created)
+  upper[kIo1] = 1.0;
+  lower[kRth] = 0.0;
+  upper[kRth] = 1000.0;
+  lower[kDroop] = 0.0;
+  upper[kDroop] = 10.0;
+  lower[kRsupply] = 0.0;
+  upper[kRsupply] = 10.0;
   base.lower = lower;
   base.upper = upper;
   for (int s = 0; s < kSlotCount; ++s) {
