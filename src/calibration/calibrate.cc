@@ -1007,7 +1007,10 @@ CalibrationResult Calibrate(const SteadyTable& table, const CalibrationOptions& 
     std::vector<double> rel;
     for (std::size_t k = 0; k < pr.data.rows.size(); ++k) {
       const RowPrediction rp = PredictRow(table, pr.data.rows[k], res.motor, res.esc, options.assumed_throttle);
-      const double pv[kMeasCount] = {rp.omega_rad_s, rp.idc_a, rp.irms_a, rp.vll_rms_v, rp.pac_w};
+      // Rows whose current is the fit's input: their speed prediction is the one from the current.
+      const bool current_input = pr.data.idc_in[k] == pr.data.idc_in[k];
+      const double pv[kMeasCount] = {current_input ? rp.omega_from_idc_rad_s : rp.omega_rad_s, rp.idc_a, rp.irms_a,
+                                     rp.vll_rms_v, rp.pac_w};
       if (!std::isfinite(pv[m])) continue;
       const double meas = table.Get(kMeasColumn[m])[pr.data.rows[k]];
       sse += (pv[m] - meas) * (pv[m] - meas);
