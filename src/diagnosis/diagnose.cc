@@ -10,6 +10,7 @@
 #include <random>
 #include <sstream>
 
+#include "calibration/calibrate.h"
 #include "common/error.h"
 #include "common/units.h"
 #include "fit/nonlinear_least_squares.h"
@@ -518,6 +519,37 @@ std::vector<double> Levels(const std::vector<double>& tr) {
   return lv;
 }
 
+// Starting values of the base parameters from the calibration engine (src/calibration: the same
+// base model, its robust fit and its knee profile, without the throttle offset, which is a
+// candidate here): the linear start alone can leave the first-order fit in a stalled local
+// minimum on logs whose throttle is not the voltage fraction. Kept only when that fit converged
+// and is physical; the linear start stays otherwise.
+void BaseStartFromCalibration(const SteadyTable& t, const DiagnoseOptions& o, Values* v) {
+  calibration::CalibrationOptions co;
+  co.fit_throttle_offset = false;
+  co.assumed_throttle = o.assumed_throttle;
+  co.min_speed_fraction = o.min_speed_fraction;
+  co.min_throttle = o.min_throttle;
+  if (o.esc) co.esc_prior = *o.esc;
+  calibration::CalibrationResult r;
+  try {
+    r = calibration::Calibrate(t, co);
+  } catch (const Error&) {
+    return;
+  }
+  if (!r.converged || !std::isfinite(r.motor.ke_v_s_per_rad) || !std::isfinite(r.motor.rm_ohm)) return;
+  for (int k = 0; k < calibration::kParamCount; ++k) {
+    if (r.params[k].at_bound) return;
+  }
+  (*v)[kKe] = r.motor.ke_v_s_per_rad;
+  (*v)[kKt] = r.motor.kt_nm_per_a;
+  (*v)[kRm] = r.motor.rm_ohm;
+  (*v)[kIo] = r.motor.io_a;
+  (*v)[kResc] = r.esc.resc_ohm;
+  (*v)[kC1] = r.esc.c1;
+  (*v)[kC0] = r.esc.c0;
+}
+
 // Rows whose largest |residual| exceeds outlier_sigmas robust sd (sigma): worst first, at most
 // max_outlier_fraction of the rows and never the last row of a throttle level (issue 12); each
 // is listed in res with its reason. Returns the rows kept (indices into d).
@@ -762,6 +794,7 @@ DiagnoseResult Diagnose(const SteadyTable& t, const DiagnoseOptions& o) {
       }
       v[kIo] = c > 0 ? std::max(s / c, 0.0) : 0.0;
     }
+    BaseStartFromCalibration(t, o, &v);
   }
   // Scales and bounds (optimisation units: x = value/scale).
   double imax = 0.0;
