@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <iomanip>
 #include <iostream>
+#include <map>
 #include <optional>
 #include <sstream>
 
@@ -98,6 +99,7 @@ int RunDriveCalcAll(const CalibrateOptions& o) {
   } catch (const Error&) {
   }
   std::vector<Json> motors;
+  std::map<std::string, std::size_t> held_back;  // motors not written, by failed check
   std::vector<double> rmse_idc, rmse_w;
   for (const auto& f : all.fits) {
     const auto& r = f.result;
@@ -117,8 +119,16 @@ int RunDriveCalcAll(const CalibrateOptions& o) {
     p.note = "full-throttle points with an ideal ESC assumed: rm_ohm is the whole series resistance of "
              "DriveCalc's set-up (motor + ESC + wiring) in the rms circuit of eq (48), R = 0.749*R_dc; "
              "io_a = Io_dc/1.1095";
-    Json e = calibration::MotorEntryJson(base + "_fit", name + " (refit)", r, p);
-    motors.push_back(e);
+    // The status contract without the (costly, per-motor) held-out check: only an "ok" motor is
+    // written; the others are counted by their first failed check.
+    const identification::Verdict v = calibration::JudgeCalibration(r, t, calibration::CalibrationOptions(), nullptr);
+    if (v.status != identification::Status::kOk) {
+      const identification::Check* c = v.FirstFailed();
+      ++held_back[c != nullptr ? c->name : identification::StatusName(v.status)];
+    } else {
+      Json e = calibration::MotorEntryJson(base + "_fit", name + " (refit)", r, p);
+      motors.push_back(e);
+    }
     for (const auto& c : r.fit) {
       if (c.column == logs::Column::kIdcA) rmse_idc.push_back(c.rmse_percent);
       if (c.column == logs::Column::kOmegaRadS) rmse_w.push_back(c.rmse_percent);
@@ -158,6 +168,10 @@ int RunDriveCalcAll(const CalibrateOptions& o) {
     j["out"] = out;
     j["motors_seen"] = all.motors_seen;
     j["motors_fitted"] = all.fits.size();
+    j["motors_written"] = motors.size();
+    Json hb = Json::object();
+    for (const auto& [k, n] : held_back) hb[k] = n;
+    j["motors_not_ok"] = hb;
     j["motors_too_few_points"] = all.motors_too_few_points;
     j["failures"] = all.failures;
     j["median_idc_rmse_percent"] = rmse_idc.empty() ? Json(nullptr) : Json(Median(rmse_idc));
@@ -167,7 +181,7 @@ int RunDriveCalcAll(const CalibrateOptions& o) {
   } else {
     std::cout << "refitted " << all.fits.size() << " of " << all.motors_seen << " DriveCalc motors ("
               << all.motors_too_few_points << " with too few points, " << all.failures.size()
-              << " failed) -> " << out << "\n"
+              << " failed); " << motors.size() << " with status ok written -> " << out << "\n"
               << "median rmse: idc " << PercentText(Median(rmse_idc)) << " %, no-load speed "
               << PercentText(Median(rmse_w)) << " %\n";
     if (o.loo) std::cout << "leave-one-out: " << loo.dump() << "\n";

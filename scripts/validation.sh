@@ -26,7 +26,9 @@ echo
 "$exe" calibrate --drivecalc-all "$data/drivecalc/MData.csv" --out "$tmp/dc.json" --loo --json > "$tmp/dc_all.json"
 echo "Motors fitted: $(jq .motors_fitted "$tmp/dc_all.json") of $(jq .motors_seen "$tmp/dc_all.json")"\
 " ($(jq .motors_too_few_points "$tmp/dc_all.json") with fewer than 1 no-load point + 3 loaded points with rpm)."\
-" Leave-one-out: each point refitted without it and predicted; median |pred - meas|/meas."
+" Written with status ok: $(jq .motors_written "$tmp/dc_all.json") (held back, by first failed check:"\
+" $(jq -r '.motors_not_ok | to_entries | map("\(.key) \(.value)") | join(", ")' "$tmp/dc_all.json"))."\
+" Leave-one-out over all fitted motors: each point refitted without it and predicted; median |pred - meas|/meas."
 echo
 echo "| model | idc, loaded points | omega @I, all points | points |"
 echo "|---|---|---|---|"
