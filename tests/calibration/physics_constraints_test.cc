@@ -7,6 +7,7 @@
 
 #include "calibration/calibrate.h"
 #include "calibration/synthetic_log.h"
+#include "common/error.h"
 #include "diagnosis/diagnose.h"
 #include "identification/parameters.h"
 #include "model/physics.h"
@@ -133,6 +134,37 @@ TEST(CalibratePhysics, ThrottleOffsetIsFitted) {
   ASSERT_TRUE(r.param(Param::kDeadband).fitted) << r.FullReport();
   const auto& e = r.param(Param::kDeadband);
   EXPECT_NEAR(e.value, -0.08, 5.0 * e.standard_error + 0.005);
+}
+
+// A table so small that no fold can be fitted: every fold is reported as failed and the verdict
+// is never "ok" (issue 12: "too few points to cross-validate").
+TEST(CalibratePhysics, FoldsThatCannotBeFittedMakeTheStatusNotOk) {
+  SyntheticSpec s = DefaultSpec();
+  s.ac = false;  // DC with torque: 2 measured values per row, 5 free parameters
+  s.vdc_v = {14.8};
+  s.prop_c = {2.0e-7};
+  s.throttles = {0.5, 0.7, 0.9};
+  s.noise_rel = 0.002;
+  const auto t = MakeSyntheticLog(s);
+  ASSERT_EQ(t.rows(), 3u);
+  CalibrationResult r;
+  try {
+    r = Calibrate(t);
+  } catch (const DataError& e) {
+    GTEST_SKIP() << "the full table cannot be fitted either: " << e.what();
+  }
+  const CrossValidation cv = CrossValidateForVerdict(t, {});
+  EXPECT_EQ(cv.folds, 3u);
+  EXPECT_EQ(cv.failed_folds, 3u);
+  const identification::Verdict v = JudgeCalibration(r, t, {}, &cv);
+  EXPECT_NE(v.status, identification::Status::kOk);
+  bool reported = false;
+  for (const auto& c : v.checks) {
+    if (c.name == "cross_validation_folds") {
+      reported = !c.passed && c.detail.find("could not be fitted") != std::string::npos;
+    }
+  }
+  EXPECT_TRUE(reported) << v.summary;
 }
 
 // One engine: calibrate and diagnose fit the same base model to the same log; on a clean log
