@@ -57,7 +57,7 @@ row() {
     cp "$cat" "$tmp/written_$(wc -l < "$tmp/status").json"
   fi
   if [ ! -s "$j" ] || ! jq -e .status "$j" > /dev/null 2>&1; then
-    echo "| $set | $name | $kv | not read | - | $(head -c 150 "$tmp/err" | sed 's/^dynosize: //' | tr '\n|' ' /') | - | - | no |" >> "$out"
+    echo "| $set | $name | $kv | not read | - | $(sed "s|^dynosize: ||; s|$data/||g; s|$tmp/||g" "$tmp/err" | head -c 150 | tr '\n|' ' /') | - | - | no |" >> "$out"
     echo "$set not_read no" >> "$tmp/status"
     return
   fi
@@ -209,6 +209,7 @@ evenodd() {  # name, file, label, throttle, vdc, idc, rpm, torque header names
   local even=$tmp/even odd=$tmp/odd d=$tmp/eo; rm -rf "$d"; mkdir -p "$d"
   # Data rows 0, 2, 4, ... (0-based) are fitted, rows 1, 3, 5, ... predicted.
   awk -F, -v a="$h_tr" -v b="$h_v" -v c="$h_i" -v e="$h_n" -v g="$h_q" -v ev="$even.body" -v od="$odd.body" '
+    {sub(/\r$/, "")}
     NR == 1 {for (i = 1; i <= NF; i++) col[$i] = i; next}
     $col[a] != "" && $col[e] + 0 > 0 {line = $col[a] "," $col[b] "," $col[c] "," $col[e] "," $col[g]; if (k++ % 2 == 0) print line > ev; else print line > od}' "$f"
   { echo "throttle,vdc_v,idc_a,rpm,torque_nm"; cat "$even.body"; } > "$even.csv"
