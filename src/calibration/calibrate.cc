@@ -804,6 +804,70 @@ void TransformStandardErrors(bool tie_kt, const std::vector<int>& slots, const L
   }
 }
 
+// Warnings for parameters on a bound (the energy rules named) and for a single throttle level.
+void AddBoundWarnings(const Prepared& pr, CalibrationResult* out) {
+  CalibrationResult& res = *out;
+  for (int k = 0; k < kParamCount; ++k) {
+    if (!res.params[k].at_bound) continue;
+    if (k == kC1I) {
+      res.warnings.push_back("c1 + c0 is on the ideal-ESC bound 1.1095 (model.md section 10): the data ask for an "
+                             "ESC that creates energy");
+    } else if (k == kKtI && !pr.layout.tie_kt) {
+      res.warnings.push_back("kt_nm_per_a is on its bound sqrt(27/10)*KE (model.md section 10): the data ask for a "
+                             "motor efficiency above 1");
+    } else {
+      res.warnings.push_back(std::string(ParamName(static_cast<Param>(k))) + " is at its bound (" +
+                             std::to_string(res.params[k].value) + "): the data push it outside the physical range");
+    }
+  }
+  if (pr.has_throttle && pr.levels.size() < 2) {
+    res.warnings.push_back("all rows at one throttle level: ESC ratio and saturation not identifiable");
+  }
+}
+
+// Per measured column: rmse, rmse in percent and median |error| of the final fit (the speed from
+// the current on rows whose current is the input), and the no-throttle plausibility warning.
+void AddColumnFits(const Prepared& pr, const SteadyTable& table, const CalibrationOptions& options,
+                   CalibrationResult* out) {
+  CalibrationResult& res = *out;
+  for (int m = 0; m < kMeasCount; ++m) {
+    if (!pr.data.measured[m]) continue;
+    ColumnFit cf;
+    cf.column = kMeasColumn[m];
+    double sse = 0.0, ss = 0.0;
+    std::vector<double> rel;
+    for (std::size_t k = 0; k < pr.data.rows.size(); ++k) {
+      const RowPrediction rp = PredictRow(table, pr.data.rows[k], res.motor, res.esc, options.assumed_throttle);
+      // Rows whose current is the fit's input: their speed prediction is the one from the current.
+      const bool current_input = pr.data.idc_in[k] == pr.data.idc_in[k];
+      const double pv[kMeasCount] = {current_input ? rp.omega_from_idc_rad_s : rp.omega_rad_s, rp.idc_a, rp.irms_a,
+                                     rp.vll_rms_v, rp.pac_w};
+      if (!std::isfinite(pv[m])) continue;
+      const double meas = table.Get(kMeasColumn[m])[pr.data.rows[k]];
+      sse += (pv[m] - meas) * (pv[m] - meas);
+      ss += meas * meas;
+      if (meas != 0.0) rel.push_back(std::fabs(pv[m] - meas) / std::fabs(meas) * 100.0);
+      ++cf.points;
+    }
+    if (cf.points == 0) continue;
+    cf.rmse = std::sqrt(sse / static_cast<double>(cf.points));
+    cf.rmse_percent = ss > 0.0 ? 100.0 * std::sqrt(sse / ss) : kNaN;
+    cf.median_abs_percent = Median(rel);
+    res.fit.push_back(cf);
+  }
+  if (!pr.has_throttle) {
+    for (const auto& f : res.fit) {
+      if (f.rmse_percent > 10.0) {
+        res.warnings.push_back(std::string("no throttle column and ") + logs::ColumnName(f.column) + " misfit by " +
+                               std::to_string(f.rmse_percent) +
+                               " % rms: the rows do not look like full-throttle points, so KE and R are not "
+                               "meaningful; calibrate a log that records the throttle");
+        break;
+      }
+    }
+  }
+}
+
 }  // namespace
 
 const char* ParamName(Param p) {
@@ -980,61 +1044,10 @@ CalibrationResult Calibrate(const SteadyTable& table, const CalibrationOptions& 
     res.condition_number = smin > 0.0 ? s.scaled_singular_values.maxCoeff() / smin
                                       : std::numeric_limits<double>::infinity();
   }
-  for (int k = 0; k < kParamCount; ++k) {
-    if (!res.params[k].at_bound) continue;
-    if (k == kC1I) {
-      res.warnings.push_back("c1 + c0 is on the ideal-ESC bound 1.1095 (model.md section 10): the data ask for an "
-                             "ESC that creates energy");
-    } else if (k == kKtI && !pr.layout.tie_kt) {
-      res.warnings.push_back("kt_nm_per_a is on its bound sqrt(27/10)*KE (model.md section 10): the data ask for a "
-                             "motor efficiency above 1");
-    } else {
-      res.warnings.push_back(std::string(ParamName(static_cast<Param>(k))) + " is at its bound (" +
-                             std::to_string(res.params[k].value) + "): the data push it outside the physical range");
-    }
-  }
-  if (pr.has_throttle && pr.levels.size() < 2) {
-    res.warnings.push_back("all rows at one throttle level: ESC ratio and saturation not identifiable");
-  }
+  AddBoundWarnings(pr, &res);
   if (outliers > 0) res.warnings.push_back(std::to_string(outliers) + " outlier row(s) dropped and the fit repeated");
 
-  // Column fit statistics.
-  for (int m = 0; m < kMeasCount; ++m) {
-    if (!pr.data.measured[m]) continue;
-    ColumnFit cf;
-    cf.column = kMeasColumn[m];
-    double sse = 0.0, ss = 0.0;
-    std::vector<double> rel;
-    for (std::size_t k = 0; k < pr.data.rows.size(); ++k) {
-      const RowPrediction rp = PredictRow(table, pr.data.rows[k], res.motor, res.esc, options.assumed_throttle);
-      // Rows whose current is the fit's input: their speed prediction is the one from the current.
-      const bool current_input = pr.data.idc_in[k] == pr.data.idc_in[k];
-      const double pv[kMeasCount] = {current_input ? rp.omega_from_idc_rad_s : rp.omega_rad_s, rp.idc_a, rp.irms_a,
-                                     rp.vll_rms_v, rp.pac_w};
-      if (!std::isfinite(pv[m])) continue;
-      const double meas = table.Get(kMeasColumn[m])[pr.data.rows[k]];
-      sse += (pv[m] - meas) * (pv[m] - meas);
-      ss += meas * meas;
-      if (meas != 0.0) rel.push_back(std::fabs(pv[m] - meas) / std::fabs(meas) * 100.0);
-      ++cf.points;
-    }
-    if (cf.points == 0) continue;
-    cf.rmse = std::sqrt(sse / static_cast<double>(cf.points));
-    cf.rmse_percent = ss > 0.0 ? 100.0 * std::sqrt(sse / ss) : kNaN;
-    cf.median_abs_percent = Median(rel);
-    res.fit.push_back(cf);
-  }
-  if (!pr.has_throttle) {
-    for (const auto& f : res.fit) {
-      if (f.rmse_percent > 10.0) {
-        res.warnings.push_back(std::string("no throttle column and ") + logs::ColumnName(f.column) + " misfit by " +
-                               std::to_string(f.rmse_percent) +
-                               " % rms: the rows do not look like full-throttle points, so KE and R are not "
-                               "meaningful; calibrate a log that records the throttle");
-        break;
-      }
-    }
-  }
+  AddColumnFits(pr, table, options, &res);
   return res;
 }
 
