@@ -220,7 +220,7 @@ evenodd() {  # name, file, label, throttle, vdc, idc, rpm, torque header names
     echo "| $name | $kv | not fitted | - | - | - | $(grep -c . "$even.body") even rows: $(head -c 120 "$tmp/eo.err" | sed 's/^dynosize: [^:]*: //' | tr '\n|' ' /') |" >> "$out"
     return
   fi
-  st=$(jq -r .status "$tmp/eo.json" 2>/dev/null || echo "-")
+  st=$(jq -r '.status + ([.checks[] | select(.passed | not)][0] | if . == null then "" else ": " + .name end)' "$tmp/eo.json" 2>/dev/null || echo "-")
   kvfit=$(jq -r '.motor.ke_v_s_per_rad as $k | 0.67523723711782957 / ($k * 0.10471975511965977) | round' "$tmp/eo.json" 2>/dev/null || echo "-")
   if [ ! -f "$d/fitted.json" ]; then
     echo "| $name | $kv | $st | $kvfit | - | - | entry not written |" >> "$out"
