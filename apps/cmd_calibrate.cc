@@ -5,11 +5,16 @@
 #include <filesystem>
 #include <iomanip>
 #include <iostream>
+#include <map>
 #include <optional>
 #include <sstream>
 
 #include "calibration/catalog_output.h"
 #include "calibration/drivecalc_refit.h"
+#include "calibration/prop_static.h"
+#include "common/units.h"
+#include "fit/statistics.h"
+#include "identification/verdict.h"
 #include "catalog/catalog.h"
 #include "commands.h"
 #include "common/error.h"
@@ -33,17 +38,8 @@ std::string Datasets(const std::vector<std::string>& logs) {
   return s;
 }
 
-double Median(std::vector<double> v) {
-  if (v.empty()) return std::nan("");
-  std::sort(v.begin(), v.end());
-  const std::size_t h = v.size() / 2;
-  return v.size() % 2 ? v[h] : 0.5 * (v[h - 1] + v[h]);
-}
-
-double MedianAbs(std::vector<double> v) {
-  for (double& x : v) x = std::fabs(x);
-  return Median(v);
-}
+using fit::Median;
+using fit::MedianAbs;
 
 
 // A percentage for the text report: "-" when there is none (never "nan").
@@ -69,6 +65,26 @@ Json ErrJson(const std::vector<double>& e) {
   return {{"median_abs_percent", NumberOrNull(MedianAbs(e))}, {"points", e.size()}};
 }
 
+void CheckPropOptions(const CalibrateOptions& o) {
+  if (o.prop_id.empty()) {
+    if (o.prop_diameter_in || o.prop_pitch_in) throw UsageError("calibrate: --prop-diameter-in/--prop-pitch-in need --prop-id");
+    return;
+  }
+  if (!o.prop_diameter_in || !(*o.prop_diameter_in > 0.0)) {
+    throw UsageError("calibrate: --prop-id needs --prop-diameter-in > 0 (inch)");
+  }
+  if (o.prop_pitch_in && !(*o.prop_pitch_in > 0.0)) throw UsageError("calibrate: --prop-pitch-in must be > 0 (inch)");
+}
+
+// The static propeller entry of --prop-id (calibration/prop_static.h).
+Json PropEntry(const CalibrateOptions& o, const logs::SteadyTable& table, const calibration::EntryProvenance& prov) {
+  calibration::PropStaticOptions po;
+  po.diameter_m = InchToMeter(*o.prop_diameter_in);
+  if (o.prop_pitch_in) po.pitch_m = InchToMeter(*o.prop_pitch_in);
+  const calibration::PropStaticTable pt = calibration::FitPropStatic(table, po);
+  return calibration::PropEntryJson(o.prop_id, o.prop_id + " (measured)", pt, po, prov);
+}
+
 int RunDriveCalcAll(const CalibrateOptions& o) {
   if (o.logs.size() != 1) throw UsageError("--drivecalc-all takes one log: DriveCalc's MData.csv");
   logs::LogReadOptions ro;
@@ -83,6 +99,7 @@ int RunDriveCalcAll(const CalibrateOptions& o) {
   } catch (const Error&) {
   }
   std::vector<Json> motors;
+  std::map<std::string, std::size_t> held_back;  // motors not written, by failed check
   std::vector<double> rmse_idc, rmse_w;
   for (const auto& f : all.fits) {
     const auto& r = f.result;
@@ -102,8 +119,16 @@ int RunDriveCalcAll(const CalibrateOptions& o) {
     p.note = "full-throttle points with an ideal ESC assumed: rm_ohm is the whole series resistance of "
              "DriveCalc's set-up (motor + ESC + wiring) in the rms circuit of eq (48), R = 0.749*R_dc; "
              "io_a = Io_dc/1.1095";
-    Json e = calibration::MotorEntryJson(base + "_fit", name + " (refit)", r, p);
-    motors.push_back(e);
+    // The status contract without the (costly, per-motor) held-out check: only an "ok" motor is
+    // written; the others are counted by their first failed check.
+    const identification::Verdict v = calibration::JudgeCalibration(r, t, calibration::CalibrationOptions(), nullptr);
+    if (v.status != identification::Status::kOk) {
+      const identification::Check* c = v.FirstFailed();
+      ++held_back[c != nullptr ? c->name : identification::StatusName(v.status)];
+    } else {
+      Json e = calibration::MotorEntryJson(base + "_fit", name + " (refit)", r, p);
+      motors.push_back(e);
+    }
     for (const auto& c : r.fit) {
       if (c.column == logs::Column::kIdcA) rmse_idc.push_back(c.rmse_percent);
       if (c.column == logs::Column::kOmegaRadS) rmse_w.push_back(c.rmse_percent);
@@ -143,6 +168,10 @@ int RunDriveCalcAll(const CalibrateOptions& o) {
     j["out"] = out;
     j["motors_seen"] = all.motors_seen;
     j["motors_fitted"] = all.fits.size();
+    j["motors_written"] = motors.size();
+    Json hb = Json::object();
+    for (const auto& [k, n] : held_back) hb[k] = n;
+    j["motors_not_ok"] = hb;
     j["motors_too_few_points"] = all.motors_too_few_points;
     j["failures"] = all.failures;
     j["median_idc_rmse_percent"] = rmse_idc.empty() ? Json(nullptr) : Json(Median(rmse_idc));
@@ -152,7 +181,7 @@ int RunDriveCalcAll(const CalibrateOptions& o) {
   } else {
     std::cout << "refitted " << all.fits.size() << " of " << all.motors_seen << " DriveCalc motors ("
               << all.motors_too_few_points << " with too few points, " << all.failures.size()
-              << " failed) -> " << out << "\n"
+              << " failed); " << motors.size() << " with status ok written -> " << out << "\n"
               << "median rmse: idc " << PercentText(Median(rmse_idc)) << " %, no-load speed "
               << PercentText(Median(rmse_w)) << " %\n";
     if (o.loo) std::cout << "leave-one-out: " << loo.dump() << "\n";
@@ -183,6 +212,12 @@ int RunCalibrate(const CalibrateOptions& o) {
   for (const auto& l : o.logs) tables.push_back(logs::ReadLog(l, ro));
   const logs::SteadyTable table = calibration::MergeLogs(tables);
   CalibrationOptions co;
+  co.labels.kv_rpm_per_v = o.kv_label;
+  co.labels.rm_ohm = o.rm_label;
+  co.labels.io_a = o.io_label;
+  co.labels.io_v = o.io_label_v;
+  if (const std::string e = co.labels.Validate(); !e.empty()) throw UsageError("calibrate: " + e);
+  CheckPropOptions(o);
   if (!o.prior_motor.empty() || !o.prior_esc.empty()) {
     const Catalog cat = Catalog::Load(o.catalog_dir);
     if (!o.prior_motor.empty()) co.motor_prior = cat.motor(o.prior_motor).params;
@@ -211,48 +246,79 @@ int RunCalibrate(const CalibrateOptions& o) {
                     r.message + "): no parameters reported" +
                     (o.out.empty() ? std::string() : ", " + o.out + " not changed"));
   }
+  // The status contract: checks over the fit, the label and the held-out (cross-validated) error.
+  const calibration::CrossValidation cv = calibration::CrossValidateForVerdict(table, co);
+  const identification::Verdict verdict = calibration::JudgeCalibration(r, table, co, &cv);
 
   calibration::EntryProvenance prov;
   prov.dataset = Datasets(o.logs);
   std::ostringstream ref;
-  ref << "dynosize calibrate (" << r.mode << "), " << r.points_used << " points";
+  ref << "dynosize calibrate (" << r.mode << "), " << r.points_used << " points, status "
+      << identification::StatusName(verdict.status);
   prov.reference = ref.str();
-  const Json motor = calibration::MotorEntryJson(o.motor_id, o.motor_id + " (fitted)", r, prov);
-  const Json esc = calibration::EscEntryJson(o.esc_id, o.esc_id + " (fitted)", r, prov);
+  Json motor = calibration::MotorEntryJson(o.motor_id, o.motor_id + " (fitted)", r, prov);
+  Json esc = calibration::EscEntryJson(o.esc_id, o.esc_id + " (fitted)", r, prov);
+  calibration::AddRatings(&motor, {o.mass_kg, o.max_current_a, o.max_power_w, o.kv_label, std::nullopt});
+  calibration::AddRatings(&esc, {o.esc_mass_kg, o.esc_max_current_a, std::nullopt, std::nullopt, o.esc_vdc_max_v});
+  std::vector<Json> props;
+  if (!o.prop_id.empty()) props.push_back(PropEntry(o, table, prov));
 
   Json loo;
   if (o.loo) {
-    const auto cv = calibration::LeaveOneOut(table, co, true);
+    const auto lcv = calibration::LeaveOneOut(table, co, true);
     loo["by"] = table.Has(logs::Column::kThrottle) ? "throttle level" : "row";
-    loo["folds"] = cv.folds;
-    loo["failed_folds"] = cv.failed_folds;
-    loo["idc"] = ErrJson(cv.idc_error_percent);
-    loo["omega_at_torque"] = ErrJson(cv.omega_error_percent);
-    loo["omega_from_idc"] = ErrJson(cv.omega_from_idc_error_percent);
+    loo["folds"] = lcv.folds;
+    loo["failed_folds"] = lcv.failed_folds;
+    loo["idc"] = ErrJson(lcv.idc_error_percent);
+    loo["omega_at_torque"] = ErrJson(lcv.omega_error_percent);
+    loo["omega_from_idc"] = ErrJson(lcv.omega_from_idc_error_percent);
   }
   if (!o.plot_dir.empty()) {
     for (const auto& f : WriteCalibrationFigures(o.plot_dir, table, r)) {
       if (!o.json) std::cerr << "wrote " << f << "\n";
     }
   }
-  if (!o.out.empty()) {
-    calibration::WriteCatalogEntries(o.out, {motor}, {esc}, o.force,
-                                     "Entries fitted by dynosize calibrate from dynamometer logs.");
-    if (!o.json) std::cerr << "wrote " << o.motor_id << ", " << o.esc_id << " to " << o.out << "\n";
-  }
   if (o.json) {
-    Json j;
+    Json j = calibration::VerdictJson(verdict);
     j["motor"] = motor;
     j["esc"] = esc;
+    if (!props.empty()) j["prop"] = props[0];
     j["stderr"] = calibration::StandardErrorsJson(r);
     j["identifiable"] = calibration::IdentifiableJson(r);
     j["fit"] = calibration::FitJson(r);
     j["warnings"] = r.warnings;
+    j["held_out"] = {{"leave_one_out", cv.leave_one_out},
+                     {"folds", cv.folds},
+                     {"failed_folds", cv.failed_folds},
+                     {"idc", ErrJson(cv.idc_error_percent)},
+                     {"omega_at_torque", ErrJson(cv.omega_error_percent)},
+                     {"omega_from_idc", ErrJson(cv.omega_from_idc_error_percent)}};
+    Json dropped = Json::array();
+    for (const auto& d : r.dropped_rows) dropped.push_back({{"line", d.source_line}, {"reason", d.reason}});
+    j["dropped_rows"] = dropped;
     if (o.loo) j["leave_one_out"] = loo;
     std::cout << DumpJson(j);
   } else {
     std::cout << r.FullReport();
     if (o.loo) std::cout << "leave-one-out: " << loo.dump() << "\n";
+    std::cout << verdict.summary << "\n";
+    if (!verdict.advice.empty()) std::cout << "next: " << verdict.advice << "\n";
+  }
+  if (!o.out.empty()) {
+    // Only an entry with status ok is written; --force replaces ids, it never admits a refused fit.
+    if (verdict.status != identification::Status::kOk) {
+      const identification::Check* c = verdict.FirstFailed();
+      std::ostringstream m;
+      m << Datasets(o.logs) << ": " << o.out << " not written: status " << identification::StatusName(verdict.status);
+      if (c != nullptr) m << ", check " << c->name << " failed (" << c->value << " vs limit " << c->limit << ")";
+      throw DataError(m.str());
+    }
+    calibration::WriteCatalogEntries(o.out, {motor}, {esc}, o.force,
+                                     "Entries fitted by dynosize calibrate from dynamometer logs.", props);
+    if (!o.json) {
+      std::cerr << "wrote " << o.motor_id << ", " << o.esc_id << (props.empty() ? "" : ", " + o.prop_id) << " to "
+                << o.out << "\n";
+    }
   }
   return 0;
 }

@@ -104,34 +104,45 @@ void WriteExtendedEntries(const DiagnoseCliOptions& o, const diagnosis::Diagnose
   ref << "dynosize diagnose (" << r.mode << "), " << r.points_used << " points; findings:";
   for (const auto& f : r.findings) ref << " " << CauseId(f.cause);
   if (r.findings.empty()) ref << " none";
-  Json motor = MotorJson(r.extended_motor);
-  Json esc = EscJson(r.extended_esc);
-  Json mv = Json::object(), ev = Json::object();
+  auto method = [&](const std::string& key) -> std::string {
+    if (key == "kt_nm_per_a" && !fitted(key)) return "derived";
+    return fitted(key) ? "fitted" : "assumed";
+  };
+  std::vector<calibration::EntryValue> mv = {{"type", 0.0, "assumed",
+                                              r.extended_motor.type == MotorType::kBldc ? "bldc" : "brushed"}};
+  const Json motor = MotorJson(r.extended_motor);
   for (auto it = motor.begin(); it != motor.end(); ++it) {
-    if (it.key() == "type") continue;
-    mv[it.key()] = it.key() == "kt_nm_per_a" && !fitted("kt_nm_per_a") ? "derived"
-                   : fitted(it.key())                                  ? "fitted"
-                                                                       : "assumed";
+    if (it.key() != "type") mv.push_back({it.key(), it.value().get<double>(), method(it.key()), ""});
   }
-  for (auto it = esc.begin(); it != esc.end(); ++it) ev[it.key()] = fitted(it.key()) ? "fitted" : "assumed";
-  const std::string dataset = std::filesystem::path(o.log).filename().string();
-  Json m;
-  m["id"] = id + "_motor";
-  m["name"] = id + " motor (diagnosed, extended model)";
-  for (auto it = motor.begin(); it != motor.end(); ++it) m[it.key()] = it.value();
+  std::vector<calibration::EntryValue> ev;
+  const Json esc = EscJson(r.extended_esc);
+  for (auto it = esc.begin(); it != esc.end(); ++it) ev.push_back({it.key(), it.value().get<double>(), method(it.key()), ""});
+  calibration::EntryProvenance prov;
+  prov.dataset = std::filesystem::path(o.log).filename().string();
+  prov.reference = ref.str();
   std::string note;
   for (const auto& w : r.warnings) note += (note.empty() ? "" : "; ") + w;
-  m["source"] = {{"dataset", dataset}, {"reference", ref.str()}, {"values", mv}};
-  if (!note.empty()) m["source"]["note"] = note;
-  Json e;
-  e["id"] = id + "_esc";
-  e["name"] = id + " ESC (diagnosed, extended model)";
-  for (auto it = esc.begin(); it != esc.end(); ++it) e[it.key()] = it.value();
-  e["source"] = {{"dataset", dataset}, {"reference", ref.str()}, {"values", ev}};
-  if (!note.empty()) e["source"]["note"] = note;
+  const Json m = calibration::ComponentEntryJson(id + "_motor", id + " motor (diagnosed, extended model)", mv, prov,
+                                                 note, "motor");
+  const Json e = calibration::ComponentEntryJson(id + "_esc", id + " ESC (diagnosed, extended model)", ev, prov,
+                                                 note, "ESC");
   calibration::WriteCatalogEntries(o.out, {m}, {e}, o.force,
                                    "Extended models fitted by dynosize diagnose from dynamometer logs.");
   if (!o.json) std::cerr << "wrote " << id << "_motor, " << id << "_esc to " << o.out << "\n";
+}
+
+// --out writes the extended model only when its status is ok (the same rule as calibrate):
+// otherwise exit 65 with one line naming the failed check, and the file is not touched.
+void WriteIfOk(const DiagnoseCliOptions& o, const diagnosis::DiagnoseResult& r) {
+  if (o.out.empty()) return;
+  if (r.verdict.status != identification::Status::kOk) {
+    const identification::Check* c = r.verdict.FirstFailed();
+    std::ostringstream m;
+    m << o.log << ": " << o.out << " not written: status " << identification::StatusName(r.verdict.status);
+    if (c != nullptr) m << ", check " << c->name << " failed (" << c->value << " vs limit " << c->limit << ")";
+    throw DataError(m.str());
+  }
+  WriteExtendedEntries(o, r);
 }
 
 }  // namespace
@@ -149,6 +160,8 @@ int RunDiagnose(const DiagnoseCliOptions& o) {
   diagnosis::DiagnoseOptions opt;
   opt.folds = o.folds;
   opt.alpha = o.alpha;
+  opt.kv_label_rpm_per_v = o.kv_label;
+  if (o.kv_label && !(*o.kv_label > 0.0)) throw UsageError("diagnose: --kv-label must be > 0 (rpm per volt)");
   if (!o.motor_id.empty() || !o.esc_id.empty()) {
     const Catalog cat = Catalog::Load(o.catalog_dir);
     if (!o.motor_id.empty()) opt.motor = cat.motor(o.motor_id).params;
@@ -164,12 +177,12 @@ int RunDiagnose(const DiagnoseCliOptions& o) {
       if (!o.json) std::cerr << "wrote " << f << "\n";
     }
   }
-  if (!o.out.empty()) WriteExtendedEntries(o, r);
   if (!o.json) {
     std::cout << r.FullReport();
+    WriteIfOk(o, r);
     return 0;
   }
-  Json j;
+  Json j = calibration::VerdictJson(r.verdict);
   j["file"] = r.file;
   j["mode"] = r.mode;
   j["points_used"] = r.points_used;
@@ -233,7 +246,12 @@ int RunDiagnose(const DiagnoseCliOptions& o) {
                          {"cv_rmse_percent", CvJson(r.extended_cv, true)},
                          {"cv_rms_percent_all", NumberOrNull(r.extended_cv_rms_percent)}};
   j["warnings"] = r.warnings;
+  j["dropped_rows"] = r.outlier_reasons;
+  j["cross_validation"] = {{"folds", r.cv_folds}, {"leave_one_out", r.leave_one_out},
+                           {"baseline_failed_folds", r.baseline_cv_failed_folds},
+                           {"extended_failed_folds", r.extended_cv_failed_folds}};
   std::cout << DumpJson(j);
+  WriteIfOk(o, r);
   return 0;
 }
 

@@ -84,7 +84,15 @@ struct CalibrateOptions {
   // Also report leave-one-out prediction errors (one throttle level out; one row out for
   // logs without throttle and for --drivecalc-all, where the plain U = n/Kv + R*I fit is
   // reported beside it).
-  bool loo = false;
+  bool loo = false;  // The motor's label (Gaussian priors, src/identification/parameters.h): Kv in rpm/V, Rm in ohm,
+  // no-load current in A at a voltage in V.
+  std::optional<double> kv_label, rm_label, io_label, io_label_v;
+  // Ratings stored in the written entries (sizing needs them: optimize skips a motor without mass).
+  std::optional<double> mass_kg, max_current_a, max_power_w;
+  std::optional<double> esc_max_current_a, esc_vdc_max_v, esc_mass_kg;
+  // A static propeller entry (CT, CP vs rpm) from a log with thrust and torque.
+  std::string prop_id;
+  std::optional<double> prop_diameter_in, prop_pitch_in;
 };
 int RunCalibrate(const CalibrateOptions& o);
 
@@ -109,6 +117,7 @@ struct DiagnoseCliOptions {
   std::string out;
   std::string id;
   bool force = false;
+  std::optional<double> kv_label;  // the motor's label Kv, rpm/V: checked against the model
 };
 int RunDiagnose(const DiagnoseCliOptions& o);
 

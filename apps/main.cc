@@ -112,6 +112,22 @@ int main(int argc, char** argv) {
   calibrate->add_flag("--drivecalc-all", cal.drivecalc_all,
                       "refit every DriveCalc motor in LOG (MData.csv) into --out (default "
                       "catalog/drivecalc_fitted.json)");
+  calibrate->add_option("--kv-label", cal.kv_label,
+                        "the motor's label Kv, rpm/V: a Gaussian prior on KE (10 % 1-sigma) and the check "
+                        "'Kv within 25 % of the label'; stored in the entry");
+  calibrate->add_option("--rm-label", cal.rm_label, "datasheet winding resistance, ohm: a prior on Rm (30 %)");
+  calibrate->add_option("--io-label", cal.io_label, "datasheet no-load current, A: a prior on Io (50 %)");
+  calibrate->add_option("--io-label-v", cal.io_label_v, "voltage at which --io-label holds, V");
+  calibrate->add_option("--mass-kg", cal.mass_kg, "motor mass, kg (stored in the motor entry)");
+  calibrate->add_option("--max-current-a", cal.max_current_a, "motor current rating, A (stored)");
+  calibrate->add_option("--max-power-w", cal.max_power_w, "motor power rating, W (stored)");
+  calibrate->add_option("--esc-max-current-a", cal.esc_max_current_a, "ESC current rating, A (stored)");
+  calibrate->add_option("--esc-vdc-max-v", cal.esc_vdc_max_v, "ESC voltage rating, V (stored)");
+  calibrate->add_option("--esc-mass-kg", cal.esc_mass_kg, "ESC mass, kg (stored)");
+  calibrate->add_option("--prop-id", cal.prop_id,
+                        "also write a static propeller entry (CT, CP vs rpm) from the log's thrust and torque");
+  calibrate->add_option("--prop-diameter-in", cal.prop_diameter_in, "propeller diameter, inch (with --prop-id)");
+  calibrate->add_option("--prop-pitch-in", cal.prop_pitch_in, "propeller pitch, inch (with --prop-id)");
 
   // catalog
   auto* catalog = app.add_subcommand("catalog", "list, show, validate the component catalog");
@@ -172,6 +188,8 @@ int main(int argc, char** argv) {
                        "catalog JSON file to add the extended model to (<id>_motor, <id>_esc; atomic)");
   diagnose->add_option("--id", diag.id, "id prefix of the --out entries (default: the log's base name)");
   diagnose->add_flag("--force", diag.force, "replace entries with the same ids in --out");
+  diagnose->add_option("--kv-label", diag.kv_label,
+                       "the motor's label Kv, rpm/V: the status check 'Kv within 25 % of the label'");
 
   // evaluate, optimize (issue #6)
   cli::EvaluateOptions eval;

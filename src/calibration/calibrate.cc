@@ -11,6 +11,7 @@
 #include "common/error.h"
 #include "common/units.h"
 #include "fit/linear_least_squares.h"
+#include "fit/statistics.h"
 
 namespace dynosize::calibration {
 
@@ -20,8 +21,13 @@ using logs::Column;
 using logs::SteadyTable;
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-constexpr int kMaxFree = 8;  // every parameter but tr_sat (profiled)
+constexpr int kMaxFree = kParamCount - 1;  // every parameter but tr_sat (profiled)
 using D8 = Dual<kMaxFree>;
+using identification::C1FromExcess;
+using identification::KtFromRatio;
+constexpr int kKeI = static_cast<int>(Param::kKe), kKtI = static_cast<int>(Param::kKt),
+              kC1I = static_cast<int>(Param::kC1), kC0I = static_cast<int>(Param::kC0),
+              kDbI = static_cast<int>(Param::kDeadband);
 
 // Measured columns the fit compares with predictions, in this order.
 enum Meas : int { kMOmega = 0, kMIdc, kMIrms, kMVll, kMPac, kMeasCount };
@@ -39,49 +45,77 @@ struct FitData {
   std::vector<double> vdc, tr, omega, q;
   std::vector<char> torque_known;
   std::vector<char> speed_known;  // 0: a no-load row whose speed was not measured (omega = 0)
+  // DC logs with a throttle but neither torque nor AC columns: the measured current is the row's
+  // input and the speed is predicted (the well-conditioned direction: I = (U - KE*omega)/R is a
+  // small difference at low throttle, omega = (U - R*I)/KE is not). NaN where not an input.
+  std::vector<double> idc_in;
   std::vector<int> term_begin;  // terms of row k: [term_begin[k], term_begin[k+1])
   std::vector<Term> terms;
   std::array<bool, kMeasCount> measured{};
 };
 
-double Median(std::vector<double> v) {
-  if (v.empty()) return kNaN;
-  const std::size_t h = v.size() / 2;
-  std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(h), v.end());
-  double m = v[h];
-  if (v.size() % 2 == 0) m = 0.5 * (m + *std::max_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(h)));
-  return m;
+using fit::Median;
+
+// Dead band / throttle offset, then the saturation knee of section 7 (model::Drive's
+// EffectiveThrottle, generic for dual numbers): d = max(0, (TR - db)/(1 - db)), TR_eff = d up to
+// tr_sat, tr_sat + slope*(d - tr_sat) above.
+template <typename T>
+T EffThrottle(double tr, double tr_sat, const T& slope, const T& db) {
+  T d = (tr - db) / (1.0 - db);
+  if (d < 0.0) d = T(0.0);
+  if (d <= tr_sat) return d;
+  return tr_sat + slope * (d - tr_sat);
 }
 
-// The throttle-saturation law of section 7, for data throttle `tr`.
-template <typename T>
-T EffThrottle(double tr, double tr_sat, const T& slope) {
-  if (tr <= tr_sat) return T(tr);
-  return tr_sat + slope * (tr - tr_sat);
+// The fit's parameter vector ("internal", identification/parameters.h): slot kKt holds the
+// ratio f = KT/(kp*KE) (1 when KT is tied to KE), slot kC1 the ESC excess s = c1 + c0 - 1.1095.
+// Both keep the energy rules of model.md section 10 as box bounds.
+std::array<double, kParamCount> ToInternal(const MotorParams& m, const EscParams& e) {
+  std::array<double, kParamCount> p{};
+  p[kKeI] = m.ke_v_s_per_rad;
+  p[kKtI] = m.ke_v_s_per_rad > 0.0 ? m.kt_nm_per_a / (kPacPerVllIrms * m.ke_v_s_per_rad) : 1.0;
+  p[2] = m.rm_ohm;
+  p[3] = m.io_a;
+  p[4] = e.resc_ohm;
+  p[kC1I] = identification::EscExcess(e.c1, e.c0);
+  p[kC0I] = e.c0;
+  p[7] = e.tr_sat;
+  p[8] = e.sat_slope;
+  p[kDbI] = e.deadband;
+  return p;
 }
 
-// Forward predictions of one row (see the header): fills pred[kMeasCount] (and the torque).
-// Returns false outside the model's domain (non-positive KE, KT or resistance).
+// Forward predictions of one row (see the header) from internal parameters: fills
+// pred[kMeasCount] (and the torque). Returns false outside the model's domain (non-positive KE,
+// KT or resistance).
 template <typename T>
-bool PredictGeneric(const T* p, double tr_sat, bool tie_kt, double vdc, double tr, double omega,
-                    double q, bool torque_known, T* pred, T* q_pred) {
+bool PredictGeneric(const T* p, double tr_sat, double vdc, double tr, double omega,
+                    double q, bool torque_known, T* pred, T* q_pred,
+                    double idc_in = std::numeric_limits<double>::quiet_NaN()) {
   const T& ke = p[0];
-  const T kt = tie_kt ? kPacPerVllIrms * ke : p[1];
+  const T kt = KtFromRatio(ke, p[kKtI]);
   const T& rm = p[2];
   const T& io = p[3];
   const T& resc = p[4];
-  const T& c1 = p[5];
-  const T& c0 = p[6];
+  const T& c0 = p[kC0I];
+  const T c1 = C1FromExcess(p[kC1I], c0);
   const T& slope = p[8];
   const T r = rm + resc;
   if (!(ke > 0.0) || !(kt > 0.0) || !(r > 1e-12)) return false;
-  const T tre = EffThrottle(tr, tr_sat, slope);
+  const T tre = EffThrottle(tr, tr_sat, slope, p[kDbI]);
   const T u = kVllRmsPerVdc * vdc * tre;
   T i, w;
   if (torque_known) {
     i = q / kt + io;
     w = (u - r * i) / ke;
     *q_pred = T(q);
+  } else if (idc_in == idc_in) {
+    // The measured DC current is the input: I = IDC/(C1*TR_eff + C0) (57), speed from (48).
+    const T g = c1 * tre + c0;
+    if (!(g > 1e-6)) return false;
+    i = idc_in / g;
+    w = (u - r * i) / ke;
+    *q_pred = kt * (i - io);
   } else {
     w = T(omega);
     i = (u - ke * omega) / r;
@@ -112,8 +146,8 @@ bool Residuals(const FitData& d, const Layout& lay, const std::array<double, kPa
   T pred[kMeasCount];
   T qp;
   for (std::size_t k = 0; k < d.rows.size(); ++k) {
-    if (!PredictGeneric(p, tr_sat, lay.tie_kt, d.vdc[k], d.tr[k], d.omega[k], d.q[k],
-                        d.torque_known[k] != 0, pred, &qp)) {
+    if (!PredictGeneric(p, tr_sat, d.vdc[k], d.tr[k], d.omega[k], d.q[k],
+                        d.torque_known[k] != 0, pred, &qp, d.idc_in[k])) {
       return false;
     }
     for (int t = d.term_begin[k]; t < d.term_begin[k + 1]; ++t) {
@@ -141,11 +175,24 @@ ResidualFunction MakeResidualFunction(const FitData& d, const Layout& lay,
   };
 }
 
-// Bounds of each parameter (physical: no negative resistance or no-load current).
-// Rm stays above 1 micro-ohm (the catalog requires rm_ohm > 0); C0 and sat_slope within the
-// catalog's ranges (schema.cc).
-constexpr double kLower[kParamCount] = {1e-7, 1e-7, 1e-6, 0.0, 0.0, 0.0, -1.0, 0.0, 0.0};
-constexpr double kUpper[kParamCount] = {10.0, 20.0, 100.0, 200.0, 10.0, 5.0, 1.0, 1.0, 1.0};
+// Bounds of each internal parameter: the physical box of identification/parameters.h, with the
+// KT slot bounded as the ratio f and the C1 slot as the excess s (model.md section 10).
+constexpr std::array<double, kParamCount> MakeLower() {
+  std::array<double, kParamCount> b{};
+  for (int k = 0; k < kParamCount; ++k) b[k] = identification::kBaseLower[k];
+  b[kKtI] = identification::kKtRatioLower;
+  b[kC1I] = identification::kEscExcessLower;
+  return b;
+}
+constexpr std::array<double, kParamCount> MakeUpper() {
+  std::array<double, kParamCount> b{};
+  for (int k = 0; k < kParamCount; ++k) b[k] = identification::kBaseUpper[k];
+  b[kKtI] = identification::kKtRatioUpper;
+  b[kC1I] = identification::kEscExcessUpper;
+  return b;
+}
+constexpr std::array<double, kParamCount> kLower = MakeLower();
+constexpr std::array<double, kParamCount> kUpper = MakeUpper();
 
 std::string FileTag(const SteadyTable& t) { return t.file.empty() ? std::string("log") : t.file; }
 
@@ -167,7 +214,9 @@ struct Prepared {
   bool has_throttle = false;
   std::vector<double> levels;
   std::vector<logs::DropCount> dropped;
+  std::vector<DroppedRow> dropped_rows;
   std::vector<std::string> warnings;
+  double offset_upper = 0.5;  // upper bound of the dead band: below the lowest throttle level
 };
 
 void AddDropLocal(std::vector<logs::DropCount>* v, const std::string& reason) {
@@ -178,6 +227,11 @@ void AddDropLocal(std::vector<logs::DropCount>* v, const std::string& reason) {
     }
   }
   v->push_back({reason, 1});
+}
+
+void DropRow(Prepared* pr, const SteadyTable& t, std::size_t i, const std::string& reason) {
+  AddDropLocal(&pr->dropped, reason);
+  pr->dropped_rows.push_back({i, i < t.source_line.size() ? t.source_line[i] : 0, reason});
 }
 
 // Selects the rows, decides what is free, and finds starting values by linear least squares.
@@ -216,15 +270,15 @@ Prepared Prepare(const SteadyTable& t, const CalibrationOptions& o, const std::v
     // model's current I = Io does not depend on the speed (eq 42). Only its current is compared.
     const bool speed_unknown = nl && w == 0.0;
     if (!speed_unknown && !(w > o.min_speed_fraction * wmax)) {
-      AddDropLocal(&pr.dropped, "speed below min_speed_fraction of the largest");
+      DropRow(&pr, t, i, "speed below min_speed_fraction of the largest");
       continue;
     }
     if (pr.has_throttle && tr < o.min_throttle) {
-      AddDropLocal(&pr.dropped, "throttle below min_throttle");
+      DropRow(&pr, t, i, "throttle below min_throttle");
       continue;
     }
     if (!(t.Get(Column::kVdcV)[i] > 0.0)) {
-      AddDropLocal(&pr.dropped, "vdc_v not positive");
+      DropRow(&pr, t, i, "vdc_v not positive");
       continue;
     }
     d.rows.push_back(i);
@@ -234,6 +288,8 @@ Prepared Prepare(const SteadyTable& t, const CalibrationOptions& o, const std::v
     d.q.push_back(has_q ? t.Get(Column::kTorqueNm)[i] : 0.0);
     d.torque_known.push_back(has_q || nl ? 1 : 0);
     d.speed_known.push_back(speed_unknown ? 0 : 1);
+    const bool current_input = pr.has_throttle && !has_q && !ac && !nl && !speed_unknown && idc_all[i] > 0.0;
+    d.idc_in.push_back(current_input ? idc_all[i] : kNaN);
   }
   const std::size_t n = d.rows.size();
   std::size_t with_speed = 0;
@@ -256,8 +312,10 @@ Prepared Prepare(const SteadyTable& t, const CalibrationOptions& o, const std::v
   for (std::size_t k = 0; k < n; ++k) {
     for (int m = 0; m < kMeasCount; ++m) {
       if (!d.measured[m]) continue;
-      if (m == kMOmega && !d.torque_known[k]) continue;  // speed is the input on this row
+      const bool current_input = d.idc_in[k] == d.idc_in[k];
+      if (m == kMOmega && !d.torque_known[k] && !current_input) continue;  // speed is the input
       if (m == kMOmega && !d.speed_known[k]) continue;   // speed not measured on this row
+      if (m == kMIdc && current_input) continue;         // the current is the input
       d.terms.push_back({m, t.Get(kMeasColumn[m])[d.rows[k]], inv_scale[m]});
     }
     d.term_begin.push_back(static_cast<int>(d.terms.size()));
@@ -268,6 +326,7 @@ Prepared Prepare(const SteadyTable& t, const CalibrationOptions& o, const std::v
   auto& fr = lay.free;
   auto idx = [](Param p) { return static_cast<int>(p); };
   pr.levels = ThrottleLevels(d.tr);
+  if (!pr.levels.empty()) pr.offset_upper = std::min(0.5, 0.9 * pr.levels.front());
   const bool multi_level = pr.has_throttle && pr.levels.size() >= 2;
   bool any_torque_known = false;
   for (char c : d.torque_known) any_torque_known = any_torque_known || c;
@@ -283,7 +342,11 @@ Prepared Prepare(const SteadyTable& t, const CalibrationOptions& o, const std::v
   fr[idx(Param::kC0)] = esc_ratio;
   fr[idx(Param::kTrSat)] = false;  // profiled
   fr[idx(Param::kSatSlope)] = false;  // freed per knee candidate
+  fr[kDbI] = false;                   // freed when the offset is tested (FitWithOffset)
   auto& nt = pr.notes;
+  nt[kDbI] = !pr.has_throttle ? "no throttle column: held at prior"
+             : pr.levels.size() < 3 ? "fewer than 3 throttle levels: held at prior"
+                                    : "";
   if (lay.tie_kt) {
     nt[idx(Param::kKt)] = has_q ? "tied: KT = sqrt(27/10)*KE (no AC columns to separate KT from the ESC ratio)"
                                 : "tied: KT = sqrt(27/10)*KE (no torque column)";
@@ -314,6 +377,7 @@ Prepared Prepare(const SteadyTable& t, const CalibrationOptions& o, const std::v
   p[idx(Param::kC0)] = esc0.c0;
   p[idx(Param::kTrSat)] = 1.0;
   p[idx(Param::kSatSlope)] = 1.0;
+  p[kDbI] = esc0.deadband;
   if (o.motor_prior) {
     p[idx(Param::kIo)] = o.motor_prior->io_a;
   }
@@ -354,6 +418,15 @@ Prepared Prepare(const SteadyTable& t, const CalibrationOptions& o, const std::v
     if (!(ke0 > 0.0)) {
       // Fall back on the no-load relation KE ~ U/omega.
       ke0 = b.cwiseQuotient(a.col(1)).maxCoeff();
+    }
+    if (o.labels.kv_rpm_per_v) {
+      // A label is a better start than the linear fit, which a throttle offset or a nonlinear
+      // throttle curve biases: KE from the label, R by least squares with KE held there.
+      ke0 = identification::KeFromLabelKv(*o.labels.kv_rpm_per_v);
+      const Eigen::VectorXd rest = b - ke0 * a.col(1);
+      const double den = a.col(0).squaredNorm();
+      const double r_label = den > 0.0 ? a.col(0).dot(rest) / den : 0.0;
+      if (r_label > 0.0) r0 = r_label;
     }
     p[idx(Param::kKe)] = ke0;
     if (ac) {
@@ -419,10 +492,15 @@ Prepared Prepare(const SteadyTable& t, const CalibrationOptions& o, const std::v
     // Values the data cannot identify come from the prior.
     if (!fr[idx(Param::kIo)]) p[idx(Param::kIo)] = o.motor_prior->io_a;
   }
-  // Into the box, away from the singular R = 0.
+  // Into the internal form (KT as the ratio f, C1 as the excess s; the starts of the linear
+  // sub-problems may break the energy rules and are moved onto them), into the box, away from
+  // the singular R = 0.
+  p[kKeI] = std::clamp(p[kKeI], kLower[kKeI], kUpper[kKeI]);
+  p[kKtI] = lay.tie_kt ? 1.0 : p[kKtI] / (kPacPerVllIrms * p[kKeI]);
+  p[kC0I] = std::clamp(p[kC0I], kLower[kC0I], kUpper[kC0I]);
+  p[kC1I] = identification::EscExcess(p[kC1I], p[kC0I]);
   for (int k = 0; k < kParamCount; ++k) p[k] = std::clamp(p[k], kLower[k], kUpper[k]);
   if (p[idx(Param::kRm)] + p[idx(Param::kResc)] < 1e-4) p[idx(Param::kRm)] = 1e-4 + 0.01 * p[idx(Param::kRm)];
-  if (lay.tie_kt) p[idx(Param::kKt)] = kPacPerVllIrms * p[idx(Param::kKe)];
   return pr;
 }
 
@@ -433,10 +511,34 @@ struct SolveOutcome {
   int free_count = 0;
 };
 
+// Gaussian priors on the free slot s holding parameter k: the label (--kv-label, --rm-label,
+// --io-label) where given, else the motor prior, with the widths of identification/parameters.h
+// and CalibrationOptions.
+void AddPriors(const CalibrationOptions& o, int k, int s, std::vector<GaussianPrior>* priors) {
+  auto add = [&](double mean, double rel) {
+    if (mean > 0.0 && rel > 0.0) priors->push_back({s, mean, rel * mean});
+  };
+  const auto& lb = o.labels;
+  const MotorParams* mp = o.motor_prior ? &*o.motor_prior : nullptr;
+  if (k == kKeI) {
+    if (lb.kv_rpm_per_v) add(identification::KeFromLabelKv(*lb.kv_rpm_per_v), identification::kKvLabelRelSigma);
+    else if (mp) add(mp->ke_v_s_per_rad, o.prior_ke_rel_sigma);
+  }
+  if (k == static_cast<int>(Param::kRm)) {
+    if (lb.rm_ohm) add(*lb.rm_ohm, identification::kRmLabelRelSigma);
+    else if (mp) add(mp->rm_ohm, o.prior_rm_rel_sigma);
+  }
+  if (k == static_cast<int>(Param::kIo)) {
+    if (lb.io_a) add(identification::IoFromLabel(*lb.io_a), identification::kIoLabelRelSigma);
+    else if (mp) add(mp->io_a, o.prior_io_rel_sigma);
+  }
+}
+
 SolveOutcome SolveOnce(const Prepared& pr, const CalibrationOptions& o, double tr_sat, bool free_slope,
-                       const std::array<double, kParamCount>& start) {
+                       bool free_offset, const std::array<double, kParamCount>& start) {
   Layout lay = pr.layout;
   lay.free[static_cast<int>(Param::kSatSlope)] = free_slope;
+  lay.free[kDbI] = free_offset;
   lay.free_index.clear();
   for (int k = 0; k < kParamCount; ++k) {
     if (lay.free[k]) lay.free_index.push_back(k);
@@ -457,16 +559,9 @@ SolveOutcome SolveOnce(const Prepared& pr, const CalibrationOptions& o, double t
     prob.parameter_names.push_back(ParamName(static_cast<Param>(k)));
     prob.lower_bounds[s] = kLower[k];
     prob.upper_bounds[s] = kUpper[k];
-    x[s] = std::clamp(start[k], kLower[k], kUpper[k]);
-    if (o.motor_prior) {
-      const MotorParams& mp = *o.motor_prior;
-      auto add = [&](double mean, double rel) {
-        if (mean > 0.0 && rel > 0.0) prob.priors.push_back({s, mean, rel * mean});
-      };
-      if (k == static_cast<int>(Param::kKe)) add(mp.ke_v_s_per_rad, o.prior_ke_rel_sigma);
-      if (k == static_cast<int>(Param::kRm)) add(mp.rm_ohm, o.prior_rm_rel_sigma);
-      if (k == static_cast<int>(Param::kIo)) add(mp.io_a, o.prior_io_rel_sigma);
-    }
+    if (k == kDbI) prob.upper_bounds[s] = pr.offset_upper;
+    x[s] = std::clamp(start[k], prob.lower_bounds[s], prob.upper_bounds[s]);
+    AddPriors(o, k, s, &prob.priors);
   }
   LevenbergMarquardtOptions lo = o.solver;
   lo.loss = o.loss;
@@ -476,15 +571,15 @@ SolveOutcome SolveOnce(const Prepared& pr, const CalibrationOptions& o, double t
   out.summary = SolveLeastSquares(prob, lo, &x);
   out.params = fixed;
   for (int s = 0; s < nf; ++s) out.params[lay.free_index[s]] = x[s];
-  if (lay.tie_kt) out.params[static_cast<int>(Param::kKt)] = kPacPerVllIrms * out.params[0];
   out.cost = out.summary.IsSolutionUsable() ? out.summary.final_cost : std::numeric_limits<double>::infinity();
   return out;
 }
 
+// Physical parameters of the internal vector (KT = kp*KE*f, c1 = 1.1095 + s - c0).
 MotorParams ToMotor(const std::array<double, kParamCount>& p) {
   MotorParams m;
   m.ke_v_s_per_rad = p[0];
-  m.kt_nm_per_a = p[1];
+  m.kt_nm_per_a = KtFromRatio(p[kKeI], p[kKtI]);
   m.rm_ohm = p[2];
   m.io_a = p[3];
   return m;
@@ -493,17 +588,18 @@ MotorParams ToMotor(const std::array<double, kParamCount>& p) {
 EscParams ToEsc(const std::array<double, kParamCount>& p, const std::optional<EscParams>& prior) {
   EscParams e = prior ? *prior : EscParams{};
   e.resc_ohm = p[4];
-  e.c1 = p[5];
-  e.c0 = p[6];
+  e.c1 = C1FromExcess(p[kC1I], p[kC0I]);
+  e.c0 = p[kC0I];
   e.tr_sat = p[7];
   e.sat_slope = p[8];
+  e.deadband = p[kDbI];
   return e;
 }
 
 // Best fit over the knee candidates (and "no knee"); returns the chosen outcome.
-SolveOutcome FitWithKnee(const Prepared& pr, const CalibrationOptions& o, bool* knee_found,
+SolveOutcome FitWithKnee(const Prepared& pr, const CalibrationOptions& o, bool free_offset, bool* knee_found,
                          std::string* knee_note) {
-  SolveOutcome best = SolveOnce(pr, o, 1.0, false, pr.start);
+  SolveOutcome best = SolveOnce(pr, o, 1.0, false, free_offset, pr.start);
   *knee_found = false;
   if (!pr.has_throttle) {
     *knee_note = "no throttle column";
@@ -519,7 +615,7 @@ SolveOutcome FitWithKnee(const Prepared& pr, const CalibrationOptions& o, bool* 
     ++candidates;
     std::array<double, kParamCount> start = none.params;
     start[static_cast<int>(Param::kSatSlope)] = 0.8;
-    SolveOutcome s = SolveOnce(pr, o, ts, true, start);
+    SolveOutcome s = SolveOnce(pr, o, ts, true, free_offset, start);
     if (s.cost < knee.cost) knee = s;
   }
   if (candidates == 0) {
@@ -548,15 +644,14 @@ SolveOutcome FitWithKnee(const Prepared& pr, const CalibrationOptions& o, bool* 
   return best;
 }
 
-std::vector<double> RowResidualMax(const Prepared& pr, const std::array<double, kParamCount>& p,
-                                   bool tie) {
+std::vector<double> RowResidualMax(const Prepared& pr, const std::array<double, kParamCount>& p) {
   const FitData& d = pr.data;
   std::vector<double> out(d.rows.size(), 0.0);
   double pred[kMeasCount];
   double qp;
   for (std::size_t k = 0; k < d.rows.size(); ++k) {
-    if (!PredictGeneric(p.data(), p[7], tie, d.vdc[k], d.tr[k], d.omega[k], d.q[k], d.torque_known[k] != 0,
-                        pred, &qp)) {
+    if (!PredictGeneric(p.data(), p[7], d.vdc[k], d.tr[k], d.omega[k], d.q[k], d.torque_known[k] != 0,
+                        pred, &qp, d.idc_in[k])) {
       continue;
     }
     for (int t = d.term_begin[k]; t < d.term_begin[k + 1]; ++t) {
@@ -565,6 +660,212 @@ std::vector<double> RowResidualMax(const Prepared& pr, const std::array<double, 
     }
   }
   return out;
+}
+
+// "" when the free ESC slots (excess s, c0) of a solve are determined, else why not: a slot on
+// its bound, or a standard error above half of c0 or of c1 = 1.1095 + s - c0.
+std::string EscUndetermined(const LevenbergMarquardtSummary& s) {
+  double ex = kNaN, c0 = kNaN, se_ex = kNaN, se_c0 = kNaN;
+  for (std::size_t j = 0; j < s.parameter_names.size(); ++j) {
+    const bool c1slot = s.parameter_names[j] == "c1", c0slot = s.parameter_names[j] == "c0";
+    if (!c1slot && !c0slot) continue;
+    if (j < s.at_bound.size() && s.at_bound[j]) return std::string(c1slot ? "c1 + c0" : "c0") + " on its bound";
+    const double se = j < static_cast<std::size_t>(s.standard_errors.size()) ? s.standard_errors[j] : kNaN;
+    (c1slot ? ex : c0) = s.parameters[j];
+    (c1slot ? se_ex : se_c0) = se;
+  }
+  std::ostringstream w;
+  w << std::setprecision(2);
+  if (!(se_c0 <= 0.5 * std::fabs(c0))) {
+    w << "c0 = " << c0 << " +- " << se_c0;
+    return w.str();
+  }
+  const double c1 = C1FromExcess(ex, c0);
+  if (!(se_ex <= 0.5 * std::fabs(c1))) {
+    w << "c1 = " << c1 << " +- " << se_ex;
+    return w.str();
+  }
+  return "";
+}
+
+// True when parameter k carries a Gaussian prior in the fit (AddPriors).
+bool HasPrior(const CalibrationOptions& o, int k) {
+  std::vector<GaussianPrior> pr;
+  AddPriors(o, k, 0, &pr);
+  return !pr.empty();
+}
+
+// The base fit (FitWithKnee), and with three or more throttle levels the same with the throttle
+// offset / dead band free; the offset is kept when it lowers the cost by an F statistic above
+// knee_min_f for its one extra parameter.
+SolveOutcome FitWithOffset(const Prepared& pr, const CalibrationOptions& o, bool* knee_found, std::string* knee_note,
+                           bool* offset_found, std::string* offset_note) {
+  SolveOutcome none = FitWithKnee(pr, o, false, knee_found, knee_note);
+  *offset_found = false;
+  if (!o.fit_throttle_offset || !pr.has_throttle || pr.levels.size() < 3) {
+    *offset_note = !o.fit_throttle_offset ? "not tested (fit_throttle_offset off)"
+                                          : "not testable: fewer than 3 throttle levels";
+    return none;
+  }
+  // The offset enters nonlinearly (a dead band clips at zero): a few starts, the best kept.
+  bool kf = false;
+  std::string kn;
+  SolveOutcome with;
+  for (double db0 : {pr.start[kDbI], -0.1, -0.3}) {
+    Prepared p2 = pr;
+    p2.start[kDbI] = std::clamp(db0, kLower[kDbI], pr.offset_upper);
+    bool kf2 = false;
+    std::string kn2;
+    SolveOutcome w = FitWithKnee(p2, o, true, &kf2, &kn2);
+    if (w.cost < with.cost) {
+      with = std::move(w);
+      kf = kf2;
+      kn = kn2;
+    }
+  }
+  const double dof = static_cast<double>(pr.data.terms.size()) - with.free_count;
+  if (!std::isfinite(with.cost) || dof <= 0.0) {
+    *offset_note = "offset fit failed or has no degrees of freedom";
+    return none;
+  }
+  const double f = (none.cost - with.cost) / (std::max(with.cost, 1e-300) / dof);
+  std::ostringstream s;
+  s << std::setprecision(3);
+  if (f > o.knee_min_f || !std::isfinite(none.cost)) {
+    *offset_found = true;
+    *knee_found = kf;
+    *knee_note = kn;
+    s << "throttle offset/dead band fitted: F = " << f << " > " << o.knee_min_f;
+    *offset_note = s.str();
+    return with;
+  }
+  s << "no throttle offset: F = " << f << " <= " << o.knee_min_f;
+  *offset_note = s.str();
+  return none;
+}
+
+// Rows whose largest residual exceeds outlier_sigmas robust standard deviations, worst first,
+// at most max_outlier_fraction of the rows, never the last row of a throttle level, and only when
+// (free + 2) rows stay.
+std::vector<DroppedRow> SelectOutliers(const Prepared& pr, const std::array<double, kParamCount>& p,
+                                       const SteadyTable& t, const CalibrationOptions& o, int nfree) {
+  const std::vector<double> rmax = RowResidualMax(pr, p);
+  const double sigma = std::max(1.4826 * Median(rmax), o.outlier_floor_percent);
+  std::vector<std::size_t> cand;
+  for (std::size_t k = 0; k < rmax.size(); ++k) {
+    if (rmax[k] > o.outlier_sigmas * sigma) cand.push_back(k);
+  }
+  std::sort(cand.begin(), cand.end(), [&](std::size_t a, std::size_t b) { return rmax[a] > rmax[b]; });
+  const std::size_t n = pr.data.rows.size();
+  const auto cap = static_cast<std::size_t>(std::floor(o.max_outlier_fraction * static_cast<double>(n)));
+  std::map<long long, std::size_t> per_level;
+  for (double tr : pr.data.tr) ++per_level[std::llround(tr * 1000.0)];
+  std::vector<DroppedRow> out;
+  for (std::size_t k : cand) {
+    if (out.size() >= cap || n - out.size() < static_cast<std::size_t>(nfree) + 3) break;
+    std::size_t& left = per_level[std::llround(pr.data.tr[k] * 1000.0)];
+    if (pr.has_throttle && left <= 1) continue;  // never a whole throttle level
+    --left;
+    const std::size_t row = pr.data.rows[k];
+    std::ostringstream why;
+    why << std::setprecision(3) << "outlier: largest residual " << rmax[k] << " % > " << o.outlier_sigmas
+        << " robust sd (" << sigma << " %)";
+    out.push_back({row, row < t.source_line.size() ? t.source_line[row] : 0, why.str()});
+  }
+  return out;
+}
+
+// Standard errors and values of the physical KT and C1 from the internal ratio f and excess s
+// (delta method on the covariance): KT = kp*KE*f, c1 = 1.1095 + s - c0.
+void TransformStandardErrors(bool tie_kt, const std::vector<int>& slots, const LevenbergMarquardtSummary& s,
+                             CalibrationResult* res) {
+  auto slot_of = [&](int k) {
+    for (std::size_t q = 0; q < slots.size(); ++q) {
+      if (slots[q] == k) return static_cast<int>(q);
+    }
+    return -1;
+  };
+  const bool cov_ok = s.covariance.rows() == static_cast<Eigen::Index>(slots.size());
+  auto cov = [&](int a, int b) { return (a < 0 || b < 0 || !cov_ok) ? 0.0 : s.covariance(a, b); };
+  auto& kt = res->params[kKtI];
+  const double ke = res->motor.ke_v_s_per_rad, f = kt.value;
+  kt.value = res->motor.kt_nm_per_a;
+  if (!tie_kt && kt.fitted) {
+    const int a = slot_of(kKeI), b = slot_of(kKtI);
+    const double var = kPacPerVllIrms * kPacPerVllIrms * (f * f * cov(a, a) + ke * ke * cov(b, b) + 2.0 * ke * f * cov(a, b));
+    kt.standard_error = cov_ok && b >= 0 ? std::sqrt(std::max(var, 0.0)) : kNaN;
+  }
+  auto& c1 = res->params[kC1I];
+  c1.value = res->esc.c1;
+  if (c1.fitted) {
+    const int a = slot_of(kC1I), b = slot_of(kC0I);
+    const double var = cov(a, a) + cov(b, b) - 2.0 * cov(a, b);
+    c1.standard_error = cov_ok && a >= 0 ? std::sqrt(std::max(var, 0.0)) : kNaN;
+  }
+}
+
+// Warnings for parameters on a bound (the energy rules named) and for a single throttle level.
+void AddBoundWarnings(const Prepared& pr, CalibrationResult* out) {
+  CalibrationResult& res = *out;
+  for (int k = 0; k < kParamCount; ++k) {
+    if (!res.params[k].at_bound) continue;
+    if (k == kC1I) {
+      res.warnings.push_back("c1 + c0 is on the ideal-ESC bound 1.1095 (model.md section 10): the data ask for an "
+                             "ESC that creates energy");
+    } else if (k == kKtI && !pr.layout.tie_kt) {
+      res.warnings.push_back("kt_nm_per_a is on its bound sqrt(27/10)*KE (model.md section 10): the data ask for a "
+                             "motor efficiency above 1");
+    } else {
+      res.warnings.push_back(std::string(ParamName(static_cast<Param>(k))) + " is at its bound (" +
+                             std::to_string(res.params[k].value) + "): the data push it outside the physical range");
+    }
+  }
+  if (pr.has_throttle && pr.levels.size() < 2) {
+    res.warnings.push_back("all rows at one throttle level: ESC ratio and saturation not identifiable");
+  }
+}
+
+// Per measured column: rmse, rmse in percent and median |error| of the final fit (the speed from
+// the current on rows whose current is the input), and the no-throttle plausibility warning.
+void AddColumnFits(const Prepared& pr, const SteadyTable& table, const CalibrationOptions& options,
+                   CalibrationResult* out) {
+  CalibrationResult& res = *out;
+  for (int m = 0; m < kMeasCount; ++m) {
+    if (!pr.data.measured[m]) continue;
+    ColumnFit cf;
+    cf.column = kMeasColumn[m];
+    double sse = 0.0, ss = 0.0;
+    std::vector<double> rel;
+    for (std::size_t k = 0; k < pr.data.rows.size(); ++k) {
+      const RowPrediction rp = PredictRow(table, pr.data.rows[k], res.motor, res.esc, options.assumed_throttle);
+      // Rows whose current is the fit's input: their speed prediction is the one from the current.
+      const bool current_input = pr.data.idc_in[k] == pr.data.idc_in[k];
+      const double pv[kMeasCount] = {current_input ? rp.omega_from_idc_rad_s : rp.omega_rad_s, rp.idc_a, rp.irms_a,
+                                     rp.vll_rms_v, rp.pac_w};
+      if (!std::isfinite(pv[m])) continue;
+      const double meas = table.Get(kMeasColumn[m])[pr.data.rows[k]];
+      sse += (pv[m] - meas) * (pv[m] - meas);
+      ss += meas * meas;
+      if (meas != 0.0) rel.push_back(std::fabs(pv[m] - meas) / std::fabs(meas) * 100.0);
+      ++cf.points;
+    }
+    if (cf.points == 0) continue;
+    cf.rmse = std::sqrt(sse / static_cast<double>(cf.points));
+    cf.rmse_percent = ss > 0.0 ? 100.0 * std::sqrt(sse / ss) : kNaN;
+    cf.median_abs_percent = Median(rel);
+    res.fit.push_back(cf);
+  }
+  if (!pr.has_throttle) {
+    for (const auto& f : res.fit) {
+      if (f.rmse_percent > 10.0) {
+        res.warnings.push_back(std::string("no throttle column and ") + logs::ColumnName(f.column) + " misfit by " +
+                               std::to_string(f.rmse_percent) +
+                               " % rms: the rows do not look like full-throttle points, so KE and R are not "
+                               "meaningful; calibrate a log that records the throttle");
+        break;
+      }
+    }
+  }
 }
 
 }  // namespace
@@ -580,6 +881,7 @@ const char* ParamName(Param p) {
     case Param::kC0: return "c0";
     case Param::kTrSat: return "tr_sat";
     case Param::kSatSlope: return "sat_slope";
+    case Param::kDeadband: return "deadband";
   }
   return "?";
 }
@@ -616,35 +918,38 @@ CalibrationResult Calibrate(const SteadyTable& table, const CalibrationOptions& 
                     " measured values for " + std::to_string(nfree_base) +
                     " free parameters: calibration needs more rows");
   }
-  bool knee_found = false;
-  std::string knee_note;
-  SolveOutcome best = FitWithKnee(pr, options, &knee_found, &knee_note);
+  bool knee_found = false, offset_found = false;
+  std::string knee_note, offset_note;
+  SolveOutcome best = FitWithOffset(pr, options, &knee_found, &knee_note, &offset_found, &offset_note);
   std::size_t outliers = 0;
   if (options.outlier_sigmas > 0.0 && best.summary.IsSolutionUsable()) {
-    const std::vector<double> rmax = RowResidualMax(pr, best.params, pr.layout.tie_kt);
-    std::vector<double> all;
-    for (double v : rmax) all.push_back(v);
-    const double sigma = std::max(1.4826 * Median(all), options.outlier_floor_percent);
-    std::vector<char> excl(table.rows(), 0);
-    for (std::size_t k = 0; k < rmax.size(); ++k) {
-      if (rmax[k] > options.outlier_sigmas * sigma) {
-        excl[pr.data.rows[k]] = 1;
-        ++outliers;
-      }
-    }
-    // Keep at least (free + 2) rows; otherwise the "outliers" are the data.
-    if (outliers > 0 && pr.data.rows.size() - outliers >= static_cast<std::size_t>(nfree_base) + 2) {
-      // Rows dropped before stay dropped: mark them too.
-      std::vector<char> keep(table.rows(), 1);
-      for (std::size_t i : pr.data.rows) keep[i] = 0;
-      for (std::size_t i = 0; i < table.rows(); ++i) excl[i] = excl[i] || keep[i];
+    const std::vector<DroppedRow> out = SelectOutliers(pr, best.params, table, options, nfree_base);
+    if (!out.empty()) {
+      std::vector<char> excl(table.rows(), 1);  // rows dropped before stay dropped
+      for (std::size_t i : pr.data.rows) excl[i] = 0;
+      for (const auto& o : out) excl[o.row] = 1;
       Prepared pr2 = Prepare(table, options, &excl);
       pr2.dropped = pr.dropped;
-      pr2.dropped.push_back({"outlier (residual > outlier_sigmas robust sd)", outliers});
+      pr2.dropped_rows = pr.dropped_rows;
+      pr2.dropped.push_back({"outlier (residual > outlier_sigmas robust sd)", out.size()});
+      pr2.dropped_rows.insert(pr2.dropped_rows.end(), out.begin(), out.end());
       pr = std::move(pr2);
-      best = FitWithKnee(pr, options, &knee_found, &knee_note);
-    } else {
-      outliers = 0;
+      outliers = out.size();
+      best = FitWithOffset(pr, options, &knee_found, &knee_note, &offset_found, &offset_note);
+    }
+  }
+  // Without AC columns the ESC ratio is only seen through the tied KT (section 5): where the log
+  // cannot determine C1, C0 (on a bound, or a standard error above half the value) they are held
+  // at the ESC prior (ideal unless --prior-esc) and the fit repeated (issue 12).
+  if (pr.mode != "ac" && pr.layout.free[kC1I]) {
+    const std::string why = EscUndetermined(best.summary);
+    if (!why.empty()) {
+      const EscParams e0 = options.esc_prior ? *options.esc_prior : EscParams{};
+      pr.layout.free[kC1I] = pr.layout.free[kC0I] = false;
+      pr.start[kC0I] = std::clamp(e0.c0, kLower[kC0I], kUpper[kC0I]);
+      pr.start[kC1I] = std::clamp(identification::EscExcess(e0.c1, pr.start[kC0I]), kLower[kC1I], kUpper[kC1I]);
+      pr.notes[kC1I] = pr.notes[kC0I] = "held at prior: without AC columns this log cannot determine them (" + why + ")";
+      best = FitWithOffset(pr, options, &knee_found, &knee_note, &offset_found, &offset_note);
     }
   }
   const auto& s = best.summary;
@@ -655,6 +960,7 @@ CalibrationResult Calibrate(const SteadyTable& table, const CalibrationOptions& 
   res.motor = ToMotor(best.params);
   res.esc = ToEsc(best.params, options.esc_prior);
   res.dropped = pr.dropped;
+  res.dropped_rows = pr.dropped_rows;
   res.points_used = pr.data.rows.size();
   for (const auto& dc : pr.dropped) res.points_dropped += dc.count;
   res.warnings = pr.warnings;
@@ -665,6 +971,7 @@ CalibrationResult Calibrate(const SteadyTable& table, const CalibrationOptions& 
   {
     Layout lay = pr.layout;
     lay.free[8] = knee_found;
+    lay.free[kDbI] = offset_found;
     for (int k = 0; k < kParamCount; ++k) {
       if (lay.free[k]) slots.push_back(k);
     }
@@ -683,14 +990,22 @@ CalibrationResult Calibrate(const SteadyTable& table, const CalibrationOptions& 
   }
   for (const auto& u : s.unidentifiable) {
     res.unidentifiable_directions.push_back(u.description);
-    for (Eigen::Index sl = 0; sl < u.direction.size(); ++sl) {
+    for (Eigen::Index sl = 0; sl < u.direction.size() && sl < static_cast<Eigen::Index>(slots.size()); ++sl) {
       if (std::fabs(u.direction[sl]) > 0.2) {
         ParamEstimate& e = res.params[slots[sl]];
+        if (HasPrior(options, slots[sl])) {
+          // The prior pins what the data leave flat: its standard error is the prior's.
+          e.note = "set by its prior (the data alone do not determine it: " + u.description + ")";
+          continue;
+        }
         e.identifiable = false;
         e.note = "in a direction the data do not determine: " + u.description;
       }
     }
   }
+  TransformStandardErrors(pr.layout.tie_kt, slots, s, &res);
+  if (!offset_found) res.params[kDbI].note = pr.notes[kDbI].empty() ? offset_note : pr.notes[kDbI];
+  else res.params[kDbI].note = offset_note;
   auto& tk = res.params[static_cast<int>(Param::kTrSat)];
   tk.fitted = knee_found;
   tk.identifiable = knee_found;
@@ -729,71 +1044,29 @@ CalibrationResult Calibrate(const SteadyTable& table, const CalibrationOptions& 
     res.condition_number = smin > 0.0 ? s.scaled_singular_values.maxCoeff() / smin
                                       : std::numeric_limits<double>::infinity();
   }
-  for (int k = 0; k < kParamCount; ++k) {
-    if (res.params[k].at_bound) {
-      res.warnings.push_back(std::string(ParamName(static_cast<Param>(k))) + " is at its bound (" +
-                             std::to_string(res.params[k].value) + "): the data push it outside the physical range");
-    }
-  }
-  if (pr.has_throttle && pr.levels.size() < 2) {
-    res.warnings.push_back("all rows at one throttle level: ESC ratio and saturation not identifiable");
-  }
+  AddBoundWarnings(pr, &res);
   if (outliers > 0) res.warnings.push_back(std::to_string(outliers) + " outlier row(s) dropped and the fit repeated");
 
-  // Column fit statistics.
-  for (int m = 0; m < kMeasCount; ++m) {
-    if (!pr.data.measured[m]) continue;
-    ColumnFit cf;
-    cf.column = kMeasColumn[m];
-    double sse = 0.0, ss = 0.0;
-    std::vector<double> rel;
-    for (std::size_t k = 0; k < pr.data.rows.size(); ++k) {
-      const RowPrediction rp = PredictRow(table, pr.data.rows[k], res.motor, res.esc, options.assumed_throttle);
-      const double pv[kMeasCount] = {rp.omega_rad_s, rp.idc_a, rp.irms_a, rp.vll_rms_v, rp.pac_w};
-      if (!std::isfinite(pv[m])) continue;
-      const double meas = table.Get(kMeasColumn[m])[pr.data.rows[k]];
-      sse += (pv[m] - meas) * (pv[m] - meas);
-      ss += meas * meas;
-      if (meas != 0.0) rel.push_back(std::fabs(pv[m] - meas) / std::fabs(meas) * 100.0);
-      ++cf.points;
-    }
-    if (cf.points == 0) continue;
-    cf.rmse = std::sqrt(sse / static_cast<double>(cf.points));
-    cf.rmse_percent = ss > 0.0 ? 100.0 * std::sqrt(sse / ss) : kNaN;
-    cf.median_abs_percent = Median(rel);
-    res.fit.push_back(cf);
-  }
-  if (!pr.has_throttle) {
-    for (const auto& f : res.fit) {
-      if (f.rmse_percent > 10.0) {
-        res.warnings.push_back(std::string("no throttle column and ") + logs::ColumnName(f.column) + " misfit by " +
-                               std::to_string(f.rmse_percent) +
-                               " % rms: the rows do not look like full-throttle points, so KE and R are not "
-                               "meaningful; calibrate a log that records the throttle");
-        break;
-      }
-    }
-  }
+  AddColumnFits(pr, table, options, &res);
   return res;
 }
 
 RowPrediction PredictRow(const SteadyTable& t, std::size_t row, const MotorParams& motor, const EscParams& esc,
                          double assumed_throttle) {
   RowPrediction out;
-  const double p[kParamCount] = {motor.ke_v_s_per_rad, motor.kt_nm_per_a, motor.rm_ohm, motor.io_a, esc.resc_ohm,
-                                 esc.c1, esc.c0, esc.tr_sat, esc.sat_slope};
+  const std::array<double, kParamCount> p = ToInternal(motor, esc);
   const bool has_q = t.Has(Column::kTorqueNm);
   const bool nl = t.Has(Column::kNoLoad) && t.Get(Column::kNoLoad)[row] != 0.0;
   const bool tq = has_q || nl;
   const double tr = t.Has(Column::kThrottle) ? t.Get(Column::kThrottle)[row] : assumed_throttle;
   double pred[kMeasCount], qp;
-  if (!PredictGeneric(p, esc.tr_sat, false, t.Get(Column::kVdcV)[row], tr, t.Get(Column::kOmegaRadS)[row],
+  if (!PredictGeneric(p.data(), esc.tr_sat, t.Get(Column::kVdcV)[row], tr, t.Get(Column::kOmegaRadS)[row],
                       has_q ? t.Get(Column::kTorqueNm)[row] : 0.0, tq, pred, &qp)) {
     return out;
   }
   if (tq) out.omega_rad_s = pred[kMOmega];
   {
-    const double tre = EffThrottle(tr, esc.tr_sat, esc.sat_slope);
+    const double tre = EffThrottle(tr, esc.tr_sat, esc.sat_slope, esc.deadband);
     const double g = esc.c1 * tre + esc.c0;
     const double u = kVllRmsPerVdc * t.Get(Column::kVdcV)[row] * tre;
     if (g > 0.0 && motor.ke_v_s_per_rad > 0.0) {
@@ -850,12 +1123,14 @@ std::string CalibrationResult::FullReport() const {
       << f.median_abs_percent << " %\n";
   }
   for (const auto& d : dropped) s << "  dropped " << d.count << ": " << d.reason << "\n";
+  for (const auto& d : dropped_rows) s << "    line " << d.source_line << ": " << d.reason << "\n";
   for (const auto& u : unidentifiable_directions) s << "  unidentifiable: " << u << "\n";
   for (const auto& w : warnings) s << "  warning: " << w << "\n";
   return s.str();
 }
 
-CrossValidation LeaveOneOut(const SteadyTable& t, const CalibrationOptions& options, bool by_throttle) {
+CrossValidation LeaveOneOut(const SteadyTable& t, const CalibrationOptions& options, bool by_throttle,
+                            std::size_t max_folds) {
   CrossValidation cv;
   const std::size_t n = t.rows();
   std::vector<long long> group(n);
@@ -866,6 +1141,16 @@ CrossValidation LeaveOneOut(const SteadyTable& t, const CalibrationOptions& opti
   std::vector<long long> groups = group;
   std::sort(groups.begin(), groups.end());
   groups.erase(std::unique(groups.begin(), groups.end()), groups.end());
+  if (max_folds > 0 && groups.size() > max_folds) {
+    // Interleaved folds: group j (in sorted order) goes to fold j % max_folds.
+    cv.leave_one_out = false;
+    for (std::size_t i = 0; i < n; ++i) {
+      const auto j = static_cast<std::size_t>(std::lower_bound(groups.begin(), groups.end(), group[i]) - groups.begin());
+      group[i] = static_cast<long long>(j % max_folds);
+    }
+    groups.clear();
+    for (std::size_t f = 0; f < max_folds; ++f) groups.push_back(static_cast<long long>(f));
+  }
   const bool has_q = t.Has(Column::kTorqueNm);
   const bool has_nl = t.Has(Column::kNoLoad);
   double wmax = 0.0;
@@ -906,45 +1191,90 @@ CrossValidation LeaveOneOut(const SteadyTable& t, const CalibrationOptions& opti
   return cv;
 }
 
-SteadyTable SelectRows(const SteadyTable& t, const std::vector<std::size_t>& keep) {
-  SteadyTable out = t;
-  for (int c = 0; c < logs::kColumnCount; ++c) {
-    auto& col = out.columns[c];
-    col.clear();
-    if (!t.info[c].present) continue;
-    for (std::size_t i : keep) col.push_back(t.columns[c][i]);
+}  // namespace dynosize::calibration
+
+namespace dynosize::calibration {
+
+CrossValidation CrossValidateForVerdict(const SteadyTable& table, const CalibrationOptions& options) {
+  // Up to 15 groups every group is left out in turn (small tables, issue 12); beyond that 10
+  // interleaved folds bound the cost of the verdict.
+  constexpr std::size_t kMaxLooGroups = 15;
+  constexpr std::size_t kFolds = 10;
+  const bool thr = table.Has(Column::kThrottle);
+  std::vector<long long> g;
+  for (std::size_t i = 0; i < table.rows(); ++i) {
+    g.push_back(thr ? std::llround(table.Get(Column::kThrottle)[i] * 1000.0) : static_cast<long long>(i));
   }
-  out.source_line.clear();
-  out.samples.clear();
-  for (std::size_t i : keep) {
-    out.source_line.push_back(t.source_line[i]);
-    out.samples.push_back(i < t.samples.size() ? t.samples[i] : 1);
-  }
-  return out;
+  std::sort(g.begin(), g.end());
+  g.erase(std::unique(g.begin(), g.end()), g.end());
+  return LeaveOneOut(table, options, true, g.size() <= kMaxLooGroups ? 0 : kFolds);
 }
 
-SteadyTable MergeLogs(const std::vector<SteadyTable>& tables) {
-  if (tables.empty()) throw UsageError("no log to calibrate");
-  if (tables.size() == 1) return tables[0];
-  SteadyTable out = tables[0];
-  for (std::size_t k = 1; k < tables.size(); ++k) {
-    const SteadyTable& t = tables[k];
-    out.file += ", " + t.file;
-    for (int c = 0; c < logs::kColumnCount; ++c) {
-      if (!out.info[c].present) continue;
-      if (!t.info[c].present) {
-        out.info[c].present = false;
-        out.info[c].note = std::string("absent from ") + t.file;
-        out.columns[c].clear();
-        continue;
-      }
-      out.columns[c].insert(out.columns[c].end(), t.columns[c].begin(), t.columns[c].end());
+identification::Verdict JudgeCalibration(const CalibrationResult& r, const SteadyTable& table,
+                                         const CalibrationOptions& options, const CrossValidation* cv) {
+  identification::VerdictInputs in;
+  in.converged = r.converged;
+  for (int k = 0; k < kParamCount; ++k) {
+    const auto& e = r.params[k];
+    identification::ParamState p;
+    p.name = ParamName(static_cast<Param>(k));
+    p.value = e.value;
+    p.standard_error = e.standard_error;
+    p.fitted = e.fitted;
+    p.identifiable = e.identifiable;
+    p.at_bound = e.at_bound;
+    // The grid resolution of the profiled knee is not a standard error of the data.
+    if (static_cast<Param>(k) == Param::kTrSat) p.standard_error = kNaN;
+    // Without AC columns Rm stands for Rm + RESC (RESC held at its prior): the sum is what the
+    // data determine, with its own error; only a flat direction makes it unidentifiable.
+    if (static_cast<Param>(k) == Param::kRm && !r.param(Param::kResc).fitted && e.fitted &&
+        e.note.rfind("in a direction", 0) != 0) {
+      p.identifiable = true;
+      p.standard_error = r.r_total_standard_error;
     }
-    out.source_line.insert(out.source_line.end(), t.source_line.begin(), t.source_line.end());
-    for (std::size_t i = 0; i < t.rows(); ++i) out.samples.push_back(i < t.samples.size() ? t.samples[i] : 1);
-    for (const auto& d : t.dropped) logs::AddDrop(&out, d.reason, d.count);
+    in.params.push_back(p);
   }
-  return out;
+  in.motor = r.motor;
+  in.esc = r.esc;
+  if (table.Has(Column::kVdcV)) {
+    const auto& v = table.Get(Column::kVdcV);
+    double lo = std::numeric_limits<double>::infinity(), hi = 0.0;
+    for (double x : v) {
+      if (x > 0.0) {
+        lo = std::min(lo, x);
+        hi = std::max(hi, x);
+      }
+    }
+    in.envelope.vdc_min_v = std::isfinite(lo) ? lo : 0.0;
+    in.envelope.vdc_max_v = hi;
+  }
+  in.kv_label_rpm_per_v = options.labels.kv_rpm_per_v;
+  if (cv != nullptr) {
+    identification::HeldOut h;
+    h.folds = cv->folds;
+    h.failed_folds = cv->failed_folds;
+    h.leave_one_out = cv->leave_one_out;
+    auto med_abs = [](std::vector<double> v) {
+      for (double& x : v) x = std::fabs(x);
+      return Median(v);
+    };
+    const bool current_input = table.Has(Column::kThrottle) && !table.Has(Column::kTorqueNm) &&
+                               !(table.Has(Column::kVllRmsV) && table.Has(Column::kIrmsA));
+    if (current_input) {
+      // The fit predicts the speed from the measured current (Prepare): that is its held-out test.
+      h.median_abs_current_percent = med_abs(cv->omega_from_idc_error_percent);
+      h.primary_quantity = "speed predicted from the measured current";
+    } else {
+      h.median_abs_current_percent = med_abs(cv->idc_error_percent);
+      h.median_abs_speed_percent = !cv->omega_error_percent.empty() ? med_abs(cv->omega_error_percent)
+                                                                     : med_abs(cv->omega_from_idc_error_percent);
+    }
+    in.held_out = h;
+  }
+  in.has_torque = table.Has(Column::kTorqueNm);
+  in.has_ac = table.Has(Column::kVllRmsV) && table.Has(Column::kIrmsA);
+  in.has_throttle = table.Has(Column::kThrottle);
+  return identification::Judge(in);
 }
 
 }  // namespace dynosize::calibration

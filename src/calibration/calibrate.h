@@ -54,14 +54,19 @@
 #include <vector>
 
 #include "fit/nonlinear_least_squares.h"
+#include "identification/parameters.h"
+#include "identification/verdict.h"
 #include "logs/steady_table.h"
+#include "logs/table_ops.h"
 #include "model/drive.h"
 
 namespace dynosize::calibration {
 
-enum class Param : int { kKe = 0, kKt, kRm, kIo, kResc, kC1, kC0, kTrSat, kSatSlope };
-inline constexpr int kParamCount = 9;
-// "ke_v_s_per_rad", "kt_nm_per_a", "rm_ohm", "io_a", "resc_ohm", "c1", "c0", "tr_sat", "sat_slope".
+// The base parameters of src/identification/parameters.h, in the same order.
+enum class Param : int { kKe = 0, kKt, kRm, kIo, kResc, kC1, kC0, kTrSat, kSatSlope, kDeadband };
+inline constexpr int kParamCount = identification::kBaseParamCount;
+// "ke_v_s_per_rad", "kt_nm_per_a", "rm_ohm", "io_a", "resc_ohm", "c1", "c0", "tr_sat", "sat_slope",
+// "deadband".
 const char* ParamName(Param p);
 
 struct CalibrationOptions {
@@ -95,6 +100,15 @@ struct CalibrationOptions {
   // ESC values used where the data cannot identify them (default: the ideal ESC, RESC = 0, no
   // saturation).
   std::optional<EscParams> esc_prior;
+  // The motor's label (--kv-label, --rm-label, --io-label/--io-label-v): Gaussian priors of the
+  // widths in identification/parameters.h; a label takes precedence over motor_prior.
+  identification::LabelPriors labels;
+  // Throttle offset / dead band (model.md section 9, EscParams::deadband): with three or more
+  // throttle levels the fit is repeated with it free and kept when it beats "no offset" by the
+  // F test of knee_min_f (one extra parameter).
+  bool fit_throttle_offset = true;
+  // Robust outlier pass: never more than this fraction of the rows, never a whole throttle level.
+  double max_outlier_fraction = 0.10;
   LevenbergMarquardtOptions solver;  // max iterations etc.; loss fields are set from the above
 
   CalibrationOptions() { solver.max_num_iterations = 200; }
@@ -121,6 +135,13 @@ struct ColumnFit {
   double median_abs_percent = 0.0;  // median |pred - meas| / |meas| * 100
 };
 
+// A row the fit left out, with the reason (every dropped row is listed).
+struct DroppedRow {
+  std::size_t row = 0;          // row of the table
+  std::size_t source_line = 0;  // line in the log file (0 when unknown)
+  std::string reason;
+};
+
 struct CalibrationResult {
   bool solve_called = false;
   bool converged = false;
@@ -135,6 +156,7 @@ struct CalibrationResult {
   std::size_t points_used = 0;
   std::size_t points_dropped = 0;  // by this fit (below speed / throttle floor, outliers)
   std::vector<logs::DropCount> dropped;
+  std::vector<DroppedRow> dropped_rows;  // every row dropped by this fit, with its reason
   // Condition number of the unit-column-scaled Jacobian of the final fit (sigma_max/sigma_min).
   double condition_number = std::numeric_limits<double>::quiet_NaN();
   std::vector<std::string> unidentifiable_directions;  // from the LM test
@@ -172,6 +194,7 @@ RowPrediction PredictRow(const logs::SteadyTable& table, std::size_t row, const 
 // left-out ones. Percent errors (pred - meas)/meas*100 of idc_a and omega_rad_s (omega only
 // where the torque is known, i.e. torque column or no-load rows).
 struct CrossValidation {
+  bool leave_one_out = true;  // every group left out in turn (else max_folds interleaved folds)
   std::vector<double> idc_error_percent;
   std::vector<double> idc_loaded_error_percent;  // rows with torque or speed known, not no-load
   std::vector<double> omega_error_percent;
@@ -179,15 +202,22 @@ struct CrossValidation {
   std::size_t folds = 0;
   std::size_t failed_folds = 0;  // too few rows left to fit
 };
+// With max_folds > 0 and more groups than that, the groups (sorted) are dealt into max_folds
+// interleaved folds instead (group k in fold k % max_folds): deterministic and bounded in time.
 CrossValidation LeaveOneOut(const logs::SteadyTable& table, const CalibrationOptions& options,
-                            bool by_throttle);
+                            bool by_throttle, std::size_t max_folds = 0);
 
-// Rows of several logs of one motor + ESC pair as one table: the columns present in every log
-// (a column missing from one is absent, with a note), file = the names joined by ", ".
-// Throws UsageError for an empty list.
-logs::SteadyTable MergeLogs(const std::vector<logs::SteadyTable>& tables);
+// The status contract (identification/verdict.h) of a calibration: its checks over the fit, the
+// label (options.labels.kv_rpm_per_v), the envelope of `table` and the held-out errors `cv`
+// (nullptr: not computed).
+identification::Verdict JudgeCalibration(const CalibrationResult& r, const logs::SteadyTable& table,
+                                         const CalibrationOptions& options, const CrossValidation* cv);
+// The cross-validation the verdict uses: leave-one-out (by throttle level where the log has a
+// throttle, else by row) up to 15 groups, else 10 interleaved folds.
+CrossValidation CrossValidateForVerdict(const logs::SteadyTable& table, const CalibrationOptions& options);
 
-// The rows `keep` of `table` (every present column, source lines, samples; metadata kept).
-logs::SteadyTable SelectRows(const logs::SteadyTable& table, const std::vector<std::size_t>& keep);
+// Table operations (moved to logs/table_ops.h; kept here for the callers of this namespace).
+using logs::MergeLogs;
+using logs::SelectRows;
 
 }  // namespace dynosize::calibration

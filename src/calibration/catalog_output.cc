@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <filesystem>
+#include <sstream>
 
 #include "catalog/catalog.h"
 #include "common/error.h"
@@ -22,6 +23,15 @@ double Sig6(double v) {
 }
 
 std::string Method(const ParamEstimate& e) { return e.fitted ? "fitted" : "assumed"; }
+
+// "held at prior" for every value the data could not identify (listed in the note).
+std::string HeldNote(const CalibrationResult& r, const std::vector<Param>& ps) {
+  std::string s;
+  for (Param p : ps) {
+    if (!r.param(p).fitted) s += std::string(s.empty() ? "" : ", ") + ParamName(p);
+  }
+  return s.empty() ? "" : "held at prior (not identifiable from this log): " + s;
+}
 
 std::string UnidentifiedNote(const CalibrationResult& r, const std::vector<Param>& ps) {
   std::string s;
@@ -45,53 +55,59 @@ Json Source(const EntryProvenance& p, const Json& values, const std::string& aut
 
 }  // namespace
 
-Json MotorEntryJson(const std::string& id, const std::string& name, const CalibrationResult& r,
-                    const EntryProvenance& p) {
+Json ComponentEntryJson(const std::string& id, const std::string& name, const std::vector<EntryValue>& values,
+                        const EntryProvenance& p, const std::string& auto_note, const std::string& kind) {
   Json e;
   e["id"] = id;
   e["name"] = name;
-  e["type"] = "bldc";
-  e["ke_v_s_per_rad"] = Sig6(r.motor.ke_v_s_per_rad);
-  e["kt_nm_per_a"] = Sig6(r.motor.kt_nm_per_a);
-  e["rm_ohm"] = Sig6(r.motor.rm_ohm);
-  e["io_a"] = Sig6(r.motor.io_a);
-  e["kv_rpm_per_v"] = Sig6(kVllRmsPerVdc / (r.motor.ke_v_s_per_rad * kRadPerSecPerRpm));
-  Json v;
-  v["type"] = "assumed";
-  v["ke_v_s_per_rad"] = Method(r.param(Param::kKe));
-  v["kt_nm_per_a"] = r.param(Param::kKt).fitted ? "fitted" : "derived";
-  v["rm_ohm"] = Method(r.param(Param::kRm));
-  v["io_a"] = Method(r.param(Param::kIo));
-  v["kv_rpm_per_v"] = "derived";
-  e["source"] = Source(p, v, UnidentifiedNote(r, {Param::kKe, Param::kKt, Param::kRm, Param::kIo}));
-  CheckJsonFinite(e, "motor entry " + id);
+  Json v = Json::object();
+  for (const auto& x : values) {
+    if (x.text.empty()) {
+      e[x.key] = Sig6(x.value);
+    } else {
+      e[x.key] = x.text;
+    }
+    v[x.key] = x.method;
+  }
+  e["source"] = Source(p, v, auto_note);
+  CheckJsonFinite(e, kind + " entry " + id);
   return e;
+}
+
+Json MotorEntryJson(const std::string& id, const std::string& name, const CalibrationResult& r,
+                    const EntryProvenance& p) {
+  const std::vector<EntryValue> values = {
+      {"type", 0.0, "assumed", "bldc"},
+      {"ke_v_s_per_rad", r.motor.ke_v_s_per_rad, Method(r.param(Param::kKe)), ""},
+      {"kt_nm_per_a", r.motor.kt_nm_per_a, r.param(Param::kKt).fitted ? "fitted" : "derived", ""},
+      {"rm_ohm", r.motor.rm_ohm, Method(r.param(Param::kRm)), ""},
+      {"io_a", r.motor.io_a, Method(r.param(Param::kIo)), ""},
+      {"kv_rpm_per_v", kVllRmsPerVdc / (r.motor.ke_v_s_per_rad * kRadPerSecPerRpm), "derived", ""}};
+  std::string note = HeldNote(r, {Param::kIo});
+  const std::string un = UnidentifiedNote(r, {Param::kKe, Param::kKt, Param::kRm, Param::kIo});
+  if (!un.empty()) note += (note.empty() ? "" : "; ") + un;
+  return ComponentEntryJson(id, name, values, p, note, "motor");
 }
 
 Json EscEntryJson(const std::string& id, const std::string& name, const CalibrationResult& r,
                   const EntryProvenance& p) {
-  Json e;
-  e["id"] = id;
-  e["name"] = name;
-  e["resc_ohm"] = Sig6(r.esc.resc_ohm);
-  e["c1"] = Sig6(r.esc.c1);
-  e["c0"] = Sig6(r.esc.c0);
-  e["tr_sat"] = Sig6(r.esc.tr_sat);
-  e["sat_slope"] = Sig6(r.esc.sat_slope);
-  Json v;
-  v["resc_ohm"] = Method(r.param(Param::kResc));
-  v["c1"] = Method(r.param(Param::kC1));
-  v["c0"] = Method(r.param(Param::kC0));
-  v["tr_sat"] = Method(r.param(Param::kTrSat));
-  v["sat_slope"] = Method(r.param(Param::kSatSlope));
-  e["source"] = Source(p, v, UnidentifiedNote(r, {Param::kResc, Param::kC1, Param::kC0, Param::kTrSat,
-                                                  Param::kSatSlope}));
-  CheckJsonFinite(e, "ESC entry " + id);
-  return e;
+  std::vector<EntryValue> values = {{"resc_ohm", r.esc.resc_ohm, Method(r.param(Param::kResc)), ""},
+                                    {"c1", r.esc.c1, Method(r.param(Param::kC1)), ""},
+                                    {"c0", r.esc.c0, Method(r.param(Param::kC0)), ""},
+                                    {"tr_sat", r.esc.tr_sat, Method(r.param(Param::kTrSat)), ""},
+                                    {"sat_slope", r.esc.sat_slope, Method(r.param(Param::kSatSlope)), ""}};
+  if (r.esc.deadband != 0.0 || r.param(Param::kDeadband).fitted) {
+    values.push_back({"deadband", r.esc.deadband, Method(r.param(Param::kDeadband)), ""});
+  }
+  const std::vector<Param> ps = {Param::kResc, Param::kC1, Param::kC0, Param::kTrSat, Param::kSatSlope};
+  std::string note = HeldNote(r, ps);
+  const std::string un = UnidentifiedNote(r, ps);
+  if (!un.empty()) note += (note.empty() ? "" : "; ") + un;
+  return ComponentEntryJson(id, name, values, p, note, "ESC");
 }
 
 void WriteCatalogEntries(const std::string& path, const std::vector<Json>& motors, const std::vector<Json>& escs,
-                         bool force, const std::string& comment) {
+                         bool force, const std::string& comment, const std::vector<Json>& props) {
   // Read, merge and write under one lock: concurrent runs adding to the same catalog file take
   // turns (the write itself is atomic either way).
   const FileLock lock(path);
@@ -126,6 +142,7 @@ void WriteCatalogEntries(const std::string& path, const std::vector<Json>& motor
   };
   merge("motors", motors);
   merge("escs", escs);
+  merge("props", props);
   Catalog check;
   std::vector<std::string> problems;
   check.AddDocument(doc, path, &problems);
@@ -178,6 +195,67 @@ Json FitJson(const CalibrationResult& r) {
   j["columns"] = cols;
   j["unidentifiable_directions"] = r.unidentifiable_directions;
   return j;
+}
+
+}  // namespace dynosize::calibration
+
+namespace dynosize::calibration {
+
+void AddRatings(Json* entry, const EntryRatings& r) {
+  Json& values = (*entry)["source"]["values"];
+  auto set = [&](const char* key, const std::optional<double>& v) {
+    if (!v) return;
+    (*entry)[key] = *v;
+    values[key] = "datasheet";
+  };
+  set("mass_kg", r.mass_kg);
+  set("max_current_a", r.max_current_a);
+  set("max_power_w", r.max_power_w);
+  set("kv_rpm_per_v", r.kv_label_rpm_per_v);
+  set("vdc_max_v", r.vdc_max_v);
+}
+
+Json VerdictJson(const identification::Verdict& v) {
+  Json j;
+  j["status"] = identification::StatusName(v.status);
+  j["summary"] = v.summary;
+  j["advice"] = v.advice;
+  Json checks = Json::array();
+  for (const auto& c : v.checks) {
+    checks.push_back({{"name", c.name}, {"passed", c.passed}, {"value", NumberOrNull(c.value)},
+                      {"limit", NumberOrNull(c.limit)}, {"detail", c.detail}});
+  }
+  j["checks"] = checks;
+  return j;
+}
+
+Json PropEntryJson(const std::string& id, const std::string& name, const PropStaticTable& t,
+                   const PropStaticOptions& o, const EntryProvenance& p) {
+  Json e;
+  e["id"] = id;
+  e["name"] = name;
+  e["diameter_m"] = Sig6(o.diameter_m);
+  Json v;
+  v["diameter_m"] = "datasheet";
+  if (o.pitch_m > 0.0) {
+    e["pitch_m"] = Sig6(o.pitch_m);
+    v["pitch_m"] = "datasheet";
+  }
+  Json rpm = Json::array(), ct = Json::array(), cp = Json::array();
+  for (std::size_t k = 0; k < t.rpm.size(); ++k) {
+    rpm.push_back(Sig6(t.rpm[k]));
+    ct.push_back(Sig6(t.ct[k]));
+    cp.push_back(Sig6(t.cp[k]));
+  }
+  e["static_table"] = {{"rpm", rpm}, {"ct", ct}, {"cp", cp}};
+  v["static_table"] = "measured";
+  std::ostringstream note;
+  note << "static CT = T/(rho n^2 D^4), CP = Q*omega/(rho n^3 D^5) from " << t.rows_used
+       << " log rows (rows within 1 % in speed averaged); rho = " << o.rho_kg_m3
+       << " kg/m^3 assumed (ISA sea level, not recorded in the log); largest figure of merit " << Sig6(t.max_figure_of_merit);
+  e["source"] = Source(p, v, note.str());
+  CheckJsonFinite(e, "propeller entry " + id);
+  return e;
 }
 
 }  // namespace dynosize::calibration

@@ -10,9 +10,12 @@
 #include <random>
 #include <sstream>
 
+#include "calibration/calibrate.h"
 #include "common/error.h"
 #include "common/units.h"
 #include "fit/nonlinear_least_squares.h"
+#include "fit/statistics.h"
+#include "identification/parameters.h"
 
 namespace dynosize::diagnosis {
 
@@ -22,6 +25,8 @@ using logs::SteadyTable;
 namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+using fit::Aicc;
+using fit::Median;
 
 // ---------------------------------------------------------------------------------------------
 // Parameters. Every model is a subset of these slots made free; the rest are held.
@@ -142,6 +147,20 @@ struct FitOut {
   std::string corr_with;
 };
 
+// The optimised coordinate of slot s (identification/parameters.h): the ESC excess
+// s = c1 + c0 - 1.1095 for the c1 slot and the ratio f = KT/(kp*KE) for the KT slot, so that the
+// energy rules of model.md section 10 are box bounds; the value itself for every other slot.
+double ToCoordinate(int s, const Values& v) {
+  if (s == kC1) return identification::EscExcess(v[kC1], v[kC0]);
+  if (s == kKt) return v[kKe] > 0.0 ? v[kKt] / (kPacPerVllIrms * v[kKe]) : 1.0;
+  return v[s];
+}
+// The inverse for a vector whose free slots hold coordinates.
+void FromCoordinates(const FreeSet& free, Values* v) {
+  if (free[kC1]) (*v)[kC1] = identification::C1FromExcess((*v)[kC1], (*v)[kC0]);
+  if (free[kKt]) (*v)[kKt] = identification::KtFromRatio((*v)[kKe], (*v)[kKt]);
+}
+
 FitOut FitModel(const Data& d, const std::vector<std::size_t>& rows, const Model& model,
                 LossType loss, double loss_scale) {
   FitOut out;
@@ -160,6 +179,7 @@ FitOut FitModel(const Data& d, const std::vector<std::size_t>& rows, const Model
   auto unpack = [&](const Eigen::VectorXd& x) {
     Values v = base;
     for (int j = 0; j < n; ++j) v[slots[j]] = x[j] * scale[slots[j]];
+    FromCoordinates(model.free, &v);
     return v;
   };
   LeastSquaresProblem prob;
@@ -178,7 +198,7 @@ FitOut FitModel(const Data& d, const std::vector<std::size_t>& rows, const Model
     prob.parameter_names.push_back(kSlotName[s]);
     prob.lower_bounds[j] = model.lower[s] / scale[s];
     prob.upper_bounds[j] = model.upper[s] / scale[s];
-    x[j] = std::clamp(model.values[s] / scale[s], prob.lower_bounds[j], prob.upper_bounds[j]);
+    x[j] = std::clamp(ToCoordinate(s, model.values) / scale[s], prob.lower_bounds[j], prob.upper_bounds[j]);
   }
   LevenbergMarquardtOptions lo;
   lo.max_num_iterations = 100;
@@ -199,6 +219,8 @@ FitOut FitModel(const Data& d, const std::vector<std::size_t>& rows, const Model
   out.ok = std::isfinite(out.sse);
   if (n > 0 && s.standard_errors.size() == n) {
     for (int j = 0; j < n; ++j) out.stderr_[slots[j]] = s.standard_errors[j] * scale[slots[j]];
+    // KT's error from its ratio's (KE's share neglected: reporting only).
+    if (model.free[kKt]) out.stderr_[kKt] *= kPacPerVllIrms * out.values[kKe];
     if (s.correlation.rows() == n) {
       for (int a = 0; a < n; ++a) {
         if (kSlotIsBase[slots[a]]) continue;
@@ -228,24 +250,6 @@ FitOut FitProfiled(const Data& d, const std::vector<std::size_t>& rows, const Mo
     if (f.ok && (!best.ok || f.sse < best.sse)) best = f;
   }
   return best;
-}
-
-double Median(std::vector<double> v) {
-  if (v.empty()) return kNaN;
-  const std::size_t h = v.size() / 2;
-  std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(h), v.end());
-  double m = v[h];
-  if (v.size() % 2 == 0) {
-    m = 0.5 * (m + *std::max_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(h)));
-  }
-  return m;
-}
-
-double Aicc(double sse, int n, int p) {
-  const double nn = n, pp = p;
-  const double base = nn * std::log(std::max(sse, 1e-300) / nn) + 2.0 * pp;
-  return n - p - 1 > 0 ? base + 2.0 * pp * (pp + 1.0) / (nn - pp - 1.0)
-                       : std::numeric_limits<double>::infinity();
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -282,8 +286,16 @@ CvOut CrossValidate(const Data& d, const std::vector<std::size_t>& used,
     }
     FitOut fit = FitProfiled(d, train, m, local, LossType::kTrivial, 1.0);
     if (!fit.ok) {
+      // Too few rows left to fit: the fold is reported, its rows count as a 100 % miss and have
+      // no prediction (the full fit standing in would score rows it has seen).
       ++cv.failed_folds;
-      fit = full;
+      for (std::size_t k : test) {
+        for (int t = d.term_begin[k]; t < d.term_begin[k + 1]; ++t) {
+          ss += 100.0 * 100.0;
+          ++nt;
+        }
+      }
+      continue;
     }
     MotorParams mp;
     EscParams ep;
@@ -330,52 +342,7 @@ std::vector<ColumnError> ColumnErrors(const Data& d, const std::vector<std::size
   return out;
 }
 
-// ---------------------------------------------------------------------------------------------
-// Regularized incomplete beta by Lentz's continued fraction (Numerical Recipes 6.4).
-double BetaContinuedFraction(double a, double b, double x) {
-  const double tiny = 1e-300;
-  double c = 1.0, dd = 1.0 - (a + b) * x / (a + 1.0);
-  if (std::fabs(dd) < tiny) dd = tiny;
-  dd = 1.0 / dd;
-  double h = dd;
-  for (int m = 1; m <= 300; ++m) {
-    const double m2 = 2.0 * m;
-    double aa = m * (b - m) * x / ((a + m2 - 1.0) * (a + m2));
-    dd = 1.0 + aa * dd;
-    if (std::fabs(dd) < tiny) dd = tiny;
-    c = 1.0 + aa / c;
-    if (std::fabs(c) < tiny) c = tiny;
-    dd = 1.0 / dd;
-    h *= dd * c;
-    aa = -(a + m) * (a + b + m) * x / ((a + m2) * (a + m2 + 1.0));
-    dd = 1.0 + aa * dd;
-    if (std::fabs(dd) < tiny) dd = tiny;
-    c = 1.0 + aa / c;
-    if (std::fabs(c) < tiny) c = tiny;
-    dd = 1.0 / dd;
-    const double del = dd * c;
-    h *= del;
-    if (std::fabs(del - 1.0) < 1e-14) break;
-  }
-  return h;
-}
-
-double RegularizedBeta(double a, double b, double x) {
-  if (x <= 0.0) return 0.0;
-  if (x >= 1.0) return 1.0;
-  const double lbt = std::lgamma(a + b) - std::lgamma(a) - std::lgamma(b) + a * std::log(x) +
-                     b * std::log1p(-x);
-  if (x < (a + 1.0) / (a + b + 2.0)) return std::exp(lbt) * BetaContinuedFraction(a, b, x) / a;
-  return 1.0 - std::exp(lbt) * BetaContinuedFraction(b, a, 1.0 - x) / b;
-}
-
 }  // namespace
-
-double FDistributionUpperTail(double f, double d1, double d2) {
-  if (!(f > 0.0)) return 1.0;
-  if (!std::isfinite(f)) return 0.0;
-  return RegularizedBeta(0.5 * d2, 0.5 * d1, d2 / (d2 + d1 * f));
-}
 
 const char* CauseId(Cause c) {
   switch (c) {
@@ -500,11 +467,16 @@ FitOut FitCandidate(const Data& d, const std::vector<std::size_t>& rows, const M
   return best;
 }
 
+// True when free slot s of values v sits on a bound of its coordinate (ToCoordinate).
+bool SlotAtBound(const Model& m, const Values& v, int s) {
+  const double tol = 1e-6 * std::max(std::fabs(m.upper[s] - m.lower[s]), 1e-12);
+  const double c = ToCoordinate(s, v);
+  return c - m.lower[s] <= tol || m.upper[s] - c <= tol;
+}
+
 bool BaseAtBound(const Model& m, const Values& v) {
   for (int s = 0; s < kSlotCount; ++s) {
-    if (!kSlotIsBase[s] || !m.free[s]) continue;
-    const double tol = 1e-6 * std::max(std::fabs(m.upper[s] - m.lower[s]), 1e-12);
-    if (v[s] - m.lower[s] <= tol || m.upper[s] - v[s] <= tol) return true;
+    if (kSlotIsBase[s] && m.free[s] && SlotAtBound(m, v, s)) return true;
   }
   return false;
 }
@@ -545,6 +517,140 @@ std::vector<double> Levels(const std::vector<double>& tr) {
   std::sort(lv.begin(), lv.end());
   lv.erase(std::unique(lv.begin(), lv.end()), lv.end());
   return lv;
+}
+
+// Starting values of the base parameters from the calibration engine (src/calibration: the same
+// base model, its robust fit and its knee profile, without the throttle offset, which is a
+// candidate here): the linear start alone can leave the first-order fit in a stalled local
+// minimum on logs whose throttle is not the voltage fraction. Kept only when that fit converged
+// and is physical; the linear start stays otherwise.
+void BaseStartFromCalibration(const SteadyTable& t, const DiagnoseOptions& o, Values* v) {
+  calibration::CalibrationOptions co;
+  co.fit_throttle_offset = false;
+  co.assumed_throttle = o.assumed_throttle;
+  co.min_speed_fraction = o.min_speed_fraction;
+  co.min_throttle = o.min_throttle;
+  if (o.esc) co.esc_prior = *o.esc;
+  calibration::CalibrationResult r;
+  try {
+    r = calibration::Calibrate(t, co);
+  } catch (const Error&) {
+    return;
+  }
+  if (!r.converged || !std::isfinite(r.motor.ke_v_s_per_rad) || !std::isfinite(r.motor.rm_ohm)) return;
+  for (int k = 0; k < calibration::kParamCount; ++k) {
+    if (r.params[k].at_bound) return;
+  }
+  (*v)[kKe] = r.motor.ke_v_s_per_rad;
+  (*v)[kKt] = r.motor.kt_nm_per_a;
+  (*v)[kRm] = r.motor.rm_ohm;
+  (*v)[kIo] = r.motor.io_a;
+  (*v)[kResc] = r.esc.resc_ohm;
+  (*v)[kC1] = r.esc.c1;
+  (*v)[kC0] = r.esc.c0;
+}
+
+// Rows whose largest |residual| exceeds outlier_sigmas robust sd (sigma): worst first, at most
+// max_outlier_fraction of the rows and never the last row of a throttle level (issue 12); each
+// is listed in res with its reason. Returns the rows kept (indices into d).
+std::vector<std::size_t> ScreenOutliers(const Data& d, const SteadyTable& t, const Eigen::VectorXd& r,
+                                        double sigma, const DiagnoseOptions& o, DiagnoseResult* res) {
+  const std::size_t n = d.rows();
+  std::vector<double> rmax(n, 0.0);
+  for (std::size_t k = 0; k < n; ++k) {
+    for (int tt = d.term_begin[k]; tt < d.term_begin[k + 1]; ++tt) rmax[k] = std::max(rmax[k], std::fabs(r[tt]));
+  }
+  std::vector<std::size_t> cand;
+  for (std::size_t k = 0; k < n; ++k) {
+    if (rmax[k] > o.outlier_sigmas * sigma) cand.push_back(k);
+  }
+  std::sort(cand.begin(), cand.end(), [&](std::size_t a, std::size_t b) { return rmax[a] > rmax[b]; });
+  const auto cap = static_cast<std::size_t>(std::floor(o.max_outlier_fraction * static_cast<double>(n)));
+  std::map<long long, std::size_t> per_level;
+  for (double tr : d.tr) ++per_level[std::llround(tr * 1000.0)];
+  const bool has_tr = t.Has(Column::kThrottle);
+  std::vector<char> drop(n, 0);
+  std::size_t dropped = 0, spared = 0;
+  for (std::size_t k : cand) {
+    std::size_t& left = per_level[std::llround(d.tr[k] * 1000.0)];
+    if (dropped >= cap || (has_tr && left <= 1)) {
+      ++spared;
+      continue;
+    }
+    --left;
+    drop[k] = 1;
+    ++dropped;
+    const std::size_t row = d.table_row[k];
+    std::ostringstream why;
+    why << std::setprecision(3) << "line " << t.source_line[row] << ": outlier, largest residual " << rmax[k]
+        << " % > " << o.outlier_sigmas << " robust sd (" << sigma << " %)";
+    res->outlier_rows.push_back(row);
+    res->outlier_reasons.push_back(why.str());
+  }
+  if (spared > 0) {
+    res->warnings.push_back(std::to_string(spared) + " more row(s) beyond the outlier threshold kept: at most " +
+                            std::to_string(cap) + " rows (10 %) and never a whole throttle level are dropped");
+  }
+  std::vector<std::size_t> keep;
+  for (std::size_t k = 0; k < n; ++k) {
+    if (!drop[k]) keep.push_back(k);
+  }
+  return keep;
+}
+
+// The status contract (identification/verdict.h) of the extended model: its free parameters
+// (base and findings) on a bound or undetermined, the energy rules over the envelope, the label,
+// and the held-out current error of the final model's cross-validation.
+identification::Verdict JudgeExtended(const Data& d, const SteadyTable& t, const Model& m, const FitOut& fit,
+                                      const std::vector<std::size_t>& used, const CvOut& cv,
+                                      const DiagnoseResult& res, const DiagnoseOptions& o) {
+  identification::VerdictInputs in;
+  in.converged = fit.ok;
+  for (int s = 0; s < kSlotCount; ++s) {
+    if (!m.free[s]) continue;
+    identification::ParamState p;
+    p.name = kSlotName[s];
+    p.value = fit.values[s];
+    p.standard_error = fit.stderr_[s];
+    p.fitted = true;
+    p.identifiable = std::isfinite(fit.stderr_[s]);
+    // A knee slope of 0 (no voltage gain above the knee) is a physical value, not a clip.
+    p.at_bound = s != kSatSlope && SlotAtBound(m, fit.values, s);
+    in.params.push_back(p);
+  }
+  in.motor = res.extended_motor;
+  in.esc = res.extended_esc;
+  double lo = std::numeric_limits<double>::infinity(), hi = 0.0;
+  for (std::size_t k : used) {
+    lo = std::min(lo, d.vdc[k]);
+    hi = std::max(hi, d.vdc[k]);
+  }
+  in.envelope.vdc_min_v = std::isfinite(lo) ? lo : 0.0;
+  in.envelope.vdc_max_v = hi;
+  in.kv_label_rpm_per_v = o.kv_label_rpm_per_v;
+  identification::HeldOut h;
+  h.folds = static_cast<std::size_t>(res.cv_folds);
+  h.failed_folds = static_cast<std::size_t>(cv.failed_folds);
+  h.leave_one_out = res.leave_one_out;
+  std::vector<double> ei, ew;
+  for (std::size_t k : used) {
+    for (int tt = d.term_begin[k]; tt < d.term_begin[k + 1]; ++tt) {
+      const Term& term = d.terms[tt];
+      const double p = cv.pred[term.meas][k];
+      if (term.value == 0.0) continue;
+      // A row without a prediction is a 100 % miss.
+      const double e = std::isfinite(p) ? 100.0 * std::fabs(p - term.value) / std::fabs(term.value) : 100.0;
+      if (term.meas == kMIdc || (term.meas == kMIrms && !d.measured[kMIdc])) ei.push_back(e);
+      if (term.meas == kMOmega) ew.push_back(e);
+    }
+  }
+  h.median_abs_current_percent = Median(ei);
+  h.median_abs_speed_percent = Median(ew);
+  in.held_out = h;
+  in.has_torque = t.Has(Column::kTorqueNm);
+  in.has_ac = t.Has(Column::kVllRmsV) && t.Has(Column::kIrmsA);
+  in.has_throttle = t.Has(Column::kThrottle);
+  return identification::Judge(in);
 }
 
 }  // namespace
@@ -688,6 +794,7 @@ DiagnoseResult Diagnose(const SteadyTable& t, const DiagnoseOptions& o) {
       }
       v[kIo] = c > 0 ? std::max(s / c, 0.0) : 0.0;
     }
+    BaseStartFromCalibration(t, o, &v);
   }
   // Scales and bounds (optimisation units: x = value/scale).
   double imax = 0.0;
@@ -706,7 +813,7 @@ DiagnoseResult Diagnose(const SteadyTable& t, const DiagnoseOptions& o) {
   const double rm_s = std::max(v[kRm], 1e-3);
   Values& sc = base.scale;
   sc[kKe] = std::max(v[kKe], 1e-6);
-  sc[kKt] = std::max(v[kKt], 1e-6);
+  sc[kKt] = 1.0;  // the ratio KT/(kp*KE)
   sc[kRm] = rm_s;
   sc[kIo] = std::max({v[kIo], 0.02 * imax, 1e-3});
   sc[kResc] = rm_s;
@@ -720,9 +827,30 @@ DiagnoseResult Diagnose(const SteadyTable& t, const DiagnoseOptions& o) {
   sc[kDroop] = 0.1 / imax;                                                  // x=1: -10 % KT
   sc[kRsupply] = rm_s;
   const double min_level = levels.empty() ? 1.0 : levels.front();
-  const Values lower = {1e-7, 1e-7, 1e-6, 0.0, 0.0, 0.0, -1.0, 0.0, 0.0, -0.5, 0.0, 0.0, 0.0, 0.0};
-  const Values upper = {10.0, 20.0, 100.0, 200.0, 10.0, 5.0, 1.0, 1.0, 1.0,
-                        std::max(0.0, 0.9 * min_level), 1.0, 1000.0, 10.0, 10.0};
+  // Physical box of identification/parameters.h; the KT and c1 slots are bounded as the ratio
+  // KT/(kp*KE) <= 1 and the excess c1 + c0 - 1.1095 >= 0 (model.md section 10), c0 >= 0.
+  namespace id = identification;
+  // Slots 0..9 are the base parameters of identification/parameters.h in the same order (checked
+  // below); the extension slots follow with their own physical ranges.
+  static_assert(kDeadband == static_cast<int>(id::BaseParam::kDeadband) && kIo1 == id::kBaseParamCount);
+  Values lower{}, upper{};
+  for (int k = 0; k < id::kBaseParamCount; ++k) {
+    lower[k] = id::kBaseLower[k];
+    upper[k] = id::kBaseUpper[k];
+  }
+  lower[kKt] = id::kKtRatioLower;
+  upper[kKt] = id::kKtRatioUpper;
+  lower[kC1] = id::kEscExcessLower;
+  upper[kC1] = id::kEscExcessUpper;
+  upper[kDeadband] = std::min(upper[kDeadband], std::max(0.0, 0.9 * min_level));  // below the lowest level
+  lower[kIo1] = 0.0;   // Io must not fall with speed (section 10: no energy created)
+  upper[kIo1] = 1.0;
+  lower[kRth] = 0.0;
+  upper[kRth] = 1000.0;
+  lower[kDroop] = 0.0;
+  upper[kDroop] = 10.0;
+  lower[kRsupply] = 0.0;
+  upper[kRsupply] = 10.0;
   base.lower = lower;
   base.upper = upper;
   for (int s = 0; s < kSlotCount; ++s) {
@@ -780,14 +908,17 @@ DiagnoseResult Diagnose(const SteadyTable& t, const DiagnoseOptions& o) {
     }
   }
 
-  // --- Folds.
+  // --- Folds: leave-one-out below kLooRows rows (small tables, issue 12: "fewer than about 15";
+  // from 12 rows on, o.folds folds hold out at least 2 rows each and keep 9 or more to fit).
+  constexpr std::size_t kLooRows = 12;
+  const int folds = n < kLooRows ? static_cast<int>(n) : o.folds;
   std::vector<int> fold_of(n);
   {
     std::vector<std::size_t> perm(n);
     std::iota(perm.begin(), perm.end(), 0);
     std::mt19937 rng(o.seed);
     std::shuffle(perm.begin(), perm.end(), rng);
-    for (std::size_t j = 0; j < n; ++j) fold_of[perm[j]] = static_cast<int>(j % static_cast<std::size_t>(o.folds));
+    for (std::size_t j = 0; j < n; ++j) fold_of[perm[j]] = static_cast<int>(j % static_cast<std::size_t>(folds));
   }
   std::vector<std::size_t> used(n);
   std::iota(used.begin(), used.end(), 0);
@@ -850,19 +981,7 @@ DiagnoseResult Diagnose(const SteadyTable& t, const DiagnoseOptions& o) {
       std::vector<double> a(r.data(), r.data() + nt);
       for (double& x : a) x = std::fabs(x);
       const double sigma = std::max(1.4826 * Median(a), o.outlier_floor_percent);
-      std::vector<std::size_t> keep;
-      for (std::size_t k = 0; k < n; ++k) {
-        bool out = false;
-        for (int tt = d.term_begin[k]; tt < d.term_begin[k + 1]; ++tt) out = out || std::fabs(r[tt]) > o.outlier_sigmas * sigma;
-        if (out) res.outlier_rows.push_back(d.table_row[k]);
-        else keep.push_back(k);
-      }
-      if (keep.size() >= std::max<std::size_t>(6, n / 2)) {
-        used = keep;
-      } else {
-        res.outlier_rows.clear();
-        res.warnings.push_back("outlier screen flagged more than half of the rows: kept them all");
-      }
+      used = ScreenOutliers(d, t, r, sigma, o, &res);
     }
   }
   if (!res.outlier_rows.empty()) {
@@ -884,15 +1003,15 @@ DiagnoseResult Diagnose(const SteadyTable& t, const DiagnoseOptions& o) {
     std::string which;
     for (int s = 0; s < kSlotCount; ++s) {
       if (!kSlotIsBase[s] || !current.free[s]) continue;
-      const double tol = 1e-6 * std::max(std::fabs(current.upper[s] - current.lower[s]), 1e-12);
-      if (cur_fit.values[s] - current.lower[s] <= tol || current.upper[s] - cur_fit.values[s] <= tol) {
-        which += (which.empty() ? "" : ", ") + std::string(kSlotName[s]);
-      }
+      if (SlotAtBound(current, cur_fit.values, s)) which += (which.empty() ? "" : ", ") + std::string(kSlotName[s]);
     }
     res.warnings.push_back("first-order fit has " + which +
                            " on a physical bound: the first-order model cannot follow this log");
   }
-  CvOut cur_cv = CrossValidate(d, used, fold_of, o.folds, current, cur_fit, knees);
+  CvOut cur_cv = CrossValidate(d, used, fold_of, folds, current, cur_fit, knees);
+  res.cv_folds = folds;
+  res.leave_one_out = folds == static_cast<int>(n);
+  res.baseline_cv_failed_folds = cur_cv.failed_folds;
   ToParams(d, cur_fit.values, &res.base_motor, &res.base_esc);
   res.baseline_cv = ColumnErrors(d, used, cur_cv);
   res.baseline_cv_rms_percent = cur_cv.rms_percent;
@@ -1063,7 +1182,7 @@ DiagnoseResult Diagnose(const SteadyTable& t, const DiagnoseOptions& o) {
         if (!determined && cs.note.empty()) cs.note = "parameter within 2 standard errors of no effect";
         const bool pre = cs.p_value < o.alpha && cs.delta_aicc < 0.0 && determined;
         if (pre) {
-          cv = CrossValidate(d, used, fold_of, o.folds, m, f, knees);
+          cv = CrossValidate(d, used, fold_of, folds, m, f, knees);
           cs.cv_rms_percent = cv.rms_percent;
           cs.gain_percent = 100.0 * (1.0 - cv.rms_percent / cur_cv.rms_percent);
           cs.significant = cs.gain_percent >= o.min_gain_percent;
@@ -1162,9 +1281,12 @@ DiagnoseResult Diagnose(const SteadyTable& t, const DiagnoseOptions& o) {
   res.extended_cv_rms_percent = cur_cv.rms_percent;
   to_table(cur_cv, &res.extended_cv_prediction);
   if (cur_cv.failed_folds > 0) {
-    res.warnings.push_back(std::to_string(cur_cv.failed_folds) +
-                           " cross-validation fold(s) could not be fitted: the full fit stood in");
+    res.warnings.push_back(std::to_string(cur_cv.failed_folds) + " of " + std::to_string(folds) +
+                           " cross-validation fold(s) could not be fitted (too few points to cross-validate): "
+                           "their rows count as a 100 % miss");
   }
+  res.extended_cv_failed_folds = cur_cv.failed_folds;
+  res.verdict = JudgeExtended(d, t, current, cur_fit, used, cur_cv, res, o);
   return res;
 }
 
@@ -1209,8 +1331,13 @@ std::string DiagnoseResult::FullReport() const {
       }
       if (!closest.empty()) s << "; rejected: " << closest;
       s << "\n";
-    } else {
+    } else if (baseline_cv_rms_percent <= kNoiseLevelPercent && baseline_cv_failed_folds == 0) {
       s << "  none: nothing significant beyond noise\n";
+    } else {
+      s << "  none found, but the first-order model misses held-out rows by " << baseline_cv_rms_percent
+        << " % rms" << (baseline_cv_failed_folds > 0 ? " (" + std::to_string(baseline_cv_failed_folds) +
+                                                          " fold(s) could not be fitted)" : std::string())
+        << ": this is not noise; the model does not follow this log\n";
     }
   }
   int k = 0;
@@ -1240,7 +1367,10 @@ std::string DiagnoseResult::FullReport() const {
   s << "\nExtended model (cross-validated):";
   for (const auto& c : extended_cv) s << " " << logs::ColumnName(c.column) << " " << c.rmse_percent << " %";
   s << "; all columns " << extended_cv_rms_percent << " % (baseline " << baseline_cv_rms_percent << " %)\n";
+  for (const auto& r : outlier_reasons) s << "dropped " << r << "\n";
   for (const auto& w : warnings) s << "warning: " << w << "\n";
+  s << verdict.summary << "\n";
+  if (!verdict.advice.empty()) s << "next: " << verdict.advice << "\n";
   return s.str();
 }
 

@@ -53,6 +53,8 @@
 #include <string>
 #include <vector>
 
+#include "fit/statistics.h"
+#include "identification/verdict.h"
 #include "logs/steady_table.h"
 #include "model/drive.h"
 
@@ -84,6 +86,10 @@ struct DiagnoseOptions {
   double min_gain_percent = 1.0;
   double outlier_sigmas = 5.0;  // 0 disables the outlier screen
   double outlier_floor_percent = 0.2;  // floor of the robust sd (percent of the column median)
+  // The screen never drops more than this fraction of the rows, nor a whole throttle level.
+  double max_outlier_fraction = 0.10;
+  // The motor's label Kv (rpm/V): the verdict checks the extended model's Kv against it.
+  std::optional<double> kv_label_rpm_per_v;
   int max_findings = 3;
   // A significant runner-up within this AICc of the winner, or with at least this fraction of
   // its CV gain, that adds nothing once the winner is in the model, is reported as ambiguous.
@@ -175,11 +181,22 @@ struct Ambiguity {
   std::string measurement;  // what would separate them
 };
 
+// Held-out error (percent rms, all columns) up to which "no finding" may be called noise.
+inline constexpr double kNoiseLevelPercent = 10.0;
+
 struct DiagnoseResult {
   std::string file;
   std::string mode;  // "ac", "dc", "dc_no_throttle"
   std::size_t points_used = 0;
   std::vector<std::size_t> outlier_rows;  // rows left out by the outlier screen
+  std::vector<std::string> outlier_reasons;  // per outlier row: its line and residual
+  int cv_folds = 0;            // folds of the cross-validation (rows when leave_one_out)
+  bool leave_one_out = false;  // fewer than 15 rows: each row left out in turn
+  int baseline_cv_failed_folds = 0;
+  int extended_cv_failed_folds = 0;
+  // The status contract of the extended model (identification/verdict.h): diagnose --out writes
+  // only an "ok" model.
+  identification::Verdict verdict;
   std::vector<logs::Column> predicted_columns;
   std::vector<std::string> base_free_parameters;
   MotorParams base_motor;
@@ -211,7 +228,7 @@ struct DiagnoseResult {
 // predicted column, enough rows), UsageError for invalid options.
 DiagnoseResult Diagnose(const logs::SteadyTable& table, const DiagnoseOptions& options = {});
 
-// Upper tail of the F(d1, d2) distribution (p value of an F statistic).
-double FDistributionUpperTail(double f, double d1, double d2);
+// Upper tail of the F(d1, d2) distribution (p value of an F statistic): fit/statistics.h.
+using fit::FDistributionUpperTail;
 
 }  // namespace dynosize::diagnosis

@@ -39,6 +39,7 @@ std::vector<std::string> WriteCalibrationFigures(const std::string& dir, const l
   MakeOutputDir(dir);
   std::vector<std::string> written;
   const bool thr = t.Has(Column::kThrottle);
+  const bool current_input = thr && !t.Has(Column::kTorqueNm) && !(t.Has(Column::kVllRmsV) && t.Has(Column::kIrmsA));
   // Base names only: the titles stay one line for several logs.
   std::string file;
   {
@@ -58,7 +59,8 @@ std::vector<std::string> WriteCalibrationFigures(const std::string& dir, const l
     std::vector<double> meas, pred, res, tr, rpm;
     for (std::size_t i = 0; i < t.rows(); ++i) {
       const auto p = calibration::PredictRow(t, i, r.motor, r.esc);
-      const double pv = Predicted(p, f.column);
+      // Logs without torque or AC columns predict the speed from the measured current (calibrate.h).
+      const double pv = f.column == Column::kOmegaRadS && current_input ? p.omega_from_idc_rad_s : Predicted(p, f.column);
       const double mv = t.Get(f.column)[i];
       if (!std::isfinite(pv) || mv == 0.0) continue;
       meas.push_back(mv * s.scale);

@@ -6,6 +6,7 @@
 #include <unistd.h>
 
 #include <array>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -16,6 +17,7 @@
 #include "catalog/catalog.h"
 #include "cli_runner.h"
 #include "common/json_file.h"
+#include "common/units.h"
 
 namespace dynosize::calibration {
 namespace {
@@ -108,6 +110,103 @@ TEST(CalibrateCli, OutForceAndUntouchedOnFailure) {
   EXPECT_EQ(doc["motors"].size(), 1u);
   EXPECT_EQ(doc["escs"].size(), 1u);
   EXPECT_NO_THROW(Catalog::Load(cat_dir));
+}
+
+// The status contract: --out writes only an "ok" entry; a refused fit exits 65 with one line
+// naming the failed check and leaves the catalog file as it was, --force or not.
+TEST(CalibrateCli, OutRefusesAFitThatIsNotOk) {
+  const std::string dir = TempDir("refuse");
+  const std::string log = WriteCanonicalLog(dir);  // a ~900 rpm/V motor
+  const std::string out = dir + "/fitted.json";
+  // Label 2000 rpm/V: the fit lands far from it (the data determine KE much better than 10 %).
+  CliRun r = Exec("calibrate " + log + " --motor-id m --esc-id e --kv-label 2000 --json --out " + out);
+  EXPECT_EQ(r.code, 65) << r.err;
+  EXPECT_FALSE(fs::exists(out));
+  EXPECT_NE(r.err.find("not written: status failed, check kv_vs_label failed"), std::string::npos) << r.err;
+  const Json j = ParseJsonText(r.out, "stdout");
+  EXPECT_EQ(j["status"], "failed");
+  bool seen = false;
+  for (const auto& c : j["checks"]) {
+    if (c["name"] == "kv_vs_label") {
+      seen = true;
+      EXPECT_FALSE(c["passed"].get<bool>());
+      EXPECT_DOUBLE_EQ(c["limit"].get<double>(), 25.0);
+    }
+  }
+  EXPECT_TRUE(seen);
+  // An existing file stays byte-identical, also with --force.
+  r = Exec("calibrate " + log + " --motor-id m --esc-id e --kv-label 900 --out " + out);
+  ASSERT_EQ(r.code, 0) << r.err;
+  const std::string before = Slurp(out);
+  r = Exec("calibrate " + log + " --motor-id m --esc-id e --kv-label 2000 --force --out " + out);
+  EXPECT_EQ(r.code, 65) << r.err;
+  EXPECT_EQ(Slurp(out), before);
+}
+
+// Entries ready for sizing: ratings, mass and the label in the written entries.
+TEST(CalibrateCli, RatingsAreStored) {
+  const std::string dir = TempDir("ratings");
+  const std::string log = WriteCanonicalLog(dir);
+  const std::string cat_dir = dir + "/cat";
+  fs::create_directories(cat_dir);
+  const std::string out = cat_dir + "/fitted.json";
+  const CliRun r = Exec("calibrate " + log + " --motor-id m --esc-id e --kv-label 900 --mass-kg 0.085 " +
+                        "--max-current-a 30 --max-power-w 400 --esc-max-current-a 35 --esc-vdc-max-v 25.2 --json --out " + out);
+  ASSERT_EQ(r.code, 0) << r.err;
+  const Json j = ParseJsonText(r.out, "stdout");
+  EXPECT_EQ(j["status"], "ok") << j["summary"];
+  const Catalog cat = Catalog::Load(cat_dir);
+  EXPECT_DOUBLE_EQ(cat.motor("m").params.max_current_a, 30.0);
+  EXPECT_DOUBLE_EQ(cat.esc("e").params.max_current_a, 35.0);
+  const Json doc = ReadJsonFile(out);
+  EXPECT_DOUBLE_EQ(doc["motors"][0]["mass_kg"].get<double>(), 0.085);
+  EXPECT_DOUBLE_EQ(doc["motors"][0]["kv_rpm_per_v"].get<double>(), 900.0);
+  EXPECT_EQ(doc["motors"][0]["source"]["values"]["mass_kg"], "datasheet");
+}
+
+// A log with thrust and torque also gives a static propeller entry (--prop-id): CT, CP vs rpm
+// that the catalog loads; a thrust that beats momentum theory (FM > 1) is refused with exit 65.
+TEST(CalibrateCli, PropEntryFromThrustAndTorque) {
+  const std::string dir = TempDir("prop");
+  auto t = testing_util::MakeSyntheticLog(testing_util::DefaultSpec());
+  // Thrust T = k*omega^2 with k chosen for a figure of merit of 0.6 on the first propeller (10 in):
+  // FM = k^1.5/(c*sqrt(2*rho*A)) with Q = c*omega^2.
+  const double area = kPi * 0.254 * 0.254 / 4.0, c = 2.0e-7;
+  auto write = [&](double fm, const std::string& path) {
+    const double k = std::pow(fm * c * std::sqrt(2.0 * 1.225 * area), 2.0 / 3.0);
+    std::ofstream f(path);
+    f << "time_s,vdc_v,throttle,omega_rad_s,torque_nm,idc_a,thrust_n\n" << std::setprecision(10);
+    for (std::size_t i = 0; i < t.rows(); ++i) {
+      const double w = t.Get(Column::kOmegaRadS)[i];
+      f << t.Get(Column::kTimeS)[i] << "," << t.Get(Column::kVdcV)[i] << "," << t.Get(Column::kThrottle)[i] << ","
+        << w << "," << t.Get(Column::kTorqueNm)[i] << "," << t.Get(Column::kIdcA)[i] << "," << k * w * w << "\n";
+    }
+  };
+  const std::string log = dir + "/thrust.csv";
+  write(0.6, log);
+  const std::string cat_dir = dir + "/cat";
+  fs::create_directories(cat_dir);
+  const std::string out = cat_dir + "/fitted.json";
+  CliRun r = Exec("calibrate " + log + " --motor-id m --esc-id e --kv-label 900 --prop-id p10 --prop-diameter-in 10 " +
+                  "--prop-pitch-in 4.5 --json --out " + out);
+  ASSERT_EQ(r.code, 0) << r.err;
+  const Json doc = ReadJsonFile(out);
+  ASSERT_EQ(doc["props"].size(), 1u);
+  const Json& p = doc["props"][0];
+  EXPECT_EQ(p["id"], "p10");
+  EXPECT_NEAR(p["diameter_m"].get<double>(), 0.254, 1e-9);
+  const auto& rpm = p["static_table"]["rpm"];
+  ASSERT_GE(rpm.size(), 3u);
+  for (std::size_t k = 1; k < rpm.size(); ++k) EXPECT_GT(rpm[k].get<double>(), rpm[k - 1].get<double>());
+  EXPECT_NO_THROW(Catalog::Load(cat_dir));
+  // FM = 3 on the first propeller: momentum theory says no; nothing is written.
+  const std::string bad = dir + "/fm3.csv";
+  write(3.0, bad);
+  const std::string before = Slurp(out);
+  r = Exec("calibrate " + bad + " --motor-id m2 --esc-id e2 --kv-label 900 --prop-id p10b --prop-diameter-in 10 --out " + out);
+  EXPECT_EQ(r.code, 65) << r.err;
+  EXPECT_NE(r.err.find("figure of merit"), std::string::npos) << r.err;
+  EXPECT_EQ(Slurp(out), before);
 }
 
 TEST(CalibrateCli, MissingIdsIsUsageError) {

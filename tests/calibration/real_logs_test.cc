@@ -15,6 +15,7 @@
 #include "common/error.h"
 #include "common/units.h"
 #include "logs/log_reader.h"
+#include "model/physics.h"
 
 namespace dynosize::calibration {
 namespace {
@@ -75,7 +76,11 @@ TEST(CalibrateRealLogs, TMotorAt3520MatchesDatasheetKv) {
   const auto t = logs::ReadLog(Shared() + "sjkim_mfr_motor_tables/TMotor_AT3520_550kv.csv", o);
   const CalibrationResult r = Calibrate(t);
   EXPECT_TRUE(r.converged);
-  EXPECT_NEAR(KvOf(r), 550.0, 0.03 * 550.0);  // datasheet 550 rpm/V
+  // Datasheet 550 rpm/V. The base fit now includes the throttle offset of model.md section 9
+  // when the F test keeps it (here it does), and the offset trades with KE and the knee: the
+  // fitted Kv lands about 9 % below the label, well inside the 25 % of model.md section 10.
+  constexpr double kKvRelTol = 0.10;
+  EXPECT_NEAR(KvOf(r), 550.0, kKvRelTol * 550.0);
   EXPECT_GT(r.motor.io_a, 0.0);
   EXPECT_GT(r.r_total_ohm, 0.0);
   EXPECT_TRUE(r.param(Param::kTrSat).identifiable);  // two props, 11 throttle levels
@@ -114,6 +119,61 @@ TEST(CalibrateRealLogs, EveryLogWithThrottleCalibratesAndFlagsBounds) {
     }
   }
   EXPECT_EQ(calibrated, static_cast<int>(files.size()));
+}
+
+// Issue 12, the sjkim AT2814 table: before, the fit gave c1 = 0.30, c0 = 0.23 (eta_esc 1.76 at
+// 15 V) and Kv 2460 against the label 1200. With physics as constraints, the label prior and
+// the throttle offset, the entry is physical, near the label and passes every check.
+TEST(CalibrateRealLogs, At2814WithLabelIsPhysicalAndOk) {
+  REQUIRE_SHARED();
+  logs::LogReadOptions ro;
+  ro.format = logs::LogFormat::kMapped;
+  ro.column_map = {"throttle=Throttle", "vdc_v=Voltage", "idc_a=Current", "rpm=Rpm", "torque_nm=Torque [N*m]"};
+  const auto t = logs::ReadLog(Shared() + "sjkim_mfr_motor_tables/TMotor_AT2814_1200kv.csv", ro);
+  CalibrationOptions o;
+  o.labels.kv_rpm_per_v = 1200.0;
+  const CalibrationResult r = Calibrate(t, o);
+  EXPECT_GE(EscEnergyMargin(r.esc), 0.0);
+  EXPECT_EQ(MotorEnergyViolation(r.motor), "");
+  EXPECT_NEAR(KvOf(r), 1200.0, 0.25 * 1200.0);
+  const CrossValidation cv = CrossValidateForVerdict(t, o);
+  EXPECT_TRUE(cv.leave_one_out);  // 11 throttle levels
+  const identification::Verdict v = JudgeCalibration(r, t, o, &cv);
+  EXPECT_EQ(v.status, identification::Status::kOk) << v.summary;
+  // Held-out current within 3 % (docs/validation.md: about 1 %).
+  EXPECT_LT(MedianAbs(cv.idc_error_percent), 3.0);
+}
+
+// Strawson sweeps (no torque): whatever the verdict, no fitted pair creates energy, and an "ok"
+// verdict always has Kv within 25 % of the label (the Lumenier RX2206-13 2000 kV logs, all 16
+// "ok" in docs/validation.md, and the EMAX RS2205S logs whose fits used to put KE on its bound).
+TEST(CalibrateRealLogs, StrawsonFitsArePhysicalAndOkMeansNearLabel) {
+  REQUIRE_SHARED();
+  int ok = 0, n = 0;
+  for (const char m : {'a', 'g'}) {
+    const double label = m == 'a' ? 2600.0 : 2000.0;
+    for (int prop = 1; prop <= 8; ++prop) {
+      for (const char* v : {"7", "11"}) {
+        const std::string f = Shared() + "strawson_fpv_motor_prop/rawdata/" + m + std::to_string(prop) + "_" + v + ".csv";
+        if (!std::filesystem::exists(f)) continue;
+        const auto t = logs::ReadLog(f);
+        CalibrationOptions o;
+        o.labels.kv_rpm_per_v = label;
+        const CalibrationResult r = Calibrate(t, o);
+        ++n;
+        EXPECT_GE(EscEnergyMargin(r.esc), 0.0) << f;
+        EXPECT_EQ(MotorEnergyViolation(r.motor), "") << f;
+        const identification::Verdict vd = JudgeCalibration(r, t, o, nullptr);
+        if (vd.status == identification::Status::kOk) {
+          ++ok;
+          EXPECT_NEAR(KvOf(r), label, 0.25 * label) << f;
+        }
+        if (m == 'g') EXPECT_EQ(vd.status, identification::Status::kOk) << f << ": " << vd.summary;
+      }
+    }
+  }
+  EXPECT_EQ(n, 32);
+  EXPECT_GE(ok, 16);
 }
 
 }  // namespace

@@ -103,6 +103,28 @@ TEST(DiagnoseCliTest, ReportAndFigures) {
   }
 }
 
+// diagnose --out follows calibrate's status rule: a model that is not "ok" is not written (exit
+// 65, one line naming the failed check), and the --json carries status and checks.
+TEST(DiagnoseCliTest, OutRefusesAModelThatIsNotOk) {
+  const auto c = testing_util::MakeCampaign(7, {});
+  const std::string dir = Dir("refuse");
+  const std::string log = WriteCampaign(c.table, dir + "/campaign.csv");
+  const std::string out = dir + "/ext.json";
+  std::filesystem::remove(out);
+  // The campaign's motor is 700-1100 rpm/V: a label of 5000 rpm/V cannot be met.
+  CliRun r = RunCli("diagnose " + log + " --kv-label 5000 --json --out " + out);
+  EXPECT_EQ(r.code, 65) << r.err;
+  EXPECT_FALSE(std::filesystem::exists(out));
+  EXPECT_NE(r.err.find("not written: status failed, check kv_vs_label failed"), std::string::npos) << r.err;
+  const Json j = ParseJsonText(r.out, "stdout");
+  EXPECT_EQ(j["status"], "failed");
+  EXPECT_TRUE(j["checks"].is_array());
+  // Without the impossible label the same log is ok and written.
+  r = RunCli("diagnose " + log + " --json --out " + out);
+  EXPECT_EQ(r.code, 0) << r.err;
+  EXPECT_TRUE(std::filesystem::exists(out));
+}
+
 TEST(DiagnoseCliTest, MissingLogAndUnknownMotorAreOneLineErrors) {
   CliRun r = RunCli("diagnose /nonexistent/log.csv");
   EXPECT_EQ(r.code, 66) << r.err;

@@ -7,6 +7,8 @@
 
 #include <gtest/gtest.h>
 
+#include <iostream>
+
 #include "campaign.h"
 #include "common/error.h"
 #include "diagnosis/diagnose.h"
@@ -118,6 +120,10 @@ TEST(DiagnoseTest, IndistinguishableCausesAreReportedAsAmbiguous) {
   co.torque = false;
   co.vdc_v = {14.8};
   co.props = 1;
+  // 14 rows: the outlier screen may drop at most 10 % of them (one row, issue 12), and two wrong
+  // rows on this single path bend it as much as the effect does: no outliers here (the screen
+  // has its own tests).
+  co.outliers = 0;
   const Campaign c = MakeCampaign(301, {Cause::kSupplyResistance}, co);
   const DiagnoseResult r = Diagnose(c.table);
   SCOPED_TRACE(r.FullReport());
@@ -144,7 +150,10 @@ TEST(DiagnoseTest, CleanCampaignsReportNothing) {
       alarms += "seed " + std::to_string(1000 + s) + ": " + Names(r) + "\n";
     }
   }
-  EXPECT_GE(clean, kSeeds * 95 / 100) << alarms;
+  // Issue 12: no false alarm at all on these (deterministic) clean campaigns; the issue's
+  // original bound was 95 %.
+  EXPECT_EQ(clean, kSeeds) << alarms;
+  std::cout << "[clean campaigns] " << clean << " of " << kSeeds << " without a finding\n" << alarms;
 }
 
 // The same for DC logs without torque, where the speed is the input and the low-throttle
