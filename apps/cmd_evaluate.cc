@@ -2,6 +2,7 @@
 // or the best combinations of the catalog.
 #include <unistd.h>
 
+#include <chrono>
 #include <cstdio>
 #include <cstdlib>
 #include <iomanip>
@@ -67,17 +68,32 @@ int RunOptimize(const OptimizeOptions& o) {
   const Catalog cat = Catalog::Load(o.catalog_dir);
   SearchOptions so;
   so.top_n = o.top;
+  so.threads = o.threads;
+  // Progress on a terminal's stderr only (never with --json or --quiet, never into a pipe or
+  // a file), and only once the search has run for a second.
   const bool bar = !o.json && !o.quiet && isatty(fileno(stderr));
+  bool shown = false;
+  const auto t0 = std::chrono::steady_clock::now();
   if (bar) {
-    so.progress = [](double f) {
-      const int width = 40;
-      const int filled = static_cast<int>(f * width + 0.5);
-      std::cerr << "\r[" << std::string(filled, '#') << std::string(width - filled, ' ') << "] "
-                << std::setw(3) << static_cast<int>(100 * f) << " %" << std::flush;
+    so.progress = [&](const SearchProgress& p) {
+      if (std::chrono::steady_clock::now() - t0 < std::chrono::seconds(1)) return;
+      shown = true;
+      std::ostringstream line;
+      line << "\r" << std::setw(3) << static_cast<int>(100 * p.fraction) << " % of candidate pairs: "
+           << p.searched << " searched, " << p.pruned << " pruned";
+      if (p.has_best) line << ", best " << std::setprecision(4) << p.best_objective;
+      std::string text = line.str();
+      if (text.size() < 79) text += std::string(79 - text.size(), ' ');
+      std::cerr << text << std::flush;
     };
   }
   const SearchResult s = SearchCatalog(mission, cat, so);
-  if (bar) std::cerr << "\r" << std::string(50, ' ') << "\r";
+  if (shown) std::cerr << "\r" << std::string(79, ' ') << "\r" << std::flush;
+  if (o.stats) {
+    std::cerr << "search: " << s.candidate_pairs << " candidate pairs in " << std::setprecision(3)
+              << s.candidate_seconds << " s; " << s.virtual_evaluations << " virtual-ESC and "
+              << s.searched << " exact evaluations; total " << s.seconds << " s\n";
+  }
   std::vector<std::string> figures;
   if (!o.plot_dir.empty()) {
     figures.push_back(WriteParetoFigure(mission, s, o.plot_dir));
@@ -99,6 +115,7 @@ int RunOptimize(const OptimizeOptions& o) {
     for (const auto& [rule, n] : s.pruned_by) by[rule] = n;
     j["pruned_by"] = by;
     j["seconds"] = s.seconds;
+    if (!s.relaxed_constraint.empty()) j["relaxed_constraint"] = s.relaxed_constraint;
     if (!figures.empty()) j["figures"] = figures;
     std::cout << DumpJson(j);
     return 0;
@@ -117,6 +134,11 @@ int RunOptimize(const OptimizeOptions& o) {
   out << ") in " << std::fixed << std::setprecision(2) << s.seconds << " s\n";
   if (s.best.empty()) {
     out << "no combination of the catalog flies this mission within its constraints\n";
+  }
+  if (!s.relaxed_constraint.empty()) {
+    out << "no combination reaches " << s.relaxed_constraint << " "
+        << mission.constraints.min_thrust_to_weight
+        << ": the best without that limit follow, each failing it (a larger motor or propeller, or a lighter vehicle)\n";
   }
   for (std::size_t i = 0; i < s.best.size(); ++i) {
     out << "\n#" << (i + 1) << " "

@@ -110,6 +110,8 @@ struct OptimizeOptions {
   int top = 5;
   bool json = false;
   bool quiet = false;
+  int threads = 2;     // SearchOptions::threads
+  bool stats = false;  // where the time went (candidate pairs, virtual-ESC evaluations) on stderr
   std::string plot_dir;
 };
 int RunOptimize(const OptimizeOptions& o);

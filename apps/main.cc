@@ -181,7 +181,10 @@ int main(int argc, char** argv) {
   optimize->add_option("mission", optim.mission, "mission JSON file")->required();
   optimize->add_option("--top", optim.top, "how many combinations to list")->check(CLI::Range(1, 1000));
   optimize->add_flag("--json", optim.json, "print one JSON object");
-  optimize->add_flag("--quiet", optim.quiet, "no progress bar");
+  optimize->add_flag("--quiet", optim.quiet, "no progress display");
+  optimize->add_option("--threads", optim.threads, "worker threads (the answer does not depend on it)")
+      ->check(CLI::Range(1, 64));
+  optimize->add_flag("--stats", optim.stats, "print where the search's time went on stderr");
   optimize->add_option("--plot", optim.plot_dir,
                        "write the Pareto front and the top pick's efficiency maps here");
 

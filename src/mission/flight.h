@@ -24,6 +24,7 @@
 //    isolated-propeller data are evaluated at.
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 
 #include "common/units.h"
@@ -59,6 +60,28 @@ inline double LongestFixedDurationS(const Mission& m) {
     if (!stretched) t += SegmentDurationS(m.segments[i], m.segments[i].airspeed_m_s.lo);
   }
   return t;
+}
+
+// The rotors that lift the vehicle: the most that thrust in any hover or climb segment (all of
+// the vehicle's when a segment does not say); 0 when no segment is flown on the rotors' lift
+// (a wing-borne cruise only).
+inline int LiftRotors(const Mission& m) {
+  int n = 0;
+  for (const Segment& s : m.segments) {
+    if (s.type == SegmentType::kHover || s.type == SegmentType::kClimb) {
+      n = std::max(n, s.rotors_active > 0 ? s.rotors_active : m.vehicle.rotors);
+    }
+  }
+  return n;
+}
+
+// Momentum-theory climb rate at a shaft power x times the hover power (Leishman, Principles of
+// Helicopter Aerodynamics, 2nd ed., sec. 2.7, axial climb: P/P_h = Vc/(2*v_h) + sqrt((Vc/(2*v_h))^2
+// + 1), solved for Vc): Vc = v_h*(x - 1/x), v_h = sqrt(T/(2*rho*A)) the hover induced velocity.
+// The figure of merit is held and the body drag neglected (both make it an upper estimate).
+inline double ClimbRateAtPowerRatio(double hover_induced_velocity_m_s, double power_ratio) {
+  if (!(power_ratio > 1.0)) return 0.0;
+  return hover_induced_velocity_m_s * (power_ratio - 1.0 / power_ratio);
 }
 
 inline RotorLoad SegmentRotorLoad(const Mission& m, const Segment& s, double total_mass_kg,

@@ -234,6 +234,7 @@ Mission ParseMission(const Json& doc, const std::string& name) {
       const double h = a.Number("altitude_m", -500.0, 10000.0, false, 0.0);
       const double t = a.Number("temperature_c", -60.0, 60.0, false, 15.0);
       m.rho_kg_m3 = AirDensityKgM3(h, t);
+      m.air_temperature_c = t;
     }
   }
 
@@ -266,7 +267,10 @@ Mission ParseMission(const Json& doc, const std::string& name) {
   if (top.Has("constraints")) {
     const Reader c(top.At("constraints"), name, "$.constraints");
     c.AllowOnly({"max_throttle", "min_hover_throttle", "current_margin", "allow_esc_saturation",
-                 "enforce_motor_power", "max_figure_of_merit", "max_static_advance_ratio"});
+                 "enforce_motor_power", "max_figure_of_merit", "max_static_advance_ratio",
+                 "min_thrust_to_weight", "max_winding_temp_c"});
+    m.constraints.min_thrust_to_weight = c.Number("min_thrust_to_weight", 0.0, 50.0, false, 2.0);
+    m.constraints.max_winding_temp_c = c.Number("max_winding_temp_c", 20.0, 400.0, false, 120.0);
     m.constraints.max_static_advance_ratio = c.Number("max_static_advance_ratio", 0.0, 5.0, false, 0.2);
     m.constraints.max_figure_of_merit = c.Number("max_figure_of_merit", 0.0, 1.0, true, 0.8);
     m.constraints.max_throttle = c.Number("max_throttle", 0.0, 1.0, true, 0.8);

@@ -78,6 +78,14 @@ struct MissionConstraints {
   double max_figure_of_merit = 0.8;
   // Propellers with static data only may fly at advance ratios J = V/(n*D) up to this.
   double max_static_advance_ratio = 0.2;
+  // Full-throttle static thrust of the lift rotors over the weight, at the lowest pack voltage
+  // of the mission with the sag at that current (README "Sizing": ArduPilot's mixer gives up
+  // altitude for attitude below 2, ArduPilot PR #23512). Checked when the mission lifts the
+  // vehicle on its rotors (a hover or climb segment); 0 = not checked.
+  double min_thrust_to_weight = 2.0;
+  // Steady winding temperature in every segment at most this, C (hobby motors' enamel wire of
+  // thermal class 130, IEC 60085, less a 10 K hot-spot allowance); optimization/mission_eval.h.
+  double max_winding_temp_c = 120.0;
 };
 
 enum class ObjectiveType { kMaxEndurance, kMinEnergy, kMaxEfficiency };
@@ -97,6 +105,7 @@ struct Mission {
   std::string name;
   Vehicle vehicle;
   double rho_kg_m3 = 1.225;
+  double air_temperature_c = 15.0;  // ambient of the motors' thermal model (ISA sea level)
   MissionBattery battery;
   MissionConstraints constraints;
   Objective objective;

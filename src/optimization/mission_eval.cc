@@ -8,7 +8,7 @@
 #include "common/error.h"
 #include "common/units.h"
 #include "mission/flight.h"
-#include "optimization/search.h"
+#include "model/physics.h"
 #include "optimization/shaft.h"
 #include "solvers/solver.h"
 
@@ -63,6 +63,17 @@ bool PropSpeedForThrust(const PropModel& prop, double thrust_n, double rho, doub
   return true;
 }
 
+// For the report of a point that creates energy: the efficiency (> 1) of the stage that does,
+// eta_esc = PAC/PDC or eta_motor = Pmech/PAC; when that stage's input is not positive,
+// 1 + output/|output| = 2 (a finite stand-in for "power out of nothing").
+double CreatedEnergyRatio(const OperatingPoint& op) {
+  auto ratio = [](double out_w, double in_w) { return in_w > 0 ? out_w / in_w : 2.0; };
+  double r = 1.0;
+  if (op.pesc_w < 0) r = std::max(r, ratio(op.pac_w, op.pdc_w));
+  if (op.pmech_w > op.pac_w) r = std::max(r, ratio(op.pmech_w, op.pac_w));
+  return r;
+}
+
 // Tracks slacks and violations of one simulation.
 class Tracker {
  public:
@@ -98,10 +109,6 @@ class Tracker {
 
 }  // namespace
 
-double AssumedPropMassKg(double diameter_m) {
-  return 0.014 * std::pow(diameter_m / 0.254, 2.5);
-}
-
 MissionEvaluator::MissionEvaluator(const Mission& mission, const Combination& c,
                                    const PropModel* prop_model)
     : m_(mission),
@@ -126,26 +133,21 @@ MissionEvaluator::MissionEvaluator(const Mission& mission, const Combination& c,
   } else {
     throw DataError("motor '" + c.motor->id + "' has no mass_kg: the mission needs it");
   }
-  double esc_mass = 0;
-  if (c.esc->mass_kg) {
-    esc_mass = *c.esc->mass_kg;
-  } else {
-    // An ESC without a mass: 1 g per A of rating + 5 g (hobby ESCs: 30 A ~ 25-35 g), assumed.
-    const double rating = std::isfinite(c.esc->params.max_current_a) ? c.esc->params.max_current_a : 30.0;
-    esc_mass = 0.005 + 0.001 * rating;
-    assumed_.push_back("ESC " + c.esc->id + ": mass_kg");
-  }
-  double prop_mass = 0;
-  if (c.prop->mass_kg) {
-    prop_mass = *c.prop->mass_kg;
-  } else {
-    prop_mass = AssumedPropMassKg(c.prop->diameter_m);
-    assumed_.push_back("propeller " + c.prop->id + ": mass_kg");
-  }
+  const ComponentMass esc_mass = EscMass(*c.esc);
+  if (esc_mass.assumed) assumed_.push_back("ESC " + c.esc->id + ": mass_kg");
+  const ComponentMass prop_mass = PropMass(*c.prop);
+  if (prop_mass.assumed) assumed_.push_back("propeller " + c.prop->id + ": mass_kg");
   for (const auto& k : c.motor->assumed_keys) assumed_.push_back("motor " + c.motor->id + ": " + k);
   for (const auto& k : c.esc->assumed_keys) assumed_.push_back("ESC " + c.esc->id + ": " + k);
   for (const auto& k : c.prop->assumed_keys) assumed_.push_back("propeller " + c.prop->id + ": " + k);
-  fixed_mass_kg_ = m_.vehicle.mass_kg + n * (motor_mass + esc_mass + prop_mass);
+  fixed_mass_kg_ = m_.vehicle.mass_kg + n * (motor_mass + esc_mass.kg + prop_mass.kg);
+  lift_rotors_ = LiftRotors(m_);
+  if (c.motor->params.rth_k_per_w > 0) {
+    rth_k_per_w_ = c.motor->params.rth_k_per_w;
+  } else {
+    rth_k_per_w_ = AssumedMotorRthKPerW(motor_mass);
+    assumed_.push_back("motor " + c.motor->id + ": rth_k_per_w");
+  }
 }
 
 double MissionEvaluator::BatteryMassKg(double capacity_ah) const {
@@ -199,6 +201,7 @@ MissionResult MissionEvaluator::Run(const ContinuousVars& vars, double stretch_s
     seg.name = s.name;
     seg.type = s.type;
     seg.active_limit_slack = kInf;
+    seg.winding_temp_c = m_.air_temperature_c;
     seg.airspeed_m_s = s.type == SegmentType::kCruise
                            ? (si < vars.airspeed_m_s.size() && vars.airspeed_m_s[si] > 0
                                   ? vars.airspeed_m_s[si]
@@ -256,13 +259,14 @@ MissionResult MissionEvaluator::Run(const ContinuousVars& vars, double stretch_s
       // propellers measure 0.5-0.75, Brandt & Selig 2011) the point fails
       // "prop_figure_of_merit".
       {
-        const double area = 0.25 * kPi * c_.prop->diameter_m * c_.prop->diameter_m;
         // Static-only data evaluated in axial flow (flagged in prop_note) are held to the
         // static bound: they cannot see the climb power, which the note says.
-        const double v_ax = ev.no_forward_flight_data ? 0.0 : 0.5 * load.axial_airspeed_m_s;
-        const double t = load.thrust_per_rotor_n;
-        const double p_ideal = t * (v_ax + std::sqrt(v_ax * v_ax + t / (2.0 * m_.rho_kg_m3 * area)));
-        track.Check("prop_figure_of_merit", s.name, p_ideal / ev.power_w, k.max_figure_of_merit, "", false, &seg);
+        const double v_ax = ev.no_forward_flight_data ? 0.0 : load.axial_airspeed_m_s;
+        // Positive thrust for no power: 1e3, far above any limit (a finite value to print).
+        const double fom = ev.power_w > 0 ? FigureOfMerit(load.thrust_per_rotor_n, ev.power_w, c_.prop->diameter_m,
+                                                          m_.rho_kg_m3, v_ax)
+                                          : (load.thrust_per_rotor_n > 0 ? 1e3 : 0.0);
+        track.Check("prop_figure_of_merit", s.name, fom, k.max_figure_of_merit, "", false, &seg);
       }
       if (c_.prop->max_rpm) {
         track.Check("prop_max_rpm", s.name, RadPerSecToRpm(omega), *c_.prop->max_rpm, "rpm", false, &seg);
@@ -320,6 +324,15 @@ MissionResult MissionEvaluator::Run(const ContinuousVars& vars, double stretch_s
       if (k.enforce_motor_power) track.Check("motor_power", s.name, op.pac_w, mp.max_power_w, "W", false, &seg);
       track.Check("battery_current", s.name, i_batt, pack.max_current_a() * current_factor, "A", false, &seg);
       track.Check("battery_cutoff", s.name, v, cutoff_v, "V", true, &seg);
+      // Physics is the contract: a point where the ESC or the motor puts out more power than
+      // it takes in (model.md section 10; Drive::Flag sets the bit through model/physics.h)
+      // is never feasible, whatever the objective gains from it.
+      const double temp_c = WindingTempC(op);
+      seg.winding_temp_c = std::max(seg.winding_temp_c, temp_c);
+      track.Check("max_winding_temp_c", s.name, temp_c, k.max_winding_temp_c, "C", false, &seg);
+      if (op.limits & kLimitCreatesEnergy) {
+        track.Check("creates_energy", s.name, CreatedEnergyRatio(op), 1.0, "", false, &seg);
+      }
     };
     seg.soc_start = soc;
     OperatingPoint op;
@@ -378,6 +391,16 @@ MissionResult MissionEvaluator::Run(const ContinuousVars& vars, double stretch_s
   }
   r.final_soc = soc;
   track.Check("reserve_soc", "", soc, m_.battery.reserve_soc, "", true);
+  // Thrust-to-weight at full throttle on the lowest pack voltage of the mission (its end: the
+  // SOC only falls) with the sag at that current. Falls as the stretch lengthens (less charge,
+  // lower OCV), so the stretch's slack stays monotone.
+  r.lift_rotors = lift_rotors_;
+  if (k.min_thrust_to_weight > 0 && lift_rotors_ > 0) {
+    FullThrottle ft;
+    const double weight_n = r.total_mass_kg * kStandardGravity;
+    r.thrust_to_weight = FullThrottleAt(pack, soc, &ft) ? lift_rotors_ * ft.thrust_per_rotor_n / weight_n : 0.0;
+    track.Check("min_thrust_to_weight", "", r.thrust_to_weight, k.min_thrust_to_weight, "", true);
+  }
   r.endurance_s = time_s;
   r.energy_wh = energy_j / 3600.0;
   r.feasible = r.min_slack >= 0;
@@ -453,10 +476,12 @@ namespace {
 // Constraints that cannot recover with a larger capacity: the ESC voltage and the frame do not
 // depend on it, and the thrust, propeller speed and PAC = sqrt(27/10)*(Rm*I + KE*omega)*I
 // (eqs 41, 42, 47, 48) depend only on the shaft's speed and torque, which rise with the mass
-// (search.cc, M3). Violated at one capacity, they are violated at every larger one. Throttle
+// (search.cc, M3); so does the winding temperature (its losses kp*Rm*I^2 + KT*Io*omega depend
+// only on them). Violated at one capacity, they are violated at every larger one. Throttle
 // and IDC are not in the list: a larger pack also sags less, which lowers both.
 bool RisesWithMass(const std::string& constraint) {
-  static const char* const kNames[] = {"esc_voltage", "prop_diameter", "thrust", "motor_power", "prop_max_rpm"};
+  static const char* const kNames[] = {"esc_voltage", "prop_diameter", "thrust", "motor_power", "prop_max_rpm",
+                                       "max_winding_temp_c"};
   for (const char* name : kNames) {
     if (constraint == name) return true;
   }
@@ -631,7 +656,10 @@ MissionResult MissionEvaluator::Solve(double cutoff_score, bool explain) const {
   };
   if (free.empty()) {
     MissionResult r = WithEndurance(vars_at(nullptr));
-    if (explain) AddWarnings(&r);
+    if (explain) {
+      Summarize(&r);
+      AddWarnings(&r);
+    }
     return r;
   }
 
@@ -709,14 +737,172 @@ MissionResult MissionEvaluator::Solve(double cutoff_score, bool explain) const {
   for (int i = 0; i < n; ++i) msg << (i ? ", " : "; ") << p.variable_names[i] << " = "
                                   << Num(free[i].lo + std::clamp(xs[i], 0.0, 1.0) * (free[i].hi - free[i].lo), 6);
   r.solver = msg.str();
+  Summarize(&r);
   AddWarnings(&r);
   return r;
 }
 
 MissionResult MissionEvaluator::Simulate(const ContinuousVars& vars) const {
   MissionResult r = WithEndurance(vars);
+  Summarize(&r);
   AddWarnings(&r);
   return r;
+}
+
+double MissionEvaluator::WindingTempC(const OperatingPoint& p) const {
+  constexpr double kAlphaCuPerK = 0.00393;  // copper, at 20-25 C (IEC 60028)
+  constexpr double kRmReferenceC = 25.0;    // datasheet resistance at room temperature (assumed)
+  constexpr double kRunawayTempC = 1000.0;  // "no steady state": far above any limit, finite
+  const MotorParams& mp = c_.motor->params;
+  const double kp = MaxKtPerKe(mp.type);
+  const double i = p.irms_a;
+  const double p_cu_ref = kp * mp.rm_ohm * i * i;              // copper loss at Rm, W
+  const double p_other = std::max(0.0, p.pac_w - p.pmech_w - p_cu_ref);  // no-load loss, W
+  const double t_air = m_.air_temperature_c;
+  // T - t_air = Rth*(p_cu_ref*(1 + a*(T - T_ref)) + p_other), linear in T.
+  const double denom = 1.0 - kAlphaCuPerK * rth_k_per_w_ * p_cu_ref;
+  if (!(denom > 0.0)) return kRunawayTempC;
+  const double rise = rth_k_per_w_ * (p_cu_ref * (1.0 + kAlphaCuPerK * (t_air - kRmReferenceC)) + p_other) / denom;
+  return std::min(t_air + std::max(rise, 0.0), kRunawayTempC);
+}
+
+bool MissionEvaluator::FullThrottleAt(const BatteryPack& pack, double soc, FullThrottle* f) const {
+  const double ocv = pack.OcvV(soc);
+  const double r_pack = pack.ri_ohm();
+  const double rho = m_.rho_kg_m3;
+  // The drive's current rating (no margin): a motor or ESC is not asked for more for long,
+  // whatever the throttle could give.
+  const double i_cap = std::min(c_.motor->params.max_current_a, c_.esc->params.max_current_a);
+  // Illinois regula falsi for the sign change of h on [a, b] (h(a) > 0 > h(b)).
+  auto root = [](const auto& h, double a, double b) {
+    double fa = h(a), fb = h(b);
+    int side = 0;
+    for (int it = 0; it < 100 && b - a > 1e-10 * b; ++it) {
+      double c = (a * fb - b * fa) / (fb - fa);
+      if (!(c > a && c < b)) c = 0.5 * (a + b);
+      const double fc = h(c);
+      if (fc > 0) {
+        a = c; fa = fc;
+        if (side == 1) fb *= 0.5;
+        side = 1;
+      } else {
+        b = c; fb = fc;
+        if (side == -1) fa *= 0.5;
+        side = -1;
+        if (fc == 0) a = c;
+      }
+    }
+    return 0.5 * (a + b);
+  };
+  double v = ocv;
+  OperatingPoint op;
+  PropEvaluation ev;
+  f->current_limited = false;
+  for (int outer = 0; outer < 40; ++outer) {
+    // The speed where the motor's full-throttle torque (falling with speed, eqs 42, 48) meets
+    // the propeller's static torque (rising, M1 of search.cc).
+    const double w_nl = drive_.NoLoadSpeed(v, 1.0);
+    if (!(w_nl > 0.0)) return false;
+    auto g = [&](double w) { return drive_.AtSpeed(v, 1.0, w).torque_nm - prop_.Evaluate(w, rho, 0.0).torque_nm; };
+    if (!(g(0.0) > 0.0) || !(g(w_nl) < 0.0)) return false;
+    double w = root(g, 0.0, w_nl);
+    op = drive_.AtSpeed(v, 1.0, w);
+    f->current_limited = std::max(op.idc_a, op.irms_a) > i_cap;
+    if (f->current_limited) {
+      // Along the propeller's curve the current rises with speed (M1, M2 of search.cc): the
+      // speed where max(IDC, Irms) reaches the rating.
+      auto over = [&](double x) {
+        const OperatingPoint p = drive_.Inverse(v, prop_.Evaluate(x, rho, 0.0).torque_nm, x);
+        return i_cap - std::max(p.idc_a, p.irms_a);
+      };
+      if (over(0.0) > 0.0) w = root(over, 0.0, w);
+      op = drive_.Inverse(v, prop_.Evaluate(w, rho, 0.0).torque_nm, w);
+    }
+    ev = prop_.Evaluate(w, rho, 0.0);
+    // The pack at that power: the upper root of V^2 - OCV*V + R*P = 0 (as in Run); past the
+    // pack's maximum power (no root) the voltage is held at OCV/2, where the power peaks.
+    const double p_w = lift_rotors_ * op.idc_a * v + m_.vehicle.avionics_power_w;
+    const double disc = ocv * ocv - 4.0 * r_pack * p_w;
+    const double next = disc >= 0.0 ? 0.5 * (ocv + std::sqrt(disc)) : 0.5 * ocv;
+    const bool done = std::fabs(next - v) < 1e-9 * ocv;
+    v = next;
+    if (done) break;
+  }
+  const double coax = m_.vehicle.coaxial ? std::cbrt(kCoaxialInducedPowerFactor * kCoaxialInducedPowerFactor) : 1.0;
+  f->thrust_per_rotor_n = ev.thrust_n / coax;  // flight.h: a coaxial rotor's isolated-data equivalent
+  f->pmech_w = op.pmech_w;
+  f->vdc_v = v;
+  f->battery_current_a = lift_rotors_ * op.idc_a + m_.vehicle.avionics_power_w / v;
+  return std::isfinite(f->thrust_per_rotor_n) && f->thrust_per_rotor_n > 0;
+}
+
+bool MissionEvaluator::HoverAt(const BatteryPack& pack, double soc, double mass_kg, OperatingPoint* op,
+                               double* battery_current_a, double* shaft_w) const {
+  Segment hover;
+  hover.type = SegmentType::kHover;
+  hover.rotors_active = lift_rotors_;
+  const RotorLoad load = SegmentRotorLoad(m_, hover, mass_kg, 0.0);
+  const double ocv = pack.OcvV(soc);
+  double omega = 0;
+  PropEvaluation ev;
+  if (!PropSpeedForThrust(prop_, load.thrust_per_rotor_n, m_.rho_kg_m3, 0.0,
+                          4.0 * std::max(drive_.NoLoadSpeed(ocv, 1.0), 1.0), &omega, &ev)) {
+    return false;
+  }
+  double v = ocv;
+  for (int it = 0; it < 40; ++it) {
+    *op = drive_.Inverse(v, ev.torque_nm, omega);
+    const double p_w = lift_rotors_ * op->idc_a * v + m_.vehicle.avionics_power_w;
+    const double disc = ocv * ocv - 4.0 * pack.ri_ohm() * p_w;
+    if (!(disc >= 0.0)) return false;
+    const double next = 0.5 * (ocv + std::sqrt(disc));
+    const bool done = std::fabs(next - v) < 1e-10 * ocv;
+    v = next;
+    if (done) break;
+  }
+  *op = drive_.Inverse(v, ev.torque_nm, omega);
+  *battery_current_a = lift_rotors_ * op->idc_a + m_.vehicle.avionics_power_w / v;
+  *shaft_w = ev.power_w;
+  return true;
+}
+
+void MissionEvaluator::Summarize(MissionResult* r) const {
+  DesignSummary& d = r->summary;
+  d = DesignSummary{};
+  for (const SegmentResult& s : r->segments) d.winding_temp_max_c = std::max(d.winding_temp_max_c, s.winding_temp_c);
+  if (lift_rotors_ <= 0 || r->capacity_ah <= 0 || r->total_mass_kg <= 0) return;
+  const BatteryPack pack(PackAt(r->capacity_ah));
+  constexpr double kMidSoc = 0.5;
+  OperatingPoint hover;
+  double shaft_hover_w = 0;
+  FullThrottle ft;
+  if (!HoverAt(pack, kMidSoc, r->total_mass_kg, &hover, &d.hover_battery_current_a, &shaft_hover_w) ||
+      !FullThrottleAt(pack, kMidSoc, &ft)) {
+    return;
+  }
+  if (r->thrust_to_weight == 0.0) {  // not checked by the mission: report it all the same
+    FullThrottle low;
+    if (FullThrottleAt(pack, r->final_soc, &low)) {
+      r->thrust_to_weight = lift_rotors_ * low.thrust_per_rotor_n / (r->total_mass_kg * kStandardGravity);
+    }
+  }
+  const double q_above_reserve_c = AhToCoulomb(pack.capacity_ah()) * (1.0 - m_.battery.reserve_soc);
+  d.valid = true;
+  d.hover_throttle = hover.throttle;
+  d.hover_endurance_s = q_above_reserve_c / d.hover_battery_current_a;
+  d.full_throttle_battery_current_a = ft.battery_current_a;
+  d.full_throttle_endurance_s = q_above_reserve_c / ft.battery_current_a;
+  d.reserve_hover_s = AhToCoulomb(pack.capacity_ah()) * std::max(0.0, r->final_soc) / d.hover_battery_current_a;
+  d.full_throttle_thrust_n = lift_rotors_ * ft.thrust_per_rotor_n;
+  d.full_throttle_current_limited = ft.current_limited;
+  // Climb at full throttle: momentum theory at the shaft-power ratio (flight.h).
+  Segment hs;
+  hs.type = SegmentType::kHover;
+  hs.rotors_active = lift_rotors_;
+  const double t_hover = SegmentRotorLoad(m_, hs, r->total_mass_kg, 0.0).thrust_per_rotor_n;
+  const double area = 0.25 * kPi * c_.prop->diameter_m * c_.prop->diameter_m;
+  const double v_h = std::sqrt(t_hover / (2.0 * m_.rho_kg_m3 * area));
+  d.max_climb_rate_m_s = shaft_hover_w > 0 ? ClimbRateAtPowerRatio(v_h, ft.pmech_w / shaft_hover_w) : 0.0;
 }
 
 void MissionEvaluator::AddWarnings(MissionResult* r) const {

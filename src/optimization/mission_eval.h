@@ -29,13 +29,10 @@
 #include "catalog/catalog.h"
 #include "mission/mission.h"
 #include "model/drive.h"
+#include "optimization/components.h"
 #include "prop/prop_model.h"
 
 namespace dynosize {
-
-// Propeller mass assumed when the catalog has none: 14 g for a 10-inch hobby propeller
-// (APC 10x4.5 MR: 14 g; datasheet), scaled as D^2.5 (between area and volume scaling).
-double AssumedPropMassKg(double diameter_m);
 
 // The fixed parts of one combination, built once.
 struct Combination {
@@ -77,8 +74,28 @@ struct SegmentResult {
   double eta_average = 0;        // energy-weighted system efficiency (motor + ESC)
   std::string active_limit;      // the tightest constraint ("" if none is within 10 %)
   double active_limit_slack = 0; // its relative slack (negative: violated)
+  // Steady winding temperature at the segment's hottest point (MissionEvaluator::WindingTempC).
+  double winding_temp_c = 0;
   std::string prop_note;         // propeller data held at an edge, if any
   std::string shaft_solver;      // shaft segments: the solver's brief report
+};
+
+// The numbers a designer compares with eCalc, for the mission's total mass on the lift rotors
+// (MissionEvaluator::Summarize): at mid charge (SOC 0.5, a mid-pack voltage like eCalc's
+// nominal one) with the sag at each current; endurances by coulomb counting of the charge
+// above the reserve at that current.
+struct DesignSummary {
+  bool valid = false;               // false: the hover or the full-throttle point has no solution
+  double hover_throttle = 0.0;
+  double hover_battery_current_a = 0.0;
+  double hover_endurance_s = 0.0;   // hovering from full to the reserve
+  double full_throttle_battery_current_a = 0.0;
+  double full_throttle_endurance_s = 0.0;  // at full throttle from full to the reserve
+  double reserve_hover_s = 0.0;     // hover time of the charge left at the mission's end
+  double full_throttle_thrust_n = 0.0;     // all lift rotors, static, at mid charge
+  bool full_throttle_current_limited = false;  // held at the current rating below full throttle
+  double max_climb_rate_m_s = 0.0;  // at full throttle, momentum theory (flight.h)
+  double winding_temp_max_c = 0.0;  // hottest segment
 };
 
 struct MissionResult {
@@ -98,6 +115,13 @@ struct MissionResult {
   std::vector<std::string> warnings;
   std::vector<std::string> assumed;   // "motor x: mass_kg", ...
   std::string solver;                 // continuous solver's brief report ("" when none needed)
+  // Full-throttle static thrust of the lift rotors over the weight at the lowest pack voltage of
+  // the mission (its end) with the sag at that current, held at the current rating of the motor
+  // and ESC (FullThrottleAt); 0 when not computed (screening runs of a mission that does not
+  // check it).
+  double thrust_to_weight = 0.0;
+  int lift_rotors = 0;
+  DesignSummary summary;              // filled by Solve/Simulate (not by screening runs)
   double min_slack = 0.0;             // smallest relative constraint slack (< 0: infeasible)
 };
 
@@ -129,6 +153,15 @@ class MissionEvaluator {
   MissionResult Solve(double cutoff_score = std::numeric_limits<double>::infinity(),
                       bool explain = true) const;
 
+  // Steady winding temperature of the motor at an operating point, C: the winding heats by
+  // its copper loss kp*R(T)*I^2 (eqs 41, 48 with R(T) = Rm*(1 + alpha_Cu*(T - 25 C)), alpha_Cu
+  // = 0.00393/K, Rm stated at 25 C) plus the rest of the motor's loss PAC - Pmech (no-load
+  // loss KT*Io*omega, eq 42) over a thermal resistance to the air: T = T_air + Rth*(P_cu(T) +
+  // P_0), solved in closed form; a winding that cannot reach a steady state (alpha*Rth*P_cu >=
+  // 1) gets kRunawayTempC. Rth is the catalog's rth_k_per_w or AssumedMotorRthKPerW (assumed).
+  double WindingTempC(const OperatingPoint& p) const;
+  double rth_k_per_w() const { return rth_k_per_w_; }
+
   double fixed_mass_kg() const { return fixed_mass_kg_; }  // everything but the battery
   double BatteryMassKg(double capacity_ah) const;
   double entry_capacity_ah() const { return base_capacity_ah_; }
@@ -146,6 +179,20 @@ class MissionEvaluator {
   // The assumed catalog values and the warnings a designer expects (hover throttle over the limit, currents near a rating,
   // ESC saturation, a motor running far below its efficient load, assumed parameters).
   void AddWarnings(MissionResult* r) const;
+  // The lift rotors at full throttle at `soc`, the pack sagging at that current (plus the
+  // avionics): per-rotor static thrust and shaft power, the battery current. Where full throttle
+  // would draw more than the motor's or ESC's current rating (no margin), the point at that
+  // rating instead: thrust a drive cannot hold is not thrust to count on. False when the motor
+  // cannot turn the propeller.
+  struct FullThrottle {
+    double thrust_per_rotor_n = 0, pmech_w = 0, battery_current_a = 0, vdc_v = 0;
+    bool current_limited = false;  // held at the motor's or ESC's current rating below full throttle
+  };
+  bool FullThrottleAt(const BatteryPack& pack, double soc, FullThrottle* f) const;
+  // The hover of the whole vehicle (mass_kg) on the lift rotors at `soc` with sag.
+  bool HoverAt(const BatteryPack& pack, double soc, double mass_kg, OperatingPoint* op,
+               double* battery_current_a, double* shaft_w) const;
+  void Summarize(MissionResult* r) const;
 
   const Mission& m_;
   Combination c_;
@@ -155,6 +202,8 @@ class MissionEvaluator {
   BatteryPackParams pack_base_;
   double base_capacity_ah_ = 0;
   double fixed_mass_kg_ = 0;
+  int lift_rotors_ = 0;    // LiftRotors(mission); thrust-to-weight and the summary use them
+  double rth_k_per_w_ = 0; // the motor's thermal resistance (catalog or assumed)
   std::vector<std::string> assumed_;
 };
 

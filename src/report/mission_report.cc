@@ -61,6 +61,22 @@ Json MissionResultJson(const Mission& m, const Combination& c, const MissionResu
   j["capacity_ah"] = r.capacity_ah;
   j["propulsion_mass_kg"] = r.propulsion_mass_kg;
   j["total_mass_kg"] = r.total_mass_kg;
+  j["lift_rotors"] = r.lift_rotors;
+  j["thrust_to_weight"] = r.thrust_to_weight;
+  if (r.summary.valid) {
+    const DesignSummary& d = r.summary;
+    j["summary"] = {{"hover_throttle", d.hover_throttle},
+                    {"hover_battery_current_a", d.hover_battery_current_a},
+                    {"hover_endurance_s", d.hover_endurance_s},
+                    {"full_throttle_battery_current_a", d.full_throttle_battery_current_a},
+                    {"full_throttle_endurance_s", d.full_throttle_endurance_s},
+                    {"reserve_hover_s", d.reserve_hover_s},
+                    {"full_throttle_thrust_n", d.full_throttle_thrust_n},
+                    {"full_throttle_current_limited", d.full_throttle_current_limited},
+                    {"max_climb_rate_m_s", d.max_climb_rate_m_s},
+                    {"winding_temp_max_c", d.winding_temp_max_c},
+                    {"at", "SOC 0.5 with sag; endurances from full to the reserve SOC"}};
+  }
   Json segs = Json::array();
   for (const SegmentResult& s : r.segments) {
     const OperatingPoint& p = s.point;
@@ -89,6 +105,7 @@ Json MissionResultJson(const Mission& m, const Combination& c, const MissionResu
     g["eta_esc"] = p.eta_esc;
     g["eta_system"] = p.eta_system;
     g["eta_system_average"] = s.eta_average;
+    g["winding_temp_c"] = s.winding_temp_c;
     g["battery_current_a"] = s.battery_current_a;
     g["soc_start"] = s.soc_start;
     g["soc_end"] = s.soc_end;
@@ -124,6 +141,17 @@ std::string MissionResultText(const Mission& m, const Combination& c, const Miss
     << " min, " << Fixed(r.energy_wh, 2) << " Wh, final SOC " << Fixed(100 * r.final_soc, 1)
     << " %; mass " << Fixed(r.total_mass_kg, 3) << " kg (propulsion " << Fixed(r.propulsion_mass_kg, 3)
     << " kg)\n";
+  if (r.summary.valid) {
+    const DesignSummary& d = r.summary;
+    o << "  thrust/weight " << Fixed(r.thrust_to_weight, 2) << " (" << r.lift_rotors
+      << " lift rotors, full throttle at the mission's end); at half charge: hover throttle "
+      << Fixed(100 * d.hover_throttle, 1) << " %, hover " << Fixed(d.hover_endurance_s / 60.0, 1)
+      << " min, full throttle " << Fixed(d.full_throttle_endurance_s / 60.0, 1) << " min ("
+      << Fixed(d.full_throttle_battery_current_a, 1) << " A" << (d.full_throttle_current_limited ? ", at the current rating" : "")
+      << "), climb up to "
+      << Fixed(d.max_climb_rate_m_s, 1) << " m/s; reserve at landing " << Fixed(d.reserve_hover_s / 60.0, 1)
+      << " min of hover; winding up to " << Fixed(d.winding_temp_max_c, 0) << " C\n";
+  }
   o << "  segment (point: end, worst case)   s     rpm  thr %  eff %  torque N*m  Irms A  IDC A   VDC V   PDC W  PESC W  eta_m  eta_e  eta_s  limit\n";
   for (const SegmentResult& s : r.segments) {
     const OperatingPoint& p = s.point;
@@ -139,7 +167,8 @@ std::string MissionResultText(const Mission& m, const Combination& c, const Miss
     o << "      over the segment: VDC " << Fixed(s.vdc_max_v, 2) << " -> " << Fixed(s.vdc_min_v, 2)
       << " V, throttle " << Fixed(100 * s.throttle_min, 1) << "-" << Fixed(100 * s.throttle_max, 1)
       << " %, IDC " << Fixed(s.idc_min_a, 2) << "-" << Fixed(s.idc_max_a, 2) << " A, SOC "
-      << Fixed(100 * s.soc_start, 1) << " -> " << Fixed(100 * s.soc_end, 1) << " %";
+      << Fixed(100 * s.soc_start, 1) << " -> " << Fixed(100 * s.soc_end, 1) << " %, winding "
+      << Fixed(s.winding_temp_c, 0) << " C";
     if (s.type == SegmentType::kCruise) o << ", airspeed " << Fixed(s.airspeed_m_s, 2) << " m/s";
     o << "\n";
   }

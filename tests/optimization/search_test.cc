@@ -15,6 +15,7 @@
 #include "cli_runner.h"
 #include "common/json_file.h"
 #include "optimization/mission_eval.h"
+#include "optimization/small_catalog.h"
 
 namespace dynosize {
 namespace {
@@ -25,6 +26,7 @@ const char* kQuad = R"({
   "name": "test quad",
   "vehicle": {"mass_kg": 0.75, "rotors": 4, "drag_area_m2": 0.04, "drag_coefficient": 1.0, "avionics_power_w": 5},
   "battery": {"id": "dc_b_361", "cells": [3, 4], "reserve_soc": 0.2},
+  "constraints": {"min_thrust_to_weight": 1.1},
   "objective": {"type": "max_endurance", "segment": "loiter"},
   "segments": [
     {"name": "takeoff", "type": "climb", "rate_m_s": 2, "distance_m": 30},
@@ -34,32 +36,10 @@ const char* kQuad = R"({
   ]
 })";
 
-// A small catalog written from entries of the bundled one: feasible and infeasible pairs,
-// one propeller whose data break momentum theory, ESCs that dominate each other.
 class SearchTest : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
-    dir_ = fs::temp_directory_path() / ("dynosize_search_" + std::to_string(getpid()));
-    fs::create_directories(dir_ / "catalog");
-    const Catalog full = Catalog::Load(std::string(DYNOSIZE_SOURCE_DIR) + "/catalog");
-    Json doc;
-    doc["motors"] = Json::array();
-    for (const char* id : {"dc_m_223", "dc_m_1020", "dc_m_1444", "emax_935kv_paper"}) doc["motors"].push_back(full.motor(id).json);
-    int extra = 0;
-    for (const MotorEntry& m : full.motors()) {  // a few more of the right size
-      if (extra < 3 && m.mass_kg && m.kv_rpm_per_v && *m.kv_rpm_per_v > 600 && *m.kv_rpm_per_v < 1000 &&
-          *m.mass_kg > 0.05 && *m.mass_kg < 0.12 && m.id != "dc_m_223" && m.id != "dc_m_1020") {
-        doc["motors"].push_back(m.json);
-        ++extra;
-      }
-    }
-    doc["escs"] = Json::array();
-    for (const char* id : {"dc_e_252", "dc_e_237", "dc_e_56", "multistar_30a_paper"}) doc["escs"].push_back(full.esc(id).json);
-    doc["props"] = Json::array();
-    for (const char* id : {"dc_p_410", "dc_p_372", "dc_p_440", "dc_p_173", "apc_per3_10x45mr", "apc_per3_15x8e"}) doc["props"].push_back(full.prop(id).json);
-    doc["batteries"] = Json::array();
-    doc["batteries"].push_back(full.battery("dc_b_361").json);
-    std::ofstream(dir_ / "catalog" / "small.json") << DumpJson(doc);
+    dir_ = testing_util::WriteSmallCatalog("search");
     std::ofstream(dir_ / "quad.json") << kQuad;
   }
   static void TearDownTestSuite() { fs::remove_all(dir_); }
@@ -160,6 +140,60 @@ TEST_F(SearchTest, MinHoverThrottleEqualsExhaustiveEvaluation) {
   for (const Violation& v : r.violations) named |= v.constraint == "min_hover_throttle";
   EXPECT_TRUE(named);
   EXPECT_GE(CheckAgainstExhaustive(cat, m), 3u);
+}
+
+// Thrust-to-weight at its default (2.0): more mass and more ESC resistance only lower it, so the
+// virtual ESC and ESC dominance (R5) stay bounds; the search must still equal exhaustive
+// evaluation.
+TEST_F(SearchTest, ThrustToWeightEqualsExhaustiveEvaluation) {
+  const Catalog cat = Catalog::Load((dir_ / "catalog").string());
+  Json j = ParseJsonText(kQuad, "quad");
+  j["constraints"].erase("min_thrust_to_weight");
+  const Mission m = ParseMission(j, "quad");
+  ASSERT_EQ(m.constraints.min_thrust_to_weight, 2.0);
+  EXPECT_GE(CheckAgainstExhaustive(cat, m), 1u);
+  for (const bool capacity_range : {true}) {
+    if (capacity_range) j["battery"]["capacity_ah"] = {2.0, 6.0};
+    EXPECT_GE(CheckAgainstExhaustive(cat, ParseMission(j, "quad")), 1u);
+  }
+}
+
+// A thrust-to-weight no combination reaches: the answer is the best combinations without that
+// limit, each marked infeasible with its thrust-to-weight, not an empty list.
+TEST_F(SearchTest, UnreachableThrustToWeightGivesResultsWithTheViolation) {
+  const Catalog cat = Catalog::Load((dir_ / "catalog").string());
+  Json j = ParseJsonText(kQuad, "quad");
+  j["constraints"]["min_thrust_to_weight"] = 40.0;
+  const Mission m = ParseMission(j, "quad");
+  SearchOptions so;
+  so.top_n = 2;
+  const SearchResult s = SearchCatalog(m, cat, so);
+  ASSERT_EQ(s.best.size(), 2u);
+  EXPECT_EQ(s.relaxed_constraint, "min_thrust_to_weight");
+  for (const RankedCombination& b : s.best) {
+    EXPECT_FALSE(b.result.feasible);
+    bool named = false;
+    for (const Violation& v : b.result.violations) {
+      if (v.constraint != "min_thrust_to_weight") continue;
+      named = true;
+      EXPECT_LT(v.value, 40.0);
+      EXPECT_GT(v.value, 0.5);
+      EXPECT_NEAR(v.value, b.result.thrust_to_weight, 0.0);
+    }
+    EXPECT_TRUE(named);
+  }
+  // The same order as the search without the limit.
+  j["constraints"]["min_thrust_to_weight"] = 0.0;
+  const SearchResult free_s = SearchCatalog(ParseMission(j, "quad"), cat, so);
+  ASSERT_EQ(free_s.best.size(), 2u);
+  EXPECT_EQ(Name(free_s.best[0].combination), Name(s.best[0].combination));
+  // The CLI says so in one line and lists them.
+  std::ofstream(dir_ / "tw.json") << DumpJson(ParseJsonText(DumpJson([&] { Json k = j; k["constraints"]["min_thrust_to_weight"] = 40.0; return k; }()), "x"));
+  const auto cli = testing_util::RunCli("optimize " + (dir_ / "tw.json").string() + " --catalog " +
+                                        (dir_ / "catalog").string() + " --top 2");
+  EXPECT_EQ(cli.code, 0) << cli.err;
+  EXPECT_NE(cli.out.find("no combination reaches min_thrust_to_weight"), std::string::npos) << cli.out;
+  EXPECT_NE(cli.out.find("fails min_thrust_to_weight"), std::string::npos) << cli.out;
 }
 
 // The evaluator's early exits are proofs: for every combination, a cutoff just worse than its
