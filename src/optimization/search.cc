@@ -474,8 +474,11 @@ class BranchAndBound {
     // The virtual ESC (and so the class check) uses the mission without min_hover_throttle: a
     // real ESC's resistance and mass raise the throttle, so that lower limit is the one
     // constraint the virtual ESC may fail when a real one passes (R5). Relaxing it keeps the
-    // check a bound.
+    // check a bound. The thrust-to-weight is left out of it too (any relaxation keeps it a
+    // bound): its full-throttle solve costs a third of a simulation, and the few real ESCs
+    // that reach the evaluation check it.
     relaxed_.constraints.min_hover_throttle = 0.0;
+    relaxed_.constraints.min_thrust_to_weight = 0.0;
     std::make_heap(cands_.begin(), cands_.end(), After);
     heap_size_ = cands_.size();
   }
