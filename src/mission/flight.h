@@ -75,15 +75,6 @@ inline int LiftRotors(const Mission& m) {
   return n;
 }
 
-// Momentum-theory climb rate at a shaft power x times the hover power (Leishman, Principles of
-// Helicopter Aerodynamics, 2nd ed., sec. 2.7, axial climb: P/P_h = Vc/(2*v_h) + sqrt((Vc/(2*v_h))^2
-// + 1), solved for Vc): Vc = v_h*(x - 1/x), v_h = sqrt(T/(2*rho*A)) the hover induced velocity.
-// The figure of merit is held and the body drag neglected (both make it an upper estimate).
-inline double ClimbRateAtPowerRatio(double hover_induced_velocity_m_s, double power_ratio) {
-  if (!(power_ratio > 1.0)) return 0.0;
-  return hover_induced_velocity_m_s * (power_ratio - 1.0 / power_ratio);
-}
-
 inline RotorLoad SegmentRotorLoad(const Mission& m, const Segment& s, double total_mass_kg,
                                   double airspeed_m_s) {
   RotorLoad r;

@@ -895,14 +895,28 @@ void MissionEvaluator::Summarize(MissionResult* r) const {
   d.reserve_hover_s = AhToCoulomb(pack.capacity_ah()) * std::max(0.0, r->final_soc) / d.hover_battery_current_a;
   d.full_throttle_thrust_n = lift_rotors_ * ft.thrust_per_rotor_n;
   d.full_throttle_current_limited = ft.current_limited;
-  // Climb at full throttle: momentum theory at the shaft-power ratio (flight.h).
-  Segment hs;
-  hs.type = SegmentType::kHover;
-  hs.rotors_active = lift_rotors_;
-  const double t_hover = SegmentRotorLoad(m_, hs, r->total_mass_kg, 0.0).thrust_per_rotor_n;
-  const double area = 0.25 * kPi * c_.prop->diameter_m * c_.prop->diameter_m;
-  const double v_h = std::sqrt(t_hover / (2.0 * m_.rho_kg_m3 * area));
-  d.max_climb_rate_m_s = shaft_hover_w > 0 ? ClimbRateAtPowerRatio(v_h, ft.pmech_w / shaft_hover_w) : 0.0;
+  // The steepest steady climb at the full-throttle shaft power: momentum theory in axial climb
+  // (physics.h: P_ideal = T*(Vc/2 + sqrt(Vc^2/4 + T/(2*rho*A))), Leishman sec. 2.7) with the
+  // thrust of a climb segment (weight plus body drag at Vc, flight.h) and the hover's figure of
+  // merit held: the rate where P_ideal/FM_hover reaches the available shaft power.
+  Segment climb;
+  climb.type = SegmentType::kClimb;
+  climb.rotors_active = lift_rotors_;
+  const double d_m = c_.prop->diameter_m;
+  climb.climb_rate_m_s = 0.0;
+  const double fom_hover =
+      FigureOfMerit(SegmentRotorLoad(m_, climb, r->total_mass_kg, 0.0).thrust_per_rotor_n, shaft_hover_w, d_m, m_.rho_kg_m3);
+  auto shortfall = [&](double vc) {  // available minus needed shaft power per rotor, W
+    climb.climb_rate_m_s = vc;
+    const RotorLoad ld = SegmentRotorLoad(m_, climb, r->total_mass_kg, 0.0);
+    return ft.pmech_w - IdealRotorPowerW(ld.thrust_per_rotor_n, d_m, m_.rho_kg_m3, vc) / fom_hover;
+  };
+  if (fom_hover > 0 && shortfall(0.0) > 0) {
+    double lo = 0.0, hi = 1.0;
+    while (shortfall(hi) > 0 && hi < 1e3) hi *= 2;
+    for (int i = 0; i < 60; ++i) (shortfall(0.5 * (lo + hi)) > 0 ? lo : hi) = 0.5 * (lo + hi);
+    d.max_climb_rate_m_s = lo;
+  }
 }
 
 void MissionEvaluator::AddWarnings(MissionResult* r) const {

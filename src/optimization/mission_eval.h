@@ -94,7 +94,10 @@ struct DesignSummary {
   double reserve_hover_s = 0.0;     // hover time of the charge left at the mission's end
   double full_throttle_thrust_n = 0.0;     // all lift rotors, static, at mid charge
   bool full_throttle_current_limited = false;  // held at the current rating below full throttle
-  double max_climb_rate_m_s = 0.0;  // at full throttle, momentum theory (flight.h)
+  // The steepest steady vertical climb at the full-throttle shaft power: momentum theory with
+  // the body drag and the hover's figure of merit (Summarize); an estimate (the propeller's
+  // thrust lapse in fast inflow is not modelled).
+  double max_climb_rate_m_s = 0.0;
   double winding_temp_max_c = 0.0;  // hottest segment
 };
 
