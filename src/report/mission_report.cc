@@ -8,7 +8,9 @@
 
 #include "common/text_file.h"
 #include "common/units.h"
+#include "mission/flight.h"
 #include "model/drive.h"
+#include "prop/prop_model.h"
 #include "report/gnuplot.h"
 
 namespace dynosize {
@@ -40,6 +42,11 @@ std::string Fixed(double x, int digits) {
   std::ostringstream o;
   o << std::fixed << std::setprecision(digits) << x;
   return o.str();
+}
+
+// "Name (id)" for a figure title; the id alone when the entry has no name.
+std::string PartName(const EntryBase& e) {
+  return e.name.empty() || e.name == e.id ? e.id : e.name + " (" + e.id + ")";
 }
 
 }  // namespace
@@ -228,6 +235,7 @@ std::vector<std::string> WriteSegmentMaps(const Mission& m, const Combination& c
                                           const MissionResult& r, const std::string& dir) {
   MakeOutputDir(dir);
   const Drive d(c.motor->params, c.esc->params);
+  const PropModel prop(*c.prop);
   std::vector<std::string> paths;
   DataBlock pts{"pts", {}, false};
   {
@@ -277,9 +285,27 @@ std::vector<std::string> WriteSegmentMaps(const Mission& m, const Combination& c
       if (rpm.empty()) { rpm.push_back(kNaN); q.push_back(kNaN); }
       lim.series.push_back({rpm, q});
     }
+    DataBlock load{"load", {}, false};
+    {
+      // The propeller's load line in this segment's inflow: the torque it asks at each speed,
+      // on which the operating point moves as the throttle changes.
+      std::vector<double> rpm, q;
+      if (s.type != SegmentType::kShaft) {
+        const double v_ax = SegmentRotorLoad(m, m.segments[si], r.total_mass_kg, s.airspeed_m_s).axial_airspeed_m_s;
+        for (int j = 1; j <= 60; ++j) {
+          const double w = w_max * j / 60;
+          const double torque = prop.Evaluate(w, m.rho_kg_m3, v_ax).torque_nm;
+          if (torque > q_top) break;
+          rpm.push_back(RadPerSecToRpm(w));
+          q.push_back(torque);
+        }
+      }
+      if (rpm.empty()) { rpm.push_back(kNaN); q.push_back(kNaN); }
+      load.series.push_back({rpm, q});
+    }
     std::ostringstream g;
-    g << "set title \"" << c.motor->id << " + " << c.esc->id << " + " << c.prop->id << ": segment '"
-      << s.name << "' (" << SegmentTypeName(s.type) << ") at VDC = " << Fixed(vdc, 2)
+    g << "set title \"" << PartName(*c.motor) << " + " << PartName(*c.esc) << " + " << PartName(*c.prop)
+      << "\\nsegment '" << s.name << "' (" << SegmentTypeName(s.type) << ") at VDC = " << Fixed(vdc, 2)
       << " V (its end)\" noenhanced\n"
       << "set xlabel 'speed [rpm]'\nset ylabel 'torque [N m]'\nset view map\n"
       << "set palette defined (0 '#2b083b', 0.35 '#3b528b', 0.6 '#21918c', 0.8 '#5ec962', 1 '#fde725')\n"
@@ -293,12 +319,13 @@ std::vector<std::string> WriteSegmentMaps(const Mission& m, const Combination& c
       << "$contours using 1:2 with lines lc rgb 'white' lw 1 title 'contours 40-90 %', "
       << "$lim using 1:2 with lines lw 2 dt 2 lc rgb 'black' title 'throttle limit "
       << Fixed(100 * m.constraints.max_throttle, 0) << " %', "
+      << "$load using 1:2 with lines lw 2 lc rgb '#ff7f0e' title 'propeller load line', "
       << "$pts using 1:2 with points pt 6 ps 2 lw 2 lc rgb 'white' title 'all segments', "
       << "$me using 1:2 with points pt 7 ps 2.5 lc rgb 'red' title 'this segment'\n";
     std::string safe = s.name;
     for (char& ch : safe) if (!std::isalnum(static_cast<unsigned char>(ch))) ch = '_';
     const std::string path = dir + "/efficiency_map_" + safe + ".png";
-    RenderPng(path, {map, me, lim, pts}, g.str(), 1000, 800);
+    RenderPng(path, {map, me, lim, load, pts}, g.str(), 1000, 800);
     paths.push_back(path);
   }
   return paths;
