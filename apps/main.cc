@@ -166,9 +166,10 @@ int main(int argc, char** argv) {
       "evaluate", "one motor/ESC/propeller/battery combination flying a mission: operating point "
                   "per segment, battery state, objective, limits");
   evaluate->add_option("mission", eval.mission, "mission JSON file")->required();
-  evaluate->add_option("--motor", eval.motor_id, "motor id")->required();
-  evaluate->add_option("--esc", eval.esc_id, "ESC id")->required();
-  evaluate->add_option("--prop", eval.prop_id, "propeller id")->required();
+  evaluate->add_option("--motor", eval.motor_id, "motor id (one group)");
+  evaluate->add_option("--esc", eval.esc_id, "ESC id (one group)");
+  evaluate->add_option("--prop", eval.prop_id, "propeller id (one group)");
+  evaluate->add_option("--pick", eval.picks, "GROUP=MOTOR,ESC,PROP: a propulsion group's parts (repeatable)");
   evaluate->add_option("--battery", eval.battery_id, "battery (cell) id")->required();
   evaluate->add_option("--cells", eval.cells, "cells in series (default: the mission's, if fixed)")
       ->check(CLI::Range(1, 64));

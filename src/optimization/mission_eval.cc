@@ -109,13 +109,27 @@ class Tracker {
 
 }  // namespace
 
+GroupParts FixedGroupParts(const Mission& m, const Catalog& cat, int g) {
+  if (m.groups.empty() || !m.groups[g].fixed()) return {};
+  const PropulsionGroup& grp = m.groups[g];
+  auto look = [&](const char* key, const std::string& id, auto lookup) {
+    try {
+      return lookup(id);
+    } catch (const Error& e) {
+      throw DataError(m.file + ": $.propulsion." + grp.name + "." + key + ": \"" + id +
+                      "\": not in the catalog (" + e.what() + ")");
+    }
+  };
+  GroupParts p;
+  p.motor = look("motor", grp.motor_id, [&](const std::string& id) { return &cat.motor(id); });
+  p.esc = look("esc", grp.esc_id, [&](const std::string& id) { return &cat.esc(id); });
+  p.prop = look("prop", grp.prop_id, [&](const std::string& id) { return &cat.prop(id); });
+  return p;
+}
+
 MissionEvaluator::MissionEvaluator(const Mission& mission, const Combination& c,
                                    const PropModel* prop_model)
-    : m_(mission),
-      c_(c),
-      drive_(c.motor->params, c.esc->params),
-      owned_prop_(prop_model ? nullptr : std::make_unique<PropModel>(*c.prop)),
-      prop_(prop_model ? *prop_model : *owned_prop_) {
+    : m_(mission), c_(c) {
   const BatteryEntry& b = *c.battery;
   if (c.cells < 1 || c.cells % b.cells_series != 0) {
     throw UsageError("battery '" + b.id + "' has " + std::to_string(b.cells_series) +
@@ -126,28 +140,43 @@ MissionEvaluator::MissionEvaluator(const Mission& mission, const Combination& c,
   base_capacity_ah_ = pack_base_.cell_capacity_ah * pack_base_.n_parallel;
   for (const auto& k : pack_base_.assumed) assumed_.push_back("battery " + b.id + ": " + k);
   if (!b.mass_kg) throw DataError("battery '" + b.id + "' has no mass_kg: the mission needs it");
-  const int n = m_.vehicle.rotors;
-  double motor_mass = 0;
-  if (c.motor->mass_kg) {
-    motor_mass = *c.motor->mass_kg;
-  } else {
-    throw DataError("motor '" + c.motor->id + "' has no mass_kg: the mission needs it");
+  if (!c.groups.empty() && static_cast<int>(c.groups.size()) != GroupCount(m_)) {
+    throw UsageError("the combination has parts for " + std::to_string(c.groups.size()) +
+                     " propulsion groups; the mission has " + std::to_string(GroupCount(m_)));
   }
-  const ComponentMass esc_mass = EscMass(*c.esc);
-  if (esc_mass.assumed) assumed_.push_back("ESC " + c.esc->id + ": mass_kg");
-  const ComponentMass prop_mass = PropMass(*c.prop);
-  if (prop_mass.assumed) assumed_.push_back("propeller " + c.prop->id + ": mass_kg");
-  for (const auto& k : c.motor->assumed_keys) assumed_.push_back("motor " + c.motor->id + ": " + k);
-  for (const auto& k : c.esc->assumed_keys) assumed_.push_back("ESC " + c.esc->id + ": " + k);
-  for (const auto& k : c.prop->assumed_keys) assumed_.push_back("propeller " + c.prop->id + ": " + k);
-  fixed_mass_kg_ = m_.vehicle.mass_kg + n * (motor_mass + esc_mass.kg + prop_mass.kg);
+  fixed_mass_kg_ = m_.vehicle.mass_kg;
+  for (int g = 0; g < GroupCount(m_); ++g) {
+    const GroupParts parts = c.Parts(g);
+    if (!parts.motor || !parts.esc || !parts.prop) {
+      throw UsageError("propulsion group '" + GroupName(m_, g) + "' has no motor, ESC or propeller");
+    }
+    // The PropModel shared by the search serves the group of c.prop.
+    const bool shared = prop_model && parts.prop == c.prop;
+    groups_.push_back(GroupDrive{parts, Drive(parts.motor->params, parts.esc->params),
+                                 shared ? nullptr : std::make_unique<PropModel>(*parts.prop), nullptr, 0.0});
+    GroupDrive& gd = groups_.back();
+    gd.prop = shared ? prop_model : gd.owned_prop.get();
+    if (!parts.motor->mass_kg) {
+      throw DataError("motor '" + parts.motor->id + "' has no mass_kg: the mission needs it");
+    }
+    const double motor_mass = *parts.motor->mass_kg;
+    const ComponentMass esc_mass = EscMass(*parts.esc);
+    if (esc_mass.assumed) assumed_.push_back("ESC " + parts.esc->id + ": mass_kg");
+    const ComponentMass prop_mass = PropMass(*parts.prop);
+    if (prop_mass.assumed) assumed_.push_back("propeller " + parts.prop->id + ": mass_kg");
+    for (const auto& k : parts.motor->assumed_keys) assumed_.push_back("motor " + parts.motor->id + ": " + k);
+    for (const auto& k : parts.esc->assumed_keys) assumed_.push_back("ESC " + parts.esc->id + ": " + k);
+    for (const auto& k : parts.prop->assumed_keys) assumed_.push_back("propeller " + parts.prop->id + ": " + k);
+    fixed_mass_kg_ += GroupRotors(m_, g) * (motor_mass + esc_mass.kg + prop_mass.kg);
+    if (parts.motor->params.rth_k_per_w > 0) {
+      gd.rth_k_per_w = parts.motor->params.rth_k_per_w;
+    } else {
+      gd.rth_k_per_w = AssumedMotorRthKPerW(motor_mass);
+      assumed_.push_back("motor " + parts.motor->id + ": rth_k_per_w");
+    }
+  }
   lift_rotors_ = LiftRotors(m_);
-  if (c.motor->params.rth_k_per_w > 0) {
-    rth_k_per_w_ = c.motor->params.rth_k_per_w;
-  } else {
-    rth_k_per_w_ = AssumedMotorRthKPerW(motor_mass);
-    assumed_.push_back("motor " + c.motor->id + ": rth_k_per_w");
-  }
+  lift_group_ = std::max(0, LiftGroup(m_));
 }
 
 double MissionEvaluator::BatteryMassKg(double capacity_ah) const {
@@ -185,19 +214,25 @@ MissionResult MissionEvaluator::Run(const ContinuousVars& vars, double stretch_s
   const double v_full = pack.OcvV(1.0);
   const double q_c = AhToCoulomb(pack.capacity_ah());
   const double current_factor = 1.0 - k.current_margin;
-  const MotorParams& mp = c_.motor->params;
-  const EscParams& ep = c_.esc->params;
-  track.Check("esc_voltage", "", v_full, ep.vdc_max_v, "V");
-  if (m_.vehicle.max_prop_diameter_m) {
-    track.Check("prop_diameter", "", c_.prop->diameter_m, *m_.vehicle.max_prop_diameter_m, "m");
+  for (int g = 0; g < static_cast<int>(groups_.size()); ++g) {
+    track.Check("esc_voltage", "", v_full, groups_[g].parts.esc->params.vdc_max_v, "V");
+    if (const auto d_max = GroupMaxPropDiameterM(m_, g)) {
+      track.Check("prop_diameter", "", groups_[g].parts.prop->diameter_m, *d_max, "m");
+    }
   }
-  const double w_motor_max = std::max(drive_.NoLoadSpeed(v_full, 1.0), 1.0);
 
   double soc = 1.0;
   double time_s = 0, energy_j = 0;
   for (std::size_t si = 0; si < m_.segments.size(); ++si) {
     const Segment& s = m_.segments[si];
+    const GroupDrive& gd = groups_[s.group];
+    const Drive& drive = gd.drive;
+    const PropModel& prop = *gd.prop;
+    const MotorParams& mp = gd.parts.motor->params;
+    const EscParams& ep = gd.parts.esc->params;
+    const double w_motor_max = std::max(drive.NoLoadSpeed(v_full, 1.0), 1.0);
     SegmentResult seg;
+    seg.group = s.group;
     seg.name = s.name;
     seg.type = s.type;
     seg.active_limit_slack = kInf;
@@ -211,7 +246,7 @@ MissionResult MissionEvaluator::Run(const ContinuousVars& vars, double stretch_s
                            static_cast<int>(si) == m_.objective.segment_index;
     seg.duration_s = stretched ? stretch_s : SegmentDurationS(s, seg.airspeed_m_s);
     const RotorLoad load = SegmentRotorLoad(m_, s, r.total_mass_kg, seg.airspeed_m_s);
-    seg.rotors = s.type == SegmentType::kShaft ? m_.vehicle.rotors : load.rotors;
+    seg.rotors = load.rotors;
     seg.thrust_per_rotor_n = s.type == SegmentType::kShaft ? 0.0 : load.thrust_per_rotor_n;
     seg.tilt_deg = load.tilt_rad * 180.0 / kPi;
     double omega = 0, torque = 0;
@@ -224,17 +259,17 @@ MissionResult MissionEvaluator::Run(const ContinuousVars& vars, double stretch_s
       q.max_throttle = std::min(k.max_throttle, k.allow_esc_saturation ? 1.0 : ep.tr_sat);
       const double lim = std::min(mp.max_current_a, ep.max_current_a) * current_factor;
       q.max_current_a = std::isfinite(lim) ? lim : 1e300;
-      const ShaftSolution sol = SolveShaftSpeed(drive_, q, "ipopt");
+      const ShaftSolution sol = SolveShaftSpeed(drive, q, "ipopt");
       omega = sol.omega_rad_s;
       torque = sol.point.torque_nm;
       seg.shaft_solver = sol.algorithm + ": " + sol.message;
     } else {
       PropEvaluation ev;
       const double w_hi = 4.0 * w_motor_max;
-      if (!PropSpeedForThrust(prop_, load.thrust_per_rotor_n, m_.rho_kg_m3,
+      if (!PropSpeedForThrust(prop, load.thrust_per_rotor_n, m_.rho_kg_m3,
                               load.axial_airspeed_m_s, w_hi, &omega, &ev)) {
         // Even four times the motor's no-load speed does not give the thrust.
-        const PropEvaluation at_nl = prop_.Evaluate(w_motor_max, m_.rho_kg_m3, load.axial_airspeed_m_s);
+        const PropEvaluation at_nl = prop.Evaluate(w_motor_max, m_.rho_kg_m3, load.axial_airspeed_m_s);
         track.Check("thrust", s.name, load.thrust_per_rotor_n, at_nl.thrust_n, "N", false, &seg);
         r.feasible = false;
         r.segments.push_back(seg);
@@ -263,18 +298,18 @@ MissionResult MissionEvaluator::Run(const ContinuousVars& vars, double stretch_s
         // static bound: they cannot see the climb power, which the note says.
         const double v_ax = ev.no_forward_flight_data ? 0.0 : load.axial_airspeed_m_s;
         // Positive thrust for no power: 1e3, far above any limit (a finite value to print).
-        const double fom = ev.power_w > 0 ? FigureOfMerit(load.thrust_per_rotor_n, ev.power_w, c_.prop->diameter_m,
+        const double fom = ev.power_w > 0 ? FigureOfMerit(load.thrust_per_rotor_n, ev.power_w, gd.parts.prop->diameter_m,
                                                           m_.rho_kg_m3, v_ax)
                                           : (load.thrust_per_rotor_n > 0 ? 1e3 : 0.0);
         track.Check("prop_figure_of_merit", s.name, fom, k.max_figure_of_merit, "", false, &seg);
       }
-      if (c_.prop->max_rpm) {
-        track.Check("prop_max_rpm", s.name, RadPerSecToRpm(omega), *c_.prop->max_rpm, "rpm", false, &seg);
+      if (gd.parts.prop->max_rpm) {
+        track.Check("prop_max_rpm", s.name, RadPerSecToRpm(omega), *gd.parts.prop->max_rpm, "rpm", false, &seg);
       }
       if (s.type == SegmentType::kHover && k.min_hover_throttle > 0) {
         // At the full-charge voltage without sag: the lowest throttle this hover can need, and
         // the same at every moment of the mission (so the stretch stays monotone).
-        const OperatingPoint full = drive_.Inverse(v_full, torque, omega);
+        const OperatingPoint full = drive.Inverse(v_full, torque, omega);
         track.Check("min_hover_throttle", s.name, full.throttle, k.min_hover_throttle, "", true, &seg);
       }
     }
@@ -295,7 +330,7 @@ MissionResult MissionEvaluator::Run(const ContinuousVars& vars, double stretch_s
       // Warm start from the previous instant's sag (the current changes little in a segment).
       double vv = last_sag_v > 0 && last_sag_v < 0.5 * ocv ? ocv - last_sag_v : ocv;
       for (int it = 0; it < 30; ++it) {
-        *op = drive_.Inverse(vv, torque, omega);
+        *op = drive.Inverse(vv, torque, omega);
         const double p_w = n_active * op->idc_a * vv + m_.vehicle.avionics_power_w;
         const double disc = ocv * ocv - 4.0 * r_pack * p_w;
         demanded_w = p_w;
@@ -306,7 +341,7 @@ MissionResult MissionEvaluator::Run(const ContinuousVars& vars, double stretch_s
         const bool done = std::fabs(next - vv) < 1e-10 * ocv;
         vv = next;
         if (done) {
-          *op = drive_.Inverse(vv, torque, omega);
+          *op = drive.Inverse(vv, torque, omega);
           break;
         }
       }
@@ -327,7 +362,7 @@ MissionResult MissionEvaluator::Run(const ContinuousVars& vars, double stretch_s
       // Physics is the contract: a point where the ESC or the motor puts out more power than
       // it takes in (model.md section 10; Drive::Flag sets the bit through model/physics.h)
       // is never feasible, whatever the objective gains from it.
-      const double temp_c = WindingTempC(op);
+      const double temp_c = WindingTempC(op, s.group);
       seg.winding_temp_c = std::max(seg.winding_temp_c, temp_c);
       track.Check("max_winding_temp_c", s.name, temp_c, k.max_winding_temp_c, "C", false, &seg);
       if (op.limits & kLimitCreatesEnergy) {
@@ -517,7 +552,10 @@ double MissionEvaluator::EnduranceUpperBound(double target_s) const {
   const double c_lo = m_.battery.capacity_ah ? m_.battery.capacity_ah->lo : base_capacity_ah_;
   const double c_hi = m_.battery.capacity_ah ? m_.battery.capacity_ah->hi : base_capacity_ah_;
   const double ocv_integral_v = OcvIntegralUpperBound(BatteryPack(PackAt(c_lo)), m_.battery.reserve_soc);
-  const bool energy_fixed = c_.esc->params.c0 == 0.0 && c_.esc->params.rsupply_ohm == 0.0;
+  bool energy_fixed = true;
+  for (const GroupDrive& g : groups_) {
+    energy_fixed &= g.parts.esc->params.c0 == 0.0 && g.parts.esc->params.rsupply_ohm == 0.0;
+  }
   int runs = 0;
   double infeasible_from = kInf;  // every capacity from here up breaks a RisesWithMass constraint
   struct Piece { double ca, cb, p_ca, e_other_ca; };
@@ -598,7 +636,7 @@ MissionResult MissionEvaluator::Solve(double cutoff_score, bool explain) const {
     }
   }
   if (std::isfinite(cutoff_score) && m_.objective.type == ObjectiveType::kMinEnergy &&
-      !capacity_free && c_.esc->params.c0 == 0.0) {
+      !capacity_free && std::all_of(groups_.begin(), groups_.end(), [](const GroupDrive& g) { return g.parts.esc->params.c0 == 0.0; })) {
     // min_energy with free cruise airspeeds: every other segment's energy does not depend on
     // them (terminal power N*PDC + P_avionics, and PDC = C1*U*I/kv does not depend on the
     // voltage when C0 = 0, eqs 57, 59), and a wing-borne cruise needs at least the propulsive
@@ -749,11 +787,12 @@ MissionResult MissionEvaluator::Simulate(const ContinuousVars& vars) const {
   return r;
 }
 
-double MissionEvaluator::WindingTempC(const OperatingPoint& p) const {
+double MissionEvaluator::WindingTempC(const OperatingPoint& p, int group) const {
   constexpr double kAlphaCuPerK = 0.00393;  // copper, at 20-25 C (IEC 60028)
   constexpr double kRmReferenceC = 25.0;    // datasheet resistance at room temperature (assumed)
   constexpr double kRunawayTempC = 1000.0;  // "no steady state": far above any limit, finite
-  const MotorParams& mp = c_.motor->params;
+  const MotorParams& mp = groups_[group].parts.motor->params;
+  const double rth_k_per_w_ = groups_[group].rth_k_per_w;
   const double kp = MaxKtPerKe(mp.type);
   const double i = p.irms_a;
   const double p_cu_ref = kp * mp.rm_ohm * i * i;              // copper loss at Rm, W
@@ -772,7 +811,10 @@ bool MissionEvaluator::FullThrottleAt(const BatteryPack& pack, double soc, FullT
   const double rho = m_.rho_kg_m3;
   // The drive's current rating (no margin): a motor or ESC is not asked for more for long,
   // whatever the throttle could give.
-  const double i_cap = std::min(c_.motor->params.max_current_a, c_.esc->params.max_current_a);
+  const GroupDrive& gd = groups_[lift_group_];
+  const Drive& drive_ = gd.drive;
+  const PropModel& prop_ = *gd.prop;
+  const double i_cap = std::min(gd.parts.motor->params.max_current_a, gd.parts.esc->params.max_current_a);
   // Illinois regula falsi for the sign change of h on [a, b] (h(a) > 0 > h(b)).
   auto root = [](const auto& h, double a, double b) {
     double fa = h(a), fb = h(b);
@@ -838,8 +880,11 @@ bool MissionEvaluator::FullThrottleAt(const BatteryPack& pack, double soc, FullT
 
 bool MissionEvaluator::HoverAt(const BatteryPack& pack, double soc, double mass_kg, OperatingPoint* op,
                                double* battery_current_a, double* shaft_w) const {
+  const Drive& drive_ = groups_[lift_group_].drive;
+  const PropModel& prop_ = *groups_[lift_group_].prop;
   Segment hover;
   hover.type = SegmentType::kHover;
+  hover.group = lift_group_;
   hover.rotors_active = lift_rotors_;
   const RotorLoad load = SegmentRotorLoad(m_, hover, mass_kg, 0.0);
   const double ocv = pack.OcvV(soc);
@@ -901,8 +946,9 @@ void MissionEvaluator::Summarize(MissionResult* r) const {
   // merit held: the rate where P_ideal/FM_hover reaches the available shaft power.
   Segment climb;
   climb.type = SegmentType::kClimb;
+  climb.group = lift_group_;
   climb.rotors_active = lift_rotors_;
-  const double d_m = c_.prop->diameter_m;
+  const double d_m = groups_[lift_group_].parts.prop->diameter_m;
   climb.climb_rate_m_s = 0.0;
   const double fom_hover =
       FigureOfMerit(SegmentRotorLoad(m_, climb, r->total_mass_kg, 0.0).thrust_per_rotor_n, shaft_hover_w, d_m, m_.rho_kg_m3);
@@ -921,9 +967,6 @@ void MissionEvaluator::Summarize(MissionResult* r) const {
 
 void MissionEvaluator::AddWarnings(MissionResult* r) const {
   r->assumed = assumed_;
-  const MissionConstraints& k = m_.constraints;
-  const MotorParams& mp = c_.motor->params;
-  const EscParams& ep = c_.esc->params;
   for (const Violation& v : r->violations) {
     if (v.constraint == "max_throttle") {
       r->warnings.push_back("segment '" + v.segment + "': throttle " + Num(100 * v.value, 3) +
@@ -932,6 +975,10 @@ void MissionEvaluator::AddWarnings(MissionResult* r) const {
     }
   }
   for (const SegmentResult& s : r->segments) {
+    const GroupDrive& gd = groups_[s.group];
+    const MotorParams& mp = gd.parts.motor->params;
+    const EscParams& ep = gd.parts.esc->params;
+    const Drive& drive_ = gd.drive;
     const OperatingPoint& p = s.point;
     const double i = std::max(p.idc_a, p.irms_a);
     auto near = [&](const char* what, double rating) {
@@ -970,13 +1017,15 @@ void MissionEvaluator::AddWarnings(MissionResult* r) const {
       r->warnings.push_back("segment '" + s.name + "': propeller data held at an edge: " + s.prop_note);
     }
   }
-  (void)k;
-  if (!std::isfinite(mp.max_current_a) && !std::isfinite(mp.max_power_w)) {
-    r->warnings.push_back("motor " + c_.motor->id + " has no current or power rating in the "
-                          "catalog: its load could not be checked (the search may favour it)");
-  }
-  if (!std::isfinite(ep.max_current_a)) {
-    r->warnings.push_back("ESC " + c_.esc->id + " has no current rating: its current was not checked");
+  for (const GroupDrive& gd : groups_) {
+    const MotorParams& mp = gd.parts.motor->params;
+    if (!std::isfinite(mp.max_current_a) && !std::isfinite(mp.max_power_w)) {
+      r->warnings.push_back("motor " + gd.parts.motor->id + " has no current or power rating in the "
+                            "catalog: its load could not be checked (the search may favour it)");
+    }
+    if (!std::isfinite(gd.parts.esc->params.max_current_a)) {
+      r->warnings.push_back("ESC " + gd.parts.esc->id + " has no current rating: its current was not checked");
+    }
   }
   if (!r->assumed.empty()) {
     std::string a;

@@ -34,6 +34,18 @@
 
 namespace dynosize {
 
+// The parts of one propulsion group.
+struct GroupParts {
+  const MotorEntry* motor = nullptr;
+  const EscEntry* esc = nullptr;
+  const PropEntry* prop = nullptr;
+};
+
+// The parts a mission fixes for group g ("motor", "esc", "prop" of its "propulsion" entry), looked
+// up in the catalog; all null for a searched group. DataError naming the JSON path and the id
+// when one is not in the catalog.
+GroupParts FixedGroupParts(const Mission& m, const Catalog& cat, int g);
+
 // The fixed parts of one combination, built once.
 struct Combination {
   const MotorEntry* motor = nullptr;
@@ -41,6 +53,11 @@ struct Combination {
   const PropEntry* prop = nullptr;
   const BatteryEntry* battery = nullptr;
   int cells = 0;  // cells in series
+  // With propulsion groups (Mission::groups): every group's parts, by group index; motor, esc
+  // and prop above are then those of the group the search chooses (for its bookkeeping).
+  // Empty: motor, esc and prop fly every segment (the one implicit group).
+  std::vector<GroupParts> groups;
+  GroupParts Parts(int g) const { return groups.empty() ? GroupParts{motor, esc, prop} : groups[g]; }
 };
 
 // A constraint that fails: where, value, limit and by how much (value - limit, in its unit).
@@ -57,6 +74,7 @@ struct Violation {
 
 struct SegmentResult {
   std::string name;
+  int group = 0;  // the propulsion group that flies it (Mission::groups)
   SegmentType type = SegmentType::kHover;
   double duration_s = 0.0;
   double airspeed_m_s = 0.0;
@@ -162,8 +180,8 @@ class MissionEvaluator {
   // loss KT*Io*omega, eq 42) over a thermal resistance to the air: T = T_air + Rth*(P_cu(T) +
   // P_0), solved in closed form; a winding that cannot reach a steady state (alpha*Rth*P_cu >=
   // 1) gets kRunawayTempC. Rth is the catalog's rth_k_per_w or AssumedMotorRthKPerW (assumed).
-  double WindingTempC(const OperatingPoint& p) const;
-  double rth_k_per_w() const { return rth_k_per_w_; }
+  double WindingTempC(const OperatingPoint& p, int group = 0) const;
+  double rth_k_per_w(int group = 0) const { return groups_[group].rth_k_per_w; }
 
   double fixed_mass_kg() const { return fixed_mass_kg_; }  // everything but the battery
   double BatteryMassKg(double capacity_ah) const;
@@ -197,16 +215,23 @@ class MissionEvaluator {
                double* battery_current_a, double* shaft_w) const;
   void Summarize(MissionResult* r) const;
 
+  // One propulsion group's drive, propeller model and thermal resistance.
+  struct GroupDrive {
+    GroupParts parts;
+    Drive drive;
+    std::unique_ptr<PropModel> owned_prop;
+    const PropModel* prop = nullptr;
+    double rth_k_per_w = 0;  // catalog or assumed (AssumedMotorRthKPerW)
+  };
+
   const Mission& m_;
   Combination c_;
-  Drive drive_;
-  std::unique_ptr<PropModel> owned_prop_;
-  const PropModel& prop_;
+  std::vector<GroupDrive> groups_;  // by group index (one without Mission::groups)
+  int lift_group_ = 0;              // LiftGroup(mission), 0 when none
   BatteryPackParams pack_base_;
   double base_capacity_ah_ = 0;
   double fixed_mass_kg_ = 0;
   int lift_rotors_ = 0;    // LiftRotors(mission); thrust-to-weight and the summary use them
-  double rth_k_per_w_ = 0; // the motor's thermal resistance (catalog or assumed)
   std::vector<std::string> assumed_;
 };
 

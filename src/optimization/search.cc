@@ -222,17 +222,25 @@ struct MissionFacts {
   double t_fixed_max = 0;  // the fixed segments' longest total duration (R4)
   bool stretch_is_hover = false;
   double tr_limit = 1.0;
+  int free_group = 0;
 };
 
-MissionFacts FactsOf(const Mission& m) {
+// Groups (G1): the rules below speak of the free group's segments only; a segment of a fixed
+// group draws at least P_avionics (its drive's power is >= 0), and every group's mass is in
+// mass_lb and mass_ub, so each bound stays a bound.
+MissionFacts FactsOf(const Mission& m, int free_group) {
   MissionFacts f;
   for (std::size_t i = 0; i < m.segments.size(); ++i) {
-    if (m.segments[i].type == SegmentType::kHover) f.hover.push_back(static_cast<int>(i));
+    if (m.segments[i].type == SegmentType::kHover && m.segments[i].group == free_group) {
+      f.hover.push_back(static_cast<int>(i));
+    }
   }
   f.t_fixed_max = LongestFixedDurationS(m);
   f.stretch_is_hover = m.objective.type == ObjectiveType::kMaxEndurance &&
-                       m.segments[m.objective.segment_index].type == SegmentType::kHover;
+                       m.segments[m.objective.segment_index].type == SegmentType::kHover &&
+                       m.segments[m.objective.segment_index].group == free_group;
   f.tr_limit = std::min(m.constraints.max_throttle, 1.0);
+  f.free_group = free_group;
   return f;
 }
 
@@ -253,6 +261,7 @@ double ScoreLowerBound(const SearchContext& ctx, const MissionFacts& f, const Mo
   const bool static_only = model.data_kind() != PropDataKind::kTables || prop.j_tables.empty();
   auto p_lb_of = [&](std::size_t si) {
     const Segment& sg = m.segments[si];
+    if (sg.group != f.free_group) return m.vehicle.avionics_power_w;  // G1
     const bool fixed_v = sg.type != SegmentType::kCruise || !sg.airspeed_m_s.free();
     if (sg.type == SegmentType::kHover ||
         (static_only && fixed_v && (sg.type == SegmentType::kClimb || sg.type == SegmentType::kCruise))) {
@@ -280,7 +289,7 @@ double ScoreLowerBound(const SearchContext& ctx, const MissionFacts& f, const Mo
       const Segment& sg = m.segments[si];
       double e_seg = p_lb_of(si) * t_min_of(sg);
       const bool fixed_v = sg.type != SegmentType::kCruise || !sg.airspeed_m_s.free() || sg.lift_to_drag > 0;
-      if (lossy && sg.type != SegmentType::kShaft && fixed_v &&
+      if (lossy && sg.group == f.free_group && sg.type != SegmentType::kShaft && fixed_v &&
           (sg.type != SegmentType::kCruise || sg.lift_to_drag > 0)) {
         const double v = sg.type == SegmentType::kCruise ? sg.airspeed_m_s.hi : 0.0;
         const RotorLoad ld = SegmentRotorLoad(m, sg, mass_lb, v);
@@ -317,7 +326,8 @@ const char* PropRule(const SearchContext& ctx, const MissionFacts& f, const Moto
   const PropEntry& prop = ctx.catalog->props()[pi];
   const PropGrid& g = ctx.grids[pi];
   const BatteryOption& bo = ctx.options[o];
-  if (m.vehicle.max_prop_diameter_m && prop.diameter_m > *m.vehicle.max_prop_diameter_m) return "prop_diameter";  // R0
+  const std::optional<double> d_max = GroupMaxPropDiameterM(m, f.free_group);
+  if (d_max && prop.diameter_m > *d_max) return "prop_diameter";  // R0
   int lb_idx = 0;  // grid index of omega_lb
   *omega_lb = 0;
   *q_lb = 0;
@@ -335,8 +345,8 @@ const char* PropRule(const SearchContext& ctx, const MissionFacts& f, const Moto
     // merit > the mission's limit) on that whole bracket, every hover point fails
     // prop_figure_of_merit (mission_eval.cc). The 2 % allowance covers the variation between
     // grid points.
-    const double mass_ub = m.vehicle.mass_kg + bo.mass_hi_kg +
-                           m.vehicle.rotors * (*mo.mass_kg + g.mass_kg + ctx.escs.max_mass_kg[o]);
+    const double mass_ub = m.vehicle.mass_kg + bo.mass_hi_kg + ctx.fixed_groups_mass_kg +
+                           ctx.free_rotors * (*mo.mass_kg + g.mass_kg + ctx.escs.max_mass_kg[o]);
     const RotorLoad load_ub = SegmentRotorLoad(m, m.segments[f.hover[0]], mass_ub, 0.0);
     const double* it_ub = std::lower_bound(g.thrust, g.thrust + kGrid, load_ub.thrust_per_rotor_n);
     const int hi_idx = std::min(static_cast<int>(it_ub - g.thrust), kGrid - 1);
@@ -354,6 +364,7 @@ const char* PropRule(const SearchContext& ctx, const MissionFacts& f, const Moto
     for (const Drive& d : ideal) w_nl = std::max(w_nl, d.NoLoadSpeed(bo.v_full, 1.0));
     const double n_max = w_nl / (2.0 * kPi);
     for (const Segment& sg : m.segments) {
+      if (sg.group != f.free_group) continue;
       double v_ax = 0;
       if (sg.type == SegmentType::kClimb && sg.climb_rate_m_s > 0) v_ax = sg.climb_rate_m_s;
       if (sg.type == SegmentType::kCruise && sg.lift_to_drag > 0) v_ax = sg.airspeed_m_s.lo;
@@ -387,8 +398,8 @@ void MotorCandidates(const SearchContext& ctx, const MissionFacts& f, std::size_
   for (std::size_t o = 0; o < ctx.options.size(); ++o) {
     const BatteryOption& bo = ctx.options[o];
     for (std::size_t pi = 0; pi < props.size(); ++pi) {
-      const double mass_lb = m.vehicle.mass_kg + bo.mass_lo_kg +
-                             m.vehicle.rotors * (*mo.mass_kg + ctx.grids[pi].mass_kg + ctx.escs.min_mass_kg[o]);
+      const double mass_lb = m.vehicle.mass_kg + bo.mass_lo_kg + ctx.fixed_groups_mass_kg +
+                             ctx.free_rotors * (*mo.mass_kg + ctx.grids[pi].mass_kg + ctx.escs.min_mass_kg[o]);
       double omega_lb = 0, q_lb = 0;
       if (const char* rule = PropRule(ctx, f, mo, ideal, pi, o, mass_lb, &omega_lb, &q_lb)) {
         pruned->Add(rule, per_pair);
@@ -423,8 +434,38 @@ void MotorCandidates(const SearchContext& ctx, const MissionFacts& f, std::size_
 
 }  // namespace
 
+void ResolveGroups(SearchContext* ctx) {
+  const Mission& m = *ctx->mission;
+  ctx->free_group = 0;
+  ctx->fixed_parts.clear();
+  ctx->fixed_groups_mass_kg = 0;
+  if (!m.groups.empty()) {
+    std::vector<int> free;
+    for (int g = 0; g < GroupCount(m); ++g) {
+      ctx->fixed_parts.push_back(FixedGroupParts(m, *ctx->catalog, g));
+      if (!m.groups[g].fixed()) {
+        free.push_back(g);
+        continue;
+      }
+      const GroupParts& p = ctx->fixed_parts.back();
+      if (!p.motor->mass_kg) throw DataError("motor '" + p.motor->id + "' has no mass_kg: the mission needs it");
+      ctx->fixed_groups_mass_kg += m.groups[g].rotors * (*p.motor->mass_kg + EscMassKg(*p.esc) + PropMassKg(*p.prop));
+    }
+    if (free.size() != 1) {
+      std::string names;
+      for (int g : free) names += (names.empty() ? "" : ", ") + m.groups[g].name;
+      throw DataError(m.file + ": $.propulsion: " + std::to_string(free.size()) + " groups without motor/esc/prop" +
+                      (names.empty() ? "" : " (" + names + ")") +
+                      ": optimize chooses the parts of exactly one group; fix the others (a joint search of "
+                      "several groups is not implemented), or use evaluate --pick");
+    }
+    ctx->free_group = free.front();
+  }
+  ctx->free_rotors = GroupRotors(m, ctx->free_group);
+}
+
 CandidateList BuildCandidates(const SearchContext& ctx, int threads) {
-  const MissionFacts f = FactsOf(*ctx.mission);
+  const MissionFacts f = FactsOf(*ctx.mission, ctx.free_group);
   const auto& motors = ctx.catalog->motors();
   const long long per_motor = static_cast<long long>(ctx.catalog->escs().size()) *
                               static_cast<long long>(ctx.catalog->props().size() * ctx.options.size());
@@ -547,7 +588,16 @@ void BranchAndBound::Process(const Candidate& cand, std::vector<double> top, Out
   auto local_prune = [&](const std::string& rule, long long n) { o->pruned[rule] += n; };
   const BatteryOption& bo = ctx_.options[cand.option];
   const PropModel* model = ctx_.models[cand.prop].get();
-  Combination c{&ctx_.catalog->motors()[cand.motor], nullptr, &ctx_.catalog->props()[cand.prop], bo.entry, bo.cells};
+  Combination c{&ctx_.catalog->motors()[cand.motor], nullptr, &ctx_.catalog->props()[cand.prop], bo.entry, bo.cells, {}};
+  if (!ctx_.fixed_parts.empty()) {
+    c.groups = ctx_.fixed_parts;
+    c.groups[ctx_.free_group].motor = c.motor;
+    c.groups[ctx_.free_group].prop = c.prop;
+  }
+  auto set_esc = [&](Combination* x, const EscEntry* e) {
+    x->esc = e;
+    if (!x->groups.empty()) x->groups[ctx_.free_group].esc = e;
+  };
   for (std::size_t cl = 0; cl < ctx_.escs.classes.size(); ++cl) {
     const std::vector<int>& list = ctx_.escs.per_option[cand.option][cl];
     if (list.empty()) continue;
@@ -568,7 +618,7 @@ void BranchAndBound::Process(const Candidate& cand, std::vector<double> top, Out
     for (int e : rated) virt.mass_kg = std::min(*virt.mass_kg, EscMassKg(escs[e]));
     {
       Combination vc = c;
-      vc.esc = &virt;
+      set_esc(&vc, &virt);
       const double threshold = threshold_now();
       const MissionResult vr = MissionEvaluator(relaxed_, vc, model).Solve(threshold, false);
       ++o->virtual_evals;
@@ -588,7 +638,7 @@ void BranchAndBound::Process(const Candidate& cand, std::vector<double> top, Out
         local_prune("esc_dominated", 1);
         continue;
       }
-      c.esc = &escs[e];
+      set_esc(&c, &escs[e]);
       const double threshold = threshold_now();
       MissionResult r = MissionEvaluator(m, c, model).Solve(threshold);
       if (r.bounded_out) {
@@ -672,6 +722,7 @@ SearchResult SearchExactly(const Mission& m, const Catalog& cat, const SearchOpt
   SearchContext ctx;
   ctx.mission = &m;
   ctx.catalog = &cat;
+  ResolveGroups(&ctx);
   ctx.options = BatteryOptions(m, cat);                    // stage 1
   ctx.escs = BuildEscTable(cat, ctx.options);              // stage 2 (R1)
   BuildPropGrids(m, cat, &ctx.grids, &ctx.models);         // stage 3

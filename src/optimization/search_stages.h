@@ -20,6 +20,7 @@
 
 #include "catalog/catalog.h"
 #include "mission/mission.h"
+#include "optimization/mission_eval.h"
 #include "optimization/search.h"
 #include "prop/prop_model.h"
 
@@ -76,6 +77,12 @@ struct Candidate {
 struct SearchContext {
   const Mission* mission = nullptr;
   const Catalog* catalog = nullptr;
+  // Propulsion groups: the search chooses the parts of free_group; the others are fixed by the
+  // mission (fixed_parts by group index, the free one's entry null; empty without groups).
+  int free_group = 0;
+  std::vector<GroupParts> fixed_parts;
+  double fixed_groups_mass_kg = 0;  // rotors x (motor + ESC + propeller) of the fixed groups
+  int free_rotors = 0;              // GroupRotors(mission, free_group)
   std::vector<BatteryOption> options;
   EscTable escs;
   std::vector<PropGrid> grids;
@@ -87,6 +94,10 @@ struct CandidateList {
   std::map<std::string, long long> pruned_by;
   long long skipped_without_mass = 0;
 };
+// Sets the group fields of ctx (ctx->mission and ->catalog set). DataError (the JSON path) when
+// a fixed part is not in the catalog or when not exactly one group is free.
+void ResolveGroups(SearchContext* ctx);
+
 // Stage 4 on `threads` threads (motors interleaved; the list does not depend on timing once
 // ordered by the branch and bound's total order).
 CandidateList BuildCandidates(const SearchContext& ctx, int threads);

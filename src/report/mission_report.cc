@@ -56,6 +56,17 @@ Json MissionResultJson(const Mission& m, const Combination& c, const MissionResu
   j["motor"] = c.motor->id;
   j["esc"] = c.esc->id;
   j["prop"] = c.prop->id;
+  if (!m.groups.empty()) {
+    Json groups = Json::object();
+    for (int g = 0; g < GroupCount(m); ++g) {
+      const GroupParts p = c.Parts(g);
+      Json x = {{"motor", p.motor->id}, {"esc", p.esc->id}, {"prop", p.prop->id}, {"rotors", GroupRotors(m, g)},
+                {"fixed", m.groups[g].fixed()}};
+      if (g == LiftGroup(m)) x["thrust_to_weight"] = r.thrust_to_weight;
+      groups[m.groups[g].name] = x;
+    }
+    j["groups"] = groups;
+  }
   j["battery"] = c.battery->id;
   j["cells"] = c.cells;
   j["objective"] = r.objective;
@@ -90,6 +101,7 @@ Json MissionResultJson(const Mission& m, const Combination& c, const MissionResu
     Json g;
     g["name"] = s.name;
     g["type"] = SegmentTypeName(s.type);
+    if (!m.groups.empty()) g["group"] = m.groups[s.group].name;
     g["point"] = "end (worst case: lowest voltage, highest throttle)";
     g["duration_s"] = s.duration_s;
     if (s.type == SegmentType::kCruise) g["airspeed_m_s"] = s.airspeed_m_s;
@@ -141,8 +153,18 @@ Json MissionResultJson(const Mission& m, const Combination& c, const MissionResu
 
 std::string MissionResultText(const Mission& m, const Combination& c, const MissionResult& r) {
   std::ostringstream o;
-  o << "motor " << c.motor->id << " + ESC " << c.esc->id << " + prop " << c.prop->id << " + "
-    << c.cells << "S " << c.battery->id << " (" << Fixed(r.capacity_ah, 2) << " Ah)\n";
+  if (m.groups.empty()) {
+    o << "motor " << c.motor->id << " + ESC " << c.esc->id << " + prop " << c.prop->id << " + "
+      << c.cells << "S " << c.battery->id << " (" << Fixed(r.capacity_ah, 2) << " Ah)\n";
+  } else {
+    o << c.cells << "S " << c.battery->id << " (" << Fixed(r.capacity_ah, 2) << " Ah)";
+    for (int g = 0; g < GroupCount(m); ++g) {
+      const GroupParts p = c.Parts(g);
+      o << (g ? "; " : " with ") << m.groups[g].name << " " << m.groups[g].rotors << " x motor " << p.motor->id
+        << " + ESC " << p.esc->id << " + prop " << p.prop->id << (m.groups[g].fixed() ? " (fixed)" : "");
+    }
+    o << "\n";
+  }
   o << "  " << (r.feasible ? "feasible" : "INFEASIBLE") << "; " << ObjectiveLabel(m) << " "
     << Fixed(Display(m, r.objective), 2) << "; mission " << Fixed(r.endurance_s / 60.0, 2)
     << " min, " << Fixed(r.energy_wh, 2) << " Wh, final SOC " << Fixed(100 * r.final_soc, 1)
@@ -151,7 +173,7 @@ std::string MissionResultText(const Mission& m, const Combination& c, const Miss
   if (r.summary.valid) {
     const DesignSummary& d = r.summary;
     o << "  thrust/weight " << Fixed(r.thrust_to_weight, 2) << " (" << r.lift_rotors
-      << " lift rotors, full throttle at the mission's end); at half charge: hover throttle "
+      << (m.groups.empty() ? "" : " " + m.groups[std::max(0, LiftGroup(m))].name) << " lift rotors, full throttle at the mission's end); at half charge: hover throttle "
       << Fixed(100 * d.hover_throttle, 1) << " %, hover " << Fixed(d.hover_endurance_s / 60.0, 1)
       << " min, full throttle " << Fixed(d.full_throttle_endurance_s / 60.0, 1) << " min ("
       << Fixed(d.full_throttle_battery_current_a, 1) << " A" << (d.full_throttle_current_limited ? ", at the current rating" : "")
@@ -162,7 +184,7 @@ std::string MissionResultText(const Mission& m, const Combination& c, const Miss
   o << "  segment (point: end, worst case)   s     rpm  thr %  eff %  torque N*m  Irms A  IDC A   VDC V   PDC W  PESC W  eta_m  eta_e  eta_s  limit\n";
   for (const SegmentResult& s : r.segments) {
     const OperatingPoint& p = s.point;
-    o << "  " << std::left << std::setw(12) << s.name.substr(0, 12) << std::setw(7)
+    o << "  " << std::left << std::setw(12) << (s.name + (m.groups.empty() ? "" : "/" + m.groups[s.group].name)).substr(0, 12) << std::setw(7)
       << SegmentTypeName(s.type) << std::right << std::setw(10) << Fixed(s.duration_s, 0)
       << std::setw(8) << Fixed(p.rpm, 0) << std::setw(7) << Fixed(100 * p.throttle, 1)
       << std::setw(7) << Fixed(100 * p.throttle_effective, 1) << std::setw(12)
@@ -234,26 +256,30 @@ std::string WriteParetoFigure(const Mission& m, const SearchResult& s, const std
 std::vector<std::string> WriteSegmentMaps(const Mission& m, const Combination& c,
                                           const MissionResult& r, const std::string& dir) {
   MakeOutputDir(dir);
-  const Drive d(c.motor->params, c.esc->params);
-  const PropModel prop(*c.prop);
   std::vector<std::string> paths;
-  DataBlock pts{"pts", {}, false};
-  {
-    std::vector<double> rpm, q;
-    for (const SegmentResult& s : r.segments) {
-      rpm.push_back(s.point.rpm);
-      q.push_back(s.point.torque_nm);
-    }
-    pts.series.push_back({rpm, q});
-  }
   for (std::size_t si = 0; si < r.segments.size(); ++si) {
     const SegmentResult& s = r.segments[si];
+    DataBlock pts{"pts", {}, false};  // every segment flown by this drive (its group)
+    {
+      std::vector<double> rpm, q;
+      for (const SegmentResult& x : r.segments) {
+        if (x.group != s.group) continue;
+        rpm.push_back(x.point.rpm);
+        q.push_back(x.point.torque_nm);
+      }
+      pts.series.push_back({rpm, q});
+    }
+    const GroupParts parts = c.Parts(s.group);
+    const Drive d(parts.motor->params, parts.esc->params);
+    const PropModel prop(*parts.prop);
     const double vdc = s.point.vdc_v;
     const double w_max = d.NoLoadSpeed(vdc, 1.0);
     double q_top = 0;
-    for (const SegmentResult& x : r.segments) q_top = std::max(q_top, x.point.torque_nm);
+    for (const SegmentResult& x : r.segments) {
+      if (x.group == s.group) q_top = std::max(q_top, x.point.torque_nm);
+    }
     q_top *= 2.0;
-    const double i_lim = std::isfinite(c.motor->params.max_current_a) ? c.motor->params.max_current_a : 1e300;
+    const double i_lim = std::isfinite(parts.motor->params.max_current_a) ? parts.motor->params.max_current_a : 1e300;
     DataBlock map{"map", {}, true};
     const int n = 100;
     for (int i = 0; i <= n; ++i) {
@@ -304,7 +330,7 @@ std::vector<std::string> WriteSegmentMaps(const Mission& m, const Combination& c
       load.series.push_back({rpm, q});
     }
     std::ostringstream g;
-    g << "set title \"" << PartName(*c.motor) << " + " << PartName(*c.esc) << " + " << PartName(*c.prop)
+    g << "set title \"" << PartName(*parts.motor) << " + " << PartName(*parts.esc) << " + " << PartName(*parts.prop)
       << "\\nsegment '" << s.name << "' (" << SegmentTypeName(s.type) << ") at VDC = " << Fixed(vdc, 2)
       << " V (its end)\" noenhanced\n"
       << "set xlabel 'speed [rpm]'\nset ylabel 'torque [N m]'\nset view map\n"

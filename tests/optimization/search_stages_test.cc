@@ -134,6 +134,8 @@ TEST_F(SearchStagesTest, CandidatesRemoveOnlyInfeasiblePairsAndBoundTheScore) {
     SearchContext ctx;
     ctx.mission = &m;
     ctx.catalog = &cat;
+    ResolveGroups(&ctx);
+    ASSERT_EQ(ctx.free_rotors, 4);
     ctx.options = BatteryOptions(m, cat);
     ctx.escs = BuildEscTable(cat, ctx.options);
     BuildPropGrids(m, cat, &ctx.grids, &ctx.models);
