@@ -128,7 +128,8 @@ GroupParts FixedGroupParts(const Mission& m, const Catalog& cat, int g) {
 }
 
 MissionEvaluator::MissionEvaluator(const Mission& mission, const Combination& c,
-                                   const PropModel* prop_model)
+                                   const PropModel* prop_model,
+                                   const std::vector<const PropModel*>* group_prop_models)
     : m_(mission), c_(c) {
   const BatteryEntry& b = *c.battery;
   if (c.cells < 1 || c.cells % b.cells_series != 0) {
@@ -150,12 +151,16 @@ MissionEvaluator::MissionEvaluator(const Mission& mission, const Combination& c,
     if (!parts.motor || !parts.esc || !parts.prop) {
       throw UsageError("propulsion group '" + GroupName(m_, g) + "' has no motor, ESC or propeller");
     }
-    // The PropModel shared by the search serves the group of c.prop.
-    const bool shared = prop_model && parts.prop == c.prop;
+    // PropModels built by the caller: prop_model serves the group of c.prop, group_prop_models
+    // the others; any group without one builds its own.
+    const PropModel* given = prop_model && parts.prop == c.prop ? prop_model : nullptr;
+    if (!given && group_prop_models && g < static_cast<int>(group_prop_models->size())) {
+      given = (*group_prop_models)[g];
+    }
     groups_.push_back(GroupDrive{parts, Drive(parts.motor->params, parts.esc->params),
-                                 shared ? nullptr : std::make_unique<PropModel>(*parts.prop), nullptr, 0.0});
+                                 given ? nullptr : std::make_unique<PropModel>(*parts.prop), nullptr, 0.0});
     GroupDrive& gd = groups_.back();
-    gd.prop = shared ? prop_model : gd.owned_prop.get();
+    gd.prop = given ? given : gd.owned_prop.get();
     if (!parts.motor->mass_kg) {
       throw DataError("motor '" + parts.motor->id + "' has no mass_kg: the mission needs it");
     }

@@ -158,8 +158,11 @@ class MissionEvaluator {
   // DataError when a component lacks data the mission needs.
   // `prop_model` (optional) is a PropModel of combination.prop shared between evaluators (the
   // catalog search builds one per propeller); it must outlive the evaluator.
+  // `group_prop_models` (optional, by group index, null entries allowed): PropModels of the
+  // groups' propellers built once by the caller (the search, for the fixed groups).
   MissionEvaluator(const Mission& mission, const Combination& combination,
-                   const PropModel* prop_model = nullptr);
+                   const PropModel* prop_model = nullptr,
+                   const std::vector<const PropModel*>* group_prop_models = nullptr);
 
   // Simulates with fixed continuous variables (no optimisation).
   MissionResult Simulate(const ContinuousVars& vars) const;

@@ -248,7 +248,8 @@ MissionFacts FactsOf(const Mission& m, int free_group) {
 // `esc_class`, given the hover bound's per-rotor electrical power pdc_lb at the lightest mass.
 double ScoreLowerBound(const SearchContext& ctx, const MissionFacts& f, const MotorParams& mp,
                        const EscClass& esc_class, const PropEntry& prop, const PropModel& model,
-                       const BatteryOption& bo, double mass_lb, double pdc_lb) {
+                       std::size_t option, double mass_lb, double pdc_lb) {
+  const BatteryOption& bo = ctx.options[option];
   const Mission& m = *ctx.mission;
   if (f.hover.empty()) return -kInf;
   // The terminal power of a segment is at least N*PDC_lb + P_avionics when each of its N rotors
@@ -261,7 +262,9 @@ double ScoreLowerBound(const SearchContext& ctx, const MissionFacts& f, const Mo
   const bool static_only = model.data_kind() != PropDataKind::kTables || prop.j_tables.empty();
   auto p_lb_of = [&](std::size_t si) {
     const Segment& sg = m.segments[si];
-    if (sg.group != f.free_group) return m.vehicle.avionics_power_w;  // G1
+    if (sg.group != f.free_group) {  // G1: the fixed group's own bound at the lightest mass
+      return ctx.fixed_power_lb_w.empty() ? m.vehicle.avionics_power_w : ctx.fixed_power_lb_w[option][si];
+    }
     const bool fixed_v = sg.type != SegmentType::kCruise || !sg.airspeed_m_s.free();
     if (sg.type == SegmentType::kHover ||
         (static_only && fixed_v && (sg.type == SegmentType::kClimb || sg.type == SegmentType::kCruise))) {
@@ -418,7 +421,7 @@ void MotorCandidates(const SearchContext& ctx, const MissionFacts& f, std::size_
         if (k.enforce_motor_power && hi_v.pac_w > mp.max_power_w) { why = "motor_power"; continue; }
         const OperatingPoint lo_v = ideal[ci].Inverse(bo.v_cut, q_lb, omega_lb);
         const double pdc_lb = std::max(0.0, std::min(hi_v.pdc_w, lo_v.pdc_w));
-        const double bound = ScoreLowerBound(ctx, f, mp, classes[ci], props[pi], *ctx.models[pi], bo, mass_lb, pdc_lb);
+        const double bound = ScoreLowerBound(ctx, f, mp, classes[ci], props[pi], *ctx.models[pi], o, mass_lb, pdc_lb);
         any = true;
         best_bound = std::min(best_bound, bound);
         irms_lb = std::min(irms_lb, hi_v.irms_a);
@@ -460,8 +463,60 @@ void ResolveGroups(SearchContext* ctx) {
                       "several groups is not implemented), or use evaluate --pick");
     }
     ctx->free_group = free.front();
+    ctx->fixed_models.resize(m.groups.size());
+    ctx->fixed_model_ptrs.assign(m.groups.size(), nullptr);
+    for (int g = 0; g < GroupCount(m); ++g) {
+      if (g == ctx->free_group) continue;
+      ctx->fixed_models[g] = std::make_unique<PropModel>(*ctx->fixed_parts[g].prop);
+      ctx->fixed_model_ptrs[g] = ctx->fixed_models[g].get();
+    }
   }
   ctx->free_rotors = GroupRotors(m, ctx->free_group);
+}
+
+void FixedGroupPowerBounds(SearchContext* ctx) {
+  const Mission& m = *ctx->mission;
+  ctx->fixed_power_lb_w.clear();
+  if (m.groups.empty()) return;
+  // The lightest the vehicle can be with any choice of the free group (M3: every segment's
+  // thrust, and so its speed, torque and power, rises with the mass).
+  double motor_min = kInf, prop_min = kInf;
+  for (const MotorEntry& mo : ctx->catalog->motors()) {
+    if (mo.mass_kg) motor_min = std::min(motor_min, *mo.mass_kg);
+  }
+  for (const PropGrid& g : ctx->grids) prop_min = std::min(prop_min, g.mass_kg);
+  for (std::size_t o = 0; o < ctx->options.size(); ++o) {
+    const BatteryOption& bo = ctx->options[o];
+    const double esc_min = std::isfinite(ctx->escs.min_mass_kg[o]) ? ctx->escs.min_mass_kg[o] : 0.0;
+    const double mass_min = m.vehicle.mass_kg + bo.mass_lo_kg + ctx->fixed_groups_mass_kg +
+                            ctx->free_rotors * (std::isfinite(motor_min) ? motor_min : 0.0) +
+                            ctx->free_rotors * ((std::isfinite(prop_min) ? prop_min : 0.0) + esc_min);
+    std::vector<double> p_lb(m.segments.size(), m.vehicle.avionics_power_w);
+    for (std::size_t si = 0; si < m.segments.size(); ++si) {
+      const Segment& sg = m.segments[si];
+      if (sg.group == ctx->free_group || sg.type == SegmentType::kShaft ||
+          (sg.type == SegmentType::kCruise && sg.airspeed_m_s.free())) {
+        continue;
+      }
+      const GroupParts& parts = ctx->fixed_parts[sg.group];
+      const PropModel& prop = *ctx->fixed_models[sg.group];
+      const RotorLoad ld = SegmentRotorLoad(m, sg, mass_min, sg.airspeed_m_s.lo);
+      // A speed at or below the evaluator's root (thrust rising with speed, M1): bisection
+      // keeping thrust(lo) <= T; the torque there is at most the true one.
+      double lo = 0.0, hi = kGridMaxRadS;
+      if (!(prop.Evaluate(hi, m.rho_kg_m3, ld.axial_airspeed_m_s).thrust_n >= ld.thrust_per_rotor_n)) continue;
+      for (int i = 0; i < 60; ++i) {
+        const double mid = 0.5 * (lo + hi);
+        (prop.Evaluate(mid, m.rho_kg_m3, ld.axial_airspeed_m_s).thrust_n <= ld.thrust_per_rotor_n ? lo : hi) = mid;
+      }
+      const double q = prop.Evaluate(lo, m.rho_kg_m3, ld.axial_airspeed_m_s).torque_nm;
+      if (!(q > 0)) continue;
+      const Drive d(parts.motor->params, parts.esc->params);
+      const double pdc = std::min(d.Inverse(bo.v_full, q, lo).pdc_w, d.Inverse(bo.v_cut, q, lo).pdc_w);
+      p_lb[si] += ld.rotors * std::max(0.0, pdc);
+    }
+    ctx->fixed_power_lb_w.push_back(std::move(p_lb));
+  }
 }
 
 CandidateList BuildCandidates(const SearchContext& ctx, int threads) {
@@ -620,7 +675,7 @@ void BranchAndBound::Process(const Candidate& cand, std::vector<double> top, Out
       Combination vc = c;
       set_esc(&vc, &virt);
       const double threshold = threshold_now();
-      const MissionResult vr = MissionEvaluator(relaxed_, vc, model).Solve(threshold, false);
+      const MissionResult vr = MissionEvaluator(relaxed_, vc, model, &ctx_.fixed_model_ptrs).Solve(threshold, false);
       ++o->virtual_evals;
       if (vr.bounded_out || !vr.feasible || !(vr.score < threshold)) {
         local_prune(vr.bounded_out || vr.feasible ? "objective_bound" : "infeasible_bound",
@@ -640,7 +695,7 @@ void BranchAndBound::Process(const Candidate& cand, std::vector<double> top, Out
       }
       set_esc(&c, &escs[e]);
       const double threshold = threshold_now();
-      MissionResult r = MissionEvaluator(m, c, model).Solve(threshold);
+      MissionResult r = MissionEvaluator(m, c, model, &ctx_.fixed_model_ptrs).Solve(threshold);
       if (r.bounded_out) {
         local_prune("objective_bound", 1);
         done.emplace_back(e, true);
@@ -726,6 +781,7 @@ SearchResult SearchExactly(const Mission& m, const Catalog& cat, const SearchOpt
   ctx.options = BatteryOptions(m, cat);                    // stage 1
   ctx.escs = BuildEscTable(cat, ctx.options);              // stage 2 (R1)
   BuildPropGrids(m, cat, &ctx.grids, &ctx.models);         // stage 3
+  FixedGroupPowerBounds(&ctx);
   out.combinations = static_cast<long long>(cat.motors().size()) * static_cast<long long>(cat.escs().size()) *
                      static_cast<long long>(cat.props().size()) * static_cast<long long>(ctx.options.size());
   out.pruned_by["esc_voltage"] += ctx.escs.voltage_pruned * static_cast<long long>(cat.motors().size() * cat.props().size());

@@ -83,6 +83,14 @@ struct SearchContext {
   std::vector<GroupParts> fixed_parts;
   double fixed_groups_mass_kg = 0;  // rotors x (motor + ESC + propeller) of the fixed groups
   int free_rotors = 0;              // GroupRotors(mission, free_group)
+  // [option][segment]: a lower bound of a fixed group's segment's terminal power (its rotors'
+  // PDC at the lightest vehicle mass plus the avionics; FixedGroupPowerBounds), W; empty
+  // without groups.
+  std::vector<std::vector<double>> fixed_power_lb_w;
+  // PropModels of the fixed groups' propellers (by group index; null for the free group),
+  // built once and shared by every evaluation.
+  std::vector<std::unique_ptr<PropModel>> fixed_models;
+  std::vector<const PropModel*> fixed_model_ptrs;
   std::vector<BatteryOption> options;
   EscTable escs;
   std::vector<PropGrid> grids;
@@ -97,6 +105,9 @@ struct CandidateList {
 // Sets the group fields of ctx (ctx->mission and ->catalog set). DataError (the JSON path) when
 // a fixed part is not in the catalog or when not exactly one group is free.
 void ResolveGroups(SearchContext* ctx);
+
+// Fills ctx->fixed_power_lb_w (after stages 1-3 and ResolveGroups).
+void FixedGroupPowerBounds(SearchContext* ctx);
 
 // Stage 4 on `threads` threads (motors interleaved; the list does not depend on timing once
 // ordered by the branch and bound's total order).

@@ -173,7 +173,7 @@ std::string MissionResultText(const Mission& m, const Combination& c, const Miss
   if (r.summary.valid) {
     const DesignSummary& d = r.summary;
     o << "  thrust/weight " << Fixed(r.thrust_to_weight, 2) << " (" << r.lift_rotors
-      << (m.groups.empty() ? "" : " " + m.groups[std::max(0, LiftGroup(m))].name) << " lift rotors, full throttle at the mission's end); at half charge: hover throttle "
+      << (m.groups.empty() ? " lift rotors" : " rotors of group " + m.groups[std::max(0, LiftGroup(m))].name) << ", full throttle at the mission's end); at half charge: hover throttle "
       << Fixed(100 * d.hover_throttle, 1) << " %, hover " << Fixed(d.hover_endurance_s / 60.0, 1)
       << " min, full throttle " << Fixed(d.full_throttle_endurance_s / 60.0, 1) << " min ("
       << Fixed(d.full_throttle_battery_current_a, 1) << " A" << (d.full_throttle_current_limited ? ", at the current rating" : "")

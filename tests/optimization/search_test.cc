@@ -13,6 +13,7 @@
 
 #include "catalog/catalog.h"
 #include "cli_runner.h"
+#include "common/error.h"
 #include "common/json_file.h"
 #include "optimization/mission_eval.h"
 #include "optimization/small_catalog.h"
@@ -104,6 +105,94 @@ TEST_F(SearchTest, MinEnergyLiftCruiseEqualsExhaustiveEvaluation) {
   const Catalog cat = Catalog::Load((dir_ / "catalog").string());
   const Mission m = ParseMission(ParseJsonText(kLiftCruise, "lift"), "lift");
   EXPECT_GE(CheckAgainstExhaustive(cat, m), 1u) << "the small catalog must fly the mission";
+}
+
+// Propulsion groups: the lift group searched, the pusher fixed (to the best single-group pick,
+// so that the mission flies). The search's bounds per group (G1) must not cut off the best:
+// optimize equals exhaustive evaluation over the lift group's parts. With both groups given
+// the same parts, the group mission flies exactly as the one-group mission with per-segment
+// rotor counts.
+TEST_F(SearchTest, PropulsionGroupsEqualExhaustiveEvaluation) {
+  const Catalog cat = Catalog::Load((dir_ / "catalog").string());
+  const Mission single = ParseMission(ParseJsonText(kLiftCruise, "lift"), "lift");
+  SearchOptions so;
+  so.top_n = 3;
+  const SearchResult one = SearchCatalog(single, cat, so);
+  ASSERT_FALSE(one.best.empty());
+  const Combination& pick = one.best[0].combination;
+  Json j = ParseJsonText(kLiftCruise, "lift");
+  j["vehicle"].erase("rotors");
+  j["propulsion"] = {{"lift", {{"rotors", 4}}},
+                     {"pusher", {{"rotors", 1}, {"motor", pick.motor->id}, {"esc", pick.esc->id}, {"prop", pick.prop->id}}}};
+  for (Json& sg : j["segments"]) {
+    sg["group"] = sg["rotors"].get<int>() == 4 ? "lift" : "pusher";
+    sg.erase("rotors");
+  }
+  const Mission m = ParseMission(j, "groups");
+  const int lift = m.segments[0].group, pusher = m.segments[2].group;
+  // Same parts in both groups: the same flight as the one-group mission.
+  Combination same = pick;
+  same.groups.assign(2, GroupParts{pick.motor, pick.esc, pick.prop});
+  const MissionResult a = MissionEvaluator(single, pick).Solve();
+  const MissionResult b = MissionEvaluator(m, same).Solve();
+  ASSERT_TRUE(a.feasible);
+  EXPECT_EQ(b.feasible, a.feasible);
+  // 4*m + 1*m against 5*m in the mass: rounding of the last bit only.
+  EXPECT_NEAR(b.objective, a.objective, 1e-9 * a.objective);
+  // Exhaustive over the lift group's parts.
+  std::vector<std::pair<double, std::string>> all;
+  ForEachCombination(cat, [&](Combination c) {
+    c.groups.assign(2, GroupParts{});
+    c.groups[lift] = GroupParts{c.motor, c.esc, c.prop};
+    c.groups[pusher] = GroupParts{pick.motor, pick.esc, pick.prop};
+    const MissionResult r = MissionEvaluator(m, c).Solve();
+    if (r.feasible) all.emplace_back(r.score, Name(c));
+  });
+  std::sort(all.begin(), all.end());
+  ASSERT_GE(all.size(), 1u);
+  const SearchResult s = SearchCatalog(m, cat, so);
+  ASSERT_EQ(s.best.size(), std::min<std::size_t>(3, all.size()));
+  for (std::size_t i = 0; i < s.best.size(); ++i) {
+    EXPECT_EQ(Name(s.best[i].combination), all[i].second) << i;
+    EXPECT_EQ(s.best[i].result.score, all[i].first) << i;
+    EXPECT_EQ(s.best[i].combination.Parts(pusher).motor, pick.motor);
+  }
+  EXPECT_EQ(s.searched + s.pruned, s.combinations);
+  // Two free groups: refused with the JSON path (a joint search is not implemented).
+  Json both = j;
+  both["propulsion"]["pusher"] = {{"rotors", 1}};
+  EXPECT_THROW(SearchCatalog(ParseMission(both, "both"), cat, so), DataError);
+  // A fixed id not in the catalog: the JSON path and the id.
+  Json bad = j;
+  bad["propulsion"]["pusher"]["motor"] = "no_such_motor";
+  try {
+    SearchCatalog(ParseMission(bad, "bad"), cat, so);
+    ADD_FAILURE() << "no error";
+  } catch (const DataError& e) {
+    EXPECT_NE(std::string(e.what()).find("$.propulsion.pusher.motor: \"no_such_motor\": not in the catalog"), std::string::npos)
+        << e.what();
+  }
+  // evaluate --pick: the search's #1 reproduced through the CLI; bad picks are usage errors.
+  std::ofstream(dir_ / "groups.json") << DumpJson(j);
+  const std::string base = "evaluate " + (dir_ / "groups.json").string() + " --catalog " + (dir_ / "catalog").string() +
+                           " --battery dc_b_361 --cells " + std::to_string(s.best[0].combination.cells);
+  const Combination& top = s.best[0].combination;
+  const auto ok = testing_util::RunCli(base + " --pick lift=" + top.motor->id + "," + top.esc->id + "," + top.prop->id + " --json");
+  ASSERT_EQ(ok.code, 0) << ok.err;
+  const Json out = Json::parse(ok.out);
+  EXPECT_EQ(out["objective"].get<double>(), s.best[0].result.objective);
+  EXPECT_EQ(out["groups"]["pusher"]["motor"], pick.motor->id);
+  EXPECT_EQ(out["segments"][2]["group"], "pusher");
+  const auto wing = testing_util::RunCli(base + " --pick wing=" + top.motor->id + "," + top.esc->id + "," + top.prop->id);
+  EXPECT_EQ(wing.code, 64);
+  EXPECT_NE(wing.err.find("--pick \"wing="), std::string::npos) << wing.err;
+  EXPECT_NE(wing.err.find("no propulsion group 'wing'"), std::string::npos) << wing.err;
+  const auto none = testing_util::RunCli(base);
+  EXPECT_EQ(none.code, 64);
+  EXPECT_NE(none.err.find("group 'lift' has no parts"), std::string::npos) << none.err;
+  const auto malformed = testing_util::RunCli(base + " --pick lift=" + top.motor->id);
+  EXPECT_EQ(malformed.code, 64);
+  EXPECT_NE(malformed.err.find("must be GROUP=MOTOR,ESC,PROP"), std::string::npos) << malformed.err;
 }
 
 TEST_F(SearchTest, OptimizeEqualsTheBestOfExhaustiveEvaluation) {
