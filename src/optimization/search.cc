@@ -70,6 +70,16 @@ namespace dynosize {
 // R6 (propeller data credibility): see the comment at the rule; the hover point's figure of
 //    merit must not exceed the mission's max_figure_of_merit.
 // R7 (static-only propeller data in fast axial flow): see the comment at the rule.
+// G1 (propulsion groups): the search chooses the parts of one group; the others are fixed.
+//    Every group's mass is in mass_lb and mass_ub (the fixed groups' exactly), R0-R3, R6, R7
+//    speak of the free group's segments only, and in R4 a fixed group's segment draws at least
+//    its own drive's PDC at the lightest vehicle mass the option allows (its thrust rises with
+//    the mass, M3; speed and torque from below by bisection on the thrust, M1; PDC at the
+//    smaller of the full-charge and cut-off voltage, eq 59) plus P_avionics. The groups are
+//    coupled only through the mass and the shared pack's energy, so each bound stays a bound.
+//    Thrust-to-weight and winding temperature: more mass or ESC resistance only lowers the
+//    first and raises the second, so R5 (the virtual ESC is evaluated without the
+//    thrust-to-weight, a relaxation) and the capacity screening stay sound.
 // Everything not pruned is evaluated exactly (MissionEvaluator::Solve): the answer is the
 // true top N over the catalog under (M1)-(M3).
 
