@@ -107,6 +107,63 @@ class Tracker {
   MissionResult* r_;
 };
 
+// A propeller segment's shaft point: the speed where the propeller gives the required thrust
+// per rotor (static or in the axial inflow), its torque, and the propeller's own checks (data
+// held at an edge, static-only data in inflow, momentum theory, max rpm, the hover throttle at
+// full charge). False when even four times the motor's no-load speed does not give the thrust
+// (a "thrust" violation is recorded).
+bool PropellerPoint(const Mission& m, const Segment& s, const RotorLoad& load, const Drive& drive,
+                    const PropModel& prop, const PropEntry& prop_entry, double v_full, double w_motor_max,
+                    Tracker* track, SegmentResult* seg, double* omega, double* torque) {
+  const MissionConstraints& k = m.constraints;
+  PropEvaluation ev;
+  const double w_hi = 4.0 * w_motor_max;
+  if (!PropSpeedForThrust(prop, load.thrust_per_rotor_n, m.rho_kg_m3,
+                          load.axial_airspeed_m_s, w_hi, omega, &ev)) {
+    // Even four times the motor's no-load speed does not give the thrust.
+    const PropEvaluation at_nl = prop.Evaluate(w_motor_max, m.rho_kg_m3, load.axial_airspeed_m_s);
+    track->Check("thrust", s.name, load.thrust_per_rotor_n, at_nl.thrust_n, "N", false, seg);
+    return false;
+  }
+  *torque = ev.torque_nm;
+  if (!ev.InData()) seg->prop_note = ev.Message();
+  // Static-only data (DriveCalc power laws, static coefficients) say nothing about the
+  // thrust lost to inflow; held at J = 0 they grossly over-state a propeller in fast axial
+  // flow. Up to the mission's max_static_advance_ratio (default 0.2) the static values
+  // are accepted as an approximation (and noted); beyond it the point fails.
+  if (ev.no_forward_flight_data) {
+    track->Check("prop_no_forward_flight_data", s.name, ev.j, k.max_static_advance_ratio, "", false, seg);
+  }
+  // Momentum theory bounds a rotor's shaft power from below: an actuator disk of area A in
+  // axial flow V needs P_ideal = T*(V/2 + sqrt((V/2)^2 + T/(2*rho*A))) (Leishman,
+  // Principles of Helicopter Aerodynamics, 2nd ed., eqs 2.14 and 2.91; figure of merit
+  // <= 1). Propeller data below it are not physical (some DriveCalc power laws are), and
+  // would fly on impossible efficiency. The ratio P_ideal/P is the figure of merit (static) or
+  // its axial-flow analogue; above the mission's max_figure_of_merit (default 0.8: small
+  // propellers measure 0.5-0.75, Brandt & Selig 2011) the point fails
+  // "prop_figure_of_merit".
+  {
+    // Static-only data evaluated in axial flow (flagged in prop_note) are held to the
+    // static bound: they cannot see the climb power, which the note says.
+    const double v_ax = ev.no_forward_flight_data ? 0.0 : load.axial_airspeed_m_s;
+    // Positive thrust for no power: 1e3, far above any limit (a finite value to print).
+    const double fom = ev.power_w > 0 ? FigureOfMerit(load.thrust_per_rotor_n, ev.power_w, prop_entry.diameter_m,
+                                                      m.rho_kg_m3, v_ax)
+                                      : (load.thrust_per_rotor_n > 0 ? 1e3 : 0.0);
+    track->Check("prop_figure_of_merit", s.name, fom, k.max_figure_of_merit, "", false, seg);
+  }
+  if (prop_entry.max_rpm) {
+    track->Check("prop_max_rpm", s.name, RadPerSecToRpm(*omega), *prop_entry.max_rpm, "rpm", false, seg);
+  }
+  if (s.type == SegmentType::kHover && k.min_hover_throttle > 0) {
+    // At the full-charge voltage without sag: the lowest throttle this hover can need, and
+    // the same at every moment of the mission (so the stretch stays monotone).
+    const OperatingPoint full = drive.Inverse(v_full, *torque, *omega);
+    track->Check("min_hover_throttle", s.name, full.throttle, k.min_hover_throttle, "", true, seg);
+  }
+  return true;
+}
+
 }  // namespace
 
 GroupParts FixedGroupParts(const Mission& m, const Catalog& cat, int g) {
@@ -268,55 +325,12 @@ MissionResult MissionEvaluator::Run(const ContinuousVars& vars, double stretch_s
       omega = sol.omega_rad_s;
       torque = sol.point.torque_nm;
       seg.shaft_solver = sol.algorithm + ": " + sol.message;
-    } else {
-      PropEvaluation ev;
-      const double w_hi = 4.0 * w_motor_max;
-      if (!PropSpeedForThrust(prop, load.thrust_per_rotor_n, m_.rho_kg_m3,
-                              load.axial_airspeed_m_s, w_hi, &omega, &ev)) {
-        // Even four times the motor's no-load speed does not give the thrust.
-        const PropEvaluation at_nl = prop.Evaluate(w_motor_max, m_.rho_kg_m3, load.axial_airspeed_m_s);
-        track.Check("thrust", s.name, load.thrust_per_rotor_n, at_nl.thrust_n, "N", false, &seg);
-        r.feasible = false;
-        r.segments.push_back(seg);
-        r.score = kInf;
-        return r;
-      }
-      torque = ev.torque_nm;
-      if (!ev.InData()) seg.prop_note = ev.Message();
-      // Static-only data (DriveCalc power laws, static coefficients) say nothing about the
-      // thrust lost to inflow; held at J = 0 they grossly over-state a propeller in fast axial
-      // flow. Up to the mission's max_static_advance_ratio (default 0.2) the static values
-      // are accepted as an approximation (and noted); beyond it the point fails.
-      if (ev.no_forward_flight_data) {
-        track.Check("prop_no_forward_flight_data", s.name, ev.j, k.max_static_advance_ratio, "", false, &seg);
-      }
-      // Momentum theory bounds a rotor's shaft power from below: an actuator disk of area A in
-      // axial flow V needs P_ideal = T*(V/2 + sqrt((V/2)^2 + T/(2*rho*A))) (Leishman,
-      // Principles of Helicopter Aerodynamics, 2nd ed., eqs 2.14 and 2.91; figure of merit
-      // <= 1). Propeller data below it are not physical (some DriveCalc power laws are), and
-      // would fly on impossible efficiency. The ratio P_ideal/P is the figure of merit (static) or
-      // its axial-flow analogue; above the mission's max_figure_of_merit (default 0.8: small
-      // propellers measure 0.5-0.75, Brandt & Selig 2011) the point fails
-      // "prop_figure_of_merit".
-      {
-        // Static-only data evaluated in axial flow (flagged in prop_note) are held to the
-        // static bound: they cannot see the climb power, which the note says.
-        const double v_ax = ev.no_forward_flight_data ? 0.0 : load.axial_airspeed_m_s;
-        // Positive thrust for no power: 1e3, far above any limit (a finite value to print).
-        const double fom = ev.power_w > 0 ? FigureOfMerit(load.thrust_per_rotor_n, ev.power_w, gd.parts.prop->diameter_m,
-                                                          m_.rho_kg_m3, v_ax)
-                                          : (load.thrust_per_rotor_n > 0 ? 1e3 : 0.0);
-        track.Check("prop_figure_of_merit", s.name, fom, k.max_figure_of_merit, "", false, &seg);
-      }
-      if (gd.parts.prop->max_rpm) {
-        track.Check("prop_max_rpm", s.name, RadPerSecToRpm(omega), *gd.parts.prop->max_rpm, "rpm", false, &seg);
-      }
-      if (s.type == SegmentType::kHover && k.min_hover_throttle > 0) {
-        // At the full-charge voltage without sag: the lowest throttle this hover can need, and
-        // the same at every moment of the mission (so the stretch stays monotone).
-        const OperatingPoint full = drive.Inverse(v_full, torque, omega);
-        track.Check("min_hover_throttle", s.name, full.throttle, k.min_hover_throttle, "", true, &seg);
-      }
+    } else if (!PropellerPoint(m_, s, load, drive, prop, *gd.parts.prop, v_full, w_motor_max, &track, &seg, &omega,
+                               &torque)) {
+      r.feasible = false;  // even four times the motor's no-load speed does not give the thrust
+      r.segments.push_back(seg);
+      r.score = kInf;
+      return r;
     }
     const int n_active = seg.rotors;
     double last_sag_v = 0.0;
@@ -817,8 +831,8 @@ bool MissionEvaluator::FullThrottleAt(const BatteryPack& pack, double soc, FullT
   // The drive's current rating (no margin): a motor or ESC is not asked for more for long,
   // whatever the throttle could give.
   const GroupDrive& gd = groups_[lift_group_];
-  const Drive& drive_ = gd.drive;
-  const PropModel& prop_ = *gd.prop;
+  const Drive& drive = gd.drive;
+  const PropModel& prop = *gd.prop;
   const double i_cap = std::min(gd.parts.motor->params.max_current_a, gd.parts.esc->params.max_current_a);
   // Illinois regula falsi for the sign change of h on [a, b] (h(a) > 0 > h(b)).
   auto root = [](const auto& h, double a, double b) {
@@ -848,24 +862,24 @@ bool MissionEvaluator::FullThrottleAt(const BatteryPack& pack, double soc, FullT
   for (int outer = 0; outer < 40; ++outer) {
     // The speed where the motor's full-throttle torque (falling with speed, eqs 42, 48) meets
     // the propeller's static torque (rising, M1 of search.cc).
-    const double w_nl = drive_.NoLoadSpeed(v, 1.0);
+    const double w_nl = drive.NoLoadSpeed(v, 1.0);
     if (!(w_nl > 0.0)) return false;
-    auto g = [&](double w) { return drive_.AtSpeed(v, 1.0, w).torque_nm - prop_.Evaluate(w, rho, 0.0).torque_nm; };
+    auto g = [&](double w) { return drive.AtSpeed(v, 1.0, w).torque_nm - prop.Evaluate(w, rho, 0.0).torque_nm; };
     if (!(g(0.0) > 0.0) || !(g(w_nl) < 0.0)) return false;
     double w = root(g, 0.0, w_nl);
-    op = drive_.AtSpeed(v, 1.0, w);
+    op = drive.AtSpeed(v, 1.0, w);
     f->current_limited = std::max(op.idc_a, op.irms_a) > i_cap;
     if (f->current_limited) {
       // Along the propeller's curve the current rises with speed (M1, M2 of search.cc): the
       // speed where max(IDC, Irms) reaches the rating.
       auto over = [&](double x) {
-        const OperatingPoint p = drive_.Inverse(v, prop_.Evaluate(x, rho, 0.0).torque_nm, x);
+        const OperatingPoint p = drive.Inverse(v, prop.Evaluate(x, rho, 0.0).torque_nm, x);
         return i_cap - std::max(p.idc_a, p.irms_a);
       };
       if (over(0.0) > 0.0) w = root(over, 0.0, w);
-      op = drive_.Inverse(v, prop_.Evaluate(w, rho, 0.0).torque_nm, w);
+      op = drive.Inverse(v, prop.Evaluate(w, rho, 0.0).torque_nm, w);
     }
-    ev = prop_.Evaluate(w, rho, 0.0);
+    ev = prop.Evaluate(w, rho, 0.0);
     // The pack at that power: the upper root of V^2 - OCV*V + R*P = 0 (as in Run); past the
     // pack's maximum power (no root) the voltage is held at OCV/2, where the power peaks.
     const double p_w = lift_rotors_ * op.idc_a * v + m_.vehicle.avionics_power_w;
@@ -885,8 +899,8 @@ bool MissionEvaluator::FullThrottleAt(const BatteryPack& pack, double soc, FullT
 
 bool MissionEvaluator::HoverAt(const BatteryPack& pack, double soc, double mass_kg, OperatingPoint* op,
                                double* battery_current_a, double* shaft_w) const {
-  const Drive& drive_ = groups_[lift_group_].drive;
-  const PropModel& prop_ = *groups_[lift_group_].prop;
+  const Drive& drive = groups_[lift_group_].drive;
+  const PropModel& prop = *groups_[lift_group_].prop;
   Segment hover;
   hover.type = SegmentType::kHover;
   hover.group = lift_group_;
@@ -895,13 +909,13 @@ bool MissionEvaluator::HoverAt(const BatteryPack& pack, double soc, double mass_
   const double ocv = pack.OcvV(soc);
   double omega = 0;
   PropEvaluation ev;
-  if (!PropSpeedForThrust(prop_, load.thrust_per_rotor_n, m_.rho_kg_m3, 0.0,
-                          4.0 * std::max(drive_.NoLoadSpeed(ocv, 1.0), 1.0), &omega, &ev)) {
+  if (!PropSpeedForThrust(prop, load.thrust_per_rotor_n, m_.rho_kg_m3, 0.0,
+                          4.0 * std::max(drive.NoLoadSpeed(ocv, 1.0), 1.0), &omega, &ev)) {
     return false;
   }
   double v = ocv;
   for (int it = 0; it < 40; ++it) {
-    *op = drive_.Inverse(v, ev.torque_nm, omega);
+    *op = drive.Inverse(v, ev.torque_nm, omega);
     const double p_w = lift_rotors_ * op->idc_a * v + m_.vehicle.avionics_power_w;
     const double disc = ocv * ocv - 4.0 * pack.ri_ohm() * p_w;
     if (!(disc >= 0.0)) return false;
@@ -910,7 +924,7 @@ bool MissionEvaluator::HoverAt(const BatteryPack& pack, double soc, double mass_
     v = next;
     if (done) break;
   }
-  *op = drive_.Inverse(v, ev.torque_nm, omega);
+  *op = drive.Inverse(v, ev.torque_nm, omega);
   *battery_current_a = lift_rotors_ * op->idc_a + m_.vehicle.avionics_power_w / v;
   *shaft_w = ev.power_w;
   return true;
@@ -983,7 +997,7 @@ void MissionEvaluator::AddWarnings(MissionResult* r) const {
     const GroupDrive& gd = groups_[s.group];
     const MotorParams& mp = gd.parts.motor->params;
     const EscParams& ep = gd.parts.esc->params;
-    const Drive& drive_ = gd.drive;
+    const Drive& drive = gd.drive;
     const OperatingPoint& p = s.point;
     const double i = std::max(p.idc_a, p.irms_a);
     auto near = [&](const char* what, double rating) {
@@ -1003,8 +1017,8 @@ void MissionEvaluator::AddWarnings(MissionResult* r) const {
     if (s.type != SegmentType::kShaft && p.throttle > 0 && p.throttle <= 1) {
       // On the segment's throttle line the efficiency peaks at MaxEfficiencySpeed (eq 14
       // analogue); running well above that speed means a light load for this motor.
-      const double w_opt = drive_.MaxEfficiencySpeed(p.vdc_v, p.throttle);
-      const OperatingPoint best = drive_.AtSpeed(p.vdc_v, p.throttle, w_opt);
+      const double w_opt = drive.MaxEfficiencySpeed(p.vdc_v, p.throttle);
+      const OperatingPoint best = drive.AtSpeed(p.vdc_v, p.throttle, w_opt);
       if (p.omega_rad_s > w_opt && p.eta_system < best.eta_system - 0.10) {
         r->warnings.push_back("segment '" + s.name + "': motor running below the current of "
                               "optimal efficiency (" + Num(p.irms_a, 3) + " A vs " +
