@@ -2,6 +2,8 @@
 // or the best combinations of the catalog.
 #include <unistd.h>
 
+#include <algorithm>
+#include <chrono>
 #include <cstdio>
 #include <cstdlib>
 #include <iomanip>
@@ -12,6 +14,7 @@
 #include "commands.h"
 #include "common/error.h"
 #include "common/json_file.h"
+#include "mission/flight.h"
 #include "mission/mission.h"
 #include "optimization/mission_eval.h"
 #include "optimization/search.h"
@@ -36,15 +39,74 @@ int CellsFor(const Mission& m, const BatteryEntry& b, int cells) {
   return cells;
 }
 
+// The parts of every group: the mission's fixed ones, --pick GROUP=MOTOR,ESC,PROP, and
+// --motor/--esc/--prop for the one group left (or for a mission without groups).
+void ChooseParts(const Mission& m, const Catalog& cat, const EvaluateOptions& o, Combination* c) {
+  const bool single = !o.motor_id.empty() || !o.esc_id.empty() || !o.prop_id.empty();
+  if (single && (o.motor_id.empty() || o.esc_id.empty() || o.prop_id.empty())) {
+    throw UsageError("--motor, --esc and --prop go together (one group's parts)");
+  }
+  if (m.groups.empty()) {
+    if (!o.picks.empty()) {
+      throw UsageError("--pick " + o.picks.front() + ": the mission has no propulsion groups; use --motor, --esc, --prop");
+    }
+    if (!single) throw UsageError("--motor, --esc and --prop are required");
+    c->motor = &cat.motor(o.motor_id);
+    c->esc = &cat.esc(o.esc_id);
+    c->prop = &cat.prop(o.prop_id);
+    return;
+  }
+  c->groups.assign(m.groups.size(), GroupParts{});
+  for (int g = 0; g < GroupCount(m); ++g) c->groups[g] = FixedGroupParts(m, cat, g);
+  for (const std::string& pick : o.picks) {
+    const auto eq = pick.find('=');
+    const auto c1 = pick.find(',', eq == std::string::npos ? 0 : eq);
+    const auto c2 = c1 == std::string::npos ? c1 : pick.find(',', c1 + 1);
+    if (eq == std::string::npos || c1 == std::string::npos || c2 == std::string::npos ||
+        pick.find(',', c2 + 1) != std::string::npos) {
+      throw UsageError("--pick \"" + pick + "\": must be GROUP=MOTOR,ESC,PROP");
+    }
+    const std::string name = pick.substr(0, eq);
+    auto it = std::find_if(m.groups.begin(), m.groups.end(), [&](const PropulsionGroup& x) { return x.name == name; });
+    if (it == m.groups.end()) {
+      std::string valid;
+      for (const auto& x : m.groups) valid += (valid.empty() ? "" : ", ") + x.name;
+      throw UsageError("--pick \"" + pick + "\": no propulsion group '" + name + "' in the mission (valid: " + valid + ")");
+    }
+    GroupParts& p = c->groups[it - m.groups.begin()];
+    p.motor = &cat.motor(pick.substr(eq + 1, c1 - eq - 1));
+    p.esc = &cat.esc(pick.substr(c1 + 1, c2 - c1 - 1));
+    p.prop = &cat.prop(pick.substr(c2 + 1));
+  }
+  std::vector<int> missing;
+  for (int g = 0; g < GroupCount(m); ++g) {
+    if (!c->groups[g].motor) missing.push_back(g);
+  }
+  if (single) {
+    if (missing.size() != 1) {
+      throw UsageError("--motor/--esc/--prop: the mission has " + std::to_string(missing.size()) +
+                       " groups without parts; name each with --pick GROUP=MOTOR,ESC,PROP");
+    }
+    c->groups[missing.front()] = GroupParts{&cat.motor(o.motor_id), &cat.esc(o.esc_id), &cat.prop(o.prop_id)};
+    missing.clear();
+  }
+  if (!missing.empty()) {
+    throw UsageError("--pick: propulsion group '" + m.groups[missing.front()].name +
+                     "' has no parts: give --pick " + m.groups[missing.front()].name + "=MOTOR,ESC,PROP");
+  }
+  const GroupParts lift = c->groups[std::max(0, LiftGroup(m))];
+  c->motor = lift.motor;
+  c->esc = lift.esc;
+  c->prop = lift.prop;
+}
+
 }  // namespace
 
 int RunEvaluate(const EvaluateOptions& o) {
   const Mission mission = ReadMission(o.mission);
   const Catalog cat = Catalog::Load(o.catalog_dir);
   Combination c;
-  c.motor = &cat.motor(o.motor_id);
-  c.esc = &cat.esc(o.esc_id);
-  c.prop = &cat.prop(o.prop_id);
+  ChooseParts(mission, cat, o, &c);
   c.battery = &cat.battery(o.battery_id);
   c.cells = CellsFor(mission, *c.battery, o.cells);
   const MissionEvaluator ev(mission, c);
@@ -67,17 +129,32 @@ int RunOptimize(const OptimizeOptions& o) {
   const Catalog cat = Catalog::Load(o.catalog_dir);
   SearchOptions so;
   so.top_n = o.top;
+  so.threads = o.threads;
+  // Progress on a terminal's stderr only (never with --json or --quiet, never into a pipe or
+  // a file), and only once the search has run for a second.
   const bool bar = !o.json && !o.quiet && isatty(fileno(stderr));
+  bool shown = false;
+  const auto t0 = std::chrono::steady_clock::now();
   if (bar) {
-    so.progress = [](double f) {
-      const int width = 40;
-      const int filled = static_cast<int>(f * width + 0.5);
-      std::cerr << "\r[" << std::string(filled, '#') << std::string(width - filled, ' ') << "] "
-                << std::setw(3) << static_cast<int>(100 * f) << " %" << std::flush;
+    so.progress = [&](const SearchProgress& p) {
+      if (std::chrono::steady_clock::now() - t0 < std::chrono::seconds(1)) return;
+      shown = true;
+      std::ostringstream line;
+      line << "\r" << std::setw(3) << static_cast<int>(100 * p.fraction) << " % of candidate pairs: "
+           << p.searched << " searched, " << p.pruned << " pruned";
+      if (p.has_best) line << ", best " << std::setprecision(4) << p.best_objective;
+      std::string text = line.str();
+      if (text.size() < 79) text += std::string(79 - text.size(), ' ');
+      std::cerr << text << std::flush;
     };
   }
   const SearchResult s = SearchCatalog(mission, cat, so);
-  if (bar) std::cerr << "\r" << std::string(50, ' ') << "\r";
+  if (shown) std::cerr << "\r" << std::string(79, ' ') << "\r" << std::flush;
+  if (o.stats) {
+    std::cerr << "search: " << s.candidate_pairs << " candidate pairs in " << std::setprecision(3)
+              << s.candidate_seconds << " s; " << s.virtual_evaluations << " virtual-ESC and "
+              << s.searched << " exact evaluations; total " << s.seconds << " s\n";
+  }
   std::vector<std::string> figures;
   if (!o.plot_dir.empty()) {
     figures.push_back(WriteParetoFigure(mission, s, o.plot_dir));
@@ -99,6 +176,7 @@ int RunOptimize(const OptimizeOptions& o) {
     for (const auto& [rule, n] : s.pruned_by) by[rule] = n;
     j["pruned_by"] = by;
     j["seconds"] = s.seconds;
+    if (!s.relaxed_constraint.empty()) j["relaxed_constraint"] = s.relaxed_constraint;
     if (!figures.empty()) j["figures"] = figures;
     std::cout << DumpJson(j);
     return 0;
@@ -117,6 +195,11 @@ int RunOptimize(const OptimizeOptions& o) {
   out << ") in " << std::fixed << std::setprecision(2) << s.seconds << " s\n";
   if (s.best.empty()) {
     out << "no combination of the catalog flies this mission within its constraints\n";
+  }
+  if (!s.relaxed_constraint.empty()) {
+    out << "no combination reaches " << s.relaxed_constraint << " "
+        << mission.constraints.min_thrust_to_weight
+        << ": the best without that limit follow, each failing it (a larger motor or propeller, or a lighter vehicle)\n";
   }
   for (std::size_t i = 0; i < s.best.size(); ++i) {
     out << "\n#" << (i + 1) << " "

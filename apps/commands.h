@@ -137,6 +137,7 @@ struct EvaluateOptions {
   std::string catalog_dir;
   std::string mission;
   std::string motor_id, esc_id, prop_id, battery_id;
+  std::vector<std::string> picks;  // --pick GROUP=MOTOR,ESC,PROP (missions with propulsion groups)
   int cells = 0;  // 0: the mission's only cell count (an error when it gives a range)
   bool json = false;
   std::string plot_dir;
@@ -151,6 +152,8 @@ struct OptimizeOptions {
   int top = 5;
   bool json = false;
   bool quiet = false;
+  int threads = 2;     // SearchOptions::threads
+  bool stats = false;  // where the time went (candidate pairs, virtual-ESC evaluations) on stderr
   std::string plot_dir;
 };
 int RunOptimize(const OptimizeOptions& o);

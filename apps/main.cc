@@ -197,9 +197,10 @@ int main(int argc, char** argv) {
       "evaluate", "one motor/ESC/propeller/battery combination flying a mission: operating point "
                   "per segment, battery state, objective, limits");
   evaluate->add_option("mission", eval.mission, "mission JSON file")->required();
-  evaluate->add_option("--motor", eval.motor_id, "motor id")->required();
-  evaluate->add_option("--esc", eval.esc_id, "ESC id")->required();
-  evaluate->add_option("--prop", eval.prop_id, "propeller id")->required();
+  evaluate->add_option("--motor", eval.motor_id, "motor id (one group)");
+  evaluate->add_option("--esc", eval.esc_id, "ESC id (one group)");
+  evaluate->add_option("--prop", eval.prop_id, "propeller id (one group)");
+  evaluate->add_option("--pick", eval.picks, "GROUP=MOTOR,ESC,PROP: a propulsion group's parts (repeatable)");
   evaluate->add_option("--battery", eval.battery_id, "battery (cell) id")->required();
   evaluate->add_option("--cells", eval.cells, "cells in series (default: the mission's, if fixed)")
       ->check(CLI::Range(1, 64));
@@ -212,7 +213,10 @@ int main(int argc, char** argv) {
   optimize->add_option("mission", optim.mission, "mission JSON file")->required();
   optimize->add_option("--top", optim.top, "how many combinations to list")->check(CLI::Range(1, 1000));
   optimize->add_flag("--json", optim.json, "print one JSON object");
-  optimize->add_flag("--quiet", optim.quiet, "no progress bar");
+  optimize->add_flag("--quiet", optim.quiet, "no progress display");
+  optimize->add_option("--threads", optim.threads, "worker threads (the answer does not depend on it)")
+      ->check(CLI::Range(1, 64));
+  optimize->add_flag("--stats", optim.stats, "print where the search's time went on stderr");
   optimize->add_option("--plot", optim.plot_dir,
                        "write the Pareto front and the top pick's efficiency maps here");
 

@@ -262,4 +262,13 @@ DischargeResult BatteryPack::DischargeAtCurrent(double current_a, const Discharg
       o);
 }
 
+double OcvIntegralUpperBound(const BatteryPack& pack, double reserve_soc) {
+  constexpr int kPieces = 400;
+  double sum = 0;
+  for (int i = 1; i <= kPieces; ++i) {
+    sum += pack.OcvV(reserve_soc + (1.0 - reserve_soc) * i / kPieces);
+  }
+  return sum * (1.0 - reserve_soc) / kPieces;
+}
+
 }  // namespace dynosize

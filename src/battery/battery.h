@@ -113,4 +113,10 @@ class BatteryPack {
   BatteryPackParams p_;
 };
 
+// An upper bound of the integral of OCV(soc) d(soc) over [reserve_soc, 1], V: the terminal
+// energy a pack can give above the reserve is at most this times its charge (V <= OCV while
+// discharging, coulomb counting). OCV rises with SOC, so the right-endpoint sum over 400 pieces
+// over-estimates the integral. The OCV curve per SOC does not depend on the capacity.
+double OcvIntegralUpperBound(const BatteryPack& pack, double reserve_soc);
+
 }  // namespace dynosize

@@ -24,6 +24,7 @@
 //    isolated-propeller data are evaluated at.
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 
 #include "common/units.h"
@@ -61,12 +62,41 @@ inline double LongestFixedDurationS(const Mission& m) {
   return t;
 }
 
+// The group that lifts the vehicle: that of the first hover segment, else of the first climb;
+// -1 when no segment is flown on the rotors' lift (a wing-borne cruise only).
+inline int LiftGroup(const Mission& m) {
+  for (const SegmentType t : {SegmentType::kHover, SegmentType::kClimb}) {
+    for (const Segment& s : m.segments) {
+      if (s.type == t) return s.group;
+    }
+  }
+  return -1;
+}
+
+// The rotors that lift the vehicle: the most of the lift group that thrust in any of its hover
+// or climb segments (all of the group's when a segment does not say); 0 without a lift group.
+inline int LiftRotors(const Mission& m) {
+  const int g = LiftGroup(m);
+  int n = 0;
+  for (const Segment& s : m.segments) {
+    if (s.group == g && (s.type == SegmentType::kHover || s.type == SegmentType::kClimb)) {
+      n = std::max(n, s.rotors_active > 0 ? s.rotors_active : GroupRotors(m, g));
+    }
+  }
+  return n;
+}
+
 inline RotorLoad SegmentRotorLoad(const Mission& m, const Segment& s, double total_mass_kg,
                                   double airspeed_m_s) {
   RotorLoad r;
   const double w = total_mass_kg * kStandardGravity;
-  const double cda = m.vehicle.drag_area_m2 * m.vehicle.drag_coefficient;
-  r.rotors = s.rotors_active > 0 ? s.rotors_active : m.vehicle.rotors;
+  // Idle groups (stopped lift rotors in cruise) add their drag area to the body's.
+  double area_m2 = m.vehicle.drag_area_m2;
+  for (std::size_t g = 0; g < m.groups.size(); ++g) {
+    if (static_cast<int>(g) != s.group) area_m2 += m.groups[g].idle_drag_area_m2;
+  }
+  const double cda = area_m2 * m.vehicle.drag_coefficient;
+  r.rotors = s.rotors_active > 0 ? s.rotors_active : GroupRotors(m, s.group);
   switch (s.type) {
     case SegmentType::kHover:
     case SegmentType::kShaft:

@@ -159,20 +159,20 @@ Segment ReadSegment(const Reader& r, const std::string& path) {
   else r.Fail(r.Path("type"), r.At("type"), "must be one of climb, cruise, hover, shaft");
   switch (s.type) {
     case SegmentType::kHover:
-      r.AllowOnly({"name", "type", "duration_s", "rotors"});
+      r.AllowOnly({"name", "type", "duration_s", "rotors", "group"});
       break;
     case SegmentType::kClimb:
-      r.AllowOnly({"name", "type", "duration_s", "distance_m", "rate_m_s", "rotors"});
+      r.AllowOnly({"name", "type", "duration_s", "distance_m", "rate_m_s", "rotors", "group"});
       s.climb_rate_m_s = r.Number("rate_m_s", -50.0, 50.0, false);
       if (s.climb_rate_m_s == 0.0) r.Fail(r.Path("rate_m_s"), r.At("rate_m_s"), "must not be 0 (use a hover segment)");
       break;
     case SegmentType::kCruise:
-      r.AllowOnly({"name", "type", "duration_s", "distance_m", "airspeed_m_s", "lift_to_drag", "rotors"});
+      r.AllowOnly({"name", "type", "duration_s", "distance_m", "airspeed_m_s", "lift_to_drag", "rotors", "group"});
       s.airspeed_m_s = r.NumberOrRange("airspeed_m_s", 0.0, 150.0, true);
       s.lift_to_drag = r.Number("lift_to_drag", 1.0, 50.0, false, 0.0);
       break;
     case SegmentType::kShaft: {
-      r.AllowOnly({"name", "type", "duration_s", "power_w", "torque_nm", "rpm"});
+      r.AllowOnly({"name", "type", "duration_s", "power_w", "torque_nm", "rpm", "group"});
       s.shaft_power_w = r.OptNumber("power_w", 0.0, 1e7, true);
       s.shaft_torque_nm = r.OptNumber("torque_nm", 0.0, 1e5, true);
       if (s.shaft_power_w.has_value() == s.shaft_torque_nm.has_value()) {
@@ -184,6 +184,7 @@ Segment ReadSegment(const Reader& r, const std::string& path) {
     }
   }
   s.rotors_active = r.Integer("rotors", 1, 64, 0);
+  s.group_name = r.String("group", std::string());
   s.duration_s = r.OptNumber("duration_s", 0.0, 1e7, true);
   if (r.Has("distance_m")) s.distance_m = r.Number("distance_m", 0.0, 1e8, true);
   if (s.duration_s.has_value() == s.distance_m.has_value()) {
@@ -197,11 +198,42 @@ Segment ReadSegment(const Reader& r, const std::string& path) {
 
 }  // namespace
 
+// "propulsion": {"lift": {"rotors": 4, "max_prop_diameter_m": 0.33, "idle_drag_area_m2": 0.01,
+//                "motor": ID, "esc": ID, "prop": ID}, ...}; sets m->groups and m->vehicle.rotors.
+static void ReadPropulsion(const Reader& top, const std::string& name, Mission* m) {
+  const Json& p = top.At("propulsion");
+  if (!p.is_object() || p.empty()) top.Fail("$.propulsion", p, "must be an object of named groups");
+  int total = 0;
+  for (auto it = p.begin(); it != p.end(); ++it) {
+    const std::string path = "$.propulsion." + it.key();
+    const Reader g(it.value(), name, path);
+    g.AllowOnly({"rotors", "max_prop_diameter_m", "idle_drag_area_m2", "motor", "esc", "prop", "comment"});
+    PropulsionGroup grp;
+    grp.name = it.key();
+    if (grp.name.empty()) top.Fail("$.propulsion", p, "a group name must not be empty");
+    grp.rotors = g.Integer("rotors", 1, 64, std::nullopt);
+    grp.max_prop_diameter_m = g.OptNumber("max_prop_diameter_m", 0.0, 100.0, true);
+    grp.idle_drag_area_m2 = g.Number("idle_drag_area_m2", 0.0, 100.0, false, 0.0);
+    grp.motor_id = g.String("motor", std::string());
+    grp.esc_id = g.String("esc", std::string());
+    grp.prop_id = g.String("prop", std::string());
+    const int given = !grp.motor_id.empty() + !grp.esc_id.empty() + !grp.prop_id.empty();
+    if (given != 0 && given != 3) {
+      g.Fail(path, it.value(), "give all of motor, esc and prop (a fixed group) or none (a searched group)");
+    }
+    total += grp.rotors;
+    m->groups.push_back(std::move(grp));
+  }
+  if (total > 64) top.Fail("$.propulsion", p, "more than 64 rotors in all");
+  m->vehicle.rotors = total;
+}
+
 Mission ParseMission(const Json& doc, const std::string& name) {
   Mission m;
   m.file = name;
   const Reader top(doc, name, "$");
-  top.AllowOnly({"name", "comment", "vehicle", "air", "battery", "constraints", "objective", "segments"});
+  top.AllowOnly({"name", "comment", "vehicle", "air", "battery", "constraints", "objective", "segments",
+                 "propulsion"});
   m.name = top.String("name", std::string("mission"));
   if (top.Has("comment") && !top.At("comment").is_string()) {
     top.Fail("$.comment", top.At("comment"), "must be a string");
@@ -212,7 +244,19 @@ Mission ParseMission(const Json& doc, const std::string& name) {
   v.AllowOnly({"mass_kg", "rotors", "coaxial", "drag_area_m2", "drag_coefficient", "avionics_power_w",
                "max_prop_diameter_m"});
   m.vehicle.mass_kg = v.Number("mass_kg", 0.0, 1e4, true);
-  m.vehicle.rotors = v.Integer("rotors", 1, 64, std::nullopt);
+  if (top.Has("propulsion")) {
+    ReadPropulsion(top, name, &m);
+    if (v.Has("rotors") && v.Integer("rotors", 1, 64, std::nullopt) != m.vehicle.rotors) {
+      v.Fail("$.vehicle.rotors", v.At("rotors"), "must be the sum of the propulsion groups' rotors (" +
+                                                     std::to_string(m.vehicle.rotors) + ") or left out");
+    }
+    if (v.Has("max_prop_diameter_m")) {
+      v.Fail("$.vehicle.max_prop_diameter_m", v.At("max_prop_diameter_m"),
+             "give max_prop_diameter_m per propulsion group");
+    }
+  } else {
+    m.vehicle.rotors = v.Integer("rotors", 1, 64, std::nullopt);
+  }
   m.vehicle.coaxial = v.Bool("coaxial", false);
   if (m.vehicle.coaxial && m.vehicle.rotors % 2 != 0) {
     v.Fail("$.vehicle.rotors", v.At("rotors"), "must be even for a coaxial vehicle");
@@ -234,6 +278,7 @@ Mission ParseMission(const Json& doc, const std::string& name) {
       const double h = a.Number("altitude_m", -500.0, 10000.0, false, 0.0);
       const double t = a.Number("temperature_c", -60.0, 60.0, false, 15.0);
       m.rho_kg_m3 = AirDensityKgM3(h, t);
+      m.air_temperature_c = t;
     }
   }
 
@@ -266,7 +311,10 @@ Mission ParseMission(const Json& doc, const std::string& name) {
   if (top.Has("constraints")) {
     const Reader c(top.At("constraints"), name, "$.constraints");
     c.AllowOnly({"max_throttle", "min_hover_throttle", "current_margin", "allow_esc_saturation",
-                 "enforce_motor_power", "max_figure_of_merit", "max_static_advance_ratio"});
+                 "enforce_motor_power", "max_figure_of_merit", "max_static_advance_ratio",
+                 "min_thrust_to_weight", "max_winding_temp_c"});
+    m.constraints.min_thrust_to_weight = c.Number("min_thrust_to_weight", 0.0, 50.0, false, 2.0);
+    m.constraints.max_winding_temp_c = c.Number("max_winding_temp_c", 20.0, 400.0, false, 120.0);
     m.constraints.max_static_advance_ratio = c.Number("max_static_advance_ratio", 0.0, 5.0, false, 0.2);
     m.constraints.max_figure_of_merit = c.Number("max_figure_of_merit", 0.0, 1.0, true, 0.8);
     m.constraints.max_throttle = c.Number("max_throttle", 0.0, 1.0, true, 0.8);
@@ -292,9 +340,31 @@ Mission ParseMission(const Json& doc, const std::string& name) {
     if (!names.insert(m.segments.back().name).second) {
       s.Fail(path + ".name", s.At("name"), "segment names must be unique");
     }
-    if (m.segments.back().rotors_active > m.vehicle.rotors) {
-      s.Fail(path + ".rotors", s.At("rotors"), "must be <= vehicle.rotors (" +
-                                                   std::to_string(m.vehicle.rotors) + ")");
+    Segment& seg = m.segments.back();
+    if (!m.groups.empty()) {
+      if (seg.group_name.empty()) s.FailMissing("group", "a mission with propulsion groups names each segment's group");
+      auto it = std::find_if(m.groups.begin(), m.groups.end(), [&](const PropulsionGroup& g) { return g.name == seg.group_name; });
+      if (it == m.groups.end()) {
+        std::string names_list;
+        for (const auto& g : m.groups) names_list += (names_list.empty() ? "" : ", ") + g.name;
+        s.Fail(path + ".group", s.At("group"), "names no propulsion group (valid: " + names_list + ")");
+      }
+      seg.group = static_cast<int>(it - m.groups.begin());
+    } else if (!seg.group_name.empty()) {
+      s.Fail(path + ".group", s.At("group"), "needs a \"propulsion\" object naming the groups");
+    }
+    const int group_rotors = GroupRotors(m, seg.group);
+    if (seg.rotors_active > group_rotors) {
+      s.Fail(path + ".rotors", s.At("rotors"), std::string("must be <= ") +
+                                                   (m.groups.empty() ? "vehicle.rotors (" : "its group's rotors (") +
+                                                   std::to_string(group_rotors) + ")");
+    }
+  }
+  for (std::size_t g = 0; g < m.groups.size(); ++g) {
+    const bool used = std::any_of(m.segments.begin(), m.segments.end(), [&](const Segment& x) { return x.group == static_cast<int>(g); });
+    if (!used) {
+      throw DataError(name + ": $.propulsion." + m.groups[g].name + ": \"" + m.groups[g].name +
+                      "\": no segment uses this group (name it in a segment's \"group\" or remove it)");
     }
   }
 

@@ -37,7 +37,10 @@ struct Segment {
   // cruise with a wing (lift + cruise): the wing carries the weight, the thrust equals
   // weight / (L/D) and the flow is axial; 0 = no wing (a multirotor tilts into the wind).
   double lift_to_drag = 0.0;
-  int rotors_active = 0;  // rotors that thrust in this segment; 0 = all of the vehicle's
+  int rotors_active = 0;  // rotors that thrust in this segment; 0 = all of its group's
+  // The propulsion group that flies it (index into Mission::groups; 0 without groups).
+  int group = 0;
+  std::string group_name;  // as written ("" without groups)
   // shaft: per-motor shaft power or torque (one of them) and the speed range.
   std::optional<double> shaft_power_w;
   std::optional<double> shaft_torque_nm;
@@ -53,6 +56,20 @@ struct Vehicle {
   double avionics_power_w = 0.0;  // drawn from the battery throughout
   // The largest propeller the frame takes (arm length, rotor spacing); no limit when absent.
   std::optional<double> max_prop_diameter_m;
+};
+
+// A propulsion group (mission key "propulsion"): rotors that share one motor, ESC and
+// propeller type, e.g. the lift rotors and the pusher of a lift + cruise aircraft. The battery
+// is shared; every group's mass counts in every segment.
+struct PropulsionGroup {
+  std::string name;
+  int rotors = 1;
+  std::optional<double> max_prop_diameter_m;  // the frame's largest propeller for this group
+  // Body drag area added (x vehicle.drag_coefficient) while no segment flies on the group
+  // (stopped lift rotors in cruise), m^2.
+  double idle_drag_area_m2 = 0.0;
+  std::string motor_id, esc_id, prop_id;  // all three given: the group is fixed; none: searched
+  bool fixed() const { return !motor_id.empty(); }
 };
 
 struct MissionBattery {
@@ -78,6 +95,14 @@ struct MissionConstraints {
   double max_figure_of_merit = 0.8;
   // Propellers with static data only may fly at advance ratios J = V/(n*D) up to this.
   double max_static_advance_ratio = 0.2;
+  // Full-throttle static thrust of the lift rotors over the weight, at the lowest pack voltage
+  // of the mission with the sag at that current (README "Sizing": ArduPilot's mixer gives up
+  // altitude for attitude below 2, ArduPilot PR #23512). Checked when the mission lifts the
+  // vehicle on its rotors (a hover or climb segment); 0 = not checked.
+  double min_thrust_to_weight = 2.0;
+  // Steady winding temperature in every segment at most this, C (hobby motors' enamel wire of
+  // thermal class 130, IEC 60085, less a 10 K hot-spot allowance); optimization/mission_eval.h.
+  double max_winding_temp_c = 120.0;
 };
 
 enum class ObjectiveType { kMaxEndurance, kMinEnergy, kMaxEfficiency };
@@ -97,11 +122,22 @@ struct Mission {
   std::string name;
   Vehicle vehicle;
   double rho_kg_m3 = 1.225;
+  double air_temperature_c = 15.0;  // ambient of the motors' thermal model (ISA sea level)
   MissionBattery battery;
   MissionConstraints constraints;
   Objective objective;
   std::vector<Segment> segments;
+  // Empty without a "propulsion" key: one implicit group of vehicle.rotors rotors and
+  // vehicle.max_prop_diameter_m. With it, vehicle.rotors is the sum of the groups' rotors.
+  std::vector<PropulsionGroup> groups;
 };
+
+inline int GroupCount(const Mission& m) { return m.groups.empty() ? 1 : static_cast<int>(m.groups.size()); }
+inline int GroupRotors(const Mission& m, int g) { return m.groups.empty() ? m.vehicle.rotors : m.groups[g].rotors; }
+inline std::optional<double> GroupMaxPropDiameterM(const Mission& m, int g) {
+  return m.groups.empty() ? m.vehicle.max_prop_diameter_m : m.groups[g].max_prop_diameter_m;
+}
+inline std::string GroupName(const Mission& m, int g) { return m.groups.empty() ? "" : m.groups[g].name; }
 
 // Reads and checks a mission file: NoInputError when missing, DataError (one line: file, JSON
 // path, value, rule) when anything is wrong.

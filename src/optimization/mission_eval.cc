@@ -8,7 +8,7 @@
 #include "common/error.h"
 #include "common/units.h"
 #include "mission/flight.h"
-#include "optimization/search.h"
+#include "model/physics.h"
 #include "optimization/shaft.h"
 #include "solvers/solver.h"
 
@@ -63,6 +63,17 @@ bool PropSpeedForThrust(const PropModel& prop, double thrust_n, double rho, doub
   return true;
 }
 
+// For the report of a point that creates energy: the efficiency (> 1) of the stage that does,
+// eta_esc = PAC/PDC or eta_motor = Pmech/PAC; when that stage's input is not positive,
+// 1 + output/|output| = 2 (a finite stand-in for "power out of nothing").
+double CreatedEnergyRatio(const OperatingPoint& op) {
+  auto ratio = [](double out_w, double in_w) { return in_w > 0 ? out_w / in_w : 2.0; };
+  double r = 1.0;
+  if (op.pesc_w < 0) r = std::max(r, ratio(op.pac_w, op.pdc_w));
+  if (op.pmech_w > op.pac_w) r = std::max(r, ratio(op.pmech_w, op.pac_w));
+  return r;
+}
+
 // Tracks slacks and violations of one simulation.
 class Tracker {
  public:
@@ -96,19 +107,87 @@ class Tracker {
   MissionResult* r_;
 };
 
+// A propeller segment's shaft point: the speed where the propeller gives the required thrust
+// per rotor (static or in the axial inflow), its torque, and the propeller's own checks (data
+// held at an edge, static-only data in inflow, momentum theory, max rpm, the hover throttle at
+// full charge). False when even four times the motor's no-load speed does not give the thrust
+// (a "thrust" violation is recorded).
+bool PropellerPoint(const Mission& m, const Segment& s, const RotorLoad& load, const Drive& drive,
+                    const PropModel& prop, const PropEntry& prop_entry, double v_full, double w_motor_max,
+                    Tracker* track, SegmentResult* seg, double* omega, double* torque) {
+  const MissionConstraints& k = m.constraints;
+  PropEvaluation ev;
+  const double w_hi = 4.0 * w_motor_max;
+  if (!PropSpeedForThrust(prop, load.thrust_per_rotor_n, m.rho_kg_m3,
+                          load.axial_airspeed_m_s, w_hi, omega, &ev)) {
+    // Even four times the motor's no-load speed does not give the thrust.
+    const PropEvaluation at_nl = prop.Evaluate(w_motor_max, m.rho_kg_m3, load.axial_airspeed_m_s);
+    track->Check("thrust", s.name, load.thrust_per_rotor_n, at_nl.thrust_n, "N", false, seg);
+    return false;
+  }
+  *torque = ev.torque_nm;
+  if (!ev.InData()) seg->prop_note = ev.Message();
+  // Static-only data (DriveCalc power laws, static coefficients) say nothing about the
+  // thrust lost to inflow; held at J = 0 they grossly over-state a propeller in fast axial
+  // flow. Up to the mission's max_static_advance_ratio (default 0.2) the static values
+  // are accepted as an approximation (and noted); beyond it the point fails.
+  if (ev.no_forward_flight_data) {
+    track->Check("prop_no_forward_flight_data", s.name, ev.j, k.max_static_advance_ratio, "", false, seg);
+  }
+  // Momentum theory bounds a rotor's shaft power from below: an actuator disk of area A in
+  // axial flow V needs P_ideal = T*(V/2 + sqrt((V/2)^2 + T/(2*rho*A))) (Leishman,
+  // Principles of Helicopter Aerodynamics, 2nd ed., eqs 2.14 and 2.91; figure of merit
+  // <= 1). Propeller data below it are not physical (some DriveCalc power laws are), and
+  // would fly on impossible efficiency. The ratio P_ideal/P is the figure of merit (static) or
+  // its axial-flow analogue; above the mission's max_figure_of_merit (default 0.8: small
+  // propellers measure 0.5-0.75, Brandt & Selig 2011) the point fails
+  // "prop_figure_of_merit".
+  {
+    // Static-only data evaluated in axial flow (flagged in prop_note) are held to the
+    // static bound: they cannot see the climb power, which the note says.
+    const double v_ax = ev.no_forward_flight_data ? 0.0 : load.axial_airspeed_m_s;
+    // Positive thrust for no power: 1e3, far above any limit (a finite value to print).
+    const double fom = ev.power_w > 0 ? FigureOfMerit(load.thrust_per_rotor_n, ev.power_w, prop_entry.diameter_m,
+                                                      m.rho_kg_m3, v_ax)
+                                      : (load.thrust_per_rotor_n > 0 ? 1e3 : 0.0);
+    track->Check("prop_figure_of_merit", s.name, fom, k.max_figure_of_merit, "", false, seg);
+  }
+  if (prop_entry.max_rpm) {
+    track->Check("prop_max_rpm", s.name, RadPerSecToRpm(*omega), *prop_entry.max_rpm, "rpm", false, seg);
+  }
+  if (s.type == SegmentType::kHover && k.min_hover_throttle > 0) {
+    // At the full-charge voltage without sag: the lowest throttle this hover can need, and
+    // the same at every moment of the mission (so the stretch stays monotone).
+    const OperatingPoint full = drive.Inverse(v_full, *torque, *omega);
+    track->Check("min_hover_throttle", s.name, full.throttle, k.min_hover_throttle, "", true, seg);
+  }
+  return true;
+}
+
 }  // namespace
 
-double AssumedPropMassKg(double diameter_m) {
-  return 0.014 * std::pow(diameter_m / 0.254, 2.5);
+GroupParts FixedGroupParts(const Mission& m, const Catalog& cat, int g) {
+  if (m.groups.empty() || !m.groups[g].fixed()) return {};
+  const PropulsionGroup& grp = m.groups[g];
+  auto look = [&](const char* key, const std::string& id, auto lookup) {
+    try {
+      return lookup(id);
+    } catch (const Error& e) {
+      throw DataError(m.file + ": $.propulsion." + grp.name + "." + key + ": \"" + id +
+                      "\": not in the catalog (" + e.what() + ")");
+    }
+  };
+  GroupParts p;
+  p.motor = look("motor", grp.motor_id, [&](const std::string& id) { return &cat.motor(id); });
+  p.esc = look("esc", grp.esc_id, [&](const std::string& id) { return &cat.esc(id); });
+  p.prop = look("prop", grp.prop_id, [&](const std::string& id) { return &cat.prop(id); });
+  return p;
 }
 
 MissionEvaluator::MissionEvaluator(const Mission& mission, const Combination& c,
-                                   const PropModel* prop_model)
-    : m_(mission),
-      c_(c),
-      drive_(c.motor->params, c.esc->params),
-      owned_prop_(prop_model ? nullptr : std::make_unique<PropModel>(*c.prop)),
-      prop_(prop_model ? *prop_model : *owned_prop_) {
+                                   const PropModel* prop_model,
+                                   const std::vector<const PropModel*>* group_prop_models)
+    : m_(mission), c_(c) {
   const BatteryEntry& b = *c.battery;
   if (c.cells < 1 || c.cells % b.cells_series != 0) {
     throw UsageError("battery '" + b.id + "' has " + std::to_string(b.cells_series) +
@@ -119,33 +198,47 @@ MissionEvaluator::MissionEvaluator(const Mission& mission, const Combination& c,
   base_capacity_ah_ = pack_base_.cell_capacity_ah * pack_base_.n_parallel;
   for (const auto& k : pack_base_.assumed) assumed_.push_back("battery " + b.id + ": " + k);
   if (!b.mass_kg) throw DataError("battery '" + b.id + "' has no mass_kg: the mission needs it");
-  const int n = m_.vehicle.rotors;
-  double motor_mass = 0;
-  if (c.motor->mass_kg) {
-    motor_mass = *c.motor->mass_kg;
-  } else {
-    throw DataError("motor '" + c.motor->id + "' has no mass_kg: the mission needs it");
+  if (!c.groups.empty() && static_cast<int>(c.groups.size()) != GroupCount(m_)) {
+    throw UsageError("the combination has parts for " + std::to_string(c.groups.size()) +
+                     " propulsion groups; the mission has " + std::to_string(GroupCount(m_)));
   }
-  double esc_mass = 0;
-  if (c.esc->mass_kg) {
-    esc_mass = *c.esc->mass_kg;
-  } else {
-    // An ESC without a mass: 1 g per A of rating + 5 g (hobby ESCs: 30 A ~ 25-35 g), assumed.
-    const double rating = std::isfinite(c.esc->params.max_current_a) ? c.esc->params.max_current_a : 30.0;
-    esc_mass = 0.005 + 0.001 * rating;
-    assumed_.push_back("ESC " + c.esc->id + ": mass_kg");
+  fixed_mass_kg_ = m_.vehicle.mass_kg;
+  for (int g = 0; g < GroupCount(m_); ++g) {
+    const GroupParts parts = c.Parts(g);
+    if (!parts.motor || !parts.esc || !parts.prop) {
+      throw UsageError("propulsion group '" + GroupName(m_, g) + "' has no motor, ESC or propeller");
+    }
+    // PropModels built by the caller: prop_model serves the group of c.prop, group_prop_models
+    // the others; any group without one builds its own.
+    const PropModel* given = prop_model && parts.prop == c.prop ? prop_model : nullptr;
+    if (!given && group_prop_models && g < static_cast<int>(group_prop_models->size())) {
+      given = (*group_prop_models)[g];
+    }
+    groups_.push_back(GroupDrive{parts, Drive(parts.motor->params, parts.esc->params),
+                                 given ? nullptr : std::make_unique<PropModel>(*parts.prop), nullptr, 0.0});
+    GroupDrive& gd = groups_.back();
+    gd.prop = given ? given : gd.owned_prop.get();
+    if (!parts.motor->mass_kg) {
+      throw DataError("motor '" + parts.motor->id + "' has no mass_kg: the mission needs it");
+    }
+    const double motor_mass = *parts.motor->mass_kg;
+    const ComponentMass esc_mass = EscMass(*parts.esc);
+    if (esc_mass.assumed) assumed_.push_back("ESC " + parts.esc->id + ": mass_kg");
+    const ComponentMass prop_mass = PropMass(*parts.prop);
+    if (prop_mass.assumed) assumed_.push_back("propeller " + parts.prop->id + ": mass_kg");
+    for (const auto& k : parts.motor->assumed_keys) assumed_.push_back("motor " + parts.motor->id + ": " + k);
+    for (const auto& k : parts.esc->assumed_keys) assumed_.push_back("ESC " + parts.esc->id + ": " + k);
+    for (const auto& k : parts.prop->assumed_keys) assumed_.push_back("propeller " + parts.prop->id + ": " + k);
+    fixed_mass_kg_ += GroupRotors(m_, g) * (motor_mass + esc_mass.kg + prop_mass.kg);
+    if (parts.motor->params.rth_k_per_w > 0) {
+      gd.rth_k_per_w = parts.motor->params.rth_k_per_w;
+    } else {
+      gd.rth_k_per_w = AssumedMotorRthKPerW(motor_mass);
+      assumed_.push_back("motor " + parts.motor->id + ": rth_k_per_w");
+    }
   }
-  double prop_mass = 0;
-  if (c.prop->mass_kg) {
-    prop_mass = *c.prop->mass_kg;
-  } else {
-    prop_mass = AssumedPropMassKg(c.prop->diameter_m);
-    assumed_.push_back("propeller " + c.prop->id + ": mass_kg");
-  }
-  for (const auto& k : c.motor->assumed_keys) assumed_.push_back("motor " + c.motor->id + ": " + k);
-  for (const auto& k : c.esc->assumed_keys) assumed_.push_back("ESC " + c.esc->id + ": " + k);
-  for (const auto& k : c.prop->assumed_keys) assumed_.push_back("propeller " + c.prop->id + ": " + k);
-  fixed_mass_kg_ = m_.vehicle.mass_kg + n * (motor_mass + esc_mass + prop_mass);
+  lift_rotors_ = LiftRotors(m_);
+  lift_group_ = std::max(0, LiftGroup(m_));
 }
 
 double MissionEvaluator::BatteryMassKg(double capacity_ah) const {
@@ -183,22 +276,29 @@ MissionResult MissionEvaluator::Run(const ContinuousVars& vars, double stretch_s
   const double v_full = pack.OcvV(1.0);
   const double q_c = AhToCoulomb(pack.capacity_ah());
   const double current_factor = 1.0 - k.current_margin;
-  const MotorParams& mp = c_.motor->params;
-  const EscParams& ep = c_.esc->params;
-  track.Check("esc_voltage", "", v_full, ep.vdc_max_v, "V");
-  if (m_.vehicle.max_prop_diameter_m) {
-    track.Check("prop_diameter", "", c_.prop->diameter_m, *m_.vehicle.max_prop_diameter_m, "m");
+  for (int g = 0; g < static_cast<int>(groups_.size()); ++g) {
+    track.Check("esc_voltage", "", v_full, groups_[g].parts.esc->params.vdc_max_v, "V");
+    if (const auto d_max = GroupMaxPropDiameterM(m_, g)) {
+      track.Check("prop_diameter", "", groups_[g].parts.prop->diameter_m, *d_max, "m");
+    }
   }
-  const double w_motor_max = std::max(drive_.NoLoadSpeed(v_full, 1.0), 1.0);
 
   double soc = 1.0;
   double time_s = 0, energy_j = 0;
   for (std::size_t si = 0; si < m_.segments.size(); ++si) {
     const Segment& s = m_.segments[si];
+    const GroupDrive& gd = groups_[s.group];
+    const Drive& drive = gd.drive;
+    const PropModel& prop = *gd.prop;
+    const MotorParams& mp = gd.parts.motor->params;
+    const EscParams& ep = gd.parts.esc->params;
+    const double w_motor_max = std::max(drive.NoLoadSpeed(v_full, 1.0), 1.0);
     SegmentResult seg;
+    seg.group = s.group;
     seg.name = s.name;
     seg.type = s.type;
     seg.active_limit_slack = kInf;
+    seg.winding_temp_c = m_.air_temperature_c;
     seg.airspeed_m_s = s.type == SegmentType::kCruise
                            ? (si < vars.airspeed_m_s.size() && vars.airspeed_m_s[si] > 0
                                   ? vars.airspeed_m_s[si]
@@ -208,7 +308,7 @@ MissionResult MissionEvaluator::Run(const ContinuousVars& vars, double stretch_s
                            static_cast<int>(si) == m_.objective.segment_index;
     seg.duration_s = stretched ? stretch_s : SegmentDurationS(s, seg.airspeed_m_s);
     const RotorLoad load = SegmentRotorLoad(m_, s, r.total_mass_kg, seg.airspeed_m_s);
-    seg.rotors = s.type == SegmentType::kShaft ? m_.vehicle.rotors : load.rotors;
+    seg.rotors = load.rotors;
     seg.thrust_per_rotor_n = s.type == SegmentType::kShaft ? 0.0 : load.thrust_per_rotor_n;
     seg.tilt_deg = load.tilt_rad * 180.0 / kPi;
     double omega = 0, torque = 0;
@@ -221,58 +321,16 @@ MissionResult MissionEvaluator::Run(const ContinuousVars& vars, double stretch_s
       q.max_throttle = std::min(k.max_throttle, k.allow_esc_saturation ? 1.0 : ep.tr_sat);
       const double lim = std::min(mp.max_current_a, ep.max_current_a) * current_factor;
       q.max_current_a = std::isfinite(lim) ? lim : 1e300;
-      const ShaftSolution sol = SolveShaftSpeed(drive_, q, "ipopt");
+      const ShaftSolution sol = SolveShaftSpeed(drive, q, "ipopt");
       omega = sol.omega_rad_s;
       torque = sol.point.torque_nm;
       seg.shaft_solver = sol.algorithm + ": " + sol.message;
-    } else {
-      PropEvaluation ev;
-      const double w_hi = 4.0 * w_motor_max;
-      if (!PropSpeedForThrust(prop_, load.thrust_per_rotor_n, m_.rho_kg_m3,
-                              load.axial_airspeed_m_s, w_hi, &omega, &ev)) {
-        // Even four times the motor's no-load speed does not give the thrust.
-        const PropEvaluation at_nl = prop_.Evaluate(w_motor_max, m_.rho_kg_m3, load.axial_airspeed_m_s);
-        track.Check("thrust", s.name, load.thrust_per_rotor_n, at_nl.thrust_n, "N", false, &seg);
-        r.feasible = false;
-        r.segments.push_back(seg);
-        r.score = kInf;
-        return r;
-      }
-      torque = ev.torque_nm;
-      if (!ev.InData()) seg.prop_note = ev.Message();
-      // Static-only data (DriveCalc power laws, static coefficients) say nothing about the
-      // thrust lost to inflow; held at J = 0 they grossly over-state a propeller in fast axial
-      // flow. Up to the mission's max_static_advance_ratio (default 0.2) the static values
-      // are accepted as an approximation (and noted); beyond it the point fails.
-      if (ev.no_forward_flight_data) {
-        track.Check("prop_no_forward_flight_data", s.name, ev.j, k.max_static_advance_ratio, "", false, &seg);
-      }
-      // Momentum theory bounds a rotor's shaft power from below: an actuator disk of area A in
-      // axial flow V needs P_ideal = T*(V/2 + sqrt((V/2)^2 + T/(2*rho*A))) (Leishman,
-      // Principles of Helicopter Aerodynamics, 2nd ed., eqs 2.14 and 2.91; figure of merit
-      // <= 1). Propeller data below it are not physical (some DriveCalc power laws are), and
-      // would fly on impossible efficiency. The ratio P_ideal/P is the figure of merit (static) or
-      // its axial-flow analogue; above the mission's max_figure_of_merit (default 0.8: small
-      // propellers measure 0.5-0.75, Brandt & Selig 2011) the point fails
-      // "prop_figure_of_merit".
-      {
-        const double area = 0.25 * kPi * c_.prop->diameter_m * c_.prop->diameter_m;
-        // Static-only data evaluated in axial flow (flagged in prop_note) are held to the
-        // static bound: they cannot see the climb power, which the note says.
-        const double v_ax = ev.no_forward_flight_data ? 0.0 : 0.5 * load.axial_airspeed_m_s;
-        const double t = load.thrust_per_rotor_n;
-        const double p_ideal = t * (v_ax + std::sqrt(v_ax * v_ax + t / (2.0 * m_.rho_kg_m3 * area)));
-        track.Check("prop_figure_of_merit", s.name, p_ideal / ev.power_w, k.max_figure_of_merit, "", false, &seg);
-      }
-      if (c_.prop->max_rpm) {
-        track.Check("prop_max_rpm", s.name, RadPerSecToRpm(omega), *c_.prop->max_rpm, "rpm", false, &seg);
-      }
-      if (s.type == SegmentType::kHover && k.min_hover_throttle > 0) {
-        // At the full-charge voltage without sag: the lowest throttle this hover can need, and
-        // the same at every moment of the mission (so the stretch stays monotone).
-        const OperatingPoint full = drive_.Inverse(v_full, torque, omega);
-        track.Check("min_hover_throttle", s.name, full.throttle, k.min_hover_throttle, "", true, &seg);
-      }
+    } else if (!PropellerPoint(m_, s, load, drive, prop, *gd.parts.prop, v_full, w_motor_max, &track, &seg, &omega,
+                               &torque)) {
+      r.feasible = false;  // even four times the motor's no-load speed does not give the thrust
+      r.segments.push_back(seg);
+      r.score = kInf;
+      return r;
     }
     const int n_active = seg.rotors;
     double last_sag_v = 0.0;
@@ -291,7 +349,7 @@ MissionResult MissionEvaluator::Run(const ContinuousVars& vars, double stretch_s
       // Warm start from the previous instant's sag (the current changes little in a segment).
       double vv = last_sag_v > 0 && last_sag_v < 0.5 * ocv ? ocv - last_sag_v : ocv;
       for (int it = 0; it < 30; ++it) {
-        *op = drive_.Inverse(vv, torque, omega);
+        *op = drive.Inverse(vv, torque, omega);
         const double p_w = n_active * op->idc_a * vv + m_.vehicle.avionics_power_w;
         const double disc = ocv * ocv - 4.0 * r_pack * p_w;
         demanded_w = p_w;
@@ -302,7 +360,7 @@ MissionResult MissionEvaluator::Run(const ContinuousVars& vars, double stretch_s
         const bool done = std::fabs(next - vv) < 1e-10 * ocv;
         vv = next;
         if (done) {
-          *op = drive_.Inverse(vv, torque, omega);
+          *op = drive.Inverse(vv, torque, omega);
           break;
         }
       }
@@ -320,6 +378,15 @@ MissionResult MissionEvaluator::Run(const ContinuousVars& vars, double stretch_s
       if (k.enforce_motor_power) track.Check("motor_power", s.name, op.pac_w, mp.max_power_w, "W", false, &seg);
       track.Check("battery_current", s.name, i_batt, pack.max_current_a() * current_factor, "A", false, &seg);
       track.Check("battery_cutoff", s.name, v, cutoff_v, "V", true, &seg);
+      // Physics is the contract: a point where the ESC or the motor puts out more power than
+      // it takes in (model.md section 10; Drive::Flag sets the bit through model/physics.h)
+      // is never feasible, whatever the objective gains from it.
+      const double temp_c = WindingTempC(op, s.group);
+      seg.winding_temp_c = std::max(seg.winding_temp_c, temp_c);
+      track.Check("max_winding_temp_c", s.name, temp_c, k.max_winding_temp_c, "C", false, &seg);
+      if (op.limits & kLimitCreatesEnergy) {
+        track.Check("creates_energy", s.name, CreatedEnergyRatio(op), 1.0, "", false, &seg);
+      }
     };
     seg.soc_start = soc;
     OperatingPoint op;
@@ -378,6 +445,16 @@ MissionResult MissionEvaluator::Run(const ContinuousVars& vars, double stretch_s
   }
   r.final_soc = soc;
   track.Check("reserve_soc", "", soc, m_.battery.reserve_soc, "", true);
+  // Thrust-to-weight at full throttle on the lowest pack voltage of the mission (its end: the
+  // SOC only falls) with the sag at that current. Falls as the stretch lengthens (less charge,
+  // lower OCV), so the stretch's slack stays monotone.
+  r.lift_rotors = lift_rotors_;
+  if (k.min_thrust_to_weight > 0 && lift_rotors_ > 0) {
+    FullThrottle ft;
+    const double weight_n = r.total_mass_kg * kStandardGravity;
+    r.thrust_to_weight = FullThrottleAt(pack, soc, &ft) ? lift_rotors_ * ft.thrust_per_rotor_n / weight_n : 0.0;
+    track.Check("min_thrust_to_weight", "", r.thrust_to_weight, k.min_thrust_to_weight, "", true);
+  }
   r.endurance_s = time_s;
   r.energy_wh = energy_j / 3600.0;
   r.feasible = r.min_slack >= 0;
@@ -453,10 +530,12 @@ namespace {
 // Constraints that cannot recover with a larger capacity: the ESC voltage and the frame do not
 // depend on it, and the thrust, propeller speed and PAC = sqrt(27/10)*(Rm*I + KE*omega)*I
 // (eqs 41, 42, 47, 48) depend only on the shaft's speed and torque, which rise with the mass
-// (search.cc, M3). Violated at one capacity, they are violated at every larger one. Throttle
+// (search.cc, M3); so does the winding temperature (its losses kp*Rm*I^2 + KT*Io*omega depend
+// only on them). Violated at one capacity, they are violated at every larger one. Throttle
 // and IDC are not in the list: a larger pack also sags less, which lowers both.
 bool RisesWithMass(const std::string& constraint) {
-  static const char* const kNames[] = {"esc_voltage", "prop_diameter", "thrust", "motor_power", "prop_max_rpm"};
+  static const char* const kNames[] = {"esc_voltage", "prop_diameter", "thrust", "motor_power", "prop_max_rpm",
+                                       "max_winding_temp_c"};
   for (const char* name : kNames) {
     if (constraint == name) return true;
   }
@@ -492,7 +571,10 @@ double MissionEvaluator::EnduranceUpperBound(double target_s) const {
   const double c_lo = m_.battery.capacity_ah ? m_.battery.capacity_ah->lo : base_capacity_ah_;
   const double c_hi = m_.battery.capacity_ah ? m_.battery.capacity_ah->hi : base_capacity_ah_;
   const double ocv_integral_v = OcvIntegralUpperBound(BatteryPack(PackAt(c_lo)), m_.battery.reserve_soc);
-  const bool energy_fixed = c_.esc->params.c0 == 0.0 && c_.esc->params.rsupply_ohm == 0.0;
+  bool energy_fixed = true;
+  for (const GroupDrive& g : groups_) {
+    energy_fixed &= g.parts.esc->params.c0 == 0.0 && g.parts.esc->params.rsupply_ohm == 0.0;
+  }
   int runs = 0;
   double infeasible_from = kInf;  // every capacity from here up breaks a RisesWithMass constraint
   struct Piece { double ca, cb, p_ca, e_other_ca; };
@@ -573,7 +655,7 @@ MissionResult MissionEvaluator::Solve(double cutoff_score, bool explain) const {
     }
   }
   if (std::isfinite(cutoff_score) && m_.objective.type == ObjectiveType::kMinEnergy &&
-      !capacity_free && c_.esc->params.c0 == 0.0) {
+      !capacity_free && std::all_of(groups_.begin(), groups_.end(), [](const GroupDrive& g) { return g.parts.esc->params.c0 == 0.0; })) {
     // min_energy with free cruise airspeeds: every other segment's energy does not depend on
     // them (terminal power N*PDC + P_avionics, and PDC = C1*U*I/kv does not depend on the
     // voltage when C0 = 0, eqs 57, 59), and a wing-borne cruise needs at least the propulsive
@@ -631,7 +713,10 @@ MissionResult MissionEvaluator::Solve(double cutoff_score, bool explain) const {
   };
   if (free.empty()) {
     MissionResult r = WithEndurance(vars_at(nullptr));
-    if (explain) AddWarnings(&r);
+    if (explain) {
+      Summarize(&r);
+      AddWarnings(&r);
+    }
     return r;
   }
 
@@ -709,21 +794,198 @@ MissionResult MissionEvaluator::Solve(double cutoff_score, bool explain) const {
   for (int i = 0; i < n; ++i) msg << (i ? ", " : "; ") << p.variable_names[i] << " = "
                                   << Num(free[i].lo + std::clamp(xs[i], 0.0, 1.0) * (free[i].hi - free[i].lo), 6);
   r.solver = msg.str();
+  Summarize(&r);
   AddWarnings(&r);
   return r;
 }
 
 MissionResult MissionEvaluator::Simulate(const ContinuousVars& vars) const {
   MissionResult r = WithEndurance(vars);
+  Summarize(&r);
   AddWarnings(&r);
   return r;
 }
 
+double MissionEvaluator::WindingTempC(const OperatingPoint& p, int group) const {
+  constexpr double kAlphaCuPerK = 0.00393;  // copper, at 20-25 C (IEC 60028)
+  constexpr double kRmReferenceC = 25.0;    // datasheet resistance at room temperature (assumed)
+  constexpr double kRunawayTempC = 1000.0;  // "no steady state": far above any limit, finite
+  const MotorParams& mp = groups_[group].parts.motor->params;
+  const double rth_k_per_w_ = groups_[group].rth_k_per_w;
+  const double kp = MaxKtPerKe(mp.type);
+  const double i = p.irms_a;
+  const double p_cu_ref = kp * mp.rm_ohm * i * i;              // copper loss at Rm, W
+  const double p_other = std::max(0.0, p.pac_w - p.pmech_w - p_cu_ref);  // no-load loss, W
+  const double t_air = m_.air_temperature_c;
+  // T - t_air = Rth*(p_cu_ref*(1 + a*(T - T_ref)) + p_other), linear in T.
+  const double denom = 1.0 - kAlphaCuPerK * rth_k_per_w_ * p_cu_ref;
+  if (!(denom > 0.0)) return kRunawayTempC;
+  const double rise = rth_k_per_w_ * (p_cu_ref * (1.0 + kAlphaCuPerK * (t_air - kRmReferenceC)) + p_other) / denom;
+  return std::min(t_air + std::max(rise, 0.0), kRunawayTempC);
+}
+
+bool MissionEvaluator::FullThrottleAt(const BatteryPack& pack, double soc, FullThrottle* f) const {
+  const double ocv = pack.OcvV(soc);
+  const double r_pack = pack.ri_ohm();
+  const double rho = m_.rho_kg_m3;
+  // The drive's current rating (no margin): a motor or ESC is not asked for more for long,
+  // whatever the throttle could give.
+  const GroupDrive& gd = groups_[lift_group_];
+  const Drive& drive = gd.drive;
+  const PropModel& prop = *gd.prop;
+  const double i_cap = std::min(gd.parts.motor->params.max_current_a, gd.parts.esc->params.max_current_a);
+  // Illinois regula falsi for the sign change of h on [a, b] (h(a) > 0 > h(b)).
+  auto root = [](const auto& h, double a, double b) {
+    double fa = h(a), fb = h(b);
+    int side = 0;
+    for (int it = 0; it < 100 && b - a > 1e-10 * b; ++it) {
+      double c = (a * fb - b * fa) / (fb - fa);
+      if (!(c > a && c < b)) c = 0.5 * (a + b);
+      const double fc = h(c);
+      if (fc > 0) {
+        a = c; fa = fc;
+        if (side == 1) fb *= 0.5;
+        side = 1;
+      } else {
+        b = c; fb = fc;
+        if (side == -1) fa *= 0.5;
+        side = -1;
+        if (fc == 0) a = c;
+      }
+    }
+    return 0.5 * (a + b);
+  };
+  double v = ocv;
+  OperatingPoint op;
+  PropEvaluation ev;
+  f->current_limited = false;
+  for (int outer = 0; outer < 40; ++outer) {
+    // The speed where the motor's full-throttle torque (falling with speed, eqs 42, 48) meets
+    // the propeller's static torque (rising, M1 of search.cc).
+    const double w_nl = drive.NoLoadSpeed(v, 1.0);
+    if (!(w_nl > 0.0)) return false;
+    auto g = [&](double w) { return drive.AtSpeed(v, 1.0, w).torque_nm - prop.Evaluate(w, rho, 0.0).torque_nm; };
+    if (!(g(0.0) > 0.0) || !(g(w_nl) < 0.0)) return false;
+    double w = root(g, 0.0, w_nl);
+    op = drive.AtSpeed(v, 1.0, w);
+    f->current_limited = std::max(op.idc_a, op.irms_a) > i_cap;
+    if (f->current_limited) {
+      // Along the propeller's curve the current rises with speed (M1, M2 of search.cc): the
+      // speed where max(IDC, Irms) reaches the rating.
+      auto over = [&](double x) {
+        const OperatingPoint p = drive.Inverse(v, prop.Evaluate(x, rho, 0.0).torque_nm, x);
+        return i_cap - std::max(p.idc_a, p.irms_a);
+      };
+      if (over(0.0) > 0.0) w = root(over, 0.0, w);
+      op = drive.Inverse(v, prop.Evaluate(w, rho, 0.0).torque_nm, w);
+    }
+    ev = prop.Evaluate(w, rho, 0.0);
+    // The pack at that power: the upper root of V^2 - OCV*V + R*P = 0 (as in Run); past the
+    // pack's maximum power (no root) the voltage is held at OCV/2, where the power peaks.
+    const double p_w = lift_rotors_ * op.idc_a * v + m_.vehicle.avionics_power_w;
+    const double disc = ocv * ocv - 4.0 * r_pack * p_w;
+    const double next = disc >= 0.0 ? 0.5 * (ocv + std::sqrt(disc)) : 0.5 * ocv;
+    const bool done = std::fabs(next - v) < 1e-9 * ocv;
+    v = next;
+    if (done) break;
+  }
+  const double coax = m_.vehicle.coaxial ? std::cbrt(kCoaxialInducedPowerFactor * kCoaxialInducedPowerFactor) : 1.0;
+  f->thrust_per_rotor_n = ev.thrust_n / coax;  // flight.h: a coaxial rotor's isolated-data equivalent
+  f->pmech_w = op.pmech_w;
+  f->vdc_v = v;
+  f->battery_current_a = lift_rotors_ * op.idc_a + m_.vehicle.avionics_power_w / v;
+  return std::isfinite(f->thrust_per_rotor_n) && f->thrust_per_rotor_n > 0;
+}
+
+bool MissionEvaluator::HoverAt(const BatteryPack& pack, double soc, double mass_kg, OperatingPoint* op,
+                               double* battery_current_a, double* shaft_w) const {
+  const Drive& drive = groups_[lift_group_].drive;
+  const PropModel& prop = *groups_[lift_group_].prop;
+  Segment hover;
+  hover.type = SegmentType::kHover;
+  hover.group = lift_group_;
+  hover.rotors_active = lift_rotors_;
+  const RotorLoad load = SegmentRotorLoad(m_, hover, mass_kg, 0.0);
+  const double ocv = pack.OcvV(soc);
+  double omega = 0;
+  PropEvaluation ev;
+  if (!PropSpeedForThrust(prop, load.thrust_per_rotor_n, m_.rho_kg_m3, 0.0,
+                          4.0 * std::max(drive.NoLoadSpeed(ocv, 1.0), 1.0), &omega, &ev)) {
+    return false;
+  }
+  double v = ocv;
+  for (int it = 0; it < 40; ++it) {
+    *op = drive.Inverse(v, ev.torque_nm, omega);
+    const double p_w = lift_rotors_ * op->idc_a * v + m_.vehicle.avionics_power_w;
+    const double disc = ocv * ocv - 4.0 * pack.ri_ohm() * p_w;
+    if (!(disc >= 0.0)) return false;
+    const double next = 0.5 * (ocv + std::sqrt(disc));
+    const bool done = std::fabs(next - v) < 1e-10 * ocv;
+    v = next;
+    if (done) break;
+  }
+  *op = drive.Inverse(v, ev.torque_nm, omega);
+  *battery_current_a = lift_rotors_ * op->idc_a + m_.vehicle.avionics_power_w / v;
+  *shaft_w = ev.power_w;
+  return true;
+}
+
+void MissionEvaluator::Summarize(MissionResult* r) const {
+  DesignSummary& d = r->summary;
+  d = DesignSummary{};
+  for (const SegmentResult& s : r->segments) d.winding_temp_max_c = std::max(d.winding_temp_max_c, s.winding_temp_c);
+  if (lift_rotors_ <= 0 || r->capacity_ah <= 0 || r->total_mass_kg <= 0) return;
+  const BatteryPack pack(PackAt(r->capacity_ah));
+  constexpr double kMidSoc = 0.5;
+  OperatingPoint hover;
+  double shaft_hover_w = 0;
+  FullThrottle ft;
+  if (!HoverAt(pack, kMidSoc, r->total_mass_kg, &hover, &d.hover_battery_current_a, &shaft_hover_w) ||
+      !FullThrottleAt(pack, kMidSoc, &ft)) {
+    return;
+  }
+  if (r->thrust_to_weight == 0.0) {  // not checked by the mission: report it all the same
+    FullThrottle low;
+    if (FullThrottleAt(pack, r->final_soc, &low)) {
+      r->thrust_to_weight = lift_rotors_ * low.thrust_per_rotor_n / (r->total_mass_kg * kStandardGravity);
+    }
+  }
+  const double q_above_reserve_c = AhToCoulomb(pack.capacity_ah()) * (1.0 - m_.battery.reserve_soc);
+  d.valid = true;
+  d.hover_throttle = hover.throttle;
+  d.hover_endurance_s = q_above_reserve_c / d.hover_battery_current_a;
+  d.full_throttle_battery_current_a = ft.battery_current_a;
+  d.full_throttle_endurance_s = q_above_reserve_c / ft.battery_current_a;
+  d.reserve_hover_s = AhToCoulomb(pack.capacity_ah()) * std::max(0.0, r->final_soc) / d.hover_battery_current_a;
+  d.full_throttle_thrust_n = lift_rotors_ * ft.thrust_per_rotor_n;
+  d.full_throttle_current_limited = ft.current_limited;
+  // The steepest steady climb at the full-throttle shaft power: momentum theory in axial climb
+  // (physics.h: P_ideal = T*(Vc/2 + sqrt(Vc^2/4 + T/(2*rho*A))), Leishman sec. 2.7) with the
+  // thrust of a climb segment (weight plus body drag at Vc, flight.h) and the hover's figure of
+  // merit held: the rate where P_ideal/FM_hover reaches the available shaft power.
+  Segment climb;
+  climb.type = SegmentType::kClimb;
+  climb.group = lift_group_;
+  climb.rotors_active = lift_rotors_;
+  const double d_m = groups_[lift_group_].parts.prop->diameter_m;
+  climb.climb_rate_m_s = 0.0;
+  const double fom_hover =
+      FigureOfMerit(SegmentRotorLoad(m_, climb, r->total_mass_kg, 0.0).thrust_per_rotor_n, shaft_hover_w, d_m, m_.rho_kg_m3);
+  auto shortfall = [&](double vc) {  // available minus needed shaft power per rotor, W
+    climb.climb_rate_m_s = vc;
+    const RotorLoad ld = SegmentRotorLoad(m_, climb, r->total_mass_kg, 0.0);
+    return ft.pmech_w - IdealRotorPowerW(ld.thrust_per_rotor_n, d_m, m_.rho_kg_m3, vc) / fom_hover;
+  };
+  if (fom_hover > 0 && shortfall(0.0) > 0) {
+    double lo = 0.0, hi = 1.0;
+    while (shortfall(hi) > 0 && hi < 1e3) hi *= 2;
+    for (int i = 0; i < 60; ++i) (shortfall(0.5 * (lo + hi)) > 0 ? lo : hi) = 0.5 * (lo + hi);
+    d.max_climb_rate_m_s = lo;
+  }
+}
+
 void MissionEvaluator::AddWarnings(MissionResult* r) const {
   r->assumed = assumed_;
-  const MissionConstraints& k = m_.constraints;
-  const MotorParams& mp = c_.motor->params;
-  const EscParams& ep = c_.esc->params;
   for (const Violation& v : r->violations) {
     if (v.constraint == "max_throttle") {
       r->warnings.push_back("segment '" + v.segment + "': throttle " + Num(100 * v.value, 3) +
@@ -732,6 +994,10 @@ void MissionEvaluator::AddWarnings(MissionResult* r) const {
     }
   }
   for (const SegmentResult& s : r->segments) {
+    const GroupDrive& gd = groups_[s.group];
+    const MotorParams& mp = gd.parts.motor->params;
+    const EscParams& ep = gd.parts.esc->params;
+    const Drive& drive = gd.drive;
     const OperatingPoint& p = s.point;
     const double i = std::max(p.idc_a, p.irms_a);
     auto near = [&](const char* what, double rating) {
@@ -751,8 +1017,8 @@ void MissionEvaluator::AddWarnings(MissionResult* r) const {
     if (s.type != SegmentType::kShaft && p.throttle > 0 && p.throttle <= 1) {
       // On the segment's throttle line the efficiency peaks at MaxEfficiencySpeed (eq 14
       // analogue); running well above that speed means a light load for this motor.
-      const double w_opt = drive_.MaxEfficiencySpeed(p.vdc_v, p.throttle);
-      const OperatingPoint best = drive_.AtSpeed(p.vdc_v, p.throttle, w_opt);
+      const double w_opt = drive.MaxEfficiencySpeed(p.vdc_v, p.throttle);
+      const OperatingPoint best = drive.AtSpeed(p.vdc_v, p.throttle, w_opt);
       if (p.omega_rad_s > w_opt && p.eta_system < best.eta_system - 0.10) {
         r->warnings.push_back("segment '" + s.name + "': motor running below the current of "
                               "optimal efficiency (" + Num(p.irms_a, 3) + " A vs " +
@@ -770,13 +1036,15 @@ void MissionEvaluator::AddWarnings(MissionResult* r) const {
       r->warnings.push_back("segment '" + s.name + "': propeller data held at an edge: " + s.prop_note);
     }
   }
-  (void)k;
-  if (!std::isfinite(mp.max_current_a) && !std::isfinite(mp.max_power_w)) {
-    r->warnings.push_back("motor " + c_.motor->id + " has no current or power rating in the "
-                          "catalog: its load could not be checked (the search may favour it)");
-  }
-  if (!std::isfinite(ep.max_current_a)) {
-    r->warnings.push_back("ESC " + c_.esc->id + " has no current rating: its current was not checked");
+  for (const GroupDrive& gd : groups_) {
+    const MotorParams& mp = gd.parts.motor->params;
+    if (!std::isfinite(mp.max_current_a) && !std::isfinite(mp.max_power_w)) {
+      r->warnings.push_back("motor " + gd.parts.motor->id + " has no current or power rating in the "
+                            "catalog: its load could not be checked (the search may favour it)");
+    }
+    if (!std::isfinite(gd.parts.esc->params.max_current_a)) {
+      r->warnings.push_back("ESC " + gd.parts.esc->id + " has no current rating: its current was not checked");
+    }
   }
   if (!r->assumed.empty()) {
     std::string a;

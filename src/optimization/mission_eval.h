@@ -29,13 +29,22 @@
 #include "catalog/catalog.h"
 #include "mission/mission.h"
 #include "model/drive.h"
+#include "optimization/components.h"
 #include "prop/prop_model.h"
 
 namespace dynosize {
 
-// Propeller mass assumed when the catalog has none: 14 g for a 10-inch hobby propeller
-// (APC 10x4.5 MR: 14 g; datasheet), scaled as D^2.5 (between area and volume scaling).
-double AssumedPropMassKg(double diameter_m);
+// The parts of one propulsion group.
+struct GroupParts {
+  const MotorEntry* motor = nullptr;
+  const EscEntry* esc = nullptr;
+  const PropEntry* prop = nullptr;
+};
+
+// The parts a mission fixes for group g ("motor", "esc", "prop" of its "propulsion" entry), looked
+// up in the catalog; all null for a searched group. DataError naming the JSON path and the id
+// when one is not in the catalog.
+GroupParts FixedGroupParts(const Mission& m, const Catalog& cat, int g);
 
 // The fixed parts of one combination, built once.
 struct Combination {
@@ -44,6 +53,11 @@ struct Combination {
   const PropEntry* prop = nullptr;
   const BatteryEntry* battery = nullptr;
   int cells = 0;  // cells in series
+  // With propulsion groups (Mission::groups): every group's parts, by group index; motor, esc
+  // and prop above are then those of the group the search chooses (for its bookkeeping).
+  // Empty: motor, esc and prop fly every segment (the one implicit group).
+  std::vector<GroupParts> groups;
+  GroupParts Parts(int g) const { return groups.empty() ? GroupParts{motor, esc, prop} : groups[g]; }
 };
 
 // A constraint that fails: where, value, limit and by how much (value - limit, in its unit).
@@ -60,6 +74,7 @@ struct Violation {
 
 struct SegmentResult {
   std::string name;
+  int group = 0;  // the propulsion group that flies it (Mission::groups)
   SegmentType type = SegmentType::kHover;
   double duration_s = 0.0;
   double airspeed_m_s = 0.0;
@@ -77,8 +92,31 @@ struct SegmentResult {
   double eta_average = 0;        // energy-weighted system efficiency (motor + ESC)
   std::string active_limit;      // the tightest constraint ("" if none is within 10 %)
   double active_limit_slack = 0; // its relative slack (negative: violated)
+  // Steady winding temperature at the segment's hottest point (MissionEvaluator::WindingTempC).
+  double winding_temp_c = 0;
   std::string prop_note;         // propeller data held at an edge, if any
   std::string shaft_solver;      // shaft segments: the solver's brief report
+};
+
+// The numbers a designer compares with eCalc, for the mission's total mass on the lift rotors
+// (MissionEvaluator::Summarize): at mid charge (SOC 0.5, a mid-pack voltage like eCalc's
+// nominal one) with the sag at each current; endurances by coulomb counting of the charge
+// above the reserve at that current.
+struct DesignSummary {
+  bool valid = false;               // false: the hover or the full-throttle point has no solution
+  double hover_throttle = 0.0;
+  double hover_battery_current_a = 0.0;
+  double hover_endurance_s = 0.0;   // hovering from full to the reserve
+  double full_throttle_battery_current_a = 0.0;
+  double full_throttle_endurance_s = 0.0;  // at full throttle from full to the reserve
+  double reserve_hover_s = 0.0;     // hover time of the charge left at the mission's end
+  double full_throttle_thrust_n = 0.0;     // all lift rotors, static, at mid charge
+  bool full_throttle_current_limited = false;  // held at the current rating below full throttle
+  // The steepest steady vertical climb at the full-throttle shaft power: momentum theory with
+  // the body drag and the hover's figure of merit (Summarize); an estimate (the propeller's
+  // thrust lapse in fast inflow is not modelled).
+  double max_climb_rate_m_s = 0.0;
+  double winding_temp_max_c = 0.0;  // hottest segment
 };
 
 struct MissionResult {
@@ -98,6 +136,13 @@ struct MissionResult {
   std::vector<std::string> warnings;
   std::vector<std::string> assumed;   // "motor x: mass_kg", ...
   std::string solver;                 // continuous solver's brief report ("" when none needed)
+  // Full-throttle static thrust of the lift rotors over the weight at the lowest pack voltage of
+  // the mission (its end) with the sag at that current, held at the current rating of the motor
+  // and ESC (FullThrottleAt); 0 when not computed (screening runs of a mission that does not
+  // check it).
+  double thrust_to_weight = 0.0;
+  int lift_rotors = 0;
+  DesignSummary summary;              // filled by Solve/Simulate (not by screening runs)
   double min_slack = 0.0;             // smallest relative constraint slack (< 0: infeasible)
 };
 
@@ -113,8 +158,11 @@ class MissionEvaluator {
   // DataError when a component lacks data the mission needs.
   // `prop_model` (optional) is a PropModel of combination.prop shared between evaluators (the
   // catalog search builds one per propeller); it must outlive the evaluator.
+  // `group_prop_models` (optional, by group index, null entries allowed): PropModels of the
+  // groups' propellers built once by the caller (the search, for the fixed groups).
   MissionEvaluator(const Mission& mission, const Combination& combination,
-                   const PropModel* prop_model = nullptr);
+                   const PropModel* prop_model = nullptr,
+                   const std::vector<const PropModel*>* group_prop_models = nullptr);
 
   // Simulates with fixed continuous variables (no optimisation).
   MissionResult Simulate(const ContinuousVars& vars) const;
@@ -128,6 +176,15 @@ class MissionEvaluator {
   // reads for the search's screening evaluations); the numbers are the same.
   MissionResult Solve(double cutoff_score = std::numeric_limits<double>::infinity(),
                       bool explain = true) const;
+
+  // Steady winding temperature of the motor at an operating point, C: the winding heats by
+  // its copper loss kp*R(T)*I^2 (eqs 41, 48 with R(T) = Rm*(1 + alpha_Cu*(T - 25 C)), alpha_Cu
+  // = 0.00393/K, Rm stated at 25 C) plus the rest of the motor's loss PAC - Pmech (no-load
+  // loss KT*Io*omega, eq 42) over a thermal resistance to the air: T = T_air + Rth*(P_cu(T) +
+  // P_0), solved in closed form; a winding that cannot reach a steady state (alpha*Rth*P_cu >=
+  // 1) gets kRunawayTempC. Rth is the catalog's rth_k_per_w or AssumedMotorRthKPerW (assumed).
+  double WindingTempC(const OperatingPoint& p, int group = 0) const;
+  double rth_k_per_w(int group = 0) const { return groups_[group].rth_k_per_w; }
 
   double fixed_mass_kg() const { return fixed_mass_kg_; }  // everything but the battery
   double BatteryMassKg(double capacity_ah) const;
@@ -146,15 +203,38 @@ class MissionEvaluator {
   // The assumed catalog values and the warnings a designer expects (hover throttle over the limit, currents near a rating,
   // ESC saturation, a motor running far below its efficient load, assumed parameters).
   void AddWarnings(MissionResult* r) const;
+  // The lift rotors at full throttle at `soc`, the pack sagging at that current (plus the
+  // avionics): per-rotor static thrust and shaft power, the battery current. Where full throttle
+  // would draw more than the motor's or ESC's current rating (no margin), the point at that
+  // rating instead: thrust a drive cannot hold is not thrust to count on. False when the motor
+  // cannot turn the propeller.
+  struct FullThrottle {
+    double thrust_per_rotor_n = 0, pmech_w = 0, battery_current_a = 0, vdc_v = 0;
+    bool current_limited = false;  // held at the motor's or ESC's current rating below full throttle
+  };
+  bool FullThrottleAt(const BatteryPack& pack, double soc, FullThrottle* f) const;
+  // The hover of the whole vehicle (mass_kg) on the lift rotors at `soc` with sag.
+  bool HoverAt(const BatteryPack& pack, double soc, double mass_kg, OperatingPoint* op,
+               double* battery_current_a, double* shaft_w) const;
+  void Summarize(MissionResult* r) const;
+
+  // One propulsion group's drive, propeller model and thermal resistance.
+  struct GroupDrive {
+    GroupParts parts;
+    Drive drive;
+    std::unique_ptr<PropModel> owned_prop;
+    const PropModel* prop = nullptr;
+    double rth_k_per_w = 0;  // catalog or assumed (AssumedMotorRthKPerW)
+  };
 
   const Mission& m_;
   Combination c_;
-  Drive drive_;
-  std::unique_ptr<PropModel> owned_prop_;
-  const PropModel& prop_;
+  std::vector<GroupDrive> groups_;  // by group index (one without Mission::groups)
+  int lift_group_ = 0;              // LiftGroup(mission), 0 when none
   BatteryPackParams pack_base_;
   double base_capacity_ah_ = 0;
   double fixed_mass_kg_ = 0;
+  int lift_rotors_ = 0;    // LiftRotors(mission); thrust-to-weight and the summary use them
   std::vector<std::string> assumed_;
 };
 

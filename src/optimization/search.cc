@@ -2,17 +2,19 @@
 
 #include <algorithm>
 #include <chrono>
-#include <cstdio>
-#include <cstdlib>
-#include <cstring>
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <memory>
 #include <thread>
 
+#include "battery/battery.h"
 #include "common/error.h"
 #include "common/units.h"
 #include "mission/flight.h"
+#include "model/physics.h"
+#include "optimization/components.h"
+#include "optimization/search_stages.h"
 
 namespace dynosize {
 
@@ -68,45 +70,22 @@ namespace dynosize {
 // R6 (propeller data credibility): see the comment at the rule; the hover point's figure of
 //    merit must not exceed the mission's max_figure_of_merit.
 // R7 (static-only propeller data in fast axial flow): see the comment at the rule.
+// G1 (propulsion groups): the search chooses the parts of one group; the others are fixed.
+//    Every group's mass is in mass_lb and mass_ub (the fixed groups' exactly), R0-R3, R6, R7
+//    speak of the free group's segments only, and in R4 a fixed group's segment draws at least
+//    its own drive's PDC at the lightest vehicle mass the option allows (its thrust rises with
+//    the mass, M3; speed and torque from below by bisection on the thrust, M1; PDC at the
+//    smaller of the full-charge and cut-off voltage, eq 59) plus P_avionics. The groups are
+//    coupled only through the mass and the shared pack's energy, so each bound stays a bound.
+//    Thrust-to-weight and winding temperature: more mass or ESC resistance only lowers the
+//    first and raises the second, so R5 (the virtual ESC is evaluated without the
+//    thrust-to-weight, a relaxation) and the capacity screening stay sound.
 // Everything not pruned is evaluated exactly (MissionEvaluator::Solve): the answer is the
 // true top N over the catalog under (M1)-(M3).
 
 namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
-constexpr int kGrid = 256;
-constexpr double kGridMinRadS = 30.0, kGridMaxRadS = 6000.0;
-
-struct PropGrid {
-  bool monotone = true;
-  double omega[kGrid], thrust[kGrid], torque_suffix_min[kGrid];
-  double fom[kGrid];  // static figure of merit T^1.5/(sqrt(2*rho*A)*P) (R6)
-  double mass_kg = 0;
-};
-
-struct BatteryOption {
-  const BatteryEntry* entry;
-  int cells;
-  double v_full, v_cut, capacity_lo_ah, capacity_hi_ah, mass_lo_kg, mass_hi_kg, max_current_hi_a;
-  double ocv_integral_v = 0;  // upper bound of the integral of OCV(s) ds over [reserve, 1]
-};
-
-struct EscClass {
-  double c1, c0, tr_sat, sat_slope;
-  std::vector<int> members;
-};
-
-double EscMassKg(const EscEntry& e) {
-  if (e.mass_kg) return *e.mass_kg;
-  const double rating = std::isfinite(e.params.max_current_a) ? e.params.max_current_a : 30.0;
-  return 0.005 + 0.001 * rating;  // as MissionEvaluator assumes
-}
-
-struct Candidate {
-  double bound;  // lower bound of the score (smaller is better)
-  int motor, prop, option;
-  double irms_lb;
-};
 
 // Counts per pruning rule without building a string per pruned pair (rule names are literals).
 class RuleCounts {
@@ -144,35 +123,16 @@ bool Dominates(const EscEntry& a, const EscEntry& b) {
 
 }  // namespace
 
-double OcvIntegralUpperBound(const BatteryPack& pack, double reserve_soc) {
-  // OCV rises with SOC, so the right-endpoint sum over-estimates the integral.
-  constexpr int kPieces = 400;
-  double sum = 0;
-  for (int i = 1; i <= kPieces; ++i) {
-    sum += pack.OcvV(reserve_soc + (1.0 - reserve_soc) * i / kPieces);
-  }
-  return sum * (1.0 - reserve_soc) / kPieces;
-}
+namespace search_internal {
 
-SearchResult SearchCatalog(const Mission& m, const Catalog& cat, const SearchOptions& opt) {
-  const auto t0 = std::chrono::steady_clock::now();
-  if (opt.top_n < 1) throw UsageError("--top " + std::to_string(opt.top_n) + ": must be >= 1");
-  SearchResult out;
-  const auto& motors = cat.motors();
-  const auto& escs = cat.escs();
-  const auto& props = cat.props();
-  const MissionConstraints& k = m.constraints;
-  const double margin = 1.0 - k.current_margin;
-
-  // Battery options (entry, cells in series).
+std::vector<BatteryOption> BatteryOptions(const Mission& m, const Catalog& cat) {
   std::vector<BatteryOption> options;
   for (const std::string& id : m.battery.ids) {
     const BatteryEntry& b = cat.battery(id);
     if (!b.mass_kg) throw DataError("battery '" + id + "' has no mass_kg: the mission needs it");
     for (int s = m.battery.cells_min; s <= m.battery.cells_max; ++s) {
       if (s % b.cells_series != 0) continue;
-      BatteryPackParams p = PackFromEntry(b, s / b.cells_series, 1);
-      const BatteryPack pack(p);
+      const BatteryPack pack(PackFromEntry(b, s / b.cells_series, 1));
       DischargeOptions d;
       if (m.battery.cutoff_cell_v) d.cutoff_cell_v = *m.battery.cutoff_cell_v;
       BatteryOption o{&b, s, pack.OcvV(1.0), pack.cutoff_v(d), pack.capacity_ah(), pack.capacity_ah(),
@@ -194,36 +154,35 @@ SearchResult SearchCatalog(const Mission& m, const Catalog& cat, const SearchOpt
     throw UsageError("mission battery: no cell count in [" + std::to_string(m.battery.cells_min) + ", " +
                      std::to_string(m.battery.cells_max) + "] is a multiple of the entries' cells in series");
   }
-  out.combinations = static_cast<long long>(motors.size()) * static_cast<long long>(escs.size()) *
-                     static_cast<long long>(props.size()) * static_cast<long long>(options.size());
-  const long long per_pair = static_cast<long long>(escs.size());
-  auto prune = [&](const std::string& rule, long long n) { out.pruned_by[rule] += n; };
+  return options;
+}
 
-  // ESC classes (same C1, C0, tr_sat, sat_slope).
-  std::vector<EscClass> classes;
+EscTable BuildEscTable(const Catalog& cat, const std::vector<BatteryOption>& options) {
+  const auto& escs = cat.escs();
+  EscTable t;
   for (std::size_t i = 0; i < escs.size(); ++i) {
     const EscParams& e = escs[i].params;
-    auto it = std::find_if(classes.begin(), classes.end(), [&](const EscClass& c) {
+    auto it = std::find_if(t.classes.begin(), t.classes.end(), [&](const EscClass& c) {
       return c.c1 == e.c1 && c.c0 == e.c0 && c.tr_sat == e.tr_sat && c.sat_slope == e.sat_slope;
     });
-    if (it == classes.end()) {
-      classes.push_back({e.c1, e.c0, e.tr_sat, e.sat_slope, {}});
-      it = classes.end() - 1;
+    if (it == t.classes.end()) {
+      t.classes.push_back({e.c1, e.c0, e.tr_sat, e.sat_slope, {}});
+      it = t.classes.end() - 1;
     }
     it->members.push_back(static_cast<int>(i));
   }
-  // Per option: the ESCs that pass R1, per class sorted by (mass, resistance); the lightest.
-  std::vector<std::vector<std::vector<int>>> option_escs(options.size());
-  std::vector<double> option_min_esc_mass(options.size(), kInf);
-  std::vector<double> option_max_esc_mass(options.size(), 0.0);
+  t.per_option.resize(options.size());
+  t.min_mass_kg.assign(options.size(), kInf);
+  t.max_mass_kg.assign(options.size(), 0.0);
   for (std::size_t o = 0; o < options.size(); ++o) {
-    for (const EscClass& c : classes) {
+    long long n_ok = 0;
+    for (const EscClass& c : t.classes) {
       std::vector<int> ok;
       for (int i : c.members) {
-        if (escs[i].params.vdc_max_v >= options[o].v_full) {
+        if (escs[i].params.vdc_max_v >= options[o].v_full) {  // R1
           ok.push_back(i);
-          option_min_esc_mass[o] = std::min(option_min_esc_mass[o], EscMassKg(escs[i]));
-          option_max_esc_mass[o] = std::max(option_max_esc_mass[o], EscMassKg(escs[i]));
+          t.min_mass_kg[o] = std::min(t.min_mass_kg[o], EscMassKg(escs[i]));
+          t.max_mass_kg[o] = std::max(t.max_mass_kg[o], EscMassKg(escs[i]));
         }
       }
       std::sort(ok.begin(), ok.end(), [&](int a, int b) {
@@ -232,385 +191,575 @@ SearchResult SearchCatalog(const Mission& m, const Catalog& cat, const SearchOpt
         if (escs[a].params.resc_ohm != escs[b].params.resc_ohm) return escs[a].params.resc_ohm < escs[b].params.resc_ohm;
         return escs[a].params.max_current_a > escs[b].params.max_current_a;
       });
-      option_escs[o].push_back(std::move(ok));
+      n_ok += static_cast<long long>(ok.size());
+      t.per_option[o].push_back(std::move(ok));
     }
-    long long n_ok = 0;
-    for (const auto& v : option_escs[o]) n_ok += static_cast<long long>(v.size());
-    prune("esc_voltage", (per_pair - n_ok) * static_cast<long long>(motors.size() * props.size()));
+    t.voltage_pruned += static_cast<long long>(escs.size()) - n_ok;
   }
+  return t;
+}
 
-  // Propeller grids (static, at the mission's density): thrust and torque vs speed.
-  std::vector<PropGrid> grids(props.size());
-  std::vector<std::unique_ptr<PropModel>> models(props.size());
+void BuildPropGrids(const Mission& m, const Catalog& cat, std::vector<PropGrid>* grids,
+                    std::vector<std::unique_ptr<PropModel>>* models) {
+  const auto& props = cat.props();
+  grids->assign(props.size(), PropGrid{});
+  models->clear();
+  models->resize(props.size());
   for (std::size_t p = 0; p < props.size(); ++p) {
-    models[p] = std::make_unique<PropModel>(props[p]);
-    const PropModel& model = *models[p];
-    PropGrid& g = grids[p];
-    g.mass_kg = props[p].mass_kg ? *props[p].mass_kg : AssumedPropMassKg(props[p].diameter_m);
+    (*models)[p] = std::make_unique<PropModel>(props[p]);
+    const PropModel& model = *(*models)[p];
+    PropGrid& g = (*grids)[p];
+    g.mass_kg = PropMassKg(props[p]);
     double torque[kGrid];
     for (int i = 0; i < kGrid; ++i) {
       g.omega[i] = kGridMinRadS * std::pow(kGridMaxRadS / kGridMinRadS, i / double(kGrid - 1));
       const PropEvaluation ev = model.Evaluate(g.omega[i], m.rho_kg_m3, 0.0);
       g.thrust[i] = ev.thrust_n;
       torque[i] = ev.torque_nm;
-      const double area = 0.25 * kPi * props[p].diameter_m * props[p].diameter_m;
-      g.fom[i] = ev.power_w > 0 ? std::pow(ev.thrust_n, 1.5) / (std::sqrt(2.0 * m.rho_kg_m3 * area) * ev.power_w)
-                                : kInf;
+      g.fom[i] = ev.power_w > 0 ? FigureOfMerit(ev.thrust_n, ev.power_w, props[p].diameter_m, m.rho_kg_m3) : kInf;
       if (i > 0 && !(g.thrust[i] > g.thrust[i - 1])) g.monotone = false;
     }
     g.torque_suffix_min[kGrid - 1] = torque[kGrid - 1];
     for (int i = kGrid - 2; i >= 0; --i) g.torque_suffix_min[i] = std::min(torque[i], g.torque_suffix_min[i + 1]);
   }
+}
 
-  // Hover segments (R2-R4) and the fixed durations (R4).
-  std::vector<int> hover;
+namespace {
+
+// What stage 4 derives once per mission.
+struct MissionFacts {
+  std::vector<int> hover;  // hover segment indices (R2-R4)
+  double t_fixed_max = 0;  // the fixed segments' longest total duration (R4)
+  bool stretch_is_hover = false;
+  double tr_limit = 1.0;
+  int free_group = 0;
+};
+
+// Groups (G1): the rules below speak of the free group's segments only; a segment of a fixed
+// group draws at least P_avionics (its drive's power is >= 0), and every group's mass is in
+// mass_lb and mass_ub, so each bound stays a bound.
+MissionFacts FactsOf(const Mission& m, int free_group) {
+  MissionFacts f;
   for (std::size_t i = 0; i < m.segments.size(); ++i) {
-    if (m.segments[i].type == SegmentType::kHover) hover.push_back(static_cast<int>(i));
+    if (m.segments[i].type == SegmentType::kHover && m.segments[i].group == free_group) {
+      f.hover.push_back(static_cast<int>(i));
+    }
   }
-  const double t_fixed_max = LongestFixedDurationS(m);
-  const bool stretch_is_hover = m.objective.type == ObjectiveType::kMaxEndurance &&
-                                m.segments[m.objective.segment_index].type == SegmentType::kHover;
-  const double tr_limit = std::min(k.max_throttle, 1.0);
+  f.t_fixed_max = LongestFixedDurationS(m);
+  f.stretch_is_hover = m.objective.type == ObjectiveType::kMaxEndurance &&
+                       m.segments[m.objective.segment_index].type == SegmentType::kHover &&
+                       m.segments[m.objective.segment_index].group == free_group;
+  f.tr_limit = std::min(m.constraints.max_throttle, 1.0);
+  f.free_group = free_group;
+  return f;
+}
 
-  // Candidate pairs, on two threads (motors interleaved); each thread has its own lists,
-  // merged below and sorted with a full tie-break, so the result does not depend on timing.
-  constexpr int kThreads = 2;
-  std::vector<std::vector<Candidate>> thread_cands(kThreads);
-  std::vector<RuleCounts> thread_pruned(kThreads);
-  std::vector<long long> thread_skipped(kThreads, 0);
-  auto work = [&](int tid) {
-  std::vector<Candidate>& cands = thread_cands[tid];
-  auto prune_pair = [&](const char* rule, long long n) { thread_pruned[tid].Add(rule, n); };
-  for (std::size_t mi = static_cast<std::size_t>(tid); mi < motors.size(); mi += kThreads) {
-    const MotorEntry& mo = motors[mi];
-    if (!mo.mass_kg) {
-      ++thread_skipped[tid];
-      prune_pair("motor_without_mass", per_pair * static_cast<long long>(props.size() * options.size()));
-      continue;
+// R4: a lower bound of the score of a (motor, propeller, option) pair with an ESC of class
+// `esc_class`, given the hover bound's per-rotor electrical power pdc_lb at the lightest mass.
+double ScoreLowerBound(const SearchContext& ctx, const MissionFacts& f, const MotorParams& mp,
+                       const EscClass& esc_class, const PropEntry& prop, const PropModel& model,
+                       std::size_t option, double mass_lb, double pdc_lb) {
+  const BatteryOption& bo = ctx.options[option];
+  const Mission& m = *ctx.mission;
+  if (f.hover.empty()) return -kInf;
+  // The terminal power of a segment is at least N*PDC_lb + P_avionics when each of its N rotors
+  // must give at least T_lb (hover[0]'s per-rotor thrust at the lightest mass, which defines
+  // omega_lb and Q_lb) from the same speed-thrust curve: hover segments, and climb or
+  // fixed-airspeed cruise segments of a propeller with static-only data (the evaluator reads
+  // them at J = 0 in any inflow, so speed and torque are at least omega_lb and Q_lb there too,
+  // M1, M2). Any other segment draws at least P_avionics.
+  const double t_lb = SegmentRotorLoad(m, m.segments[f.hover[0]], mass_lb, 0.0).thrust_per_rotor_n;
+  const bool static_only = model.data_kind() != PropDataKind::kTables || prop.j_tables.empty();
+  auto p_lb_of = [&](std::size_t si) {
+    const Segment& sg = m.segments[si];
+    if (sg.group != f.free_group) {  // G1: the fixed group's own bound at the lightest mass
+      return ctx.fixed_power_lb_w.empty() ? m.vehicle.avionics_power_w : ctx.fixed_power_lb_w[option][si];
     }
-    const MotorParams& mp = mo.params;
-    for (std::size_t o = 0; o < options.size(); ++o) {
-      const BatteryOption& bo = options[o];
-      // Zero-resistance drives, one per ESC class (R3, R4).
-      std::vector<Drive> ideal;
-      for (const EscClass& c : classes) {
-        EscParams e;
-        e.c1 = c.c1; e.c0 = c.c0; e.tr_sat = c.tr_sat; e.sat_slope = c.sat_slope; e.resc_ohm = 0.0;
-        ideal.emplace_back(mp, e);
+    const bool fixed_v = sg.type != SegmentType::kCruise || !sg.airspeed_m_s.free();
+    if (sg.type == SegmentType::kHover ||
+        (static_only && fixed_v && (sg.type == SegmentType::kClimb || sg.type == SegmentType::kCruise))) {
+      const RotorLoad ld = SegmentRotorLoad(m, sg, mass_lb, sg.type == SegmentType::kCruise ? sg.airspeed_m_s.lo : 0.0);
+      if (ld.thrust_per_rotor_n >= t_lb) return ld.rotors * pdc_lb + m.vehicle.avionics_power_w;
+    }
+    return m.vehicle.avionics_power_w;
+  };
+  // The shortest a segment can last (free airspeed: at its top speed).
+  auto t_min_of = [&](const Segment& sg) { return SegmentDurationS(sg, sg.airspeed_m_s.hi); };
+  if (m.objective.type == ObjectiveType::kMinEnergy) {
+    // Per segment the larger of: the hover bound above, and momentum theory. A feasible point
+    // has prop power >= P_ideal/max_figure_of_merit (the evaluator's prop_figure_of_merit
+    // constraint; P_ideal of model/physics.h per rotor), and PDC >= Pmech when neither the
+    // motor nor the ESC can create energy (model.md section 10: KT <= sqrt(27/10)*KE, C0 >= 0,
+    // C1 + C0 >= 1.1095; then eta_motor, eta_esc <= 1; a point that breaks it is infeasible,
+    // creates_energy). V is the axial inflow (0 for static-only data: P_ideal rises with V).
+    // (The inequalities of model/physics.h without its rounding allowance: exact here.)
+    const bool lossy = mp.kt_nm_per_a <= MaxKtPerKe(mp.type) * mp.ke_v_s_per_rad && mp.rm_ohm >= 0 &&
+                       mp.io_a >= 0 && mp.io1_a_s_per_rad >= 0 && esc_class.c0 >= 0 &&
+                       esc_class.c1 + esc_class.c0 >= IdealIdcPerIrmsPerThrottle(mp.type);
+    const bool axial_data = !prop.j_tables.empty();
+    double e = 0;
+    for (std::size_t si = 0; si < m.segments.size(); ++si) {
+      const Segment& sg = m.segments[si];
+      double e_seg = p_lb_of(si) * t_min_of(sg);
+      const bool fixed_v = sg.type != SegmentType::kCruise || !sg.airspeed_m_s.free() || sg.lift_to_drag > 0;
+      if (lossy && sg.group == f.free_group && sg.type != SegmentType::kShaft && fixed_v &&
+          (sg.type != SegmentType::kCruise || sg.lift_to_drag > 0)) {
+        const double v = sg.type == SegmentType::kCruise ? sg.airspeed_m_s.hi : 0.0;
+        const RotorLoad ld = SegmentRotorLoad(m, sg, mass_lb, v);
+        const double p_ideal = IdealRotorPowerW(ld.thrust_per_rotor_n, prop.diameter_m, m.rho_kg_m3,
+                                                axial_data ? ld.axial_airspeed_m_s : 0.0);
+        e_seg = std::max(e_seg, (ld.rotors * p_ideal / m.constraints.max_figure_of_merit +
+                                 m.vehicle.avionics_power_w) * SegmentDurationS(sg, v));
       }
-      for (std::size_t pi = 0; pi < props.size(); ++pi) {
-        const PropGrid& g = grids[pi];
-        if (m.vehicle.max_prop_diameter_m && props[pi].diameter_m > *m.vehicle.max_prop_diameter_m) {
-          prune_pair("prop_diameter", per_pair);  // R0
-          continue;
-        }
-        const double mass_lb = m.vehicle.mass_kg + bo.mass_lo_kg +
-                               m.vehicle.rotors * (*mo.mass_kg + g.mass_kg + option_min_esc_mass[o]);
-        double omega_lb = 0, q_lb = 0;
-        int lb_idx = 0;  // grid index of omega_lb
-        Candidate cand{0.0, static_cast<int>(mi), static_cast<int>(pi), static_cast<int>(o), 0.0};
-        if (!hover.empty() && g.monotone) {
-          const RotorLoad load = SegmentRotorLoad(m, m.segments[hover[0]], mass_lb, 0.0);
-          const double* it = std::upper_bound(g.thrust, g.thrust + kGrid, load.thrust_per_rotor_n);
-          const int idx = static_cast<int>(it - g.thrust) - 1;  // last grid thrust <= T_lb
-          if (idx >= 0) {
-            lb_idx = idx;
-            omega_lb = g.omega[idx];
-            q_lb = g.torque_suffix_min[idx];
-          }
-        }
-        if (!hover.empty() && g.monotone) {
-          // R6: the hover speed lies between omega_lb and the first grid speed whose thrust
-          // reaches T_ub (the heaviest the vehicle can be); if the data break momentum theory
-          // (figure of merit > the mission's limit) on that whole bracket, every hover point fails
-          // prop_figure_of_merit (mission_eval.cc). The 2 % allowance covers the variation between grid points.
-          const double mass_ub = m.vehicle.mass_kg + bo.mass_hi_kg +
-                                 m.vehicle.rotors * (*mo.mass_kg + g.mass_kg + option_max_esc_mass[o]);
-          const RotorLoad load = SegmentRotorLoad(m, m.segments[hover[0]], mass_ub, 0.0);
-          const double* it = std::lower_bound(g.thrust, g.thrust + kGrid, load.thrust_per_rotor_n);
-          const int hi_idx = std::min(static_cast<int>(it - g.thrust), kGrid - 1);
-          double fom_min = kInf;
-          for (int i = lb_idx; i <= hi_idx; ++i) fom_min = std::min(fom_min, g.fom[i]);
-          if (it != g.thrust + kGrid && fom_min > 1.02 * k.max_figure_of_merit) {
-            prune_pair("prop_figure_of_merit", per_pair);
-            continue;
-          }
-        }
-        if (models[pi]->data_kind() != PropDataKind::kTables || props[pi].j_tables.empty()) {
-          // R7: static-only data. The shaft cannot turn faster than the motor's no-load speed
-          // at full throttle and the full-charge voltage with no ESC resistance, so the advance
-          // ratio in a segment with axial airspeed >= V_ax is at least V_ax/(n_max*D); above
-          // the mission's max_static_advance_ratio the segment fails
-          // prop_no_forward_flight_data whatever else is chosen.
-          double w_nl = 0;
-          for (const Drive& d : ideal) w_nl = std::max(w_nl, d.NoLoadSpeed(bo.v_full, 1.0));
-          const double n_max = w_nl / (2.0 * kPi);
-          bool fails = false;
-          for (const Segment& sg : m.segments) {
-            double v_ax = 0;
-            if (sg.type == SegmentType::kClimb && sg.climb_rate_m_s > 0) v_ax = sg.climb_rate_m_s;
-            if (sg.type == SegmentType::kCruise && sg.lift_to_drag > 0) v_ax = sg.airspeed_m_s.lo;
-            if (n_max > 0 && v_ax / (n_max * props[pi].diameter_m) > k.max_static_advance_ratio) fails = true;
-          }
-          if (fails) {
-            prune_pair("prop_no_forward_flight_data", per_pair);
-            continue;
-          }
-        }
-        if (props[pi].max_rpm && RadPerSecToRpm(omega_lb) > *props[pi].max_rpm) {
-          prune_pair("prop_max_rpm", per_pair);  // R2
-          continue;
-        }
-        // R3 and R4 over the ESC classes: the pair survives if any class can.
-        bool any = false;
-        double best_bound = kInf, irms_lb = kInf;
-        const char* why = "throttle";
-        for (std::size_t ci = 0; ci < classes.size(); ++ci) {
-          if (option_escs[o][ci].empty()) continue;
-          const OperatingPoint hi_v = ideal[ci].Inverse(bo.v_full, q_lb, omega_lb);
-          const double t_max = k.allow_esc_saturation ? tr_limit : std::min(tr_limit, classes[ci].tr_sat);
-          if (hi_v.throttle > t_max) { why = "throttle"; continue; }
-          if (hi_v.irms_a > mp.max_current_a * margin) { why = "motor_current"; continue; }
-          if (k.enforce_motor_power && hi_v.pac_w > mp.max_power_w) { why = "motor_power"; continue; }
-          const OperatingPoint lo_v = ideal[ci].Inverse(bo.v_cut, q_lb, omega_lb);
-          const double pdc_lb = std::max(0.0, std::min(hi_v.pdc_w, lo_v.pdc_w));
-          double bound = -kInf;
-          if (!hover.empty()) {
-            // The terminal power of a segment is at least N*PDC_lb + P_avionics when each of
-            // its N rotors must give at least T_lb (hover[0]'s per-rotor thrust at the lightest
-            // mass, which defines omega_lb and Q_lb) from the same speed-thrust curve: hover
-            // segments, and climb or fixed-airspeed cruise segments of a propeller with static-
-            // only data (the evaluator reads them at J = 0 in any inflow, so speed and torque
-            // are at least omega_lb and Q_lb there too, M1, M2). Any other segment draws at
-            // least P_avionics.
-            const double t_lb = SegmentRotorLoad(m, m.segments[hover[0]], mass_lb, 0.0).thrust_per_rotor_n;
-            const bool static_only = models[pi]->data_kind() != PropDataKind::kTables || props[pi].j_tables.empty();
-            auto p_lb_of = [&](std::size_t si) {
-              const Segment& sg = m.segments[si];
-              const bool fixed_v = sg.type != SegmentType::kCruise || !sg.airspeed_m_s.free();
-              if (sg.type == SegmentType::kHover ||
-                  (static_only && fixed_v && (sg.type == SegmentType::kClimb || sg.type == SegmentType::kCruise))) {
-                const RotorLoad ld = SegmentRotorLoad(m, sg, mass_lb, sg.type == SegmentType::kCruise ? sg.airspeed_m_s.lo : 0.0);
-                if (ld.thrust_per_rotor_n >= t_lb) return ld.rotors * pdc_lb + m.vehicle.avionics_power_w;
-              }
-              return m.vehicle.avionics_power_w;
-            };
-            // The shortest a segment can last (free airspeed: at its top speed).
-            auto t_min_of = [&](const Segment& sg) { return SegmentDurationS(sg, sg.airspeed_m_s.hi); };
-            if (m.objective.type == ObjectiveType::kMinEnergy) {
-              // Per segment the larger of: the hover bound above, and momentum theory. A
-              // feasible point has prop power >= P_ideal/max_figure_of_merit (the evaluator's
-              // prop_figure_of_merit constraint), P_ideal = T*(V/2 + sqrt(V^2/4 + T/(2*rho*A)))
-              // per rotor, and PDC >= Pmech when the motor has KT <= sqrt(27/10)*KE and the
-              // ESC C1 >= (3/pi)*sqrt(27/20), C0 >= 0 (then eta_motor, eta_esc <= 1, eqs
-              // 41-59). V is the axial inflow (0 for static-only data: P_ideal rises with V).
-              const bool lossy = mp.kt_nm_per_a <= kPacPerVllIrms * mp.ke_v_s_per_rad &&
-                                 classes[ci].c1 >= kIdealIdcPerIrmsPerThrottle && classes[ci].c0 >= 0.0;
-              const bool axial_data = !props[pi].j_tables.empty();
-              const double area = 0.25 * kPi * props[pi].diameter_m * props[pi].diameter_m;
-              double e = 0;
-              for (std::size_t si = 0; si < m.segments.size(); ++si) {
-                const Segment& sg = m.segments[si];
-                double e_seg = p_lb_of(si) * t_min_of(sg);
-                const bool fixed_v = sg.type != SegmentType::kCruise || !sg.airspeed_m_s.free() || sg.lift_to_drag > 0;
-                if (lossy && sg.type != SegmentType::kShaft && fixed_v) {
-                  const double v = sg.type == SegmentType::kCruise ? sg.airspeed_m_s.hi : 0.0;
-                  const RotorLoad ld = SegmentRotorLoad(m, sg, mass_lb, v);
-                  if (sg.type != SegmentType::kCruise || sg.lift_to_drag > 0) {
-                    const double t = SegmentDurationS(sg, v);
-                    const double va = axial_data ? 0.5 * ld.axial_airspeed_m_s : 0.0;
-                    const double tr = ld.thrust_per_rotor_n;
-                    const double p_ideal = tr * (va + std::sqrt(va * va + tr / (2.0 * m.rho_kg_m3 * area)));
-                    e_seg = std::max(e_seg, (ld.rotors * p_ideal / k.max_figure_of_merit + m.vehicle.avionics_power_w) * t);
-                  }
-                }
-                e += e_seg;
-              }
-              bound = e / 3600.0;
-            } else if (stretch_is_hover) {
-              // Terminal energy = integral of V*I dt <= integral of OCV*I dt = Q*integral of
-              // OCV(s) ds over [reserve, 1] (coulomb counting): the energy budget.
-              double e_other = 0;
-              for (std::size_t si = 0; si < m.segments.size(); ++si) {
-                if (static_cast<int>(si) != m.objective.segment_index) e_other += p_lb_of(si) * t_min_of(m.segments[si]);
-              }
-              const double p_stretch = p_lb_of(static_cast<std::size_t>(m.objective.segment_index));
-              const double e_max = bo.ocv_integral_v * AhToCoulomb(bo.capacity_hi_ah);
-              bound = p_stretch > 0 ? -(t_fixed_max + std::max(0.0, e_max - e_other) / p_stretch) : -kInf;
-            }
-          }
-          any = true;
-          best_bound = std::min(best_bound, bound);
-          irms_lb = std::min(irms_lb, hi_v.irms_a);
-        }
-        if (!any) {
-          prune_pair(why, per_pair);
-          continue;
-        }
-        cand.bound = best_bound;
-        cand.irms_lb = irms_lb;
-        cands.push_back(cand);
+      e += e_seg;
+    }
+    return e / 3600.0;
+  }
+  if (f.stretch_is_hover) {
+    // Terminal energy = integral of V*I dt <= integral of OCV*I dt = Q*integral of OCV(s) ds
+    // over [reserve, 1] (coulomb counting): the energy budget.
+    double e_other = 0;
+    for (std::size_t si = 0; si < m.segments.size(); ++si) {
+      if (static_cast<int>(si) != m.objective.segment_index) e_other += p_lb_of(si) * t_min_of(m.segments[si]);
+    }
+    const double p_stretch = p_lb_of(static_cast<std::size_t>(m.objective.segment_index));
+    const double e_max = bo.ocv_integral_v * AhToCoulomb(bo.capacity_hi_ah);
+    return p_stretch > 0 ? -(f.t_fixed_max + std::max(0.0, e_max - e_other) / p_stretch) : -kInf;
+  }
+  return -kInf;
+}
+
+// R0, R2, R6, R7 for one (motor, propeller, option) pair: the rule that removes it, or null.
+// Sets omega_lb, q_lb (R2) for the hover bound.
+const char* PropRule(const SearchContext& ctx, const MissionFacts& f, const MotorEntry& mo,
+                     const std::vector<Drive>& ideal, std::size_t pi, std::size_t o, double mass_lb,
+                     double* omega_lb, double* q_lb) {
+  const Mission& m = *ctx.mission;
+  const MissionConstraints& k = m.constraints;
+  const PropEntry& prop = ctx.catalog->props()[pi];
+  const PropGrid& g = ctx.grids[pi];
+  const BatteryOption& bo = ctx.options[o];
+  const std::optional<double> d_max = GroupMaxPropDiameterM(m, f.free_group);
+  if (d_max && prop.diameter_m > *d_max) return "prop_diameter";  // R0
+  int lb_idx = 0;  // grid index of omega_lb
+  *omega_lb = 0;
+  *q_lb = 0;
+  if (!f.hover.empty() && g.monotone) {
+    const RotorLoad load = SegmentRotorLoad(m, m.segments[f.hover[0]], mass_lb, 0.0);
+    const double* it = std::upper_bound(g.thrust, g.thrust + kGrid, load.thrust_per_rotor_n);
+    const int idx = static_cast<int>(it - g.thrust) - 1;  // last grid thrust <= T_lb
+    if (idx >= 0) {
+      lb_idx = idx;
+      *omega_lb = g.omega[idx];
+      *q_lb = g.torque_suffix_min[idx];
+    }
+    // R6: the hover speed lies between omega_lb and the first grid speed whose thrust reaches
+    // T_ub (the heaviest the vehicle can be); if the data break momentum theory (figure of
+    // merit > the mission's limit) on that whole bracket, every hover point fails
+    // prop_figure_of_merit (mission_eval.cc). The 2 % allowance covers the variation between
+    // grid points.
+    const double mass_ub = m.vehicle.mass_kg + bo.mass_hi_kg + ctx.fixed_groups_mass_kg +
+                           ctx.free_rotors * (*mo.mass_kg + g.mass_kg + ctx.escs.max_mass_kg[o]);
+    const RotorLoad load_ub = SegmentRotorLoad(m, m.segments[f.hover[0]], mass_ub, 0.0);
+    const double* it_ub = std::lower_bound(g.thrust, g.thrust + kGrid, load_ub.thrust_per_rotor_n);
+    const int hi_idx = std::min(static_cast<int>(it_ub - g.thrust), kGrid - 1);
+    double fom_min = kInf;
+    for (int i = lb_idx; i <= hi_idx; ++i) fom_min = std::min(fom_min, g.fom[i]);
+    if (it_ub != g.thrust + kGrid && fom_min > 1.02 * k.max_figure_of_merit) return "prop_figure_of_merit";
+  }
+  if (ctx.models[pi]->data_kind() != PropDataKind::kTables || prop.j_tables.empty()) {
+    // R7: static-only data. The shaft cannot turn faster than the motor's no-load speed at full
+    // throttle and the full-charge voltage with no ESC resistance, so the advance ratio in a
+    // segment with axial airspeed >= V_ax is at least V_ax/(n_max*D); above the mission's
+    // max_static_advance_ratio the segment fails prop_no_forward_flight_data whatever else is
+    // chosen.
+    double w_nl = 0;
+    for (const Drive& d : ideal) w_nl = std::max(w_nl, d.NoLoadSpeed(bo.v_full, 1.0));
+    const double n_max = w_nl / (2.0 * kPi);
+    for (const Segment& sg : m.segments) {
+      if (sg.group != f.free_group) continue;
+      double v_ax = 0;
+      if (sg.type == SegmentType::kClimb && sg.climb_rate_m_s > 0) v_ax = sg.climb_rate_m_s;
+      if (sg.type == SegmentType::kCruise && sg.lift_to_drag > 0) v_ax = sg.airspeed_m_s.lo;
+      if (n_max > 0 && v_ax / (n_max * prop.diameter_m) > k.max_static_advance_ratio) {
+        return "prop_no_forward_flight_data";
       }
     }
   }
+  if (prop.max_rpm && RadPerSecToRpm(*omega_lb) > *prop.max_rpm) return "prop_max_rpm";  // R2
+  return nullptr;
+}
+
+// Stage 4 for one motor: its surviving pairs with their bounds.
+void MotorCandidates(const SearchContext& ctx, const MissionFacts& f, std::size_t mi,
+                     std::vector<Candidate>* cands, RuleCounts* pruned) {
+  const Mission& m = *ctx.mission;
+  const MissionConstraints& k = m.constraints;
+  const double margin = 1.0 - k.current_margin;
+  const auto& props = ctx.catalog->props();
+  const long long per_pair = static_cast<long long>(ctx.catalog->escs().size());
+  const MotorEntry& mo = ctx.catalog->motors()[mi];
+  const MotorParams& mp = mo.params;
+  const std::vector<EscClass>& classes = ctx.escs.classes;
+  // Zero-resistance drives, one per ESC class (R3, R4, R7).
+  std::vector<Drive> ideal;
+  for (const EscClass& c : classes) {
+    EscParams e;
+    e.c1 = c.c1; e.c0 = c.c0; e.tr_sat = c.tr_sat; e.sat_slope = c.sat_slope; e.resc_ohm = 0.0;
+    ideal.emplace_back(mp, e);
+  }
+  for (std::size_t o = 0; o < ctx.options.size(); ++o) {
+    const BatteryOption& bo = ctx.options[o];
+    for (std::size_t pi = 0; pi < props.size(); ++pi) {
+      const double mass_lb = m.vehicle.mass_kg + bo.mass_lo_kg + ctx.fixed_groups_mass_kg +
+                             ctx.free_rotors * (*mo.mass_kg + ctx.grids[pi].mass_kg + ctx.escs.min_mass_kg[o]);
+      double omega_lb = 0, q_lb = 0;
+      if (const char* rule = PropRule(ctx, f, mo, ideal, pi, o, mass_lb, &omega_lb, &q_lb)) {
+        pruned->Add(rule, per_pair);
+        continue;
+      }
+      // R3 and R4 over the ESC classes: the pair survives if any class can.
+      bool any = false;
+      double best_bound = kInf, irms_lb = kInf;
+      const char* why = "throttle";
+      for (std::size_t ci = 0; ci < classes.size(); ++ci) {
+        if (ctx.escs.per_option[o][ci].empty()) continue;
+        const OperatingPoint hi_v = ideal[ci].Inverse(bo.v_full, q_lb, omega_lb);
+        const double t_max = k.allow_esc_saturation ? f.tr_limit : std::min(f.tr_limit, classes[ci].tr_sat);
+        if (hi_v.throttle > t_max) { why = "throttle"; continue; }
+        if (hi_v.irms_a > mp.max_current_a * margin) { why = "motor_current"; continue; }
+        if (k.enforce_motor_power && hi_v.pac_w > mp.max_power_w) { why = "motor_power"; continue; }
+        const OperatingPoint lo_v = ideal[ci].Inverse(bo.v_cut, q_lb, omega_lb);
+        const double pdc_lb = std::max(0.0, std::min(hi_v.pdc_w, lo_v.pdc_w));
+        const double bound = ScoreLowerBound(ctx, f, mp, classes[ci], props[pi], *ctx.models[pi], o, mass_lb, pdc_lb);
+        any = true;
+        best_bound = std::min(best_bound, bound);
+        irms_lb = std::min(irms_lb, hi_v.irms_a);
+      }
+      if (!any) {
+        pruned->Add(why, per_pair);
+        continue;
+      }
+      cands->push_back(Candidate{best_bound, static_cast<int>(mi), static_cast<int>(pi), static_cast<int>(o), irms_lb});
+    }
+  }
+}
+
+}  // namespace
+
+void ResolveGroups(SearchContext* ctx) {
+  const Mission& m = *ctx->mission;
+  ctx->free_group = 0;
+  ctx->fixed_parts.clear();
+  ctx->fixed_groups_mass_kg = 0;
+  if (!m.groups.empty()) {
+    std::vector<int> free;
+    for (int g = 0; g < GroupCount(m); ++g) {
+      ctx->fixed_parts.push_back(FixedGroupParts(m, *ctx->catalog, g));
+      if (!m.groups[g].fixed()) {
+        free.push_back(g);
+        continue;
+      }
+      const GroupParts& p = ctx->fixed_parts.back();
+      if (!p.motor->mass_kg) throw DataError("motor '" + p.motor->id + "' has no mass_kg: the mission needs it");
+      ctx->fixed_groups_mass_kg += m.groups[g].rotors * (*p.motor->mass_kg + EscMassKg(*p.esc) + PropMassKg(*p.prop));
+    }
+    if (free.size() != 1) {
+      std::string names;
+      for (int g : free) names += (names.empty() ? "" : ", ") + m.groups[g].name;
+      throw DataError(m.file + ": $.propulsion: " + std::to_string(free.size()) + " groups without motor/esc/prop" +
+                      (names.empty() ? "" : " (" + names + ")") +
+                      ": optimize chooses the parts of exactly one group; fix the others (a joint search of "
+                      "several groups is not implemented), or use evaluate --pick");
+    }
+    ctx->free_group = free.front();
+    ctx->fixed_models.resize(m.groups.size());
+    ctx->fixed_model_ptrs.assign(m.groups.size(), nullptr);
+    for (int g = 0; g < GroupCount(m); ++g) {
+      if (g == ctx->free_group) continue;
+      ctx->fixed_models[g] = std::make_unique<PropModel>(*ctx->fixed_parts[g].prop);
+      ctx->fixed_model_ptrs[g] = ctx->fixed_models[g].get();
+    }
+  }
+  ctx->free_rotors = GroupRotors(m, ctx->free_group);
+}
+
+void FixedGroupPowerBounds(SearchContext* ctx) {
+  const Mission& m = *ctx->mission;
+  ctx->fixed_power_lb_w.clear();
+  if (m.groups.empty()) return;
+  // The lightest the vehicle can be with any choice of the free group (M3: every segment's
+  // thrust, and so its speed, torque and power, rises with the mass).
+  double motor_min = kInf, prop_min = kInf;
+  for (const MotorEntry& mo : ctx->catalog->motors()) {
+    if (mo.mass_kg) motor_min = std::min(motor_min, *mo.mass_kg);
+  }
+  for (const PropGrid& g : ctx->grids) prop_min = std::min(prop_min, g.mass_kg);
+  for (std::size_t o = 0; o < ctx->options.size(); ++o) {
+    const BatteryOption& bo = ctx->options[o];
+    const double esc_min = std::isfinite(ctx->escs.min_mass_kg[o]) ? ctx->escs.min_mass_kg[o] : 0.0;
+    const double mass_min = m.vehicle.mass_kg + bo.mass_lo_kg + ctx->fixed_groups_mass_kg +
+                            ctx->free_rotors * (std::isfinite(motor_min) ? motor_min : 0.0) +
+                            ctx->free_rotors * ((std::isfinite(prop_min) ? prop_min : 0.0) + esc_min);
+    std::vector<double> p_lb(m.segments.size(), m.vehicle.avionics_power_w);
+    for (std::size_t si = 0; si < m.segments.size(); ++si) {
+      const Segment& sg = m.segments[si];
+      if (sg.group == ctx->free_group || sg.type == SegmentType::kShaft ||
+          (sg.type == SegmentType::kCruise && sg.airspeed_m_s.free())) {
+        continue;
+      }
+      const GroupParts& parts = ctx->fixed_parts[sg.group];
+      const PropModel& prop = *ctx->fixed_models[sg.group];
+      const RotorLoad ld = SegmentRotorLoad(m, sg, mass_min, sg.airspeed_m_s.lo);
+      // A speed at or below the evaluator's root (thrust rising with speed, M1): bisection
+      // keeping thrust(lo) <= T; the torque there is at most the true one.
+      double lo = 0.0, hi = kGridMaxRadS;
+      if (!(prop.Evaluate(hi, m.rho_kg_m3, ld.axial_airspeed_m_s).thrust_n >= ld.thrust_per_rotor_n)) continue;
+      for (int i = 0; i < 60; ++i) {
+        const double mid = 0.5 * (lo + hi);
+        (prop.Evaluate(mid, m.rho_kg_m3, ld.axial_airspeed_m_s).thrust_n <= ld.thrust_per_rotor_n ? lo : hi) = mid;
+      }
+      const double q = prop.Evaluate(lo, m.rho_kg_m3, ld.axial_airspeed_m_s).torque_nm;
+      if (!(q > 0)) continue;
+      const Drive d(parts.motor->params, parts.esc->params);
+      const double pdc = std::min(d.Inverse(bo.v_full, q, lo).pdc_w, d.Inverse(bo.v_cut, q, lo).pdc_w);
+      p_lb[si] += ld.rotors * std::max(0.0, pdc);
+    }
+    ctx->fixed_power_lb_w.push_back(std::move(p_lb));
+  }
+}
+
+CandidateList BuildCandidates(const SearchContext& ctx, int threads) {
+  const MissionFacts f = FactsOf(*ctx.mission, ctx.free_group);
+  const auto& motors = ctx.catalog->motors();
+  const long long per_motor = static_cast<long long>(ctx.catalog->escs().size()) *
+                              static_cast<long long>(ctx.catalog->props().size() * ctx.options.size());
+  threads = std::max(1, threads);
+  std::vector<std::vector<Candidate>> thread_cands(static_cast<std::size_t>(threads));
+  std::vector<RuleCounts> thread_pruned(static_cast<std::size_t>(threads));
+  std::vector<long long> thread_skipped(static_cast<std::size_t>(threads), 0);
+  auto work = [&](int tid) {
+    for (std::size_t mi = static_cast<std::size_t>(tid); mi < motors.size(); mi += static_cast<std::size_t>(threads)) {
+      if (!motors[mi].mass_kg) {
+        ++thread_skipped[tid];
+        thread_pruned[tid].Add("motor_without_mass", per_motor);
+        continue;
+      }
+      MotorCandidates(ctx, f, mi, &thread_cands[tid], &thread_pruned[tid]);
+    }
   };
   {
     std::vector<std::thread> pool;
-    for (int t = 1; t < kThreads; ++t) pool.emplace_back(work, t);
+    for (int t = 1; t < threads; ++t) pool.emplace_back(work, t);
     work(0);
     for (auto& th : pool) th.join();
   }
-  std::vector<Candidate> cands;
-  for (int t = 0; t < kThreads; ++t) {
-    cands.insert(cands.end(), thread_cands[t].begin(), thread_cands[t].end());
+  CandidateList out;
+  for (int t = 0; t < threads; ++t) {
+    out.candidates.insert(out.candidates.end(), thread_cands[t].begin(), thread_cands[t].end());
     std::vector<Candidate>().swap(thread_cands[t]);
     thread_pruned[t].MergeInto(&out.pruned_by);
     out.skipped_without_mass += thread_skipped[t];
   }
-  const double t_cands = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  long long virtual_evals = 0;
-  // Candidates best bound first, with a full tie-break (a strict total order, so the order is
-  // unique). The search usually stops after a small fraction of them, so they are drawn from a
-  // heap on demand instead of sorted whole.
-  auto after = [](const Candidate& a, const Candidate& b) {
-    if (a.bound != b.bound) return a.bound > b.bound;
-    if (a.option != b.option) return a.option > b.option;
-    if (a.motor != b.motor) return a.motor > b.motor;
-    return a.prop > b.prop;
-  };
-  std::make_heap(cands.begin(), cands.end(), after);
-  std::size_t heap_size = cands.size();
-  std::vector<Candidate> ordered;
-  auto candidate_at = [&](std::size_t i) -> const Candidate* {  // the i-th best, or null
-    while (ordered.size() <= i && heap_size > 0) {
-      std::pop_heap(cands.begin(), cands.begin() + static_cast<std::ptrdiff_t>(heap_size), after);
-      ordered.push_back(cands[--heap_size]);
-    }
-    return i < ordered.size() ? &ordered[i] : nullptr;
-  };
-  const std::size_t n_cands = cands.size();
+  return out;
+}
 
-  // Branch and bound over the surviving pairs.
-  auto nth_best = [&]() {
-    return static_cast<int>(out.best.size()) < opt.top_n ? kInf : out.best.back().result.score;
-  };
-  auto insert = [&](const Combination& c, MissionResult&& r) {
-    if (!r.feasible) return;
-    out.evaluated_mass_objective.emplace_back(r.propulsion_mass_kg, r.objective);
-    if (!(r.score < nth_best())) return;
-    auto pos = std::upper_bound(out.best.begin(), out.best.end(), r.score,
-                                [](double s, const RankedCombination& x) { return s < x.result.score; });
-    out.best.insert(pos, RankedCombination{c, std::move(r)});
-    if (static_cast<int>(out.best.size()) > opt.top_n) out.best.pop_back();
-  };
-  // One candidate pair against a threshold (the N-th best score when its chunk started):
-  // virtual ESC per class first (R5), then the real ESCs, lightest first, skipping dominated
-  // ones. Pruning against a threshold at least the final N-th best is safe.
+}  // namespace search_internal
+
+namespace {
+
+using namespace search_internal;
+
+// Stage 5: the candidate pairs best bound first, each pair's ESCs with R5, every combination
+// not pruned scored exactly.
+class BranchAndBound {
+ public:
+  BranchAndBound(const SearchContext& ctx, const SearchOptions& opt, std::vector<Candidate> cands,
+                 SearchResult* out)
+      : ctx_(ctx), opt_(opt), cands_(std::move(cands)), out_(out), relaxed_(*ctx.mission) {
+    // The virtual ESC (and so the class check) uses the mission without min_hover_throttle: a
+    // real ESC's resistance and mass raise the throttle, so that lower limit is the one
+    // constraint the virtual ESC may fail when a real one passes (R5). Relaxing it keeps the
+    // check a bound. The thrust-to-weight is left out of it too (any relaxation keeps it a
+    // bound): its full-throttle solve costs a third of a simulation, and the few real ESCs
+    // that reach the evaluation check it.
+    relaxed_.constraints.min_hover_throttle = 0.0;
+    relaxed_.constraints.min_thrust_to_weight = 0.0;
+    std::make_heap(cands_.begin(), cands_.end(), After);
+    heap_size_ = cands_.size();
+  }
+
+  void Run();
+  long long virtual_evaluations() const { return virtual_evals_; }
+
+ private:
   struct Outcome {
     std::vector<std::pair<Combination, MissionResult>> results;
     std::map<std::string, long long> pruned;
     long long searched = 0, virtual_evals = 0;
   };
-  // The virtual ESC (and so the class check) uses the mission without min_hover_throttle: a
-  // real ESC's resistance and mass raise the throttle, so that lower limit is the one
-  // constraint the virtual ESC may fail when a real one passes (R5). Relaxing it keeps the
-  // check a bound.
-  Mission relaxed = m;
-  relaxed.constraints.min_hover_throttle = 0.0;
-  auto process = [&](const Candidate& cand, std::vector<double> top, Outcome* o) {
-    // `top`: the N best scores when the chunk started, updated with this pair's own results, so
-    // that the threshold tightens within the pair exactly as it would in a sequential search.
-    auto threshold_now = [&]() { return static_cast<int>(top.size()) < opt.top_n ? kInf : top[opt.top_n - 1]; };
-    auto local_prune = [&](const std::string& rule, long long n) { o->pruned[rule] += n; };
-    const BatteryOption& bo = options[cand.option];
-    Combination c{&motors[cand.motor], nullptr, &props[cand.prop], bo.entry, bo.cells};
-    for (std::size_t cl = 0; cl < classes.size(); ++cl) {
-      const std::vector<int>& list = option_escs[cand.option][cl];
-      if (list.empty()) continue;
-      // R3: ESCs rated below the Irms lower bound.
-      std::vector<int> rated;
-      for (int e : list) {
-        if (escs[e].params.max_current_a * margin >= cand.irms_lb) rated.push_back(e);
-      }
-      local_prune("esc_current", static_cast<long long>(list.size() - rated.size()));
-      if (rated.empty()) continue;
-      // R5: the virtual ESC of the class.
-      EscEntry virt;  // only what the evaluator reads (no copy of the entry's JSON)
-      virt.id = "virtual";
-      virt.params = escs[rated.front()].params;
-      virt.params.resc_ohm = 0.0;
-      virt.params.max_current_a = kInf;
-      virt.mass_kg = EscMassKg(escs[rated.front()]);
-      for (int e : rated) virt.mass_kg = std::min(*virt.mass_kg, EscMassKg(escs[e]));
-      {
-        Combination vc = c;
-        vc.esc = &virt;
-        const double threshold = threshold_now();
-        const MissionResult vr = MissionEvaluator(relaxed, vc, models[cand.prop].get()).Solve(threshold, false);
-        ++o->virtual_evals;
-        if (vr.bounded_out) {
-          local_prune("objective_bound", static_cast<long long>(rated.size()));
-          continue;
-        }
-        if (!vr.feasible || !(vr.score < threshold)) {
-          local_prune(vr.feasible ? "objective_bound" : "infeasible_bound", static_cast<long long>(rated.size()));
-          continue;
-        }
-      }
-      std::vector<std::pair<int, bool>> done;  // ESC, "cannot enter the top N"
-      for (int e : rated) {
-        bool skip = false;
-        for (const auto& d : done) {
-          if (d.second && Dominates(escs[d.first], escs[e])) { skip = true; break; }
-        }
-        if (skip) {
-          local_prune("esc_dominated", 1);
-          continue;
-        }
-        c.esc = &escs[e];
-        const double threshold = threshold_now();
-        MissionResult r = MissionEvaluator(m, c, models[cand.prop].get()).Solve(threshold);
-        if (r.bounded_out) {
-          local_prune("objective_bound", 1);
-          done.emplace_back(e, true);
-          continue;
-        }
-        ++o->searched;
-        done.emplace_back(e, r.feasible ? !(r.score < threshold) : !FailsMinHoverThrottle(r));
-        if (r.feasible) {
-          top.insert(std::upper_bound(top.begin(), top.end(), r.score), r.score);
-          o->results.emplace_back(c, std::move(r));
-        }
+
+  // Candidates best bound first, with a full tie-break (a strict total order, so the order is
+  // unique). The search usually stops after a small fraction of them, so they are drawn from a
+  // heap on demand instead of sorted whole.
+  static bool After(const Candidate& a, const Candidate& b) {
+    if (a.bound != b.bound) return a.bound > b.bound;
+    if (a.option != b.option) return a.option > b.option;
+    if (a.motor != b.motor) return a.motor > b.motor;
+    return a.prop > b.prop;
+  }
+  const Candidate* CandidateAt(std::size_t i) {  // the i-th best, or null
+    while (ordered_.size() <= i && heap_size_ > 0) {
+      std::pop_heap(cands_.begin(), cands_.begin() + static_cast<std::ptrdiff_t>(heap_size_), After);
+      ordered_.push_back(cands_[--heap_size_]);
+    }
+    return i < ordered_.size() ? &ordered_[i] : nullptr;
+  }
+  double NthBest() const {
+    return static_cast<int>(out_->best.size()) < opt_.top_n ? kInf : out_->best.back().result.score;
+  }
+  void Insert(const Combination& c, MissionResult&& r);
+  void Process(const Candidate& cand, std::vector<double> top, Outcome* o) const;
+
+  const SearchContext& ctx_;
+  const SearchOptions& opt_;
+  std::vector<Candidate> cands_;
+  std::size_t heap_size_ = 0;
+  std::vector<Candidate> ordered_;
+  SearchResult* out_;
+  Mission relaxed_;
+  long long virtual_evals_ = 0;
+};
+
+void BranchAndBound::Insert(const Combination& c, MissionResult&& r) {
+  if (!r.feasible) return;
+  out_->evaluated_mass_objective.emplace_back(r.propulsion_mass_kg, r.objective);
+  if (!(r.score < NthBest())) return;
+  auto pos = std::upper_bound(out_->best.begin(), out_->best.end(), r.score,
+                              [](double s, const RankedCombination& x) { return s < x.result.score; });
+  out_->best.insert(pos, RankedCombination{c, std::move(r)});
+  if (static_cast<int>(out_->best.size()) > opt_.top_n) out_->best.pop_back();
+}
+
+// One candidate pair against the N best scores when its chunk started (`top`, updated with
+// this pair's own results, so that the threshold tightens within the pair exactly as it would
+// in a sequential search): virtual ESC per class first (R5), then the real ESCs, lightest first,
+// skipping dominated ones. Pruning against a threshold at least the final N-th best is safe.
+void BranchAndBound::Process(const Candidate& cand, std::vector<double> top, Outcome* o) const {
+  const Mission& m = *ctx_.mission;
+  const auto& escs = ctx_.catalog->escs();
+  const double margin = 1.0 - m.constraints.current_margin;
+  auto threshold_now = [&]() { return static_cast<int>(top.size()) < opt_.top_n ? kInf : top[opt_.top_n - 1]; };
+  auto local_prune = [&](const std::string& rule, long long n) { o->pruned[rule] += n; };
+  const BatteryOption& bo = ctx_.options[cand.option];
+  const PropModel* model = ctx_.models[cand.prop].get();
+  Combination c{&ctx_.catalog->motors()[cand.motor], nullptr, &ctx_.catalog->props()[cand.prop], bo.entry, bo.cells, {}};
+  if (!ctx_.fixed_parts.empty()) {
+    c.groups = ctx_.fixed_parts;
+    c.groups[ctx_.free_group].motor = c.motor;
+    c.groups[ctx_.free_group].prop = c.prop;
+  }
+  auto set_esc = [&](Combination* x, const EscEntry* e) {
+    x->esc = e;
+    if (!x->groups.empty()) x->groups[ctx_.free_group].esc = e;
+  };
+  for (std::size_t cl = 0; cl < ctx_.escs.classes.size(); ++cl) {
+    const std::vector<int>& list = ctx_.escs.per_option[cand.option][cl];
+    if (list.empty()) continue;
+    // R3: ESCs rated below the Irms lower bound.
+    std::vector<int> rated;
+    for (int e : list) {
+      if (escs[e].params.max_current_a * margin >= cand.irms_lb) rated.push_back(e);
+    }
+    local_prune("esc_current", static_cast<long long>(list.size() - rated.size()));
+    if (rated.empty()) continue;
+    // R5: the virtual ESC of the class.
+    EscEntry virt;  // only what the evaluator reads (no copy of the entry's JSON)
+    virt.id = "virtual";
+    virt.params = escs[rated.front()].params;
+    virt.params.resc_ohm = 0.0;
+    virt.params.max_current_a = kInf;
+    virt.mass_kg = EscMassKg(escs[rated.front()]);
+    for (int e : rated) virt.mass_kg = std::min(*virt.mass_kg, EscMassKg(escs[e]));
+    {
+      Combination vc = c;
+      set_esc(&vc, &virt);
+      const double threshold = threshold_now();
+      const MissionResult vr = MissionEvaluator(relaxed_, vc, model, &ctx_.fixed_model_ptrs).Solve(threshold, false);
+      ++o->virtual_evals;
+      if (vr.bounded_out || !vr.feasible || !(vr.score < threshold)) {
+        local_prune(vr.bounded_out || vr.feasible ? "objective_bound" : "infeasible_bound",
+                    static_cast<long long>(rated.size()));
+        continue;
       }
     }
-  };
-  // Chunks of candidates evaluated on two threads against the threshold at the chunk's start,
-  // merged in candidate order: the answer and the counts do not depend on timing. Ipopt (the
-  // shaft segments' solver, MUMPS) is not thread-safe: missions with a free shaft speed run on
-  // one thread.
+    std::vector<std::pair<int, bool>> done;  // ESC, "cannot enter the top N"
+    for (int e : rated) {
+      bool skip = false;
+      for (const auto& d : done) {
+        if (d.second && Dominates(escs[d.first], escs[e])) { skip = true; break; }
+      }
+      if (skip) {
+        local_prune("esc_dominated", 1);
+        continue;
+      }
+      set_esc(&c, &escs[e]);
+      const double threshold = threshold_now();
+      MissionResult r = MissionEvaluator(m, c, model, &ctx_.fixed_model_ptrs).Solve(threshold);
+      if (r.bounded_out) {
+        local_prune("objective_bound", 1);
+        done.emplace_back(e, true);
+        continue;
+      }
+      ++o->searched;
+      done.emplace_back(e, r.feasible ? !(r.score < threshold) : !FailsMinHoverThrottle(r));
+      if (r.feasible) {
+        top.insert(std::upper_bound(top.begin(), top.end(), r.score), r.score);
+        o->results.emplace_back(c, std::move(r));
+      }
+    }
+  }
+}
+
+// Chunks of candidates evaluated on the worker threads against the threshold at the chunk's
+// start, merged in candidate order: the answer and the counts do not depend on timing. Ipopt
+// (the shaft segments' solver, MUMPS) is not thread-safe: missions with a free shaft speed run
+// on one thread.
+void BranchAndBound::Run() {
+  const Mission& m = *ctx_.mission;
+  const long long per_pair = static_cast<long long>(ctx_.catalog->escs().size());
   bool free_shaft = false;
   for (const Segment& sg : m.segments) free_shaft |= sg.type == SegmentType::kShaft && sg.shaft_omega_rad_s.free();
-  const char* threads_env = std::getenv("DYNOSIZE_THREADS");
-  const int workers = free_shaft ? 1 : (threads_env && std::atoi(threads_env) == 1 ? 1 : kThreads);
+  const int workers = free_shaft ? 1 : std::max(1, opt_.threads);
+  const std::size_t n_cands = cands_.size();
   constexpr std::size_t kMaxChunk = 64;
   std::size_t chunk = 2;  // grows while the threshold settles
   std::size_t ci = 0;
   while (ci < n_cands) {
-    if (opt.progress) opt.progress(static_cast<double>(ci) / static_cast<double>(n_cands));
-    const double threshold = nth_best();
+    if (opt_.progress) {
+      SearchProgress p;
+      p.fraction = static_cast<double>(ci) / static_cast<double>(n_cands);
+      p.searched = out_->searched;
+      p.pruned = 0;
+      for (const auto& [rule, n] : out_->pruned_by) p.pruned += n;
+      p.best_objective = out_->best.empty() ? 0.0 : out_->best.front().result.objective;
+      p.has_best = !out_->best.empty();
+      opt_.progress(p);
+    }
+    const double threshold = NthBest();
     std::vector<double> top;
-    for (const auto& b : out.best) top.push_back(b.result.score);
+    for (const auto& b : out_->best) top.push_back(b.result.score);
     std::size_t end = ci;
-    while (end - ci < chunk && candidate_at(end) && candidate_at(end)->bound < threshold) ++end;
+    while (end - ci < chunk && CandidateAt(end) && CandidateAt(end)->bound < threshold) ++end;
     chunk = std::min(kMaxChunk, 2 * chunk);
     if (end == ci) {  // R4: every later candidate has a bound at least as bad
-      prune("objective_bound", per_pair * static_cast<long long>(n_cands - ci));
+      out_->pruned_by["objective_bound"] += per_pair * static_cast<long long>(n_cands - ci);
       break;
     }
     std::vector<Outcome> outs(end - ci);
     auto run = [&](int tid) {
       for (std::size_t i = ci + static_cast<std::size_t>(tid); i < end; i += static_cast<std::size_t>(workers)) {
-        process(ordered[i], top, &outs[i - ci]);
+        Process(ordered_[i], top, &outs[i - ci]);
       }
     };
     std::vector<std::thread> pool;
@@ -618,21 +767,78 @@ SearchResult SearchCatalog(const Mission& m, const Catalog& cat, const SearchOpt
     run(0);
     for (auto& th : pool) th.join();
     for (Outcome& o : outs) {
-      for (const auto& [rule, n] : o.pruned) out.pruned_by[rule] += n;
-      out.searched += o.searched;
-      virtual_evals += o.virtual_evals;
-      for (auto& [c, r] : o.results) insert(c, std::move(r));
+      for (const auto& [rule, n] : o.pruned) out_->pruned_by[rule] += n;
+      out_->searched += o.searched;
+      virtual_evals_ += o.virtual_evals;
+      for (auto& [c, r] : o.results) Insert(c, std::move(r));
     }
     ci = end;
   }
-  if (opt.progress) opt.progress(1.0);
+}
+
+}  // namespace
+
+namespace {
+
+SearchResult SearchExactly(const Mission& m, const Catalog& cat, const SearchOptions& opt) {
+  const auto t0 = std::chrono::steady_clock::now();
+  if (opt.top_n < 1) throw UsageError("--top " + std::to_string(opt.top_n) + ": must be >= 1");
+  SearchResult out;
+  SearchContext ctx;
+  ctx.mission = &m;
+  ctx.catalog = &cat;
+  ResolveGroups(&ctx);
+  ctx.options = BatteryOptions(m, cat);                    // stage 1
+  ctx.escs = BuildEscTable(cat, ctx.options);              // stage 2 (R1)
+  BuildPropGrids(m, cat, &ctx.grids, &ctx.models);         // stage 3
+  FixedGroupPowerBounds(&ctx);
+  out.combinations = static_cast<long long>(cat.motors().size()) * static_cast<long long>(cat.escs().size()) *
+                     static_cast<long long>(cat.props().size()) * static_cast<long long>(ctx.options.size());
+  out.pruned_by["esc_voltage"] += ctx.escs.voltage_pruned * static_cast<long long>(cat.motors().size() * cat.props().size());
+  CandidateList cl = BuildCandidates(ctx, opt.threads);  // stage 4
+  for (const auto& [rule, n] : cl.pruned_by) out.pruned_by[rule] += n;
+  out.skipped_without_mass = cl.skipped_without_mass;
+  out.candidate_pairs = static_cast<long long>(cl.candidates.size());
+  out.candidate_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  BranchAndBound bb(ctx, opt, std::move(cl.candidates), &out);  // stage 5
+  bb.Run();
+  if (opt.progress) {
+    SearchProgress p;
+    p.fraction = 1.0;
+    p.searched = out.searched;
+    p.pruned = out.combinations - out.searched;
+    p.has_best = !out.best.empty();
+    p.best_objective = p.has_best ? out.best.front().result.objective : 0.0;
+    opt.progress(p);
+  }
+  out.virtual_evaluations = bb.virtual_evaluations();
   out.pruned = out.combinations - out.searched;
   out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  if (std::getenv("DYNOSIZE_SEARCH_DEBUG")) {
-    std::fprintf(stderr, "search: %zu candidate pairs in %.3f s; %lld virtual-ESC and %lld exact evaluations; total %.3f s\n",
-                 n_cands, t_cands, virtual_evals, out.searched, out.seconds);
-  }
   return out;
+}
+
+}  // namespace
+
+SearchResult SearchCatalog(const Mission& m, const Catalog& cat, const SearchOptions& opt) {
+  SearchResult out = SearchExactly(m, cat, opt);
+  if (!out.best.empty() || !(m.constraints.min_thrust_to_weight > 0)) return out;
+  // No combination reaches the thrust-to-weight (or nothing flies at all): the designer still
+  // needs the candidates and how far each falls short. Search again without that limit and
+  // return its best, each marked infeasible with the thrust-to-weight it reaches (computed by
+  // Summarize at the mission's end, as the limit is checked).
+  Mission relaxed = m;
+  relaxed.constraints.min_thrust_to_weight = 0.0;
+  SearchResult r = SearchExactly(relaxed, cat, opt);
+  if (r.best.empty()) return out;
+  for (RankedCombination& b : r.best) {
+    MissionResult& x = b.result;
+    x.feasible = false;
+    x.violations.push_back(Violation{"min_thrust_to_weight", "", x.thrust_to_weight,
+                                     m.constraints.min_thrust_to_weight, "", true});
+  }
+  r.relaxed_constraint = "min_thrust_to_weight";
+  r.seconds += out.seconds;
+  return r;
 }
 
 }  // namespace dynosize

@@ -17,10 +17,23 @@
 
 namespace dynosize {
 
+// What the search has done so far, for a progress display.
+struct SearchProgress {
+  double fraction = 0.0;      // of the candidate pairs (an upper bound of the work left)
+  long long searched = 0;     // combinations evaluated exactly so far
+  long long pruned = 0;       // combinations removed by a rule so far
+  bool has_best = false;
+  double best_objective = 0;  // the best result's objective (its unit: the mission's)
+};
+
 struct SearchOptions {
   int top_n = 5;  // how many combinations to return (>= 1)
-  // Called now and then with the fraction of the candidate list done (for a progress bar).
-  std::function<void(double)> progress;
+  // Worker threads for the candidate pairs and their evaluation (>= 1). The answer and the
+  // counts do not depend on it (chunks merged in candidate order); missions with a free shaft
+  // speed run on one thread (Ipopt's MUMPS is not thread-safe).
+  int threads = 2;
+  // Called now and then (between chunks of candidate pairs) with the search's state.
+  std::function<void(const SearchProgress&)> progress;
 };
 
 struct RankedCombination {
@@ -29,7 +42,11 @@ struct RankedCombination {
 };
 
 struct SearchResult {
-  std::vector<RankedCombination> best;  // at most top_n, best first, all feasible
+  // At most top_n, best first, all feasible; except when no combination meets
+  // min_thrust_to_weight: then the best without that limit, each infeasible with its
+  // min_thrust_to_weight violation, and relaxed_constraint says so.
+  std::vector<RankedCombination> best;
+  std::string relaxed_constraint;  // "" or "min_thrust_to_weight"
   // Every combination evaluated exactly: propulsion mass and objective (for the Pareto front).
   std::vector<std::pair<double, double>> evaluated_mass_objective;
   long long combinations = 0;  // motors x ESCs x propellers x (battery, cells) options
@@ -38,11 +55,12 @@ struct SearchResult {
   std::map<std::string, long long> pruned_by;  // rule -> combinations it removed
   long long skipped_without_mass = 0;  // motors without mass_kg (left out, counted in pruned)
   double seconds = 0.0;
+  // Where the time went: candidate pairs built (and the seconds to build them), and the
+  // virtual-ESC evaluations of R5.
+  long long candidate_pairs = 0;
+  double candidate_seconds = 0.0;
+  long long virtual_evaluations = 0;
 };
-
-// An upper bound of the integral of the pack's OCV(soc) d(soc) over [reserve_soc, 1], V: the
-// terminal energy the pack can give above the reserve is at most this times its charge.
-double OcvIntegralUpperBound(const BatteryPack& pack, double reserve_soc);
 
 // Throws UsageError when a mission battery id is not in the catalog or no cell count in the
 // range fits it.

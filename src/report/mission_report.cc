@@ -8,7 +8,9 @@
 
 #include "common/text_file.h"
 #include "common/units.h"
+#include "mission/flight.h"
 #include "model/drive.h"
+#include "prop/prop_model.h"
 #include "report/gnuplot.h"
 
 namespace dynosize {
@@ -42,6 +44,11 @@ std::string Fixed(double x, int digits) {
   return o.str();
 }
 
+// "Name (id)" for a figure title; the id alone when the entry has no name.
+std::string PartName(const EntryBase& e) {
+  return e.name.empty() || e.name == e.id ? e.id : e.name + " (" + e.id + ")";
+}
+
 }  // namespace
 
 Json MissionResultJson(const Mission& m, const Combination& c, const MissionResult& r) {
@@ -49,6 +56,17 @@ Json MissionResultJson(const Mission& m, const Combination& c, const MissionResu
   j["motor"] = c.motor->id;
   j["esc"] = c.esc->id;
   j["prop"] = c.prop->id;
+  if (!m.groups.empty()) {
+    Json groups = Json::object();
+    for (int g = 0; g < GroupCount(m); ++g) {
+      const GroupParts p = c.Parts(g);
+      Json x = {{"motor", p.motor->id}, {"esc", p.esc->id}, {"prop", p.prop->id}, {"rotors", GroupRotors(m, g)},
+                {"fixed", m.groups[g].fixed()}};
+      if (g == LiftGroup(m)) x["thrust_to_weight"] = r.thrust_to_weight;
+      groups[m.groups[g].name] = x;
+    }
+    j["groups"] = groups;
+  }
   j["battery"] = c.battery->id;
   j["cells"] = c.cells;
   j["objective"] = r.objective;
@@ -61,12 +79,29 @@ Json MissionResultJson(const Mission& m, const Combination& c, const MissionResu
   j["capacity_ah"] = r.capacity_ah;
   j["propulsion_mass_kg"] = r.propulsion_mass_kg;
   j["total_mass_kg"] = r.total_mass_kg;
+  j["lift_rotors"] = r.lift_rotors;
+  j["thrust_to_weight"] = r.thrust_to_weight;
+  if (r.summary.valid) {
+    const DesignSummary& d = r.summary;
+    j["summary"] = {{"hover_throttle", d.hover_throttle},
+                    {"hover_battery_current_a", d.hover_battery_current_a},
+                    {"hover_endurance_s", d.hover_endurance_s},
+                    {"full_throttle_battery_current_a", d.full_throttle_battery_current_a},
+                    {"full_throttle_endurance_s", d.full_throttle_endurance_s},
+                    {"reserve_hover_s", d.reserve_hover_s},
+                    {"full_throttle_thrust_n", d.full_throttle_thrust_n},
+                    {"full_throttle_current_limited", d.full_throttle_current_limited},
+                    {"max_climb_rate_m_s", d.max_climb_rate_m_s},
+                    {"winding_temp_max_c", d.winding_temp_max_c},
+                    {"at", "SOC 0.5 with sag; endurances from full to the reserve SOC"}};
+  }
   Json segs = Json::array();
   for (const SegmentResult& s : r.segments) {
     const OperatingPoint& p = s.point;
     Json g;
     g["name"] = s.name;
     g["type"] = SegmentTypeName(s.type);
+    if (!m.groups.empty()) g["group"] = m.groups[s.group].name;
     g["point"] = "end (worst case: lowest voltage, highest throttle)";
     g["duration_s"] = s.duration_s;
     if (s.type == SegmentType::kCruise) g["airspeed_m_s"] = s.airspeed_m_s;
@@ -89,6 +124,7 @@ Json MissionResultJson(const Mission& m, const Combination& c, const MissionResu
     g["eta_esc"] = p.eta_esc;
     g["eta_system"] = p.eta_system;
     g["eta_system_average"] = s.eta_average;
+    g["winding_temp_c"] = s.winding_temp_c;
     g["battery_current_a"] = s.battery_current_a;
     g["soc_start"] = s.soc_start;
     g["soc_end"] = s.soc_end;
@@ -117,17 +153,38 @@ Json MissionResultJson(const Mission& m, const Combination& c, const MissionResu
 
 std::string MissionResultText(const Mission& m, const Combination& c, const MissionResult& r) {
   std::ostringstream o;
-  o << "motor " << c.motor->id << " + ESC " << c.esc->id << " + prop " << c.prop->id << " + "
-    << c.cells << "S " << c.battery->id << " (" << Fixed(r.capacity_ah, 2) << " Ah)\n";
+  if (m.groups.empty()) {
+    o << "motor " << c.motor->id << " + ESC " << c.esc->id << " + prop " << c.prop->id << " + "
+      << c.cells << "S " << c.battery->id << " (" << Fixed(r.capacity_ah, 2) << " Ah)\n";
+  } else {
+    o << c.cells << "S " << c.battery->id << " (" << Fixed(r.capacity_ah, 2) << " Ah)";
+    for (int g = 0; g < GroupCount(m); ++g) {
+      const GroupParts p = c.Parts(g);
+      o << (g ? "; " : " with ") << m.groups[g].name << " " << m.groups[g].rotors << " x motor " << p.motor->id
+        << " + ESC " << p.esc->id << " + prop " << p.prop->id << (m.groups[g].fixed() ? " (fixed)" : "");
+    }
+    o << "\n";
+  }
   o << "  " << (r.feasible ? "feasible" : "INFEASIBLE") << "; " << ObjectiveLabel(m) << " "
     << Fixed(Display(m, r.objective), 2) << "; mission " << Fixed(r.endurance_s / 60.0, 2)
     << " min, " << Fixed(r.energy_wh, 2) << " Wh, final SOC " << Fixed(100 * r.final_soc, 1)
     << " %; mass " << Fixed(r.total_mass_kg, 3) << " kg (propulsion " << Fixed(r.propulsion_mass_kg, 3)
     << " kg)\n";
+  if (r.summary.valid) {
+    const DesignSummary& d = r.summary;
+    o << "  thrust/weight " << Fixed(r.thrust_to_weight, 2) << " (" << r.lift_rotors
+      << (m.groups.empty() ? " lift rotors" : " rotors of group " + m.groups[std::max(0, LiftGroup(m))].name) << ", full throttle at the mission's end); at half charge: hover throttle "
+      << Fixed(100 * d.hover_throttle, 1) << " %, hover " << Fixed(d.hover_endurance_s / 60.0, 1)
+      << " min, full throttle " << Fixed(d.full_throttle_endurance_s / 60.0, 1) << " min ("
+      << Fixed(d.full_throttle_battery_current_a, 1) << " A" << (d.full_throttle_current_limited ? ", at the current rating" : "")
+      << "), climb up to "
+      << Fixed(d.max_climb_rate_m_s, 1) << " m/s; reserve at landing " << Fixed(d.reserve_hover_s / 60.0, 1)
+      << " min of hover; winding up to " << Fixed(d.winding_temp_max_c, 0) << " C\n";
+  }
   o << "  segment (point: end, worst case)   s     rpm  thr %  eff %  torque N*m  Irms A  IDC A   VDC V   PDC W  PESC W  eta_m  eta_e  eta_s  limit\n";
   for (const SegmentResult& s : r.segments) {
     const OperatingPoint& p = s.point;
-    o << "  " << std::left << std::setw(12) << s.name.substr(0, 12) << std::setw(7)
+    o << "  " << std::left << std::setw(12) << (s.name + (m.groups.empty() ? "" : "/" + m.groups[s.group].name)).substr(0, 12) << std::setw(7)
       << SegmentTypeName(s.type) << std::right << std::setw(10) << Fixed(s.duration_s, 0)
       << std::setw(8) << Fixed(p.rpm, 0) << std::setw(7) << Fixed(100 * p.throttle, 1)
       << std::setw(7) << Fixed(100 * p.throttle_effective, 1) << std::setw(12)
@@ -139,7 +196,8 @@ std::string MissionResultText(const Mission& m, const Combination& c, const Miss
     o << "      over the segment: VDC " << Fixed(s.vdc_max_v, 2) << " -> " << Fixed(s.vdc_min_v, 2)
       << " V, throttle " << Fixed(100 * s.throttle_min, 1) << "-" << Fixed(100 * s.throttle_max, 1)
       << " %, IDC " << Fixed(s.idc_min_a, 2) << "-" << Fixed(s.idc_max_a, 2) << " A, SOC "
-      << Fixed(100 * s.soc_start, 1) << " -> " << Fixed(100 * s.soc_end, 1) << " %";
+      << Fixed(100 * s.soc_start, 1) << " -> " << Fixed(100 * s.soc_end, 1) << " %, winding "
+      << Fixed(s.winding_temp_c, 0) << " C";
     if (s.type == SegmentType::kCruise) o << ", airspeed " << Fixed(s.airspeed_m_s, 2) << " m/s";
     o << "\n";
   }
@@ -198,25 +256,30 @@ std::string WriteParetoFigure(const Mission& m, const SearchResult& s, const std
 std::vector<std::string> WriteSegmentMaps(const Mission& m, const Combination& c,
                                           const MissionResult& r, const std::string& dir) {
   MakeOutputDir(dir);
-  const Drive d(c.motor->params, c.esc->params);
   std::vector<std::string> paths;
-  DataBlock pts{"pts", {}, false};
-  {
-    std::vector<double> rpm, q;
-    for (const SegmentResult& s : r.segments) {
-      rpm.push_back(s.point.rpm);
-      q.push_back(s.point.torque_nm);
-    }
-    pts.series.push_back({rpm, q});
-  }
   for (std::size_t si = 0; si < r.segments.size(); ++si) {
     const SegmentResult& s = r.segments[si];
+    DataBlock pts{"pts", {}, false};  // every segment flown by this drive (its group)
+    {
+      std::vector<double> rpm, q;
+      for (const SegmentResult& x : r.segments) {
+        if (x.group != s.group) continue;
+        rpm.push_back(x.point.rpm);
+        q.push_back(x.point.torque_nm);
+      }
+      pts.series.push_back({rpm, q});
+    }
+    const GroupParts parts = c.Parts(s.group);
+    const Drive d(parts.motor->params, parts.esc->params);
+    const PropModel prop(*parts.prop);
     const double vdc = s.point.vdc_v;
     const double w_max = d.NoLoadSpeed(vdc, 1.0);
     double q_top = 0;
-    for (const SegmentResult& x : r.segments) q_top = std::max(q_top, x.point.torque_nm);
+    for (const SegmentResult& x : r.segments) {
+      if (x.group == s.group) q_top = std::max(q_top, x.point.torque_nm);
+    }
     q_top *= 2.0;
-    const double i_lim = std::isfinite(c.motor->params.max_current_a) ? c.motor->params.max_current_a : 1e300;
+    const double i_lim = std::isfinite(parts.motor->params.max_current_a) ? parts.motor->params.max_current_a : 1e300;
     DataBlock map{"map", {}, true};
     const int n = 100;
     for (int i = 0; i <= n; ++i) {
@@ -248,9 +311,27 @@ std::vector<std::string> WriteSegmentMaps(const Mission& m, const Combination& c
       if (rpm.empty()) { rpm.push_back(kNaN); q.push_back(kNaN); }
       lim.series.push_back({rpm, q});
     }
+    DataBlock load{"load", {}, false};
+    {
+      // The propeller's load line in this segment's inflow: the torque it asks at each speed,
+      // on which the operating point moves as the throttle changes.
+      std::vector<double> rpm, q;
+      if (s.type != SegmentType::kShaft) {
+        const double v_ax = SegmentRotorLoad(m, m.segments[si], r.total_mass_kg, s.airspeed_m_s).axial_airspeed_m_s;
+        for (int j = 1; j <= 60; ++j) {
+          const double w = w_max * j / 60;
+          const double torque = prop.Evaluate(w, m.rho_kg_m3, v_ax).torque_nm;
+          if (torque > q_top) break;
+          rpm.push_back(RadPerSecToRpm(w));
+          q.push_back(torque);
+        }
+      }
+      if (rpm.empty()) { rpm.push_back(kNaN); q.push_back(kNaN); }
+      load.series.push_back({rpm, q});
+    }
     std::ostringstream g;
-    g << "set title \"" << c.motor->id << " + " << c.esc->id << " + " << c.prop->id << ": segment '"
-      << s.name << "' (" << SegmentTypeName(s.type) << ") at VDC = " << Fixed(vdc, 2)
+    g << "set title \"" << PartName(*parts.motor) << " + " << PartName(*parts.esc) << " + " << PartName(*parts.prop)
+      << "\\nsegment '" << s.name << "' (" << SegmentTypeName(s.type) << ") at VDC = " << Fixed(vdc, 2)
       << " V (its end)\" noenhanced\n"
       << "set xlabel 'speed [rpm]'\nset ylabel 'torque [N m]'\nset view map\n"
       << "set palette defined (0 '#2b083b', 0.35 '#3b528b', 0.6 '#21918c', 0.8 '#5ec962', 1 '#fde725')\n"
@@ -264,12 +345,13 @@ std::vector<std::string> WriteSegmentMaps(const Mission& m, const Combination& c
       << "$contours using 1:2 with lines lc rgb 'white' lw 1 title 'contours 40-90 %', "
       << "$lim using 1:2 with lines lw 2 dt 2 lc rgb 'black' title 'throttle limit "
       << Fixed(100 * m.constraints.max_throttle, 0) << " %', "
+      << "$load using 1:2 with lines lw 2 lc rgb '#ff7f0e' title 'propeller load line', "
       << "$pts using 1:2 with points pt 6 ps 2 lw 2 lc rgb 'white' title 'all segments', "
       << "$me using 1:2 with points pt 7 ps 2.5 lc rgb 'red' title 'this segment'\n";
     std::string safe = s.name;
     for (char& ch : safe) if (!std::isalnum(static_cast<unsigned char>(ch))) ch = '_';
     const std::string path = dir + "/efficiency_map_" + safe + ".png";
-    RenderPng(path, {map, me, lim, pts}, g.str(), 1000, 800);
+    RenderPng(path, {map, me, lim, load, pts}, g.str(), 1000, 800);
     paths.push_back(path);
   }
   return paths;

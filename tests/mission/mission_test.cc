@@ -82,6 +82,70 @@ TEST(MissionTest, BadFilesGiveOneLineNamingPathValueAndRule) {
   }
 }
 
+const char* kGroups = R"({
+  "name": "g",
+  "vehicle": {"mass_kg": 2.0, "drag_area_m2": 0.05, "drag_coefficient": 1.0},
+  "propulsion": {"lift": {"rotors": 4, "max_prop_diameter_m": 0.4, "idle_drag_area_m2": 0.02},
+                 "cruise": {"rotors": 1, "motor": "m", "esc": "e", "prop": "p"}},
+  "battery": {"id": "b", "cells": 6},
+  "objective": {"type": "min_energy"},
+  "segments": [
+    {"name": "up", "type": "climb", "rate_m_s": 2, "distance_m": 20, "group": "lift"},
+    {"name": "go", "type": "cruise", "airspeed_m_s": 18, "lift_to_drag": 8, "distance_m": 1000, "group": "cruise"},
+    {"name": "down", "type": "hover", "duration_s": 30, "group": "lift"}
+  ]
+})";
+
+TEST(MissionTest, ReadsPropulsionGroups) {
+  const Mission m = Parse(kGroups);
+  ASSERT_EQ(m.groups.size(), 2u);
+  EXPECT_EQ(m.vehicle.rotors, 5);
+  const int lift = m.segments[0].group;
+  const int cruise = m.segments[1].group;
+  EXPECT_EQ(m.groups[lift].name, "lift");
+  EXPECT_EQ(m.groups[cruise].name, "cruise");
+  EXPECT_FALSE(m.groups[lift].fixed());
+  EXPECT_TRUE(m.groups[cruise].fixed());
+  EXPECT_EQ(GroupRotors(m, lift), 4);
+  EXPECT_EQ(*GroupMaxPropDiameterM(m, lift), 0.4);
+  EXPECT_EQ(LiftGroup(m), lift);
+  EXPECT_EQ(LiftRotors(m), 4);
+  // The idle lift rotors add their drag area in cruise (T = W/(L/D) is along the path, so the
+  // drag enters the climbs and multirotor cruise only): in the climb the cruise group's 0 is
+  // added, nothing else.
+  const RotorLoad up = SegmentRotorLoad(m, m.segments[0], 3.0, 0.0);
+  EXPECT_EQ(up.rotors, 4);
+  const double w = 3.0 * kStandardGravity;
+  EXPECT_NEAR(up.thrust_total_n, w + 0.5 * m.rho_kg_m3 * 4.0 * 0.05, 1e-12 * w);
+  Mission hover_cruise = m;
+  hover_cruise.segments[1].lift_to_drag = 0.0;  // a multirotor-style cruise on the pusher
+  const RotorLoad go = SegmentRotorLoad(hover_cruise, hover_cruise.segments[1], 3.0, 18.0);
+  EXPECT_EQ(go.rotors, 1);
+  const double drag = 0.5 * m.rho_kg_m3 * 18.0 * 18.0 * (0.05 + 0.02);
+  EXPECT_NEAR(go.thrust_total_n, std::hypot(w, drag), 1e-12 * w);
+}
+
+TEST(MissionTest, BadGroupsGiveOneLineNamingPathValueAndRule) {
+  struct Case { std::string from, to, expect; };
+  const Case cases[] = {
+      {"\"group\": \"cruise\"", "\"group\": \"pusher\"", "$.segments[1].group = \"pusher\": names no propulsion group (valid: "},
+      {", \"group\": \"cruise\"", "", "$.segments[1].group: missing"},
+      {"\"motor\": \"m\", ", "", "$.propulsion.cruise"},
+      {"\"group\": \"cruise\"", "\"group\": \"lift\"", "$.propulsion.cruise: \"cruise\": no segment uses this group"},
+      {"\"mass_kg\": 2.0,", "\"mass_kg\": 2.0, \"rotors\": 4,", "$.vehicle.rotors = 4: must be the sum of the propulsion groups' rotors (5)"},
+      {"\"duration_s\": 30, \"group\": \"lift\"", "\"duration_s\": 30, \"group\": \"lift\", \"rotors\": 5",
+       "$.segments[2].rotors = 5: must be <= its group's rotors (4)"},
+  };
+  for (const Case& c : cases) {
+    const std::string err = ErrorOf(Replace(kGroups, c.from, c.to));
+    EXPECT_NE(err.find(c.expect), std::string::npos) << "got: " << err;
+    EXPECT_EQ(err.find('\n'), std::string::npos) << err;
+  }
+  // A group in a mission without propulsion groups.
+  const std::string err = ErrorOf(Replace(kGood, "\"duration_s\": 60}", "\"duration_s\": 60, \"group\": \"lift\"}"));
+  EXPECT_NE(err.find("$.segments[2].group = \"lift\": needs a \"propulsion\" object"), std::string::npos) << err;
+}
+
 TEST(MissionTest, CliRefusesABadMissionWithExit65) {
   namespace fs = std::filesystem;
   const fs::path dir = fs::temp_directory_path() / ("dynosize_mission_" + std::to_string(getpid()));

@@ -13,8 +13,10 @@
 
 #include "catalog/catalog.h"
 #include "cli_runner.h"
+#include "common/error.h"
 #include "common/json_file.h"
 #include "optimization/mission_eval.h"
+#include "optimization/small_catalog.h"
 
 namespace dynosize {
 namespace {
@@ -25,6 +27,7 @@ const char* kQuad = R"({
   "name": "test quad",
   "vehicle": {"mass_kg": 0.75, "rotors": 4, "drag_area_m2": 0.04, "drag_coefficient": 1.0, "avionics_power_w": 5},
   "battery": {"id": "dc_b_361", "cells": [3, 4], "reserve_soc": 0.2},
+  "constraints": {"min_thrust_to_weight": 1.1},
   "objective": {"type": "max_endurance", "segment": "loiter"},
   "segments": [
     {"name": "takeoff", "type": "climb", "rate_m_s": 2, "distance_m": 30},
@@ -34,32 +37,10 @@ const char* kQuad = R"({
   ]
 })";
 
-// A small catalog written from entries of the bundled one: feasible and infeasible pairs,
-// one propeller whose data break momentum theory, ESCs that dominate each other.
 class SearchTest : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
-    dir_ = fs::temp_directory_path() / ("dynosize_search_" + std::to_string(getpid()));
-    fs::create_directories(dir_ / "catalog");
-    const Catalog full = Catalog::Load(std::string(DYNOSIZE_SOURCE_DIR) + "/catalog");
-    Json doc;
-    doc["motors"] = Json::array();
-    for (const char* id : {"dc_m_223", "dc_m_1020", "dc_m_1444", "emax_935kv_paper"}) doc["motors"].push_back(full.motor(id).json);
-    int extra = 0;
-    for (const MotorEntry& m : full.motors()) {  // a few more of the right size
-      if (extra < 3 && m.mass_kg && m.kv_rpm_per_v && *m.kv_rpm_per_v > 600 && *m.kv_rpm_per_v < 1000 &&
-          *m.mass_kg > 0.05 && *m.mass_kg < 0.12 && m.id != "dc_m_223" && m.id != "dc_m_1020") {
-        doc["motors"].push_back(m.json);
-        ++extra;
-      }
-    }
-    doc["escs"] = Json::array();
-    for (const char* id : {"dc_e_252", "dc_e_237", "dc_e_56", "multistar_30a_paper"}) doc["escs"].push_back(full.esc(id).json);
-    doc["props"] = Json::array();
-    for (const char* id : {"dc_p_410", "dc_p_372", "dc_p_440", "dc_p_173", "apc_per3_10x45mr", "apc_per3_15x8e"}) doc["props"].push_back(full.prop(id).json);
-    doc["batteries"] = Json::array();
-    doc["batteries"].push_back(full.battery("dc_b_361").json);
-    std::ofstream(dir_ / "catalog" / "small.json") << DumpJson(doc);
+    dir_ = testing_util::WriteSmallCatalog("search");
     std::ofstream(dir_ / "quad.json") << kQuad;
   }
   static void TearDownTestSuite() { fs::remove_all(dir_); }
@@ -126,6 +107,94 @@ TEST_F(SearchTest, MinEnergyLiftCruiseEqualsExhaustiveEvaluation) {
   EXPECT_GE(CheckAgainstExhaustive(cat, m), 1u) << "the small catalog must fly the mission";
 }
 
+// Propulsion groups: the lift group searched, the pusher fixed (to the best single-group pick,
+// so that the mission flies). The search's bounds per group (G1) must not cut off the best:
+// optimize equals exhaustive evaluation over the lift group's parts. With both groups given
+// the same parts, the group mission flies exactly as the one-group mission with per-segment
+// rotor counts.
+TEST_F(SearchTest, PropulsionGroupsEqualExhaustiveEvaluation) {
+  const Catalog cat = Catalog::Load((dir_ / "catalog").string());
+  const Mission single = ParseMission(ParseJsonText(kLiftCruise, "lift"), "lift");
+  SearchOptions so;
+  so.top_n = 3;
+  const SearchResult one = SearchCatalog(single, cat, so);
+  ASSERT_FALSE(one.best.empty());
+  const Combination& pick = one.best[0].combination;
+  Json j = ParseJsonText(kLiftCruise, "lift");
+  j["vehicle"].erase("rotors");
+  j["propulsion"] = {{"lift", {{"rotors", 4}}},
+                     {"pusher", {{"rotors", 1}, {"motor", pick.motor->id}, {"esc", pick.esc->id}, {"prop", pick.prop->id}}}};
+  for (Json& sg : j["segments"]) {
+    sg["group"] = sg["rotors"].get<int>() == 4 ? "lift" : "pusher";
+    sg.erase("rotors");
+  }
+  const Mission m = ParseMission(j, "groups");
+  const int lift = m.segments[0].group, pusher = m.segments[2].group;
+  // Same parts in both groups: the same flight as the one-group mission.
+  Combination same = pick;
+  same.groups.assign(2, GroupParts{pick.motor, pick.esc, pick.prop});
+  const MissionResult a = MissionEvaluator(single, pick).Solve();
+  const MissionResult b = MissionEvaluator(m, same).Solve();
+  ASSERT_TRUE(a.feasible);
+  EXPECT_EQ(b.feasible, a.feasible);
+  // 4*m + 1*m against 5*m in the mass: rounding of the last bit only.
+  EXPECT_NEAR(b.objective, a.objective, 1e-9 * a.objective);
+  // Exhaustive over the lift group's parts.
+  std::vector<std::pair<double, std::string>> all;
+  ForEachCombination(cat, [&](Combination c) {
+    c.groups.assign(2, GroupParts{});
+    c.groups[lift] = GroupParts{c.motor, c.esc, c.prop};
+    c.groups[pusher] = GroupParts{pick.motor, pick.esc, pick.prop};
+    const MissionResult r = MissionEvaluator(m, c).Solve();
+    if (r.feasible) all.emplace_back(r.score, Name(c));
+  });
+  std::sort(all.begin(), all.end());
+  ASSERT_GE(all.size(), 1u);
+  const SearchResult s = SearchCatalog(m, cat, so);
+  ASSERT_EQ(s.best.size(), std::min<std::size_t>(3, all.size()));
+  for (std::size_t i = 0; i < s.best.size(); ++i) {
+    EXPECT_EQ(Name(s.best[i].combination), all[i].second) << i;
+    EXPECT_EQ(s.best[i].result.score, all[i].first) << i;
+    EXPECT_EQ(s.best[i].combination.Parts(pusher).motor, pick.motor);
+  }
+  EXPECT_EQ(s.searched + s.pruned, s.combinations);
+  // Two free groups: refused with the JSON path (a joint search is not implemented).
+  Json both = j;
+  both["propulsion"]["pusher"] = {{"rotors", 1}};
+  EXPECT_THROW(SearchCatalog(ParseMission(both, "both"), cat, so), DataError);
+  // A fixed id not in the catalog: the JSON path and the id.
+  Json bad = j;
+  bad["propulsion"]["pusher"]["motor"] = "no_such_motor";
+  try {
+    SearchCatalog(ParseMission(bad, "bad"), cat, so);
+    ADD_FAILURE() << "no error";
+  } catch (const DataError& e) {
+    EXPECT_NE(std::string(e.what()).find("$.propulsion.pusher.motor: \"no_such_motor\": not in the catalog"), std::string::npos)
+        << e.what();
+  }
+  // evaluate --pick: the search's #1 reproduced through the CLI; bad picks are usage errors.
+  std::ofstream(dir_ / "groups.json") << DumpJson(j);
+  const std::string base = "evaluate " + (dir_ / "groups.json").string() + " --catalog " + (dir_ / "catalog").string() +
+                           " --battery dc_b_361 --cells " + std::to_string(s.best[0].combination.cells);
+  const Combination& top = s.best[0].combination;
+  const auto ok = testing_util::RunCli(base + " --pick lift=" + top.motor->id + "," + top.esc->id + "," + top.prop->id + " --json");
+  ASSERT_EQ(ok.code, 0) << ok.err;
+  const Json out = Json::parse(ok.out);
+  EXPECT_EQ(out["objective"].get<double>(), s.best[0].result.objective);
+  EXPECT_EQ(out["groups"]["pusher"]["motor"], pick.motor->id);
+  EXPECT_EQ(out["segments"][2]["group"], "pusher");
+  const auto wing = testing_util::RunCli(base + " --pick wing=" + top.motor->id + "," + top.esc->id + "," + top.prop->id);
+  EXPECT_EQ(wing.code, 64);
+  EXPECT_NE(wing.err.find("--pick \"wing="), std::string::npos) << wing.err;
+  EXPECT_NE(wing.err.find("no propulsion group 'wing'"), std::string::npos) << wing.err;
+  const auto none = testing_util::RunCli(base);
+  EXPECT_EQ(none.code, 64);
+  EXPECT_NE(none.err.find("group 'lift' has no parts"), std::string::npos) << none.err;
+  const auto malformed = testing_util::RunCli(base + " --pick lift=" + top.motor->id);
+  EXPECT_EQ(malformed.code, 64);
+  EXPECT_NE(malformed.err.find("must be GROUP=MOTOR,ESC,PROP"), std::string::npos) << malformed.err;
+}
+
 TEST_F(SearchTest, OptimizeEqualsTheBestOfExhaustiveEvaluation) {
   const Catalog cat = Catalog::Load((dir_ / "catalog").string());
   const Mission m = ParseMission(ParseJsonText(kQuad, "quad"), "quad");
@@ -160,6 +229,60 @@ TEST_F(SearchTest, MinHoverThrottleEqualsExhaustiveEvaluation) {
   for (const Violation& v : r.violations) named |= v.constraint == "min_hover_throttle";
   EXPECT_TRUE(named);
   EXPECT_GE(CheckAgainstExhaustive(cat, m), 3u);
+}
+
+// Thrust-to-weight at its default (2.0): more mass and more ESC resistance only lower it, so the
+// virtual ESC and ESC dominance (R5) stay bounds; the search must still equal exhaustive
+// evaluation.
+TEST_F(SearchTest, ThrustToWeightEqualsExhaustiveEvaluation) {
+  const Catalog cat = Catalog::Load((dir_ / "catalog").string());
+  Json j = ParseJsonText(kQuad, "quad");
+  j["constraints"].erase("min_thrust_to_weight");
+  const Mission m = ParseMission(j, "quad");
+  ASSERT_EQ(m.constraints.min_thrust_to_weight, 2.0);
+  EXPECT_GE(CheckAgainstExhaustive(cat, m), 1u);
+  for (const bool capacity_range : {true}) {
+    if (capacity_range) j["battery"]["capacity_ah"] = {2.0, 6.0};
+    EXPECT_GE(CheckAgainstExhaustive(cat, ParseMission(j, "quad")), 1u);
+  }
+}
+
+// A thrust-to-weight no combination reaches: the answer is the best combinations without that
+// limit, each marked infeasible with its thrust-to-weight, not an empty list.
+TEST_F(SearchTest, UnreachableThrustToWeightGivesResultsWithTheViolation) {
+  const Catalog cat = Catalog::Load((dir_ / "catalog").string());
+  Json j = ParseJsonText(kQuad, "quad");
+  j["constraints"]["min_thrust_to_weight"] = 40.0;
+  const Mission m = ParseMission(j, "quad");
+  SearchOptions so;
+  so.top_n = 2;
+  const SearchResult s = SearchCatalog(m, cat, so);
+  ASSERT_EQ(s.best.size(), 2u);
+  EXPECT_EQ(s.relaxed_constraint, "min_thrust_to_weight");
+  for (const RankedCombination& b : s.best) {
+    EXPECT_FALSE(b.result.feasible);
+    bool named = false;
+    for (const Violation& v : b.result.violations) {
+      if (v.constraint != "min_thrust_to_weight") continue;
+      named = true;
+      EXPECT_LT(v.value, 40.0);
+      EXPECT_GT(v.value, 0.5);
+      EXPECT_NEAR(v.value, b.result.thrust_to_weight, 0.0);
+    }
+    EXPECT_TRUE(named);
+  }
+  // The same order as the search without the limit.
+  j["constraints"]["min_thrust_to_weight"] = 0.0;
+  const SearchResult free_s = SearchCatalog(ParseMission(j, "quad"), cat, so);
+  ASSERT_EQ(free_s.best.size(), 2u);
+  EXPECT_EQ(Name(free_s.best[0].combination), Name(s.best[0].combination));
+  // The CLI says so in one line and lists them.
+  std::ofstream(dir_ / "tw.json") << DumpJson(ParseJsonText(DumpJson([&] { Json k = j; k["constraints"]["min_thrust_to_weight"] = 40.0; return k; }()), "x"));
+  const auto cli = testing_util::RunCli("optimize " + (dir_ / "tw.json").string() + " --catalog " +
+                                        (dir_ / "catalog").string() + " --top 2");
+  EXPECT_EQ(cli.code, 0) << cli.err;
+  EXPECT_NE(cli.out.find("no combination reaches min_thrust_to_weight"), std::string::npos) << cli.out;
+  EXPECT_NE(cli.out.find("fails min_thrust_to_weight"), std::string::npos) << cli.out;
 }
 
 // The evaluator's early exits are proofs: for every combination, a cutoff just worse than its

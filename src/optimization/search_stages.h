@@ -1,0 +1,116 @@
+// The stages of the catalog search (search.cc), each a function with its own test
+// (tests/optimization/search_stages_test.cc):
+//   1. BatteryOptions    the (battery entry, cells in series) choices with their voltage,
+//                        capacity and mass range and energy budget;
+//   2. BuildEscTable     ESC classes (same C1, C0, tr_sat, sat_slope) and, per battery option,
+//                        the ESCs that pass R1 (voltage rating), lightest first;
+//   3. BuildPropGrids    per propeller the static thrust, torque and figure of merit on a
+//                        speed grid at the mission's density (R2, R6);
+//   4. BuildCandidates   every (motor, propeller, battery option) pair that survives R0, R2, R3,
+//                        R6, R7, with a lower bound of its score (R4);
+//   5. BranchAndBound    the pairs best bound first, the ESCs of each pair with R5, each
+//                        combination scored exactly by MissionEvaluator::Solve.
+// The proofs of the rules are in search.cc. Internal to src/optimization (and its tests).
+#pragma once
+
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "catalog/catalog.h"
+#include "mission/mission.h"
+#include "optimization/mission_eval.h"
+#include "optimization/search.h"
+#include "prop/prop_model.h"
+
+namespace dynosize::search_internal {
+
+struct BatteryOption {
+  const BatteryEntry* entry = nullptr;
+  int cells = 0;
+  double v_full = 0, v_cut = 0;  // full-charge OCV and cut-off of the pack, V
+  double capacity_lo_ah = 0, capacity_hi_ah = 0, mass_lo_kg = 0, mass_hi_kg = 0;
+  double max_current_hi_a = 0;
+  double ocv_integral_v = 0;  // OcvIntegralUpperBound over [reserve, 1]
+};
+
+// Throws UsageError when no cell count in the mission's range fits any entry, DataError when an
+// entry has no mass.
+std::vector<BatteryOption> BatteryOptions(const Mission& m, const Catalog& cat);
+
+struct EscClass {
+  double c1 = 0, c0 = 0, tr_sat = 0, sat_slope = 0;
+  std::vector<int> members;  // indices into Catalog::escs()
+};
+
+struct EscTable {
+  std::vector<EscClass> classes;
+  // [option][class]: the ESCs rated for the option's full-charge voltage (R1), sorted by
+  // (mass, resistance, -current rating).
+  std::vector<std::vector<std::vector<int>>> per_option;
+  std::vector<double> min_mass_kg, max_mass_kg;  // per option over its ESCs (inf / 0 if none)
+  long long voltage_pruned = 0;                  // (option, ESC) pairs removed by R1
+};
+EscTable BuildEscTable(const Catalog& cat, const std::vector<BatteryOption>& options);
+
+inline constexpr int kGrid = 256;
+inline constexpr double kGridMinRadS = 30.0, kGridMaxRadS = 6000.0;
+
+struct PropGrid {
+  bool monotone = true;  // static thrust strictly rising on the grid (M1 checked)
+  double omega[kGrid], thrust[kGrid], torque_suffix_min[kGrid];
+  double fom[kGrid];  // static figure of merit (R6)
+  double mass_kg = 0;
+};
+// Grids and PropModels per catalog propeller (index as Catalog::props()).
+void BuildPropGrids(const Mission& m, const Catalog& cat, std::vector<PropGrid>* grids,
+                    std::vector<std::unique_ptr<PropModel>>* models);
+
+struct Candidate {
+  double bound = 0;  // lower bound of the score (smaller is better)
+  int motor = 0, prop = 0, option = 0;
+  double irms_lb = 0;  // lower bound of the motor's Irms in the first hover segment
+};
+
+// What the stages before the branch and bound share.
+struct SearchContext {
+  const Mission* mission = nullptr;
+  const Catalog* catalog = nullptr;
+  // Propulsion groups: the search chooses the parts of free_group; the others are fixed by the
+  // mission (fixed_parts by group index, the free one's entry null; empty without groups).
+  int free_group = 0;
+  std::vector<GroupParts> fixed_parts;
+  double fixed_groups_mass_kg = 0;  // rotors x (motor + ESC + propeller) of the fixed groups
+  int free_rotors = 0;              // GroupRotors(mission, free_group)
+  // [option][segment]: a lower bound of a fixed group's segment's terminal power (its rotors'
+  // PDC at the lightest vehicle mass plus the avionics; FixedGroupPowerBounds), W; empty
+  // without groups.
+  std::vector<std::vector<double>> fixed_power_lb_w;
+  // PropModels of the fixed groups' propellers (by group index; null for the free group),
+  // built once and shared by every evaluation.
+  std::vector<std::unique_ptr<PropModel>> fixed_models;
+  std::vector<const PropModel*> fixed_model_ptrs;
+  std::vector<BatteryOption> options;
+  EscTable escs;
+  std::vector<PropGrid> grids;
+  std::vector<std::unique_ptr<PropModel>> models;
+};
+
+struct CandidateList {
+  std::vector<Candidate> candidates;  // unordered
+  std::map<std::string, long long> pruned_by;
+  long long skipped_without_mass = 0;
+};
+// Sets the group fields of ctx (ctx->mission and ->catalog set). DataError (the JSON path) when
+// a fixed part is not in the catalog or when not exactly one group is free.
+void ResolveGroups(SearchContext* ctx);
+
+// Fills ctx->fixed_power_lb_w (after stages 1-3 and ResolveGroups).
+void FixedGroupPowerBounds(SearchContext* ctx);
+
+// Stage 4 on `threads` threads (motors interleaved; the list does not depend on timing once
+// ordered by the branch and bound's total order).
+CandidateList BuildCandidates(const SearchContext& ctx, int threads);
+
+}  // namespace dynosize::search_internal

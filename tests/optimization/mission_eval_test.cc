@@ -1,0 +1,210 @@
+// One combination flying a mission (optimization/mission_eval.h): the physical contract (a
+// point that creates energy is never feasible), thrust-to-weight, winding temperature and the
+// designer's summary, each checked against a hand calculation.
+#include "optimization/mission_eval.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+
+#include "catalog/catalog.h"
+#include "common/json_file.h"
+#include "battery/battery.h"
+#include "common/units.h"
+#include "model/physics.h"
+#include "prop/prop_model.h"
+#include "optimization/small_catalog.h"
+
+namespace dynosize {
+namespace {
+
+namespace fs = std::filesystem;
+
+const char* kHoverQuad = R"({
+  "name": "eval quad",
+  "vehicle": {"mass_kg": 0.75, "rotors": 4, "drag_area_m2": 0.04, "drag_coefficient": 1.0, "avionics_power_w": 5},
+  "battery": {"id": "dc_b_361", "cells": 4, "reserve_soc": 0.2},
+  "constraints": {"min_thrust_to_weight": 1.1},
+  "objective": {"type": "max_endurance", "segment": "loiter"},
+  "segments": [
+    {"name": "takeoff", "type": "climb", "rate_m_s": 2, "distance_m": 30},
+    {"name": "loiter", "type": "hover", "duration_s": 300},
+    {"name": "landing", "type": "climb", "rate_m_s": -1, "distance_m": 30}
+  ]
+})";
+
+class MissionEvalTest : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() { dir_ = testing_util::WriteSmallCatalog("mission_eval"); }
+  static void TearDownTestSuite() { fs::remove_all(dir_); }
+  static Catalog SmallCatalog() { return Catalog::Load((dir_ / "catalog").string()); }
+  static Mission Quad() { return ParseMission(ParseJsonText(kHoverQuad, "quad"), "quad"); }
+  static fs::path dir_;
+};
+fs::path MissionEvalTest::dir_;
+
+bool Names(const MissionResult& r, const std::string& constraint) {
+  for (const Violation& v : r.violations) {
+    if (v.constraint == constraint) return true;
+  }
+  return false;
+}
+
+// Issue 13 item 1: parameters that break model.md section 10 would fly on free energy; the
+// evaluator must call such a point infeasible ("creates_energy") and never rank it.
+TEST_F(MissionEvalTest, APointThatCreatesEnergyIsNeverFeasible) {
+  const Catalog cat = SmallCatalog();
+  const Mission m = Quad();
+  const Combination good{&cat.motor("dc_m_1020"), &cat.esc("dc_e_56"), &cat.prop("dc_p_173"), &cat.battery("dc_b_361"), 4};
+  const MissionResult base = MissionEvaluator(m, good).Solve();
+  ASSERT_TRUE(base.feasible) << "the reference combination must fly";
+  EXPECT_FALSE(Names(base, "creates_energy"));
+
+  // ESC: C1 + C0 far below the ideal 1.1095 gives PDC < PAC (PESC < 0) at every point.
+  EscEntry esc = cat.esc("dc_e_56");
+  esc.params.c1 = 0.6;
+  esc.params.c0 = 0.0;
+  ASSERT_FALSE(EscEnergyViolation(esc.params).empty());
+  Combination c = good;
+  c.esc = &esc;
+  const MissionResult r_esc = MissionEvaluator(m, c).Solve();
+  EXPECT_FALSE(r_esc.feasible);
+  EXPECT_TRUE(Names(r_esc, "creates_energy"));
+  for (const Violation& v : r_esc.violations) {
+    if (v.constraint == "creates_energy") {
+      // The ESC's efficiency PAC/PDC: above 1, at most 1.1095/0.6 (eq 56's ideal ESC over
+      // this one's C1; RESC only lowers PAC).
+      EXPECT_GT(v.value, 1.0);
+      EXPECT_LE(v.value, 1.1095 / 0.6);
+    }
+  }
+  // It would otherwise look better than the real ESC: less power drawn for the same thrust.
+  ContinuousVars v;
+  v.airspeed_m_s.assign(m.segments.size(), 0.0);
+  const MissionResult sim = MissionEvaluator(m, c).Simulate(v);
+  EXPECT_LT(sim.segments[1].point.pdc_w, base.segments[1].point.pdc_w);
+  EXPECT_FALSE(sim.feasible);
+
+  // Motor: KT above sqrt(27/10)*KE makes eta_motor > 1 at light load.
+  MotorEntry motor = cat.motor("dc_m_1020");
+  motor.params.kt_nm_per_a = 1.5 * MaxKtPerKe(motor.params.type) * motor.params.ke_v_s_per_rad;
+  motor.params.io_a = 0.0;
+  ASSERT_FALSE(MotorEnergyViolation(motor.params).empty());
+  c = good;
+  c.motor = &motor;
+  const MissionResult r_motor = MissionEvaluator(m, c).Solve();
+  EXPECT_FALSE(r_motor.feasible);
+  EXPECT_TRUE(Names(r_motor, "creates_energy"));
+}
+
+// Thrust-to-weight: the full-throttle thrust of the lift rotors at the mission's end, against a
+// hand calculation without the pack's sag (an upper bound a few per cent above), and as a
+// constraint just above and just below the value.
+TEST_F(MissionEvalTest, ThrustToWeightAtFullThrottleOnTheLowestVoltage) {
+  const Catalog cat = SmallCatalog();
+  const Mission m = Quad();
+  const Combination c{&cat.motor("dc_m_1020"), &cat.esc("dc_e_56"), &cat.prop("dc_p_173"), &cat.battery("dc_b_361"), 4};
+  const MissionResult r = MissionEvaluator(m, c).Solve();
+  ASSERT_TRUE(r.feasible);
+  ASSERT_EQ(r.lift_rotors, 4);
+  ASSERT_GT(r.thrust_to_weight, 1.0);
+  // By hand: OCV at the final SOC, full throttle, the speed where the motor's torque meets the
+  // propeller's (bisection on a fine bracket), four rotors over the weight.
+  const BatteryPack pack(PackFromEntry(*c.battery, 4, 1));
+  const double v = pack.OcvV(r.final_soc);
+  const Drive drive(c.motor->params, c.esc->params);
+  const PropModel prop(*c.prop);
+  // Held at the current rating when full throttle would exceed it.
+  const double i_cap = std::min(c.motor->params.max_current_a, c.esc->params.max_current_a);
+  double lo = 0, hi = drive.NoLoadSpeed(v, 1.0);
+  for (int i = 0; i < 200; ++i) {
+    const double w = 0.5 * (lo + hi);
+    const double q = prop.Evaluate(w, m.rho_kg_m3, 0.0).torque_nm;
+    const OperatingPoint p = drive.Inverse(v, q, w);
+    const bool fits = drive.AtSpeed(v, 1.0, w).torque_nm > q && std::max(p.idc_a, p.irms_a) < i_cap;
+    (fits ? lo : hi) = w;
+  }
+  const double tw_no_sag = 4 * prop.Evaluate(lo, m.rho_kg_m3, 0.0).thrust_n / (r.total_mass_kg * kStandardGravity);
+  // The sag only lowers it (not at all when the motor's Irms rating holds it: then the torque,
+  // and so the speed, is set by the current alone, eq 42); the bisection's 1e-9 covers rounding.
+  EXPECT_LE(r.thrust_to_weight, tw_no_sag * (1 + 1e-9));
+  EXPECT_GT(r.thrust_to_weight, 0.9 * tw_no_sag);   // a 4S pack of this size sags < 10 % at full power
+
+  Json j = ParseJsonText(kHoverQuad, "quad");
+  j["constraints"]["min_thrust_to_weight"] = r.thrust_to_weight * 1.05;
+  const MissionResult tight = MissionEvaluator(ParseMission(j, "q"), c).Solve();
+  EXPECT_TRUE(Names(tight, "min_thrust_to_weight"));
+  // max_endurance: a shorter loiter leaves more charge, so the limit may still be met earlier.
+  if (tight.feasible) EXPECT_LT(tight.objective, r.objective);
+  j["constraints"]["min_thrust_to_weight"] = 50.0;
+  const MissionResult never = MissionEvaluator(ParseMission(j, "q"), c).Solve();
+  EXPECT_FALSE(never.feasible);
+  EXPECT_TRUE(Names(never, "min_thrust_to_weight"));
+}
+
+// Winding temperature: the evaluator's closed form against a fixed-point iteration by hand, and
+// the constraint.
+TEST_F(MissionEvalTest, WindingTemperatureMatchesAHandCalculation) {
+  const Catalog cat = SmallCatalog();
+  const Mission m = Quad();
+  const Combination c{&cat.motor("dc_m_1020"), &cat.esc("dc_e_56"), &cat.prop("dc_p_173"), &cat.battery("dc_b_361"), 4};
+  const MissionEvaluator ev(m, c);
+  const MissionResult r = ev.Solve();
+  ASSERT_TRUE(r.feasible);
+  const OperatingPoint& p = r.segments[1].point;
+  const MotorParams& mp = c.motor->params;
+  const double kp = std::sqrt(27.0 / 10.0);
+  const double rth = mp.rth_k_per_w > 0 ? mp.rth_k_per_w : AssumedMotorRthKPerW(*c.motor->mass_kg);
+  const double p0 = p.pac_w - p.pmech_w - kp * mp.rm_ohm * p.irms_a * p.irms_a;
+  double t = m.air_temperature_c;
+  for (int i = 0; i < 200; ++i) {
+    t = m.air_temperature_c + rth * (kp * mp.rm_ohm * (1 + 0.00393 * (t - 25.0)) * p.irms_a * p.irms_a + p0);
+  }
+  EXPECT_NEAR(ev.WindingTempC(p), t, 1e-9 * t);
+  EXPECT_GE(r.segments[1].winding_temp_c, t - 1e-9 * t);  // the segment's hottest point
+  EXPECT_GT(t, m.air_temperature_c);
+  EXPECT_GE(r.summary.winding_temp_max_c, r.segments[1].winding_temp_c);
+  // Assumed when the catalog has none: listed.
+  if (!(mp.rth_k_per_w > 0)) {
+    bool listed = false;
+    for (const auto& a : r.assumed) listed |= a.find("rth_k_per_w") != std::string::npos;
+    EXPECT_TRUE(listed);
+  }
+  Json j = ParseJsonText(kHoverQuad, "quad");
+  j["constraints"]["max_winding_temp_c"] = std::max(20.0, 0.5 * (m.air_temperature_c + t));
+  ASSERT_GT(t, 21.0) << "the limit must bind";
+  const MissionResult hot = MissionEvaluator(ParseMission(j, "q"), c).Solve();
+  EXPECT_FALSE(hot.feasible);
+  EXPECT_TRUE(Names(hot, "max_winding_temp_c"));
+}
+
+// The designer's summary: the hover at half charge lies inside the loiter's throttle range
+// (which runs from near full to the reserve), endurances by coulomb counting.
+TEST_F(MissionEvalTest, SummaryAgreesWithTheMission) {
+  const Catalog cat = SmallCatalog();
+  const Mission m = Quad();
+  const Combination c{&cat.motor("dc_m_1020"), &cat.esc("dc_e_56"), &cat.prop("dc_p_173"), &cat.battery("dc_b_361"), 4};
+  const MissionResult r = MissionEvaluator(m, c).Solve();
+  ASSERT_TRUE(r.feasible);
+  const DesignSummary& d = r.summary;
+  ASSERT_TRUE(d.valid);
+  const SegmentResult& loiter = r.segments[1];
+  ASSERT_LT(loiter.soc_end, 0.5);
+  ASSERT_GT(loiter.soc_start, 0.5);
+  EXPECT_GE(d.hover_throttle, loiter.throttle_min);
+  EXPECT_LE(d.hover_throttle, loiter.throttle_max);
+  const double q_c = 3600.0 * r.capacity_ah * (1 - m.battery.reserve_soc);
+  EXPECT_NEAR(d.hover_endurance_s, q_c / d.hover_battery_current_a, 1e-9 * d.hover_endurance_s);
+  // The whole max_endurance mission is mostly loiter: its time is close to the hover endurance
+  // (the climb and descent cost a little more, the sag is the same).
+  EXPECT_NEAR(r.endurance_s, d.hover_endurance_s, 0.1 * d.hover_endurance_s);
+  EXPECT_LT(d.full_throttle_endurance_s, d.hover_endurance_s);
+  EXPECT_GT(d.full_throttle_thrust_n, r.total_mass_kg * kStandardGravity);
+  EXPECT_GT(d.max_climb_rate_m_s, 0.0);
+  // max_endurance ends at the reserve: the charge left is the reserve itself.
+  EXPECT_NEAR(d.reserve_hover_s, 3600.0 * r.capacity_ah * r.final_soc / d.hover_battery_current_a, 1e-6 * d.reserve_hover_s);
+}
+
+}  // namespace
+}  // namespace dynosize

@@ -1,0 +1,177 @@
+// The stages of the catalog search (optimization/search_stages.h), each on its own: battery
+// options, the ESC table (R1), the propeller grids (M1, R6), and the candidate pairs (R0, R2,
+// R3, R6, R7 remove only pairs that no ESC can fly; R4's bound is below every feasible score).
+#include "optimization/search_stages.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <set>
+#include <tuple>
+
+#include "battery/battery.h"
+#include "common/error.h"
+#include "optimization/components.h"
+#include "optimization/mission_eval.h"
+#include "optimization/small_catalog.h"
+
+namespace dynosize::search_internal {
+namespace {
+
+namespace fs = std::filesystem;
+
+const char* kStageQuad = R"({
+  "name": "stage quad",
+  "vehicle": {"mass_kg": 0.75, "rotors": 4, "drag_area_m2": 0.04, "drag_coefficient": 1.0, "avionics_power_w": 5},
+  "battery": {"id": "dc_b_361", "cells": [3, 4], "reserve_soc": 0.2},
+  "objective": {"type": "max_endurance", "segment": "loiter"},
+  "segments": [
+    {"name": "takeoff", "type": "climb", "rate_m_s": 2, "distance_m": 30},
+    {"name": "loiter", "type": "hover", "duration_s": 300},
+    {"name": "landing", "type": "climb", "rate_m_s": -1, "distance_m": 30}
+  ]
+})";
+
+class SearchStagesTest : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() { dir_ = testing_util::WriteSmallCatalog("stages"); }
+  static void TearDownTestSuite() { fs::remove_all(dir_); }
+  static Catalog SmallCatalog() { return Catalog::Load((dir_ / "catalog").string()); }
+  static fs::path dir_;
+};
+fs::path SearchStagesTest::dir_;
+
+TEST_F(SearchStagesTest, BatteryOptionsAreTheMultiplesOfTheEntrysCells) {
+  const Catalog cat = SmallCatalog();
+  Json j = ParseJsonText(kStageQuad, "quad");
+  j["battery"]["cells"] = {2, 6};
+  j["battery"]["capacity_ah"] = {2.0, 6.0};
+  const Mission m = ParseMission(j, "quad");
+  const std::vector<BatteryOption> opts = BatteryOptions(m, cat);
+  const int per_entry = cat.battery("dc_b_361").cells_series;
+  ASSERT_FALSE(opts.empty());
+  for (const BatteryOption& o : opts) {
+    EXPECT_EQ(o.cells % per_entry, 0);
+    EXPECT_GE(o.cells, 2);
+    EXPECT_LE(o.cells, 6);
+    EXPECT_GT(o.v_full, o.v_cut);
+    EXPECT_DOUBLE_EQ(o.capacity_lo_ah, 2.0);
+    EXPECT_DOUBLE_EQ(o.capacity_hi_ah, 6.0);
+    EXPECT_NEAR(o.mass_hi_kg / o.mass_lo_kg, 3.0, 1e-12);  // mass scales with capacity
+    // The energy budget bound lies between the cut-off and the full-charge voltage per SOC.
+    EXPECT_LT(o.ocv_integral_v, o.v_full * (1 - 0.2));
+    EXPECT_GT(o.ocv_integral_v, 0.0);
+  }
+  j["battery"]["cells"] = {per_entry + 1, per_entry + 1};
+  if (per_entry > 1) {
+    EXPECT_THROW(BatteryOptions(ParseMission(j, "quad"), cat), UsageError);
+  }
+}
+
+TEST_F(SearchStagesTest, EscTableKeepsExactlyTheVoltageRatedEscsLightestFirst) {
+  const Catalog cat = SmallCatalog();
+  const Mission m = ParseMission(ParseJsonText(kStageQuad, "quad"), "quad");
+  const std::vector<BatteryOption> opts = BatteryOptions(m, cat);
+  const EscTable t = BuildEscTable(cat, opts);
+  long long kept = 0;
+  for (std::size_t o = 0; o < opts.size(); ++o) {
+    ASSERT_EQ(t.per_option[o].size(), t.classes.size());
+    for (std::size_t c = 0; c < t.classes.size(); ++c) {
+      const auto& list = t.per_option[o][c];
+      kept += static_cast<long long>(list.size());
+      for (std::size_t i = 0; i < list.size(); ++i) {
+        const EscEntry& e = cat.escs()[list[i]];
+        EXPECT_GE(e.params.vdc_max_v, opts[o].v_full) << e.id;
+        EXPECT_EQ(e.params.c1, t.classes[c].c1);
+        if (i > 0) EXPECT_LE(EscMassKg(cat.escs()[list[i - 1]]), EscMassKg(e));
+      }
+    }
+  }
+  // Every (option, ESC) pair is either kept or counted as pruned by R1.
+  EXPECT_EQ(kept + t.voltage_pruned, static_cast<long long>(opts.size() * cat.escs().size()));
+}
+
+TEST_F(SearchStagesTest, PropGridsRiseAndStayBelowMomentumTheory) {
+  const Catalog cat = SmallCatalog();
+  const Mission m = ParseMission(ParseJsonText(kStageQuad, "quad"), "quad");
+  std::vector<PropGrid> grids;
+  std::vector<std::unique_ptr<PropModel>> models;
+  BuildPropGrids(m, cat, &grids, &models);
+  ASSERT_EQ(grids.size(), cat.props().size());
+  int monotone = 0;
+  for (std::size_t p = 0; p < grids.size(); ++p) {
+    const PropGrid& g = grids[p];
+    EXPECT_DOUBLE_EQ(g.mass_kg, PropMassKg(cat.props()[p]));
+    if (!g.monotone) continue;
+    ++monotone;
+    for (int i = 1; i < kGrid; ++i) {
+      EXPECT_GT(g.thrust[i], g.thrust[i - 1]);
+      EXPECT_LE(g.torque_suffix_min[i - 1], g.torque_suffix_min[i]);
+    }
+  }
+  EXPECT_GE(monotone, 4) << "most propellers of the small catalog have monotone data";
+  // The APC tables are measured (UIUC-like, FM ~ 0.5-0.7): below the ideal rotor at hover speeds.
+  for (std::size_t p = 0; p < grids.size(); ++p) {
+    if (cat.props()[p].id != "apc_per3_10x45mr") continue;
+    for (int i = 0; i < kGrid; ++i) {
+      if (grids[p].thrust[i] > 1.0) EXPECT_LT(grids[p].fom[i], 1.0) << i;
+    }
+  }
+}
+
+// Stage 4 against the exact evaluator: a pair it removes has no feasible ESC; a pair it keeps
+// has a bound at or below every feasible score of its ESCs. The candidate list does not depend
+// on the number of threads.
+TEST_F(SearchStagesTest, CandidatesRemoveOnlyInfeasiblePairsAndBoundTheScore) {
+  const Catalog cat = SmallCatalog();
+  for (const char* objective : {"max_endurance", "min_energy"}) {
+    Json j = ParseJsonText(kStageQuad, "quad");
+    j["objective"]["type"] = objective;
+    if (std::string(objective) == "min_energy") j["objective"].erase("segment");
+    const Mission m = ParseMission(j, "quad");
+    SearchContext ctx;
+    ctx.mission = &m;
+    ctx.catalog = &cat;
+    ResolveGroups(&ctx);
+    ASSERT_EQ(ctx.free_rotors, 4);
+    ctx.options = BatteryOptions(m, cat);
+    ctx.escs = BuildEscTable(cat, ctx.options);
+    BuildPropGrids(m, cat, &ctx.grids, &ctx.models);
+    const CandidateList one = BuildCandidates(ctx, 1);
+    const CandidateList two = BuildCandidates(ctx, 2);
+    auto key = [](const Candidate& c) { return std::make_tuple(c.motor, c.prop, c.option, c.bound, c.irms_lb); };
+    std::set<std::tuple<int, int, int, double, double>> a, b;
+    for (const Candidate& c : one.candidates) a.insert(key(c));
+    for (const Candidate& c : two.candidates) b.insert(key(c));
+    EXPECT_EQ(a, b);
+    EXPECT_EQ(one.pruned_by, two.pruned_by);
+    int kept = 0, removed = 0, feasible = 0;
+    for (std::size_t mi = 0; mi < cat.motors().size(); ++mi) {
+      if (!cat.motors()[mi].mass_kg) continue;
+      for (std::size_t pi = 0; pi < cat.props().size(); ++pi) {
+        for (std::size_t o = 0; o < ctx.options.size(); ++o) {
+          const auto it = std::find_if(one.candidates.begin(), one.candidates.end(), [&](const Candidate& c) {
+            return c.motor == static_cast<int>(mi) && c.prop == static_cast<int>(pi) && c.option == static_cast<int>(o);
+          });
+          (it == one.candidates.end() ? removed : kept)++;
+          for (const EscEntry& e : cat.escs()) {
+            const Combination c{&cat.motors()[mi], &e, &cat.props()[pi], ctx.options[o].entry, ctx.options[o].cells};
+            const MissionResult r = MissionEvaluator(m, c).Solve();
+            if (!r.feasible) continue;
+            ++feasible;
+            ASSERT_NE(it, one.candidates.end()) << "a feasible pair was removed: " << c.motor->id << " " << c.prop->id;
+            EXPECT_LE(it->bound, r.score) << c.motor->id << " " << e.id << " " << c.prop->id;
+          }
+        }
+      }
+    }
+    EXPECT_GT(kept, 0) << objective;
+    EXPECT_GT(removed, 0) << objective;
+    EXPECT_GT(feasible, 3) << objective;
+  }
+}
+
+}  // namespace
+}  // namespace dynosize::search_internal
