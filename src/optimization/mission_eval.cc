@@ -29,6 +29,48 @@ std::string Num(double x, int precision = 4) {
   return o.str();
 }
 
+// Which of two simulated results is better: a feasible one with the lower score, else (both
+// infeasible) the one closer to feasibility (larger smallest relative slack).
+bool Better(const MissionResult& a, const MissionResult& b) {
+  if (a.feasible != b.feasible) return a.feasible;
+  return a.feasible ? a.score < b.score : a.min_slack > b.min_slack;
+}
+
+// The best result over x in [0, 1] of one scaled variable: a 9-point grid brackets the best
+// point, then golden-section search on [x_best - 1/8, x_best + 1/8] down to a width of 1e-6
+// (about 38 simulations). Infeasible points compare worse than every feasible one, so an
+// optimum on a constraint boundary is approached from the feasible side. The result is the
+// best point simulated, never worse than the grid's.
+template <typename Simulate>
+MissionResult SolveOneVariable(const Simulate& simulate) {
+  constexpr int kGrid = 9;
+  MissionResult best = simulate(0.0);
+  double best_x = 0.0;
+  for (int k = 1; k < kGrid; ++k) {
+    const double x = k / double(kGrid - 1);
+    MissionResult r = simulate(x);
+    if (Better(r, best)) { best = std::move(r); best_x = x; }
+  }
+  const double kInvPhi = 0.6180339887498949;  // (sqrt(5) - 1)/2
+  double a = std::max(0.0, best_x - 1.0 / (kGrid - 1)), b = std::min(1.0, best_x + 1.0 / (kGrid - 1));
+  double c = b - kInvPhi * (b - a), d = a + kInvPhi * (b - a);
+  MissionResult rc = simulate(c), rd = simulate(d);
+  while (b - a > 1e-6) {
+    if (Better(rc, rd)) {  // the best lies in [a, d]
+      b = d; d = c; rd = std::move(rc);
+      c = b - kInvPhi * (b - a);
+      rc = simulate(c);
+    } else {
+      a = c; c = d; rc = std::move(rd);
+      d = a + kInvPhi * (b - a);
+      rd = simulate(d);
+    }
+    if (Better(rc, best)) best = rc;
+    if (Better(rd, best)) best = rd;
+  }
+  return best;
+}
+
 // Propeller speed for a required thrust: the root of T(omega) - T_req on [0, w_hi] by the
 // Illinois variant of regula falsi (T(0) = 0 < T_req). Returns false when T(w_hi) < T_req.
 bool PropSpeedForThrust(const PropModel& prop, double thrust_n, double rho, double airspeed,
@@ -720,9 +762,26 @@ MissionResult MissionEvaluator::Solve(double cutoff_score, bool explain) const {
     return r;
   }
 
+  const int n = static_cast<int>(free.size());
+  if (n == 1) {
+    // One free variable (the usual case: the capacity, or one cruise airspeed): a bracketed
+    // 1-D search, which also finds an optimum that sits on a constraint boundary (a heavier
+    // pack breaking a current or thrust-to-weight limit), where COBYLA tends to end just on the
+    // infeasible side and fall back to its coarse start.
+    MissionResult r = SolveOneVariable([&](double x) { return WithEndurance(vars_at(&x)); });
+    if (!explain) return r;
+    std::ostringstream msg;
+    msg << "bracketed 1-D search (9-point grid, golden section to 1e-6 of the range); "
+        << (free[0].segment < 0 ? std::string("capacity_ah")
+                                : m_.segments[free[0].segment].name + ".airspeed_m_s")
+        << " = " << Num(free[0].segment < 0 ? r.capacity_ah : r.segments[free[0].segment].airspeed_m_s, 6);
+    r.solver = msg.str();
+    Summarize(&r);
+    AddWarnings(&r);
+    return r;
+  }
   // A coarse grid (5 levels per variable, at most 125 points) picks the start; COBYLA
   // (derivative-free: the objective passes through tabulated propeller data) polishes it.
-  const int n = static_cast<int>(free.size());
   const int levels = 5;
   int total = 1;
   for (int i = 0; i < n && i < 3; ++i) total *= levels;
