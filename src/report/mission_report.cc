@@ -9,6 +9,7 @@
 #include "common/text_file.h"
 #include "common/units.h"
 #include "model/drive.h"
+#include "model/physics.h"
 #include "report/gnuplot.h"
 
 namespace dynosize {
@@ -39,6 +40,42 @@ double Display(const Mission& m, double objective) {
 std::string Fixed(double x, int digits) {
   std::ostringstream o;
   o << std::fixed << std::setprecision(digits) << x;
+  return o.str();
+}
+
+// objective_range, the ranking, the tiers and the motor rating (optimization/credibility.h).
+void AddCredibilityJson(const Mission& m, const MissionResult& r, Json* j) {
+  const ObjectiveRange& g = r.range;
+  (*j)["ranking"] = m.objective.ranking == DataScenario::kAsGiven ? "as_given" : "credible";
+  if (!g.computed) return;
+  (*j)["objective_range"] = {g.low, g.high};
+  (*j)["objective_range_basis"] = g.basis;
+  (*j)["objective_range_feasible"] = {{"low", g.low_feasible}, {"high", g.high_feasible}};
+  if (!g.low_violation.empty()) (*j)["objective_range_low_fails"] = g.low_violation;
+  if (!g.high_violation.empty()) (*j)["objective_range_high_fails"] = g.high_violation;
+  (*j)["objective_as_given"] = g.as_given;
+  (*j)["objective_as_given_feasible"] = g.as_given_feasible;
+  Json t = Json::object();
+  for (const PartTier& p : g.tiers) t[p.part] = {{"id", p.id}, {"tier", SourceTierName(p.tier)}, {"set_by", p.why}};
+  (*j)["tiers"] = t;
+  (*j)["motor_rating"] = g.motor_rating;
+}
+
+std::string CredibilityText(const Mission& m, const MissionResult& r) {
+  const ObjectiveRange& g = r.range;
+  if (!g.computed) return "";
+  const bool credible = m.objective.ranking != DataScenario::kAsGiven;
+  std::ostringstream o;
+  o << "  " << (credible ? "credible " : "as given: ") << Fixed(Display(m, r.objective), 2) << ", "
+    << (g.low_feasible ? "" : "(fails: " + g.low_violation + ") ") << Fixed(Display(m, g.low), 2) << "-"
+    << Fixed(Display(m, g.high), 2) << (g.high_feasible ? "" : " (fails: " + g.high_violation + ")")
+    << " with the spread of the data (" << g.basis << ")";
+  if (credible) {
+    o << "; data as given " << Fixed(Display(m, g.as_given), 2) << (g.as_given_feasible ? "" : " (infeasible)");
+  }
+  o << "\n  data tiers:";
+  for (const PartTier& p : g.tiers) o << " " << p.part << " " << SourceTierName(p.tier) << " (" << p.why << ");";
+  o << " motor rating: " << g.motor_rating << "\n";
   return o.str();
 }
 
@@ -89,6 +126,9 @@ Json MissionResultJson(const Mission& m, const Combination& c, const MissionResu
     g["eta_esc"] = p.eta_esc;
     g["eta_system"] = p.eta_system;
     g["eta_system_average"] = s.eta_average;
+    if (s.type == SegmentType::kHover && p.pmech_w > 0) {  // of the power flown (credibility.h)
+      g["figure_of_merit"] = IdealRotorPowerW(s.thrust_per_rotor_n, c.prop->diameter_m, m.rho_kg_m3) / p.pmech_w;
+    }
     g["battery_current_a"] = s.battery_current_a;
     g["soc_start"] = s.soc_start;
     g["soc_end"] = s.soc_end;
@@ -112,6 +152,7 @@ Json MissionResultJson(const Mission& m, const Combination& c, const MissionResu
   j["warnings"] = r.warnings;
   j["assumed"] = r.assumed;
   if (!r.solver.empty()) j["solver"] = r.solver;
+  AddCredibilityJson(m, r, &j);
   return j;
 }
 
@@ -124,6 +165,7 @@ std::string MissionResultText(const Mission& m, const Combination& c, const Miss
     << " min, " << Fixed(r.energy_wh, 2) << " Wh, final SOC " << Fixed(100 * r.final_soc, 1)
     << " %; mass " << Fixed(r.total_mass_kg, 3) << " kg (propulsion " << Fixed(r.propulsion_mass_kg, 3)
     << " kg)\n";
+  o << CredibilityText(m, r);
   o << "  segment (point: end, worst case)   s     rpm  thr %  eff %  torque N*m  Irms A  IDC A   VDC V   PDC W  PESC W  eta_m  eta_e  eta_s  limit\n";
   for (const SegmentResult& s : r.segments) {
     const OperatingPoint& p = s.point;

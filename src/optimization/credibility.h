@@ -1,0 +1,162 @@
+// Trust in the data behind a result (issue 13, item 4, and the sizing side of items 3 and 5):
+// the source tier of each catalog entry, the figure-of-merit envelope of measured propellers,
+// the data scenarios a mission can be flown on, and the objective range of a result.
+//
+// Source tier (best first): measured (stand or wind tunnel) > manufacturer computed (APC PER3)
+// > manufacturer stated > user contributed (DriveCalc's data base and power laws) > assumed.
+// Today the tier is inferred from source.dataset and source.values of the entry's performance
+// keys (EntryTier); the worst label of those keys is the entry's tier. When the catalog gets a
+// tier field of its own, EntryTier is the one function to switch.
+//
+// Data scenarios (mission.h, DataScenario), what each changes. Thrust is never changed; the
+// propeller's shaft power (torque) at the thrust is, pointwise, in static evaluations (hover,
+// and static-only data anywhere: forward-flight tables are used as given):
+//     P' = max(f * P, P_ideal(T) / FM_cap)          P_ideal = T^1.5 / sqrt(2*rho*A)
+// (momentum theory, model.md section 10). FM_cap and f per tier and scenario:
+//                        credible (ranking)   pessimistic          optimistic
+//   measured             f = 1                f = 1 + kMeasuredPowerBand, f = 1 - band, no cap
+//   manufacturer comp./  cap class p90        cap class p10        cap class p90
+//   manufacturer stated
+//   user contributed /   cap class p50        cap class p10        cap class p90
+//   assumed
+// "Class" is the propeller's diameter class in kPropFmClasses: p10/p50/p90 of the median static
+// figure of merit of UIUC's measured propellers of that class (model.md section 10: 239 props,
+// median 0.555). A propeller whose data are worse than the cap keeps its data (P' >= P): the
+// scenario never makes a propeller better than its own data, except the measured tier's
+// optimistic band.
+// Motor and ESC parameters in the pessimistic/optimistic scenarios move within a band per value
+// label (kValueBands below): Rm and Io up/down by a relative band; an ESC whose C1, C0 are the
+// assumed ideal (esc_prior.h) gets C0 = kAssumedEscC0Pessimistic in the pessimistic case, and
+// an assumed RESC is multiplied/divided by exp(resistance_log_sd) of the prior.
+// The credible scenario (the default ranking) leaves motors and ESCs at their catalog values.
+//
+// Motors without a current or power rating: by default a power rating from the mass, the
+// specific-power law of hobby outrunners fitted to the FAST-UAV catalogues (204 motors, I_max *
+// V_nominal against mass; log-residual sd 0.85):
+//     P_max [W] = 4319 * (m / 1 kg)^0.953
+// marked assumed; or (mission constraints.unrated_motors = "exclude") the motor is left out.
+//
+// Folding propellers (the name says "folding", "klapp", "CAM" or "foldable"): never used for
+// multirotor lift (a hover, climb or wingless cruise segment) unless the mission's
+// constraints.allow_folding_props_for_lift is true.
+#pragma once
+
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "catalog/catalog.h"
+#include "mission/mission.h"
+#include "model/drive.h"
+#include "prop/prop_model.h"
+
+namespace dynosize {
+
+struct Combination;
+struct MissionResult;
+
+enum class SourceTier { kMeasured, kManufacturerComputed, kManufacturerStated, kUserContributed, kAssumed };
+
+// "measured", "manufacturer_computed", "manufacturer_stated", "user_contributed", "assumed".
+const char* SourceTierName(SourceTier tier);
+
+// The tier of one value label of source.values in the entry's data set ("fitted" counts as
+// measured unless the data set is a manufacturer's table; "datasheet" of DriveCalc's data base
+// is user contributed); "derived" returns false (it inherits from the values it comes from).
+bool LabelTier(const std::string& label, const std::string& dataset, SourceTier* tier);
+
+// The entry's tier: the worst tier of its performance keys (motor: kv/ke, rm, io; ESC: resc,
+// c1, c0; propeller: its tables, coefficients or power laws; battery: capacity, voltage, ri);
+// `why` (optional) gets the key that sets it. Entries without labels fall back on the data set.
+SourceTier EntryTier(const EntryBase& entry, ComponentKind kind, std::string* why = nullptr);
+
+// The figure-of-merit envelope of one diameter class of measured propellers.
+struct FmClass {
+  double d_lo_m, d_hi_m;  // [lo, hi)
+  double p10, p50, p90;   // of the per-propeller median static FM
+  int n;                  // propellers in the class
+  const char* label;
+};
+
+// The classes, from catalog/uiuc_propdb.json (UIUC Propeller Data Site vol 1-3, static tables;
+// FM = CT^1.5/(CP*sqrt(pi/2)) per point, the median over each propeller's rpm points, then the
+// percentiles over the class with linear interpolation). tests/optimization/credibility_test.cc
+// recomputes them from the bundled catalog.
+const std::vector<FmClass>& PropFmClasses();
+const FmClass& PropFmClassOf(double diameter_m);
+
+// The static figure of merit CT^1.5/(CP*sqrt(pi/2)) at each point of the static table, and its
+// median; 0 when the entry has no static table.
+double MedianStaticFigureOfMerit(const PropEntry& prop);
+// The classes recomputed from the measured propellers (tier measured, with a static table) of
+// `props`.
+std::vector<FmClass> ComputePropFmClasses(const std::vector<PropEntry>& props);
+
+// Relative band of measured propeller power (pessimistic: +5 %, optimistic: -5 %): the
+// agreement between UIUC's and other facilities' static CP of the same propeller model that
+// Brandt & Selig (AIAA 2011-1255) report is a few percent; 5 % is an allowance, not a fit.
+inline constexpr double kMeasuredPowerBand = 0.05;
+// Switching-loss term of an ESC whose C1, C0 are the assumed ideal, in the pessimistic
+// scenario: C0 = 0.03 (at 40 % throttle eta_ESC ~ 0.444/0.474 = 94 %; Brown's thesis saw ESC
+// efficiencies as low as 65 %, model.md section 1): an allowance, not a fit.
+inline constexpr double kAssumedEscC0Pessimistic = 0.03;
+
+// How a propeller's static evaluations are adjusted in one scenario.
+struct PropAdjustment {
+  double power_factor = 1.0;                                   // f
+  double fm_cap = std::numeric_limits<double>::infinity();     // FM_cap
+  bool identity() const { return power_factor == 1.0 && !(fm_cap < 1e300); }
+};
+PropAdjustment PropAdjustmentFor(const PropEntry& prop, DataScenario scenario);
+
+// Applies the adjustment to a static evaluation (ev->airspeed_m_s == 0 or static-only data
+// held at J = 0): power and torque rise to the scenario's value, thrust unchanged. Evaluations
+// from forward-flight tables are left as they are.
+void AdjustPropEvaluation(const PropAdjustment& adj, double diameter_m, PropEvaluation* ev);
+
+bool IsFoldingProp(const PropEntry& prop);
+// True when the mission has a segment in which the rotors lift the vehicle (hover, climb, or
+// cruise without a wing).
+bool MissionUsesRotorLift(const Mission& mission);
+// "" when the propeller may fly the mission, else the rule it breaks (folding, for lift).
+bool FoldingPropRefused(const PropEntry& prop, const Mission& mission);
+
+// Motor power rating from its mass (the law above), W.
+double EstimatedMotorPowerW(double mass_kg);
+
+// The motor parameters a mission flies: the catalog's, with the estimated power rating when
+// the motor has neither rating (and the mission estimates), and moved within their bands in
+// the pessimistic/optimistic scenarios. *rating_estimated (optional) says whether the estimate
+// was used; *excluded (optional) whether the mission excludes the motor (no rating, "exclude").
+MotorParams ScenarioMotorParams(const MotorEntry& motor, const Mission& mission,
+                                bool* rating_estimated = nullptr, bool* excluded = nullptr);
+EscParams ScenarioEscParams(const EscEntry& esc, DataScenario scenario);
+
+// The tier of each part of a result and the objective under the other scenarios.
+struct PartTier {
+  std::string part;  // "motor", "ESC", "propeller", "battery"
+  std::string id;
+  SourceTier tier = SourceTier::kAssumed;
+  std::string why;   // the key that sets the tier
+};
+
+struct ObjectiveRange {
+  bool computed = false;
+  // The objective with the pessimistic and the optimistic data, in objective_unit; an end is
+  // `*_feasible = false` when the combination breaks a constraint with those data (the end is
+  // then not a number: `low`/`high` hold the credible objective and `*_violation` says why).
+  double low = 0.0, high = 0.0;
+  bool low_feasible = true, high_feasible = true;
+  std::string low_violation, high_violation;
+  double as_given = 0.0;  // the objective on the catalog's data as given (no adjustment)
+  bool as_given_feasible = true;
+  std::string basis;      // one line: what the range spans
+  std::vector<PartTier> tiers;
+  std::string motor_rating;  // "catalog", "estimated from mass (assumed)", ...
+};
+
+// Fills result->range: the objective re-solved under the pessimistic, optimistic and as-given
+// scenarios (three more MissionEvaluator::Solve runs; the search calls it for its top N only).
+void AddObjectiveRange(const Mission& mission, const Combination& combination, MissionResult* result);
+
+}  // namespace dynosize
