@@ -328,34 +328,59 @@ void AddObjectiveRange(const Mission& m, const Combination& c, MissionResult* r)
                                    " W estimated from the mass (assumed; credibility.h)"
                    : excluded ? "none in the catalog: excluded (constraints.unrated_motors = exclude)"
                               : "catalog";
-  auto solve = [&](DataScenario s, bool* feasible, std::string* violation) {
+  // One scenario: its objective with the mission's limits relaxed to physics (*flies: that
+  // run is feasible) and what it breaks under the mission's own limits.
+  MotorEntry motor_free = *c.motor;
+  EscEntry esc_free = *c.esc;
+  BatteryEntry battery_free = *c.battery;
+  constexpr double kNoRating = 1e300;  // finite: the motor counts as rated (no estimate)
+  motor_free.params.max_current_a = motor_free.params.max_power_w = kNoRating;
+  esc_free.params.max_current_a = kNoRating;
+  battery_free.max_current_a = kNoRating;
+  battery_free.peak_current_a = kNoRating;
+  const Combination c_free{&motor_free, &esc_free, c.prop, &battery_free, c.cells};
+  auto solve = [&](DataScenario s, bool* flies, std::string* breaks) {
     Mission ms = m;
     ms.objective.ranking = s;
     const MissionResult x = MissionEvaluator(ms, c).Solve(std::numeric_limits<double>::infinity(), false);
-    *feasible = x.feasible;
-    if (!x.feasible && violation) {
-      for (const Violation& v : x.violations) *violation += (violation->empty() ? "" : ", ") + v.constraint;
-    }
-    return x.objective;
+    for (const Violation& v : x.violations) *breaks += (breaks->empty() ? "" : ", ") + v.constraint;
+    *flies = x.feasible;
+    if (x.feasible) return x.objective;
+    ms.constraints.max_throttle = 1.0;
+    ms.constraints.min_hover_throttle = 0.0;
+    ms.constraints.allow_esc_saturation = true;
+    ms.constraints.enforce_motor_power = false;
+    ms.constraints.current_margin = 0.0;
+    const MissionResult y = MissionEvaluator(ms, c_free).Solve(std::numeric_limits<double>::infinity(), false);
+    *flies = y.feasible;
+    return y.objective;
   };
-  const double pess = solve(DataScenario::kPessimistic, &g.low_feasible, &g.low_violation);
-  const double opt = solve(DataScenario::kOptimistic, &g.high_feasible, &g.high_violation);
-  g.as_given = m.objective.ranking == DataScenario::kAsGiven ? r->objective
-                                                             : solve(DataScenario::kAsGiven, &g.as_given_feasible, nullptr);
-  if (m.objective.ranking == DataScenario::kAsGiven) g.as_given_feasible = r->feasible;
+  bool pess_flies = false, opt_flies = false;
+  std::string pess_breaks, opt_breaks;
+  const double pess = solve(DataScenario::kPessimistic, &pess_flies, &pess_breaks);
+  const double opt = solve(DataScenario::kOptimistic, &opt_flies, &opt_breaks);
+  if (m.objective.ranking == DataScenario::kAsGiven) {
+    g.as_given = r->objective;
+    g.as_given_feasible = r->feasible;
+  } else {
+    Mission ms = m;
+    ms.objective.ranking = DataScenario::kAsGiven;
+    const MissionResult x = MissionEvaluator(ms, c).Solve(std::numeric_limits<double>::infinity(), false);
+    g.as_given = x.objective;
+    g.as_given_feasible = x.feasible;
+  }
   // Larger is better for max_*: the pessimistic data give the low end; min_energy the high end.
   const bool larger_better = m.objective.type != ObjectiveType::kMinEnergy;
-  double lo_v = larger_better ? pess : opt, hi_v = larger_better ? opt : pess;
-  bool lo_ok = larger_better ? g.low_feasible : g.high_feasible;
-  bool hi_ok = larger_better ? g.high_feasible : g.low_feasible;
-  std::string lo_why = larger_better ? g.low_violation : g.high_violation;
-  std::string hi_why = larger_better ? g.high_violation : g.low_violation;
-  g.low = lo_ok ? std::min(lo_v, r->objective) : r->objective;
-  g.high = hi_ok ? std::max(hi_v, r->objective) : r->objective;
-  g.low_feasible = lo_ok;
-  g.high_feasible = hi_ok;
-  g.low_violation = lo_why;
-  g.high_violation = hi_why;
+  const double lo_v = larger_better ? pess : opt, hi_v = larger_better ? opt : pess;
+  const bool lo_ok = larger_better ? pess_flies : opt_flies, hi_ok = larger_better ? opt_flies : pess_flies;
+  g.low_breaks = larger_better ? pess_breaks : opt_breaks;
+  g.high_breaks = larger_better ? opt_breaks : pess_breaks;
+  // A feasible result lies inside its range (the solver's tolerance could put it a hair
+  // outside); an infeasible one's objective is not a value to bracket.
+  const double mid = r->feasible ? r->objective : (lo_ok ? lo_v : hi_v);
+  g.low = lo_ok ? std::min(lo_v, mid) : mid;
+  g.high = hi_ok ? std::max(hi_v, mid) : mid;
+  g.complete = lo_ok && hi_ok;
   const FmClass& k = PropFmClassOf(c.prop->diameter_m);
   const SourceTier pt = g.tiers[2].tier;
   std::ostringstream b;

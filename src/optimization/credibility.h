@@ -142,17 +142,21 @@ struct PartTier {
 
 struct ObjectiveRange {
   bool computed = false;
-  // The objective with the pessimistic and the optimistic data, in objective_unit; an end is
-  // `*_feasible = false` when the combination breaks a constraint with those data (the end is
-  // then not a number: `low`/`high` hold the credible objective and `*_violation` says why).
+  // The objective under the pessimistic and the optimistic data, ordered (low <= credible <=
+  // high, in objective_unit). Each end is flown with the mission's limits relaxed to physics
+  // (throttle <= 100 %, no current or power ratings, no hover-throttle floor, saturation
+  // allowed; the pack's power, cut-off and reserve still hold), so that it is a number even
+  // when those data break a rating; `*_breaks` lists what that end breaks under the mission's
+  // own limits ("" when nothing). An end that cannot fly at all is held at the credible value
+  // and `complete` is false.
   double low = 0.0, high = 0.0;
-  bool low_feasible = true, high_feasible = true;
-  std::string low_violation, high_violation;
+  std::string low_breaks, high_breaks;
+  bool complete = true;
   double as_given = 0.0;  // the objective on the catalog's data as given (no adjustment)
   bool as_given_feasible = true;
   std::string basis;      // one line: what the range spans
   std::vector<PartTier> tiers;
-  std::string motor_rating;  // "catalog", "estimated from mass (assumed)", ...
+  std::string motor_rating;  // "catalog", "... estimated from the mass (assumed)", ...
 };
 
 // Fills result->range: the objective re-solved under the pessimistic, optimistic and as-given

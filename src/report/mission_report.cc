@@ -50,9 +50,9 @@ void AddCredibilityJson(const Mission& m, const MissionResult& r, Json* j) {
   if (!g.computed) return;
   (*j)["objective_range"] = {g.low, g.high};
   (*j)["objective_range_basis"] = g.basis;
-  (*j)["objective_range_feasible"] = {{"low", g.low_feasible}, {"high", g.high_feasible}};
-  if (!g.low_violation.empty()) (*j)["objective_range_low_fails"] = g.low_violation;
-  if (!g.high_violation.empty()) (*j)["objective_range_high_fails"] = g.high_violation;
+  (*j)["objective_range_complete"] = g.complete;
+  if (!g.low_breaks.empty()) (*j)["objective_range_low_breaks"] = g.low_breaks;
+  if (!g.high_breaks.empty()) (*j)["objective_range_high_breaks"] = g.high_breaks;
   (*j)["objective_as_given"] = g.as_given;
   (*j)["objective_as_given_feasible"] = g.as_given_feasible;
   Json t = Json::object();
@@ -65,14 +65,19 @@ std::string CredibilityText(const Mission& m, const MissionResult& r) {
   const ObjectiveRange& g = r.range;
   if (!g.computed) return "";
   const bool credible = m.objective.ranking != DataScenario::kAsGiven;
+  const char* unit = m.objective.type == ObjectiveType::kMaxEndurance ? " min"
+                     : m.objective.type == ObjectiveType::kMinEnergy  ? " Wh"
+                                                                      : " %";
   std::ostringstream o;
-  o << "  " << (credible ? "credible " : "as given: ") << Fixed(Display(m, r.objective), 2) << ", "
-    << (g.low_feasible ? "" : "(fails: " + g.low_violation + ") ") << Fixed(Display(m, g.low), 2) << "-"
-    << Fixed(Display(m, g.high), 2) << (g.high_feasible ? "" : " (fails: " + g.high_violation + ")")
+  o << "  " << (credible ? "credible " : "data as given: ") << Fixed(Display(m, r.objective), 2) << unit << ", "
+    << Fixed(Display(m, g.low), 2) << "-" << Fixed(Display(m, g.high), 2) << unit
     << " with the spread of the data (" << g.basis << ")";
   if (credible) {
-    o << "; data as given " << Fixed(Display(m, g.as_given), 2) << (g.as_given_feasible ? "" : " (infeasible)");
+    o << "; data as given " << Fixed(Display(m, g.as_given), 2) << unit << (g.as_given_feasible ? "" : " (infeasible)");
   }
+  if (!g.low_breaks.empty()) o << "\n  at the low end it breaks " << g.low_breaks << " (limits relaxed for the number)";
+  if (!g.high_breaks.empty()) o << "\n  at the high end it breaks " << g.high_breaks << " (limits relaxed for the number)";
+  if (!g.complete) o << "\n  the range is incomplete: one end cannot fly even with the limits relaxed";
   o << "\n  data tiers:";
   for (const PartTier& p : g.tiers) o << " " << p.part << " " << SourceTierName(p.tier) << " (" << p.why << ");";
   o << " motor rating: " << g.motor_rating << "\n";

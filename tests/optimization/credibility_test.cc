@@ -250,6 +250,11 @@ TEST(CredibilityTest, ObjectiveRangeBracketsTheCredibleValue) {
   EXPECT_LE(g.low, r.objective);
   EXPECT_GE(g.high, r.objective);
   EXPECT_LT(g.low, g.high);
+  EXPECT_TRUE(g.complete);
+  // FM at the class p10 with the motor's Io and Rm 1.6x (user tier) needs more current than
+  // the motor's rating: the low end says so, and is still a number.
+  EXPECT_NE(g.low_breaks.find("motor_current"), std::string::npos) << g.low_breaks;
+  EXPECT_LT(g.low, 0.9 * r.objective);
   // The DriveCalc law's FM 0.79 is held to the class median: the credible endurance is well
   // below the data's own (issue 13: 32.6 min as given; about 24 min with a measured prop).
   EXPECT_TRUE(g.as_given_feasible);
@@ -271,6 +276,7 @@ TEST(CredibilityTest, ObjectiveRangeBracketsTheCredibleValue) {
   AddObjectiveRange(mg, c, &rg);
   EXPECT_NEAR(rg.objective, g.as_given, 1e-9 * g.as_given);
   EXPECT_NEAR(rg.range.low, g.low, 1e-6 * g.low);
+  EXPECT_GE(rg.range.high, rg.objective) << "the range brackets the data's own value then";
 }
 
 TEST(CredibilityTest, MissionKeysAreChecked) {
