@@ -221,12 +221,18 @@ PropAdjustment PropAdjustmentFor(const PropEntry& prop, DataScenario scenario) {
     }
     return a;
   }
+  if (tier == SourceTier::kManufacturerComputed) {
+    switch (scenario) {
+      case DataScenario::kPessimistic: a.power_factor = 1.0 / kComputedFmRatio.min; break;
+      case DataScenario::kOptimistic: a.power_factor = 1.0 / kComputedFmRatio.max; a.fm_cap = k.p90; break;
+      default: a.power_factor = 1.0 / kComputedFmRatio.median; a.fm_cap = k.p90; break;
+    }
+    return a;
+  }
   switch (scenario) {
     case DataScenario::kPessimistic: a.fm_cap = k.p10; break;
     case DataScenario::kOptimistic: a.fm_cap = k.p90; break;
-    default:
-      a.fm_cap = tier == SourceTier::kManufacturerComputed || tier == SourceTier::kManufacturerStated ? k.p90 : k.p50;
-      break;
+    default: a.fm_cap = k.p50; break;
   }
   return a;
 }
@@ -386,12 +392,15 @@ void AddObjectiveRange(const Mission& m, const Combination& c, MissionResult* r)
   std::ostringstream b;
   if (pt == SourceTier::kMeasured) {
     b << "propeller measured: shaft power +-" << Fixed(100 * kMeasuredPowerBand, 0) << " %";
+  } else if (pt == SourceTier::kManufacturerComputed) {
+    b << "propeller manufacturer_computed: static FM x " << Fixed(kComputedFmRatio.min, 2) << "-"
+      << Fixed(kComputedFmRatio.max, 2) << " (credible " << Fixed(kComputedFmRatio.median, 2) << "), measured/computed of "
+      << kComputedFmRatio.pairs << " APC products, at most the p90 " << Fixed(k.p90, 2) << " of " << k.n
+      << " measured props of " << k.label;
   } else {
     b << "propeller " << SourceTierName(pt) << ": static FM held to the p10-p90 (" << Fixed(k.p10, 2) << "-"
-      << Fixed(k.p90, 2) << ") of " << k.n << " measured props of " << k.label << " (credible: "
-      << (pt == SourceTier::kManufacturerComputed || pt == SourceTier::kManufacturerStated ? "p90 " + Fixed(k.p90, 2)
-                                                                                           : "p50 " + Fixed(k.p50, 2))
-      << ")";
+      << Fixed(k.p90, 2) << ") of " << k.n << " measured props of " << k.label << " (credible: p50 "
+      << Fixed(k.p50, 2) << ")";
   }
   b << "; motor Rm, Io by their tier (" << SourceTierName(g.tiers[0].tier) << "); ESC RESC";
   if (KeyTier(*c.esc, ComponentKind::kEsc, "c0") == SourceTier::kAssumed) b << " and C0 0-" << kAssumedEscC0Pessimistic;

@@ -12,20 +12,25 @@
 // propeller's shaft power (torque) at the thrust is, pointwise, in static evaluations (hover,
 // and static-only data anywhere: forward-flight tables are used as given):
 //     P' = max(f * P, P_ideal(T) / FM_cap)          P_ideal = T^1.5 / sqrt(2*rho*A)
-// (momentum theory, model.md section 10). FM_cap and f per tier and scenario:
-//                        credible (ranking)   pessimistic          optimistic
-//   measured             f = 1                f = 1 + kMeasuredPowerBand, f = 1 - band, no cap
-//   manufacturer comp./  cap class p90        cap class p10        cap class p90
-//   manufacturer stated
-//   user contributed /   cap class p50        cap class p10        cap class p90
+// (momentum theory, model.md section 10), i.e. FM' = min(FM / f, FM_cap). f and FM_cap per
+// tier and scenario:
+//                        credible (ranking)      pessimistic             optimistic
+//   measured             as measured             f = 1.05                f = 0.95 (FM <= 1)
+//   manufacturer         f = 1/0.880, cap p90    f = 1/0.740             f = 1/0.911, cap p90
+//   computed
+//   manufacturer stated, cap class p50           cap class p10           cap class p90
+//   user contributed,
 //   assumed
-// "Class" is the propeller's diameter class in kPropFmClasses: p10/p50/p90 of the median static
+// "Class" is the propeller's diameter class in PropFmClasses(): p10/p50/p90 of the median static
 // figure of merit of UIUC's measured propellers of that class (model.md section 10: 239 props,
-// median 0.555). A propeller whose data are worse than the cap keeps its data (P' >= P): the
-// scenario never makes a propeller better than its own data, except the measured tier's
-// optimistic band.
+// median 0.555). Manufacturer-computed data (APC PER3 blade-element tables, and APC's computed
+// coefficients in FAST-UAV) are scaled by the ratio measured/computed FM of the same product:
+// the 9 APC products UIUC measured (SF and E families) give 0.740 / 0.880 / 0.911 (min, median,
+// max; kComputedFmRatio). A propeller whose data are worse than the cap keeps its data
+// (P' >= P): no scenario makes a propeller better than its own data, except the optimistic
+// bands of the measured and computed tiers.
 // Motor and ESC parameters in the pessimistic/optimistic scenarios move within a band per value
-// label (kValueBands below): Rm and Io up/down by a relative band; an ESC whose C1, C0 are the
+// label (ValueBand in credibility.cc): Rm and Io up/down by a relative band; an ESC whose C1, C0 are the
 // assumed ideal (esc_prior.h) gets C0 = kAssumedEscC0Pessimistic in the pessimistic case, and
 // an assumed RESC is multiplied/divided by exp(resistance_log_sd) of the prior.
 // The credible scenario (the default ranking) leaves motors and ESCs at their catalog values.
@@ -92,6 +97,14 @@ double MedianStaticFigureOfMerit(const PropEntry& prop);
 // `props`.
 std::vector<FmClass> ComputePropFmClasses(const std::vector<PropEntry>& props);
 
+// Measured over computed static FM of the same APC products (UIUC apcsf/apce against APC PER3
+// SF/E tables of the bundled catalog; recomputed in tests/optimization/credibility_test.cc).
+struct FmRatio {
+  double min, median, max;
+  int pairs;
+};
+inline constexpr FmRatio kComputedFmRatio{0.7396, 0.8802, 0.9114, 9};
+
 // Relative band of measured propeller power (pessimistic: +5 %, optimistic: -5 %): the
 // agreement between UIUC's and other facilities' static CP of the same propeller model that
 // Brandt & Selig (AIAA 2011-1255) report is a few percent; 5 % is an allowance, not a fit.
@@ -118,7 +131,7 @@ bool IsFoldingProp(const PropEntry& prop);
 // True when the mission has a segment in which the rotors lift the vehicle (hover, climb, or
 // cruise without a wing).
 bool MissionUsesRotorLift(const Mission& mission);
-// "" when the propeller may fly the mission, else the rule it breaks (folding, for lift).
+// True when the mission refuses the propeller: a folding one for rotor lift.
 bool FoldingPropRefused(const PropEntry& prop, const Mission& mission);
 
 // Motor power rating from its mass (the law above), W.

@@ -4,7 +4,10 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <map>
+#include <regex>
 #include <string>
 
 #include "catalog/catalog.h"
@@ -57,6 +60,38 @@ TEST(CredibilityTest, FmClassesAreThoseOfTheBundledUiucCatalog) {
   EXPECT_EQ(total, 239) << "UIUC's measured static tables (model.md section 10)";
   EXPECT_STREQ(PropFmClassOf(0.3175).label, "12 in and over");
   EXPECT_STREQ(PropFmClassOf(0.254).label, "10-12 in");
+}
+
+// Measured over computed FM of the same APC products: UIUC "apcsf D.DxP.P" / "apce ..." (2
+// blades) against APC PER3 "APC DxPSF" / "APC DxPE" of the bundled catalog.
+TEST(CredibilityTest, ComputedToMeasuredRatioIsThatOfTheSameApcProducts) {
+  const std::regex uiuc(R"(UIUC vol \d (apcsf|apce) (\d+\.\d)x(\d+\.\d) \(2 blades\))");
+  const std::regex per3(R"(APC (\d+(?:\.\d)?)x(\d+(?:\.\d)?)(SF|E) \(PER3.*)");
+  std::multimap<std::string, double> measured;
+  auto key = [](const std::string& fam, const std::string& d, const std::string& p) {
+    char buf[64];
+    std::snprintf(buf, sizeof buf, "%s %.1f %.1f", fam.c_str(), std::stod(d), std::stod(p));
+    return std::string(buf);
+  };
+  std::smatch mt;
+  for (const PropEntry& p : Bundled().props()) {
+    if (std::regex_match(p.name, mt, uiuc) && !p.static_table.rpm.empty()) {
+      measured.emplace(key(mt[1], mt[2], mt[3]), MedianStaticFigureOfMerit(p));
+    }
+  }
+  std::vector<double> ratios;
+  for (const PropEntry& p : Bundled().props()) {
+    if (!std::regex_match(p.name, mt, per3)) continue;
+    const auto range = measured.equal_range(key(mt[3] == "SF" ? "apcsf" : "apce", mt[1], mt[2]));
+    for (auto it = range.first; it != range.second; ++it) ratios.push_back(it->second / MedianStaticFigureOfMerit(p));
+  }
+  ASSERT_EQ(static_cast<int>(ratios.size()), kComputedFmRatio.pairs);
+  std::sort(ratios.begin(), ratios.end());
+  constexpr double kRounding = 5e-5;  // printed to 4 decimals
+  EXPECT_NEAR(ratios.front(), kComputedFmRatio.min, kRounding);
+  EXPECT_NEAR(ratios[ratios.size() / 2], kComputedFmRatio.median, kRounding);
+  EXPECT_NEAR(ratios.back(), kComputedFmRatio.max, kRounding);
+  EXPECT_LT(ratios.back(), 1.0) << "APC's computed data are optimistic for every product UIUC measured";
 }
 
 TEST(CredibilityTest, TiersFollowTheSourceLabels) {
