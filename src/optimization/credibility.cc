@@ -283,6 +283,14 @@ bool FoldingPropRefused(const PropEntry& prop, const Mission& m) {
   return !m.constraints.allow_folding_props_for_lift && MissionUsesRotorLift(m) && IsFoldingProp(prop);
 }
 
+double MotorMaxVoltageV(const MotorEntry& motor) {
+  if (!motor.json.is_object() || !motor.json.contains("cells_max") || !motor.json.at("cells_max").is_number()) {
+    return kInf;
+  }
+  // 1e-9 relative: a full pack's OCV is 4.2 V per cell up to the rounding of its table.
+  return 4.2 * motor.json.at("cells_max").get<double>() * (1.0 + 1e-9);
+}
+
 double EstimatedMotorPowerW(double mass_kg) { return 4319.0 * std::pow(mass_kg, 0.953); }
 
 MotorParams ScenarioMotorParams(const MotorEntry& motor, const Mission& m, bool* rating_estimated,
@@ -374,6 +382,7 @@ void AddObjectiveRange(const Mission& m, const Combination& c, MissionResult* r)
     const MissionResult x = MissionEvaluator(ms, c).Solve(std::numeric_limits<double>::infinity(), false);
     g.as_given = x.objective;
     g.as_given_feasible = x.feasible;
+    for (const Violation& v : x.violations) g.as_given_breaks += (g.as_given_breaks.empty() ? "" : ", ") + v.constraint;
   }
   // Larger is better for max_*: the pessimistic data give the low end; min_energy the high end.
   const bool larger_better = m.objective.type != ObjectiveType::kMinEnergy;

@@ -134,6 +134,11 @@ bool MissionUsesRotorLift(const Mission& mission);
 // True when the mission refuses the propeller: a folding one for rotor lift.
 bool FoldingPropRefused(const PropEntry& prop, const Mission& mission);
 
+// The motor's voltage rating from its recommended LiPo cell count (catalog key cells_max, as
+// the DriveCalc importer derives an ESC's vdc_max_v): 4.2 V per fully charged cell; +inf when
+// the entry has none. A pack whose full-charge voltage exceeds it fails "motor_voltage".
+double MotorMaxVoltageV(const MotorEntry& motor);
+
 // Motor power rating from its mass (the law above), W.
 double EstimatedMotorPowerW(double mass_kg);
 
@@ -167,6 +172,7 @@ struct ObjectiveRange {
   bool complete = true;
   double as_given = 0.0;  // the objective on the catalog's data as given (no adjustment)
   bool as_given_feasible = true;
+  std::string as_given_breaks;  // what the data as given break ("" when feasible)
   std::string basis;      // one line: what the range spans
   std::vector<PartTier> tiers;
   std::string motor_rating;  // "catalog", "... estimated from the mass (assumed)", ...

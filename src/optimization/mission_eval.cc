@@ -192,6 +192,7 @@ MissionResult MissionEvaluator::Run(const ContinuousVars& vars, double stretch_s
   track.Check("esc_voltage", "", v_full, ep.vdc_max_v, "V");
   if (folding_refused_) track.Check("prop_folding", "", 1.0, 0.0, "");   // credibility.h
   if (motor_excluded_) track.Check("motor_unrated", "", 1.0, 0.0, "");
+  track.Check("motor_voltage", "", v_full, MotorMaxVoltageV(*c_.motor), "V");
   if (m_.vehicle.max_prop_diameter_m) {
     track.Check("prop_diameter", "", c_.prop->diameter_m, *m_.vehicle.max_prop_diameter_m, "m");
   }
@@ -468,7 +469,7 @@ namespace {
 // and IDC are not in the list: a larger pack also sags less, which lowers both.
 bool RisesWithMass(const std::string& constraint) {
   static const char* const kNames[] = {"esc_voltage", "prop_diameter", "thrust", "motor_power", "prop_max_rpm",
-                                       "prop_folding", "motor_unrated"};
+                                       "prop_folding", "motor_unrated", "motor_voltage"};
   for (const char* name : kNames) {
     if (constraint == name) return true;
   }

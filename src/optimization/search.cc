@@ -37,7 +37,8 @@ namespace dynosize {
 //    only rises, pointwise, and keeps rising with speed: M1 holds) and the same motor ratings,
 //    so every rule bounds the score that is ranked.
 // R1 (ratings, ESC voltage): an ESC whose vdc_max_v is below the full-charge OCV of the cells
-//    fails the esc_voltage constraint whatever else is chosen.
+//    fails the esc_voltage constraint whatever else is chosen; so does a motor whose cells_max
+//    (4.2 V per cell) is below it (motor_voltage).
 // R2 (thrust / prop speed): in every hover segment each rotor gives at least T_lb, the thrust
 //    at the lightest mass. By (M1) its speed is at least omega_lb, the largest grid speed whose
 //    thrust is <= T_lb, and its torque at least the smallest grid torque at or above omega_lb.
@@ -306,8 +307,13 @@ SearchResult SearchCatalog(const Mission& m, const Catalog& cat, const SearchOpt
       prune_pair("motor_unrated", per_pair * static_cast<long long>(props.size() * options.size()));
       continue;
     }
+    const double motor_max_v = MotorMaxVoltageV(mo);
     for (std::size_t o = 0; o < options.size(); ++o) {
       const BatteryOption& bo = options[o];
+      if (bo.v_full > motor_max_v) {  // R1 for the motor's cells_max (credibility.h)
+        prune_pair("motor_voltage", per_pair * static_cast<long long>(props.size()));
+        continue;
+      }
       // Zero-resistance drives, one per ESC class (R3, R4).
       std::vector<Drive> ideal;
       for (const EscClass& c : classes) {

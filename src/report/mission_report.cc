@@ -53,8 +53,9 @@ void AddCredibilityJson(const Mission& m, const MissionResult& r, Json* j) {
   (*j)["objective_range_complete"] = g.complete;
   if (!g.low_breaks.empty()) (*j)["objective_range_low_breaks"] = g.low_breaks;
   if (!g.high_breaks.empty()) (*j)["objective_range_high_breaks"] = g.high_breaks;
-  (*j)["objective_as_given"] = g.as_given;
-  (*j)["objective_as_given_feasible"] = g.as_given_feasible;
+  // null when the data as given break a limit (the number is then not an objective).
+  (*j)["objective_as_given"] = g.as_given_feasible ? Json(g.as_given) : Json(nullptr);
+  if (!g.as_given_feasible) (*j)["objective_as_given_breaks"] = g.as_given_breaks;
   Json t = Json::object();
   for (const PartTier& p : g.tiers) t[p.part] = {{"id", p.id}, {"tier", SourceTierName(p.tier)}, {"set_by", p.why}};
   (*j)["tiers"] = t;
@@ -73,7 +74,8 @@ std::string CredibilityText(const Mission& m, const MissionResult& r) {
     << Fixed(Display(m, g.low), 2) << "-" << Fixed(Display(m, g.high), 2) << unit
     << " with the spread of the data (" << g.basis << ")";
   if (credible) {
-    o << "; data as given " << Fixed(Display(m, g.as_given), 2) << unit << (g.as_given_feasible ? "" : " (infeasible)");
+    o << "; data as given: "
+      << (g.as_given_feasible ? Fixed(Display(m, g.as_given), 2) + unit : "infeasible (breaks " + g.as_given_breaks + ")");
   }
   if (!g.low_breaks.empty()) o << "\n  at the low end it breaks " << g.low_breaks << " (limits relaxed for the number)";
   if (!g.high_breaks.empty()) o << "\n  at the high end it breaks " << g.high_breaks << " (limits relaxed for the number)";

@@ -274,6 +274,21 @@ TEST(CredibilityTest, UnratedMotorIsRatedFromItsMassOrExcluded) {
   EXPECT_TRUE(named);
 }
 
+TEST(CredibilityTest, MotorVoltageRatingFromItsCellCount) {
+  const MotorEntry& maxon = Bundled().motor("fu_m_142");  // maxon EC 13, cells_max 4
+  EXPECT_NEAR(MotorMaxVoltageV(maxon), 16.8, 1e-6);
+  EXPECT_TRUE(std::isinf(MotorMaxVoltageV(Bundled().motor("dc_m_56"))));
+  Combination c = OldQuadPick();
+  c.motor = &maxon;
+  for (int cells : {4, 6}) {
+    c.cells = cells;
+    const MissionResult r = MissionEvaluator(QuadMission(true), c).Solve();
+    bool named = false;
+    for (const Violation& v : r.violations) named |= v.constraint == "motor_voltage";
+    EXPECT_EQ(named, cells == 6) << cells << "S: a full 4S pack is exactly 16.8 V";
+  }
+}
+
 TEST(CredibilityTest, ObjectiveRangeBracketsTheCredibleValue) {
   const Mission m = QuadMission(true);
   const Combination c = OldQuadPick();
