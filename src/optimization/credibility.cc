@@ -48,12 +48,16 @@ const Json* SourceValues(const EntryBase& e) {
   return &s.at("values");
 }
 
+// The provenance text LabelTier reads: source.dataset and the catalog file's name (the
+// manufacturer tables of sjkim-snu live in sjkim_mfr_tables.json).
 std::string Dataset(const EntryBase& e) {
+  std::string d;
   if (e.json.is_object() && e.json.contains("source") && e.json.at("source").is_object() &&
       e.json.at("source").contains("dataset") && e.json.at("source").at("dataset").is_string()) {
-    return e.json.at("source").at("dataset").get<std::string>();
+    d = e.json.at("source").at("dataset").get<std::string>();
   }
-  return {};
+  const std::size_t slash = e.file.find_last_of('/');
+  return d + " " + (slash == std::string::npos ? e.file : e.file.substr(slash + 1));
 }
 
 // The tier of one key of the entry: its own label, else (unlabelled or derived) the entry's.
@@ -293,6 +297,16 @@ double MotorMaxVoltageV(const MotorEntry& motor) {
 
 double EstimatedMotorPowerW(double mass_kg) { return 4319.0 * std::pow(mass_kg, 0.953); }
 
+double EstimatedMotorCurrentA(double mass_kg, double kv_rpm_per_v) {
+  return 0.5956 * std::pow(mass_kg, 1.2816) * std::pow(kv_rpm_per_v, 0.9629);
+}
+
+double MotorKvRpmPerV(const MotorEntry& motor) {
+  if (motor.kv_rpm_per_v) return *motor.kv_rpm_per_v;
+  const double k = motor.params.type == MotorType::kBldc ? 3.0 / (std::sqrt(2.0) * kPi) : 1.0;
+  return k / (motor.params.ke_v_s_per_rad * kPi / 30.0);
+}
+
 MotorParams ScenarioMotorParams(const MotorEntry& motor, const Mission& m, bool* rating_estimated,
                                 bool* excluded) {
   MotorParams p = motor.params;
@@ -301,6 +315,8 @@ MotorParams ScenarioMotorParams(const MotorEntry& motor, const Mission& m, bool*
   if (excluded) *excluded = unrated && !m.constraints.estimate_unrated_motors;
   if (unrated && m.constraints.estimate_unrated_motors && motor.mass_kg) {
     p.max_power_w = EstimatedMotorPowerW(*motor.mass_kg);
+    const double kv = MotorKvRpmPerV(motor);
+    if (kv > 0 && std::isfinite(kv)) p.max_current_a = EstimatedMotorCurrentA(*motor.mass_kg, kv);
     if (rating_estimated) *rating_estimated = true;
   }
   const DataScenario s = m.objective.ranking;
@@ -338,8 +354,9 @@ void AddObjectiveRange(const Mission& m, const Combination& c, MissionResult* r)
   g.tiers.push_back({"battery", c.battery->id, EntryTier(*c.battery, ComponentKind::kBattery, &why), why});
   bool estimated = false, excluded = false;
   ScenarioMotorParams(*c.motor, m, &estimated, &excluded);
-  g.motor_rating = estimated ? "none in the catalog: power rating " + Fixed(EstimatedMotorPowerW(*c.motor->mass_kg), 0) +
-                                   " W estimated from the mass (assumed; credibility.h)"
+  g.motor_rating = estimated ? "none in the catalog: " + Fixed(EstimatedMotorPowerW(*c.motor->mass_kg), 0) + " W, " +
+                                   Fixed(EstimatedMotorCurrentA(*c.motor->mass_kg, MotorKvRpmPerV(*c.motor)), 1) +
+                                   " A estimated from the mass and Kv (assumed; credibility.h)"
                    : excluded ? "none in the catalog: excluded (constraints.unrated_motors = exclude)"
                               : "catalog";
   // One scenario: its objective with the mission's limits relaxed to physics (*flies: that

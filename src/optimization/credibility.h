@@ -35,11 +35,14 @@
 // an assumed RESC is multiplied/divided by exp(resistance_log_sd) of the prior.
 // The credible scenario (the default ranking) leaves motors and ESCs at their catalog values.
 //
-// Motors without a current or power rating: by default a power rating from the mass, the
-// specific-power law of hobby outrunners fitted to the FAST-UAV catalogues (204 motors, I_max *
-// V_nominal against mass; log-residual sd 0.85):
-//     P_max [W] = 4319 * (m / 1 kg)^0.953
-// marked assumed; or (mission constraints.unrated_motors = "exclude") the motor is left out.
+// Motors without a current or power rating: by default ratings from the mass, the laws of
+// hobby outrunners fitted (least squares in logs) to the FAST-UAV catalogues (204 motors with
+// mass, Kv, I_max and V_nominal):
+//     P_max [W] = 4319 * (m / 1 kg)^0.953                  (I_max*V_nominal; log sd 0.85)
+//     I_max [A] = 0.5956 * (m / 1 kg)^1.2816 * Kv^0.9629   (Kv in rpm/V;      log sd 0.55)
+// (a specific power of about 4.3 kW/kg; at a fixed design speed the voltage falls as 1/Kv, so
+// the current rises about as m*Kv), marked assumed; or (mission constraints.unrated_motors =
+// "exclude") the motor is left out.
 //
 // Folding propellers (the name says "folding", "klapp", "CAM" or "foldable"): never used for
 // multirotor lift (a hover, climb or wingless cruise segment) unless the mission's
@@ -139,8 +142,12 @@ bool FoldingPropRefused(const PropEntry& prop, const Mission& mission);
 // the entry has none. A pack whose full-charge voltage exceeds it fails "motor_voltage".
 double MotorMaxVoltageV(const MotorEntry& motor);
 
-// Motor power rating from its mass (the law above), W.
+// Motor ratings from its mass (and Kv, rpm/V) by the laws above: W and A.
 double EstimatedMotorPowerW(double mass_kg);
+double EstimatedMotorCurrentA(double mass_kg, double kv_rpm_per_v);
+// The motor's Kv: the catalog's, else from KE (model.md section 8: Kv = 0.675/(KE*pi/30) for a
+// BLDC, 1/(KE*pi/30) brushed), rpm/V.
+double MotorKvRpmPerV(const MotorEntry& motor);
 
 // The motor parameters a mission flies: the catalog's, with the estimated power rating when
 // the motor has neither rating (and the mission estimates), and moved within their bands in

@@ -107,8 +107,16 @@ TEST(CredibilityTest, TiersFollowTheSourceLabels) {
   EXPECT_EQ(EntryTier(c.esc("dc_e_142"), ComponentKind::kEsc, &why), SourceTier::kAssumed);
   EXPECT_TRUE(why == "c1" || why == "c0") << why;  // the ESC prior's ideal constants
   SourceTier t;
-  EXPECT_TRUE(LabelTier("fitted", "sjkim-snu/propulsion_analysis motor tables", &t));
+  EXPECT_TRUE(LabelTier("fitted", "DriveCalc MData drivecalc_fitted.json", &t));
   EXPECT_EQ(t, SourceTier::kMeasured);
+  EXPECT_TRUE(LabelTier("fitted", "sjkim-snu/propulsion_analysis motor tables sjkim_mfr_tables.json", &t));
+  EXPECT_EQ(t, SourceTier::kManufacturerStated);
+  // A T-Motor table fit: Rm fitted to the manufacturer's table, Io assumed: the worst counts.
+  for (const MotorEntry& m : c.motors()) {
+    if (m.file.find("sjkim_mfr_tables") == std::string::npos) continue;
+    EXPECT_EQ(EntryTier(m, ComponentKind::kMotor, &why), SourceTier::kAssumed) << m.id;
+    EXPECT_EQ(why, "io_a");
+  }
   EXPECT_TRUE(LabelTier("fitted", "dronebuildcalc manufacturer tables", &t));
   EXPECT_EQ(t, SourceTier::kManufacturerStated);
   EXPECT_FALSE(LabelTier("derived", "x", &t));
@@ -231,23 +239,46 @@ TEST(CredibilityTest, FoldingPropIsRefusedForLiftUnlessAllowed) {
   EXPECT_FALSE(FoldingPropRefused(*OldQuadPick().prop, glider));
 }
 
-// The specific-power law is the FAST-UAV catalogue's (I_max * V_nominal against mass).
-TEST(CredibilityTest, UnratedMotorPowerLawIsTheFastUavFit) {
+// The rating laws are the FAST-UAV catalogue's: ln(I_max*V_nominal) on ln(m), and ln(I_max) on
+// ln(m) and ln(Kv), least squares (3x3 normal equations of well-scaled logs: fine here).
+TEST(CredibilityTest, UnratedMotorLawsAreTheFastUavFits) {
   double sx = 0, sy = 0, sxx = 0, sxy = 0;
+  double a[3][4] = {};
   int n = 0;
   for (const MotorEntry& m : Bundled().motors()) {
-    if (m.id.rfind("fu_m_", 0) != 0 || !m.mass_kg || !std::isfinite(m.params.max_current_a)) continue;
+    if (m.id.rfind("fu_m_", 0) != 0 || !m.mass_kg || !m.kv_rpm_per_v || !std::isfinite(m.params.max_current_a)) continue;
     if (!m.json.contains("vdc_nominal_v")) continue;
     const double x = std::log(*m.mass_kg), y = std::log(m.params.max_current_a * m.json.at("vdc_nominal_v").get<double>());
     sx += x; sy += y; sxx += x * x; sxy += x * y;
+    const double row[3] = {1.0, x, std::log(*m.kv_rpm_per_v)};
+    for (int i = 0; i < 3; ++i) {
+      for (int j = 0; j < 3; ++j) a[i][j] += row[i] * row[j];
+      a[i][3] += row[i] * std::log(m.params.max_current_a);
+    }
     ++n;
   }
   ASSERT_EQ(n, 204);
   const double b = (n * sxy - sx * sy) / (n * sxx - sx * sx);
-  const double a = std::exp((sy - b * sx) / n);
-  // The law's constants are printed to 4 and 3 significant digits.
-  EXPECT_NEAR(EstimatedMotorPowerW(1.0), a, 0.5);
+  const double p1 = std::exp((sy - b * sx) / n);
+  // Printed to 4 and 3 significant digits.
+  EXPECT_NEAR(EstimatedMotorPowerW(1.0), p1, 0.5);
   EXPECT_NEAR(std::log(EstimatedMotorPowerW(0.1) / EstimatedMotorPowerW(1.0)) / std::log(0.1), b, 5e-4);
+  for (int i = 0; i < 3; ++i) {  // Gauss-Jordan with partial pivoting
+    int piv = i;
+    for (int r = i + 1; r < 3; ++r) if (std::fabs(a[r][i]) > std::fabs(a[piv][i])) piv = r;
+    for (int k = 0; k < 4; ++k) std::swap(a[i][k], a[piv][k]);
+    for (int r = 0; r < 3; ++r) {
+      if (r == i) continue;
+      const double f = a[r][i] / a[i][i];
+      for (int k = 0; k < 4; ++k) a[r][k] -= f * a[i][k];
+    }
+  }
+  const double c0 = std::exp(a[0][3] / a[0][0]), c1 = a[1][3] / a[1][1], c2 = a[2][3] / a[2][2];
+  EXPECT_NEAR(EstimatedMotorCurrentA(1.0, 1.0), c0, 5e-4);
+  EXPECT_NEAR(std::log(EstimatedMotorCurrentA(0.1, 1.0) / EstimatedMotorCurrentA(1.0, 1.0)) / std::log(0.1), c1, 5e-4);
+  EXPECT_NEAR(std::log(EstimatedMotorCurrentA(1.0, 10.0) / EstimatedMotorCurrentA(1.0, 1.0)) / std::log(10.0), c2, 5e-4);
+  // Issue 13: the unrated 40 g Python 80 (1964 Kv) flew at 42-52 A rms; the law rates it near 14 A.
+  EXPECT_NEAR(EstimatedMotorCurrentA(0.04, 1963.91), 14.3, 0.1);
 }
 
 TEST(CredibilityTest, UnratedMotorIsRatedFromItsMassOrExcluded) {
@@ -262,6 +293,7 @@ TEST(CredibilityTest, UnratedMotorIsRatedFromItsMassOrExcluded) {
   EXPECT_TRUE(estimated);
   EXPECT_FALSE(excluded);
   EXPECT_DOUBLE_EQ(p.max_power_w, EstimatedMotorPowerW(*motor.mass_kg));
+  EXPECT_DOUBLE_EQ(p.max_current_a, EstimatedMotorCurrentA(*motor.mass_kg, *motor.kv_rpm_per_v));
   MissionResult r = MissionEvaluator(m, c).Solve();
   bool said = false;
   for (const std::string& w : r.warnings) said |= w.find("estimated from its mass") != std::string::npos;
