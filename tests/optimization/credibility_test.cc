@@ -11,11 +11,13 @@
 #include <string>
 
 #include "catalog/catalog.h"
+#include "cli_runner.h"
 #include "common/error.h"
 #include "common/json_file.h"
 #include "common/units.h"
 #include "model/physics.h"
 #include "optimization/mission_eval.h"
+#include "optimization/search.h"
 #include "prop/prop_model.h"
 
 namespace dynosize {
@@ -359,6 +361,52 @@ TEST(CredibilityTest, ObjectiveRangeBracketsTheCredibleValue) {
   EXPECT_NEAR(rg.objective, g.as_given, 1e-9 * g.as_given);
   EXPECT_NEAR(rg.range.low, g.low, 1e-6 * g.low);
   EXPECT_GE(rg.range.high, rg.objective) << "the range brackets the data's own value then";
+}
+
+// `evaluate --json` carries the range, the ranking, the tiers and the motor rating; the text
+// says the same in words.
+TEST(CredibilityTest, EvaluateReportsRangeAndTiers) {
+  const std::string quad = std::string(DYNOSIZE_SOURCE_DIR) + "/examples/missions/quadcopter_1p5kg.json";
+  const std::string args = "evaluate " + quad + " --motor dc_m_56 --esc dc_e_142 --prop dc_p_231 --battery dc_b_363 --cells 4";
+  const auto js = testing_util::RunCli(args + " --json");
+  ASSERT_EQ(js.code, 0) << js.err;
+  const Json j = Json::parse(js.out);
+  EXPECT_EQ(j.at("ranking"), "credible");
+  ASSERT_EQ(j.at("objective_range").size(), 2u);
+  EXPECT_LE(j.at("objective_range")[0].get<double>(), j.at("objective").get<double>());
+  EXPECT_GE(j.at("objective_range")[1].get<double>(), j.at("objective").get<double>());
+  EXPECT_GT(j.at("objective_as_given").get<double>(), j.at("objective").get<double>());
+  EXPECT_EQ(j.at("tiers").at("propeller").at("tier"), "user_contributed");
+  EXPECT_EQ(j.at("tiers").at("ESC").at("tier"), "assumed");
+  EXPECT_EQ(j.at("motor_rating"), "catalog");
+  EXPECT_NEAR(j.at("segments")[2].at("figure_of_merit").get<double>(), PropFmClassOf(0.3048).p50, 1e-9);
+  const auto txt = testing_util::RunCli(args);
+  ASSERT_EQ(txt.code, 0) << txt.err;
+  EXPECT_NE(txt.out.find("with the spread of the data"), std::string::npos) << txt.out;
+  EXPECT_NE(txt.out.find("data tiers: motor user_contributed"), std::string::npos) << txt.out;
+}
+
+// The goal of issue 13 on the example quadcopter (about 3 s of CPU on the bundled catalog):
+// the pick hovers at a figure of merit measured props support, no point creates energy, the
+// result has its range, and no folding propeller lifts it.
+TEST(CredibilityTest, ExampleQuadPickIsCredible) {
+  const Mission m = ReadMission(std::string(DYNOSIZE_SOURCE_DIR) + "/examples/missions/quadcopter_1p5kg.json");
+  SearchOptions so;
+  so.top_n = 1;
+  const SearchResult s = SearchCatalog(m, Bundled(), so);
+  ASSERT_EQ(s.best.size(), 1u);
+  const Combination& c = s.best[0].combination;
+  const MissionResult& r = s.best[0].result;
+  EXPECT_FALSE(IsFoldingProp(*c.prop)) << c.prop->name;
+  EXPECT_TRUE(r.range.computed);
+  ASSERT_LT(c.prop->diameter_m, 0.5);
+  for (const SegmentResult& seg : r.segments) {
+    EXPECT_GE(seg.point.pesc_w, 0.0) << seg.name;
+    EXPECT_LE(seg.point.eta_motor, 1.0) << seg.name;
+    if (seg.type != SegmentType::kHover) continue;
+    const double fm = FigureOfMerit(seg.thrust_per_rotor_n, seg.point.pmech_w, c.prop->diameter_m, m.rho_kg_m3);
+    EXPECT_LE(fm, 0.72) << seg.name << ": above what measured props below 0.5 m support";
+  }
 }
 
 TEST(CredibilityTest, MissionKeysAreChecked) {
