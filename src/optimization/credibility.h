@@ -68,9 +68,10 @@ enum class SourceTier { kMeasured, kManufacturerComputed, kManufacturerStated, k
 // "measured", "manufacturer_computed", "manufacturer_stated", "user_contributed", "assumed".
 const char* SourceTierName(SourceTier tier);
 
-// The tier of one value label of source.values in the entry's data set ("fitted" counts as
-// measured unless the data set is a manufacturer's table; "datasheet" of DriveCalc's data base
-// is user contributed); "derived" returns false (it inherits from the values it comes from).
+// The tier of one value label of source.values; `dataset` is the entry's source.dataset and
+// catalog file name ("fitted" counts as measured unless either names a manufacturer's table,
+// "manufacturer" or "mfr"; "datasheet" of DriveCalc's data base is user contributed);
+// "derived" returns false (it inherits from the values it comes from).
 bool LabelTier(const std::string& label, const std::string& dataset, SourceTier* tier);
 
 // The entry's tier: the worst tier of its performance keys (motor: kv/ke, rm, io; ESC: resc,
