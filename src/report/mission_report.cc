@@ -221,16 +221,20 @@ std::string WriteParetoFigure(const Mission& m, const SearchResult& s, const std
       fy.push_back(p.second);
     }
   }
+  std::vector<double> tlo, thi;  // objective_range of the picks (credibility.h)
   for (const auto& b : s.best) {
     tx.push_back(b.result.propulsion_mass_kg);
     ty.push_back(Display(m, b.result.objective));
+    const bool ranged = b.result.range.computed;
+    tlo.push_back(Display(m, ranged ? std::min(b.result.range.low, b.result.range.high) : b.result.objective));
+    thi.push_back(Display(m, ranged ? std::max(b.result.range.low, b.result.range.high) : b.result.objective));
   }
   if (ax.empty()) { ax.push_back(kNaN); ay.push_back(kNaN); }
   if (fx.empty()) { fx.push_back(kNaN); fy.push_back(kNaN); }
-  if (tx.empty()) { tx.push_back(kNaN); ty.push_back(kNaN); }
+  if (tx.empty()) { tx.push_back(kNaN); ty.push_back(kNaN); tlo.push_back(kNaN); thi.push_back(kNaN); }
   all.series.push_back({ax, ay});
   front.series.push_back({fx, fy});
-  top.series.push_back({tx, ty});
+  top.series.push_back({tx, ty, tlo, thi});
   std::ostringstream g;
   g << "set title \"" << m.name << ": " << ObjectiveLabel(m) << " vs propulsion mass\\n"
     << s.searched << " combinations evaluated exactly, " << s.pruned << " pruned\" noenhanced\n"
@@ -238,7 +242,8 @@ std::string WriteParetoFigure(const Mission& m, const SearchResult& s, const std
     << ObjectiveLabel(m) << "\" noenhanced\nset grid\nset key bottom right\n"
     << "plot $all using 1:2 with points pt 7 ps 0.5 lc rgb '#9a9a9a' title 'evaluated', "
     << "$front using 1:2 with linespoints pt 7 ps 1 lw 2 lc rgb '#d62728' title 'Pareto front', "
-    << "$top using 1:2 with points pt 6 ps 2.5 lw 2 lc rgb '#1f77b4' title 'top picks'\n";
+    << "$top using 1:2:3:4 with yerrorbars pt 6 ps 2.5 lw 2 lc rgb '#1f77b4' "
+    << "title 'top picks (range)'\n";
   const std::string path = dir + "/pareto_front.png";
   RenderPng(path, {all, front, top}, g.str(), 1000, 700);
   return path;
