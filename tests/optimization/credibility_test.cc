@@ -323,6 +323,27 @@ TEST(CredibilityTest, MotorVoltageRatingFromItsCellCount) {
   }
 }
 
+// Parameters that create energy (model.md section 10) never give a feasible result.
+TEST(CredibilityTest, EnergyCreatingPartsAreInfeasible) {
+  Combination c = OldQuadPick();
+  const Mission m = QuadMission(true);
+  ASSERT_TRUE(MissionEvaluator(m, c).Solve().feasible);
+  MotorEntry motor = *c.motor;
+  motor.params.kt_nm_per_a = 1.3 * kPacPerVllIrms * motor.params.ke_v_s_per_rad;  // eta_motor > 1
+  EscEntry esc = *c.esc;
+  esc.params.c1 = 0.6;  // c1 + c0 < 1.1095: PESC < 0
+  for (int which = 0; which < 2; ++which) {
+    Combination bad = c;
+    if (which == 0) bad.motor = &motor;
+    else bad.esc = &esc;
+    const MissionResult r = MissionEvaluator(m, bad).Solve();
+    EXPECT_FALSE(r.feasible) << which;
+    bool named = false;
+    for (const Violation& v : r.violations) named |= v.constraint == "creates_energy";
+    EXPECT_TRUE(named) << which;
+  }
+}
+
 TEST(CredibilityTest, ObjectiveRangeBracketsTheCredibleValue) {
   const Mission m = QuadMission(true);
   const Combination c = OldQuadPick();
