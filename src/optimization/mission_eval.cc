@@ -106,7 +106,7 @@ MissionEvaluator::MissionEvaluator(const Mission& mission, const Combination& c,
                                    const PropModel* prop_model)
     : m_(mission),
       c_(c),
-      drive_(c.motor->params, c.esc->params),
+      drive_(ScenarioMotorParams(*c.motor, mission), ScenarioEscParams(*c.esc, mission.objective.ranking)),
       owned_prop_(prop_model ? nullptr : std::make_unique<PropModel>(*c.prop)),
       prop_(prop_model ? *prop_model : *owned_prop_) {
   const BatteryEntry& b = *c.battery;
@@ -146,6 +146,10 @@ MissionEvaluator::MissionEvaluator(const Mission& mission, const Combination& c,
   for (const auto& k : c.esc->assumed_keys) assumed_.push_back("ESC " + c.esc->id + ": " + k);
   for (const auto& k : c.prop->assumed_keys) assumed_.push_back("propeller " + c.prop->id + ": " + k);
   fixed_mass_kg_ = m_.vehicle.mass_kg + n * (motor_mass + esc_mass + prop_mass);
+  prop_adj_ = PropAdjustmentFor(*c.prop, m_.objective.ranking);
+  folding_refused_ = FoldingPropRefused(*c.prop, m_);
+  ScenarioMotorParams(*c.motor, m_, &rating_estimated_, &motor_excluded_);
+  if (rating_estimated_) assumed_.push_back("motor " + c.motor->id + ": max_power_w, max_current_a (from mass)");
 }
 
 double MissionEvaluator::BatteryMassKg(double capacity_ah) const {
@@ -183,9 +187,12 @@ MissionResult MissionEvaluator::Run(const ContinuousVars& vars, double stretch_s
   const double v_full = pack.OcvV(1.0);
   const double q_c = AhToCoulomb(pack.capacity_ah());
   const double current_factor = 1.0 - k.current_margin;
-  const MotorParams& mp = c_.motor->params;
-  const EscParams& ep = c_.esc->params;
+  const MotorParams& mp = drive_.motor();  // the scenario's (credibility.h)
+  const EscParams& ep = drive_.esc();
   track.Check("esc_voltage", "", v_full, ep.vdc_max_v, "V");
+  if (folding_refused_) track.Check("prop_folding", "", 1.0, 0.0, "");   // credibility.h
+  if (motor_excluded_) track.Check("motor_unrated", "", 1.0, 0.0, "");
+  track.Check("motor_voltage", "", v_full, MotorMaxVoltageV(*c_.motor), "V");
   if (m_.vehicle.max_prop_diameter_m) {
     track.Check("prop_diameter", "", c_.prop->diameter_m, *m_.vehicle.max_prop_diameter_m, "m");
   }
@@ -264,6 +271,9 @@ MissionResult MissionEvaluator::Run(const ContinuousVars& vars, double stretch_s
         const double p_ideal = t * (v_ax + std::sqrt(v_ax * v_ax + t / (2.0 * m_.rho_kg_m3 * area)));
         track.Check("prop_figure_of_merit", s.name, p_ideal / ev.power_w, k.max_figure_of_merit, "", false, &seg);
       }
+      // The scenario's propeller power (credibility.h: the credible value by default).
+      AdjustPropEvaluation(prop_adj_, c_.prop->diameter_m, &ev);
+      torque = ev.torque_nm;
       if (c_.prop->max_rpm) {
         track.Check("prop_max_rpm", s.name, RadPerSecToRpm(omega), *c_.prop->max_rpm, "rpm", false, &seg);
       }
@@ -320,6 +330,8 @@ MissionResult MissionEvaluator::Run(const ContinuousVars& vars, double stretch_s
       if (k.enforce_motor_power) track.Check("motor_power", s.name, op.pac_w, mp.max_power_w, "W", false, &seg);
       track.Check("battery_current", s.name, i_batt, pack.max_current_a() * current_factor, "A", false, &seg);
       track.Check("battery_cutoff", s.name, v, cutoff_v, "V", true, &seg);
+      // PESC < 0 or eta_motor > 1 (model/physics.h, Drive::Flag): never a feasible point.
+      if (op.limits & kLimitCreatesEnergy) track.Check("creates_energy", s.name, 1.0, 0.0, "", false, &seg);
     };
     seg.soc_start = soc;
     OperatingPoint op;
@@ -456,7 +468,8 @@ namespace {
 // (search.cc, M3). Violated at one capacity, they are violated at every larger one. Throttle
 // and IDC are not in the list: a larger pack also sags less, which lowers both.
 bool RisesWithMass(const std::string& constraint) {
-  static const char* const kNames[] = {"esc_voltage", "prop_diameter", "thrust", "motor_power", "prop_max_rpm"};
+  static const char* const kNames[] = {"esc_voltage", "prop_diameter", "thrust", "motor_power", "prop_max_rpm",
+                                       "prop_folding", "motor_unrated", "motor_voltage"};
   for (const char* name : kNames) {
     if (constraint == name) return true;
   }
@@ -492,7 +505,7 @@ double MissionEvaluator::EnduranceUpperBound(double target_s) const {
   const double c_lo = m_.battery.capacity_ah ? m_.battery.capacity_ah->lo : base_capacity_ah_;
   const double c_hi = m_.battery.capacity_ah ? m_.battery.capacity_ah->hi : base_capacity_ah_;
   const double ocv_integral_v = OcvIntegralUpperBound(BatteryPack(PackAt(c_lo)), m_.battery.reserve_soc);
-  const bool energy_fixed = c_.esc->params.c0 == 0.0 && c_.esc->params.rsupply_ohm == 0.0;
+  const bool energy_fixed = drive_.esc().c0 == 0.0 && drive_.esc().rsupply_ohm == 0.0;
   int runs = 0;
   double infeasible_from = kInf;  // every capacity from here up breaks a RisesWithMass constraint
   struct Piece { double ca, cb, p_ca, e_other_ca; };
@@ -573,7 +586,7 @@ MissionResult MissionEvaluator::Solve(double cutoff_score, bool explain) const {
     }
   }
   if (std::isfinite(cutoff_score) && m_.objective.type == ObjectiveType::kMinEnergy &&
-      !capacity_free && c_.esc->params.c0 == 0.0) {
+      !capacity_free && drive_.esc().c0 == 0.0) {
     // min_energy with free cruise airspeeds: every other segment's energy does not depend on
     // them (terminal power N*PDC + P_avionics, and PDC = C1*U*I/kv does not depend on the
     // voltage when C0 = 0, eqs 57, 59), and a wing-borne cruise needs at least the propulsive
@@ -722,8 +735,8 @@ MissionResult MissionEvaluator::Simulate(const ContinuousVars& vars) const {
 void MissionEvaluator::AddWarnings(MissionResult* r) const {
   r->assumed = assumed_;
   const MissionConstraints& k = m_.constraints;
-  const MotorParams& mp = c_.motor->params;
-  const EscParams& ep = c_.esc->params;
+  const MotorParams& mp = drive_.motor();
+  const EscParams& ep = drive_.esc();
   for (const Violation& v : r->violations) {
     if (v.constraint == "max_throttle") {
       r->warnings.push_back("segment '" + v.segment + "': throttle " + Num(100 * v.value, 3) +
@@ -774,6 +787,19 @@ void MissionEvaluator::AddWarnings(MissionResult* r) const {
   if (!std::isfinite(mp.max_current_a) && !std::isfinite(mp.max_power_w)) {
     r->warnings.push_back("motor " + c_.motor->id + " has no current or power rating in the "
                           "catalog: its load could not be checked (the search may favour it)");
+  }
+  if (rating_estimated_) {
+    r->warnings.push_back("motor " + c_.motor->id + " has no current or power rating in the catalog: "
+                          "ratings " + Num(mp.max_power_w, 3) + " W, " + Num(mp.max_current_a, 3) +
+                          " A estimated from its mass and Kv (laws of hobby outrunners, assumed)");
+  }
+  if (motor_excluded_) {
+    r->warnings.push_back("motor " + c_.motor->id + " has no current or power rating: excluded "
+                          "(constraints.unrated_motors = \"exclude\")");
+  }
+  if (folding_refused_) {
+    r->warnings.push_back("propeller " + c_.prop->id + " is a folding propeller: not used for multirotor "
+                          "lift (constraints.allow_folding_props_for_lift)");
   }
   if (!std::isfinite(ep.max_current_a)) {
     r->warnings.push_back("ESC " + c_.esc->id + " has no current rating: its current was not checked");

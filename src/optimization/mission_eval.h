@@ -29,6 +29,7 @@
 #include "catalog/catalog.h"
 #include "mission/mission.h"
 #include "model/drive.h"
+#include "optimization/credibility.h"
 #include "prop/prop_model.h"
 
 namespace dynosize {
@@ -99,6 +100,9 @@ struct MissionResult {
   std::vector<std::string> assumed;   // "motor x: mass_kg", ...
   std::string solver;                 // continuous solver's brief report ("" when none needed)
   double min_slack = 0.0;             // smallest relative constraint slack (< 0: infeasible)
+  // The tiers of the parts and the objective under the data-uncertainty model
+  // (optimization/credibility.h); filled by AddObjectiveRange (evaluate, optimize's top N).
+  ObjectiveRange range;
 };
 
 struct ContinuousVars {
@@ -156,6 +160,10 @@ class MissionEvaluator {
   double base_capacity_ah_ = 0;
   double fixed_mass_kg_ = 0;
   std::vector<std::string> assumed_;
+  // The mission's data scenario (credibility.h): the propeller adjustment, a folding propeller
+  // refused for lift, a motor without ratings estimated from its mass or excluded.
+  PropAdjustment prop_adj_;
+  bool folding_refused_ = false, rating_estimated_ = false, motor_excluded_ = false;
 };
 
 }  // namespace dynosize

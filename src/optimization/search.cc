@@ -30,9 +30,15 @@ namespace dynosize {
 // with them: the lightest ESC that can take the cell count and the smallest battery capacity.
 //
 // R0 (frame): a propeller larger than the vehicle's max_prop_diameter_m fails prop_diameter
-//    whatever else is chosen.
+//    whatever else is chosen; so does a folding propeller for lift (prop_folding) and a motor
+//    without ratings when the mission excludes such motors (motor_unrated), credibility.h.
+// Data scenario (credibility.h): the evaluator flies the mission's ranking scenario (the
+//    credible value by default); the grids below use the same adjusted propeller torque (it
+//    only rises, pointwise, and keeps rising with speed: M1 holds) and the same motor ratings,
+//    so every rule bounds the score that is ranked.
 // R1 (ratings, ESC voltage): an ESC whose vdc_max_v is below the full-charge OCV of the cells
-//    fails the esc_voltage constraint whatever else is chosen.
+//    fails the esc_voltage constraint whatever else is chosen; so does a motor whose cells_max
+//    (4.2 V per cell) is below it (motor_voltage).
 // R2 (thrust / prop speed): in every hover segment each rotor gives at least T_lb, the thrust
 //    at the lightest mass. By (M1) its speed is at least omega_lb, the largest grid speed whose
 //    thrust is <= T_lb, and its torque at least the smallest grid torque at or above omega_lb.
@@ -245,22 +251,29 @@ SearchResult SearchCatalog(const Mission& m, const Catalog& cat, const SearchOpt
   for (std::size_t p = 0; p < props.size(); ++p) {
     models[p] = std::make_unique<PropModel>(props[p]);
     const PropModel& model = *models[p];
+    const PropAdjustment prop_adj = PropAdjustmentFor(props[p], m.objective.ranking);
     PropGrid& g = grids[p];
     g.mass_kg = props[p].mass_kg ? *props[p].mass_kg : AssumedPropMassKg(props[p].diameter_m);
     double torque[kGrid];
     for (int i = 0; i < kGrid; ++i) {
       g.omega[i] = kGridMinRadS * std::pow(kGridMaxRadS / kGridMinRadS, i / double(kGrid - 1));
-      const PropEvaluation ev = model.Evaluate(g.omega[i], m.rho_kg_m3, 0.0);
+      PropEvaluation ev = model.Evaluate(g.omega[i], m.rho_kg_m3, 0.0);
       g.thrust[i] = ev.thrust_n;
-      torque[i] = ev.torque_nm;
       const double area = 0.25 * kPi * props[p].diameter_m * props[p].diameter_m;
       g.fom[i] = ev.power_w > 0 ? std::pow(ev.thrust_n, 1.5) / (std::sqrt(2.0 * m.rho_kg_m3 * area) * ev.power_w)
                                 : kInf;
+      // The FM limit (R6) judges the data; the load is the scenario's (credibility.h), as in
+      // the evaluator. The adjustment only raises the torque, and keeps it rising with speed.
+      AdjustPropEvaluation(prop_adj, props[p].diameter_m, &ev);
+      torque[i] = ev.torque_nm;
       if (i > 0 && !(g.thrust[i] > g.thrust[i - 1])) g.monotone = false;
     }
     g.torque_suffix_min[kGrid - 1] = torque[kGrid - 1];
     for (int i = kGrid - 2; i >= 0; --i) g.torque_suffix_min[i] = std::min(torque[i], g.torque_suffix_min[i + 1]);
   }
+
+  std::vector<char> folding_refused(props.size());
+  for (std::size_t p = 0; p < props.size(); ++p) folding_refused[p] = FoldingPropRefused(props[p], m);
 
   // Hover segments (R2-R4) and the fixed durations (R4).
   std::vector<int> hover;
@@ -288,9 +301,19 @@ SearchResult SearchCatalog(const Mission& m, const Catalog& cat, const SearchOpt
       prune_pair("motor_without_mass", per_pair * static_cast<long long>(props.size() * options.size()));
       continue;
     }
-    const MotorParams& mp = mo.params;
+    bool unrated_excluded = false;  // credibility.h: the rating (estimated from mass) or exclusion
+    const MotorParams mp = ScenarioMotorParams(mo, m, nullptr, &unrated_excluded);
+    if (unrated_excluded) {
+      prune_pair("motor_unrated", per_pair * static_cast<long long>(props.size() * options.size()));
+      continue;
+    }
+    const double motor_max_v = MotorMaxVoltageV(mo);
     for (std::size_t o = 0; o < options.size(); ++o) {
       const BatteryOption& bo = options[o];
+      if (bo.v_full > motor_max_v) {  // R1 for the motor's cells_max (credibility.h)
+        prune_pair("motor_voltage", per_pair * static_cast<long long>(props.size()));
+        continue;
+      }
       // Zero-resistance drives, one per ESC class (R3, R4).
       std::vector<Drive> ideal;
       for (const EscClass& c : classes) {
@@ -302,6 +325,10 @@ SearchResult SearchCatalog(const Mission& m, const Catalog& cat, const SearchOpt
         const PropGrid& g = grids[pi];
         if (m.vehicle.max_prop_diameter_m && props[pi].diameter_m > *m.vehicle.max_prop_diameter_m) {
           prune_pair("prop_diameter", per_pair);  // R0
+          continue;
+        }
+        if (folding_refused[pi]) {
+          prune_pair("prop_folding", per_pair);  // R0: a folding propeller for lift (credibility.h)
           continue;
         }
         const double mass_lb = m.vehicle.mass_kg + bo.mass_lo_kg +
@@ -625,6 +652,7 @@ SearchResult SearchCatalog(const Mission& m, const Catalog& cat, const SearchOpt
     }
     ci = end;
   }
+  for (RankedCombination& b : out.best) AddObjectiveRange(m, b.combination, &b.result);  // credibility.h
   if (opt.progress) opt.progress(1.0);
   out.pruned = out.combinations - out.searched;
   out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();

@@ -25,6 +25,7 @@ const char* kQuad = R"({
   "name": "test quad",
   "vehicle": {"mass_kg": 0.75, "rotors": 4, "drag_area_m2": 0.04, "drag_coefficient": 1.0, "avionics_power_w": 5},
   "battery": {"id": "dc_b_361", "cells": [3, 4], "reserve_soc": 0.2},
+  "constraints": {"allow_folding_props_for_lift": true},
   "objective": {"type": "max_endurance", "segment": "loiter"},
   "segments": [
     {"name": "takeoff", "type": "climb", "rate_m_s": 2, "distance_m": 30},
@@ -132,6 +133,42 @@ TEST_F(SearchTest, OptimizeEqualsTheBestOfExhaustiveEvaluation) {
   EXPECT_GE(CheckAgainstExhaustive(cat, m), 3u);
 }
 
+// The default ranking (credible data: propeller FM held to the measured class envelope,
+// credibility.h), the data as given, folding propellers refused and unrated motors excluded:
+// each is a different score, and the search must stay exact for each.
+TEST_F(SearchTest, EveryRankingEqualsExhaustiveEvaluation) {
+  const Catalog cat = Catalog::Load((dir_ / "catalog").string());
+  Json j = ParseJsonText(kQuad, "quad");  // allows the folding 18 in AeroCarbon (dc_p_173)
+  const Mission credible = ParseMission(j, "quad");
+  EXPECT_EQ(credible.objective.ranking, DataScenario::kCredible);
+  EXPECT_GE(CheckAgainstExhaustive(cat, credible), 3u);
+  j["objective"]["ranking"] = "as_given";
+  const Mission given = ParseMission(j, "quad");
+  EXPECT_GE(CheckAgainstExhaustive(cat, given), 3u);
+  j["objective"]["ranking"] = "credible";
+  j["constraints"]["allow_folding_props_for_lift"] = false;
+  j["constraints"]["unrated_motors"] = "exclude";
+  const Mission strict = ParseMission(j, "quad");
+  EXPECT_GE(CheckAgainstExhaustive(cat, strict), 3u);
+  SearchOptions so;
+  so.top_n = 1;
+  const SearchResult sc = SearchCatalog(credible, cat, so), sg = SearchCatalog(given, cat, so);
+  const SearchResult ss = SearchCatalog(strict, cat, so);
+  ASSERT_EQ(sc.best.size(), 1u);
+  ASSERT_EQ(sg.best.size(), 1u);
+  ASSERT_EQ(ss.best.size(), 1u);
+  // The DriveCalc laws of this catalog promise more than the measured props of their class.
+  EXPECT_LT(sc.best[0].result.objective, sg.best[0].result.objective);
+  EXPECT_GT(ss.pruned_by.count("prop_folding") ? ss.pruned_by.at("prop_folding") : 0, 0);
+  EXPECT_NE(ss.best[0].combination.prop->id, "dc_p_173");
+  for (const SearchResult* s : {&sc, &sg, &ss}) {
+    const ObjectiveRange& g = s->best[0].result.range;
+    EXPECT_TRUE(g.computed);
+    EXPECT_LE(g.low, s->best[0].result.objective);
+    EXPECT_GE(g.high, s->best[0].result.objective);
+  }
+}
+
 // A capacity range: the evaluator's bounds (bisected over the range, the other segments'
 // energy subtracted from the budget) and the search's must not cut off the best combinations.
 TEST_F(SearchTest, CapacityRangeEqualsExhaustiveEvaluation) {
@@ -191,7 +228,9 @@ TEST_F(SearchTest, EarlyExitsNeverCutOffAFeasibleScore) {
 
 TEST_F(SearchTest, FreeAirspeedOptimumBeatsADenseGrid) {
   Json j = ParseJsonText(kQuad, "quad");
-  j["objective"] = {{"type", "min_energy"}};
+  // On the data as given: the credible propeller power (credibility.h) breaks this motor's
+  // current rating.
+  j["objective"] = {{"type", "min_energy"}, {"ranking", "as_given"}};
   j["segments"][1]["airspeed_m_s"] = {4.0, 20.0};
   const Mission m = ParseMission(j, "quad");
   const Catalog cat = Catalog::Load((dir_ / "catalog").string());
@@ -261,7 +300,11 @@ TEST_F(SearchTest, InfeasibleMissionSaysWhichConstraintAndByHowMuch) {
 
 TEST_F(SearchTest, EverySegmentPointIsReproducedBySimulate) {
   const std::string cat = "--catalog " + (dir_ / "catalog").string();
-  const auto ev = testing_util::RunCli("evaluate " + (dir_ / "quad.json").string() + " " + cat +
+  // On the data as given: the credible propeller power breaks this motor's current rating.
+  Json given = ParseJsonText(kQuad, "quad");
+  given["objective"]["ranking"] = "as_given";
+  std::ofstream(dir_ / "quad_given.json") << DumpJson(given);
+  const auto ev = testing_util::RunCli("evaluate " + (dir_ / "quad_given.json").string() + " " + cat +
                                        " --motor dc_m_1020 --esc dc_e_56 --prop dc_p_173 --battery dc_b_361 --cells 4 --json");
   ASSERT_EQ(ev.code, 0) << ev.err;
   const Json j = Json::parse(ev.out);
