@@ -2,11 +2,12 @@
 // the source tier of each catalog entry, the figure-of-merit envelope of measured propellers,
 // the data scenarios a mission can be flown on, and the objective range of a result.
 //
-// Source tier (best first): measured (stand or wind tunnel) > manufacturer computed (APC PER3)
-// > manufacturer stated > user contributed (DriveCalc's data base and power laws) > assumed.
-// Today the tier is inferred from source.dataset and source.values of the entry's performance
-// keys (EntryTier); the worst label of those keys is the entry's tier. When the catalog gets a
-// tier field of its own, EntryTier is the one function to switch.
+// The trust rules themselves live in the catalog, one implementation each: the source tier of
+// an entry (EntryBase::tier, catalog/conventions.h; ValueTier for one value), the figure-of-merit
+// envelope of measured propellers by size class (catalog/prop_credibility.h, FmEnvelopeFor),
+// the folding flag (PropEntry::folding), the rating of motors without one (EstimatedMotorPowerW,
+// catalog/conventions.h) and exclusion (EntryBase::exclude_reason). This file says what the
+// sizing does with them.
 //
 // Data scenarios (mission.h, DataScenario), what each changes. Thrust is never changed; the
 // propeller's shaft power (torque) at the thrust is, pointwise, in static evaluations (hover,
@@ -17,36 +18,45 @@
 //                        credible (ranking)      pessimistic             optimistic
 //   measured             as measured             f = 1.05                f = 0.95 (FM <= 1)
 //   manufacturer         f = 1/0.880, cap p90    f = 1/0.740             f = 1/0.911, cap p90
-//   computed
+//   computed             (f on the raw data: see below)
 //   manufacturer stated, cap class p50           cap class p10           cap class p90
 //   user contributed,
 //   assumed
-// "Class" is the propeller's diameter class in PropFmClasses(): p10/p50/p90 of the median static
-// figure of merit of UIUC's measured propellers of that class (model.md section 10: 239 props,
-// median 0.555). Manufacturer-computed data (APC PER3 blade-element tables, and APC's computed
-// coefficients in FAST-UAV) are scaled by the ratio measured/computed FM of the same product:
-// the 9 APC products UIUC measured (SF and E families) give 0.740 / 0.880 / 0.911 (min, median,
-// max; kComputedFmRatio). A propeller whose data are worse than the cap keeps its data
-// (P' >= P): no scenario makes a propeller better than its own data, except the optimistic
-// bands of the measured and computed tiers.
+// "Class" is the propeller's diameter class of the catalog's envelope (FmEnvelopeFor): p10/p50/
+// p90 of the median static figure of merit of UIUC's measured propellers of that class (model.md
+// section 10: 239 props, median 0.555). Manufacturer-computed data (APC PER3 blade-element
+// tables, and APC's computed coefficients in FAST-UAV) are scaled by the ratio measured/computed
+// FM of the same product: the 9 APC products UIUC measured (SF and E families) give 0.740 /
+// 0.880 / 0.911 (min, median, max; kComputedFmRatio), computed on the manufacturer's raw data.
+// A propeller whose data are worse than the cap keeps its data (P' >= P): no scenario makes a
+// propeller better than its own data, except the optimistic bands of the measured and computed
+// tiers.
+//
+// Catalog derating (prop_credibility.h): at import, a non-measured propeller above its class
+// maximum FM already has its power multiplied by power_derate_factor d >= 1. The scenarios do
+// not derate twice: the cap is an absolute FM (max() with data that are already lower changes
+// nothing), and the computed tier's ratio applies to the manufacturer's raw data P/d, so the
+// factor on the stored data is f' = max(1, f/d) (P' = max(f*P_raw, P_stored, P_ideal/FM_cap)).
+//
 // Motor and ESC parameters in the pessimistic/optimistic scenarios move within a band per value
-// label (ValueBand in credibility.cc): Rm and Io up/down by a relative band; an ESC whose C1, C0 are the
-// assumed ideal (esc_prior.h) gets C0 = kAssumedEscC0Pessimistic in the pessimistic case, and
-// an assumed RESC is multiplied/divided by exp(resistance_log_sd) of the prior.
-// The credible scenario (the default ranking) leaves motors and ESCs at their catalog values.
+// tier (ValueBand in credibility.cc; the tier of rm_ohm, io_a, resc_ohm, c0 by ValueTier): Rm and
+// Io up/down by a relative band; an ESC whose C0 is assumed (the ideal prior, esc_prior.h) gets
+// C0 = kAssumedEscC0Pessimistic in the pessimistic case, and an assumed RESC is multiplied/
+// divided by exp(resistance_log_sd) of the prior. The credible scenario (the default ranking)
+// leaves motors and ESCs at their catalog values.
 //
-// Motors without a current or power rating: by default ratings from the mass, the laws of
-// hobby outrunners fitted (least squares in logs) to the FAST-UAV catalogues (204 motors with
-// mass, Kv, I_max and V_nominal):
-//     P_max [W] = 4319 * (m / 1 kg)^0.953                  (I_max*V_nominal; log sd 0.85)
-//     I_max [A] = 0.5956 * (m / 1 kg)^1.2816 * Kv^0.9629   (Kv in rpm/V;      log sd 0.55)
-// (a specific power of about 4.3 kW/kg; at a fixed design speed the voltage falls as 1/Kv, so
-// the current rises about as m*Kv), marked assumed; or (mission constraints.unrated_motors =
-// "exclude") the motor is left out.
+// Motors without a source rating: the importers give a motor with neither a current nor a
+// power rating max_power_w = EstimatedMotorPowerW(mass) marked "assumed" (catalog/conventions.h:
+// 10.81*m[g]^0.878 W), or "exclude" when it has no mass. The mission (constraints.unrated_motors)
+// either uses that estimate ("estimate", the default; a hand-written entry with no rating and
+// a mass gets the same estimate here) or leaves such motors out ("exclude"). No current rating
+// is estimated (the catalog's convention rates power only).
 //
-// Folding propellers (the name says "folding", "klapp", "CAM" or "foldable"): never used for
-// multirotor lift (a hover, climb or wingless cruise segment) unless the mission's
-// constraints.allow_folding_props_for_lift is true.
+// Entries with an exclude_reason are skipped by the search (catalog_exclude); evaluate warns.
+//
+// Folding propellers (PropEntry::folding, set by the importers from the Folder column or the
+// name): never used for multirotor lift (a hover, climb or wingless cruise segment) unless the
+// mission's constraints.allow_folding_props_for_lift is true.
 #pragma once
 
 #include <limits>
@@ -63,46 +73,9 @@ namespace dynosize {
 struct Combination;
 struct MissionResult;
 
-enum class SourceTier { kMeasured, kManufacturerComputed, kManufacturerStated, kUserContributed, kAssumed };
-
-// "measured", "manufacturer_computed", "manufacturer_stated", "user_contributed", "assumed".
-const char* SourceTierName(SourceTier tier);
-
-// The tier of one value label of source.values; `dataset` is the entry's source.dataset and
-// catalog file name ("fitted" counts as measured unless either names a manufacturer's table,
-// "manufacturer" or "mfr"; "datasheet" of DriveCalc's data base is user contributed);
-// "derived" returns false (it inherits from the values it comes from).
-bool LabelTier(const std::string& label, const std::string& dataset, SourceTier* tier);
-
-// The entry's tier: the worst tier of its performance keys (motor: kv/ke, rm, io; ESC: resc,
-// c1, c0; propeller: its tables, coefficients or power laws; battery: capacity, voltage, ri);
-// `why` (optional) gets the key that sets it. Entries without labels fall back on the data set.
-SourceTier EntryTier(const EntryBase& entry, ComponentKind kind, std::string* why = nullptr);
-
-// The figure-of-merit envelope of one diameter class of measured propellers.
-struct FmClass {
-  double d_lo_m, d_hi_m;  // [lo, hi)
-  double p10, p50, p90;   // of the per-propeller median static FM
-  int n;                  // propellers in the class
-  const char* label;
-};
-
-// The classes, from catalog/uiuc_propdb.json (UIUC Propeller Data Site vol 1-3, static tables;
-// FM = CT^1.5/(CP*sqrt(pi/2)) per point, the median over each propeller's rpm points, then the
-// percentiles over the class with linear interpolation). tests/optimization/credibility_test.cc
-// recomputes them from the bundled catalog.
-const std::vector<FmClass>& PropFmClasses();
-const FmClass& PropFmClassOf(double diameter_m);
-
-// The static figure of merit CT^1.5/(CP*sqrt(pi/2)) at each point of the static table, and its
-// median; 0 when the entry has no static table.
-double MedianStaticFigureOfMerit(const PropEntry& prop);
-// The classes recomputed from the measured propellers (tier measured, with a static table) of
-// `props`.
-std::vector<FmClass> ComputePropFmClasses(const std::vector<PropEntry>& props);
-
-// Measured over computed static FM of the same APC products (UIUC apcsf/apce against APC PER3
-// SF/E tables of the bundled catalog; recomputed in tests/optimization/credibility_test.cc).
+// Measured over computed static FM (MedianStaticFigureOfMerit, prop_credibility.h) of the same
+// APC products: UIUC apcsf/apce against the raw APC PER3 SF/E tables of the bundled catalog
+// (stored power / power_derate_factor); recomputed in tests/optimization/credibility_test.cc.
 struct FmRatio {
   double min, median, max;
   int pairs;
@@ -131,7 +104,6 @@ PropAdjustment PropAdjustmentFor(const PropEntry& prop, DataScenario scenario);
 // from forward-flight tables are left as they are.
 void AdjustPropEvaluation(const PropAdjustment& adj, double diameter_m, PropEvaluation* ev);
 
-bool IsFoldingProp(const PropEntry& prop);
 // True when the mission has a segment in which the rotors lift the vehicle (hover, climb, or
 // cruise without a wing).
 bool MissionUsesRotorLift(const Mission& mission);
@@ -143,17 +115,11 @@ bool FoldingPropRefused(const PropEntry& prop, const Mission& mission);
 // the entry has none. A pack whose full-charge voltage exceeds it fails "motor_voltage".
 double MotorMaxVoltageV(const MotorEntry& motor);
 
-// Motor ratings from its mass (and Kv, rpm/V) by the laws above: W and A.
-double EstimatedMotorPowerW(double mass_kg);
-double EstimatedMotorCurrentA(double mass_kg, double kv_rpm_per_v);
-// The motor's Kv: the catalog's, else from KE (model.md section 8: Kv = 0.675/(KE*pi/30) for a
-// BLDC, 1/(KE*pi/30) brushed), rpm/V.
-double MotorKvRpmPerV(const MotorEntry& motor);
-
-// The motor parameters a mission flies: the catalog's, with the estimated power rating when
-// the motor has neither rating (and the mission estimates), and moved within their bands in
-// the pessimistic/optimistic scenarios. *rating_estimated (optional) says whether the estimate
-// was used; *excluded (optional) whether the mission excludes the motor (no rating, "exclude").
+// The motor parameters a mission flies: the catalog's, with max_power_w = EstimatedMotorPowerW
+// (catalog/conventions.h) when the entry has neither rating and a mass, and moved within their
+// bands in the pessimistic/optimistic scenarios. *rating_estimated (optional) says whether the
+// power rating is an estimate from the mass (here or by the importer, source.values "assumed");
+// *excluded (optional) whether the mission leaves the motor out (unrated_motors = "exclude").
 MotorParams ScenarioMotorParams(const MotorEntry& motor, const Mission& mission,
                                 bool* rating_estimated = nullptr, bool* excluded = nullptr);
 EscParams ScenarioEscParams(const EscEntry& esc, DataScenario scenario);
@@ -162,8 +128,8 @@ EscParams ScenarioEscParams(const EscEntry& esc, DataScenario scenario);
 struct PartTier {
   std::string part;  // "motor", "ESC", "propeller", "battery"
   std::string id;
-  SourceTier tier = SourceTier::kAssumed;
-  std::string why;   // the key that sets the tier
+  DataTier tier = DataTier::kAssumed;
+  std::string why;   // "source.tier" (stated in the file) or "source.values" (inferred)
 };
 
 struct ObjectiveRange {

@@ -30,8 +30,9 @@ namespace dynosize {
 // with them: the lightest ESC that can take the cell count and the smallest battery capacity.
 //
 // R0 (frame): a propeller larger than the vehicle's max_prop_diameter_m fails prop_diameter
-//    whatever else is chosen; so does a folding propeller for lift (prop_folding) and a motor
-//    without ratings when the mission excludes such motors (motor_unrated), credibility.h.
+//    whatever else is chosen; so does a folding propeller for lift (prop_folding), a motor
+//    without a source rating when the mission excludes such motors (motor_unrated),
+//    credibility.h, and an entry the catalog excludes ("exclude", catalog_exclude).
 // Data scenario (credibility.h): the evaluator flies the mission's ranking scenario (the
 //    credible value by default); the grids below use the same adjusted propeller torque (it
 //    only rises, pointwise, and keeps rising with speed: M1 holds) and the same motor ratings,
@@ -223,9 +224,14 @@ SearchResult SearchCatalog(const Mission& m, const Catalog& cat, const SearchOpt
   std::vector<double> option_min_esc_mass(options.size(), kInf);
   std::vector<double> option_max_esc_mass(options.size(), 0.0);
   for (std::size_t o = 0; o < options.size(); ++o) {
+    long long n_excluded = 0;
     for (const EscClass& c : classes) {
       std::vector<int> ok;
       for (int i : c.members) {
+        if (!escs[i].exclude_reason.empty()) {  // R0: the catalog excludes it
+          ++n_excluded;
+          continue;
+        }
         if (escs[i].params.vdc_max_v >= options[o].v_full) {
           ok.push_back(i);
           option_min_esc_mass[o] = std::min(option_min_esc_mass[o], EscMassKg(escs[i]));
@@ -242,7 +248,8 @@ SearchResult SearchCatalog(const Mission& m, const Catalog& cat, const SearchOpt
     }
     long long n_ok = 0;
     for (const auto& v : option_escs[o]) n_ok += static_cast<long long>(v.size());
-    prune("esc_voltage", (per_pair - n_ok) * static_cast<long long>(motors.size() * props.size()));
+    prune("esc_voltage", (per_pair - n_ok - n_excluded) * static_cast<long long>(motors.size() * props.size()));
+    if (n_excluded > 0) prune("catalog_exclude", n_excluded * static_cast<long long>(motors.size() * props.size()));
   }
 
   // Propeller grids (static, at the mission's density): thrust and torque vs speed.
@@ -272,8 +279,12 @@ SearchResult SearchCatalog(const Mission& m, const Catalog& cat, const SearchOpt
     for (int i = kGrid - 2; i >= 0; --i) g.torque_suffix_min[i] = std::min(torque[i], g.torque_suffix_min[i + 1]);
   }
 
-  std::vector<char> folding_refused(props.size());
-  for (std::size_t p = 0; p < props.size(); ++p) folding_refused[p] = FoldingPropRefused(props[p], m);
+  // R0 per propeller: excluded by the catalog, or folding for lift (credibility.h); nullptr: usable.
+  std::vector<const char*> prop_refused(props.size(), nullptr);
+  for (std::size_t p = 0; p < props.size(); ++p) {
+    if (!props[p].exclude_reason.empty()) prop_refused[p] = "catalog_exclude";
+    else if (FoldingPropRefused(props[p], m)) prop_refused[p] = "prop_folding";
+  }
 
   // Hover segments (R2-R4) and the fixed durations (R4).
   std::vector<int> hover;
@@ -296,6 +307,10 @@ SearchResult SearchCatalog(const Mission& m, const Catalog& cat, const SearchOpt
   auto prune_pair = [&](const char* rule, long long n) { thread_pruned[tid].Add(rule, n); };
   for (std::size_t mi = static_cast<std::size_t>(tid); mi < motors.size(); mi += kThreads) {
     const MotorEntry& mo = motors[mi];
+    if (!mo.exclude_reason.empty()) {  // R0: the catalog excludes it (catalog.h, "exclude")
+      prune_pair("catalog_exclude", per_pair * static_cast<long long>(props.size() * options.size()));
+      continue;
+    }
     if (!mo.mass_kg) {
       ++thread_skipped[tid];
       prune_pair("motor_without_mass", per_pair * static_cast<long long>(props.size() * options.size()));
@@ -327,8 +342,8 @@ SearchResult SearchCatalog(const Mission& m, const Catalog& cat, const SearchOpt
           prune_pair("prop_diameter", per_pair);  // R0
           continue;
         }
-        if (folding_refused[pi]) {
-          prune_pair("prop_folding", per_pair);  // R0: a folding propeller for lift (credibility.h)
+        if (prop_refused[pi]) {
+          prune_pair(prop_refused[pi], per_pair);  // R0
           continue;
         }
         const double mass_lb = m.vehicle.mass_kg + bo.mass_lo_kg +

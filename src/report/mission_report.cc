@@ -57,7 +57,7 @@ void AddCredibilityJson(const Mission& m, const MissionResult& r, Json* j) {
   (*j)["objective_as_given"] = g.as_given_feasible ? Json(g.as_given) : Json(nullptr);
   if (!g.as_given_feasible) (*j)["objective_as_given_breaks"] = g.as_given_breaks;
   Json t = Json::object();
-  for (const PartTier& p : g.tiers) t[p.part] = {{"id", p.id}, {"tier", SourceTierName(p.tier)}, {"set_by", p.why}};
+  for (const PartTier& p : g.tiers) t[p.part] = {{"id", p.id}, {"tier", TierName(p.tier)}, {"set_by", p.why}};
   (*j)["tiers"] = t;
   (*j)["motor_rating"] = g.motor_rating;
 }
@@ -81,7 +81,7 @@ std::string CredibilityText(const Mission& m, const MissionResult& r) {
   if (!g.high_breaks.empty()) o << "\n  at the high end it breaks " << g.high_breaks << " (limits relaxed for the number)";
   if (!g.complete) o << "\n  the range is incomplete: one end cannot fly even with the limits relaxed";
   o << "\n  data tiers:";
-  for (const PartTier& p : g.tiers) o << " " << p.part << " " << SourceTierName(p.tier) << " (" << p.why << ");";
+  for (const PartTier& p : g.tiers) o << " " << p.part << " " << TierName(p.tier) << " (" << p.why << ");";
   o << " motor rating: " << g.motor_rating << "\n";
   return o.str();
 }

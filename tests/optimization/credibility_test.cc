@@ -11,6 +11,8 @@
 #include <string>
 
 #include "catalog/catalog.h"
+#include "catalog/conventions.h"
+#include "catalog/prop_credibility.h"
 #include "cli_runner.h"
 #include "common/error.h"
 #include "common/json_file.h"
@@ -42,30 +44,9 @@ Combination OldQuadPick() {
   return Combination{&c.motor("dc_m_56"), &c.esc("dc_e_142"), &c.prop("dc_p_127"), &c.battery("dc_b_363"), 4};
 }
 
-TEST(CredibilityTest, FmClassesAreThoseOfTheBundledUiucCatalog) {
-  const std::vector<FmClass> computed = ComputePropFmClasses(Bundled().props());
-  const std::vector<FmClass>& stated = PropFmClasses();
-  ASSERT_EQ(computed.size(), stated.size());
-  int total = 0;
-  for (std::size_t i = 0; i < stated.size(); ++i) {
-    EXPECT_EQ(computed[i].n, stated[i].n) << stated[i].label;
-    // The constants are printed to 4 decimals.
-    constexpr double kRounding = 5e-5;
-    EXPECT_NEAR(computed[i].p10, stated[i].p10, kRounding) << stated[i].label;
-    EXPECT_NEAR(computed[i].p50, stated[i].p50, kRounding) << stated[i].label;
-    EXPECT_NEAR(computed[i].p90, stated[i].p90, kRounding) << stated[i].label;
-    EXPECT_LT(stated[i].p10, stated[i].p50);
-    EXPECT_LT(stated[i].p50, stated[i].p90);
-    EXPECT_LE(stated[i].p90, 0.753) << "the largest median FM UIUC measured (model.md section 10)";
-    total += stated[i].n;
-  }
-  EXPECT_EQ(total, 239) << "UIUC's measured static tables (model.md section 10)";
-  EXPECT_STREQ(PropFmClassOf(0.3175).label, "12 in and over");
-  EXPECT_STREQ(PropFmClassOf(0.254).label, "10-12 in");
-}
-
 // Measured over computed FM of the same APC products: UIUC "apcsf D.DxP.P" / "apce ..." (2
-// blades) against APC PER3 "APC DxPSF" / "APC DxPE" of the bundled catalog.
+// blades) against APC PER3 "APC DxPSF" / "APC DxPE" of the bundled catalog, on APC's raw data
+// (the catalog's derating undone: FM scales as 1/CP).
 TEST(CredibilityTest, ComputedToMeasuredRatioIsThatOfTheSameApcProducts) {
   const std::regex uiuc(R"(UIUC vol \d (apcsf|apce) (\d+\.\d)x(\d+\.\d) \(2 blades\))");
   const std::regex per3(R"(APC (\d+(?:\.\d)?)x(\d+(?:\.\d)?)(SF|E) \(PER3.*)");
@@ -85,7 +66,7 @@ TEST(CredibilityTest, ComputedToMeasuredRatioIsThatOfTheSameApcProducts) {
   for (const PropEntry& p : Bundled().props()) {
     if (!std::regex_match(p.name, mt, per3)) continue;
     const auto range = measured.equal_range(key(mt[3] == "SF" ? "apcsf" : "apce", mt[1], mt[2]));
-    for (auto it = range.first; it != range.second; ++it) ratios.push_back(it->second / MedianStaticFigureOfMerit(p));
+    for (auto it = range.first; it != range.second; ++it) ratios.push_back(it->second / (MedianStaticFigureOfMerit(p) * p.power_derate_factor));
   }
   ASSERT_EQ(static_cast<int>(ratios.size()), kComputedFmRatio.pairs);
   std::sort(ratios.begin(), ratios.end());
@@ -96,44 +77,36 @@ TEST(CredibilityTest, ComputedToMeasuredRatioIsThatOfTheSameApcProducts) {
   EXPECT_LT(ratios.back(), 1.0) << "APC's computed data are optimistic for every product UIUC measured";
 }
 
-TEST(CredibilityTest, TiersFollowTheSourceLabels) {
+// The tiers are the catalog's (EntryBase::tier); the bands of the pessimistic/optimistic
+// scenarios read one value's tier (ValueTier), never better than the entry's.
+TEST(CredibilityTest, TiersAreTheCatalogs) {
   const Catalog& c = Bundled();
-  std::string why;
-  EXPECT_EQ(EntryTier(c.prop("uiuc_v1_apcsf_10.0x4.7_2"), ComponentKind::kProp), SourceTier::kMeasured);
-  EXPECT_EQ(EntryTier(c.prop("apc_per3_10x45mr"), ComponentKind::kProp), SourceTier::kManufacturerComputed);
-  EXPECT_EQ(EntryTier(c.prop("fu_p_apc_4.1x4.1e"), ComponentKind::kProp), SourceTier::kManufacturerComputed);
-  EXPECT_EQ(EntryTier(c.prop("dc_p_127"), ComponentKind::kProp), SourceTier::kUserContributed);
-  EXPECT_EQ(EntryTier(c.motor("dc_m_56"), ComponentKind::kMotor), SourceTier::kUserContributed);
-  EXPECT_EQ(EntryTier(c.motor("dc_m_2_fit"), ComponentKind::kMotor), SourceTier::kMeasured);
-  EXPECT_EQ(EntryTier(c.motor("fu_m_1"), ComponentKind::kMotor), SourceTier::kManufacturerStated);
-  EXPECT_EQ(EntryTier(c.esc("dc_e_142"), ComponentKind::kEsc, &why), SourceTier::kAssumed);
-  EXPECT_TRUE(why == "c1" || why == "c0") << why;  // the ESC prior's ideal constants
-  SourceTier t;
-  EXPECT_TRUE(LabelTier("fitted", "DriveCalc MData drivecalc_fitted.json", &t));
-  EXPECT_EQ(t, SourceTier::kMeasured);
-  EXPECT_TRUE(LabelTier("fitted", "sjkim-snu/propulsion_analysis motor tables sjkim_mfr_tables.json", &t));
-  EXPECT_EQ(t, SourceTier::kManufacturerStated);
-  // A T-Motor table fit: Rm fitted to the manufacturer's table, Io assumed: the worst counts.
-  for (const MotorEntry& m : c.motors()) {
-    if (m.file.find("sjkim_mfr_tables") == std::string::npos) continue;
-    EXPECT_EQ(EntryTier(m, ComponentKind::kMotor, &why), SourceTier::kAssumed) << m.id;
-    EXPECT_EQ(why, "io_a");
-  }
-  EXPECT_TRUE(LabelTier("fitted", "dronebuildcalc manufacturer tables", &t));
-  EXPECT_EQ(t, SourceTier::kManufacturerStated);
-  EXPECT_FALSE(LabelTier("derived", "x", &t));
-  // No labels and an unknown data set: unknown provenance is assumed.
-  MotorEntry bare;
-  bare.json = Json::object();
-  bare.json["source"] = {{"dataset", "my notes"}};
-  EXPECT_EQ(EntryTier(bare, ComponentKind::kMotor), SourceTier::kAssumed);
+  EXPECT_EQ(c.prop("uiuc_v1_apcsf_10.0x4.7_2").tier, DataTier::kMeasured);
+  EXPECT_EQ(c.prop("apc_per3_10x45mr").tier, DataTier::kManufacturerComputed);
+  EXPECT_EQ(c.prop("dc_p_127").tier, DataTier::kUserContributed);
+  const EscEntry& esc = c.esc("dc_e_142");
+  EXPECT_EQ(esc.tier, DataTier::kUserContributed);
+  EXPECT_EQ(ValueTier(esc, "c0"), DataTier::kAssumed) << "the ESC prior's ideal constants";
+  EXPECT_EQ(ValueTier(esc, "no_such_key"), DataTier::kUserContributed);
+  const MotorEntry& fitted = c.motor("dc_m_2_fit");  // DriveCalc measurements: user submissions
+  EXPECT_EQ(fitted.tier, DataTier::kUserContributed);
+  EXPECT_EQ(ValueTier(fitted, "rm_ohm"), DataTier::kUserContributed) << "'fitted' is measured, capped by the entry";
+  // The pessimistic scenario moves a user-contributed motor's Rm by its band (x1.6) and leaves
+  // the credible scenario alone.
+  Mission m = QuadMission(true);
+  EXPECT_EQ(ScenarioMotorParams(fitted, m).rm_ohm, fitted.params.rm_ohm);
+  m.objective.ranking = DataScenario::kPessimistic;
+  EXPECT_NEAR(ScenarioMotorParams(fitted, m).rm_ohm, 1.6 * fitted.params.rm_ohm, 1e-12);
+  EXPECT_EQ(ScenarioEscParams(esc, DataScenario::kPessimistic).c0, std::max(esc.params.c0, kAssumedEscC0Pessimistic));
 }
 
 TEST(CredibilityTest, CredibleFigureOfMeritIsTheClassMedianForUserData) {
-  const PropEntry& p = Bundled().prop("dc_p_127");  // DriveCalc law, FM 0.79 in hover
+  // DriveCalc law, FM 0.79 as submitted, derated by the catalog to its class maximum (0.753 at
+  // the top of its range): still above the class p90, so every cap below binds.
+  const PropEntry& p = Bundled().prop("dc_p_127");
   const PropModel model(p);
-  const FmClass& k = PropFmClassOf(p.diameter_m);
-  const double rho = 1.225, omega = RpmToRadPerSec(3400);
+  const FmEnvelopeClass& k = FmEnvelopeFor(p.diameter_m);
+  const double rho = 1.225, omega = RpmToRadPerSec(ScanFigureOfMerit(p).rpm_at_max);
   const PropEvaluation raw = model.Evaluate(omega, rho, 0.0);
   const double fm_raw = FigureOfMerit(raw.thrust_n, raw.power_w, p.diameter_m, rho);
   ASSERT_GT(fm_raw, k.p90) << "the test needs data above the class envelope";
@@ -171,10 +144,10 @@ TEST(CredibilityTest, DataWorseThanTheCapAreKeptAndMeasuredDataGetTheirBand) {
   EXPECT_NEAR(pess.power_w, raw.power_w * (1 + kMeasuredPowerBand), 1e-12 * raw.power_w);
   // A user-contributed propeller whose FM is below the class median keeps its data.
   for (const PropEntry& p : Bundled().props()) {
-    if (EntryTier(p, ComponentKind::kProp) != SourceTier::kUserContributed || !p.power_law) continue;
+    if (p.tier != DataTier::kUserContributed || !p.power_law) continue;
     const PropEvaluation ev = PropModel(p).Evaluate(RpmToRadPerSec(4000), 1.225, 0.0);
     const double fm = FigureOfMerit(ev.thrust_n, ev.power_w, p.diameter_m, 1.225);
-    if (fm >= 0.9 * PropFmClassOf(p.diameter_m).p10) continue;
+    if (fm >= 0.9 * FmEnvelopeFor(p.diameter_m).p10) continue;
     PropEvaluation adj = ev;
     AdjustPropEvaluation(PropAdjustmentFor(p, DataScenario::kPessimistic), p.diameter_m, &adj);
     EXPECT_EQ(adj.power_w, ev.power_w) << p.id;
@@ -202,27 +175,17 @@ TEST(CredibilityTest, AdjustedTorqueRisesWithSpeed) {
   EXPECT_GT(checked, 250);
 }
 
-TEST(CredibilityTest, FoldingPropellersByName) {
-  auto named = [](const char* name) {
-    PropEntry p;
-    p.name = name;
-    return IsFoldingProp(p);
-  };
-  EXPECT_TRUE(named("AeroCarbon 12.5x10.0"));
-  EXPECT_TRUE(named("AeroCAM 12.0x8.0"));
-  EXPECT_TRUE(named("Graupner CAM 12.0x7.0"));
-  EXPECT_TRUE(named("Aero-Cam PP 14.0x8.0"));
-  EXPECT_TRUE(named("Jamara Folding 6.0x4.0"));
-  EXPECT_TRUE(named("CFK Folder 17.0x10.0"));
-  EXPECT_TRUE(named("UIUC vol 3 ancf 12.5x9.0 (2 blades)"));
-  EXPECT_FALSE(named("GrpCamSpeed 4.7x4.7"));
-  EXPECT_FALSE(named("APC 10x4.5MR (PER3, computed)"));
-  EXPECT_FALSE(named("UIUC vol 1 apcsf 10.0x4.7 (2 blades)"));
-  EXPECT_FALSE(named("Zagi Carbon 5.1x4.9"));
+// Folding is the catalog's flag (PropEntry::folding, set by the importers), not a name rule.
+TEST(CredibilityTest, FoldingIsTheCatalogsFlag) {
+  const Mission m = QuadMission(false);
+  PropEntry p = *OldQuadPick().prop;
+  ASSERT_TRUE(p.folding) << p.name;
+  EXPECT_TRUE(FoldingPropRefused(p, m));
+  p.folding = false;
+  EXPECT_FALSE(FoldingPropRefused(p, m)) << "the name alone does not refuse it";
   int n = 0;
-  for (const PropEntry& p : Bundled().props()) n += IsFoldingProp(p);
-  EXPECT_GT(n, 60);  // DriveCalc's Aeronaut/Graupner CAM families and UIUC's ancf set
-  EXPECT_LT(n, 200);
+  for (const PropEntry& e : Bundled().props()) n += FoldingPropRefused(e, m);
+  EXPECT_EQ(n, 102) << "62 DriveCalc folders and UIUC's 40 Aeronaut CAM folders (catalog/README.md)";
 }
 
 TEST(CredibilityTest, FoldingPropIsRefusedForLiftUnlessAllowed) {
@@ -241,48 +204,6 @@ TEST(CredibilityTest, FoldingPropIsRefusedForLiftUnlessAllowed) {
   EXPECT_FALSE(FoldingPropRefused(*OldQuadPick().prop, glider));
 }
 
-// The rating laws are the FAST-UAV catalogue's: ln(I_max*V_nominal) on ln(m), and ln(I_max) on
-// ln(m) and ln(Kv), least squares (3x3 normal equations of well-scaled logs: fine here).
-TEST(CredibilityTest, UnratedMotorLawsAreTheFastUavFits) {
-  double sx = 0, sy = 0, sxx = 0, sxy = 0;
-  double a[3][4] = {};
-  int n = 0;
-  for (const MotorEntry& m : Bundled().motors()) {
-    if (m.id.rfind("fu_m_", 0) != 0 || !m.mass_kg || !m.kv_rpm_per_v || !std::isfinite(m.params.max_current_a)) continue;
-    if (!m.json.contains("vdc_nominal_v")) continue;
-    const double x = std::log(*m.mass_kg), y = std::log(m.params.max_current_a * m.json.at("vdc_nominal_v").get<double>());
-    sx += x; sy += y; sxx += x * x; sxy += x * y;
-    const double row[3] = {1.0, x, std::log(*m.kv_rpm_per_v)};
-    for (int i = 0; i < 3; ++i) {
-      for (int j = 0; j < 3; ++j) a[i][j] += row[i] * row[j];
-      a[i][3] += row[i] * std::log(m.params.max_current_a);
-    }
-    ++n;
-  }
-  ASSERT_EQ(n, 204);
-  const double b = (n * sxy - sx * sy) / (n * sxx - sx * sx);
-  const double p1 = std::exp((sy - b * sx) / n);
-  // Printed to 4 and 3 significant digits.
-  EXPECT_NEAR(EstimatedMotorPowerW(1.0), p1, 0.5);
-  EXPECT_NEAR(std::log(EstimatedMotorPowerW(0.1) / EstimatedMotorPowerW(1.0)) / std::log(0.1), b, 5e-4);
-  for (int i = 0; i < 3; ++i) {  // Gauss-Jordan with partial pivoting
-    int piv = i;
-    for (int r = i + 1; r < 3; ++r) if (std::fabs(a[r][i]) > std::fabs(a[piv][i])) piv = r;
-    for (int k = 0; k < 4; ++k) std::swap(a[i][k], a[piv][k]);
-    for (int r = 0; r < 3; ++r) {
-      if (r == i) continue;
-      const double f = a[r][i] / a[i][i];
-      for (int k = 0; k < 4; ++k) a[r][k] -= f * a[i][k];
-    }
-  }
-  const double c0 = std::exp(a[0][3] / a[0][0]), c1 = a[1][3] / a[1][1], c2 = a[2][3] / a[2][2];
-  EXPECT_NEAR(EstimatedMotorCurrentA(1.0, 1.0), c0, 5e-4);
-  EXPECT_NEAR(std::log(EstimatedMotorCurrentA(0.1, 1.0) / EstimatedMotorCurrentA(1.0, 1.0)) / std::log(0.1), c1, 5e-4);
-  EXPECT_NEAR(std::log(EstimatedMotorCurrentA(1.0, 10.0) / EstimatedMotorCurrentA(1.0, 1.0)) / std::log(10.0), c2, 5e-4);
-  // Issue 13: the unrated 40 g Python 80 (1964 Kv) flew at 42-52 A rms; the law rates it near 14 A.
-  EXPECT_NEAR(EstimatedMotorCurrentA(0.04, 1963.91), 14.3, 0.1);
-}
-
 TEST(CredibilityTest, UnratedMotorIsRatedFromItsMassOrExcluded) {
   MotorEntry motor = Bundled().motor("dc_m_56");
   motor.params.max_current_a = std::numeric_limits<double>::infinity();
@@ -294,8 +215,8 @@ TEST(CredibilityTest, UnratedMotorIsRatedFromItsMassOrExcluded) {
   const MotorParams p = ScenarioMotorParams(motor, m, &estimated, &excluded);
   EXPECT_TRUE(estimated);
   EXPECT_FALSE(excluded);
-  EXPECT_DOUBLE_EQ(p.max_power_w, EstimatedMotorPowerW(*motor.mass_kg));
-  EXPECT_DOUBLE_EQ(p.max_current_a, EstimatedMotorCurrentA(*motor.mass_kg, *motor.kv_rpm_per_v));
+  EXPECT_DOUBLE_EQ(p.max_power_w, EstimatedMotorPowerW(*motor.mass_kg)) << "catalog/conventions.h";
+  EXPECT_TRUE(std::isinf(p.max_current_a)) << "the catalog's convention rates power only";
   MissionResult r = MissionEvaluator(m, c).Solve();
   bool said = false;
   for (const std::string& w : r.warnings) said |= w.find("estimated from its mass") != std::string::npos;
@@ -306,6 +227,56 @@ TEST(CredibilityTest, UnratedMotorIsRatedFromItsMassOrExcluded) {
   bool named = false;
   for (const Violation& v : r.violations) named |= v.constraint == "motor_unrated";
   EXPECT_TRUE(named);
+}
+
+// A motor the importer rated from its mass (max_power_w "assumed") counts as unrated: used by
+// default and said to be estimated, left out by unrated_motors = "exclude".
+TEST(CredibilityTest, ImporterEstimateCountsAsUnrated) {
+  const MotorEntry* est = nullptr;
+  for (const MotorEntry& m : Bundled().motors()) {
+    if (!std::isfinite(m.params.max_current_a) && m.exclude_reason.empty() &&
+        std::find(m.assumed_keys.begin(), m.assumed_keys.end(), "max_power_w") != m.assumed_keys.end()) {
+      est = &m;
+      break;
+    }
+  }
+  ASSERT_NE(est, nullptr) << "the bundled catalog has motors rated from their mass (catalog/README.md)";
+  ASSERT_TRUE(est->mass_kg.has_value());
+  EXPECT_NEAR(est->params.max_power_w, EstimatedMotorPowerW(*est->mass_kg), 1e-3 * est->params.max_power_w)
+      << "stored to 3 significant digits";
+  Mission m = QuadMission(true);
+  bool estimated = false, excluded = true;
+  EXPECT_EQ(ScenarioMotorParams(*est, m, &estimated, &excluded).max_power_w, est->params.max_power_w);
+  EXPECT_TRUE(estimated);
+  EXPECT_FALSE(excluded);
+  m.constraints.estimate_unrated_motors = false;
+  ScenarioMotorParams(*est, m, &estimated, &excluded);
+  EXPECT_FALSE(estimated);
+  EXPECT_TRUE(excluded);
+  // A motor with a stated rating is neither.
+  ScenarioMotorParams(Bundled().motor("dc_m_56"), m, &estimated, &excluded);
+  EXPECT_FALSE(estimated);
+  EXPECT_FALSE(excluded);
+}
+
+// Manufacturer-computed propellers the catalog derated at import (power x d) are not derated
+// twice: the measured/computed ratio applies to the raw data, f' = max(1, 1/(ratio*d)).
+TEST(CredibilityTest, ComputedRatioAppliesToTheRawDataOfADeratedProp) {
+  int derated = 0;
+  for (const PropEntry& p : Bundled().props()) {
+    if (p.tier != DataTier::kManufacturerComputed) continue;
+    const PropAdjustment a = PropAdjustmentFor(p, DataScenario::kCredible);
+    EXPECT_NEAR(a.power_factor, std::max(1.0, 1.0 / (kComputedFmRatio.median * p.power_derate_factor)), 1e-12) << p.id;
+    EXPECT_GE(a.power_factor, 1.0) << p.id;
+    EXPECT_EQ(a.fm_cap, FmEnvelopeFor(p.diameter_m).p90) << p.id;
+    if (p.power_derate_factor <= 1.0) continue;
+    ++derated;
+    // Credible power over the raw data's is 1/0.880 (or the derate when that is larger).
+    const PropAdjustment pess = PropAdjustmentFor(p, DataScenario::kPessimistic);
+    EXPECT_NEAR(pess.power_factor * p.power_derate_factor, std::max(p.power_derate_factor, 1.0 / kComputedFmRatio.min), 1e-12)
+        << p.id;
+  }
+  EXPECT_GE(derated, 30) << "34 APC PER3 tables and 1 FAST-UAV prop are derated (catalog/README.md)";
 }
 
 TEST(CredibilityTest, MotorVoltageRatingFromItsCellCount) {
@@ -360,16 +331,18 @@ TEST(CredibilityTest, ObjectiveRangeBracketsTheCredibleValue) {
   // the motor's rating: the low end says so, and is still a number.
   EXPECT_NE(g.low_breaks.find("motor_current"), std::string::npos) << g.low_breaks;
   EXPECT_LT(g.low, 0.9 * r.objective);
-  // The DriveCalc law's FM 0.79 is held to the class median: the credible endurance is well
-  // below the data's own (issue 13: 32.6 min as given; about 24 min with a measured prop).
+  // The DriveCalc law (FM 0.79 as submitted, 0.73-0.75 in hover after the catalog's derating
+  // to its class maximum) is held to the class median 0.668: about 10 % more hover power, so
+  // the credible endurance is below the data's own by more than 5 %. (The optimistic end may
+  // exceed the data as given: its propeller power is never below the data's, but the motor's
+  // Rm and Io are divided by their user-contributed band.)
   EXPECT_TRUE(g.as_given_feasible);
-  EXPECT_LT(r.objective, 0.85 * g.as_given);
-  EXPECT_LT(g.high, g.as_given) << "even the optimistic end holds the law to the class p90";
+  EXPECT_LT(r.objective, 0.95 * g.as_given);
   ASSERT_EQ(g.tiers.size(), 4u);
-  EXPECT_EQ(g.tiers[2].tier, SourceTier::kUserContributed);
+  EXPECT_EQ(g.tiers[2].tier, DataTier::kUserContributed);
   EXPECT_EQ(g.motor_rating, "catalog");
   // The hover point flies at the class median's figure of merit.
-  const FmClass& k = PropFmClassOf(c.prop->diameter_m);
+  const FmEnvelopeClass& k = FmEnvelopeFor(c.prop->diameter_m);
   for (const SegmentResult& s : r.segments) {
     if (s.type != SegmentType::kHover) continue;
     const double fm = FigureOfMerit(s.thrust_per_rotor_n, s.point.pmech_w, c.prop->diameter_m, m.rho_kg_m3);
@@ -398,9 +371,9 @@ TEST(CredibilityTest, EvaluateReportsRangeAndTiers) {
   EXPECT_GE(j.at("objective_range")[1].get<double>(), j.at("objective").get<double>());
   EXPECT_GT(j.at("objective_as_given").get<double>(), j.at("objective").get<double>());
   EXPECT_EQ(j.at("tiers").at("propeller").at("tier"), "user_contributed");
-  EXPECT_EQ(j.at("tiers").at("ESC").at("tier"), "assumed");
+  EXPECT_EQ(j.at("tiers").at("ESC").at("tier"), "user_contributed");
   EXPECT_EQ(j.at("motor_rating"), "catalog");
-  EXPECT_NEAR(j.at("segments")[2].at("figure_of_merit").get<double>(), PropFmClassOf(0.3048).p50, 1e-9);
+  EXPECT_NEAR(j.at("segments")[2].at("figure_of_merit").get<double>(), FmEnvelopeFor(Bundled().prop("dc_p_231").diameter_m).p50, 1e-9);
   const auto txt = testing_util::RunCli(args);
   ASSERT_EQ(txt.code, 0) << txt.err;
   EXPECT_NE(txt.out.find("with the spread of the data"), std::string::npos) << txt.out;
@@ -418,7 +391,7 @@ TEST(CredibilityTest, ExampleQuadPickIsCredible) {
   ASSERT_EQ(s.best.size(), 1u);
   const Combination& c = s.best[0].combination;
   const MissionResult& r = s.best[0].result;
-  EXPECT_FALSE(IsFoldingProp(*c.prop)) << c.prop->name;
+  EXPECT_FALSE(c.prop->folding) << c.prop->name;
   EXPECT_TRUE(r.range.computed);
   ASSERT_LT(c.prop->diameter_m, 0.5);
   for (const SegmentResult& seg : r.segments) {
