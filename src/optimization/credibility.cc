@@ -39,6 +39,14 @@ bool HasAssumed(const EntryBase& e, const char* key) {
   return std::find(e.assumed_keys.begin(), e.assumed_keys.end(), key) != e.assumed_keys.end();
 }
 
+// The motor's Kv: the catalog's, else from KE (model.md section 8: Kv = 0.675/(KE*pi/30) for a
+// BLDC, 1/(KE*pi/30) brushed), rpm/V.
+double MotorKvRpmPerV(const MotorEntry& motor) {
+  if (motor.kv_rpm_per_v) return *motor.kv_rpm_per_v;
+  const double k = motor.params.type == MotorType::kBldc ? 3.0 / (std::sqrt(2.0) * kPi) : 1.0;
+  return k / (motor.params.ke_v_s_per_rad * kPi / 30.0);
+}
+
 std::string Fixed(double x, int digits) {
   std::ostringstream o;
   o.setf(std::ios::fixed);
@@ -121,6 +129,11 @@ MotorParams ScenarioMotorParams(const MotorEntry& motor, const Mission& m, bool*
   const bool catalog_estimate = !std::isfinite(p.max_current_a) && HasAssumed(motor, "max_power_w");
   const bool estimate = m.constraints.estimate_unrated_motors;
   if (unrated && estimate && motor.mass_kg) p.max_power_w = EstimatedMotorPowerW(*motor.mass_kg);
+  // No source rating (none at all, or the importer's power estimate): the current law too.
+  if ((unrated || catalog_estimate) && estimate && motor.mass_kg) {
+    const double kv = MotorKvRpmPerV(motor);
+    if (kv > 0.0 && std::isfinite(kv)) p.max_current_a = EstimatedMotorCurrentA(*motor.mass_kg, kv);
+  }
   if (rating_estimated) *rating_estimated = estimate && ((unrated && motor.mass_kg) || catalog_estimate);
   if (excluded) *excluded = !estimate && (unrated || catalog_estimate);
   const DataScenario s = m.objective.ranking;
@@ -158,8 +171,9 @@ void AddObjectiveRange(const Mission& m, const Combination& c, MissionResult* r)
   g.tiers.push_back({"battery", c.battery->id, c.battery->tier, why(*c.battery)});
   bool estimated = false, excluded = false;
   const MotorParams rated = ScenarioMotorParams(*c.motor, m, &estimated, &excluded);
-  g.motor_rating = estimated ? "none in the source: " + Fixed(rated.max_power_w, 0) +
-                                   " W estimated from the mass (assumed; catalog/conventions.h)"
+  g.motor_rating = estimated ? "none in the source: " + Fixed(rated.max_power_w, 0) + " W, " +
+                                   Fixed(rated.max_current_a, 1) +
+                                   " A estimated from the mass and Kv (assumed; catalog/conventions.h)"
                    : excluded ? "none in the source: excluded (constraints.unrated_motors = exclude)"
                               : "catalog";
   // One scenario: its objective with the mission's limits relaxed to physics (*flies: that

@@ -49,8 +49,9 @@
 // power rating max_power_w = EstimatedMotorPowerW(mass) marked "assumed" (catalog/conventions.h:
 // 10.81*m[g]^0.878 W), or "exclude" when it has no mass. The mission (constraints.unrated_motors)
 // either uses that estimate ("estimate", the default; a hand-written entry with no rating and
-// a mass gets the same estimate here) or leaves such motors out ("exclude"). No current rating
-// is estimated (the catalog's convention rates power only).
+// a mass gets the same estimate here), together with the current law of conventions.h
+// (EstimatedMotorCurrentA from mass and Kv: a power rating alone lets a small high-Kv motor run
+// at 8 % throttle and 42 A rms), or leaves such motors out ("exclude").
 //
 // Entries with an exclude_reason are skipped by the search (catalog_exclude); evaluate warns.
 //
@@ -116,7 +117,9 @@ bool FoldingPropRefused(const PropEntry& prop, const Mission& mission);
 double MotorMaxVoltageV(const MotorEntry& motor);
 
 // The motor parameters a mission flies: the catalog's, with max_power_w = EstimatedMotorPowerW
-// (catalog/conventions.h) when the entry has neither rating and a mass, and moved within their
+// (catalog/conventions.h) when the entry has neither rating and a mass, max_current_a =
+// EstimatedMotorCurrentA when no source states a rating (the power one estimated here or by the
+// importer), and moved within their
 // bands in the pessimistic/optimistic scenarios. *rating_estimated (optional) says whether the
 // power rating is an estimate from the mass (here or by the importer, source.values "assumed");
 // *excluded (optional) whether the mission leaves the motor out (unrated_motors = "exclude").

@@ -149,7 +149,11 @@ MissionEvaluator::MissionEvaluator(const Mission& mission, const Combination& c,
   prop_adj_ = PropAdjustmentFor(*c.prop, m_.objective.ranking);
   folding_refused_ = FoldingPropRefused(*c.prop, m_);
   ScenarioMotorParams(*c.motor, m_, &rating_estimated_, &motor_excluded_);
-  if (rating_estimated_ && !std::isfinite(c.motor->params.max_power_w)) assumed_.push_back("motor " + c.motor->id + ": max_power_w (from mass)");
+  if (rating_estimated_) {
+    assumed_.push_back("motor " + c.motor->id +
+                       (std::isfinite(c.motor->params.max_power_w) ? ": max_current_a (from mass and Kv)"
+                                                                   : ": max_power_w, max_current_a (from mass and Kv)"));
+  }
 }
 
 double MissionEvaluator::BatteryMassKg(double capacity_ah) const {
@@ -790,8 +794,9 @@ void MissionEvaluator::AddWarnings(MissionResult* r) const {
   }
   if (rating_estimated_) {
     r->warnings.push_back("motor " + c_.motor->id + " has no current or power rating in its source: "
-                          "rating " + Num(mp.max_power_w, 3) + " W estimated from its mass (law of hobby "
-                          "outrunners, catalog/conventions.h, assumed)");
+                          "ratings " + Num(mp.max_power_w, 3) + " W, " + Num(mp.max_current_a, 3) +
+                          " A estimated from its mass and Kv (laws of hobby outrunners, catalog/conventions.h, "
+                          "assumed)");
   }
   for (const EntryBase* e : {static_cast<const EntryBase*>(c_.motor), static_cast<const EntryBase*>(c_.esc),
                              static_cast<const EntryBase*>(c_.prop), static_cast<const EntryBase*>(c_.battery)}) {

@@ -216,7 +216,7 @@ TEST(CredibilityTest, UnratedMotorIsRatedFromItsMassOrExcluded) {
   EXPECT_TRUE(estimated);
   EXPECT_FALSE(excluded);
   EXPECT_DOUBLE_EQ(p.max_power_w, EstimatedMotorPowerW(*motor.mass_kg)) << "catalog/conventions.h";
-  EXPECT_TRUE(std::isinf(p.max_current_a)) << "the catalog's convention rates power only";
+  EXPECT_DOUBLE_EQ(p.max_current_a, EstimatedMotorCurrentA(*motor.mass_kg, *motor.kv_rpm_per_v));
   MissionResult r = MissionEvaluator(m, c).Solve();
   bool said = false;
   for (const std::string& w : r.warnings) said |= w.find("estimated from its mass") != std::string::npos;
@@ -246,7 +246,10 @@ TEST(CredibilityTest, ImporterEstimateCountsAsUnrated) {
       << "stored to 3 significant digits";
   Mission m = QuadMission(true);
   bool estimated = false, excluded = true;
-  EXPECT_EQ(ScenarioMotorParams(*est, m, &estimated, &excluded).max_power_w, est->params.max_power_w);
+  const MotorParams p = ScenarioMotorParams(*est, m, &estimated, &excluded);
+  EXPECT_EQ(p.max_power_w, est->params.max_power_w) << "the importer's estimate is kept";
+  ASSERT_TRUE(est->kv_rpm_per_v.has_value());
+  EXPECT_DOUBLE_EQ(p.max_current_a, EstimatedMotorCurrentA(*est->mass_kg, *est->kv_rpm_per_v));
   EXPECT_TRUE(estimated);
   EXPECT_FALSE(excluded);
   m.constraints.estimate_unrated_motors = false;
@@ -257,6 +260,13 @@ TEST(CredibilityTest, ImporterEstimateCountsAsUnrated) {
   ScenarioMotorParams(Bundled().motor("dc_m_56"), m, &estimated, &excluded);
   EXPECT_FALSE(estimated);
   EXPECT_FALSE(excluded);
+  // Issue 13: the 40 g, 1964 Kv motor (rated 275 W from its mass by the importer) flew the
+  // eVTOL at 42 A rms and 8 % throttle; the current law holds it near 14 A.
+  const MotorEntry& small = Bundled().motor("dc_m_223");
+  m.constraints.estimate_unrated_motors = true;
+  const MotorParams ps = ScenarioMotorParams(small, m, &estimated, &excluded);
+  EXPECT_TRUE(estimated);
+  EXPECT_NEAR(ps.max_current_a, 14.3, 0.1);
 }
 
 // Manufacturer-computed propellers the catalog derated at import (power x d) are not derated
