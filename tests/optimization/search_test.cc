@@ -226,6 +226,43 @@ TEST_F(SearchTest, EarlyExitsNeverCutOffAFeasibleScore) {
   }
 }
 
+// An entry the catalog marks "exclude" (catalog.h) is never searched: the pick's motor and
+// propeller, excluded, leave the search (catalog_exclude) and the next best wins.
+TEST_F(SearchTest, CatalogExcludedEntriesAreNotSearched) {
+  const Mission m = ParseMission(ParseJsonText(kQuad, "quad"), "quad");
+  SearchOptions so;
+  so.top_n = 1;
+  const Catalog full = Catalog::Load((dir_ / "catalog").string());
+  const SearchResult before = SearchCatalog(m, full, so);
+  ASSERT_EQ(before.best.size(), 1u);
+  const std::string motor = before.best[0].combination.motor->id, prop = before.best[0].combination.prop->id;
+  EXPECT_EQ(before.pruned_by.count("catalog_exclude"), 0u);
+  Json doc = ReadJsonFile((dir_ / "catalog" / "small.json").string());
+  for (Json& e : doc["motors"]) {
+    if (e["id"] == motor) e["exclude"] = "test: excluded";
+  }
+  for (Json& e : doc["props"]) {
+    if (e["id"] == prop) e["exclude"] = "test: excluded";
+  }
+  fs::create_directories(dir_ / "excluded");
+  std::ofstream(dir_ / "excluded" / "small.json") << DumpJson(doc);
+  const Catalog cat = Catalog::Load((dir_ / "excluded").string());
+  const SearchResult after = SearchCatalog(m, cat, so);
+  ASSERT_EQ(after.best.size(), 1u);
+  EXPECT_NE(after.best[0].combination.motor->id, motor);
+  EXPECT_NE(after.best[0].combination.prop->id, prop);
+  ASSERT_EQ(after.pruned_by.count("catalog_exclude"), 1u);
+  EXPECT_GT(after.pruned_by.at("catalog_exclude"), 0);
+  EXPECT_EQ(after.searched + after.pruned, after.combinations);
+  // evaluate still flies an excluded entry when asked by id, and says so.
+  const Combination& b = before.best[0].combination;
+  const Combination c{&cat.motor(motor), &cat.esc(b.esc->id), &cat.prop(prop), &cat.battery(b.battery->id), b.cells};
+  const MissionResult r = MissionEvaluator(m, c).Solve();
+  bool said = false;
+  for (const std::string& w : r.warnings) said |= w.find("excluded from searches by the catalog") != std::string::npos;
+  EXPECT_TRUE(said);
+}
+
 TEST_F(SearchTest, FreeAirspeedOptimumBeatsADenseGrid) {
   Json j = ParseJsonText(kQuad, "quad");
   // On the data as given: the credible propeller power (credibility.h) breaks this motor's
