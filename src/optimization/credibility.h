@@ -5,9 +5,9 @@
 // The trust rules themselves live in the catalog, one implementation each: the source tier of
 // an entry (EntryBase::tier, catalog/conventions.h; ValueTier for one value), the figure-of-merit
 // envelope of measured propellers by size class (catalog/prop_credibility.h, FmEnvelopeFor),
-// the folding flag (PropEntry::folding), the rating of motors without one (EstimatedMotorPowerW,
-// catalog/conventions.h) and exclusion (EntryBase::exclude_reason). This file says what the
-// sizing does with them.
+// the folding flag (PropEntry::folding), the ratings of motors without one (EstimatedMotorPowerW
+// and EstimatedMotorCurrentA, catalog/conventions.h) and exclusion (EntryBase::exclude_reason).
+// This file says what the sizing does with them.
 //
 // Data scenarios (mission.h, DataScenario), what each changes. Thrust is never changed; the
 // propeller's shaft power (torque) at the thrust is, pointwise, in static evaluations (hover,
