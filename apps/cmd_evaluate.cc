@@ -110,7 +110,8 @@ int RunEvaluate(const EvaluateOptions& o) {
   c.battery = &cat.battery(o.battery_id);
   c.cells = CellsFor(mission, *c.battery, o.cells);
   const MissionEvaluator ev(mission, c);
-  const MissionResult r = ev.Solve();
+  MissionResult r = ev.Solve();
+  AddObjectiveRange(mission, c, &r);  // objective_range and tiers (optimization/credibility.h)
   std::vector<std::string> figures;
   if (!o.plot_dir.empty()) figures = WriteSegmentMaps(mission, c, r, o.plot_dir);
   if (o.json) {
@@ -183,7 +184,10 @@ int RunOptimize(const OptimizeOptions& o) {
   }
   std::ostringstream out;
   out << mission.name << " (" << o.mission << "): objective " << ObjectiveTypeName(mission.objective.type)
-      << (mission.objective.segment.empty() ? "" : " ('" + mission.objective.segment + "')") << "\n";
+      << (mission.objective.segment.empty() ? "" : " ('" + mission.objective.segment + "')")
+      << (mission.objective.ranking == DataScenario::kAsGiven ? ", ranked on the data as given"
+                                                              : ", ranked on the credible value (README: Ranking)")
+      << "\n";
   out << s.combinations << " combinations: " << s.searched << " evaluated exactly, " << s.pruned
       << " pruned by provably safe bounds (";
   bool first = true;

@@ -152,6 +152,15 @@ void CheckCoefficientTable(const Json& t, const std::string& path, bool sweep, B
 
 DataTier InferTierFromValues(ComponentKind kind, const Json& src);
 
+// The tier of one value from how it was obtained (source.values): measured/fitted -> measured,
+// computed -> manufacturer_computed, datasheet/derived -> manufacturer_stated, else assumed.
+DataTier MethodTier(const std::string& method) {
+  if (method == "measured" || method == "fitted") return DataTier::kMeasured;
+  if (method == "computed") return DataTier::kManufacturerComputed;
+  if (method == "datasheet" || method == "derived") return DataTier::kManufacturerStated;
+  return DataTier::kAssumed;
+}
+
 DataTier TierFromName(const std::string& name) {
   const auto& names = TierNames();
   for (std::size_t i = 0; i < names.size(); ++i) {
@@ -189,11 +198,7 @@ DataTier InferTierFromValues(ComponentKind kind, const Json& src) {
   for (const char* k : keys) {
     const auto m = vals->find(k);
     if (m == vals->end() || !m->is_string()) continue;
-    const std::string method = m->get<std::string>();
-    if (method == "measured" || method == "fitted") return DataTier::kMeasured;
-    if (method == "computed") return DataTier::kManufacturerComputed;
-    if (method == "datasheet" || method == "derived") return DataTier::kManufacturerStated;
-    return DataTier::kAssumed;
+    return MethodTier(m->get<std::string>());
   }
   return DataTier::kAssumed;
 }
@@ -434,6 +439,20 @@ void CheckTestPoints(const Json& e, Bad bad) {
 }
 
 }  // namespace
+
+DataTier ValueTier(const EntryBase& e, const std::string& key) {
+  if (e.json.is_object()) {
+    const auto src = e.json.find("source");
+    if (src != e.json.end() && src->is_object()) {
+      const auto vals = src->find("values");
+      if (vals != src->end() && vals->is_object()) {
+        const auto m = vals->find(key);
+        if (m != vals->end() && m->is_string()) return std::max(MethodTier(m->get<std::string>()), e.tier);
+      }
+    }
+  }
+  return e.tier;
+}
 
 const char* TierName(DataTier tier) {
   return TierNames()[static_cast<std::size_t>(tier)].c_str();

@@ -72,6 +72,10 @@ struct EntryBase {
   std::string exclude_reason;
 };
 
+// The tier of one value of an entry: from its source.values label (as the tier inference reads
+// it), never better than the entry's tier; the entry's tier when the value has no label.
+DataTier ValueTier(const EntryBase& entry, const std::string& key);
+
 struct MotorEntry : EntryBase {
   MotorParams params;
   std::optional<double> kv_rpm_per_v;

@@ -158,18 +158,23 @@ std::string PropMomentumViolation(const PropEntry& e) {
   return "";
 }
 
+double MedianStaticFigureOfMerit(const PropEntry& e) {
+  std::vector<double> fm;
+  for (std::size_t i = 0; i < e.static_table.rpm.size(); ++i) {
+    const double f = CoefficientFm(e.static_table.ct[i], e.static_table.cp[i], e.diameter_m);
+    if (f > 0.0) fm.push_back(f);
+  }
+  return Median(std::move(fm));
+}
+
 std::vector<FmEnvelopeClass> ComputeFmEnvelope(const std::vector<const PropEntry*>& measured) {
   std::vector<FmEnvelopeClass> out = FmEnvelope();
   for (FmEnvelopeClass& c : out) {
     std::vector<double> v;
     for (const PropEntry* e : measured) {
       if (e->static_table.rpm.empty() || e->diameter_m < c.d_lo_m || e->diameter_m >= c.d_hi_m) continue;
-      std::vector<double> fm;
-      for (std::size_t i = 0; i < e->static_table.rpm.size(); ++i) {
-        const double f = CoefficientFm(e->static_table.ct[i], e->static_table.cp[i], e->diameter_m);
-        if (f > 0.0) fm.push_back(f);
-      }
-      if (!fm.empty()) v.push_back(Median(fm));
+      const double fm = MedianStaticFigureOfMerit(*e);
+      if (fm > 0.0) v.push_back(fm);
     }
     std::sort(v.begin(), v.end());
     c.n_props = static_cast<int>(v.size());

@@ -64,6 +64,10 @@ PropFmScan ScanFigureOfMerit(const PropEntry& entry);
 // ("static FM 1.07 at 2000 rpm > 1: beats momentum theory (model.md section 10)").
 std::string PropMomentumViolation(const PropEntry& entry);
 
+// The median over the points of the static table of FM = CT^1.5/(CP*sqrt(pi/2)) (the number
+// the envelope is built from); 0 without a static table.
+double MedianStaticFigureOfMerit(const PropEntry& entry);
+
 // The distribution of measured propellers' median FM in one diameter class.
 struct FmEnvelopeClass {
   double d_lo_m = 0.0, d_hi_m = 0.0;  // [lo, hi)

@@ -312,7 +312,8 @@ Mission ParseMission(const Json& doc, const std::string& name) {
     const Reader c(top.At("constraints"), name, "$.constraints");
     c.AllowOnly({"max_throttle", "min_hover_throttle", "current_margin", "allow_esc_saturation",
                  "enforce_motor_power", "max_figure_of_merit", "max_static_advance_ratio",
-                 "min_thrust_to_weight", "max_winding_temp_c"});
+                 "min_thrust_to_weight", "max_winding_temp_c", "allow_folding_props_for_lift",
+                 "unrated_motors"});
     m.constraints.min_thrust_to_weight = c.Number("min_thrust_to_weight", 0.0, 50.0, false, 2.0);
     m.constraints.max_winding_temp_c = c.Number("max_winding_temp_c", 20.0, 400.0, false, 120.0);
     m.constraints.max_static_advance_ratio = c.Number("max_static_advance_ratio", 0.0, 5.0, false, 0.2);
@@ -326,6 +327,12 @@ Mission ParseMission(const Json& doc, const std::string& name) {
     m.constraints.current_margin = c.Number("current_margin", 0.0, 0.9, false, 0.1);
     m.constraints.allow_esc_saturation = c.Bool("allow_esc_saturation", false);
     m.constraints.enforce_motor_power = c.Bool("enforce_motor_power", true);
+    m.constraints.allow_folding_props_for_lift = c.Bool("allow_folding_props_for_lift", false);
+    const std::string unrated = c.String("unrated_motors", std::string("estimate"));
+    if (unrated != "estimate" && unrated != "exclude") {
+      c.Fail("$.constraints.unrated_motors", c.At("unrated_motors"), "must be one of estimate, exclude");
+    }
+    m.constraints.estimate_unrated_motors = unrated == "estimate";
   }
 
   if (!top.Has("segments") || !top.At("segments").is_array() || top.At("segments").empty()) {
@@ -370,7 +377,10 @@ Mission ParseMission(const Json& doc, const std::string& name) {
 
   if (!top.Has("objective")) top.FailMissing("objective", "an object is required");
   const Reader o(top.At("objective"), name, "$.objective");
-  o.AllowOnly({"type", "segment"});
+  o.AllowOnly({"type", "segment", "ranking"});
+  const std::string ranking = o.String("ranking", std::string("credible"));
+  if (ranking == "as_given") m.objective.ranking = DataScenario::kAsGiven;
+  else if (ranking != "credible") o.Fail("$.objective.ranking", o.At("ranking"), "must be one of as_given, credible");
   const std::string type = o.String("type", std::nullopt);
   if (type == "max_endurance") m.objective.type = ObjectiveType::kMaxEndurance;
   else if (type == "min_energy") m.objective.type = ObjectiveType::kMinEnergy;

@@ -103,9 +103,19 @@ struct MissionConstraints {
   // Steady winding temperature in every segment at most this, C (hobby motors' enamel wire of
   // thermal class 130, IEC 60085, less a 10 K hot-spot allowance); optimization/mission_eval.h.
   double max_winding_temp_c = 120.0;
+  // Folding propellers (optimization/credibility.h) may lift a multirotor only when true.
+  bool allow_folding_props_for_lift = false;
+  // Motors without a current or power rating: a power rating estimated from the mass
+  // (true, "estimate") or left out ("exclude"); optimization/credibility.h.
+  bool estimate_unrated_motors = true;
 };
 
 enum class ObjectiveType { kMaxEndurance, kMinEnergy, kMaxEfficiency };
+
+// The data a combination is flown on (optimization/credibility.h): the credible value (the
+// default ranking), the catalog's data as given, or the pessimistic/optimistic ends of the
+// data-uncertainty model (objective_range). Files choose "credible" or "as_given".
+enum class DataScenario { kCredible, kAsGiven, kPessimistic, kOptimistic };
 const char* ObjectiveTypeName(ObjectiveType type);
 
 struct Objective {
@@ -115,6 +125,8 @@ struct Objective {
   // whose energy-weighted system efficiency is maximised.
   std::string segment;
   int segment_index = -1;  // resolved by the reader
+  // "ranking": what the search ranks and evaluate reports as the objective.
+  DataScenario ranking = DataScenario::kCredible;
 };
 
 struct Mission {

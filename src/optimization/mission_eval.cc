@@ -155,8 +155,9 @@ class Tracker {
 // full charge). False when even four times the motor's no-load speed does not give the thrust
 // (a "thrust" violation is recorded).
 bool PropellerPoint(const Mission& m, const Segment& s, const RotorLoad& load, const Drive& drive,
-                    const PropModel& prop, const PropEntry& prop_entry, double v_full, double w_motor_max,
-                    Tracker* track, SegmentResult* seg, double* omega, double* torque) {
+                    const PropModel& prop, const PropEntry& prop_entry, const PropAdjustment& adj,
+                    double v_full, double w_motor_max, Tracker* track, SegmentResult* seg, double* omega,
+                    double* torque) {
   const MissionConstraints& k = m.constraints;
   PropEvaluation ev;
   const double w_hi = 4.0 * w_motor_max;
@@ -167,7 +168,6 @@ bool PropellerPoint(const Mission& m, const Segment& s, const RotorLoad& load, c
     track->Check("thrust", s.name, load.thrust_per_rotor_n, at_nl.thrust_n, "N", false, seg);
     return false;
   }
-  *torque = ev.torque_nm;
   if (!ev.InData()) seg->prop_note = ev.Message();
   // Static-only data (DriveCalc power laws, static coefficients) say nothing about the
   // thrust lost to inflow; held at J = 0 they grossly over-state a propeller in fast axial
@@ -194,6 +194,10 @@ bool PropellerPoint(const Mission& m, const Segment& s, const RotorLoad& load, c
                                       : (load.thrust_per_rotor_n > 0 ? 1e3 : 0.0);
     track->Check("prop_figure_of_merit", s.name, fom, k.max_figure_of_merit, "", false, seg);
   }
+  // The scenario's propeller power (credibility.h: the credible value by default), after the
+  // momentum-theory check, which judges the data as given.
+  AdjustPropEvaluation(adj, prop_entry.diameter_m, &ev);
+  *torque = ev.torque_nm;
   if (prop_entry.max_rpm) {
     track->Check("prop_max_rpm", s.name, RadPerSecToRpm(*omega), *prop_entry.max_rpm, "rpm", false, seg);
   }
@@ -256,10 +260,24 @@ MissionEvaluator::MissionEvaluator(const Mission& mission, const Combination& c,
     if (!given && group_prop_models && g < static_cast<int>(group_prop_models->size())) {
       given = (*group_prop_models)[g];
     }
-    groups_.push_back(GroupDrive{parts, Drive(parts.motor->params, parts.esc->params),
+    // The mission's data scenario (credibility.h): the motor's ratings estimated from its mass
+    // when no source states them, the bands' ends in the pessimistic/optimistic scenarios.
+    bool rating_estimated = false, motor_excluded = false;
+    const MotorParams motor_params = ScenarioMotorParams(*parts.motor, m_, &rating_estimated, &motor_excluded);
+    groups_.push_back(GroupDrive{parts, Drive(motor_params, ScenarioEscParams(*parts.esc, m_.objective.ranking)),
                                  given ? nullptr : std::make_unique<PropModel>(*parts.prop), nullptr, 0.0});
     GroupDrive& gd = groups_.back();
     gd.prop = given ? given : gd.owned_prop.get();
+    gd.prop_adj = PropAdjustmentFor(*parts.prop, m_.objective.ranking);
+    gd.folding_refused = FoldingPropRefused(*parts.prop, m_);
+    gd.rating_estimated = rating_estimated;
+    gd.motor_excluded = motor_excluded;
+    if (rating_estimated) {
+      assumed_.push_back("motor " + parts.motor->id +
+                         (std::isfinite(parts.motor->params.max_power_w)
+                              ? ": max_current_a (from mass and Kv)"
+                              : ": max_power_w, max_current_a (from mass and Kv)"));
+    }
     if (!parts.motor->mass_kg) {
       throw DataError("motor '" + parts.motor->id + "' has no mass_kg: the mission needs it");
     }
@@ -319,10 +337,15 @@ MissionResult MissionEvaluator::Run(const ContinuousVars& vars, double stretch_s
   const double q_c = AhToCoulomb(pack.capacity_ah());
   const double current_factor = 1.0 - k.current_margin;
   for (int g = 0; g < static_cast<int>(groups_.size()); ++g) {
-    track.Check("esc_voltage", "", v_full, groups_[g].parts.esc->params.vdc_max_v, "V");
+    const GroupDrive& gd = groups_[g];
+    track.Check("esc_voltage", "", v_full, gd.drive.esc().vdc_max_v, "V");
     if (const auto d_max = GroupMaxPropDiameterM(m_, g)) {
-      track.Check("prop_diameter", "", groups_[g].parts.prop->diameter_m, *d_max, "m");
+      track.Check("prop_diameter", "", gd.parts.prop->diameter_m, *d_max, "m");
     }
+    if (g != lift_group_) continue;  // credibility.h: the lift group's parts only
+    if (gd.folding_refused) track.Check("prop_folding", "", 1.0, 0.0, "");
+    if (gd.motor_excluded) track.Check("motor_unrated", "", 1.0, 0.0, "");
+    track.Check("motor_voltage", "", v_full, MotorMaxVoltageV(*gd.parts.motor), "V");
   }
 
   double soc = 1.0;
@@ -332,8 +355,8 @@ MissionResult MissionEvaluator::Run(const ContinuousVars& vars, double stretch_s
     const GroupDrive& gd = groups_[s.group];
     const Drive& drive = gd.drive;
     const PropModel& prop = *gd.prop;
-    const MotorParams& mp = gd.parts.motor->params;
-    const EscParams& ep = gd.parts.esc->params;
+    const MotorParams& mp = gd.drive.motor();  // the scenario's (credibility.h)
+    const EscParams& ep = gd.drive.esc();
     const double w_motor_max = std::max(drive.NoLoadSpeed(v_full, 1.0), 1.0);
     SegmentResult seg;
     seg.group = s.group;
@@ -367,8 +390,8 @@ MissionResult MissionEvaluator::Run(const ContinuousVars& vars, double stretch_s
       omega = sol.omega_rad_s;
       torque = sol.point.torque_nm;
       seg.shaft_solver = sol.algorithm + ": " + sol.message;
-    } else if (!PropellerPoint(m_, s, load, drive, prop, *gd.parts.prop, v_full, w_motor_max, &track, &seg, &omega,
-                               &torque)) {
+    } else if (!PropellerPoint(m_, s, load, drive, prop, *gd.parts.prop, gd.prop_adj, v_full, w_motor_max,
+                               &track, &seg, &omega, &torque)) {
       r.feasible = false;  // even four times the motor's no-load speed does not give the thrust
       r.segments.push_back(seg);
       r.score = kInf;
@@ -420,12 +443,12 @@ MissionResult MissionEvaluator::Run(const ContinuousVars& vars, double stretch_s
       if (k.enforce_motor_power) track.Check("motor_power", s.name, op.pac_w, mp.max_power_w, "W", false, &seg);
       track.Check("battery_current", s.name, i_batt, pack.max_current_a() * current_factor, "A", false, &seg);
       track.Check("battery_cutoff", s.name, v, cutoff_v, "V", true, &seg);
-      // Physics is the contract: a point where the ESC or the motor puts out more power than
-      // it takes in (model.md section 10; Drive::Flag sets the bit through model/physics.h)
-      // is never feasible, whatever the objective gains from it.
       const double temp_c = WindingTempC(op, s.group);
       seg.winding_temp_c = std::max(seg.winding_temp_c, temp_c);
       track.Check("max_winding_temp_c", s.name, temp_c, k.max_winding_temp_c, "C", false, &seg);
+      // Physics is the contract: a point where the ESC or the motor puts out more power than
+      // it takes in (model.md section 10; Drive::Flag sets the bit through model/physics.h)
+      // is never feasible, whatever the objective gains from it.
       if (op.limits & kLimitCreatesEnergy) {
         track.Check("creates_energy", s.name, CreatedEnergyRatio(op), 1.0, "", false, &seg);
       }
@@ -577,7 +600,8 @@ namespace {
 // and IDC are not in the list: a larger pack also sags less, which lowers both.
 bool RisesWithMass(const std::string& constraint) {
   static const char* const kNames[] = {"esc_voltage", "prop_diameter", "thrust", "motor_power", "prop_max_rpm",
-                                       "max_winding_temp_c"};
+                                       "max_winding_temp_c", "prop_folding", "motor_unrated",
+                                       "motor_voltage"};
   for (const char* name : kNames) {
     if (constraint == name) return true;
   }
@@ -615,7 +639,7 @@ double MissionEvaluator::EnduranceUpperBound(double target_s) const {
   const double ocv_integral_v = OcvIntegralUpperBound(BatteryPack(PackAt(c_lo)), m_.battery.reserve_soc);
   bool energy_fixed = true;
   for (const GroupDrive& g : groups_) {
-    energy_fixed &= g.parts.esc->params.c0 == 0.0 && g.parts.esc->params.rsupply_ohm == 0.0;
+    energy_fixed &= g.drive.esc().c0 == 0.0 && g.drive.esc().rsupply_ohm == 0.0;
   }
   int runs = 0;
   double infeasible_from = kInf;  // every capacity from here up breaks a RisesWithMass constraint
@@ -697,7 +721,7 @@ MissionResult MissionEvaluator::Solve(double cutoff_score, bool explain) const {
     }
   }
   if (std::isfinite(cutoff_score) && m_.objective.type == ObjectiveType::kMinEnergy &&
-      !capacity_free && std::all_of(groups_.begin(), groups_.end(), [](const GroupDrive& g) { return g.parts.esc->params.c0 == 0.0; })) {
+      !capacity_free && std::all_of(groups_.begin(), groups_.end(), [](const GroupDrive& g) { return g.drive.esc().c0 == 0.0; })) {
     // min_energy with free cruise airspeeds: every other segment's energy does not depend on
     // them (terminal power N*PDC + P_avionics, and PDC = C1*U*I/kv does not depend on the
     // voltage when C0 = 0, eqs 57, 59), and a wing-borne cruise needs at least the propulsive
@@ -869,7 +893,7 @@ double MissionEvaluator::WindingTempC(const OperatingPoint& p, int group) const 
   constexpr double kAlphaCuPerK = 0.00393;  // copper, at 20-25 C (IEC 60028)
   constexpr double kRmReferenceC = 25.0;    // datasheet resistance at room temperature (assumed)
   constexpr double kRunawayTempC = 1000.0;  // "no steady state": far above any limit, finite
-  const MotorParams& mp = groups_[group].parts.motor->params;
+  const MotorParams& mp = groups_[group].drive.motor();
   const double rth_k_per_w_ = groups_[group].rth_k_per_w;
   const double kp = MaxKtPerKe(mp.type);
   const double i = p.irms_a;
@@ -892,7 +916,7 @@ bool MissionEvaluator::FullThrottleAt(const BatteryPack& pack, double soc, FullT
   const GroupDrive& gd = groups_[lift_group_];
   const Drive& drive = gd.drive;
   const PropModel& prop = *gd.prop;
-  const double i_cap = std::min(gd.parts.motor->params.max_current_a, gd.parts.esc->params.max_current_a);
+  const double i_cap = std::min(gd.drive.motor().max_current_a, gd.drive.esc().max_current_a);
   // Illinois regula falsi for the sign change of h on [a, b] (h(a) > 0 > h(b)).
   auto root = [](const auto& h, double a, double b) {
     double fa = h(a), fb = h(b);
@@ -1054,8 +1078,8 @@ void MissionEvaluator::AddWarnings(MissionResult* r) const {
   }
   for (const SegmentResult& s : r->segments) {
     const GroupDrive& gd = groups_[s.group];
-    const MotorParams& mp = gd.parts.motor->params;
-    const EscParams& ep = gd.parts.esc->params;
+    const MotorParams& mp = gd.drive.motor();  // the scenario's (credibility.h)
+    const EscParams& ep = gd.drive.esc();
     const Drive& drive = gd.drive;
     const OperatingPoint& p = s.point;
     const double i = std::max(p.idc_a, p.irms_a);
@@ -1095,15 +1119,44 @@ void MissionEvaluator::AddWarnings(MissionResult* r) const {
       r->warnings.push_back("segment '" + s.name + "': propeller data held at an edge: " + s.prop_note);
     }
   }
-  for (const GroupDrive& gd : groups_) {
-    const MotorParams& mp = gd.parts.motor->params;
+  for (int g = 0; g < static_cast<int>(groups_.size()); ++g) {
+    const GroupDrive& gd = groups_[g];
+    const MotorParams& mp = gd.drive.motor();  // the scenario's (credibility.h)
+    const std::string& motor_id = gd.parts.motor->id;
     if (!std::isfinite(mp.max_current_a) && !std::isfinite(mp.max_power_w)) {
-      r->warnings.push_back("motor " + gd.parts.motor->id + " has no current or power rating in the "
+      r->warnings.push_back("motor " + motor_id + " has no current or power rating in the "
                             "catalog: its load could not be checked (the search may favour it)");
     }
-    if (!std::isfinite(gd.parts.esc->params.max_current_a)) {
+    if (gd.rating_estimated) {
+      r->warnings.push_back("motor " + motor_id + " has no current or power rating in its source: "
+                            "ratings " + Num(mp.max_power_w, 3) + " W, " + Num(mp.max_current_a, 3) +
+                            " A estimated from its mass and Kv (laws of hobby outrunners, catalog/conventions.h, "
+                            "assumed)");
+    }
+    if (gd.motor_excluded && g == lift_group_) {
+      r->warnings.push_back("motor " + motor_id + " has no current or power rating: excluded "
+                            "(constraints.unrated_motors = \"exclude\")");
+    }
+    if (gd.folding_refused && g == lift_group_) {
+      r->warnings.push_back("propeller " + gd.parts.prop->id + " is a folding propeller: not used for multirotor "
+                            "lift (constraints.allow_folding_props_for_lift)");
+    }
+    if (!std::isfinite(gd.drive.esc().max_current_a)) {
       r->warnings.push_back("ESC " + gd.parts.esc->id + " has no current rating: its current was not checked");
     }
+  }
+  std::vector<const EntryBase*> entries{c_.battery};
+  for (const GroupDrive& gd : groups_) {
+    for (const EntryBase* e : {static_cast<const EntryBase*>(gd.parts.motor), static_cast<const EntryBase*>(gd.parts.esc),
+                               static_cast<const EntryBase*>(gd.parts.prop)}) {
+      if (std::find(entries.begin(), entries.end(), e) == entries.end()) entries.push_back(e);
+    }
+  }
+  for (const EntryBase* e : entries) {
+    if (!e->exclude_reason.empty()) {
+      r->warnings.push_back(e->id + " is excluded from searches by the catalog: " + e->exclude_reason);
+    }
+  }
   }
   if (!r->assumed.empty()) {
     std::string a;

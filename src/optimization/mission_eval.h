@@ -30,6 +30,7 @@
 #include "mission/mission.h"
 #include "model/drive.h"
 #include "optimization/components.h"
+#include "optimization/credibility.h"
 #include "prop/prop_model.h"
 
 namespace dynosize {
@@ -144,6 +145,9 @@ struct MissionResult {
   int lift_rotors = 0;
   DesignSummary summary;              // filled by Solve/Simulate (not by screening runs)
   double min_slack = 0.0;             // smallest relative constraint slack (< 0: infeasible)
+  // The tiers of the parts and the objective under the data-uncertainty model
+  // (optimization/credibility.h); filled by AddObjectiveRange (evaluate, optimize's top N).
+  ObjectiveRange range;
 };
 
 struct ContinuousVars {
@@ -225,6 +229,11 @@ class MissionEvaluator {
     std::unique_ptr<PropModel> owned_prop;
     const PropModel* prop = nullptr;
     double rth_k_per_w = 0;  // catalog or assumed (AssumedMotorRthKPerW)
+    // The mission's data scenario (credibility.h): the propeller adjustment, a folding propeller
+    // refused for lift, a motor without ratings estimated from its mass or excluded (the last
+    // two checked on the lift group only).
+    PropAdjustment prop_adj;
+    bool folding_refused = false, rating_estimated = false, motor_excluded = false;
   };
 
   const Mission& m_;

@@ -32,9 +32,16 @@ namespace dynosize {
 // with them: the lightest ESC that can take the cell count and the smallest battery capacity.
 //
 // R0 (frame): a propeller larger than the vehicle's max_prop_diameter_m fails prop_diameter
-//    whatever else is chosen.
+//    whatever else is chosen; so does a folding propeller for lift (prop_folding), a motor
+//    without a source rating when the mission excludes such motors (motor_unrated),
+//    credibility.h, and an entry the catalog excludes ("exclude", catalog_exclude).
+// Data scenario (credibility.h): the evaluator flies the mission's ranking scenario (the
+//    credible value by default); the grids below use the same adjusted propeller torque (it
+//    only rises, pointwise, and keeps rising with speed: M1 holds) and the same motor ratings,
+//    so every rule bounds the score that is ranked.
 // R1 (ratings, ESC voltage): an ESC whose vdc_max_v is below the full-charge OCV of the cells
-//    fails the esc_voltage constraint whatever else is chosen.
+//    fails the esc_voltage constraint whatever else is chosen; so does a motor whose cells_max
+//    (4.2 V per cell) is below it (motor_voltage).
 // R2 (thrust / prop speed): in every hover segment each rotor gives at least T_lb, the thrust
 //    at the lightest mass. By (M1) its speed is at least omega_lb, the largest grid speed whose
 //    thrust is <= T_lb, and its torque at least the smallest grid torque at or above omega_lb.
@@ -175,10 +182,14 @@ EscTable BuildEscTable(const Catalog& cat, const std::vector<BatteryOption>& opt
   t.min_mass_kg.assign(options.size(), kInf);
   t.max_mass_kg.assign(options.size(), 0.0);
   for (std::size_t o = 0; o < options.size(); ++o) {
-    long long n_ok = 0;
+    long long n_ok = 0, n_excluded = 0;
     for (const EscClass& c : t.classes) {
       std::vector<int> ok;
       for (int i : c.members) {
+        if (!escs[i].exclude_reason.empty()) {  // R0: the catalog excludes it
+          ++n_excluded;
+          continue;
+        }
         if (escs[i].params.vdc_max_v >= options[o].v_full) {  // R1
           ok.push_back(i);
           t.min_mass_kg[o] = std::min(t.min_mass_kg[o], EscMassKg(escs[i]));
@@ -194,7 +205,8 @@ EscTable BuildEscTable(const Catalog& cat, const std::vector<BatteryOption>& opt
       n_ok += static_cast<long long>(ok.size());
       t.per_option[o].push_back(std::move(ok));
     }
-    t.voltage_pruned += static_cast<long long>(escs.size()) - n_ok;
+    t.voltage_pruned += static_cast<long long>(escs.size()) - n_ok - n_excluded;
+    t.excluded_pruned += n_excluded;
   }
   return t;
 }
@@ -208,15 +220,19 @@ void BuildPropGrids(const Mission& m, const Catalog& cat, std::vector<PropGrid>*
   for (std::size_t p = 0; p < props.size(); ++p) {
     (*models)[p] = std::make_unique<PropModel>(props[p]);
     const PropModel& model = *(*models)[p];
+    const PropAdjustment prop_adj = PropAdjustmentFor(props[p], m.objective.ranking);
     PropGrid& g = (*grids)[p];
     g.mass_kg = PropMassKg(props[p]);
     double torque[kGrid];
     for (int i = 0; i < kGrid; ++i) {
       g.omega[i] = kGridMinRadS * std::pow(kGridMaxRadS / kGridMinRadS, i / double(kGrid - 1));
-      const PropEvaluation ev = model.Evaluate(g.omega[i], m.rho_kg_m3, 0.0);
+      PropEvaluation ev = model.Evaluate(g.omega[i], m.rho_kg_m3, 0.0);
       g.thrust[i] = ev.thrust_n;
-      torque[i] = ev.torque_nm;
       g.fom[i] = ev.power_w > 0 ? FigureOfMerit(ev.thrust_n, ev.power_w, props[p].diameter_m, m.rho_kg_m3) : kInf;
+      // The FM limit (R6) judges the data; the load is the scenario's (credibility.h), as in
+      // the evaluator. The adjustment only raises the torque, and keeps it rising with speed.
+      AdjustPropEvaluation(prop_adj, props[p].diameter_m, &ev);
+      torque[i] = ev.torque_nm;
       if (i > 0 && !(g.thrust[i] > g.thrust[i - 1])) g.monotone = false;
     }
     g.torque_suffix_min[kGrid - 1] = torque[kGrid - 1];
@@ -233,6 +249,9 @@ struct MissionFacts {
   bool stretch_is_hover = false;
   double tr_limit = 1.0;
   int free_group = 0;
+  // The free group lifts the vehicle (LiftGroup, 0 when none): the evaluator's prop_folding,
+  // motor_unrated and motor_voltage checks apply to it (credibility.h).
+  bool free_lifts = false;
 };
 
 // Groups (G1): the rules below speak of the free group's segments only; a segment of a fixed
@@ -251,6 +270,7 @@ MissionFacts FactsOf(const Mission& m, int free_group) {
                        m.segments[m.objective.segment_index].group == free_group;
   f.tr_limit = std::min(m.constraints.max_throttle, 1.0);
   f.free_group = free_group;
+  f.free_lifts = free_group == std::max(0, LiftGroup(m));
   return f;
 }
 
@@ -341,6 +361,8 @@ const char* PropRule(const SearchContext& ctx, const MissionFacts& f, const Moto
   const BatteryOption& bo = ctx.options[o];
   const std::optional<double> d_max = GroupMaxPropDiameterM(m, f.free_group);
   if (d_max && prop.diameter_m > *d_max) return "prop_diameter";  // R0
+  if (!prop.exclude_reason.empty()) return "catalog_exclude";      // R0: the catalog excludes it
+  if (f.free_lifts && FoldingPropRefused(prop, m)) return "prop_folding";  // R0 (credibility.h)
   int lb_idx = 0;  // grid index of omega_lb
   *omega_lb = 0;
   *q_lb = 0;
@@ -399,7 +421,15 @@ void MotorCandidates(const SearchContext& ctx, const MissionFacts& f, std::size_
   const auto& props = ctx.catalog->props();
   const long long per_pair = static_cast<long long>(ctx.catalog->escs().size());
   const MotorEntry& mo = ctx.catalog->motors()[mi];
-  const MotorParams& mp = mo.params;
+  // credibility.h: the scenario's ratings (estimated from the mass when no source states them),
+  // as the evaluator flies them; an unrated motor the mission excludes is refused (R0).
+  bool unrated_excluded = false;
+  const MotorParams mp = ScenarioMotorParams(mo, m, nullptr, &unrated_excluded);
+  if (f.free_lifts && unrated_excluded) {
+    pruned->Add("motor_unrated", per_pair * static_cast<long long>(props.size() * ctx.options.size()));
+    return;
+  }
+  const double motor_max_v = f.free_lifts ? MotorMaxVoltageV(mo) : kInf;
   const std::vector<EscClass>& classes = ctx.escs.classes;
   // Zero-resistance drives, one per ESC class (R3, R4, R7).
   std::vector<Drive> ideal;
@@ -410,6 +440,10 @@ void MotorCandidates(const SearchContext& ctx, const MissionFacts& f, std::size_
   }
   for (std::size_t o = 0; o < ctx.options.size(); ++o) {
     const BatteryOption& bo = ctx.options[o];
+    if (bo.v_full > motor_max_v) {  // R1 for the motor's cells_max (credibility.h)
+      pruned->Add("motor_voltage", per_pair * static_cast<long long>(props.size()));
+      continue;
+    }
     for (std::size_t pi = 0; pi < props.size(); ++pi) {
       const double mass_lb = m.vehicle.mass_kg + bo.mass_lo_kg + ctx.fixed_groups_mass_kg +
                              ctx.free_rotors * (*mo.mass_kg + ctx.grids[pi].mass_kg + ctx.escs.min_mass_kg[o]);
@@ -521,7 +555,7 @@ void FixedGroupPowerBounds(SearchContext* ctx) {
       }
       const double q = prop.Evaluate(lo, m.rho_kg_m3, ld.axial_airspeed_m_s).torque_nm;
       if (!(q > 0)) continue;
-      const Drive d(parts.motor->params, parts.esc->params);
+      const Drive d(ScenarioMotorParams(*parts.motor, m), ScenarioEscParams(*parts.esc, m.objective.ranking));
       const double pdc = std::min(d.Inverse(bo.v_full, q, lo).pdc_w, d.Inverse(bo.v_cut, q, lo).pdc_w);
       p_lb[si] += ld.rotors * std::max(0.0, pdc);
     }
@@ -540,6 +574,10 @@ CandidateList BuildCandidates(const SearchContext& ctx, int threads) {
   std::vector<long long> thread_skipped(static_cast<std::size_t>(threads), 0);
   auto work = [&](int tid) {
     for (std::size_t mi = static_cast<std::size_t>(tid); mi < motors.size(); mi += static_cast<std::size_t>(threads)) {
+      if (!motors[mi].exclude_reason.empty()) {  // R0: the catalog excludes it (catalog.h, "exclude")
+        thread_pruned[tid].Add("catalog_exclude", per_motor);
+        continue;
+      }
       if (!motors[mi].mass_kg) {
         ++thread_skipped[tid];
         thread_pruned[tid].Add("motor_without_mass", per_motor);
@@ -795,6 +833,9 @@ SearchResult SearchExactly(const Mission& m, const Catalog& cat, const SearchOpt
   out.combinations = static_cast<long long>(cat.motors().size()) * static_cast<long long>(cat.escs().size()) *
                      static_cast<long long>(cat.props().size()) * static_cast<long long>(ctx.options.size());
   out.pruned_by["esc_voltage"] += ctx.escs.voltage_pruned * static_cast<long long>(cat.motors().size() * cat.props().size());
+  if (ctx.escs.excluded_pruned > 0) {
+    out.pruned_by["catalog_exclude"] += ctx.escs.excluded_pruned * static_cast<long long>(cat.motors().size() * cat.props().size());
+  }
   CandidateList cl = BuildCandidates(ctx, opt.threads);  // stage 4
   for (const auto& [rule, n] : cl.pruned_by) out.pruned_by[rule] += n;
   out.skipped_without_mass = cl.skipped_without_mass;
@@ -812,6 +853,7 @@ SearchResult SearchExactly(const Mission& m, const Catalog& cat, const SearchOpt
     opt.progress(p);
   }
   out.virtual_evaluations = bb.virtual_evaluations();
+  for (RankedCombination& b : out.best) AddObjectiveRange(m, b.combination, &b.result);  // credibility.h
   out.pruned = out.combinations - out.searched;
   out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return out;

@@ -51,6 +51,7 @@ struct EscTable {
   std::vector<std::vector<std::vector<int>>> per_option;
   std::vector<double> min_mass_kg, max_mass_kg;  // per option over its ESCs (inf / 0 if none)
   long long voltage_pruned = 0;                  // (option, ESC) pairs removed by R1
+  long long excluded_pruned = 0;                 // (option, ESC) pairs the catalog excludes (R0)
 };
 EscTable BuildEscTable(const Catalog& cat, const std::vector<BatteryOption>& options);
 

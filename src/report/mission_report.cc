@@ -10,6 +10,7 @@
 #include "common/units.h"
 #include "mission/flight.h"
 #include "model/drive.h"
+#include "model/physics.h"
 #include "prop/prop_model.h"
 #include "report/gnuplot.h"
 
@@ -47,6 +48,49 @@ std::string Fixed(double x, int digits) {
 // "Name (id)" for a figure title; the id alone when the entry has no name.
 std::string PartName(const EntryBase& e) {
   return e.name.empty() || e.name == e.id ? e.id : e.name + " (" + e.id + ")";
+}
+
+// objective_range, the ranking, the tiers and the motor rating (optimization/credibility.h).
+void AddCredibilityJson(const Mission& m, const MissionResult& r, Json* j) {
+  const ObjectiveRange& g = r.range;
+  (*j)["ranking"] = m.objective.ranking == DataScenario::kAsGiven ? "as_given" : "credible";
+  if (!g.computed) return;
+  (*j)["objective_range"] = {g.low, g.high};
+  (*j)["objective_range_basis"] = g.basis;
+  (*j)["objective_range_complete"] = g.complete;
+  if (!g.low_breaks.empty()) (*j)["objective_range_low_breaks"] = g.low_breaks;
+  if (!g.high_breaks.empty()) (*j)["objective_range_high_breaks"] = g.high_breaks;
+  // null when the data as given break a limit (the number is then not an objective).
+  (*j)["objective_as_given"] = g.as_given_feasible ? Json(g.as_given) : Json(nullptr);
+  if (!g.as_given_feasible) (*j)["objective_as_given_breaks"] = g.as_given_breaks;
+  Json t = Json::object();
+  for (const PartTier& p : g.tiers) t[p.part] = {{"id", p.id}, {"tier", TierName(p.tier)}, {"set_by", p.why}};
+  (*j)["tiers"] = t;
+  (*j)["motor_rating"] = g.motor_rating;
+}
+
+std::string CredibilityText(const Mission& m, const MissionResult& r) {
+  const ObjectiveRange& g = r.range;
+  if (!g.computed) return "";
+  const bool credible = m.objective.ranking != DataScenario::kAsGiven;
+  const char* unit = m.objective.type == ObjectiveType::kMaxEndurance ? " min"
+                     : m.objective.type == ObjectiveType::kMinEnergy  ? " Wh"
+                                                                      : " %";
+  std::ostringstream o;
+  o << "  " << (credible ? "credible " : "data as given: ") << Fixed(Display(m, r.objective), 2) << unit << ", "
+    << Fixed(Display(m, g.low), 2) << "-" << Fixed(Display(m, g.high), 2) << unit
+    << " with the spread of the data (" << g.basis << ")";
+  if (credible) {
+    o << "; data as given: "
+      << (g.as_given_feasible ? Fixed(Display(m, g.as_given), 2) + unit : "infeasible (breaks " + g.as_given_breaks + ")");
+  }
+  if (!g.low_breaks.empty()) o << "\n  at the low end it breaks " << g.low_breaks << " (limits relaxed for the number)";
+  if (!g.high_breaks.empty()) o << "\n  at the high end it breaks " << g.high_breaks << " (limits relaxed for the number)";
+  if (!g.complete) o << "\n  the range is incomplete: one end cannot fly even with the limits relaxed";
+  o << "\n  data tiers:";
+  for (const PartTier& p : g.tiers) o << " " << p.part << " " << TierName(p.tier) << " (" << p.why << ");";
+  o << " motor rating: " << g.motor_rating << "\n";
+  return o.str();
 }
 
 }  // namespace
@@ -125,6 +169,9 @@ Json MissionResultJson(const Mission& m, const Combination& c, const MissionResu
     g["eta_system"] = p.eta_system;
     g["eta_system_average"] = s.eta_average;
     g["winding_temp_c"] = s.winding_temp_c;
+    if (s.type == SegmentType::kHover && p.pmech_w > 0) {  // of the power flown (credibility.h)
+      g["figure_of_merit"] = IdealRotorPowerW(s.thrust_per_rotor_n, c.Parts(s.group).prop->diameter_m, m.rho_kg_m3) / p.pmech_w;
+    }
     g["battery_current_a"] = s.battery_current_a;
     g["soc_start"] = s.soc_start;
     g["soc_end"] = s.soc_end;
@@ -148,6 +195,7 @@ Json MissionResultJson(const Mission& m, const Combination& c, const MissionResu
   j["warnings"] = r.warnings;
   j["assumed"] = r.assumed;
   if (!r.solver.empty()) j["solver"] = r.solver;
+  AddCredibilityJson(m, r, &j);
   return j;
 }
 
@@ -181,6 +229,7 @@ std::string MissionResultText(const Mission& m, const Combination& c, const Miss
       << Fixed(d.max_climb_rate_m_s, 1) << " m/s; reserve at landing " << Fixed(d.reserve_hover_s / 60.0, 1)
       << " min of hover; winding up to " << Fixed(d.winding_temp_max_c, 0) << " C\n";
   }
+  o << CredibilityText(m, r);
   o << "  segment (point: end, worst case)   s     rpm  thr %  eff %  torque N*m  Irms A  IDC A   VDC V   PDC W  PESC W  eta_m  eta_e  eta_s  limit\n";
   for (const SegmentResult& s : r.segments) {
     const OperatingPoint& p = s.point;
@@ -230,16 +279,20 @@ std::string WriteParetoFigure(const Mission& m, const SearchResult& s, const std
       fy.push_back(p.second);
     }
   }
+  std::vector<double> tlo, thi;  // objective_range of the picks (credibility.h)
   for (const auto& b : s.best) {
     tx.push_back(b.result.propulsion_mass_kg);
     ty.push_back(Display(m, b.result.objective));
+    const bool ranged = b.result.range.computed;
+    tlo.push_back(Display(m, ranged ? std::min(b.result.range.low, b.result.range.high) : b.result.objective));
+    thi.push_back(Display(m, ranged ? std::max(b.result.range.low, b.result.range.high) : b.result.objective));
   }
   if (ax.empty()) { ax.push_back(kNaN); ay.push_back(kNaN); }
   if (fx.empty()) { fx.push_back(kNaN); fy.push_back(kNaN); }
-  if (tx.empty()) { tx.push_back(kNaN); ty.push_back(kNaN); }
+  if (tx.empty()) { tx.push_back(kNaN); ty.push_back(kNaN); tlo.push_back(kNaN); thi.push_back(kNaN); }
   all.series.push_back({ax, ay});
   front.series.push_back({fx, fy});
-  top.series.push_back({tx, ty});
+  top.series.push_back({tx, ty, tlo, thi});
   std::ostringstream g;
   g << "set title \"" << m.name << ": " << ObjectiveLabel(m) << " vs propulsion mass\\n"
     << s.searched << " combinations evaluated exactly, " << s.pruned << " pruned\" noenhanced\n"
@@ -247,7 +300,8 @@ std::string WriteParetoFigure(const Mission& m, const SearchResult& s, const std
     << ObjectiveLabel(m) << "\" noenhanced\nset grid\nset key bottom right\n"
     << "plot $all using 1:2 with points pt 7 ps 0.5 lc rgb '#9a9a9a' title 'evaluated', "
     << "$front using 1:2 with linespoints pt 7 ps 1 lw 2 lc rgb '#d62728' title 'Pareto front', "
-    << "$top using 1:2 with points pt 6 ps 2.5 lw 2 lc rgb '#1f77b4' title 'top picks'\n";
+    << "$top using 1:2:3:4 with yerrorbars pt 6 ps 2.5 lw 2 lc rgb '#1f77b4' "
+    << "title 'top picks (range)'\n";
   const std::string path = dir + "/pareto_front.png";
   RenderPng(path, {all, front, top}, g.str(), 1000, 700);
   return path;

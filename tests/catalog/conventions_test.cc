@@ -7,6 +7,7 @@
 
 #include <cmath>
 
+#include "catalog/catalog.h"
 #include "model/drive.h"
 
 namespace dynosize {
@@ -61,6 +62,47 @@ TEST(MotorPowerLaw, EstimateFollowsTheDocumentedLaw) {
   EXPECT_NEAR(EstimatedMotorPowerW(0.1), 615.0, 1.0);
   // Specific power falls with size (exponent < 1).
   EXPECT_GT(EstimatedMotorPowerW(0.02) / 0.02, EstimatedMotorPowerW(0.5) / 0.5);
+}
+
+}  // namespace
+}  // namespace dynosize
+
+namespace dynosize {
+namespace {
+
+// The current law is the FAST-UAV catalogue's: ln(I_max) on ln(m) and ln(Kv), least squares
+// over the 204 fu_m_ motors with mass, Kv and I_max (3x3 normal equations of well-scaled logs).
+TEST(MotorCurrentLaw, IsTheFastUavFit) {
+  const Catalog cat = Catalog::Load(std::string(DYNOSIZE_SOURCE_DIR) + "/catalog");
+  double a[3][4] = {};
+  int n = 0;
+  for (const MotorEntry& m : cat.motors()) {
+    if (m.id.rfind("fu_m_", 0) != 0 || !m.mass_kg || !m.kv_rpm_per_v || !std::isfinite(m.params.max_current_a)) continue;
+    const double row[3] = {1.0, std::log(*m.mass_kg), std::log(*m.kv_rpm_per_v)};
+    for (int i = 0; i < 3; ++i) {
+      for (int j = 0; j < 3; ++j) a[i][j] += row[i] * row[j];
+      a[i][3] += row[i] * std::log(m.params.max_current_a);
+    }
+    ++n;
+  }
+  ASSERT_EQ(n, DefaultMotorCurrentLaw().sample_size);
+  for (int i = 0; i < 3; ++i) {  // Gauss-Jordan with partial pivoting
+    int piv = i;
+    for (int r = i + 1; r < 3; ++r) {
+      if (std::fabs(a[r][i]) > std::fabs(a[piv][i])) piv = r;
+    }
+    for (int k = 0; k < 4; ++k) std::swap(a[i][k], a[piv][k]);
+    for (int r = 0; r < 3; ++r) {
+      if (r == i) continue;
+      const double f = a[r][i] / a[i][i];
+      for (int k = 0; k < 4; ++k) a[r][k] -= f * a[i][k];
+    }
+  }
+  // The constants are printed to 4 significant digits.
+  constexpr double kRounding = 5e-4;
+  EXPECT_NEAR(EstimatedMotorCurrentA(1.0, 1.0), std::exp(a[0][3] / a[0][0]), kRounding);
+  EXPECT_NEAR(DefaultMotorCurrentLaw().mass_exponent, a[1][3] / a[1][1], kRounding);
+  EXPECT_NEAR(DefaultMotorCurrentLaw().kv_exponent, a[2][3] / a[2][2], kRounding);
 }
 
 }  // namespace

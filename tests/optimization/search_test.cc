@@ -27,7 +27,7 @@ const char* kQuad = R"({
   "name": "test quad",
   "vehicle": {"mass_kg": 0.75, "rotors": 4, "drag_area_m2": 0.04, "drag_coefficient": 1.0, "avionics_power_w": 5},
   "battery": {"id": "dc_b_361", "cells": [3, 4], "reserve_soc": 0.2},
-  "constraints": {"min_thrust_to_weight": 1.1},
+  "constraints": {"min_thrust_to_weight": 1.1, "allow_folding_props_for_lift": true},
   "objective": {"type": "max_endurance", "segment": "loiter"},
   "segments": [
     {"name": "takeoff", "type": "climb", "rate_m_s": 2, "distance_m": 30},
@@ -201,6 +201,42 @@ TEST_F(SearchTest, OptimizeEqualsTheBestOfExhaustiveEvaluation) {
   EXPECT_GE(CheckAgainstExhaustive(cat, m), 3u);
 }
 
+// The default ranking (credible data: propeller FM held to the measured class envelope,
+// credibility.h), the data as given, folding propellers refused and unrated motors excluded:
+// each is a different score, and the search must stay exact for each.
+TEST_F(SearchTest, EveryRankingEqualsExhaustiveEvaluation) {
+  const Catalog cat = Catalog::Load((dir_ / "catalog").string());
+  Json j = ParseJsonText(kQuad, "quad");  // allows the folding 18 in AeroCarbon (dc_p_173)
+  const Mission credible = ParseMission(j, "quad");
+  EXPECT_EQ(credible.objective.ranking, DataScenario::kCredible);
+  EXPECT_GE(CheckAgainstExhaustive(cat, credible), 3u);
+  j["objective"]["ranking"] = "as_given";
+  const Mission given = ParseMission(j, "quad");
+  EXPECT_GE(CheckAgainstExhaustive(cat, given), 3u);
+  j["objective"]["ranking"] = "credible";
+  j["constraints"]["allow_folding_props_for_lift"] = false;
+  j["constraints"]["unrated_motors"] = "exclude";
+  const Mission strict = ParseMission(j, "quad");
+  EXPECT_GE(CheckAgainstExhaustive(cat, strict), 3u);
+  SearchOptions so;
+  so.top_n = 1;
+  const SearchResult sc = SearchCatalog(credible, cat, so), sg = SearchCatalog(given, cat, so);
+  const SearchResult ss = SearchCatalog(strict, cat, so);
+  ASSERT_EQ(sc.best.size(), 1u);
+  ASSERT_EQ(sg.best.size(), 1u);
+  ASSERT_EQ(ss.best.size(), 1u);
+  // The DriveCalc laws of this catalog promise more than the measured props of their class.
+  EXPECT_LT(sc.best[0].result.objective, sg.best[0].result.objective);
+  EXPECT_GT(ss.pruned_by.count("prop_folding") ? ss.pruned_by.at("prop_folding") : 0, 0);
+  EXPECT_NE(ss.best[0].combination.prop->id, "dc_p_173");
+  for (const SearchResult* s : {&sc, &sg, &ss}) {
+    const ObjectiveRange& g = s->best[0].result.range;
+    EXPECT_TRUE(g.computed);
+    EXPECT_LE(g.low, s->best[0].result.objective);
+    EXPECT_GE(g.high, s->best[0].result.objective);
+  }
+}
+
 // A capacity range: the evaluator's bounds (bisected over the range, the other segments'
 // energy subtracted from the budget) and the search's must not cut off the best combinations.
 TEST_F(SearchTest, CapacityRangeEqualsExhaustiveEvaluation) {
@@ -312,9 +348,48 @@ TEST_F(SearchTest, EarlyExitsNeverCutOffAFeasibleScore) {
   }
 }
 
+// An entry the catalog marks "exclude" (catalog.h) is never searched: the pick's motor and
+// propeller, excluded, leave the search (catalog_exclude) and the next best wins.
+TEST_F(SearchTest, CatalogExcludedEntriesAreNotSearched) {
+  const Mission m = ParseMission(ParseJsonText(kQuad, "quad"), "quad");
+  SearchOptions so;
+  so.top_n = 1;
+  const Catalog full = Catalog::Load((dir_ / "catalog").string());
+  const SearchResult before = SearchCatalog(m, full, so);
+  ASSERT_EQ(before.best.size(), 1u);
+  const std::string motor = before.best[0].combination.motor->id, prop = before.best[0].combination.prop->id;
+  EXPECT_EQ(before.pruned_by.count("catalog_exclude"), 0u);
+  Json doc = ReadJsonFile((dir_ / "catalog" / "small.json").string());
+  for (Json& e : doc["motors"]) {
+    if (e["id"] == motor) e["exclude"] = "test: excluded";
+  }
+  for (Json& e : doc["props"]) {
+    if (e["id"] == prop) e["exclude"] = "test: excluded";
+  }
+  fs::create_directories(dir_ / "excluded");
+  std::ofstream(dir_ / "excluded" / "small.json") << DumpJson(doc);
+  const Catalog cat = Catalog::Load((dir_ / "excluded").string());
+  const SearchResult after = SearchCatalog(m, cat, so);
+  ASSERT_EQ(after.best.size(), 1u);
+  EXPECT_NE(after.best[0].combination.motor->id, motor);
+  EXPECT_NE(after.best[0].combination.prop->id, prop);
+  ASSERT_EQ(after.pruned_by.count("catalog_exclude"), 1u);
+  EXPECT_GT(after.pruned_by.at("catalog_exclude"), 0);
+  EXPECT_EQ(after.searched + after.pruned, after.combinations);
+  // evaluate still flies an excluded entry when asked by id, and says so.
+  const Combination& b = before.best[0].combination;
+  const Combination c{&cat.motor(motor), &cat.esc(b.esc->id), &cat.prop(prop), &cat.battery(b.battery->id), b.cells};
+  const MissionResult r = MissionEvaluator(m, c).Solve();
+  bool said = false;
+  for (const std::string& w : r.warnings) said |= w.find("excluded from searches by the catalog") != std::string::npos;
+  EXPECT_TRUE(said);
+}
+
 TEST_F(SearchTest, FreeAirspeedOptimumBeatsADenseGrid) {
   Json j = ParseJsonText(kQuad, "quad");
-  j["objective"] = {{"type", "min_energy"}};
+  // On the data as given: the credible propeller power (credibility.h) breaks this motor's
+  // current rating.
+  j["objective"] = {{"type", "min_energy"}, {"ranking", "as_given"}};
   j["segments"][1]["airspeed_m_s"] = {4.0, 20.0};
   const Mission m = ParseMission(j, "quad");
   const Catalog cat = Catalog::Load((dir_ / "catalog").string());
@@ -384,7 +459,11 @@ TEST_F(SearchTest, InfeasibleMissionSaysWhichConstraintAndByHowMuch) {
 
 TEST_F(SearchTest, EverySegmentPointIsReproducedBySimulate) {
   const std::string cat = "--catalog " + (dir_ / "catalog").string();
-  const auto ev = testing_util::RunCli("evaluate " + (dir_ / "quad.json").string() + " " + cat +
+  // On the data as given: the credible propeller power breaks this motor's current rating.
+  Json given = ParseJsonText(kQuad, "quad");
+  given["objective"]["ranking"] = "as_given";
+  std::ofstream(dir_ / "quad_given.json") << DumpJson(given);
+  const auto ev = testing_util::RunCli("evaluate " + (dir_ / "quad_given.json").string() + " " + cat +
                                        " --motor dc_m_1020 --esc dc_e_56 --prop dc_p_173 --battery dc_b_361 --cells 4 --json");
   ASSERT_EQ(ev.code, 0) << ev.err;
   const Json j = Json::parse(ev.out);

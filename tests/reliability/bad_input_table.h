@@ -458,6 +458,12 @@ inline std::vector<BadInputCase> BadInputCases() {
   c.push_back({"mission_objective_names_no_segment",
                {{"m.json", Replace(Mission(), "\"segment\": \"loiter\"", "\"segment\": \"loitr\"")}}, eval, 65,
                {"{dir}/m.json", "objective.segment = \"loitr\"", "names no segment"}});
+  c.push_back({"mission_unknown_ranking",
+               {{"m.json", Replace(Mission(), "\"segment\": \"loiter\"", "\"segment\": \"loiter\", \"ranking\": \"optimistic\"")}},
+               eval, 65, {"{dir}/m.json", "objective.ranking = \"optimistic\"", "as_given, credible"}});
+  c.push_back({"mission_unknown_unrated_motors",
+               {{"m.json", Replace(Mission(), "\"max_throttle\": 0.8", "\"max_throttle\": 0.8, \"unrated_motors\": \"keep\"")}},
+               eval, 65, {"{dir}/m.json", "constraints.unrated_motors = \"keep\"", "estimate, exclude"}});
   c.push_back({"mission_missing", {}, eval, 66, {"{dir}/m.json"}});
   return c;
 }

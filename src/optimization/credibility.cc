@@ -1,0 +1,258 @@
+#include "optimization/credibility.h"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+#include "catalog/conventions.h"
+#include "catalog/esc_prior.h"
+#include "catalog/prop_credibility.h"
+#include "common/units.h"
+#include "model/physics.h"
+#include "optimization/mission_eval.h"
+
+namespace dynosize {
+
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+// Relative band of Rm and Io per tier of the value (pessimistic x(1 + b), optimistic /(1 + b)):
+//   measured   0.10  a 25 K winding temperature rise at +0.393 %/K (copper, model.md section 9)
+//   computed,  0.25  datasheets measure R and Io differently from the rms circuit (ohmmeter, Io
+//   stated         at a stated voltage; model.md section 8): an allowance
+//   user       0.60  DriveCalc's data-base Rm is about 1.6x below a fit of DriveCalc's own
+//                    measurements (catalog/README.md)
+//   assumed    1.00  a factor of 2 either way
+double ValueBand(DataTier tier) {
+  switch (tier) {
+    case DataTier::kMeasured: return 0.10;
+    case DataTier::kManufacturerComputed:
+    case DataTier::kManufacturerStated: return 0.25;
+    case DataTier::kUserContributed: return 0.60;
+    case DataTier::kAssumed: return 1.00;
+  }
+  return 1.0;
+}
+
+bool HasAssumed(const EntryBase& e, const char* key) {
+  return std::find(e.assumed_keys.begin(), e.assumed_keys.end(), key) != e.assumed_keys.end();
+}
+
+// The motor's Kv: the catalog's, else from KE (model.md section 8: Kv = 0.675/(KE*pi/30) for a
+// BLDC, 1/(KE*pi/30) brushed), rpm/V.
+double MotorKvRpmPerV(const MotorEntry& motor) {
+  if (motor.kv_rpm_per_v) return *motor.kv_rpm_per_v;
+  const double k = motor.params.type == MotorType::kBldc ? 3.0 / (std::sqrt(2.0) * kPi) : 1.0;
+  return k / (motor.params.ke_v_s_per_rad * kPi / 30.0);
+}
+
+std::string Fixed(double x, int digits) {
+  std::ostringstream o;
+  o.setf(std::ios::fixed);
+  o.precision(digits);
+  o << x;
+  return o.str();
+}
+
+}  // namespace
+
+PropAdjustment PropAdjustmentFor(const PropEntry& prop, DataScenario scenario) {
+  PropAdjustment a;
+  if (scenario == DataScenario::kAsGiven) return a;
+  const DataTier tier = prop.tier;
+  const FmEnvelopeClass& k = FmEnvelopeFor(prop.diameter_m);
+  if (tier == DataTier::kMeasured) {
+    if (scenario == DataScenario::kPessimistic) a.power_factor = 1.0 + kMeasuredPowerBand;
+    if (scenario == DataScenario::kOptimistic) {
+      a.power_factor = 1.0 - kMeasuredPowerBand;
+      a.fm_cap = 1.0;  // never beyond momentum theory
+    }
+    return a;
+  }
+  if (tier == DataTier::kManufacturerComputed) {
+    // The ratio applies to the manufacturer's raw data, stored/power_derate_factor (credibility.h:
+    // the catalog's derating is not applied twice).
+    double ratio = kComputedFmRatio.median;
+    switch (scenario) {
+      case DataScenario::kPessimistic: ratio = kComputedFmRatio.min; break;
+      case DataScenario::kOptimistic: ratio = kComputedFmRatio.max; a.fm_cap = k.p90; break;
+      default: a.fm_cap = k.p90; break;
+    }
+    a.power_factor = std::max(1.0, 1.0 / (ratio * prop.power_derate_factor));
+    return a;
+  }
+  switch (scenario) {
+    case DataScenario::kPessimistic: a.fm_cap = k.p10; break;
+    case DataScenario::kOptimistic: a.fm_cap = k.p90; break;
+    default: a.fm_cap = k.p50; break;
+  }
+  return a;
+}
+
+void AdjustPropEvaluation(const PropAdjustment& adj, double diameter_m, PropEvaluation* ev) {
+  if (adj.identity() || !(ev->omega_rad_s > 0.0) || !(ev->power_w > 0.0)) return;
+  if (ev->airspeed_m_s > 0.0 && !ev->no_forward_flight_data) return;  // forward-flight tables
+  double p = adj.power_factor * ev->power_w;
+  if (adj.fm_cap < 1e300) p = std::max(p, IdealRotorPowerW(ev->thrust_n, diameter_m, ev->rho_kg_m3) / adj.fm_cap);
+  const double k = p / ev->power_w;
+  ev->power_w = p;
+  ev->torque_nm *= k;
+  ev->cp *= k;
+}
+
+bool MissionUsesRotorLift(const Mission& m) {
+  for (const Segment& s : m.segments) {
+    if (s.type == SegmentType::kHover || s.type == SegmentType::kClimb) return true;
+    if (s.type == SegmentType::kCruise && !(s.lift_to_drag > 0)) return true;
+  }
+  return false;
+}
+
+bool FoldingPropRefused(const PropEntry& prop, const Mission& m) {
+  return !m.constraints.allow_folding_props_for_lift && MissionUsesRotorLift(m) && prop.folding;
+}
+
+double MotorMaxVoltageV(const MotorEntry& motor) {
+  if (!motor.json.is_object() || !motor.json.contains("cells_max") || !motor.json.at("cells_max").is_number()) {
+    return kInf;
+  }
+  // 1e-9 relative: a full pack's OCV is 4.2 V per cell up to the rounding of its table.
+  return 4.2 * motor.json.at("cells_max").get<double>() * (1.0 + 1e-9);
+}
+
+MotorParams ScenarioMotorParams(const MotorEntry& motor, const Mission& m, bool* rating_estimated,
+                                bool* excluded) {
+  MotorParams p = motor.params;
+  const bool unrated = !std::isfinite(p.max_current_a) && !std::isfinite(p.max_power_w);
+  // The importer's estimate from the mass (catalog/conventions.h): a rating no source states.
+  const bool catalog_estimate = !std::isfinite(p.max_current_a) && HasAssumed(motor, "max_power_w");
+  const bool estimate = m.constraints.estimate_unrated_motors;
+  if (unrated && estimate && motor.mass_kg) p.max_power_w = EstimatedMotorPowerW(*motor.mass_kg);
+  // No source rating (none at all, or the importer's power estimate): the current law too.
+  if ((unrated || catalog_estimate) && estimate && motor.mass_kg) {
+    const double kv = MotorKvRpmPerV(motor);
+    if (kv > 0.0 && std::isfinite(kv)) p.max_current_a = EstimatedMotorCurrentA(*motor.mass_kg, kv);
+  }
+  if (rating_estimated) *rating_estimated = estimate && ((unrated && motor.mass_kg) || catalog_estimate);
+  if (excluded) *excluded = !estimate && (unrated || catalog_estimate);
+  const DataScenario s = m.objective.ranking;
+  if (s == DataScenario::kPessimistic || s == DataScenario::kOptimistic) {
+    const double br = 1.0 + ValueBand(ValueTier(motor, "rm_ohm"));
+    const double bi = 1.0 + ValueBand(ValueTier(motor, "io_a"));
+    const bool up = s == DataScenario::kPessimistic;
+    p.rm_ohm = up ? p.rm_ohm * br : p.rm_ohm / br;
+    p.io_a = up ? p.io_a * bi : p.io_a / bi;
+  }
+  return p;
+}
+
+EscParams ScenarioEscParams(const EscEntry& esc, DataScenario s) {
+  EscParams p = esc.params;
+  if (s != DataScenario::kPessimistic && s != DataScenario::kOptimistic) return p;
+  const bool up = s == DataScenario::kPessimistic;
+  const DataTier tr = ValueTier(esc, "resc_ohm");
+  // An assumed RESC is the prior's law (esc_prior.h): its scatter is a factor exp(sd) either way.
+  const double kr = tr == DataTier::kAssumed ? std::exp(DefaultEscPrior().resistance_log_sd) : 1.0 + ValueBand(tr);
+  p.resc_ohm = up ? p.resc_ohm * kr : p.resc_ohm / kr;
+  if (up && ValueTier(esc, "c0") == DataTier::kAssumed) {
+    p.c0 = std::max(p.c0, kAssumedEscC0Pessimistic);
+  }
+  return p;
+}
+
+void AddObjectiveRange(const Mission& m, const Combination& c, MissionResult* r) {
+  ObjectiveRange& g = r->range;
+  g = ObjectiveRange{};
+  auto why = [](const EntryBase& e) { return std::string(e.tier_stated ? "source.tier" : "source.values"); };
+  g.tiers.push_back({"motor", c.motor->id, c.motor->tier, why(*c.motor)});
+  g.tiers.push_back({"ESC", c.esc->id, c.esc->tier, why(*c.esc)});
+  g.tiers.push_back({"propeller", c.prop->id, c.prop->tier, why(*c.prop)});
+  g.tiers.push_back({"battery", c.battery->id, c.battery->tier, why(*c.battery)});
+  bool estimated = false, excluded = false;
+  const MotorParams rated = ScenarioMotorParams(*c.motor, m, &estimated, &excluded);
+  g.motor_rating = estimated ? "none in the source: " + Fixed(rated.max_power_w, 0) + " W, " +
+                                   Fixed(rated.max_current_a, 1) +
+                                   " A estimated from the mass and Kv (assumed; catalog/conventions.h)"
+                   : excluded ? "none in the source: excluded (constraints.unrated_motors = exclude)"
+                              : "catalog";
+  // One scenario: its objective with the mission's limits relaxed to physics (*flies: that
+  // run is feasible) and what it breaks under the mission's own limits.
+  MotorEntry motor_free = *c.motor;
+  EscEntry esc_free = *c.esc;
+  BatteryEntry battery_free = *c.battery;
+  constexpr double kNoRating = 1e300;  // finite: the motor counts as rated (no estimate)
+  motor_free.params.max_current_a = motor_free.params.max_power_w = kNoRating;
+  esc_free.params.max_current_a = kNoRating;
+  battery_free.max_current_a = kNoRating;
+  battery_free.peak_current_a = kNoRating;
+  const Combination c_free{&motor_free, &esc_free, c.prop, &battery_free, c.cells};
+  auto solve = [&](DataScenario s, bool* flies, std::string* breaks) {
+    Mission ms = m;
+    ms.objective.ranking = s;
+    const MissionResult x = MissionEvaluator(ms, c).Solve(std::numeric_limits<double>::infinity(), false);
+    for (const Violation& v : x.violations) *breaks += (breaks->empty() ? "" : ", ") + v.constraint;
+    *flies = x.feasible;
+    if (x.feasible) return x.objective;
+    ms.constraints.max_throttle = 1.0;
+    ms.constraints.min_hover_throttle = 0.0;
+    ms.constraints.allow_esc_saturation = true;
+    ms.constraints.enforce_motor_power = false;
+    ms.constraints.current_margin = 0.0;
+    const MissionResult y = MissionEvaluator(ms, c_free).Solve(std::numeric_limits<double>::infinity(), false);
+    *flies = y.feasible;
+    return y.objective;
+  };
+  bool pess_flies = false, opt_flies = false;
+  std::string pess_breaks, opt_breaks;
+  const double pess = solve(DataScenario::kPessimistic, &pess_flies, &pess_breaks);
+  const double opt = solve(DataScenario::kOptimistic, &opt_flies, &opt_breaks);
+  if (m.objective.ranking == DataScenario::kAsGiven) {
+    g.as_given = r->objective;
+    g.as_given_feasible = r->feasible;
+  } else {
+    Mission ms = m;
+    ms.objective.ranking = DataScenario::kAsGiven;
+    const MissionResult x = MissionEvaluator(ms, c).Solve(std::numeric_limits<double>::infinity(), false);
+    g.as_given = x.objective;
+    g.as_given_feasible = x.feasible;
+    for (const Violation& v : x.violations) g.as_given_breaks += (g.as_given_breaks.empty() ? "" : ", ") + v.constraint;
+  }
+  // Larger is better for max_*: the pessimistic data give the low end; min_energy the high end.
+  const bool larger_better = m.objective.type != ObjectiveType::kMinEnergy;
+  const double lo_v = larger_better ? pess : opt, hi_v = larger_better ? opt : pess;
+  const bool lo_ok = larger_better ? pess_flies : opt_flies, hi_ok = larger_better ? opt_flies : pess_flies;
+  g.low_breaks = larger_better ? pess_breaks : opt_breaks;
+  g.high_breaks = larger_better ? opt_breaks : pess_breaks;
+  // A feasible result lies inside its range (the solver's tolerance could put it a hair
+  // outside); an infeasible one's objective is not a value to bracket.
+  const double mid = r->feasible ? r->objective : (lo_ok ? lo_v : hi_v);
+  g.low = lo_ok ? std::min(lo_v, mid) : mid;
+  g.high = hi_ok ? std::max(hi_v, mid) : mid;
+  g.complete = lo_ok && hi_ok;
+  const FmEnvelopeClass& k = FmEnvelopeFor(c.prop->diameter_m);
+  const DataTier pt = g.tiers[2].tier;
+  std::ostringstream b;
+  if (pt == DataTier::kMeasured) {
+    b << "propeller measured: shaft power +-" << Fixed(100 * kMeasuredPowerBand, 0) << " %";
+  } else if (pt == DataTier::kManufacturerComputed) {
+    b << "propeller manufacturer_computed: static FM x " << Fixed(kComputedFmRatio.min, 2) << "-"
+      << Fixed(kComputedFmRatio.max, 2) << " (credible " << Fixed(kComputedFmRatio.median, 2) << "), measured/computed of "
+      << kComputedFmRatio.pairs << " APC products, at most the p90 " << Fixed(k.p90, 2) << " of " << k.n_props
+      << " measured props of " << k.label;
+    if (c.prop->power_derate_factor > 1.0) {
+      b << " (of the raw data: the catalog's derating x" << Fixed(c.prop->power_derate_factor, 3) << " counts toward it)";
+    }
+  } else {
+    b << "propeller " << TierName(pt) << ": static FM held to the p10-p90 (" << Fixed(k.p10, 2) << "-"
+      << Fixed(k.p90, 2) << ") of " << k.n_props << " measured props of " << k.label << " (credible: p50 "
+      << Fixed(k.p50, 2) << ")";
+  }
+  b << "; motor Rm, Io by their tier (" << TierName(g.tiers[0].tier) << "); ESC RESC";
+  if (ValueTier(*c.esc, "c0") == DataTier::kAssumed) b << " and C0 0-" << kAssumedEscC0Pessimistic;
+  b << " within the prior's band";
+  g.basis = b.str();
+  g.computed = true;
+}
+
+}  // namespace dynosize
