@@ -178,15 +178,33 @@ void AddObjectiveRange(const Mission& m, const Combination& c, MissionResult* r)
                               : "catalog";
   // One scenario: its objective with the mission's limits relaxed to physics (*flies: that
   // run is feasible) and what it breaks under the mission's own limits.
-  MotorEntry motor_free = *c.motor;
-  EscEntry esc_free = *c.esc;
-  BatteryEntry battery_free = *c.battery;
+  // Every propulsion group's motor and ESC without ratings (reserved: the pointers stay valid).
   constexpr double kNoRating = 1e300;  // finite: the motor counts as rated (no estimate)
-  motor_free.params.max_current_a = motor_free.params.max_power_w = kNoRating;
-  esc_free.params.max_current_a = kNoRating;
+  std::vector<MotorEntry> motors_free;
+  std::vector<EscEntry> escs_free;
+  motors_free.reserve(c.groups.size() + 1);
+  escs_free.reserve(c.groups.size() + 1);
+  auto free_motor = [&](const MotorEntry* e) {
+    motors_free.push_back(*e);
+    motors_free.back().params.max_current_a = motors_free.back().params.max_power_w = kNoRating;
+    return &motors_free.back();
+  };
+  auto free_esc = [&](const EscEntry* e) {
+    escs_free.push_back(*e);
+    escs_free.back().params.max_current_a = kNoRating;
+    return &escs_free.back();
+  };
+  BatteryEntry battery_free = *c.battery;
   battery_free.max_current_a = kNoRating;
   battery_free.peak_current_a = kNoRating;
-  const Combination c_free{&motor_free, &esc_free, c.prop, &battery_free, c.cells};
+  Combination c_free = c;
+  c_free.motor = free_motor(c.motor);
+  c_free.esc = free_esc(c.esc);
+  c_free.battery = &battery_free;
+  for (GroupParts& p : c_free.groups) {
+    p.motor = p.motor == c.motor ? c_free.motor : free_motor(p.motor);
+    p.esc = p.esc == c.esc ? c_free.esc : free_esc(p.esc);
+  }
   auto solve = [&](DataScenario s, bool* flies, std::string* breaks) {
     Mission ms = m;
     ms.objective.ranking = s;

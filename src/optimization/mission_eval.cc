@@ -265,7 +265,8 @@ MissionEvaluator::MissionEvaluator(const Mission& mission, const Combination& c,
     bool rating_estimated = false, motor_excluded = false;
     const MotorParams motor_params = ScenarioMotorParams(*parts.motor, m_, &rating_estimated, &motor_excluded);
     groups_.push_back(GroupDrive{parts, Drive(motor_params, ScenarioEscParams(*parts.esc, m_.objective.ranking)),
-                                 given ? nullptr : std::make_unique<PropModel>(*parts.prop), nullptr, 0.0});
+                                 given ? nullptr : std::make_unique<PropModel>(*parts.prop), nullptr, 0.0, {},
+                                 false, false, false});
     GroupDrive& gd = groups_.back();
     gd.prop = given ? given : gd.owned_prop.get();
     gd.prop_adj = PropAdjustmentFor(*parts.prop, m_.objective.ranking);
@@ -916,6 +917,12 @@ bool MissionEvaluator::FullThrottleAt(const BatteryPack& pack, double soc, FullT
   const GroupDrive& gd = groups_[lift_group_];
   const Drive& drive = gd.drive;
   const PropModel& prop = *gd.prop;
+  // The static propeller of the mission's data scenario, as Run flies it (credibility.h).
+  auto prop_at = [&](double w) {
+    PropEvaluation e = prop.Evaluate(w, rho, 0.0);
+    AdjustPropEvaluation(gd.prop_adj, gd.parts.prop->diameter_m, &e);
+    return e;
+  };
   const double i_cap = std::min(gd.drive.motor().max_current_a, gd.drive.esc().max_current_a);
   // Illinois regula falsi for the sign change of h on [a, b] (h(a) > 0 > h(b)).
   auto root = [](const auto& h, double a, double b) {
@@ -947,7 +954,7 @@ bool MissionEvaluator::FullThrottleAt(const BatteryPack& pack, double soc, FullT
     // the propeller's static torque (rising, M1 of search.cc).
     const double w_nl = drive.NoLoadSpeed(v, 1.0);
     if (!(w_nl > 0.0)) return false;
-    auto g = [&](double w) { return drive.AtSpeed(v, 1.0, w).torque_nm - prop.Evaluate(w, rho, 0.0).torque_nm; };
+    auto g = [&](double w) { return drive.AtSpeed(v, 1.0, w).torque_nm - prop_at(w).torque_nm; };
     if (!(g(0.0) > 0.0) || !(g(w_nl) < 0.0)) return false;
     double w = root(g, 0.0, w_nl);
     op = drive.AtSpeed(v, 1.0, w);
@@ -956,13 +963,13 @@ bool MissionEvaluator::FullThrottleAt(const BatteryPack& pack, double soc, FullT
       // Along the propeller's curve the current rises with speed (M1, M2 of search.cc): the
       // speed where max(IDC, Irms) reaches the rating.
       auto over = [&](double x) {
-        const OperatingPoint p = drive.Inverse(v, prop.Evaluate(x, rho, 0.0).torque_nm, x);
+        const OperatingPoint p = drive.Inverse(v, prop_at(x).torque_nm, x);
         return i_cap - std::max(p.idc_a, p.irms_a);
       };
       if (over(0.0) > 0.0) w = root(over, 0.0, w);
-      op = drive.Inverse(v, prop.Evaluate(w, rho, 0.0).torque_nm, w);
+      op = drive.Inverse(v, prop_at(w).torque_nm, w);
     }
-    ev = prop.Evaluate(w, rho, 0.0);
+    ev = prop_at(w);
     // The pack at that power: the upper root of V^2 - OCV*V + R*P = 0 (as in Run); past the
     // pack's maximum power (no root) the voltage is held at OCV/2, where the power peaks.
     const double p_w = lift_rotors_ * op.idc_a * v + m_.vehicle.avionics_power_w;
@@ -996,6 +1003,7 @@ bool MissionEvaluator::HoverAt(const BatteryPack& pack, double soc, double mass_
                           4.0 * std::max(drive.NoLoadSpeed(ocv, 1.0), 1.0), &omega, &ev)) {
     return false;
   }
+  AdjustPropEvaluation(groups_[lift_group_].prop_adj, groups_[lift_group_].parts.prop->diameter_m, &ev);
   double v = ocv;
   for (int it = 0; it < 40; ++it) {
     *op = drive.Inverse(v, ev.torque_nm, omega);
@@ -1156,7 +1164,6 @@ void MissionEvaluator::AddWarnings(MissionResult* r) const {
     if (!e->exclude_reason.empty()) {
       r->warnings.push_back(e->id + " is excluded from searches by the catalog: " + e->exclude_reason);
     }
-  }
   }
   if (!r->assumed.empty()) {
     std::string a;

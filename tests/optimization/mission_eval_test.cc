@@ -25,8 +25,8 @@ const char* kHoverQuad = R"({
   "name": "eval quad",
   "vehicle": {"mass_kg": 0.75, "rotors": 4, "drag_area_m2": 0.04, "drag_coefficient": 1.0, "avionics_power_w": 5},
   "battery": {"id": "dc_b_361", "cells": 4, "reserve_soc": 0.2},
-  "constraints": {"min_thrust_to_weight": 1.1},
-  "objective": {"type": "max_endurance", "segment": "loiter"},
+  "constraints": {"min_thrust_to_weight": 1.1, "allow_folding_props_for_lift": true},
+  "objective": {"type": "max_endurance", "segment": "loiter", "ranking": "as_given"},
   "segments": [
     {"name": "takeoff", "type": "climb", "rate_m_s": 2, "distance_m": 30},
     {"name": "loiter", "type": "hover", "duration_s": 300},
@@ -34,6 +34,9 @@ const char* kHoverQuad = R"({
   ]
 })";
 
+// The small catalog's propellers are folding ones and its data are taken as given: these tests
+// check the evaluator's physics and hand calculations, not the credibility rules
+// (credibility_test.cc).
 class MissionEvalTest : public ::testing::Test {
  protected:
   static void SetUpTestSuite() { dir_ = testing_util::WriteSmallCatalog("mission_eval"); }
