@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <sstream>
 
 #include "catalog/conventions.h"
@@ -217,6 +218,8 @@ void AddObjectiveRange(const Mission& m, const Combination& c, MissionResult* r)
     ms.constraints.allow_esc_saturation = true;
     ms.constraints.enforce_motor_power = false;
     ms.constraints.current_margin = 0.0;
+    ms.constraints.min_thrust_to_weight = 0.0;  // design margins, not physics (mission.h)
+    ms.constraints.max_winding_temp_c = std::numeric_limits<double>::infinity();
     const MissionResult y = MissionEvaluator(ms, c_free).Solve(std::numeric_limits<double>::infinity(), false);
     *flies = y.feasible;
     return y.objective;

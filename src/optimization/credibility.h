@@ -140,9 +140,9 @@ struct ObjectiveRange {
   // The objective under the pessimistic and the optimistic data, ordered (low <= credible <=
   // high, in objective_unit). Each end is flown with the mission's limits relaxed to physics
   // (throttle <= 100 %, no current or power ratings, no hover-throttle floor, saturation
-  // allowed; the pack's power, cut-off and reserve still hold), so that it is a number even
-  // when those data break a rating; `*_breaks` lists what that end breaks under the mission's
-  // own limits ("" when nothing). An end that cannot fly at all is held at the credible value
+  // allowed, no thrust-to-weight or winding-temperature limit; the pack's power, cut-off and
+  // reserve still hold), so that it is a number even when those data break a rating;
+  // `*_breaks` lists what that end breaks under the mission's own limits ("" when nothing). An end that cannot fly at all is held at the credible value
   // and `complete` is false.
   double low = 0.0, high = 0.0;
   std::string low_breaks, high_breaks;
