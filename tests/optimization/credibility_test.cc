@@ -437,5 +437,47 @@ TEST(CredibilityTest, MissionKeysAreChecked) {
   EXPECT_THROW(ParseMission(bad, "q"), DataError);
 }
 
+// Propulsion groups: a folding propeller is refused only where it lifts (the lift group), never
+// on a wing-borne pusher; and the objective range flies every group on its own parts.
+TEST(CredibilityTest, FoldingIsRefusedOnTheLiftGroupOnly) {
+  Json j = ReadJsonFile(std::string(DYNOSIZE_SOURCE_DIR) + "/examples/missions/quadplane_2kg.json");
+  j["propulsion"]["pusher"]["prop"] = "dc_p_52";  // AeroCarbon 9x5, a folding propeller
+  const Mission m = ParseMission(j, "quadplane");
+  const Catalog& cat = Bundled();
+  ASSERT_TRUE(cat.prop("dc_p_52").folding);
+  auto flown = [&](const char* lift_prop) {
+    Combination c{&cat.motor("dc_m_550"), &cat.esc("dc_e_145"), &cat.prop(lift_prop), &cat.battery("dc_b_361"), 4};
+    c.groups = {GroupParts{c.motor, c.esc, c.prop}, FixedGroupParts(m, cat, 1)};
+    MissionResult r = MissionEvaluator(m, c).Solve();
+    AddObjectiveRange(m, c, &r);
+    return r;
+  };
+  auto names = [](const MissionResult& r, const char* constraint) {
+    for (const Violation& v : r.violations) {
+      if (v.constraint == constraint) return true;
+    }
+    return false;
+  };
+  // (It fails prop_no_forward_flight_data: DriveCalc's folding laws are static only.)
+  const MissionResult pusher_folds = flown("uiuc_v2_gwsdd_9.0x5.0_2");
+  EXPECT_FALSE(names(pusher_folds, "prop_folding")) << "a folding pusher is what folding props are for";
+  EXPECT_TRUE(names(pusher_folds, "prop_no_forward_flight_data"));
+  const MissionResult lift_folds = flown("dc_p_51");  // AeroCAM 9x5, folding
+  EXPECT_FALSE(lift_folds.feasible);
+  EXPECT_TRUE(names(lift_folds, "prop_folding"));
+  // The example's own pusher (fixed, rated): feasible, and its range brackets the objective.
+  const Mission ex = ReadMission(std::string(DYNOSIZE_SOURCE_DIR) + "/examples/missions/quadplane_2kg.json");
+  Combination c{&cat.motor("dc_m_550"), &cat.esc("dc_e_145"), &cat.prop("uiuc_v2_gwsdd_9.0x5.0_2"),
+                &cat.battery("dc_b_361"), 4};
+  c.groups = {GroupParts{c.motor, c.esc, c.prop}, FixedGroupParts(ex, cat, 1)};
+  MissionResult r = MissionEvaluator(ex, c).Solve();
+  ASSERT_TRUE(r.feasible);
+  AddObjectiveRange(ex, c, &r);
+  ASSERT_TRUE(r.range.computed);
+  EXPECT_LE(r.range.low, r.objective);
+  EXPECT_GE(r.range.high, r.objective);
+  EXPECT_LT(r.range.low, r.range.high);
+}
+
 }  // namespace
 }  // namespace dynosize
