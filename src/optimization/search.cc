@@ -34,7 +34,9 @@ namespace dynosize {
 // R0 (frame): a propeller larger than the vehicle's max_prop_diameter_m fails prop_diameter
 //    whatever else is chosen; so does a folding propeller for lift (prop_folding), a motor
 //    without a source rating when the mission excludes such motors (motor_unrated),
-//    credibility.h, and an entry the catalog excludes ("exclude", catalog_exclude).
+//    credibility.h, and an entry the catalog excludes ("exclude", catalog_exclude). The first
+//    two, and motor_voltage (R1), only when the free group is the lift group (LiftGroup), as
+//    the evaluator checks them.
 // Data scenario (credibility.h): the evaluator flies the mission's ranking scenario (the
 //    credible value by default); the grids below use the same adjusted propeller torque (it
 //    only rises, pointwise, and keeps rising with speed: M1 holds) and the same motor ratings,
