@@ -372,9 +372,13 @@ std::vector<std::string> WriteSegmentMaps(const Mission& m, const Combination& c
       std::vector<double> rpm, q;
       if (s.type != SegmentType::kShaft) {
         const double v_ax = SegmentRotorLoad(m, m.segments[si], r.total_mass_kg, s.airspeed_m_s).axial_airspeed_m_s;
+        // The scenario's propeller, as the evaluator flies it (optimization/credibility.h).
+        const PropAdjustment adj = PropAdjustmentFor(*parts.prop, m.objective.ranking);
         for (int j = 1; j <= 60; ++j) {
           const double w = w_max * j / 60;
-          const double torque = prop.Evaluate(w, m.rho_kg_m3, v_ax).torque_nm;
+          PropEvaluation ev = prop.Evaluate(w, m.rho_kg_m3, v_ax);
+          AdjustPropEvaluation(adj, parts.prop->diameter_m, &ev);
+          const double torque = ev.torque_nm;
           if (torque > q_top) break;
           rpm.push_back(RadPerSecToRpm(w));
           q.push_back(torque);
