@@ -17,6 +17,7 @@
 #include "identification/verdict.h"
 #include "catalog/catalog.h"
 #include "commands.h"
+#include "log_input.h"
 #include "common/error.h"
 #include "common/json_file.h"
 #include "common/text_file.h"
@@ -197,16 +198,9 @@ int RunCalibrate(const CalibrateOptions& o) {
   if (o.motor_id.empty() || o.esc_id.empty()) {
     throw UsageError("calibrate: --motor-id and --esc-id are required (ids of the fitted entries)");
   }
-  logs::LogReadOptions ro;
-  ro.format = logs::LogFormatFromName(o.format);
-  ro.column_map = o.column_map;
+  logs::LogReadOptions ro = ToLogReadOptions(o.input);
   ro.drivecalc_motor_id = o.drivecalc_motor;
   ro.drivecalc_keep_no_load_without_speed = true;
-  ro.mapped_drop_rows_with_empty_cells = o.drop_incomplete_rows;
-  ro.decimal_comma = o.decimal_comma;
-  ro.row_filter = o.where;
-  ro.esc_min_us = o.esc_min_us;
-  ro.esc_max_us = o.esc_max_us;
   if (const std::string e = ro.Validate(); !e.empty()) throw UsageError(e);
   std::vector<logs::SteadyTable> tables;
   for (const auto& l : o.logs) tables.push_back(logs::ReadLog(l, ro));

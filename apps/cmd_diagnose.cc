@@ -10,6 +10,7 @@
 #include "calibration/catalog_output.h"
 #include "catalog/catalog.h"
 #include "commands.h"
+#include "log_input.h"
 #include "common/error.h"
 #include "common/json_file.h"
 #include "diagnosis/diagnose.h"
@@ -148,15 +149,7 @@ void WriteIfOk(const DiagnoseCliOptions& o, const diagnosis::DiagnoseResult& r) 
 }  // namespace
 
 int RunDiagnose(const DiagnoseCliOptions& o) {
-  logs::LogReadOptions ro;
-  ro.format = logs::LogFormatFromName(o.format);
-  ro.column_map = o.column_map;
-  ro.mapped_drop_rows_with_empty_cells = o.drop_incomplete_rows;
-  ro.decimal_comma = o.decimal_comma;
-  ro.row_filter = o.where;
-  ro.esc_min_us = o.esc_min_us;
-  ro.esc_max_us = o.esc_max_us;
-  if (const std::string e = ro.Validate(); !e.empty()) throw UsageError(e);
+  const logs::LogReadOptions ro = ToLogReadOptions(o.input);
   diagnosis::DiagnoseOptions opt;
   opt.folds = o.folds;
   opt.alpha = o.alpha;

@@ -9,6 +9,7 @@
 
 #include "catalog/catalog.h"
 #include "commands.h"
+#include "log_input.h"
 #include "common/error.h"
 #include "common/json_file.h"
 #include "common/units.h"
@@ -183,15 +184,7 @@ Json ResultJson(const stand::StandTable& t, const stand::StandResult& r) {
 }  // namespace
 
 int RunValidateStand(const ValidateStandOptions& o) {
-  logs::LogReadOptions ro;
-  ro.format = logs::LogFormatFromName(o.format);
-  ro.column_map = o.column_map;
-  ro.mapped_drop_rows_with_empty_cells = o.drop_incomplete_rows;
-  ro.decimal_comma = o.decimal_comma;
-  ro.row_filter = o.where;
-  ro.esc_min_us = o.esc_min_us;
-  ro.esc_max_us = o.esc_max_us;
-  if (const std::string e = ro.Validate(); !e.empty()) throw UsageError(e);
+  const logs::LogReadOptions ro = ToLogReadOptions(o.input);
   stand::StandReadOptions so;
   ParseLines(o.lines, &so);
   if (o.vdc_v && !(*o.vdc_v > 0.0 && *o.vdc_v <= 1e5)) {

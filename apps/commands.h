@@ -13,6 +13,17 @@ namespace dynosize::cli {
 // tree's catalog/ the binary was built from, else ./catalog.
 std::string DefaultCatalogDir();
 
+// How a measured log or stand table is read: the options calibrate, diagnose and validate-stand
+// share (apps/main.cc registers them once, AddLogInputOptions; ToLogReadOptions converts them).
+struct LogInputOptions {
+  std::string format = "auto";  // auto | canonical | rcbenchmark | mapped | drivecalc | thrustapp
+  std::vector<std::string> column_map;  // mapped tables: canonical=Header [unit]
+  bool drop_incomplete_rows = false;    // drop rows with an empty or text cell in a used column
+  bool decimal_comma = false;           // numbers written 1,5 (logs::LogReadOptions::decimal_comma)
+  std::vector<std::string> where;       // Header=value row filters (logs::LogReadOptions::row_filter)
+  double esc_min_us = 1000.0, esc_max_us = 2000.0;
+};
+
 struct SimulateOptions {
   std::string catalog_dir;
   std::string motor_id, esc_id;
@@ -34,12 +45,7 @@ struct ValidateStandOptions {
   std::string catalog_dir;
   std::string table;
   std::string motor_id, esc_id, prop_id;
-  std::string format = "auto";
-  std::vector<std::string> column_map;
-  bool drop_incomplete_rows = false;
-  bool decimal_comma = false;      // as in CalibrateOptions
-  std::vector<std::string> where;  // as in CalibrateOptions
-  double esc_min_us = 1000.0, esc_max_us = 2000.0;
+  LogInputOptions input;
   std::optional<double> vdc_v;  // for tables without a voltage column
   std::string lines;            // "FIRST-LAST": keep rows from these file lines
   double rho_kg_m3 = 1.225;
@@ -66,13 +72,8 @@ struct CalibrateOptions {
   std::string catalog_dir;
   std::vector<std::string> logs;
   std::string motor_id, esc_id;     // ids of the fitted entries
-  std::string format = "auto";      // auto | canonical | rcbenchmark | mapped | drivecalc | thrustapp
-  std::vector<std::string> column_map;  // mapped tables: canonical=Header [unit]
+  LogInputOptions input;
   long long drivecalc_motor = -1;   // drivecalc: one motor id
-  bool drop_incomplete_rows = false;  // drop rows with an empty or text cell in a used column
-  bool decimal_comma = false;          // numbers written 1,5 (logs::LogReadOptions::decimal_comma)
-  std::vector<std::string> where;      // Header=value row filters (logs::LogReadOptions::row_filter)
-  double esc_min_us = 1000.0, esc_max_us = 2000.0;
   std::string prior_motor, prior_esc;  // catalog ids anchoring / filling in the fit
   std::string out;                  // catalog file to add the entries to
   bool force = false;
@@ -102,12 +103,7 @@ struct DiagnoseCliOptions {
   std::string catalog_dir;
   std::string log;
   std::string motor_id, esc_id;  // catalog entries to start from (optional)
-  std::string format = "auto";
-  std::vector<std::string> column_map;
-  bool drop_incomplete_rows = false;
-  bool decimal_comma = false;      // as in CalibrateOptions
-  std::vector<std::string> where;  // as in CalibrateOptions
-  double esc_min_us = 1000.0, esc_max_us = 2000.0;
+  LogInputOptions input;
   int folds = 5;
   double alpha = 1e-3;
   bool json = false;

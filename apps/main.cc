@@ -7,6 +7,8 @@
 
 #include <cstdio>
 #include <iostream>
+#include <string>
+#include <vector>
 
 #include "commands.h"
 #include "common/error.h"
@@ -29,6 +31,24 @@ int Fail(ExitCode code, const std::string& message) {
   }
   std::cerr << out;
   return static_cast<int>(code);
+}
+
+// The log-reading flags of calibrate, diagnose and validate-stand (cli::LogInputOptions), with
+// the formats the command accepts.
+void AddLogInputOptions(CLI::App* cmd, dynosize::cli::LogInputOptions* in,
+                        const std::vector<std::string>& formats, const std::string& where_help) {
+  cmd->add_option("--format", in->format, "log format")->check(CLI::IsMember(formats));
+  cmd->add_option("--map", in->column_map,
+                  "mapped tables: canonical_name=Source Header [unit] (repeatable)");
+  cmd->add_flag("--drop-incomplete-rows", in->drop_incomplete_rows,
+                "drop (and count) rows with an empty or text cell (e.g. a trailer row) in a used "
+                "column instead of failing");
+  cmd->add_flag("--decimal-comma", in->decimal_comma,
+                "numbers are written with a decimal comma (1,5; cells separated by ';' or tabs)");
+  cmd->add_option("--where", in->where,
+                  "keep only rows whose column reads a value: Header=value (repeatable; " + where_help + ")");
+  cmd->add_option("--esc-min-us", in->esc_min_us, "ESC pulse width at throttle 0, us");
+  cmd->add_option("--esc-max-us", in->esc_max_us, "ESC pulse width at throttle 1, us");
 }
 
 }  // namespace
@@ -83,21 +103,10 @@ int main(int argc, char** argv) {
   calibrate->add_option("logs", cal.logs, "log files of one motor + ESC pair")->required();
   calibrate->add_option("--motor-id", cal.motor_id, "id of the fitted motor entry");
   calibrate->add_option("--esc-id", cal.esc_id, "id of the fitted ESC entry");
-  calibrate->add_option("--format", cal.format, "log format")
-      ->check(CLI::IsMember({"auto", "canonical", "rcbenchmark", "mapped", "drivecalc", "thrustapp"}));
-  calibrate->add_option("--map", cal.column_map,
-                        "mapped tables: canonical_name=Source Header [unit] (repeatable)");
-  calibrate->add_flag("--drop-incomplete-rows", cal.drop_incomplete_rows,
-                      "drop (and count) rows with an empty or text cell (e.g. a trailer row) in a used "
-                      "column instead of failing");
-  calibrate->add_flag("--decimal-comma", cal.decimal_comma,
-                      "numbers are written with a decimal comma (1,5; cells separated by ';' or tabs)");
-  calibrate->add_option("--where", cal.where,
-                        "keep only rows whose column reads a value: Header=value (repeatable; one motor "
-                        "of a multi-motor table)");
+  AddLogInputOptions(calibrate, &cal.input,
+                     {"auto", "canonical", "rcbenchmark", "mapped", "drivecalc", "thrustapp"},
+                     "one motor of a multi-motor table");
   calibrate->add_option("--drivecalc-motor", cal.drivecalc_motor, "drivecalc: only this motor_id");
-  calibrate->add_option("--esc-min-us", cal.esc_min_us, "ESC pulse width at throttle 0, us");
-  calibrate->add_option("--esc-max-us", cal.esc_max_us, "ESC pulse width at throttle 1, us");
   calibrate->add_option("--prior-motor", cal.prior_motor,
                         "catalog motor whose KE, Rm, Io anchor the fit (Gaussian priors) and fill in what the "
                         "data cannot identify");
@@ -171,15 +180,9 @@ int main(int argc, char** argv) {
   diagnose->add_option("log", diag.log, "steady-state or time-series log of one motor + ESC")->required();
   diagnose->add_option("--motor", diag.motor_id, "catalog motor to start from (else fitted on the log)");
   diagnose->add_option("--esc", diag.esc_id, "catalog ESC whose values are held where the log cannot fit them");
-  diagnose->add_option("--format", diag.format, "log format")
-      ->check(CLI::IsMember({"auto", "canonical", "rcbenchmark", "mapped", "drivecalc", "thrustapp"}));
-  diagnose->add_option("--map", diag.column_map, "mapped tables: canonical=Header [unit], repeatable");
-  diagnose->add_flag("--drop-incomplete-rows", diag.drop_incomplete_rows,
-                     "drop rows with an empty or text cell in a used column");
-  diagnose->add_flag("--decimal-comma", diag.decimal_comma, "numbers are written with a decimal comma (1,5)");
-  diagnose->add_option("--where", diag.where, "keep only rows whose column reads a value: Header=value");
-  diagnose->add_option("--esc-min-us", diag.esc_min_us, "ESC pulse width at throttle 0, us");
-  diagnose->add_option("--esc-max-us", diag.esc_max_us, "ESC pulse width at throttle 1, us");
+  AddLogInputOptions(diagnose, &diag.input,
+                     {"auto", "canonical", "rcbenchmark", "mapped", "drivecalc", "thrustapp"},
+                     "one motor of a multi-motor table");
   diagnose->add_option("--folds", diag.folds, "k of the k-fold cross-validation (>= 2)");
   diagnose->add_option("--alpha", diag.alpha, "significance level of the nested F test");
   diagnose->add_flag("--json", diag.json, "print one JSON object (baseline, findings, ambiguous, extended_model)");
@@ -232,17 +235,8 @@ int main(int argc, char** argv) {
   validate_stand->add_option("--prop", vst.prop_id,
                              "propeller id from the catalog (the table's propeller); without it the "
                              "measured torque is the load");
-  validate_stand->add_option("--format", vst.format, "table format")
-      ->check(CLI::IsMember({"auto", "canonical", "rcbenchmark", "mapped"}));
-  validate_stand->add_option("--map", vst.column_map, "mapped tables: canonical=Header [unit], repeatable");
-  validate_stand->add_flag("--drop-incomplete-rows", vst.drop_incomplete_rows,
-                           "drop rows with an empty or text cell in a used column");
-  validate_stand->add_flag("--decimal-comma", vst.decimal_comma, "numbers are written with a decimal comma (1,5)");
-  validate_stand->add_option("--where", vst.where,
-                             "keep only rows whose column reads a value: Header=value (one propeller of a "
-                             "multi-propeller table)");
-  validate_stand->add_option("--esc-min-us", vst.esc_min_us, "ESC pulse width at throttle 0, us");
-  validate_stand->add_option("--esc-max-us", vst.esc_max_us, "ESC pulse width at throttle 1, us");
+  AddLogInputOptions(validate_stand, &vst.input, {"auto", "canonical", "rcbenchmark", "mapped"},
+                     "one propeller of a multi-propeller table");
   validate_stand->add_option("--vdc", vst.vdc_v, "supply voltage, V, for tables without a voltage column");
   validate_stand->add_option("--lines", vst.lines, "FIRST-LAST: only rows from these lines of the file");
   validate_stand->add_option("--rho-kg-m3", vst.rho_kg_m3, "air density, kg/m^3 (default 1.225)");

@@ -1,0 +1,21 @@
+#include "log_input.h"
+
+#include "common/error.h"
+#include "logs/steady_table.h"
+
+namespace dynosize::cli {
+
+logs::LogReadOptions ToLogReadOptions(const LogInputOptions& in) {
+  logs::LogReadOptions ro;
+  ro.format = logs::LogFormatFromName(in.format);
+  ro.column_map = in.column_map;
+  ro.mapped_drop_rows_with_empty_cells = in.drop_incomplete_rows;
+  ro.decimal_comma = in.decimal_comma;
+  ro.row_filter = in.where;
+  ro.esc_min_us = in.esc_min_us;
+  ro.esc_max_us = in.esc_max_us;
+  if (const std::string e = ro.Validate(); !e.empty()) throw UsageError(e);
+  return ro;
+}
+
+}  // namespace dynosize::cli
