@@ -145,8 +145,10 @@ std::string WriteStandFigure(const stand::StandTable& t, const stand::StandResul
       << "set xrange [" << lo << ":" << hi << "]\nset yrange [" << lo << ":" << hi << "]\n"
       << "plot x with lines lc rgb 'black' title '1:1', 1.1*x with lines dt 2 lc rgb 'gray50' title '+-10 %', "
       << "0.9*x with lines dt 2 lc rgb 'gray50' notitle, "
-      << "$" << name << " using 1:2 with points pt 7 ps 1.2 lc rgb '#d95f0e' title 'dynosize', "
-      << "$" << name << " using 1:3 with points pt 5 ps 1.0 lc rgb '#1f3b99' title 'plain DC'\n";
+      // dynosize as large discs under small squares: where the two models agree (an ideal ESC makes
+      // them the same model) both stay visible.
+      << "$" << name << " using 1:2 with points pt 7 ps 1.9 lc rgb '#d95f0e' title 'dynosize', "
+      << "$" << name << " using 1:3 with points pt 5 ps 0.7 lc rgb '#1f3b99' title 'plain DC'\n";
   }
   s << "unset multiplot\n";
   const std::string path = dir + "/stand_measured_vs_predicted.png";
