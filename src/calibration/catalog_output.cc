@@ -202,11 +202,12 @@ Json FitJson(const CalibrationResult& r) {
 namespace dynosize::calibration {
 
 void AddRatings(Json* entry, const EntryRatings& r) {
-  Json& values = (*entry)["source"]["values"];
+  // Json is an ordered map (a vector): adding a key to the entry may move "source", so the
+  // reference to source.values is taken afresh after each insertion.
   auto set = [&](const char* key, const std::optional<double>& v) {
     if (!v) return;
     (*entry)[key] = *v;
-    values[key] = "datasheet";
+    (*entry)["source"]["values"][key] = "datasheet";
   };
   set("mass_kg", r.mass_kg);
   set("max_current_a", r.max_current_a);

@@ -9,6 +9,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <filesystem>
 #include <fstream>
@@ -155,17 +156,23 @@ TEST(NoLostData, CalibrateKilledWhileWritingALargeCatalogLeavesItLoadable) {
   fs::create_directories(cat);
   const fs::path out = cat / "big.json";
   WriteFileAtomic(out.string(), LargeCatalog(10000, "old"));
-  // How long one run takes here (sanitizer builds are several times slower).
-  const auto t0 = std::chrono::steady_clock::now();
-  ASSERT_EQ(Wait(Spawn({"calibrate", log, "--motor-id", "m_new", "--esc-id", "e_new", "--out",
-                        out.string(), "--force"})),
-            0);
-  const double run_us =
-      std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - t0).count();
+  // How long one run takes here (sanitizer builds are several times slower): the shorter of
+  // two runs, since the first one also pays for a cold cache and the kills below must land
+  // before the run ends.
+  double run_us = 0.0;
+  for (int k = 0; k < 2; ++k) {
+    const auto t0 = std::chrono::steady_clock::now();
+    ASSERT_EQ(Wait(Spawn({"calibrate", log, "--motor-id", "m_new", "--esc-id", "e_new", "--out",
+                          out.string(), "--force"})),
+              0);
+    const double us =
+        std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - t0).count();
+    run_us = k == 0 ? us : std::min(run_us, us);
+  }
   std::size_t killed = 0;
   for (const unsigned seed : kSeeds) {
     std::mt19937 rng(seed);
-    std::uniform_real_distribution<double> at(0.3, 1.1);  // mostly late in the run: the write
+    std::uniform_real_distribution<double> at(0.2, 1.0);  // mostly late in the run: the write
     const pid_t pid = Spawn({"calibrate", log, "--motor-id", "m_new", "--esc-id", "e_new",
                              "--out", out.string(), "--force"});
     std::this_thread::sleep_for(std::chrono::microseconds(static_cast<long>(at(rng) * run_us)));
