@@ -16,22 +16,9 @@ namespace {
 
 using testing_util::WriteTemp;
 
-// Values are parsed from short decimal strings and multiplied by one conversion factor: the
-// only error is the rounding of one or two double operations.
-constexpr double kParseRelTol = 1e-14;
-
-std::string ErrorOf(const std::string& path, const LogReadOptions& o = LogReadOptions()) {
-  try {
-    ReadLog(path, o);
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "(no error)";
-}
-
-bool Contains(const std::string& s, const std::string& part) {
-  return s.find(part) != std::string::npos;
-}
+using testing_util::Contains;
+using testing_util::ErrorOf;
+using testing_util::kParseRelTol;
 
 // ------------------------------------------------------------------ canonical
 

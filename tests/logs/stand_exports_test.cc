@@ -16,21 +16,9 @@ namespace {
 
 using testing_util::WriteTemp;
 
-// Values are short decimals times one conversion factor: rounding of one or two operations.
-constexpr double kParseRelTol = 1e-14;
-
-std::string ErrorOf(const std::string& path, const LogReadOptions& o = LogReadOptions()) {
-  try {
-    ReadLog(path, o);
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "(no error)";
-}
-
-bool Contains(const std::string& s, const std::string& part) {
-  return s.find(part) != std::string::npos;
-}
+using testing_util::Contains;
+using testing_util::ErrorOf;
+using testing_util::kParseRelTol;
 
 std::size_t Dropped(const SteadyTable& t, const std::string& reason_part) {
   std::size_t n = 0;
