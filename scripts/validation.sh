@@ -111,6 +111,7 @@ done
 # jmajew: the extracted steady points, one log per report file and run (out %, g, g*cm, rpm, V, A).
 j=$data/jmajew_thrusttool_6motors/extracted_steady_points.csv
 awk -F, 'NR > 1 {print $1 "," $9 "," $4}' "$j" | sort -u > "$tmp/jm_sets"
+: > "$tmp/jm_files"
 k=0
 while IFS=, read -r src run kv; do
   k=$((k + 1))
@@ -118,6 +119,7 @@ while IFS=, read -r src run kv; do
   f=$tmp/jm_$k.csv
   { echo "out_pct,thrust_n,torque_nm,rpm,volt_v,curr_a"
     awk -F, -v s="$src" -v r="$run" 'NR > 1 && $1 == s && $9 == r {printf "%s,%.6g,%.6g,%s,%s,%s\n", $10 + 0, $11 * 0.00980665, $13 * 9.80665e-5, $15, $17, $19}' "$j"; } > "$f"
+  case "$src" in *no-prop*|*noprop*) ;; *) echo "${src%%/*} $kv $f" >> "$tmp/jm_files";; esac
   row jmajew "$(basename "$src" .tex) run $run" "$kv" "$f" --format mapped --map "throttle=out_pct [%]" --map vdc_v=volt_v \
     --map idc_a=curr_a --map rpm=rpm --map torque_nm=torque_nm
 done < "$tmp/jm_sets"
@@ -174,6 +176,55 @@ done
 echo "| **all** | $total | $okn | $(awk '$2 == "unidentifiable"' "$tmp/status" | wc -l) | $(awk '$2 == "failed"' "$tmp/status" | wc -l) | $nr | $wr |"
 echo
 echo "ok: $okn of $total labelled logs ($(awk -v a="$okn" -v b="$total" 'BEGIN {printf "%.0f", 100 * a / b}') %); of the $((total - nr)) that could be read: $(awk -v a="$okn" -v b="$((total - nr))" 'BEGIN {printf "%.0f", 100 * a / b}') %."
+} >> "$out"
+
+# One entry per motor from all of its logs together (what a test engineer writes to the catalog):
+# different propellers put different loads on the same throttle steps, which separates Rm from the
+# ESC's throttle curve where a single sweep without torque cannot.
+{
+echo
+echo "## One entry per motor from all of its logs (calibrate LOG1 LOG2 ... --kv-label KV)"
+echo
+echo "A single sweep without torque sees Rm + RESC only through the speed drop at the top steps; the"
+echo "sweeps of the same motor with other propellers and supply voltages load the same throttle steps"
+echo "differently. Strawson: all 16 logs of a motor (8 propellers x 2 supplies). jmajew: every loaded"
+echo "run of a motor (all propellers, 3S and 4S); the no-propeller runs are left out (near zero load"
+echo "the ESC's output is not proportional to the command: 48 % of the full speed at a 20 % command)."
+echo
+echo "| data set | motor | label Kv | logs | points | status | fitted Kv | first failed check | held-out idc | held-out rpm | written |"
+echo "|---|---|---|---|---|---|---|---|---|---|---|"
+} >> "$out"
+joint() {  # set, motor name, label Kv, then calibrate arguments (logs first)
+  local set=$1 name=$2 kv=$3; shift 3
+  local j=$tmp/joint.json cat=$tmp/jcat_$RANDOM$RANDOM.json written=no nlogs=0 a
+  for a in "$@"; do case "$a" in *.csv) nlogs=$((nlogs + 1));; esac; done
+  if "$exe" calibrate "$@" --kv-label "$kv" --motor-id m --esc-id e --json --out "$cat" > "$j" 2> "$tmp/err"; then
+    written=yes
+    cp "$cat" "$tmp/written_joint_$RANDOM$RANDOM.json"
+  fi
+  if [ ! -s "$j" ] || ! jq -e .status "$j" > /dev/null 2>&1; then
+    echo "| $set | $name | $kv | $nlogs | - | not read | - | $(head -c 120 "$tmp/err" | tr '\n|' ' /') | - | - | no |" >> "$out"
+    return
+  fi
+  echo "| $set | $name | $kv | $nlogs | $(jq -r .fit.points_used "$j") | $(jq -r .status "$j") |"\
+" $(jq -r '.motor.ke_v_s_per_rad as $k | 0.67523723711782957 / ($k * 0.10471975511965977) | round' "$j") |"\
+" $(jq -r '[.checks[] | select(.passed | not)][0] | if . == null then "-" else "\(.name) (\(.value * 100 | round / 100) vs \(.limit))" end' "$j") |"\
+" $(pct .held_out.idc.median_abs_percent "$j") % |"\
+" $(jq -r '(.held_out.omega_at_torque.median_abs_percent // .held_out.omega_from_idc.median_abs_percent) | if . == null then "-" else (. * 100 | round / 100 | tostring) + " %" end' "$j") | $written |" >> "$out"
+  echo "$set $(jq -r .status "$j") $written" >> "$tmp/joint_status"
+}
+: > "$tmp/joint_status"
+for m in $(printf '%s\n' "${!sname[@]}" | sort); do
+  joint strawson "${sname[$m]}" "${skv[$m]}" "$data"/strawson_fpv_motor_prop/rawdata/"$m"[0-9]_*.csv
+done
+for md in $(awk '{print $1}' "$tmp/jm_files" | sort -u); do
+  mapfile -t files < <(awk -v m="$md" '$1 == m {print $3}' "$tmp/jm_files")
+  joint jmajew "$md" "$(awk -v m="$md" '$1 == m {print $2; exit}' "$tmp/jm_files")" "${files[@]}" --format mapped \
+    --map "throttle=out_pct [%]" --map vdc_v=volt_v --map idc_a=curr_a --map rpm=rpm --map torque_nm=torque_nm
+done
+{
+echo
+echo "ok: $(awk '$2 == "ok"' "$tmp/joint_status" | wc -l) of $(wc -l < "$tmp/joint_status") motors."
 } >> "$out"
 
 # Every written entry is checked again, independently of the verdict: simulate over a grid of

@@ -826,7 +826,7 @@ void AddBoundWarnings(const Prepared& pr, CalibrationResult* out) {
 }
 
 // Per measured column: rmse, rmse in percent and median |error| of the final fit (the speed from
-// the current on rows whose current is the input), and the no-throttle plausibility warning.
+// the current on rows whose current is the input, whose current is then not scored), and the no-throttle plausibility warning.
 void AddColumnFits(const Prepared& pr, const SteadyTable& table, const CalibrationOptions& options,
                    CalibrationResult* out) {
   CalibrationResult& res = *out;
@@ -840,6 +840,9 @@ void AddColumnFits(const Prepared& pr, const SteadyTable& table, const Calibrati
       const RowPrediction rp = PredictRow(table, pr.data.rows[k], res.motor, res.esc, options.assumed_throttle);
       // Rows whose current is the fit's input: their speed prediction is the one from the current.
       const bool current_input = pr.data.idc_in[k] == pr.data.idc_in[k];
+      // Its current is an input there, not a fitted value: not scored (the held-out report has
+      // the current from the measured speed).
+      if (current_input && m == kMIdc) continue;
       const double pv[kMeasCount] = {current_input ? rp.omega_from_idc_rad_s : rp.omega_rad_s, rp.idc_a, rp.irms_a,
                                      rp.vll_rms_v, rp.pac_w};
       if (!std::isfinite(pv[m])) continue;
