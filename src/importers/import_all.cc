@@ -43,6 +43,7 @@ ImportReport ImportAll(const std::string& shared_data_dir, const std::string& ou
     const std::string dir = shared_data_dir + "/" + imp.folder;
     if (!fs::is_directory(dir, ec)) throw NoInputError(dir + ": data-set folder missing");
     results.push_back(imp.run(dir));
+    ExcludeImplausibleMotors(&results.back());
   }
   // Ids unique across everything written and the hand-made files already in the folder.
   std::set<std::string> written;

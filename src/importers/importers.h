@@ -25,6 +25,11 @@ struct ImportedDataset {
   Json batteries = Json::array();
 };
 
+// Excludes by default (key "exclude", note appended, counted in the report's notes) every motor
+// whose motor constant is above the envelope of the other windings of its frame
+// (catalog/motor_credibility.h).
+void ExcludeImplausibleMotors(ImportedDataset* out);
+
 // Audits a propeller entry that is not measured (AuditProp of import_common.h) and keeps it
 // in out->props (counting a derating) or drops it with the reason (FM > 1 in its valid range).
 void KeepAuditedProp(Json entry, const std::string& example, ImportedDataset* out);

@@ -1,0 +1,61 @@
+// Motor credibility: the motor constant of a catalog motor checked against the other windings
+// of the same frame.
+//
+// Motor constant (DC circuit, catalog/conventions.h): Km = KT_dc/sqrt(R_dc) [N*m/sqrt(W)], with
+// KT_dc = 60/(2*pi*Kv): the torque per square root of copper-loss watt. For one frame (same
+// laminations, magnets and slot area) it does not depend on the winding: N turns give KT ~ N and,
+// at the same copper fill, R ~ N^2, so KT^2/R is the same (standard motor-design result, e.g.
+// Hendershot & Miller, "Design of Brushless Permanent-Magnet Machines", ch. 1; Drela's QPROP
+// motor notes). Real windings differ by their fill factor, a few tens of percent.
+//
+// A catalog entry whose Km is more than kFamilyKmRatioMax times the median of its frame family
+// (the entries whose names differ only in the winding token: "AXI 2212-12", "AXI 2212-20", ...,
+// at least kFamilyMinMembers of them) has a resistance that no winding of that frame can have:
+// typically a misplaced decimal or a value in the wrong unit. Such a motor would look several
+// times more efficient than it is and win every search, so the importers exclude it by default
+// (EntryBase::exclude_reason) and say why. Example: DriveCalc's AXI 2212-34 stores R = 0.051 ohm,
+// Km 2.6x its family's median; a fit of DriveCalc's own measurements of that motor gives
+// R_dc = 0.31 ohm (catalog/drivecalc_fitted.json, dc_m_56_fit).
+#pragma once
+
+#include <cstddef>
+#include <string>
+#include <vector>
+
+namespace dynosize {
+
+inline constexpr double kFamilyKmRatioMax = 2.0;
+inline constexpr std::size_t kFamilyMinMembers = 3;
+
+// Km = KT_dc/sqrt(R_dc), KT_dc = 60/(2*pi*Kv); 0 when Kv or R_dc is not positive.
+double MotorConstantDc(double kv_rpm_per_v, double r_dc_ohm);
+
+// The frame family of a motor name: the name without a gear suffix ("/6.7:1"), text in
+// parentheses and the last "-" or "/" winding token (its trailing letters kept, since they
+// often name the stack length: Hacker "A30-28S" and "A30-28L" are different frames), lower case;
+// "" when the name has no winding token.
+std::string FrameFamily(const std::string& name);
+
+struct MotorKmInput {
+  std::string name;
+  double kv_rpm_per_v = 0.0;
+  double r_dc_ohm = 0.0;
+};
+
+struct FamilyOutlier {
+  std::size_t index = 0;  // into the input
+  std::string family;
+  std::size_t members = 0;
+  double km = 0.0;
+  double family_median_km = 0.0;
+  double ratio = 0.0;  // km / family_median_km
+};
+
+// The entries whose Km exceeds kFamilyKmRatioMax x the median of their frame family (families
+// of at least kFamilyMinMembers entries), in input order.
+std::vector<FamilyOutlier> FrameFamilyOutliers(const std::vector<MotorKmInput>& motors);
+
+// One line for the entry's exclude key and note.
+std::string FamilyOutlierReason(const FamilyOutlier& o);
+
+}  // namespace dynosize
