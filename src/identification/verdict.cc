@@ -42,7 +42,13 @@ std::string Advice(const VerdictInputs& in, const std::vector<std::string>& weak
                         : "Io: log torque or no-load points, or give --io-label/--io-label-v");
     } else if (n == "rm_ohm" || n == "resc_ohm") {
       add(in.has_ac ? "Rm: log more points at high current"
-                    : "Rm vs RESC: log the AC columns (vll_rms_v, irms_a) or give --rm-label");
+                    : in.has_torque
+                        ? "Rm vs RESC: log the AC columns (vll_rms_v, irms_a) or give --rm-label"
+                        // Without torque R is seen only through the speed drop at the top steps:
+                        // sweeps with other propellers load the same steps differently
+                        // (docs/validation.md, one entry per motor: 12 of 13 Strawson motors ok).
+                        : "Rm: give --rm-label, log torque, or calibrate this motor's sweeps with other "
+                          "propellers or supply voltages together (calibrate LOG1 LOG2 ...)");
     } else if (n == "c1" || n == "c0") {
       add(in.has_torque || in.has_ac ? "C1, C0: log two or more throttle levels over a wider current range"
                                      : "C1, C0: log torque or the AC columns, or give --prior-esc");
