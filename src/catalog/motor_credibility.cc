@@ -17,6 +17,10 @@ double MotorConstantDc(double kv_rpm_per_v, double r_dc_ohm) {
   return kt_dc / std::sqrt(r_dc_ohm);
 }
 
+double TypicalMotorConstantForMass(double mass_kg) {
+  return mass_kg > 0.0 ? std::exp(kMassKmLawLogA) * std::pow(mass_kg, kMassKmLawExponent) : 0.0;
+}
+
 std::string FrameFamily(const std::string& name) {
   static const std::regex kGear(R"(\s*[/-]?\s*\d+(\.\d+)?\s*:\s*1.*$)");
   static const std::regex kParen(R"(\s*\([^)]*\))");
@@ -62,8 +66,26 @@ std::vector<FamilyOutlier> FrameFamilyOutliers(const std::vector<MotorKmInput>& 
   return out;
 }
 
+std::vector<FamilyOutlier> MassLawOutliers(const std::vector<MotorKmInput>& motors) {
+  std::vector<FamilyOutlier> out;
+  for (std::size_t i = 0; i < motors.size(); ++i) {
+    const MotorKmInput& m = motors[i];
+    if (!m.user_contributed || m.mass_kg < kMassKmLawMinKg || m.mass_kg > kMassKmLawMaxKg) continue;
+    const double km = MotorConstantDc(m.kv_rpm_per_v, m.r_dc_ohm), typical = TypicalMotorConstantForMass(m.mass_kg);
+    if (km > kMassKmRatioMax * typical) out.push_back({i, "", 0, km, typical, km / typical});
+  }
+  return out;
+}
+
 std::string FamilyOutlierReason(const FamilyOutlier& o) {
   char buf[320];
+  if (o.family.empty()) {
+    std::snprintf(buf, sizeof buf,
+                  "motor constant KT/sqrt(R) = %.3g N*m/sqrt(W) is %.2gx the typical %.3g of motors of "
+                  "its mass: R is likely a decade too small (catalog/motor_credibility.h)",
+                  o.km, o.ratio, o.family_median_km);
+    return buf;
+  }
   std::snprintf(buf, sizeof buf,
                 "motor constant KT/sqrt(R) = %.3g N*m/sqrt(W) is %.2gx the median (%.3g) of the %zu "
                 "windings of its frame '%s': no winding of one frame differs that much, so R is "

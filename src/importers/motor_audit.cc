@@ -1,5 +1,6 @@
 // The motor audit applied to every imported data set (importers.h): motors whose motor constant
 // no winding of their frame can have are excluded by default (catalog/motor_credibility.h).
+#include <algorithm>
 #include <cstdio>
 
 #include "catalog/conventions.h"
@@ -24,9 +25,18 @@ double DcResistance(const Json& e) {
 void ExcludeImplausibleMotors(ImportedDataset* out) {
   std::vector<MotorKmInput> in;
   for (const Json& e : out->motors) {
-    in.push_back({e.value("name", std::string()), e.value("kv_rpm_per_v", 0.0), DcResistance(e)});
+    const bool user = e.contains("source") && e["source"].value("tier", std::string()) == "user_contributed";
+    in.push_back({e.value("name", std::string()), e.value("kv_rpm_per_v", 0.0), DcResistance(e),
+                  e.value("mass_kg", 0.0), user});
   }
-  const std::vector<FamilyOutlier> outliers = FrameFamilyOutliers(in);
+  std::vector<FamilyOutlier> outliers = FrameFamilyOutliers(in);
+  for (const FamilyOutlier& o : MassLawOutliers(in)) {
+    bool seen = false;
+    for (const FamilyOutlier& f : outliers) seen = seen || f.index == o.index;
+    if (!seen) outliers.push_back(o);
+  }
+  std::sort(outliers.begin(), outliers.end(),
+            [](const FamilyOutlier& a, const FamilyOutlier& b) { return a.index < b.index; });
   std::vector<std::string> examples;
   for (const FamilyOutlier& o : outliers) {
     Json& e = out->motors[o.index];
@@ -44,10 +54,13 @@ void ExcludeImplausibleMotors(ImportedDataset* out) {
     }
   }
   if (outliers.empty()) return;
-  std::string note = std::to_string(outliers.size()) + " motor(s) excluded by default: motor constant KT/sqrt(R) above " +
-                     std::to_string(static_cast<int>(kFamilyKmRatioMax)) +
-                     "x the median of the other windings of the same frame (R likely wrong; "
-                     "catalog/motor_credibility.h), e.g.";
+  char head[300];
+  std::snprintf(head, sizeof head,
+                "%zu motor(s) excluded by default: motor constant KT/sqrt(R) above %gx the median of the other "
+                "windings of the same frame, or above %gx the typical value for the motor's mass (R likely "
+                "wrong; catalog/motor_credibility.h), e.g.",
+                outliers.size(), kFamilyKmRatioMax, kMassKmRatioMax);
+  std::string note = head;
   for (const auto& x : examples) note += " " + x + ";";
   note.pop_back();
   out->report.notes.push_back(note);

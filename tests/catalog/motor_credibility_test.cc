@@ -3,6 +3,7 @@
 // excluded by default.
 #include "catalog/motor_credibility.h"
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 
@@ -49,6 +50,69 @@ TEST(MotorCredibilityTest, OnlyTheWindingNoFrameCanHaveIsAnOutlier) {
   m.resize(2);
   m.back().r_dc_ohm /= 100.0;
   EXPECT_TRUE(FrameFamilyOutliers(m).empty());
+}
+
+TEST(MotorCredibilityTest, MassLawFlagsAResistanceADecadeTooSmall) {
+  // A 100 g motor of typical Km: Kv 1000 -> KT_dc 9.549e-3; R from Km = typical.
+  const double kt = 60.0 / (2.0 * M_PI * 1000.0), km = TypicalMotorConstantForMass(0.1);
+  const double r_typical = (kt / km) * (kt / km);
+  std::vector<MotorKmInput> m = {{"a", 1000.0, r_typical, 0.1, true},
+                                 {"b", 1000.0, r_typical / 20.0, 0.1, true},    // Km x 4.47
+                                 {"c", 1000.0, r_typical / 20.0, 0.1, false},   // stated by a maker
+                                 {"d", 1000.0, r_typical / 20.0, 0.005, true}}; // below the law's range
+  const auto out = MassLawOutliers(m);
+  ASSERT_EQ(out.size(), 1u);
+  EXPECT_EQ(out[0].index, 1u);
+  EXPECT_NEAR(out[0].ratio, std::sqrt(20.0), 1e-9);
+  EXPECT_NE(FamilyOutlierReason(out[0]).find("of its mass"), std::string::npos);
+}
+
+// The mass law of motor_credibility.h, recomputed from the bundled DriveCalc motors (10 g-2 kg,
+// those without a rating left out as at import): log-log least squares refitted 5 times without
+// points beyond 2.5 robust sd. Tolerances: the constants are written with 4-5 digits.
+TEST(MotorCredibilityTest, MassLawMatchesTheBundledDriveCalcMotors) {
+  const Catalog c = Catalog::Load(kCatalog);
+  std::vector<double> xs, ys;
+  for (const auto& e : c.motors()) {
+    if (e.id.rfind("dc_m_", 0) != 0 || e.id.find("_fit") != std::string::npos) continue;
+    if (!e.exclude_reason.empty() && e.exclude_reason.find("motor constant") == std::string::npos) continue;
+    const double m = e.json.value("mass_kg", 0.0), kv = e.json.value("kv_rpm_per_v", 0.0);
+    if (m < kMassKmLawMinKg || m > kMassKmLawMaxKg) continue;
+    const double r_dc = e.json.contains("rm_dc_ohm") ? e.json["rm_dc_ohm"].get<double>()
+                        : e.params.type == MotorType::kBrushed ? e.params.rm_ohm
+                                                               : e.params.rm_ohm / kRmsPerDcResistance;
+    const double km = MotorConstantDc(kv, r_dc);
+    if (!(km > 0.0)) continue;
+    xs.push_back(std::log(m));
+    ys.push_back(std::log(km));
+  }
+  ASSERT_GT(xs.size(), 1500u);
+  auto fit = [&](const std::vector<char>& use, double* a, double* b) {
+    double n = 0, sx = 0, sy = 0, sxx = 0, sxy = 0;
+    for (std::size_t i = 0; i < xs.size(); ++i) {
+      if (!use[i]) continue;
+      n += 1; sx += xs[i]; sy += ys[i]; sxx += xs[i] * xs[i]; sxy += xs[i] * ys[i];
+    }
+    *b = (n * sxy - sx * sy) / (n * sxx - sx * sx);
+    *a = (sy - *b * sx) / n;
+  };
+  std::vector<char> use(xs.size(), 1);
+  double a = 0, b = 0;
+  fit(use, &a, &b);
+  for (int it = 0; it < 5; ++it) {
+    std::vector<double> r(xs.size());
+    for (std::size_t i = 0; i < xs.size(); ++i) r[i] = ys[i] - (a + b * xs[i]);
+    std::vector<double> s = r;
+    std::nth_element(s.begin(), s.begin() + s.size() / 2, s.end());
+    const double med = s[s.size() / 2];
+    for (auto& v : s) v = std::fabs(v - med);
+    std::nth_element(s.begin(), s.begin() + s.size() / 2, s.end());
+    const double mad = 1.4826 * s[s.size() / 2];
+    for (std::size_t i = 0; i < xs.size(); ++i) use[i] = std::fabs(r[i] - med) < 2.5 * mad;
+    fit(use, &a, &b);
+  }
+  EXPECT_NEAR(a, kMassKmLawLogA, 0.02);
+  EXPECT_NEAR(b, kMassKmLawExponent, 0.005);
 }
 
 // The DriveCalc AXI 2212-34 stores R = 0.051 ohm; DriveCalc's own measurements of it give six
