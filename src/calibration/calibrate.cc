@@ -12,6 +12,7 @@
 #include "common/units.h"
 #include "fit/linear_least_squares.h"
 #include "fit/statistics.h"
+#include "identification/fit_rows.h"
 
 namespace dynosize::calibration {
 
@@ -196,15 +197,6 @@ constexpr std::array<double, kParamCount> kUpper = MakeUpper();
 
 std::string FileTag(const SteadyTable& t) { return t.file.empty() ? std::string("log") : t.file; }
 
-// Distinct throttle levels (rounded to 0.001).
-std::vector<double> ThrottleLevels(const std::vector<double>& tr) {
-  std::vector<double> lv;
-  for (double v : tr) lv.push_back(std::round(v * 1000.0) / 1000.0);
-  std::sort(lv.begin(), lv.end());
-  lv.erase(std::unique(lv.begin(), lv.end()), lv.end());
-  return lv;
-}
-
 struct Prepared {
   FitData data;
   Layout layout;
@@ -278,16 +270,9 @@ LogColumns SelectFitRows(const SteadyTable& t, const CalibrationOptions& o, cons
     // A no-load row without a speed reading (DriveCalc n = 0) still measures Io: at Q = 0 the
     // model's current I = Io does not depend on the speed (eq 42). Only its current is compared.
     const bool speed_unknown = nl && w == 0.0;
-    if (!speed_unknown && !(w > o.min_speed_fraction * wmax)) {
-      DropRow(pr, t, i, "speed below min_speed_fraction of the largest");
-      continue;
-    }
-    if (pr->has_throttle && tr < o.min_throttle) {
-      DropRow(pr, t, i, "throttle below min_throttle");
-      continue;
-    }
-    if (!(t.Get(Column::kVdcV)[i] > 0.0)) {
-      DropRow(pr, t, i, "vdc_v not positive");
+    if (const char* why = identification::RowRejection(w, wmax, o.min_speed_fraction, pr->has_throttle, tr,
+                                                       o.min_throttle, t.Get(Column::kVdcV)[i], speed_unknown)) {
+      DropRow(pr, t, i, why);
       continue;
     }
     d.rows.push_back(i);
@@ -316,9 +301,7 @@ void BuildTerms(const SteadyTable& t, FitData* fd) {
   std::array<double, kMeasCount> inv_scale{};
   for (int m = 0; m < kMeasCount; ++m) {
     if (!d.measured[m]) continue;
-    std::vector<double> mag;
-    for (std::size_t i : d.rows) mag.push_back(std::fabs(t.Get(kMeasColumn[m])[i]));
-    const double med = Median(mag);
+    const double med = identification::MedianMagnitude(t.Get(kMeasColumn[m]), d.rows);
     inv_scale[m] = med > 0.0 ? 100.0 / med : 0.0;
     if (!(med > 0.0)) d.measured[m] = false;
   }
@@ -342,7 +325,7 @@ void ChooseFree(const CalibrationOptions& o, const LogColumns& c, Prepared* pr) 
   Layout& lay = pr->layout;
   auto& fr = lay.free;
   auto idx = [](Param p) { return static_cast<int>(p); };
-  pr->levels = ThrottleLevels(d.tr);
+  pr->levels = identification::ThrottleLevels(d.tr);
   if (!pr->levels.empty()) pr->offset_upper = std::min(0.5, 0.9 * pr->levels.front());
   const bool multi_level = pr->has_throttle && pr->levels.size() >= 2;
   bool any_torque_known = false;

@@ -16,6 +16,7 @@
 #include "common/units.h"
 #include "fit/nonlinear_least_squares.h"
 #include "fit/statistics.h"
+#include "identification/fit_rows.h"
 #include "identification/parameters.h"
 
 namespace dynosize::diagnosis {
@@ -512,14 +513,6 @@ std::string Separation(Cause a, Cause b) {
          "(vll_rms_v, irms_a) to see the motor and the ESC separately";
 }
 
-std::vector<double> Levels(const std::vector<double>& tr) {
-  std::vector<double> lv;
-  for (double v : tr) lv.push_back(std::round(v * 1000.0) / 1000.0);
-  std::sort(lv.begin(), lv.end());
-  lv.erase(std::unique(lv.begin(), lv.end()), lv.end());
-  return lv;
-}
-
 // Starting values of the base parameters from the calibration engine (src/calibration: the same
 // base model, its robust fit and its knee profile, without the throttle offset, which is a
 // candidate here): the linear start alone can leave the first-order fit in a stalled local
@@ -696,7 +689,9 @@ Prepared PrepareDiagnosisData(const SteadyTable& t, const DiagnoseOptions& o, Di
     const double w = t.Get(Column::kOmegaRadS)[i];
     const double tr = p.has_tr ? t.Get(Column::kThrottle)[i] : o.assumed_throttle;
     const double vdc = t.Get(Column::kVdcV)[i];
-    if (!(w > o.min_speed_fraction * p.wmax) || (p.has_tr && tr < o.min_throttle) || !(vdc > 0.0)) continue;
+    if (identification::RowRejection(w, p.wmax, o.min_speed_fraction, p.has_tr, tr, o.min_throttle, vdc) != nullptr) {
+      continue;
+    }
     const bool nl = p.has_nl && t.Get(Column::kNoLoad)[i] != 0.0;
     d.table_row.push_back(i);
     d.vdc.push_back(vdc);
@@ -712,9 +707,7 @@ Prepared PrepareDiagnosisData(const SteadyTable& t, const DiagnoseOptions& o, Di
   }
   for (int m = 0; m < kMeasCount; ++m) {
     if (!d.measured[m]) continue;
-    std::vector<double> mag;
-    for (std::size_t i : d.table_row) mag.push_back(std::fabs(t.Get(kMeasColumn[m])[i]));
-    const double med = Median(mag);
+    const double med = identification::MedianMagnitude(t.Get(kMeasColumn[m]), d.table_row);
     p.inv_scale[m] = med > 0.0 ? 100.0 / med : 0.0;
     if (!(med > 0.0)) d.measured[m] = false;
   }
@@ -738,7 +731,7 @@ Prepared PrepareDiagnosisData(const SteadyTable& t, const DiagnoseOptions& o, Di
   for (int m = 0; m < kMeasCount; ++m) {
     if (d.measured[m] && !(m == kMOmega && !p.has_q && !p.has_nl)) res->predicted_columns.push_back(kMeasColumn[m]);
   }
-  if (p.has_tr) p.levels = Levels(d.tr);
+  if (p.has_tr) p.levels = identification::ThrottleLevels(d.tr);
   for (char c : d.torque_known) p.any_tk = p.any_tk || c;
   d.tie_kt = !(p.has_q && p.ac);
   return p;

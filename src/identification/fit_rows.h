@@ -1,0 +1,30 @@
+// Row rules shared by `calibrate` (src/calibration) and `diagnose` (src/diagnosis), issue 12 "one
+// identification layer": which rows of a log a fit uses, the throttle levels of those rows, and
+// the magnitude that scales a column's residuals to percent. Each rule exists once, here.
+#pragma once
+
+#include <cstddef>
+#include <vector>
+
+namespace dynosize::identification {
+
+// Why a log row is left out of a fit, or nullptr when the fit uses it. The rules, checked in
+// this order:
+//  1. the shaft speed must exceed min_speed_fraction of the largest logged speed (the motor is
+//     turning; below it the steady-state model of model.md section 3 does not hold) - unless
+//     the row's speed was not measured (speed_unknown: a DriveCalc no-load row, n = 0);
+//  2. with a throttle column, the throttle must reach min_throttle;
+//  3. the supply voltage must be positive (eq 48 needs it).
+// The reasons are the texts calibrate lists with every dropped row.
+const char* RowRejection(double omega_rad_s, double omega_max_rad_s, double min_speed_fraction,
+                         bool has_throttle, double throttle, double min_throttle, double vdc_v,
+                         bool speed_unknown = false);
+
+// The distinct throttle levels of the rows (rounded to 0.001), ascending.
+std::vector<double> ThrottleLevels(const std::vector<double>& throttle);
+
+// Median of |column[row]| over the rows: the typical magnitude a residual of this column is a
+// percent of (dyno sensor noise is mostly relative). NaN when rows is empty.
+double MedianMagnitude(const std::vector<double>& column, const std::vector<std::size_t>& rows);
+
+}  // namespace dynosize::identification

@@ -1,0 +1,67 @@
+// The row rules calibrate and diagnose share (identification/fit_rows.h): each rule can reject
+// a row, in its documented order, and a NaN reading is never used.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "identification/fit_rows.h"
+
+namespace dynosize::identification {
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+// A row: 500 rad/s of at most 1000, throttle 0.5, 12 V; min speed fraction 0.1, min throttle 0.05.
+const char* Reject(double w, double tr, double vdc, bool has_tr = true, bool speed_unknown = false) {
+  return RowRejection(w, 1000.0, 0.1, has_tr, tr, 0.05, vdc, speed_unknown);
+}
+
+TEST(IdentificationFitRows, UsesATurningRowWithThrottleAndVoltage) {
+  EXPECT_EQ(Reject(500.0, 0.5, 12.0), nullptr);
+}
+
+TEST(IdentificationFitRows, EachRuleRejectsWithItsReason) {
+  EXPECT_EQ(std::string(Reject(100.0, 0.5, 12.0)), "speed below min_speed_fraction of the largest");  // not > 10 %
+  EXPECT_EQ(std::string(Reject(500.0, 0.04, 12.0)), "throttle below min_throttle");
+  EXPECT_EQ(std::string(Reject(500.0, 0.5, 0.0)), "vdc_v not positive");
+  // The speed rule comes first when several fail.
+  EXPECT_EQ(std::string(Reject(0.0, 0.0, -1.0)), "speed below min_speed_fraction of the largest");
+}
+
+TEST(IdentificationFitRows, NanReadingsAreRejected) {
+  EXPECT_NE(Reject(kNaN, 0.5, 12.0), nullptr);
+  EXPECT_NE(Reject(500.0, 0.5, kNaN), nullptr);
+}
+
+TEST(IdentificationFitRows, ThrottleRuleOnlyWithAThrottleColumn) {
+  EXPECT_EQ(Reject(500.0, 0.0, 12.0, /*has_tr=*/false), nullptr);
+}
+
+TEST(IdentificationFitRows, UnmeasuredSpeedIsNotASpeedRejection) {
+  // A DriveCalc no-load row (n = 0) still measures Io: only its voltage and throttle are checked.
+  EXPECT_EQ(Reject(0.0, 0.5, 12.0, true, /*speed_unknown=*/true), nullptr);
+  EXPECT_EQ(std::string(Reject(0.0, 0.5, 0.0, true, true)), "vdc_v not positive");
+}
+
+TEST(IdentificationFitRows, ThrottleLevelsRoundedDistinctAscending) {
+  const std::vector<double> levels = ThrottleLevels({0.5, 0.2, 0.5004, 0.2001, 1.0, 0.7996});
+  ASSERT_EQ(levels.size(), 4u);
+  EXPECT_DOUBLE_EQ(levels[0], 0.2);
+  EXPECT_DOUBLE_EQ(levels[1], 0.5);
+  EXPECT_DOUBLE_EQ(levels[2], 0.8);
+  EXPECT_DOUBLE_EQ(levels[3], 1.0);
+  EXPECT_TRUE(ThrottleLevels({}).empty());
+}
+
+TEST(IdentificationFitRows, MedianMagnitudeOverTheChosenRows) {
+  const std::vector<double> column = {-4.0, 100.0, 2.0, -3.0, 1.0};
+  EXPECT_DOUBLE_EQ(MedianMagnitude(column, {0, 2, 3}), 3.0);     // |-4|, 2, |-3|
+  EXPECT_DOUBLE_EQ(MedianMagnitude(column, {0, 2, 3, 4}), 2.5);  // even count: mean of 2 and 3
+  EXPECT_TRUE(std::isnan(MedianMagnitude(column, {})));
+}
+
+}  // namespace
+}  // namespace dynosize::identification
