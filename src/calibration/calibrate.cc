@@ -793,21 +793,12 @@ std::vector<DroppedRow> SelectOutliers(const Prepared& pr, const std::array<doub
                                        const SteadyTable& t, const CalibrationOptions& o, int nfree) {
   const std::vector<double> rmax = RowResidualMax(pr, p);
   const double sigma = std::max(1.4826 * Median(rmax), o.outlier_floor_percent);
-  std::vector<std::size_t> cand;
-  for (std::size_t k = 0; k < rmax.size(); ++k) {
-    if (rmax[k] > o.outlier_sigmas * sigma) cand.push_back(k);
-  }
-  std::sort(cand.begin(), cand.end(), [&](std::size_t a, std::size_t b) { return rmax[a] > rmax[b]; });
-  const std::size_t n = pr.data.rows.size();
-  const auto cap = static_cast<std::size_t>(std::floor(o.max_outlier_fraction * static_cast<double>(n)));
-  std::map<long long, std::size_t> per_level;
-  for (double tr : pr.data.tr) ++per_level[std::llround(tr * 1000.0)];
+  const identification::OutlierSelection sel =
+      identification::SelectOutlierRows(rmax, pr.data.tr, pr.has_throttle, o.outlier_sigmas * sigma,
+                                        o.max_outlier_fraction, static_cast<std::size_t>(nfree) + 3);
   std::vector<DroppedRow> out;
-  for (std::size_t k : cand) {
-    if (out.size() >= cap || n - out.size() < static_cast<std::size_t>(nfree) + 3) break;
-    std::size_t& left = per_level[std::llround(pr.data.tr[k] * 1000.0)];
-    if (pr.has_throttle && left <= 1) continue;  // never a whole throttle level
-    --left;
+  out.reserve(sel.dropped.size());
+  for (std::size_t k : sel.dropped) {
     const std::size_t row = pr.data.rows[k];
     std::ostringstream why;
     why << std::setprecision(3) << "outlier: largest residual " << rmax[k] << " % > " << o.outlier_sigmas

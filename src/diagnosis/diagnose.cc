@@ -554,26 +554,11 @@ std::vector<std::size_t> ScreenOutliers(const Data& d, const SteadyTable& t, con
   for (std::size_t k = 0; k < n; ++k) {
     for (int tt = d.term_begin[k]; tt < d.term_begin[k + 1]; ++tt) rmax[k] = std::max(rmax[k], std::fabs(r[tt]));
   }
-  std::vector<std::size_t> cand;
-  for (std::size_t k = 0; k < n; ++k) {
-    if (rmax[k] > o.outlier_sigmas * sigma) cand.push_back(k);
-  }
-  std::sort(cand.begin(), cand.end(), [&](std::size_t a, std::size_t b) { return rmax[a] > rmax[b]; });
-  const auto cap = static_cast<std::size_t>(std::floor(o.max_outlier_fraction * static_cast<double>(n)));
-  std::map<long long, std::size_t> per_level;
-  for (double tr : d.tr) ++per_level[std::llround(tr * 1000.0)];
-  const bool has_tr = t.Has(Column::kThrottle);
+  const identification::OutlierSelection sel = identification::SelectOutlierRows(
+      rmax, d.tr, t.Has(Column::kThrottle), o.outlier_sigmas * sigma, o.max_outlier_fraction, 0);
   std::vector<char> drop(n, 0);
-  std::size_t dropped = 0, spared = 0;
-  for (std::size_t k : cand) {
-    std::size_t& left = per_level[std::llround(d.tr[k] * 1000.0)];
-    if (dropped >= cap || (has_tr && left <= 1)) {
-      ++spared;
-      continue;
-    }
-    --left;
+  for (std::size_t k : sel.dropped) {
     drop[k] = 1;
-    ++dropped;
     const std::size_t row = d.table_row[k];
     std::ostringstream why;
     why << std::setprecision(3) << "line " << t.source_line[row] << ": outlier, largest residual " << rmax[k]
@@ -581,9 +566,9 @@ std::vector<std::size_t> ScreenOutliers(const Data& d, const SteadyTable& t, con
     res->outlier_rows.push_back(row);
     res->outlier_reasons.push_back(why.str());
   }
-  if (spared > 0) {
-    res->warnings.push_back(std::to_string(spared) + " more row(s) beyond the outlier threshold kept: at most " +
-                            std::to_string(cap) + " rows (10 %) and never a whole throttle level are dropped");
+  if (sel.spared > 0) {
+    res->warnings.push_back(std::to_string(sel.spared) + " more row(s) beyond the outlier threshold kept: at most " +
+                            std::to_string(sel.cap) + " rows (10 %) and never a whole throttle level are dropped");
   }
   std::vector<std::size_t> keep;
   for (std::size_t k = 0; k < n; ++k) {

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 #include <utility>
 
 #include "fit/statistics.h"
@@ -34,6 +35,31 @@ double MedianMagnitude(const std::vector<double>& column, const std::vector<std:
   mag.reserve(rows.size());
   for (std::size_t i : rows) mag.push_back(std::fabs(column[i]));
   return fit::Median(std::move(mag));
+}
+
+OutlierSelection SelectOutlierRows(const std::vector<double>& rmax, const std::vector<double>& throttle,
+                                   bool has_throttle, double threshold, double max_fraction,
+                                   std::size_t min_kept) {
+  const std::size_t n = rmax.size();
+  std::vector<std::size_t> cand;
+  for (std::size_t k = 0; k < n; ++k) {
+    if (rmax[k] > threshold) cand.push_back(k);
+  }
+  std::sort(cand.begin(), cand.end(), [&](std::size_t a, std::size_t b) { return rmax[a] > rmax[b]; });
+  OutlierSelection sel;
+  sel.cap = static_cast<std::size_t>(std::floor(max_fraction * static_cast<double>(n)));
+  std::map<long long, std::size_t> per_level;
+  for (double tr : throttle) ++per_level[std::llround(tr * 1000.0)];
+  for (std::size_t k : cand) {
+    std::size_t& left = per_level[std::llround(throttle[k] * 1000.0)];
+    if (sel.dropped.size() >= sel.cap || n - sel.dropped.size() < min_kept || (has_throttle && left <= 1)) {
+      ++sel.spared;
+      continue;
+    }
+    --left;
+    sel.dropped.push_back(k);
+  }
+  return sel;
 }
 
 }  // namespace dynosize::identification

@@ -27,4 +27,19 @@ std::vector<double> ThrottleLevels(const std::vector<double>& throttle);
 // percent of (dyno sensor noise is mostly relative). NaN when rows is empty.
 double MedianMagnitude(const std::vector<double>& column, const std::vector<std::size_t>& rows);
 
+// Robust outlier screening (issue 12: never more than 10 % of the points or a whole throttle
+// level). rmax[k]: the largest |percent residual| of row k; throttle[k]: its throttle. The rows
+// with rmax above threshold (the caller's outlier_sigmas robust standard deviations) are taken
+// worst first; one is dropped while fewer than cap = floor(max_fraction * rows) are dropped, at
+// least min_kept rows are left before the drop, and (with a throttle column) it is not the last
+// row left at its throttle level (levels to 0.001). The others beyond the threshold are spared.
+struct OutlierSelection {
+  std::vector<std::size_t> dropped;  // indices into rmax, worst first
+  std::size_t spared = 0;            // rows beyond the threshold kept by the limits above
+  std::size_t cap = 0;               // floor(max_fraction * rows)
+};
+OutlierSelection SelectOutlierRows(const std::vector<double>& rmax, const std::vector<double>& throttle,
+                                   bool has_throttle, double threshold, double max_fraction,
+                                   std::size_t min_kept);
+
 }  // namespace dynosize::identification

@@ -63,5 +63,36 @@ TEST(IdentificationFitRows, MedianMagnitudeOverTheChosenRows) {
   EXPECT_TRUE(std::isnan(MedianMagnitude(column, {})));
 }
 
+// Ten rows at two throttle levels; rows 2, 7 and 9 are far off (rmax in percent).
+TEST(IdentificationFitRows, OutliersWorstFirstWithinTheCap) {
+  const std::vector<double> rmax = {1, 2, 50, 1, 2, 1, 2, 80, 1, 30};
+  const std::vector<double> tr = {0.3, 0.3, 0.3, 0.3, 0.3, 0.6, 0.6, 0.6, 0.6, 0.6};
+  // 20 % of 10 rows: the two worst go, the third is spared.
+  const OutlierSelection sel = SelectOutlierRows(rmax, tr, true, 10.0, 0.2, 0);
+  EXPECT_EQ(sel.cap, 2u);
+  EXPECT_EQ(sel.dropped, (std::vector<std::size_t>{7, 2}));
+  EXPECT_EQ(sel.spared, 1u);
+}
+
+TEST(IdentificationFitRows, OutliersNeverAWholeThrottleLevel) {
+  // Level 0.3 has two rows, both off: only the worse goes; level 0.6 keeps its single row.
+  const std::vector<double> rmax = {40, 60, 90};
+  const std::vector<double> tr = {0.3, 0.3, 0.6};
+  const OutlierSelection sel = SelectOutlierRows(rmax, tr, true, 10.0, 1.0, 0);
+  EXPECT_EQ(sel.dropped, (std::vector<std::size_t>{1}));
+  EXPECT_EQ(sel.spared, 2u);
+  // Without a throttle column the levels do not protect rows.
+  EXPECT_EQ(SelectOutlierRows(rmax, tr, false, 10.0, 1.0, 0).dropped.size(), 3u);
+}
+
+TEST(IdentificationFitRows, OutliersLeaveMinKeptRows) {
+  const std::vector<double> rmax = {90, 80, 70, 1, 1};
+  const std::vector<double> tr(5, 1.0);
+  // A drop needs at least 4 rows left before it: 5 -> 4 -> 3, then no more.
+  const OutlierSelection sel = SelectOutlierRows(rmax, tr, false, 10.0, 1.0, 4);
+  EXPECT_EQ(sel.dropped, (std::vector<std::size_t>{0, 1}));
+  EXPECT_EQ(sel.spared, 1u);
+}
+
 }  // namespace
 }  // namespace dynosize::identification
