@@ -241,6 +241,18 @@ std::vector<int> FreeOfActiveSet(const Eigen::VectorXd& x, const Eigen::VectorXd
   return free;
 }
 
+// The gradient test of SolveLeastSquares: max over the free parameters j of |g_j| / (||J_j|| ||r||)
+// = |cos(J_j, r)| (g = J^T r); 0 where a column or r is zero.
+double MaxGradientCosine(const Eigen::MatrixXd& jac, const Eigen::VectorXd& g, double r_norm,
+                         const std::vector<int>& free) {
+  double cosine = 0.0;
+  for (int j : free) {
+    const double cn = jac.col(j).norm();
+    if (cn > 0.0 && r_norm > 0.0) cosine = std::max(cosine, std::abs(g[j]) / (cn * r_norm));
+  }
+  return cosine;
+}
+
 // Geodesic acceleration of the LM step vf (on the free parameters `free`, scaled by df, damping
 // lambda): directional second derivative of r along v by a finite difference of the residuals,
 // then the acceleration solves the same damped system with r'' on the right. Adds half the
@@ -457,11 +469,7 @@ LevenbergMarquardtSummary SolveLeastSquares(const LeastSquaresProblem& problem,
     const Eigen::VectorXd g = jac.transpose() * r;
     const std::vector<int> free = FreeOfActiveSet(x, g, lo, hi);
     const double r_norm = r.norm();
-    double cosine = 0.0;
-    for (int j : free) {
-      const double cn = jac.col(j).norm();
-      if (cn > 0.0 && r_norm > 0.0) cosine = std::max(cosine, std::abs(g[j]) / (cn * r_norm));
-    }
+    const double cosine = MaxGradientCosine(jac, g, r_norm, free);
     if (r_norm == 0.0 || cosine <= options.gradient_tolerance) {
       s.termination_type = TerminationType::kConvergence;
       std::ostringstream os;
