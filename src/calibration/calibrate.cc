@@ -30,16 +30,18 @@ constexpr int kKeI = static_cast<int>(Param::kKe), kKtI = static_cast<int>(Param
               kC1I = static_cast<int>(Param::kC1), kC0I = static_cast<int>(Param::kC0),
               kDbI = static_cast<int>(Param::kDeadband);
 
-// Measured columns the fit compares with predictions, in this order.
-enum Meas : int { kMOmega = 0, kMIdc, kMIrms, kMVll, kMPac, kMeasCount };
-constexpr Column kMeasColumn[kMeasCount] = {Column::kOmegaRadS, Column::kIdcA, Column::kIrmsA,
-                                            Column::kVllRmsV, Column::kPacW};
-
-struct Term {
-  int meas;
-  double value;
-  double inv_scale;  // 100 / median |column|: residual in percent of the typical value
-};
+// Measured columns the fit compares with predictions and the residual terms
+// (identification/fit_rows.h); calibrate's term scale is 100 / median |column|: a residual in
+// percent of the column's typical value.
+using identification::kMeasColumn;
+using identification::kMeasCount;
+using identification::kMIdc;
+using identification::kMIrms;
+using identification::kMOmega;
+using identification::kMPac;
+using identification::kMVll;
+using Term = identification::ResidualTerm;
+using identification::TermResidual;
 
 struct FitData {
   std::vector<std::size_t> rows;  // rows of the table used
@@ -153,7 +155,7 @@ bool Residuals(const FitData& d, const Layout& lay, const std::array<double, kPa
     }
     for (int t = d.term_begin[k]; t < d.term_begin[k + 1]; ++t) {
       const Term& term = d.terms[t];
-      r[t] = (pred[term.meas] - term.value) * term.inv_scale;
+      r[t] = TermResidual(term, pred);
     }
   }
   return true;
@@ -698,7 +700,7 @@ std::vector<double> RowResidualMax(const Prepared& pr, const std::array<double, 
     }
     for (int t = d.term_begin[k]; t < d.term_begin[k + 1]; ++t) {
       const Term& term = d.terms[t];
-      out[k] = std::max(out[k], std::fabs((pred[term.meas] - term.value) * term.inv_scale));
+      out[k] = std::max(out[k], std::fabs(TermResidual(term, pred)));
     }
   }
   return out;

@@ -46,16 +46,18 @@ constexpr bool kSlotIsBase[kSlotCount] = {true,  true,  true,  true,  true,  tru
 using Values = std::array<double, kSlotCount>;
 using FreeSet = std::array<bool, kSlotCount>;
 
-// Measured columns the model predicts, in this order.
-enum Meas : int { kMOmega = 0, kMIdc, kMIrms, kMVll, kMPac, kMeasCount };
-constexpr Column kMeasColumn[kMeasCount] = {Column::kOmegaRadS, Column::kIdcA, Column::kIrmsA,
-                                            Column::kVllRmsV, Column::kPacW};
-
-struct Term {
-  int meas;
-  double value;
-  double inv_scale;  // 100 / max(|value|, 5 % of the column median): residual in percent
-};
+// Measured columns the model predicts and the residual terms (identification/fit_rows.h);
+// diagnose's term scale is 100 / max(|value|, 5 % of the column median): a residual in percent
+// of the measured value (then the effective-variance weights, ApplyEffectiveVarianceWeights).
+using identification::kMeasColumn;
+using identification::kMeasCount;
+using identification::kMIdc;
+using identification::kMIrms;
+using identification::kMOmega;
+using identification::kMPac;
+using identification::kMVll;
+using Term = identification::ResidualTerm;
+using identification::TermResidual;
 
 struct Data {
   std::vector<std::size_t> table_row;
@@ -126,7 +128,7 @@ bool Residuals(const Data& d, const std::vector<std::size_t>& rows, const Values
     if (!PredictRow(d, drive, k, pred)) return false;
     for (int t = d.term_begin[k]; t < d.term_begin[k + 1]; ++t) {
       const Term& term = d.terms[t];
-      r[out++] = (pred[term.meas] - term.value) * term.inv_scale;
+      r[out++] = TermResidual(term, pred);
     }
   }
   return true;
@@ -308,7 +310,7 @@ CvOut CrossValidate(const Data& d, const std::vector<std::size_t>& used,
       const bool ok = PredictRow(d, drive, k, pred);
       for (int t = d.term_begin[k]; t < d.term_begin[k + 1]; ++t) {
         const Term& term = d.terms[t];
-        const double r = ok ? (pred[term.meas] - term.value) * term.inv_scale : 100.0;
+        const double r = ok ? TermResidual(term, pred) : 100.0;
         ss += r * r;
         ++nt;
         cv.pred[term.meas][k] = ok ? pred[term.meas] : kNaN;

@@ -1,12 +1,36 @@
 // Row rules shared by `calibrate` (src/calibration) and `diagnose` (src/diagnosis), issue 12 "one
-// identification layer": which rows of a log a fit uses, the throttle levels of those rows, and
-// the magnitude that scales a column's residuals to percent. Each rule exists once, here.
+// identification layer": the measured columns a fit compares and its residual terms, which rows
+// of a log a fit uses, the throttle levels of those rows, the magnitude that scales a column's
+// residuals to percent, and the robust outlier screen. Each rule exists once, here.
 #pragma once
 
 #include <cstddef>
 #include <vector>
 
+#include "logs/steady_table.h"
+
 namespace dynosize::identification {
+
+// The measured columns a fit compares with the model's predictions, in this order: the index of
+// a prediction array pred[kMeasCount].
+enum Meas : int { kMOmega = 0, kMIdc, kMIrms, kMVll, kMPac, kMeasCount };
+inline constexpr logs::Column kMeasColumn[kMeasCount] = {logs::Column::kOmegaRadS, logs::Column::kIdcA,
+                                                         logs::Column::kIrmsA, logs::Column::kVllRmsV,
+                                                         logs::Column::kPacW};
+
+// One residual term of a fit: the measured value of column meas on one row, and the factor that
+// makes (prediction - value) a percent (each command chooses its scale).
+struct ResidualTerm {
+  int meas;
+  double value;
+  double inv_scale;
+};
+
+// The term's residual from the row's predictions pred[kMeasCount]; generic for dual numbers.
+template <typename T>
+T TermResidual(const ResidualTerm& term, const T* pred) {
+  return (pred[term.meas] - term.value) * term.inv_scale;
+}
 
 // Why a log row is left out of a fit, or nullptr when the fit uses it. The rules, checked in
 // this order:
