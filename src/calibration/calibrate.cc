@@ -300,13 +300,7 @@ LogColumns SelectFitRows(const SteadyTable& t, const CalibrationOptions& o, cons
 // over the rows used; the row's inputs (speed or current) are not terms.
 void BuildTerms(const SteadyTable& t, FitData* fd) {
   FitData& d = *fd;
-  std::array<double, kMeasCount> inv_scale{};
-  for (int m = 0; m < kMeasCount; ++m) {
-    if (!d.measured[m]) continue;
-    const double med = identification::MedianMagnitude(t.Get(kMeasColumn[m]), d.rows);
-    inv_scale[m] = med > 0.0 ? 100.0 / med : 0.0;
-    if (!(med > 0.0)) d.measured[m] = false;
-  }
+  const std::array<double, kMeasCount> inv_scale = identification::MedianPercentScales(t, d.rows, &d.measured);
   d.term_begin.push_back(0);
   for (std::size_t k = 0; k < d.rows.size(); ++k) {
     for (int m = 0; m < kMeasCount; ++m) {

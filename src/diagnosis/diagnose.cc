@@ -692,12 +692,7 @@ Prepared PrepareDiagnosisData(const SteadyTable& t, const DiagnoseOptions& o, Di
     throw DataError(file + ": only " + std::to_string(n) +
                     " row(s) with the motor turning: the diagnosis needs at least 6");
   }
-  for (int m = 0; m < kMeasCount; ++m) {
-    if (!d.measured[m]) continue;
-    const double med = identification::MedianMagnitude(t.Get(kMeasColumn[m]), d.table_row);
-    p.inv_scale[m] = med > 0.0 ? 100.0 / med : 0.0;
-    if (!(med > 0.0)) d.measured[m] = false;
-  }
+  p.inv_scale = identification::MedianPercentScales(t, d.table_row, &d.measured);
   d.term_begin.push_back(0);
   for (std::size_t k = 0; k < n; ++k) {
     for (int m = 0; m < kMeasCount; ++m) {

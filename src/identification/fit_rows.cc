@@ -37,6 +37,18 @@ double MedianMagnitude(const std::vector<double>& column, const std::vector<std:
   return fit::Median(std::move(mag));
 }
 
+std::array<double, kMeasCount> MedianPercentScales(const logs::SteadyTable& t, const std::vector<std::size_t>& rows,
+                                                   std::array<bool, kMeasCount>* measured) {
+  std::array<double, kMeasCount> inv_scale{};
+  for (int m = 0; m < kMeasCount; ++m) {
+    if (!(*measured)[m]) continue;
+    const double med = MedianMagnitude(t.Get(kMeasColumn[m]), rows);
+    inv_scale[m] = med > 0.0 ? 100.0 / med : 0.0;
+    if (!(med > 0.0)) (*measured)[m] = false;
+  }
+  return inv_scale;
+}
+
 OutlierSelection SelectOutlierRows(const std::vector<double>& rmax, const std::vector<double>& throttle,
                                    bool has_throttle, double threshold, double max_fraction,
                                    std::size_t min_kept) {

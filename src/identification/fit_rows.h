@@ -4,6 +4,7 @@
 // residuals to percent, and the robust outlier screen. Each rule exists once, here.
 #pragma once
 
+#include <array>
 #include <cstddef>
 #include <vector>
 
@@ -50,6 +51,12 @@ std::vector<double> ThrottleLevels(const std::vector<double>& throttle);
 // Median of |column[row]| over the rows: the typical magnitude a residual of this column is a
 // percent of (dyno sensor noise is mostly relative). NaN when rows is empty.
 double MedianMagnitude(const std::vector<double>& column, const std::vector<std::size_t>& rows);
+
+// The percent scale of every measured column over the rows: 100 / MedianMagnitude. A column whose
+// median magnitude is not positive carries nothing to compare: its scale is 0 and it is marked
+// not measured. Columns already not measured get 0.
+std::array<double, kMeasCount> MedianPercentScales(const logs::SteadyTable& t, const std::vector<std::size_t>& rows,
+                                                   std::array<bool, kMeasCount>* measured);
 
 // Robust outlier screening (issue 12: never more than 10 % of the points or a whole throttle
 // level). rmax[k]: the largest |percent residual| of row k; throttle[k]: its throttle. The rows

@@ -2,6 +2,7 @@
 // a row, in its documented order, and a NaN reading is never used.
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <limits>
 #include <string>
@@ -61,6 +62,30 @@ TEST(IdentificationFitRows, MedianMagnitudeOverTheChosenRows) {
   EXPECT_DOUBLE_EQ(MedianMagnitude(column, {0, 2, 3}), 3.0);     // |-4|, 2, |-3|
   EXPECT_DOUBLE_EQ(MedianMagnitude(column, {0, 2, 3, 4}), 2.5);  // even count: mean of 2 and 3
   EXPECT_TRUE(std::isnan(MedianMagnitude(column, {})));
+}
+
+TEST(IdentificationFitRows, MedianPercentScalesMarkEmptyColumnsUnmeasured) {
+  logs::SteadyTable t;
+  t.source_line = {2, 3, 4};
+  t.Mutable(logs::Column::kOmegaRadS) = {100.0, 200.0, 400.0};
+  t.Mutable(logs::Column::kIdcA) = {0.0, 0.0, 0.0};  // logged but all zero: nothing to compare
+  t.info[static_cast<int>(logs::Column::kOmegaRadS)].present = true;
+  t.info[static_cast<int>(logs::Column::kIdcA)].present = true;
+  std::array<bool, kMeasCount> measured{};
+  measured[kMOmega] = measured[kMIdc] = true;
+  const std::array<double, kMeasCount> s = MedianPercentScales(t, {0, 1, 2}, &measured);
+  EXPECT_DOUBLE_EQ(s[kMOmega], 100.0 / 200.0);  // a residual of 2 rad/s is 1 %
+  EXPECT_TRUE(measured[kMOmega]);
+  EXPECT_EQ(s[kMIdc], 0.0);
+  EXPECT_FALSE(measured[kMIdc]);
+  EXPECT_EQ(s[kMIrms], 0.0);  // not measured to begin with: untouched
+  EXPECT_FALSE(measured[kMIrms]);
+}
+
+TEST(IdentificationFitRows, TermResidualIsAPercentOfTheScale) {
+  const ResidualTerm term{kMIdc, 10.0, 100.0 / 20.0};  // 10 A measured, scale 20 A
+  const double pred[kMeasCount] = {0.0, 11.0, 0.0, 0.0, 0.0};
+  EXPECT_DOUBLE_EQ(TermResidual(term, pred), 5.0);  // 1 A of 20 A
 }
 
 // Ten rows at two throttle levels; rows 2, 7 and 9 are far off (rmax in percent).
