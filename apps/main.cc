@@ -16,6 +16,7 @@
 namespace {
 
 using dynosize::ExitCode;
+namespace cli = dynosize::cli;
 
 // One "dynosize: " line per problem (a catalog with several problems lists each on its line).
 int Fail(ExitCode code, const std::string& message) {
@@ -51,21 +52,10 @@ void AddLogInputOptions(CLI::App* cmd, dynosize::cli::LogInputOptions* in,
   cmd->add_option("--esc-max-us", in->esc_max_us, "ESC pulse width at throttle 1, us");
 }
 
-}  // namespace
+// One Add*Command per subcommand: registers it and its flags on app, bound to the options
+// struct, and returns it (true once the command line has chosen it).
 
-int main(int argc, char** argv) {
-  namespace cli = dynosize::cli;
-  CLI::App app{"dynosize: motor + ESC model, catalog, calibration and sizing for electric "
-               "multirotors and eVTOL (Brown & Chopra's combined model)"};
-  app.require_subcommand(1);
-  app.fallthrough();  // --catalog may also follow the subcommand
-  app.set_version_flag("--version", std::string(DYNOSIZE_VERSION));
-  std::string catalog_dir;
-  app.add_option("--catalog", catalog_dir,
-                 "catalog folder (default: $DYNOSIZE_CATALOG or the bundled catalog/)");
-
-  // simulate
-  cli::SimulateOptions sim;
+CLI::App* AddSimulateCommand(CLI::App& app, cli::SimulateOptions& sim, const std::string& catalog_dir) {
   auto* simulate = app.add_subcommand(
       "simulate",
       "operating point(s) of a motor + ESC pair: forward (VDC, throttle, load) or inverse "
@@ -90,12 +80,11 @@ int main(int argc, char** argv) {
   simulate->add_option("--thrust-n", sim.thrust_n, "with --prop: the static thrust to hold, N");
   simulate->add_option("--rho-kg-m3", sim.rho_kg_m3, "with --prop: air density, kg/m^3 (default 1.225)");
   simulate->add_flag("--json", sim.json, "print one JSON object");
-  simulate->callback([&] {
-    sim.catalog_dir = catalog_dir;
-  });
+  simulate->callback([s = &sim, dir = &catalog_dir] { s->catalog_dir = *dir; });
+  return simulate;
+}
 
-  // calibrate
-  cli::CalibrateOptions cal;
+CLI::App* AddCalibrateCommand(CLI::App& app, cli::CalibrateOptions& cal) {
   auto* calibrate = app.add_subcommand(
       "calibrate",
       "fit motor + ESC catalog entries (KE, KT, Rm, Io, RESC, C1, C0, tr_sat, sat_slope) to steady "
@@ -137,42 +126,53 @@ int main(int argc, char** argv) {
                         "also write a static propeller entry (CT, CP vs rpm) from the log's thrust and torque");
   calibrate->add_option("--prop-diameter-in", cal.prop_diameter_in, "propeller diameter, inch (with --prop-id)");
   calibrate->add_option("--prop-pitch-in", cal.prop_pitch_in, "propeller pitch, inch (with --prop-id)");
+  return calibrate;
+}
 
-  // catalog
+// `catalog` and its subcommands: the options they fill and the subcommands, to dispatch on.
+struct CatalogCli {
+  cli::CatalogListOptions list;
+  std::string show_id;
+  std::string validate_dir;
+  bool validate_json = false;
+  cli::CatalogImportOptions import_opts;
+  bool schema_json = false;
+  CLI::App* list_cmd = nullptr;
+  CLI::App* show_cmd = nullptr;
+  CLI::App* validate_cmd = nullptr;
+  CLI::App* import_cmd = nullptr;
+  CLI::App* schema_cmd = nullptr;
+};
+
+void AddCatalogCommands(CLI::App& app, CatalogCli& c) {
   auto* catalog = app.add_subcommand("catalog", "list, show, validate the component catalog");
   catalog->require_subcommand(1);
   catalog->fallthrough();
-  cli::CatalogListOptions list;
-  auto* list_cmd = catalog->add_subcommand("list", "list the loaded components");
-  list_cmd->add_option("--kind", list.kind, "motors, escs, props or batteries")
+  c.list_cmd = catalog->add_subcommand("list", "list the loaded components");
+  c.list_cmd->add_option("--kind", c.list.kind, "motors, escs, props or batteries")
       ->check(CLI::IsMember({"motors", "escs", "props", "batteries"}));
-  list_cmd->add_option("--kv-min", list.kv_min, "motors with Kv >= this, rpm/V");
-  list_cmd->add_option("--kv-max", list.kv_max, "motors with Kv <= this, rpm/V");
-  list_cmd->add_option("--mass-max-kg", list.mass_max_kg, "entries with mass <= this, kg");
-  list_cmd->add_option("--current-min-a", list.current_min_a, "entries rated for >= this current, A");
-  list_cmd->add_flag("--json", list.json, "print {kind: [entries as catalog JSON objects]}");
-  std::string show_id;
-  auto* show_cmd = catalog->add_subcommand("show", "print one entry with its derived SI parameters");
-  show_cmd->add_option("id", show_id, "entry id")->required();
-  std::string validate_dir;
-  bool validate_json = false;
-  auto* validate_cmd = catalog->add_subcommand("validate", "report every problem in a catalog folder");
-  validate_cmd->add_option("dir", validate_dir, "catalog folder (default: the one in use)");
-  validate_cmd->add_flag("--json", validate_json, "print {\"valid\": bool, \"problems\": [...]}");
-  cli::CatalogImportOptions import_opts;
-  auto* import_cmd = catalog->add_subcommand(
+  c.list_cmd->add_option("--kv-min", c.list.kv_min, "motors with Kv >= this, rpm/V");
+  c.list_cmd->add_option("--kv-max", c.list.kv_max, "motors with Kv <= this, rpm/V");
+  c.list_cmd->add_option("--mass-max-kg", c.list.mass_max_kg, "entries with mass <= this, kg");
+  c.list_cmd->add_option("--current-min-a", c.list.current_min_a, "entries rated for >= this current, A");
+  c.list_cmd->add_flag("--json", c.list.json, "print {kind: [entries as catalog JSON objects]}");
+  c.show_cmd = catalog->add_subcommand("show", "print one entry with its derived SI parameters");
+  c.show_cmd->add_option("id", c.show_id, "entry id")->required();
+  c.validate_cmd = catalog->add_subcommand("validate", "report every problem in a catalog folder");
+  c.validate_cmd->add_option("dir", c.validate_dir, "catalog folder (default: the one in use)");
+  c.validate_cmd->add_flag("--json", c.validate_json, "print {\"valid\": bool, \"problems\": [...]}");
+  c.import_cmd = catalog->add_subcommand(
       "import", "regenerate catalog JSON from the public data sets (shared/data)");
-  import_cmd->add_option("--shared", import_opts.shared_data_dir,
-                         "folder holding drivecalc/, uiuc_propdb/, ... (shared/data)")
+  c.import_cmd->add_option("--shared", c.import_opts.shared_data_dir,
+                           "folder holding drivecalc/, uiuc_propdb/, ... (shared/data)")
       ->required();
-  import_cmd->add_option("--out", import_opts.out_dir, "catalog folder to write")->required();
-  import_cmd->add_flag("--json", import_opts.json, "print the import report as JSON");
-  bool schema_json = false;
-  auto* schema_cmd = catalog->add_subcommand("schema", "print every catalog key with its unit and rule");
-  schema_cmd->add_flag("--json", schema_json, "print the schema as JSON");
+  c.import_cmd->add_option("--out", c.import_opts.out_dir, "catalog folder to write")->required();
+  c.import_cmd->add_flag("--json", c.import_opts.json, "print the import report as JSON");
+  c.schema_cmd = catalog->add_subcommand("schema", "print every catalog key with its unit and rule");
+  c.schema_cmd->add_flag("--json", c.schema_json, "print the schema as JSON");
+}
 
-  // diagnose
-  cli::DiagnoseCliOptions diag;
+CLI::App* AddDiagnoseCommand(CLI::App& app, cli::DiagnoseCliOptions& diag) {
   auto* diagnose = app.add_subcommand(
       "diagnose",
       "show what the model gets wrong in a measured log (cross-validated), name the cause "
@@ -193,9 +193,10 @@ int main(int argc, char** argv) {
   diagnose->add_flag("--force", diag.force, "replace entries with the same ids in --out");
   diagnose->add_option("--kv-label", diag.kv_label,
                        "the motor's label Kv, rpm/V: the status check 'Kv within 25 % of the label'");
+  return diagnose;
+}
 
-  // evaluate, optimize (issue #6)
-  cli::EvaluateOptions eval;
+CLI::App* AddEvaluateCommand(CLI::App& app, cli::EvaluateOptions& eval) {
   auto* evaluate = app.add_subcommand(
       "evaluate", "one motor/ESC/propeller/battery combination flying a mission: operating point "
                   "per segment, battery state, objective, limits");
@@ -209,7 +210,10 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(1, 64));
   evaluate->add_flag("--json", eval.json, "print one JSON object");
   evaluate->add_option("--plot", eval.plot_dir, "write per-segment efficiency maps here");
-  cli::OptimizeOptions optim;
+  return evaluate;
+}
+
+CLI::App* AddOptimizeCommand(CLI::App& app, cli::OptimizeOptions& optim) {
   auto* optimize = app.add_subcommand(
       "optimize", "the best motor/ESC/propeller/battery combinations of the catalog for a mission "
                   "(exact search with provably safe pruning)");
@@ -222,9 +226,10 @@ int main(int argc, char** argv) {
   optimize->add_flag("--stats", optim.stats, "print where the search's time went on stderr");
   optimize->add_option("--plot", optim.plot_dir,
                        "write the Pareto front and the top pick's efficiency maps here");
+  return optimize;
+}
 
-  // validate-stand (issue 13 item 6)
-  cli::ValidateStandOptions vst;
+CLI::App* AddValidateStandCommand(CLI::App& app, cli::ValidateStandOptions& vst) {
   auto* validate_stand = app.add_subcommand(
       "validate-stand",
       "predict a measured stand table (thrust, current, rpm, torque) row by row from catalog "
@@ -251,6 +256,34 @@ int main(int argc, char** argv) {
   validate_stand->add_flag("--rows", vst.rows, "also print every row's measured and predicted values");
   validate_stand->add_flag("--json", vst.json, "print one JSON object");
   validate_stand->add_option("--plot", vst.plot_dir, "write the measured-vs-predicted figure here");
+  return validate_stand;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"dynosize: motor + ESC model, catalog, calibration and sizing for electric "
+               "multirotors and eVTOL (Brown & Chopra's combined model)"};
+  app.require_subcommand(1);
+  app.fallthrough();  // --catalog may also follow the subcommand
+  app.set_version_flag("--version", std::string(DYNOSIZE_VERSION));
+  std::string catalog_dir;
+  app.add_option("--catalog", catalog_dir,
+                 "catalog folder (default: $DYNOSIZE_CATALOG or the bundled catalog/)");
+  cli::SimulateOptions sim;
+  CLI::App* simulate = AddSimulateCommand(app, sim, catalog_dir);
+  cli::CalibrateOptions cal;
+  CLI::App* calibrate = AddCalibrateCommand(app, cal);
+  CatalogCli cat;
+  AddCatalogCommands(app, cat);
+  cli::DiagnoseCliOptions diag;
+  CLI::App* diagnose = AddDiagnoseCommand(app, diag);
+  cli::EvaluateOptions eval;
+  CLI::App* evaluate = AddEvaluateCommand(app, eval);
+  cli::OptimizeOptions optim;
+  CLI::App* optimize = AddOptimizeCommand(app, optim);
+  cli::ValidateStandOptions vst;
+  CLI::App* validate_stand = AddValidateStandCommand(app, vst);
 
   if (argc > 1 && argv[1][0] != '-') {
     const std::string first = argv[1];
@@ -306,14 +339,14 @@ int main(int argc, char** argv) {
       vst.catalog_dir = dir;
       return cli::RunValidateStand(vst);
     }
-    if (*list_cmd) {
-      list.catalog_dir = dir;
-      return cli::RunCatalogList(list);
+    if (*cat.list_cmd) {
+      cat.list.catalog_dir = dir;
+      return cli::RunCatalogList(cat.list);
     }
-    if (*show_cmd) return cli::RunCatalogShow(dir, show_id);
-    if (*validate_cmd) return cli::RunCatalogValidate(validate_dir.empty() ? dir : validate_dir, validate_json);
-    if (*schema_cmd) return cli::RunCatalogSchema(schema_json);
-    if (*import_cmd) return cli::RunCatalogImport(import_opts);
+    if (*cat.show_cmd) return cli::RunCatalogShow(dir, cat.show_id);
+    if (*cat.validate_cmd) return cli::RunCatalogValidate(cat.validate_dir.empty() ? dir : cat.validate_dir, cat.validate_json);
+    if (*cat.schema_cmd) return cli::RunCatalogSchema(cat.schema_json);
+    if (*cat.import_cmd) return cli::RunCatalogImport(cat.import_opts);
   } catch (const dynosize::Error& e) {
     return Fail(e.code(), e.what());
   } catch (const std::exception& e) {

@@ -12,6 +12,7 @@
 #include "common/units.h"
 #include "fit/linear_least_squares.h"
 #include "fit/statistics.h"
+#include "identification/fit_rows.h"
 
 namespace dynosize::calibration {
 
@@ -29,16 +30,18 @@ constexpr int kKeI = static_cast<int>(Param::kKe), kKtI = static_cast<int>(Param
               kC1I = static_cast<int>(Param::kC1), kC0I = static_cast<int>(Param::kC0),
               kDbI = static_cast<int>(Param::kDeadband);
 
-// Measured columns the fit compares with predictions, in this order.
-enum Meas : int { kMOmega = 0, kMIdc, kMIrms, kMVll, kMPac, kMeasCount };
-constexpr Column kMeasColumn[kMeasCount] = {Column::kOmegaRadS, Column::kIdcA, Column::kIrmsA,
-                                            Column::kVllRmsV, Column::kPacW};
-
-struct Term {
-  int meas;
-  double value;
-  double inv_scale;  // 100 / median |column|: residual in percent of the typical value
-};
+// Measured columns the fit compares with predictions and the residual terms
+// (identification/fit_rows.h); calibrate's term scale is 100 / median |column|: a residual in
+// percent of the column's typical value.
+using identification::kMeasColumn;
+using identification::kMeasCount;
+using identification::kMIdc;
+using identification::kMIrms;
+using identification::kMOmega;
+using identification::kMPac;
+using identification::kMVll;
+using Term = identification::ResidualTerm;
+using identification::TermResidual;
 
 struct FitData {
   std::vector<std::size_t> rows;  // rows of the table used
@@ -152,7 +155,7 @@ bool Residuals(const FitData& d, const Layout& lay, const std::array<double, kPa
     }
     for (int t = d.term_begin[k]; t < d.term_begin[k + 1]; ++t) {
       const Term& term = d.terms[t];
-      r[t] = (pred[term.meas] - term.value) * term.inv_scale;
+      r[t] = TermResidual(term, pred);
     }
   }
   return true;
@@ -196,15 +199,6 @@ constexpr std::array<double, kParamCount> kUpper = MakeUpper();
 
 std::string FileTag(const SteadyTable& t) { return t.file.empty() ? std::string("log") : t.file; }
 
-// Distinct throttle levels (rounded to 0.001).
-std::vector<double> ThrottleLevels(const std::vector<double>& tr) {
-  std::vector<double> lv;
-  for (double v : tr) lv.push_back(std::round(v * 1000.0) / 1000.0);
-  std::sort(lv.begin(), lv.end());
-  lv.erase(std::unique(lv.begin(), lv.end()), lv.end());
-  return lv;
-}
-
 struct Prepared {
   FitData data;
   Layout layout;
@@ -234,23 +228,32 @@ void DropRow(Prepared* pr, const SteadyTable& t, std::size_t i, const std::strin
   pr->dropped_rows.push_back({i, i < t.source_line.size() ? t.source_line[i] : 0, reason});
 }
 
-// Selects the rows, decides what is free, and finds starting values by linear least squares.
-Prepared Prepare(const SteadyTable& t, const CalibrationOptions& o, const std::vector<char>* excluded) {
-  Prepared pr;
+// Which columns the log has, beyond those Prepared records (the stages of Prepare share it).
+struct LogColumns {
+  bool has_q = false;   // torque
+  bool has_nl = false;  // no-load flag
+  bool ac = false;      // vll_rms_v and irms_a
+};
+
+// Prepare, stage 1: the required columns, then the rows used (the others are dropped with the
+// reason) and their inputs. Fills pr->data's row vectors and pr->has_throttle.
+LogColumns SelectFitRows(const SteadyTable& t, const CalibrationOptions& o, const std::vector<char>* excluded,
+                      Prepared* pr) {
   const std::string file = FileTag(t);
   if (!t.Has(Column::kOmegaRadS)) {
     throw DataError(file + ": column omega_rad_s (shaft speed) is absent: calibration needs the speed "
                     "to find the back-EMF constant");
   }
   const bool has_v = t.Has(Column::kVdcV);
-  const bool ac = t.Has(Column::kVllRmsV) && t.Has(Column::kIrmsA);
+  LogColumns c;
+  c.ac = t.Has(Column::kVllRmsV) && t.Has(Column::kIrmsA);
   if (!has_v) {
     throw DataError(file + ": column vdc_v (supply voltage) is absent: calibration needs the voltage "
                     "at the ESC (eq 48)");
   }
-  pr.has_throttle = t.Has(Column::kThrottle);
-  const bool has_q = t.Has(Column::kTorqueNm);
-  const bool has_nl = t.Has(Column::kNoLoad);
+  pr->has_throttle = t.Has(Column::kThrottle);
+  c.has_q = t.Has(Column::kTorqueNm);
+  c.has_nl = t.Has(Column::kNoLoad);
   const auto& w_all = t.Get(Column::kOmegaRadS);
   const auto& idc_all = t.Get(Column::kIdcA);
   double wmax = 0.0;
@@ -259,57 +262,47 @@ Prepared Prepare(const SteadyTable& t, const CalibrationOptions& o, const std::v
   for (double v : idc_all) any_idc = any_idc || v != 0.0;
   if (!any_idc) throw DataError(file + ": column idc_a is zero in every row: nothing to fit");
 
-  FitData& d = pr.data;
+  FitData& d = pr->data;
   for (int m = 0; m < kMeasCount; ++m) d.measured[m] = t.Has(kMeasColumn[m]);
   for (std::size_t i = 0; i < t.rows(); ++i) {
     if (excluded != nullptr && (*excluded)[i]) continue;
     const double w = w_all[i];
-    const double tr = pr.has_throttle ? t.Get(Column::kThrottle)[i] : o.assumed_throttle;
-    const bool nl = has_nl && t.Get(Column::kNoLoad)[i] != 0.0;
+    const double tr = pr->has_throttle ? t.Get(Column::kThrottle)[i] : o.assumed_throttle;
+    const bool nl = c.has_nl && t.Get(Column::kNoLoad)[i] != 0.0;
     // A no-load row without a speed reading (DriveCalc n = 0) still measures Io: at Q = 0 the
     // model's current I = Io does not depend on the speed (eq 42). Only its current is compared.
     const bool speed_unknown = nl && w == 0.0;
-    if (!speed_unknown && !(w > o.min_speed_fraction * wmax)) {
-      DropRow(&pr, t, i, "speed below min_speed_fraction of the largest");
-      continue;
-    }
-    if (pr.has_throttle && tr < o.min_throttle) {
-      DropRow(&pr, t, i, "throttle below min_throttle");
-      continue;
-    }
-    if (!(t.Get(Column::kVdcV)[i] > 0.0)) {
-      DropRow(&pr, t, i, "vdc_v not positive");
+    if (const char* why = identification::RowRejection(w, wmax, o.min_speed_fraction, pr->has_throttle, tr,
+                                                       o.min_throttle, t.Get(Column::kVdcV)[i], speed_unknown)) {
+      DropRow(pr, t, i, why);
       continue;
     }
     d.rows.push_back(i);
     d.vdc.push_back(t.Get(Column::kVdcV)[i]);
     d.tr.push_back(tr);
     d.omega.push_back(w);
-    d.q.push_back(has_q ? t.Get(Column::kTorqueNm)[i] : 0.0);
-    d.torque_known.push_back(has_q || nl ? 1 : 0);
+    d.q.push_back(c.has_q ? t.Get(Column::kTorqueNm)[i] : 0.0);
+    d.torque_known.push_back(c.has_q || nl ? 1 : 0);
     d.speed_known.push_back(speed_unknown ? 0 : 1);
-    const bool current_input = pr.has_throttle && !has_q && !ac && !nl && !speed_unknown && idc_all[i] > 0.0;
+    const bool current_input = pr->has_throttle && !c.has_q && !c.ac && !nl && !speed_unknown && idc_all[i] > 0.0;
     d.idc_in.push_back(current_input ? idc_all[i] : kNaN);
   }
-  const std::size_t n = d.rows.size();
   std::size_t with_speed = 0;
-  for (char c : d.speed_known) with_speed += c != 0 ? 1 : 0;
+  for (char k : d.speed_known) with_speed += k != 0 ? 1 : 0;
   if (with_speed < 2) {
     throw DataError(file + ": only " + std::to_string(with_speed) +
                     " row(s) with the motor turning: calibration needs at least 2");
   }
-  // Column scales: median magnitude of each measured column over the rows used.
-  std::array<double, kMeasCount> inv_scale{};
-  for (int m = 0; m < kMeasCount; ++m) {
-    if (!d.measured[m]) continue;
-    std::vector<double> mag;
-    for (std::size_t i : d.rows) mag.push_back(std::fabs(t.Get(kMeasColumn[m])[i]));
-    const double med = Median(mag);
-    inv_scale[m] = med > 0.0 ? 100.0 / med : 0.0;
-    if (!(med > 0.0)) d.measured[m] = false;
-  }
+  return c;
+}
+
+// Prepare, stage 2: the residual terms of every row, in percent of the column's median magnitude
+// over the rows used; the row's inputs (speed or current) are not terms.
+void BuildTerms(const SteadyTable& t, FitData* fd) {
+  FitData& d = *fd;
+  const std::array<double, kMeasCount> inv_scale = identification::MedianPercentScales(t, d.rows, &d.measured);
   d.term_begin.push_back(0);
-  for (std::size_t k = 0; k < n; ++k) {
+  for (std::size_t k = 0; k < d.rows.size(); ++k) {
     for (int m = 0; m < kMeasCount; ++m) {
       if (!d.measured[m]) continue;
       const bool current_input = d.idc_in[k] == d.idc_in[k];
@@ -320,36 +313,39 @@ Prepared Prepare(const SteadyTable& t, const CalibrationOptions& o, const std::v
     }
     d.term_begin.push_back(static_cast<int>(d.terms.size()));
   }
+}
 
-  // --- What is free.
-  Layout& lay = pr.layout;
+// Prepare, stage 3: which parameters are free, with a note for each one the log cannot identify.
+void ChooseFree(const CalibrationOptions& o, const LogColumns& c, Prepared* pr) {
+  const FitData& d = pr->data;
+  Layout& lay = pr->layout;
   auto& fr = lay.free;
   auto idx = [](Param p) { return static_cast<int>(p); };
-  pr.levels = ThrottleLevels(d.tr);
-  if (!pr.levels.empty()) pr.offset_upper = std::min(0.5, 0.9 * pr.levels.front());
-  const bool multi_level = pr.has_throttle && pr.levels.size() >= 2;
+  pr->levels = identification::ThrottleLevels(d.tr);
+  if (!pr->levels.empty()) pr->offset_upper = std::min(0.5, 0.9 * pr->levels.front());
+  const bool multi_level = pr->has_throttle && pr->levels.size() >= 2;
   bool any_torque_known = false;
-  for (char c : d.torque_known) any_torque_known = any_torque_known || c;
-  pr.mode = ac ? "ac" : (pr.has_throttle ? "dc" : "dc_no_throttle");
+  for (char k : d.torque_known) any_torque_known = any_torque_known || k;
+  pr->mode = c.ac ? "ac" : (pr->has_throttle ? "dc" : "dc_no_throttle");
   fr[idx(Param::kKe)] = true;
   fr[idx(Param::kRm)] = true;
-  lay.tie_kt = !(has_q && ac);
+  lay.tie_kt = !(c.has_q && c.ac);
   fr[idx(Param::kKt)] = !lay.tie_kt;
   fr[idx(Param::kIo)] = any_torque_known;
-  fr[idx(Param::kResc)] = ac && pr.has_throttle;
-  const bool esc_ratio = d.measured[kMIdc] && pr.has_throttle && (ac || has_q) && multi_level;
+  fr[idx(Param::kResc)] = c.ac && pr->has_throttle;
+  const bool esc_ratio = d.measured[kMIdc] && pr->has_throttle && (c.ac || c.has_q) && multi_level;
   fr[idx(Param::kC1)] = esc_ratio;
   fr[idx(Param::kC0)] = esc_ratio;
   fr[idx(Param::kTrSat)] = false;  // profiled
   fr[idx(Param::kSatSlope)] = false;  // freed per knee candidate
   fr[kDbI] = false;                   // freed when the offset is tested (FitWithOffset)
-  auto& nt = pr.notes;
-  nt[kDbI] = !pr.has_throttle ? "no throttle column: held at prior"
-             : pr.levels.size() < 3 ? "fewer than 3 throttle levels: held at prior"
-                                    : "";
+  auto& nt = pr->notes;
+  nt[kDbI] = !pr->has_throttle ? "no throttle column: held at prior"
+             : pr->levels.size() < 3 ? "fewer than 3 throttle levels: held at prior"
+                                     : "";
   if (lay.tie_kt) {
-    nt[idx(Param::kKt)] = has_q ? "tied: KT = sqrt(27/10)*KE (no AC columns to separate KT from the ESC ratio)"
-                                : "tied: KT = sqrt(27/10)*KE (no torque column)";
+    nt[idx(Param::kKt)] = c.has_q ? "tied: KT = sqrt(27/10)*KE (no AC columns to separate KT from the ESC ratio)"
+                                  : "tied: KT = sqrt(27/10)*KE (no torque column)";
   }
   if (!fr[idx(Param::kIo)]) nt[idx(Param::kIo)] = "no torque column and no no-load rows: Io does not enter the predictions";
   if (!fr[idx(Param::kResc)]) {
@@ -358,19 +354,132 @@ Prepared Prepare(const SteadyTable& t, const CalibrationOptions& o, const std::v
   }
   if (!esc_ratio) {
     nt[idx(Param::kC1)] = nt[idx(Param::kC0)] =
-        !pr.has_throttle ? "no throttle column: held at prior (rows taken as full throttle)"
+        !pr->has_throttle ? "no throttle column: held at prior (rows taken as full throttle)"
         : !d.measured[kMIdc] ? "no idc_a: held at prior"
-        : !(ac || has_q) ? "no torque and no AC columns: only C1/R, C0/R are determined; held at prior"
-                         : "one throttle level: C1*TR + C0 not separable; held at prior";
+        : !(c.ac || c.has_q) ? "no torque and no AC columns: only C1/R, C0/R are determined; held at prior"
+                             : "one throttle level: C1*TR + C0 not separable; held at prior";
   }
-  if (!pr.has_throttle) {
-    pr.warnings.push_back("no throttle column: every row taken as throttle " +
-                          std::to_string(o.assumed_throttle) +
-                          "; KE and R are conditional on that and on the assumed ESC (ideal unless --esc prior)");
+  if (!pr->has_throttle) {
+    pr->warnings.push_back("no throttle column: every row taken as throttle " +
+                           std::to_string(o.assumed_throttle) +
+                           "; KE and R are conditional on that and on the assumed ESC (ideal unless --esc prior)");
   }
+}
 
-  // --- Starting values and held values.
-  std::array<double, kParamCount>& p = pr.start;
+// The rows of the linear starts: those unlikely to be saturated (all rows if fewer than 3
+// qualify); rows without a speed reading cannot enter U = R*I + KE*omega.
+std::vector<std::size_t> LinearStartRows(const FitData& d, bool has_throttle) {
+  const std::size_t n = d.rows.size();
+  std::vector<std::size_t> lin;
+  for (std::size_t k = 0; k < n; ++k) {
+    if (d.speed_known[k] && (d.tr[k] <= 0.85 || !has_throttle)) lin.push_back(k);
+  }
+  if (lin.size() < 3) {
+    lin.clear();
+    for (std::size_t k = 0; k < n; ++k) {
+      if (d.speed_known[k]) lin.push_back(k);
+    }
+  }
+  return lin;
+}
+
+// Prepare, stage 4a: KE and R (and RESC with the AC columns) from U = R*I + KE*omega (eq 48), or
+// eq 42 with the AC columns, by linear least squares on the rows lin; irms: phase current per row.
+void StartKeAndR(const SteadyTable& t, const CalibrationOptions& o, const LogColumns& c, const Prepared& pr,
+                 const std::vector<double>& irms, const std::vector<std::size_t>& lin,
+                 std::array<double, kParamCount>* start) {
+  const FitData& d = pr.data;
+  auto& p = *start;
+  auto idx = [](Param q) { return static_cast<int>(q); };
+  Eigen::MatrixXd a(lin.size(), 2);
+  Eigen::VectorXd b(lin.size());
+  for (std::size_t j = 0; j < lin.size(); ++j) {
+    const std::size_t k = lin[j];
+    a(j, 0) = irms[k];
+    a(j, 1) = d.omega[k];
+    b[j] = c.ac ? t.Get(Column::kVllRmsV)[d.rows[k]] : kVllRmsPerVdc * d.vdc[k] * d.tr[k];
+  }
+  const auto sol = SolveLinearLeastSquares(a, b);
+  double r0 = sol.coefficients[0], ke0 = sol.coefficients[1];
+  if (!(ke0 > 0.0)) {
+    // Fall back on the no-load relation KE ~ U/omega.
+    ke0 = b.cwiseQuotient(a.col(1)).maxCoeff();
+  }
+  if (o.labels.kv_rpm_per_v) {
+    // A label is a better start than the linear fit, which a throttle offset or a nonlinear
+    // throttle curve biases: KE from the label, R by least squares with KE held there.
+    ke0 = identification::KeFromLabelKv(*o.labels.kv_rpm_per_v);
+    const Eigen::VectorXd rest = b - ke0 * a.col(1);
+    const double den = a.col(0).squaredNorm();
+    const double r_label = den > 0.0 ? a.col(0).dot(rest) / den : 0.0;
+    if (r_label > 0.0) r0 = r_label;
+  }
+  p[idx(Param::kKe)] = ke0;
+  if (c.ac) {
+    p[idx(Param::kRm)] = r0;
+    if (pr.layout.free[idx(Param::kResc)]) {
+      Eigen::MatrixXd a2(lin.size(), 1);
+      Eigen::VectorXd b2(lin.size());
+      for (std::size_t j = 0; j < lin.size(); ++j) {
+        const std::size_t k = lin[j];
+        a2(j, 0) = irms[k];
+        b2[j] = kVllRmsPerVdc * d.vdc[k] * d.tr[k] - t.Get(Column::kVllRmsV)[d.rows[k]];
+      }
+      p[idx(Param::kResc)] = SolveLinearLeastSquares(a2, b2).coefficients[0];
+    }
+  } else {
+    p[idx(Param::kRm)] = r0 - p[idx(Param::kResc)];
+  }
+}
+
+// Prepare, stage 4b: KT and Io from Q = KT*Irms - KT*Io with a torque column; otherwise KT tied
+// to KE and Io the mean current of the no-load rows (if any).
+void StartKtAndIo(const LogColumns& c, const Prepared& pr, const std::vector<double>& irms,
+                  std::array<double, kParamCount>* start) {
+  const FitData& d = pr.data;
+  const std::size_t n = d.rows.size();
+  auto& p = *start;
+  auto idx = [](Param q) { return static_cast<int>(q); };
+  if (c.has_q) {
+    Eigen::MatrixXd a(n, 2);
+    Eigen::VectorXd b(n);
+    for (std::size_t k = 0; k < n; ++k) {
+      a(k, 0) = irms[k];
+      a(k, 1) = 1.0;
+      b[k] = d.q[k];
+    }
+    const auto sol = SolveLinearLeastSquares(a, b);
+    const double kt = pr.layout.tie_kt ? kPacPerVllIrms * p[idx(Param::kKe)] : sol.coefficients[0];
+    p[idx(Param::kKt)] = kt > 0.0 ? kt : kPacPerVllIrms * p[idx(Param::kKe)];
+    double io = 0.0;
+    for (std::size_t k = 0; k < n; ++k) io += irms[k] - d.q[k] / p[idx(Param::kKt)];
+    p[idx(Param::kIo)] = io / static_cast<double>(n);
+  } else {
+    p[idx(Param::kKt)] = kPacPerVllIrms * p[idx(Param::kKe)];
+    bool any_torque_known = false;
+    for (char k : d.torque_known) any_torque_known = any_torque_known || k;
+    if (any_torque_known) {  // no-load rows: Io is the current there
+      double s = 0.0;
+      int cnt = 0;
+      for (std::size_t k = 0; k < n; ++k) {
+        if (d.torque_known[k]) {
+          s += irms[k];
+          ++cnt;
+        }
+      }
+      p[idx(Param::kIo)] = s / cnt;
+    }
+  }
+}
+
+// Prepare, stage 4: starting values (linear sub-problems) and held values (priors), returned in
+// the internal form (KT as the ratio f, C1 as the excess s) inside the box.
+void StartingValues(const SteadyTable& t, const CalibrationOptions& o, const LogColumns& c, Prepared* pr) {
+  const FitData& d = pr->data;
+  const std::size_t n = d.rows.size();
+  const auto& fr = pr->layout.free;
+  auto idx = [](Param q) { return static_cast<int>(q); };
+  std::array<double, kParamCount>& p = pr->start;
   const EscParams esc0 = o.esc_prior ? *o.esc_prior : EscParams{};
   p[idx(Param::kResc)] = esc0.resc_ohm;
   p[idx(Param::kC1)] = esc0.c1;
@@ -391,91 +500,11 @@ Prepared Prepare(const SteadyTable& t, const CalibrationOptions& o, const std::v
       irms[k] = t.Get(Column::kIdcA)[d.rows[k]] / std::max(g, 1e-3);
     }
   }
-  // Rows unlikely to be saturated for the linear starts (all rows if fewer than 3 qualify).
-  std::vector<std::size_t> lin;
-  // Rows without a speed reading cannot enter U = R*I + KE*omega.
-  for (std::size_t k = 0; k < n; ++k) {
-    if (d.speed_known[k] && (d.tr[k] <= 0.85 || !pr.has_throttle)) lin.push_back(k);
-  }
-  if (lin.size() < 3) {
-    lin.clear();
-    for (std::size_t k = 0; k < n; ++k) {
-      if (d.speed_known[k]) lin.push_back(k);
-    }
-  }
-  // KE and R from U = R*I + KE*omega (eq 48), or eq 42 with the AC columns.
-  {
-    Eigen::MatrixXd a(lin.size(), 2);
-    Eigen::VectorXd b(lin.size());
-    for (std::size_t j = 0; j < lin.size(); ++j) {
-      const std::size_t k = lin[j];
-      a(j, 0) = irms[k];
-      a(j, 1) = d.omega[k];
-      b[j] = ac ? t.Get(Column::kVllRmsV)[d.rows[k]] : kVllRmsPerVdc * d.vdc[k] * d.tr[k];
-    }
-    const auto sol = SolveLinearLeastSquares(a, b);
-    double r0 = sol.coefficients[0], ke0 = sol.coefficients[1];
-    if (!(ke0 > 0.0)) {
-      // Fall back on the no-load relation KE ~ U/omega.
-      ke0 = b.cwiseQuotient(a.col(1)).maxCoeff();
-    }
-    if (o.labels.kv_rpm_per_v) {
-      // A label is a better start than the linear fit, which a throttle offset or a nonlinear
-      // throttle curve biases: KE from the label, R by least squares with KE held there.
-      ke0 = identification::KeFromLabelKv(*o.labels.kv_rpm_per_v);
-      const Eigen::VectorXd rest = b - ke0 * a.col(1);
-      const double den = a.col(0).squaredNorm();
-      const double r_label = den > 0.0 ? a.col(0).dot(rest) / den : 0.0;
-      if (r_label > 0.0) r0 = r_label;
-    }
-    p[idx(Param::kKe)] = ke0;
-    if (ac) {
-      p[idx(Param::kRm)] = r0;
-      if (fr[idx(Param::kResc)]) {
-        Eigen::MatrixXd a2(lin.size(), 1);
-        Eigen::VectorXd b2(lin.size());
-        for (std::size_t j = 0; j < lin.size(); ++j) {
-          const std::size_t k = lin[j];
-          a2(j, 0) = irms[k];
-          b2[j] = kVllRmsPerVdc * d.vdc[k] * d.tr[k] - t.Get(Column::kVllRmsV)[d.rows[k]];
-        }
-        p[idx(Param::kResc)] = SolveLinearLeastSquares(a2, b2).coefficients[0];
-      }
-    } else {
-      p[idx(Param::kRm)] = r0 - p[idx(Param::kResc)];
-    }
-  }
-  // KT and Io from Q = KT*Irms - KT*Io.
-  if (has_q) {
-    Eigen::MatrixXd a(n, 2);
-    Eigen::VectorXd b(n);
-    for (std::size_t k = 0; k < n; ++k) {
-      a(k, 0) = irms[k];
-      a(k, 1) = 1.0;
-      b[k] = d.q[k];
-    }
-    const auto sol = SolveLinearLeastSquares(a, b);
-    const double kt = lay.tie_kt ? kPacPerVllIrms * p[idx(Param::kKe)] : sol.coefficients[0];
-    p[idx(Param::kKt)] = kt > 0.0 ? kt : kPacPerVllIrms * p[idx(Param::kKe)];
-    double io = 0.0;
-    for (std::size_t k = 0; k < n; ++k) io += irms[k] - d.q[k] / p[idx(Param::kKt)];
-    p[idx(Param::kIo)] = io / static_cast<double>(n);
-  } else {
-    p[idx(Param::kKt)] = kPacPerVllIrms * p[idx(Param::kKe)];
-    if (any_torque_known) {  // no-load rows: Io is the current there
-      double s = 0.0;
-      int c = 0;
-      for (std::size_t k = 0; k < n; ++k) {
-        if (d.torque_known[k]) {
-          s += irms[k];
-          ++c;
-        }
-      }
-      p[idx(Param::kIo)] = s / c;
-    }
-  }
+  const std::vector<std::size_t> lin = LinearStartRows(d, pr->has_throttle);
+  StartKeAndR(t, o, c, *pr, irms, lin, &p);
+  StartKtAndIo(c, *pr, irms, &p);
   // C1, C0 from IDC = C1*TR*Irms + C0*Irms (eq 57).
-  if (esc_ratio && d.measured[kMIrms]) {
+  if (fr[idx(Param::kC1)] && d.measured[kMIrms]) {
     Eigen::MatrixXd a(lin.size(), 2);
     Eigen::VectorXd b(lin.size());
     for (std::size_t j = 0; j < lin.size(); ++j) {
@@ -496,11 +525,20 @@ Prepared Prepare(const SteadyTable& t, const CalibrationOptions& o, const std::v
   // sub-problems may break the energy rules and are moved onto them), into the box, away from
   // the singular R = 0.
   p[kKeI] = std::clamp(p[kKeI], kLower[kKeI], kUpper[kKeI]);
-  p[kKtI] = lay.tie_kt ? 1.0 : p[kKtI] / (kPacPerVllIrms * p[kKeI]);
+  p[kKtI] = pr->layout.tie_kt ? 1.0 : p[kKtI] / (kPacPerVllIrms * p[kKeI]);
   p[kC0I] = std::clamp(p[kC0I], kLower[kC0I], kUpper[kC0I]);
   p[kC1I] = identification::EscExcess(p[kC1I], p[kC0I]);
   for (int k = 0; k < kParamCount; ++k) p[k] = std::clamp(p[k], kLower[k], kUpper[k]);
   if (p[idx(Param::kRm)] + p[idx(Param::kResc)] < 1e-4) p[idx(Param::kRm)] = 1e-4 + 0.01 * p[idx(Param::kRm)];
+}
+
+// Selects the rows, decides what is free, and finds starting values by linear least squares.
+Prepared Prepare(const SteadyTable& t, const CalibrationOptions& o, const std::vector<char>* excluded) {
+  Prepared pr;
+  const LogColumns c = SelectFitRows(t, o, excluded, &pr);
+  BuildTerms(t, &pr.data);
+  ChooseFree(o, c, &pr);
+  StartingValues(t, o, c, &pr);
   return pr;
 }
 
@@ -656,7 +694,7 @@ std::vector<double> RowResidualMax(const Prepared& pr, const std::array<double, 
     }
     for (int t = d.term_begin[k]; t < d.term_begin[k + 1]; ++t) {
       const Term& term = d.terms[t];
-      out[k] = std::max(out[k], std::fabs((pred[term.meas] - term.value) * term.inv_scale));
+      out[k] = std::max(out[k], std::fabs(TermResidual(term, pred)));
     }
   }
   return out;
@@ -751,21 +789,12 @@ std::vector<DroppedRow> SelectOutliers(const Prepared& pr, const std::array<doub
                                        const SteadyTable& t, const CalibrationOptions& o, int nfree) {
   const std::vector<double> rmax = RowResidualMax(pr, p);
   const double sigma = std::max(1.4826 * Median(rmax), o.outlier_floor_percent);
-  std::vector<std::size_t> cand;
-  for (std::size_t k = 0; k < rmax.size(); ++k) {
-    if (rmax[k] > o.outlier_sigmas * sigma) cand.push_back(k);
-  }
-  std::sort(cand.begin(), cand.end(), [&](std::size_t a, std::size_t b) { return rmax[a] > rmax[b]; });
-  const std::size_t n = pr.data.rows.size();
-  const auto cap = static_cast<std::size_t>(std::floor(o.max_outlier_fraction * static_cast<double>(n)));
-  std::map<long long, std::size_t> per_level;
-  for (double tr : pr.data.tr) ++per_level[std::llround(tr * 1000.0)];
+  const identification::OutlierSelection sel =
+      identification::SelectOutlierRows(rmax, pr.data.tr, pr.has_throttle, o.outlier_sigmas * sigma,
+                                        o.max_outlier_fraction, static_cast<std::size_t>(nfree) + 3);
   std::vector<DroppedRow> out;
-  for (std::size_t k : cand) {
-    if (out.size() >= cap || n - out.size() < static_cast<std::size_t>(nfree) + 3) break;
-    std::size_t& left = per_level[std::llround(pr.data.tr[k] * 1000.0)];
-    if (pr.has_throttle && left <= 1) continue;  // never a whole throttle level
-    --left;
+  out.reserve(sel.dropped.size());
+  for (std::size_t k : sel.dropped) {
     const std::size_t row = pr.data.rows[k];
     std::ostringstream why;
     why << std::setprecision(3) << "outlier: largest residual " << rmax[k] << " % > " << o.outlier_sigmas

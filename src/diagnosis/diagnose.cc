@@ -7,6 +7,7 @@
 #include <cmath>
 #include <iomanip>
 #include <numeric>
+#include <optional>
 #include <random>
 #include <sstream>
 
@@ -15,6 +16,7 @@
 #include "common/units.h"
 #include "fit/nonlinear_least_squares.h"
 #include "fit/statistics.h"
+#include "identification/fit_rows.h"
 #include "identification/parameters.h"
 
 namespace dynosize::diagnosis {
@@ -44,16 +46,18 @@ constexpr bool kSlotIsBase[kSlotCount] = {true,  true,  true,  true,  true,  tru
 using Values = std::array<double, kSlotCount>;
 using FreeSet = std::array<bool, kSlotCount>;
 
-// Measured columns the model predicts, in this order.
-enum Meas : int { kMOmega = 0, kMIdc, kMIrms, kMVll, kMPac, kMeasCount };
-constexpr Column kMeasColumn[kMeasCount] = {Column::kOmegaRadS, Column::kIdcA, Column::kIrmsA,
-                                            Column::kVllRmsV, Column::kPacW};
-
-struct Term {
-  int meas;
-  double value;
-  double inv_scale;  // 100 / max(|value|, 5 % of the column median): residual in percent
-};
+// Measured columns the model predicts and the residual terms (identification/fit_rows.h);
+// diagnose's term scale is 100 / max(|value|, 5 % of the column median): a residual in percent
+// of the measured value (then the effective-variance weights, ApplyEffectiveVarianceWeights).
+using identification::kMeasColumn;
+using identification::kMeasCount;
+using identification::kMIdc;
+using identification::kMIrms;
+using identification::kMOmega;
+using identification::kMPac;
+using identification::kMVll;
+using Term = identification::ResidualTerm;
+using identification::TermResidual;
 
 struct Data {
   std::vector<std::size_t> table_row;
@@ -124,7 +128,7 @@ bool Residuals(const Data& d, const std::vector<std::size_t>& rows, const Values
     if (!PredictRow(d, drive, k, pred)) return false;
     for (int t = d.term_begin[k]; t < d.term_begin[k + 1]; ++t) {
       const Term& term = d.terms[t];
-      r[out++] = (pred[term.meas] - term.value) * term.inv_scale;
+      r[out++] = TermResidual(term, pred);
     }
   }
   return true;
@@ -306,7 +310,7 @@ CvOut CrossValidate(const Data& d, const std::vector<std::size_t>& used,
       const bool ok = PredictRow(d, drive, k, pred);
       for (int t = d.term_begin[k]; t < d.term_begin[k + 1]; ++t) {
         const Term& term = d.terms[t];
-        const double r = ok ? (pred[term.meas] - term.value) * term.inv_scale : 100.0;
+        const double r = ok ? TermResidual(term, pred) : 100.0;
         ss += r * r;
         ++nt;
         cv.pred[term.meas][k] = ok ? pred[term.meas] : kNaN;
@@ -511,14 +515,6 @@ std::string Separation(Cause a, Cause b) {
          "(vll_rms_v, irms_a) to see the motor and the ESC separately";
 }
 
-std::vector<double> Levels(const std::vector<double>& tr) {
-  std::vector<double> lv;
-  for (double v : tr) lv.push_back(std::round(v * 1000.0) / 1000.0);
-  std::sort(lv.begin(), lv.end());
-  lv.erase(std::unique(lv.begin(), lv.end()), lv.end());
-  return lv;
-}
-
 // Starting values of the base parameters from the calibration engine (src/calibration: the same
 // base model, its robust fit and its knee profile, without the throttle offset, which is a
 // candidate here): the linear start alone can leave the first-order fit in a stalled local
@@ -560,26 +556,11 @@ std::vector<std::size_t> ScreenOutliers(const Data& d, const SteadyTable& t, con
   for (std::size_t k = 0; k < n; ++k) {
     for (int tt = d.term_begin[k]; tt < d.term_begin[k + 1]; ++tt) rmax[k] = std::max(rmax[k], std::fabs(r[tt]));
   }
-  std::vector<std::size_t> cand;
-  for (std::size_t k = 0; k < n; ++k) {
-    if (rmax[k] > o.outlier_sigmas * sigma) cand.push_back(k);
-  }
-  std::sort(cand.begin(), cand.end(), [&](std::size_t a, std::size_t b) { return rmax[a] > rmax[b]; });
-  const auto cap = static_cast<std::size_t>(std::floor(o.max_outlier_fraction * static_cast<double>(n)));
-  std::map<long long, std::size_t> per_level;
-  for (double tr : d.tr) ++per_level[std::llround(tr * 1000.0)];
-  const bool has_tr = t.Has(Column::kThrottle);
+  const identification::OutlierSelection sel = identification::SelectOutlierRows(
+      rmax, d.tr, t.Has(Column::kThrottle), o.outlier_sigmas * sigma, o.max_outlier_fraction, 0);
   std::vector<char> drop(n, 0);
-  std::size_t dropped = 0, spared = 0;
-  for (std::size_t k : cand) {
-    std::size_t& left = per_level[std::llround(d.tr[k] * 1000.0)];
-    if (dropped >= cap || (has_tr && left <= 1)) {
-      ++spared;
-      continue;
-    }
-    --left;
+  for (std::size_t k : sel.dropped) {
     drop[k] = 1;
-    ++dropped;
     const std::size_t row = d.table_row[k];
     std::ostringstream why;
     why << std::setprecision(3) << "line " << t.source_line[row] << ": outlier, largest residual " << rmax[k]
@@ -587,9 +568,9 @@ std::vector<std::size_t> ScreenOutliers(const Data& d, const SteadyTable& t, con
     res->outlier_rows.push_back(row);
     res->outlier_reasons.push_back(why.str());
   }
-  if (spared > 0) {
-    res->warnings.push_back(std::to_string(spared) + " more row(s) beyond the outlier threshold kept: at most " +
-                            std::to_string(cap) + " rows (10 %) and never a whole throttle level are dropped");
+  if (sel.spared > 0) {
+    res->warnings.push_back(std::to_string(sel.spared) + " more row(s) beyond the outlier threshold kept: at most " +
+                            std::to_string(sel.cap) + " rows (10 %) and never a whole throttle level are dropped");
   }
   std::vector<std::size_t> keep;
   for (std::size_t k = 0; k < n; ++k) {
@@ -653,14 +634,24 @@ identification::Verdict JudgeExtended(const Data& d, const SteadyTable& t, const
   return identification::Judge(in);
 }
 
-}  // namespace
+// ---------------------------------------------------------------------------------------------
+// The stages of Diagnose(), in the order it runs them.
 
-DiagnoseResult Diagnose(const SteadyTable& t, const DiagnoseOptions& o) {
-  std::string why;
-  if (!o.IsValid(&why)) throw UsageError("diagnose options: " + why);
-  DiagnoseResult res;
-  res.file = t.file.empty() ? "log" : t.file;
-  const std::string& file = res.file;
+// Stage 1: what the log offers, and the rows and terms of the fit.
+struct Prepared {
+  Data d;
+  bool has_tr = false;  // throttle column
+  bool has_q = false;   // torque column
+  bool has_nl = false;  // no-load flag column
+  bool ac = false;      // AC-side columns (vll_rms_v and irms_a)
+  bool any_tk = false;  // some row has a known torque (torque column or a no-load row)
+  double wmax = 0.0;    // largest logged speed, rad/s
+  std::vector<double> levels;                  // distinct throttle levels (none without throttle)
+  std::array<double, kMeasCount> inv_scale{};  // 100 / column median: percent of a typical value
+};
+
+Prepared PrepareDiagnosisData(const SteadyTable& t, const DiagnoseOptions& o, DiagnoseResult* res) {
+  const std::string& file = res->file;
   if (!t.Has(Column::kOmegaRadS)) {
     throw DataError(file + ": column omega_rad_s (shaft speed) is absent: the diagnosis compares "
                     "the model's speed/current with the measured ones and needs the speed");
@@ -669,46 +660,39 @@ DiagnoseResult Diagnose(const SteadyTable& t, const DiagnoseOptions& o) {
     throw DataError(file + ": column vdc_v (supply voltage) is absent: the model needs the voltage "
                     "at the ESC (eq 48)");
   }
-  const bool has_tr = t.Has(Column::kThrottle);
-  const bool has_q = t.Has(Column::kTorqueNm);
-  const bool has_nl = t.Has(Column::kNoLoad);
-  const bool ac = t.Has(Column::kVllRmsV) && t.Has(Column::kIrmsA);
-  res.mode = ac ? "ac" : (has_tr ? "dc" : "dc_no_throttle");
+  Prepared p;
+  p.has_tr = t.Has(Column::kThrottle);
+  p.has_q = t.Has(Column::kTorqueNm);
+  p.has_nl = t.Has(Column::kNoLoad);
+  p.ac = t.Has(Column::kVllRmsV) && t.Has(Column::kIrmsA);
+  res->mode = p.ac ? "ac" : (p.has_tr ? "dc" : "dc_no_throttle");
 
-  // --- Rows and terms.
-  Data d;
+  Data& d = p.d;
   d.motor_type = o.motor ? o.motor->type : MotorType::kBldc;
   for (int m = 0; m < kMeasCount; ++m) d.measured[m] = t.Has(kMeasColumn[m]);
-  double wmax = 0.0;
-  for (double w : t.Get(Column::kOmegaRadS)) wmax = std::max(wmax, w);
-  res.row_used.assign(t.rows(), 0);
+  for (double w : t.Get(Column::kOmegaRadS)) p.wmax = std::max(p.wmax, w);
+  res->row_used.assign(t.rows(), 0);
   for (std::size_t i = 0; i < t.rows(); ++i) {
     const double w = t.Get(Column::kOmegaRadS)[i];
-    const double tr = has_tr ? t.Get(Column::kThrottle)[i] : o.assumed_throttle;
+    const double tr = p.has_tr ? t.Get(Column::kThrottle)[i] : o.assumed_throttle;
     const double vdc = t.Get(Column::kVdcV)[i];
-    if (!(w > o.min_speed_fraction * wmax) || (has_tr && tr < o.min_throttle) || !(vdc > 0.0)) continue;
-    const bool nl = has_nl && t.Get(Column::kNoLoad)[i] != 0.0;
+    if (identification::RowRejection(w, p.wmax, o.min_speed_fraction, p.has_tr, tr, o.min_throttle, vdc) != nullptr) {
+      continue;
+    }
+    const bool nl = p.has_nl && t.Get(Column::kNoLoad)[i] != 0.0;
     d.table_row.push_back(i);
     d.vdc.push_back(vdc);
     d.tr.push_back(tr);
     d.omega.push_back(w);
-    d.q.push_back(has_q ? t.Get(Column::kTorqueNm)[i] : 0.0);
-    d.torque_known.push_back(has_q || nl ? 1 : 0);
+    d.q.push_back(p.has_q ? t.Get(Column::kTorqueNm)[i] : 0.0);
+    d.torque_known.push_back(p.has_q || nl ? 1 : 0);
   }
   const std::size_t n = d.rows();
   if (n < 6) {
     throw DataError(file + ": only " + std::to_string(n) +
                     " row(s) with the motor turning: the diagnosis needs at least 6");
   }
-  std::array<double, kMeasCount> inv_scale{};
-  for (int m = 0; m < kMeasCount; ++m) {
-    if (!d.measured[m]) continue;
-    std::vector<double> mag;
-    for (std::size_t i : d.table_row) mag.push_back(std::fabs(t.Get(kMeasColumn[m])[i]));
-    const double med = Median(mag);
-    inv_scale[m] = med > 0.0 ? 100.0 / med : 0.0;
-    if (!(med > 0.0)) d.measured[m] = false;
-  }
+  p.inv_scale = identification::MedianPercentScales(t, d.table_row, &d.measured);
   d.term_begin.push_back(0);
   for (std::size_t k = 0; k < n; ++k) {
     for (int m = 0; m < kMeasCount; ++m) {
@@ -717,7 +701,7 @@ DiagnoseResult Diagnose(const SteadyTable& t, const DiagnoseOptions& o) {
       // Percent of the measured value (the noise of dyno sensors is mostly relative), floored
       // at 5 % of the column's median so that near-zero readings do not dominate.
       const double val = t.Get(kMeasColumn[m])[d.table_row[k]];
-      const double den = std::max(std::fabs(val), 5.0 / inv_scale[m]);
+      const double den = std::max(std::fabs(val), 5.0 / p.inv_scale[m]);
       d.terms.push_back({m, val, 100.0 / den});
     }
     d.term_begin.push_back(static_cast<int>(d.terms.size()));
@@ -727,91 +711,76 @@ DiagnoseResult Diagnose(const SteadyTable& t, const DiagnoseOptions& o) {
                     "irms_a) or a torque column besides the speed");
   }
   for (int m = 0; m < kMeasCount; ++m) {
-    if (d.measured[m] && !(m == kMOmega && !has_q && !has_nl)) res.predicted_columns.push_back(kMeasColumn[m]);
+    if (d.measured[m] && !(m == kMOmega && !p.has_q && !p.has_nl)) res->predicted_columns.push_back(kMeasColumn[m]);
   }
-  const std::vector<double> levels = has_tr ? Levels(d.tr) : std::vector<double>{};
-  bool any_tk = false;
-  for (char c : d.torque_known) any_tk = any_tk || c;
+  if (p.has_tr) p.levels = identification::ThrottleLevels(d.tr);
+  for (char c : d.torque_known) p.any_tk = p.any_tk || c;
+  d.tie_kt = !(p.has_q && p.ac);
+  return p;
+}
 
-  // --- Base model: what is free, held values and starts.
-  d.tie_kt = !(has_q && ac);
-  Model base;
-  const MotorParams m0 = o.motor ? *o.motor : MotorParams{};
-  const EscParams e0 = o.esc ? *o.esc : EscParams{};
-  Values& v = base.values;
-  v[kKe] = m0.ke_v_s_per_rad;
-  v[kKt] = m0.kt_nm_per_a;
-  v[kRm] = m0.rm_ohm;
-  v[kIo] = m0.io_a;
-  v[kResc] = e0.resc_ohm;
-  v[kC1] = e0.c1;
-  v[kC0] = e0.c0;
-  // The extensions start from the first-order model whatever the catalog says: the diagnosis
-  // asks whether the data need them.
-  v[kTrSat] = 1.0;
-  v[kSatSlope] = 1.0;
-  v[kDeadband] = 0.0;
-  v[kIo1] = v[kRth] = v[kDroop] = v[kRsupply] = 0.0;
-  FreeSet& fr = base.free;
-  fr[kKe] = fr[kRm] = true;
-  fr[kKt] = !d.tie_kt;
-  fr[kIo] = any_tk;
-  fr[kResc] = ac && has_tr;
-  fr[kC1] = fr[kC0] = d.measured[kMIdc] && has_tr && levels.size() >= 2 && (ac || has_q);
-  // Linear starts when no catalog entry: U = R*I + KE*omega (eq 48) by least squares, I from
-  // the AC current or IDC/(C1*TR + C0).
-  if (!o.motor) {
-    Eigen::MatrixXd a(static_cast<Eigen::Index>(n), 2);
-    Eigen::VectorXd b(static_cast<Eigen::Index>(n));
-    double imax = 0.0;
-    for (std::size_t k = 0; k < n; ++k) {
-      const std::size_t i = d.table_row[k];
-      const double g = std::max(v[kC1] * d.tr[k] + v[kC0], 1e-3);
-      const double cur = ac ? t.Get(Column::kIrmsA)[i]
+// Stage 2a: linear starts of the base parameters when no catalog entry is given:
+// U = R*I + KE*omega (eq 48) by least squares, I from the AC current or IDC/(C1*TR + C0); then
+// the calibration engine's fit where it is physical (BaseStartFromCalibration).
+void LinearBaseStarts(const SteadyTable& t, const DiagnoseOptions& o, const Prepared& p, Values* values) {
+  const Data& d = p.d;
+  const std::size_t n = d.rows();
+  Values& v = *values;
+  Eigen::MatrixXd a(static_cast<Eigen::Index>(n), 2);
+  Eigen::VectorXd b(static_cast<Eigen::Index>(n));
+  double imax = 0.0;
+  for (std::size_t k = 0; k < n; ++k) {
+    const std::size_t i = d.table_row[k];
+    const double g = std::max(v[kC1] * d.tr[k] + v[kC0], 1e-3);
+    const double cur = p.ac ? t.Get(Column::kIrmsA)[i]
                             : (d.measured[kMIdc] ? t.Get(Column::kIdcA)[i] / g : 0.0);
-      imax = std::max(imax, cur);
-      a(static_cast<Eigen::Index>(k), 0) = cur;
-      a(static_cast<Eigen::Index>(k), 1) = d.omega[k];
-      b[static_cast<Eigen::Index>(k)] = kVllRmsPerVdc * d.vdc[k] * d.tr[k];
-    }
-    const Eigen::VectorXd sol = a.colPivHouseholderQr().solve(b);
-    double ke = sol[1], r = sol[0];
-    if (!(ke > 0.0)) ke = (b.array() / a.col(1).array()).maxCoeff();
-    if (!(r > 1e-4)) r = imax > 0.0 ? 0.05 * b.maxCoeff() / imax : 0.1;
-    v[kKe] = ke;
-    v[kRm] = std::max(r - v[kResc], 1e-4);
-    v[kKt] = kPacPerVllIrms * ke;
-    if (any_tk) {
-      double s = 0.0;
-      int c = 0;
-      for (std::size_t k = 0; k < n; ++k) {
-        if (!d.torque_known[k]) continue;
-        const double g = std::max(v[kC1] * d.tr[k] + v[kC0], 1e-3);
-        const double cur = ac ? t.Get(Column::kIrmsA)[d.table_row[k]]
-                              : (d.measured[kMIdc] ? t.Get(Column::kIdcA)[d.table_row[k]] / g : 0.0);
-        s += cur - d.q[k] / v[kKt];
-        ++c;
-      }
-      v[kIo] = c > 0 ? std::max(s / c, 0.0) : 0.0;
-    }
-    BaseStartFromCalibration(t, o, &v);
+    imax = std::max(imax, cur);
+    a(static_cast<Eigen::Index>(k), 0) = cur;
+    a(static_cast<Eigen::Index>(k), 1) = d.omega[k];
+    b[static_cast<Eigen::Index>(k)] = kVllRmsPerVdc * d.vdc[k] * d.tr[k];
   }
-  // Scales and bounds (optimisation units: x = value/scale).
+  const Eigen::VectorXd sol = a.colPivHouseholderQr().solve(b);
+  double ke = sol[1], r = sol[0];
+  if (!(ke > 0.0)) ke = (b.array() / a.col(1).array()).maxCoeff();
+  if (!(r > 1e-4)) r = imax > 0.0 ? 0.05 * b.maxCoeff() / imax : 0.1;
+  v[kKe] = ke;
+  v[kRm] = std::max(r - v[kResc], 1e-4);
+  v[kKt] = kPacPerVllIrms * ke;
+  if (p.any_tk) {
+    double s = 0.0;
+    int c = 0;
+    for (std::size_t k = 0; k < n; ++k) {
+      if (!d.torque_known[k]) continue;
+      const double g = std::max(v[kC1] * d.tr[k] + v[kC0], 1e-3);
+      const double cur = p.ac ? t.Get(Column::kIrmsA)[d.table_row[k]]
+                              : (d.measured[kMIdc] ? t.Get(Column::kIdcA)[d.table_row[k]] / g : 0.0);
+      s += cur - d.q[k] / v[kKt];
+      ++c;
+    }
+    v[kIo] = c > 0 ? std::max(s / c, 0.0) : 0.0;
+  }
+  BaseStartFromCalibration(t, o, &v);
+}
+
+// Stage 2b: optimisation scales (x = value/scale) and the physical box of every slot.
+void ScalesAndBounds(const Prepared& p, Model* base) {
+  const Data& d = p.d;
+  const Values& v = base->values;
   double imax = 0.0;
   {
     MotorParams mp;
     EscParams ep;
     ToParams(d, v, &mp, &ep);
     const Drive drive(mp, ep);
-    for (std::size_t k = 0; k < n; ++k) {
-      const auto p = d.torque_known[k] ? drive.AtTorque(d.vdc[k], d.tr[k], d.q[k])
-                                       : drive.AtSpeed(d.vdc[k], d.tr[k], d.omega[k]);
-      if (std::isfinite(p.irms_a)) imax = std::max(imax, std::fabs(p.irms_a));
+    for (std::size_t k = 0; k < d.rows(); ++k) {
+      const auto op = d.torque_known[k] ? drive.AtTorque(d.vdc[k], d.tr[k], d.q[k])
+                                        : drive.AtSpeed(d.vdc[k], d.tr[k], d.omega[k]);
+      if (std::isfinite(op.irms_a)) imax = std::max(imax, std::fabs(op.irms_a));
     }
     if (!(imax > 0.0)) imax = 10.0;
   }
   const double rm_s = std::max(v[kRm], 1e-3);
-  Values& sc = base.scale;
+  Values& sc = base->scale;
   sc[kKe] = std::max(v[kKe], 1e-6);
   sc[kKt] = 1.0;  // the ratio KT/(kp*KE)
   sc[kRm] = rm_s;
@@ -822,11 +791,11 @@ DiagnoseResult Diagnose(const SteadyTable& t, const DiagnoseOptions& o) {
   sc[kTrSat] = 1.0;
   sc[kSatSlope] = 1.0;
   sc[kDeadband] = 0.1;
-  sc[kIo1] = sc[kIo] / std::max(wmax, 1.0);
+  sc[kIo1] = sc[kIo] / std::max(p.wmax, 1.0);
   sc[kRth] = 0.1 / (kAlphaCopperPerK * kPacPerVllIrms * rm_s * imax * imax);  // x=1: +10 % Rm
   sc[kDroop] = 0.1 / imax;                                                  // x=1: -10 % KT
   sc[kRsupply] = rm_s;
-  const double min_level = levels.empty() ? 1.0 : levels.front();
+  const double min_level = p.levels.empty() ? 1.0 : p.levels.front();
   // Physical box of identification/parameters.h; the KT and c1 slots are bounded as the ratio
   // KT/(kp*KE) <= 1 and the excess c1 + c0 - 1.1095 >= 0 (model.md section 10), c0 >= 0.
   namespace id = identification;
@@ -851,14 +820,47 @@ DiagnoseResult Diagnose(const SteadyTable& t, const DiagnoseOptions& o) {
   upper[kDroop] = 10.0;
   lower[kRsupply] = 0.0;
   upper[kRsupply] = 10.0;
-  base.lower = lower;
-  base.upper = upper;
-  for (int s = 0; s < kSlotCount; ++s) {
-    if (base.free[s]) res.base_free_parameters.push_back(kSlotName[s]);
-  }
+  base->lower = lower;
+  base->upper = upper;
+}
 
-  // Knee candidates: midpoints between throttle levels from 0.5 up (or a 0.02 grid when the
-  // throttle is continuous), each with at least one level above.
+// Stage 2: the base (first-order) model: what is free, held values, starts, scales and bounds.
+Model BuildBaseModel(const SteadyTable& t, const DiagnoseOptions& o, const Prepared& p, DiagnoseResult* res) {
+  const Data& d = p.d;
+  Model base;
+  const MotorParams m0 = o.motor ? *o.motor : MotorParams{};
+  const EscParams e0 = o.esc ? *o.esc : EscParams{};
+  Values& v = base.values;
+  v[kKe] = m0.ke_v_s_per_rad;
+  v[kKt] = m0.kt_nm_per_a;
+  v[kRm] = m0.rm_ohm;
+  v[kIo] = m0.io_a;
+  v[kResc] = e0.resc_ohm;
+  v[kC1] = e0.c1;
+  v[kC0] = e0.c0;
+  // The extensions start from the first-order model whatever the catalog says: the diagnosis
+  // asks whether the data need them.
+  v[kTrSat] = 1.0;
+  v[kSatSlope] = 1.0;
+  v[kDeadband] = 0.0;
+  v[kIo1] = v[kRth] = v[kDroop] = v[kRsupply] = 0.0;
+  FreeSet& fr = base.free;
+  fr[kKe] = fr[kRm] = true;
+  fr[kKt] = !d.tie_kt;
+  fr[kIo] = p.any_tk;
+  fr[kResc] = p.ac && p.has_tr;
+  fr[kC1] = fr[kC0] = d.measured[kMIdc] && p.has_tr && p.levels.size() >= 2 && (p.ac || p.has_q);
+  if (!o.motor) LinearBaseStarts(t, o, p, &v);
+  ScalesAndBounds(p, &base);
+  for (int s = 0; s < kSlotCount; ++s) {
+    if (base.free[s]) res->base_free_parameters.push_back(kSlotName[s]);
+  }
+  return base;
+}
+
+// Knee candidates: midpoints between throttle levels from 0.5 up (or a 0.02 grid when the
+// throttle is continuous), each with at least one level above.
+std::vector<double> KneeGrid(const std::vector<double>& levels) {
   std::vector<double> knees;
   if (levels.size() >= 3) {
     if (levels.size() <= 40) {
@@ -870,8 +872,12 @@ DiagnoseResult Diagnose(const SteadyTable& t, const DiagnoseOptions& o) {
       for (double k = 0.5; k < levels.back() - 1e-9; k += 0.02) knees.push_back(k);
     }
   }
+  return knees;
+}
 
-  // --- Testable candidates.
+// Stage 3: the candidates this log can test; the others go to res->not_testable with the reason.
+std::vector<Cause> TestableCandidates(const DiagnoseOptions& o, const Prepared& p,
+                                      const std::vector<double>& knees, DiagnoseResult* res) {
   std::vector<Cause> candidates;
   for (Cause c : o.candidates) {
     CandidateScore cs;
@@ -879,23 +885,23 @@ DiagnoseResult Diagnose(const SteadyTable& t, const DiagnoseOptions& o) {
     std::string reason;
     switch (c) {
       case Cause::kEscSaturation:
-        if (!has_tr) reason = "no throttle column";
+        if (!p.has_tr) reason = "no throttle column";
         else if (knees.empty()) reason = "fewer than 3 throttle levels or none above 50 %";
         break;
       case Cause::kSpeedDependentNoLoadCurrent:
-        if (!any_tk) reason = "no torque column and no no-load rows: with the speed as input the no-load current does not enter the predicted columns";
+        if (!p.any_tk) reason = "no torque column and no no-load rows: with the speed as input the no-load current does not enter the predicted columns";
         break;
       case Cause::kTorqueConstantDroop:
-        if (!has_q) reason = "no torque column: the torque constant does not enter the predicted columns";
+        if (!p.has_q) reason = "no torque column: the torque constant does not enter the predicted columns";
         break;
       case Cause::kThrottleDeadband:
-        if (!has_tr) reason = "no throttle column";
-        else if (levels.size() < 3) reason = "fewer than 3 throttle levels";
+        if (!p.has_tr) reason = "no throttle column";
+        else if (p.levels.size() < 3) reason = "fewer than 3 throttle levels";
         break;
       case Cause::kSupplyResistance:
-        if (!has_tr) reason = "no throttle column: at one throttle a supply resistance is indistinguishable from Rm";
-        else if (!d.measured[kMIdc]) reason = "no idc_a column";
-        else if (levels.size() < 3) reason = "fewer than 3 throttle levels";
+        if (!p.has_tr) reason = "no throttle column: at one throttle a supply resistance is indistinguishable from Rm";
+        else if (!p.d.measured[kMIdc]) reason = "no idc_a column";
+        else if (p.levels.size() < 3) reason = "fewer than 3 throttle levels";
         break;
       case Cause::kWindingTemperatureRise:
         break;
@@ -904,69 +910,82 @@ DiagnoseResult Diagnose(const SteadyTable& t, const DiagnoseOptions& o) {
       candidates.push_back(c);
     } else {
       cs.not_testable_reason = reason;
-      res.not_testable.push_back(cs);
+      res->not_testable.push_back(cs);
     }
   }
+  return candidates;
+}
 
-  // --- Folds: leave-one-out below kLooRows rows (small tables, issue 12: "fewer than about 15";
-  // from 12 rows on, o.folds folds hold out at least 2 rows each and keep 9 or more to fit).
+// Stage 4: cross-validation folds, seeded. Leave-one-out below kLooRows rows (small tables,
+// issue 12: "fewer than about 15"; from 12 rows on, o.folds folds hold out at least 2 rows each
+// and keep 9 or more to fit).
+struct Folds {
+  int count = 0;
+  std::vector<int> fold_of;  // per data row
+};
+
+Folds AssignFolds(std::size_t n, const DiagnoseOptions& o) {
   constexpr std::size_t kLooRows = 12;
-  const int folds = n < kLooRows ? static_cast<int>(n) : o.folds;
-  std::vector<int> fold_of(n);
-  {
-    std::vector<std::size_t> perm(n);
-    std::iota(perm.begin(), perm.end(), 0);
-    std::mt19937 rng(o.seed);
-    std::shuffle(perm.begin(), perm.end(), rng);
-    for (std::size_t j = 0; j < n; ++j) fold_of[perm[j]] = static_cast<int>(j % static_cast<std::size_t>(folds));
-  }
-  std::vector<std::size_t> used(n);
-  std::iota(used.begin(), used.end(), 0);
+  Folds f;
+  f.count = n < kLooRows ? static_cast<int>(n) : o.folds;
+  f.fold_of.resize(n);
+  std::vector<std::size_t> perm(n);
+  std::iota(perm.begin(), perm.end(), 0);
+  std::mt19937 rng(o.seed);
+  std::shuffle(perm.begin(), perm.end(), rng);
+  for (std::size_t j = 0; j < n; ++j) f.fold_of[perm[j]] = static_cast<int>(j % static_cast<std::size_t>(f.count));
+  return f;
+}
 
-  // --- Effective-variance weights. The known inputs (VDC, and the speed or the torque) are
-  // measured with the same relative noise as the outputs, and at low throttle a small error in
-  // U = kv*VDC*TR or in KE*omega is a large error in the current (I = (U - KE*omega)/R is a
-  // small difference there). Each residual is therefore divided by the spread that relative
-  // noise of the output and of the inputs gives it (the "effective variance" of errors-in-
-  // variables fitting): s = sqrt(y^2 + (dy/dVDC*VDC)^2 + (dy/dx*x)^2), x = omega or torque,
-  // with the derivatives of a preliminary fit of the first-order model. Without this the F test
-  // sees heteroscedastic residuals and calls low-throttle noise an effect.
-  {
-    const FitOut pre = FitModel(d, used, base, LossType::kHuber, 1.0);
-    if (pre.ok) {
-      MotorParams mp;
-      EscParams ep;
-      ToParams(d, pre.values, &mp, &ep);
-      const Drive drive(mp, ep);
-      double p0[kMeasCount], pv[kMeasCount], px[kMeasCount];
-      for (std::size_t k = 0; k < n; ++k) {
-        const double h = 1e-4;
-        const bool tk = d.torque_known[k] != 0;
-        const double x = tk ? d.q[k] : d.omega[k];
-        auto predict = [&](double vdc, double xin, double* out) {
-          const OperatingPoint p = tk ? drive.AtTorque(vdc, d.tr[k], xin) : drive.AtSpeed(vdc, d.tr[k], xin);
-          out[kMOmega] = p.omega_rad_s;
-          out[kMIdc] = p.idc_a;
-          out[kMIrms] = p.irms_a;
-          out[kMVll] = p.vll_rms_v;
-          out[kMPac] = p.pac_w;
-        };
-        predict(d.vdc[k], x, p0);
-        predict(d.vdc[k] * (1.0 + h), x, pv);
-        predict(d.vdc[k], x == 0.0 ? h : x * (1.0 + h), px);
-        for (int tt = d.term_begin[k]; tt < d.term_begin[k + 1]; ++tt) {
-          Term& term = d.terms[tt];
-          const double sv = (pv[term.meas] - p0[term.meas]) / h;  // dy/dVDC * VDC
-          const double sx = x == 0.0 ? 0.0 : (px[term.meas] - p0[term.meas]) / h;
-          const double spread = std::sqrt(term.value * term.value + sv * sv + sx * sx);
-          const double floor = 5.0 / inv_scale[term.meas];
-          if (std::isfinite(spread)) term.inv_scale = 100.0 / std::max(spread, floor);
-        }
-      }
+// Stage 5: effective-variance weights. The known inputs (VDC, and the speed or the torque) are
+// measured with the same relative noise as the outputs, and at low throttle a small error in
+// U = kv*VDC*TR or in KE*omega is a large error in the current (I = (U - KE*omega)/R is a
+// small difference there). Each residual is therefore divided by the spread that relative
+// noise of the output and of the inputs gives it (the "effective variance" of errors-in-
+// variables fitting): s = sqrt(y^2 + (dy/dVDC*VDC)^2 + (dy/dx*x)^2), x = omega or torque,
+// with the derivatives of a preliminary fit of the first-order model. Without this the F test
+// sees heteroscedastic residuals and calls low-throttle noise an effect.
+void ApplyEffectiveVarianceWeights(const std::vector<std::size_t>& used, const Model& base, Prepared* p) {
+  Data& d = p->d;
+  const FitOut pre = FitModel(d, used, base, LossType::kHuber, 1.0);
+  if (!pre.ok) return;
+  MotorParams mp;
+  EscParams ep;
+  ToParams(d, pre.values, &mp, &ep);
+  const Drive drive(mp, ep);
+  double p0[kMeasCount], pv[kMeasCount], px[kMeasCount];
+  for (std::size_t k = 0; k < d.rows(); ++k) {
+    const double h = 1e-4;
+    const bool tk = d.torque_known[k] != 0;
+    const double x = tk ? d.q[k] : d.omega[k];
+    auto predict = [&](double vdc, double xin, double* out) {
+      const OperatingPoint op = tk ? drive.AtTorque(vdc, d.tr[k], xin) : drive.AtSpeed(vdc, d.tr[k], xin);
+      out[kMOmega] = op.omega_rad_s;
+      out[kMIdc] = op.idc_a;
+      out[kMIrms] = op.irms_a;
+      out[kMVll] = op.vll_rms_v;
+      out[kMPac] = op.pac_w;
+    };
+    predict(d.vdc[k], x, p0);
+    predict(d.vdc[k] * (1.0 + h), x, pv);
+    predict(d.vdc[k], x == 0.0 ? h : x * (1.0 + h), px);
+    for (int tt = d.term_begin[k]; tt < d.term_begin[k + 1]; ++tt) {
+      Term& term = d.terms[tt];
+      const double sv = (pv[term.meas] - p0[term.meas]) / h;  // dy/dVDC * VDC
+      const double sx = x == 0.0 ? 0.0 : (px[term.meas] - p0[term.meas]) / h;
+      const double spread = std::sqrt(term.value * term.value + sv * sv + sx * sx);
+      const double floor = 5.0 / p->inv_scale[term.meas];
+      if (std::isfinite(spread)) term.inv_scale = 100.0 / std::max(spread, floor);
     }
   }
+}
 
-  // --- Outlier screen with the union model.
+// Stage 6: outlier screen with the union model (the base model plus every testable candidate).
+// Returns the rows used by every later fit and score; fills res's outlier lists and row_used.
+std::vector<std::size_t> ScreenWithUnionModel(const SteadyTable& t, const DiagnoseOptions& o, const Data& d,
+                                              const Model& base, const std::vector<Cause>& candidates,
+                                              const std::vector<double>& knees, std::vector<std::size_t> used,
+                                              DiagnoseResult* res) {
   if (o.outlier_sigmas > 0.0) {
     Model uni = base;
     for (Cause c : candidates) AddCause(&uni, c);
@@ -981,217 +1000,317 @@ DiagnoseResult Diagnose(const SteadyTable& t, const DiagnoseOptions& o) {
       std::vector<double> a(r.data(), r.data() + nt);
       for (double& x : a) x = std::fabs(x);
       const double sigma = std::max(1.4826 * Median(a), o.outlier_floor_percent);
-      used = ScreenOutliers(d, t, r, sigma, o, &res);
+      used = ScreenOutliers(d, t, r, sigma, o, res);
     }
   }
-  if (!res.outlier_rows.empty()) {
-    res.warnings.push_back(std::to_string(res.outlier_rows.size()) +
-                           " outlier row(s) left out of every fit and score");
+  if (!res->outlier_rows.empty()) {
+    res->warnings.push_back(std::to_string(res->outlier_rows.size()) +
+                            " outlier row(s) left out of every fit and score");
   }
-  res.points_used = used.size();
-  for (std::size_t k : used) res.row_used[d.table_row[k]] = 1;
+  res->points_used = used.size();
+  for (std::size_t k : used) res->row_used[d.table_row[k]] = 1;
+  return used;
+}
 
-  // --- Baseline.
-  Model current = base;
-  FitOut cur_fit = FitModel(d, used, current, LossType::kTrivial, 1.0);
-  if (!cur_fit.ok) {
-    throw DataError(file + ": the first-order model could not be fitted to the log (no finite "
+// Held-out predictions of cv as full table columns (NaN on rows not used).
+void CvTable(const Data& d, std::size_t table_rows, const std::vector<std::size_t>& used, const CvOut& cv,
+             std::map<Column, std::vector<double>>* out) {
+  for (int m = 0; m < kMeasCount; ++m) {
+    if (!d.measured[m]) continue;
+    std::vector<double> col(table_rows, kNaN);
+    for (std::size_t k : used) col[d.table_row[k]] = cv.pred[m][k];
+    (*out)[kMeasColumn[m]] = col;
+  }
+}
+
+// A model, its fit on the used rows and its cross-validation: the state of the forward selection.
+struct Step {
+  Model model;
+  FitOut fit;
+  CvOut cv;
+};
+
+// Stage 7: the first-order model fitted and cross-validated.
+Step FitBaseline(const SteadyTable& t, const Data& d, const std::vector<std::size_t>& used, const Folds& folds,
+                 const Model& base, const std::vector<double>& knees, DiagnoseResult* res) {
+  Step cur;
+  cur.model = base;
+  cur.fit = FitModel(d, used, cur.model, LossType::kTrivial, 1.0);
+  if (!cur.fit.ok) {
+    throw DataError(res->file + ": the first-order model could not be fitted to the log (no finite "
                     "prediction at the start values): check the units of the columns");
   }
-  current.values = cur_fit.values;
-  if (BaseAtBound(current, cur_fit.values)) {
+  cur.model.values = cur.fit.values;
+  if (BaseAtBound(cur.model, cur.fit.values)) {
     std::string which;
     for (int s = 0; s < kSlotCount; ++s) {
-      if (!kSlotIsBase[s] || !current.free[s]) continue;
-      if (SlotAtBound(current, cur_fit.values, s)) which += (which.empty() ? "" : ", ") + std::string(kSlotName[s]);
+      if (!kSlotIsBase[s] || !cur.model.free[s]) continue;
+      if (SlotAtBound(cur.model, cur.fit.values, s)) which += (which.empty() ? "" : ", ") + std::string(kSlotName[s]);
     }
-    res.warnings.push_back("first-order fit has " + which +
-                           " on a physical bound: the first-order model cannot follow this log");
+    res->warnings.push_back("first-order fit has " + which +
+                            " on a physical bound: the first-order model cannot follow this log");
   }
-  CvOut cur_cv = CrossValidate(d, used, fold_of, folds, current, cur_fit, knees);
-  res.cv_folds = folds;
-  res.leave_one_out = folds == static_cast<int>(n);
-  res.baseline_cv_failed_folds = cur_cv.failed_folds;
-  ToParams(d, cur_fit.values, &res.base_motor, &res.base_esc);
-  res.baseline_cv = ColumnErrors(d, used, cur_cv);
-  res.baseline_cv_rms_percent = cur_cv.rms_percent;
-  auto to_table = [&](const CvOut& cv, std::map<Column, std::vector<double>>* out) {
-    for (int m = 0; m < kMeasCount; ++m) {
-      if (!d.measured[m]) continue;
-      std::vector<double> col(t.rows(), kNaN);
-      for (std::size_t k : used) col[d.table_row[k]] = cv.pred[m][k];
-      (*out)[kMeasColumn[m]] = col;
+  cur.cv = CrossValidate(d, used, folds.fold_of, folds.count, cur.model, cur.fit, knees);
+  res->cv_folds = folds.count;
+  res->leave_one_out = folds.count == static_cast<int>(d.rows());
+  res->baseline_cv_failed_folds = cur.cv.failed_folds;
+  ToParams(d, cur.fit.values, &res->base_motor, &res->base_esc);
+  res->baseline_cv = ColumnErrors(d, used, cur.cv);
+  res->baseline_cv_rms_percent = cur.cv.rms_percent;
+  CvTable(d, t.rows(), used, cur.cv, &res->baseline_cv_prediction);
+  return cur;
+}
+
+// Stage 8a: the 5 worst held-out points of the baseline.
+std::vector<WorstPoint> WorstPoints(const SteadyTable& t, const Data& d, const std::vector<std::size_t>& used,
+                                    const CvOut& cv) {
+  std::vector<WorstPoint> all;
+  for (std::size_t k : used) {
+    for (int tt = d.term_begin[k]; tt < d.term_begin[k + 1]; ++tt) {
+      const Term& term = d.terms[tt];
+      const double p = cv.pred[term.meas][k];
+      if (!std::isfinite(p) || term.value == 0.0) continue;
+      WorstPoint w;
+      w.row = d.table_row[k];
+      w.source_line = t.source_line[w.row];
+      w.column = kMeasColumn[term.meas];
+      w.measured = term.value;
+      w.predicted = p;
+      w.error_percent = (p - term.value) / term.value * 100.0;
+      all.push_back(w);
     }
+  }
+  std::sort(all.begin(), all.end(), [](const WorstPoint& a, const WorstPoint& b) {
+    return std::fabs(a.error_percent) > std::fabs(b.error_percent);
+  });
+  if (all.size() > 5) all.resize(5);
+  return all;
+}
+
+// A quadratic trend of the held-out percent errors ys against the variable xs; nullopt when
+// there are fewer than 6 points or xs does not vary. Structured: p < alpha and r2 >= 0.2.
+std::optional<ResidualTrend> FitTrend(const std::vector<double>& xs, const std::vector<double>& ys, double alpha) {
+  if (xs.size() < 6) return std::nullopt;
+  const auto [lo_it, hi_it] = std::minmax_element(xs.begin(), xs.end());
+  const double lo = *lo_it, span = *hi_it - *lo_it;
+  if (!(span > 0.0)) return std::nullopt;
+  const Eigen::Index nn = static_cast<Eigen::Index>(xs.size());
+  Eigen::MatrixXd a(nn, 3);
+  Eigen::VectorXd y(nn);
+  for (Eigen::Index i = 0; i < nn; ++i) {
+    const double u = (xs[static_cast<std::size_t>(i)] - lo) / span;
+    a(i, 0) = 1.0;
+    a(i, 1) = u;
+    a(i, 2) = u * u;
+    y[i] = ys[static_cast<std::size_t>(i)];
+  }
+  const Eigen::VectorXd c3 = a.colPivHouseholderQr().solve(y);
+  const double mean = y.mean();
+  const double sst = (y.array() - mean).square().sum();
+  const double ssr = (a * c3 - y).squaredNorm();
+  ResidualTrend tr;
+  tr.r2 = sst > 0.0 ? 1.0 - ssr / sst : 0.0;
+  const double df2 = static_cast<double>(nn) - 3.0;
+  tr.p_value = tr.r2 < 1.0 ? FDistributionUpperTail((tr.r2 / 2.0) / ((1.0 - tr.r2) / df2), 2.0, df2) : 0.0;
+  const Eigen::VectorXd c2 = a.leftCols(2).colPivHouseholderQr().solve(y);
+  tr.slope_percent_per_range = c2[1];
+  tr.structured = tr.p_value < alpha && tr.r2 >= 0.2;
+  return tr;
+}
+
+// Stage 8b: residual structure of the baseline: the held-out percent error of every predicted
+// column against each logged variable.
+std::vector<ResidualTrend> ResidualTrends(const SteadyTable& t, const Prepared& p,
+                                          const std::vector<std::size_t>& used, const CvOut& cv, double alpha) {
+  const Data& d = p.d;
+  struct Var {
+    const char* name;
+    Column col;
   };
-  to_table(cur_cv, &res.baseline_cv_prediction);
-
-  // Worst points and residual structure (baseline, held-out predictions).
-  {
-    std::vector<WorstPoint> all;
-    for (std::size_t k : used) {
-      for (int tt = d.term_begin[k]; tt < d.term_begin[k + 1]; ++tt) {
-        const Term& term = d.terms[tt];
-        const double p = cur_cv.pred[term.meas][k];
-        if (!std::isfinite(p) || term.value == 0.0) continue;
-        WorstPoint w;
-        w.row = d.table_row[k];
-        w.source_line = t.source_line[w.row];
-        w.column = kMeasColumn[term.meas];
-        w.measured = term.value;
-        w.predicted = p;
-        w.error_percent = (p - term.value) / term.value * 100.0;
-        all.push_back(w);
-      }
-    }
-    std::sort(all.begin(), all.end(), [](const WorstPoint& a, const WorstPoint& b) {
-      return std::fabs(a.error_percent) > std::fabs(b.error_percent);
-    });
-    if (all.size() > 5) all.resize(5);
-    res.worst_points = all;
-
-    struct Var {
-      const char* name;
-      Column col;
-    };
-    std::vector<Var> vars;
-    if (has_tr) vars.push_back({"throttle", Column::kThrottle});
-    vars.push_back({"rpm", Column::kOmegaRadS});
-    if (d.measured[kMIrms]) vars.push_back({"current_a", Column::kIrmsA});
-    else if (d.measured[kMIdc]) vars.push_back({"current_a", Column::kIdcA});
-    vars.push_back({"vdc_v", Column::kVdcV});
-    if (has_q) vars.push_back({"torque_nm", Column::kTorqueNm});
-    if (t.Has(Column::kTimeS)) vars.push_back({"time_s", Column::kTimeS});
-    if (t.Has(Column::kTempC)) vars.push_back({"temp_c", Column::kTempC});
-    for (int m = 0; m < kMeasCount; ++m) {
-      if (!d.measured[m]) continue;
-      for (const Var& var : vars) {
-        std::vector<double> xs, ys;
-        for (std::size_t k : used) {
-          const double p = cur_cv.pred[m][k];
-          double meas = kNaN;
-          for (int tt = d.term_begin[k]; tt < d.term_begin[k + 1]; ++tt) {
-            if (d.terms[tt].meas == m) meas = d.terms[tt].value;
-          }
-          if (!std::isfinite(p) || !std::isfinite(meas) || meas == 0.0) continue;
-          xs.push_back(t.Get(var.col)[d.table_row[k]]);
-          ys.push_back((p - meas) / meas * 100.0);
+  std::vector<Var> vars;
+  if (p.has_tr) vars.push_back({"throttle", Column::kThrottle});
+  vars.push_back({"rpm", Column::kOmegaRadS});
+  if (d.measured[kMIrms]) vars.push_back({"current_a", Column::kIrmsA});
+  else if (d.measured[kMIdc]) vars.push_back({"current_a", Column::kIdcA});
+  vars.push_back({"vdc_v", Column::kVdcV});
+  if (p.has_q) vars.push_back({"torque_nm", Column::kTorqueNm});
+  if (t.Has(Column::kTimeS)) vars.push_back({"time_s", Column::kTimeS});
+  if (t.Has(Column::kTempC)) vars.push_back({"temp_c", Column::kTempC});
+  std::vector<ResidualTrend> trends;
+  for (int m = 0; m < kMeasCount; ++m) {
+    if (!d.measured[m]) continue;
+    for (const Var& var : vars) {
+      std::vector<double> xs, ys;
+      for (std::size_t k : used) {
+        const double pr = cv.pred[m][k];
+        double meas = kNaN;
+        for (int tt = d.term_begin[k]; tt < d.term_begin[k + 1]; ++tt) {
+          if (d.terms[tt].meas == m) meas = d.terms[tt].value;
         }
-        if (xs.size() < 6) continue;
-        const auto [lo_it, hi_it] = std::minmax_element(xs.begin(), xs.end());
-        const double lo = *lo_it, span = *hi_it - *lo_it;
-        if (!(span > 0.0)) continue;
-        const Eigen::Index nn = static_cast<Eigen::Index>(xs.size());
-        Eigen::MatrixXd a(nn, 3);
-        Eigen::VectorXd y(nn);
-        for (Eigen::Index i = 0; i < nn; ++i) {
-          const double u = (xs[static_cast<std::size_t>(i)] - lo) / span;
-          a(i, 0) = 1.0;
-          a(i, 1) = u;
-          a(i, 2) = u * u;
-          y[i] = ys[static_cast<std::size_t>(i)];
-        }
-        const Eigen::VectorXd c3 = a.colPivHouseholderQr().solve(y);
-        const double mean = y.mean();
-        const double sst = (y.array() - mean).square().sum();
-        const double ssr = (a * c3 - y).squaredNorm();
-        ResidualTrend tr;
-        tr.variable = var.name;
-        tr.column = kMeasColumn[m];
-        tr.r2 = sst > 0.0 ? 1.0 - ssr / sst : 0.0;
-        const double df2 = static_cast<double>(nn) - 3.0;
-        tr.p_value = tr.r2 < 1.0 ? FDistributionUpperTail((tr.r2 / 2.0) / ((1.0 - tr.r2) / df2), 2.0, df2) : 0.0;
-        const Eigen::VectorXd c2 = a.leftCols(2).colPivHouseholderQr().solve(y);
-        tr.slope_percent_per_range = c2[1];
-        tr.structured = tr.p_value < o.alpha && tr.r2 >= 0.2;
-        res.residual_trends.push_back(tr);
+        if (!std::isfinite(pr) || !std::isfinite(meas) || meas == 0.0) continue;
+        xs.push_back(t.Get(var.col)[d.table_row[k]]);
+        ys.push_back((pr - meas) / meas * 100.0);
       }
+      std::optional<ResidualTrend> tr = FitTrend(xs, ys, alpha);
+      if (!tr) continue;
+      tr->variable = var.name;
+      tr->column = kMeasColumn[m];
+      trends.push_back(*tr);
     }
   }
+  return trends;
+}
 
-  // --- Greedy forward selection.
-  std::vector<Cause> remaining = candidates;
-  if (!has_tr && res.baseline_cv_rms_percent > o.no_throttle_max_percent) {
+// What the forward selection shares between its steps (fixed for the whole search).
+struct SearchContext {
+  const Data& d;
+  const std::vector<std::size_t>& used;
+  const Folds& folds;
+  const std::vector<double>& knees;
+  const Values& base_values;  // the base model's starts, a second start for candidates
+  const DiagnoseOptions& o;
+};
+
+// One candidate fitted on top of the current model and scored.
+struct Scored {
+  CandidateScore cs;
+  FitOut fit;
+  CvOut cv;
+  Model model;
+};
+
+// Stage 9a: candidate c added to the current model: fitted from several starts, tested (F test,
+// AICc, its own parameter determined and not clipped) and, when it passes, cross-validated.
+Scored ScoreCandidate(const SearchContext& x, const Step& cur, bool base_at_bound, double aicc0, Cause c) {
+  Scored sc;
+  Model& m = sc.model;
+  m = cur.model;
+  AddCause(&m, c);
+  const FitOut f = FitCandidate(x.d, x.used, m, c, x.base_values, base_at_bound, x.knees);
+  CandidateScore& cs = sc.cs;
+  cs.cause = c;
+  cs.testable = true;
+  sc.fit = f;
+  if (!f.ok) return sc;
+  m.values = f.values;
+  for (int s : CauseSlots(c)) {
+    cs.parameters[kSlotName[s]] = f.values[s];
+    cs.stderrs[kSlotName[s]] = f.stderr_[s];
+  }
+  if (c == Cause::kEscSaturation) {
+    cs.parameters["tr_sat"] = f.values[kTrSat];
+    double step = 0.02;
+    for (std::size_t j = 0; j + 1 < x.knees.size(); ++j) {
+      if (x.knees[j] == f.values[kTrSat]) step = x.knees[j + 1] - x.knees[j];
+    }
+    cs.stderrs["tr_sat"] = step / std::sqrt(12.0);  // grid resolution
+  }
+  cs.sse = f.sse;
+  cs.aicc = Aicc(f.sse, f.n_terms, f.n_free);
+  cs.delta_aicc = cs.aicc - aicc0;
+  const int q = CauseExtraParams(c);
+  const double df2 = static_cast<double>(f.n_terms - f.n_free);
+  if (df2 > 0.0 && f.sse < cur.fit.sse) {
+    cs.f_statistic = ((cur.fit.sse - f.sse) / q) / (f.sse / df2);
+    cs.p_value = FDistributionUpperTail(cs.f_statistic, q, df2);
+    if (c == Cause::kEscSaturation) cs.p_value = std::min(1.0, cs.p_value * static_cast<double>(x.knees.size()));
+  }
+  // The extension's own parameter must be determined: at least 2 standard errors from
+  // its "no effect" value (0; 1 for sat_slope). A parameter the data cannot separate from
+  // the base parameters (|corr| -> 1, huge error) is not a finding, whatever the F test.
+  bool determined = true;
+  for (int sl : CauseSlots(c)) {
+    const double null_value = sl == kSatSlope ? 1.0 : 0.0;
+    const double se = f.stderr_[sl];
+    if (std::isfinite(se) && std::fabs(f.values[sl] - null_value) < 2.0 * se) determined = false;
+    // On a bound of its physical range the parameter is not estimated but clipped: the
+    // misfit is bigger than, or different from, what this mechanism can produce. (A knee
+    // slope of 0 - no voltage gain above the knee - is a physical value, not a clip.)
+    const double tol = 1e-6 * (m.upper[sl] - m.lower[sl]);
+    const bool at_lower = f.values[sl] - m.lower[sl] <= tol && sl != kSatSlope;
+    const bool at_upper = m.upper[sl] - f.values[sl] <= tol && sl != kSatSlope;
+    if (at_lower || at_upper) {
+      determined = false;
+      cs.note = std::string(kSlotName[sl]) + " clipped at the bound of its physical range";
+    }
+  }
+  if (!determined && cs.note.empty()) cs.note = "parameter within 2 standard errors of no effect";
+  const bool pre = cs.p_value < x.o.alpha && cs.delta_aicc < 0.0 && determined;
+  if (pre) {
+    sc.cv = CrossValidate(x.d, x.used, x.folds.fold_of, x.folds.count, m, f, x.knees);
+    cs.cv_rms_percent = sc.cv.rms_percent;
+    cs.gain_percent = 100.0 * (1.0 - sc.cv.rms_percent / cur.cv.rms_percent);
+    cs.significant = cs.gain_percent >= x.o.min_gain_percent;
+  }
+  return sc;
+}
+
+// Stage 9b: the rivals of the winner bs (significant and within ambiguity_aicc of it, or close
+// in gain) that are no longer significant once the winner is in the model (cur) explain the same
+// thing: the data cannot tell the two apart. Each becomes an ambiguity and leaves `remaining`.
+void ResolveRivals(const SearchContext& x, const Step& cur, bool base_at_bound, const std::vector<Scored>& scored,
+                   int best, std::vector<Cause>* remaining, DiagnoseResult* res) {
+  const CandidateScore& bs = scored[best].cs;
+  std::vector<Cause> rivals;
+  for (std::size_t j = 0; j < scored.size(); ++j) {
+    if (static_cast<int>(j) == best || !scored[j].cs.significant) continue;
+    if (scored[j].cs.aicc - bs.aicc < x.o.ambiguity_aicc ||
+        scored[j].cs.gain_percent >= x.o.ambiguity_gain_ratio * bs.gain_percent) {
+      rivals.push_back(scored[j].cs.cause);
+    }
+  }
+  for (Cause rc : rivals) {
+    Model m = cur.model;
+    AddCause(&m, rc);
+    const FitOut f = FitCandidate(x.d, x.used, m, rc, x.base_values, base_at_bound, x.knees);
+    bool still = false;
+    if (f.ok && f.sse < cur.fit.sse) {
+      const int q = CauseExtraParams(rc);
+      const double df2 = static_cast<double>(f.n_terms - f.n_free);
+      const double fs = ((cur.fit.sse - f.sse) / q) / (f.sse / df2);
+      still = FDistributionUpperTail(fs, q, df2) < x.o.alpha;
+    }
+    if (still) continue;
+    Ambiguity a;
+    a.causes = {bs.cause, rc};
+    std::ostringstream s;
+    const auto it = std::find_if(scored.begin(), scored.end(), [&](const Scored& y) { return y.cs.cause == rc; });
+    s << std::setprecision(3) << CauseId(bs.cause) << " (gain " << bs.gain_percent << " %, AICc "
+      << bs.aicc << ") and " << CauseId(rc) << " (gain " << it->cs.gain_percent << " %, AICc "
+      << it->cs.aicc << ") both explain the misfit and the second adds nothing once the first is "
+      << "in the model: the data cannot tell them apart";
+    a.reason = s.str();
+    a.measurement = Separation(bs.cause, rc);
+    res->ambiguous.push_back(a);
+    remaining->erase(std::remove(remaining->begin(), remaining->end(), rc), remaining->end());
+  }
+}
+
+// Stage 9: greedy forward selection from the baseline cur: at each step every remaining
+// candidate is scored and the significant one with the largest CV gain joins the model.
+// Returns the final (extended) model.
+Step SearchCandidates(const SearchContext& x, bool has_tr, std::vector<Cause> remaining, Step cur,
+                      DiagnoseResult* res) {
+  const DiagnoseOptions& o = x.o;
+  if (!has_tr && res->baseline_cv_rms_percent > o.no_throttle_max_percent) {
     // Without a throttle column every row is taken at assumed_throttle; when the model misses
     // by this much the rows are not such points and any "cause" would explain the wrong
     // throttle, not the drive.
     std::ostringstream w;
     w << std::setprecision(3) << "no throttle column and the first-order model misses by "
-      << res.baseline_cv_rms_percent << " % rms: the rows are not full-throttle points, so no "
+      << res->baseline_cv_rms_percent << " % rms: the rows are not full-throttle points, so no "
       << "cause is named; diagnose a log that records the throttle";
-    res.warnings.push_back(w.str());
+    res->warnings.push_back(w.str());
     remaining.clear();
   }
-  while (static_cast<int>(res.findings.size()) < o.max_findings && !remaining.empty()) {
+  while (static_cast<int>(res->findings.size()) < o.max_findings && !remaining.empty()) {
+    const double aicc0 = Aicc(cur.fit.sse, cur.fit.n_terms, cur.fit.n_free);
+    const bool base_at_bound = BaseAtBound(cur.model, cur.fit.values);
+    std::vector<Scored> scored;
     std::vector<CandidateScore> scores;
-    std::vector<FitOut> fits;
-    std::vector<CvOut> cvs;
-    std::vector<Model> models;
-    const double aicc0 = Aicc(cur_fit.sse, cur_fit.n_terms, cur_fit.n_free);
-    const bool base_at_bound = BaseAtBound(current, cur_fit.values);
     for (Cause c : remaining) {
-      Model m = current;
-      AddCause(&m, c);
-      FitOut f = FitCandidate(d, used, m, c, base.values, base_at_bound, knees);
-      CandidateScore cs;
-      cs.cause = c;
-      cs.testable = true;
-      CvOut cv;
-      if (f.ok) {
-        m.values = f.values;
-        for (int s : CauseSlots(c)) {
-          cs.parameters[kSlotName[s]] = f.values[s];
-          cs.stderrs[kSlotName[s]] = f.stderr_[s];
-        }
-        if (c == Cause::kEscSaturation) {
-          cs.parameters["tr_sat"] = f.values[kTrSat];
-          double step = 0.02;
-          for (std::size_t j = 0; j + 1 < knees.size(); ++j) {
-            if (knees[j] == f.values[kTrSat]) step = knees[j + 1] - knees[j];
-          }
-          cs.stderrs["tr_sat"] = step / std::sqrt(12.0);  // grid resolution
-        }
-        cs.sse = f.sse;
-        cs.aicc = Aicc(f.sse, f.n_terms, f.n_free);
-        cs.delta_aicc = cs.aicc - aicc0;
-        const int q = CauseExtraParams(c);
-        const double df2 = static_cast<double>(f.n_terms - f.n_free);
-        if (df2 > 0.0 && f.sse < cur_fit.sse) {
-          cs.f_statistic = ((cur_fit.sse - f.sse) / q) / (f.sse / df2);
-          cs.p_value = FDistributionUpperTail(cs.f_statistic, q, df2);
-          if (c == Cause::kEscSaturation) cs.p_value = std::min(1.0, cs.p_value * static_cast<double>(knees.size()));
-        }
-        // The extension's own parameter must be determined: at least 2 standard errors from
-        // its "no effect" value (0; 1 for sat_slope). A parameter the data cannot separate from
-        // the base parameters (|corr| -> 1, huge error) is not a finding, whatever the F test.
-        bool determined = true;
-        for (int sl : CauseSlots(c)) {
-          const double null_value = sl == kSatSlope ? 1.0 : 0.0;
-          const double se = f.stderr_[sl];
-          if (std::isfinite(se) && std::fabs(f.values[sl] - null_value) < 2.0 * se) determined = false;
-          // On a bound of its physical range the parameter is not estimated but clipped: the
-          // misfit is bigger than, or different from, what this mechanism can produce. (A knee
-          // slope of 0 - no voltage gain above the knee - is a physical value, not a clip.)
-          const double tol = 1e-6 * (m.upper[sl] - m.lower[sl]);
-          const bool at_lower = f.values[sl] - m.lower[sl] <= tol && sl != kSatSlope;
-          const bool at_upper = m.upper[sl] - f.values[sl] <= tol && sl != kSatSlope;
-          if (at_lower || at_upper) {
-            determined = false;
-            cs.note = std::string(kSlotName[sl]) + " clipped at the bound of its physical range";
-          }
-        }
-        if (!determined && cs.note.empty()) cs.note = "parameter within 2 standard errors of no effect";
-        const bool pre = cs.p_value < o.alpha && cs.delta_aicc < 0.0 && determined;
-        if (pre) {
-          cv = CrossValidate(d, used, fold_of, folds, m, f, knees);
-          cs.cv_rms_percent = cv.rms_percent;
-          cs.gain_percent = 100.0 * (1.0 - cv.rms_percent / cur_cv.rms_percent);
-          cs.significant = cs.gain_percent >= o.min_gain_percent;
-        }
-      }
-      scores.push_back(cs);
-      fits.push_back(f);
-      cvs.push_back(std::move(cv));
-      models.push_back(m);
+      scored.push_back(ScoreCandidate(x, cur, base_at_bound, aicc0, c));
+      scores.push_back(scored.back().cs);
     }
     int best = -1;
     for (std::size_t j = 0; j < scores.size(); ++j) {
@@ -1200,10 +1319,11 @@ DiagnoseResult Diagnose(const SteadyTable& t, const DiagnoseOptions& o) {
       }
     }
     if (best < 0) {
-      res.last_step_scores = scores;
+      res->last_step_scores = scores;
       break;
     }
-    const CandidateScore& bs = scores[best];
+    Scored& win = scored[best];
+    const CandidateScore& bs = win.cs;
     Finding fd;
     fd.cause = bs.cause;
     fd.description = CauseDescription(bs.cause);
@@ -1213,80 +1333,77 @@ DiagnoseResult Diagnose(const SteadyTable& t, const DiagnoseOptions& o) {
     fd.f_statistic = bs.f_statistic;
     fd.p_value = bs.p_value;
     fd.delta_aicc = bs.delta_aicc;
-    fd.max_abs_correlation = fits[best].max_corr_ext_base;
-    fd.most_correlated_with = fits[best].corr_with;
-    fd.cv_after = ColumnErrors(d, used, cvs[best]);
+    fd.max_abs_correlation = win.fit.max_corr_ext_base;
+    fd.most_correlated_with = win.fit.corr_with;
+    fd.cv_after = ColumnErrors(x.d, x.used, win.cv);
     fd.step_scores = scores;
-    // Rivals: significant and within ambiguity_aicc of the winner.
-    std::vector<Cause> rivals;
-    for (std::size_t j = 0; j < scores.size(); ++j) {
-      if (static_cast<int>(j) == best || !scores[j].significant) continue;
-      if (scores[j].aicc - bs.aicc < o.ambiguity_aicc ||
-          scores[j].gain_percent >= o.ambiguity_gain_ratio * bs.gain_percent) {
-        rivals.push_back(scores[j].cause);
-      }
-    }
-    current = models[best];
-    current.values = fits[best].values;
+    cur.model = win.model;
+    cur.model.values = win.fit.values;
     // Extensions added are fitted from now on (the knee stays profiled).
-    cur_fit = fits[best];
-    cur_cv = std::move(cvs[best]);
-    res.findings.push_back(fd);
+    cur.fit = win.fit;
+    cur.cv = std::move(win.cv);
+    res->findings.push_back(fd);
     remaining.erase(std::find(remaining.begin(), remaining.end(), bs.cause));
-    // A rival that is no longer significant once the winner is in the model explains the same
-    // thing: the data cannot tell the two apart.
-    for (Cause rc : rivals) {
-      Model m = current;
-      AddCause(&m, rc);
-      const FitOut f = FitCandidate(d, used, m, rc, base.values, base_at_bound, knees);
-      bool still = false;
-      if (f.ok && f.sse < cur_fit.sse) {
-        const int q = CauseExtraParams(rc);
-        const double df2 = static_cast<double>(f.n_terms - f.n_free);
-        const double fs = ((cur_fit.sse - f.sse) / q) / (f.sse / df2);
-        still = FDistributionUpperTail(fs, q, df2) < o.alpha;
-      }
-      if (!still) {
-        Ambiguity a;
-        a.causes = {bs.cause, rc};
-        std::ostringstream s;
-        const auto it = std::find_if(scores.begin(), scores.end(),
-                                     [&](const CandidateScore& x) { return x.cause == rc; });
-        s << std::setprecision(3) << CauseId(bs.cause) << " (gain " << bs.gain_percent << " %, AICc "
-          << bs.aicc << ") and " << CauseId(rc) << " (gain " << it->gain_percent << " %, AICc "
-          << it->aicc << ") both explain the misfit and the second adds nothing once the first is "
-          << "in the model: the data cannot tell them apart";
-        a.reason = s.str();
-        a.measurement = Separation(bs.cause, rc);
-        res.ambiguous.push_back(a);
-        remaining.erase(std::remove(remaining.begin(), remaining.end(), rc), remaining.end());
-      }
-    }
+    ResolveRivals(x, cur, base_at_bound, scored, best, &remaining, res);
   }
-  ToParams(d, cur_fit.values, &res.extended_motor, &res.extended_esc);
-  if (!res.findings.empty() && BaseAtBound(current, cur_fit.values)) {
-    res.warnings.push_back("the extended model still has a base parameter on a physical bound: its "
-                           "values describe this log, they are not physical motor constants");
+  return cur;
+}
+
+// Stage 10: the extended model into res: parameters, ratings from the catalog entries, its
+// cross-validation, warnings and the status contract.
+void AssembleResult(const SteadyTable& t, const DiagnoseOptions& o, const Data& d,
+                    const std::vector<std::size_t>& used, const Folds& folds, const Step& cur,
+                    DiagnoseResult* res) {
+  ToParams(d, cur.fit.values, &res->extended_motor, &res->extended_esc);
+  if (!res->findings.empty() && BaseAtBound(cur.model, cur.fit.values)) {
+    res->warnings.push_back("the extended model still has a base parameter on a physical bound: its "
+                            "values describe this log, they are not physical motor constants");
   }
   // Ratings and held values from the catalog entries.
   if (o.motor) {
-    res.extended_motor.max_current_a = o.motor->max_current_a;
-    res.extended_motor.max_power_w = o.motor->max_power_w;
+    res->extended_motor.max_current_a = o.motor->max_current_a;
+    res->extended_motor.max_power_w = o.motor->max_power_w;
   }
   if (o.esc) {
-    res.extended_esc.max_current_a = o.esc->max_current_a;
-    res.extended_esc.vdc_max_v = o.esc->vdc_max_v;
+    res->extended_esc.max_current_a = o.esc->max_current_a;
+    res->extended_esc.vdc_max_v = o.esc->vdc_max_v;
   }
-  res.extended_cv = ColumnErrors(d, used, cur_cv);
-  res.extended_cv_rms_percent = cur_cv.rms_percent;
-  to_table(cur_cv, &res.extended_cv_prediction);
-  if (cur_cv.failed_folds > 0) {
-    res.warnings.push_back(std::to_string(cur_cv.failed_folds) + " of " + std::to_string(folds) +
-                           " cross-validation fold(s) could not be fitted (too few points to cross-validate): "
-                           "their rows count as a 100 % miss");
+  res->extended_cv = ColumnErrors(d, used, cur.cv);
+  res->extended_cv_rms_percent = cur.cv.rms_percent;
+  CvTable(d, t.rows(), used, cur.cv, &res->extended_cv_prediction);
+  if (cur.cv.failed_folds > 0) {
+    res->warnings.push_back(std::to_string(cur.cv.failed_folds) + " of " + std::to_string(folds.count) +
+                            " cross-validation fold(s) could not be fitted (too few points to cross-validate): "
+                            "their rows count as a 100 % miss");
   }
-  res.extended_cv_failed_folds = cur_cv.failed_folds;
-  res.verdict = JudgeExtended(d, t, current, cur_fit, used, cur_cv, res, o);
+  res->extended_cv_failed_folds = cur.cv.failed_folds;
+  res->verdict = JudgeExtended(d, t, cur.model, cur.fit, used, cur.cv, *res, o);
+}
+
+}  // namespace
+
+DiagnoseResult Diagnose(const SteadyTable& t, const DiagnoseOptions& o) {
+  std::string why;
+  if (!o.IsValid(&why)) throw UsageError("diagnose options: " + why);
+  DiagnoseResult res;
+  res.file = t.file.empty() ? "log" : t.file;
+  Prepared p = PrepareDiagnosisData(t, o, &res);
+  const Model base = BuildBaseModel(t, o, p, &res);
+  const std::vector<double> knees = KneeGrid(p.levels);
+  const std::vector<Cause> candidates = TestableCandidates(o, p, knees, &res);
+  const std::size_t n = p.d.rows();
+  const Folds folds = AssignFolds(n, o);
+  std::vector<std::size_t> all(n);
+  std::iota(all.begin(), all.end(), 0);
+  ApplyEffectiveVarianceWeights(all, base, &p);
+  const Data& d = p.d;
+  const std::vector<std::size_t> used = ScreenWithUnionModel(t, o, d, base, candidates, knees, all, &res);
+  Step cur = FitBaseline(t, d, used, folds, base, knees, &res);
+  res.worst_points = WorstPoints(t, d, used, cur.cv);
+  res.residual_trends = ResidualTrends(t, p, used, cur.cv, o.alpha);
+  const SearchContext x{d, used, folds, knees, base.values, o};
+  cur = SearchCandidates(x, p.has_tr, candidates, std::move(cur), &res);
+  AssembleResult(t, o, d, used, folds, cur, &res);
   return res;
 }
 

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdio>
 #include <sstream>
+#include <utility>
 
 #include "common/error.h"
 
@@ -228,6 +229,161 @@ std::string FormatDirection(const Eigen::VectorXd& v, const LeastSquaresProblem&
   return os.str();
 }
 
+// Active set of SolveLeastSquares: the parameters free to move at x, i.e. all but those on a
+// bound whose descent direction -g points out of the box.
+std::vector<int> FreeOfActiveSet(const Eigen::VectorXd& x, const Eigen::VectorXd& g, const Eigen::VectorXd& lo,
+                                 const Eigen::VectorXd& hi) {
+  std::vector<int> free;
+  for (Eigen::Index j = 0; j < x.size(); ++j) {
+    const bool blocked = (x[j] <= lo[j] && g[j] > 0.0) || (x[j] >= hi[j] && g[j] < 0.0);
+    if (!blocked) free.push_back(static_cast<int>(j));
+  }
+  return free;
+}
+
+// The gradient test of SolveLeastSquares: max over the free parameters j of |g_j| / (||J_j|| ||r||)
+// = |cos(J_j, r)| (g = J^T r); 0 where a column or r is zero.
+double MaxGradientCosine(const Eigen::MatrixXd& jac, const Eigen::VectorXd& g, double r_norm,
+                         const std::vector<int>& free) {
+  double cosine = 0.0;
+  for (int j : free) {
+    const double cn = jac.col(j).norm();
+    if (cn > 0.0 && r_norm > 0.0) cosine = std::max(cosine, std::abs(g[j]) / (cn * r_norm));
+  }
+  return cosine;
+}
+
+// Geodesic acceleration of the LM step vf (on the free parameters `free`, scaled by df, damping
+// lambda): directional second derivative of r along v by a finite difference of the residuals,
+// then the acceleration solves the same damped system with r'' on the right. Adds half the
+// acceleration to *step and returns true, or returns false (step untouched) when the path curves
+// too much for this damping (the caller shortens). A probe that cannot be evaluated leaves the
+// step as it is (true).
+bool GeodesicCorrection(const LevenbergMarquardtOptions& options, const Eigen::VectorXd& x,
+                        const Eigen::MatrixXd& jac, const Eigen::MatrixXd& jf, const Eigen::VectorXd& df,
+                        double lambda, const Eigen::VectorXd& vf, const std::vector<int>& free,
+                        Evaluator* eval, Eigen::VectorXd* step, Eigen::VectorXd* r_probe,
+                        LevenbergMarquardtSummary* s) {
+  const double h = options.geodesic_step;
+  Eigen::VectorXd x_probe = x + h * *step;
+  double cost_probe;
+  Eigen::MatrixXd unused;
+  if (!eval->Evaluate(x_probe, false, &cost_probe, r_probe, &unused)) return true;
+  const Eigen::VectorXd rpp =
+      (2.0 / h) * (eval->jacobian_row_scale().cwiseProduct(eval->raw() - eval->raw_at_jacobian()) / h -
+                   jac * *step);
+  const Eigen::VectorXd af = SolveDampedStep(jf, df, lambda, -rpp);
+  if (2.0 * (df.cwiseProduct(af)).norm() <= options.geodesic_max_ratio * (df.cwiseProduct(vf)).norm()) {
+    for (Eigen::Index k = 0; k < static_cast<Eigen::Index>(free.size()); ++k) (*step)[free[k]] += 0.5 * af[k];
+    ++s->num_geodesic_corrections;
+    return true;
+  }
+  return false;
+}
+
+// Identifiability of the data alone (SolveLeastSquares' statistics): singular values of the
+// data Jacobian jd (columns: the parameters cols off their bounds) on unit-norm columns; a
+// direction below identifiability_tolerance of the largest is reported as unidentifiable.
+void Identifiability(const LeastSquaresProblem& problem, const LevenbergMarquardtOptions& options,
+                     const Eigen::MatrixXd& jd, const std::vector<int>& cols, LevenbergMarquardtSummary* s) {
+  const int nf = static_cast<int>(cols.size());
+  Eigen::VectorXd cn = jd.colwise().norm().transpose();
+  Eigen::VectorXd cn_safe = cn.unaryExpr([](double v) { return v > 0.0 ? v : 1.0; });
+  Eigen::MatrixXd js = jd * cn_safe.cwiseInverse().asDiagonal();
+  Eigen::JacobiSVD<Eigen::MatrixXd> svd(js, Eigen::ComputeFullV);
+  s->scaled_singular_values = Eigen::VectorXd::Zero(nf);
+  s->scaled_singular_values.head(svd.singularValues().size()) = svd.singularValues();
+  const double smax = s->scaled_singular_values.size() ? s->scaled_singular_values[0] : 0.0;
+  s->jacobian_rank = 0;
+  for (int c = 0; c < nf; ++c) {
+    const double rel = smax > 0.0 ? s->scaled_singular_values[c] / smax : 0.0;
+    if (rel > options.identifiability_tolerance) {
+      ++s->jacobian_rank;
+    } else {
+      UnidentifiableDirection u;
+      u.relative_singular_value = rel;
+      u.direction = svd.matrixV().col(c);
+      u.description = FormatDirection(u.direction, problem, cols);
+      s->unidentifiable.push_back(u);
+    }
+  }
+}
+
+// Covariance (J_w^T J_w)^-1 with data rows scaled by 1/s (s^2 estimated from them) and prior
+// rows as they are (their sigma is absolute), then standard errors and correlations (into s).
+// jw: the Jacobian (m data rows, then prior rows) of the parameters cols off their bounds;
+// r: the corrected residuals at the solution (data rows first).
+void Covariance(int m, const Eigen::VectorXd& r, Eigen::MatrixXd jw, const std::vector<int>& cols,
+                LevenbergMarquardtSummary* s) {
+  const int nf = static_cast<int>(cols.size());
+  const int dof = m - nf;
+  if (dof > 0) {
+    // r holds the corrected residuals at x: it is only replaced when a step is accepted.
+    const double sigma2 = r.head(m).squaredNorm() / dof;
+    if (sigma2 > 0.0) jw.topRows(m) /= std::sqrt(sigma2);
+    Eigen::VectorXd wn = jw.colwise().norm().transpose().unaryExpr(
+        [](double v) { return v > 0.0 ? v : 1.0; });
+    Eigen::JacobiSVD<Eigen::MatrixXd> wsvd(jw * wn.cwiseInverse().asDiagonal(),
+                                          Eigen::ComputeThinV);
+    Eigen::VectorXd inv_s2(wsvd.singularValues().size());
+    for (Eigen::Index c = 0; c < inv_s2.size(); ++c) {
+      const double sv = wsvd.singularValues()[c];
+      inv_s2[c] = sv > 0.0 ? 1.0 / (sv * sv) : kInf;
+    }
+    const Eigen::MatrixXd& v = wsvd.matrixV();
+    Eigen::MatrixXd cov_s = v * inv_s2.asDiagonal() * v.transpose();
+    if (!cov_s.allFinite()) {
+      // An exactly singular direction: those parameters have unbounded variance.
+      for (Eigen::Index c = 0; c < inv_s2.size(); ++c) {
+        if (std::isfinite(inv_s2[c])) continue;
+        for (int a = 0; a < nf; ++a)
+          if (std::abs(v(a, c)) > 1e-12) cov_s.row(a).setConstant(kInf), cov_s.col(a).setConstant(kInf);
+      }
+    }
+    for (int a = 0; a < nf; ++a) {
+      for (int b = 0; b < nf; ++b) {
+        s->covariance(cols[a], cols[b]) = cov_s(a, b) / (wn[a] * wn[b]);
+      }
+    }
+    for (int a = 0; a < nf; ++a) s->standard_errors[cols[a]] = std::sqrt(s->covariance(cols[a], cols[a]));
+    for (int a = 0; a < nf; ++a) {
+      for (int b = 0; b < nf; ++b) {
+        const int ia = cols[a], ib = cols[b];
+        s->correlation(ia, ib) = s->covariance(ia, ib) / (s->standard_errors[ia] * s->standard_errors[ib]);
+      }
+    }
+  }
+}
+
+// Statistics at the solution x of SolveLeastSquares: which parameters sit on a bound, the
+// identifiability of the others, their covariance, standard errors and correlations.
+void StatisticsAtSolution(const LeastSquaresProblem& problem, const LevenbergMarquardtOptions& options,
+                          const Eigen::VectorXd& x, const Eigen::VectorXd& lo, const Eigen::VectorXd& hi,
+                          const Eigen::VectorXd& r, const Eigen::MatrixXd& jac, LevenbergMarquardtSummary* s) {
+  const int n = problem.num_parameters;
+  const int m = problem.num_residuals;
+  std::vector<int> cols;
+  s->at_bound.assign(n, false);
+  for (int j = 0; j < n; ++j) {
+    s->at_bound[j] = (x[j] <= lo[j] || x[j] >= hi[j]);
+    if (!s->at_bound[j]) cols.push_back(j);
+  }
+  const int nf = static_cast<int>(cols.size());
+  s->standard_errors = Eigen::VectorXd::Constant(n, kNaN);
+  s->covariance = Eigen::MatrixXd::Constant(n, n, kNaN);
+  s->correlation = Eigen::MatrixXd::Constant(n, n, kNaN);
+  if (nf > 0) {
+    const int k = static_cast<int>(problem.priors.size());
+    Eigen::MatrixXd jd(m, nf), jw(m + k, nf);
+    for (int c = 0; c < nf; ++c) {
+      jd.col(c) = jac.col(cols[c]).head(m);
+      jw.col(c) = jac.col(cols[c]);
+    }
+    Identifiability(problem, options, jd, cols, s);
+    Covariance(m, r, std::move(jw), cols, s);
+  }
+}
+
 }  // namespace
 
 const char* TerminationTypeToString(TerminationType type) {
@@ -311,18 +467,9 @@ LevenbergMarquardtSummary SolveLeastSquares(const LeastSquaresProblem& problem,
       break;
     }
     const Eigen::VectorXd g = jac.transpose() * r;
-    // Active set: a parameter on a bound whose descent direction -g points out of the box.
-    std::vector<int> free;
-    for (int j = 0; j < n; ++j) {
-      const bool blocked = (x[j] <= lo[j] && g[j] > 0.0) || (x[j] >= hi[j] && g[j] < 0.0);
-      if (!blocked) free.push_back(j);
-    }
+    const std::vector<int> free = FreeOfActiveSet(x, g, lo, hi);
     const double r_norm = r.norm();
-    double cosine = 0.0;
-    for (int j : free) {
-      const double cn = jac.col(j).norm();
-      if (cn > 0.0 && r_norm > 0.0) cosine = std::max(cosine, std::abs(g[j]) / (cn * r_norm));
-    }
+    const double cosine = MaxGradientCosine(jac, g, r_norm, free);
     if (r_norm == 0.0 || cosine <= options.gradient_tolerance) {
       s.termination_type = TerminationType::kConvergence;
       std::ostringstream os;
@@ -356,27 +503,9 @@ LevenbergMarquardtSummary SolveLeastSquares(const LeastSquaresProblem& problem,
       break;
     }
 
-    bool geodesic_rejected = false;
-    if (options.use_geodesic_acceleration) {
-      // Directional second derivative of r along v by a finite difference of the residuals,
-      // then the acceleration solves the same damped system with r'' on the right.
-      const double h = options.geodesic_step;
-      Eigen::VectorXd x_probe = x + h * step;
-      double cost_probe;
-      Eigen::MatrixXd unused;
-      if (eval.Evaluate(x_probe, false, &cost_probe, &r_probe, &unused)) {
-        const Eigen::VectorXd rpp =
-            (2.0 / h) * (eval.jacobian_row_scale().cwiseProduct(eval.raw() - eval.raw_at_jacobian()) / h -
-                         jac * step);
-        const Eigen::VectorXd af = SolveDampedStep(jf, df, lambda, -rpp);
-        if (2.0 * (df.cwiseProduct(af)).norm() <= options.geodesic_max_ratio * (df.cwiseProduct(vf)).norm()) {
-          for (Eigen::Index k = 0; k < nf; ++k) step[free[k]] += 0.5 * af[k];
-          ++s.num_geodesic_corrections;
-        } else {
-          geodesic_rejected = true;  // the path curves too much for this damping: shorten
-        }
-      }
-    }
+    const bool geodesic_rejected =
+        options.use_geodesic_acceleration &&
+        !GeodesicCorrection(options, x, jac, jf, df, lambda, vf, free, &eval, &step, &r_probe, &s);
 
     double new_cost = kInf;
     Eigen::VectorXd x_new = x;
@@ -433,86 +562,7 @@ LevenbergMarquardtSummary SolveLeastSquares(const LeastSquaresProblem& problem,
   s.parameters = x;
   *x_inout = x;
 
-  // --- Statistics at the solution.
-  const int m = problem.num_residuals;
-  std::vector<int> cols;
-  s.at_bound.assign(n, false);
-  for (int j = 0; j < n; ++j) {
-    s.at_bound[j] = (x[j] <= lo[j] || x[j] >= hi[j]);
-    if (!s.at_bound[j]) cols.push_back(j);
-  }
-  const int nf = static_cast<int>(cols.size());
-  s.standard_errors = Eigen::VectorXd::Constant(n, kNaN);
-  s.covariance = Eigen::MatrixXd::Constant(n, n, kNaN);
-  s.correlation = Eigen::MatrixXd::Constant(n, n, kNaN);
-  if (nf > 0) {
-    const int k = static_cast<int>(problem.priors.size());
-    Eigen::MatrixXd jd(m, nf), jw(m + k, nf);
-    for (int c = 0; c < nf; ++c) {
-      jd.col(c) = jac.col(cols[c]).head(m);
-      jw.col(c) = jac.col(cols[c]);
-    }
-    // Identifiability of the data alone, on unit-norm columns.
-    Eigen::VectorXd cn = jd.colwise().norm().transpose();
-    Eigen::VectorXd cn_safe = cn.unaryExpr([](double v) { return v > 0.0 ? v : 1.0; });
-    Eigen::MatrixXd js = jd * cn_safe.cwiseInverse().asDiagonal();
-    Eigen::JacobiSVD<Eigen::MatrixXd> svd(js, Eigen::ComputeFullV);
-    s.scaled_singular_values = Eigen::VectorXd::Zero(nf);
-    s.scaled_singular_values.head(svd.singularValues().size()) = svd.singularValues();
-    const double smax = s.scaled_singular_values.size() ? s.scaled_singular_values[0] : 0.0;
-    s.jacobian_rank = 0;
-    for (int c = 0; c < nf; ++c) {
-      const double rel = smax > 0.0 ? s.scaled_singular_values[c] / smax : 0.0;
-      if (rel > options.identifiability_tolerance) {
-        ++s.jacobian_rank;
-      } else {
-        UnidentifiableDirection u;
-        u.relative_singular_value = rel;
-        u.direction = svd.matrixV().col(c);
-        u.description = FormatDirection(u.direction, problem, cols);
-        s.unidentifiable.push_back(u);
-      }
-    }
-    // Covariance (J_w^T J_w)^-1 with data rows scaled by 1/s (s^2 estimated from them) and
-    // prior rows as they are (their sigma is absolute).
-    const int dof = m - nf;
-    if (dof > 0) {
-      // r holds the corrected residuals at x: it is only replaced when a step is accepted.
-      const double sigma2 = r.head(m).squaredNorm() / dof;
-      if (sigma2 > 0.0) jw.topRows(m) /= std::sqrt(sigma2);
-      Eigen::VectorXd wn = jw.colwise().norm().transpose().unaryExpr(
-          [](double v) { return v > 0.0 ? v : 1.0; });
-      Eigen::JacobiSVD<Eigen::MatrixXd> wsvd(jw * wn.cwiseInverse().asDiagonal(),
-                                            Eigen::ComputeThinV);
-      Eigen::VectorXd inv_s2(wsvd.singularValues().size());
-      for (Eigen::Index c = 0; c < inv_s2.size(); ++c) {
-        const double sv = wsvd.singularValues()[c];
-        inv_s2[c] = sv > 0.0 ? 1.0 / (sv * sv) : kInf;
-      }
-      const Eigen::MatrixXd& v = wsvd.matrixV();
-      Eigen::MatrixXd cov_s = v * inv_s2.asDiagonal() * v.transpose();
-      if (!cov_s.allFinite()) {
-        // An exactly singular direction: those parameters have unbounded variance.
-        for (Eigen::Index c = 0; c < inv_s2.size(); ++c) {
-          if (std::isfinite(inv_s2[c])) continue;
-          for (int a = 0; a < nf; ++a)
-            if (std::abs(v(a, c)) > 1e-12) cov_s.row(a).setConstant(kInf), cov_s.col(a).setConstant(kInf);
-        }
-      }
-      for (int a = 0; a < nf; ++a) {
-        for (int b = 0; b < nf; ++b) {
-          s.covariance(cols[a], cols[b]) = cov_s(a, b) / (wn[a] * wn[b]);
-        }
-      }
-      for (int a = 0; a < nf; ++a) s.standard_errors[cols[a]] = std::sqrt(s.covariance(cols[a], cols[a]));
-      for (int a = 0; a < nf; ++a) {
-        for (int b = 0; b < nf; ++b) {
-          const int ia = cols[a], ib = cols[b];
-          s.correlation(ia, ib) = s.covariance(ia, ib) / (s.standard_errors[ia] * s.standard_errors[ib]);
-        }
-      }
-    }
-  }
+  StatisticsAtSolution(problem, options, x, lo, hi, r, jac, &s);
   s.total_time_in_seconds = elapsed();
   return s;
 }

@@ -1,0 +1,77 @@
+#include "identification/fit_rows.h"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <utility>
+
+#include "fit/statistics.h"
+
+namespace dynosize::identification {
+
+const char* RowRejection(double omega_rad_s, double omega_max_rad_s, double min_speed_fraction,
+                         bool has_throttle, double throttle, double min_throttle, double vdc_v,
+                         bool speed_unknown) {
+  // Written as !(a > b) so that a NaN reading is rejected, not used.
+  if (!speed_unknown && !(omega_rad_s > min_speed_fraction * omega_max_rad_s)) {
+    return "speed below min_speed_fraction of the largest";
+  }
+  if (has_throttle && throttle < min_throttle) return "throttle below min_throttle";
+  if (!(vdc_v > 0.0)) return "vdc_v not positive";
+  return nullptr;
+}
+
+std::vector<double> ThrottleLevels(const std::vector<double>& throttle) {
+  std::vector<double> lv;
+  lv.reserve(throttle.size());
+  for (double v : throttle) lv.push_back(std::round(v * 1000.0) / 1000.0);
+  std::sort(lv.begin(), lv.end());
+  lv.erase(std::unique(lv.begin(), lv.end()), lv.end());
+  return lv;
+}
+
+double MedianMagnitude(const std::vector<double>& column, const std::vector<std::size_t>& rows) {
+  std::vector<double> mag;
+  mag.reserve(rows.size());
+  for (std::size_t i : rows) mag.push_back(std::fabs(column[i]));
+  return fit::Median(std::move(mag));
+}
+
+std::array<double, kMeasCount> MedianPercentScales(const logs::SteadyTable& t, const std::vector<std::size_t>& rows,
+                                                   std::array<bool, kMeasCount>* measured) {
+  std::array<double, kMeasCount> inv_scale{};
+  for (int m = 0; m < kMeasCount; ++m) {
+    if (!(*measured)[m]) continue;
+    const double med = MedianMagnitude(t.Get(kMeasColumn[m]), rows);
+    inv_scale[m] = med > 0.0 ? 100.0 / med : 0.0;
+    if (!(med > 0.0)) (*measured)[m] = false;
+  }
+  return inv_scale;
+}
+
+OutlierSelection SelectOutlierRows(const std::vector<double>& rmax, const std::vector<double>& throttle,
+                                   bool has_throttle, double threshold, double max_fraction,
+                                   std::size_t min_kept) {
+  const std::size_t n = rmax.size();
+  std::vector<std::size_t> cand;
+  for (std::size_t k = 0; k < n; ++k) {
+    if (rmax[k] > threshold) cand.push_back(k);
+  }
+  std::sort(cand.begin(), cand.end(), [&](std::size_t a, std::size_t b) { return rmax[a] > rmax[b]; });
+  OutlierSelection sel;
+  sel.cap = static_cast<std::size_t>(std::floor(max_fraction * static_cast<double>(n)));
+  std::map<long long, std::size_t> per_level;
+  for (double tr : throttle) ++per_level[std::llround(tr * 1000.0)];
+  for (std::size_t k : cand) {
+    std::size_t& left = per_level[std::llround(throttle[k] * 1000.0)];
+    if (sel.dropped.size() >= sel.cap || n - sel.dropped.size() < min_kept || (has_throttle && left <= 1)) {
+      ++sel.spared;
+      continue;
+    }
+    --left;
+    sel.dropped.push_back(k);
+  }
+  return sel;
+}
+
+}  // namespace dynosize::identification

@@ -1,0 +1,76 @@
+// Row rules shared by `calibrate` (src/calibration) and `diagnose` (src/diagnosis), issue 12 "one
+// identification layer": the measured columns a fit compares and its residual terms, which rows
+// of a log a fit uses, the throttle levels of those rows, the magnitude that scales a column's
+// residuals to percent, and the robust outlier screen. Each rule exists once, here.
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <vector>
+
+#include "logs/steady_table.h"
+
+namespace dynosize::identification {
+
+// The measured columns a fit compares with the model's predictions, in this order: the index of
+// a prediction array pred[kMeasCount].
+enum Meas : int { kMOmega = 0, kMIdc, kMIrms, kMVll, kMPac, kMeasCount };
+inline constexpr logs::Column kMeasColumn[kMeasCount] = {logs::Column::kOmegaRadS, logs::Column::kIdcA,
+                                                         logs::Column::kIrmsA, logs::Column::kVllRmsV,
+                                                         logs::Column::kPacW};
+
+// One residual term of a fit: the measured value of column meas on one row, and the factor that
+// makes (prediction - value) a percent (each command chooses its scale).
+struct ResidualTerm {
+  int meas;
+  double value;
+  double inv_scale;
+};
+
+// The term's residual from the row's predictions pred[kMeasCount]; generic for dual numbers.
+template <typename T>
+T TermResidual(const ResidualTerm& term, const T* pred) {
+  return (pred[term.meas] - term.value) * term.inv_scale;
+}
+
+// Why a log row is left out of a fit, or nullptr when the fit uses it. The rules, checked in
+// this order:
+//  1. the shaft speed must exceed min_speed_fraction of the largest logged speed (the motor is
+//     turning; below it the steady-state model of model.md section 3 does not hold) - unless
+//     the row's speed was not measured (speed_unknown: a DriveCalc no-load row, n = 0);
+//  2. with a throttle column, the throttle must reach min_throttle;
+//  3. the supply voltage must be positive (eq 48 needs it).
+// The reasons are the texts calibrate lists with every dropped row.
+const char* RowRejection(double omega_rad_s, double omega_max_rad_s, double min_speed_fraction,
+                         bool has_throttle, double throttle, double min_throttle, double vdc_v,
+                         bool speed_unknown = false);
+
+// The distinct throttle levels of the rows (rounded to 0.001), ascending.
+std::vector<double> ThrottleLevels(const std::vector<double>& throttle);
+
+// Median of |column[row]| over the rows: the typical magnitude a residual of this column is a
+// percent of (dyno sensor noise is mostly relative). NaN when rows is empty.
+double MedianMagnitude(const std::vector<double>& column, const std::vector<std::size_t>& rows);
+
+// The percent scale of every measured column over the rows: 100 / MedianMagnitude. A column whose
+// median magnitude is not positive carries nothing to compare: its scale is 0 and it is marked
+// not measured. Columns already not measured get 0.
+std::array<double, kMeasCount> MedianPercentScales(const logs::SteadyTable& t, const std::vector<std::size_t>& rows,
+                                                   std::array<bool, kMeasCount>* measured);
+
+// Robust outlier screening (issue 12: never more than 10 % of the points or a whole throttle
+// level). rmax[k]: the largest |percent residual| of row k; throttle[k]: its throttle. The rows
+// with rmax above threshold (the caller's outlier_sigmas robust standard deviations) are taken
+// worst first; one is dropped while fewer than cap = floor(max_fraction * rows) are dropped, at
+// least min_kept rows are left before the drop, and (with a throttle column) it is not the last
+// row left at its throttle level (levels to 0.001). The others beyond the threshold are spared.
+struct OutlierSelection {
+  std::vector<std::size_t> dropped;  // indices into rmax, worst first
+  std::size_t spared = 0;            // rows beyond the threshold kept by the limits above
+  std::size_t cap = 0;               // floor(max_fraction * rows)
+};
+OutlierSelection SelectOutlierRows(const std::vector<double>& rmax, const std::vector<double>& throttle,
+                                   bool has_throttle, double threshold, double max_fraction,
+                                   std::size_t min_kept);
+
+}  // namespace dynosize::identification
