@@ -1349,6 +1349,31 @@ Step SearchCandidates(const SearchContext& x, bool has_tr, std::vector<Cause> re
   return cur;
 }
 
+// Stage 9c: without AC columns C1, C0 are seen only through the tied KT (section 5). Where the
+// extended model leaves them on a bound of model.md section 10 (the data alone ask for an ESC
+// that creates energy), they are held at the ESC prior (--esc, else ideal) and the extended
+// model refitted and cross-validated, as calibrate does (issue 12). The findings keep their
+// scores; the written model and its status are the held one.
+Step HoldEscOnBound(const SearchContext& x, bool ac, Step cur, DiagnoseResult* res) {
+  if (ac) return cur;
+  bool on_bound = false;
+  for (int s : {kC1, kC0}) on_bound = on_bound || (cur.model.free[s] && SlotAtBound(cur.model, cur.fit.values, s));
+  if (!on_bound) return cur;
+  Step held = cur;
+  const EscParams e0 = x.o.esc ? *x.o.esc : EscParams{};
+  held.model.free[kC1] = held.model.free[kC0] = false;
+  held.model.values[kC1] = e0.c1;
+  held.model.values[kC0] = e0.c0;
+  held.fit = FitProfiled(x.d, x.used, held.model, x.knees, LossType::kTrivial, 1.0);
+  if (!held.fit.ok) return cur;
+  held.model.values = held.fit.values;
+  held.cv = CrossValidate(x.d, x.used, x.folds.fold_of, x.folds.count, held.model, held.fit, x.knees);
+  res->warnings.push_back(std::string("c1, c0 held at the ") + (x.o.esc ? "ESC entry's" : "ideal ESC's") +
+                          " values in the extended model: fitted freely they sit on a bound of model.md "
+                          "section 10 (log torque and the AC columns to identify them)");
+  return held;
+}
+
 // Stage 10: the extended model into res: parameters, ratings from the catalog entries, its
 // cross-validation, warnings and the status contract.
 void AssembleResult(const SteadyTable& t, const DiagnoseOptions& o, const Data& d,
@@ -1403,6 +1428,7 @@ DiagnoseResult Diagnose(const SteadyTable& t, const DiagnoseOptions& o) {
   res.residual_trends = ResidualTrends(t, p, used, cur.cv, o.alpha);
   const SearchContext x{d, used, folds, knees, base.values, o};
   cur = SearchCandidates(x, p.has_tr, candidates, std::move(cur), &res);
+  cur = HoldEscOnBound(x, p.ac, std::move(cur), &res);
   AssembleResult(t, o, d, used, folds, cur, &res);
   return res;
 }
