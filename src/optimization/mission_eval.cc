@@ -116,6 +116,10 @@ double CreatedEnergyRatio(const OperatingPoint& op) {
   return r;
 }
 
+}  // namespace
+
+namespace eval_internal {
+
 // Tracks slacks and violations of one simulation.
 class Tracker {
  public:
@@ -148,6 +152,12 @@ class Tracker {
  private:
   MissionResult* r_;
 };
+
+}  // namespace eval_internal
+
+namespace {
+
+using eval_internal::Tracker;
 
 // A propeller segment's shaft point: the speed where the propeller gives the required thrust
 // per rotor (static or in the axial inflow), its torque, and the propeller's own checks (data
@@ -321,44 +331,235 @@ BatteryPackParams MissionEvaluator::PackAt(double capacity_ah) const {
   return p;
 }
 
+// What Run carries from one segment to the next.
+struct MissionEvaluator::RunState {
+  BatteryPack pack;
+  double cutoff_v = 0, v_full = 0, q_c = 0, current_factor = 1;
+  double soc = 1.0, time_s = 0, energy_j = 0;
+};
+
+// Mission-wide checks of the parts: ESC voltage, the frame, and the lift group's credibility
+// checks (credibility.h).
+void MissionEvaluator::CheckParts(const RunState& st, eval_internal::Tracker* track) const {
+  for (int g = 0; g < static_cast<int>(groups_.size()); ++g) {
+    const GroupDrive& gd = groups_[g];
+    track->Check("esc_voltage", "", st.v_full, gd.drive.esc().vdc_max_v, "V");
+    if (const auto d_max = GroupMaxPropDiameterM(m_, g)) {
+      track->Check("prop_diameter", "", gd.parts.prop->diameter_m, *d_max, "m");
+    }
+    if (g != lift_group_) continue;  // credibility.h: the lift group's parts only
+    if (gd.folding_refused) track->Check("prop_folding", "", 1.0, 0.0, "");
+    if (gd.motor_excluded) track->Check("motor_unrated", "", 1.0, 0.0, "");
+    track->Check("motor_voltage", "", st.v_full, MotorMaxVoltageV(*gd.parts.motor), "V");
+  }
+}
+
+// The shaft's speed and torque of segment si (shaft segments: Ipopt; propeller segments:
+// PropellerPoint). False when the propeller cannot give the thrust.
+bool MissionEvaluator::SegmentShaftPoint(std::size_t si, const RunState& st, const RotorLoad& load,
+                                         eval_internal::Tracker* track, SegmentResult* seg, double* omega,
+                                         double* torque) const {
+  const Segment& s = m_.segments[si];
+  const GroupDrive& gd = groups_[s.group];
+  const Drive& drive = gd.drive;
+  const MissionConstraints& k = m_.constraints;
+  if (s.type == SegmentType::kShaft) {
+    const MotorParams& mp = drive.motor();
+    const EscParams& ep = drive.esc();
+    ShaftRequest q;
+    q.vdc_v = st.v_full;
+    q.power_w = s.shaft_power_w;
+    q.torque_nm = s.shaft_torque_nm;
+    q.omega_rad_s = s.shaft_omega_rad_s;
+    q.max_throttle = std::min(k.max_throttle, k.allow_esc_saturation ? 1.0 : ep.tr_sat);
+    const double lim = std::min(mp.max_current_a, ep.max_current_a) * st.current_factor;
+    q.max_current_a = std::isfinite(lim) ? lim : 1e300;
+    const ShaftSolution sol = SolveShaftSpeed(drive, q, "ipopt");
+    *omega = sol.omega_rad_s;
+    *torque = sol.point.torque_nm;
+    seg->shaft_solver = sol.algorithm + ": " + sol.message;
+    return true;
+  }
+  const double w_motor_max = std::max(drive.NoLoadSpeed(st.v_full, 1.0), 1.0);
+  return PropellerPoint(m_, s, load, drive, *gd.prop, *gd.parts.prop, gd.prop_adj, st.v_full, w_motor_max, track,
+                        seg, omega, torque);
+}
+
+// Flies segment si at the shaft point (omega, torque) from st.soc: the pack's sag per instant,
+// the constraints at every sub-step's end, SOC by the midpoint rule. False when the pack cannot
+// deliver the power (a battery_power violation is recorded).
+bool MissionEvaluator::IntegrateSegment(std::size_t si, bool stretched, double omega, double torque,
+                                        RunState* st, eval_internal::Tracker* track, SegmentResult* seg) const {
+  const Segment& s = m_.segments[si];
+  const GroupDrive& gd = groups_[s.group];
+  const Drive& drive = gd.drive;
+  const MotorParams& mp = gd.drive.motor();  // the scenario's (credibility.h)
+  const EscParams& ep = gd.drive.esc();
+  const MissionConstraints& k = m_.constraints;
+  const BatteryPack& pack = st->pack;
+  const int n_active = seg->rotors;
+  double last_sag_v = 0.0;
+  // The power asked of the pack at the last voltage tried, and the most it can give then
+  // (a source OCV behind R delivers at most OCV^2/(4*R)).
+  double demanded_w = 0.0, deliverable_w = 0.0;
+  // The operating point at a state of charge: the terminal voltage V solves
+  //   V = OCV(soc) - R*I_batt,  V*I_batt = N*PDC(V) + P_avionics.
+  // PDC = C1*U*Irms/kv + C0*VDC*Irms (eqs 57, 59) depends on V only through the C0 term (and
+  // saturation), so each step solves the quadratic V^2 - OCV*V + R*P = 0 for its upper (stable)
+  // root with P at the current V: exact in one step when C0 = 0, a fast contraction otherwise.
+  // No real root: the pack cannot deliver the power.
+  auto point_at = [&](double soc_now, OperatingPoint* op, double* v, double* i_batt) {
+    const double ocv = pack.OcvV(soc_now);
+    const double r_pack = pack.ri_ohm();
+    // Warm start from the previous instant's sag (the current changes little in a segment).
+    double vv = last_sag_v > 0 && last_sag_v < 0.5 * ocv ? ocv - last_sag_v : ocv;
+    for (int it = 0; it < 30; ++it) {
+      *op = drive.Inverse(vv, torque, omega);
+      const double p_w = n_active * op->idc_a * vv + m_.vehicle.avionics_power_w;
+      const double disc = ocv * ocv - 4.0 * r_pack * p_w;
+      demanded_w = p_w;
+      deliverable_w = ocv * ocv / (4.0 * r_pack);
+      if (!(disc >= 0.0)) return false;
+      const double next = 0.5 * (ocv + std::sqrt(disc));
+      if (next == vv) break;
+      const bool done = std::fabs(next - vv) < 1e-10 * ocv;
+      vv = next;
+      if (done) {
+        *op = drive.Inverse(vv, torque, omega);
+        break;
+      }
+    }
+    *i_batt = n_active * op->idc_a + m_.vehicle.avionics_power_w / vv;
+    *v = vv;
+    last_sag_v = ocv - vv;
+    return true;
+  };
+  auto check_point = [&](const OperatingPoint& op, double v, double i_batt) {
+    track->Check("max_throttle", s.name, op.throttle, k.max_throttle, "", false, seg);
+    if (!k.allow_esc_saturation) track->Check("esc_saturation", s.name, op.throttle, ep.tr_sat, "", false, seg);
+    const double i = std::max(op.idc_a, op.irms_a);
+    track->Check("motor_current", s.name, i, mp.max_current_a * st->current_factor, "A", false, seg);
+    track->Check("esc_current", s.name, i, ep.max_current_a * st->current_factor, "A", false, seg);
+    if (k.enforce_motor_power) track->Check("motor_power", s.name, op.pac_w, mp.max_power_w, "W", false, seg);
+    track->Check("battery_current", s.name, i_batt, pack.max_current_a() * st->current_factor, "A", false, seg);
+    track->Check("battery_cutoff", s.name, v, st->cutoff_v, "V", true, seg);
+    const double temp_c = WindingTempC(op, s.group);
+    seg->winding_temp_c = std::max(seg->winding_temp_c, temp_c);
+    track->Check("max_winding_temp_c", s.name, temp_c, k.max_winding_temp_c, "C", false, seg);
+    // Physics is the contract: a point where the ESC or the motor puts out more power than
+    // it takes in (model.md section 10; Drive::Flag sets the bit through model/physics.h)
+    // is never feasible, whatever the objective gains from it.
+    if (op.limits & kLimitCreatesEnergy) {
+      track->Check("creates_energy", s.name, CreatedEnergyRatio(op), 1.0, "", false, seg);
+    }
+  };
+  double& soc = st->soc;
+  seg->soc_start = soc;
+  OperatingPoint op;
+  double v = 0, ib = 0;
+  bool ok = point_at(soc, &op, &v, &ib);
+  if (ok) check_point(op, v, ib);
+  seg->battery_current_start_a = ib;
+  seg->vdc_min_v = seg->vdc_max_v = v;
+  seg->throttle_min = seg->throttle_max = op.throttle;
+  seg->idc_min_a = seg->idc_max_a = op.idc_a;
+  const int steps = stretched ? kStretchSubsteps : kSubsteps;
+  const double dt = seg->duration_s / steps;
+  double e_seg = 0, e_mech = 0;
+  for (int j = 0; ok && j < steps && dt > 0; ++j) {
+    // Midpoint rule: predict SOC at mid-step with the start current, draw the mid current.
+    OperatingPoint opm;
+    double vm = 0, im = 0;
+    ok = point_at(soc - 0.5 * ib * dt / st->q_c, &opm, &vm, &im);
+    if (!ok) break;
+    soc -= im * dt / st->q_c;
+    e_seg += vm * im * dt;
+    e_mech += n_active * opm.pmech_w * dt;
+    ok = point_at(soc, &op, &v, &ib);
+    if (!ok) break;
+    check_point(op, v, ib);
+    seg->vdc_min_v = std::min(seg->vdc_min_v, v);
+    seg->vdc_max_v = std::max(seg->vdc_max_v, v);
+    seg->throttle_min = std::min(seg->throttle_min, op.throttle);
+    seg->throttle_max = std::max(seg->throttle_max, op.throttle);
+    seg->idc_min_a = std::min(seg->idc_min_a, op.idc_a);
+    seg->idc_max_a = std::max(seg->idc_max_a, op.idc_a);
+  }
+  if (!ok) {
+    // The pack cannot deliver this power.
+    track->Check("battery_power", s.name, demanded_w, deliverable_w, "W", false, seg);
+    return false;
+  }
+  seg->point = op;
+  seg->battery_current_a = ib;
+  seg->soc_end = soc;
+  seg->energy_j = e_seg;
+  seg->eta_average = e_seg > 0 ? e_mech / (e_seg - m_.vehicle.avionics_power_w * seg->duration_s) : op.eta_system;
+  if (dt <= 0) seg->eta_average = op.eta_system;
+  if (seg->active_limit_slack > kActiveSlack) seg->active_limit.clear();
+  st->time_s += seg->duration_s;
+  st->energy_j += e_seg;
+  return true;
+}
+
+// After the last segment: the reserve, the thrust-to-weight, the objective and the score.
+void MissionEvaluator::FinishRun(const RunState& st, eval_internal::Tracker* track, MissionResult* out) const {
+  MissionResult& r = *out;
+  const MissionConstraints& k = m_.constraints;
+  r.final_soc = st.soc;
+  track->Check("reserve_soc", "", st.soc, m_.battery.reserve_soc, "", true);
+  // Thrust-to-weight at full throttle on the lowest pack voltage of the mission (its end: the
+  // SOC only falls) with the sag at that current. Falls as the stretch lengthens (less charge,
+  // lower OCV), so the stretch's slack stays monotone.
+  r.lift_rotors = lift_rotors_;
+  if (k.min_thrust_to_weight > 0 && lift_rotors_ > 0) {
+    FullThrottle ft;
+    const double weight_n = r.total_mass_kg * kStandardGravity;
+    r.thrust_to_weight = FullThrottleAt(st.pack, st.soc, &ft) ? lift_rotors_ * ft.thrust_per_rotor_n / weight_n : 0.0;
+    track->Check("min_thrust_to_weight", "", r.thrust_to_weight, k.min_thrust_to_weight, "", true);
+  }
+  r.endurance_s = st.time_s;
+  r.energy_wh = st.energy_j / 3600.0;
+  r.feasible = r.min_slack >= 0;
+  switch (m_.objective.type) {
+    case ObjectiveType::kMaxEndurance:
+      r.objective = st.time_s;
+      r.objective_unit = "s";
+      r.score = -st.time_s;
+      break;
+    case ObjectiveType::kMinEnergy:
+      r.objective = r.energy_wh;
+      r.objective_unit = "Wh";
+      r.score = r.energy_wh;
+      break;
+    case ObjectiveType::kMaxEfficiency:
+      r.objective = r.segments[m_.objective.segment_index].eta_average;
+      r.objective_unit = "";
+      r.score = -r.objective;
+      break;
+  }
+  if (!r.feasible) r.score = kInf;
+}
+
 MissionResult MissionEvaluator::Run(const ContinuousVars& vars, double stretch_s, bool screen) const {
   MissionResult r;
   r.min_slack = kInf;
   r.segments.reserve(m_.segments.size());
   Tracker track(&r);
-  const MissionConstraints& k = m_.constraints;
-  const BatteryPack pack(PackAt(vars.capacity_ah));
+  RunState st{BatteryPack(PackAt(vars.capacity_ah))};
+  const BatteryPack& pack = st.pack;
   r.capacity_ah = pack.capacity_ah();
   r.total_mass_kg = fixed_mass_kg_ + pack.mass_kg();
   r.propulsion_mass_kg = r.total_mass_kg - m_.vehicle.mass_kg;
   DischargeOptions dopt;
   if (m_.battery.cutoff_cell_v) dopt.cutoff_cell_v = *m_.battery.cutoff_cell_v;
-  const double cutoff_v = pack.cutoff_v(dopt);
-  const double v_full = pack.OcvV(1.0);
-  const double q_c = AhToCoulomb(pack.capacity_ah());
-  const double current_factor = 1.0 - k.current_margin;
-  for (int g = 0; g < static_cast<int>(groups_.size()); ++g) {
-    const GroupDrive& gd = groups_[g];
-    track.Check("esc_voltage", "", v_full, gd.drive.esc().vdc_max_v, "V");
-    if (const auto d_max = GroupMaxPropDiameterM(m_, g)) {
-      track.Check("prop_diameter", "", gd.parts.prop->diameter_m, *d_max, "m");
-    }
-    if (g != lift_group_) continue;  // credibility.h: the lift group's parts only
-    if (gd.folding_refused) track.Check("prop_folding", "", 1.0, 0.0, "");
-    if (gd.motor_excluded) track.Check("motor_unrated", "", 1.0, 0.0, "");
-    track.Check("motor_voltage", "", v_full, MotorMaxVoltageV(*gd.parts.motor), "V");
-  }
-
-  double soc = 1.0;
-  double time_s = 0, energy_j = 0;
+  st.cutoff_v = pack.cutoff_v(dopt);
+  st.v_full = pack.OcvV(1.0);
+  st.q_c = AhToCoulomb(pack.capacity_ah());
+  st.current_factor = 1.0 - m_.constraints.current_margin;
+  CheckParts(st, &track);
   for (std::size_t si = 0; si < m_.segments.size(); ++si) {
     const Segment& s = m_.segments[si];
-    const GroupDrive& gd = groups_[s.group];
-    const Drive& drive = gd.drive;
-    const PropModel& prop = *gd.prop;
-    const MotorParams& mp = gd.drive.motor();  // the scenario's (credibility.h)
-    const EscParams& ep = gd.drive.esc();
-    const double w_motor_max = std::max(drive.NoLoadSpeed(v_full, 1.0), 1.0);
     SegmentResult seg;
     seg.group = s.group;
     seg.name = s.name;
@@ -378,170 +579,23 @@ MissionResult MissionEvaluator::Run(const ContinuousVars& vars, double stretch_s
     seg.thrust_per_rotor_n = s.type == SegmentType::kShaft ? 0.0 : load.thrust_per_rotor_n;
     seg.tilt_deg = load.tilt_rad * 180.0 / kPi;
     double omega = 0, torque = 0;
-    if (s.type == SegmentType::kShaft) {
-      ShaftRequest q;
-      q.vdc_v = v_full;
-      q.power_w = s.shaft_power_w;
-      q.torque_nm = s.shaft_torque_nm;
-      q.omega_rad_s = s.shaft_omega_rad_s;
-      q.max_throttle = std::min(k.max_throttle, k.allow_esc_saturation ? 1.0 : ep.tr_sat);
-      const double lim = std::min(mp.max_current_a, ep.max_current_a) * current_factor;
-      q.max_current_a = std::isfinite(lim) ? lim : 1e300;
-      const ShaftSolution sol = SolveShaftSpeed(drive, q, "ipopt");
-      omega = sol.omega_rad_s;
-      torque = sol.point.torque_nm;
-      seg.shaft_solver = sol.algorithm + ": " + sol.message;
-    } else if (!PropellerPoint(m_, s, load, drive, prop, *gd.parts.prop, gd.prop_adj, v_full, w_motor_max,
-                               &track, &seg, &omega, &torque)) {
-      r.feasible = false;  // even four times the motor's no-load speed does not give the thrust
-      r.segments.push_back(seg);
-      r.score = kInf;
-      return r;
-    }
-    const int n_active = seg.rotors;
-    double last_sag_v = 0.0;
-    // The power asked of the pack at the last voltage tried, and the most it can give then
-    // (a source OCV behind R delivers at most OCV^2/(4*R)).
-    double demanded_w = 0.0, deliverable_w = 0.0;
-    // The operating point at a state of charge: the terminal voltage V solves
-    //   V = OCV(soc) - R*I_batt,  V*I_batt = N*PDC(V) + P_avionics.
-    // PDC = C1*U*Irms/kv + C0*VDC*Irms (eqs 57, 59) depends on V only through the C0 term (and
-    // saturation), so each step solves the quadratic V^2 - OCV*V + R*P = 0 for its upper (stable)
-    // root with P at the current V: exact in one step when C0 = 0, a fast contraction otherwise.
-    // No real root: the pack cannot deliver the power.
-    auto point_at = [&](double soc_now, OperatingPoint* op, double* v, double* i_batt) {
-      const double ocv = pack.OcvV(soc_now);
-      const double r_pack = pack.ri_ohm();
-      // Warm start from the previous instant's sag (the current changes little in a segment).
-      double vv = last_sag_v > 0 && last_sag_v < 0.5 * ocv ? ocv - last_sag_v : ocv;
-      for (int it = 0; it < 30; ++it) {
-        *op = drive.Inverse(vv, torque, omega);
-        const double p_w = n_active * op->idc_a * vv + m_.vehicle.avionics_power_w;
-        const double disc = ocv * ocv - 4.0 * r_pack * p_w;
-        demanded_w = p_w;
-        deliverable_w = ocv * ocv / (4.0 * r_pack);
-        if (!(disc >= 0.0)) return false;
-        const double next = 0.5 * (ocv + std::sqrt(disc));
-        if (next == vv) break;
-        const bool done = std::fabs(next - vv) < 1e-10 * ocv;
-        vv = next;
-        if (done) {
-          *op = drive.Inverse(vv, torque, omega);
-          break;
-        }
-      }
-      *i_batt = n_active * op->idc_a + m_.vehicle.avionics_power_w / vv;
-      *v = vv;
-      last_sag_v = ocv - vv;
-      return true;
-    };
-    auto check_point = [&](const OperatingPoint& op, double v, double i_batt) {
-      track.Check("max_throttle", s.name, op.throttle, k.max_throttle, "", false, &seg);
-      if (!k.allow_esc_saturation) track.Check("esc_saturation", s.name, op.throttle, ep.tr_sat, "", false, &seg);
-      const double i = std::max(op.idc_a, op.irms_a);
-      track.Check("motor_current", s.name, i, mp.max_current_a * current_factor, "A", false, &seg);
-      track.Check("esc_current", s.name, i, ep.max_current_a * current_factor, "A", false, &seg);
-      if (k.enforce_motor_power) track.Check("motor_power", s.name, op.pac_w, mp.max_power_w, "W", false, &seg);
-      track.Check("battery_current", s.name, i_batt, pack.max_current_a() * current_factor, "A", false, &seg);
-      track.Check("battery_cutoff", s.name, v, cutoff_v, "V", true, &seg);
-      const double temp_c = WindingTempC(op, s.group);
-      seg.winding_temp_c = std::max(seg.winding_temp_c, temp_c);
-      track.Check("max_winding_temp_c", s.name, temp_c, k.max_winding_temp_c, "C", false, &seg);
-      // Physics is the contract: a point where the ESC or the motor puts out more power than
-      // it takes in (model.md section 10; Drive::Flag sets the bit through model/physics.h)
-      // is never feasible, whatever the objective gains from it.
-      if (op.limits & kLimitCreatesEnergy) {
-        track.Check("creates_energy", s.name, CreatedEnergyRatio(op), 1.0, "", false, &seg);
-      }
-    };
-    seg.soc_start = soc;
-    OperatingPoint op;
-    double v = 0, ib = 0;
-    bool ok = point_at(soc, &op, &v, &ib);
-    if (ok) check_point(op, v, ib);
-    seg.battery_current_start_a = ib;
-    seg.vdc_min_v = seg.vdc_max_v = v;
-    seg.throttle_min = seg.throttle_max = op.throttle;
-    seg.idc_min_a = seg.idc_max_a = op.idc_a;
-    const int steps = stretched ? kStretchSubsteps : kSubsteps;
-    const double dt = seg.duration_s / steps;
-    double e_seg = 0, e_mech = 0;
-    for (int j = 0; ok && j < steps && dt > 0; ++j) {
-      // Midpoint rule: predict SOC at mid-step with the start current, draw the mid current.
-      OperatingPoint opm;
-      double vm = 0, im = 0;
-      ok = point_at(soc - 0.5 * ib * dt / q_c, &opm, &vm, &im);
-      if (!ok) break;
-      soc -= im * dt / q_c;
-      e_seg += vm * im * dt;
-      e_mech += n_active * opm.pmech_w * dt;
-      ok = point_at(soc, &op, &v, &ib);
-      if (!ok) break;
-      check_point(op, v, ib);
-      seg.vdc_min_v = std::min(seg.vdc_min_v, v);
-      seg.vdc_max_v = std::max(seg.vdc_max_v, v);
-      seg.throttle_min = std::min(seg.throttle_min, op.throttle);
-      seg.throttle_max = std::max(seg.throttle_max, op.throttle);
-      seg.idc_min_a = std::min(seg.idc_min_a, op.idc_a);
-      seg.idc_max_a = std::max(seg.idc_max_a, op.idc_a);
-    }
+    const bool ok = SegmentShaftPoint(si, st, load, &track, &seg, &omega, &torque) &&
+                    IntegrateSegment(si, stretched, omega, torque, &st, &track, &seg);
+    r.segments.push_back(std::move(seg));
     if (!ok) {
-      // The pack cannot deliver this power.
-      track.Check("battery_power", s.name, demanded_w, deliverable_w, "W", false, &seg);
-      r.segments.push_back(seg);
+      // Even four times the motor's no-load speed does not give the thrust, or the pack cannot
+      // deliver the power.
       r.feasible = false;
       r.score = kInf;
       return r;
     }
-    seg.point = op;
-    seg.battery_current_a = ib;
-    seg.soc_end = soc;
-    seg.energy_j = e_seg;
-    seg.eta_average = e_seg > 0 ? e_mech / (e_seg - m_.vehicle.avionics_power_w * seg.duration_s) : op.eta_system;
-    if (dt <= 0) seg.eta_average = op.eta_system;
-    if (seg.active_limit_slack > kActiveSlack) seg.active_limit.clear();
-    time_s += seg.duration_s;
-    energy_j += e_seg;
-    r.segments.push_back(seg);
     if (screen && !r.violations.empty()) {
       r.feasible = false;
       r.score = kInf;
       return r;
     }
   }
-  r.final_soc = soc;
-  track.Check("reserve_soc", "", soc, m_.battery.reserve_soc, "", true);
-  // Thrust-to-weight at full throttle on the lowest pack voltage of the mission (its end: the
-  // SOC only falls) with the sag at that current. Falls as the stretch lengthens (less charge,
-  // lower OCV), so the stretch's slack stays monotone.
-  r.lift_rotors = lift_rotors_;
-  if (k.min_thrust_to_weight > 0 && lift_rotors_ > 0) {
-    FullThrottle ft;
-    const double weight_n = r.total_mass_kg * kStandardGravity;
-    r.thrust_to_weight = FullThrottleAt(pack, soc, &ft) ? lift_rotors_ * ft.thrust_per_rotor_n / weight_n : 0.0;
-    track.Check("min_thrust_to_weight", "", r.thrust_to_weight, k.min_thrust_to_weight, "", true);
-  }
-  r.endurance_s = time_s;
-  r.energy_wh = energy_j / 3600.0;
-  r.feasible = r.min_slack >= 0;
-  switch (m_.objective.type) {
-    case ObjectiveType::kMaxEndurance:
-      r.objective = time_s;
-      r.objective_unit = "s";
-      r.score = -time_s;
-      break;
-    case ObjectiveType::kMinEnergy:
-      r.objective = r.energy_wh;
-      r.objective_unit = "Wh";
-      r.score = r.energy_wh;
-      break;
-    case ObjectiveType::kMaxEfficiency:
-      r.objective = r.segments[m_.objective.segment_index].eta_average;
-      r.objective_unit = "";
-      r.score = -r.objective;
-      break;
-  }
-  if (!r.feasible) r.score = kInf;
+  FinishRun(st, &track, &r);
   return r;
 }
 

@@ -35,6 +35,11 @@
 
 namespace dynosize {
 
+struct RotorLoad;  // mission/flight.h
+namespace eval_internal {
+class Tracker;  // slacks and violations of one Run (mission_eval.cc)
+}  // namespace eval_internal
+
 // The parts of one propulsion group.
 struct GroupParts {
   const MotorEntry* motor = nullptr;
@@ -199,6 +204,14 @@ class MissionEvaluator {
   // screen: stop at the end of the first segment that breaks a constraint (the result then
   // only says "infeasible"; used by Solve(cutoff) to discard search candidates quickly).
   MissionResult Run(const ContinuousVars& vars, double stretch_s, bool screen = false) const;
+  // Run's stages (mission_eval.cc).
+  struct RunState;
+  void CheckParts(const RunState& st, eval_internal::Tracker* track) const;
+  bool SegmentShaftPoint(std::size_t si, const RunState& st, const RotorLoad& load, eval_internal::Tracker* track,
+                         SegmentResult* seg, double* omega, double* torque) const;
+  bool IntegrateSegment(std::size_t si, bool stretched, double omega, double torque, RunState* st,
+                        eval_internal::Tracker* track, SegmentResult* seg) const;
+  void FinishRun(const RunState& st, eval_internal::Tracker* track, MissionResult* out) const;
   MissionResult WithEndurance(ContinuousVars vars) const;
   double StretchStartCurrent(const MissionResult& r) const;
   // An upper bound of the total mission time over the capacity range (max_endurance), tightened
