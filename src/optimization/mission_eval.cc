@@ -178,7 +178,10 @@ bool PropellerPoint(const Mission& m, const Segment& s, const RotorLoad& load, c
     track->Check("thrust", s.name, load.thrust_per_rotor_n, at_nl.thrust_n, "N", false, seg);
     return false;
   }
-  if (!ev.InData()) seg->prop_note = ev.Message();
+  if (!ev.InData()) {  // the note is written from these numbers when read (FillPropNotes)
+    seg->prop_edge = true;
+    seg->prop_edge_eval = ev;
+  }
   // Static-only data (DriveCalc power laws, static coefficients) say nothing about the
   // thrust lost to inflow; held at J = 0 they grossly over-state a propeller in fast axial
   // flow. Up to the mission's max_static_advance_ratio (default 0.2) the static values
@@ -747,7 +750,19 @@ double MissionEvaluator::EnduranceUpperBound(double target_s) const {
   }
 }
 
+void MissionEvaluator::FillPropNotes(MissionResult* r) {
+  for (SegmentResult& s : r->segments) {
+    if (s.prop_edge && s.prop_note.empty()) s.prop_note = s.prop_edge_eval.Message();
+  }
+}
+
 MissionResult MissionEvaluator::Solve(double cutoff_score, bool explain) const {
+  MissionResult r = SolveContinuous(cutoff_score, explain);
+  FillPropNotes(&r);
+  return r;
+}
+
+MissionResult MissionEvaluator::SolveContinuous(double cutoff_score, bool explain) const {
   const bool capacity_free = m_.battery.capacity_ah && m_.battery.capacity_ah->free();
   if (std::isfinite(cutoff_score) && m_.objective.type == ObjectiveType::kMaxEndurance) {
     // One simulation decides most candidates of a search: infeasible before any stretch.
@@ -939,6 +954,7 @@ MissionResult MissionEvaluator::Solve(double cutoff_score, bool explain) const {
 
 MissionResult MissionEvaluator::Simulate(const ContinuousVars& vars) const {
   MissionResult r = WithEndurance(vars);
+  FillPropNotes(&r);
   Summarize(&r);
   AddWarnings(&r);
   return r;
@@ -1130,6 +1146,7 @@ void MissionEvaluator::Summarize(MissionResult* r) const {
 }
 
 void MissionEvaluator::AddWarnings(MissionResult* r) const {
+  FillPropNotes(r);
   r->assumed = assumed_;
   for (const Violation& v : r->violations) {
     if (v.constraint == "max_throttle") {

@@ -101,6 +101,10 @@ struct SegmentResult {
   // Steady winding temperature at the segment's hottest point (MissionEvaluator::WindingTempC).
   double winding_temp_c = 0;
   std::string prop_note;         // propeller data held at an edge, if any
+  // The evaluation behind prop_note, kept as numbers while the solvers run (no text on the hot
+  // path); Solve and Simulate write prop_note from it (FillPropNotes).
+  bool prop_edge = false;
+  PropEvaluation prop_edge_eval;
   std::string shaft_solver;      // shaft segments: the solver's brief report
 };
 
@@ -185,6 +189,8 @@ class MissionEvaluator {
   // reads for the search's screening evaluations); the numbers are the same.
   MissionResult Solve(double cutoff_score = std::numeric_limits<double>::infinity(),
                       bool explain = true) const;
+  // Writes each segment's prop_note from its prop_edge_eval (Solve and Simulate do).
+  static void FillPropNotes(MissionResult* r);
 
   // Steady winding temperature of the motor at an operating point, C: the winding heats by
   // its copper loss kp*R(T)*I^2 (eqs 41, 48 with R(T) = Rm*(1 + alpha_Cu*(T - 25 C)), alpha_Cu
@@ -213,6 +219,7 @@ class MissionEvaluator {
                         eval_internal::Tracker* track, SegmentResult* seg) const;
   void FinishRun(const RunState& st, eval_internal::Tracker* track, MissionResult* out) const;
   MissionResult WithEndurance(ContinuousVars vars) const;
+  MissionResult SolveContinuous(double cutoff_score, bool explain) const;
   double StretchStartCurrent(const MissionResult& r) const;
   // An upper bound of the total mission time over the capacity range (max_endurance), tightened
   // until it falls below target_s or a budget of simulations is spent.
