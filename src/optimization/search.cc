@@ -604,6 +604,125 @@ CandidateList BuildCandidates(const SearchContext& ctx, int threads) {
   return out;
 }
 
+bool CandidateBefore(const Candidate& a, const Candidate& b) {
+  if (a.bound != b.bound) return a.bound < b.bound;
+  if (a.option != b.option) return a.option < b.option;
+  if (a.motor != b.motor) return a.motor < b.motor;
+  return a.prop < b.prop;
+}
+
+namespace {
+
+// The first `n` of `pairs` in CandidateBefore order, sorted, into q (complete when that is all).
+void TakeFirst(std::vector<Candidate>* pairs, std::size_t n, MotorQueue* q) {
+  n = std::min(n, pairs->size());
+  std::partial_sort(pairs->begin(), pairs->begin() + static_cast<std::ptrdiff_t>(n), pairs->end(), CandidateBefore);
+  q->next.assign(pairs->begin(), pairs->begin() + static_cast<std::ptrdiff_t>(n));
+  q->pos = 0;
+  q->complete = n == pairs->size();
+}
+
+}  // namespace
+
+MotorHeads BuildMotorHeads(const SearchContext& ctx, int threads) {
+  const MissionFacts f = FactsOf(*ctx.mission, ctx.free_group);
+  const auto& motors = ctx.catalog->motors();
+  const long long per_motor = static_cast<long long>(ctx.catalog->escs().size()) *
+                              static_cast<long long>(ctx.catalog->props().size() * ctx.options.size());
+  threads = std::max(1, threads);
+  // Per motor, written by one thread each.
+  std::vector<MotorQueue> queue(motors.size());
+  std::vector<long long> count(motors.size(), 0);
+  std::vector<RuleCounts> thread_pruned(static_cast<std::size_t>(threads));
+  std::vector<long long> thread_skipped(static_cast<std::size_t>(threads), 0);
+  auto work = [&](int tid) {
+    std::vector<Candidate> tmp;
+    for (std::size_t mi = static_cast<std::size_t>(tid); mi < motors.size(); mi += static_cast<std::size_t>(threads)) {
+      if (!motors[mi].exclude_reason.empty()) {  // R0: the catalog excludes it (catalog.h, "exclude")
+        thread_pruned[tid].Add("catalog_exclude", per_motor);
+        continue;
+      }
+      if (!motors[mi].mass_kg) {
+        ++thread_skipped[tid];
+        thread_pruned[tid].Add("motor_without_mass", per_motor);
+        continue;
+      }
+      tmp.clear();
+      MotorCandidates(ctx, f, mi, &tmp, &thread_pruned[tid]);
+      count[mi] = static_cast<long long>(tmp.size());
+      queue[mi].motor = static_cast<int>(mi);
+      TakeFirst(&tmp, kFirstPairsPerMotor, &queue[mi]);
+    }
+  };
+  {
+    std::vector<std::thread> pool;
+    for (int t = 1; t < threads; ++t) pool.emplace_back(work, t);
+    work(0);
+    for (auto& th : pool) th.join();
+  }
+  MotorHeads out;
+  for (std::size_t mi = 0; mi < motors.size(); ++mi) {
+    if (!queue[mi].next.empty()) out.motors.push_back(std::move(queue[mi]));
+    out.pairs += count[mi];
+  }
+  for (int t = 0; t < threads; ++t) {
+    thread_pruned[t].MergeInto(&out.pruned_by);
+    out.skipped_without_mass += thread_skipped[t];
+  }
+  return out;
+}
+
+void MotorPairs(const SearchContext& ctx, int motor, std::vector<Candidate>* out) {
+  RuleCounts ignored;  // counted once, by BuildMotorHeads
+  MotorCandidates(ctx, FactsOf(*ctx.mission, ctx.free_group), static_cast<std::size_t>(motor), out, &ignored);
+}
+
+CandidateStream::CandidateStream(const SearchContext& ctx, std::vector<MotorQueue> motors)
+    : ctx_(ctx), queues_(std::move(motors)) {
+  for (std::size_t i = 0; i < queues_.size(); ++i) heap_.push_back(i);
+  std::make_heap(heap_.begin(), heap_.end(), [this](std::size_t a, std::size_t b) { return HeapAfter(a, b); });
+}
+
+bool CandidateStream::HeapAfter(std::size_t a, std::size_t b) const {
+  return CandidateBefore(queues_[b].next[queues_[b].pos], queues_[a].next[queues_[a].pos]);
+}
+
+bool CandidateStream::Next(double cutoff, Candidate* c) {
+  if (heap_.empty()) return false;
+  auto after = [this](std::size_t a, std::size_t b) { return HeapAfter(a, b); };
+  std::pop_heap(heap_.begin(), heap_.end(), after);
+  const std::size_t i = heap_.back();
+  heap_.pop_back();
+  MotorQueue& q = queues_[i];
+  *c = q.next[q.pos++];
+  if (q.pos == q.next.size()) {
+    if (!q.complete && c->bound < cutoff) {
+      // The motor's pairs after c, twice as many as last time: regenerated (stage 4 is
+      // deterministic), those with a bound >= cutoff left out (never drawn before the search
+      // stops: the cutoff only falls).
+      const std::size_t n = 2 * q.next.size();
+      scratch_.clear();
+      MotorPairs(ctx_, q.motor, &scratch_);
+      const Candidate last = *c;
+      scratch_.erase(std::remove_if(scratch_.begin(), scratch_.end(),
+                                    [&](const Candidate& x) { return !CandidateBefore(last, x) || !(x.bound < cutoff); }),
+                     scratch_.end());
+      TakeFirst(&scratch_, n, &q);
+      ++refills_;
+    } else {
+      q.next.clear();
+      q.pos = 0;
+    }
+  }
+  if (q.pos < q.next.size()) {
+    heap_.push_back(i);
+    std::push_heap(heap_.begin(), heap_.end(), after);
+  } else {
+    std::vector<Candidate>().swap(q.next);
+  }
+  return true;
+}
+
 }  // namespace search_internal
 
 namespace {
@@ -614,9 +733,9 @@ using namespace search_internal;
 // not pruned scored exactly.
 class BranchAndBound {
  public:
-  BranchAndBound(const SearchContext& ctx, const SearchOptions& opt, std::vector<Candidate> cands,
-                 SearchResult* out)
-      : ctx_(ctx), opt_(opt), cands_(std::move(cands)), out_(out), relaxed_(*ctx.mission) {
+  BranchAndBound(const SearchContext& ctx, const SearchOptions& opt, MotorHeads heads, SearchResult* out)
+      : ctx_(ctx), opt_(opt), stream_(ctx, std::move(heads.motors)), n_cands_(static_cast<std::size_t>(heads.pairs)),
+        out_(out), relaxed_(*ctx.mission) {
     // The virtual ESC (and so the class check) uses the mission without min_hover_throttle: a
     // real ESC's resistance and mass raise the throttle, so that lower limit is the one
     // constraint the virtual ESC may fail when a real one passes (R5). Relaxing it keeps the
@@ -625,12 +744,11 @@ class BranchAndBound {
     // that reach the evaluation check it.
     relaxed_.constraints.min_hover_throttle = 0.0;
     relaxed_.constraints.min_thrust_to_weight = 0.0;
-    std::make_heap(cands_.begin(), cands_.end(), After);
-    heap_size_ = cands_.size();
   }
 
   void Run();
   long long virtual_evaluations() const { return virtual_evals_; }
+  long long refills() const { return stream_.refills(); }
 
  private:
   struct Outcome {
@@ -639,20 +757,15 @@ class BranchAndBound {
     long long searched = 0, virtual_evals = 0;
   };
 
-  // Candidates best bound first, with a full tie-break (a strict total order, so the order is
-  // unique). The search usually stops after a small fraction of them, so they are drawn from a
-  // heap on demand instead of sorted whole.
-  static bool After(const Candidate& a, const Candidate& b) {
-    if (a.bound != b.bound) return a.bound > b.bound;
-    if (a.option != b.option) return a.option > b.option;
-    if (a.motor != b.motor) return a.motor > b.motor;
-    return a.prop > b.prop;
-  }
+  // Candidates in CandidateBefore order (best bound first, a strict total order). The search
+  // usually stops after a small fraction of them, so they are drawn on demand from the
+  // per-motor stream (stage 4 keeps only each motor's head).
+  // Pairs whose bound is not below the N-th best score are left out of the stream when their
+  // motor is expanded: the search stops at the first such pair (the threshold only falls), and
+  // a pair that comes after it is never drawn.
   const Candidate* CandidateAt(std::size_t i) {  // the i-th best, or null
-    while (ordered_.size() <= i && heap_size_ > 0) {
-      std::pop_heap(cands_.begin(), cands_.begin() + static_cast<std::ptrdiff_t>(heap_size_), After);
-      ordered_.push_back(cands_[--heap_size_]);
-    }
+    Candidate c;
+    while (ordered_.size() <= i && stream_.Next(NthBest(), &c)) ordered_.push_back(c);
     return i < ordered_.size() ? &ordered_[i] : nullptr;
   }
   double NthBest() const {
@@ -663,8 +776,8 @@ class BranchAndBound {
 
   const SearchContext& ctx_;
   const SearchOptions& opt_;
-  std::vector<Candidate> cands_;
-  std::size_t heap_size_ = 0;
+  CandidateStream stream_;
+  std::size_t n_cands_ = 0;
   std::vector<Candidate> ordered_;
   SearchResult* out_;
   Mission relaxed_;
@@ -771,7 +884,7 @@ void BranchAndBound::Run() {
   bool free_shaft = false;
   for (const Segment& sg : m.segments) free_shaft |= sg.type == SegmentType::kShaft && sg.shaft_omega_rad_s.free();
   const int workers = free_shaft ? 1 : std::max(1, opt_.threads);
-  const std::size_t n_cands = cands_.size();
+  const std::size_t n_cands = n_cands_;
   constexpr std::size_t kMaxChunk = 64;
   std::size_t chunk = 2;  // grows while the threshold settles
   std::size_t ci = 0;
@@ -838,12 +951,12 @@ SearchResult SearchExactly(const Mission& m, const Catalog& cat, const SearchOpt
   if (ctx.escs.excluded_pruned > 0) {
     out.pruned_by["catalog_exclude"] += ctx.escs.excluded_pruned * static_cast<long long>(cat.motors().size() * cat.props().size());
   }
-  CandidateList cl = BuildCandidates(ctx, opt.threads);  // stage 4
-  for (const auto& [rule, n] : cl.pruned_by) out.pruned_by[rule] += n;
-  out.skipped_without_mass = cl.skipped_without_mass;
-  out.candidate_pairs = static_cast<long long>(cl.candidates.size());
+  MotorHeads heads = BuildMotorHeads(ctx, opt.threads);  // stage 4
+  for (const auto& [rule, n] : heads.pruned_by) out.pruned_by[rule] += n;
+  out.skipped_without_mass = heads.skipped_without_mass;
+  out.candidate_pairs = heads.pairs;
   out.candidate_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  BranchAndBound bb(ctx, opt, std::move(cl.candidates), &out);  // stage 5
+  BranchAndBound bb(ctx, opt, std::move(heads), &out);  // stage 5
   bb.Run();
   if (opt.progress) {
     SearchProgress p;
@@ -855,6 +968,7 @@ SearchResult SearchExactly(const Mission& m, const Catalog& cat, const SearchOpt
     opt.progress(p);
   }
   out.virtual_evaluations = bb.virtual_evaluations();
+  out.candidate_refills = bb.refills();
   for (RankedCombination& b : out.best) AddObjectiveRange(m, b.combination, &b.result);  // credibility.h
   out.pruned = out.combinations - out.searched;
   out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();

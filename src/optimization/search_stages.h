@@ -114,4 +114,51 @@ void FixedGroupPowerBounds(SearchContext* ctx);
 // ordered by the branch and bound's total order).
 CandidateList BuildCandidates(const SearchContext& ctx, int threads);
 
+// The branch and bound's total order of candidates: best bound first, then option, motor and
+// propeller (a strict total order, so the sequence is unique).
+bool CandidateBefore(const Candidate& a, const Candidate& b);
+
+// Stage 4 without keeping all the pairs (peak memory): per motor, how many pairs survive and
+// the first kFirstPairsPerMotor of them in CandidateBefore order. The branch and bound draws
+// from these queues (CandidateStream) and regenerates a motor's next pairs (MotorPairs) only
+// when it has drawn all it holds, so it keeps a few pairs per motor instead of all of them;
+// the sequence it draws is the same as sorting BuildCandidates.
+inline constexpr std::size_t kFirstPairsPerMotor = 16;
+struct MotorQueue {
+  int motor = 0;
+  std::vector<Candidate> next;  // sorted; next[pos] is the motor's next pair
+  std::size_t pos = 0;
+  bool complete = false;        // next holds all the motor's pairs not yet drawn
+};
+struct MotorHeads {
+  std::vector<MotorQueue> motors;  // those with a surviving pair, motor order
+  long long pairs = 0;             // surviving pairs over all motors
+  std::map<std::string, long long> pruned_by;
+  long long skipped_without_mass = 0;
+};
+MotorHeads BuildMotorHeads(const SearchContext& ctx, int threads);
+// The surviving pairs of one motor (appended to *out), as BuildCandidates lists them.
+void MotorPairs(const SearchContext& ctx, int motor, std::vector<Candidate>* out);
+
+// Draws candidates in CandidateBefore order from the motor queues (a heap of motors keyed by
+// their next pair), refilling a motor's queue when it runs out.
+class CandidateStream {
+ public:
+  CandidateStream(const SearchContext& ctx, std::vector<MotorQueue> motors);
+  // The next candidate, or false when none is left. Pairs with a bound >= cutoff may be left
+  // out (a caller that stops at the first bound >= cutoff, with a cutoff that never rises, sees
+  // the same sequence up to there): the returned candidate is the true next one when its bound
+  // is below the cutoff, else some candidate with a bound >= cutoff.
+  bool Next(double cutoff, Candidate* c);
+  long long refills() const { return refills_; }  // motors' pairs regenerated
+
+ private:
+  bool HeapAfter(std::size_t a, std::size_t b) const;
+  const SearchContext& ctx_;
+  std::vector<MotorQueue> queues_;
+  std::vector<std::size_t> heap_;  // queue indices; the top's next pair comes first
+  std::vector<Candidate> scratch_;
+  long long refills_ = 0;
+};
+
 }  // namespace dynosize::search_internal
