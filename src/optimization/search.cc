@@ -624,7 +624,7 @@ void TakeFirst(std::vector<Candidate>* pairs, std::size_t n, MotorQueue* q) {
 
 }  // namespace
 
-MotorHeads BuildMotorHeads(const SearchContext& ctx, int threads) {
+MotorHeads BuildMotorHeads(const SearchContext& ctx, int threads, std::size_t first_pairs) {
   const MissionFacts f = FactsOf(*ctx.mission, ctx.free_group);
   const auto& motors = ctx.catalog->motors();
   const long long per_motor = static_cast<long long>(ctx.catalog->escs().size()) *
@@ -651,7 +651,7 @@ MotorHeads BuildMotorHeads(const SearchContext& ctx, int threads) {
       MotorCandidates(ctx, f, mi, &tmp, &thread_pruned[tid]);
       count[mi] = static_cast<long long>(tmp.size());
       queue[mi].motor = static_cast<int>(mi);
-      TakeFirst(&tmp, kFirstPairsPerMotor, &queue[mi]);
+      TakeFirst(&tmp, std::max<std::size_t>(first_pairs, 1), &queue[mi]);
     }
   };
   {

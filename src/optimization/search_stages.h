@@ -136,7 +136,9 @@ struct MotorHeads {
   std::map<std::string, long long> pruned_by;
   long long skipped_without_mass = 0;
 };
-MotorHeads BuildMotorHeads(const SearchContext& ctx, int threads);
+// first_pairs: how many pairs each motor's queue starts with (>= 1; tests use small values to
+// exercise the refills).
+MotorHeads BuildMotorHeads(const SearchContext& ctx, int threads, std::size_t first_pairs = kFirstPairsPerMotor);
 // The surviving pairs of one motor (appended to *out), as BuildCandidates lists them.
 void MotorPairs(const SearchContext& ctx, int motor, std::vector<Candidate>* out);
 

@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <limits>
 #include <set>
 #include <tuple>
 
@@ -119,6 +120,53 @@ TEST_F(SearchStagesTest, PropGridsRiseAndStayBelowMomentumTheory) {
       if (grids[p].thrust[i] > 1.0) EXPECT_LT(grids[p].fom[i], 1.0) << i;
     }
   }
+}
+
+// The lazy stream of stage 5 draws exactly the sorted list of stage 4 (the same pairs in the
+// same order), with any initial queue length (refills regenerate a motor's pairs); with a
+// cutoff it draws the same pairs up to the first bound at or above it.
+TEST_F(SearchStagesTest, CandidateStreamDrawsTheSortedCandidateList) {
+  const Catalog cat = SmallCatalog();
+  const Mission m = ParseMission(ParseJsonText(kStageQuad, "quad"), "quad");
+  SearchContext ctx;
+  ctx.mission = &m;
+  ctx.catalog = &cat;
+  ResolveGroups(&ctx);
+  ctx.options = BatteryOptions(m, cat);
+  ctx.escs = BuildEscTable(cat, ctx.options);
+  BuildPropGrids(m, cat, &ctx.grids, &ctx.models);
+  CandidateList all = BuildCandidates(ctx, 1);
+  std::sort(all.candidates.begin(), all.candidates.end(), CandidateBefore);
+  ASSERT_GT(all.candidates.size(), 20u) << "the small catalog should give enough pairs to refill queues";
+  auto same = [](const Candidate& a, const Candidate& b) {
+    return a.motor == b.motor && a.prop == b.prop && a.option == b.option && a.bound == b.bound &&
+           a.irms_lb == b.irms_lb;
+  };
+  for (std::size_t first : {std::size_t{1}, std::size_t{3}, kFirstPairsPerMotor}) {
+    MotorHeads heads = BuildMotorHeads(ctx, 2, first);
+    EXPECT_EQ(heads.pairs, static_cast<long long>(all.candidates.size()));
+    EXPECT_EQ(heads.pruned_by, all.pruned_by);
+    CandidateStream stream(ctx, std::move(heads.motors));
+    std::size_t n = 0;
+    for (Candidate c; stream.Next(std::numeric_limits<double>::infinity(), &c); ++n) {
+      ASSERT_LT(n, all.candidates.size());
+      EXPECT_TRUE(same(c, all.candidates[n])) << "first " << first << ", pair " << n;
+    }
+    EXPECT_EQ(n, all.candidates.size());
+    if (first == 1) EXPECT_GT(stream.refills(), 0);
+  }
+  // A cutoff in the middle of the bounds: the same pairs below it, then one at or above it.
+  const double cutoff = all.candidates[all.candidates.size() / 2].bound;
+  CandidateStream cut(ctx, BuildMotorHeads(ctx, 1, 1).motors);
+  std::size_t n = 0;
+  Candidate c;
+  while (cut.Next(cutoff, &c) && c.bound < cutoff) {
+    ASSERT_LT(n, all.candidates.size());
+    EXPECT_TRUE(same(c, all.candidates[n])) << "with cutoff, pair " << n;
+    ++n;
+  }
+  ASSERT_LT(n, all.candidates.size());
+  EXPECT_GE(all.candidates[n].bound, cutoff);
 }
 
 // Stage 4 against the exact evaluator: a pair it removes has no feasible ESC; a pair it keeps
