@@ -544,12 +544,22 @@ void MissionEvaluator::FinishRun(const RunState& st, eval_internal::Tracker* tra
   if (!r.feasible) r.score = kInf;
 }
 
-MissionResult MissionEvaluator::Run(const ContinuousVars& vars, double stretch_s, bool screen) const {
+// A Run stopped before segment `next`: everything Run has at that point (the segments before
+// `next` do not depend on the stretch, so WithEndurance flies them once per set of variables).
+struct MissionEvaluator::RunPrefix {
   MissionResult r;
+  RunState st;
+  std::size_t next = 0;
+  bool finished = false;  // the run ended early (r is its final result)
+};
+
+MissionEvaluator::RunPrefix MissionEvaluator::RunUpTo(const ContinuousVars& vars, std::size_t end, bool screen) const {
+  RunPrefix p{MissionResult{}, RunState{BatteryPack(PackAt(vars.capacity_ah))}, 0, false};
+  MissionResult& r = p.r;
+  RunState& st = p.st;
   r.min_slack = kInf;
   r.segments.reserve(m_.segments.size());
   Tracker track(&r);
-  RunState st{BatteryPack(PackAt(vars.capacity_ah))};
   const BatteryPack& pack = st.pack;
   r.capacity_ah = pack.capacity_ah();
   r.total_mass_kg = fixed_mass_kg_ + pack.mass_kg();
@@ -561,7 +571,17 @@ MissionResult MissionEvaluator::Run(const ContinuousVars& vars, double stretch_s
   st.q_c = AhToCoulomb(pack.capacity_ah());
   st.current_factor = 1.0 - m_.constraints.current_margin;
   CheckParts(st, &track);
-  for (std::size_t si = 0; si < m_.segments.size(); ++si) {
+  RunSegments(vars, 0.0, screen, end, &p);
+  return p;
+}
+
+// Flies the segments from p->next up to `end` (exclusive); sets p->finished when the run ends
+// early (a segment that cannot be flown, or a violation when screening).
+void MissionEvaluator::RunSegments(const ContinuousVars& vars, double stretch_s, bool screen, std::size_t end,
+                                   RunPrefix* p) const {
+  MissionResult& r = p->r;
+  Tracker track(&r);
+  for (std::size_t si = p->next; si < end && !p->finished; ++si) {
     const Segment& s = m_.segments[si];
     SegmentResult seg;
     seg.group = s.group;
@@ -582,24 +602,30 @@ MissionResult MissionEvaluator::Run(const ContinuousVars& vars, double stretch_s
     seg.thrust_per_rotor_n = s.type == SegmentType::kShaft ? 0.0 : load.thrust_per_rotor_n;
     seg.tilt_deg = load.tilt_rad * 180.0 / kPi;
     double omega = 0, torque = 0;
-    const bool ok = SegmentShaftPoint(si, st, load, &track, &seg, &omega, &torque) &&
-                    IntegrateSegment(si, stretched, omega, torque, &st, &track, &seg);
+    const bool ok = SegmentShaftPoint(si, p->st, load, &track, &seg, &omega, &torque) &&
+                    IntegrateSegment(si, stretched, omega, torque, &p->st, &track, &seg);
     r.segments.push_back(std::move(seg));
-    if (!ok) {
-      // Even four times the motor's no-load speed does not give the thrust, or the pack cannot
-      // deliver the power.
+    p->next = si + 1;
+    // Not ok: even four times the motor's no-load speed does not give the thrust, or the pack
+    // cannot deliver the power.
+    if (!ok || (screen && !r.violations.empty())) {
       r.feasible = false;
       r.score = kInf;
-      return r;
-    }
-    if (screen && !r.violations.empty()) {
-      r.feasible = false;
-      r.score = kInf;
-      return r;
+      p->finished = true;
     }
   }
-  FinishRun(st, &track, &r);
-  return r;
+}
+
+MissionResult MissionEvaluator::RunFrom(RunPrefix p, const ContinuousVars& vars, double stretch_s, bool screen) const {
+  RunSegments(vars, stretch_s, screen, m_.segments.size(), &p);
+  if (p.finished) return std::move(p.r);
+  Tracker track(&p.r);
+  FinishRun(p.st, &track, &p.r);
+  return std::move(p.r);
+}
+
+MissionResult MissionEvaluator::Run(const ContinuousVars& vars, double stretch_s, bool screen) const {
+  return RunFrom(RunUpTo(vars, 0, screen), vars, stretch_s, screen);
 }
 
 double MissionEvaluator::StretchStartCurrent(const MissionResult& r) const {
@@ -610,7 +636,10 @@ MissionResult MissionEvaluator::WithEndurance(ContinuousVars vars) const {
   if (m_.objective.type != ObjectiveType::kMaxEndurance) return Run(vars, 0.0);
   // The longest stretch that keeps every constraint: min_slack(T) falls with T (SOC and
   // voltage only fall), so bracket its zero and close in by Illinois regula falsi.
-  MissionResult lo_r = Run(vars, 0.0);
+  // The segments before the stretch do not depend on it: flown once.
+  const RunPrefix prefix = RunUpTo(vars, static_cast<std::size_t>(m_.objective.segment_index), false);
+  auto run = [&](double t) { return RunFrom(prefix, vars, t, false); };
+  MissionResult lo_r = run(0.0);
   if (lo_r.min_slack < 0 || lo_r.segments.size() < m_.segments.size()) return lo_r;
   double lo = 0.0, f_lo = lo_r.min_slack;
   // First guess: the charge left above the reserve at the stretched segment's start current.
@@ -621,11 +650,11 @@ MissionResult MissionEvaluator::WithEndurance(ContinuousVars vars) const {
   const double i_start = std::max(StretchStartCurrent(lo_r), 1e-9);
   double hi = std::max(1.0, q_c * std::max(lo_r.final_soc - m_.battery.reserve_soc, 1e-4) / i_start * 1.0001);
   (void)sr;
-  MissionResult hi_r = Run(vars, hi);
+  MissionResult hi_r = run(hi);
   for (int i = 0; i < 40 && hi_r.min_slack >= 0; ++i) {
     lo = hi; f_lo = hi_r.min_slack; lo_r = hi_r;
     hi *= 2;
-    hi_r = Run(vars, hi);
+    hi_r = run(hi);
   }
   double f_hi = hi_r.min_slack;
   if (!std::isfinite(f_hi)) f_hi = -1.0;
@@ -633,7 +662,7 @@ MissionResult MissionEvaluator::WithEndurance(ContinuousVars vars) const {
   for (int it = 0; it < 60 && hi - lo > 1e-6 * hi; ++it) {
     double t = (lo * f_hi - hi * f_lo) / (f_hi - f_lo);
     if (!(t > lo && t < hi)) t = 0.5 * (lo + hi);
-    MissionResult tr = Run(vars, t);
+    MissionResult tr = run(t);
     const double ft = std::isfinite(tr.min_slack) ? tr.min_slack : -1.0;
     if (ft >= 0) {
       lo = t; f_lo = ft; lo_r = std::move(tr);

@@ -212,6 +212,10 @@ class MissionEvaluator {
   MissionResult Run(const ContinuousVars& vars, double stretch_s, bool screen = false) const;
   // Run's stages (mission_eval.cc).
   struct RunState;
+  struct RunPrefix;
+  RunPrefix RunUpTo(const ContinuousVars& vars, std::size_t end, bool screen) const;
+  void RunSegments(const ContinuousVars& vars, double stretch_s, bool screen, std::size_t end, RunPrefix* p) const;
+  MissionResult RunFrom(RunPrefix p, const ContinuousVars& vars, double stretch_s, bool screen) const;
   void CheckParts(const RunState& st, eval_internal::Tracker* track) const;
   bool SegmentShaftPoint(std::size_t si, const RunState& st, const RotorLoad& load, eval_internal::Tracker* track,
                          SegmentResult* seg, double* omega, double* torque) const;
