@@ -679,6 +679,34 @@ MissionResult MissionEvaluator::WithEndurance(ContinuousVars vars) const {
 
 namespace {
 
+// A voltage at or below the lowest at which `drive` holds (torque, omega) with a throttle of at
+// most t_max (< 1): the throttle that holds a point falls as the voltage rises (eq 48: the
+// ESC must give U = (Rm + RESC)*I + KE*omega, U = kv*VDC*TR_eff, TR rising with TR_eff), so
+// bisection keeps throttle(lo) > t_max. Returns v_hi when even v_hi needs more than t_max, 0
+// when nothing is known.
+double MinVoltageForThrottle(const Drive& drive, double torque_nm, double omega_rad_s, double v_hi, double t_max) {
+  if (!(v_hi > 0) || !(drive.Inverse(v_hi, torque_nm, omega_rad_s).throttle <= t_max)) return v_hi;
+  double lo = 0.0, hi = v_hi;
+  for (int i = 0; i < 50 && hi - lo > 1e-9 * v_hi; ++i) {
+    const double mid = 0.5 * (lo + hi);
+    (drive.Inverse(mid, torque_nm, omega_rad_s).throttle > t_max ? lo : hi) = mid;
+  }
+  return lo;
+}
+
+// An SOC at or below the lowest SOC in [floor_soc, 1] whose OCV (rising with SOC) reaches v:
+// bisection keeping OCV(lo) < v; floor_soc when OCV(floor_soc) >= v already.
+double SocBelowOcv(const BatteryPack& pack, double v, double floor_soc) {
+  if (pack.OcvV(floor_soc) >= v) return floor_soc;
+  if (pack.OcvV(1.0) < v) return 1.0;
+  double lo = floor_soc, hi = 1.0;
+  for (int i = 0; i < 50 && hi - lo > 1e-9; ++i) {
+    const double mid = 0.5 * (lo + hi);
+    (pack.OcvV(mid) < v ? lo : hi) = mid;
+  }
+  return lo;
+}
+
 // Constraints that cannot recover with a larger capacity: the ESC voltage and the frame do not
 // depend on it, and the thrust, propeller speed and PAC = sqrt(27/10)*(Rm*I + KE*omega)*I
 // (eqs 41, 42, 47, 48) depend only on the shaft's speed and torque, which rise with the mass
@@ -730,7 +758,24 @@ double MissionEvaluator::EnduranceUpperBound(double target_s) const {
   }
   int runs = 0;
   double infeasible_from = kInf;  // every capacity from here up breaks a RisesWithMass constraint
-  struct Piece { double ca, cb, p_ca, e_other_ca; };
+  // Throttle floor (a second bound per piece): every checked point of the stretch holds the
+  // stretch's (torque, speed), which rise with the mass (M3), within the throttle limit t_max
+  // (max_throttle, and the ESC's knee when saturation is not allowed), and the throttle needed
+  // for a (torque, speed) falls as the voltage rises (M2). So the terminal voltage at the
+  // stretch's end is at least V_min, where the drive at C_a's point needs exactly t_max
+  // (MinVoltageForThrottle), and at least the cut-off; the OCV (rising with SOC) is above the
+  // terminal voltage, so the stretch ends at an SOC s >= s_min with OCV(s_min) = V_min. Up to
+  // that end the pack gives at most Q(C_b)*integral of OCV over [s_min, 1], of which the
+  // segments before the stretch take at least E_before(C_a) (energy_fixed, as above):
+  //   t_total(C) <= t_fixed_max + (Q(C_b)*integral of OCV over [s_min, 1] - E_before(C_a)) / P_stretch(C_a).
+  const GroupDrive& stretch_drive = groups_[st.group];
+  double t_max = m_.constraints.max_throttle;
+  if (!m_.constraints.allow_esc_saturation) t_max = std::min(t_max, stretch_drive.drive.esc().tr_sat);
+  const BatteryPack pack_lo(PackAt(c_lo));
+  DischargeOptions dopt;
+  if (m_.battery.cutoff_cell_v) dopt.cutoff_cell_v = *m_.battery.cutoff_cell_v;
+  const double v_cut = pack_lo.cutoff_v(dopt);
+  struct Piece { double ca, cb, p_ca, e_other_ca, e_before_ca = 0, ocv_integral_smin_v = kInf; };
   // The piece [c, cb] (P_stretch and E_other at c; P = 0 when no bound can be given there);
   // sets infeasible_from.
   auto piece_at = [&](double c, double cb) {
@@ -750,13 +795,23 @@ double MissionEvaluator::EnduranceUpperBound(double target_s) const {
     pc.p_ca = p > 0 ? p : 0.0;
     if (energy_fixed && r.segments.size() == m_.segments.size()) {
       for (const SegmentResult& x : r.segments) pc.e_other_ca += x.energy_j;  // the stretch: 0 s
+      for (int k = 0; k < m_.objective.segment_index; ++k) pc.e_before_ca += r.segments[k].energy_j;
+    }
+    if (t_max < 1.0 && s.point.omega_rad_s > 0) {
+      const double v_min = std::max(v_cut, MinVoltageForThrottle(stretch_drive.drive, s.point.torque_nm,
+                                                                 s.point.omega_rad_s, pack_lo.OcvV(1.0), t_max));
+      pc.ocv_integral_smin_v = OcvIntegralUpperBound(pack_lo, SocBelowOcv(pack_lo, v_min, m_.battery.reserve_soc));
     }
     return pc;
   };
   auto bound_of = [&](const Piece& pc) {
     if (pc.ca >= infeasible_from) return -kInf;
     if (!(pc.p_ca > 0)) return kInf;
-    return t_fixed_max + std::max(0.0, ocv_integral_v * AhToCoulomb(pc.cb) - pc.e_other_ca) / pc.p_ca;
+    const double by_reserve = t_fixed_max + std::max(0.0, ocv_integral_v * AhToCoulomb(pc.cb) - pc.e_other_ca) / pc.p_ca;
+    if (!std::isfinite(pc.ocv_integral_smin_v)) return by_reserve;
+    const double by_throttle =
+        t_fixed_max + std::max(0.0, pc.ocv_integral_smin_v * AhToCoulomb(pc.cb) - pc.e_before_ca) / pc.p_ca;
+    return std::min(by_reserve, by_throttle);
   };
   std::vector<Piece> pieces;
   const int n0 = free_c ? kBoundPieces : 1;

@@ -278,9 +278,10 @@ MissionFacts FactsOf(const Mission& m, int free_group) {
 
 // R4: a lower bound of the score of a (motor, propeller, option) pair with an ESC of class
 // `esc_class`, given the hover bound's per-rotor electrical power pdc_lb at the lightest mass.
+// capacity_hi_ah: the largest capacity the bound covers (0: the option's largest).
 double ScoreLowerBound(const SearchContext& ctx, const MissionFacts& f, const MotorParams& mp,
                        const EscClass& esc_class, const PropEntry& prop, const PropModel& model,
-                       std::size_t option, double mass_lb, double pdc_lb) {
+                       std::size_t option, double mass_lb, double pdc_lb, double capacity_hi_ah = 0.0) {
   const BatteryOption& bo = ctx.options[option];
   const Mission& m = *ctx.mission;
   if (f.hover.empty()) return -kInf;
@@ -345,7 +346,7 @@ double ScoreLowerBound(const SearchContext& ctx, const MissionFacts& f, const Mo
       if (static_cast<int>(si) != m.objective.segment_index) e_other += p_lb_of(si) * t_min_of(m.segments[si]);
     }
     const double p_stretch = p_lb_of(static_cast<std::size_t>(m.objective.segment_index));
-    const double e_max = bo.ocv_integral_v * AhToCoulomb(bo.capacity_hi_ah);
+    const double e_max = bo.ocv_integral_v * AhToCoulomb(capacity_hi_ah > 0 ? capacity_hi_ah : bo.capacity_hi_ah);
     return p_stretch > 0 ? -(f.t_fixed_max + std::max(0.0, e_max - e_other) / p_stretch) : -kInf;
   }
   return -kInf;
@@ -412,6 +413,51 @@ const char* PropRule(const SearchContext& ctx, const MissionFacts& f, const Moto
   }
   if (prop.max_rpm && RadPerSecToRpm(*omega_lb) > *prop.max_rpm) return "prop_max_rpm";  // R2
   return nullptr;
+}
+
+// R8 (capacity pieces, max_endurance with a hover stretch and a capacity range): R4 takes the
+//    energy of the largest pack with the power at the lightest, a loose bound when the capacity
+//    spans a wide range. Over a piece [C_a, C_b] of the range the vehicle is at least as heavy
+//    as with C_a (the battery's mass rises with its capacity, PackAt), so R2-R4 at that mass
+//    bound every capacity of the piece from below, with the charge of C_b:
+//      score(C) >= R4 bound at mass_lb(C_a) with Q(C_b)   for C in [C_a, C_b],
+//    and when R3 (throttle or motor current at the full-charge voltage with no ESC resistance)
+//    fails at mass_lb(C_a), it fails at every larger capacity (M1-M3): those pieces hold no
+//    feasible point. The pair's bound is the smallest over the pieces that may be feasible
+//    (kInf when none is). Each piece bound is at least R4's (more mass: no less power; less
+//    charge), so it only tightens R4. The battery mass increments are shrunk by 1e-9 against
+//    rounding (a lighter mass keeps the bound a bound).
+double CapacityPiecesBoundAt(const SearchContext& ctx, const MissionFacts& f, const MotorParams& mp,
+                             const Drive& ideal, const EscClass& esc_class, std::size_t pi, std::size_t o,
+                           double mass_lb) {
+  constexpr int kPieces = 8;
+  const Mission& m = *ctx.mission;
+  const MissionConstraints& k = m.constraints;
+  const BatteryOption& bo = ctx.options[o];
+  const PropGrid& g = ctx.grids[pi];
+  if (!f.stretch_is_hover || f.hover.empty() || !g.monotone || !(bo.capacity_hi_ah > bo.capacity_lo_ah)) return -kInf;
+  const double t_max = k.allow_esc_saturation ? f.tr_limit : std::min(f.tr_limit, esc_class.tr_sat);
+  const double margin = 1.0 - k.current_margin;
+  double best = kInf;
+  for (int j = 0; j < kPieces; ++j) {
+    const double c_b = bo.capacity_lo_ah + (bo.capacity_hi_ah - bo.capacity_lo_ah) * (j + 1) / kPieces;
+    const double mass_j = mass_lb + (1.0 - 1e-9) * (bo.mass_hi_kg - bo.mass_lo_kg) * j / kPieces;
+    const RotorLoad load = SegmentRotorLoad(m, m.segments[f.hover[0]], mass_j, 0.0);
+    const double* it = std::upper_bound(g.thrust, g.thrust + kGrid, load.thrust_per_rotor_n);
+    const int idx = static_cast<int>(it - g.thrust) - 1;  // last grid thrust <= T_lb
+    const double omega_lb = idx >= 0 ? g.omega[idx] : 0.0;
+    const double q_lb = idx >= 0 ? g.torque_suffix_min[idx] : 0.0;
+    const OperatingPoint hi_v = ideal.Inverse(bo.v_full, q_lb, omega_lb);
+    if (hi_v.throttle > t_max || hi_v.irms_a > mp.max_current_a * margin ||
+        (k.enforce_motor_power && hi_v.pac_w > mp.max_power_w)) {
+      break;  // R3 at this mass: this piece and every heavier one are infeasible
+    }
+    const OperatingPoint lo_v = ideal.Inverse(bo.v_cut, q_lb, omega_lb);
+    const double pdc_lb = std::max(0.0, std::min(hi_v.pdc_w, lo_v.pdc_w));
+    best = std::min(best, ScoreLowerBound(ctx, f, mp, esc_class, ctx.catalog->props()[pi], *ctx.models[pi], o,
+                                          mass_j, pdc_lb, c_b));
+  }
+  return best;
 }
 
 // Stage 4 for one motor: its surviving pairs with their bounds.
@@ -482,6 +528,21 @@ void MotorCandidates(const SearchContext& ctx, const MissionFacts& f, std::size_
 }
 
 }  // namespace
+
+double CapacityPiecesBound(const SearchContext& ctx, int motor, int prop, int option, int esc_class,
+                           double esc_mass_kg) {
+  const Mission& m = *ctx.mission;
+  const MotorEntry& mo = ctx.catalog->motors()[static_cast<std::size_t>(motor)];
+  const BatteryOption& bo = ctx.options[static_cast<std::size_t>(option)];
+  const double mass_lb = m.vehicle.mass_kg + bo.mass_lo_kg + ctx.fixed_groups_mass_kg +
+                         ctx.free_rotors * (*mo.mass_kg + ctx.grids[static_cast<std::size_t>(prop)].mass_kg + esc_mass_kg);
+  const MotorParams mp = ScenarioMotorParams(mo, m, nullptr, nullptr);  // as MotorCandidates
+  const EscClass& cls = ctx.escs.classes[static_cast<std::size_t>(esc_class)];
+  EscParams ideal;
+  ideal.c1 = cls.c1; ideal.c0 = cls.c0; ideal.tr_sat = cls.tr_sat; ideal.sat_slope = cls.sat_slope; ideal.resc_ohm = 0.0;
+  return CapacityPiecesBoundAt(ctx, FactsOf(m, ctx.free_group), mp, Drive(mp, ideal), cls,
+                               static_cast<std::size_t>(prop), static_cast<std::size_t>(option), mass_lb);
+}
 
 void ResolveGroups(SearchContext* ctx) {
   const Mission& m = *ctx->mission;
@@ -744,6 +805,8 @@ class BranchAndBound {
     // that reach the evaluation check it.
     relaxed_.constraints.min_hover_throttle = 0.0;
     relaxed_.constraints.min_thrust_to_weight = 0.0;
+    const Mission& m = *ctx.mission;
+    capacity_pieces_ = FactsOf(m, ctx.free_group).stretch_is_hover && m.battery.capacity_ah && m.battery.capacity_ah->free();
   }
 
   void Run();
@@ -778,6 +841,7 @@ class BranchAndBound {
   const SearchOptions& opt_;
   CandidateStream stream_;
   std::size_t n_cands_ = 0;
+  bool capacity_pieces_ = false;  // R8 applies
   std::vector<Candidate> ordered_;
   SearchResult* out_;
   Mission relaxed_;
@@ -834,6 +898,15 @@ void BranchAndBound::Process(const Candidate& cand, std::vector<double> top, Out
     virt.params.max_current_a = kInf;
     virt.mass_kg = EscMassKg(escs[rated.front()]);
     for (int e : rated) virt.mass_kg = std::min(*virt.mass_kg, EscMassKg(escs[e]));
+    // R8: capacity pieces, with the class's lightest rated ESC, before any simulation.
+    if (capacity_pieces_) {
+      const double threshold = threshold_now();
+      const double b = CapacityPiecesBound(ctx_, cand.motor, cand.prop, cand.option, static_cast<int>(cl), *virt.mass_kg);
+      if (!(b < threshold)) {
+        local_prune(std::isfinite(b) ? "objective_bound" : "throttle", static_cast<long long>(rated.size()));
+        continue;
+      }
+    }
     {
       Combination vc = c;
       set_esc(&vc, &virt);

@@ -107,6 +107,13 @@ struct CandidateList {
 // a fixed part is not in the catalog or when not exactly one group is free.
 void ResolveGroups(SearchContext* ctx);
 
+// R8 (search.cc): a lower bound of the score of (motor, prop, option) with any ESC of class
+// esc_class weighing at least esc_mass_kg, over the mission's capacity range in pieces; kInf
+// when no capacity can be feasible (R3 per piece), -kInf when the rule does not apply (not a
+// max_endurance hover stretch, no capacity range, a non-monotone propeller grid).
+double CapacityPiecesBound(const SearchContext& ctx, int motor, int prop, int option, int esc_class,
+                           double esc_mass_kg);
+
 // Fills ctx->fixed_power_lb_w (after stages 1-3 and ResolveGroups).
 void FixedGroupPowerBounds(SearchContext* ctx);
 

@@ -221,5 +221,49 @@ TEST_F(SearchStagesTest, CandidatesRemoveOnlyInfeasiblePairsAndBoundTheScore) {
   }
 }
 
+// R8 against the exact evaluator, capacity sized in [2, 6] Ah: the piecewise bound of a
+// (motor, propeller, option, ESC class) is at or below the score of every ESC of the class
+// (ESC mass at least the one given), and "no piece can be feasible" (kInf) only when no
+// capacity is. The bound is compared without tolerance: it must be a bound.
+TEST_F(SearchStagesTest, CapacityPiecesBoundIsBelowEveryFeasibleScore) {
+  const Catalog cat = SmallCatalog();
+  Json j = ParseJsonText(kStageQuad, "quad");
+  j["battery"]["capacity_ah"] = {2.0, 6.0};
+  const Mission m = ParseMission(j, "quad");
+  SearchContext ctx;
+  ctx.mission = &m;
+  ctx.catalog = &cat;
+  ResolveGroups(&ctx);
+  ctx.options = BatteryOptions(m, cat);
+  ctx.escs = BuildEscTable(cat, ctx.options);
+  BuildPropGrids(m, cat, &ctx.grids, &ctx.models);
+  const CandidateList all = BuildCandidates(ctx, 1);
+  int feasible = 0, tightened = 0, infeasible_proven = 0;
+  for (const Candidate& cand : all.candidates) {
+    for (std::size_t cl = 0; cl < ctx.escs.classes.size(); ++cl) {
+      for (int e : ctx.escs.per_option[cand.option][cl]) {
+        const EscEntry& esc = cat.escs()[e];
+        const double b = CapacityPiecesBound(ctx, cand.motor, cand.prop, cand.option, static_cast<int>(cl), EscMassKg(esc));
+        ASSERT_GT(b, -std::numeric_limits<double>::infinity()) << "R8 applies to this mission";
+        EXPECT_GE(b, cand.bound) << "R8 only tightens R4";
+        if (b > cand.bound) ++tightened;
+        const BatteryOption& bo = ctx.options[cand.option];
+        const Combination c{&cat.motors()[cand.motor], &esc, &cat.props()[cand.prop], bo.entry, bo.cells};
+        const MissionResult r = MissionEvaluator(m, c).Solve();
+        if (!std::isfinite(b)) {
+          ++infeasible_proven;
+          EXPECT_FALSE(r.feasible) << c.motor->id << " " << esc.id << " " << c.prop->id;
+          continue;
+        }
+        if (!r.feasible) continue;
+        ++feasible;
+        EXPECT_LE(b, r.score) << c.motor->id << " " << esc.id << " " << c.prop->id << " capacity " << r.capacity_ah;
+      }
+    }
+  }
+  EXPECT_GT(feasible, 3);
+  EXPECT_GT(tightened, 0) << "the test should see R8 tighten R4";
+}
+
 }  // namespace
 }  // namespace dynosize::search_internal
