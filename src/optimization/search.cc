@@ -239,6 +239,12 @@ void BuildPropGrids(const Mission& m, const Catalog& cat, std::vector<PropGrid>*
     }
     g.torque_suffix_min[kGrid - 1] = torque[kGrid - 1];
     for (int i = kGrid - 2; i >= 0; --i) g.torque_suffix_min[i] = std::min(torque[i], g.torque_suffix_min[i + 1]);
+    const double fom_limit = 1.02 * m.constraints.max_figure_of_merit;  // R6's allowance (PropRule)
+    int next_ok = kGrid;
+    for (int i = kGrid - 1; i >= 0; --i) {
+      if (g.fom[i] <= fom_limit) next_ok = i;
+      g.fom_ok_next[i] = next_ok;
+    }
   }
 }
 
@@ -388,9 +394,8 @@ const char* PropRule(const SearchContext& ctx, const MissionFacts& f, const Moto
     const RotorLoad load_ub = SegmentRotorLoad(m, m.segments[f.hover[0]], mass_ub, 0.0);
     const double* it_ub = std::lower_bound(g.thrust, g.thrust + kGrid, load_ub.thrust_per_rotor_n);
     const int hi_idx = std::min(static_cast<int>(it_ub - g.thrust), kGrid - 1);
-    double fom_min = kInf;
-    for (int i = lb_idx; i <= hi_idx; ++i) fom_min = std::min(fom_min, g.fom[i]);
-    if (it_ub != g.thrust + kGrid && fom_min > 1.02 * k.max_figure_of_merit) return "prop_figure_of_merit";
+    // Every grid point of [lb_idx, hi_idx] above 1.02 x the limit (fom_ok_next, BuildPropGrids).
+    if (it_ub != g.thrust + kGrid && (lb_idx > hi_idx || g.fom_ok_next[lb_idx] > hi_idx)) return "prop_figure_of_merit";
   }
   if (ctx.models[pi]->data_kind() != PropDataKind::kTables || prop.j_tables.empty()) {
     // R7: static-only data. The shaft cannot turn faster than the motor's no-load speed at full

@@ -62,6 +62,9 @@ struct PropGrid {
   bool monotone = true;  // static thrust strictly rising on the grid (M1 checked)
   double omega[kGrid], thrust[kGrid], torque_suffix_min[kGrid];
   double fom[kGrid];  // static figure of merit (R6)
+  // R6 in O(1): the first grid index >= i whose figure of merit is within 1.02 x the mission's
+  // max_figure_of_merit (kGrid when none): every point of [i, j] breaks it iff fom_ok_next[i] > j.
+  int fom_ok_next[kGrid];
   double mass_kg = 0;
 };
 // Grids and PropModels per catalog propeller (index as Catalog::props()).
