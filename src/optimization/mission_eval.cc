@@ -41,8 +41,14 @@ bool Better(const MissionResult& a, const MissionResult& b) {
 // (about 38 simulations). Infeasible points compare worse than every feasible one, so an
 // optimum on a constraint boundary is approached from the feasible side. The result is the
 // best point simulated, never worse than the grid's.
-template <typename Simulate>
-MissionResult SolveOneVariable(const Simulate& simulate) {
+//
+// bounded_after_grid(best, a, b): called once after the grid with the grid's best and the
+// golden section's bracket; true when it proves that neither the grid's best nor any point of
+// [a, b] can beat the caller's cutoff. The golden section only simulates points of [a, b], so
+// the result could not beat the cutoff either: the search stops there (a result with
+// bounded_out set).
+template <typename Simulate, typename Bounded>
+MissionResult SolveOneVariable(const Simulate& simulate, const Bounded& bounded_after_grid) {
   constexpr int kGrid = 9;
   MissionResult best = simulate(0.0);
   double best_x = 0.0;
@@ -53,6 +59,12 @@ MissionResult SolveOneVariable(const Simulate& simulate) {
   }
   const double kInvPhi = 0.6180339887498949;  // (sqrt(5) - 1)/2
   double a = std::max(0.0, best_x - 1.0 / (kGrid - 1)), b = std::min(1.0, best_x + 1.0 / (kGrid - 1));
+  if (bounded_after_grid(best, a, b)) {
+    MissionResult out;
+    out.bounded_out = true;
+    out.score = kInf;
+    return out;
+  }
   double c = b - kInvPhi * (b - a), d = a + kInvPhi * (b - a);
   MissionResult rc = simulate(c), rd = simulate(d);
   while (b - a > 1e-6) {
@@ -725,7 +737,7 @@ bool RisesWithMass(const std::string& constraint) {
 
 }  // namespace
 
-double MissionEvaluator::EnduranceUpperBound(double target_s) const {
+double MissionEvaluator::EnduranceUpperBound(double target_s, double from_ah, double to_ah) const {
   // max_endurance with the stretched segment at a fixed airspeed (hover, or cruise with one
   // airspeed): over capacities C in a piece [C_a, C_b] of the range,
   //   t_total(C) <= t_fixed_max + Q(C_b)*integral of OCV over [reserve, 1] / P_stretch(C_a)
@@ -749,8 +761,12 @@ double MissionEvaluator::EnduranceUpperBound(double target_s) const {
   if (st.type == SegmentType::kCruise && st.airspeed_m_s.free()) return kInf;
   const double t_fixed_max = LongestFixedDurationS(m_);
   const bool free_c = m_.battery.capacity_ah && m_.battery.capacity_ah->free();
-  const double c_lo = m_.battery.capacity_ah ? m_.battery.capacity_ah->lo : base_capacity_ah_;
-  const double c_hi = m_.battery.capacity_ah ? m_.battery.capacity_ah->hi : base_capacity_ah_;
+  double c_lo = m_.battery.capacity_ah ? m_.battery.capacity_ah->lo : base_capacity_ah_;
+  double c_hi = m_.battery.capacity_ah ? m_.battery.capacity_ah->hi : base_capacity_ah_;
+  if (free_c && to_ah > 0) {  // a part of the range (SolveOneVariable's bracket)
+    c_lo = std::max(c_lo, from_ah);
+    c_hi = std::min(c_hi, to_ah);
+  }
   const double ocv_integral_v = OcvIntegralUpperBound(BatteryPack(PackAt(c_lo)), m_.battery.reserve_soc);
   bool energy_fixed = true;
   for (const GroupDrive& g : groups_) {
@@ -946,7 +962,19 @@ MissionResult MissionEvaluator::SolveContinuous(double cutoff_score, bool explai
     // 1-D search, which also finds an optimum that sits on a constraint boundary (a heavier
     // pack breaking a current or thrust-to-weight limit), where COBYLA tends to end just on the
     // infeasible side and fall back to its coarse start.
-    MissionResult r = SolveOneVariable([&](double x) { return WithEndurance(vars_at(&x)); });
+    // With a cutoff (max_endurance, the capacity free): after the grid, the bound of
+    // EnduranceUpperBound over the golden section's bracket decides whether it can still
+    // produce a score below the cutoff.
+    const bool bound_bracket = std::isfinite(cutoff_score) && m_.objective.type == ObjectiveType::kMaxEndurance &&
+                               free[0].segment < 0;
+    auto bounded = [&](const MissionResult& grid_best, double a, double b) {
+      if (!bound_bracket || (grid_best.feasible && grid_best.score < cutoff_score)) return false;
+      const double ub = EnduranceUpperBound(-cutoff_score, free[0].lo + a * (free[0].hi - free[0].lo),
+                                            free[0].lo + b * (free[0].hi - free[0].lo));
+      return -ub >= cutoff_score;
+    };
+    MissionResult r = SolveOneVariable([&](double x) { return WithEndurance(vars_at(&x)); }, bounded);
+    if (r.bounded_out) return r;
     if (!explain) return r;
     std::ostringstream msg;
     msg << "bracketed 1-D search (9-point grid, golden section to 1e-6 of the range); "

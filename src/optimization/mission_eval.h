@@ -227,7 +227,8 @@ class MissionEvaluator {
   double StretchStartCurrent(const MissionResult& r) const;
   // An upper bound of the total mission time over the capacity range (max_endurance), tightened
   // until it falls below target_s or a budget of simulations is spent.
-  double EnduranceUpperBound(double target_s) const;
+  // [from_ah, to_ah] (to_ah > 0): only that part of the capacity range.
+  double EnduranceUpperBound(double target_s, double from_ah = 0.0, double to_ah = 0.0) const;
   // The assumed catalog values and the warnings a designer expects (hover throttle over the limit, currents near a rating,
   // ESC saturation, a motor running far below its efficient load, assumed parameters).
   void AddWarnings(MissionResult* r) const;

@@ -348,6 +348,37 @@ TEST_F(SearchTest, EarlyExitsNeverCutOffAFeasibleScore) {
   }
 }
 
+// The other side of the early exits (EnduranceUpperBound with its throttle floor, the bound
+// over the golden section's bracket after the capacity grid): at cutoffs around the true
+// score, a "bounded out" answer is only given when the true score does not beat the cutoff,
+// and any other answer is the full one. Cutoffs better than the true score must let some
+// combinations be bounded out (else the test would not exercise the bounds).
+TEST_F(SearchTest, EarlyExitsBoundOutOnlyWhatCannotBeatTheCutoff) {
+  const Catalog cat = Catalog::Load((dir_ / "catalog").string());
+  Json j = ParseJsonText(kQuad, "quad");
+  j["battery"]["capacity_ah"] = {2.0, 6.0};
+  const Mission m = ParseMission(j, "quad");
+  int bounded = 0, checked = 0;
+  ForEachCombination(cat, [&](const Combination& c) {
+    if (checked >= 24) return;  // eight feasible combinations are enough (a test of seconds)
+    const MissionResult full = MissionEvaluator(m, c).Solve();
+    if (!full.feasible) return;
+    for (const double factor : {1.10, 1.02, 0.98}) {  // score = -endurance: 1.10 asks for 10 % more
+      const double cutoff = full.score * factor;
+      const MissionResult cut = MissionEvaluator(m, c).Solve(cutoff);
+      if (cut.bounded_out) {
+        ++bounded;
+        EXPECT_GE(full.score, cutoff) << Name(c) << " factor " << factor;
+      } else if (cut.feasible) {
+        EXPECT_EQ(cut.score, full.score) << Name(c) << " factor " << factor;
+      }
+      ++checked;
+    }
+  });
+  EXPECT_GE(checked, 9);
+  EXPECT_GT(bounded, 0) << "no cutoff was bounded out: the bounds were not exercised";
+}
+
 // An entry the catalog marks "exclude" (catalog.h) is never searched: the pick's motor and
 // propeller, excluded, leave the search (catalog_exclude) and the next best wins.
 TEST_F(SearchTest, CatalogExcludedEntriesAreNotSearched) {
