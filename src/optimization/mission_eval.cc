@@ -891,18 +891,25 @@ MissionResult MissionEvaluator::SolveContinuous(double cutoff_score, bool explai
     }
   }
   if (std::isfinite(cutoff_score) && m_.objective.type == ObjectiveType::kMinEnergy &&
-      !capacity_free && std::all_of(groups_.begin(), groups_.end(), [](const GroupDrive& g) { return g.drive.esc().c0 == 0.0; })) {
+      std::all_of(groups_.begin(), groups_.end(), [&](const GroupDrive& g) {
+        return g.drive.esc().c0 == 0.0 && (!capacity_free || g.drive.esc().rsupply_ohm == 0.0);
+      })) {
     // min_energy with free cruise airspeeds: every other segment's energy does not depend on
     // them (terminal power N*PDC + P_avionics, and PDC = C1*U*I/kv does not depend on the
     // voltage when C0 = 0, eqs 57, 59), and a wing-borne cruise needs at least the propulsive
     // work T*d = W/(L/D)*d (electrical >= shaft >= thrust power) plus the avionics.
+    // With a capacity range the run is at the smallest capacity: a larger pack only adds mass,
+    // so every segment's thrust, speed, torque and so its PDC (no supply resistance: the
+    // terminal power does not depend on the pack's voltage) rise with it (M3 of search.cc), and
+    // W/(L/D) too: the same sum bounds the energy at every capacity of the range.
     ContinuousVars v0;
     v0.airspeed_m_s.assign(m_.segments.size(), 0.0);
     if (m_.battery.capacity_ah) v0.capacity_ah = m_.battery.capacity_ah->lo;
     bool airspeed_free = false;
     for (const Segment& s : m_.segments) airspeed_free |= s.type == SegmentType::kCruise && s.airspeed_m_s.free();
-    const MissionResult r0 = Run(v0, 0.0, !airspeed_free);
-    if (!airspeed_free && !r0.feasible) return r0;  // nothing free: this is the answer
+    const bool nothing_free = !airspeed_free && !capacity_free;
+    const MissionResult r0 = Run(v0, 0.0, nothing_free);
+    if (nothing_free && !r0.feasible) return r0;  // nothing free: this is the answer
     if (r0.segments.size() == m_.segments.size()) {
       double e_lb = 0;
       for (std::size_t i = 0; i < m_.segments.size(); ++i) {
@@ -967,8 +974,21 @@ MissionResult MissionEvaluator::SolveContinuous(double cutoff_score, bool explai
     // produce a score below the cutoff.
     const bool bound_bracket = std::isfinite(cutoff_score) && m_.objective.type == ObjectiveType::kMaxEndurance &&
                                free[0].segment < 0;
+    // min_energy with the capacity free and a voltage-independent terminal power (C0 = 0, no
+    // supply resistance, as in the check above): every segment's energy rises with the
+    // capacity (M3), so the energy at the bracket's low end bounds every point of it.
+    const bool energy_bracket = std::isfinite(cutoff_score) && m_.objective.type == ObjectiveType::kMinEnergy &&
+                                free[0].segment < 0 &&
+                                std::all_of(groups_.begin(), groups_.end(), [](const GroupDrive& g) {
+                                  return g.drive.esc().c0 == 0.0 && g.drive.esc().rsupply_ohm == 0.0;
+                                });
     auto bounded = [&](const MissionResult& grid_best, double a, double b) {
-      if (!bound_bracket || (grid_best.feasible && grid_best.score < cutoff_score)) return false;
+      if (grid_best.feasible && grid_best.score < cutoff_score) return false;
+      if (energy_bracket) {
+        const MissionResult ra = Run(vars_at(&a), 0.0);
+        return ra.segments.size() == m_.segments.size() && ra.energy_wh >= cutoff_score;
+      }
+      if (!bound_bracket) return false;
       const double ub = EnduranceUpperBound(-cutoff_score, free[0].lo + a * (free[0].hi - free[0].lo),
                                             free[0].lo + b * (free[0].hi - free[0].lo));
       return -ub >= cutoff_score;
