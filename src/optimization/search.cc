@@ -282,12 +282,38 @@ MissionFacts FactsOf(const Mission& m, int free_group) {
   return f;
 }
 
+// The rotor loads of one pair's lightest mass (SegmentRotorLoad), computed once per pair
+// instead of once per ESC class: per segment at its lowest and highest airspeed (the same
+// numbers, so the bounds do not change).
+class PairLoads {
+ public:
+  explicit PairLoads(const Mission& m) : m_(m), lo_(m.segments.size()), hi_(m.segments.size()) {}
+  void Reset(double mass_kg) {
+    mass_kg_ = mass_kg;
+    for (auto& x : lo_) x.first = false;
+    for (auto& x : hi_) x.first = false;
+  }
+  // The segment's load at airspeed v_m_s, which must be the same value per (segment, high) for
+  // one mass (the callers pass airspeed_m_s.lo or .hi, or 0).
+  const RotorLoad& At(std::size_t si, bool high, double v_m_s) {
+    std::pair<bool, RotorLoad>& x = (high ? hi_ : lo_)[si];
+    if (!x.first) x = {true, SegmentRotorLoad(m_, m_.segments[si], mass_kg_, v_m_s)};
+    return x.second;
+  }
+
+ private:
+  const Mission& m_;
+  double mass_kg_ = 0;
+  std::vector<std::pair<bool, RotorLoad>> lo_, hi_;
+};
+
 // R4: a lower bound of the score of a (motor, propeller, option) pair with an ESC of class
 // `esc_class`, given the hover bound's per-rotor electrical power pdc_lb at the lightest mass.
 // capacity_hi_ah: the largest capacity the bound covers (0: the option's largest).
+// loads: PairLoads at mass_lb.
 double ScoreLowerBound(const SearchContext& ctx, const MissionFacts& f, const MotorParams& mp,
                        const EscClass& esc_class, const PropEntry& prop, const PropModel& model,
-                       std::size_t option, double mass_lb, double pdc_lb, double capacity_hi_ah = 0.0) {
+                       std::size_t option, PairLoads* loads, double pdc_lb, double capacity_hi_ah = 0.0) {
   const BatteryOption& bo = ctx.options[option];
   const Mission& m = *ctx.mission;
   if (f.hover.empty()) return -kInf;
@@ -297,7 +323,7 @@ double ScoreLowerBound(const SearchContext& ctx, const MissionFacts& f, const Mo
   // fixed-airspeed cruise segments of a propeller with static-only data (the evaluator reads
   // them at J = 0 in any inflow, so speed and torque are at least omega_lb and Q_lb there too,
   // M1, M2). Any other segment draws at least P_avionics.
-  const double t_lb = SegmentRotorLoad(m, m.segments[f.hover[0]], mass_lb, 0.0).thrust_per_rotor_n;
+  const double t_lb = loads->At(static_cast<std::size_t>(f.hover[0]), false, 0.0).thrust_per_rotor_n;
   const bool static_only = model.data_kind() != PropDataKind::kTables || prop.j_tables.empty();
   auto p_lb_of = [&](std::size_t si) {
     const Segment& sg = m.segments[si];
@@ -307,7 +333,7 @@ double ScoreLowerBound(const SearchContext& ctx, const MissionFacts& f, const Mo
     const bool fixed_v = sg.type != SegmentType::kCruise || !sg.airspeed_m_s.free();
     if (sg.type == SegmentType::kHover ||
         (static_only && fixed_v && (sg.type == SegmentType::kClimb || sg.type == SegmentType::kCruise))) {
-      const RotorLoad ld = SegmentRotorLoad(m, sg, mass_lb, sg.type == SegmentType::kCruise ? sg.airspeed_m_s.lo : 0.0);
+      const RotorLoad& ld = loads->At(si, false, sg.type == SegmentType::kCruise ? sg.airspeed_m_s.lo : 0.0);
       if (ld.thrust_per_rotor_n >= t_lb) return ld.rotors * pdc_lb + m.vehicle.avionics_power_w;
     }
     return m.vehicle.avionics_power_w;
@@ -334,7 +360,7 @@ double ScoreLowerBound(const SearchContext& ctx, const MissionFacts& f, const Mo
       if (lossy && sg.group == f.free_group && sg.type != SegmentType::kShaft && fixed_v &&
           (sg.type != SegmentType::kCruise || sg.lift_to_drag > 0)) {
         const double v = sg.type == SegmentType::kCruise ? sg.airspeed_m_s.hi : 0.0;
-        const RotorLoad ld = SegmentRotorLoad(m, sg, mass_lb, v);
+        const RotorLoad& ld = loads->At(si, true, v);
         const double p_ideal = IdealRotorPowerW(ld.thrust_per_rotor_n, prop.diameter_m, m.rho_kg_m3,
                                                 axial_data ? ld.axial_airspeed_m_s : 0.0);
         e_seg = std::max(e_seg, (ld.rotors * p_ideal / m.constraints.max_figure_of_merit +
@@ -361,7 +387,7 @@ double ScoreLowerBound(const SearchContext& ctx, const MissionFacts& f, const Mo
 // R0, R2, R6, R7 for one (motor, propeller, option) pair: the rule that removes it, or null.
 // Sets omega_lb, q_lb (R2) for the hover bound.
 const char* PropRule(const SearchContext& ctx, const MissionFacts& f, const MotorEntry& mo,
-                     const std::vector<Drive>& ideal, std::size_t pi, std::size_t o, double mass_lb,
+                     const std::vector<Drive>& ideal, std::size_t pi, std::size_t o, PairLoads* loads,
                      double* omega_lb, double* q_lb) {
   const Mission& m = *ctx.mission;
   const MissionConstraints& k = m.constraints;
@@ -376,7 +402,7 @@ const char* PropRule(const SearchContext& ctx, const MissionFacts& f, const Moto
   *omega_lb = 0;
   *q_lb = 0;
   if (!f.hover.empty() && g.monotone) {
-    const RotorLoad load = SegmentRotorLoad(m, m.segments[f.hover[0]], mass_lb, 0.0);
+    const RotorLoad& load = loads->At(static_cast<std::size_t>(f.hover[0]), false, 0.0);
     const double* it = std::upper_bound(g.thrust, g.thrust + kGrid, load.thrust_per_rotor_n);
     const int idx = static_cast<int>(it - g.thrust) - 1;  // last grid thrust <= T_lb
     if (idx >= 0) {
@@ -444,6 +470,7 @@ double CapacityPiecesBoundAt(const SearchContext& ctx, const MissionFacts& f, co
   const double t_max = k.allow_esc_saturation ? f.tr_limit : std::min(f.tr_limit, esc_class.tr_sat);
   const double margin = 1.0 - k.current_margin;
   double best = kInf;
+  PairLoads loads(m);
   for (int j = 0; j < kPieces; ++j) {
     const double c_b = bo.capacity_lo_ah + (bo.capacity_hi_ah - bo.capacity_lo_ah) * (j + 1) / kPieces;
     const double mass_j = mass_lb + (1.0 - 1e-9) * (bo.mass_hi_kg - bo.mass_lo_kg) * j / kPieces;
@@ -459,8 +486,9 @@ double CapacityPiecesBoundAt(const SearchContext& ctx, const MissionFacts& f, co
     }
     const OperatingPoint lo_v = ideal.Inverse(bo.v_cut, q_lb, omega_lb);
     const double pdc_lb = std::max(0.0, std::min(hi_v.pdc_w, lo_v.pdc_w));
+    loads.Reset(mass_j);
     best = std::min(best, ScoreLowerBound(ctx, f, mp, esc_class, ctx.catalog->props()[pi], *ctx.models[pi], o,
-                                          mass_j, pdc_lb, c_b));
+                                          &loads, pdc_lb, c_b));
   }
   return best;
 }
@@ -491,6 +519,7 @@ void MotorCandidates(const SearchContext& ctx, const MissionFacts& f, std::size_
     e.c1 = c.c1; e.c0 = c.c0; e.tr_sat = c.tr_sat; e.sat_slope = c.sat_slope; e.resc_ohm = 0.0;
     ideal.emplace_back(mp, e);
   }
+  PairLoads loads(m);
   for (std::size_t o = 0; o < ctx.options.size(); ++o) {
     const BatteryOption& bo = ctx.options[o];
     if (bo.v_full > motor_max_v) {  // R1 for the motor's cells_max (credibility.h)
@@ -501,7 +530,8 @@ void MotorCandidates(const SearchContext& ctx, const MissionFacts& f, std::size_
       const double mass_lb = m.vehicle.mass_kg + bo.mass_lo_kg + ctx.fixed_groups_mass_kg +
                              ctx.free_rotors * (*mo.mass_kg + ctx.grids[pi].mass_kg + ctx.escs.min_mass_kg[o]);
       double omega_lb = 0, q_lb = 0;
-      if (const char* rule = PropRule(ctx, f, mo, ideal, pi, o, mass_lb, &omega_lb, &q_lb)) {
+      loads.Reset(mass_lb);
+      if (const char* rule = PropRule(ctx, f, mo, ideal, pi, o, &loads, &omega_lb, &q_lb)) {
         pruned->Add(rule, per_pair);
         continue;
       }
@@ -518,7 +548,7 @@ void MotorCandidates(const SearchContext& ctx, const MissionFacts& f, std::size_
         if (k.enforce_motor_power && hi_v.pac_w > mp.max_power_w) { why = "motor_power"; continue; }
         const OperatingPoint lo_v = ideal[ci].Inverse(bo.v_cut, q_lb, omega_lb);
         const double pdc_lb = std::max(0.0, std::min(hi_v.pdc_w, lo_v.pdc_w));
-        const double bound = ScoreLowerBound(ctx, f, mp, classes[ci], props[pi], *ctx.models[pi], o, mass_lb, pdc_lb);
+        const double bound = ScoreLowerBound(ctx, f, mp, classes[ci], props[pi], *ctx.models[pi], o, &loads, pdc_lb);
         any = true;
         best_bound = std::min(best_bound, bound);
         irms_lb = std::min(irms_lb, hi_v.irms_a);
