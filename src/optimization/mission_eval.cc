@@ -791,7 +791,12 @@ double MissionEvaluator::EnduranceUpperBound(double target_s, double from_ah, do
   DischargeOptions dopt;
   if (m_.battery.cutoff_cell_v) dopt.cutoff_cell_v = *m_.battery.cutoff_cell_v;
   const double v_cut = pack_lo.cutoff_v(dopt);
-  struct Piece { double ca, cb, p_ca, e_other_ca, e_before_ca = 0, ocv_integral_smin_v = kInf; };
+  struct Piece {
+    double ca, cb, p_ca, e_other_ca, e_before_ca = 0;
+    double torque_nm = 0, omega_rad_s = 0;  // the stretch's point at C_a
+    bool floor_done = false;                 // the throttle floor is computed only when needed
+    double ocv_integral_smin_v = kInf;
+  };
   // The piece [c, cb] (P_stretch and E_other at c; P = 0 when no bound can be given there);
   // sets infeasible_from.
   auto piece_at = [&](double c, double cb) {
@@ -813,17 +818,21 @@ double MissionEvaluator::EnduranceUpperBound(double target_s, double from_ah, do
       for (const SegmentResult& x : r.segments) pc.e_other_ca += x.energy_j;  // the stretch: 0 s
       for (int k = 0; k < m_.objective.segment_index; ++k) pc.e_before_ca += r.segments[k].energy_j;
     }
-    if (t_max < 1.0 && s.point.omega_rad_s > 0) {
-      const double v_min = std::max(v_cut, MinVoltageForThrottle(stretch_drive.drive, s.point.torque_nm,
-                                                                 s.point.omega_rad_s, pack_lo.OcvV(1.0), t_max));
-      pc.ocv_integral_smin_v = OcvIntegralUpperBound(pack_lo, SocBelowOcv(pack_lo, v_min, m_.battery.reserve_soc));
-    }
+    pc.torque_nm = s.point.torque_nm;
+    pc.omega_rad_s = s.point.omega_rad_s;
     return pc;
   };
-  auto bound_of = [&](const Piece& pc) {
+  auto bound_of = [&](Piece& pc) {
     if (pc.ca >= infeasible_from) return -kInf;
     if (!(pc.p_ca > 0)) return kInf;
     const double by_reserve = t_fixed_max + std::max(0.0, ocv_integral_v * AhToCoulomb(pc.cb) - pc.e_other_ca) / pc.p_ca;
+    if (by_reserve < target_s) return by_reserve;  // enough: the floor could only lower it
+    if (!pc.floor_done && t_max < 1.0 && pc.omega_rad_s > 0) {
+      const double v_min = std::max(v_cut, MinVoltageForThrottle(stretch_drive.drive, pc.torque_nm, pc.omega_rad_s,
+                                                                 pack_lo.OcvV(1.0), t_max));
+      pc.ocv_integral_smin_v = OcvIntegralUpperBound(pack_lo, SocBelowOcv(pack_lo, v_min, m_.battery.reserve_soc));
+    }
+    pc.floor_done = true;
     if (!std::isfinite(pc.ocv_integral_smin_v)) return by_reserve;
     const double by_throttle =
         t_fixed_max + std::max(0.0, pc.ocv_integral_smin_v * AhToCoulomb(pc.cb) - pc.e_before_ca) / pc.p_ca;
