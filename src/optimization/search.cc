@@ -863,8 +863,8 @@ class BranchAndBound {
   // a pair that comes after it is never drawn.
   const Candidate* CandidateAt(std::size_t i) {  // the i-th best, or null
     Candidate c;
-    while (ordered_.size() <= i && stream_.Next(NthBest(), &c)) ordered_.push_back(c);
-    return i < ordered_.size() ? &ordered_[i] : nullptr;
+    while (base_ + ordered_.size() <= i && stream_.Next(NthBest(), &c)) ordered_.push_back(c);
+    return i < base_ + ordered_.size() ? &ordered_[i - base_] : nullptr;
   }
   double NthBest() const {
     return static_cast<int>(out_->best.size()) < opt_.top_n ? kInf : out_->best.back().result.score;
@@ -877,7 +877,8 @@ class BranchAndBound {
   CandidateStream stream_;
   std::size_t n_cands_ = 0;
   bool capacity_pieces_ = false;  // R8 applies
-  std::vector<Candidate> ordered_;
+  std::vector<Candidate> ordered_;  // drawn candidates from index base_ on (earlier ones done)
+  std::size_t base_ = 0;
   SearchResult* out_;
   Mission relaxed_;
   long long virtual_evals_ = 0;
@@ -1020,7 +1021,7 @@ void BranchAndBound::Run() {
     std::vector<Outcome> outs(end - ci);
     auto run = [&](int tid) {
       for (std::size_t i = ci + static_cast<std::size_t>(tid); i < end; i += static_cast<std::size_t>(workers)) {
-        Process(ordered_[i], top, &outs[i - ci]);
+        Process(ordered_[i - base_], top, &outs[i - ci]);
       }
     };
     std::vector<std::thread> pool;
@@ -1033,6 +1034,8 @@ void BranchAndBound::Run() {
       virtual_evals_ += o.virtual_evals;
       for (auto& [c, r] : o.results) Insert(c, std::move(r));
     }
+    ordered_.erase(ordered_.begin(), ordered_.begin() + static_cast<std::ptrdiff_t>(end - base_));
+    base_ = end;
     ci = end;
   }
 }
