@@ -7,9 +7,11 @@
 //   3. BuildPropGrids    per propeller the static thrust, torque and figure of merit on a
 //                        speed grid at the mission's density (R2, R6);
 //   4. BuildCandidates   every (motor, propeller, battery option) pair that survives R0, R2, R3,
-//                        R6, R7, with a lower bound of its score (R4);
-//   5. BranchAndBound    the pairs best bound first, the ESCs of each pair with R5, each
-//                        combination scored exactly by MissionEvaluator::Solve.
+//                        R6, R7, with a lower bound of its score (R4); the search itself calls
+//                        BuildMotorHeads, which keeps only each motor's first pairs (memory);
+//   5. BranchAndBound    the pairs best bound first (CandidateStream over the motors' queues),
+//                        R8 and the ESCs of each pair with R5, each combination scored exactly
+//                        by MissionEvaluator::Solve.
 // The proofs of the rules are in search.cc. Internal to src/optimization (and its tests).
 #pragma once
 
