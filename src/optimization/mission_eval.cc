@@ -938,6 +938,16 @@ MissionResult MissionEvaluator::SolveContinuous(double cutoff_score, bool explai
         r.score = e_lb / 3600.0;
         return r;
       }
+      if (nothing_free) {
+        // Nothing to optimise: r0 (feasible, so the screening never stopped it) is the very
+        // simulation the code below would run again (WithEndurance = Run for min_energy).
+        MissionResult r = r0;
+        if (explain) {
+          Summarize(&r);
+          AddWarnings(&r);
+        }
+        return r;
+      }
     }
   }
   if (std::isfinite(cutoff_score) && capacity_free && m_.constraints.min_hover_throttle > 0) {

@@ -295,6 +295,7 @@ class PairLoads {
   }
   // The segment's load at airspeed v_m_s, which must be the same value per (segment, high) for
   // one mass (the callers pass airspeed_m_s.lo or .hi, or 0).
+  double mass_kg() const { return mass_kg_; }
   const RotorLoad& At(std::size_t si, bool high, double v_m_s) {
     std::pair<bool, RotorLoad>& x = (high ? hi_ : lo_)[si];
     if (!x.first) x = {true, SegmentRotorLoad(m_, m_.segments[si], mass_kg_, v_m_s)};
@@ -328,7 +329,8 @@ double ScoreLowerBound(const SearchContext& ctx, const MissionFacts& f, const Mo
   auto p_lb_of = [&](std::size_t si) {
     const Segment& sg = m.segments[si];
     if (sg.group != f.free_group) {  // G1: the fixed group's own bound at the lightest mass
-      return ctx.fixed_power_lb_w.empty() ? m.vehicle.avionics_power_w : ctx.fixed_power_lb_w[option][si];
+      return ctx.fixed_power_lb_w.empty() ? m.vehicle.avionics_power_w
+                                          : FixedPowerLowerBoundW(ctx, option, si, loads->mass_kg());
     }
     const bool fixed_v = sg.type != SegmentType::kCruise || !sg.airspeed_m_s.free();
     if (sg.type == SegmentType::kHover ||
@@ -619,9 +621,12 @@ void ResolveGroups(SearchContext* ctx) {
 void FixedGroupPowerBounds(SearchContext* ctx) {
   const Mission& m = *ctx->mission;
   ctx->fixed_power_lb_w.clear();
+  ctx->fixed_power_mass_kg.clear();
   if (m.groups.empty()) return;
   // The lightest the vehicle can be with any choice of the free group (M3: every segment's
-  // thrust, and so its speed, torque and power, rises with the mass).
+  // thrust, and so its speed, torque and power, rises with the mass). The bounds are tabulated
+  // on a geometric mass grid from there (kFixedPowerMasses points, 2 % apart): a pair reads the
+  // grid point at or below its own lightest mass, a bound for it by the same monotonicity.
   double motor_min = kInf, prop_min = kInf;
   for (const MotorEntry& mo : ctx->catalog->motors()) {
     if (mo.mass_kg) motor_min = std::min(motor_min, *mo.mass_kg);
@@ -633,32 +638,53 @@ void FixedGroupPowerBounds(SearchContext* ctx) {
     const double mass_min = m.vehicle.mass_kg + bo.mass_lo_kg + ctx->fixed_groups_mass_kg +
                             ctx->free_rotors * (std::isfinite(motor_min) ? motor_min : 0.0) +
                             ctx->free_rotors * ((std::isfinite(prop_min) ? prop_min : 0.0) + esc_min);
-    std::vector<double> p_lb(m.segments.size(), m.vehicle.avionics_power_w);
-    for (std::size_t si = 0; si < m.segments.size(); ++si) {
-      const Segment& sg = m.segments[si];
-      if (sg.group == ctx->free_group || sg.type == SegmentType::kShaft ||
-          (sg.type == SegmentType::kCruise && sg.airspeed_m_s.free())) {
-        continue;
+    std::vector<double> masses(kFixedPowerMasses);
+    std::vector<std::vector<double>> table;
+    for (int k = 0; k < kFixedPowerMasses; ++k) {
+      const double mass = k == 0 ? mass_min : mass_min * std::pow(kFixedPowerMassStep, k);
+      masses[static_cast<std::size_t>(k)] = mass;
+      std::vector<double> p_lb(m.segments.size(), m.vehicle.avionics_power_w);
+      for (std::size_t si = 0; si < m.segments.size(); ++si) {
+        const Segment& sg = m.segments[si];
+        if (sg.group == ctx->free_group || sg.type == SegmentType::kShaft ||
+            (sg.type == SegmentType::kCruise && sg.airspeed_m_s.free())) {
+          continue;
+        }
+        const GroupParts& parts = ctx->fixed_parts[sg.group];
+        const PropModel& prop = *ctx->fixed_models[sg.group];
+        const RotorLoad ld = SegmentRotorLoad(m, sg, mass, sg.airspeed_m_s.lo);
+        // A speed at or below the evaluator's root (thrust rising with speed, M1): bisection
+        // keeping thrust(lo) <= T; the torque there is at most the true one.
+        double lo = 0.0, hi = kGridMaxRadS;
+        if (!(prop.Evaluate(hi, m.rho_kg_m3, ld.axial_airspeed_m_s).thrust_n >= ld.thrust_per_rotor_n)) continue;
+        for (int i = 0; i < 60; ++i) {
+          const double mid = 0.5 * (lo + hi);
+          (prop.Evaluate(mid, m.rho_kg_m3, ld.axial_airspeed_m_s).thrust_n <= ld.thrust_per_rotor_n ? lo : hi) = mid;
+        }
+        const double q = prop.Evaluate(lo, m.rho_kg_m3, ld.axial_airspeed_m_s).torque_nm;
+        if (!(q > 0)) continue;
+        const Drive d(ScenarioMotorParams(*parts.motor, m), ScenarioEscParams(*parts.esc, m.objective.ranking));
+        const double pdc = std::min(d.Inverse(bo.v_full, q, lo).pdc_w, d.Inverse(bo.v_cut, q, lo).pdc_w);
+        p_lb[si] += ld.rotors * std::max(0.0, pdc);
       }
-      const GroupParts& parts = ctx->fixed_parts[sg.group];
-      const PropModel& prop = *ctx->fixed_models[sg.group];
-      const RotorLoad ld = SegmentRotorLoad(m, sg, mass_min, sg.airspeed_m_s.lo);
-      // A speed at or below the evaluator's root (thrust rising with speed, M1): bisection
-      // keeping thrust(lo) <= T; the torque there is at most the true one.
-      double lo = 0.0, hi = kGridMaxRadS;
-      if (!(prop.Evaluate(hi, m.rho_kg_m3, ld.axial_airspeed_m_s).thrust_n >= ld.thrust_per_rotor_n)) continue;
-      for (int i = 0; i < 60; ++i) {
-        const double mid = 0.5 * (lo + hi);
-        (prop.Evaluate(mid, m.rho_kg_m3, ld.axial_airspeed_m_s).thrust_n <= ld.thrust_per_rotor_n ? lo : hi) = mid;
+      // Monotone in the mass by M3; the running maximum keeps the table so under rounding too
+      // (each entry is still the bound at a mass at or below its own).
+      if (!table.empty()) {
+        for (std::size_t si = 0; si < p_lb.size(); ++si) p_lb[si] = std::max(p_lb[si], table.back()[si]);
       }
-      const double q = prop.Evaluate(lo, m.rho_kg_m3, ld.axial_airspeed_m_s).torque_nm;
-      if (!(q > 0)) continue;
-      const Drive d(ScenarioMotorParams(*parts.motor, m), ScenarioEscParams(*parts.esc, m.objective.ranking));
-      const double pdc = std::min(d.Inverse(bo.v_full, q, lo).pdc_w, d.Inverse(bo.v_cut, q, lo).pdc_w);
-      p_lb[si] += ld.rotors * std::max(0.0, pdc);
+      table.push_back(std::move(p_lb));
     }
-    ctx->fixed_power_lb_w.push_back(std::move(p_lb));
+    ctx->fixed_power_lb_w.push_back(std::move(table));
+    ctx->fixed_power_mass_kg.push_back(std::move(masses));
   }
+}
+
+double FixedPowerLowerBoundW(const SearchContext& ctx, std::size_t option, std::size_t si, double mass_kg) {
+  const std::vector<double>& masses = ctx.fixed_power_mass_kg[option];
+  // The last grid mass at or below mass_kg (the first when mass_kg is below the grid).
+  const auto it = std::upper_bound(masses.begin(), masses.end(), mass_kg);
+  const std::size_t k = it == masses.begin() ? 0 : static_cast<std::size_t>(it - masses.begin()) - 1;
+  return ctx.fixed_power_lb_w[option][k][si];
 }
 
 CandidateList BuildCandidates(const SearchContext& ctx, int threads) {

@@ -89,10 +89,12 @@ struct SearchContext {
   std::vector<GroupParts> fixed_parts;
   double fixed_groups_mass_kg = 0;  // rotors x (motor + ESC + propeller) of the fixed groups
   int free_rotors = 0;              // GroupRotors(mission, free_group)
-  // [option][segment]: a lower bound of a fixed group's segment's terminal power (its rotors'
-  // PDC at the lightest vehicle mass plus the avionics; FixedGroupPowerBounds), W; empty
+  // [option][k][segment]: a lower bound of a fixed group's segment's terminal power (its
+  // rotors' PDC at vehicle mass fixed_power_mass_kg[option][k] plus the avionics;
+  // FixedGroupPowerBounds), W; the masses rise from the lightest the vehicle can be. Empty
   // without groups.
-  std::vector<std::vector<double>> fixed_power_lb_w;
+  std::vector<std::vector<std::vector<double>>> fixed_power_lb_w;
+  std::vector<std::vector<double>> fixed_power_mass_kg;
   // PropModels of the fixed groups' propellers (by group index; null for the free group),
   // built once and shared by every evaluation.
   std::vector<std::unique_ptr<PropModel>> fixed_models;
@@ -120,7 +122,12 @@ double CapacityPiecesBound(const SearchContext& ctx, int motor, int prop, int op
                            double esc_mass_kg);
 
 // Fills ctx->fixed_power_lb_w (after stages 1-3 and ResolveGroups).
+inline constexpr int kFixedPowerMasses = 64;
+inline constexpr double kFixedPowerMassStep = 1.02;
 void FixedGroupPowerBounds(SearchContext* ctx);
+// The table's bound for segment si at a vehicle of at least mass_kg (option's grid point at or
+// below it).
+double FixedPowerLowerBoundW(const SearchContext& ctx, std::size_t option, std::size_t si, double mass_kg);
 
 // Stage 4 on `threads` threads (motors interleaved; the list does not depend on timing once
 // ordered by the branch and bound's total order).
