@@ -1,6 +1,7 @@
 // The catalog search against exhaustive evaluation on a small catalog, the per-segment optimum
 // against a dense grid, infeasible missions, and every printed point reproduced by `simulate`.
 #include "optimization/search.h"
+#include "optimization/search_stages.h"
 
 #include <gtest/gtest.h>
 #include <unistd.h>
@@ -139,7 +140,17 @@ TEST_F(SearchTest, PropulsionGroupsEqualExhaustiveEvaluation) {
   EXPECT_EQ(b.feasible, a.feasible);
   // 4*m + 1*m against 5*m in the mass: rounding of the last bit only.
   EXPECT_NEAR(b.objective, a.objective, 1e-9 * a.objective);
-  // Exhaustive over the lift group's parts.
+  // Exhaustive over the lift group's parts. On the way, G1's table: the pusher's segment power
+  // bound read at the combination's own mass is at or below its mean terminal power.
+  search_internal::SearchContext ctx;
+  ctx.mission = &m;
+  ctx.catalog = &cat;
+  search_internal::ResolveGroups(&ctx);
+  ctx.options = search_internal::BatteryOptions(m, cat);
+  ctx.escs = search_internal::BuildEscTable(cat, ctx.options);
+  search_internal::BuildPropGrids(m, cat, &ctx.grids, &ctx.models);
+  search_internal::FixedGroupPowerBounds(&ctx);
+  int g1_checked = 0;
   std::vector<std::pair<double, std::string>> all;
   ForEachCombination(cat, [&](Combination c) {
     c.groups.assign(2, GroupParts{});
@@ -147,7 +158,18 @@ TEST_F(SearchTest, PropulsionGroupsEqualExhaustiveEvaluation) {
     c.groups[pusher] = GroupParts{pick.motor, pick.esc, pick.prop};
     const MissionResult r = MissionEvaluator(m, c).Solve();
     if (r.feasible) all.emplace_back(r.score, Name(c));
+    std::size_t o = 0;
+    while (o < ctx.options.size() && !(ctx.options[o].entry == c.battery && ctx.options[o].cells == c.cells)) ++o;
+    ASSERT_LT(o, ctx.options.size());
+    for (std::size_t si = 0; si < r.segments.size(); ++si) {
+      const SegmentResult& sr = r.segments[si];
+      if (sr.group != pusher || !(sr.duration_s > 0) || sr.energy_j <= 0) continue;
+      EXPECT_LE(search_internal::FixedPowerLowerBoundW(ctx, o, si, r.total_mass_kg), sr.energy_j / sr.duration_s)
+          << Name(c) << " segment " << sr.name;
+      ++g1_checked;
+    }
   });
+  EXPECT_GT(g1_checked, 0);
   std::sort(all.begin(), all.end());
   ASSERT_GE(all.size(), 1u);
   const SearchResult s = SearchCatalog(m, cat, so);
