@@ -927,7 +927,23 @@ MissionResult MissionEvaluator::SolveContinuous(double cutoff_score, bool explai
           const double d = s.distance_m ? *s.distance_m : *s.duration_s * s.airspeed_m_s.lo;
           const double t_min = s.distance_m ? d / s.airspeed_m_s.hi : *s.duration_s;
           const double thrust = s.lift_to_drag > 0 ? r0.total_mass_kg * kStandardGravity / s.lift_to_drag : 0.0;
-          e_lb += thrust * d + m_.vehicle.avionics_power_w * t_min;
+          double e_prop = thrust * d;
+          const GroupDrive& gd = groups_[s.group];
+          const MotorParams& mp = gd.drive.motor();
+          const EscParams& ep = gd.drive.esc();
+          if (s.lift_to_drag > 0 && mp.kt_nm_per_a <= MaxKtPerKe(mp.type) * mp.ke_v_s_per_rad && mp.rm_ohm >= 0 &&
+              mp.io_a >= 0 && mp.io1_a_s_per_rad >= 0 && ep.c0 >= 0 && ep.c1 + ep.c0 >= IdealIdcPerIrmsPerThrottle(mp.type)) {
+            // Tighter, as FreeCruisePowerLowerBoundW of search.cc: a feasible point's prop power
+            // is at least P_ideal(T, V)/max_figure_of_merit (prop_figure_of_merit; V the inflow
+            // with forward-flight tables, else 0) and PDC >= Pmech (no stage creates energy);
+            // by distance P_ideal/V falls with V (least at hi), by duration P_ideal rises (lo).
+            const bool axial = gd.prop->data_kind() == PropDataKind::kTables && !gd.parts.prop->j_tables.empty();
+            const double v = axial ? (s.distance_m ? s.airspeed_m_s.hi : s.airspeed_m_s.lo) : 0.0;
+            const RotorLoad ld = SegmentRotorLoad(m_, s, r0.total_mass_kg, s.airspeed_m_s.hi);
+            const double p_ideal = IdealRotorPowerW(ld.thrust_per_rotor_n, gd.parts.prop->diameter_m, m_.rho_kg_m3, v);
+            e_prop = std::max(e_prop, ld.rotors * p_ideal / m_.constraints.max_figure_of_merit * t_min);
+          }
+          e_lb += e_prop + m_.vehicle.avionics_power_w * t_min;
         } else {
           e_lb += r0.segments[i].energy_j;
         }

@@ -618,6 +618,35 @@ void ResolveGroups(SearchContext* ctx) {
   ctx->free_rotors = GroupRotors(m, ctx->free_group);
 }
 
+namespace {
+
+// A wing-borne cruise (lift_to_drag > 0) of a fixed group with a free airspeed in [lo, hi]:
+// a power P_lb with P_lb * SegmentDurationS(hi) <= the segment's energy at every airspeed of
+// the range. The thrust W/(L/D) does not depend on the airspeed (flight.h); a feasible point
+// has prop power >= P_ideal(T, V)/max_figure_of_merit (the evaluator's prop_figure_of_merit,
+// V the axial inflow for propellers with forward-flight tables, else 0: PropellerPoint), and
+// PDC >= Pmech when neither the motor nor the ESC can create energy (as in ScoreLowerBound;
+// model.md section 10). By distance the energy is P*d/V, and P_ideal(T, V)/V falls with V:
+// its least value is at hi, with the avionics' P_av*d/hi. By duration the energy is P*t and
+// P_ideal rises with V: the least at lo. 0 when no bound applies (the avionics are counted by
+// the caller).
+double FreeCruisePowerLowerBoundW(const Mission& m, const Segment& sg, const GroupParts& parts,
+                                  const PropModel& model, double mass_kg) {
+  if (!(sg.lift_to_drag > 0)) return 0.0;
+  const MotorParams mp = ScenarioMotorParams(*parts.motor, m);
+  const EscParams ep = ScenarioEscParams(*parts.esc, m.objective.ranking);
+  const bool lossy = mp.kt_nm_per_a <= MaxKtPerKe(mp.type) * mp.ke_v_s_per_rad && mp.rm_ohm >= 0 && mp.io_a >= 0 &&
+                     mp.io1_a_s_per_rad >= 0 && ep.c0 >= 0 && ep.c1 + ep.c0 >= IdealIdcPerIrmsPerThrottle(mp.type);
+  if (!lossy) return 0.0;
+  const bool axial_data = model.data_kind() == PropDataKind::kTables && !parts.prop->j_tables.empty();
+  const double v = axial_data ? (sg.distance_m ? sg.airspeed_m_s.hi : sg.airspeed_m_s.lo) : 0.0;
+  const RotorLoad ld = SegmentRotorLoad(m, sg, mass_kg, sg.airspeed_m_s.hi);  // thrust: any airspeed
+  const double p_ideal = IdealRotorPowerW(ld.thrust_per_rotor_n, parts.prop->diameter_m, m.rho_kg_m3, v);
+  return ld.rotors * p_ideal / m.constraints.max_figure_of_merit;
+}
+
+}  // namespace
+
 void FixedGroupPowerBounds(SearchContext* ctx) {
   const Mission& m = *ctx->mission;
   ctx->fixed_power_lb_w.clear();
@@ -646,12 +675,13 @@ void FixedGroupPowerBounds(SearchContext* ctx) {
       std::vector<double> p_lb(m.segments.size(), m.vehicle.avionics_power_w);
       for (std::size_t si = 0; si < m.segments.size(); ++si) {
         const Segment& sg = m.segments[si];
-        if (sg.group == ctx->free_group || sg.type == SegmentType::kShaft ||
-            (sg.type == SegmentType::kCruise && sg.airspeed_m_s.free())) {
-          continue;
-        }
+        if (sg.group == ctx->free_group || sg.type == SegmentType::kShaft) continue;
         const GroupParts& parts = ctx->fixed_parts[sg.group];
         const PropModel& prop = *ctx->fixed_models[sg.group];
+        if (sg.type == SegmentType::kCruise && sg.airspeed_m_s.free()) {
+          p_lb[si] += FreeCruisePowerLowerBoundW(m, sg, parts, prop, mass);
+          continue;
+        }
         const RotorLoad ld = SegmentRotorLoad(m, sg, mass, sg.airspeed_m_s.lo);
         // A speed at or below the evaluator's root (thrust rising with speed, M1): bisection
         // keeping thrust(lo) <= T; the torque there is at most the true one.

@@ -16,6 +16,7 @@
 #include "cli_runner.h"
 #include "common/error.h"
 #include "common/json_file.h"
+#include "mission/flight.h"
 #include "optimization/mission_eval.h"
 #include "optimization/small_catalog.h"
 
@@ -399,6 +400,87 @@ TEST_F(SearchTest, EarlyExitsBoundOutOnlyWhatCannotBeatTheCutoff) {
   });
   EXPECT_GE(checked, 9);
   EXPECT_GT(bounded, 0) << "no cutoff was bounded out: the bounds were not exercised";
+}
+
+// The same for min_energy with a capacity range and a free wing-borne cruise airspeed (the
+// energy pre-check at the smallest capacity, with the momentum bound of the free cruise), and
+// the search equals exhaustive evaluation there (G1's free-cruise table: the pusher fixed).
+TEST_F(SearchTest, FreeCruiseEnergyBoundsAreBounds) {
+  const Catalog cat = Catalog::Load((dir_ / "catalog").string());
+  Json j = ParseJsonText(kLiftCruise, "lift");
+  j["battery"]["capacity_ah"] = {2.0, 6.0};
+  j["segments"][2]["airspeed_m_s"] = {9.0, 16.0};
+  const Mission m = ParseMission(j, "lift");
+  int bounded = 0, checked = 0;
+  ForEachCombination(cat, [&](const Combination& c) {
+    if (checked >= 30) return;  // ten feasible combinations (a test of seconds)
+    const MissionResult full = MissionEvaluator(m, c).Solve();
+    if (!full.feasible) return;
+    for (const double factor : {0.5, 0.90, 1.0 + 1e-6}) {  // min_energy: 0.90 asks for 10 % less
+      const double cutoff = full.score * factor;
+      const MissionResult cut = MissionEvaluator(m, c).Solve(cutoff);
+      if (cut.bounded_out) {
+        ++bounded;
+        EXPECT_GE(full.score, cutoff) << Name(c) << " factor " << factor;
+      } else if (cut.feasible) {
+        EXPECT_EQ(cut.score, full.score) << Name(c) << " factor " << factor;
+      }
+      ++checked;
+    }
+  });
+  EXPECT_GE(checked, 9);
+  EXPECT_GT(bounded, 0) << "no cutoff was bounded out: the bounds were not exercised";
+}
+
+// G1 with a free wing-borne cruise airspeed flown by a fixed pusher: the table's power at a
+// combination's mass times the shortest duration is at or below the cruise energy at the
+// airspeed the evaluator picks.
+TEST_F(SearchTest, FixedGroupFreeCruiseBoundIsBelowTheEnergy) {
+  const Catalog cat = Catalog::Load((dir_ / "catalog").string());
+  const Mission single = ParseMission(ParseJsonText(kLiftCruise, "lift"), "lift");
+  SearchOptions so;
+  so.top_n = 1;
+  const SearchResult one = SearchCatalog(single, cat, so);
+  ASSERT_FALSE(one.best.empty());
+  const Combination& pick = one.best[0].combination;
+  Json j = ParseJsonText(kLiftCruise, "lift");
+  j["vehicle"].erase("rotors");
+  j["propulsion"] = {{"lift", {{"rotors", 4}}},
+                     {"pusher", {{"rotors", 1}, {"motor", pick.motor->id}, {"esc", pick.esc->id}, {"prop", pick.prop->id}}}};
+  for (Json& sg : j["segments"]) {
+    sg["group"] = sg["rotors"].get<int>() == 4 ? "lift" : "pusher";
+    sg.erase("rotors");
+  }
+  j["segments"][2]["airspeed_m_s"] = {9.0, 16.0};
+  const Mission m = ParseMission(j, "groups");
+  const int lift = m.segments[0].group, pusher = m.segments[2].group;
+  search_internal::SearchContext ctx;
+  ctx.mission = &m;
+  ctx.catalog = &cat;
+  search_internal::ResolveGroups(&ctx);
+  ctx.options = search_internal::BatteryOptions(m, cat);
+  ctx.escs = search_internal::BuildEscTable(cat, ctx.options);
+  search_internal::BuildPropGrids(m, cat, &ctx.grids, &ctx.models);
+  search_internal::FixedGroupPowerBounds(&ctx);
+  int checked = 0, above_avionics = 0;
+  ForEachCombination(cat, [&](Combination c) {
+    if (checked >= 40) return;
+    c.groups.assign(2, GroupParts{});
+    c.groups[lift] = GroupParts{c.motor, c.esc, c.prop};
+    c.groups[pusher] = GroupParts{pick.motor, pick.esc, pick.prop};
+    const MissionResult r = MissionEvaluator(m, c).Solve();
+    if (!r.feasible) return;
+    std::size_t o = 0;
+    while (o < ctx.options.size() && !(ctx.options[o].entry == c.battery && ctx.options[o].cells == c.cells)) ++o;
+    ASSERT_LT(o, ctx.options.size());
+    const double p_lb = search_internal::FixedPowerLowerBoundW(ctx, o, 2, r.total_mass_kg);
+    const double e_lb = p_lb * SegmentDurationS(m.segments[2], m.segments[2].airspeed_m_s.hi);
+    EXPECT_LE(e_lb, r.segments[2].energy_j) << Name(c) << " at " << r.segments[2].airspeed_m_s << " m/s";
+    if (p_lb > m.vehicle.avionics_power_w) ++above_avionics;
+    ++checked;
+  });
+  EXPECT_GE(checked, 3);
+  EXPECT_GT(above_avionics, 0) << "the free-cruise bound should add to the avionics";
 }
 
 // An entry the catalog marks "exclude" (catalog.h) is never searched: the pick's motor and
