@@ -68,6 +68,10 @@ namespace dynosize {
 //    power bound; the fixed segments add at most their longest durations. Pairs are evaluated best bound
 //    first and the search stops when the next bound cannot beat the N-th best found (every
 //    later pair has a worse bound). max_efficiency has no such bound (it is not pruned by R4).
+//    A fixed-airspeed cruise stretched gets the same budget with its power bound from
+//    momentum theory (N*P_ideal/max_figure_of_merit + P_avionics, ScoreLowerBound).
+// R8 (capacity pieces): see CapacityPiecesBoundAt; checked per pair and ESC class in stage 5
+//    before any simulation.
 // R5 (ESC dominance): within one pair, an ESC with the same C1, C0, tr_sat, sat_slope as an
 //    ESC already evaluated but no lighter, no lower in resistance and no higher in current
 //    rating scores no better (M2, M3) and is infeasible if the other is; so when the other is
@@ -84,7 +88,9 @@ namespace dynosize {
 //    speak of the free group's segments only, and in R4 a fixed group's segment draws at least
 //    its own drive's PDC at the lightest vehicle mass the option allows (its thrust rises with
 //    the mass, M3; speed and torque from below by bisection on the thrust, M1; PDC at the
-//    smaller of the full-charge and cut-off voltage, eq 59) plus P_avionics. The groups are
+//    smaller of the full-charge and cut-off voltage, eq 59) plus P_avionics, tabulated on a
+//    mass grid and read at or below each pair's own lightest mass; a wing-borne cruise with a
+//    free airspeed draws at least momentum theory's power (FreeCruisePowerLowerBoundW). The groups are
 //    coupled only through the mass and the shared pack's energy, so each bound stays a bound.
 //    Thrust-to-weight and winding temperature: more mass or ESC resistance only lowers the
 //    first and raises the second, so R5 (the virtual ESC is evaluated without the
@@ -380,6 +386,33 @@ double ScoreLowerBound(const SearchContext& ctx, const MissionFacts& f, const Mo
       if (static_cast<int>(si) != m.objective.segment_index) e_other += p_lb_of(si) * t_min_of(m.segments[si]);
     }
     const double p_stretch = p_lb_of(static_cast<std::size_t>(m.objective.segment_index));
+    const double e_max = bo.ocv_integral_v * AhToCoulomb(capacity_hi_ah > 0 ? capacity_hi_ah : bo.capacity_hi_ah);
+    return p_stretch > 0 ? -(f.t_fixed_max + std::max(0.0, e_max - e_other) / p_stretch) : -kInf;
+  }
+  const std::size_t ist = static_cast<std::size_t>(std::max(0, m.objective.segment_index));
+  const Segment& st = m.segments[ist];
+  if (m.objective.type == ObjectiveType::kMaxEndurance && st.group == f.free_group &&
+      st.type == SegmentType::kCruise && !st.airspeed_m_s.free()) {
+    // The same energy budget with a fixed-airspeed cruise stretched: its thrust is constant, so
+    // at every instant its power is at least p_lb_of (static-only data, above) and, when no
+    // stage can create energy, N*P_ideal(T, V)/max_figure_of_merit + P_avionics (the
+    // evaluator's prop_figure_of_merit; V the axial inflow with forward-flight tables, else 0,
+    // as PropellerPoint judges it), at the lightest mass (M3).
+    const bool lossy = mp.kt_nm_per_a <= MaxKtPerKe(mp.type) * mp.ke_v_s_per_rad && mp.rm_ohm >= 0 &&
+                       mp.io_a >= 0 && mp.io1_a_s_per_rad >= 0 && esc_class.c0 >= 0 &&
+                       esc_class.c1 + esc_class.c0 >= IdealIdcPerIrmsPerThrottle(mp.type);
+    double p_stretch = p_lb_of(ist);
+    if (lossy) {
+      const RotorLoad& ld = loads->At(ist, false, st.airspeed_m_s.lo);
+      const bool axial_data = model.data_kind() == PropDataKind::kTables && !prop.j_tables.empty();
+      const double p_ideal = IdealRotorPowerW(ld.thrust_per_rotor_n, prop.diameter_m, m.rho_kg_m3,
+                                              axial_data ? ld.axial_airspeed_m_s : 0.0);
+      p_stretch = std::max(p_stretch, ld.rotors * p_ideal / m.constraints.max_figure_of_merit + m.vehicle.avionics_power_w);
+    }
+    double e_other = 0;
+    for (std::size_t si = 0; si < m.segments.size(); ++si) {
+      if (si != ist) e_other += p_lb_of(si) * t_min_of(m.segments[si]);
+    }
     const double e_max = bo.ocv_integral_v * AhToCoulomb(capacity_hi_ah > 0 ? capacity_hi_ah : bo.capacity_hi_ah);
     return p_stretch > 0 ? -(f.t_fixed_max + std::max(0.0, e_max - e_other) / p_stretch) : -kInf;
   }
