@@ -873,6 +873,24 @@ MissionResult MissionEvaluator::Solve(double cutoff_score, bool explain) const {
 
 MissionResult MissionEvaluator::SolveContinuous(double cutoff_score, bool explain) const {
   const bool capacity_free = m_.battery.capacity_ah && m_.battery.capacity_ah->free();
+  if (std::isfinite(cutoff_score) && capacity_free && m_.constraints.min_hover_throttle > 0) {
+    // min_hover_throttle is checked at the full-charge OCV (PropellerPoint), which does not
+    // depend on the capacity, with the hover's torque and speed, which rise with the mass
+    // (M3 of search.cc); the throttle that holds them rises with them (M2). So the hover
+    // throttle is highest with the largest pack: when it is below the limit there, it is at
+    // every capacity of the range, and no choice of the continuous variables is feasible.
+    // (Only in a search, with a cutoff: the result is infeasible, as the full search's would
+    // be, and says so with the same constraint. First: one run, where the bounds below take
+    // up to 24.)
+    ContinuousVars v_hi;
+    v_hi.capacity_ah = m_.battery.capacity_ah->hi;
+    v_hi.airspeed_m_s.assign(m_.segments.size(), 0.0);
+    for (std::size_t k = 0; k < m_.segments.size(); ++k) v_hi.airspeed_m_s[k] = m_.segments[k].airspeed_m_s.lo;
+    MissionResult r_hi = Run(v_hi, 0.0);
+    for (const Violation& v : r_hi.violations) {
+      if (v.constraint == "min_hover_throttle") return r_hi;
+    }
+  }
   if (std::isfinite(cutoff_score) && m_.objective.type == ObjectiveType::kMaxEndurance) {
     // One simulation decides most candidates of a search: infeasible before any stretch.
     // With a capacity range it is run at the smallest capacity (the lightest vehicle), and
@@ -964,23 +982,6 @@ MissionResult MissionEvaluator::SolveContinuous(double cutoff_score, bool explai
         }
         return r;
       }
-    }
-  }
-  if (std::isfinite(cutoff_score) && capacity_free && m_.constraints.min_hover_throttle > 0) {
-    // min_hover_throttle is checked at the full-charge OCV (PropellerPoint), which does not
-    // depend on the capacity, with the hover's torque and speed, which rise with the mass
-    // (M3 of search.cc); the throttle that holds them rises with them (M2). So the hover
-    // throttle is highest with the largest pack: when it is below the limit there, it is at
-    // every capacity of the range, and no choice of the continuous variables is feasible.
-    // (Only in a search, with a cutoff: the result is infeasible, as the full search's would
-    // be, and says so with the same constraint.)
-    ContinuousVars v_hi;
-    v_hi.capacity_ah = m_.battery.capacity_ah->hi;
-    v_hi.airspeed_m_s.assign(m_.segments.size(), 0.0);
-    for (std::size_t k = 0; k < m_.segments.size(); ++k) v_hi.airspeed_m_s[k] = m_.segments[k].airspeed_m_s.lo;
-    MissionResult r_hi = Run(v_hi, 0.0);
-    for (const Violation& v : r_hi.violations) {
-      if (v.constraint == "min_hover_throttle") return r_hi;
     }
   }
   // Free variables, each scaled to [0, 1].
