@@ -880,15 +880,36 @@ MissionResult MissionEvaluator::SolveContinuous(double cutoff_score, bool explai
     // throttle is highest with the largest pack: when it is below the limit there, it is at
     // every capacity of the range, and no choice of the continuous variables is feasible.
     // (Only in a search, with a cutoff: the result is infeasible, as the full search's would
-    // be, and says so with the same constraint. First: one run, where the bounds below take
-    // up to 24.)
-    ContinuousVars v_hi;
-    v_hi.capacity_ah = m_.battery.capacity_ah->hi;
-    v_hi.airspeed_m_s.assign(m_.segments.size(), 0.0);
-    for (std::size_t k = 0; k < m_.segments.size(); ++k) v_hi.airspeed_m_s[k] = m_.segments[k].airspeed_m_s.lo;
-    MissionResult r_hi = Run(v_hi, 0.0);
-    for (const Violation& v : r_hi.violations) {
-      if (v.constraint == "min_hover_throttle") return r_hi;
+    // be, and says so with the same constraint. First: a few propeller evaluations, where the
+    // bounds below take up to 24 runs.)
+    // PropellerPoint's check alone, per hover segment, at the largest capacity's mass.
+    const BatteryPack pack(PackAt(m_.battery.capacity_ah->hi));
+    const double mass_kg = fixed_mass_kg_ + pack.mass_kg();
+    const double v_full = pack.OcvV(1.0);
+    for (const Segment& s : m_.segments) {
+      if (s.type != SegmentType::kHover) continue;
+      const GroupDrive& gd = groups_[s.group];
+      const RotorLoad load = SegmentRotorLoad(m_, s, mass_kg, 0.0);
+      double omega = 0;
+      PropEvaluation ev;
+      const double w_motor_max = std::max(gd.drive.NoLoadSpeed(v_full, 1.0), 1.0);
+      if (!PropSpeedForThrust(*gd.prop, load.thrust_per_rotor_n, m_.rho_kg_m3, load.axial_airspeed_m_s,
+                              4.0 * w_motor_max, &omega, &ev)) {
+        continue;  // no hover point: the check says nothing here
+      }
+      AdjustPropEvaluation(gd.prop_adj, gd.parts.prop->diameter_m, &ev);
+      const double throttle = gd.drive.Inverse(v_full, ev.torque_nm, omega).throttle;
+      if (throttle < m_.constraints.min_hover_throttle) {
+        MissionResult r;
+        r.capacity_ah = pack.capacity_ah();
+        r.total_mass_kg = mass_kg;
+        r.propulsion_mass_kg = mass_kg - m_.vehicle.mass_kg;
+        r.violations.push_back(Violation{"min_hover_throttle", s.name, throttle, m_.constraints.min_hover_throttle, "", true});
+        r.min_slack = (throttle - m_.constraints.min_hover_throttle) / m_.constraints.min_hover_throttle;
+        r.feasible = false;
+        r.score = kInf;
+        return r;
+      }
     }
   }
   if (std::isfinite(cutoff_score) && m_.objective.type == ObjectiveType::kMaxEndurance) {
