@@ -378,13 +378,38 @@ double ScoreLowerBound(const SearchContext& ctx, const MissionFacts& f, const Mo
     }
     return e / 3600.0;
   }
+  // max_endurance: the other segments' energy, each at least its power bound times its
+  // shortest duration and, for the free group's propeller segments at a fixed airspeed when no
+  // stage can create energy, momentum theory's N*P_ideal(T, V)/max_figure_of_merit plus the
+  // avionics over its duration (the evaluator's prop_figure_of_merit; V the axial inflow with
+  // forward-flight tables, else 0, as PropellerPoint judges it; P_ideal rises with the mass).
+  const bool lossy_drive = mp.kt_nm_per_a <= MaxKtPerKe(mp.type) * mp.ke_v_s_per_rad && mp.rm_ohm >= 0 &&
+                           mp.io_a >= 0 && mp.io1_a_s_per_rad >= 0 && esc_class.c0 >= 0 &&
+                           esc_class.c1 + esc_class.c0 >= IdealIdcPerIrmsPerThrottle(mp.type);
+  const bool table_data = model.data_kind() == PropDataKind::kTables && !prop.j_tables.empty();
+  auto e_other_of = [&](std::size_t stretch) {
+    double e_other = 0;
+    for (std::size_t si = 0; si < m.segments.size(); ++si) {
+      if (si == stretch) continue;
+      const Segment& sg = m.segments[si];
+      double e_seg = p_lb_of(si) * t_min_of(sg);
+      if (lossy_drive && sg.group == f.free_group && sg.type != SegmentType::kShaft &&
+          !(sg.type == SegmentType::kCruise && sg.airspeed_m_s.free())) {
+        const double v = sg.type == SegmentType::kCruise ? sg.airspeed_m_s.lo : 0.0;
+        const RotorLoad& ld = loads->At(si, false, v);
+        const double p_ideal = IdealRotorPowerW(ld.thrust_per_rotor_n, prop.diameter_m, m.rho_kg_m3,
+                                                table_data ? ld.axial_airspeed_m_s : 0.0);
+        e_seg = std::max(e_seg, (ld.rotors * p_ideal / m.constraints.max_figure_of_merit + m.vehicle.avionics_power_w) *
+                                    SegmentDurationS(sg, v));
+      }
+      e_other += e_seg;
+    }
+    return e_other;
+  };
   if (f.stretch_is_hover) {
     // Terminal energy = integral of V*I dt <= integral of OCV*I dt = Q*integral of OCV(s) ds
     // over [reserve, 1] (coulomb counting): the energy budget.
-    double e_other = 0;
-    for (std::size_t si = 0; si < m.segments.size(); ++si) {
-      if (static_cast<int>(si) != m.objective.segment_index) e_other += p_lb_of(si) * t_min_of(m.segments[si]);
-    }
+    const double e_other = e_other_of(static_cast<std::size_t>(m.objective.segment_index));
     const double p_stretch = p_lb_of(static_cast<std::size_t>(m.objective.segment_index));
     const double e_max = bo.ocv_integral_v * AhToCoulomb(capacity_hi_ah > 0 ? capacity_hi_ah : bo.capacity_hi_ah);
     return p_stretch > 0 ? -(f.t_fixed_max + std::max(0.0, e_max - e_other) / p_stretch) : -kInf;
@@ -398,21 +423,14 @@ double ScoreLowerBound(const SearchContext& ctx, const MissionFacts& f, const Mo
     // stage can create energy, N*P_ideal(T, V)/max_figure_of_merit + P_avionics (the
     // evaluator's prop_figure_of_merit; V the axial inflow with forward-flight tables, else 0,
     // as PropellerPoint judges it), at the lightest mass (M3).
-    const bool lossy = mp.kt_nm_per_a <= MaxKtPerKe(mp.type) * mp.ke_v_s_per_rad && mp.rm_ohm >= 0 &&
-                       mp.io_a >= 0 && mp.io1_a_s_per_rad >= 0 && esc_class.c0 >= 0 &&
-                       esc_class.c1 + esc_class.c0 >= IdealIdcPerIrmsPerThrottle(mp.type);
     double p_stretch = p_lb_of(ist);
-    if (lossy) {
+    if (lossy_drive) {
       const RotorLoad& ld = loads->At(ist, false, st.airspeed_m_s.lo);
-      const bool axial_data = model.data_kind() == PropDataKind::kTables && !prop.j_tables.empty();
       const double p_ideal = IdealRotorPowerW(ld.thrust_per_rotor_n, prop.diameter_m, m.rho_kg_m3,
-                                              axial_data ? ld.axial_airspeed_m_s : 0.0);
+                                              table_data ? ld.axial_airspeed_m_s : 0.0);
       p_stretch = std::max(p_stretch, ld.rotors * p_ideal / m.constraints.max_figure_of_merit + m.vehicle.avionics_power_w);
     }
-    double e_other = 0;
-    for (std::size_t si = 0; si < m.segments.size(); ++si) {
-      if (si != ist) e_other += p_lb_of(si) * t_min_of(m.segments[si]);
-    }
+    const double e_other = e_other_of(ist);
     const double e_max = bo.ocv_integral_v * AhToCoulomb(capacity_hi_ah > 0 ? capacity_hi_ah : bo.capacity_hi_ah);
     return p_stretch > 0 ? -(f.t_fixed_max + std::max(0.0, e_max - e_other) / p_stretch) : -kInf;
   }

@@ -221,8 +221,9 @@ TEST_F(SearchStagesTest, CandidatesRemoveOnlyInfeasiblePairsAndBoundTheScore) {
   }
 }
 
-// R4 with a fixed-airspeed cruise stretched (max_endurance): every kept pair's bound is at or
-// below the score of every feasible ESC, and a removed pair has none.
+// R4 with a fixed-airspeed cruise stretched, and with a hover stretched after such a cruise
+// (its momentum bound among the other segments' energy; max_endurance): every kept pair's
+// bound is at or below the score of every feasible ESC, and a removed pair has none.
 TEST_F(SearchStagesTest, CruiseStretchBoundIsBelowEveryFeasibleScore) {
   const Catalog cat = SmallCatalog();
   Json j = ParseJsonText(kStageQuad, "quad");
@@ -232,38 +233,40 @@ TEST_F(SearchStagesTest, CruiseStretchBoundIsBelowEveryFeasibleScore) {
     {"name": "flight", "type": "cruise", "airspeed_m_s": 10, "distance_m": 1000},
     {"name": "landing", "type": "climb", "rate_m_s": -1, "distance_m": 30}
   ])");
-  j["objective"] = {{"type", "max_endurance"}, {"segment", "flight"}};
-  const Mission m = ParseMission(j, "quad");
-  SearchContext ctx;
-  ctx.mission = &m;
-  ctx.catalog = &cat;
-  ResolveGroups(&ctx);
-  ctx.options = BatteryOptions(m, cat);
-  ctx.escs = BuildEscTable(cat, ctx.options);
-  BuildPropGrids(m, cat, &ctx.grids, &ctx.models);
-  const CandidateList all = BuildCandidates(ctx, 1);
-  int feasible = 0, finite = 0;
-  for (std::size_t mi = 0; mi < cat.motors().size(); ++mi) {
-    if (!cat.motors()[mi].mass_kg) continue;
-    for (std::size_t pi = 0; pi < cat.props().size(); ++pi) {
-      for (std::size_t o = 0; o < ctx.options.size(); ++o) {
-        const auto it = std::find_if(all.candidates.begin(), all.candidates.end(), [&](const Candidate& c) {
-          return c.motor == static_cast<int>(mi) && c.prop == static_cast<int>(pi) && c.option == static_cast<int>(o);
-        });
-        if (it != all.candidates.end() && std::isfinite(it->bound)) ++finite;
-        for (const EscEntry& e : cat.escs()) {
-          const Combination c{&cat.motors()[mi], &e, &cat.props()[pi], ctx.options[o].entry, ctx.options[o].cells};
-          const MissionResult r = MissionEvaluator(m, c).Solve();
-          if (!r.feasible) continue;
-          ++feasible;
-          ASSERT_NE(it, all.candidates.end()) << "a feasible pair was removed: " << c.motor->id << " " << c.prop->id;
-          EXPECT_LE(it->bound, r.score) << c.motor->id << " " << e.id << " " << c.prop->id;
+  for (const char* stretch : {"flight", "hover"}) {  // the cruise in the stretch, then among the others
+    j["objective"] = {{"type", "max_endurance"}, {"segment", stretch}};
+    const Mission m = ParseMission(j, "quad");
+    SearchContext ctx;
+    ctx.mission = &m;
+    ctx.catalog = &cat;
+    ResolveGroups(&ctx);
+    ctx.options = BatteryOptions(m, cat);
+    ctx.escs = BuildEscTable(cat, ctx.options);
+    BuildPropGrids(m, cat, &ctx.grids, &ctx.models);
+    const CandidateList all = BuildCandidates(ctx, 1);
+    int feasible = 0, finite = 0;
+    for (std::size_t mi = 0; mi < cat.motors().size(); ++mi) {
+      if (!cat.motors()[mi].mass_kg) continue;
+      for (std::size_t pi = 0; pi < cat.props().size(); ++pi) {
+        for (std::size_t o = 0; o < ctx.options.size(); ++o) {
+          const auto it = std::find_if(all.candidates.begin(), all.candidates.end(), [&](const Candidate& c) {
+            return c.motor == static_cast<int>(mi) && c.prop == static_cast<int>(pi) && c.option == static_cast<int>(o);
+          });
+          if (it != all.candidates.end() && std::isfinite(it->bound)) ++finite;
+          for (const EscEntry& e : cat.escs()) {
+            const Combination c{&cat.motors()[mi], &e, &cat.props()[pi], ctx.options[o].entry, ctx.options[o].cells};
+            const MissionResult r = MissionEvaluator(m, c).Solve();
+            if (!r.feasible) continue;
+            ++feasible;
+            ASSERT_NE(it, all.candidates.end()) << "a feasible pair was removed: " << c.motor->id << " " << c.prop->id;
+            EXPECT_LE(it->bound, r.score) << c.motor->id << " " << e.id << " " << c.prop->id;
+          }
         }
       }
     }
+    EXPECT_GT(feasible, 3) << stretch;
+    EXPECT_GT(finite, 0) << stretch << ": the stretch should get finite bounds";
   }
-  EXPECT_GT(feasible, 3);
-  EXPECT_GT(finite, 0) << "the cruise stretch should get finite bounds";
 }
 
 // R8 against the exact evaluator, capacity sized in [2, 6] Ah: the piecewise bound of a
