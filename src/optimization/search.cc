@@ -298,6 +298,16 @@ class PairLoads {
     mass_kg_ = mass_kg;
     for (auto& x : lo_) x.first = false;
     for (auto& x : hi_) x.first = false;
+    for (auto& x : energy_) x.first = false;
+  }
+  // A per-segment number that depends only on the pair (its mass and propeller), computed by
+  // f() once per pair (ScoreLowerBound's momentum energy), not once per ESC class.
+  template <typename F>
+  double PerSegment(std::size_t si, const F& f) {
+    if (energy_.size() != lo_.size()) energy_.assign(lo_.size(), {false, 0.0});
+    std::pair<bool, double>& x = energy_[si];
+    if (!x.first) x = {true, f()};
+    return x.second;
   }
   // The segment's load at airspeed v_m_s, which must be the same value per (segment, high) for
   // one mass (the callers pass airspeed_m_s.lo or .hi, or 0).
@@ -312,6 +322,7 @@ class PairLoads {
   const Mission& m_;
   double mass_kg_ = 0;
   std::vector<std::pair<bool, RotorLoad>> lo_, hi_;
+  std::vector<std::pair<bool, double>> energy_;
 };
 
 // R4: a lower bound of the score of a (motor, propeller, option) pair with an ESC of class
@@ -395,12 +406,14 @@ double ScoreLowerBound(const SearchContext& ctx, const MissionFacts& f, const Mo
       double e_seg = p_lb_of(si) * t_min_of(sg);
       if (lossy_drive && sg.group == f.free_group && sg.type != SegmentType::kShaft &&
           !(sg.type == SegmentType::kCruise && sg.airspeed_m_s.free())) {
-        const double v = sg.type == SegmentType::kCruise ? sg.airspeed_m_s.lo : 0.0;
-        const RotorLoad& ld = loads->At(si, false, v);
-        const double p_ideal = IdealRotorPowerW(ld.thrust_per_rotor_n, prop.diameter_m, m.rho_kg_m3,
-                                                table_data ? ld.axial_airspeed_m_s : 0.0);
-        e_seg = std::max(e_seg, (ld.rotors * p_ideal / m.constraints.max_figure_of_merit + m.vehicle.avionics_power_w) *
-                                    SegmentDurationS(sg, v));
+        e_seg = std::max(e_seg, loads->PerSegment(si, [&]() {
+          const double v = sg.type == SegmentType::kCruise ? sg.airspeed_m_s.lo : 0.0;
+          const RotorLoad& ld = loads->At(si, false, v);
+          const double p_ideal = IdealRotorPowerW(ld.thrust_per_rotor_n, prop.diameter_m, m.rho_kg_m3,
+                                                  table_data ? ld.axial_airspeed_m_s : 0.0);
+          return (ld.rotors * p_ideal / m.constraints.max_figure_of_merit + m.vehicle.avionics_power_w) *
+                 SegmentDurationS(sg, v);
+        }));
       }
       e_other += e_seg;
     }
