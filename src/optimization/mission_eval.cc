@@ -871,7 +871,9 @@ MissionResult MissionEvaluator::Solve(double cutoff_score, bool explain) const {
   return r;
 }
 
-MissionResult MissionEvaluator::SolveContinuous(double cutoff_score, bool explain) const {
+// The early exits of a search (a finite cutoff), each a proof stated at its block: a result
+// (bounded out, infeasible, or the answer itself) in *out and true, or false to go on.
+bool MissionEvaluator::EarlyExit(double cutoff_score, bool explain, MissionResult* out) const {
   const bool capacity_free = m_.battery.capacity_ah && m_.battery.capacity_ah->free();
   if (std::isfinite(cutoff_score) && capacity_free && m_.constraints.min_hover_throttle > 0) {
     // min_hover_throttle is checked at the full-charge OCV (PropellerPoint), which does not
@@ -908,7 +910,8 @@ MissionResult MissionEvaluator::SolveContinuous(double cutoff_score, bool explai
         r.min_slack = (throttle - m_.constraints.min_hover_throttle) / m_.constraints.min_hover_throttle;
         r.feasible = false;
         r.score = kInf;
-        return r;
+        *out = std::move(r);
+        return true;
       }
     }
   }
@@ -924,9 +927,9 @@ MissionResult MissionEvaluator::SolveContinuous(double cutoff_score, bool explai
     if (!airspeed_free) {
       MissionResult r0 = Run(v0, 0.0, true);
       if (!r0.feasible) {
-        if (!capacity_free) return r0;
+        if (!capacity_free) { *out = std::move(r0); return true; }
         for (const Violation& v : r0.violations) {
-          if (RisesWithMass(v.constraint)) return r0;
+          if (RisesWithMass(v.constraint)) { *out = r0; return true; }
         }
       }
     }
@@ -935,7 +938,8 @@ MissionResult MissionEvaluator::SolveContinuous(double cutoff_score, bool explai
       MissionResult r;
       r.bounded_out = true;
       r.score = -ub;
-      return r;
+      *out = std::move(r);
+      return true;
     }
   }
   if (std::isfinite(cutoff_score) && m_.objective.type == ObjectiveType::kMinEnergy &&
@@ -957,7 +961,7 @@ MissionResult MissionEvaluator::SolveContinuous(double cutoff_score, bool explai
     for (const Segment& s : m_.segments) airspeed_free |= s.type == SegmentType::kCruise && s.airspeed_m_s.free();
     const bool nothing_free = !airspeed_free && !capacity_free;
     const MissionResult r0 = Run(v0, 0.0, nothing_free);
-    if (nothing_free && !r0.feasible) return r0;  // nothing free: this is the answer
+    if (nothing_free && !r0.feasible) { *out = std::move(r0); return true; }  // nothing free: this is the answer
     if (r0.segments.size() == m_.segments.size()) {
       double e_lb = 0;
       for (std::size_t i = 0; i < m_.segments.size(); ++i) {
@@ -991,7 +995,8 @@ MissionResult MissionEvaluator::SolveContinuous(double cutoff_score, bool explai
         MissionResult r;
         r.bounded_out = true;
         r.score = e_lb / 3600.0;
-        return r;
+        *out = std::move(r);
+        return true;
       }
       if (nothing_free) {
         // Nothing to optimise: r0 (feasible, so the screening never stopped it) is the very
@@ -1001,10 +1006,16 @@ MissionResult MissionEvaluator::SolveContinuous(double cutoff_score, bool explai
           Summarize(&r);
           AddWarnings(&r);
         }
-        return r;
+        *out = std::move(r);
+        return true;
       }
     }
   }
+  return false;
+}
+
+MissionResult MissionEvaluator::SolveContinuous(double cutoff_score, bool explain) const {
+  if (MissionResult early; EarlyExit(cutoff_score, explain, &early)) return early;
   // Free variables, each scaled to [0, 1].
   struct Var { int segment; double lo, hi; };  // segment -1: capacity
   std::vector<Var> free;

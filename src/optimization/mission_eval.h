@@ -224,6 +224,7 @@ class MissionEvaluator {
   void FinishRun(const RunState& st, eval_internal::Tracker* track, MissionResult* out) const;
   MissionResult WithEndurance(ContinuousVars vars) const;
   MissionResult SolveContinuous(double cutoff_score, bool explain) const;
+  bool EarlyExit(double cutoff_score, bool explain, MissionResult* out) const;
   double StretchStartCurrent(const MissionResult& r) const;
   // An upper bound of the total mission time over the capacity range (max_endurance), tightened
   // until it falls below target_s or a budget of simulations is spent.
