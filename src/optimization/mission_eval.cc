@@ -41,8 +41,14 @@ bool Better(const MissionResult& a, const MissionResult& b) {
 // (about 38 simulations). Infeasible points compare worse than every feasible one, so an
 // optimum on a constraint boundary is approached from the feasible side. The result is the
 // best point simulated, never worse than the grid's.
-template <typename Simulate>
-MissionResult SolveOneVariable(const Simulate& simulate) {
+//
+// bounded_after_grid(best, a, b): called once after the grid with the grid's best and the
+// golden section's bracket; true when it proves that neither the grid's best nor any point of
+// [a, b] can beat the caller's cutoff. The golden section only simulates points of [a, b], so
+// the result could not beat the cutoff either: the search stops there (a result with
+// bounded_out set).
+template <typename Simulate, typename Bounded>
+MissionResult SolveOneVariable(const Simulate& simulate, const Bounded& bounded_after_grid) {
   constexpr int kGrid = 9;
   MissionResult best = simulate(0.0);
   double best_x = 0.0;
@@ -53,6 +59,12 @@ MissionResult SolveOneVariable(const Simulate& simulate) {
   }
   const double kInvPhi = 0.6180339887498949;  // (sqrt(5) - 1)/2
   double a = std::max(0.0, best_x - 1.0 / (kGrid - 1)), b = std::min(1.0, best_x + 1.0 / (kGrid - 1));
+  if (bounded_after_grid(best, a, b)) {
+    MissionResult out;
+    out.bounded_out = true;
+    out.score = kInf;
+    return out;
+  }
   double c = b - kInvPhi * (b - a), d = a + kInvPhi * (b - a);
   MissionResult rc = simulate(c), rd = simulate(d);
   while (b - a > 1e-6) {
@@ -116,6 +128,10 @@ double CreatedEnergyRatio(const OperatingPoint& op) {
   return r;
 }
 
+}  // namespace
+
+namespace eval_internal {
+
 // Tracks slacks and violations of one simulation.
 class Tracker {
  public:
@@ -149,6 +165,12 @@ class Tracker {
   MissionResult* r_;
 };
 
+}  // namespace eval_internal
+
+namespace {
+
+using eval_internal::Tracker;
+
 // A propeller segment's shaft point: the speed where the propeller gives the required thrust
 // per rotor (static or in the axial inflow), its torque, and the propeller's own checks (data
 // held at an edge, static-only data in inflow, momentum theory, max rpm, the hover throttle at
@@ -168,7 +190,10 @@ bool PropellerPoint(const Mission& m, const Segment& s, const RotorLoad& load, c
     track->Check("thrust", s.name, load.thrust_per_rotor_n, at_nl.thrust_n, "N", false, seg);
     return false;
   }
-  if (!ev.InData()) seg->prop_note = ev.Message();
+  if (!ev.InData()) {  // the note is written from these numbers when read (FillPropNotes)
+    seg->prop_edge = true;
+    seg->prop_edge_eval = ev;
+  }
   // Static-only data (DriveCalc power laws, static coefficients) say nothing about the
   // thrust lost to inflow; held at J = 0 they grossly over-state a propeller in fast axial
   // flow. Up to the mission's max_static_advance_ratio (default 0.2) the static values
@@ -321,44 +346,255 @@ BatteryPackParams MissionEvaluator::PackAt(double capacity_ah) const {
   return p;
 }
 
-MissionResult MissionEvaluator::Run(const ContinuousVars& vars, double stretch_s, bool screen) const {
+// What Run carries from one segment to the next.
+struct MissionEvaluator::RunState {
+  BatteryPack pack;
+  double cutoff_v = 0, v_full = 0, q_c = 0, current_factor = 1;
+  double soc = 1.0, time_s = 0, energy_j = 0;
+};
+
+// Mission-wide checks of the parts: ESC voltage, the frame, and the lift group's credibility
+// checks (credibility.h).
+void MissionEvaluator::CheckParts(const RunState& st, eval_internal::Tracker* track) const {
+  for (int g = 0; g < static_cast<int>(groups_.size()); ++g) {
+    const GroupDrive& gd = groups_[g];
+    track->Check("esc_voltage", "", st.v_full, gd.drive.esc().vdc_max_v, "V");
+    if (const auto d_max = GroupMaxPropDiameterM(m_, g)) {
+      track->Check("prop_diameter", "", gd.parts.prop->diameter_m, *d_max, "m");
+    }
+    if (g != lift_group_) continue;  // credibility.h: the lift group's parts only
+    if (gd.folding_refused) track->Check("prop_folding", "", 1.0, 0.0, "");
+    if (gd.motor_excluded) track->Check("motor_unrated", "", 1.0, 0.0, "");
+    track->Check("motor_voltage", "", st.v_full, MotorMaxVoltageV(*gd.parts.motor), "V");
+  }
+}
+
+// The shaft's speed and torque of segment si (shaft segments: Ipopt; propeller segments:
+// PropellerPoint). False when the propeller cannot give the thrust.
+bool MissionEvaluator::SegmentShaftPoint(std::size_t si, const RunState& st, const RotorLoad& load,
+                                         eval_internal::Tracker* track, SegmentResult* seg, double* omega,
+                                         double* torque) const {
+  const Segment& s = m_.segments[si];
+  const GroupDrive& gd = groups_[s.group];
+  const Drive& drive = gd.drive;
+  const MissionConstraints& k = m_.constraints;
+  if (s.type == SegmentType::kShaft) {
+    const MotorParams& mp = drive.motor();
+    const EscParams& ep = drive.esc();
+    ShaftRequest q;
+    q.vdc_v = st.v_full;
+    q.power_w = s.shaft_power_w;
+    q.torque_nm = s.shaft_torque_nm;
+    q.omega_rad_s = s.shaft_omega_rad_s;
+    q.max_throttle = std::min(k.max_throttle, k.allow_esc_saturation ? 1.0 : ep.tr_sat);
+    const double lim = std::min(mp.max_current_a, ep.max_current_a) * st.current_factor;
+    q.max_current_a = std::isfinite(lim) ? lim : 1e300;
+    const ShaftSolution sol = SolveShaftSpeed(drive, q, "ipopt");
+    *omega = sol.omega_rad_s;
+    *torque = sol.point.torque_nm;
+    seg->shaft_solver = sol.algorithm + ": " + sol.message;
+    return true;
+  }
+  const double w_motor_max = std::max(drive.NoLoadSpeed(st.v_full, 1.0), 1.0);
+  return PropellerPoint(m_, s, load, drive, *gd.prop, *gd.parts.prop, gd.prop_adj, st.v_full, w_motor_max, track,
+                        seg, omega, torque);
+}
+
+// Flies segment si at the shaft point (omega, torque) from st.soc: the pack's sag per instant,
+// the constraints at every sub-step's end, SOC by the midpoint rule. False when the pack cannot
+// deliver the power (a battery_power violation is recorded).
+bool MissionEvaluator::IntegrateSegment(std::size_t si, bool stretched, double omega, double torque,
+                                        RunState* st, eval_internal::Tracker* track, SegmentResult* seg) const {
+  const Segment& s = m_.segments[si];
+  const GroupDrive& gd = groups_[s.group];
+  const Drive& drive = gd.drive;
+  const MotorParams& mp = gd.drive.motor();  // the scenario's (credibility.h)
+  const EscParams& ep = gd.drive.esc();
+  const MissionConstraints& k = m_.constraints;
+  const BatteryPack& pack = st->pack;
+  const int n_active = seg->rotors;
+  double last_sag_v = 0.0;
+  // The power asked of the pack at the last voltage tried, and the most it can give then
+  // (a source OCV behind R delivers at most OCV^2/(4*R)).
+  double demanded_w = 0.0, deliverable_w = 0.0;
+  // The operating point at a state of charge: the terminal voltage V solves
+  //   V = OCV(soc) - R*I_batt,  V*I_batt = N*PDC(V) + P_avionics.
+  // PDC = C1*U*Irms/kv + C0*VDC*Irms (eqs 57, 59) depends on V only through the C0 term (and
+  // saturation), so each step solves the quadratic V^2 - OCV*V + R*P = 0 for its upper (stable)
+  // root with P at the current V: exact in one step when C0 = 0, a fast contraction otherwise.
+  // No real root: the pack cannot deliver the power.
+  auto point_at = [&](double soc_now, OperatingPoint* op, double* v, double* i_batt) {
+    const double ocv = pack.OcvV(soc_now);
+    const double r_pack = pack.ri_ohm();
+    // Warm start from the previous instant's sag (the current changes little in a segment).
+    double vv = last_sag_v > 0 && last_sag_v < 0.5 * ocv ? ocv - last_sag_v : ocv;
+    for (int it = 0; it < 30; ++it) {
+      *op = drive.Inverse(vv, torque, omega);
+      const double p_w = n_active * op->idc_a * vv + m_.vehicle.avionics_power_w;
+      const double disc = ocv * ocv - 4.0 * r_pack * p_w;
+      demanded_w = p_w;
+      deliverable_w = ocv * ocv / (4.0 * r_pack);
+      if (!(disc >= 0.0)) return false;
+      const double next = 0.5 * (ocv + std::sqrt(disc));
+      if (next == vv) break;
+      const bool done = std::fabs(next - vv) < 1e-10 * ocv;
+      vv = next;
+      if (done) {
+        *op = drive.Inverse(vv, torque, omega);
+        break;
+      }
+    }
+    *i_batt = n_active * op->idc_a + m_.vehicle.avionics_power_w / vv;
+    *v = vv;
+    last_sag_v = ocv - vv;
+    return true;
+  };
+  auto check_point = [&](const OperatingPoint& op, double v, double i_batt) {
+    track->Check("max_throttle", s.name, op.throttle, k.max_throttle, "", false, seg);
+    if (!k.allow_esc_saturation) track->Check("esc_saturation", s.name, op.throttle, ep.tr_sat, "", false, seg);
+    const double i = std::max(op.idc_a, op.irms_a);
+    track->Check("motor_current", s.name, i, mp.max_current_a * st->current_factor, "A", false, seg);
+    track->Check("esc_current", s.name, i, ep.max_current_a * st->current_factor, "A", false, seg);
+    if (k.enforce_motor_power) track->Check("motor_power", s.name, op.pac_w, mp.max_power_w, "W", false, seg);
+    track->Check("battery_current", s.name, i_batt, pack.max_current_a() * st->current_factor, "A", false, seg);
+    track->Check("battery_cutoff", s.name, v, st->cutoff_v, "V", true, seg);
+    const double temp_c = WindingTempC(op, s.group);
+    seg->winding_temp_c = std::max(seg->winding_temp_c, temp_c);
+    track->Check("max_winding_temp_c", s.name, temp_c, k.max_winding_temp_c, "C", false, seg);
+    // Physics is the contract: a point where the ESC or the motor puts out more power than
+    // it takes in (model.md section 10; Drive::Flag sets the bit through model/physics.h)
+    // is never feasible, whatever the objective gains from it.
+    if (op.limits & kLimitCreatesEnergy) {
+      track->Check("creates_energy", s.name, CreatedEnergyRatio(op), 1.0, "", false, seg);
+    }
+  };
+  double& soc = st->soc;
+  seg->soc_start = soc;
+  OperatingPoint op;
+  double v = 0, ib = 0;
+  bool ok = point_at(soc, &op, &v, &ib);
+  if (ok) check_point(op, v, ib);
+  seg->battery_current_start_a = ib;
+  seg->vdc_min_v = seg->vdc_max_v = v;
+  seg->throttle_min = seg->throttle_max = op.throttle;
+  seg->idc_min_a = seg->idc_max_a = op.idc_a;
+  const int steps = stretched ? kStretchSubsteps : kSubsteps;
+  const double dt = seg->duration_s / steps;
+  double e_seg = 0, e_mech = 0;
+  for (int j = 0; ok && j < steps && dt > 0; ++j) {
+    // Midpoint rule: predict SOC at mid-step with the start current, draw the mid current.
+    OperatingPoint opm;
+    double vm = 0, im = 0;
+    ok = point_at(soc - 0.5 * ib * dt / st->q_c, &opm, &vm, &im);
+    if (!ok) break;
+    soc -= im * dt / st->q_c;
+    e_seg += vm * im * dt;
+    e_mech += n_active * opm.pmech_w * dt;
+    ok = point_at(soc, &op, &v, &ib);
+    if (!ok) break;
+    check_point(op, v, ib);
+    seg->vdc_min_v = std::min(seg->vdc_min_v, v);
+    seg->vdc_max_v = std::max(seg->vdc_max_v, v);
+    seg->throttle_min = std::min(seg->throttle_min, op.throttle);
+    seg->throttle_max = std::max(seg->throttle_max, op.throttle);
+    seg->idc_min_a = std::min(seg->idc_min_a, op.idc_a);
+    seg->idc_max_a = std::max(seg->idc_max_a, op.idc_a);
+  }
+  if (!ok) {
+    // The pack cannot deliver this power.
+    track->Check("battery_power", s.name, demanded_w, deliverable_w, "W", false, seg);
+    return false;
+  }
+  seg->point = op;
+  seg->battery_current_a = ib;
+  seg->soc_end = soc;
+  seg->energy_j = e_seg;
+  seg->eta_average = e_seg > 0 ? e_mech / (e_seg - m_.vehicle.avionics_power_w * seg->duration_s) : op.eta_system;
+  if (dt <= 0) seg->eta_average = op.eta_system;
+  if (seg->active_limit_slack > kActiveSlack) seg->active_limit.clear();
+  st->time_s += seg->duration_s;
+  st->energy_j += e_seg;
+  return true;
+}
+
+// After the last segment: the reserve, the thrust-to-weight, the objective and the score.
+void MissionEvaluator::FinishRun(const RunState& st, eval_internal::Tracker* track, MissionResult* out) const {
+  MissionResult& r = *out;
+  const MissionConstraints& k = m_.constraints;
+  r.final_soc = st.soc;
+  track->Check("reserve_soc", "", st.soc, m_.battery.reserve_soc, "", true);
+  // Thrust-to-weight at full throttle on the lowest pack voltage of the mission (its end: the
+  // SOC only falls) with the sag at that current. Falls as the stretch lengthens (less charge,
+  // lower OCV), so the stretch's slack stays monotone.
+  r.lift_rotors = lift_rotors_;
+  if (k.min_thrust_to_weight > 0 && lift_rotors_ > 0) {
+    FullThrottle ft;
+    const double weight_n = r.total_mass_kg * kStandardGravity;
+    r.thrust_to_weight = FullThrottleAt(st.pack, st.soc, &ft) ? lift_rotors_ * ft.thrust_per_rotor_n / weight_n : 0.0;
+    track->Check("min_thrust_to_weight", "", r.thrust_to_weight, k.min_thrust_to_weight, "", true);
+  }
+  r.endurance_s = st.time_s;
+  r.energy_wh = st.energy_j / 3600.0;
+  r.feasible = r.min_slack >= 0;
+  switch (m_.objective.type) {
+    case ObjectiveType::kMaxEndurance:
+      r.objective = st.time_s;
+      r.objective_unit = "s";
+      r.score = -st.time_s;
+      break;
+    case ObjectiveType::kMinEnergy:
+      r.objective = r.energy_wh;
+      r.objective_unit = "Wh";
+      r.score = r.energy_wh;
+      break;
+    case ObjectiveType::kMaxEfficiency:
+      r.objective = r.segments[m_.objective.segment_index].eta_average;
+      r.objective_unit = "";
+      r.score = -r.objective;
+      break;
+  }
+  if (!r.feasible) r.score = kInf;
+}
+
+// A Run stopped before segment `next`: everything Run has at that point (the segments before
+// `next` do not depend on the stretch, so WithEndurance flies them once per set of variables).
+struct MissionEvaluator::RunPrefix {
   MissionResult r;
+  RunState st;
+  std::size_t next = 0;
+  bool finished = false;  // the run ended early (r is its final result)
+};
+
+MissionEvaluator::RunPrefix MissionEvaluator::RunUpTo(const ContinuousVars& vars, std::size_t end, bool screen) const {
+  RunPrefix p{MissionResult{}, RunState{BatteryPack(PackAt(vars.capacity_ah))}, 0, false};
+  MissionResult& r = p.r;
+  RunState& st = p.st;
   r.min_slack = kInf;
   r.segments.reserve(m_.segments.size());
   Tracker track(&r);
-  const MissionConstraints& k = m_.constraints;
-  const BatteryPack pack(PackAt(vars.capacity_ah));
+  const BatteryPack& pack = st.pack;
   r.capacity_ah = pack.capacity_ah();
   r.total_mass_kg = fixed_mass_kg_ + pack.mass_kg();
   r.propulsion_mass_kg = r.total_mass_kg - m_.vehicle.mass_kg;
   DischargeOptions dopt;
   if (m_.battery.cutoff_cell_v) dopt.cutoff_cell_v = *m_.battery.cutoff_cell_v;
-  const double cutoff_v = pack.cutoff_v(dopt);
-  const double v_full = pack.OcvV(1.0);
-  const double q_c = AhToCoulomb(pack.capacity_ah());
-  const double current_factor = 1.0 - k.current_margin;
-  for (int g = 0; g < static_cast<int>(groups_.size()); ++g) {
-    const GroupDrive& gd = groups_[g];
-    track.Check("esc_voltage", "", v_full, gd.drive.esc().vdc_max_v, "V");
-    if (const auto d_max = GroupMaxPropDiameterM(m_, g)) {
-      track.Check("prop_diameter", "", gd.parts.prop->diameter_m, *d_max, "m");
-    }
-    if (g != lift_group_) continue;  // credibility.h: the lift group's parts only
-    if (gd.folding_refused) track.Check("prop_folding", "", 1.0, 0.0, "");
-    if (gd.motor_excluded) track.Check("motor_unrated", "", 1.0, 0.0, "");
-    track.Check("motor_voltage", "", v_full, MotorMaxVoltageV(*gd.parts.motor), "V");
-  }
+  st.cutoff_v = pack.cutoff_v(dopt);
+  st.v_full = pack.OcvV(1.0);
+  st.q_c = AhToCoulomb(pack.capacity_ah());
+  st.current_factor = 1.0 - m_.constraints.current_margin;
+  CheckParts(st, &track);
+  RunSegments(vars, 0.0, screen, end, &p);
+  return p;
+}
 
-  double soc = 1.0;
-  double time_s = 0, energy_j = 0;
-  for (std::size_t si = 0; si < m_.segments.size(); ++si) {
+// Flies the segments from p->next up to `end` (exclusive); sets p->finished when the run ends
+// early (a segment that cannot be flown, or a violation when screening).
+void MissionEvaluator::RunSegments(const ContinuousVars& vars, double stretch_s, bool screen, std::size_t end,
+                                   RunPrefix* p) const {
+  MissionResult& r = p->r;
+  Tracker track(&r);
+  for (std::size_t si = p->next; si < end && !p->finished; ++si) {
     const Segment& s = m_.segments[si];
-    const GroupDrive& gd = groups_[s.group];
-    const Drive& drive = gd.drive;
-    const PropModel& prop = *gd.prop;
-    const MotorParams& mp = gd.drive.motor();  // the scenario's (credibility.h)
-    const EscParams& ep = gd.drive.esc();
-    const double w_motor_max = std::max(drive.NoLoadSpeed(v_full, 1.0), 1.0);
     SegmentResult seg;
     seg.group = s.group;
     seg.name = s.name;
@@ -378,171 +614,30 @@ MissionResult MissionEvaluator::Run(const ContinuousVars& vars, double stretch_s
     seg.thrust_per_rotor_n = s.type == SegmentType::kShaft ? 0.0 : load.thrust_per_rotor_n;
     seg.tilt_deg = load.tilt_rad * 180.0 / kPi;
     double omega = 0, torque = 0;
-    if (s.type == SegmentType::kShaft) {
-      ShaftRequest q;
-      q.vdc_v = v_full;
-      q.power_w = s.shaft_power_w;
-      q.torque_nm = s.shaft_torque_nm;
-      q.omega_rad_s = s.shaft_omega_rad_s;
-      q.max_throttle = std::min(k.max_throttle, k.allow_esc_saturation ? 1.0 : ep.tr_sat);
-      const double lim = std::min(mp.max_current_a, ep.max_current_a) * current_factor;
-      q.max_current_a = std::isfinite(lim) ? lim : 1e300;
-      const ShaftSolution sol = SolveShaftSpeed(drive, q, "ipopt");
-      omega = sol.omega_rad_s;
-      torque = sol.point.torque_nm;
-      seg.shaft_solver = sol.algorithm + ": " + sol.message;
-    } else if (!PropellerPoint(m_, s, load, drive, prop, *gd.parts.prop, gd.prop_adj, v_full, w_motor_max,
-                               &track, &seg, &omega, &torque)) {
-      r.feasible = false;  // even four times the motor's no-load speed does not give the thrust
-      r.segments.push_back(seg);
-      r.score = kInf;
-      return r;
-    }
-    const int n_active = seg.rotors;
-    double last_sag_v = 0.0;
-    // The power asked of the pack at the last voltage tried, and the most it can give then
-    // (a source OCV behind R delivers at most OCV^2/(4*R)).
-    double demanded_w = 0.0, deliverable_w = 0.0;
-    // The operating point at a state of charge: the terminal voltage V solves
-    //   V = OCV(soc) - R*I_batt,  V*I_batt = N*PDC(V) + P_avionics.
-    // PDC = C1*U*Irms/kv + C0*VDC*Irms (eqs 57, 59) depends on V only through the C0 term (and
-    // saturation), so each step solves the quadratic V^2 - OCV*V + R*P = 0 for its upper (stable)
-    // root with P at the current V: exact in one step when C0 = 0, a fast contraction otherwise.
-    // No real root: the pack cannot deliver the power.
-    auto point_at = [&](double soc_now, OperatingPoint* op, double* v, double* i_batt) {
-      const double ocv = pack.OcvV(soc_now);
-      const double r_pack = pack.ri_ohm();
-      // Warm start from the previous instant's sag (the current changes little in a segment).
-      double vv = last_sag_v > 0 && last_sag_v < 0.5 * ocv ? ocv - last_sag_v : ocv;
-      for (int it = 0; it < 30; ++it) {
-        *op = drive.Inverse(vv, torque, omega);
-        const double p_w = n_active * op->idc_a * vv + m_.vehicle.avionics_power_w;
-        const double disc = ocv * ocv - 4.0 * r_pack * p_w;
-        demanded_w = p_w;
-        deliverable_w = ocv * ocv / (4.0 * r_pack);
-        if (!(disc >= 0.0)) return false;
-        const double next = 0.5 * (ocv + std::sqrt(disc));
-        if (next == vv) break;
-        const bool done = std::fabs(next - vv) < 1e-10 * ocv;
-        vv = next;
-        if (done) {
-          *op = drive.Inverse(vv, torque, omega);
-          break;
-        }
-      }
-      *i_batt = n_active * op->idc_a + m_.vehicle.avionics_power_w / vv;
-      *v = vv;
-      last_sag_v = ocv - vv;
-      return true;
-    };
-    auto check_point = [&](const OperatingPoint& op, double v, double i_batt) {
-      track.Check("max_throttle", s.name, op.throttle, k.max_throttle, "", false, &seg);
-      if (!k.allow_esc_saturation) track.Check("esc_saturation", s.name, op.throttle, ep.tr_sat, "", false, &seg);
-      const double i = std::max(op.idc_a, op.irms_a);
-      track.Check("motor_current", s.name, i, mp.max_current_a * current_factor, "A", false, &seg);
-      track.Check("esc_current", s.name, i, ep.max_current_a * current_factor, "A", false, &seg);
-      if (k.enforce_motor_power) track.Check("motor_power", s.name, op.pac_w, mp.max_power_w, "W", false, &seg);
-      track.Check("battery_current", s.name, i_batt, pack.max_current_a() * current_factor, "A", false, &seg);
-      track.Check("battery_cutoff", s.name, v, cutoff_v, "V", true, &seg);
-      const double temp_c = WindingTempC(op, s.group);
-      seg.winding_temp_c = std::max(seg.winding_temp_c, temp_c);
-      track.Check("max_winding_temp_c", s.name, temp_c, k.max_winding_temp_c, "C", false, &seg);
-      // Physics is the contract: a point where the ESC or the motor puts out more power than
-      // it takes in (model.md section 10; Drive::Flag sets the bit through model/physics.h)
-      // is never feasible, whatever the objective gains from it.
-      if (op.limits & kLimitCreatesEnergy) {
-        track.Check("creates_energy", s.name, CreatedEnergyRatio(op), 1.0, "", false, &seg);
-      }
-    };
-    seg.soc_start = soc;
-    OperatingPoint op;
-    double v = 0, ib = 0;
-    bool ok = point_at(soc, &op, &v, &ib);
-    if (ok) check_point(op, v, ib);
-    seg.battery_current_start_a = ib;
-    seg.vdc_min_v = seg.vdc_max_v = v;
-    seg.throttle_min = seg.throttle_max = op.throttle;
-    seg.idc_min_a = seg.idc_max_a = op.idc_a;
-    const int steps = stretched ? kStretchSubsteps : kSubsteps;
-    const double dt = seg.duration_s / steps;
-    double e_seg = 0, e_mech = 0;
-    for (int j = 0; ok && j < steps && dt > 0; ++j) {
-      // Midpoint rule: predict SOC at mid-step with the start current, draw the mid current.
-      OperatingPoint opm;
-      double vm = 0, im = 0;
-      ok = point_at(soc - 0.5 * ib * dt / q_c, &opm, &vm, &im);
-      if (!ok) break;
-      soc -= im * dt / q_c;
-      e_seg += vm * im * dt;
-      e_mech += n_active * opm.pmech_w * dt;
-      ok = point_at(soc, &op, &v, &ib);
-      if (!ok) break;
-      check_point(op, v, ib);
-      seg.vdc_min_v = std::min(seg.vdc_min_v, v);
-      seg.vdc_max_v = std::max(seg.vdc_max_v, v);
-      seg.throttle_min = std::min(seg.throttle_min, op.throttle);
-      seg.throttle_max = std::max(seg.throttle_max, op.throttle);
-      seg.idc_min_a = std::min(seg.idc_min_a, op.idc_a);
-      seg.idc_max_a = std::max(seg.idc_max_a, op.idc_a);
-    }
-    if (!ok) {
-      // The pack cannot deliver this power.
-      track.Check("battery_power", s.name, demanded_w, deliverable_w, "W", false, &seg);
-      r.segments.push_back(seg);
+    const bool ok = SegmentShaftPoint(si, p->st, load, &track, &seg, &omega, &torque) &&
+                    IntegrateSegment(si, stretched, omega, torque, &p->st, &track, &seg);
+    r.segments.push_back(std::move(seg));
+    p->next = si + 1;
+    // Not ok: even four times the motor's no-load speed does not give the thrust, or the pack
+    // cannot deliver the power.
+    if (!ok || (screen && !r.violations.empty())) {
       r.feasible = false;
       r.score = kInf;
-      return r;
-    }
-    seg.point = op;
-    seg.battery_current_a = ib;
-    seg.soc_end = soc;
-    seg.energy_j = e_seg;
-    seg.eta_average = e_seg > 0 ? e_mech / (e_seg - m_.vehicle.avionics_power_w * seg.duration_s) : op.eta_system;
-    if (dt <= 0) seg.eta_average = op.eta_system;
-    if (seg.active_limit_slack > kActiveSlack) seg.active_limit.clear();
-    time_s += seg.duration_s;
-    energy_j += e_seg;
-    r.segments.push_back(seg);
-    if (screen && !r.violations.empty()) {
-      r.feasible = false;
-      r.score = kInf;
-      return r;
+      p->finished = true;
     }
   }
-  r.final_soc = soc;
-  track.Check("reserve_soc", "", soc, m_.battery.reserve_soc, "", true);
-  // Thrust-to-weight at full throttle on the lowest pack voltage of the mission (its end: the
-  // SOC only falls) with the sag at that current. Falls as the stretch lengthens (less charge,
-  // lower OCV), so the stretch's slack stays monotone.
-  r.lift_rotors = lift_rotors_;
-  if (k.min_thrust_to_weight > 0 && lift_rotors_ > 0) {
-    FullThrottle ft;
-    const double weight_n = r.total_mass_kg * kStandardGravity;
-    r.thrust_to_weight = FullThrottleAt(pack, soc, &ft) ? lift_rotors_ * ft.thrust_per_rotor_n / weight_n : 0.0;
-    track.Check("min_thrust_to_weight", "", r.thrust_to_weight, k.min_thrust_to_weight, "", true);
-  }
-  r.endurance_s = time_s;
-  r.energy_wh = energy_j / 3600.0;
-  r.feasible = r.min_slack >= 0;
-  switch (m_.objective.type) {
-    case ObjectiveType::kMaxEndurance:
-      r.objective = time_s;
-      r.objective_unit = "s";
-      r.score = -time_s;
-      break;
-    case ObjectiveType::kMinEnergy:
-      r.objective = r.energy_wh;
-      r.objective_unit = "Wh";
-      r.score = r.energy_wh;
-      break;
-    case ObjectiveType::kMaxEfficiency:
-      r.objective = r.segments[m_.objective.segment_index].eta_average;
-      r.objective_unit = "";
-      r.score = -r.objective;
-      break;
-  }
-  if (!r.feasible) r.score = kInf;
-  return r;
+}
+
+MissionResult MissionEvaluator::RunFrom(RunPrefix p, const ContinuousVars& vars, double stretch_s, bool screen) const {
+  RunSegments(vars, stretch_s, screen, m_.segments.size(), &p);
+  if (p.finished) return std::move(p.r);
+  Tracker track(&p.r);
+  FinishRun(p.st, &track, &p.r);
+  return std::move(p.r);
+}
+
+MissionResult MissionEvaluator::Run(const ContinuousVars& vars, double stretch_s, bool screen) const {
+  return RunFrom(RunUpTo(vars, 0, screen), vars, stretch_s, screen);
 }
 
 double MissionEvaluator::StretchStartCurrent(const MissionResult& r) const {
@@ -553,7 +648,10 @@ MissionResult MissionEvaluator::WithEndurance(ContinuousVars vars) const {
   if (m_.objective.type != ObjectiveType::kMaxEndurance) return Run(vars, 0.0);
   // The longest stretch that keeps every constraint: min_slack(T) falls with T (SOC and
   // voltage only fall), so bracket its zero and close in by Illinois regula falsi.
-  MissionResult lo_r = Run(vars, 0.0);
+  // The segments before the stretch do not depend on it: flown once.
+  const RunPrefix prefix = RunUpTo(vars, static_cast<std::size_t>(m_.objective.segment_index), false);
+  auto run = [&](double t) { return RunFrom(prefix, vars, t, false); };
+  MissionResult lo_r = run(0.0);
   if (lo_r.min_slack < 0 || lo_r.segments.size() < m_.segments.size()) return lo_r;
   double lo = 0.0, f_lo = lo_r.min_slack;
   // First guess: the charge left above the reserve at the stretched segment's start current.
@@ -564,11 +662,11 @@ MissionResult MissionEvaluator::WithEndurance(ContinuousVars vars) const {
   const double i_start = std::max(StretchStartCurrent(lo_r), 1e-9);
   double hi = std::max(1.0, q_c * std::max(lo_r.final_soc - m_.battery.reserve_soc, 1e-4) / i_start * 1.0001);
   (void)sr;
-  MissionResult hi_r = Run(vars, hi);
+  MissionResult hi_r = run(hi);
   for (int i = 0; i < 40 && hi_r.min_slack >= 0; ++i) {
     lo = hi; f_lo = hi_r.min_slack; lo_r = hi_r;
     hi *= 2;
-    hi_r = Run(vars, hi);
+    hi_r = run(hi);
   }
   double f_hi = hi_r.min_slack;
   if (!std::isfinite(f_hi)) f_hi = -1.0;
@@ -576,7 +674,7 @@ MissionResult MissionEvaluator::WithEndurance(ContinuousVars vars) const {
   for (int it = 0; it < 60 && hi - lo > 1e-6 * hi; ++it) {
     double t = (lo * f_hi - hi * f_lo) / (f_hi - f_lo);
     if (!(t > lo && t < hi)) t = 0.5 * (lo + hi);
-    MissionResult tr = Run(vars, t);
+    MissionResult tr = run(t);
     const double ft = std::isfinite(tr.min_slack) ? tr.min_slack : -1.0;
     if (ft >= 0) {
       lo = t; f_lo = ft; lo_r = std::move(tr);
@@ -592,6 +690,34 @@ MissionResult MissionEvaluator::WithEndurance(ContinuousVars vars) const {
 }
 
 namespace {
+
+// A voltage at or below the lowest at which `drive` holds (torque, omega) with a throttle of at
+// most t_max (< 1): the throttle that holds a point falls as the voltage rises (eq 48: the
+// ESC must give U = (Rm + RESC)*I + KE*omega, U = kv*VDC*TR_eff, TR rising with TR_eff), so
+// bisection keeps throttle(lo) > t_max. Returns v_hi when even v_hi needs more than t_max, 0
+// when nothing is known.
+double MinVoltageForThrottle(const Drive& drive, double torque_nm, double omega_rad_s, double v_hi, double t_max) {
+  if (!(v_hi > 0) || !(drive.Inverse(v_hi, torque_nm, omega_rad_s).throttle <= t_max)) return v_hi;
+  double lo = 0.0, hi = v_hi;
+  for (int i = 0; i < 50 && hi - lo > 1e-9 * v_hi; ++i) {
+    const double mid = 0.5 * (lo + hi);
+    (drive.Inverse(mid, torque_nm, omega_rad_s).throttle > t_max ? lo : hi) = mid;
+  }
+  return lo;
+}
+
+// An SOC at or below the lowest SOC in [floor_soc, 1] whose OCV (rising with SOC) reaches v:
+// bisection keeping OCV(lo) < v; floor_soc when OCV(floor_soc) >= v already.
+double SocBelowOcv(const BatteryPack& pack, double v, double floor_soc) {
+  if (pack.OcvV(floor_soc) >= v) return floor_soc;
+  if (pack.OcvV(1.0) < v) return 1.0;
+  double lo = floor_soc, hi = 1.0;
+  for (int i = 0; i < 50 && hi - lo > 1e-9; ++i) {
+    const double mid = 0.5 * (lo + hi);
+    (pack.OcvV(mid) < v ? lo : hi) = mid;
+  }
+  return lo;
+}
 
 // Constraints that cannot recover with a larger capacity: the ESC voltage and the frame do not
 // depend on it, and the thrust, propeller speed and PAC = sqrt(27/10)*(Rm*I + KE*omega)*I
@@ -611,7 +737,7 @@ bool RisesWithMass(const std::string& constraint) {
 
 }  // namespace
 
-double MissionEvaluator::EnduranceUpperBound(double target_s) const {
+double MissionEvaluator::EnduranceUpperBound(double target_s, double from_ah, double to_ah) const {
   // max_endurance with the stretched segment at a fixed airspeed (hover, or cruise with one
   // airspeed): over capacities C in a piece [C_a, C_b] of the range,
   //   t_total(C) <= t_fixed_max + Q(C_b)*integral of OCV over [reserve, 1] / P_stretch(C_a)
@@ -635,8 +761,12 @@ double MissionEvaluator::EnduranceUpperBound(double target_s) const {
   if (st.type == SegmentType::kCruise && st.airspeed_m_s.free()) return kInf;
   const double t_fixed_max = LongestFixedDurationS(m_);
   const bool free_c = m_.battery.capacity_ah && m_.battery.capacity_ah->free();
-  const double c_lo = m_.battery.capacity_ah ? m_.battery.capacity_ah->lo : base_capacity_ah_;
-  const double c_hi = m_.battery.capacity_ah ? m_.battery.capacity_ah->hi : base_capacity_ah_;
+  double c_lo = m_.battery.capacity_ah ? m_.battery.capacity_ah->lo : base_capacity_ah_;
+  double c_hi = m_.battery.capacity_ah ? m_.battery.capacity_ah->hi : base_capacity_ah_;
+  if (free_c && to_ah > 0) {  // a part of the range (SolveOneVariable's bracket)
+    c_lo = std::max(c_lo, from_ah);
+    c_hi = std::min(c_hi, to_ah);
+  }
   const double ocv_integral_v = OcvIntegralUpperBound(BatteryPack(PackAt(c_lo)), m_.battery.reserve_soc);
   bool energy_fixed = true;
   for (const GroupDrive& g : groups_) {
@@ -644,7 +774,29 @@ double MissionEvaluator::EnduranceUpperBound(double target_s) const {
   }
   int runs = 0;
   double infeasible_from = kInf;  // every capacity from here up breaks a RisesWithMass constraint
-  struct Piece { double ca, cb, p_ca, e_other_ca; };
+  // Throttle floor (a second bound per piece): every checked point of the stretch holds the
+  // stretch's (torque, speed), which rise with the mass (M3), within the throttle limit t_max
+  // (max_throttle, and the ESC's knee when saturation is not allowed), and the throttle needed
+  // for a (torque, speed) falls as the voltage rises (M2). So the terminal voltage at the
+  // stretch's end is at least V_min, where the drive at C_a's point needs exactly t_max
+  // (MinVoltageForThrottle), and at least the cut-off; the OCV (rising with SOC) is above the
+  // terminal voltage, so the stretch ends at an SOC s >= s_min with OCV(s_min) = V_min. Up to
+  // that end the pack gives at most Q(C_b)*integral of OCV over [s_min, 1], of which the
+  // segments before the stretch take at least E_before(C_a) (energy_fixed, as above):
+  //   t_total(C) <= t_fixed_max + (Q(C_b)*integral of OCV over [s_min, 1] - E_before(C_a)) / P_stretch(C_a).
+  const GroupDrive& stretch_drive = groups_[st.group];
+  double t_max = m_.constraints.max_throttle;
+  if (!m_.constraints.allow_esc_saturation) t_max = std::min(t_max, stretch_drive.drive.esc().tr_sat);
+  const BatteryPack pack_lo(PackAt(c_lo));
+  DischargeOptions dopt;
+  if (m_.battery.cutoff_cell_v) dopt.cutoff_cell_v = *m_.battery.cutoff_cell_v;
+  const double v_cut = pack_lo.cutoff_v(dopt);
+  struct Piece {
+    double ca, cb, p_ca, e_other_ca, e_before_ca = 0;
+    double torque_nm = 0, omega_rad_s = 0;  // the stretch's point at C_a
+    bool floor_done = false;                 // the throttle floor is computed only when needed
+    double ocv_integral_smin_v = kInf;
+  };
   // The piece [c, cb] (P_stretch and E_other at c; P = 0 when no bound can be given there);
   // sets infeasible_from.
   auto piece_at = [&](double c, double cb) {
@@ -664,13 +816,27 @@ double MissionEvaluator::EnduranceUpperBound(double target_s) const {
     pc.p_ca = p > 0 ? p : 0.0;
     if (energy_fixed && r.segments.size() == m_.segments.size()) {
       for (const SegmentResult& x : r.segments) pc.e_other_ca += x.energy_j;  // the stretch: 0 s
+      for (int k = 0; k < m_.objective.segment_index; ++k) pc.e_before_ca += r.segments[k].energy_j;
     }
+    pc.torque_nm = s.point.torque_nm;
+    pc.omega_rad_s = s.point.omega_rad_s;
     return pc;
   };
-  auto bound_of = [&](const Piece& pc) {
+  auto bound_of = [&](Piece& pc) {
     if (pc.ca >= infeasible_from) return -kInf;
     if (!(pc.p_ca > 0)) return kInf;
-    return t_fixed_max + std::max(0.0, ocv_integral_v * AhToCoulomb(pc.cb) - pc.e_other_ca) / pc.p_ca;
+    const double by_reserve = t_fixed_max + std::max(0.0, ocv_integral_v * AhToCoulomb(pc.cb) - pc.e_other_ca) / pc.p_ca;
+    if (by_reserve < target_s) return by_reserve;  // enough: the floor could only lower it
+    if (!pc.floor_done && t_max < 1.0 && pc.omega_rad_s > 0) {
+      const double v_min = std::max(v_cut, MinVoltageForThrottle(stretch_drive.drive, pc.torque_nm, pc.omega_rad_s,
+                                                                 pack_lo.OcvV(1.0), t_max));
+      pc.ocv_integral_smin_v = OcvIntegralUpperBound(pack_lo, SocBelowOcv(pack_lo, v_min, m_.battery.reserve_soc));
+    }
+    pc.floor_done = true;
+    if (!std::isfinite(pc.ocv_integral_smin_v)) return by_reserve;
+    const double by_throttle =
+        t_fixed_max + std::max(0.0, pc.ocv_integral_smin_v * AhToCoulomb(pc.cb) - pc.e_before_ca) / pc.p_ca;
+    return std::min(by_reserve, by_throttle);
   };
   std::vector<Piece> pieces;
   const int n0 = free_c ? kBoundPieces : 1;
@@ -693,8 +859,62 @@ double MissionEvaluator::EnduranceUpperBound(double target_s) const {
   }
 }
 
+void MissionEvaluator::FillPropNotes(MissionResult* r) {
+  for (SegmentResult& s : r->segments) {
+    if (s.prop_edge && s.prop_note.empty()) s.prop_note = s.prop_edge_eval.Message();
+  }
+}
+
 MissionResult MissionEvaluator::Solve(double cutoff_score, bool explain) const {
+  MissionResult r = SolveContinuous(cutoff_score, explain);
+  FillPropNotes(&r);
+  return r;
+}
+
+// The early exits of a search (a finite cutoff), each a proof stated at its block: a result
+// (bounded out, infeasible, or the answer itself) in *out and true, or false to go on.
+bool MissionEvaluator::EarlyExit(double cutoff_score, bool explain, MissionResult* out) const {
   const bool capacity_free = m_.battery.capacity_ah && m_.battery.capacity_ah->free();
+  if (std::isfinite(cutoff_score) && capacity_free && m_.constraints.min_hover_throttle > 0) {
+    // min_hover_throttle is checked at the full-charge OCV (PropellerPoint), which does not
+    // depend on the capacity, with the hover's torque and speed, which rise with the mass
+    // (M3 of search.cc); the throttle that holds them rises with them (M2). So the hover
+    // throttle is highest with the largest pack: when it is below the limit there, it is at
+    // every capacity of the range, and no choice of the continuous variables is feasible.
+    // (Only in a search, with a cutoff: the result is infeasible, as the full search's would
+    // be, and says so with the same constraint. First: a few propeller evaluations, where the
+    // bounds below take up to 24 runs.)
+    // PropellerPoint's check alone, per hover segment, at the largest capacity's mass.
+    const BatteryPack pack(PackAt(m_.battery.capacity_ah->hi));
+    const double mass_kg = fixed_mass_kg_ + pack.mass_kg();
+    const double v_full = pack.OcvV(1.0);
+    for (const Segment& s : m_.segments) {
+      if (s.type != SegmentType::kHover) continue;
+      const GroupDrive& gd = groups_[s.group];
+      const RotorLoad load = SegmentRotorLoad(m_, s, mass_kg, 0.0);
+      double omega = 0;
+      PropEvaluation ev;
+      const double w_motor_max = std::max(gd.drive.NoLoadSpeed(v_full, 1.0), 1.0);
+      if (!PropSpeedForThrust(*gd.prop, load.thrust_per_rotor_n, m_.rho_kg_m3, load.axial_airspeed_m_s,
+                              4.0 * w_motor_max, &omega, &ev)) {
+        continue;  // no hover point: the check says nothing here
+      }
+      AdjustPropEvaluation(gd.prop_adj, gd.parts.prop->diameter_m, &ev);
+      const double throttle = gd.drive.Inverse(v_full, ev.torque_nm, omega).throttle;
+      if (throttle < m_.constraints.min_hover_throttle) {
+        MissionResult r;
+        r.capacity_ah = pack.capacity_ah();
+        r.total_mass_kg = mass_kg;
+        r.propulsion_mass_kg = mass_kg - m_.vehicle.mass_kg;
+        r.violations.push_back(Violation{"min_hover_throttle", s.name, throttle, m_.constraints.min_hover_throttle, "", true});
+        r.min_slack = (throttle - m_.constraints.min_hover_throttle) / m_.constraints.min_hover_throttle;
+        r.feasible = false;
+        r.score = kInf;
+        *out = std::move(r);
+        return true;
+      }
+    }
+  }
   if (std::isfinite(cutoff_score) && m_.objective.type == ObjectiveType::kMaxEndurance) {
     // One simulation decides most candidates of a search: infeasible before any stretch.
     // With a capacity range it is run at the smallest capacity (the lightest vehicle), and
@@ -707,9 +927,9 @@ MissionResult MissionEvaluator::Solve(double cutoff_score, bool explain) const {
     if (!airspeed_free) {
       MissionResult r0 = Run(v0, 0.0, true);
       if (!r0.feasible) {
-        if (!capacity_free) return r0;
+        if (!capacity_free) { *out = std::move(r0); return true; }
         for (const Violation& v : r0.violations) {
-          if (RisesWithMass(v.constraint)) return r0;
+          if (RisesWithMass(v.constraint)) { *out = r0; return true; }
         }
       }
     }
@@ -718,22 +938,30 @@ MissionResult MissionEvaluator::Solve(double cutoff_score, bool explain) const {
       MissionResult r;
       r.bounded_out = true;
       r.score = -ub;
-      return r;
+      *out = std::move(r);
+      return true;
     }
   }
   if (std::isfinite(cutoff_score) && m_.objective.type == ObjectiveType::kMinEnergy &&
-      !capacity_free && std::all_of(groups_.begin(), groups_.end(), [](const GroupDrive& g) { return g.drive.esc().c0 == 0.0; })) {
+      std::all_of(groups_.begin(), groups_.end(), [&](const GroupDrive& g) {
+        return g.drive.esc().c0 == 0.0 && (!capacity_free || g.drive.esc().rsupply_ohm == 0.0);
+      })) {
     // min_energy with free cruise airspeeds: every other segment's energy does not depend on
     // them (terminal power N*PDC + P_avionics, and PDC = C1*U*I/kv does not depend on the
     // voltage when C0 = 0, eqs 57, 59), and a wing-borne cruise needs at least the propulsive
     // work T*d = W/(L/D)*d (electrical >= shaft >= thrust power) plus the avionics.
+    // With a capacity range the run is at the smallest capacity: a larger pack only adds mass,
+    // so every segment's thrust, speed, torque and so its PDC (no supply resistance: the
+    // terminal power does not depend on the pack's voltage) rise with it (M3 of search.cc), and
+    // W/(L/D) too: the same sum bounds the energy at every capacity of the range.
     ContinuousVars v0;
     v0.airspeed_m_s.assign(m_.segments.size(), 0.0);
     if (m_.battery.capacity_ah) v0.capacity_ah = m_.battery.capacity_ah->lo;
     bool airspeed_free = false;
     for (const Segment& s : m_.segments) airspeed_free |= s.type == SegmentType::kCruise && s.airspeed_m_s.free();
-    const MissionResult r0 = Run(v0, 0.0, !airspeed_free);
-    if (!airspeed_free && !r0.feasible) return r0;  // nothing free: this is the answer
+    const bool nothing_free = !airspeed_free && !capacity_free;
+    const MissionResult r0 = Run(v0, 0.0, nothing_free);
+    if (nothing_free && !r0.feasible) { *out = std::move(r0); return true; }  // nothing free: this is the answer
     if (r0.segments.size() == m_.segments.size()) {
       double e_lb = 0;
       for (std::size_t i = 0; i < m_.segments.size(); ++i) {
@@ -742,7 +970,23 @@ MissionResult MissionEvaluator::Solve(double cutoff_score, bool explain) const {
           const double d = s.distance_m ? *s.distance_m : *s.duration_s * s.airspeed_m_s.lo;
           const double t_min = s.distance_m ? d / s.airspeed_m_s.hi : *s.duration_s;
           const double thrust = s.lift_to_drag > 0 ? r0.total_mass_kg * kStandardGravity / s.lift_to_drag : 0.0;
-          e_lb += thrust * d + m_.vehicle.avionics_power_w * t_min;
+          double e_prop = thrust * d;
+          const GroupDrive& gd = groups_[s.group];
+          const MotorParams& mp = gd.drive.motor();
+          const EscParams& ep = gd.drive.esc();
+          if (s.lift_to_drag > 0 && mp.kt_nm_per_a <= MaxKtPerKe(mp.type) * mp.ke_v_s_per_rad && mp.rm_ohm >= 0 &&
+              mp.io_a >= 0 && mp.io1_a_s_per_rad >= 0 && ep.c0 >= 0 && ep.c1 + ep.c0 >= IdealIdcPerIrmsPerThrottle(mp.type)) {
+            // Tighter, as FreeCruisePowerLowerBoundW of search.cc: a feasible point's prop power
+            // is at least P_ideal(T, V)/max_figure_of_merit (prop_figure_of_merit; V the inflow
+            // with forward-flight tables, else 0) and PDC >= Pmech (no stage creates energy);
+            // by distance P_ideal/V falls with V (least at hi), by duration P_ideal rises (lo).
+            const bool axial = gd.prop->data_kind() == PropDataKind::kTables && !gd.parts.prop->j_tables.empty();
+            const double v = axial ? (s.distance_m ? s.airspeed_m_s.hi : s.airspeed_m_s.lo) : 0.0;
+            const RotorLoad ld = SegmentRotorLoad(m_, s, r0.total_mass_kg, s.airspeed_m_s.hi);
+            const double p_ideal = IdealRotorPowerW(ld.thrust_per_rotor_n, gd.parts.prop->diameter_m, m_.rho_kg_m3, v);
+            e_prop = std::max(e_prop, ld.rotors * p_ideal / m_.constraints.max_figure_of_merit * t_min);
+          }
+          e_lb += e_prop + m_.vehicle.avionics_power_w * t_min;
         } else {
           e_lb += r0.segments[i].energy_j;
         }
@@ -751,10 +995,27 @@ MissionResult MissionEvaluator::Solve(double cutoff_score, bool explain) const {
         MissionResult r;
         r.bounded_out = true;
         r.score = e_lb / 3600.0;
-        return r;
+        *out = std::move(r);
+        return true;
+      }
+      if (nothing_free) {
+        // Nothing to optimise: r0 (feasible, so the screening never stopped it) is the very
+        // simulation the code below would run again (WithEndurance = Run for min_energy).
+        MissionResult r = r0;
+        if (explain) {
+          Summarize(&r);
+          AddWarnings(&r);
+        }
+        *out = std::move(r);
+        return true;
       }
     }
   }
+  return false;
+}
+
+MissionResult MissionEvaluator::SolveContinuous(double cutoff_score, bool explain) const {
+  if (MissionResult early; EarlyExit(cutoff_score, explain, &early)) return early;
   // Free variables, each scaled to [0, 1].
   struct Var { int segment; double lo, hi; };  // segment -1: capacity
   std::vector<Var> free;
@@ -793,7 +1054,32 @@ MissionResult MissionEvaluator::Solve(double cutoff_score, bool explain) const {
     // 1-D search, which also finds an optimum that sits on a constraint boundary (a heavier
     // pack breaking a current or thrust-to-weight limit), where COBYLA tends to end just on the
     // infeasible side and fall back to its coarse start.
-    MissionResult r = SolveOneVariable([&](double x) { return WithEndurance(vars_at(&x)); });
+    // With a cutoff (max_endurance, the capacity free): after the grid, the bound of
+    // EnduranceUpperBound over the golden section's bracket decides whether it can still
+    // produce a score below the cutoff.
+    const bool bound_bracket = std::isfinite(cutoff_score) && m_.objective.type == ObjectiveType::kMaxEndurance &&
+                               free[0].segment < 0;
+    // min_energy with the capacity free and a voltage-independent terminal power (C0 = 0, no
+    // supply resistance, as in the check above): every segment's energy rises with the
+    // capacity (M3), so the energy at the bracket's low end bounds every point of it.
+    const bool energy_bracket = std::isfinite(cutoff_score) && m_.objective.type == ObjectiveType::kMinEnergy &&
+                                free[0].segment < 0 &&
+                                std::all_of(groups_.begin(), groups_.end(), [](const GroupDrive& g) {
+                                  return g.drive.esc().c0 == 0.0 && g.drive.esc().rsupply_ohm == 0.0;
+                                });
+    auto bounded = [&](const MissionResult& grid_best, double a, double b) {
+      if (grid_best.feasible && grid_best.score < cutoff_score) return false;
+      if (energy_bracket) {
+        const MissionResult ra = Run(vars_at(&a), 0.0);
+        return ra.segments.size() == m_.segments.size() && ra.energy_wh >= cutoff_score;
+      }
+      if (!bound_bracket) return false;
+      const double ub = EnduranceUpperBound(-cutoff_score, free[0].lo + a * (free[0].hi - free[0].lo),
+                                            free[0].lo + b * (free[0].hi - free[0].lo));
+      return -ub >= cutoff_score;
+    };
+    MissionResult r = SolveOneVariable([&](double x) { return WithEndurance(vars_at(&x)); }, bounded);
+    if (r.bounded_out) return r;
     if (!explain) return r;
     std::ostringstream msg;
     msg << "bracketed 1-D search (9-point grid, golden section to 1e-6 of the range); "
@@ -885,6 +1171,7 @@ MissionResult MissionEvaluator::Solve(double cutoff_score, bool explain) const {
 
 MissionResult MissionEvaluator::Simulate(const ContinuousVars& vars) const {
   MissionResult r = WithEndurance(vars);
+  FillPropNotes(&r);
   Summarize(&r);
   AddWarnings(&r);
   return r;
@@ -1076,6 +1363,7 @@ void MissionEvaluator::Summarize(MissionResult* r) const {
 }
 
 void MissionEvaluator::AddWarnings(MissionResult* r) const {
+  FillPropNotes(r);
   r->assumed = assumed_;
   for (const Violation& v : r->violations) {
     if (v.constraint == "max_throttle") {

@@ -35,6 +35,11 @@
 
 namespace dynosize {
 
+struct RotorLoad;  // mission/flight.h
+namespace eval_internal {
+class Tracker;  // slacks and violations of one Run (mission_eval.cc)
+}  // namespace eval_internal
+
 // The parts of one propulsion group.
 struct GroupParts {
   const MotorEntry* motor = nullptr;
@@ -96,6 +101,10 @@ struct SegmentResult {
   // Steady winding temperature at the segment's hottest point (MissionEvaluator::WindingTempC).
   double winding_temp_c = 0;
   std::string prop_note;         // propeller data held at an edge, if any
+  // The evaluation behind prop_note, kept as numbers while the solvers run (no text on the hot
+  // path); Solve and Simulate write prop_note from it (FillPropNotes).
+  bool prop_edge = false;
+  PropEvaluation prop_edge_eval;
   std::string shaft_solver;      // shaft segments: the solver's brief report
 };
 
@@ -180,6 +189,8 @@ class MissionEvaluator {
   // reads for the search's screening evaluations); the numbers are the same.
   MissionResult Solve(double cutoff_score = std::numeric_limits<double>::infinity(),
                       bool explain = true) const;
+  // Writes each segment's prop_note from its prop_edge_eval (Solve and Simulate do).
+  static void FillPropNotes(MissionResult* r);
 
   // Steady winding temperature of the motor at an operating point, C: the winding heats by
   // its copper loss kp*R(T)*I^2 (eqs 41, 48 with R(T) = Rm*(1 + alpha_Cu*(T - 25 C)), alpha_Cu
@@ -199,11 +210,26 @@ class MissionEvaluator {
   // screen: stop at the end of the first segment that breaks a constraint (the result then
   // only says "infeasible"; used by Solve(cutoff) to discard search candidates quickly).
   MissionResult Run(const ContinuousVars& vars, double stretch_s, bool screen = false) const;
+  // Run's stages (mission_eval.cc).
+  struct RunState;
+  struct RunPrefix;
+  RunPrefix RunUpTo(const ContinuousVars& vars, std::size_t end, bool screen) const;
+  void RunSegments(const ContinuousVars& vars, double stretch_s, bool screen, std::size_t end, RunPrefix* p) const;
+  MissionResult RunFrom(RunPrefix p, const ContinuousVars& vars, double stretch_s, bool screen) const;
+  void CheckParts(const RunState& st, eval_internal::Tracker* track) const;
+  bool SegmentShaftPoint(std::size_t si, const RunState& st, const RotorLoad& load, eval_internal::Tracker* track,
+                         SegmentResult* seg, double* omega, double* torque) const;
+  bool IntegrateSegment(std::size_t si, bool stretched, double omega, double torque, RunState* st,
+                        eval_internal::Tracker* track, SegmentResult* seg) const;
+  void FinishRun(const RunState& st, eval_internal::Tracker* track, MissionResult* out) const;
   MissionResult WithEndurance(ContinuousVars vars) const;
+  MissionResult SolveContinuous(double cutoff_score, bool explain) const;
+  bool EarlyExit(double cutoff_score, bool explain, MissionResult* out) const;
   double StretchStartCurrent(const MissionResult& r) const;
   // An upper bound of the total mission time over the capacity range (max_endurance), tightened
   // until it falls below target_s or a budget of simulations is spent.
-  double EnduranceUpperBound(double target_s) const;
+  // [from_ah, to_ah] (to_ah > 0): only that part of the capacity range.
+  double EnduranceUpperBound(double target_s, double from_ah = 0.0, double to_ah = 0.0) const;
   // The assumed catalog values and the warnings a designer expects (hover throttle over the limit, currents near a rating,
   // ESC saturation, a motor running far below its efficient load, assumed parameters).
   void AddWarnings(MissionResult* r) const;

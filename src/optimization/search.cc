@@ -68,6 +68,10 @@ namespace dynosize {
 //    power bound; the fixed segments add at most their longest durations. Pairs are evaluated best bound
 //    first and the search stops when the next bound cannot beat the N-th best found (every
 //    later pair has a worse bound). max_efficiency has no such bound (it is not pruned by R4).
+//    A fixed-airspeed cruise stretched gets the same budget with its power bound from
+//    momentum theory (N*P_ideal/max_figure_of_merit + P_avionics, ScoreLowerBound).
+// R8 (capacity pieces): see CapacityPiecesBoundAt; checked per pair and ESC class in stage 5
+//    before any simulation.
 // R5 (ESC dominance): within one pair, an ESC with the same C1, C0, tr_sat, sat_slope as an
 //    ESC already evaluated but no lighter, no lower in resistance and no higher in current
 //    rating scores no better (M2, M3) and is infeasible if the other is; so when the other is
@@ -84,7 +88,9 @@ namespace dynosize {
 //    speak of the free group's segments only, and in R4 a fixed group's segment draws at least
 //    its own drive's PDC at the lightest vehicle mass the option allows (its thrust rises with
 //    the mass, M3; speed and torque from below by bisection on the thrust, M1; PDC at the
-//    smaller of the full-charge and cut-off voltage, eq 59) plus P_avionics. The groups are
+//    smaller of the full-charge and cut-off voltage, eq 59) plus P_avionics, tabulated on a
+//    mass grid and read at or below each pair's own lightest mass; a wing-borne cruise with a
+//    free airspeed draws at least momentum theory's power (FreeCruisePowerLowerBoundW). The groups are
 //    coupled only through the mass and the shared pack's energy, so each bound stays a bound.
 //    Thrust-to-weight and winding temperature: more mass or ESC resistance only lowers the
 //    first and raises the second, so R5 (the virtual ESC is evaluated without the
@@ -239,6 +245,12 @@ void BuildPropGrids(const Mission& m, const Catalog& cat, std::vector<PropGrid>*
     }
     g.torque_suffix_min[kGrid - 1] = torque[kGrid - 1];
     for (int i = kGrid - 2; i >= 0; --i) g.torque_suffix_min[i] = std::min(torque[i], g.torque_suffix_min[i + 1]);
+    const double fom_limit = 1.02 * m.constraints.max_figure_of_merit;  // R6's allowance (PropRule)
+    int next_ok = kGrid;
+    for (int i = kGrid - 1; i >= 0; --i) {
+      if (g.fom[i] <= fom_limit) next_ok = i;
+      g.fom_ok_next[i] = next_ok;
+    }
   }
 }
 
@@ -276,11 +288,50 @@ MissionFacts FactsOf(const Mission& m, int free_group) {
   return f;
 }
 
+// The rotor loads of one pair's lightest mass (SegmentRotorLoad), computed once per pair
+// instead of once per ESC class: per segment at its lowest and highest airspeed (the same
+// numbers, so the bounds do not change).
+class PairLoads {
+ public:
+  explicit PairLoads(const Mission& m) : m_(m), lo_(m.segments.size()), hi_(m.segments.size()) {}
+  void Reset(double mass_kg) {
+    mass_kg_ = mass_kg;
+    for (auto& x : lo_) x.first = false;
+    for (auto& x : hi_) x.first = false;
+    for (auto& x : energy_) x.first = false;
+  }
+  // A per-segment number that depends only on the pair (its mass and propeller), computed by
+  // f() once per pair (ScoreLowerBound's momentum energy), not once per ESC class.
+  template <typename F>
+  double PerSegment(std::size_t si, const F& f) {
+    if (energy_.size() != lo_.size()) energy_.assign(lo_.size(), {false, 0.0});
+    std::pair<bool, double>& x = energy_[si];
+    if (!x.first) x = {true, f()};
+    return x.second;
+  }
+  // The segment's load at airspeed v_m_s, which must be the same value per (segment, high) for
+  // one mass (the callers pass airspeed_m_s.lo or .hi, or 0).
+  double mass_kg() const { return mass_kg_; }
+  const RotorLoad& At(std::size_t si, bool high, double v_m_s) {
+    std::pair<bool, RotorLoad>& x = (high ? hi_ : lo_)[si];
+    if (!x.first) x = {true, SegmentRotorLoad(m_, m_.segments[si], mass_kg_, v_m_s)};
+    return x.second;
+  }
+
+ private:
+  const Mission& m_;
+  double mass_kg_ = 0;
+  std::vector<std::pair<bool, RotorLoad>> lo_, hi_;
+  std::vector<std::pair<bool, double>> energy_;
+};
+
 // R4: a lower bound of the score of a (motor, propeller, option) pair with an ESC of class
 // `esc_class`, given the hover bound's per-rotor electrical power pdc_lb at the lightest mass.
+// capacity_hi_ah: the largest capacity the bound covers (0: the option's largest).
+// loads: PairLoads at mass_lb.
 double ScoreLowerBound(const SearchContext& ctx, const MissionFacts& f, const MotorParams& mp,
                        const EscClass& esc_class, const PropEntry& prop, const PropModel& model,
-                       std::size_t option, double mass_lb, double pdc_lb) {
+                       std::size_t option, PairLoads* loads, double pdc_lb, double capacity_hi_ah = 0.0) {
   const BatteryOption& bo = ctx.options[option];
   const Mission& m = *ctx.mission;
   if (f.hover.empty()) return -kInf;
@@ -290,17 +341,18 @@ double ScoreLowerBound(const SearchContext& ctx, const MissionFacts& f, const Mo
   // fixed-airspeed cruise segments of a propeller with static-only data (the evaluator reads
   // them at J = 0 in any inflow, so speed and torque are at least omega_lb and Q_lb there too,
   // M1, M2). Any other segment draws at least P_avionics.
-  const double t_lb = SegmentRotorLoad(m, m.segments[f.hover[0]], mass_lb, 0.0).thrust_per_rotor_n;
+  const double t_lb = loads->At(static_cast<std::size_t>(f.hover[0]), false, 0.0).thrust_per_rotor_n;
   const bool static_only = model.data_kind() != PropDataKind::kTables || prop.j_tables.empty();
   auto p_lb_of = [&](std::size_t si) {
     const Segment& sg = m.segments[si];
     if (sg.group != f.free_group) {  // G1: the fixed group's own bound at the lightest mass
-      return ctx.fixed_power_lb_w.empty() ? m.vehicle.avionics_power_w : ctx.fixed_power_lb_w[option][si];
+      return ctx.fixed_power_lb_w.empty() ? m.vehicle.avionics_power_w
+                                          : FixedPowerLowerBoundW(ctx, option, si, loads->mass_kg());
     }
     const bool fixed_v = sg.type != SegmentType::kCruise || !sg.airspeed_m_s.free();
     if (sg.type == SegmentType::kHover ||
         (static_only && fixed_v && (sg.type == SegmentType::kClimb || sg.type == SegmentType::kCruise))) {
-      const RotorLoad ld = SegmentRotorLoad(m, sg, mass_lb, sg.type == SegmentType::kCruise ? sg.airspeed_m_s.lo : 0.0);
+      const RotorLoad& ld = loads->At(si, false, sg.type == SegmentType::kCruise ? sg.airspeed_m_s.lo : 0.0);
       if (ld.thrust_per_rotor_n >= t_lb) return ld.rotors * pdc_lb + m.vehicle.avionics_power_w;
     }
     return m.vehicle.avionics_power_w;
@@ -327,7 +379,7 @@ double ScoreLowerBound(const SearchContext& ctx, const MissionFacts& f, const Mo
       if (lossy && sg.group == f.free_group && sg.type != SegmentType::kShaft && fixed_v &&
           (sg.type != SegmentType::kCruise || sg.lift_to_drag > 0)) {
         const double v = sg.type == SegmentType::kCruise ? sg.airspeed_m_s.hi : 0.0;
-        const RotorLoad ld = SegmentRotorLoad(m, sg, mass_lb, v);
+        const RotorLoad& ld = loads->At(si, true, v);
         const double p_ideal = IdealRotorPowerW(ld.thrust_per_rotor_n, prop.diameter_m, m.rho_kg_m3,
                                                 axial_data ? ld.axial_airspeed_m_s : 0.0);
         e_seg = std::max(e_seg, (ld.rotors * p_ideal / m.constraints.max_figure_of_merit +
@@ -337,15 +389,62 @@ double ScoreLowerBound(const SearchContext& ctx, const MissionFacts& f, const Mo
     }
     return e / 3600.0;
   }
+  // max_endurance: the other segments' energy, each at least its power bound times its
+  // shortest duration and, for the free group's propeller segments at a fixed airspeed when no
+  // stage can create energy, momentum theory's N*P_ideal(T, V)/max_figure_of_merit plus the
+  // avionics over its duration (the evaluator's prop_figure_of_merit; V the axial inflow with
+  // forward-flight tables, else 0, as PropellerPoint judges it; P_ideal rises with the mass).
+  const bool lossy_drive = mp.kt_nm_per_a <= MaxKtPerKe(mp.type) * mp.ke_v_s_per_rad && mp.rm_ohm >= 0 &&
+                           mp.io_a >= 0 && mp.io1_a_s_per_rad >= 0 && esc_class.c0 >= 0 &&
+                           esc_class.c1 + esc_class.c0 >= IdealIdcPerIrmsPerThrottle(mp.type);
+  const bool table_data = model.data_kind() == PropDataKind::kTables && !prop.j_tables.empty();
+  auto e_other_of = [&](std::size_t stretch) {
+    double e_other = 0;
+    for (std::size_t si = 0; si < m.segments.size(); ++si) {
+      if (si == stretch) continue;
+      const Segment& sg = m.segments[si];
+      double e_seg = p_lb_of(si) * t_min_of(sg);
+      if (lossy_drive && sg.group == f.free_group && sg.type != SegmentType::kShaft &&
+          !(sg.type == SegmentType::kCruise && sg.airspeed_m_s.free())) {
+        e_seg = std::max(e_seg, loads->PerSegment(si, [&]() {
+          const double v = sg.type == SegmentType::kCruise ? sg.airspeed_m_s.lo : 0.0;
+          const RotorLoad& ld = loads->At(si, false, v);
+          const double p_ideal = IdealRotorPowerW(ld.thrust_per_rotor_n, prop.diameter_m, m.rho_kg_m3,
+                                                  table_data ? ld.axial_airspeed_m_s : 0.0);
+          return (ld.rotors * p_ideal / m.constraints.max_figure_of_merit + m.vehicle.avionics_power_w) *
+                 SegmentDurationS(sg, v);
+        }));
+      }
+      e_other += e_seg;
+    }
+    return e_other;
+  };
   if (f.stretch_is_hover) {
     // Terminal energy = integral of V*I dt <= integral of OCV*I dt = Q*integral of OCV(s) ds
     // over [reserve, 1] (coulomb counting): the energy budget.
-    double e_other = 0;
-    for (std::size_t si = 0; si < m.segments.size(); ++si) {
-      if (static_cast<int>(si) != m.objective.segment_index) e_other += p_lb_of(si) * t_min_of(m.segments[si]);
-    }
+    const double e_other = e_other_of(static_cast<std::size_t>(m.objective.segment_index));
     const double p_stretch = p_lb_of(static_cast<std::size_t>(m.objective.segment_index));
-    const double e_max = bo.ocv_integral_v * AhToCoulomb(bo.capacity_hi_ah);
+    const double e_max = bo.ocv_integral_v * AhToCoulomb(capacity_hi_ah > 0 ? capacity_hi_ah : bo.capacity_hi_ah);
+    return p_stretch > 0 ? -(f.t_fixed_max + std::max(0.0, e_max - e_other) / p_stretch) : -kInf;
+  }
+  const std::size_t ist = static_cast<std::size_t>(std::max(0, m.objective.segment_index));
+  const Segment& st = m.segments[ist];
+  if (m.objective.type == ObjectiveType::kMaxEndurance && st.group == f.free_group &&
+      st.type == SegmentType::kCruise && !st.airspeed_m_s.free()) {
+    // The same energy budget with a fixed-airspeed cruise stretched: its thrust is constant, so
+    // at every instant its power is at least p_lb_of (static-only data, above) and, when no
+    // stage can create energy, N*P_ideal(T, V)/max_figure_of_merit + P_avionics (the
+    // evaluator's prop_figure_of_merit; V the axial inflow with forward-flight tables, else 0,
+    // as PropellerPoint judges it), at the lightest mass (M3).
+    double p_stretch = p_lb_of(ist);
+    if (lossy_drive) {
+      const RotorLoad& ld = loads->At(ist, false, st.airspeed_m_s.lo);
+      const double p_ideal = IdealRotorPowerW(ld.thrust_per_rotor_n, prop.diameter_m, m.rho_kg_m3,
+                                              table_data ? ld.axial_airspeed_m_s : 0.0);
+      p_stretch = std::max(p_stretch, ld.rotors * p_ideal / m.constraints.max_figure_of_merit + m.vehicle.avionics_power_w);
+    }
+    const double e_other = e_other_of(ist);
+    const double e_max = bo.ocv_integral_v * AhToCoulomb(capacity_hi_ah > 0 ? capacity_hi_ah : bo.capacity_hi_ah);
     return p_stretch > 0 ? -(f.t_fixed_max + std::max(0.0, e_max - e_other) / p_stretch) : -kInf;
   }
   return -kInf;
@@ -354,7 +453,7 @@ double ScoreLowerBound(const SearchContext& ctx, const MissionFacts& f, const Mo
 // R0, R2, R6, R7 for one (motor, propeller, option) pair: the rule that removes it, or null.
 // Sets omega_lb, q_lb (R2) for the hover bound.
 const char* PropRule(const SearchContext& ctx, const MissionFacts& f, const MotorEntry& mo,
-                     const std::vector<Drive>& ideal, std::size_t pi, std::size_t o, double mass_lb,
+                     const std::vector<Drive>& ideal, std::size_t pi, std::size_t o, PairLoads* loads,
                      double* omega_lb, double* q_lb) {
   const Mission& m = *ctx.mission;
   const MissionConstraints& k = m.constraints;
@@ -369,7 +468,7 @@ const char* PropRule(const SearchContext& ctx, const MissionFacts& f, const Moto
   *omega_lb = 0;
   *q_lb = 0;
   if (!f.hover.empty() && g.monotone) {
-    const RotorLoad load = SegmentRotorLoad(m, m.segments[f.hover[0]], mass_lb, 0.0);
+    const RotorLoad& load = loads->At(static_cast<std::size_t>(f.hover[0]), false, 0.0);
     const double* it = std::upper_bound(g.thrust, g.thrust + kGrid, load.thrust_per_rotor_n);
     const int idx = static_cast<int>(it - g.thrust) - 1;  // last grid thrust <= T_lb
     if (idx >= 0) {
@@ -387,9 +486,8 @@ const char* PropRule(const SearchContext& ctx, const MissionFacts& f, const Moto
     const RotorLoad load_ub = SegmentRotorLoad(m, m.segments[f.hover[0]], mass_ub, 0.0);
     const double* it_ub = std::lower_bound(g.thrust, g.thrust + kGrid, load_ub.thrust_per_rotor_n);
     const int hi_idx = std::min(static_cast<int>(it_ub - g.thrust), kGrid - 1);
-    double fom_min = kInf;
-    for (int i = lb_idx; i <= hi_idx; ++i) fom_min = std::min(fom_min, g.fom[i]);
-    if (it_ub != g.thrust + kGrid && fom_min > 1.02 * k.max_figure_of_merit) return "prop_figure_of_merit";
+    // Every grid point of [lb_idx, hi_idx] above 1.02 x the limit (fom_ok_next, BuildPropGrids).
+    if (it_ub != g.thrust + kGrid && (lb_idx > hi_idx || g.fom_ok_next[lb_idx] > hi_idx)) return "prop_figure_of_merit";
   }
   if (ctx.models[pi]->data_kind() != PropDataKind::kTables || prop.j_tables.empty()) {
     // R7: static-only data. The shaft cannot turn faster than the motor's no-load speed at full
@@ -412,6 +510,53 @@ const char* PropRule(const SearchContext& ctx, const MissionFacts& f, const Moto
   }
   if (prop.max_rpm && RadPerSecToRpm(*omega_lb) > *prop.max_rpm) return "prop_max_rpm";  // R2
   return nullptr;
+}
+
+// R8 (capacity pieces, max_endurance with a hover stretch and a capacity range): R4 takes the
+//    energy of the largest pack with the power at the lightest, a loose bound when the capacity
+//    spans a wide range. Over a piece [C_a, C_b] of the range the vehicle is at least as heavy
+//    as with C_a (the battery's mass rises with its capacity, PackAt), so R2-R4 at that mass
+//    bound every capacity of the piece from below, with the charge of C_b:
+//      score(C) >= R4 bound at mass_lb(C_a) with Q(C_b)   for C in [C_a, C_b],
+//    and when R3 (throttle or motor current at the full-charge voltage with no ESC resistance)
+//    fails at mass_lb(C_a), it fails at every larger capacity (M1-M3): those pieces hold no
+//    feasible point. The pair's bound is the smallest over the pieces that may be feasible
+//    (kInf when none is). Each piece bound is at least R4's (more mass: no less power; less
+//    charge), so it only tightens R4. The battery mass increments are shrunk by 1e-9 against
+//    rounding (a lighter mass keeps the bound a bound).
+double CapacityPiecesBoundAt(const SearchContext& ctx, const MissionFacts& f, const MotorParams& mp,
+                             const Drive& ideal, const EscClass& esc_class, std::size_t pi, std::size_t o,
+                           double mass_lb) {
+  constexpr int kPieces = 8;
+  const Mission& m = *ctx.mission;
+  const MissionConstraints& k = m.constraints;
+  const BatteryOption& bo = ctx.options[o];
+  const PropGrid& g = ctx.grids[pi];
+  if (!f.stretch_is_hover || f.hover.empty() || !g.monotone || !(bo.capacity_hi_ah > bo.capacity_lo_ah)) return -kInf;
+  const double t_max = k.allow_esc_saturation ? f.tr_limit : std::min(f.tr_limit, esc_class.tr_sat);
+  const double margin = 1.0 - k.current_margin;
+  double best = kInf;
+  PairLoads loads(m);
+  for (int j = 0; j < kPieces; ++j) {
+    const double c_b = bo.capacity_lo_ah + (bo.capacity_hi_ah - bo.capacity_lo_ah) * (j + 1) / kPieces;
+    const double mass_j = mass_lb + (1.0 - 1e-9) * (bo.mass_hi_kg - bo.mass_lo_kg) * j / kPieces;
+    const RotorLoad load = SegmentRotorLoad(m, m.segments[f.hover[0]], mass_j, 0.0);
+    const double* it = std::upper_bound(g.thrust, g.thrust + kGrid, load.thrust_per_rotor_n);
+    const int idx = static_cast<int>(it - g.thrust) - 1;  // last grid thrust <= T_lb
+    const double omega_lb = idx >= 0 ? g.omega[idx] : 0.0;
+    const double q_lb = idx >= 0 ? g.torque_suffix_min[idx] : 0.0;
+    const OperatingPoint hi_v = ideal.Inverse(bo.v_full, q_lb, omega_lb);
+    if (hi_v.throttle > t_max || hi_v.irms_a > mp.max_current_a * margin ||
+        (k.enforce_motor_power && hi_v.pac_w > mp.max_power_w)) {
+      break;  // R3 at this mass: this piece and every heavier one are infeasible
+    }
+    const OperatingPoint lo_v = ideal.Inverse(bo.v_cut, q_lb, omega_lb);
+    const double pdc_lb = std::max(0.0, std::min(hi_v.pdc_w, lo_v.pdc_w));
+    loads.Reset(mass_j);
+    best = std::min(best, ScoreLowerBound(ctx, f, mp, esc_class, ctx.catalog->props()[pi], *ctx.models[pi], o,
+                                          &loads, pdc_lb, c_b));
+  }
+  return best;
 }
 
 // Stage 4 for one motor: its surviving pairs with their bounds.
@@ -440,6 +585,7 @@ void MotorCandidates(const SearchContext& ctx, const MissionFacts& f, std::size_
     e.c1 = c.c1; e.c0 = c.c0; e.tr_sat = c.tr_sat; e.sat_slope = c.sat_slope; e.resc_ohm = 0.0;
     ideal.emplace_back(mp, e);
   }
+  PairLoads loads(m);
   for (std::size_t o = 0; o < ctx.options.size(); ++o) {
     const BatteryOption& bo = ctx.options[o];
     if (bo.v_full > motor_max_v) {  // R1 for the motor's cells_max (credibility.h)
@@ -450,7 +596,8 @@ void MotorCandidates(const SearchContext& ctx, const MissionFacts& f, std::size_
       const double mass_lb = m.vehicle.mass_kg + bo.mass_lo_kg + ctx.fixed_groups_mass_kg +
                              ctx.free_rotors * (*mo.mass_kg + ctx.grids[pi].mass_kg + ctx.escs.min_mass_kg[o]);
       double omega_lb = 0, q_lb = 0;
-      if (const char* rule = PropRule(ctx, f, mo, ideal, pi, o, mass_lb, &omega_lb, &q_lb)) {
+      loads.Reset(mass_lb);
+      if (const char* rule = PropRule(ctx, f, mo, ideal, pi, o, &loads, &omega_lb, &q_lb)) {
         pruned->Add(rule, per_pair);
         continue;
       }
@@ -467,7 +614,7 @@ void MotorCandidates(const SearchContext& ctx, const MissionFacts& f, std::size_
         if (k.enforce_motor_power && hi_v.pac_w > mp.max_power_w) { why = "motor_power"; continue; }
         const OperatingPoint lo_v = ideal[ci].Inverse(bo.v_cut, q_lb, omega_lb);
         const double pdc_lb = std::max(0.0, std::min(hi_v.pdc_w, lo_v.pdc_w));
-        const double bound = ScoreLowerBound(ctx, f, mp, classes[ci], props[pi], *ctx.models[pi], o, mass_lb, pdc_lb);
+        const double bound = ScoreLowerBound(ctx, f, mp, classes[ci], props[pi], *ctx.models[pi], o, &loads, pdc_lb);
         any = true;
         best_bound = std::min(best_bound, bound);
         irms_lb = std::min(irms_lb, hi_v.irms_a);
@@ -482,6 +629,21 @@ void MotorCandidates(const SearchContext& ctx, const MissionFacts& f, std::size_
 }
 
 }  // namespace
+
+double CapacityPiecesBound(const SearchContext& ctx, int motor, int prop, int option, int esc_class,
+                           double esc_mass_kg) {
+  const Mission& m = *ctx.mission;
+  const MotorEntry& mo = ctx.catalog->motors()[static_cast<std::size_t>(motor)];
+  const BatteryOption& bo = ctx.options[static_cast<std::size_t>(option)];
+  const double mass_lb = m.vehicle.mass_kg + bo.mass_lo_kg + ctx.fixed_groups_mass_kg +
+                         ctx.free_rotors * (*mo.mass_kg + ctx.grids[static_cast<std::size_t>(prop)].mass_kg + esc_mass_kg);
+  const MotorParams mp = ScenarioMotorParams(mo, m, nullptr, nullptr);  // as MotorCandidates
+  const EscClass& cls = ctx.escs.classes[static_cast<std::size_t>(esc_class)];
+  EscParams ideal;
+  ideal.c1 = cls.c1; ideal.c0 = cls.c0; ideal.tr_sat = cls.tr_sat; ideal.sat_slope = cls.sat_slope; ideal.resc_ohm = 0.0;
+  return CapacityPiecesBoundAt(ctx, FactsOf(m, ctx.free_group), mp, Drive(mp, ideal), cls,
+                               static_cast<std::size_t>(prop), static_cast<std::size_t>(option), mass_lb);
+}
 
 void ResolveGroups(SearchContext* ctx) {
   const Mission& m = *ctx->mission;
@@ -520,12 +682,44 @@ void ResolveGroups(SearchContext* ctx) {
   ctx->free_rotors = GroupRotors(m, ctx->free_group);
 }
 
+namespace {
+
+// A wing-borne cruise (lift_to_drag > 0) of a fixed group with a free airspeed in [lo, hi]:
+// a power P_lb with P_lb * SegmentDurationS(hi) <= the segment's energy at every airspeed of
+// the range. The thrust W/(L/D) does not depend on the airspeed (flight.h); a feasible point
+// has prop power >= P_ideal(T, V)/max_figure_of_merit (the evaluator's prop_figure_of_merit,
+// V the axial inflow for propellers with forward-flight tables, else 0: PropellerPoint), and
+// PDC >= Pmech when neither the motor nor the ESC can create energy (as in ScoreLowerBound;
+// model.md section 10). By distance the energy is P*d/V, and P_ideal(T, V)/V falls with V:
+// its least value is at hi, with the avionics' P_av*d/hi. By duration the energy is P*t and
+// P_ideal rises with V: the least at lo. 0 when no bound applies (the avionics are counted by
+// the caller).
+double FreeCruisePowerLowerBoundW(const Mission& m, const Segment& sg, const GroupParts& parts,
+                                  const PropModel& model, double mass_kg) {
+  if (!(sg.lift_to_drag > 0)) return 0.0;
+  const MotorParams mp = ScenarioMotorParams(*parts.motor, m);
+  const EscParams ep = ScenarioEscParams(*parts.esc, m.objective.ranking);
+  const bool lossy = mp.kt_nm_per_a <= MaxKtPerKe(mp.type) * mp.ke_v_s_per_rad && mp.rm_ohm >= 0 && mp.io_a >= 0 &&
+                     mp.io1_a_s_per_rad >= 0 && ep.c0 >= 0 && ep.c1 + ep.c0 >= IdealIdcPerIrmsPerThrottle(mp.type);
+  if (!lossy) return 0.0;
+  const bool axial_data = model.data_kind() == PropDataKind::kTables && !parts.prop->j_tables.empty();
+  const double v = axial_data ? (sg.distance_m ? sg.airspeed_m_s.hi : sg.airspeed_m_s.lo) : 0.0;
+  const RotorLoad ld = SegmentRotorLoad(m, sg, mass_kg, sg.airspeed_m_s.hi);  // thrust: any airspeed
+  const double p_ideal = IdealRotorPowerW(ld.thrust_per_rotor_n, parts.prop->diameter_m, m.rho_kg_m3, v);
+  return ld.rotors * p_ideal / m.constraints.max_figure_of_merit;
+}
+
+}  // namespace
+
 void FixedGroupPowerBounds(SearchContext* ctx) {
   const Mission& m = *ctx->mission;
   ctx->fixed_power_lb_w.clear();
+  ctx->fixed_power_mass_kg.clear();
   if (m.groups.empty()) return;
   // The lightest the vehicle can be with any choice of the free group (M3: every segment's
-  // thrust, and so its speed, torque and power, rises with the mass).
+  // thrust, and so its speed, torque and power, rises with the mass). The bounds are tabulated
+  // on a geometric mass grid from there (kFixedPowerMasses points, 2 % apart): a pair reads the
+  // grid point at or below its own lightest mass, a bound for it by the same monotonicity.
   double motor_min = kInf, prop_min = kInf;
   for (const MotorEntry& mo : ctx->catalog->motors()) {
     if (mo.mass_kg) motor_min = std::min(motor_min, *mo.mass_kg);
@@ -537,32 +731,54 @@ void FixedGroupPowerBounds(SearchContext* ctx) {
     const double mass_min = m.vehicle.mass_kg + bo.mass_lo_kg + ctx->fixed_groups_mass_kg +
                             ctx->free_rotors * (std::isfinite(motor_min) ? motor_min : 0.0) +
                             ctx->free_rotors * ((std::isfinite(prop_min) ? prop_min : 0.0) + esc_min);
-    std::vector<double> p_lb(m.segments.size(), m.vehicle.avionics_power_w);
-    for (std::size_t si = 0; si < m.segments.size(); ++si) {
-      const Segment& sg = m.segments[si];
-      if (sg.group == ctx->free_group || sg.type == SegmentType::kShaft ||
-          (sg.type == SegmentType::kCruise && sg.airspeed_m_s.free())) {
-        continue;
+    std::vector<double> masses(kFixedPowerMasses);
+    std::vector<std::vector<double>> table;
+    for (int k = 0; k < kFixedPowerMasses; ++k) {
+      const double mass = k == 0 ? mass_min : mass_min * std::pow(kFixedPowerMassStep, k);
+      masses[static_cast<std::size_t>(k)] = mass;
+      std::vector<double> p_lb(m.segments.size(), m.vehicle.avionics_power_w);
+      for (std::size_t si = 0; si < m.segments.size(); ++si) {
+        const Segment& sg = m.segments[si];
+        if (sg.group == ctx->free_group || sg.type == SegmentType::kShaft) continue;
+        const GroupParts& parts = ctx->fixed_parts[sg.group];
+        const PropModel& prop = *ctx->fixed_models[sg.group];
+        if (sg.type == SegmentType::kCruise && sg.airspeed_m_s.free()) {
+          p_lb[si] += FreeCruisePowerLowerBoundW(m, sg, parts, prop, mass);
+          continue;
+        }
+        const RotorLoad ld = SegmentRotorLoad(m, sg, mass, sg.airspeed_m_s.lo);
+        // A speed at or below the evaluator's root (thrust rising with speed, M1): bisection
+        // keeping thrust(lo) <= T; the torque there is at most the true one.
+        double lo = 0.0, hi = kGridMaxRadS;
+        if (!(prop.Evaluate(hi, m.rho_kg_m3, ld.axial_airspeed_m_s).thrust_n >= ld.thrust_per_rotor_n)) continue;
+        for (int i = 0; i < 60; ++i) {
+          const double mid = 0.5 * (lo + hi);
+          (prop.Evaluate(mid, m.rho_kg_m3, ld.axial_airspeed_m_s).thrust_n <= ld.thrust_per_rotor_n ? lo : hi) = mid;
+        }
+        const double q = prop.Evaluate(lo, m.rho_kg_m3, ld.axial_airspeed_m_s).torque_nm;
+        if (!(q > 0)) continue;
+        const Drive d(ScenarioMotorParams(*parts.motor, m), ScenarioEscParams(*parts.esc, m.objective.ranking));
+        const double pdc = std::min(d.Inverse(bo.v_full, q, lo).pdc_w, d.Inverse(bo.v_cut, q, lo).pdc_w);
+        p_lb[si] += ld.rotors * std::max(0.0, pdc);
       }
-      const GroupParts& parts = ctx->fixed_parts[sg.group];
-      const PropModel& prop = *ctx->fixed_models[sg.group];
-      const RotorLoad ld = SegmentRotorLoad(m, sg, mass_min, sg.airspeed_m_s.lo);
-      // A speed at or below the evaluator's root (thrust rising with speed, M1): bisection
-      // keeping thrust(lo) <= T; the torque there is at most the true one.
-      double lo = 0.0, hi = kGridMaxRadS;
-      if (!(prop.Evaluate(hi, m.rho_kg_m3, ld.axial_airspeed_m_s).thrust_n >= ld.thrust_per_rotor_n)) continue;
-      for (int i = 0; i < 60; ++i) {
-        const double mid = 0.5 * (lo + hi);
-        (prop.Evaluate(mid, m.rho_kg_m3, ld.axial_airspeed_m_s).thrust_n <= ld.thrust_per_rotor_n ? lo : hi) = mid;
+      // Monotone in the mass by M3; the running maximum keeps the table so under rounding too
+      // (each entry is still the bound at a mass at or below its own).
+      if (!table.empty()) {
+        for (std::size_t si = 0; si < p_lb.size(); ++si) p_lb[si] = std::max(p_lb[si], table.back()[si]);
       }
-      const double q = prop.Evaluate(lo, m.rho_kg_m3, ld.axial_airspeed_m_s).torque_nm;
-      if (!(q > 0)) continue;
-      const Drive d(ScenarioMotorParams(*parts.motor, m), ScenarioEscParams(*parts.esc, m.objective.ranking));
-      const double pdc = std::min(d.Inverse(bo.v_full, q, lo).pdc_w, d.Inverse(bo.v_cut, q, lo).pdc_w);
-      p_lb[si] += ld.rotors * std::max(0.0, pdc);
+      table.push_back(std::move(p_lb));
     }
-    ctx->fixed_power_lb_w.push_back(std::move(p_lb));
+    ctx->fixed_power_lb_w.push_back(std::move(table));
+    ctx->fixed_power_mass_kg.push_back(std::move(masses));
   }
+}
+
+double FixedPowerLowerBoundW(const SearchContext& ctx, std::size_t option, std::size_t si, double mass_kg) {
+  const std::vector<double>& masses = ctx.fixed_power_mass_kg[option];
+  // The last grid mass at or below mass_kg (the first when mass_kg is below the grid).
+  const auto it = std::upper_bound(masses.begin(), masses.end(), mass_kg);
+  const std::size_t k = it == masses.begin() ? 0 : static_cast<std::size_t>(it - masses.begin()) - 1;
+  return ctx.fixed_power_lb_w[option][k][si];
 }
 
 CandidateList BuildCandidates(const SearchContext& ctx, int threads) {
@@ -604,6 +820,125 @@ CandidateList BuildCandidates(const SearchContext& ctx, int threads) {
   return out;
 }
 
+bool CandidateBefore(const Candidate& a, const Candidate& b) {
+  if (a.bound != b.bound) return a.bound < b.bound;
+  if (a.option != b.option) return a.option < b.option;
+  if (a.motor != b.motor) return a.motor < b.motor;
+  return a.prop < b.prop;
+}
+
+namespace {
+
+// The first `n` of `pairs` in CandidateBefore order, sorted, into q (complete when that is all).
+void TakeFirst(std::vector<Candidate>* pairs, std::size_t n, MotorQueue* q) {
+  n = std::min(n, pairs->size());
+  std::partial_sort(pairs->begin(), pairs->begin() + static_cast<std::ptrdiff_t>(n), pairs->end(), CandidateBefore);
+  q->next.assign(pairs->begin(), pairs->begin() + static_cast<std::ptrdiff_t>(n));
+  q->pos = 0;
+  q->complete = n == pairs->size();
+}
+
+}  // namespace
+
+MotorHeads BuildMotorHeads(const SearchContext& ctx, int threads, std::size_t first_pairs) {
+  const MissionFacts f = FactsOf(*ctx.mission, ctx.free_group);
+  const auto& motors = ctx.catalog->motors();
+  const long long per_motor = static_cast<long long>(ctx.catalog->escs().size()) *
+                              static_cast<long long>(ctx.catalog->props().size() * ctx.options.size());
+  threads = std::max(1, threads);
+  // Per motor, written by one thread each.
+  std::vector<MotorQueue> queue(motors.size());
+  std::vector<long long> count(motors.size(), 0);
+  std::vector<RuleCounts> thread_pruned(static_cast<std::size_t>(threads));
+  std::vector<long long> thread_skipped(static_cast<std::size_t>(threads), 0);
+  auto work = [&](int tid) {
+    std::vector<Candidate> tmp;
+    for (std::size_t mi = static_cast<std::size_t>(tid); mi < motors.size(); mi += static_cast<std::size_t>(threads)) {
+      if (!motors[mi].exclude_reason.empty()) {  // R0: the catalog excludes it (catalog.h, "exclude")
+        thread_pruned[tid].Add("catalog_exclude", per_motor);
+        continue;
+      }
+      if (!motors[mi].mass_kg) {
+        ++thread_skipped[tid];
+        thread_pruned[tid].Add("motor_without_mass", per_motor);
+        continue;
+      }
+      tmp.clear();
+      MotorCandidates(ctx, f, mi, &tmp, &thread_pruned[tid]);
+      count[mi] = static_cast<long long>(tmp.size());
+      queue[mi].motor = static_cast<int>(mi);
+      TakeFirst(&tmp, std::max<std::size_t>(first_pairs, 1), &queue[mi]);
+    }
+  };
+  {
+    std::vector<std::thread> pool;
+    for (int t = 1; t < threads; ++t) pool.emplace_back(work, t);
+    work(0);
+    for (auto& th : pool) th.join();
+  }
+  MotorHeads out;
+  for (std::size_t mi = 0; mi < motors.size(); ++mi) {
+    if (!queue[mi].next.empty()) out.motors.push_back(std::move(queue[mi]));
+    out.pairs += count[mi];
+  }
+  for (int t = 0; t < threads; ++t) {
+    thread_pruned[t].MergeInto(&out.pruned_by);
+    out.skipped_without_mass += thread_skipped[t];
+  }
+  return out;
+}
+
+void MotorPairs(const SearchContext& ctx, int motor, std::vector<Candidate>* out) {
+  RuleCounts ignored;  // counted once, by BuildMotorHeads
+  MotorCandidates(ctx, FactsOf(*ctx.mission, ctx.free_group), static_cast<std::size_t>(motor), out, &ignored);
+}
+
+CandidateStream::CandidateStream(const SearchContext& ctx, std::vector<MotorQueue> motors)
+    : ctx_(ctx), queues_(std::move(motors)) {
+  for (std::size_t i = 0; i < queues_.size(); ++i) heap_.push_back(i);
+  std::make_heap(heap_.begin(), heap_.end(), [this](std::size_t a, std::size_t b) { return HeapAfter(a, b); });
+}
+
+bool CandidateStream::HeapAfter(std::size_t a, std::size_t b) const {
+  return CandidateBefore(queues_[b].next[queues_[b].pos], queues_[a].next[queues_[a].pos]);
+}
+
+bool CandidateStream::Next(double cutoff, Candidate* c) {
+  if (heap_.empty()) return false;
+  auto after = [this](std::size_t a, std::size_t b) { return HeapAfter(a, b); };
+  std::pop_heap(heap_.begin(), heap_.end(), after);
+  const std::size_t i = heap_.back();
+  heap_.pop_back();
+  MotorQueue& q = queues_[i];
+  *c = q.next[q.pos++];
+  if (q.pos == q.next.size()) {
+    if (!q.complete && c->bound < cutoff) {
+      // The motor's pairs after c, twice as many as last time: regenerated (stage 4 is
+      // deterministic), those with a bound >= cutoff left out (never drawn before the search
+      // stops: the cutoff only falls).
+      const std::size_t n = 2 * q.next.size();
+      scratch_.clear();
+      MotorPairs(ctx_, q.motor, &scratch_);
+      const Candidate last = *c;
+      scratch_.erase(std::remove_if(scratch_.begin(), scratch_.end(),
+                                    [&](const Candidate& x) { return !CandidateBefore(last, x) || !(x.bound < cutoff); }),
+                     scratch_.end());
+      TakeFirst(&scratch_, n, &q);
+      ++refills_;
+    } else {
+      q.next.clear();
+      q.pos = 0;
+    }
+  }
+  if (q.pos < q.next.size()) {
+    heap_.push_back(i);
+    std::push_heap(heap_.begin(), heap_.end(), after);
+  } else {
+    std::vector<Candidate>().swap(q.next);
+  }
+  return true;
+}
+
 }  // namespace search_internal
 
 namespace {
@@ -614,9 +949,9 @@ using namespace search_internal;
 // not pruned scored exactly.
 class BranchAndBound {
  public:
-  BranchAndBound(const SearchContext& ctx, const SearchOptions& opt, std::vector<Candidate> cands,
-                 SearchResult* out)
-      : ctx_(ctx), opt_(opt), cands_(std::move(cands)), out_(out), relaxed_(*ctx.mission) {
+  BranchAndBound(const SearchContext& ctx, const SearchOptions& opt, MotorHeads heads, SearchResult* out)
+      : ctx_(ctx), opt_(opt), stream_(ctx, std::move(heads.motors)), n_cands_(static_cast<std::size_t>(heads.pairs)),
+        out_(out), relaxed_(*ctx.mission) {
     // The virtual ESC (and so the class check) uses the mission without min_hover_throttle: a
     // real ESC's resistance and mass raise the throttle, so that lower limit is the one
     // constraint the virtual ESC may fail when a real one passes (R5). Relaxing it keeps the
@@ -625,12 +960,13 @@ class BranchAndBound {
     // that reach the evaluation check it.
     relaxed_.constraints.min_hover_throttle = 0.0;
     relaxed_.constraints.min_thrust_to_weight = 0.0;
-    std::make_heap(cands_.begin(), cands_.end(), After);
-    heap_size_ = cands_.size();
+    const Mission& m = *ctx.mission;
+    capacity_pieces_ = FactsOf(m, ctx.free_group).stretch_is_hover && m.battery.capacity_ah && m.battery.capacity_ah->free();
   }
 
   void Run();
   long long virtual_evaluations() const { return virtual_evals_; }
+  long long refills() const { return stream_.refills(); }
 
  private:
   struct Outcome {
@@ -639,21 +975,16 @@ class BranchAndBound {
     long long searched = 0, virtual_evals = 0;
   };
 
-  // Candidates best bound first, with a full tie-break (a strict total order, so the order is
-  // unique). The search usually stops after a small fraction of them, so they are drawn from a
-  // heap on demand instead of sorted whole.
-  static bool After(const Candidate& a, const Candidate& b) {
-    if (a.bound != b.bound) return a.bound > b.bound;
-    if (a.option != b.option) return a.option > b.option;
-    if (a.motor != b.motor) return a.motor > b.motor;
-    return a.prop > b.prop;
-  }
+  // Candidates in CandidateBefore order (best bound first, a strict total order). The search
+  // usually stops after a small fraction of them, so they are drawn on demand from the
+  // per-motor stream (stage 4 keeps only each motor's head).
+  // Pairs whose bound is not below the N-th best score are left out of the stream when their
+  // motor is expanded: the search stops at the first such pair (the threshold only falls), and
+  // a pair that comes after it is never drawn.
   const Candidate* CandidateAt(std::size_t i) {  // the i-th best, or null
-    while (ordered_.size() <= i && heap_size_ > 0) {
-      std::pop_heap(cands_.begin(), cands_.begin() + static_cast<std::ptrdiff_t>(heap_size_), After);
-      ordered_.push_back(cands_[--heap_size_]);
-    }
-    return i < ordered_.size() ? &ordered_[i] : nullptr;
+    Candidate c;
+    while (base_ + ordered_.size() <= i && stream_.Next(NthBest(), &c)) ordered_.push_back(c);
+    return i < base_ + ordered_.size() ? &ordered_[i - base_] : nullptr;
   }
   double NthBest() const {
     return static_cast<int>(out_->best.size()) < opt_.top_n ? kInf : out_->best.back().result.score;
@@ -663,9 +994,11 @@ class BranchAndBound {
 
   const SearchContext& ctx_;
   const SearchOptions& opt_;
-  std::vector<Candidate> cands_;
-  std::size_t heap_size_ = 0;
-  std::vector<Candidate> ordered_;
+  CandidateStream stream_;
+  std::size_t n_cands_ = 0;
+  bool capacity_pieces_ = false;  // R8 applies
+  std::vector<Candidate> ordered_;  // drawn candidates from index base_ on (earlier ones done)
+  std::size_t base_ = 0;
   SearchResult* out_;
   Mission relaxed_;
   long long virtual_evals_ = 0;
@@ -721,6 +1054,15 @@ void BranchAndBound::Process(const Candidate& cand, std::vector<double> top, Out
     virt.params.max_current_a = kInf;
     virt.mass_kg = EscMassKg(escs[rated.front()]);
     for (int e : rated) virt.mass_kg = std::min(*virt.mass_kg, EscMassKg(escs[e]));
+    // R8: capacity pieces, with the class's lightest rated ESC, before any simulation.
+    if (capacity_pieces_) {
+      const double threshold = threshold_now();
+      const double b = CapacityPiecesBound(ctx_, cand.motor, cand.prop, cand.option, static_cast<int>(cl), *virt.mass_kg);
+      if (!(b < threshold)) {
+        local_prune(std::isfinite(b) ? "objective_bound" : "throttle", static_cast<long long>(rated.size()));
+        continue;
+      }
+    }
     {
       Combination vc = c;
       set_esc(&vc, &virt);
@@ -771,7 +1113,7 @@ void BranchAndBound::Run() {
   bool free_shaft = false;
   for (const Segment& sg : m.segments) free_shaft |= sg.type == SegmentType::kShaft && sg.shaft_omega_rad_s.free();
   const int workers = free_shaft ? 1 : std::max(1, opt_.threads);
-  const std::size_t n_cands = cands_.size();
+  const std::size_t n_cands = n_cands_;
   constexpr std::size_t kMaxChunk = 64;
   std::size_t chunk = 2;  // grows while the threshold settles
   std::size_t ci = 0;
@@ -799,7 +1141,7 @@ void BranchAndBound::Run() {
     std::vector<Outcome> outs(end - ci);
     auto run = [&](int tid) {
       for (std::size_t i = ci + static_cast<std::size_t>(tid); i < end; i += static_cast<std::size_t>(workers)) {
-        Process(ordered_[i], top, &outs[i - ci]);
+        Process(ordered_[i - base_], top, &outs[i - ci]);
       }
     };
     std::vector<std::thread> pool;
@@ -812,6 +1154,8 @@ void BranchAndBound::Run() {
       virtual_evals_ += o.virtual_evals;
       for (auto& [c, r] : o.results) Insert(c, std::move(r));
     }
+    ordered_.erase(ordered_.begin(), ordered_.begin() + static_cast<std::ptrdiff_t>(end - base_));
+    base_ = end;
     ci = end;
   }
 }
@@ -838,12 +1182,12 @@ SearchResult SearchExactly(const Mission& m, const Catalog& cat, const SearchOpt
   if (ctx.escs.excluded_pruned > 0) {
     out.pruned_by["catalog_exclude"] += ctx.escs.excluded_pruned * static_cast<long long>(cat.motors().size() * cat.props().size());
   }
-  CandidateList cl = BuildCandidates(ctx, opt.threads);  // stage 4
-  for (const auto& [rule, n] : cl.pruned_by) out.pruned_by[rule] += n;
-  out.skipped_without_mass = cl.skipped_without_mass;
-  out.candidate_pairs = static_cast<long long>(cl.candidates.size());
+  MotorHeads heads = BuildMotorHeads(ctx, opt.threads);  // stage 4
+  for (const auto& [rule, n] : heads.pruned_by) out.pruned_by[rule] += n;
+  out.skipped_without_mass = heads.skipped_without_mass;
+  out.candidate_pairs = heads.pairs;
   out.candidate_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  BranchAndBound bb(ctx, opt, std::move(cl.candidates), &out);  // stage 5
+  BranchAndBound bb(ctx, opt, std::move(heads), &out);  // stage 5
   bb.Run();
   if (opt.progress) {
     SearchProgress p;
@@ -855,6 +1199,7 @@ SearchResult SearchExactly(const Mission& m, const Catalog& cat, const SearchOpt
     opt.progress(p);
   }
   out.virtual_evaluations = bb.virtual_evaluations();
+  out.candidate_refills = bb.refills();
   for (RankedCombination& b : out.best) AddObjectiveRange(m, b.combination, &b.result);  // credibility.h
   out.pruned = out.combinations - out.searched;
   out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();

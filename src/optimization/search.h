@@ -60,6 +60,7 @@ struct SearchResult {
   long long candidate_pairs = 0;
   double candidate_seconds = 0.0;
   long long virtual_evaluations = 0;
+  long long candidate_refills = 0;  // motors whose next pairs were regenerated (stage 5)
 };
 
 // Throws UsageError when a mission battery id is not in the catalog or no cell count in the

@@ -7,9 +7,11 @@
 //   3. BuildPropGrids    per propeller the static thrust, torque and figure of merit on a
 //                        speed grid at the mission's density (R2, R6);
 //   4. BuildCandidates   every (motor, propeller, battery option) pair that survives R0, R2, R3,
-//                        R6, R7, with a lower bound of its score (R4);
-//   5. BranchAndBound    the pairs best bound first, the ESCs of each pair with R5, each
-//                        combination scored exactly by MissionEvaluator::Solve.
+//                        R6, R7, with a lower bound of its score (R4); the search itself calls
+//                        BuildMotorHeads, which keeps only each motor's first pairs (memory);
+//   5. BranchAndBound    the pairs best bound first (CandidateStream over the motors' queues),
+//                        R8 and the ESCs of each pair with R5, each combination scored exactly
+//                        by MissionEvaluator::Solve.
 // The proofs of the rules are in search.cc. Internal to src/optimization (and its tests).
 #pragma once
 
@@ -62,6 +64,9 @@ struct PropGrid {
   bool monotone = true;  // static thrust strictly rising on the grid (M1 checked)
   double omega[kGrid], thrust[kGrid], torque_suffix_min[kGrid];
   double fom[kGrid];  // static figure of merit (R6)
+  // R6 in O(1): the first grid index >= i whose figure of merit is within 1.02 x the mission's
+  // max_figure_of_merit (kGrid when none): every point of [i, j] breaks it iff fom_ok_next[i] > j.
+  int fom_ok_next[kGrid];
   double mass_kg = 0;
 };
 // Grids and PropModels per catalog propeller (index as Catalog::props()).
@@ -84,10 +89,12 @@ struct SearchContext {
   std::vector<GroupParts> fixed_parts;
   double fixed_groups_mass_kg = 0;  // rotors x (motor + ESC + propeller) of the fixed groups
   int free_rotors = 0;              // GroupRotors(mission, free_group)
-  // [option][segment]: a lower bound of a fixed group's segment's terminal power (its rotors'
-  // PDC at the lightest vehicle mass plus the avionics; FixedGroupPowerBounds), W; empty
+  // [option][k][segment]: a lower bound of a fixed group's segment's terminal power (its
+  // rotors' PDC at vehicle mass fixed_power_mass_kg[option][k] plus the avionics;
+  // FixedGroupPowerBounds), W; the masses rise from the lightest the vehicle can be. Empty
   // without groups.
-  std::vector<std::vector<double>> fixed_power_lb_w;
+  std::vector<std::vector<std::vector<double>>> fixed_power_lb_w;
+  std::vector<std::vector<double>> fixed_power_mass_kg;
   // PropModels of the fixed groups' propellers (by group index; null for the free group),
   // built once and shared by every evaluation.
   std::vector<std::unique_ptr<PropModel>> fixed_models;
@@ -107,11 +114,72 @@ struct CandidateList {
 // a fixed part is not in the catalog or when not exactly one group is free.
 void ResolveGroups(SearchContext* ctx);
 
+// R8 (search.cc): a lower bound of the score of (motor, prop, option) with any ESC of class
+// esc_class weighing at least esc_mass_kg, over the mission's capacity range in pieces; kInf
+// when no capacity can be feasible (R3 per piece), -kInf when the rule does not apply (not a
+// max_endurance hover stretch, no capacity range, a non-monotone propeller grid).
+double CapacityPiecesBound(const SearchContext& ctx, int motor, int prop, int option, int esc_class,
+                           double esc_mass_kg);
+
 // Fills ctx->fixed_power_lb_w (after stages 1-3 and ResolveGroups).
+inline constexpr int kFixedPowerMasses = 64;
+inline constexpr double kFixedPowerMassStep = 1.02;
 void FixedGroupPowerBounds(SearchContext* ctx);
+// The table's bound for segment si at a vehicle of at least mass_kg (option's grid point at or
+// below it).
+double FixedPowerLowerBoundW(const SearchContext& ctx, std::size_t option, std::size_t si, double mass_kg);
 
 // Stage 4 on `threads` threads (motors interleaved; the list does not depend on timing once
 // ordered by the branch and bound's total order).
 CandidateList BuildCandidates(const SearchContext& ctx, int threads);
+
+// The branch and bound's total order of candidates: best bound first, then option, motor and
+// propeller (a strict total order, so the sequence is unique).
+bool CandidateBefore(const Candidate& a, const Candidate& b);
+
+// Stage 4 without keeping all the pairs (peak memory): per motor, how many pairs survive and
+// the first kFirstPairsPerMotor of them in CandidateBefore order. The branch and bound draws
+// from these queues (CandidateStream) and regenerates a motor's next pairs (MotorPairs) only
+// when it has drawn all it holds, so it keeps a few pairs per motor instead of all of them;
+// the sequence it draws is the same as sorting BuildCandidates.
+inline constexpr std::size_t kFirstPairsPerMotor = 16;
+struct MotorQueue {
+  int motor = 0;
+  std::vector<Candidate> next;  // sorted; next[pos] is the motor's next pair
+  std::size_t pos = 0;
+  bool complete = false;        // next holds all the motor's pairs not yet drawn
+};
+struct MotorHeads {
+  std::vector<MotorQueue> motors;  // those with a surviving pair, motor order
+  long long pairs = 0;             // surviving pairs over all motors
+  std::map<std::string, long long> pruned_by;
+  long long skipped_without_mass = 0;
+};
+// first_pairs: how many pairs each motor's queue starts with (>= 1; tests use small values to
+// exercise the refills).
+MotorHeads BuildMotorHeads(const SearchContext& ctx, int threads, std::size_t first_pairs = kFirstPairsPerMotor);
+// The surviving pairs of one motor (appended to *out), as BuildCandidates lists them.
+void MotorPairs(const SearchContext& ctx, int motor, std::vector<Candidate>* out);
+
+// Draws candidates in CandidateBefore order from the motor queues (a heap of motors keyed by
+// their next pair), refilling a motor's queue when it runs out.
+class CandidateStream {
+ public:
+  CandidateStream(const SearchContext& ctx, std::vector<MotorQueue> motors);
+  // The next candidate, or false when none is left. Pairs with a bound >= cutoff may be left
+  // out (a caller that stops at the first bound >= cutoff, with a cutoff that never rises, sees
+  // the same sequence up to there): the returned candidate is the true next one when its bound
+  // is below the cutoff, else some candidate with a bound >= cutoff.
+  bool Next(double cutoff, Candidate* c);
+  long long refills() const { return refills_; }  // motors' pairs regenerated
+
+ private:
+  bool HeapAfter(std::size_t a, std::size_t b) const;
+  const SearchContext& ctx_;
+  std::vector<MotorQueue> queues_;
+  std::vector<std::size_t> heap_;  // queue indices; the top's next pair comes first
+  std::vector<Candidate> scratch_;
+  long long refills_ = 0;
+};
 
 }  // namespace dynosize::search_internal

@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <limits>
 #include <set>
 #include <tuple>
 
@@ -121,6 +122,53 @@ TEST_F(SearchStagesTest, PropGridsRiseAndStayBelowMomentumTheory) {
   }
 }
 
+// The lazy stream of stage 5 draws exactly the sorted list of stage 4 (the same pairs in the
+// same order), with any initial queue length (refills regenerate a motor's pairs); with a
+// cutoff it draws the same pairs up to the first bound at or above it.
+TEST_F(SearchStagesTest, CandidateStreamDrawsTheSortedCandidateList) {
+  const Catalog cat = SmallCatalog();
+  const Mission m = ParseMission(ParseJsonText(kStageQuad, "quad"), "quad");
+  SearchContext ctx;
+  ctx.mission = &m;
+  ctx.catalog = &cat;
+  ResolveGroups(&ctx);
+  ctx.options = BatteryOptions(m, cat);
+  ctx.escs = BuildEscTable(cat, ctx.options);
+  BuildPropGrids(m, cat, &ctx.grids, &ctx.models);
+  CandidateList all = BuildCandidates(ctx, 1);
+  std::sort(all.candidates.begin(), all.candidates.end(), CandidateBefore);
+  ASSERT_GT(all.candidates.size(), 20u) << "the small catalog should give enough pairs to refill queues";
+  auto same = [](const Candidate& a, const Candidate& b) {
+    return a.motor == b.motor && a.prop == b.prop && a.option == b.option && a.bound == b.bound &&
+           a.irms_lb == b.irms_lb;
+  };
+  for (std::size_t first : {std::size_t{1}, std::size_t{3}, kFirstPairsPerMotor}) {
+    MotorHeads heads = BuildMotorHeads(ctx, 2, first);
+    EXPECT_EQ(heads.pairs, static_cast<long long>(all.candidates.size()));
+    EXPECT_EQ(heads.pruned_by, all.pruned_by);
+    CandidateStream stream(ctx, std::move(heads.motors));
+    std::size_t n = 0;
+    for (Candidate c; stream.Next(std::numeric_limits<double>::infinity(), &c); ++n) {
+      ASSERT_LT(n, all.candidates.size());
+      EXPECT_TRUE(same(c, all.candidates[n])) << "first " << first << ", pair " << n;
+    }
+    EXPECT_EQ(n, all.candidates.size());
+    if (first == 1) EXPECT_GT(stream.refills(), 0);
+  }
+  // A cutoff in the middle of the bounds: the same pairs below it, then one at or above it.
+  const double cutoff = all.candidates[all.candidates.size() / 2].bound;
+  CandidateStream cut(ctx, BuildMotorHeads(ctx, 1, 1).motors);
+  std::size_t n = 0;
+  Candidate c;
+  while (cut.Next(cutoff, &c) && c.bound < cutoff) {
+    ASSERT_LT(n, all.candidates.size());
+    EXPECT_TRUE(same(c, all.candidates[n])) << "with cutoff, pair " << n;
+    ++n;
+  }
+  ASSERT_LT(n, all.candidates.size());
+  EXPECT_GE(all.candidates[n].bound, cutoff);
+}
+
 // Stage 4 against the exact evaluator: a pair it removes has no feasible ESC; a pair it keeps
 // has a bound at or below every feasible score of its ESCs. The candidate list does not depend
 // on the number of threads.
@@ -171,6 +219,98 @@ TEST_F(SearchStagesTest, CandidatesRemoveOnlyInfeasiblePairsAndBoundTheScore) {
     EXPECT_GT(removed, 0) << objective;
     EXPECT_GT(feasible, 3) << objective;
   }
+}
+
+// R4 with a fixed-airspeed cruise stretched, and with a hover stretched after such a cruise
+// (its momentum bound among the other segments' energy; max_endurance): every kept pair's
+// bound is at or below the score of every feasible ESC, and a removed pair has none.
+TEST_F(SearchStagesTest, CruiseStretchBoundIsBelowEveryFeasibleScore) {
+  const Catalog cat = SmallCatalog();
+  Json j = ParseJsonText(kStageQuad, "quad");
+  j["segments"] = Json::parse(R"([
+    {"name": "takeoff", "type": "climb", "rate_m_s": 2, "distance_m": 30},
+    {"name": "hover", "type": "hover", "duration_s": 20},
+    {"name": "flight", "type": "cruise", "airspeed_m_s": 10, "distance_m": 1000},
+    {"name": "landing", "type": "climb", "rate_m_s": -1, "distance_m": 30}
+  ])");
+  for (const char* stretch : {"flight", "hover"}) {  // the cruise in the stretch, then among the others
+    j["objective"] = {{"type", "max_endurance"}, {"segment", stretch}};
+    const Mission m = ParseMission(j, "quad");
+    SearchContext ctx;
+    ctx.mission = &m;
+    ctx.catalog = &cat;
+    ResolveGroups(&ctx);
+    ctx.options = BatteryOptions(m, cat);
+    ctx.escs = BuildEscTable(cat, ctx.options);
+    BuildPropGrids(m, cat, &ctx.grids, &ctx.models);
+    const CandidateList all = BuildCandidates(ctx, 1);
+    int feasible = 0, finite = 0;
+    for (std::size_t mi = 0; mi < cat.motors().size(); ++mi) {
+      if (!cat.motors()[mi].mass_kg) continue;
+      for (std::size_t pi = 0; pi < cat.props().size(); ++pi) {
+        for (std::size_t o = 0; o < ctx.options.size(); ++o) {
+          const auto it = std::find_if(all.candidates.begin(), all.candidates.end(), [&](const Candidate& c) {
+            return c.motor == static_cast<int>(mi) && c.prop == static_cast<int>(pi) && c.option == static_cast<int>(o);
+          });
+          if (it != all.candidates.end() && std::isfinite(it->bound)) ++finite;
+          for (const EscEntry& e : cat.escs()) {
+            const Combination c{&cat.motors()[mi], &e, &cat.props()[pi], ctx.options[o].entry, ctx.options[o].cells};
+            const MissionResult r = MissionEvaluator(m, c).Solve();
+            if (!r.feasible) continue;
+            ++feasible;
+            ASSERT_NE(it, all.candidates.end()) << "a feasible pair was removed: " << c.motor->id << " " << c.prop->id;
+            EXPECT_LE(it->bound, r.score) << c.motor->id << " " << e.id << " " << c.prop->id;
+          }
+        }
+      }
+    }
+    EXPECT_GT(feasible, 3) << stretch;
+    EXPECT_GT(finite, 0) << stretch << ": the stretch should get finite bounds";
+  }
+}
+
+// R8 against the exact evaluator, capacity sized in [2, 6] Ah: the piecewise bound of a
+// (motor, propeller, option, ESC class) is at or below the score of every ESC of the class
+// (ESC mass at least the one given), and "no piece can be feasible" (kInf) only when no
+// capacity is. The bound is compared without tolerance: it must be a bound.
+TEST_F(SearchStagesTest, CapacityPiecesBoundIsBelowEveryFeasibleScore) {
+  const Catalog cat = SmallCatalog();
+  Json j = ParseJsonText(kStageQuad, "quad");
+  j["battery"]["capacity_ah"] = {2.0, 6.0};
+  const Mission m = ParseMission(j, "quad");
+  SearchContext ctx;
+  ctx.mission = &m;
+  ctx.catalog = &cat;
+  ResolveGroups(&ctx);
+  ctx.options = BatteryOptions(m, cat);
+  ctx.escs = BuildEscTable(cat, ctx.options);
+  BuildPropGrids(m, cat, &ctx.grids, &ctx.models);
+  const CandidateList all = BuildCandidates(ctx, 1);
+  int feasible = 0, tightened = 0, infeasible_proven = 0;
+  for (const Candidate& cand : all.candidates) {
+    for (std::size_t cl = 0; cl < ctx.escs.classes.size(); ++cl) {
+      for (int e : ctx.escs.per_option[cand.option][cl]) {
+        const EscEntry& esc = cat.escs()[e];
+        const double b = CapacityPiecesBound(ctx, cand.motor, cand.prop, cand.option, static_cast<int>(cl), EscMassKg(esc));
+        ASSERT_GT(b, -std::numeric_limits<double>::infinity()) << "R8 applies to this mission";
+        EXPECT_GE(b, cand.bound) << "R8 only tightens R4";
+        if (b > cand.bound) ++tightened;
+        const BatteryOption& bo = ctx.options[cand.option];
+        const Combination c{&cat.motors()[cand.motor], &esc, &cat.props()[cand.prop], bo.entry, bo.cells};
+        const MissionResult r = MissionEvaluator(m, c).Solve();
+        if (!std::isfinite(b)) {
+          ++infeasible_proven;
+          EXPECT_FALSE(r.feasible) << c.motor->id << " " << esc.id << " " << c.prop->id;
+          continue;
+        }
+        if (!r.feasible) continue;
+        ++feasible;
+        EXPECT_LE(b, r.score) << c.motor->id << " " << esc.id << " " << c.prop->id << " capacity " << r.capacity_ah;
+      }
+    }
+  }
+  EXPECT_GT(feasible, 3);
+  EXPECT_GT(tightened, 0) << "the test should see R8 tighten R4";
 }
 
 }  // namespace

@@ -1,6 +1,7 @@
 // The catalog search against exhaustive evaluation on a small catalog, the per-segment optimum
 // against a dense grid, infeasible missions, and every printed point reproduced by `simulate`.
 #include "optimization/search.h"
+#include "optimization/search_stages.h"
 
 #include <gtest/gtest.h>
 #include <unistd.h>
@@ -15,6 +16,7 @@
 #include "cli_runner.h"
 #include "common/error.h"
 #include "common/json_file.h"
+#include "mission/flight.h"
 #include "optimization/mission_eval.h"
 #include "optimization/small_catalog.h"
 
@@ -139,7 +141,17 @@ TEST_F(SearchTest, PropulsionGroupsEqualExhaustiveEvaluation) {
   EXPECT_EQ(b.feasible, a.feasible);
   // 4*m + 1*m against 5*m in the mass: rounding of the last bit only.
   EXPECT_NEAR(b.objective, a.objective, 1e-9 * a.objective);
-  // Exhaustive over the lift group's parts.
+  // Exhaustive over the lift group's parts. On the way, G1's table: the pusher's segment power
+  // bound read at the combination's own mass is at or below its mean terminal power.
+  search_internal::SearchContext ctx;
+  ctx.mission = &m;
+  ctx.catalog = &cat;
+  search_internal::ResolveGroups(&ctx);
+  ctx.options = search_internal::BatteryOptions(m, cat);
+  ctx.escs = search_internal::BuildEscTable(cat, ctx.options);
+  search_internal::BuildPropGrids(m, cat, &ctx.grids, &ctx.models);
+  search_internal::FixedGroupPowerBounds(&ctx);
+  int g1_checked = 0;
   std::vector<std::pair<double, std::string>> all;
   ForEachCombination(cat, [&](Combination c) {
     c.groups.assign(2, GroupParts{});
@@ -147,7 +159,18 @@ TEST_F(SearchTest, PropulsionGroupsEqualExhaustiveEvaluation) {
     c.groups[pusher] = GroupParts{pick.motor, pick.esc, pick.prop};
     const MissionResult r = MissionEvaluator(m, c).Solve();
     if (r.feasible) all.emplace_back(r.score, Name(c));
+    std::size_t o = 0;
+    while (o < ctx.options.size() && !(ctx.options[o].entry == c.battery && ctx.options[o].cells == c.cells)) ++o;
+    ASSERT_LT(o, ctx.options.size());
+    for (std::size_t si = 0; si < r.segments.size(); ++si) {
+      const SegmentResult& sr = r.segments[si];
+      if (sr.group != pusher || !(sr.duration_s > 0) || sr.energy_j <= 0) continue;
+      EXPECT_LE(search_internal::FixedPowerLowerBoundW(ctx, o, si, r.total_mass_kg), sr.energy_j / sr.duration_s)
+          << Name(c) << " segment " << sr.name;
+      ++g1_checked;
+    }
   });
+  EXPECT_GT(g1_checked, 0);
   std::sort(all.begin(), all.end());
   ASSERT_GE(all.size(), 1u);
   const SearchResult s = SearchCatalog(m, cat, so);
@@ -346,6 +369,118 @@ TEST_F(SearchTest, EarlyExitsNeverCutOffAFeasibleScore) {
     });
     EXPECT_GE(checked, 3) << "capacity range " << capacity_range;
   }
+}
+
+// The other side of the early exits (EnduranceUpperBound with its throttle floor, the bound
+// over the golden section's bracket after the capacity grid): at cutoffs around the true
+// score, a "bounded out" answer is only given when the true score does not beat the cutoff,
+// and any other answer is the full one. Cutoffs better than the true score must let some
+// combinations be bounded out (else the test would not exercise the bounds).
+TEST_F(SearchTest, EarlyExitsBoundOutOnlyWhatCannotBeatTheCutoff) {
+  const Catalog cat = Catalog::Load((dir_ / "catalog").string());
+  Json j = ParseJsonText(kQuad, "quad");
+  j["battery"]["capacity_ah"] = {2.0, 6.0};
+  const Mission m = ParseMission(j, "quad");
+  int bounded = 0, checked = 0;
+  ForEachCombination(cat, [&](const Combination& c) {
+    if (checked >= 24) return;  // eight feasible combinations are enough (a test of seconds)
+    const MissionResult full = MissionEvaluator(m, c).Solve();
+    if (!full.feasible) return;
+    for (const double factor : {1.10, 1.02, 0.98}) {  // score = -endurance: 1.10 asks for 10 % more
+      const double cutoff = full.score * factor;
+      const MissionResult cut = MissionEvaluator(m, c).Solve(cutoff);
+      if (cut.bounded_out) {
+        ++bounded;
+        EXPECT_GE(full.score, cutoff) << Name(c) << " factor " << factor;
+      } else if (cut.feasible) {
+        EXPECT_EQ(cut.score, full.score) << Name(c) << " factor " << factor;
+      }
+      ++checked;
+    }
+  });
+  EXPECT_GE(checked, 9);
+  EXPECT_GT(bounded, 0) << "no cutoff was bounded out: the bounds were not exercised";
+}
+
+// The same for min_energy with a capacity range and a free wing-borne cruise airspeed (the
+// energy pre-check at the smallest capacity, with the momentum bound of the free cruise), and
+// the search equals exhaustive evaluation there (G1's free-cruise table: the pusher fixed).
+TEST_F(SearchTest, FreeCruiseEnergyBoundsAreBounds) {
+  const Catalog cat = Catalog::Load((dir_ / "catalog").string());
+  Json j = ParseJsonText(kLiftCruise, "lift");
+  j["battery"]["capacity_ah"] = {2.0, 6.0};
+  j["segments"][2]["airspeed_m_s"] = {9.0, 16.0};
+  const Mission m = ParseMission(j, "lift");
+  int bounded = 0, checked = 0;
+  ForEachCombination(cat, [&](const Combination& c) {
+    if (checked >= 30) return;  // ten feasible combinations (a test of seconds)
+    const MissionResult full = MissionEvaluator(m, c).Solve();
+    if (!full.feasible) return;
+    for (const double factor : {0.5, 0.90, 1.0 + 1e-6}) {  // min_energy: 0.90 asks for 10 % less
+      const double cutoff = full.score * factor;
+      const MissionResult cut = MissionEvaluator(m, c).Solve(cutoff);
+      if (cut.bounded_out) {
+        ++bounded;
+        EXPECT_GE(full.score, cutoff) << Name(c) << " factor " << factor;
+      } else if (cut.feasible) {
+        EXPECT_EQ(cut.score, full.score) << Name(c) << " factor " << factor;
+      }
+      ++checked;
+    }
+  });
+  EXPECT_GE(checked, 9);
+  EXPECT_GT(bounded, 0) << "no cutoff was bounded out: the bounds were not exercised";
+}
+
+// G1 with a free wing-borne cruise airspeed flown by a fixed pusher: the table's power at a
+// combination's mass times the shortest duration is at or below the cruise energy at the
+// airspeed the evaluator picks.
+TEST_F(SearchTest, FixedGroupFreeCruiseBoundIsBelowTheEnergy) {
+  const Catalog cat = Catalog::Load((dir_ / "catalog").string());
+  const Mission single = ParseMission(ParseJsonText(kLiftCruise, "lift"), "lift");
+  SearchOptions so;
+  so.top_n = 1;
+  const SearchResult one = SearchCatalog(single, cat, so);
+  ASSERT_FALSE(one.best.empty());
+  const Combination& pick = one.best[0].combination;
+  Json j = ParseJsonText(kLiftCruise, "lift");
+  j["vehicle"].erase("rotors");
+  j["propulsion"] = {{"lift", {{"rotors", 4}}},
+                     {"pusher", {{"rotors", 1}, {"motor", pick.motor->id}, {"esc", pick.esc->id}, {"prop", pick.prop->id}}}};
+  for (Json& sg : j["segments"]) {
+    sg["group"] = sg["rotors"].get<int>() == 4 ? "lift" : "pusher";
+    sg.erase("rotors");
+  }
+  j["segments"][2]["airspeed_m_s"] = {9.0, 16.0};
+  const Mission m = ParseMission(j, "groups");
+  const int lift = m.segments[0].group, pusher = m.segments[2].group;
+  search_internal::SearchContext ctx;
+  ctx.mission = &m;
+  ctx.catalog = &cat;
+  search_internal::ResolveGroups(&ctx);
+  ctx.options = search_internal::BatteryOptions(m, cat);
+  ctx.escs = search_internal::BuildEscTable(cat, ctx.options);
+  search_internal::BuildPropGrids(m, cat, &ctx.grids, &ctx.models);
+  search_internal::FixedGroupPowerBounds(&ctx);
+  int checked = 0, above_avionics = 0;
+  ForEachCombination(cat, [&](Combination c) {
+    if (checked >= 40) return;
+    c.groups.assign(2, GroupParts{});
+    c.groups[lift] = GroupParts{c.motor, c.esc, c.prop};
+    c.groups[pusher] = GroupParts{pick.motor, pick.esc, pick.prop};
+    const MissionResult r = MissionEvaluator(m, c).Solve();
+    if (!r.feasible) return;
+    std::size_t o = 0;
+    while (o < ctx.options.size() && !(ctx.options[o].entry == c.battery && ctx.options[o].cells == c.cells)) ++o;
+    ASSERT_LT(o, ctx.options.size());
+    const double p_lb = search_internal::FixedPowerLowerBoundW(ctx, o, 2, r.total_mass_kg);
+    const double e_lb = p_lb * SegmentDurationS(m.segments[2], m.segments[2].airspeed_m_s.hi);
+    EXPECT_LE(e_lb, r.segments[2].energy_j) << Name(c) << " at " << r.segments[2].airspeed_m_s << " m/s";
+    if (p_lb > m.vehicle.avionics_power_w) ++above_avionics;
+    ++checked;
+  });
+  EXPECT_GE(checked, 3);
+  EXPECT_GT(above_avionics, 0) << "the free-cruise bound should add to the avionics";
 }
 
 // An entry the catalog marks "exclude" (catalog.h) is never searched: the pick's motor and
