@@ -77,6 +77,16 @@ std::vector<FamilyOutlier> MassLawOutliers(const std::vector<MotorKmInput>& moto
   return out;
 }
 
+std::vector<FamilyOutlier> ImplausibleMotorConstants(const std::vector<MotorKmInput>& motors) {
+  std::vector<FamilyOutlier> out = FrameFamilyOutliers(motors);
+  for (const FamilyOutlier& o : MassLawOutliers(motors)) {
+    const bool seen = std::any_of(out.begin(), out.end(), [&](const FamilyOutlier& f) { return f.index == o.index; });
+    if (!seen) out.push_back(o);
+  }
+  std::sort(out.begin(), out.end(), [](const FamilyOutlier& a, const FamilyOutlier& b) { return a.index < b.index; });
+  return out;
+}
+
 std::string FamilyOutlierReason(const FamilyOutlier& o) {
   char buf[320];
   if (o.family.empty()) {

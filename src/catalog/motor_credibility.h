@@ -79,6 +79,10 @@ std::vector<FamilyOutlier> FrameFamilyOutliers(const std::vector<MotorKmInput>& 
 // Km of their mass, in input order (family_median_km holds the typical value, members 0).
 std::vector<FamilyOutlier> MassLawOutliers(const std::vector<MotorKmInput>& motors);
 
+// Both rules: the family outliers, then the mass-law outliers not already among them, in input
+// order. This is what the importers exclude.
+std::vector<FamilyOutlier> ImplausibleMotorConstants(const std::vector<MotorKmInput>& motors);
+
 // One line for the entry's exclude key and note.
 std::string FamilyOutlierReason(const FamilyOutlier& o);
 

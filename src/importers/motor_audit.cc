@@ -1,6 +1,5 @@
 // The motor audit applied to every imported data set (importers.h): motors whose motor constant
 // no winding of their frame can have are excluded by default (catalog/motor_credibility.h).
-#include <algorithm>
 #include <cstdio>
 
 #include "catalog/conventions.h"
@@ -29,14 +28,7 @@ void ExcludeImplausibleMotors(ImportedDataset* out) {
     in.push_back({e.value("name", std::string()), e.value("kv_rpm_per_v", 0.0), DcResistance(e),
                   e.value("mass_kg", 0.0), user});
   }
-  std::vector<FamilyOutlier> outliers = FrameFamilyOutliers(in);
-  for (const FamilyOutlier& o : MassLawOutliers(in)) {
-    bool seen = false;
-    for (const FamilyOutlier& f : outliers) seen = seen || f.index == o.index;
-    if (!seen) outliers.push_back(o);
-  }
-  std::sort(outliers.begin(), outliers.end(),
-            [](const FamilyOutlier& a, const FamilyOutlier& b) { return a.index < b.index; });
+  const std::vector<FamilyOutlier> outliers = ImplausibleMotorConstants(in);
   std::vector<std::string> examples;
   for (const FamilyOutlier& o : outliers) {
     Json& e = out->motors[o.index];

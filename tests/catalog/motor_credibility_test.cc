@@ -117,7 +117,7 @@ TEST(MotorCredibilityTest, MassLawMatchesTheBundledDriveCalcMotors) {
 
 // The DriveCalc AXI 2212-34 stores R = 0.051 ohm; DriveCalc's own measurements of it give six
 // times more (dc_m_56_fit). It was the quadcopter example's pick before this rule.
-TEST(MotorCredibilityTest, BundledCatalogExcludesEveryFamilyOutlier) {
+TEST(MotorCredibilityTest, BundledCatalogExcludesEveryImplausibleMotorConstant) {
   const Catalog c = Catalog::Load(kCatalog);
   std::vector<MotorKmInput> in;
   std::vector<const MotorEntry*> entries;
@@ -125,10 +125,11 @@ TEST(MotorCredibilityTest, BundledCatalogExcludesEveryFamilyOutlier) {
     if (e.json["source"]["dataset"] != c.motor("dc_m_56").json["source"]["dataset"]) continue;
     const double r_dc = e.json.contains("rm_dc_ohm") ? e.json["rm_dc_ohm"].get<double>()
                                                     : e.params.rm_ohm / kRmsPerDcResistance;
-    in.push_back({e.name, e.json.value("kv_rpm_per_v", 0.0), r_dc});
+    const bool user = e.json["source"].value("tier", std::string()) == "user_contributed";
+    in.push_back({e.name, e.json.value("kv_rpm_per_v", 0.0), r_dc, e.json.value("mass_kg", 0.0), user});
     entries.push_back(&e);
   }
-  const auto out = FrameFamilyOutliers(in);
+  const auto out = ImplausibleMotorConstants(in);
   ASSERT_FALSE(out.empty());
   bool axi = false;
   for (const auto& o : out) {
