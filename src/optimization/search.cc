@@ -781,6 +781,25 @@ double FixedPowerLowerBoundW(const SearchContext& ctx, std::size_t option, std::
   return ctx.fixed_power_lb_w[option][k][si];
 }
 
+namespace {
+
+// R0 (the catalog excludes the motor: catalog.h, "exclude") and a motor without a mass, counted for
+// all of the motor's pairs; true when the motor is skipped.
+bool SkipMotor(const MotorEntry& m, long long per_motor, RuleCounts* pruned, long long* skipped) {
+  if (!m.exclude_reason.empty()) {
+    pruned->Add("catalog_exclude", per_motor);
+    return true;
+  }
+  if (!m.mass_kg) {
+    ++*skipped;
+    pruned->Add("motor_without_mass", per_motor);
+    return true;
+  }
+  return false;
+}
+
+}  // namespace
+
 CandidateList BuildCandidates(const SearchContext& ctx, int threads) {
   const MissionFacts f = FactsOf(*ctx.mission, ctx.free_group);
   const auto& motors = ctx.catalog->motors();
@@ -792,15 +811,7 @@ CandidateList BuildCandidates(const SearchContext& ctx, int threads) {
   std::vector<long long> thread_skipped(static_cast<std::size_t>(threads), 0);
   auto work = [&](int tid) {
     for (std::size_t mi = static_cast<std::size_t>(tid); mi < motors.size(); mi += static_cast<std::size_t>(threads)) {
-      if (!motors[mi].exclude_reason.empty()) {  // R0: the catalog excludes it (catalog.h, "exclude")
-        thread_pruned[tid].Add("catalog_exclude", per_motor);
-        continue;
-      }
-      if (!motors[mi].mass_kg) {
-        ++thread_skipped[tid];
-        thread_pruned[tid].Add("motor_without_mass", per_motor);
-        continue;
-      }
+      if (SkipMotor(motors[mi], per_motor, &thread_pruned[tid], &thread_skipped[tid])) continue;
       MotorCandidates(ctx, f, mi, &thread_cands[tid], &thread_pruned[tid]);
     }
   };
@@ -854,15 +865,7 @@ MotorHeads BuildMotorHeads(const SearchContext& ctx, int threads, std::size_t fi
   auto work = [&](int tid) {
     std::vector<Candidate> tmp;
     for (std::size_t mi = static_cast<std::size_t>(tid); mi < motors.size(); mi += static_cast<std::size_t>(threads)) {
-      if (!motors[mi].exclude_reason.empty()) {  // R0: the catalog excludes it (catalog.h, "exclude")
-        thread_pruned[tid].Add("catalog_exclude", per_motor);
-        continue;
-      }
-      if (!motors[mi].mass_kg) {
-        ++thread_skipped[tid];
-        thread_pruned[tid].Add("motor_without_mass", per_motor);
-        continue;
-      }
+      if (SkipMotor(motors[mi], per_motor, &thread_pruned[tid], &thread_skipped[tid])) continue;
       tmp.clear();
       MotorCandidates(ctx, f, mi, &tmp, &thread_pruned[tid]);
       count[mi] = static_cast<long long>(tmp.size());
