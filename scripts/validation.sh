@@ -16,6 +16,11 @@ trap 'rm -rf "$tmp"' EXIT
 command -v jq >/dev/null || { echo "validation.sh needs jq" >&2; exit 69; }
 
 pct() { jq -r "$1 | if . == null then \"-\" else (. * 100 | round / 100 | tostring) end" "$2"; }
+# From a `calibrate --json` result: the fitted Kv in rpm per DC volt (model.md section 8), the
+# first failed check with its value and limit, the held-out speed error.
+kv_fit() { jq -r '.motor.ke_v_s_per_rad as $k | 0.67523723711782957 / ($k * 0.10471975511965977) | round' "$@"; }
+first_failed() { jq -r '[.checks[] | select(.passed | not)][0] | if . == null then "-" else "\(.name) (\(.value * 100 | round / 100) vs \(.limit))" end' "$@"; }
+held_out_rpm() { jq -r '(.held_out.omega_at_torque.median_abs_percent // .held_out.omega_from_idc.median_abs_percent) | if . == null then "-" else (. * 100 | round / 100 | tostring) + " %" end' "$@"; }
 med() { sort -g "$1" | awk '{a[NR]=$1} END{if (NR == 0) print "-"; else if (NR % 2) printf "%.2f", a[(NR+1)/2]; else printf "%.2f", (a[NR/2]+a[NR/2+1])/2}'; }
 
 {
@@ -63,10 +68,10 @@ row() {
   fi
   local st kvfit chk
   st=$(jq -r .status "$j")
-  kvfit=$(jq -r '.motor.ke_v_s_per_rad as $k | 0.67523723711782957 / ($k * 0.10471975511965977) | round' "$j")
-  chk=$(jq -r '[.checks[] | select(.passed | not)][0] | if . == null then "-" else "\(.name) (\(.value * 100 | round / 100) vs \(.limit))" end' "$j")
+  kvfit=$(kv_fit "$j")
+  chk=$(first_failed "$j")
   echo "| $set | $name | $kv | $st | $kvfit | $chk | $(pct .held_out.idc.median_abs_percent "$j") % |"\
-" $(jq -r '(.held_out.omega_at_torque.median_abs_percent // .held_out.omega_from_idc.median_abs_percent) | if . == null then "-" else (. * 100 | round / 100 | tostring) + " %" end' "$j") | $written |" >> "$out"
+" $(held_out_rpm "$j") | $written |" >> "$out"
   echo "$set $st $written" >> "$tmp/status"
 }
 
@@ -207,10 +212,10 @@ joint() {  # set, motor name, label Kv, then calibrate arguments (logs first)
     return
   fi
   echo "| $set | $name | $kv | $nlogs | $(jq -r .fit.points_used "$j") | $(jq -r .status "$j") |"\
-" $(jq -r '.motor.ke_v_s_per_rad as $k | 0.67523723711782957 / ($k * 0.10471975511965977) | round' "$j") |"\
-" $(jq -r '[.checks[] | select(.passed | not)][0] | if . == null then "-" else "\(.name) (\(.value * 100 | round / 100) vs \(.limit))" end' "$j") |"\
+" $(kv_fit "$j") |"\
+" $(first_failed "$j") |"\
 " $(pct .held_out.idc.median_abs_percent "$j") % |"\
-" $(jq -r '(.held_out.omega_at_torque.median_abs_percent // .held_out.omega_from_idc.median_abs_percent) | if . == null then "-" else (. * 100 | round / 100 | tostring) + " %" end' "$j") | $written |" >> "$out"
+" $(held_out_rpm "$j") | $written |" >> "$out"
   echo "$set $(jq -r .status "$j") $written" >> "$tmp/joint_status"
 }
 : > "$tmp/joint_status"
@@ -272,7 +277,7 @@ evenodd() {  # name, file, label, throttle, vdc, idc, rpm, torque header names
     return
   fi
   st=$(jq -r '.status + ([.checks[] | select(.passed | not)][0] | if . == null then "" else ": " + .name end)' "$tmp/eo.json" 2>/dev/null || echo "-")
-  kvfit=$(jq -r '.motor.ke_v_s_per_rad as $k | 0.67523723711782957 / ($k * 0.10471975511965977) | round' "$tmp/eo.json" 2>/dev/null || echo "-")
+  kvfit=$(kv_fit "$tmp/eo.json" 2>/dev/null || echo "-")
   if [ ! -f "$d/fitted.json" ]; then
     echo "| $name | $kv | $st | $kvfit | - | - | entry not written |" >> "$out"
     return

@@ -682,6 +682,15 @@ void ResolveGroups(SearchContext* ctx) {
   ctx->free_rotors = GroupRotors(m, ctx->free_group);
 }
 
+void PrepareStages(const Mission& m, const Catalog& cat, SearchContext* ctx) {
+  ctx->mission = &m;
+  ctx->catalog = &cat;
+  ResolveGroups(ctx);
+  ctx->options = BatteryOptions(m, cat);                  // stage 1
+  ctx->escs = BuildEscTable(cat, ctx->options);           // stage 2 (R1)
+  BuildPropGrids(m, cat, &ctx->grids, &ctx->models);      // stage 3
+}
+
 namespace {
 
 // A wing-borne cruise (lift_to_drag > 0) of a fixed group with a free airspeed in [lo, hi]:
@@ -1172,12 +1181,7 @@ SearchResult SearchExactly(const Mission& m, const Catalog& cat, const SearchOpt
   if (opt.top_n < 1) throw UsageError("--top " + std::to_string(opt.top_n) + ": must be >= 1");
   SearchResult out;
   SearchContext ctx;
-  ctx.mission = &m;
-  ctx.catalog = &cat;
-  ResolveGroups(&ctx);
-  ctx.options = BatteryOptions(m, cat);                    // stage 1
-  ctx.escs = BuildEscTable(cat, ctx.options);              // stage 2 (R1)
-  BuildPropGrids(m, cat, &ctx.grids, &ctx.models);         // stage 3
+  PrepareStages(m, cat, &ctx);  // stages 0-3
   FixedGroupPowerBounds(&ctx);
   out.combinations = static_cast<long long>(cat.motors().size()) * static_cast<long long>(cat.escs().size()) *
                      static_cast<long long>(cat.props().size()) * static_cast<long long>(ctx.options.size());

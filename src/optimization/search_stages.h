@@ -114,6 +114,10 @@ struct CandidateList {
 // a fixed part is not in the catalog or when not exactly one group is free.
 void ResolveGroups(SearchContext* ctx);
 
+// Stages 0-3 into *ctx: mission and catalog, ResolveGroups, BatteryOptions, BuildEscTable and
+// BuildPropGrids (the search then adds the fixed groups' power bounds and stages 4-5).
+void PrepareStages(const Mission& m, const Catalog& cat, SearchContext* ctx);
+
 // R8 (search.cc): a lower bound of the score of (motor, prop, option) with any ESC of class
 // esc_class weighing at least esc_mass_kg, over the mission's capacity range in pieces; kInf
 // when no capacity can be feasible (R3 per piece), -kInf when the rule does not apply (not a

@@ -129,12 +129,7 @@ TEST_F(SearchStagesTest, CandidateStreamDrawsTheSortedCandidateList) {
   const Catalog cat = SmallCatalog();
   const Mission m = ParseMission(ParseJsonText(kStageQuad, "quad"), "quad");
   SearchContext ctx;
-  ctx.mission = &m;
-  ctx.catalog = &cat;
-  ResolveGroups(&ctx);
-  ctx.options = BatteryOptions(m, cat);
-  ctx.escs = BuildEscTable(cat, ctx.options);
-  BuildPropGrids(m, cat, &ctx.grids, &ctx.models);
+  PrepareStages(m, cat, &ctx);
   CandidateList all = BuildCandidates(ctx, 1);
   std::sort(all.candidates.begin(), all.candidates.end(), CandidateBefore);
   ASSERT_GT(all.candidates.size(), 20u) << "the small catalog should give enough pairs to refill queues";
@@ -180,13 +175,8 @@ TEST_F(SearchStagesTest, CandidatesRemoveOnlyInfeasiblePairsAndBoundTheScore) {
     if (std::string(objective) == "min_energy") j["objective"].erase("segment");
     const Mission m = ParseMission(j, "quad");
     SearchContext ctx;
-    ctx.mission = &m;
-    ctx.catalog = &cat;
-    ResolveGroups(&ctx);
+    PrepareStages(m, cat, &ctx);
     ASSERT_EQ(ctx.free_rotors, 4);
-    ctx.options = BatteryOptions(m, cat);
-    ctx.escs = BuildEscTable(cat, ctx.options);
-    BuildPropGrids(m, cat, &ctx.grids, &ctx.models);
     const CandidateList one = BuildCandidates(ctx, 1);
     const CandidateList two = BuildCandidates(ctx, 2);
     auto key = [](const Candidate& c) { return std::make_tuple(c.motor, c.prop, c.option, c.bound, c.irms_lb); };
@@ -237,12 +227,7 @@ TEST_F(SearchStagesTest, CruiseStretchBoundIsBelowEveryFeasibleScore) {
     j["objective"] = {{"type", "max_endurance"}, {"segment", stretch}};
     const Mission m = ParseMission(j, "quad");
     SearchContext ctx;
-    ctx.mission = &m;
-    ctx.catalog = &cat;
-    ResolveGroups(&ctx);
-    ctx.options = BatteryOptions(m, cat);
-    ctx.escs = BuildEscTable(cat, ctx.options);
-    BuildPropGrids(m, cat, &ctx.grids, &ctx.models);
+    PrepareStages(m, cat, &ctx);
     const CandidateList all = BuildCandidates(ctx, 1);
     int feasible = 0, finite = 0;
     for (std::size_t mi = 0; mi < cat.motors().size(); ++mi) {
@@ -279,12 +264,7 @@ TEST_F(SearchStagesTest, CapacityPiecesBoundIsBelowEveryFeasibleScore) {
   j["battery"]["capacity_ah"] = {2.0, 6.0};
   const Mission m = ParseMission(j, "quad");
   SearchContext ctx;
-  ctx.mission = &m;
-  ctx.catalog = &cat;
-  ResolveGroups(&ctx);
-  ctx.options = BatteryOptions(m, cat);
-  ctx.escs = BuildEscTable(cat, ctx.options);
-  BuildPropGrids(m, cat, &ctx.grids, &ctx.models);
+  PrepareStages(m, cat, &ctx);
   const CandidateList all = BuildCandidates(ctx, 1);
   int feasible = 0, tightened = 0, infeasible_proven = 0;
   for (const Candidate& cand : all.candidates) {

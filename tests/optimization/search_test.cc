@@ -3,6 +3,8 @@
 #include "optimization/search.h"
 #include "optimization/search_stages.h"
 
+#include <initializer_list>
+
 #include <gtest/gtest.h>
 #include <unistd.h>
 
@@ -81,6 +83,46 @@ std::string Name(const Combination& c) {
   return c.motor->id + "|" + c.esc->id + "|" + c.prop->id + "|" + std::to_string(c.cells);
 }
 
+// kLiftCruise in two propulsion groups: the 4-rotor segments fly the "lift" group (free), the
+// others a 1-rotor "pusher" fixed to pick's motor, ESC and propeller.
+Json LiftAndFixedPusher(const Combination& pick) {
+  Json j = ParseJsonText(kLiftCruise, "lift");
+  j["vehicle"].erase("rotors");
+  j["propulsion"] = {{"lift", {{"rotors", 4}}},
+                     {"pusher", {{"rotors", 1}, {"motor", pick.motor->id}, {"esc", pick.esc->id}, {"prop", pick.prop->id}}}};
+  for (Json& sg : j["segments"]) {
+    sg["group"] = sg["rotors"].get<int>() == 4 ? "lift" : "pusher";
+    sg.erase("rotors");
+  }
+  return j;
+}
+
+// Every feasible combination solved without and then with cutoffs full.score * factor (until
+// max_checks solves with a cutoff): a "bounded out" answer only where the true score does not
+// beat the cutoff, any other feasible answer the full one; some cutoff must be bounded out.
+void ExpectCutoffsBoundOutOnlyWhatCannotBeatThem(const Catalog& cat, const Mission& m, int max_checks,
+                                                 std::initializer_list<double> factors) {
+  int bounded = 0, checked = 0;
+  ForEachCombination(cat, [&](const Combination& c) {
+    if (checked >= max_checks) return;
+    const MissionResult full = MissionEvaluator(m, c).Solve();
+    if (!full.feasible) return;
+    for (const double factor : factors) {
+      const double cutoff = full.score * factor;
+      const MissionResult cut = MissionEvaluator(m, c).Solve(cutoff);
+      if (cut.bounded_out) {
+        ++bounded;
+        EXPECT_GE(full.score, cutoff) << Name(c) << " factor " << factor;
+      } else if (cut.feasible) {
+        EXPECT_EQ(cut.score, full.score) << Name(c) << " factor " << factor;
+      }
+      ++checked;
+    }
+  });
+  EXPECT_GE(checked, 9);
+  EXPECT_GT(bounded, 0) << "no cutoff was bounded out: the bounds were not exercised";
+}
+
 // The search's top N against every combination evaluated. Returns how many combinations were
 // feasible.
 std::size_t CheckAgainstExhaustive(const Catalog& cat, const Mission& m) {
@@ -122,14 +164,7 @@ TEST_F(SearchTest, PropulsionGroupsEqualExhaustiveEvaluation) {
   const SearchResult one = SearchCatalog(single, cat, so);
   ASSERT_FALSE(one.best.empty());
   const Combination& pick = one.best[0].combination;
-  Json j = ParseJsonText(kLiftCruise, "lift");
-  j["vehicle"].erase("rotors");
-  j["propulsion"] = {{"lift", {{"rotors", 4}}},
-                     {"pusher", {{"rotors", 1}, {"motor", pick.motor->id}, {"esc", pick.esc->id}, {"prop", pick.prop->id}}}};
-  for (Json& sg : j["segments"]) {
-    sg["group"] = sg["rotors"].get<int>() == 4 ? "lift" : "pusher";
-    sg.erase("rotors");
-  }
+  Json j = LiftAndFixedPusher(pick);
   const Mission m = ParseMission(j, "groups");
   const int lift = m.segments[0].group, pusher = m.segments[2].group;
   // Same parts in both groups: the same flight as the one-group mission.
@@ -381,25 +416,8 @@ TEST_F(SearchTest, EarlyExitsBoundOutOnlyWhatCannotBeatTheCutoff) {
   Json j = ParseJsonText(kQuad, "quad");
   j["battery"]["capacity_ah"] = {2.0, 6.0};
   const Mission m = ParseMission(j, "quad");
-  int bounded = 0, checked = 0;
-  ForEachCombination(cat, [&](const Combination& c) {
-    if (checked >= 24) return;  // eight feasible combinations are enough (a test of seconds)
-    const MissionResult full = MissionEvaluator(m, c).Solve();
-    if (!full.feasible) return;
-    for (const double factor : {1.10, 1.02, 0.98}) {  // score = -endurance: 1.10 asks for 10 % more
-      const double cutoff = full.score * factor;
-      const MissionResult cut = MissionEvaluator(m, c).Solve(cutoff);
-      if (cut.bounded_out) {
-        ++bounded;
-        EXPECT_GE(full.score, cutoff) << Name(c) << " factor " << factor;
-      } else if (cut.feasible) {
-        EXPECT_EQ(cut.score, full.score) << Name(c) << " factor " << factor;
-      }
-      ++checked;
-    }
-  });
-  EXPECT_GE(checked, 9);
-  EXPECT_GT(bounded, 0) << "no cutoff was bounded out: the bounds were not exercised";
+  // score = -endurance: 1.10 asks for 10 % more; eight feasible combinations (a test of seconds).
+  ExpectCutoffsBoundOutOnlyWhatCannotBeatThem(cat, m, 24, {1.10, 1.02, 0.98});
 }
 
 // The same for min_energy with a capacity range and a free wing-borne cruise airspeed (the
@@ -411,25 +429,8 @@ TEST_F(SearchTest, FreeCruiseEnergyBoundsAreBounds) {
   j["battery"]["capacity_ah"] = {2.0, 6.0};
   j["segments"][2]["airspeed_m_s"] = {9.0, 16.0};
   const Mission m = ParseMission(j, "lift");
-  int bounded = 0, checked = 0;
-  ForEachCombination(cat, [&](const Combination& c) {
-    if (checked >= 30) return;  // ten feasible combinations (a test of seconds)
-    const MissionResult full = MissionEvaluator(m, c).Solve();
-    if (!full.feasible) return;
-    for (const double factor : {0.5, 0.90, 1.0 + 1e-6}) {  // min_energy: 0.90 asks for 10 % less
-      const double cutoff = full.score * factor;
-      const MissionResult cut = MissionEvaluator(m, c).Solve(cutoff);
-      if (cut.bounded_out) {
-        ++bounded;
-        EXPECT_GE(full.score, cutoff) << Name(c) << " factor " << factor;
-      } else if (cut.feasible) {
-        EXPECT_EQ(cut.score, full.score) << Name(c) << " factor " << factor;
-      }
-      ++checked;
-    }
-  });
-  EXPECT_GE(checked, 9);
-  EXPECT_GT(bounded, 0) << "no cutoff was bounded out: the bounds were not exercised";
+  // min_energy: 0.90 asks for 10 % less; ten feasible combinations (a test of seconds).
+  ExpectCutoffsBoundOutOnlyWhatCannotBeatThem(cat, m, 30, {0.5, 0.90, 1.0 + 1e-6});
 }
 
 // G1 with a free wing-borne cruise airspeed flown by a fixed pusher: the table's power at a
@@ -443,14 +444,7 @@ TEST_F(SearchTest, FixedGroupFreeCruiseBoundIsBelowTheEnergy) {
   const SearchResult one = SearchCatalog(single, cat, so);
   ASSERT_FALSE(one.best.empty());
   const Combination& pick = one.best[0].combination;
-  Json j = ParseJsonText(kLiftCruise, "lift");
-  j["vehicle"].erase("rotors");
-  j["propulsion"] = {{"lift", {{"rotors", 4}}},
-                     {"pusher", {{"rotors", 1}, {"motor", pick.motor->id}, {"esc", pick.esc->id}, {"prop", pick.prop->id}}}};
-  for (Json& sg : j["segments"]) {
-    sg["group"] = sg["rotors"].get<int>() == 4 ? "lift" : "pusher";
-    sg.erase("rotors");
-  }
+  Json j = LiftAndFixedPusher(pick);
   j["segments"][2]["airspeed_m_s"] = {9.0, 16.0};
   const Mission m = ParseMission(j, "groups");
   const int lift = m.segments[0].group, pusher = m.segments[2].group;
