@@ -13,6 +13,7 @@
 #include "fit/linear_least_squares.h"
 #include "fit/statistics.h"
 #include "identification/fit_rows.h"
+#include "model/circuit.h"
 
 namespace dynosize::calibration {
 
@@ -59,17 +60,6 @@ struct FitData {
 
 using fit::Median;
 
-// Dead band / throttle offset, then the saturation knee of section 7 (model::Drive's
-// EffectiveThrottle, generic for dual numbers): d = max(0, (TR - db)/(1 - db)), TR_eff = d up to
-// tr_sat, tr_sat + slope*(d - tr_sat) above.
-template <typename T>
-T EffThrottle(double tr, double tr_sat, const T& slope, const T& db) {
-  T d = (tr - db) / (1.0 - db);
-  if (d < 0.0) d = T(0.0);
-  if (d <= tr_sat) return d;
-  return tr_sat + slope * (d - tr_sat);
-}
-
 // The fit's parameter vector ("internal", identification/parameters.h): slot kKt holds the
 // ratio f = KT/(kp*KE) (1 when KT is tied to KE), slot kC1 the ESC excess s = c1 + c0 - 1.1095.
 // Both keep the energy rules of model.md section 10 as box bounds.
@@ -105,31 +95,32 @@ bool PredictGeneric(const T* p, double tr_sat, double vdc, double tr, double ome
   const T& slope = p[8];
   const T r = rm + resc;
   if (!(ke > 0.0) || !(kt > 0.0) || !(r > 1e-12)) return false;
-  const T tre = EffThrottle(tr, tr_sat, slope, p[kDbI]);
-  const T u = kVllRmsPerVdc * vdc * tre;
+  // The rms circuit of model/circuit.h, the same equations Drive evaluates.
+  const T tre = circuit::EffectiveThrottle(tr, tr_sat, slope, p[kDbI]);
+  const T u = circuit::AppliedVoltage(kVllRmsPerVdc, vdc, tre);
   T i, w;
   if (torque_known) {
-    i = q / kt + io;
-    w = (u - r * i) / ke;
+    i = circuit::CurrentAtTorque(q, kt, io);
+    w = circuit::SpeedAtCurrent(u, r, i, ke);
     *q_pred = T(q);
   } else if (idc_in == idc_in) {
     // The measured DC current is the input: I = IDC/(C1*TR_eff + C0) (57), speed from (48).
     const T g = c1 * tre + c0;
     if (!(g > 1e-6)) return false;
     i = idc_in / g;
-    w = (u - r * i) / ke;
-    *q_pred = kt * (i - io);
+    w = circuit::SpeedAtCurrent(u, r, i, ke);
+    *q_pred = circuit::ShaftTorque(kt, i, io);
   } else {
     w = T(omega);
-    i = (u - ke * omega) / r;
-    *q_pred = kt * (i - io);
+    i = circuit::CurrentAtSpeed(u, ke, omega, r);
+    *q_pred = circuit::ShaftTorque(kt, i, io);
   }
-  const T vll = u - resc * i;
+  const T vll = circuit::LineVoltage(u, resc, i);
   pred[kMOmega] = w;
-  pred[kMIdc] = (c1 * tre + c0) * i;
+  pred[kMIdc] = circuit::DcCurrent(c1, tre, c0, i);
   pred[kMIrms] = i;
   pred[kMVll] = vll;
-  pred[kMPac] = kPacPerVllIrms * vll * i;
+  pred[kMPac] = circuit::AcPower(kPacPerVllIrms, vll, i);
   return true;
 }
 
@@ -1098,11 +1089,12 @@ RowPrediction PredictRow(const SteadyTable& t, std::size_t row, const MotorParam
   }
   if (tq) out.omega_rad_s = pred[kMOmega];
   {
-    const double tre = EffThrottle(tr, esc.tr_sat, esc.sat_slope, esc.deadband);
-    const double g = esc.c1 * tre + esc.c0;
-    const double u = kVllRmsPerVdc * t.Get(Column::kVdcV)[row] * tre;
+    const double tre = circuit::EffectiveThrottle(tr, esc.tr_sat, esc.sat_slope, esc.deadband);
+    const double g = esc.c1 * tre + esc.c0;  // (57): IDC = g*I
+    const double u = circuit::AppliedVoltage(kVllRmsPerVdc, t.Get(Column::kVdcV)[row], tre);
     if (g > 0.0 && motor.ke_v_s_per_rad > 0.0) {
-      out.omega_from_idc_rad_s = (u - (motor.rm_ohm + esc.resc_ohm) * t.Get(Column::kIdcA)[row] / g) / motor.ke_v_s_per_rad;
+      out.omega_from_idc_rad_s = circuit::SpeedAtCurrent(u, motor.rm_ohm + esc.resc_ohm,
+                                                         t.Get(Column::kIdcA)[row] / g, motor.ke_v_s_per_rad);
     }
   }
   if (!tq) out.torque_nm = qp;

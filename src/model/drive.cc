@@ -1,5 +1,6 @@
 #include "model/drive.h"
 #include "model/physics.h"
+#include "model/circuit.h"
 
 #include <algorithm>
 #include <cmath>
@@ -120,17 +121,11 @@ double Drive::CircuitCurrent(double x_v, double r_series_ohm) const {
 }
 
 double Drive::EffectiveThrottle(double throttle) const {
-  const double d = esc_.deadband != 0.0
-                       ? std::max(0.0, (throttle - esc_.deadband) / (1.0 - esc_.deadband))
-                       : throttle;
-  return d <= esc_.tr_sat ? d : esc_.tr_sat + esc_.sat_slope * (d - esc_.tr_sat);
+  return circuit::EffectiveThrottle(throttle, esc_.tr_sat, esc_.sat_slope, esc_.deadband);
 }
 
 double Drive::ThrottleFromEffective(double throttle_effective) const {
-  const double d = throttle_effective <= esc_.tr_sat
-                       ? throttle_effective
-                       : esc_.tr_sat + (throttle_effective - esc_.tr_sat) / esc_.sat_slope;
-  return esc_.deadband != 0.0 ? esc_.deadband + d * (1.0 - esc_.deadband) : d;
+  return circuit::ThrottleFromEffective(throttle_effective, esc_.tr_sat, esc_.sat_slope, esc_.deadband);
 }
 
 OperatingPoint Drive::Complete(double vdc_v, double throttle, double omega_rad_s,
@@ -148,11 +143,12 @@ OperatingPoint Drive::Complete(double vdc_v, double throttle, double omega_rad_s
     p.omega_rad_s = omega_rad_s;
     p.rpm = RadPerSecToRpm(omega_rad_s);
     p.irms_a = current_a;
-    p.torque_nm = motor_.kt_nm_per_a * (current_a - motor_.io_a);                 // (42)
+    p.torque_nm = circuit::ShaftTorque(motor_.kt_nm_per_a, current_a, motor_.io_a);
     if (limits & kLimitStalled) p.torque_nm = std::max(p.torque_nm, 0.0);
-    p.vll_rms_v = volt_factor_ * vdc_v * p.throttle_effective - esc_.resc_ohm * current_a;  // (47)
-    p.pac_w = power_factor_ * p.vll_rms_v * current_a;                            // (41), (51)
-    p.idc_a = (esc_.c1 * p.throttle_effective + esc_.c0) * current_a;             // (57)
+    p.vll_rms_v = circuit::LineVoltage(circuit::AppliedVoltage(volt_factor_, vdc_v, p.throttle_effective),
+                                       esc_.resc_ohm, current_a);
+    p.pac_w = circuit::AcPower(power_factor_, p.vll_rms_v, current_a);
+    p.idc_a = circuit::DcCurrent(esc_.c1, p.throttle_effective, esc_.c0, current_a);
     p.pdc_w = vdc_v * p.idc_a;                                                    // (59)
     p.pesc_w = p.pdc_w - p.pac_w;                                                 // (52)
     p.pmech_w = p.torque_nm * omega_rad_s;                                        // (50)
@@ -189,12 +185,13 @@ void Drive::Flag(OperatingPoint* p, std::uint32_t limits) const {
   p.rpm = RadPerSecToRpm(omega_rad_s);
   p.irms_a = current_a;
   const double io = motor_.io_a + motor_.io1_a_s_per_rad * omega_rad_s;          // section 9
-  p.torque_nm = TorqueConstant(current_a) * (current_a - io);                    // (42)
+  p.torque_nm = circuit::ShaftTorque(TorqueConstant(current_a), current_a, io);
   if (*limits & kLimitStalled) p.torque_nm = std::max(p.torque_nm, 0.0);
-  p.idc_a = (esc_.c1 * p.throttle_effective + esc_.c0) * current_a;             // (57)
+  p.idc_a = circuit::DcCurrent(esc_.c1, p.throttle_effective, esc_.c0, current_a);
   const double vdc_esc = vdc_v - esc_.rsupply_ohm * p.idc_a;                    // supply drop
-  p.vll_rms_v = volt_factor_ * vdc_esc * p.throttle_effective - esc_.resc_ohm * current_a;  // (47)
-  p.pac_w = power_factor_ * p.vll_rms_v * current_a;                            // (41), (51)
+  p.vll_rms_v = circuit::LineVoltage(circuit::AppliedVoltage(volt_factor_, vdc_esc, p.throttle_effective),
+                                     esc_.resc_ohm, current_a);
+  p.pac_w = circuit::AcPower(power_factor_, p.vll_rms_v, current_a);
   p.pdc_w = vdc_v * p.idc_a;                                                    // (59)
   p.pesc_w = p.pdc_w - p.pac_w;                                                 // (52)
   p.pmech_w = p.torque_nm * omega_rad_s;                                        // (50)
@@ -296,8 +293,8 @@ OperatingPoint Drive::AtSpeed(double vdc_v, double throttle, double omega_rad_s)
 
 OperatingPoint Drive::Inverse(double vdc_v, double torque_nm, double omega_rad_s) const {
   if (extended_) return InverseExtended(vdc_v, torque_nm, omega_rad_s);
-  const double current = torque_nm / motor_.kt_nm_per_a + motor_.io_a;                 // (42)
-  const double u = r_total_ohm_ * current + motor_.ke_v_s_per_rad * omega_rad_s;       // (48)
+  const double current = circuit::CurrentAtTorque(torque_nm, motor_.kt_nm_per_a, motor_.io_a);
+  const double u = circuit::VoltageAtPoint(r_total_ohm_, current, motor_.ke_v_s_per_rad, omega_rad_s);
   const double throttle = ThrottleFromEffective(u / (volt_factor_ * vdc_v));
   return Complete(vdc_v, throttle, omega_rad_s, current, kLimitNone);
 }

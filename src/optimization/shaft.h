@@ -5,11 +5,12 @@
 // of common/dual.h through solvers::AutoDiff*), then the point is recomputed with
 // Drive::Inverse, which is what every report prints.
 //
-// Derivatives need the drive's equations on dual numbers, so ShaftPdc<T> below restates the
-// inverse model of model/drive.h for a generic scalar:
+// Derivatives need the drive's equations on dual numbers, so ShaftPdc<T> below composes the
+// inverse model of model/drive.h from model/circuit.h's generic equations:
 //     I = Q/KT + Io                            (eq 42)
 //     U = (Rm + RESC)*I + KE*omega             (eq 48), TR_eff = U/(kv*VDC)
-//     TR = TR_eff below tr_sat, tr_sat + (TR_eff - tr_sat)/sat_slope above (section 7)
+//     TR = TR_eff below tr_sat, tr_sat + (TR_eff - tr_sat)/sat_slope above (section 7; then
+//          the dead band of section 9)
 //     PDC = VDC*(C1*TR_eff + C0)*I             (eqs 57, 59)
 // tests/optimization/shaft_test.cc checks it against Drive::Inverse to 1e-12 on every motor/ESC
 // pair it draws, so a model extension that changes Drive makes that test fail rather than
@@ -24,6 +25,7 @@
 #include <string>
 
 #include "mission/mission.h"
+#include "model/circuit.h"
 #include "model/drive.h"
 
 namespace dynosize {
@@ -38,11 +40,11 @@ ShaftEval<T> ShaftPdc(const Drive& d, double vdc_v, const T& omega_rad_s, const 
   const MotorParams& m = d.motor();
   const EscParams& e = d.esc();
   ShaftEval<T> r;
-  r.current_a = torque_nm / m.kt_nm_per_a + m.io_a;                                  // (42)
-  const T u = d.r_total_ohm() * r.current_a + m.ke_v_s_per_rad * omega_rad_s;        // (48)
+  r.current_a = circuit::CurrentAtTorque(torque_nm, m.kt_nm_per_a, m.io_a);
+  const T u = circuit::VoltageAtPoint(d.r_total_ohm(), r.current_a, m.ke_v_s_per_rad, omega_rad_s);
   const T tre = u / (d.volt_factor() * vdc_v);
-  r.throttle = tre <= e.tr_sat ? tre : e.tr_sat + (tre - e.tr_sat) / e.sat_slope;     // sec. 7
-  r.idc_a = (e.c1 * tre + e.c0) * r.current_a;                                       // (57)
+  r.throttle = circuit::ThrottleFromEffective(tre, e.tr_sat, e.sat_slope, e.deadband);
+  r.idc_a = circuit::DcCurrent(e.c1, tre, e.c0, r.current_a);
   r.pdc_w = vdc_v * r.idc_a;                                                          // (59)
   return r;
 }
