@@ -44,18 +44,12 @@ using identification::kMVll;
 using Term = identification::ResidualTerm;
 using identification::TermResidual;
 
-struct FitData {
-  std::vector<std::size_t> rows;  // rows of the table used
-  std::vector<double> vdc, tr, omega, q;
-  std::vector<char> torque_known;
+struct FitData : identification::FitRows {
   std::vector<char> speed_known;  // 0: a no-load row whose speed was not measured (omega = 0)
   // DC logs with a throttle but neither torque nor AC columns: the measured current is the row's
   // input and the speed is predicted (the well-conditioned direction: I = (U - KE*omega)/R is a
   // small difference at low throttle, omega = (U - R*I)/KE is not). NaN where not an input.
   std::vector<double> idc_in;
-  std::vector<int> term_begin;  // terms of row k: [term_begin[k], term_begin[k+1])
-  std::vector<Term> terms;
-  std::array<bool, kMeasCount> measured{};
 };
 
 using fit::Median;
@@ -139,7 +133,7 @@ bool Residuals(const FitData& d, const Layout& lay, const std::array<double, kPa
   const double tr_sat = fixed[static_cast<int>(Param::kTrSat)];
   T pred[kMeasCount];
   T qp;
-  for (std::size_t k = 0; k < d.rows.size(); ++k) {
+  for (std::size_t k = 0; k < d.rows(); ++k) {
     if (!PredictGeneric(p, tr_sat, d.vdc[k], d.tr[k], d.omega[k], d.q[k],
                         d.torque_known[k] != 0, pred, &qp, d.idc_in[k])) {
       return false;
@@ -268,7 +262,7 @@ LogColumns SelectFitRows(const SteadyTable& t, const CalibrationOptions& o, cons
       DropRow(pr, t, i, why);
       continue;
     }
-    d.rows.push_back(i);
+    d.table_row.push_back(i);
     d.vdc.push_back(t.Get(Column::kVdcV)[i]);
     d.tr.push_back(tr);
     d.omega.push_back(w);
@@ -291,16 +285,16 @@ LogColumns SelectFitRows(const SteadyTable& t, const CalibrationOptions& o, cons
 // over the rows used; the row's inputs (speed or current) are not terms.
 void BuildTerms(const SteadyTable& t, FitData* fd) {
   FitData& d = *fd;
-  const std::array<double, kMeasCount> inv_scale = identification::MedianPercentScales(t, d.rows, &d.measured);
+  const std::array<double, kMeasCount> inv_scale = identification::MedianPercentScales(t, d.table_row, &d.measured);
   d.term_begin.push_back(0);
-  for (std::size_t k = 0; k < d.rows.size(); ++k) {
+  for (std::size_t k = 0; k < d.rows(); ++k) {
     for (int m = 0; m < kMeasCount; ++m) {
       if (!d.measured[m]) continue;
       const bool current_input = d.idc_in[k] == d.idc_in[k];
       if (m == kMOmega && !d.torque_known[k] && !current_input) continue;  // speed is the input
       if (m == kMOmega && !d.speed_known[k]) continue;   // speed not measured on this row
       if (m == kMIdc && current_input) continue;         // the current is the input
-      d.terms.push_back({m, t.Get(kMeasColumn[m])[d.rows[k]], inv_scale[m]});
+      d.terms.push_back({m, t.Get(kMeasColumn[m])[d.table_row[k]], inv_scale[m]});
     }
     d.term_begin.push_back(static_cast<int>(d.terms.size()));
   }
@@ -360,7 +354,7 @@ void ChooseFree(const CalibrationOptions& o, const LogColumns& c, Prepared* pr) 
 // The rows of the linear starts: those unlikely to be saturated (all rows if fewer than 3
 // qualify); rows without a speed reading cannot enter U = R*I + KE*omega.
 std::vector<std::size_t> LinearStartRows(const FitData& d, bool has_throttle) {
-  const std::size_t n = d.rows.size();
+  const std::size_t n = d.rows();
   std::vector<std::size_t> lin;
   for (std::size_t k = 0; k < n; ++k) {
     if (d.speed_known[k] && (d.tr[k] <= 0.85 || !has_throttle)) lin.push_back(k);
@@ -388,7 +382,7 @@ void StartKeAndR(const SteadyTable& t, const CalibrationOptions& o, const LogCol
     const std::size_t k = lin[j];
     a(j, 0) = irms[k];
     a(j, 1) = d.omega[k];
-    b[j] = c.ac ? t.Get(Column::kVllRmsV)[d.rows[k]] : kVllRmsPerVdc * d.vdc[k] * d.tr[k];
+    b[j] = c.ac ? t.Get(Column::kVllRmsV)[d.table_row[k]] : kVllRmsPerVdc * d.vdc[k] * d.tr[k];
   }
   const auto sol = SolveLinearLeastSquares(a, b);
   double r0 = sol.coefficients[0], ke0 = sol.coefficients[1];
@@ -414,7 +408,7 @@ void StartKeAndR(const SteadyTable& t, const CalibrationOptions& o, const LogCol
       for (std::size_t j = 0; j < lin.size(); ++j) {
         const std::size_t k = lin[j];
         a2(j, 0) = irms[k];
-        b2[j] = kVllRmsPerVdc * d.vdc[k] * d.tr[k] - t.Get(Column::kVllRmsV)[d.rows[k]];
+        b2[j] = kVllRmsPerVdc * d.vdc[k] * d.tr[k] - t.Get(Column::kVllRmsV)[d.table_row[k]];
       }
       p[idx(Param::kResc)] = SolveLinearLeastSquares(a2, b2).coefficients[0];
     }
@@ -428,7 +422,7 @@ void StartKeAndR(const SteadyTable& t, const CalibrationOptions& o, const LogCol
 void StartKtAndIo(const LogColumns& c, const Prepared& pr, const std::vector<double>& irms,
                   std::array<double, kParamCount>* start) {
   const FitData& d = pr.data;
-  const std::size_t n = d.rows.size();
+  const std::size_t n = d.rows();
   auto& p = *start;
   auto idx = [](Param q) { return static_cast<int>(q); };
   if (c.has_q) {
@@ -467,7 +461,7 @@ void StartKtAndIo(const LogColumns& c, const Prepared& pr, const std::vector<dou
 // the internal form (KT as the ratio f, C1 as the excess s) inside the box.
 void StartingValues(const SteadyTable& t, const CalibrationOptions& o, const LogColumns& c, Prepared* pr) {
   const FitData& d = pr->data;
-  const std::size_t n = d.rows.size();
+  const std::size_t n = d.rows();
   const auto& fr = pr->layout.free;
   auto idx = [](Param q) { return static_cast<int>(q); };
   std::array<double, kParamCount>& p = pr->start;
@@ -485,10 +479,10 @@ void StartingValues(const SteadyTable& t, const CalibrationOptions& o, const Log
   std::vector<double> irms(n);
   for (std::size_t k = 0; k < n; ++k) {
     if (d.measured[kMIrms]) {
-      irms[k] = t.Get(Column::kIrmsA)[d.rows[k]];
+      irms[k] = t.Get(Column::kIrmsA)[d.table_row[k]];
     } else {
       const double g = esc0.c1 * d.tr[k] + esc0.c0;
-      irms[k] = t.Get(Column::kIdcA)[d.rows[k]] / std::max(g, 1e-3);
+      irms[k] = t.Get(Column::kIdcA)[d.table_row[k]] / std::max(g, 1e-3);
     }
   }
   const std::vector<std::size_t> lin = LinearStartRows(d, pr->has_throttle);
@@ -502,7 +496,7 @@ void StartingValues(const SteadyTable& t, const CalibrationOptions& o, const Log
       const std::size_t k = lin[j];
       a(j, 0) = d.tr[k] * irms[k];
       a(j, 1) = irms[k];
-      b[j] = t.Get(Column::kIdcA)[d.rows[k]];
+      b[j] = t.Get(Column::kIdcA)[d.table_row[k]];
     }
     const auto sol = SolveLinearLeastSquares(a, b);
     p[idx(Param::kC1)] = sol.coefficients[0];
@@ -675,10 +669,10 @@ SolveOutcome FitWithKnee(const Prepared& pr, const CalibrationOptions& o, bool f
 
 std::vector<double> RowResidualMax(const Prepared& pr, const std::array<double, kParamCount>& p) {
   const FitData& d = pr.data;
-  std::vector<double> out(d.rows.size(), 0.0);
+  std::vector<double> out(d.rows(), 0.0);
   double pred[kMeasCount];
   double qp;
-  for (std::size_t k = 0; k < d.rows.size(); ++k) {
+  for (std::size_t k = 0; k < d.rows(); ++k) {
     if (!PredictGeneric(p.data(), p[7], d.vdc[k], d.tr[k], d.omega[k], d.q[k], d.torque_known[k] != 0,
                         pred, &qp, d.idc_in[k])) {
       continue;
@@ -786,7 +780,7 @@ std::vector<DroppedRow> SelectOutliers(const Prepared& pr, const std::array<doub
   std::vector<DroppedRow> out;
   out.reserve(sel.dropped.size());
   for (std::size_t k : sel.dropped) {
-    const std::size_t row = pr.data.rows[k];
+    const std::size_t row = pr.data.table_row[k];
     std::ostringstream why;
     why << std::setprecision(3) << "outlier: largest residual " << rmax[k] << " % > " << o.outlier_sigmas
         << " robust sd (" << sigma << " %)";
@@ -856,8 +850,8 @@ void AddColumnFits(const Prepared& pr, const SteadyTable& table, const Calibrati
     cf.column = kMeasColumn[m];
     double sse = 0.0, ss = 0.0;
     std::vector<double> rel;
-    for (std::size_t k = 0; k < pr.data.rows.size(); ++k) {
-      const RowPrediction rp = PredictRow(table, pr.data.rows[k], res.motor, res.esc, options.assumed_throttle);
+    for (std::size_t k = 0; k < pr.data.rows(); ++k) {
+      const RowPrediction rp = PredictRow(table, pr.data.table_row[k], res.motor, res.esc, options.assumed_throttle);
       // Rows whose current is the fit's input: their speed prediction is the one from the current.
       const bool current_input = pr.data.idc_in[k] == pr.data.idc_in[k];
       // Its current is an input there, not a fitted value: not scored (the held-out report has
@@ -866,7 +860,7 @@ void AddColumnFits(const Prepared& pr, const SteadyTable& table, const Calibrati
       const double pv[kMeasCount] = {current_input ? rp.omega_from_idc_rad_s : rp.omega_rad_s, rp.idc_a, rp.irms_a,
                                      rp.vll_rms_v, rp.pac_w};
       if (!std::isfinite(pv[m])) continue;
-      const double meas = table.Get(kMeasColumn[m])[pr.data.rows[k]];
+      const double meas = table.Get(kMeasColumn[m])[pr.data.table_row[k]];
       sse += (pv[m] - meas) * (pv[m] - meas);
       ss += meas * meas;
       if (meas != 0.0) rel.push_back(std::fabs(pv[m] - meas) / std::fabs(meas) * 100.0);
@@ -949,7 +943,7 @@ CalibrationResult Calibrate(const SteadyTable& table, const CalibrationOptions& 
     const std::vector<DroppedRow> out = SelectOutliers(pr, best.params, table, options, nfree_base);
     if (!out.empty()) {
       std::vector<char> excl(table.rows(), 1);  // rows dropped before stay dropped
-      for (std::size_t i : pr.data.rows) excl[i] = 0;
+      for (std::size_t i : pr.data.table_row) excl[i] = 0;
       for (const auto& o : out) excl[o.row] = 1;
       Prepared pr2 = Prepare(table, options, &excl);
       pr2.dropped = pr.dropped;
@@ -984,7 +978,7 @@ CalibrationResult Calibrate(const SteadyTable& table, const CalibrationOptions& 
   res.esc = ToEsc(best.params, options.esc_prior);
   res.dropped = pr.dropped;
   res.dropped_rows = pr.dropped_rows;
-  res.points_used = pr.data.rows.size();
+  res.points_used = pr.data.rows();
   for (const auto& dc : pr.dropped) res.points_dropped += dc.count;
   res.warnings = pr.warnings;
   if (!res.converged) res.warnings.push_back("fit did not converge: " + s.message);

@@ -59,16 +59,9 @@ using identification::kMVll;
 using Term = identification::ResidualTerm;
 using identification::TermResidual;
 
-struct Data {
-  std::vector<std::size_t> table_row;
-  std::vector<double> vdc, tr, omega, q;
-  std::vector<char> torque_known;
-  std::vector<int> term_begin;  // terms of row k: [term_begin[k], term_begin[k+1])
-  std::vector<Term> terms;
-  std::array<bool, kMeasCount> measured{};
+struct Data : identification::FitRows {
   bool tie_kt = true;
   MotorType motor_type = MotorType::kBldc;
-  std::size_t rows() const { return table_row.size(); }
 };
 
 struct Model {

@@ -33,6 +33,18 @@ T TermResidual(const ResidualTerm& term, const T* pred) {
   return (pred[term.meas] - term.value) * term.inv_scale;
 }
 
+// The rows of a log a fit uses, as the model's inputs, and the residual terms they carry; both
+// commands build one (calibrate adds the rows' DC-current inputs, diagnose its model choices).
+struct FitRows {
+  std::vector<std::size_t> table_row;     // the log row of each fit row
+  std::vector<double> vdc, tr, omega, q;  // VDC [V], throttle, omega [rad/s], torque [N*m]
+  std::vector<char> torque_known;         // q is measured (else omega is the row's load input)
+  std::vector<int> term_begin;            // terms of row k: [term_begin[k], term_begin[k+1])
+  std::vector<ResidualTerm> terms;
+  std::array<bool, kMeasCount> measured{};
+  std::size_t rows() const { return table_row.size(); }
+};
+
 // Why a log row is left out of a fit, or nullptr when the fit uses it. The rules, checked in
 // this order:
 //  1. the shaft speed must exceed min_speed_fraction of the largest logged speed (the motor is

@@ -26,6 +26,17 @@ inline double PositiveRoot(double c, double b_total, double c_total) {
 
 inline double Ratio(double num, double den) { return (den > 0.0 && num > 0.0) ? num / den : 0.0; }
 
+// The powers and efficiencies of a point whose currents, voltages and torque are set:
+// PDC (59), PESC (52), Pmech (50) and the efficiencies (53), (13).
+inline void FillPowers(double vdc_v, double omega_rad_s, OperatingPoint* p) {
+  p->pdc_w = vdc_v * p->idc_a;
+  p->pesc_w = p->pdc_w - p->pac_w;
+  p->pmech_w = p->torque_nm * omega_rad_s;
+  p->eta_motor = Ratio(p->pmech_w, p->pac_w);
+  p->eta_esc = Ratio(p->pac_w, p->pdc_w);
+  p->eta_system = Ratio(p->pmech_w, p->pdc_w);
+}
+
 }  // namespace
 
 std::vector<std::string> LimitNames(std::uint32_t limits) {
@@ -149,12 +160,7 @@ OperatingPoint Drive::Complete(double vdc_v, double throttle, double omega_rad_s
                                        esc_.resc_ohm, current_a);
     p.pac_w = circuit::AcPower(power_factor_, p.vll_rms_v, current_a);
     p.idc_a = circuit::DcCurrent(esc_.c1, p.throttle_effective, esc_.c0, current_a);
-    p.pdc_w = vdc_v * p.idc_a;                                                    // (59)
-    p.pesc_w = p.pdc_w - p.pac_w;                                                 // (52)
-    p.pmech_w = p.torque_nm * omega_rad_s;                                        // (50)
-    p.eta_motor = Ratio(p.pmech_w, p.pac_w);
-    p.eta_esc = Ratio(p.pac_w, p.pdc_w);                                          // (53)
-    p.eta_system = Ratio(p.pmech_w, p.pdc_w);                                     // (13)
+    FillPowers(vdc_v, omega_rad_s, &p);
   }
   Flag(&p, limits);
   return p;
@@ -192,12 +198,7 @@ void Drive::Flag(OperatingPoint* p, std::uint32_t limits) const {
   p.vll_rms_v = circuit::LineVoltage(circuit::AppliedVoltage(volt_factor_, vdc_esc, p.throttle_effective),
                                      esc_.resc_ohm, current_a);
   p.pac_w = circuit::AcPower(power_factor_, p.vll_rms_v, current_a);
-  p.pdc_w = vdc_v * p.idc_a;                                                    // (59)
-  p.pesc_w = p.pdc_w - p.pac_w;                                                 // (52)
-  p.pmech_w = p.torque_nm * omega_rad_s;                                        // (50)
-  p.eta_motor = Ratio(p.pmech_w, p.pac_w);
-  p.eta_esc = Ratio(p.pac_w, p.pdc_w);                                          // (53)
-  p.eta_system = Ratio(p.pmech_w, p.pdc_w);                                     // (13)
+  FillPowers(vdc_v, omega_rad_s, &p);
   if (motor_.rth_k_per_w != 0.0) {
     const double rm_hot = WindingResistance(current_a);
     p.winding_rise_k = motor_.rth_k_per_w * power_factor_ * rm_hot * current_a * current_a;
