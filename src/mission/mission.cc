@@ -228,44 +228,38 @@ static void ReadPropulsion(const Reader& top, const std::string& name, Mission* 
   m->vehicle.rotors = total;
 }
 
-Mission ParseMission(const Json& doc, const std::string& name) {
-  Mission m;
-  m.file = name;
-  const Reader top(doc, name, "$");
-  top.AllowOnly({"name", "comment", "vehicle", "air", "battery", "constraints", "objective", "segments",
-                 "propulsion"});
-  m.name = top.String("name", std::string("mission"));
-  if (top.Has("comment") && !top.At("comment").is_string()) {
-    top.Fail("$.comment", top.At("comment"), "must be a string");
-  }
-
+// "vehicle" (and "propulsion", which sets the rotor count).
+static void ReadVehicle(const Reader& top, const std::string& name, Mission* m) {
   if (!top.Has("vehicle")) top.FailMissing("vehicle", "an object is required");
   const Reader v(top.At("vehicle"), name, "$.vehicle");
   v.AllowOnly({"mass_kg", "rotors", "coaxial", "drag_area_m2", "drag_coefficient", "avionics_power_w",
                "max_prop_diameter_m"});
-  m.vehicle.mass_kg = v.Number("mass_kg", 0.0, 1e4, true);
+  m->vehicle.mass_kg = v.Number("mass_kg", 0.0, 1e4, true);
   if (top.Has("propulsion")) {
-    ReadPropulsion(top, name, &m);
-    if (v.Has("rotors") && v.Integer("rotors", 1, 64, std::nullopt) != m.vehicle.rotors) {
+    ReadPropulsion(top, name, m);
+    if (v.Has("rotors") && v.Integer("rotors", 1, 64, std::nullopt) != m->vehicle.rotors) {
       v.Fail("$.vehicle.rotors", v.At("rotors"), "must be the sum of the propulsion groups' rotors (" +
-                                                     std::to_string(m.vehicle.rotors) + ") or left out");
+                                                     std::to_string(m->vehicle.rotors) + ") or left out");
     }
     if (v.Has("max_prop_diameter_m")) {
       v.Fail("$.vehicle.max_prop_diameter_m", v.At("max_prop_diameter_m"),
              "give max_prop_diameter_m per propulsion group");
     }
   } else {
-    m.vehicle.rotors = v.Integer("rotors", 1, 64, std::nullopt);
+    m->vehicle.rotors = v.Integer("rotors", 1, 64, std::nullopt);
   }
-  m.vehicle.coaxial = v.Bool("coaxial", false);
-  if (m.vehicle.coaxial && m.vehicle.rotors % 2 != 0) {
+  m->vehicle.coaxial = v.Bool("coaxial", false);
+  if (m->vehicle.coaxial && m->vehicle.rotors % 2 != 0) {
     v.Fail("$.vehicle.rotors", v.At("rotors"), "must be even for a coaxial vehicle");
   }
-  m.vehicle.drag_area_m2 = v.Number("drag_area_m2", 0.0, 100.0, false, 0.0);
-  m.vehicle.drag_coefficient = v.Number("drag_coefficient", 0.0, 5.0, false, 0.0);
-  m.vehicle.avionics_power_w = v.Number("avionics_power_w", 0.0, 1e5, false, 0.0);
-  m.vehicle.max_prop_diameter_m = v.OptNumber("max_prop_diameter_m", 0.0, 100.0, true);
+  m->vehicle.drag_area_m2 = v.Number("drag_area_m2", 0.0, 100.0, false, 0.0);
+  m->vehicle.drag_coefficient = v.Number("drag_coefficient", 0.0, 5.0, false, 0.0);
+  m->vehicle.avionics_power_w = v.Number("avionics_power_w", 0.0, 1e5, false, 0.0);
+  m->vehicle.max_prop_diameter_m = v.OptNumber("max_prop_diameter_m", 0.0, 100.0, true);
+}
 
+// "air": the density, given or from the ISA at an altitude and temperature.
+static void ReadAir(const Reader& top, const std::string& name, Mission* m) {
   if (top.Has("air")) {
     const Reader a(top.At("air"), name, "$.air");
     a.AllowOnly({"density_kg_m3", "altitude_m", "temperature_c"});
@@ -273,15 +267,18 @@ Mission ParseMission(const Json& doc, const std::string& name) {
       if (a.Has("altitude_m") || a.Has("temperature_c")) {
         throw DataError(name + ": $.air: give density_kg_m3 or altitude_m/temperature_c, not both");
       }
-      m.rho_kg_m3 = a.Number("density_kg_m3", 0.3, 1.6, false);
+      m->rho_kg_m3 = a.Number("density_kg_m3", 0.3, 1.6, false);
     } else {
       const double h = a.Number("altitude_m", -500.0, 10000.0, false, 0.0);
       const double t = a.Number("temperature_c", -60.0, 60.0, false, 15.0);
-      m.rho_kg_m3 = AirDensityKgM3(h, t);
-      m.air_temperature_c = t;
+      m->rho_kg_m3 = AirDensityKgM3(h, t);
+      m->air_temperature_c = t;
     }
   }
+}
 
+// "battery": catalog ids, cells (a number or a range), capacity, reserve, cut-off.
+static void ReadBattery(const Reader& top, const std::string& name, Mission* m) {
   if (!top.Has("battery")) top.FailMissing("battery", "an object is required");
   const Reader b(top.At("battery"), name, "$.battery");
   b.AllowOnly({"id", "cells", "capacity_ah", "reserve_soc", "cutoff_cell_v"});
@@ -293,48 +290,54 @@ Mission ParseMission(const Json& doc, const std::string& name) {
       if (!e.is_string() || e.get<std::string>().empty()) {
         b.Fail("$.battery.id[" + std::to_string(i) + "]", e, "must be a non-empty string");
       }
-      m.battery.ids.push_back(e.get<std::string>());
+      m->battery.ids.push_back(e.get<std::string>());
     }
   } else {
-    m.battery.ids.push_back(b.String("id", std::nullopt));
+    m->battery.ids.push_back(b.String("id", std::nullopt));
   }
   const Range cells = b.NumberOrRange("cells", 1.0, 64.0, false);
   for (double c : {cells.lo, cells.hi}) {
     if (c != std::floor(c)) b.Fail("$.battery.cells", b.At("cells"), "cell counts must be integers");
   }
-  m.battery.cells_min = static_cast<int>(cells.lo);
-  m.battery.cells_max = static_cast<int>(cells.hi);
-  if (b.Has("capacity_ah")) m.battery.capacity_ah = b.NumberOrRange("capacity_ah", 0.0, 1e4, true);
-  m.battery.reserve_soc = b.Number("reserve_soc", 0.0, 0.9, false, 0.2);
-  m.battery.cutoff_cell_v = b.OptNumber("cutoff_cell_v", 0.5, 4.5, true);
+  m->battery.cells_min = static_cast<int>(cells.lo);
+  m->battery.cells_max = static_cast<int>(cells.hi);
+  if (b.Has("capacity_ah")) m->battery.capacity_ah = b.NumberOrRange("capacity_ah", 0.0, 1e4, true);
+  m->battery.reserve_soc = b.Number("reserve_soc", 0.0, 0.9, false, 0.2);
+  m->battery.cutoff_cell_v = b.OptNumber("cutoff_cell_v", 0.5, 4.5, true);
+}
 
+// "constraints" with their documented defaults.
+static void ReadConstraints(const Reader& top, const std::string& name, Mission* m) {
   if (top.Has("constraints")) {
     const Reader c(top.At("constraints"), name, "$.constraints");
     c.AllowOnly({"max_throttle", "min_hover_throttle", "current_margin", "allow_esc_saturation",
                  "enforce_motor_power", "max_figure_of_merit", "max_static_advance_ratio",
                  "min_thrust_to_weight", "max_winding_temp_c", "allow_folding_props_for_lift",
                  "unrated_motors"});
-    m.constraints.min_thrust_to_weight = c.Number("min_thrust_to_weight", 0.0, 50.0, false, 2.0);
-    m.constraints.max_winding_temp_c = c.Number("max_winding_temp_c", 20.0, 400.0, false, 120.0);
-    m.constraints.max_static_advance_ratio = c.Number("max_static_advance_ratio", 0.0, 5.0, false, 0.2);
-    m.constraints.max_figure_of_merit = c.Number("max_figure_of_merit", 0.0, 1.0, true, 0.8);
-    m.constraints.max_throttle = c.Number("max_throttle", 0.0, 1.0, true, 0.8);
-    m.constraints.min_hover_throttle = c.Number("min_hover_throttle", 0.0, 1.0, false, 0.0);
-    if (m.constraints.min_hover_throttle >= m.constraints.max_throttle) {
+    m->constraints.min_thrust_to_weight = c.Number("min_thrust_to_weight", 0.0, 50.0, false, 2.0);
+    m->constraints.max_winding_temp_c = c.Number("max_winding_temp_c", 20.0, 400.0, false, 120.0);
+    m->constraints.max_static_advance_ratio = c.Number("max_static_advance_ratio", 0.0, 5.0, false, 0.2);
+    m->constraints.max_figure_of_merit = c.Number("max_figure_of_merit", 0.0, 1.0, true, 0.8);
+    m->constraints.max_throttle = c.Number("max_throttle", 0.0, 1.0, true, 0.8);
+    m->constraints.min_hover_throttle = c.Number("min_hover_throttle", 0.0, 1.0, false, 0.0);
+    if (m->constraints.min_hover_throttle >= m->constraints.max_throttle) {
       c.Fail("$.constraints.min_hover_throttle", c.At("min_hover_throttle"),
              "must be below max_throttle");
     }
-    m.constraints.current_margin = c.Number("current_margin", 0.0, 0.9, false, 0.1);
-    m.constraints.allow_esc_saturation = c.Bool("allow_esc_saturation", false);
-    m.constraints.enforce_motor_power = c.Bool("enforce_motor_power", true);
-    m.constraints.allow_folding_props_for_lift = c.Bool("allow_folding_props_for_lift", false);
+    m->constraints.current_margin = c.Number("current_margin", 0.0, 0.9, false, 0.1);
+    m->constraints.allow_esc_saturation = c.Bool("allow_esc_saturation", false);
+    m->constraints.enforce_motor_power = c.Bool("enforce_motor_power", true);
+    m->constraints.allow_folding_props_for_lift = c.Bool("allow_folding_props_for_lift", false);
     const std::string unrated = c.String("unrated_motors", std::string("estimate"));
     if (unrated != "estimate" && unrated != "exclude") {
       c.Fail("$.constraints.unrated_motors", c.At("unrated_motors"), "must be one of estimate, exclude");
     }
-    m.constraints.estimate_unrated_motors = unrated == "estimate";
+    m->constraints.estimate_unrated_motors = unrated == "estimate";
   }
+}
 
+// "segments": each read by ReadSegment, then tied to its propulsion group.
+static void ReadSegments(const Reader& top, const std::string& name, Mission* m) {
   if (!top.Has("segments") || !top.At("segments").is_array() || top.At("segments").empty()) {
     top.Fail("$.segments", top.Has("segments") ? top.At("segments") : Json(nullptr),
              "must be a non-empty array of segments");
@@ -343,76 +346,98 @@ Mission ParseMission(const Json& doc, const std::string& name) {
   for (std::size_t i = 0; i < top.At("segments").size(); ++i) {
     const std::string path = "$.segments[" + std::to_string(i) + "]";
     const Reader s(top.At("segments")[i], name, path);
-    m.segments.push_back(ReadSegment(s, path));
-    if (!names.insert(m.segments.back().name).second) {
+    m->segments.push_back(ReadSegment(s, path));
+    if (!names.insert(m->segments.back().name).second) {
       s.Fail(path + ".name", s.At("name"), "segment names must be unique");
     }
-    Segment& seg = m.segments.back();
-    if (!m.groups.empty()) {
+    Segment& seg = m->segments.back();
+    if (!m->groups.empty()) {
       if (seg.group_name.empty()) s.FailMissing("group", "a mission with propulsion groups names each segment's group");
-      auto it = std::find_if(m.groups.begin(), m.groups.end(), [&](const PropulsionGroup& g) { return g.name == seg.group_name; });
-      if (it == m.groups.end()) {
+      auto it = std::find_if(m->groups.begin(), m->groups.end(), [&](const PropulsionGroup& g) { return g.name == seg.group_name; });
+      if (it == m->groups.end()) {
         std::string names_list;
-        for (const auto& g : m.groups) names_list += (names_list.empty() ? "" : ", ") + g.name;
+        for (const auto& g : m->groups) names_list += (names_list.empty() ? "" : ", ") + g.name;
         s.Fail(path + ".group", s.At("group"), "names no propulsion group (valid: " + names_list + ")");
       }
-      seg.group = static_cast<int>(it - m.groups.begin());
+      seg.group = static_cast<int>(it - m->groups.begin());
     } else if (!seg.group_name.empty()) {
       s.Fail(path + ".group", s.At("group"), "needs a \"propulsion\" object naming the groups");
     }
-    const int group_rotors = GroupRotors(m, seg.group);
+    const int group_rotors = GroupRotors(*m, seg.group);
     if (seg.rotors_active > group_rotors) {
       s.Fail(path + ".rotors", s.At("rotors"), std::string("must be <= ") +
-                                                   (m.groups.empty() ? "vehicle.rotors (" : "its group's rotors (") +
+                                                   (m->groups.empty() ? "vehicle.rotors (" : "its group's rotors (") +
                                                    std::to_string(group_rotors) + ")");
     }
   }
-  for (std::size_t g = 0; g < m.groups.size(); ++g) {
-    const bool used = std::any_of(m.segments.begin(), m.segments.end(), [&](const Segment& x) { return x.group == static_cast<int>(g); });
+  for (std::size_t g = 0; g < m->groups.size(); ++g) {
+    const bool used = std::any_of(m->segments.begin(), m->segments.end(), [&](const Segment& x) { return x.group == static_cast<int>(g); });
     if (!used) {
-      throw DataError(name + ": $.propulsion." + m.groups[g].name + ": \"" + m.groups[g].name +
+      throw DataError(name + ": $.propulsion." + m->groups[g].name + ": \"" + m->groups[g].name +
                       "\": no segment uses this group (name it in a segment's \"group\" or remove it)");
     }
   }
+}
 
+// "objective": its type, ranking scenario and the segment it stretches or scores.
+static void ReadObjective(const Reader& top, const std::string& name, Mission* m) {
   if (!top.Has("objective")) top.FailMissing("objective", "an object is required");
   const Reader o(top.At("objective"), name, "$.objective");
   o.AllowOnly({"type", "segment", "ranking"});
   const std::string ranking = o.String("ranking", std::string("credible"));
-  if (ranking == "as_given") m.objective.ranking = DataScenario::kAsGiven;
+  if (ranking == "as_given") m->objective.ranking = DataScenario::kAsGiven;
   else if (ranking != "credible") o.Fail("$.objective.ranking", o.At("ranking"), "must be one of as_given, credible");
   const std::string type = o.String("type", std::nullopt);
-  if (type == "max_endurance") m.objective.type = ObjectiveType::kMaxEndurance;
-  else if (type == "min_energy") m.objective.type = ObjectiveType::kMinEnergy;
-  else if (type == "max_efficiency") m.objective.type = ObjectiveType::kMaxEfficiency;
+  if (type == "max_endurance") m->objective.type = ObjectiveType::kMaxEndurance;
+  else if (type == "min_energy") m->objective.type = ObjectiveType::kMinEnergy;
+  else if (type == "max_efficiency") m->objective.type = ObjectiveType::kMaxEfficiency;
   else o.Fail("$.objective.type", o.At("type"), "must be one of max_efficiency, max_endurance, min_energy");
-  m.objective.segment = o.String("segment", std::string());
-  if (m.objective.segment.empty()) {
-    if (m.objective.type == ObjectiveType::kMaxEfficiency) {
+  m->objective.segment = o.String("segment", std::string());
+  if (m->objective.segment.empty()) {
+    if (m->objective.type == ObjectiveType::kMaxEfficiency) {
       o.FailMissing("segment", "max_efficiency needs the name of a segment");
     }
-    if (m.objective.type == ObjectiveType::kMaxEndurance) {
-      for (std::size_t i = 0; i < m.segments.size(); ++i) {
-        if (m.segments[i].type == SegmentType::kHover) m.objective.segment_index = static_cast<int>(i);
+    if (m->objective.type == ObjectiveType::kMaxEndurance) {
+      for (std::size_t i = 0; i < m->segments.size(); ++i) {
+        if (m->segments[i].type == SegmentType::kHover) m->objective.segment_index = static_cast<int>(i);
       }
-      if (m.objective.segment_index < 0) {
+      if (m->objective.segment_index < 0) {
         o.FailMissing("segment", "max_endurance needs a hover or cruise segment to stretch");
       }
-      m.objective.segment = m.segments[m.objective.segment_index].name;
+      m->objective.segment = m->segments[m->objective.segment_index].name;
     }
   } else {
-    for (std::size_t i = 0; i < m.segments.size(); ++i) {
-      if (m.segments[i].name == m.objective.segment) m.objective.segment_index = static_cast<int>(i);
+    for (std::size_t i = 0; i < m->segments.size(); ++i) {
+      if (m->segments[i].name == m->objective.segment) m->objective.segment_index = static_cast<int>(i);
     }
-    if (m.objective.segment_index < 0) {
+    if (m->objective.segment_index < 0) {
       o.Fail("$.objective.segment", o.At("segment"), "names no segment");
     }
-    const SegmentType st = m.segments[m.objective.segment_index].type;
-    if (m.objective.type == ObjectiveType::kMaxEndurance && st != SegmentType::kHover &&
+    const SegmentType st = m->segments[m->objective.segment_index].type;
+    if (m->objective.type == ObjectiveType::kMaxEndurance && st != SegmentType::kHover &&
         st != SegmentType::kCruise) {
       o.Fail("$.objective.segment", o.At("segment"), "max_endurance stretches a hover or cruise segment");
     }
   }
+}
+
+Mission ParseMission(const Json& doc, const std::string& name) {
+  Mission m;
+  m.file = name;
+  const Reader top(doc, name, "$");
+  top.AllowOnly({"name", "comment", "vehicle", "air", "battery", "constraints", "objective", "segments",
+                 "propulsion"});
+  m.name = top.String("name", std::string("mission"));
+  if (top.Has("comment") && !top.At("comment").is_string()) {
+    top.Fail("$.comment", top.At("comment"), "must be a string");
+  }
+
+  ReadVehicle(top, name, &m);
+  ReadAir(top, name, &m);
+  ReadBattery(top, name, &m);
+  ReadConstraints(top, name, &m);
+  ReadSegments(top, name, &m);
+  ReadObjective(top, name, &m);
   return m;
 }
 
