@@ -400,11 +400,14 @@ std::vector<std::string> WriteSegmentMaps(const Mission& m, const Combination& c
       << "unset surface\nset table $contours\nsplot $map using 1:2:3 with lines\nunset table\n"
       << "unset contour\nset surface\n"
       << "plot $map using 1:2:3 with image notitle, "
-      << "$contours using 1:2 with lines lc rgb 'white' lw 1 title 'contours 40-90 %', "
+      << "$contours using 1:2 with lines lc rgb 'white' lw 1 notitle, "
+      // White on the map, invisible in the white key: the key shows them in grey (keyentry).
+      << "keyentry with lines lc rgb '#909090' lw 1 title 'contours 40-90 % (white)', "
       << "$lim using 1:2 with lines lw 2 dt 2 lc rgb 'black' title 'throttle limit "
       << Fixed(100 * m.constraints.max_throttle, 0) << " %', "
       << "$load using 1:2 with lines lw 2 lc rgb '#ff7f0e' title 'propeller load line', "
-      << "$pts using 1:2 with points pt 6 ps 2 lw 2 lc rgb 'white' title 'all segments', "
+      << "$pts using 1:2 with points pt 6 ps 2 lw 2 lc rgb 'white' notitle, "
+      << "keyentry with points pt 6 ps 2 lw 2 lc rgb '#909090' title 'all segments (white rings)', "
       << "$me using 1:2 with points pt 7 ps 2.5 lc rgb 'red' title 'this segment'\n";
     std::string safe = s.name;
     for (char& ch : safe) if (!std::isalnum(static_cast<unsigned char>(ch))) ch = '_';
