@@ -376,27 +376,20 @@ void StartKeAndR(const SteadyTable& t, const CalibrationOptions& o, const LogCol
   const FitData& d = pr.data;
   auto& p = *start;
   auto idx = [](Param q) { return static_cast<int>(q); };
-  Eigen::MatrixXd a(lin.size(), 2);
-  Eigen::VectorXd b(lin.size());
+  std::vector<double> cur(lin.size()), omega(lin.size()), u(lin.size());
   for (std::size_t j = 0; j < lin.size(); ++j) {
     const std::size_t k = lin[j];
-    a(j, 0) = irms[k];
-    a(j, 1) = d.omega[k];
-    b[j] = c.ac ? t.Get(Column::kVllRmsV)[d.table_row[k]] : kVllRmsPerVdc * d.vdc[k] * d.tr[k];
+    cur[j] = irms[k];
+    omega[j] = d.omega[k];
+    u[j] = c.ac ? t.Get(Column::kVllRmsV)[d.table_row[k]] : kVllRmsPerVdc * d.vdc[k] * d.tr[k];
   }
-  const auto sol = SolveLinearLeastSquares(a, b);
-  double r0 = sol.coefficients[0], ke0 = sol.coefficients[1];
-  if (!(ke0 > 0.0)) {
-    // Fall back on the no-load relation KE ~ U/omega.
-    ke0 = b.cwiseQuotient(a.col(1)).maxCoeff();
-  }
+  const identification::CircuitStart lin_start = identification::LinearCircuitStart(cur, omega, u);
+  double r0 = lin_start.r_total_ohm, ke0 = lin_start.ke_v_s_per_rad;
   if (o.labels.kv_rpm_per_v) {
     // A label is a better start than the linear fit, which a throttle offset or a nonlinear
     // throttle curve biases: KE from the label, R by least squares with KE held there.
     ke0 = identification::KeFromLabelKv(*o.labels.kv_rpm_per_v);
-    const Eigen::VectorXd rest = b - ke0 * a.col(1);
-    const double den = a.col(0).squaredNorm();
-    const double r_label = den > 0.0 ? a.col(0).dot(rest) / den : 0.0;
+    const double r_label = identification::ResistanceWithKeHeld(cur, omega, u, ke0);
     if (r_label > 0.0) r0 = r_label;
   }
   p[idx(Param::kKe)] = ke0;

@@ -719,23 +719,20 @@ void LinearBaseStarts(const SteadyTable& t, const DiagnoseOptions& o, const Prep
   const Data& d = p.d;
   const std::size_t n = d.rows();
   Values& v = *values;
-  Eigen::MatrixXd a(static_cast<Eigen::Index>(n), 2);
-  Eigen::VectorXd b(static_cast<Eigen::Index>(n));
-  double imax = 0.0;
+  std::vector<double> cur(n), u(n);
+  double imax = 0.0, umax = 0.0;
   for (std::size_t k = 0; k < n; ++k) {
     const std::size_t i = d.table_row[k];
     const double g = std::max(v[kC1] * d.tr[k] + v[kC0], 1e-3);
-    const double cur = p.ac ? t.Get(Column::kIrmsA)[i]
-                            : (d.measured[kMIdc] ? t.Get(Column::kIdcA)[i] / g : 0.0);
-    imax = std::max(imax, cur);
-    a(static_cast<Eigen::Index>(k), 0) = cur;
-    a(static_cast<Eigen::Index>(k), 1) = d.omega[k];
-    b[static_cast<Eigen::Index>(k)] = kVllRmsPerVdc * d.vdc[k] * d.tr[k];
+    cur[k] = p.ac ? t.Get(Column::kIrmsA)[i] : (d.measured[kMIdc] ? t.Get(Column::kIdcA)[i] / g : 0.0);
+    u[k] = kVllRmsPerVdc * d.vdc[k] * d.tr[k];
+    imax = std::max(imax, cur[k]);
+    umax = std::max(umax, u[k]);
   }
-  const Eigen::VectorXd sol = a.colPivHouseholderQr().solve(b);
-  double ke = sol[1], r = sol[0];
-  if (!(ke > 0.0)) ke = (b.array() / a.col(1).array()).maxCoeff();
-  if (!(r > 1e-4)) r = imax > 0.0 ? 0.05 * b.maxCoeff() / imax : 0.1;
+  const identification::CircuitStart lin = identification::LinearCircuitStart(cur, d.omega, u);
+  const double ke = lin.ke_v_s_per_rad;
+  double r = lin.r_total_ohm;
+  if (!(r > 1e-4)) r = imax > 0.0 ? 0.05 * umax / imax : 0.1;
   v[kKe] = ke;
   v[kRm] = std::max(r - v[kResc], 1e-4);
   v[kKt] = kPacPerVllIrms * ke;
@@ -744,10 +741,7 @@ void LinearBaseStarts(const SteadyTable& t, const DiagnoseOptions& o, const Prep
     int c = 0;
     for (std::size_t k = 0; k < n; ++k) {
       if (!d.torque_known[k]) continue;
-      const double g = std::max(v[kC1] * d.tr[k] + v[kC0], 1e-3);
-      const double cur = p.ac ? t.Get(Column::kIrmsA)[d.table_row[k]]
-                              : (d.measured[kMIdc] ? t.Get(Column::kIdcA)[d.table_row[k]] / g : 0.0);
-      s += cur - d.q[k] / v[kKt];
+      s += cur[k] - d.q[k] / v[kKt];
       ++c;
     }
     v[kIo] = c > 0 ? std::max(s / c, 0.0) : 0.0;

@@ -5,6 +5,7 @@
 #include <map>
 #include <utility>
 
+#include "fit/linear_least_squares.h"
 #include "fit/statistics.h"
 
 namespace dynosize::identification {
@@ -72,6 +73,35 @@ OutlierSelection SelectOutlierRows(const std::vector<double>& rmax, const std::v
     sel.dropped.push_back(k);
   }
   return sel;
+}
+
+CircuitStart LinearCircuitStart(const std::vector<double>& current_a, const std::vector<double>& omega_rad_s,
+                                const std::vector<double>& u_v) {
+  const Eigen::Index n = static_cast<Eigen::Index>(u_v.size());
+  Eigen::MatrixXd a(n, 2);
+  Eigen::VectorXd b(n);
+  for (Eigen::Index k = 0; k < n; ++k) {
+    a(k, 0) = current_a[static_cast<std::size_t>(k)];
+    a(k, 1) = omega_rad_s[static_cast<std::size_t>(k)];
+    b[k] = u_v[static_cast<std::size_t>(k)];
+  }
+  CircuitStart out;
+  if (n == 0) return out;
+  const LinearLeastSquaresResult sol = SolveLinearLeastSquares(a, b);
+  out.r_total_ohm = sol.coefficients[0];
+  out.ke_v_s_per_rad = sol.coefficients[1];
+  if (!(out.ke_v_s_per_rad > 0.0)) out.ke_v_s_per_rad = b.cwiseQuotient(a.col(1)).maxCoeff();
+  return out;
+}
+
+double ResistanceWithKeHeld(const std::vector<double>& current_a, const std::vector<double>& omega_rad_s,
+                            const std::vector<double>& u_v, double ke_v_s_per_rad) {
+  double num = 0.0, den = 0.0;
+  for (std::size_t k = 0; k < u_v.size(); ++k) {
+    num += current_a[k] * (u_v[k] - ke_v_s_per_rad * omega_rad_s[k]);
+    den += current_a[k] * current_a[k];
+  }
+  return den > 0.0 ? num / den : 0.0;
 }
 
 }  // namespace dynosize::identification

@@ -70,6 +70,21 @@ double MedianMagnitude(const std::vector<double>& column, const std::vector<std:
 std::array<double, kMeasCount> MedianPercentScales(const logs::SteadyTable& t, const std::vector<std::size_t>& rows,
                                                    std::array<bool, kMeasCount>* measured);
 
+// The linear start of the circuit (eq 48, U = R*I + KE*omega, R = Rm + RESC) by least squares
+// over rows of (I, omega, U): both commands start their nonlinear fit from it. A non-positive KE
+// (a log without enough speed spread) falls back on the no-load relation KE ~ max(U/omega); R is
+// returned as solved (the caller decides what a non-positive R means for it).
+struct CircuitStart {
+  double ke_v_s_per_rad = 0.0;
+  double r_total_ohm = 0.0;
+};
+CircuitStart LinearCircuitStart(const std::vector<double>& current_a, const std::vector<double>& omega_rad_s,
+                                const std::vector<double>& u_v);
+// R of eq 48 by least squares with KE held (a label's KE): R = sum I*(U - KE*omega) / sum I^2; 0
+// without current.
+double ResistanceWithKeHeld(const std::vector<double>& current_a, const std::vector<double>& omega_rad_s,
+                            const std::vector<double>& u_v, double ke_v_s_per_rad);
+
 // Robust outlier screening (issue 12: never more than 10 % of the points or a whole throttle
 // level). rmax[k]: the largest |percent residual| of row k; throttle[k]: its throttle. The rows
 // with rmax above threshold (the caller's outlier_sigmas robust standard deviations) are taken

@@ -119,5 +119,32 @@ TEST(IdentificationFitRows, OutliersLeaveMinKeptRows) {
   EXPECT_EQ(sel.spared, 1u);
 }
 
+// Eq 48 on exact rows U = R*I + KE*omega: the linear start recovers KE and R to rounding, and
+// with KE held at the truth the held-KE resistance is R.
+TEST(LinearCircuitStartTest, RecoversKeAndRFromExactRows) {
+  const double ke = 0.0062, r = 0.083;
+  std::vector<double> cur, omega, u;
+  for (int k = 0; k < 8; ++k) {
+    cur.push_back(1.0 + 3.0 * k);
+    omega.push_back(400.0 + 150.0 * k - 9.0 * k * k);
+    u.push_back(r * cur.back() + ke * omega.back());
+  }
+  const CircuitStart s = LinearCircuitStart(cur, omega, u);
+  EXPECT_NEAR(s.ke_v_s_per_rad, ke, 1e-12);
+  EXPECT_NEAR(s.r_total_ohm, r, 1e-10);
+  EXPECT_NEAR(ResistanceWithKeHeld(cur, omega, u, ke), r, 1e-12);
+}
+
+// Rows whose least-squares KE is negative (exact rows of R = 1 ohm, KE = -0.001: speed not
+// following the voltage): KE falls back on max(U/omega), the no-load relation; R stays as solved.
+// Without current the held-KE resistance is 0.
+TEST(LinearCircuitStartTest, FallsBackOnTheNoLoadRelation) {
+  const std::vector<double> cur = {1.0, 2.0, 3.0}, omega = {100.0, 300.0, 200.0}, u = {0.9, 1.7, 2.8};
+  const CircuitStart s = LinearCircuitStart(cur, omega, u);
+  EXPECT_NEAR(s.ke_v_s_per_rad, 2.8 / 200.0, 1e-15);
+  EXPECT_NEAR(s.r_total_ohm, 1.0, 1e-12);
+  EXPECT_EQ(ResistanceWithKeHeld({0.0, 0.0}, {10.0, 20.0}, {1.0, 2.0}, 0.006), 0.0);
+}
+
 }  // namespace
 }  // namespace dynosize::identification
