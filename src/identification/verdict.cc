@@ -56,6 +56,9 @@ std::string Advice(const VerdictInputs& in, const std::vector<std::string>& weak
       add("KT: log torque and the AC columns");
     } else if (n == "tr_sat" || n == "sat_slope") {
       add("saturation: log more throttle levels above 80 %");
+    } else if (n == "first_order_better") {
+      add("the first-order model predicts this log better: make the entry with calibrate (its own checks "
+          "apply), or log torque and the AC columns so that the extension's ESC can be identified");
     }
   }
   return a;
@@ -189,6 +192,16 @@ Verdict Judge(const VerdictInputs& in) {
     Add(&v, "held_out_error", err_ok, e, kMaxHeldOutCurrentPercent, d);
     failed = failed || (!err_ok && folds_ok);
     unident = unident || (!err_ok && !folds_ok);
+    if (std::isfinite(h.rms_percent) && std::isfinite(h.first_order_rms_percent)) {
+      const double limit = h.first_order_rms_percent + kMaxHeldOutLossPoints;
+      const bool no_worse = h.rms_percent <= limit;
+      Add(&v, "held_out_vs_first_order", no_worse, h.rms_percent, limit,
+          "rms held-out error of this model against the first-order model's " + Num(h.first_order_rms_percent) +
+              " % (+" + Num(kMaxHeldOutLossPoints) + " point)" +
+              (no_worse ? std::string() : ": the extension predicts unseen rows worse than the model it extends"));
+      failed = failed || !no_worse;
+      if (!no_worse) weak.push_back("first_order_better");
+    }
   }
 
   v.status = failed ? Status::kFailed : (unident ? Status::kUnidentifiable : Status::kOk);

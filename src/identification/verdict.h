@@ -23,6 +23,10 @@
 //                                 measured current), percent                     (limit 10)
 //   cross_validation_folds        folds that could be fitted (small tables: each point left out
 //                                 in turn; a fold that cannot be fitted fails it) (limit: all)
+//   held_out_vs_first_order       diagnose only: rms held-out error of the extended model, percent,
+//                                 against the first-order model's plus kMaxHeldOutLossPoints (an
+//                                 extension must not predict unseen rows worse than the model it
+//                                 extends; the search's own gain threshold is 1 point)
 // The efficiency checks evaluate model::Drive over the envelope (VDC range of the log, throttle
 // 0.05..1, speeds from 2 % to 100 % of no-load), independently of the fit's own bounds.
 #pragma once
@@ -73,6 +77,10 @@ struct HeldOut {
   // What median_abs_current_percent measures when it is not the DC current (logs without torque
   // or AC columns predict the speed from the measured current); "" = the DC current.
   std::string primary_quantity;
+  // diagnose: rms of the held-out percent errors of this (extended) model and of the first-order
+  // model it extends, on the same folds; NaN where not computed (calibrate).
+  double rms_percent = std::numeric_limits<double>::quiet_NaN();
+  double first_order_rms_percent = std::numeric_limits<double>::quiet_NaN();
 };
 
 struct VerdictInputs {
@@ -101,6 +109,9 @@ struct Verdict {
 // Limits of the checks (see the header comment).
 inline constexpr double kMaxRelStdErrorPercent = 50.0;
 inline constexpr double kMaxHeldOutCurrentPercent = 10.0;
+// An extended model may be this much worse (rms held-out error, percentage points) than the
+// first-order model before it is refused: diagnose's smallest cross-validated gain that counts.
+inline constexpr double kMaxHeldOutLossPoints = 1.0;
 
 Verdict Judge(const VerdictInputs& in);
 

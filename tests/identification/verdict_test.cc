@@ -125,6 +125,25 @@ TEST(Verdict, HeldOutErrorAboveLimitFails) {
   EXPECT_EQ(Judge(in).status, Status::kFailed);
 }
 
+// diagnose's extended model against the first-order model it extends (same folds): worse by
+// more than kMaxHeldOutLossPoints fails, within it passes, and calibrate (no rms given) does not
+// list the check.
+TEST(Verdict, ExtensionWorseOnHeldOutRowsFails) {
+  VerdictInputs in = GoodInputs();
+  EXPECT_EQ(Find(Judge(in), "held_out_vs_first_order"), nullptr);
+  in.held_out->first_order_rms_percent = 8.85;
+  in.held_out->rms_percent = 8.85 + kMaxHeldOutLossPoints - 0.01;
+  Verdict v = Judge(in);
+  ASSERT_NE(Find(v, "held_out_vs_first_order"), nullptr);
+  EXPECT_TRUE(Find(v, "held_out_vs_first_order")->passed);
+  EXPECT_EQ(v.status, Status::kOk) << v.summary;
+  in.held_out->rms_percent = 21.43;  // heinzgerhard Run_145 before the check
+  v = Judge(in);
+  EXPECT_EQ(v.status, Status::kFailed);
+  EXPECT_FALSE(Find(v, "held_out_vs_first_order")->passed);
+  EXPECT_NE(v.advice.find("first-order model predicts this log better"), std::string::npos) << v.advice;
+}
+
 TEST(Verdict, NotConvergedFails) {
   VerdictInputs in = GoodInputs();
   in.converged = false;
