@@ -32,12 +32,18 @@ EscParams EscWithKneeAndDeadband() {
   return e;
 }
 
-TEST(CircuitTest, EffectiveThrottleAndItsInverseMatchDriveWithKneeAndDeadband) {
+// A 1470 rpm/V outrunner with KT below the energy bound (KT <= sqrt(27/10)*KE).
+MotorParams Motor() {
   MotorParams m;
-  m.ke_v_s_per_rad = 0.008;
-  m.kt_nm_per_a = 0.0125;
-  m.rm_ohm = 0.09;
-  m.io_a = 0.7;
+  m.ke_v_s_per_rad = 0.0065;
+  m.kt_nm_per_a = 0.0101;
+  m.rm_ohm = 0.07;
+  m.io_a = 0.9;
+  return m;
+}
+
+TEST(CircuitTest, EffectiveThrottleAndItsInverseMatchDriveWithKneeAndDeadband) {
+  const MotorParams m = Motor();
   const EscParams e = EscWithKneeAndDeadband();
   const Drive drive(m, e);
   for (double tr : {0.0, 0.03, 0.06, 0.3, 0.85, 0.87, 0.95, 1.0}) {
@@ -72,11 +78,7 @@ TEST(CircuitTest, DualTangentsAreTheDerivativesOfTheKneeAndDeadband) {
 // The first-order point at a given torque composed from the circuit functions in dual numbers
 // (as calibrate's residuals are) equals Drive::AtTorque in every column.
 TEST(CircuitTest, ComposedDualPointEqualsDriveAtTorque) {
-  MotorParams m;
-  m.ke_v_s_per_rad = 0.0065;
-  m.kt_nm_per_a = 0.0101;
-  m.rm_ohm = 0.07;
-  m.io_a = 0.9;
+  const MotorParams m = Motor();
   EscParams e = EscWithKneeAndDeadband();
   e.deadband = 0.0;  // Drive's extended path (dead band) is not the first-order one composed here
   const Drive drive(m, e);
