@@ -1282,6 +1282,9 @@ identification::Verdict JudgeCalibration(const CalibrationResult& r, const Stead
     }
     in.held_out = h;
   }
+  if (options.labels.kv_rpm_per_v) {
+    in.torque_per_ampere_vs_label = identification::TorquePerAmpereVsLabel(table, *options.labels.kv_rpm_per_v);
+  }
   in.has_torque = table.Has(Column::kTorqueNm);
   in.has_ac = table.Has(Column::kVllRmsV) && table.Has(Column::kIrmsA);
   in.has_throttle = table.Has(Column::kThrottle);

@@ -602,6 +602,7 @@ identification::Verdict JudgeExtended(const Data& d, const SteadyTable& t, const
   in.envelope.vdc_min_v = std::isfinite(lo) ? lo : 0.0;
   in.envelope.vdc_max_v = hi;
   in.kv_label_rpm_per_v = o.kv_label_rpm_per_v;
+  if (o.kv_label_rpm_per_v) in.torque_per_ampere_vs_label = identification::TorquePerAmpereVsLabel(t, *o.kv_label_rpm_per_v);
   identification::HeldOut h;
   h.folds = static_cast<std::size_t>(res.cv_folds);
   h.failed_folds = static_cast<std::size_t>(cv.failed_folds);

@@ -2,11 +2,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <map>
 #include <utility>
 
 #include "fit/linear_least_squares.h"
 #include "fit/statistics.h"
+#include "common/units.h"
 
 namespace dynosize::identification {
 
@@ -102,6 +104,27 @@ double ResistanceWithKeHeld(const std::vector<double>& current_a, const std::vec
     den += current_a[k] * current_a[k];
   }
   return den > 0.0 ? num / den : 0.0;
+}
+
+double TorquePerAmpereVsLabel(const logs::SteadyTable& t, double kv_label_rpm_per_v) {
+  constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+  using logs::Column;
+  if (!t.Has(Column::kTorqueNm) || !t.Has(Column::kIdcA) || !t.Has(Column::kThrottle) || !(kv_label_rpm_per_v > 0.0)) {
+    return kNaN;
+  }
+  const auto& tr = t.Get(Column::kThrottle);
+  const auto& q = t.Get(Column::kTorqueNm);
+  const auto& idc = t.Get(Column::kIdcA);
+  double top = 0.0;
+  for (double x : tr) top = std::max(top, x);
+  if (!(top >= 0.95)) return kNaN;
+  const double kt_dc = 1.0 / (kv_label_rpm_per_v * kRadPerSecPerRpm);  // 60/(2*pi*Kv)
+  std::vector<double> ratio;
+  for (std::size_t i = 0; i < t.rows(); ++i) {
+    if (std::fabs(tr[i] - top) > 1e-3 || !(q[i] > 0.0) || !(idc[i] > 0.0)) continue;
+    ratio.push_back(q[i] / (kt_dc * idc[i]));
+  }
+  return ratio.empty() ? kNaN : fit::Median(std::move(ratio));
 }
 
 }  // namespace dynosize::identification

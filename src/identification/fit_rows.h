@@ -70,6 +70,15 @@ double MedianMagnitude(const std::vector<double>& column, const std::vector<std:
 std::array<double, kMeasCount> MedianPercentScales(const logs::SteadyTable& t, const std::vector<std::size_t>& rows,
                                                    std::array<bool, kMeasCount>* measured);
 
+// The log's torque per DC ampere at its highest throttle command (>= 0.95) against a motor of
+// the label Kv at full duty: the median over those rows of Q/(KT_dc*IDC), KT_dc = 60/(2*pi*Kv).
+// At TR_eff = 1 an ESC that conserves energy has IDC = (C1 + C0)*Irms >= 1.1095*Irms (eq 57,
+// model.md section 10), and KT <= sqrt(27/10)*KE (eq 41), so Q <= KT*Irms <= KT_dc*IDC with
+// KT_dc = sqrt(27/10)*KE/1.1095 = 60/(2*pi*Kv) (section 8). A ratio well above 1 is a log no
+// motor near its label can produce: the torque or current sensor's calibration, or the label.
+// NaN without torque, current, throttle or a row at >= 0.95.
+double TorquePerAmpereVsLabel(const logs::SteadyTable& t, double kv_label_rpm_per_v);
+
 // The linear start of the circuit (eq 48, U = R*I + KE*omega, R = Rm + RESC) by least squares
 // over rows of (I, omega, U): both commands start their nonlinear fit from it. A non-positive KE
 // (a log without enough speed spread) falls back on the no-load relation KE ~ max(U/omega); R is

@@ -33,6 +33,11 @@ std::string Advice(const VerdictInputs& in, const std::vector<std::string>& weak
   auto add = [&](const std::string& s) {
     if (a.find(s) == std::string::npos) a += (a.empty() ? "" : "; ") + s;
   };
+  // The log's own inconsistency first: the parameters' complaints follow from it.
+  if (std::find(weak.begin(), weak.end(), "torque_per_ampere") != weak.end()) {
+    add("the log: check the torque sensor's calibration (lever arm, zero) against the current sensor's, "
+        "or the label Kv (a no-load run at full command gives rpm/V directly)");
+  }
   for (const auto& n : weak) {
     if (n == "ke_v_s_per_rad" || n == "deadband") {
       add(in.kv_label_rpm_per_v ? "KE: check the throttle range (--esc-min-us/--esc-max-us) or log no-load points"
@@ -114,6 +119,16 @@ Verdict Judge(const VerdictInputs& in) {
   failed = failed || !in.converged;
 
   std::vector<std::string> weak;
+  if (std::isfinite(in.torque_per_ampere_vs_label)) {
+    const double excess = 100.0 * (in.torque_per_ampere_vs_label - 1.0);
+    const bool ok = excess <= 100.0 * kKvLabelMaxRelDeviation;
+    Add(&v, "torque_per_ampere_vs_label", ok, excess, 100.0 * kKvLabelMaxRelDeviation,
+        "the log's torque per DC ampere at full command against a motor of the label Kv at full duty "
+        "(Q <= KT_dc*IDC, eqs 41, 57; model.md sections 8, 10)" +
+            std::string(ok ? "" : ": no motor within the label's tolerance gives this torque for this current"));
+    failed = failed || !ok;
+    if (!ok) weak.push_back("torque_per_ampere");
+  }
   std::string on_bound, flat, worst_name;
   int n_bound = 0, n_flat = 0;
   double worst_rel = 0.0;

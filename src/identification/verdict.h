@@ -11,6 +11,10 @@
 //
 // Checks (name: value vs limit):
 //   converged                     1 when the solver met a tolerance test        (limit 1)
+//   torque_per_ampere_vs_label    the log itself, with torque and a label: percent by which its
+//                                 torque per DC ampere at full command exceeds a motor of the
+//                                 label Kv at full duty, Q <= KT_dc*IDC (fit_rows.h) (limit 25,
+//                                 the label tolerance of kv_vs_label)
 //   no_parameter_on_bound         number of fitted parameters on a bound          (limit 0)
 //   identifiable                  number of fitted parameters in a flat direction (limit 0)
 //   rel_std_error                 largest standard error / |value| of the fitted,
@@ -91,6 +95,9 @@ struct VerdictInputs {
   Envelope envelope;
   std::optional<double> kv_label_rpm_per_v;
   std::optional<HeldOut> held_out;  // absent: not computed (the check is then not listed)
+  // TorquePerAmpereVsLabel of the log (fit_rows.h); NaN = not computed (the check is then not
+  // listed).
+  double torque_per_ampere_vs_label = std::numeric_limits<double>::quiet_NaN();
   bool has_torque = false;          // for the advice: what measurement would help
   bool has_ac = false;
   bool has_throttle = false;

@@ -8,7 +8,10 @@
 #include <string>
 #include <vector>
 
+#include "common/units.h"
 #include "identification/fit_rows.h"
+#include "identification/parameters.h"
+#include "model/drive.h"
 
 namespace dynosize::identification {
 namespace {
@@ -144,6 +147,47 @@ TEST(LinearCircuitStartTest, FallsBackOnTheNoLoadRelation) {
   EXPECT_NEAR(s.ke_v_s_per_rad, 2.8 / 200.0, 1e-15);
   EXPECT_NEAR(s.r_total_ohm, 1.0, 1e-12);
   EXPECT_EQ(ResistanceWithKeHeld({0.0, 0.0}, {10.0, 20.0}, {1.0, 2.0}, 0.006), 0.0);
+}
+
+// TorquePerAmpereVsLabel: a physical drive of the label's Kv (KT just below the energy bound, an
+// ESC with losses) gives at most 1 at full command, whatever the load (0.93 here); a torque sensor
+// reading 40 % high puts the log beyond any motor within the label's 25 % tolerance.
+TEST(IdentificationFitRows, TorquePerAmpereOfAPhysicalDriveIsAtMostOne) {
+  const double kv = 1000.0;
+  MotorParams m;
+  m.ke_v_s_per_rad = KeFromLabelKv(kv);
+  m.kt_nm_per_a = 0.98 * kPacPerVllIrms * m.ke_v_s_per_rad;
+  m.rm_ohm = 0.08;
+  m.io_a = 0.6;
+  EscParams e;
+  e.c1 = 1.12;
+  e.c0 = 0.02;
+  e.resc_ohm = 0.01;
+  const Drive drive(m, e);
+  logs::SteadyTable t;
+  auto& tr = t.Mutable(logs::Column::kThrottle);
+  auto& q = t.Mutable(logs::Column::kTorqueNm);
+  auto& idc = t.Mutable(logs::Column::kIdcA);
+  for (double load : {0.05, 0.2, 0.5}) {
+    for (double throttle : {0.5, 1.0}) {
+      const OperatingPoint p = drive.AtTorque(14.8, throttle, load);
+      tr.push_back(throttle);
+      q.push_back(p.torque_nm);
+      idc.push_back(p.idc_a);
+      t.source_line.push_back(t.source_line.size() + 2);
+    }
+  }
+  for (auto c : {logs::Column::kThrottle, logs::Column::kTorqueNm, logs::Column::kIdcA}) {
+    t.info[static_cast<int>(c)].present = true;
+  }
+  const double r = TorquePerAmpereVsLabel(t, kv);
+  EXPECT_LE(r, 1.0);
+  EXPECT_GT(r, 0.8);  // the losses above are a few percent, not 20
+  for (double& x : q) x *= 1.4;
+  EXPECT_GT(TorquePerAmpereVsLabel(t, kv), 1.0 + kKvLabelMaxRelDeviation);
+  EXPECT_TRUE(std::isnan(TorquePerAmpereVsLabel(t, 0.0)));
+  for (double& x : tr) x *= 0.9;  // no row at full command: nothing to compare
+  EXPECT_TRUE(std::isnan(TorquePerAmpereVsLabel(t, kv)));
 }
 
 }  // namespace
