@@ -122,7 +122,10 @@ TEST(CalibrateCli, OutRefusesAFitThatIsNotOk) {
   CliRun r = Exec("calibrate " + log + " --motor-id m --esc-id e --kv-label 2000 --json --out " + out);
   EXPECT_EQ(r.code, 65) << r.err;
   EXPECT_FALSE(fs::exists(out));
-  EXPECT_NE(r.err.find("not written: status failed, check kv_vs_label failed"), std::string::npos) << r.err;
+  // The log has torque: the label's first contradiction is the log's own torque per ampere
+  // (torque_per_ampere_vs_label, listed before the fit's checks); kv_vs_label fails as well.
+  EXPECT_NE(r.err.find("not written: status failed, check torque_per_ampere_vs_label failed"), std::string::npos)
+      << r.err;
   const Json j = ParseJsonText(r.out, "stdout");
   EXPECT_EQ(j["status"], "failed");
   bool seen = false;
