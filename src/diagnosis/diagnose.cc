@@ -1370,6 +1370,13 @@ Step HoldEscOnBound(const SearchContext& x, bool ac, Step cur, DiagnoseResult* r
       out->model.free[s] = false;
       out->model.values[s] = s == kC0 ? e0.c0 : e0.c1;  // values hold c1 itself (ToCoordinate)
     }
+    if (!out->model.free[kC1] && out->model.free[kC0]) {
+      // c1 held, c0 free: c1 + c0 >= K*kp (model.md section 10) becomes a floor on c0 when the
+      // prior's c1 is below the ideal ratio.
+      const double floor = IdealIdcPerIrmsPerThrottle(x.d.motor_type) - out->model.values[kC1];
+      out->model.lower[kC0] = std::max(out->model.lower[kC0], floor);
+      out->model.values[kC0] = std::max(out->model.values[kC0], out->model.lower[kC0]);
+    }
     out->fit = FitProfiled(x.d, x.used, out->model, x.knees, LossType::kTrivial, 1.0);
     out->model.values = out->fit.values;
     return out->fit.ok;
