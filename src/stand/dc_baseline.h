@@ -15,22 +15,13 @@
 // Io_dc/1.1095), so the baseline converts them back. At full throttle, no load, it reaches
 // n = Kv*(VDC - R*Io) as the label says.
 //
-// No I/O, no allocation.
+// The model itself is model/dc_motor.h; this file gives it a catalog motor's numbers.
 #pragma once
 
-#include <functional>
-
 #include "catalog/catalog.h"
+#include "model/dc_motor.h"
 
 namespace dynosize {
-
-struct DcMotor {
-  double kv_rpm_per_v = 0.0;
-  double r_ohm = 0.0;
-  double io_a = 0.0;
-  // KT_dc = 60/(2*pi*Kv), N*m/A.
-  double kt_nm_per_a() const;
-};
 
 // Which numbers the baseline gets.
 enum class DcBaselineNumbers {
@@ -58,27 +49,5 @@ DcMotor DcMotorFromCatalog(const MotorEntry& motor, const EscEntry& esc,
 
 // "datasheet" | "as-stored" (the CLI's --baseline names).
 const char* DcBaselineName(DcBaselineNumbers numbers);
-
-struct DcPoint {
-  double omega_rad_s = 0.0;
-  double torque_nm = 0.0;
-  double current_a = 0.0;  // motor current I
-  double voltage_v = 0.0;  // motor voltage U
-  double duty = 0.0;       // U/VDC: the throttle the plain model needs (> 1: not reachable)
-  double idc_a = 0.0;      // d*I
-  double pdc_w = 0.0;      // VDC*IDC
-};
-
-// Speed and torque given (a stand row at its measured rpm): I, U, duty and IDC.
-DcPoint DcAtSpeedTorque(const DcMotor& m, double vdc_v, double omega_rad_s, double torque_nm);
-
-// Throttle and a constant torque given: n = Kv*(d*VDC - R*I), floored at 0 (stalled).
-DcPoint DcAtThrottleTorque(const DcMotor& m, double vdc_v, double throttle, double torque_nm);
-
-// Throttle and a load torque Q(omega) (non-decreasing, Q(0) >= 0, e.g. a propeller) given: the
-// speed where d*VDC = KT_dc*omega + R*(Io + Q(omega)/KT_dc), by bisection on [0, d*VDC/KT_dc]
-// (the residual falls monotonically in omega), to 1e-10 relative.
-DcPoint DcAtThrottleLoad(const DcMotor& m, double vdc_v, double throttle,
-                         const std::function<double(double)>& torque_of_omega_nm);
 
 }  // namespace dynosize
