@@ -66,6 +66,27 @@ Json ErrJson(const std::vector<double>& e) {
   return {{"median_abs_percent", NumberOrNull(MedianAbs(e))}, {"points", e.size()}};
 }
 
+// One line: the held-out median |error| of the fitted model and of the plain DC model fitted on
+// the same training rows (identification/dc_fit.h), the baseline to beat.
+std::string HeldOutBesideDc(const calibration::CrossValidation& cv, bool label) {
+  auto med = [](const std::vector<double>& e) {
+    const double m = MedianAbs(e);
+    std::ostringstream o;
+    o << std::fixed << std::setprecision(2) << m << " %";
+    return std::isfinite(m) ? o.str() : std::string("-");
+  };
+  const bool torque = !cv.omega_error_percent.empty();
+  std::string s = "held out (" + std::to_string(cv.folds) + " folds), dynosize / plain DC model (" +
+                  (label ? "label Kv; R, Io" : "Kv, R, Io") + " fitted on the same rows): ";
+  if (torque) {
+    s += "DC current " + med(cv.idc_error_percent) + " / " + med(cv.dc_idc_error_percent) + ", speed at the torque " +
+         med(cv.omega_error_percent) + " / " + med(cv.dc_omega_error_percent);
+  } else {
+    s += "speed from the current " + med(cv.omega_from_idc_error_percent) + " / " + med(cv.dc_omega_from_idc_error_percent);
+  }
+  return s;
+}
+
 void CheckPropOptions(const CalibrateOptions& o) {
   if (o.prop_id.empty()) {
     if (o.prop_diameter_in || o.prop_pitch_in) throw UsageError("calibrate: --prop-diameter-in/--prop-pitch-in need --prop-id");
@@ -286,7 +307,10 @@ int RunCalibrate(const CalibrateOptions& o) {
                      {"failed_folds", cv.failed_folds},
                      {"idc", ErrJson(cv.idc_error_percent)},
                      {"omega_at_torque", ErrJson(cv.omega_error_percent)},
-                     {"omega_from_idc", ErrJson(cv.omega_from_idc_error_percent)}};
+                     {"omega_from_idc", ErrJson(cv.omega_from_idc_error_percent)},
+                     {"dc_baseline", {{"idc", ErrJson(cv.dc_idc_error_percent)},
+                                      {"omega_at_torque", ErrJson(cv.dc_omega_error_percent)},
+                                      {"omega_from_idc", ErrJson(cv.dc_omega_from_idc_error_percent)}}}};
     Json dropped = Json::array();
     for (const auto& d : r.dropped_rows) dropped.push_back({{"line", d.source_line}, {"reason", d.reason}});
     j["dropped_rows"] = dropped;
@@ -295,6 +319,7 @@ int RunCalibrate(const CalibrateOptions& o) {
   } else {
     std::cout << r.FullReport();
     if (o.loo) std::cout << "leave-one-out: " << loo.dump() << "\n";
+    std::cout << HeldOutBesideDc(cv, co.labels.kv_rpm_per_v.has_value()) << "\n";
     std::cout << verdict.summary << "\n";
     if (!verdict.advice.empty()) std::cout << "next: " << verdict.advice << "\n";
   }

@@ -21,6 +21,9 @@ pct() { jq -r "$1 | if . == null then \"-\" else (. * 100 | round / 100 | tostri
 kv_fit() { jq -r '.motor.ke_v_s_per_rad as $k | 0.67523723711782957 / ($k * 0.10471975511965977) | round' "$@"; }
 first_failed() { jq -r '[.checks[] | select(.passed | not)][0] | if . == null then "-" else "\(.name) (\(.value * 100 | round / 100) vs \(.limit))" end' "$@"; }
 held_out_rpm() { jq -r '(.held_out.omega_at_torque.median_abs_percent // .held_out.omega_from_idc.median_abs_percent) | if . == null then "-" else (. * 100 | round / 100 | tostring) + " %" end' "$@"; }
+# The same for the plain first-order DC model fitted on the same training rows (label Kv; R, Io):
+# "DC current | speed" cells.
+held_out_dc() { jq -r '.held_out.dc_baseline | [(.idc.median_abs_percent), (.omega_at_torque.median_abs_percent // .omega_from_idc.median_abs_percent)] | map(if . == null then "-" else (. * 100 | round / 100 | tostring) + " %" end) | join(" | ")' "$@"; }
 med() { sort -g "$1" | awk '{a[NR]=$1} END{if (NR == 0) print "-"; else if (NR % 2) printf "%.2f", a[(NR+1)/2]; else printf "%.2f", (a[NR/2]+a[NR/2+1])/2}'; }
 
 {
@@ -46,10 +49,13 @@ echo "\`dynosize calibrate LOG --kv-label KV --json --out FILE\` per log. **stat
 echo "failed (src/identification/verdict.h); **check**: the first failed check (value vs limit);"
 echo "**held-out**: median |error| of the DC current / speed when each throttle level (up to 15 levels,"
 echo "else 10 interleaved folds) is left out (speed at the measured torque where there is one, else from"
-echo "the measured current); **written**: whether --out wrote the entry (only \`ok\`)."
+echo "the measured current); **written**: whether --out wrote the entry (only \`ok\`); **plain DC**: the"
+echo "same held-out rows predicted by the first-order DC model (label Kv; R and Io fitted on the same"
+echo "training rows; the ESC a lossless chopper, U = throttle*VDC: src/identification/dc_fit.h), the"
+echo "baseline to beat."
 echo
-echo "| data set | log | label Kv | status | fitted Kv | first failed check | held-out idc | held-out rpm | written |"
-echo "|---|---|---|---|---|---|---|---|---|"
+echo "| data set | log | label Kv | status | fitted Kv | first failed check | held-out idc | held-out rpm | written | plain DC: idc | plain DC: rpm |"
+echo "|---|---|---|---|---|---|---|---|---|---|---|"
 } > "$out"
 
 : > "$tmp/status"
@@ -62,7 +68,7 @@ row() {
     cp "$cat" "$tmp/written_$(wc -l < "$tmp/status").json"
   fi
   if [ ! -s "$j" ] || ! jq -e .status "$j" > /dev/null 2>&1; then
-    echo "| $set | $name | $kv | not read | - | $(sed "s|^dynosize: ||; s|$data/||g; s|$tmp/||g" "$tmp/err" | head -c 150 | tr '\n|' ' /') | - | - | no |" >> "$out"
+    echo "| $set | $name | $kv | not read | - | $(sed "s|^dynosize: ||; s|$data/||g; s|$tmp/||g" "$tmp/err" | head -c 150 | tr '\n|' ' /') | - | - | no | - | - |" >> "$out"
     echo "$set not_read no" >> "$tmp/status"
     return
   fi
@@ -71,7 +77,7 @@ row() {
   kvfit=$(kv_fit "$j")
   chk=$(first_failed "$j")
   echo "| $set | $name | $kv | $st | $kvfit | $chk | $(pct .held_out.idc.median_abs_percent "$j") % |"\
-" $(held_out_rpm "$j") | $written |" >> "$out"
+" $(held_out_rpm "$j") | $written | $(held_out_dc "$j") |" >> "$out"
   echo "$set $st $written" >> "$tmp/status"
 }
 
@@ -181,6 +187,23 @@ done
 echo "| **all** | $total | $okn | $(awk '$2 == "unidentifiable"' "$tmp/status" | wc -l) | $(awk '$2 == "failed"' "$tmp/status" | wc -l) | $nr | $wr |"
 echo
 echo "ok: $okn of $total labelled logs ($(awk -v a="$okn" -v b="$total" 'BEGIN {printf "%.0f", 100 * a / b}') %); of the $((total - nr)) that could be read: $(awk -v a="$okn" -v b="$((total - nr))" 'BEGIN {printf "%.0f", 100 * a / b}') %."
+echo
+# dynosize against the plain DC model on the same held-out rows, per log (columns 8/9 against 11/12),
+# the Strawson logs included.
+vs_dc() {  # column of dynosize, column of the DC model, what
+  cat "$out" "$tmp/strawson_rows" |
+    awk -F'|' -v a="$1" -v b="$2" '$2 ~ /^ [a-z_0-9]+ $/ && $a ~ /%/ && $b ~ /%/ {x = $a; y = $b; gsub(/[ %]/, "", x); gsub(/[ %]/, "", y); print x, y}' > "$tmp/vs"
+  local n better
+  n=$(wc -l < "$tmp/vs")
+  better=$(awk '$1 <= $2' "$tmp/vs" | wc -l)
+  awk '{print $1}' "$tmp/vs" > "$tmp/vs_a"
+  awk '{print $2}' "$tmp/vs" > "$tmp/vs_b"
+  echo "- $3: median over $n logs $(med "$tmp/vs_a") % (dynosize) against $(med "$tmp/vs_b") % (plain DC); dynosize as good or better on $better of $n."
+}
+echo "Held-out errors against the plain DC model fitted on the same rows (label Kv; R, Io):"
+echo
+vs_dc 9 12 "speed (at the measured torque, else from the measured current)"
+vs_dc 8 11 "DC current at the measured torque (logs with torque)"
 } >> "$out"
 
 # One entry per motor from all of its logs together (what a test engineer writes to the catalog):

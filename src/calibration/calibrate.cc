@@ -12,6 +12,7 @@
 #include "common/units.h"
 #include "fit/linear_least_squares.h"
 #include "fit/statistics.h"
+#include "identification/dc_fit.h"
 #include "identification/fit_rows.h"
 #include "model/circuit.h"
 
@@ -1140,6 +1141,27 @@ std::string CalibrationResult::FullReport() const {
   return s.str();
 }
 
+namespace {
+
+// The plain DC model's errors on held-out row i (percent of the measured value), beside the
+// rms model's: DC current and speed at the row's torque (tq), speed from its measured current.
+void AddDcErrors(const DcMotor& m, const SteadyTable& t, std::size_t i, double assumed_throttle, bool tq,
+                 CrossValidation* cv) {
+  const identification::DcRowPrediction p = identification::PredictDcRow(m, t, i, assumed_throttle);
+  const double w = t.Get(Column::kOmegaRadS)[i], idc = t.Get(Column::kIdcA)[i];
+  if (tq && idc > 0.0 && std::isfinite(p.idc_at_torque_a)) {
+    cv->dc_idc_error_percent.push_back((p.idc_at_torque_a - idc) / idc * 100.0);
+  }
+  if (tq && std::isfinite(p.omega_at_torque_rad_s)) {
+    cv->dc_omega_error_percent.push_back((p.omega_at_torque_rad_s - w) / w * 100.0);
+  }
+  if (std::isfinite(p.omega_from_idc_rad_s)) {
+    cv->dc_omega_from_idc_error_percent.push_back((p.omega_from_idc_rad_s - w) / w * 100.0);
+  }
+}
+
+}  // namespace
+
 CrossValidation LeaveOneOut(const SteadyTable& t, const CalibrationOptions& options, bool by_throttle,
                             std::size_t max_folds) {
   CrossValidation cv;
@@ -1166,6 +1188,14 @@ CrossValidation LeaveOneOut(const SteadyTable& t, const CalibrationOptions& opti
   const bool has_nl = t.Has(Column::kNoLoad);
   double wmax = 0.0;
   for (double w : t.Get(Column::kOmegaRadS)) wmax = std::max(wmax, w);
+  // The rows a fit may use (Prepare's speed and throttle rules; a no-load row without a speed
+  // reading counts for the current only).
+  const auto usable = [&](std::size_t i, bool* speed_unknown) {
+    const double w = t.Get(Column::kOmegaRadS)[i];
+    *speed_unknown = has_nl && t.Get(Column::kNoLoad)[i] != 0.0 && w == 0.0;
+    if (!*speed_unknown && !(w > options.min_speed_fraction * wmax)) return false;
+    return !(t.Has(Column::kThrottle) && t.Get(Column::kThrottle)[i] < options.min_throttle);
+  };
   for (long long g : groups) {
     ++cv.folds;
     std::vector<std::size_t> test;
@@ -1179,12 +1209,19 @@ CrossValidation LeaveOneOut(const SteadyTable& t, const CalibrationOptions& opti
       ++cv.failed_folds;
       continue;
     }
+    std::vector<std::size_t> dc_rows;
+    for (std::size_t i : keep) {
+      bool unknown = false;
+      if (usable(i, &unknown) && !unknown) dc_rows.push_back(i);
+    }
+    const identification::DcFit dc = identification::FitDcMotor(t, dc_rows, options.assumed_throttle,
+                                                                options.labels.kv_rpm_per_v.value_or(0.0));
     for (std::size_t i : test) {
       const double w = t.Get(Column::kOmegaRadS)[i];
+      bool speed_unknown = false;
+      if (!usable(i, &speed_unknown)) continue;
       const bool no_load = has_nl && t.Get(Column::kNoLoad)[i] != 0.0;
-      const bool speed_unknown = no_load && w == 0.0;  // see Prepare(): current only
-      if (!speed_unknown && !(w > options.min_speed_fraction * wmax)) continue;
-      if (t.Has(Column::kThrottle) && t.Get(Column::kThrottle)[i] < options.min_throttle) continue;
+      if (dc.ok && !speed_unknown) AddDcErrors(dc.motor, t, i, options.assumed_throttle, has_q || no_load, &cv);
       const RowPrediction p = PredictRow(t, i, r.motor, r.esc, options.assumed_throttle);
       const double idc = t.Get(Column::kIdcA)[i];
       if (idc > 0.0 && std::isfinite(p.idc_a)) {

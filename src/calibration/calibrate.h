@@ -199,6 +199,11 @@ struct CrossValidation {
   std::vector<double> idc_loaded_error_percent;  // rows with torque or speed known, not no-load
   std::vector<double> omega_error_percent;
   std::vector<double> omega_from_idc_error_percent;  // RowPrediction::omega_from_idc_rad_s, every row
+  // The same held-out rows predicted by the plain first-order DC model fitted on the same
+  // training rows (identification/dc_fit.h): the baseline reported beside the rows above.
+  std::vector<double> dc_idc_error_percent;
+  std::vector<double> dc_omega_error_percent;
+  std::vector<double> dc_omega_from_idc_error_percent;
   std::size_t folds = 0;
   std::size_t failed_folds = 0;  // too few rows left to fit
 };
