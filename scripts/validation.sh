@@ -219,8 +219,8 @@ echo "differently. Strawson: all 16 logs of a motor (8 propellers x 2 supplies).
 echo "run of a motor (all propellers, 3S and 4S); the no-propeller runs are left out (near zero load"
 echo "the ESC's output is not proportional to the command: 48 % of the full speed at a 20 % command)."
 echo
-echo "| data set | motor | label Kv | logs | points | status | fitted Kv | first failed check | held-out idc | held-out rpm | written |"
-echo "|---|---|---|---|---|---|---|---|---|---|---|"
+echo "| data set | motor | label Kv | logs | points | status | fitted Kv | first failed check | held-out idc | held-out rpm | written | plain DC: idc | plain DC: rpm |"
+echo "|---|---|---|---|---|---|---|---|---|---|---|---|---|"
 } >> "$out"
 joint() {  # set, motor name, label Kv, then calibrate arguments (logs first)
   local set=$1 name=$2 kv=$3; shift 3
@@ -231,14 +231,14 @@ joint() {  # set, motor name, label Kv, then calibrate arguments (logs first)
     cp "$cat" "$tmp/written_joint_$RANDOM$RANDOM.json"
   fi
   if [ ! -s "$j" ] || ! jq -e .status "$j" > /dev/null 2>&1; then
-    echo "| $set | $name | $kv | $nlogs | - | not read | - | $(head -c 120 "$tmp/err" | tr '\n|' ' /') | - | - | no |" >> "$out"
+    echo "| $set | $name | $kv | $nlogs | - | not read | - | $(head -c 120 "$tmp/err" | tr '\n|' ' /') | - | - | no | - | - |" >> "$out"
     return
   fi
   echo "| $set | $name | $kv | $nlogs | $(jq -r .fit.points_used "$j") | $(jq -r .status "$j") |"\
 " $(kv_fit "$j") |"\
 " $(first_failed "$j") |"\
 " $(pct .held_out.idc.median_abs_percent "$j") % |"\
-" $(held_out_rpm "$j") | $written |" >> "$out"
+" $(held_out_rpm "$j") | $written | $(held_out_dc "$j") |" >> "$out"
   echo "$set $(jq -r .status "$j") $written" >> "$tmp/joint_status"
 }
 : > "$tmp/joint_status"
