@@ -8,7 +8,7 @@
 
 #include "fit/linear_least_squares.h"
 #include "fit/statistics.h"
-#include "common/units.h"
+#include "model/dc_motor.h"
 
 namespace dynosize::identification {
 
@@ -118,7 +118,9 @@ double TorquePerAmpereVsLabel(const logs::SteadyTable& t, double kv_label_rpm_pe
   double top = 0.0;
   for (double x : tr) top = std::max(top, x);
   if (!(top >= 0.95)) return kNaN;
-  const double kt_dc = 1.0 / (kv_label_rpm_per_v * kRadPerSecPerRpm);  // 60/(2*pi*Kv)
+  DcMotor label;
+  label.kv_rpm_per_v = kv_label_rpm_per_v;
+  const double kt_dc = label.kt_nm_per_a();  // 60/(2*pi*Kv)
   std::vector<double> ratio;
   for (std::size_t i = 0; i < t.rows(); ++i) {
     if (std::fabs(tr[i] - top) > 1e-3 || !(q[i] > 0.0) || !(idc[i] > 0.0)) continue;
