@@ -194,6 +194,13 @@ class Drive {
   // Inverse model: the throttle that holds (torque, speed) at VDC. Infeasible (flagged in
   // limits) above 100 % throttle or over a current limit; the numbers are still computed.
   OperatingPoint Inverse(double vdc_v, double torque_nm, double omega_rad_s) const;
+  // Inverse's throttle, IDC and Irms only (eqs 42, 48, 57), the same numbers bit for bit,
+  // without the powers, efficiencies and limits: for a caller that iterates on VDC (the pack's
+  // sag in MissionEvaluator) and needs the whole point only where the iteration ends.
+  struct InverseCurrents {
+    double throttle = 0.0, idc_a = 0.0, irms_a = 0.0;
+  };
+  InverseCurrents InverseLight(double vdc_v, double torque_nm, double omega_rad_s) const;
 
   // Derived points at a given VDC and throttle.
   // No-load speed omega_NL = (kv*VDC*TR_eff - Io*R)/KE (eq 49 with Q = 0).

@@ -428,22 +428,30 @@ bool MissionEvaluator::IntegrateSegment(std::size_t si, bool stretched, double o
     const double r_pack = pack.ri_ohm();
     // Warm start from the previous instant's sag (the current changes little in a segment).
     double vv = last_sag_v > 0 && last_sag_v < 0.5 * ocv ? ocv - last_sag_v : ocv;
+    // The iteration needs only IDC (Drive::InverseLight, the same numbers as Inverse); the
+    // whole point is computed once, at the voltage of the last one.
+    double v_op = vv;
     for (int it = 0; it < 30; ++it) {
-      *op = drive.Inverse(vv, torque, omega);
-      const double p_w = n_active * op->idc_a * vv + m_.vehicle.avionics_power_w;
+      const double idc_a = drive.InverseLight(vv, torque, omega).idc_a;
+      v_op = vv;
+      const double p_w = n_active * idc_a * vv + m_.vehicle.avionics_power_w;
       const double disc = ocv * ocv - 4.0 * r_pack * p_w;
       demanded_w = p_w;
       deliverable_w = ocv * ocv / (4.0 * r_pack);
-      if (!(disc >= 0.0)) return false;
+      if (!(disc >= 0.0)) {
+        *op = drive.Inverse(v_op, torque, omega);
+        return false;
+      }
       const double next = 0.5 * (ocv + std::sqrt(disc));
       if (next == vv) break;
       const bool done = std::fabs(next - vv) < 1e-10 * ocv;
       vv = next;
       if (done) {
-        *op = drive.Inverse(vv, torque, omega);
+        v_op = vv;
         break;
       }
     }
+    *op = drive.Inverse(v_op, torque, omega);
     *i_batt = n_active * op->idc_a + m_.vehicle.avionics_power_w / vv;
     *v = vv;
     last_sag_v = ocv - vv;
@@ -867,7 +875,7 @@ void MissionEvaluator::FillPropNotes(MissionResult* r) {
 
 MissionResult MissionEvaluator::Solve(double cutoff_score, bool explain) const {
   MissionResult r = SolveContinuous(cutoff_score, explain);
-  FillPropNotes(&r);
+  if (explain) FillPropNotes(&r);
   return r;
 }
 

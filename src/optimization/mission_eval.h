@@ -185,11 +185,12 @@ class MissionEvaluator {
   // (Ipopt). This is what `evaluate` and `optimize` report.
   // With cutoff_score: stop early (bounded_out) once a bound proves score >= cutoff_score
   // (max_endurance only; see EnduranceUpperBound in the .cc).
-  // explain = false leaves out the warnings and the continuous solver's report (text nobody
-  // reads for the search's screening evaluations); the numbers are the same.
+  // explain = false leaves out the warnings, the continuous solver's report, the designer's
+  // summary and the propeller notes (text nobody reads for the search's evaluations: it
+  // explains its top N again); the numbers are the same.
   MissionResult Solve(double cutoff_score = std::numeric_limits<double>::infinity(),
                       bool explain = true) const;
-  // Writes each segment's prop_note from its prop_edge_eval (Solve and Simulate do).
+  // Writes each segment's prop_note from its prop_edge_eval (Solve with explain, and Simulate).
   static void FillPropNotes(MissionResult* r);
 
   // Steady winding temperature of the motor at an operating point, C: the winding heats by

@@ -977,12 +977,17 @@ class BranchAndBound {
   }
 
   void Run();
+  // Solves the top N again with explain (warnings, the solver's report, the designer's summary,
+  // propeller notes): Process scores without them (text for results nobody reads), each with
+  // the cutoff it had, so the numbers are the same.
+  void Explain() const;
   long long virtual_evaluations() const { return virtual_evals_; }
   long long refills() const { return stream_.refills(); }
 
  private:
   struct Outcome {
     std::vector<std::pair<Combination, MissionResult>> results;
+    std::vector<double> cutoffs;  // per result, the cutoff its Solve had
     std::map<std::string, long long> pruned;
     long long searched = 0, virtual_evals = 0;
   };
@@ -1001,7 +1006,7 @@ class BranchAndBound {
   double NthBest() const {
     return static_cast<int>(out_->best.size()) < opt_.top_n ? kInf : out_->best.back().result.score;
   }
-  void Insert(const Combination& c, MissionResult&& r);
+  void Insert(const Combination& c, MissionResult&& r, double cutoff);
   void Process(const Candidate& cand, std::vector<double> top, Outcome* o) const;
 
   const SearchContext& ctx_;
@@ -1013,17 +1018,32 @@ class BranchAndBound {
   std::size_t base_ = 0;
   SearchResult* out_;
   Mission relaxed_;
+  std::vector<double> best_cutoffs_;  // parallel to out_->best: the cutoff of each one's Solve
   long long virtual_evals_ = 0;
 };
 
-void BranchAndBound::Insert(const Combination& c, MissionResult&& r) {
+void BranchAndBound::Insert(const Combination& c, MissionResult&& r, double cutoff) {
   if (!r.feasible) return;
   out_->evaluated_mass_objective.emplace_back(r.propulsion_mass_kg, r.objective);
   if (!(r.score < NthBest())) return;
   auto pos = std::upper_bound(out_->best.begin(), out_->best.end(), r.score,
                               [](double s, const RankedCombination& x) { return s < x.result.score; });
+  best_cutoffs_.insert(best_cutoffs_.begin() + (pos - out_->best.begin()), cutoff);
   out_->best.insert(pos, RankedCombination{c, std::move(r)});
-  if (static_cast<int>(out_->best.size()) > opt_.top_n) out_->best.pop_back();
+  if (static_cast<int>(out_->best.size()) > opt_.top_n) {
+    out_->best.pop_back();
+    best_cutoffs_.pop_back();
+  }
+}
+
+void BranchAndBound::Explain() const {
+  for (std::size_t i = 0; i < out_->best.size(); ++i) {
+    RankedCombination& b = out_->best[i];
+    const PropModel* model = b.combination.prop == nullptr
+                                 ? nullptr
+                                 : ctx_.models[static_cast<std::size_t>(b.combination.prop - ctx_.catalog->props().data())].get();
+    b.result = MissionEvaluator(*ctx_.mission, b.combination, model, &ctx_.fixed_model_ptrs).Solve(best_cutoffs_[i]);
+  }
 }
 
 // One candidate pair against the N best scores when its chunk started (`top`, updated with
@@ -1099,7 +1119,7 @@ void BranchAndBound::Process(const Candidate& cand, std::vector<double> top, Out
       }
       set_esc(&c, &escs[e]);
       const double threshold = threshold_now();
-      MissionResult r = MissionEvaluator(m, c, model, &ctx_.fixed_model_ptrs).Solve(threshold);
+      MissionResult r = MissionEvaluator(m, c, model, &ctx_.fixed_model_ptrs).Solve(threshold, false);
       if (r.bounded_out) {
         local_prune("objective_bound", 1);
         done.emplace_back(e, true);
@@ -1110,6 +1130,7 @@ void BranchAndBound::Process(const Candidate& cand, std::vector<double> top, Out
       if (r.feasible) {
         top.insert(std::upper_bound(top.begin(), top.end(), r.score), r.score);
         o->results.emplace_back(c, std::move(r));
+        o->cutoffs.push_back(threshold);
       }
     }
   }
@@ -1164,7 +1185,7 @@ void BranchAndBound::Run() {
       for (const auto& [rule, n] : o.pruned) out_->pruned_by[rule] += n;
       out_->searched += o.searched;
       virtual_evals_ += o.virtual_evals;
-      for (auto& [c, r] : o.results) Insert(c, std::move(r));
+      for (std::size_t j = 0; j < o.results.size(); ++j) Insert(o.results[j].first, std::move(o.results[j].second), o.cutoffs[j]);
     }
     ordered_.erase(ordered_.begin(), ordered_.begin() + static_cast<std::ptrdiff_t>(end - base_));
     base_ = end;
@@ -1196,6 +1217,7 @@ SearchResult SearchExactly(const Mission& m, const Catalog& cat, const SearchOpt
   out.candidate_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   BranchAndBound bb(ctx, opt, std::move(heads), &out);  // stage 5
   bb.Run();
+  bb.Explain();
   if (opt.progress) {
     SearchProgress p;
     p.fraction = 1.0;
