@@ -83,10 +83,18 @@ MissionResult SolveOneVariable(const Simulate& simulate, const Bounded& bounded_
   return best;
 }
 
-// Propeller speed for a required thrust: the root of T(omega) - T_req on [0, w_hi] by the
-// Illinois variant of regula falsi (T(0) = 0 < T_req). Returns false when T(w_hi) < T_req.
+// Propeller speed for a required thrust: the root of T(omega) - T_req on [0, w_hi], in closed
+// form for coefficients and power laws (PropModel::StaticSpeedForThrust: their thrust does not
+// depend on the inflow), else by the Illinois variant of regula falsi (T(0) = 0 < T_req).
+// Returns false when T(w_hi) < T_req.
 bool PropSpeedForThrust(const PropModel& prop, double thrust_n, double rho, double airspeed,
                         double w_hi, double* omega, PropEvaluation* ev) {
+  if (double w = 0; prop.StaticSpeedForThrust(thrust_n, rho, &w)) {
+    const bool ok = w <= w_hi;
+    *omega = ok ? w : w_hi;
+    *ev = prop.Evaluate(*omega, rho, airspeed);
+    return ok;
+  }
   double a = 0.0, fa = -thrust_n;
   PropEvaluation eb = prop.Evaluate(w_hi, rho, airspeed);
   double b = w_hi, fb = eb.thrust_n - thrust_n;
