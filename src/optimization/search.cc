@@ -925,10 +925,11 @@ bool CandidateStream::Next(double cutoff, Candidate* c) {
   *c = q.next[q.pos++];
   if (q.pos == q.next.size()) {
     if (!q.complete && c->bound < cutoff) {
-      // The motor's pairs after c, twice as many as last time: regenerated (stage 4 is
+      // The motor's pairs after c, eight times as many as last time (fewer refills; each
+      // regenerates all the motor's pairs): regenerated (stage 4 is
       // deterministic), those with a bound >= cutoff left out (never drawn before the search
       // stops: the cutoff only falls).
-      const std::size_t n = 2 * q.next.size();
+      const std::size_t n = 8 * q.next.size();
       scratch_.clear();
       MotorPairs(ctx_, q.motor, &scratch_);
       const Candidate last = *c;
