@@ -550,8 +550,8 @@ double CapacityPiecesBoundAt(const SearchContext& ctx, const MissionFacts& f, co
         (k.enforce_motor_power && hi_v.pac_w > mp.max_power_w)) {
       break;  // R3 at this mass: this piece and every heavier one are infeasible
     }
-    const OperatingPoint lo_v = ideal.Inverse(bo.v_cut, q_lb, omega_lb);
-    const double pdc_lb = std::max(0.0, std::min(hi_v.pdc_w, lo_v.pdc_w));
+    const double pdc_lo_v = bo.v_cut * ideal.InverseLight(bo.v_cut, q_lb, omega_lb).idc_a;  // (59), as Inverse
+    const double pdc_lb = std::max(0.0, std::min(hi_v.pdc_w, pdc_lo_v));
     loads.Reset(mass_j);
     best = std::min(best, ScoreLowerBound(ctx, f, mp, esc_class, ctx.catalog->props()[pi], *ctx.models[pi], o,
                                           &loads, pdc_lb, c_b));
@@ -612,8 +612,8 @@ void MotorCandidates(const SearchContext& ctx, const MissionFacts& f, std::size_
         if (hi_v.throttle > t_max) { why = "throttle"; continue; }
         if (hi_v.irms_a > mp.max_current_a * margin) { why = "motor_current"; continue; }
         if (k.enforce_motor_power && hi_v.pac_w > mp.max_power_w) { why = "motor_power"; continue; }
-        const OperatingPoint lo_v = ideal[ci].Inverse(bo.v_cut, q_lb, omega_lb);
-        const double pdc_lb = std::max(0.0, std::min(hi_v.pdc_w, lo_v.pdc_w));
+        const double pdc_lo_v = bo.v_cut * ideal[ci].InverseLight(bo.v_cut, q_lb, omega_lb).idc_a;  // (59), as Inverse
+        const double pdc_lb = std::max(0.0, std::min(hi_v.pdc_w, pdc_lo_v));
         const double bound = ScoreLowerBound(ctx, f, mp, classes[ci], props[pi], *ctx.models[pi], o, &loads, pdc_lb);
         any = true;
         best_bound = std::min(best_bound, bound);
