@@ -431,23 +431,24 @@ bool MissionEvaluator::IntegrateSegment(std::size_t si, bool stretched, double o
   // saturation), so each step solves the quadratic V^2 - OCV*V + R*P = 0 for its upper (stable)
   // root with P at the current V: exact in one step when C0 = 0, a fast contraction otherwise.
   // No real root: the pack cannot deliver the power.
+  // The iteration needs only IDC (Drive::InverseLight, the same numbers as Inverse); the whole
+  // point is computed once, at the voltage of the last one, and only when op is not null (the
+  // midpoints need IDC alone: the shaft point, hence Pmech, is the segment's).
   auto point_at = [&](double soc_now, OperatingPoint* op, double* v, double* i_batt) {
     const double ocv = pack.OcvV(soc_now);
     const double r_pack = pack.ri_ohm();
     // Warm start from the previous instant's sag (the current changes little in a segment).
     double vv = last_sag_v > 0 && last_sag_v < 0.5 * ocv ? ocv - last_sag_v : ocv;
-    // The iteration needs only IDC (Drive::InverseLight, the same numbers as Inverse); the
-    // whole point is computed once, at the voltage of the last one.
-    double v_op = vv;
+    double v_op = vv, idc_op = 0.0;  // the last InverseLight's voltage and IDC
     for (int it = 0; it < 30; ++it) {
-      const double idc_a = drive.InverseLight(vv, torque, omega).idc_a;
+      idc_op = drive.InverseLight(vv, torque, omega).idc_a;
       v_op = vv;
-      const double p_w = n_active * idc_a * vv + m_.vehicle.avionics_power_w;
+      const double p_w = n_active * idc_op * vv + m_.vehicle.avionics_power_w;
       const double disc = ocv * ocv - 4.0 * r_pack * p_w;
       demanded_w = p_w;
       deliverable_w = ocv * ocv / (4.0 * r_pack);
       if (!(disc >= 0.0)) {
-        *op = drive.Inverse(v_op, torque, omega);
+        if (op) *op = drive.Inverse(v_op, torque, omega);
         return false;
       }
       const double next = 0.5 * (ocv + std::sqrt(disc));
@@ -456,11 +457,15 @@ bool MissionEvaluator::IntegrateSegment(std::size_t si, bool stretched, double o
       vv = next;
       if (done) {
         v_op = vv;
+        idc_op = op ? 0.0 : drive.InverseLight(v_op, torque, omega).idc_a;
         break;
       }
     }
-    *op = drive.Inverse(v_op, torque, omega);
-    *i_batt = n_active * op->idc_a + m_.vehicle.avionics_power_w / vv;
+    if (op) {
+      *op = drive.Inverse(v_op, torque, omega);
+      idc_op = op->idc_a;
+    }
+    *i_batt = n_active * idc_op + m_.vehicle.avionics_power_w / vv;
     *v = vv;
     last_sag_v = ocv - vv;
     return true;
@@ -497,15 +502,17 @@ bool MissionEvaluator::IntegrateSegment(std::size_t si, bool stretched, double o
   const int steps = stretched ? kStretchSubsteps : kSubsteps;
   const double dt = seg->duration_s / steps;
   double e_seg = 0, e_mech = 0;
+  // Pmech = KT(I)*(I - Io)*omega at the segment's fixed shaft point (eqs 42, 50): the same at
+  // every voltage, so the midpoints take it from the first point.
+  const double pmech_w = op.pmech_w;
   for (int j = 0; ok && j < steps && dt > 0; ++j) {
     // Midpoint rule: predict SOC at mid-step with the start current, draw the mid current.
-    OperatingPoint opm;
     double vm = 0, im = 0;
-    ok = point_at(soc - 0.5 * ib * dt / st->q_c, &opm, &vm, &im);
+    ok = point_at(soc - 0.5 * ib * dt / st->q_c, nullptr, &vm, &im);
     if (!ok) break;
     soc -= im * dt / st->q_c;
     e_seg += vm * im * dt;
-    e_mech += n_active * opm.pmech_w * dt;
+    e_mech += n_active * pmech_w * dt;
     ok = point_at(soc, &op, &v, &ib);
     if (!ok) break;
     check_point(op, v, ib);
