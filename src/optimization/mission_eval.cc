@@ -898,17 +898,26 @@ MissionResult MissionEvaluator::Solve(double cutoff_score, bool explain) const {
 // (bounded out, infeasible, or the answer itself) in *out and true, or false to go on.
 bool MissionEvaluator::EarlyExit(double cutoff_score, bool explain, MissionResult* out) const {
   const bool capacity_free = m_.battery.capacity_ah && m_.battery.capacity_ah->free();
-  if (std::isfinite(cutoff_score) && capacity_free && m_.constraints.min_hover_throttle > 0) {
+  if (std::isfinite(cutoff_score) && m_.constraints.min_hover_throttle > 0) {
     // min_hover_throttle is checked at the full-charge OCV (PropellerPoint), which does not
     // depend on the capacity, with the hover's torque and speed, which rise with the mass
     // (M3 of search.cc); the throttle that holds them rises with them (M2). So the hover
     // throttle is highest with the largest pack: when it is below the limit there, it is at
     // every capacity of the range, and no choice of the continuous variables is feasible.
+    // Without a capacity range the same check decides it outright: the hover's mass, thrust
+    // and full-charge OCV depend on nothing else that is free (the stretch's duration and the
+    // cruise airspeeds do not enter them). In the search nearly every real ESC that passes the
+    // virtual one's bound fails this limit (issue 14: 96 % of the quadcopter's real-ESC
+    // evaluations), each for a whole 1-D search before.
     // (Only in a search, with a cutoff: the result is infeasible, as the full search's would
     // be, and says so with the same constraint. First: a few propeller evaluations, where the
     // bounds below take up to 24 runs.)
-    // PropellerPoint's check alone, per hover segment, at the largest capacity's mass.
-    const BatteryPack pack(PackAt(m_.battery.capacity_ah->hi));
+    // PropellerPoint's check alone, per hover segment, at the largest capacity's mass (the
+    // mission's own capacity, as Run flies it, without a range).
+    const double capacity_ah = !m_.battery.capacity_ah ? 0.0
+                               : capacity_free         ? m_.battery.capacity_ah->hi
+                                                       : m_.battery.capacity_ah->lo;
+    const BatteryPack pack(PackAt(capacity_ah));
     const double mass_kg = fixed_mass_kg_ + pack.mass_kg();
     const double v_full = pack.OcvV(1.0);
     for (const Segment& s : m_.segments) {

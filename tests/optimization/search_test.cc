@@ -384,10 +384,11 @@ TEST_F(SearchTest, UnreachableThrustToWeightGivesResultsWithTheViolation) {
 // or a screening rule that is not monotone, would fail here).
 TEST_F(SearchTest, EarlyExitsNeverCutOffAFeasibleScore) {
   const Catalog cat = Catalog::Load((dir_ / "catalog").string());
-  for (const bool capacity_range : {false, true}) {
+  for (const int variant : {0, 1, 2}) {  // fixed capacity without, with min_hover_throttle; a range
+    const bool capacity_range = variant == 2;
     Json j = ParseJsonText(kQuad, "quad");
     if (capacity_range) j["battery"]["capacity_ah"] = {2.0, 6.0};
-    if (capacity_range) j["constraints"]["min_hover_throttle"] = 0.3;
+    if (variant > 0) j["constraints"]["min_hover_throttle"] = 0.3;
     const Mission m = ParseMission(j, "quad");
     int checked = 0;
     ForEachCombination(cat, [&](const Combination& c) {
@@ -402,7 +403,37 @@ TEST_F(SearchTest, EarlyExitsNeverCutOffAFeasibleScore) {
       EXPECT_EQ(cut.score, full.score) << Name(c);
       ++checked;
     });
-    EXPECT_GE(checked, 3) << "capacity range " << capacity_range;
+    EXPECT_GE(checked, 3) << "variant " << variant;
+  }
+}
+
+// The hover-throttle exit (EarlyExit: the hover throttle at full charge below
+// min_hover_throttle, with or without a capacity range) only refuses combinations that the
+// full solve finds infeasible for that same limit; it must refuse some here (else the test
+// would not exercise it).
+TEST_F(SearchTest, HoverThrottleExitOnlyRefusesInfeasibleCombinations) {
+  const Catalog cat = Catalog::Load((dir_ / "catalog").string());
+  for (const bool capacity_range : {false, true}) {
+    Json j = ParseJsonText(kQuad, "quad");
+    if (capacity_range) j["battery"]["capacity_ah"] = {2.0, 6.0};
+    j["constraints"]["min_hover_throttle"] = 0.35;
+    const Mission m = ParseMission(j, "quad");
+    int refused = 0;
+    ForEachCombination(cat, [&](const Combination& c) {
+      // Any finite cutoff enables the exits; a huge one keeps the objective bounds from firing.
+      const MissionResult cut = MissionEvaluator(m, c).Solve(1e300);
+      if (cut.feasible || cut.violations.size() != 1 || cut.violations[0].constraint != "min_hover_throttle" ||
+          !cut.segments.empty()) {
+        return;  // not the exit (it returns no segments)
+      }
+      ++refused;
+      const MissionResult full = MissionEvaluator(m, c).Solve();
+      EXPECT_FALSE(full.feasible) << Name(c);
+      bool named = false;
+      for (const Violation& v : full.violations) named |= v.constraint == "min_hover_throttle";
+      EXPECT_TRUE(named) << Name(c);
+    });
+    EXPECT_GE(refused, 1) << "capacity range " << capacity_range;
   }
 }
 
