@@ -299,6 +299,25 @@ class PairLoads {
     for (auto& x : lo_) x.first = false;
     for (auto& x : hi_) x.first = false;
     for (auto& x : energy_) x.first = false;
+    for (auto& x : terms_) x.known = false;
+  }
+  // A segment's power bound as ScoreLowerBound's p_lb_of needs it: scales (rotors x the
+  // hover bound's per-rotor PDC + the avionics) or a constant; set by f(&term) once per pair.
+  struct PowerTerm {
+    bool known = false, scales = false;
+    int rotors = 0;
+    double constant = 0;
+  };
+  template <typename F>
+  const PowerTerm& Term(std::size_t si, const F& f) {
+    if (terms_.size() != lo_.size()) terms_.assign(lo_.size(), PowerTerm{});
+    PowerTerm& x = terms_[si];
+    if (!x.known) {
+      x = PowerTerm{};
+      f(&x);
+      x.known = true;
+    }
+    return x;
   }
   // A per-segment number that depends only on the pair (its mass and propeller), computed by
   // f() once per pair (ScoreLowerBound's momentum energy), not once per ESC class.
@@ -323,6 +342,7 @@ class PairLoads {
   double mass_kg_ = 0;
   std::vector<std::pair<bool, RotorLoad>> lo_, hi_;
   std::vector<std::pair<bool, double>> energy_;
+  std::vector<PowerTerm> terms_;
 };
 
 // R4: a lower bound of the score of a (motor, propeller, option) pair with an ESC of class
@@ -343,19 +363,26 @@ double ScoreLowerBound(const SearchContext& ctx, const MissionFacts& f, const Mo
   // M1, M2). Any other segment draws at least P_avionics.
   const double t_lb = loads->At(static_cast<std::size_t>(f.hover[0]), false, 0.0).thrust_per_rotor_n;
   const bool static_only = model.data_kind() != PropDataKind::kTables || prop.j_tables.empty();
+  // Everything but pdc_lb depends on the pair only: kept per pair (PairLoads::Term).
   auto p_lb_of = [&](std::size_t si) {
-    const Segment& sg = m.segments[si];
-    if (sg.group != f.free_group) {  // G1: the fixed group's own bound at the lightest mass
-      return ctx.fixed_power_lb_w.empty() ? m.vehicle.avionics_power_w
-                                          : FixedPowerLowerBoundW(ctx, option, si, loads->mass_kg());
-    }
-    const bool fixed_v = sg.type != SegmentType::kCruise || !sg.airspeed_m_s.free();
-    if (sg.type == SegmentType::kHover ||
-        (static_only && fixed_v && (sg.type == SegmentType::kClimb || sg.type == SegmentType::kCruise))) {
-      const RotorLoad& ld = loads->At(si, false, sg.type == SegmentType::kCruise ? sg.airspeed_m_s.lo : 0.0);
-      if (ld.thrust_per_rotor_n >= t_lb) return ld.rotors * pdc_lb + m.vehicle.avionics_power_w;
-    }
-    return m.vehicle.avionics_power_w;
+    const PairLoads::PowerTerm& t = loads->Term(si, [&](PairLoads::PowerTerm* x) {
+      const Segment& sg = m.segments[si];
+      x->constant = m.vehicle.avionics_power_w;
+      if (sg.group != f.free_group) {  // G1: the fixed group's own bound at the lightest mass
+        if (!ctx.fixed_power_lb_w.empty()) x->constant = FixedPowerLowerBoundW(ctx, option, si, loads->mass_kg());
+        return;
+      }
+      const bool fixed_v = sg.type != SegmentType::kCruise || !sg.airspeed_m_s.free();
+      if (sg.type == SegmentType::kHover ||
+          (static_only && fixed_v && (sg.type == SegmentType::kClimb || sg.type == SegmentType::kCruise))) {
+        const RotorLoad& ld = loads->At(si, false, sg.type == SegmentType::kCruise ? sg.airspeed_m_s.lo : 0.0);
+        if (ld.thrust_per_rotor_n >= t_lb) {
+          x->scales = true;
+          x->rotors = ld.rotors;
+        }
+      }
+    });
+    return t.scales ? t.rotors * pdc_lb + m.vehicle.avionics_power_w : t.constant;
   };
   // The shortest a segment can last (free airspeed: at its top speed).
   auto t_min_of = [&](const Segment& sg) { return SegmentDurationS(sg, sg.airspeed_m_s.hi); };
@@ -452,9 +479,10 @@ double ScoreLowerBound(const SearchContext& ctx, const MissionFacts& f, const Mo
 
 // R0, R2, R6, R7 for one (motor, propeller, option) pair: the rule that removes it, or null.
 // Sets omega_lb, q_lb (R2) for the hover bound.
-const char* PropRule(const SearchContext& ctx, const MissionFacts& f, const MotorEntry& mo,
-                     const std::vector<Drive>& ideal, std::size_t pi, std::size_t o, PairLoads* loads,
-                     double* omega_lb, double* q_lb) {
+// w_nl: the largest no-load speed of the motor's zero-resistance drives at full throttle and
+// the option's full-charge voltage (R7; the same for every propeller, computed once per option).
+const char* PropRule(const SearchContext& ctx, const MissionFacts& f, const MotorEntry& mo, double w_nl,
+                     std::size_t pi, std::size_t o, PairLoads* loads, double* omega_lb, double* q_lb) {
   const Mission& m = *ctx.mission;
   const MissionConstraints& k = m.constraints;
   const PropEntry& prop = ctx.catalog->props()[pi];
@@ -495,8 +523,6 @@ const char* PropRule(const SearchContext& ctx, const MissionFacts& f, const Moto
     // segment with axial airspeed >= V_ax is at least V_ax/(n_max*D); above the mission's
     // max_static_advance_ratio the segment fails prop_no_forward_flight_data whatever else is
     // chosen.
-    double w_nl = 0;
-    for (const Drive& d : ideal) w_nl = std::max(w_nl, d.NoLoadSpeed(bo.v_full, 1.0));
     const double n_max = w_nl / (2.0 * kPi);
     for (const Segment& sg : m.segments) {
       if (sg.group != f.free_group) continue;
@@ -592,12 +618,14 @@ void MotorCandidates(const SearchContext& ctx, const MissionFacts& f, std::size_
       pruned->Add("motor_voltage", per_pair * static_cast<long long>(props.size()));
       continue;
     }
+    double w_nl = 0;  // R7
+    for (const Drive& d : ideal) w_nl = std::max(w_nl, d.NoLoadSpeed(bo.v_full, 1.0));
     for (std::size_t pi = 0; pi < props.size(); ++pi) {
       const double mass_lb = m.vehicle.mass_kg + bo.mass_lo_kg + ctx.fixed_groups_mass_kg +
                              ctx.free_rotors * (*mo.mass_kg + ctx.grids[pi].mass_kg + ctx.escs.min_mass_kg[o]);
       double omega_lb = 0, q_lb = 0;
       loads.Reset(mass_lb);
-      if (const char* rule = PropRule(ctx, f, mo, ideal, pi, o, &loads, &omega_lb, &q_lb)) {
+      if (const char* rule = PropRule(ctx, f, mo, w_nl, pi, o, &loads, &omega_lb, &q_lb)) {
         pruned->Add(rule, per_pair);
         continue;
       }
