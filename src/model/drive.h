@@ -171,6 +171,9 @@ class Drive {
 
   // True when a nonlinear extension (rth_k_per_w, kt_droop_per_a) is active.
   bool nonlinear() const { return nonlinear_; }
+  // True when any extension of section 9 is non-zero (dead band, supply resistance, Io(omega),
+  // heating, droop); false: the first-order equations 42-59 alone.
+  bool extended() const { return extended_; }
   // Winding resistance at current I (winding temperature rise; rm_ohm without it). Infinite
   // past thermal runaway.
   double WindingResistance(double current_a) const;
