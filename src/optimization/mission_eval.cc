@@ -47,14 +47,18 @@ bool Better(const MissionResult& a, const MissionResult& b) {
 // [a, b] can beat the caller's cutoff. The golden section only simulates points of [a, b], so
 // the result could not beat the cutoff either: the search stops there (a result with
 // bounded_out set).
-template <typename Simulate, typename Bounded>
-MissionResult SolveOneVariable(const Simulate& simulate, const Bounded& bounded_after_grid) {
+// enough(r): true when r settles the caller's question (Solve's decide); r is then returned
+// at once.
+template <typename Simulate, typename Bounded, typename Enough>
+MissionResult SolveOneVariable(const Simulate& simulate, const Bounded& bounded_after_grid, const Enough& enough) {
   constexpr int kGrid = 9;
   MissionResult best = simulate(0.0);
+  if (enough(best)) return best;
   double best_x = 0.0;
   for (int k = 1; k < kGrid; ++k) {
     const double x = k / double(kGrid - 1);
     MissionResult r = simulate(x);
+    if (enough(r)) return r;
     if (Better(r, best)) { best = std::move(r); best_x = x; }
   }
   const double kInvPhi = 0.6180339887498949;  // (sqrt(5) - 1)/2
@@ -66,16 +70,21 @@ MissionResult SolveOneVariable(const Simulate& simulate, const Bounded& bounded_
     return out;
   }
   double c = b - kInvPhi * (b - a), d = a + kInvPhi * (b - a);
-  MissionResult rc = simulate(c), rd = simulate(d);
+  MissionResult rc = simulate(c);
+  if (enough(rc)) return rc;
+  MissionResult rd = simulate(d);
+  if (enough(rd)) return rd;
   while (b - a > 1e-6) {
     if (Better(rc, rd)) {  // the best lies in [a, d]
       b = d; d = c; rd = std::move(rc);
       c = b - kInvPhi * (b - a);
       rc = simulate(c);
+      if (enough(rc)) return rc;
     } else {
       a = c; c = d; rc = std::move(rd);
       d = a + kInvPhi * (b - a);
       rd = simulate(d);
+      if (enough(rd)) return rd;
     }
     if (Better(rc, best)) best = rc;
     if (Better(rd, best)) best = rd;
@@ -688,7 +697,7 @@ double MissionEvaluator::StretchStartCurrent(const MissionResult& r) const {
   return r.segments[m_.objective.segment_index].battery_current_start_a;
 }
 
-MissionResult MissionEvaluator::WithEndurance(ContinuousVars vars) const {
+MissionResult MissionEvaluator::WithEndurance(ContinuousVars vars, double decide_cutoff) const {
   if (m_.objective.type != ObjectiveType::kMaxEndurance) return Run(vars, 0.0);
   // The longest stretch that keeps every constraint: min_slack(T) falls with T (SOC and
   // voltage only fall), so bracket its zero and close in by Illinois regula falsi.
@@ -697,6 +706,9 @@ MissionResult MissionEvaluator::WithEndurance(ContinuousVars vars) const {
   auto run = [&](double t) { return RunFrom(prefix, vars, t, false); };
   MissionResult lo_r = run(0.0);
   if (lo_r.min_slack < 0 || lo_r.segments.size() < m_.segments.size()) return lo_r;
+  // lo_r is feasible from here on and its stretch only grows (its score only falls).
+  auto decided = [&]() { return lo_r.feasible && lo_r.score < decide_cutoff; };
+  if (decided()) return lo_r;
   double lo = 0.0, f_lo = lo_r.min_slack;
   // First guess: the charge left above the reserve at the stretched segment's start current.
   // The stretched segment draws at least its start current (the voltage only falls, the power
@@ -709,6 +721,7 @@ MissionResult MissionEvaluator::WithEndurance(ContinuousVars vars) const {
   MissionResult hi_r = run(hi);
   for (int i = 0; i < 40 && hi_r.min_slack >= 0; ++i) {
     lo = hi; f_lo = hi_r.min_slack; lo_r = hi_r;
+    if (decided()) return lo_r;
     hi *= 2;
     hi_r = run(hi);
   }
@@ -722,6 +735,7 @@ MissionResult MissionEvaluator::WithEndurance(ContinuousVars vars) const {
     const double ft = std::isfinite(tr.min_slack) ? tr.min_slack : -1.0;
     if (ft >= 0) {
       lo = t; f_lo = ft; lo_r = std::move(tr);
+      if (decided()) return lo_r;
       if (side == -1) f_hi *= 0.5;
       side = -1;
     } else {
@@ -909,8 +923,8 @@ void MissionEvaluator::FillPropNotes(MissionResult* r) {
   }
 }
 
-MissionResult MissionEvaluator::Solve(double cutoff_score, bool explain) const {
-  MissionResult r = SolveContinuous(cutoff_score, explain);
+MissionResult MissionEvaluator::Solve(double cutoff_score, bool explain, bool decide) const {
+  MissionResult r = SolveContinuous(cutoff_score, explain, decide && std::isfinite(cutoff_score));
   if (explain) FillPropNotes(&r);
   return r;
 }
@@ -1067,8 +1081,11 @@ bool MissionEvaluator::EarlyExit(double cutoff_score, bool explain, MissionResul
   return false;
 }
 
-MissionResult MissionEvaluator::SolveContinuous(double cutoff_score, bool explain) const {
+MissionResult MissionEvaluator::SolveContinuous(double cutoff_score, bool explain, bool decide) const {
   if (MissionResult early; EarlyExit(cutoff_score, explain, &early)) return early;
+  // decide: a feasible point that beats the cutoff answers the caller (Solve).
+  auto enough = [&](const MissionResult& r) { return decide && r.feasible && r.score < cutoff_score; };
+  const double decide_cutoff = decide ? cutoff_score : -kInf;  // for WithEndurance
   // Free variables, each scaled to [0, 1].
   struct Var { int segment; double lo, hi; };  // segment -1: capacity
   std::vector<Var> free;
@@ -1093,7 +1110,8 @@ MissionResult MissionEvaluator::SolveContinuous(double cutoff_score, bool explai
     return v;
   };
   if (free.empty()) {
-    MissionResult r = WithEndurance(vars_at(nullptr));
+    MissionResult r = WithEndurance(vars_at(nullptr), decide_cutoff);
+    if (enough(r)) return r;
     if (explain) {
       Summarize(&r);
       AddWarnings(&r);
@@ -1131,7 +1149,9 @@ MissionResult MissionEvaluator::SolveContinuous(double cutoff_score, bool explai
                                             free[0].lo + b * (free[0].hi - free[0].lo));
       return -ub >= cutoff_score;
     };
-    MissionResult r = SolveOneVariable([&](double x) { return WithEndurance(vars_at(&x)); }, bounded);
+    MissionResult r =
+        SolveOneVariable([&](double x) { return WithEndurance(vars_at(&x), decide_cutoff); }, bounded, enough);
+    if (enough(r)) return r;
     if (r.bounded_out) return r;
     if (!explain) return r;
     std::ostringstream msg;
@@ -1158,7 +1178,8 @@ MissionResult MissionEvaluator::SolveContinuous(double cutoff_score, bool explai
       x[i] = i < 3 ? (code % levels) / double(levels - 1) : 0.5;
       code /= levels;
     }
-    const MissionResult r = WithEndurance(vars_at(x.data()));
+    MissionResult r = WithEndurance(vars_at(x.data()), decide_cutoff);
+    if (enough(r)) return r;
     const bool better = r.feasible ? r.score < best_score
                                    : (best_score == kInf && r.min_slack > best_slack);
     if (better) {

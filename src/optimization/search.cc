@@ -1128,7 +1128,7 @@ void BranchAndBound::Process(const Candidate& cand, std::vector<double> top, Out
       Combination vc = c;
       set_esc(&vc, &virt);
       const double threshold = threshold_now();
-      const MissionResult vr = MissionEvaluator(relaxed_, vc, model, &ctx_.fixed_model_ptrs).Solve(threshold, false);
+      const MissionResult vr = MissionEvaluator(relaxed_, vc, model, &ctx_.fixed_model_ptrs).Solve(threshold, false, true);
       ++o->virtual_evals;
       if (vr.bounded_out || !vr.feasible || !(vr.score < threshold)) {
         local_prune(vr.bounded_out || vr.feasible ? "objective_bound" : "infeasible_bound",
