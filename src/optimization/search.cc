@@ -79,7 +79,9 @@ namespace dynosize {
 //    lightest mass and no current limit dominates all ESCs of a class: when it cannot enter
 //    the top N the whole class is skipped for the pair. min_hover_throttle is the one
 //    constraint that more resistance or mass helps: the virtual ESC is evaluated without it,
-//    and an ESC that fails it does not rule out the ESCs it dominates.
+//    and an ESC that fails it does not rule out the ESCs it dominates. Only whether the
+//    virtual ESC's score beats the threshold is used, so its solve stops at the first feasible
+//    point that beats it (MissionEvaluator::Solve's decide: the optimum is no worse).
 // R6 (propeller data credibility): see the comment at the rule; the hover point's figure of
 //    merit must not exceed the mission's max_figure_of_merit.
 // R7 (static-only propeller data in fast axial flow): see the comment at the rule.
