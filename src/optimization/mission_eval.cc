@@ -443,32 +443,11 @@ bool MissionEvaluator::IntegrateSegment(std::size_t si, bool stretched, double o
   // The iteration needs only IDC (Drive::InverseLight, the same numbers as Inverse); the whole
   // point is computed once, at the voltage of the last one, and only when op is not null (the
   // midpoints need IDC alone: the shaft point, hence Pmech, is the segment's).
-  // With C0 = 0 and the first-order equations, N*IDC*V = N*C1*TR_eff*Irms*V = N*C1*U*Irms/kv
-  // (TR_eff = U/(kv*V), eq 48) does not depend on V at all: the terminal power P is the same
-  // at every voltage and the upper root V = (OCV + sqrt(OCV^2 - 4*R*P))/2 is the answer in one
-  // step, the battery current P/V (the iteration below would confirm it to rounding).
-  const bool power_fixed = drive.esc().c0 == 0.0 && !drive.extended();
   auto point_at = [&](double soc_now, OperatingPoint* op, double* v, double* i_batt) {
     const double ocv = pack.OcvV(soc_now);
     const double r_pack = pack.ri_ohm();
     // Warm start from the previous instant's sag (the current changes little in a segment).
     double vv = last_sag_v > 0 && last_sag_v < 0.5 * ocv ? ocv - last_sag_v : ocv;
-    if (power_fixed) {
-      const double p_w = n_active * drive.InverseLight(vv, torque, omega).idc_a * vv + m_.vehicle.avionics_power_w;
-      const double disc = ocv * ocv - 4.0 * r_pack * p_w;
-      demanded_w = p_w;
-      deliverable_w = ocv * ocv / (4.0 * r_pack);
-      if (!(disc >= 0.0)) {
-        if (op) *op = drive.Inverse(vv, torque, omega);
-        return false;
-      }
-      vv = 0.5 * (ocv + std::sqrt(disc));
-      if (op) *op = drive.Inverse(vv, torque, omega);
-      *i_batt = p_w / vv;
-      *v = vv;
-      last_sag_v = ocv - vv;
-      return true;
-    }
     double v_op = vv, idc_op = 0.0;  // the last InverseLight's voltage and IDC
     for (int it = 0; it < 30; ++it) {
       idc_op = drive.InverseLight(vv, torque, omega).idc_a;
