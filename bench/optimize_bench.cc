@@ -5,7 +5,16 @@
 // --benchmark_report_aggregates_only=true
 #include <benchmark/benchmark.h>
 
+#include <algorithm>
+#include <chrono>
+#include <filesystem>
+#include <set>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
 #include "catalog/catalog.h"
+#include "common/json_file.h"
 #include "mission/mission.h"
 #include "optimization/search.h"
 
@@ -48,12 +57,92 @@ void BM_OptimizeQuadplane(benchmark::State& state) { RunExample(state, "quadplan
 // Issue 14's third goal: the quadplane with its capacity sized in [2, 8] Ah and the cruise
 // airspeed free in [14, 24] m/s (two continuous variables per combination).
 void BM_OptimizeQuadplaneSizing(benchmark::State& state) { RunExample(state, "quadplane_2kg.json", 8.0, 24.0); }
+
+// Issue 14's growth goal (time per doubling of the catalog <= 2.5x): the quadcopter example on
+// the bundled catalog subsampled to 1/4, 1/2 and all of its motors (every k-th motor in id
+// order, deterministic), and with state.range(0) == 1 its propellers subsampled the same way
+// too (so that the combinations grow 4x per step instead of 2x). The ESCs and batteries are
+// kept whole (the mission names its cells). Counters: each catalog's search time (s) and the
+// ratios per doubling, half/quarter and full/half.
+dynosize::Catalog SubsampledCatalog(int every_k, bool props_too) {
+  namespace fs = std::filesystem;
+  std::vector<std::string> files;
+  for (const auto& e : fs::directory_iterator(DYNOSIZE_SOURCE_DIR "/catalog")) {
+    if (e.path().extension() == ".json") files.push_back(e.path().string());
+  }
+  std::sort(files.begin(), files.end());  // as Catalog::Load
+  std::vector<dynosize::Json> docs;
+  for (const std::string& f : files) docs.push_back(dynosize::ReadJsonFile(f));
+  // The ids kept: every k-th of the sorted ids of each kind.
+  auto kept = [&](const char* key) {
+    std::vector<std::string> ids;
+    for (const dynosize::Json& d : docs) {
+      if (!d.contains(key)) continue;
+      for (const dynosize::Json& e : d[key]) ids.push_back(e.at("id").get<std::string>());
+    }
+    std::sort(ids.begin(), ids.end());
+    std::set<std::string> out;
+    for (std::size_t i = 0; i < ids.size(); i += static_cast<std::size_t>(every_k)) out.insert(ids[i]);
+    return out;
+  };
+  const std::set<std::string> motors = kept("motors");
+  const std::set<std::string> props = props_too ? kept("props") : std::set<std::string>{};
+  dynosize::Catalog cat;
+  std::vector<std::string> problems;
+  for (std::size_t i = 0; i < docs.size(); ++i) {
+    dynosize::Json& d = docs[i];
+    auto filter = [&](const char* key, const std::set<std::string>& keep) {
+      if (!d.contains(key)) return;
+      dynosize::Json out = dynosize::Json::array();
+      for (const dynosize::Json& e : d[key]) {
+        if (keep.count(e.at("id").get<std::string>())) out.push_back(e);
+      }
+      d[key] = std::move(out);
+    };
+    filter("motors", motors);
+    if (props_too) filter("props", props);
+    cat.AddDocument(d, files[i], &problems);
+  }
+  if (!problems.empty()) throw std::runtime_error("subsampled catalog: " + problems.front());
+  return cat;
+}
+
+void BM_OptimizeQuadcopterGrowth(benchmark::State& state) {
+  const bool props_too = state.range(0) == 1;
+  const dynosize::Mission m =
+      dynosize::ReadMission(DYNOSIZE_SOURCE_DIR "/examples/missions/quadcopter_1p5kg.json");
+  const int ks[3] = {4, 2, 1};
+  std::vector<dynosize::Catalog> cats;
+  for (int k : ks) cats.push_back(SubsampledCatalog(k, props_too));
+  double t[3] = {0, 0, 0};
+  dynosize::SearchResult s[3];
+  for (auto _ : state) {
+    for (int i = 0; i < 3; ++i) {
+      dynosize::SearchOptions o;
+      o.top_n = 5;
+      const auto t0 = std::chrono::steady_clock::now();
+      s[i] = dynosize::SearchCatalog(m, cats[static_cast<std::size_t>(i)], o);
+      t[i] = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+      benchmark::DoNotOptimize(s[i].best.size());
+    }
+  }
+  state.counters["t_quarter_s"] = t[0];
+  state.counters["t_half_s"] = t[1];
+  state.counters["t_full_s"] = t[2];
+  state.counters["ratio_half_quarter"] = t[1] / t[0];
+  state.counters["ratio_full_half"] = t[2] / t[1];
+  state.counters["searched_quarter"] = static_cast<double>(s[0].searched);
+  state.counters["searched_half"] = static_cast<double>(s[1].searched);
+  state.counters["searched_full"] = static_cast<double>(s[2].searched);
+}
 BENCHMARK(BM_OptimizeQuadcopter)->Unit(benchmark::kSecond)->Iterations(1)->UseRealTime();
 BENCHMARK(BM_OptimizeQuadcopterSizing)->Unit(benchmark::kSecond)->Iterations(1)->UseRealTime();
 BENCHMARK(BM_OptimizeEvtol)->Unit(benchmark::kSecond)->Iterations(1)->UseRealTime();
 BENCHMARK(BM_OptimizeSprayer)->Unit(benchmark::kSecond)->Iterations(1)->UseRealTime();
 BENCHMARK(BM_OptimizeQuadplane)->Unit(benchmark::kSecond)->Iterations(1)->UseRealTime();
 BENCHMARK(BM_OptimizeQuadplaneSizing)->Unit(benchmark::kSecond)->Iterations(1)->UseRealTime();
+// Arg 0: motors subsampled; 1: motors and propellers.
+BENCHMARK(BM_OptimizeQuadcopterGrowth)->Arg(0)->Arg(1)->Unit(benchmark::kSecond)->Iterations(1)->UseRealTime();
 
 }  // namespace
 

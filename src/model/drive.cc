@@ -300,6 +300,18 @@ OperatingPoint Drive::Inverse(double vdc_v, double torque_nm, double omega_rad_s
   return Complete(vdc_v, throttle, omega_rad_s, current, kLimitNone);
 }
 
+Drive::InverseCurrents Drive::InverseLight(double vdc_v, double torque_nm, double omega_rad_s) const {
+  if (extended_) {
+    const OperatingPoint p = InverseExtended(vdc_v, torque_nm, omega_rad_s);
+    return {p.throttle, p.idc_a, p.irms_a};
+  }
+  // Inverse and Complete's expressions, in their order (the same rounding).
+  const double current = torque_nm / motor_.kt_nm_per_a + motor_.io_a;                 // (42)
+  const double u = r_total_ohm_ * current + motor_.ke_v_s_per_rad * omega_rad_s;       // (48)
+  const double throttle = ThrottleFromEffective(u / (volt_factor_ * vdc_v));
+  return {throttle, (esc_.c1 * EffectiveThrottle(throttle) + esc_.c0) * current, current};  // (57)
+}
+
 [[gnu::noinline]] OperatingPoint Drive::InverseExtended(double vdc_v, double torque_nm, double omega_rad_s) const {
   const double kt = motor_.kt_nm_per_a;
   const double io = motor_.io1_a_s_per_rad == 0.0

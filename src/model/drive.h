@@ -171,6 +171,9 @@ class Drive {
 
   // True when a nonlinear extension (rth_k_per_w, kt_droop_per_a) is active.
   bool nonlinear() const { return nonlinear_; }
+  // True when any extension of section 9 is non-zero (dead band, supply resistance, Io(omega),
+  // heating, droop); false: the first-order equations 42-59 alone.
+  bool extended() const { return extended_; }
   // Winding resistance at current I (winding temperature rise; rm_ohm without it). Infinite
   // past thermal runaway.
   double WindingResistance(double current_a) const;
@@ -194,6 +197,13 @@ class Drive {
   // Inverse model: the throttle that holds (torque, speed) at VDC. Infeasible (flagged in
   // limits) above 100 % throttle or over a current limit; the numbers are still computed.
   OperatingPoint Inverse(double vdc_v, double torque_nm, double omega_rad_s) const;
+  // Inverse's throttle, IDC and Irms only (eqs 42, 48, 57), the same numbers bit for bit,
+  // without the powers, efficiencies and limits: for a caller that iterates on VDC (the pack's
+  // sag in MissionEvaluator) and needs the whole point only where the iteration ends.
+  struct InverseCurrents {
+    double throttle = 0.0, idc_a = 0.0, irms_a = 0.0;
+  };
+  InverseCurrents InverseLight(double vdc_v, double torque_nm, double omega_rad_s) const;
 
   // Derived points at a given VDC and throttle.
   // No-load speed omega_NL = (kv*VDC*TR_eff - Io*R)/KE (eq 49 with Q = 0).

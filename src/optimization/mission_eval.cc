@@ -47,14 +47,18 @@ bool Better(const MissionResult& a, const MissionResult& b) {
 // [a, b] can beat the caller's cutoff. The golden section only simulates points of [a, b], so
 // the result could not beat the cutoff either: the search stops there (a result with
 // bounded_out set).
-template <typename Simulate, typename Bounded>
-MissionResult SolveOneVariable(const Simulate& simulate, const Bounded& bounded_after_grid) {
+// enough(r): true when r settles the caller's question (Solve's decide); r is then returned
+// at once.
+template <typename Simulate, typename Bounded, typename Enough>
+MissionResult SolveOneVariable(const Simulate& simulate, const Bounded& bounded_after_grid, const Enough& enough) {
   constexpr int kGrid = 9;
   MissionResult best = simulate(0.0);
+  if (enough(best)) return best;
   double best_x = 0.0;
   for (int k = 1; k < kGrid; ++k) {
     const double x = k / double(kGrid - 1);
     MissionResult r = simulate(x);
+    if (enough(r)) return r;
     if (Better(r, best)) { best = std::move(r); best_x = x; }
   }
   const double kInvPhi = 0.6180339887498949;  // (sqrt(5) - 1)/2
@@ -66,16 +70,21 @@ MissionResult SolveOneVariable(const Simulate& simulate, const Bounded& bounded_
     return out;
   }
   double c = b - kInvPhi * (b - a), d = a + kInvPhi * (b - a);
-  MissionResult rc = simulate(c), rd = simulate(d);
+  MissionResult rc = simulate(c);
+  if (enough(rc)) return rc;
+  MissionResult rd = simulate(d);
+  if (enough(rd)) return rd;
   while (b - a > 1e-6) {
     if (Better(rc, rd)) {  // the best lies in [a, d]
       b = d; d = c; rd = std::move(rc);
       c = b - kInvPhi * (b - a);
       rc = simulate(c);
+      if (enough(rc)) return rc;
     } else {
       a = c; c = d; rc = std::move(rd);
       d = a + kInvPhi * (b - a);
       rd = simulate(d);
+      if (enough(rd)) return rd;
     }
     if (Better(rc, best)) best = rc;
     if (Better(rd, best)) best = rd;
@@ -83,10 +92,18 @@ MissionResult SolveOneVariable(const Simulate& simulate, const Bounded& bounded_
   return best;
 }
 
-// Propeller speed for a required thrust: the root of T(omega) - T_req on [0, w_hi] by the
-// Illinois variant of regula falsi (T(0) = 0 < T_req). Returns false when T(w_hi) < T_req.
+// Propeller speed for a required thrust: the root of T(omega) - T_req on [0, w_hi], in closed
+// form for coefficients and power laws (PropModel::StaticSpeedForThrust: their thrust does not
+// depend on the inflow), else by the Illinois variant of regula falsi (T(0) = 0 < T_req).
+// Returns false when T(w_hi) < T_req.
 bool PropSpeedForThrust(const PropModel& prop, double thrust_n, double rho, double airspeed,
                         double w_hi, double* omega, PropEvaluation* ev) {
+  if (double w = 0; prop.StaticSpeedForThrust(thrust_n, rho, &w)) {
+    const bool ok = w <= w_hi;
+    *omega = ok ? w : w_hi;
+    *ev = prop.Evaluate(*omega, rho, airspeed);
+    return ok;
+  }
   double a = 0.0, fa = -thrust_n;
   PropEvaluation eb = prop.Evaluate(w_hi, rho, airspeed);
   double b = w_hi, fb = eb.thrust_n - thrust_n;
@@ -423,28 +440,41 @@ bool MissionEvaluator::IntegrateSegment(std::size_t si, bool stretched, double o
   // saturation), so each step solves the quadratic V^2 - OCV*V + R*P = 0 for its upper (stable)
   // root with P at the current V: exact in one step when C0 = 0, a fast contraction otherwise.
   // No real root: the pack cannot deliver the power.
+  // The iteration needs only IDC (Drive::InverseLight, the same numbers as Inverse); the whole
+  // point is computed once, at the voltage of the last one, and only when op is not null (the
+  // midpoints need IDC alone: the shaft point, hence Pmech, is the segment's).
   auto point_at = [&](double soc_now, OperatingPoint* op, double* v, double* i_batt) {
     const double ocv = pack.OcvV(soc_now);
     const double r_pack = pack.ri_ohm();
     // Warm start from the previous instant's sag (the current changes little in a segment).
     double vv = last_sag_v > 0 && last_sag_v < 0.5 * ocv ? ocv - last_sag_v : ocv;
+    double v_op = vv, idc_op = 0.0;  // the last InverseLight's voltage and IDC
     for (int it = 0; it < 30; ++it) {
-      *op = drive.Inverse(vv, torque, omega);
-      const double p_w = n_active * op->idc_a * vv + m_.vehicle.avionics_power_w;
+      idc_op = drive.InverseLight(vv, torque, omega).idc_a;
+      v_op = vv;
+      const double p_w = n_active * idc_op * vv + m_.vehicle.avionics_power_w;
       const double disc = ocv * ocv - 4.0 * r_pack * p_w;
       demanded_w = p_w;
       deliverable_w = ocv * ocv / (4.0 * r_pack);
-      if (!(disc >= 0.0)) return false;
+      if (!(disc >= 0.0)) {
+        if (op) *op = drive.Inverse(v_op, torque, omega);
+        return false;
+      }
       const double next = 0.5 * (ocv + std::sqrt(disc));
       if (next == vv) break;
       const bool done = std::fabs(next - vv) < 1e-10 * ocv;
       vv = next;
       if (done) {
-        *op = drive.Inverse(vv, torque, omega);
+        v_op = vv;
+        idc_op = op ? 0.0 : drive.InverseLight(v_op, torque, omega).idc_a;
         break;
       }
     }
-    *i_batt = n_active * op->idc_a + m_.vehicle.avionics_power_w / vv;
+    if (op) {
+      *op = drive.Inverse(v_op, torque, omega);
+      idc_op = op->idc_a;
+    }
+    *i_batt = n_active * idc_op + m_.vehicle.avionics_power_w / vv;
     *v = vv;
     last_sag_v = ocv - vv;
     return true;
@@ -481,15 +511,17 @@ bool MissionEvaluator::IntegrateSegment(std::size_t si, bool stretched, double o
   const int steps = stretched ? kStretchSubsteps : kSubsteps;
   const double dt = seg->duration_s / steps;
   double e_seg = 0, e_mech = 0;
+  // Pmech = KT(I)*(I - Io)*omega at the segment's fixed shaft point (eqs 42, 50): the same at
+  // every voltage, so the midpoints take it from the first point.
+  const double pmech_w = op.pmech_w;
   for (int j = 0; ok && j < steps && dt > 0; ++j) {
     // Midpoint rule: predict SOC at mid-step with the start current, draw the mid current.
-    OperatingPoint opm;
     double vm = 0, im = 0;
-    ok = point_at(soc - 0.5 * ib * dt / st->q_c, &opm, &vm, &im);
+    ok = point_at(soc - 0.5 * ib * dt / st->q_c, nullptr, &vm, &im);
     if (!ok) break;
     soc -= im * dt / st->q_c;
     e_seg += vm * im * dt;
-    e_mech += n_active * opm.pmech_w * dt;
+    e_mech += n_active * pmech_w * dt;
     ok = point_at(soc, &op, &v, &ib);
     if (!ok) break;
     check_point(op, v, ib);
@@ -644,7 +676,7 @@ double MissionEvaluator::StretchStartCurrent(const MissionResult& r) const {
   return r.segments[m_.objective.segment_index].battery_current_start_a;
 }
 
-MissionResult MissionEvaluator::WithEndurance(ContinuousVars vars) const {
+MissionResult MissionEvaluator::WithEndurance(ContinuousVars vars, double decide_cutoff) const {
   if (m_.objective.type != ObjectiveType::kMaxEndurance) return Run(vars, 0.0);
   // The longest stretch that keeps every constraint: min_slack(T) falls with T (SOC and
   // voltage only fall), so bracket its zero and close in by Illinois regula falsi.
@@ -653,6 +685,9 @@ MissionResult MissionEvaluator::WithEndurance(ContinuousVars vars) const {
   auto run = [&](double t) { return RunFrom(prefix, vars, t, false); };
   MissionResult lo_r = run(0.0);
   if (lo_r.min_slack < 0 || lo_r.segments.size() < m_.segments.size()) return lo_r;
+  // lo_r is feasible from here on and its stretch only grows (its score only falls).
+  auto decided = [&]() { return lo_r.feasible && lo_r.score < decide_cutoff; };
+  if (decided()) return lo_r;
   double lo = 0.0, f_lo = lo_r.min_slack;
   // First guess: the charge left above the reserve at the stretched segment's start current.
   // The stretched segment draws at least its start current (the voltage only falls, the power
@@ -665,6 +700,7 @@ MissionResult MissionEvaluator::WithEndurance(ContinuousVars vars) const {
   MissionResult hi_r = run(hi);
   for (int i = 0; i < 40 && hi_r.min_slack >= 0; ++i) {
     lo = hi; f_lo = hi_r.min_slack; lo_r = hi_r;
+    if (decided()) return lo_r;
     hi *= 2;
     hi_r = run(hi);
   }
@@ -678,6 +714,7 @@ MissionResult MissionEvaluator::WithEndurance(ContinuousVars vars) const {
     const double ft = std::isfinite(tr.min_slack) ? tr.min_slack : -1.0;
     if (ft >= 0) {
       lo = t; f_lo = ft; lo_r = std::move(tr);
+      if (decided()) return lo_r;
       if (side == -1) f_hi *= 0.5;
       side = -1;
     } else {
@@ -865,9 +902,9 @@ void MissionEvaluator::FillPropNotes(MissionResult* r) {
   }
 }
 
-MissionResult MissionEvaluator::Solve(double cutoff_score, bool explain) const {
-  MissionResult r = SolveContinuous(cutoff_score, explain);
-  FillPropNotes(&r);
+MissionResult MissionEvaluator::Solve(double cutoff_score, bool explain, bool decide) const {
+  MissionResult r = SolveContinuous(cutoff_score, explain, decide && std::isfinite(cutoff_score));
+  if (explain) FillPropNotes(&r);
   return r;
 }
 
@@ -875,17 +912,26 @@ MissionResult MissionEvaluator::Solve(double cutoff_score, bool explain) const {
 // (bounded out, infeasible, or the answer itself) in *out and true, or false to go on.
 bool MissionEvaluator::EarlyExit(double cutoff_score, bool explain, MissionResult* out) const {
   const bool capacity_free = m_.battery.capacity_ah && m_.battery.capacity_ah->free();
-  if (std::isfinite(cutoff_score) && capacity_free && m_.constraints.min_hover_throttle > 0) {
+  if (std::isfinite(cutoff_score) && m_.constraints.min_hover_throttle > 0) {
     // min_hover_throttle is checked at the full-charge OCV (PropellerPoint), which does not
     // depend on the capacity, with the hover's torque and speed, which rise with the mass
     // (M3 of search.cc); the throttle that holds them rises with them (M2). So the hover
     // throttle is highest with the largest pack: when it is below the limit there, it is at
     // every capacity of the range, and no choice of the continuous variables is feasible.
+    // Without a capacity range the same check decides it outright: the hover's mass, thrust
+    // and full-charge OCV depend on nothing else that is free (the stretch's duration and the
+    // cruise airspeeds do not enter them). In the search nearly every real ESC that passes the
+    // virtual one's bound fails this limit (issue 14: 96 % of the quadcopter's real-ESC
+    // evaluations), each for a whole 1-D search before.
     // (Only in a search, with a cutoff: the result is infeasible, as the full search's would
     // be, and says so with the same constraint. First: a few propeller evaluations, where the
     // bounds below take up to 24 runs.)
-    // PropellerPoint's check alone, per hover segment, at the largest capacity's mass.
-    const BatteryPack pack(PackAt(m_.battery.capacity_ah->hi));
+    // PropellerPoint's check alone, per hover segment, at the largest capacity's mass (the
+    // mission's own capacity, as Run flies it, without a range).
+    const double capacity_ah = !m_.battery.capacity_ah ? 0.0
+                               : capacity_free         ? m_.battery.capacity_ah->hi
+                                                       : m_.battery.capacity_ah->lo;
+    const BatteryPack pack(PackAt(capacity_ah));
     const double mass_kg = fixed_mass_kg_ + pack.mass_kg();
     const double v_full = pack.OcvV(1.0);
     for (const Segment& s : m_.segments) {
@@ -1014,8 +1060,11 @@ bool MissionEvaluator::EarlyExit(double cutoff_score, bool explain, MissionResul
   return false;
 }
 
-MissionResult MissionEvaluator::SolveContinuous(double cutoff_score, bool explain) const {
+MissionResult MissionEvaluator::SolveContinuous(double cutoff_score, bool explain, bool decide) const {
   if (MissionResult early; EarlyExit(cutoff_score, explain, &early)) return early;
+  // decide: a feasible point that beats the cutoff answers the caller (Solve).
+  auto enough = [&](const MissionResult& r) { return decide && r.feasible && r.score < cutoff_score; };
+  const double decide_cutoff = decide ? cutoff_score : -kInf;  // for WithEndurance
   // Free variables, each scaled to [0, 1].
   struct Var { int segment; double lo, hi; };  // segment -1: capacity
   std::vector<Var> free;
@@ -1040,7 +1089,8 @@ MissionResult MissionEvaluator::SolveContinuous(double cutoff_score, bool explai
     return v;
   };
   if (free.empty()) {
-    MissionResult r = WithEndurance(vars_at(nullptr));
+    MissionResult r = WithEndurance(vars_at(nullptr), decide_cutoff);
+    if (enough(r)) return r;
     if (explain) {
       Summarize(&r);
       AddWarnings(&r);
@@ -1078,7 +1128,9 @@ MissionResult MissionEvaluator::SolveContinuous(double cutoff_score, bool explai
                                             free[0].lo + b * (free[0].hi - free[0].lo));
       return -ub >= cutoff_score;
     };
-    MissionResult r = SolveOneVariable([&](double x) { return WithEndurance(vars_at(&x)); }, bounded);
+    MissionResult r =
+        SolveOneVariable([&](double x) { return WithEndurance(vars_at(&x), decide_cutoff); }, bounded, enough);
+    if (enough(r)) return r;
     if (r.bounded_out) return r;
     if (!explain) return r;
     std::ostringstream msg;
@@ -1105,7 +1157,8 @@ MissionResult MissionEvaluator::SolveContinuous(double cutoff_score, bool explai
       x[i] = i < 3 ? (code % levels) / double(levels - 1) : 0.5;
       code /= levels;
     }
-    const MissionResult r = WithEndurance(vars_at(x.data()));
+    MissionResult r = WithEndurance(vars_at(x.data()), decide_cutoff);
+    if (enough(r)) return r;
     const bool better = r.feasible ? r.score < best_score
                                    : (best_score == kInf && r.min_slack > best_slack);
     if (better) {

@@ -185,11 +185,17 @@ class MissionEvaluator {
   // (Ipopt). This is what `evaluate` and `optimize` report.
   // With cutoff_score: stop early (bounded_out) once a bound proves score >= cutoff_score
   // (max_endurance only; see EnduranceUpperBound in the .cc).
-  // explain = false leaves out the warnings and the continuous solver's report (text nobody
-  // reads for the search's screening evaluations); the numbers are the same.
+  // explain = false leaves out the warnings, the continuous solver's report, the designer's
+  // summary and the propeller notes (text nobody reads for the search's evaluations: it
+  // explains its top N again); the numbers are the same.
+  // decide = true (with a finite cutoff; the search's virtual ESC, R5, which only asks whether
+  // the score beats the cutoff): a search over a free capacity or cruise airspeed stops at the
+  // first feasible point whose score beats cutoff_score and returns it, unexplained (feasible,
+  // score < cutoff, not the optimum: the optimum is no worse, so the answer to that question
+  // is the same); when no point beats it the result is the full solve's.
   MissionResult Solve(double cutoff_score = std::numeric_limits<double>::infinity(),
-                      bool explain = true) const;
-  // Writes each segment's prop_note from its prop_edge_eval (Solve and Simulate do).
+                      bool explain = true, bool decide = false) const;
+  // Writes each segment's prop_note from its prop_edge_eval (Solve with explain, and Simulate).
   static void FillPropNotes(MissionResult* r);
 
   // Steady winding temperature of the motor at an operating point, C: the winding heats by
@@ -222,8 +228,11 @@ class MissionEvaluator {
   bool IntegrateSegment(std::size_t si, bool stretched, double omega, double torque, RunState* st,
                         eval_internal::Tracker* track, SegmentResult* seg) const;
   void FinishRun(const RunState& st, eval_internal::Tracker* track, MissionResult* out) const;
-  MissionResult WithEndurance(ContinuousVars vars) const;
-  MissionResult SolveContinuous(double cutoff_score, bool explain) const;
+  // decide_cutoff (Solve's decide): return the first feasible run whose score is below it (the
+  // longest feasible stretch, the answer otherwise, is no worse).
+  MissionResult WithEndurance(ContinuousVars vars,
+                              double decide_cutoff = -std::numeric_limits<double>::infinity()) const;
+  MissionResult SolveContinuous(double cutoff_score, bool explain, bool decide) const;
   bool EarlyExit(double cutoff_score, bool explain, MissionResult* out) const;
   double StretchStartCurrent(const MissionResult& r) const;
   // An upper bound of the total mission time over the capacity range (max_endurance), tightened

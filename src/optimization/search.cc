@@ -79,7 +79,9 @@ namespace dynosize {
 //    lightest mass and no current limit dominates all ESCs of a class: when it cannot enter
 //    the top N the whole class is skipped for the pair. min_hover_throttle is the one
 //    constraint that more resistance or mass helps: the virtual ESC is evaluated without it,
-//    and an ESC that fails it does not rule out the ESCs it dominates.
+//    and an ESC that fails it does not rule out the ESCs it dominates. Only whether the
+//    virtual ESC's score beats the threshold is used, so its solve stops at the first feasible
+//    point that beats it (MissionEvaluator::Solve's decide: the optimum is no worse).
 // R6 (propeller data credibility): see the comment at the rule; the hover point's figure of
 //    merit must not exceed the mission's max_figure_of_merit.
 // R7 (static-only propeller data in fast axial flow): see the comment at the rule.
@@ -299,6 +301,25 @@ class PairLoads {
     for (auto& x : lo_) x.first = false;
     for (auto& x : hi_) x.first = false;
     for (auto& x : energy_) x.first = false;
+    for (auto& x : terms_) x.known = false;
+  }
+  // A segment's power bound as ScoreLowerBound's p_lb_of needs it: scales (rotors x the
+  // hover bound's per-rotor PDC + the avionics) or a constant; set by f(&term) once per pair.
+  struct PowerTerm {
+    bool known = false, scales = false;
+    int rotors = 0;
+    double constant = 0;
+  };
+  template <typename F>
+  const PowerTerm& Term(std::size_t si, const F& f) {
+    if (terms_.size() != lo_.size()) terms_.assign(lo_.size(), PowerTerm{});
+    PowerTerm& x = terms_[si];
+    if (!x.known) {
+      x = PowerTerm{};
+      f(&x);
+      x.known = true;
+    }
+    return x;
   }
   // A per-segment number that depends only on the pair (its mass and propeller), computed by
   // f() once per pair (ScoreLowerBound's momentum energy), not once per ESC class.
@@ -323,6 +344,7 @@ class PairLoads {
   double mass_kg_ = 0;
   std::vector<std::pair<bool, RotorLoad>> lo_, hi_;
   std::vector<std::pair<bool, double>> energy_;
+  std::vector<PowerTerm> terms_;
 };
 
 // R4: a lower bound of the score of a (motor, propeller, option) pair with an ESC of class
@@ -343,19 +365,26 @@ double ScoreLowerBound(const SearchContext& ctx, const MissionFacts& f, const Mo
   // M1, M2). Any other segment draws at least P_avionics.
   const double t_lb = loads->At(static_cast<std::size_t>(f.hover[0]), false, 0.0).thrust_per_rotor_n;
   const bool static_only = model.data_kind() != PropDataKind::kTables || prop.j_tables.empty();
+  // Everything but pdc_lb depends on the pair only: kept per pair (PairLoads::Term).
   auto p_lb_of = [&](std::size_t si) {
-    const Segment& sg = m.segments[si];
-    if (sg.group != f.free_group) {  // G1: the fixed group's own bound at the lightest mass
-      return ctx.fixed_power_lb_w.empty() ? m.vehicle.avionics_power_w
-                                          : FixedPowerLowerBoundW(ctx, option, si, loads->mass_kg());
-    }
-    const bool fixed_v = sg.type != SegmentType::kCruise || !sg.airspeed_m_s.free();
-    if (sg.type == SegmentType::kHover ||
-        (static_only && fixed_v && (sg.type == SegmentType::kClimb || sg.type == SegmentType::kCruise))) {
-      const RotorLoad& ld = loads->At(si, false, sg.type == SegmentType::kCruise ? sg.airspeed_m_s.lo : 0.0);
-      if (ld.thrust_per_rotor_n >= t_lb) return ld.rotors * pdc_lb + m.vehicle.avionics_power_w;
-    }
-    return m.vehicle.avionics_power_w;
+    const PairLoads::PowerTerm& t = loads->Term(si, [&](PairLoads::PowerTerm* x) {
+      const Segment& sg = m.segments[si];
+      x->constant = m.vehicle.avionics_power_w;
+      if (sg.group != f.free_group) {  // G1: the fixed group's own bound at the lightest mass
+        if (!ctx.fixed_power_lb_w.empty()) x->constant = FixedPowerLowerBoundW(ctx, option, si, loads->mass_kg());
+        return;
+      }
+      const bool fixed_v = sg.type != SegmentType::kCruise || !sg.airspeed_m_s.free();
+      if (sg.type == SegmentType::kHover ||
+          (static_only && fixed_v && (sg.type == SegmentType::kClimb || sg.type == SegmentType::kCruise))) {
+        const RotorLoad& ld = loads->At(si, false, sg.type == SegmentType::kCruise ? sg.airspeed_m_s.lo : 0.0);
+        if (ld.thrust_per_rotor_n >= t_lb) {
+          x->scales = true;
+          x->rotors = ld.rotors;
+        }
+      }
+    });
+    return t.scales ? t.rotors * pdc_lb + m.vehicle.avionics_power_w : t.constant;
   };
   // The shortest a segment can last (free airspeed: at its top speed).
   auto t_min_of = [&](const Segment& sg) { return SegmentDurationS(sg, sg.airspeed_m_s.hi); };
@@ -452,9 +481,10 @@ double ScoreLowerBound(const SearchContext& ctx, const MissionFacts& f, const Mo
 
 // R0, R2, R6, R7 for one (motor, propeller, option) pair: the rule that removes it, or null.
 // Sets omega_lb, q_lb (R2) for the hover bound.
-const char* PropRule(const SearchContext& ctx, const MissionFacts& f, const MotorEntry& mo,
-                     const std::vector<Drive>& ideal, std::size_t pi, std::size_t o, PairLoads* loads,
-                     double* omega_lb, double* q_lb) {
+// w_nl: the largest no-load speed of the motor's zero-resistance drives at full throttle and
+// the option's full-charge voltage (R7; the same for every propeller, computed once per option).
+const char* PropRule(const SearchContext& ctx, const MissionFacts& f, const MotorEntry& mo, double w_nl,
+                     std::size_t pi, std::size_t o, PairLoads* loads, double* omega_lb, double* q_lb) {
   const Mission& m = *ctx.mission;
   const MissionConstraints& k = m.constraints;
   const PropEntry& prop = ctx.catalog->props()[pi];
@@ -495,8 +525,6 @@ const char* PropRule(const SearchContext& ctx, const MissionFacts& f, const Moto
     // segment with axial airspeed >= V_ax is at least V_ax/(n_max*D); above the mission's
     // max_static_advance_ratio the segment fails prop_no_forward_flight_data whatever else is
     // chosen.
-    double w_nl = 0;
-    for (const Drive& d : ideal) w_nl = std::max(w_nl, d.NoLoadSpeed(bo.v_full, 1.0));
     const double n_max = w_nl / (2.0 * kPi);
     for (const Segment& sg : m.segments) {
       if (sg.group != f.free_group) continue;
@@ -550,8 +578,8 @@ double CapacityPiecesBoundAt(const SearchContext& ctx, const MissionFacts& f, co
         (k.enforce_motor_power && hi_v.pac_w > mp.max_power_w)) {
       break;  // R3 at this mass: this piece and every heavier one are infeasible
     }
-    const OperatingPoint lo_v = ideal.Inverse(bo.v_cut, q_lb, omega_lb);
-    const double pdc_lb = std::max(0.0, std::min(hi_v.pdc_w, lo_v.pdc_w));
+    const double pdc_lo_v = bo.v_cut * ideal.InverseLight(bo.v_cut, q_lb, omega_lb).idc_a;  // (59), as Inverse
+    const double pdc_lb = std::max(0.0, std::min(hi_v.pdc_w, pdc_lo_v));
     loads.Reset(mass_j);
     best = std::min(best, ScoreLowerBound(ctx, f, mp, esc_class, ctx.catalog->props()[pi], *ctx.models[pi], o,
                                           &loads, pdc_lb, c_b));
@@ -592,12 +620,14 @@ void MotorCandidates(const SearchContext& ctx, const MissionFacts& f, std::size_
       pruned->Add("motor_voltage", per_pair * static_cast<long long>(props.size()));
       continue;
     }
+    double w_nl = 0;  // R7
+    for (const Drive& d : ideal) w_nl = std::max(w_nl, d.NoLoadSpeed(bo.v_full, 1.0));
     for (std::size_t pi = 0; pi < props.size(); ++pi) {
       const double mass_lb = m.vehicle.mass_kg + bo.mass_lo_kg + ctx.fixed_groups_mass_kg +
                              ctx.free_rotors * (*mo.mass_kg + ctx.grids[pi].mass_kg + ctx.escs.min_mass_kg[o]);
       double omega_lb = 0, q_lb = 0;
       loads.Reset(mass_lb);
-      if (const char* rule = PropRule(ctx, f, mo, ideal, pi, o, &loads, &omega_lb, &q_lb)) {
+      if (const char* rule = PropRule(ctx, f, mo, w_nl, pi, o, &loads, &omega_lb, &q_lb)) {
         pruned->Add(rule, per_pair);
         continue;
       }
@@ -612,8 +642,8 @@ void MotorCandidates(const SearchContext& ctx, const MissionFacts& f, std::size_
         if (hi_v.throttle > t_max) { why = "throttle"; continue; }
         if (hi_v.irms_a > mp.max_current_a * margin) { why = "motor_current"; continue; }
         if (k.enforce_motor_power && hi_v.pac_w > mp.max_power_w) { why = "motor_power"; continue; }
-        const OperatingPoint lo_v = ideal[ci].Inverse(bo.v_cut, q_lb, omega_lb);
-        const double pdc_lb = std::max(0.0, std::min(hi_v.pdc_w, lo_v.pdc_w));
+        const double pdc_lo_v = bo.v_cut * ideal[ci].InverseLight(bo.v_cut, q_lb, omega_lb).idc_a;  // (59), as Inverse
+        const double pdc_lb = std::max(0.0, std::min(hi_v.pdc_w, pdc_lo_v));
         const double bound = ScoreLowerBound(ctx, f, mp, classes[ci], props[pi], *ctx.models[pi], o, &loads, pdc_lb);
         any = true;
         best_bound = std::min(best_bound, bound);
@@ -925,10 +955,11 @@ bool CandidateStream::Next(double cutoff, Candidate* c) {
   *c = q.next[q.pos++];
   if (q.pos == q.next.size()) {
     if (!q.complete && c->bound < cutoff) {
-      // The motor's pairs after c, twice as many as last time: regenerated (stage 4 is
+      // The motor's pairs after c, eight times as many as last time (fewer refills; each
+      // regenerates all the motor's pairs): regenerated (stage 4 is
       // deterministic), those with a bound >= cutoff left out (never drawn before the search
       // stops: the cutoff only falls).
-      const std::size_t n = 2 * q.next.size();
+      const std::size_t n = 8 * q.next.size();
       scratch_.clear();
       MotorPairs(ctx_, q.motor, &scratch_);
       const Candidate last = *c;
@@ -977,12 +1008,17 @@ class BranchAndBound {
   }
 
   void Run();
+  // Solves the top N again with explain (warnings, the solver's report, the designer's summary,
+  // propeller notes): Process scores without them (text for results nobody reads), each with
+  // the cutoff it had, so the numbers are the same.
+  void Explain() const;
   long long virtual_evaluations() const { return virtual_evals_; }
   long long refills() const { return stream_.refills(); }
 
  private:
   struct Outcome {
     std::vector<std::pair<Combination, MissionResult>> results;
+    std::vector<double> cutoffs;  // per result, the cutoff its Solve had
     std::map<std::string, long long> pruned;
     long long searched = 0, virtual_evals = 0;
   };
@@ -1001,7 +1037,7 @@ class BranchAndBound {
   double NthBest() const {
     return static_cast<int>(out_->best.size()) < opt_.top_n ? kInf : out_->best.back().result.score;
   }
-  void Insert(const Combination& c, MissionResult&& r);
+  void Insert(const Combination& c, MissionResult&& r, double cutoff);
   void Process(const Candidate& cand, std::vector<double> top, Outcome* o) const;
 
   const SearchContext& ctx_;
@@ -1013,17 +1049,32 @@ class BranchAndBound {
   std::size_t base_ = 0;
   SearchResult* out_;
   Mission relaxed_;
+  std::vector<double> best_cutoffs_;  // parallel to out_->best: the cutoff of each one's Solve
   long long virtual_evals_ = 0;
 };
 
-void BranchAndBound::Insert(const Combination& c, MissionResult&& r) {
+void BranchAndBound::Insert(const Combination& c, MissionResult&& r, double cutoff) {
   if (!r.feasible) return;
   out_->evaluated_mass_objective.emplace_back(r.propulsion_mass_kg, r.objective);
   if (!(r.score < NthBest())) return;
   auto pos = std::upper_bound(out_->best.begin(), out_->best.end(), r.score,
                               [](double s, const RankedCombination& x) { return s < x.result.score; });
+  best_cutoffs_.insert(best_cutoffs_.begin() + (pos - out_->best.begin()), cutoff);
   out_->best.insert(pos, RankedCombination{c, std::move(r)});
-  if (static_cast<int>(out_->best.size()) > opt_.top_n) out_->best.pop_back();
+  if (static_cast<int>(out_->best.size()) > opt_.top_n) {
+    out_->best.pop_back();
+    best_cutoffs_.pop_back();
+  }
+}
+
+void BranchAndBound::Explain() const {
+  for (std::size_t i = 0; i < out_->best.size(); ++i) {
+    RankedCombination& b = out_->best[i];
+    const PropModel* model = b.combination.prop == nullptr
+                                 ? nullptr
+                                 : ctx_.models[static_cast<std::size_t>(b.combination.prop - ctx_.catalog->props().data())].get();
+    b.result = MissionEvaluator(*ctx_.mission, b.combination, model, &ctx_.fixed_model_ptrs).Solve(best_cutoffs_[i]);
+  }
 }
 
 // One candidate pair against the N best scores when its chunk started (`top`, updated with
@@ -1079,7 +1130,7 @@ void BranchAndBound::Process(const Candidate& cand, std::vector<double> top, Out
       Combination vc = c;
       set_esc(&vc, &virt);
       const double threshold = threshold_now();
-      const MissionResult vr = MissionEvaluator(relaxed_, vc, model, &ctx_.fixed_model_ptrs).Solve(threshold, false);
+      const MissionResult vr = MissionEvaluator(relaxed_, vc, model, &ctx_.fixed_model_ptrs).Solve(threshold, false, true);
       ++o->virtual_evals;
       if (vr.bounded_out || !vr.feasible || !(vr.score < threshold)) {
         local_prune(vr.bounded_out || vr.feasible ? "objective_bound" : "infeasible_bound",
@@ -1099,7 +1150,7 @@ void BranchAndBound::Process(const Candidate& cand, std::vector<double> top, Out
       }
       set_esc(&c, &escs[e]);
       const double threshold = threshold_now();
-      MissionResult r = MissionEvaluator(m, c, model, &ctx_.fixed_model_ptrs).Solve(threshold);
+      MissionResult r = MissionEvaluator(m, c, model, &ctx_.fixed_model_ptrs).Solve(threshold, false);
       if (r.bounded_out) {
         local_prune("objective_bound", 1);
         done.emplace_back(e, true);
@@ -1110,6 +1161,7 @@ void BranchAndBound::Process(const Candidate& cand, std::vector<double> top, Out
       if (r.feasible) {
         top.insert(std::upper_bound(top.begin(), top.end(), r.score), r.score);
         o->results.emplace_back(c, std::move(r));
+        o->cutoffs.push_back(threshold);
       }
     }
   }
@@ -1164,7 +1216,7 @@ void BranchAndBound::Run() {
       for (const auto& [rule, n] : o.pruned) out_->pruned_by[rule] += n;
       out_->searched += o.searched;
       virtual_evals_ += o.virtual_evals;
-      for (auto& [c, r] : o.results) Insert(c, std::move(r));
+      for (std::size_t j = 0; j < o.results.size(); ++j) Insert(o.results[j].first, std::move(o.results[j].second), o.cutoffs[j]);
     }
     ordered_.erase(ordered_.begin(), ordered_.begin() + static_cast<std::ptrdiff_t>(end - base_));
     base_ = end;
@@ -1196,6 +1248,7 @@ SearchResult SearchExactly(const Mission& m, const Catalog& cat, const SearchOpt
   out.candidate_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   BranchAndBound bb(ctx, opt, std::move(heads), &out);  // stage 5
   bb.Run();
+  bb.Explain();
   if (opt.progress) {
     SearchProgress p;
     p.fraction = 1.0;

@@ -234,6 +234,38 @@ PropEvaluation PropModel::Evaluate(double omega_rad_s, double rho_kg_m3,
   return ev;
 }
 
+bool PropModel::StaticSpeedForThrust(double thrust_n, double rho_kg_m3, double* omega_rad_s) const {
+  if (!(thrust_n > 0) || !(rho_kg_m3 > 0)) return false;
+  const double d = entry_.diameter_m;
+  const double d4 = d * d * d * d;
+  double rpm = 0.0;
+  if (kind_ == PropDataKind::kCoefficients) {
+    const double ct = *entry_.ct_static;
+    if (!(ct > 0)) return false;
+    rpm = 60.0 * std::sqrt(thrust_n / (ct * rho_kg_m3 * d4));  // T = CT*rho*n^2*D^4
+  } else if (kind_ == PropDataKind::kPowerLaw) {
+    const PropPowerLaw& law = *entry_.power_law;
+    if (!(law.thrust_law_n > 0) || !(law.thrust_law_exp > 0)) return false;
+    // The law's thrust at rpm r (Evaluate's expression, inside the range).
+    auto thrust_at = [&](double r) {
+      return law.thrust_law_n * std::pow(r / 1000.0, law.thrust_law_exp) * rho_kg_m3 / law.rho_kg_m3;
+    };
+    const double t_lo = thrust_at(range_.rpm_lo), t_hi = thrust_at(range_.rpm_hi);
+    if (thrust_n <= t_lo) {
+      rpm = range_.rpm_lo * std::sqrt(thrust_n / t_lo);  // CT held at rpm_lo: T ~ n^2
+    } else if (thrust_n >= t_hi) {
+      rpm = range_.rpm_hi * std::sqrt(thrust_n / t_hi);  // CT held at rpm_hi
+    } else {
+      rpm = 1000.0 * std::pow(thrust_n * law.rho_kg_m3 / (law.thrust_law_n * rho_kg_m3), 1.0 / law.thrust_law_exp);
+    }
+  } else {
+    return false;
+  }
+  if (!std::isfinite(rpm) || !(rpm > 0)) return false;
+  *omega_rad_s = RpmToRadPerSec(rpm);
+  return true;
+}
+
 PropEvaluation PropModel::EvaluateAtAdvanceRatio(double omega_rad_s, double rho_kg_m3,
                                                  double j) const {
   if (!std::isfinite(j) || j < 0) {

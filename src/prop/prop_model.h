@@ -81,6 +81,14 @@ class PropModel {
   LocalTorqueFit FitTorqueLaw(double omega0_rad_s, double rho_kg_m3, double airspeed_m_s = 0.0,
                               double rel_step = 0.05) const;
 
+  // The speed whose static thrust is thrust_n (> 0) at rho, in closed form where the data
+  // allow one: constant coefficients (T = CT*rho*n^2*D^4) and power laws (T = a*(rpm/1000)^b
+  // at the law's density, linear in rho; held at the edges of the valid range as Evaluate
+  // holds them, so T grows as n^2 outside it). Evaluate(*omega) gives thrust_n to rounding
+  // (a few ulps). False for tables and for a law whose thrust does not rise with the speed
+  // (the caller then finds the root numerically).
+  bool StaticSpeedForThrust(double thrust_n, double rho_kg_m3, double* omega_rad_s) const;
+
   const PropEntry& entry() const { return entry_; }
   PropDataKind data_kind() const { return kind_; }
   double diameter_m() const { return entry_.diameter_m; }

@@ -246,6 +246,35 @@ TEST(Drive, BatchEqualsScalar) {
   }
 }
 
+// InverseLight is Inverse without the powers: the same throttle, IDC and Irms bit for bit (the
+// evaluator's pack fixed point relies on it to give the same numbers as before), below and
+// above the saturation knee, over 100 % throttle, and with every extension on.
+TEST(Drive, InverseLightEqualsInverse) {
+  MotorParams ext_m = TestMotor();
+  ext_m.kt_droop_per_a = 0.01;
+  ext_m.io1_a_s_per_rad = 2e-4;
+  ext_m.rth_k_per_w = 2.0;
+  EscParams ext_e = TestEsc();
+  ext_e.deadband = 0.05;
+  ext_e.rsupply_ohm = 0.03;
+  const Drive drives[2] = {Drive(TestMotor(), TestEsc()), Drive(ext_m, ext_e)};
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  int saturated = 0;
+  for (const Drive& d : drives) {
+    for (int i = 0; i < 500; ++i) {
+      const double vdc = 6 + 20 * u(rng), q = 0.2 * u(rng), w = 3000 * u(rng);
+      const OperatingPoint p = d.Inverse(vdc, q, w);
+      const Drive::InverseCurrents c = d.InverseLight(vdc, q, w);
+      saturated += p.saturated ? 1 : 0;
+      EXPECT_EQ(c.throttle, p.throttle) << i;
+      EXPECT_EQ(c.idc_a, p.idc_a) << i;
+      EXPECT_EQ(c.irms_a, p.irms_a) << i;
+    }
+  }
+  EXPECT_GT(saturated, 50);  // the saturated branch is exercised
+}
+
 // The paper's own check (model.md section 7): EMAX 1900 KV + MultiStar 30 A at 7.2 V, torque-
 // speed lines 1230 rpm apart per 10 % throttle up to 90 % and 750 rpm from 90 % to 100 %.
 TEST(PaperCheck, TorqueSpeedLineSpacingWithShippedEntries) {

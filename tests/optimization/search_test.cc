@@ -384,10 +384,11 @@ TEST_F(SearchTest, UnreachableThrustToWeightGivesResultsWithTheViolation) {
 // or a screening rule that is not monotone, would fail here).
 TEST_F(SearchTest, EarlyExitsNeverCutOffAFeasibleScore) {
   const Catalog cat = Catalog::Load((dir_ / "catalog").string());
-  for (const bool capacity_range : {false, true}) {
+  for (const int variant : {0, 1, 2}) {  // fixed capacity without, with min_hover_throttle; a range
+    const bool capacity_range = variant == 2;
     Json j = ParseJsonText(kQuad, "quad");
     if (capacity_range) j["battery"]["capacity_ah"] = {2.0, 6.0};
-    if (capacity_range) j["constraints"]["min_hover_throttle"] = 0.3;
+    if (variant > 0) j["constraints"]["min_hover_throttle"] = 0.3;
     const Mission m = ParseMission(j, "quad");
     int checked = 0;
     ForEachCombination(cat, [&](const Combination& c) {
@@ -402,7 +403,77 @@ TEST_F(SearchTest, EarlyExitsNeverCutOffAFeasibleScore) {
       EXPECT_EQ(cut.score, full.score) << Name(c);
       ++checked;
     });
-    EXPECT_GE(checked, 3) << "capacity range " << capacity_range;
+    EXPECT_GE(checked, 3) << "variant " << variant;
+  }
+}
+
+// Solve's decide (the virtual ESC's question, R5: does the score beat the cutoff?) gives the
+// same answer as the full solve at cutoffs on both sides of the true score, with the stretch
+// alone free, with a capacity range, and with a free cruise airspeed; a "yes" comes with a
+// feasible point that beats the cutoff, and some answers must stop early (else the test would
+// not exercise it).
+TEST_F(SearchTest, DecideAnswersAsTheFullSolve) {
+  const Catalog cat = Catalog::Load((dir_ / "catalog").string());
+  std::vector<Mission> missions;
+  Json q = ParseJsonText(kQuad, "quad");
+  missions.push_back(ParseMission(q, "quad"));
+  q["battery"]["capacity_ah"] = {2.0, 6.0};
+  missions.push_back(ParseMission(q, "quad"));
+  Json l = ParseJsonText(kLiftCruise, "lift");
+  l["battery"]["capacity_ah"] = {2.0, 6.0};
+  l["segments"][2]["airspeed_m_s"] = {9.0, 16.0};
+  missions.push_back(ParseMission(l, "lift"));
+  for (const Mission& m : missions) {
+    int checked = 0, early = 0;
+    ForEachCombination(cat, [&](const Combination& c) {
+      if (checked >= 40) return;
+      const MissionResult full = MissionEvaluator(m, c).Solve();
+      if (!full.feasible) return;
+      // The cutoff's side of the true score: 0.7 and 0.97 of it are harder to beat for
+      // min_energy, easier for max_endurance (score = -endurance); 1.03 and 1.3 the opposite.
+      for (const double factor : {0.7, 0.97, 1.03, 1.3}) {
+        const double cutoff = full.score * factor;
+        const MissionResult cut = MissionEvaluator(m, c).Solve(cutoff, false);
+        const MissionResult dec = MissionEvaluator(m, c).Solve(cutoff, false, true);
+        const bool beats = cut.feasible && !cut.bounded_out && cut.score < cutoff;
+        EXPECT_EQ(dec.feasible && !dec.bounded_out && dec.score < cutoff, beats) << Name(c) << " " << factor;
+        EXPECT_EQ(beats, full.score < cutoff) << Name(c) << " " << factor;
+        if (beats && dec.score != full.score) ++early;
+        ++checked;
+      }
+    });
+    EXPECT_GE(checked, 8) << m.name;
+    EXPECT_GT(early, 0) << m.name << ": no decision stopped early";
+  }
+}
+
+// The hover-throttle exit (EarlyExit: the hover throttle at full charge below
+// min_hover_throttle, with or without a capacity range) only refuses combinations that the
+// full solve finds infeasible for that same limit; it must refuse some here (else the test
+// would not exercise it).
+TEST_F(SearchTest, HoverThrottleExitOnlyRefusesInfeasibleCombinations) {
+  const Catalog cat = Catalog::Load((dir_ / "catalog").string());
+  for (const bool capacity_range : {false, true}) {
+    Json j = ParseJsonText(kQuad, "quad");
+    if (capacity_range) j["battery"]["capacity_ah"] = {2.0, 6.0};
+    j["constraints"]["min_hover_throttle"] = 0.35;
+    const Mission m = ParseMission(j, "quad");
+    int refused = 0;
+    ForEachCombination(cat, [&](const Combination& c) {
+      // Any finite cutoff enables the exits; a huge one keeps the objective bounds from firing.
+      const MissionResult cut = MissionEvaluator(m, c).Solve(1e300);
+      if (cut.feasible || cut.violations.size() != 1 || cut.violations[0].constraint != "min_hover_throttle" ||
+          !cut.segments.empty()) {
+        return;  // not the exit (it returns no segments)
+      }
+      ++refused;
+      const MissionResult full = MissionEvaluator(m, c).Solve();
+      EXPECT_FALSE(full.feasible) << Name(c);
+      bool named = false;
+      for (const Violation& v : full.violations) named |= v.constraint == "min_hover_throttle";
+      EXPECT_TRUE(named) << Name(c);
+    });
+    EXPECT_GE(refused, 1) << "capacity range " << capacity_range;
   }
 }
 

@@ -9,6 +9,7 @@
 #include <gtest/gtest.h>
 
 #include "common/error.h"
+#include "catalog/prop_credibility.h"
 #include "common/units.h"
 
 namespace dynosize {
@@ -311,6 +312,44 @@ TEST(PropDataQualityTest, ApcComputedAgainstUiucMeasured) {
     EXPECT_GT(a.ct / u.ct, 0.95) << apc;
     EXPECT_LT(a.ct / u.ct, 1.35) << apc;
   }
+}
+
+}  // namespace
+}  // namespace dynosize
+
+namespace dynosize {
+namespace {
+
+// The closed-form speed for a thrust (the evaluator's propeller root for coefficient and
+// power-law data): Evaluate at that speed gives the thrust back to rounding, below, inside and
+// above a power law's valid range (where Evaluate holds the coefficients), at two densities
+// and in axial inflow (their thrust does not depend on it); tables have no closed form.
+TEST(PropModelTest, StaticSpeedForThrustInvertsEvaluate) {
+  const Catalog c = Catalog::Load(kCatalog);
+  int laws = 0, coeffs = 0, tables = 0;
+  for (const PropEntry& p : c.props()) {
+    const PropModel m(p);
+    double w = 0;
+    if (m.data_kind() == PropDataKind::kTables) {
+      EXPECT_FALSE(m.StaticSpeedForThrust(1.0, 1.225, &w)) << p.id;
+      ++tables;
+      continue;
+    }
+    (m.data_kind() == PropDataKind::kPowerLaw ? laws : coeffs)++;
+    const PropValidRange r = ValidRange(p);
+    for (const double rho : {1.225, 0.9}) {
+      // Thrusts at a third of the lowest valid speed, the middle and three times the highest.
+      for (const double rpm : {r.rpm_lo / 3, 0.5 * (r.rpm_lo + r.rpm_hi), 3 * r.rpm_hi}) {
+        const double target = m.Evaluate(RpmToRadPerSec(rpm), rho).thrust_n;
+        ASSERT_TRUE(m.StaticSpeedForThrust(target, rho, &w)) << p.id;
+        EXPECT_NEAR(m.Evaluate(w, rho, 5.0).thrust_n, target, kExactRel * target) << p.id << " rpm " << rpm;
+        EXPECT_NEAR(w, RpmToRadPerSec(rpm), kExactRel * RpmToRadPerSec(rpm)) << p.id << " rpm " << rpm;
+      }
+    }
+  }
+  EXPECT_GT(laws, 100);  // the DriveCalc laws are in the bundled catalog
+  EXPECT_GT(tables, 100);
+  (void)coeffs;
 }
 
 }  // namespace
