@@ -6,6 +6,7 @@
 #include <cstring>
 #include <limits>
 #include <memory>
+#include <stdexcept>
 #include <thread>
 
 #include "battery/battery.h"
@@ -14,6 +15,7 @@
 #include "mission/flight.h"
 #include "model/physics.h"
 #include "optimization/components.h"
+#include "optimization/joint_search.h"
 #include "optimization/search_stages.h"
 
 namespace dynosize {
@@ -662,13 +664,13 @@ void ResolveGroups(SearchContext* ctx) {
       if (!p.motor->mass_kg) throw DataError("motor '" + p.motor->id + "' has no mass_kg: the mission needs it");
       ctx->fixed_groups_mass_kg += m.groups[g].rotors * (*p.motor->mass_kg + EscMassKg(*p.esc) + PropMassKg(*p.prop));
     }
-    if (free.size() != 1) {
-      std::string names;
-      for (int g : free) names += (names.empty() ? "" : ", ") + m.groups[g].name;
-      throw DataError(m.file + ": $.propulsion: " + std::to_string(free.size()) + " groups without motor/esc/prop" +
-                      (names.empty() ? "" : " (" + names + ")") +
-                      ": optimize chooses the parts of exactly one group; fix the others (a joint search of "
-                      "several groups is not implemented), or use evaluate --pick");
+    if (free.empty()) {
+      throw DataError(m.file + ": $.propulsion: every group has its motor, esc and prop: optimize has nothing to "
+                      "choose; leave a group's parts out, or use evaluate");
+    }
+    if (free.size() > 1) {  // SearchCatalog gives such missions to the joint search (G2) instead
+      throw std::logic_error("ResolveGroups: the one-group stages need exactly one free group, not " +
+                             std::to_string(free.size()));
     }
     ctx->free_group = free.front();
     ctx->fixed_models.resize(m.groups.size());
@@ -690,8 +692,6 @@ void PrepareStages(const Mission& m, const Catalog& cat, SearchContext* ctx) {
   ctx->escs = BuildEscTable(cat, ctx->options);           // stage 2 (R1)
   BuildPropGrids(m, cat, &ctx->grids, &ctx->models);      // stage 3
 }
-
-namespace {
 
 // A wing-borne cruise (lift_to_drag > 0) of a fixed group with a free airspeed in [lo, hi]:
 // a power P_lb with P_lb * SegmentDurationS(hi) <= the segment's energy at every airspeed of
@@ -717,8 +717,6 @@ double FreeCruisePowerLowerBoundW(const Mission& m, const Segment& sg, const Gro
   const double p_ideal = IdealRotorPowerW(ld.thrust_per_rotor_n, parts.prop->diameter_m, m.rho_kg_m3, v);
   return ld.rotors * p_ideal / m.constraints.max_figure_of_merit;
 }
-
-}  // namespace
 
 void FixedGroupPowerBounds(SearchContext* ctx) {
   const Mission& m = *ctx->mission;
@@ -961,9 +959,11 @@ using namespace search_internal;
 // not pruned scored exactly.
 class BranchAndBound {
  public:
-  BranchAndBound(const SearchContext& ctx, const SearchOptions& opt, MotorHeads heads, SearchResult* out)
+  // cutoff: only results scoring below it are wanted (the joint search's N-th best, G2).
+  BranchAndBound(const SearchContext& ctx, const SearchOptions& opt, MotorHeads heads, SearchResult* out,
+                 double cutoff = kInf)
       : ctx_(ctx), opt_(opt), stream_(ctx, std::move(heads.motors)), n_cands_(static_cast<std::size_t>(heads.pairs)),
-        out_(out), relaxed_(*ctx.mission) {
+        out_(out), relaxed_(*ctx.mission), cutoff_(cutoff) {
     // The virtual ESC (and so the class check) uses the mission without min_hover_throttle: a
     // real ESC's resistance and mass raise the throttle, so that lower limit is the one
     // constraint the virtual ESC may fail when a real one passes (R5). Relaxing it keeps the
@@ -999,7 +999,7 @@ class BranchAndBound {
     return i < base_ + ordered_.size() ? &ordered_[i - base_] : nullptr;
   }
   double NthBest() const {
-    return static_cast<int>(out_->best.size()) < opt_.top_n ? kInf : out_->best.back().result.score;
+    return static_cast<int>(out_->best.size()) < opt_.top_n ? cutoff_ : std::min(cutoff_, out_->best.back().result.score);
   }
   void Insert(const Combination& c, MissionResult&& r);
   void Process(const Candidate& cand, std::vector<double> top, Outcome* o) const;
@@ -1013,6 +1013,7 @@ class BranchAndBound {
   std::size_t base_ = 0;
   SearchResult* out_;
   Mission relaxed_;
+  double cutoff_ = kInf;
   long long virtual_evals_ = 0;
 };
 
@@ -1034,7 +1035,9 @@ void BranchAndBound::Process(const Candidate& cand, std::vector<double> top, Out
   const Mission& m = *ctx_.mission;
   const auto& escs = ctx_.catalog->escs();
   const double margin = 1.0 - m.constraints.current_margin;
-  auto threshold_now = [&]() { return static_cast<int>(top.size()) < opt_.top_n ? kInf : top[opt_.top_n - 1]; };
+  auto threshold_now = [&]() {
+    return static_cast<int>(top.size()) < opt_.top_n ? cutoff_ : std::min(cutoff_, top[opt_.top_n - 1]);
+  };
   auto local_prune = [&](const std::string& rule, long long n) { o->pruned[rule] += n; };
   const BatteryOption& bo = ctx_.options[cand.option];
   const PropModel* model = ctx_.models[cand.prop].get();
@@ -1174,14 +1177,25 @@ void BranchAndBound::Run() {
 
 }  // namespace
 
-namespace {
-
-SearchResult SearchExactly(const Mission& m, const Catalog& cat, const SearchOptions& opt) {
+SearchResult search_internal::SearchOneGroup(const Mission& m, const Catalog& cat, const SearchOptions& opt,
+                                             double cutoff, PropGridCache* cache) {
   const auto t0 = std::chrono::steady_clock::now();
   if (opt.top_n < 1) throw UsageError("--top " + std::to_string(opt.top_n) + ": must be >= 1");
   SearchResult out;
   SearchContext ctx;
-  PrepareStages(m, cat, &ctx);  // stages 0-3
+  if (cache) {  // stages 0-3 with the caller's propeller grids (they depend on the air and limits only)
+    ctx.mission = &m;
+    ctx.catalog = &cat;
+    ResolveGroups(&ctx);
+    ctx.options = BatteryOptions(m, cat);
+    ctx.escs = BuildEscTable(cat, ctx.options);
+    if (!cache->built) BuildPropGrids(m, cat, &cache->grids, &cache->models);
+    cache->built = true;
+    ctx.grids = std::move(cache->grids);
+    ctx.models = std::move(cache->models);
+  } else {
+    PrepareStages(m, cat, &ctx);  // stages 0-3
+  }
   FixedGroupPowerBounds(&ctx);
   out.combinations = static_cast<long long>(cat.motors().size()) * static_cast<long long>(cat.escs().size()) *
                      static_cast<long long>(cat.props().size()) * static_cast<long long>(ctx.options.size());
@@ -1194,8 +1208,16 @@ SearchResult SearchExactly(const Mission& m, const Catalog& cat, const SearchOpt
   out.skipped_without_mass = heads.skipped_without_mass;
   out.candidate_pairs = heads.pairs;
   out.candidate_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  BranchAndBound bb(ctx, opt, std::move(heads), &out);  // stage 5
-  bb.Run();
+  {
+    BranchAndBound bb(ctx, opt, std::move(heads), &out, cutoff);  // stage 5
+    bb.Run();
+    out.virtual_evaluations = bb.virtual_evaluations();
+    out.candidate_refills = bb.refills();
+  }
+  if (cache) {
+    cache->grids = std::move(ctx.grids);
+    cache->models = std::move(ctx.models);
+  }
   if (opt.progress) {
     SearchProgress p;
     p.fraction = 1.0;
@@ -1205,11 +1227,18 @@ SearchResult SearchExactly(const Mission& m, const Catalog& cat, const SearchOpt
     p.best_objective = p.has_best ? out.best.front().result.objective : 0.0;
     opt.progress(p);
   }
-  out.virtual_evaluations = bb.virtual_evaluations();
-  out.candidate_refills = bb.refills();
-  for (RankedCombination& b : out.best) AddObjectiveRange(m, b.combination, &b.result);  // credibility.h
   out.pruned = out.combinations - out.searched;
   out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return out;
+}
+
+namespace {
+
+// One free group: stages 0-5 (R0-R8, G1); several: the joint search (G2, joint_search.h).
+SearchResult SearchExactly(const Mission& m, const Catalog& cat, const SearchOptions& opt) {
+  SearchResult out = FreeGroupCount(m) > 1 ? search_internal::JointSearch(m, cat, opt)
+                                           : search_internal::SearchOneGroup(m, cat, opt, kInf, nullptr);
+  for (RankedCombination& b : out.best) AddObjectiveRange(m, b.combination, &b.result);  // credibility.h
   return out;
 }
 

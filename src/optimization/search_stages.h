@@ -125,6 +125,13 @@ void PrepareStages(const Mission& m, const Catalog& cat, SearchContext* ctx);
 double CapacityPiecesBound(const SearchContext& ctx, int motor, int prop, int option, int esc_class,
                            double esc_mass_kg);
 
+// A wing-borne cruise of a group with a free airspeed: a power P_lb (W, avionics not
+// included) with P_lb * SegmentDurationS(sg, hi) <= the segment's energy at every airspeed of
+// its range, for the group's parts flying at vehicle mass >= mass_kg (search.cc; 0 when no
+// bound applies). Only the ESC's C1, C0 are read (its class).
+double FreeCruisePowerLowerBoundW(const Mission& m, const Segment& sg, const GroupParts& parts,
+                                  const PropModel& model, double mass_kg);
+
 // Fills ctx->fixed_power_lb_w (after stages 1-3 and ResolveGroups).
 inline constexpr int kFixedPowerMasses = 64;
 inline constexpr double kFixedPowerMassStep = 1.02;
@@ -164,6 +171,20 @@ struct MotorHeads {
 MotorHeads BuildMotorHeads(const SearchContext& ctx, int threads, std::size_t first_pairs = kFirstPairsPerMotor);
 // The surviving pairs of one motor (appended to *out), as BuildCandidates lists them.
 void MotorPairs(const SearchContext& ctx, int motor, std::vector<Candidate>* out);
+
+// Propeller grids and models kept between the one-group searches of the joint search (they
+// depend on the mission's air, ranking and figure-of-merit limit only, which its sub-missions
+// share).
+struct PropGridCache {
+  bool built = false;
+  std::vector<PropGrid> grids;
+  std::vector<std::unique_ptr<PropModel>> models;
+};
+// Stages 0-5 for a mission with exactly one free group: its exact top N among the results
+// scoring below `cutoff` (kInf: all). The results' objective ranges are not computed
+// (AddObjectiveRange: the caller's). cache (optional): the grids, built on first use.
+SearchResult SearchOneGroup(const Mission& m, const Catalog& cat, const SearchOptions& opt, double cutoff,
+                            PropGridCache* cache);
 
 // Draws candidates in CandidateBefore order from the motor queues (a heap of motors keyed by
 // their next pair), refilling a motor's queue when it runs out.
