@@ -5,6 +5,7 @@
 #include <cmath>
 #include <limits>
 #include <stdexcept>
+#include <tuple>
 
 #include "common/error.h"
 #include "common/units.h"
@@ -19,6 +20,8 @@ namespace dynosize {
 namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
+constexpr double kMassCeilingKg = 1e5;  // MassFloorKg's search range: beyond any vehicle
+constexpr double kRotorCeilingRadS = 1e5;  // RotorLowerBound's: ~1e6 rpm, beyond any motor
 
 // Neither the motor nor an ESC of these C1, C0 can create energy (model.md section 10; the
 // inequalities of model/physics.h without its rounding allowance, as in ScoreLowerBound): then
@@ -76,8 +79,9 @@ RotorBound RotorLowerBound(const Mission& m, const Segment& sg, const PropEntry&
   if (sg.type == SegmentType::kShaft || (sg.type == SegmentType::kCruise && sg.airspeed_m_s.free())) return rb;
   const double v = ld.axial_airspeed_m_s;
   // Bisection keeping thrust(lo) <= T (M1: thrust rises with speed), so lo is at or below the
-  // evaluator's root; a propeller that cannot give T on the grid turns faster than its top.
-  double lo = 0.0, hi = kGridMaxRadS;
+  // evaluator's root; a propeller that cannot give T below the ceiling turns faster (and R3
+  // then finds the throttle above one).
+  double lo = 0.0, hi = kRotorCeilingRadS;
   if (model.Evaluate(hi, m.rho_kg_m3, v).thrust_n < ld.thrust_per_rotor_n) {
     lo = hi;
   } else {
@@ -87,6 +91,8 @@ RotorBound RotorLowerBound(const Mission& m, const Segment& sg, const PropEntry&
     }
   }
   if (!(lo > 0)) return rb;
+  rb.thrust_n = ld.thrust_per_rotor_n;
+  rb.axial_airspeed_m_s = v;
   PropEvaluation ev = model.Evaluate(lo, m.rho_kg_m3, v);
   // The scenario's load, as the evaluator flies it (it keeps rising with speed: M1).
   AdjustPropEvaluation(PropAdjustmentFor(prop, m.objective.ranking), prop.diameter_m, &ev);
@@ -123,9 +129,30 @@ SegmentBound SegmentPowerBound(const Mission& m, std::size_t si, const GroupPart
   } else if (hi.irms_a > esc_max_current_a * margin) {
     b.infeasible = "esc_current";
   }
+  // R7: static-only data in axial flow. The shaft turns no faster than the drive's no-load
+  // speed at full throttle and the full-charge voltage (M2), so J >= V_ax/(n_max*D); above the
+  // mission's max_static_advance_ratio the evaluator fails prop_no_forward_flight_data.
+  const bool static_only = model.data_kind() != PropDataKind::kTables || parts.prop->j_tables.empty();
+  if (!b.infeasible && static_only && rb.axial_airspeed_m_s > 0) {
+    const double n_max = drive.NoLoadSpeed(bo.v_full, 1.0) / (2.0 * kPi);
+    if (n_max > 0 && rb.axial_airspeed_m_s / (n_max * parts.prop->diameter_m) > k.max_static_advance_ratio) {
+      b.infeasible = "prop_no_forward_flight_data";
+    }
+  }
   // PDC is linear in VDC (eqs 57, 59): the smaller of the two ends bounds every voltage between.
   const OperatingPoint lo = drive.Inverse(bo.v_cut, rb.torque_nm, rb.omega_rad_s);
-  b.power_w += rb.rotors * std::max(0.0, std::min(hi.pdc_w, lo.pdc_w));
+  double pdc = rb.rotors * std::max(0.0, std::min(hi.pdc_w, lo.pdc_w));
+  // Momentum theory: a feasible point's propeller data give P >= P_ideal/max_figure_of_merit
+  // (the evaluator's prop_figure_of_merit, V_ax the inflow unless the data are static-only);
+  // the scenario's power is at least P_ideal (credibility.h: raised, or capped at FM 1), so
+  // P_ideal/max(1, max_figure_of_merit) bounds it in every scenario; and PDC >= Pmech when
+  // neither the motor nor the ESC can create energy (model.md section 10).
+  if (Lossy(drive.motor(), drive.esc().c1, drive.esc().c0)) {
+    const double p_ideal = IdealRotorPowerW(rb.thrust_n, parts.prop->diameter_m, m.rho_kg_m3,
+                                            static_only ? 0.0 : rb.axial_airspeed_m_s);
+    pdc = std::max(pdc, rb.rotors * p_ideal / std::max(1.0, k.max_figure_of_merit));
+  }
+  b.power_w += pdc;
   return b;
 }
 
@@ -196,8 +223,8 @@ JointBounds::JointBounds(const Mission& m, const Catalog& cat, const PropGridCac
   for (std::size_t si = 0; si < n_seg; ++si) {
     if (m.segments[si].group == outer_) outer_segments_.push_back(si);
   }
-  // Every group's lightest: fixed groups exactly, free ones from the lightest motor, propeller
-  // (R0 for the group) and ESC (R1 for the option) of the catalog.
+  // Every group's lightest: fixed groups exactly, free ones from the catalog's lightest motor,
+  // propeller (R0 for the group) and ESC (R1 for the option), then LightestSurvivorKg.
   double motor_min = kInf;
   for (const MotorEntry& mo : cat.motors()) {
     if (mo.mass_kg && mo.exclude_reason.empty()) motor_min = std::min(motor_min, *mo.mass_kg);
@@ -222,15 +249,35 @@ JointBounds::JointBounds(const Mission& m, const Catalog& cat, const PropGridCac
   for (int g = 0; g < GroupCount(m); ++g) {
     if (m.groups[g].fixed()) fixed_models[g] = std::make_unique<PropModel>(*fixed[g].prop);
   }
+  for (const PropGrid& g : cache.grids) monotone_.push_back(g.monotone);
+  mass_floor_kg_.assign(options_.size() * n_seg * cat.props().size(), -1.0);
   for (std::size_t o = 0; o < options_.size(); ++o) {
     const BatteryOption& bo = options_[o];
     const double esc_min = std::isfinite(escs_.min_mass_kg[o]) ? escs_.min_mass_kg[o] : 0.0;
-    double mass = m.vehicle.mass_kg + bo.mass_lo_kg + fixed_kg;
+    const double base = m.vehicle.mass_kg + bo.mass_lo_kg + fixed_kg;
+    std::vector<double> lightest(m.groups.size(), 0.0);
     for (int g : free) {
-      const double lightest = m.groups[g].rotors * (motor_min + prop_min[g] + esc_min);
-      mass += lightest;
-      if (g == outer_) outer_lightest_kg_.push_back(lightest);
+      lightest[g] = m.groups[g].rotors * (motor_min + prop_min[g] + esc_min);
     }
+    // The lightest choice of each free group that can fly its own segments (R0, R1, R3, R7 at
+    // the lightest vehicle): a feasible choice survives them at its true mass, so at any lighter
+    // one (M1-M3), and so at the lightest vehicle found so far; each pass can only raise the
+    // lightest vehicle, and every pass keeps it a lower bound.
+    auto total = [&]() {
+      double x = base;
+      for (int g : free) x += lightest[g];
+      return x;
+    };
+    for (int pass = 0; pass < 2; ++pass) {
+      const double vehicle_kg = total();
+      for (int g : free) {
+        const double parts_kg = LightestSurvivorKg(g, o, vehicle_kg);
+        lightest[g] = std::max(lightest[g], std::isfinite(parts_kg) ? m.groups[g].rotors * (parts_kg + esc_min)
+                                                                   : lightest[g]);
+      }
+    }
+    const double mass = total();
+    outer_lightest_kg_.push_back(lightest[outer_]);
     mass_min_kg_.push_back(mass);
     std::vector<double> p(n_seg, m.vehicle.avionics_power_w);
     for (std::size_t si = 0; si < n_seg; ++si) {
@@ -254,13 +301,93 @@ JointBounds::JointBounds(const Mission& m, const Catalog& cat, const PropGridCac
   rotor_done_.assign(n_cache, 0);
 }
 
+// R7 as a mass floor: static-only data in axial flow V_ax pass the evaluator only at an advance
+// ratio J = V_ax/(n*D) <= max_static_advance_ratio, so at a speed n >= V_ax/(J_max*D), where the
+// static thrust (M1, the propeller's grid rising) is at least T(n); the segment's thrust rises
+// with the vehicle's mass (M3), so a feasible vehicle weighs at least the mass whose thrust is
+// T(n) (bisection, kept at or below it). kInf: no mass gives it; 0: no floor.
+double JointBounds::MassFloorKg(int prop, std::size_t si, std::size_t o) {
+  const std::size_t i = (o * m_.segments.size() + si) * cat_.props().size() + static_cast<std::size_t>(prop);
+  if (mass_floor_kg_[i] >= 0) return mass_floor_kg_[i];
+  const PropEntry& p = cat_.props()[static_cast<std::size_t>(prop)];
+  const PropModel& model = *models_[static_cast<std::size_t>(prop)];
+  const Segment& sg = m_.segments[si];
+  double floor_kg = 0.0;
+  const bool static_only = model.data_kind() != PropDataKind::kTables || p.j_tables.empty();
+  const double v_ax = SegmentRotorLoad(m_, sg, 1.0, sg.airspeed_m_s.lo).axial_airspeed_m_s;
+  if (static_only && monotone_[static_cast<std::size_t>(prop)] && v_ax > 0 && sg.type != SegmentType::kShaft &&
+      !(sg.type == SegmentType::kCruise && sg.airspeed_m_s.free()) && m_.constraints.max_static_advance_ratio > 0) {
+    const double omega_req = 2.0 * kPi * v_ax / (m_.constraints.max_static_advance_ratio * p.diameter_m);
+    const double t_req = model.Evaluate(omega_req, m_.rho_kg_m3, 0.0).thrust_n;
+    auto thrust_at = [&](double kg) { return SegmentRotorLoad(m_, sg, kg, sg.airspeed_m_s.lo).thrust_per_rotor_n; };
+    double lo = 0.0, hi = kMassCeilingKg;
+    if (!(thrust_at(hi) >= t_req)) {
+      floor_kg = kInf;
+    } else if (thrust_at(lo) < t_req) {
+      for (int it = 0; it < 60; ++it) {  // keeps thrust(lo) < T(n)
+        const double mid = 0.5 * (lo + hi);
+        (thrust_at(mid) < t_req ? lo : hi) = mid;
+      }
+      floor_kg = lo;
+    }
+  }
+  mass_floor_kg_[i] = floor_kg;
+  return floor_kg;
+}
+
+double JointBounds::LightestSurvivorKg(int group, std::size_t o, double vehicle_kg) {
+  const auto& motors = cat_.motors();
+  const auto& props = cat_.props();
+  std::vector<std::tuple<double, int, int>> by_mass;
+  for (std::size_t mi = 0; mi < motors.size(); ++mi) {
+    if (!motors[mi].mass_kg || !motors[mi].exclude_reason.empty()) continue;
+    for (std::size_t pi = 0; pi < props.size(); ++pi) {
+      if (PropAllowed(group, props[pi])) {
+        by_mass.emplace_back(*motors[mi].mass_kg + PropMassKg(props[pi]), static_cast<int>(mi), static_cast<int>(pi));
+      }
+    }
+  }
+  std::sort(by_mass.begin(), by_mass.end());
+  std::vector<std::size_t> segs;
+  for (std::size_t si = 0; si < m_.segments.size(); ++si) {
+    if (m_.segments[si].group == group) segs.push_back(si);
+  }
+  std::vector<RotorBound> rbs(props.size() * segs.size());
+  std::vector<char> done(rbs.size(), 0);
+  const BatteryOption& bo = options_[o];
+  for (const auto& [kg, mi, pi] : by_mass) {
+    const MotorEntry& mo = motors[static_cast<std::size_t>(mi)];
+    bool excluded = false;
+    const MotorParams mp = ScenarioMotorParams(mo, m_, nullptr, &excluded);
+    if (Lifts(group) && (excluded || bo.v_full > MotorMaxVoltageV(mo))) continue;  // R0, R1
+    const GroupParts parts{&mo, nullptr, &props[static_cast<std::size_t>(pi)]};
+    for (std::size_t c = 0; c < escs_.classes.size(); ++c) {
+      if (escs_.per_option[o][c].empty()) continue;
+      const Drive d(mp, ClassParams(escs_.classes[c]));
+      bool ok = true;
+      for (std::size_t k = 0; k < segs.size() && ok; ++k) {
+        const std::size_t j = static_cast<std::size_t>(pi) * segs.size() + k;
+        if (!done[j]) {
+          rbs[j] = RotorLowerBound(m_, m_.segments[segs[k]], props[static_cast<std::size_t>(pi)],
+                                   *models_[static_cast<std::size_t>(pi)], vehicle_kg);
+          done[j] = 1;
+        }
+        ok = !SegmentPowerBound(m_, segs[k], parts, mp, d, ThrottleLimit(m_.constraints, escs_.classes[c].tr_sat), kInf,
+                                *models_[static_cast<std::size_t>(pi)], bo, vehicle_kg, rbs[j]).infeasible;
+      }
+      if (ok) return kg;
+    }
+  }
+  return kInf;
+}
+
 // G2: the least power bound over the group's (motor, ESC class, propeller) choices that survive
-// R0, R1 and R3 at this segment, at the lightest vehicle mass (M3: every heavier one draws no
-// less). Propellers in order of their floor rotors*Q*omega + P_avionics (PDC >= Pmech for a drive
-// that cannot create energy): once the floor reaches the least bound found, no energy-
+// R0, R1, R3 and R7 at this segment, at the lightest vehicle mass (M3: every heavier one draws
+// no less). Propellers in order of their floor, rotors*max(Q*omega, momentum) + P_avionics (PDC
+// >= Pmech for a drive that cannot create energy; SegmentPowerBound): once the floor reaches the least bound found, no energy-
 // conserving drive on that propeller or a later one can go below it; drives that could create
 // energy are checked on every propeller.
-double JointBounds::MinFreeGroupPower(int group, std::size_t si, std::size_t o, double mass_kg) const {
+double JointBounds::MinFreeGroupPower(int group, std::size_t si, std::size_t o, double mass_kg) {
   const Mission& m = m_;
   const Segment& sg = m.segments[si];
   const BatteryOption& bo = options_[o];
@@ -310,9 +437,13 @@ double JointBounds::MinFreeGroupPower(int group, std::size_t si, std::size_t o, 
   std::vector<PropFloor> floors;
   for (std::size_t pi = 0; pi < props.size(); ++pi) {
     if (!PropAllowed(group, props[pi])) continue;
-    const RotorBound rb = RotorLowerBound(m, sg, props[pi], *models_[pi], mass_kg);
+    RotorBound rb = RotorLowerBound(m, sg, props[pi], *models_[pi], mass_kg);
     if (!(rb.omega_rad_s > 0)) return m.vehicle.avionics_power_w;  // no bound for this choice
-    floors.push_back({m.vehicle.avionics_power_w + rb.rotors * rb.torque_nm * rb.omega_rad_s, pi, rb});
+    const bool static_only = models_[pi]->data_kind() != PropDataKind::kTables || props[pi].j_tables.empty();
+    const double p_ideal = IdealRotorPowerW(rb.thrust_n, props[pi].diameter_m, m.rho_kg_m3,
+                                            static_only ? 0.0 : rb.axial_airspeed_m_s);
+    const double floor_w = std::max(rb.torque_nm * rb.omega_rad_s, p_ideal / std::max(1.0, m.constraints.max_figure_of_merit));
+    floors.push_back({m.vehicle.avionics_power_w + rb.rotors * floor_w, pi, rb});
   }
   std::sort(floors.begin(), floors.end(), [](const PropFloor& a, const PropFloor& b) {
     return a.floor != b.floor ? a.floor < b.floor : a.prop < b.prop;
@@ -359,6 +490,11 @@ double JointBounds::OuterBound(const Drive& drive, const GroupParts& parts, doub
       *why = "infeasible_bound";
       return kInf;
     }
+  }
+  for (std::size_t si : outer_segments_) mass_kg = std::max(mass_kg, MassFloorKg(prop, si, o));  // R7
+  if (!(mass_kg < kInf)) {
+    *why = "prop_no_forward_flight_data";
+    return kInf;
   }
   for (std::size_t si : outer_segments_) {
     const RotorBound& rb = OuterRotor(prop, si, o, mass_kg);
@@ -572,6 +708,7 @@ SearchResult JointSearch(const Mission& m, const Catalog& cat, const SearchOptio
         out.pruned_by["objective_bound"] += block;
         continue;
       }
+      progress(i);
       // The outer group fixed to this choice, the battery to this option: the inner search.
       Mission sub = m;
       PropulsionGroup& g = sub.groups[static_cast<std::size_t>(outer)];

@@ -38,6 +38,7 @@ SearchResult JointSearch(const Mission& m, const Catalog& cat, const SearchOptio
 // mission's data scenario, credibility.h). omega 0 when no bound applies.
 struct RotorBound {
   double omega_rad_s = 0, torque_nm = 0;
+  double thrust_n = 0, axial_airspeed_m_s = 0;  // the segment's per-rotor load
   int rotors = 0;
 };
 RotorBound RotorLowerBound(const Mission& m, const Segment& sg, const PropEntry& prop, const PropModel& model,
@@ -89,7 +90,11 @@ class JointBounds {
   double OuterBound(const Drive& drive, const GroupParts& parts, double esc_max_a, double tr_max,
                     int prop, std::size_t o, double mass_kg, const char** why, double* irms_lb);
   const RotorBound& OuterRotor(int prop, std::size_t si, std::size_t o, double mass_kg);
-  double MinFreeGroupPower(int group, std::size_t si, std::size_t o, double mass_kg) const;
+  double MinFreeGroupPower(int group, std::size_t si, std::size_t o, double mass_kg);
+  double MassFloorKg(int prop, std::size_t si, std::size_t o);
+  // The lightest motor + propeller of a free group that survives R0, R1, R3, R7 in every one of
+  // its segments with some ESC class at vehicle mass vehicle_kg (kInf: none), kg per rotor.
+  double LightestSurvivorKg(int group, std::size_t o, double vehicle_kg);
   bool Lifts(int group) const { return group == lift_group_; }
   bool PropAllowed(int group, const PropEntry& p) const;
 
@@ -100,6 +105,8 @@ class JointBounds {
   std::vector<BatteryOption> options_;
   EscTable escs_;
   std::vector<double> mass_min_kg_, outer_lightest_kg_;
+  std::vector<char> monotone_;        // per propeller: its static thrust grid rises (M1)
+  std::vector<double> mass_floor_kg_;  // MassFloorKg's cache by (option, segment, prop); < 0: not yet
   std::vector<std::vector<double>> other_power_w_;
   std::vector<std::size_t> outer_segments_;
   // OuterRotor's cache: [((o * segments + si) * props + prop) * kFixedPowerMasses + k].

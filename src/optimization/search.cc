@@ -85,7 +85,8 @@ namespace dynosize {
 // R6 (propeller data credibility): see the comment at the rule; the hover point's figure of
 //    merit must not exceed the mission's max_figure_of_merit.
 // R7 (static-only propeller data in fast axial flow): see the comment at the rule.
-// G1 (propulsion groups): the search chooses the parts of one group; the others are fixed.
+// G1 (propulsion groups): the search chooses the parts of one group; the others are fixed
+//    (several free groups: G2 below fixes all but one in turn).
 //    Every group's mass is in mass_lb and mass_ub (the fixed groups' exactly), R0-R3, R6, R7
 //    speak of the free group's segments only, and in R4 a fixed group's segment draws at least
 //    its own drive's PDC at the lightest vehicle mass the option allows (its thrust rises with
@@ -97,6 +98,50 @@ namespace dynosize {
 //    Thrust-to-weight and winding temperature: more mass or ESC resistance only lowers the
 //    first and raises the second, so R5 (the virtual ESC is evaluated without the
 //    thrust-to-weight, a relaxation) and the capacity screening stay sound.
+// G2 (several free groups; joint_search.h): each free group picks its own motor, ESC and
+//    propeller. The search fixes one free group at a time: the outer group g (a free group that
+//    does not lift the vehicle, so that the innermost search is the lift group's, where R2-R4
+//    grip) and, per (motor, ESC, propeller) of g and battery option, the search with g fixed to
+//    them and the battery to that option (recursively until one group is free: stages 0-5
+//    above with G1), asked only for results below the N-th best so far (its cutoff: pruning
+//    against a threshold at least the final N-th best is safe, and the merge of the lists is
+//    the top N). An outer choice is searched only when a lower bound of every completion's
+//    score is below that N-th best. The bound, per segment a terminal power that every
+//    completion draws at least at every instant, assembled as in R4 (min_energy: the sum of
+//    power x shortest duration; max_endurance: the energy budget of the largest pack; none for
+//    max_efficiency or a stretched free-airspeed cruise):
+//    - mass: every group at its lightest. A fixed group exactly; a free group h at the lightest
+//      motor + propeller that survives R0, R1, R3, R7 in all of h's segments with some ESC
+//      class at the lightest vehicle found so far (a feasible choice survives them at its true,
+//      heavier mass, so at any lighter one, M1-M3), plus the lightest ESC of the option; two
+//      passes, each keeping it a lower bound. The outer group at its own motor + propeller +
+//      (lightest or its own) ESC. R7 as a mass floor for the outer group: static-only data in
+//      axial flow V pass only at J = V/(n*D) <= max_static_advance_ratio, i.e. at a speed with a
+//      static thrust of at least T(n_min) (M1), which needs at least the mass whose segment
+//      thrust is T(n_min) (M3); the bound is read at the larger mass.
+//    - a segment of a fixed group: G1's bound with its own drive (speed and torque at or below
+//      the evaluator's by bisection on the thrust at the segment's axial airspeed, the
+//      scenario's torque, PDC the smaller at the full-charge and cut-off voltage, eq 59).
+//    - a segment of the outer group: the same with the zero-resistance drive of the ESC class
+//      (M2; per pair) or the real ESC (per triple), at the mass grid point at or below the
+//      choice's lightest mass (G1's grid); and R3 (throttle, Irms, PAC, the ESC's current
+//      rating) and R7 (no-load speed) at that point: a choice that fails them is infeasible.
+//    - a segment of another free group: the least of that bound over all its (motor, ESC class,
+//      propeller) choices that survive R0, R1, R3, R7 at the lightest vehicle (each is below the
+//      choice's power at any heavier mass, M3), found without trying every choice: a
+//      propeller's floor rotors*max(Q*omega, P_ideal/max(1, max_figure_of_merit)) bounds every
+//      drive that cannot create energy (PDC >= Pmech, model.md section 10; the scenario's
+//      propeller power is at least P_ideal in every scenario, credibility.h), so propellers
+//      are tried in order of their floor until it reaches the least bound found; drives that
+//      could create energy are tried on every propeller.
+//    Each term is a lower bound of that segment's terminal power for every completion of the
+//    outer choice, the groups being coupled only through the mass (a lower bound used) and the
+//    shared pack's energy (R4's budget), so the assembled number bounds the score. Outer pairs
+//    (motor, propeller, option) are taken best bound first and the loop stops at the first
+//    bound not below the N-th best. tests/optimization/joint_search_test.cc checks the bounds
+//    against every feasible combination of a small catalog and the answer against exhaustive
+//    evaluation. Counts: combinations is the product over the free groups of motors x ESCs x
+//    propellers, times the battery options; an outer choice pruned counts all its completions.
 // Everything not pruned is evaluated exactly (MissionEvaluator::Solve): the answer is the
 // true top N over the catalog under (M1)-(M3).
 
