@@ -111,7 +111,8 @@ struct CandidateList {
   long long skipped_without_mass = 0;
 };
 // Sets the group fields of ctx (ctx->mission and ->catalog set). DataError (the JSON path) when
-// a fixed part is not in the catalog or when not exactly one group is free.
+// a fixed part is not in the catalog or when every group is fixed; std::logic_error when more
+// than one is free (SearchCatalog gives those to the joint search, joint_search.h).
 void ResolveGroups(SearchContext* ctx);
 
 // Stages 0-3 into *ctx: mission and catalog, ResolveGroups, BatteryOptions, BuildEscTable and

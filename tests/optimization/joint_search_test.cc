@@ -69,11 +69,14 @@ std::string Name(const Combination& c, int lift, int pusher) {
 
 // Every combination (motors without mass left out, as the search does) through the evaluator,
 // with f(combination, result) called for each.
+// Groups other than lift and pusher keep their FixedGroupParts.
 template <typename F>
 void ForEachJoint(const Catalog& cat, const Mission& m, int lift, int pusher, F&& f) {
   std::vector<std::unique_ptr<PropModel>> models;
   for (const PropEntry& p : cat.props()) models.push_back(std::make_unique<PropModel>(p));
-  std::vector<const PropModel*> group_models(2, nullptr);
+  std::vector<GroupParts> base;
+  for (int g = 0; g < GroupCount(m); ++g) base.push_back(FixedGroupParts(m, cat, g));
+  std::vector<const PropModel*> group_models(base.size(), nullptr);
   for (const MotorEntry& ml : cat.motors()) {
     if (!ml.mass_kg) continue;
     for (const EscEntry& el : cat.escs()) {
@@ -84,7 +87,7 @@ void ForEachJoint(const Catalog& cat, const Mission& m, int lift, int pusher, F&
             for (std::size_t pp = 0; pp < cat.props().size(); ++pp) {
               for (int cells : {3, 4}) {
                 Combination c{&ml, &el, &cat.props()[pl], &cat.battery("dc_b_361"), cells, {}};
-                c.groups.assign(2, GroupParts{});
+                c.groups = base;
                 c.groups[lift] = GroupParts{&ml, &el, &cat.props()[pl]};
                 c.groups[pusher] = GroupParts{&mp, &ep, &cat.props()[pp]};
                 group_models[lift] = models[pl].get();
@@ -175,6 +178,49 @@ TEST_F(JointSearchTest, TwoFreeGroupsEqualExhaustiveEvaluation) {
   EXPECT_EQ(g["lift"]["motor"], best.groups[lift].motor->id);
   EXPECT_EQ(g["pusher"]["prop"], best.groups[pusher].prop->id);
   EXPECT_EQ(g["pusher"]["fixed"], false);
+}
+
+// Two free groups and a fixed one (a sprint on its own pusher): G2 reads the fixed group's
+// segment through its own drive (G1's bound), and the answer is exhaustive evaluation's.
+TEST_F(JointSearchTest, TwoFreeGroupsAndAFixedOneEqualExhaustiveEvaluation) {
+  const Catalog cat = Catalog::Load((dir_ / "catalog").string());
+  Json j = ParseJsonText(kFreeQuadplane, "free");
+  j["propulsion"]["sprint"] = {{"rotors", 1}, {"motor", "dc_m_1020"}, {"esc", "dc_e_56"}, {"prop", "apc_per3_10x45mr"}};
+  j["segments"].insert(j["segments"].begin() + 2, Json{{"name", "dash"}, {"type", "cruise"}, {"airspeed_m_s", 15},
+                                                       {"lift_to_drag", 6}, {"distance_m", 1000}, {"group", "sprint"}});
+  const Mission m = ParseMission(j, "three");
+  ASSERT_EQ(FreeGroupCount(m), 2);
+  const int lift = m.segments[0].group, pusher = m.segments[1].group, sprint = m.segments[2].group;
+  PropGridCache cache;
+  BuildPropGrids(m, cat, &cache.grids, &cache.models);
+  cache.built = true;
+  JointBounds jb(m, cat, cache);
+  std::vector<Scored> all;
+  int sprint_checked = 0;
+  ForEachJoint(cat, m, lift, pusher, [&](const Combination& c, const MissionResult& r) {
+    if (!r.feasible) return;
+    all.push_back({r.score, Name(c, lift, pusher)});
+    const std::size_t o = c.cells == jb.options()[0].cells ? 0 : 1;
+    const SegmentResult& sr = r.segments[2];
+    ASSERT_EQ(sr.group, sprint);
+    EXPECT_LE(jb.other_power_w(o, 2), sr.energy_j / sr.duration_s) << Name(c, lift, pusher);
+    ++sprint_checked;
+  });
+  ASSERT_GE(all.size(), 3u);
+  EXPECT_GT(sprint_checked, 0);
+  std::sort(all.begin(), all.end(), [](const Scored& a, const Scored& b) {
+    return a.score != b.score ? a.score < b.score : a.name < b.name;
+  });
+  SearchOptions so;
+  so.top_n = 3;
+  const SearchResult s = SearchCatalog(m, cat, so);
+  ASSERT_EQ(s.best.size(), 3u);
+  for (std::size_t i = 0; i < s.best.size(); ++i) {
+    EXPECT_EQ(Name(s.best[i].combination, lift, pusher), all[i].name) << i;
+    EXPECT_EQ(s.best[i].result.score, all[i].score) << i;
+    EXPECT_EQ(s.best[i].combination.groups[sprint].motor->id, "dc_m_1020");
+  }
+  EXPECT_EQ(s.searched + s.pruned, s.combinations);
 }
 
 // Every group fixed: nothing to choose, refused with the JSON path.
