@@ -223,6 +223,57 @@ TEST_F(JointSearchTest, TwoFreeGroupsAndAFixedOneEqualExhaustiveEvaluation) {
   EXPECT_EQ(s.searched + s.pruned, s.combinations);
 }
 
+// max_endurance with the lift group's loiter stretched (R4's energy budget in G2) on a smaller
+// catalog (3 motors, 2 ESCs, 4 propellers of the small one): optimize == exhaustive evaluate,
+// and the outer bounds are below every feasible score.
+TEST_F(JointSearchTest, MaxEnduranceTwoFreeGroupsEqualExhaustiveEvaluation) {
+  const Catalog small = Catalog::Load((dir_ / "catalog").string());
+  Json doc;
+  doc["motors"] = Json::array();
+  for (const char* id : {"dc_m_1020", "dc_m_18", "dc_m_24"}) doc["motors"].push_back(small.motor(id).json);
+  doc["escs"] = Json::array();
+  for (const char* id : {"dc_e_56", "dc_e_252"}) doc["escs"].push_back(small.esc(id).json);
+  doc["props"] = Json::array();
+  for (const char* id : {"dc_p_372", "dc_p_410", "apc_per3_10x45mr", "apc_per3_15x8e"}) doc["props"].push_back(small.prop(id).json);
+  doc["batteries"] = Json::array({small.battery("dc_b_361").json});
+  fs::create_directories(dir_ / "tiny" / "catalog");
+  std::ofstream(dir_ / "tiny" / "catalog" / "tiny.json") << DumpJson(doc);
+  const Catalog cat = Catalog::Load((dir_ / "tiny" / "catalog").string());
+  Json j = ParseJsonText(kFreeQuadplane, "free");
+  j["objective"] = {{"type", "max_endurance"}, {"segment", "hover"}};
+  const Mission m = ParseMission(j, "endurance");
+  const int lift = m.segments[0].group, pusher = m.segments[1].group;
+  PropGridCache cache;
+  BuildPropGrids(m, cat, &cache.grids, &cache.models);
+  cache.built = true;
+  JointBounds jb(m, cat, cache);
+  auto index_of = [](const auto& list, const auto* x) { return static_cast<int>(x - list.data()); };
+  std::vector<Scored> all;
+  ForEachJoint(cat, m, lift, pusher, [&](const Combination& c, const MissionResult& r) {
+    if (!r.feasible) return;
+    all.push_back({r.score, Name(c, lift, pusher)});
+    const std::size_t o = c.cells == jb.options()[0].cells ? 0 : 1;
+    const char* why = nullptr;
+    EXPECT_LE(jb.TripleBound(index_of(cat.motors(), c.groups[pusher].motor), index_of(cat.escs(), c.groups[pusher].esc),
+                             index_of(cat.props(), c.groups[pusher].prop), o, &why),
+              r.score)
+        << Name(c, lift, pusher);
+  });
+  ASSERT_GE(all.size(), 3u);
+  std::sort(all.begin(), all.end(), [](const Scored& a, const Scored& b) {
+    return a.score != b.score ? a.score < b.score : a.name < b.name;
+  });
+  SearchOptions so;
+  so.top_n = 3;
+  const SearchResult s = SearchCatalog(m, cat, so);
+  ASSERT_EQ(s.best.size(), 3u);
+  for (std::size_t i = 0; i < s.best.size(); ++i) {
+    EXPECT_EQ(Name(s.best[i].combination, lift, pusher), all[i].name) << i;
+    EXPECT_EQ(s.best[i].result.score, all[i].score) << i;
+  }
+  EXPECT_EQ(s.searched + s.pruned, s.combinations);
+}
+
 // Every group fixed: nothing to choose, refused with the JSON path.
 TEST_F(JointSearchTest, EveryGroupFixedIsRefused) {
   const Catalog cat = Catalog::Load((dir_ / "catalog").string());
