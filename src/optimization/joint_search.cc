@@ -335,6 +335,25 @@ double JointBounds::MassFloorKg(int prop, std::size_t si, std::size_t o) {
   return floor_kg;
 }
 
+// Thrust-to-weight (checked on the lift group at full throttle): the full-throttle speed is
+// below the drive's no-load speed at full throttle and the full-charge voltage (eqs 42, 48;
+// zero or the real ESC resistance only lowers it), so, the static thrust rising with speed (M1,
+// the propeller's grid checked), the lift rotors give at most T(omega_nl) each; a choice whose
+// T(omega_nl) is below min_thrust_to_weight x the lightest weight fails the limit whatever else
+// is chosen.
+bool JointBounds::ReachesThrustToWeight(int group, const Drive& drive, int prop, double vehicle_kg,
+                                        std::size_t o) const {
+  const MissionConstraints& k = m_.constraints;
+  const int rotors = LiftRotors(m_);
+  if (!Lifts(group) || !(k.min_thrust_to_weight > 0) || rotors <= 0 || !monotone_[static_cast<std::size_t>(prop)]) {
+    return true;
+  }
+  const double w_nl = drive.NoLoadSpeed(options_[o].v_full, 1.0);
+  if (!(w_nl > 0)) return false;
+  const double t_max = models_[static_cast<std::size_t>(prop)]->Evaluate(w_nl, m_.rho_kg_m3, 0.0).thrust_n;
+  return rotors * t_max >= k.min_thrust_to_weight * vehicle_kg * kStandardGravity;
+}
+
 double JointBounds::LightestSurvivorKg(int group, std::size_t o, double vehicle_kg) {
   const auto& motors = cat_.motors();
   const auto& props = cat_.props();
@@ -364,7 +383,7 @@ double JointBounds::LightestSurvivorKg(int group, std::size_t o, double vehicle_
     for (std::size_t c = 0; c < escs_.classes.size(); ++c) {
       if (escs_.per_option[o][c].empty()) continue;
       const Drive d(mp, ClassParams(escs_.classes[c]));
-      bool ok = true;
+      bool ok = ReachesThrustToWeight(group, d, pi, vehicle_kg, o);
       for (std::size_t k = 0; k < segs.size() && ok; ++k) {
         const std::size_t j = static_cast<std::size_t>(pi) * segs.size() + k;
         if (!done[j]) {
@@ -453,6 +472,7 @@ double JointBounds::MinFreeGroupPower(int group, std::size_t si, std::size_t o, 
     const GroupParts parts{nullptr, nullptr, &props[f.prop]};
     for (const Cand& c : cands) {
       if (lossy_done && c.lossy) continue;
+      if (!ReachesThrustToWeight(group, c.drive, static_cast<int>(f.prop), mass_kg, o)) continue;
       const double tr_max = ThrottleLimit(m.constraints, classes[c.cls].tr_sat);
       const SegmentBound b = SegmentPowerBound(m, si, parts, c.mp, c.drive, tr_max, kInf, *models_[f.prop], bo,
                                                mass_kg, f.rb);
@@ -494,6 +514,10 @@ double JointBounds::OuterBound(const Drive& drive, const GroupParts& parts, doub
   for (std::size_t si : outer_segments_) mass_kg = std::max(mass_kg, MassFloorKg(prop, si, o));  // R7
   if (!(mass_kg < kInf)) {
     *why = "prop_no_forward_flight_data";
+    return kInf;
+  }
+  if (!ReachesThrustToWeight(outer_, drive, prop, mass_kg, o)) {
+    *why = "min_thrust_to_weight";
     return kInf;
   }
   for (std::size_t si : outer_segments_) {

@@ -95,6 +95,7 @@ class JointBounds {
   // The lightest motor + propeller of a free group that survives R0, R1, R3, R7 in every one of
   // its segments with some ESC class at vehicle mass vehicle_kg (kInf: none), kg per rotor.
   double LightestSurvivorKg(int group, std::size_t o, double vehicle_kg);
+  bool ReachesThrustToWeight(int group, const Drive& drive, int prop, double vehicle_kg, std::size_t o) const;
   bool Lifts(int group) const { return group == lift_group_; }
   bool PropAllowed(int group, const PropEntry& p) const;
 

@@ -112,7 +112,10 @@ namespace dynosize {
 //    max_efficiency or a stretched free-airspeed cruise):
 //    - mass: every group at its lightest. A fixed group exactly; a free group h at the lightest
 //      motor + propeller that survives R0, R1, R3, R7 in all of h's segments with some ESC
-//      class at the lightest vehicle found so far (a feasible choice survives them at its true,
+//      class (and, for the lift group, reaches min_thrust_to_weight at its no-load speed at full
+//      throttle and the full-charge voltage: the full-throttle speed is below it, eqs 42, 48, and
+//      the static thrust rises with speed, M1) at the lightest vehicle found so far (a feasible
+//      choice survives them at its true,
 //      heavier mass, so at any lighter one, M1-M3), plus the lightest ESC of the option; two
 //      passes, each keeping it a lower bound. The outer group at its own motor + propeller +
 //      (lightest or its own) ESC. R7 as a mass floor for the outer group: static-only data in
@@ -125,9 +128,11 @@ namespace dynosize {
 //    - a segment of the outer group: the same with the zero-resistance drive of the ESC class
 //      (M2; per pair) or the real ESC (per triple), at the mass grid point at or below the
 //      choice's lightest mass (G1's grid); and R3 (throttle, Irms, PAC, the ESC's current
-//      rating) and R7 (no-load speed) at that point: a choice that fails them is infeasible.
+//      rating), R7 (no-load speed) and the thrust-to-weight rule above at that point: a choice
+//      that fails them is infeasible.
 //    - a segment of another free group: the least of that bound over all its (motor, ESC class,
-//      propeller) choices that survive R0, R1, R3, R7 at the lightest vehicle (each is below the
+//      propeller) choices that survive R0, R1, R3, R7 (and the thrust-to-weight rule) at the
+//      lightest vehicle (each is below the
 //      choice's power at any heavier mass, M3), found without trying every choice: a
 //      propeller's floor rotors*max(Q*omega, P_ideal/max(1, max_figure_of_merit)) bounds every
 //      drive that cannot create energy (PDC >= Pmech, model.md section 10; the scenario's
