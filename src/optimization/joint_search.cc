@@ -39,6 +39,11 @@ long long SaturatingProduct(std::initializer_list<long long> xs) {
   return p;
 }
 
+// x += y, held at the largest long long (counts of three or more free groups).
+void AddCount(long long* x, long long y) {
+  if (__builtin_add_overflow(*x, y, x)) *x = std::numeric_limits<long long>::max();
+}
+
 // Combinations of one free group per battery option: motors x ESCs x propellers.
 long long GroupCombinations(const Catalog& cat) {
   return SaturatingProduct({static_cast<long long>(cat.motors().size()), static_cast<long long>(cat.escs().size()),
@@ -577,7 +582,7 @@ namespace {
 // Appends an inner search's results and counts to *out, keeping the top N.
 void Merge(SearchResult&& r, int top_n, SearchResult* out) {
   out->searched += r.searched;
-  for (const auto& [rule, n] : r.pruned_by) out->pruned_by[rule] += n;
+  for (const auto& [rule, n] : r.pruned_by) AddCount(&out->pruned_by[rule], n);
   out->evaluated_mass_objective.insert(out->evaluated_mass_objective.end(), r.evaluated_mass_objective.begin(),
                                        r.evaluated_mass_objective.end());
   out->candidate_pairs += r.candidate_pairs;
@@ -610,12 +615,12 @@ std::vector<OuterPair> OuterPairs(const Catalog& cat, JointBounds* jb, long long
     if (!cat.motors()[mi].mass_kg) ++out->skipped_without_mass;
     for (std::size_t o = 0; o < jb->options().size(); ++o) {
       if (const char* rule = jb->MotorRule(static_cast<int>(mi), o)) {
-        out->pruned_by[rule] += SaturatingProduct({n_esc, n_prop, block});
+        AddCount(&out->pruned_by[rule], SaturatingProduct({n_esc, n_prop, block}));
         continue;
       }
       for (std::size_t pi = 0; pi < cat.props().size(); ++pi) {
         if (const char* rule = jb->PropRule(static_cast<int>(pi))) {
-          out->pruned_by[rule] += SaturatingProduct({n_esc, block});
+          AddCount(&out->pruned_by[rule], SaturatingProduct({n_esc, block}));
           continue;
         }
         double best = kInf, irms = 0;
@@ -631,7 +636,7 @@ std::vector<OuterPair> OuterPairs(const Catalog& cat, JointBounds* jb, long long
           }
         }
         if (!(best < kInf)) {
-          out->pruned_by[why] += SaturatingProduct({n_esc, block});
+          AddCount(&out->pruned_by[why], SaturatingProduct({n_esc, block}));
           continue;
         }
         pairs.push_back(OuterPair{best, static_cast<int>(mi), static_cast<int>(pi), o});
@@ -672,9 +677,9 @@ SearchResult JointSearch(const Mission& m, const Catalog& cat, const SearchOptio
   const long long n_prop = static_cast<long long>(cat.props().size());
   const long long n_esc = static_cast<long long>(cat.escs().size());
   out.combinations = SaturatingProduct({per_group, block, static_cast<long long>(jb.options().size())});
-  out.pruned_by["esc_voltage"] += SaturatingProduct({jb.escs().voltage_pruned, n_motor, n_prop, block});
+  AddCount(&out.pruned_by["esc_voltage"], SaturatingProduct({jb.escs().voltage_pruned, n_motor, n_prop, block}));
   if (jb.escs().excluded_pruned > 0) {
-    out.pruned_by["catalog_exclude"] += SaturatingProduct({jb.escs().excluded_pruned, n_motor, n_prop, block});
+    AddCount(&out.pruned_by["catalog_exclude"], SaturatingProduct({jb.escs().excluded_pruned, n_motor, n_prop, block}));
   }
   std::vector<OuterPair> pairs = OuterPairs(cat, &jb, block, &out);
   out.candidate_pairs = static_cast<long long>(pairs.size());
@@ -689,7 +694,7 @@ SearchResult JointSearch(const Mission& m, const Catalog& cat, const SearchOptio
     SearchProgress p;
     p.fraction = pairs.empty() ? 1.0 : static_cast<double>(done) / static_cast<double>(pairs.size());
     p.searched = out.searched;
-    for (const auto& [rule, n] : out.pruned_by) p.pruned += n;
+    for (const auto& [rule, n] : out.pruned_by) AddCount(&p.pruned, n);
     p.has_best = !out.best.empty();
     p.best_objective = p.has_best ? out.best.front().result.objective : 0.0;
     opt.progress(p);
@@ -700,8 +705,7 @@ SearchResult JointSearch(const Mission& m, const Catalog& cat, const SearchOptio
     if (i % 64 == 0) progress(i);
     const OuterPair& pr = pairs[i];
     if (!(pr.bound < nth())) {  // G2: every later pair's bound is at least as bad
-      out.pruned_by["objective_bound"] +=
-          SaturatingProduct({static_cast<long long>(pairs.size() - i), n_esc, block});
+      AddCount(&out.pruned_by["objective_bound"], SaturatingProduct({static_cast<long long>(pairs.size() - i), n_esc, block}));
       break;
     }
     // The pair's ESCs: per class the bound with a zero-resistance ESC, then each ESC's own.
@@ -713,14 +717,14 @@ SearchResult JointSearch(const Mission& m, const Catalog& cat, const SearchOptio
       double irms_lb = 0;
       const double cb = jb.PairBound(pr.motor, pr.prop, pr.option, static_cast<int>(c), &why, &irms_lb);
       if (!(cb < nth())) {
-        out.pruned_by[cb < kInf ? "objective_bound" : why] += SaturatingProduct({static_cast<long long>(members.size()), block});
+        AddCount(&out.pruned_by[cb < kInf ? "objective_bound" : why], SaturatingProduct({static_cast<long long>(members.size()), block}));
         continue;
       }
       for (int e : members) {
         const char* w = "objective_bound";
         const double tb = jb.TripleBound(pr.motor, e, pr.prop, pr.option, &w);
         if (!(tb < nth())) {
-          out.pruned_by[tb < kInf ? "objective_bound" : w] += block;
+          AddCount(&out.pruned_by[tb < kInf ? "objective_bound" : w], block);
           continue;
         }
         triples.emplace_back(tb, e);
@@ -729,7 +733,7 @@ SearchResult JointSearch(const Mission& m, const Catalog& cat, const SearchOptio
     std::sort(triples.begin(), triples.end());
     for (const auto& [tb, e] : triples) {
       if (!(tb < nth())) {
-        out.pruned_by["objective_bound"] += block;
+        AddCount(&out.pruned_by["objective_bound"], block);
         continue;
       }
       progress(i);
