@@ -652,6 +652,21 @@ std::vector<OuterPair> OuterPairs(const Catalog& cat, JointBounds* jb, long long
   return pairs;
 }
 
+// m with the outer group fixed to (pair's motor, ESC esc, pair's propeller) and the battery to
+// the pair's option.
+Mission SubMission(const Mission& m, const Catalog& cat, int outer, const OuterPair& pr, int esc,
+                   const JointBounds& jb) {
+  Mission sub = m;
+  PropulsionGroup& g = sub.groups[static_cast<std::size_t>(outer)];
+  g.motor_id = cat.motors()[static_cast<std::size_t>(pr.motor)].id;
+  g.esc_id = cat.escs()[static_cast<std::size_t>(esc)].id;
+  g.prop_id = cat.props()[static_cast<std::size_t>(pr.prop)].id;
+  const BatteryOption& bo = jb.options()[pr.option];
+  sub.battery.ids = {bo.entry->id};
+  sub.battery.cells_min = sub.battery.cells_max = bo.cells;
+  return sub;
+}
+
 }  // namespace
 
 SearchResult JointSearch(const Mission& m, const Catalog& cat, const SearchOptions& opt, double cutoff,
@@ -700,7 +715,13 @@ SearchResult JointSearch(const Mission& m, const Catalog& cat, const SearchOptio
     opt.progress(p);
   };
   const auto& escs = cat.escs();
-  std::vector<std::pair<double, int>> triples;
+  std::vector<std::pair<double, int>> triples, class_triples;
+  // The virtual ESC (below) only with two free groups (the inner search is the one-group search)
+  // and the catalog's ESC values as the ranking flies them (ScenarioEscParams leaves them).
+  const bool virtual_ok = FreeGroupCount(m) == 2 && m.objective.ranking != DataScenario::kPessimistic &&
+                          m.objective.ranking != DataScenario::kOptimistic;
+  Mission relaxed = m;
+  relaxed.constraints.min_hover_throttle = 0.0;
   for (std::size_t i = 0; i < pairs.size(); ++i) {
     if (i % 64 == 0) progress(i);
     const OuterPair& pr = pairs[i];
@@ -720,6 +741,7 @@ SearchResult JointSearch(const Mission& m, const Catalog& cat, const SearchOptio
         AddCount(&out.pruned_by[cb < kInf ? "objective_bound" : why], SaturatingProduct({static_cast<long long>(members.size()), block}));
         continue;
       }
+      class_triples.clear();
       for (int e : members) {
         const char* w = "objective_bound";
         const double tb = jb.TripleBound(pr.motor, e, pr.prop, pr.option, &w);
@@ -727,8 +749,34 @@ SearchResult JointSearch(const Mission& m, const Catalog& cat, const SearchOptio
           AddCount(&out.pruned_by[tb < kInf ? "objective_bound" : w], block);
           continue;
         }
-        triples.emplace_back(tb, e);
+        class_triples.emplace_back(tb, e);
       }
+      if (class_triples.size() >= 2 && virtual_ok) {
+        // R5 for the outer group: the class's virtual ESC (no resistance, the lightest of these
+        // ESCs' mass, no current limit) scores no worse than any of them with every completion
+        // (M2, M3), on the mission without min_hover_throttle (the one limit it may fail when a
+        // real ESC passes). Nothing below the N-th best with it: nothing with them either.
+        EscEntry virt;
+        virt.id = "virtual";
+        virt.params = escs[static_cast<std::size_t>(class_triples.front().second)].params;
+        virt.params.resc_ohm = 0.0;
+        virt.params.max_current_a = kInf;
+        double kg = kInf;
+        for (const auto& t : class_triples) kg = std::min(kg, EscMassKg(escs[static_cast<std::size_t>(t.second)]));
+        virt.mass_kg = kg;
+        std::vector<GroupParts> given(m.groups.size());
+        given[static_cast<std::size_t>(outer)] =
+            GroupParts{&cat.motors()[static_cast<std::size_t>(pr.motor)], &virt, &cat.props()[static_cast<std::size_t>(pr.prop)]};
+        progress(i);
+        const SearchResult r = SearchOneGroup(SubMission(relaxed, cat, outer, pr, class_triples.front().second, jb),
+                                              cat, inner_opt, nth(), cache, &given);
+        out.virtual_evaluations += r.searched + r.virtual_evaluations;
+        if (r.best.empty()) {
+          AddCount(&out.pruned_by["objective_bound"], SaturatingProduct({static_cast<long long>(class_triples.size()), block}));
+          continue;
+        }
+      }
+      triples.insert(triples.end(), class_triples.begin(), class_triples.end());
     }
     std::sort(triples.begin(), triples.end());
     for (const auto& [tb, e] : triples) {
@@ -738,14 +786,7 @@ SearchResult JointSearch(const Mission& m, const Catalog& cat, const SearchOptio
       }
       progress(i);
       // The outer group fixed to this choice, the battery to this option: the inner search.
-      Mission sub = m;
-      PropulsionGroup& g = sub.groups[static_cast<std::size_t>(outer)];
-      g.motor_id = cat.motors()[static_cast<std::size_t>(pr.motor)].id;
-      g.esc_id = escs[static_cast<std::size_t>(e)].id;
-      g.prop_id = cat.props()[static_cast<std::size_t>(pr.prop)].id;
-      const BatteryOption& bo = jb.options()[pr.option];
-      sub.battery.ids = {bo.entry->id};
-      sub.battery.cells_min = sub.battery.cells_max = bo.cells;
+      const Mission sub = SubMission(m, cat, outer, pr, e, jb);
       SearchResult r = FreeGroupCount(sub) > 1 ? JointSearch(sub, cat, inner_opt, nth(), cache)
                                                : SearchOneGroup(sub, cat, inner_opt, nth(), cache);
       Merge(std::move(r), opt.top_n, &out);

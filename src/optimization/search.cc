@@ -705,7 +705,11 @@ void ResolveGroups(SearchContext* ctx) {
   if (!m.groups.empty()) {
     std::vector<int> free;
     for (int g = 0; g < GroupCount(m); ++g) {
-      ctx->fixed_parts.push_back(FixedGroupParts(m, *ctx->catalog, g));
+      // given_parts: the joint search's virtual ESC (G2, as R5's) in place of the catalog entry.
+      const bool given = ctx->given_parts && g < static_cast<int>(ctx->given_parts->size()) &&
+                         (*ctx->given_parts)[static_cast<std::size_t>(g)].motor;
+      ctx->fixed_parts.push_back(given ? (*ctx->given_parts)[static_cast<std::size_t>(g)]
+                                       : FixedGroupParts(m, *ctx->catalog, g));
       if (!m.groups[g].fixed()) {
         free.push_back(g);
         continue;
@@ -1228,11 +1232,13 @@ void BranchAndBound::Run() {
 }  // namespace
 
 SearchResult search_internal::SearchOneGroup(const Mission& m, const Catalog& cat, const SearchOptions& opt,
-                                             double cutoff, PropGridCache* cache) {
+                                             double cutoff, PropGridCache* cache,
+                                             const std::vector<GroupParts>* given_parts) {
   const auto t0 = std::chrono::steady_clock::now();
   if (opt.top_n < 1) throw UsageError("--top " + std::to_string(opt.top_n) + ": must be >= 1");
   SearchResult out;
   SearchContext ctx;
+  ctx.given_parts = given_parts;
   if (cache) {  // stages 0-3 with the caller's propeller grids (they depend on the air and limits only)
     ctx.mission = &m;
     ctx.catalog = &cat;

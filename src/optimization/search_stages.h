@@ -87,6 +87,8 @@ struct SearchContext {
   // mission (fixed_parts by group index, the free one's entry null; empty without groups).
   int free_group = 0;
   std::vector<GroupParts> fixed_parts;
+  // Set before ResolveGroups: parts that replace fixed groups' catalog ids (SearchOneGroup).
+  const std::vector<GroupParts>* given_parts = nullptr;
   double fixed_groups_mass_kg = 0;  // rotors x (motor + ESC + propeller) of the fixed groups
   int free_rotors = 0;              // GroupRotors(mission, free_group)
   // [option][k][segment]: a lower bound of a fixed group's segment's terminal power (its
@@ -184,8 +186,10 @@ struct PropGridCache {
 // Stages 0-5 for a mission with exactly one free group: its exact top N among the results
 // scoring below `cutoff` (kInf: all). The results' objective ranges are not computed
 // (AddObjectiveRange: the caller's). cache (optional): the grids, built on first use.
+// given_parts (optional, by group index): parts used in place of a fixed group's catalog ids
+// where the entry's motor is set (the joint search's virtual ESC; they must outlive the call).
 SearchResult SearchOneGroup(const Mission& m, const Catalog& cat, const SearchOptions& opt, double cutoff,
-                            PropGridCache* cache);
+                            PropGridCache* cache, const std::vector<GroupParts>* given_parts = nullptr);
 
 // Draws candidates in CandidateBefore order from the motor queues (a heap of motors keyed by
 // their next pair), refilling a motor's queue when it runs out.
