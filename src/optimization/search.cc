@@ -143,7 +143,12 @@ namespace dynosize {
 //    outer choice, the groups being coupled only through the mass (a lower bound used) and the
 //    shared pack's energy (R4's budget), so the assembled number bounds the score. Outer pairs
 //    (motor, propeller, option) are taken best bound first and the loop stops at the first
-//    bound not below the N-th best. tests/optimization/joint_search_test.cc checks the bounds
+//    bound not below the N-th best. R5 for the outer group: per pair and ESC class, the inner
+//    search runs first with the class's virtual ESC (no resistance, the lightest mass of the
+//    class's ESCs still in play, no current limit; two free groups, a ranking that flies the
+//    catalog's ESC values) on the mission without min_hover_throttle; every real ESC of the
+//    class scores no better with every completion and is infeasible where it is (M2, M3), so
+//    when that search finds nothing below the N-th best the class is skipped. tests/optimization/joint_search_test.cc checks the bounds
 //    against every feasible combination of a small catalog and the answer against exhaustive
 //    evaluation. Counts: combinations is the product over the free groups of motors x ESCs x
 //    propellers, times the battery options; an outer choice pruned counts all its completions.
