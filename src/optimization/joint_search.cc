@@ -713,7 +713,10 @@ SearchResult JointSearch(const Mission& m, const Catalog& cat, const SearchOptio
     SearchProgress p;
     p.fraction = pairs.empty() ? 1.0 : static_cast<double>(done) / static_cast<double>(pairs.size());
     p.searched = out.searched;
+    // The rules' counts overlap (an ESC over its voltage rating on a pair R0 removes is counted
+    // by both, as in the one-group search): held to what is not yet searched.
     for (const auto& [rule, n] : out.pruned_by) AddCount(&p.pruned, n);
+    p.pruned = std::min(p.pruned, out.combinations - out.searched);
     p.has_best = !out.best.empty();
     p.best_objective = p.has_best ? out.best.front().result.objective : 0.0;
     opt.progress(p);
