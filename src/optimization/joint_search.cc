@@ -287,6 +287,7 @@ JointBounds::JointBounds(const Mission& m, const Catalog& cat, const PropGridCac
     }
     const double mass = total();
     outer_lightest_kg_.push_back(lightest[outer_]);
+    if (free.size() == 2) inner_lightest_kg_.push_back(lightest[free[0] == outer_ ? free[1] : free[0]]);
     mass_min_kg_.push_back(mass);
     std::vector<double> p(n_seg, m.vehicle.avionics_power_w);
     for (std::size_t si = 0; si < n_seg; ++si) {
@@ -308,6 +309,88 @@ JointBounds::JointBounds(const Mission& m, const Catalog& cat, const PropGridCac
   const std::size_t n_cache = options_.size() * n_seg * cat.props().size() * static_cast<std::size_t>(kFixedPowerMasses);
   rotor_cache_.assign(n_cache, RotorBound{});
   rotor_done_.assign(n_cache, 0);
+  if (free.size() == 2 && m.objective.type == ObjectiveType::kMinEnergy) {
+    inner_ = free[0] == outer_ ? free[1] : free[0];
+    for (std::size_t o = 0; o < options_.size(); ++o) frontier_.push_back(InnerFrontier(o));
+  }
+}
+
+// G2's coupled bound (min_energy, two free groups): the inner group's choices as a frontier of
+// (extra mass over its lightest, least energy of its own segments at the vehicle with that mass
+// and the outer group at its lightest), each choice that survives R0, R1, R3, R7 and the
+// thrust-to-weight rule at that vehicle, taken lightest first and kept when its energy is below
+// every lighter one's. Every feasible inner choice has a frontier point no heavier and with no
+// more energy (M3). Choices whose floor (rotors*max(Q*omega, momentum) per segment) reaches the
+// least energy so far are skipped when their drive cannot create energy (SegmentPowerBound).
+std::vector<JointBounds::FrontierPoint> JointBounds::InnerFrontier(std::size_t o) {
+  const auto& motors = cat_.motors();
+  const auto& props = cat_.props();
+  const BatteryOption& bo = options_[o];
+  const double esc_min = std::isfinite(escs_.min_mass_kg[o]) ? escs_.min_mass_kg[o] : 0.0;
+  const int rotors = m_.groups[static_cast<std::size_t>(inner_)].rotors;
+  std::vector<std::size_t> segs;
+  for (std::size_t si = 0; si < m_.segments.size(); ++si) {
+    if (m_.segments[si].group == inner_) segs.push_back(si);
+  }
+  auto t_min = [&](std::size_t si) { return SegmentDurationS(m_.segments[si], m_.segments[si].airspeed_m_s.hi); };
+  std::vector<double> floor_j(props.size(), kInf);  // per propeller at the lightest vehicle
+  for (std::size_t pi = 0; pi < props.size(); ++pi) {
+    if (!PropAllowed(inner_, props[pi])) continue;
+    const bool static_only = models_[pi]->data_kind() != PropDataKind::kTables || props[pi].j_tables.empty();
+    double e = 0;
+    for (std::size_t si : segs) {
+      const RotorBound& rb = OuterRotor(static_cast<int>(pi), si, o, mass_min_kg_[o]);
+      const double p_ideal = rb.omega_rad_s > 0 ? IdealRotorPowerW(rb.thrust_n, props[pi].diameter_m, m_.rho_kg_m3,
+                                                                   static_only ? 0.0 : rb.axial_airspeed_m_s)
+                                                : 0.0;
+      const double w = std::max(rb.torque_nm * rb.omega_rad_s, p_ideal / std::max(1.0, m_.constraints.max_figure_of_merit));
+      e += (m_.vehicle.avionics_power_w + rb.rotors * w) * t_min(si);
+    }
+    floor_j[pi] = e;
+  }
+  std::vector<std::tuple<double, int, int>> by_mass;
+  for (std::size_t mi = 0; mi < motors.size(); ++mi) {
+    if (!motors[mi].mass_kg || !motors[mi].exclude_reason.empty()) continue;
+    for (std::size_t pi = 0; pi < props.size(); ++pi) {
+      if (!std::isfinite(floor_j[pi])) continue;
+      const double kg = rotors * (*motors[mi].mass_kg + PropMassKg(props[pi]) + esc_min);
+      if (kg >= inner_lightest_kg_[o]) by_mass.emplace_back(kg, static_cast<int>(mi), static_cast<int>(pi));
+    }
+  }
+  std::sort(by_mass.begin(), by_mass.end());
+  std::vector<FrontierPoint> front;
+  double e_min = kInf;
+  for (const auto& [kg, mi, pi] : by_mass) {
+    const MotorEntry& mo = motors[static_cast<std::size_t>(mi)];
+    bool excluded = false;
+    const MotorParams mp = ScenarioMotorParams(mo, m_, nullptr, &excluded);
+    if (Lifts(inner_) && (excluded || bo.v_full > MotorMaxVoltageV(mo))) continue;  // R0, R1
+    const double vehicle_kg = mass_min_kg_[o] - inner_lightest_kg_[o] + kg;
+    const GroupParts parts{&mo, nullptr, &props[static_cast<std::size_t>(pi)]};
+    for (std::size_t c = 0; c < escs_.classes.size(); ++c) {
+      if (escs_.per_option[o][c].empty()) continue;
+      const EscClass& cls = escs_.classes[c];
+      if (Lossy(mp, cls.c1, cls.c0) && floor_j[static_cast<std::size_t>(pi)] >= e_min) continue;
+      const Drive d(mp, ClassParams(cls));
+      if (!ReachesThrustToWeight(inner_, d, pi, vehicle_kg, o)) continue;
+      double e = 0;
+      for (std::size_t si : segs) {
+        const RotorBound& rb = OuterRotor(pi, si, o, vehicle_kg);
+        const SegmentBound b = SegmentPowerBound(m_, si, parts, mp, d, ThrottleLimit(m_.constraints, cls.tr_sat), kInf,
+                                                 *models_[static_cast<std::size_t>(pi)], bo, vehicle_kg, rb);
+        if (b.infeasible) {
+          e = kInf;
+          break;
+        }
+        e += b.power_w * t_min(si);
+      }
+      if (e < e_min) {
+        e_min = e;
+        front.push_back(FrontierPoint{kg - inner_lightest_kg_[o], e});
+      }
+    }
+  }
+  return front;
 }
 
 // R7 as a mass floor: static-only data in axial flow V_ax pass the evaluator only at an advance
@@ -520,7 +603,9 @@ double JointBounds::OuterBound(const Drive& drive, const GroupParts& parts, doub
       return kInf;
     }
   }
+  const double raw_kg = mass_kg;
   for (std::size_t si : outer_segments_) mass_kg = std::max(mass_kg, MassFloorKg(prop, si, o));  // R7
+  const double floor_kg = mass_kg;
   if (!(mass_kg < kInf)) {
     *why = "prop_no_forward_flight_data";
     return kInf;
@@ -540,7 +625,36 @@ double JointBounds::OuterBound(const Drive& drive, const GroupParts& parts, doub
     *irms_lb = std::max(*irms_lb, b.irms_lb_a);
     scratch_[si] = b.power_w;
   }
-  return ScoreFromSegmentPowers(m_, scratch_, options_[o]);
+  const double bound = ScoreFromSegmentPowers(m_, scratch_, options_[o]);
+  if (!coupled_ || inner_ < 0) return bound;
+  // The coupled bound (InnerFrontier): per frontier point, the outer group's segments at the
+  // vehicle with that inner mass (and at least the R7 floor), the inner group's energy, the
+  // other segments as above; the least over the points.
+  auto t_min = [&](std::size_t si) { return SegmentDurationS(m_.segments[si], m_.segments[si].airspeed_m_s.hi); };
+  double e_rest = 0;
+  for (std::size_t si = 0; si < m_.segments.size(); ++si) {
+    const int g = m_.segments[si].group;
+    if (g != outer_ && g != inner_) e_rest += scratch_[si] * t_min(si);
+  }
+  double best = kInf;
+  for (const FrontierPoint& f : frontier_[o]) {
+    const double kg = std::max(raw_kg + f.extra_kg, floor_kg);
+    double e = e_rest + f.energy_j;
+    for (std::size_t si : outer_segments_) {
+      const SegmentBound b = SegmentPowerBound(m_, si, parts, mp, drive, tr_max, esc_max_a,
+                                               *models_[static_cast<std::size_t>(prop)], options_[o], kg,
+                                               OuterRotor(prop, si, o, kg));
+      if (b.infeasible) {
+        e = kInf;
+        break;
+      }
+      e += b.power_w * t_min(si);
+    }
+    best = std::min(best, e);
+    if (!(best / 3600.0 > bound)) return bound;  // no better than the plain bound
+  }
+  if (!(best < kInf)) *why = "infeasible_bound";
+  return std::max(bound, best / 3600.0);
 }
 
 double JointBounds::PairBound(int motor, int prop, std::size_t o, int esc_class, const char** why, double* irms_lb) {
@@ -701,6 +815,7 @@ SearchResult JointSearch(const Mission& m, const Catalog& cat, const SearchOptio
     AddCount(&out.pruned_by["catalog_exclude"], SaturatingProduct({jb.escs().excluded_pruned, n_motor, n_prop, block}));
   }
   std::vector<OuterPair> pairs = OuterPairs(cat, &jb, block, &out);
+  jb.set_coupled(true);  // the tighter bound for the pairs taken (G2)
   out.candidate_pairs = static_cast<long long>(pairs.size());
   out.candidate_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   SearchOptions inner_opt = opt;

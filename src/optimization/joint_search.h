@@ -82,6 +82,11 @@ class JointBounds {
   // motor's Irms lower bound over the group's segments (R3's ESC-current rule).
   double PairBound(int motor, int prop, std::size_t o, int esc_class, const char** why, double* irms_lb);
   double TripleBound(int motor, int esc, int prop, std::size_t o, const char** why);
+  // With two free groups and min_energy: tighten PairBound and TripleBound by the coupled bound
+  // (the inner group's frontier of mass and energy; search.cc, G2). Off by default (it costs
+  // more per call): the search turns it on for the pairs it takes.
+  void set_coupled(bool on) { coupled_ = on; }
+  std::size_t frontier_size(std::size_t o) const { return o < frontier_.size() ? frontier_[o].size() : 0; }
   // R0 for the outer group's propeller and motor (the rule's name, or null).
   const char* PropRule(int prop) const;
   const char* MotorRule(int motor, std::size_t o) const;
@@ -90,6 +95,11 @@ class JointBounds {
   double OuterBound(const Drive& drive, const GroupParts& parts, double esc_max_a, double tr_max,
                     int prop, std::size_t o, double mass_kg, const char** why, double* irms_lb);
   const RotorBound& OuterRotor(int prop, std::size_t si, std::size_t o, double mass_kg);
+  struct FrontierPoint {
+    double extra_kg;  // the inner group's mass over its lightest
+    double energy_j;  // the least energy of its segments with that mass, J
+  };
+  std::vector<FrontierPoint> InnerFrontier(std::size_t o);
   double MinFreeGroupPower(int group, std::size_t si, std::size_t o, double mass_kg);
   double MassFloorKg(int prop, std::size_t si, std::size_t o);
   // The lightest motor + propeller of a free group that survives R0, R1, R3, R7 in every one of
@@ -103,6 +113,10 @@ class JointBounds {
   const Catalog& cat_;
   std::vector<const PropModel*> models_;
   int outer_ = 0, lift_group_ = 0;
+  int inner_ = -1;  // the other free group when there are two and the objective is min_energy
+  bool coupled_ = false;
+  std::vector<std::vector<FrontierPoint>> frontier_;  // per option
+  std::vector<double> inner_lightest_kg_;             // per option
   std::vector<BatteryOption> options_;
   EscTable escs_;
   std::vector<double> mass_min_kg_, outer_lightest_kg_;

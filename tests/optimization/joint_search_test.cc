@@ -115,6 +115,8 @@ TEST_F(JointSearchTest, TwoFreeGroupsEqualExhaustiveEvaluation) {
   cache.built = true;
   JointBounds jb(m, cat, cache);
   ASSERT_EQ(jb.outer_group(), pusher) << "the outer group is the one that does not lift";
+  jb.set_coupled(true);  // the bounds below include the coupled one (min_energy)
+  ASSERT_GT(jb.frontier_size(0) + jb.frontier_size(1), 0u);
   auto index_of = [](const auto& list, const auto* x) { return static_cast<int>(x - list.data()); };
   std::vector<Scored> all;
   int checked = 0, lift_checked = 0;
@@ -195,6 +197,7 @@ TEST_F(JointSearchTest, TwoFreeGroupsAndAFixedOneEqualExhaustiveEvaluation) {
   BuildPropGrids(m, cat, &cache.grids, &cache.models);
   cache.built = true;
   JointBounds jb(m, cat, cache);
+  jb.set_coupled(true);
   std::vector<Scored> all;
   int sprint_checked = 0;
   ForEachJoint(cat, m, lift, pusher, [&](const Combination& c, const MissionResult& r) {
