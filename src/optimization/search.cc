@@ -139,6 +139,13 @@ namespace dynosize {
 //      propeller power is at least P_ideal in every scenario, credibility.h), so propellers
 //      are tried in order of their floor until it reaches the least bound found; drives that
 //      could create energy are tried on every propeller.
+//    - coupled (two free groups, min_energy; for the pairs taken): the other free group's
+//      choices that survive those rules at the vehicle with their own mass, lightest first,
+//      give a frontier of (extra mass over its lightest, least energy of its segments); every
+//      feasible choice has a frontier point no heavier and with no more energy, so the least
+//      over the points of (the outer choice's energy at the vehicle with that extra mass, at
+//      least the R7 floor) + (the point's energy) + (the other segments' bounds) is a bound too,
+//      and the larger of the two bounds is used.
 //    Each term is a lower bound of that segment's terminal power for every completion of the
 //    outer choice, the groups being coupled only through the mass (a lower bound used) and the
 //    shared pack's energy (R4's budget), so the assembled number bounds the score. Outer pairs
