@@ -6,6 +6,7 @@
 #include <cstring>
 #include <limits>
 #include <memory>
+#include <stdexcept>
 #include <thread>
 
 #include "battery/battery.h"
@@ -14,6 +15,7 @@
 #include "mission/flight.h"
 #include "model/physics.h"
 #include "optimization/components.h"
+#include "optimization/joint_search.h"
 #include "optimization/search_stages.h"
 
 namespace dynosize {
@@ -85,7 +87,8 @@ namespace dynosize {
 // R6 (propeller data credibility): see the comment at the rule; the hover point's figure of
 //    merit must not exceed the mission's max_figure_of_merit.
 // R7 (static-only propeller data in fast axial flow): see the comment at the rule.
-// G1 (propulsion groups): the search chooses the parts of one group; the others are fixed.
+// G1 (propulsion groups): the search chooses the parts of one group; the others are fixed
+//    (several free groups: G2 below fixes all but one in turn).
 //    Every group's mass is in mass_lb and mass_ub (the fixed groups' exactly), R0-R3, R6, R7
 //    speak of the free group's segments only, and in R4 a fixed group's segment draws at least
 //    its own drive's PDC at the lightest vehicle mass the option allows (its thrust rises with
@@ -97,6 +100,67 @@ namespace dynosize {
 //    Thrust-to-weight and winding temperature: more mass or ESC resistance only lowers the
 //    first and raises the second, so R5 (the virtual ESC is evaluated without the
 //    thrust-to-weight, a relaxation) and the capacity screening stay sound.
+// G2 (several free groups; joint_search.h): each free group picks its own motor, ESC and
+//    propeller. The search fixes one free group at a time: the outer group g (a free group that
+//    does not lift the vehicle, so that the innermost search is the lift group's, where R2-R4
+//    grip) and, per (motor, ESC, propeller) of g and battery option, the search with g fixed to
+//    them and the battery to that option (recursively until one group is free: stages 0-5
+//    above with G1), asked only for results below the N-th best so far (its cutoff: pruning
+//    against a threshold at least the final N-th best is safe, and the merge of the lists is
+//    the top N). An outer choice is searched only when a lower bound of every completion's
+//    score is below that N-th best. The bound, per segment a terminal power that every
+//    completion draws at least at every instant, assembled as in R4 (min_energy: the sum of
+//    power x shortest duration; max_endurance: the energy budget of the largest pack; none for
+//    max_efficiency or a stretched free-airspeed cruise):
+//    - mass: every group at its lightest. A fixed group exactly; a free group h at the lightest
+//      motor + propeller that survives R0, R1, R3, R7 in all of h's segments with some ESC
+//      class (and, for the lift group, reaches min_thrust_to_weight at its no-load speed at full
+//      throttle and the full-charge voltage: the full-throttle speed is below it, eqs 42, 48, and
+//      the static thrust rises with speed, M1) at the lightest vehicle found so far (a feasible
+//      choice survives them at its true,
+//      heavier mass, so at any lighter one, M1-M3), plus the lightest ESC of the option; two
+//      passes, each keeping it a lower bound. The outer group at its own motor + propeller +
+//      (lightest or its own) ESC. R7 as a mass floor for the outer group: static-only data in
+//      axial flow V pass only at J = V/(n*D) <= max_static_advance_ratio, i.e. at a speed with a
+//      static thrust of at least T(n_min) (M1), which needs at least the mass whose segment
+//      thrust is T(n_min) (M3); the bound is read at the larger mass.
+//    - a segment of a fixed group: G1's bound with its own drive (speed and torque at or below
+//      the evaluator's by bisection on the thrust at the segment's axial airspeed, the
+//      scenario's torque, PDC the smaller at the full-charge and cut-off voltage, eq 59).
+//    - a segment of the outer group: the same with the zero-resistance drive of the ESC class
+//      (M2; per pair) or the real ESC (per triple), at the mass grid point at or below the
+//      choice's lightest mass (G1's grid); and R3 (throttle, Irms, PAC, the ESC's current
+//      rating), R7 (no-load speed) and the thrust-to-weight rule above at that point: a choice
+//      that fails them is infeasible.
+//    - a segment of another free group: the least of that bound over all its (motor, ESC class,
+//      propeller) choices that survive R0, R1, R3, R7 (and the thrust-to-weight rule) at the
+//      lightest vehicle (each is below the
+//      choice's power at any heavier mass, M3), found without trying every choice: a
+//      propeller's floor rotors*max(Q*omega, P_ideal/max(1, max_figure_of_merit)) bounds every
+//      drive that cannot create energy (PDC >= Pmech, model.md section 10; the scenario's
+//      propeller power is at least P_ideal in every scenario, credibility.h), so propellers
+//      are tried in order of their floor until it reaches the least bound found; drives that
+//      could create energy are tried on every propeller.
+//    - coupled (two free groups, min_energy; for the pairs taken): the other free group's
+//      choices that survive those rules at the vehicle with their own mass, lightest first,
+//      give a frontier of (extra mass over its lightest, least energy of its segments); every
+//      feasible choice has a frontier point no heavier and with no more energy, so the least
+//      over the points of (the outer choice's energy at the vehicle with that extra mass, at
+//      least the R7 floor) + (the point's energy) + (the other segments' bounds) is a bound too,
+//      and the larger of the two bounds is used.
+//    Each term is a lower bound of that segment's terminal power for every completion of the
+//    outer choice, the groups being coupled only through the mass (a lower bound used) and the
+//    shared pack's energy (R4's budget), so the assembled number bounds the score. Outer pairs
+//    (motor, propeller, option) are taken best bound first and the loop stops at the first
+//    bound not below the N-th best. R5 for the outer group: per pair and ESC class, the inner
+//    search runs first with the class's virtual ESC (no resistance, the lightest mass of the
+//    class's ESCs still in play, no current limit; two free groups, a ranking that flies the
+//    catalog's ESC values) on the mission without min_hover_throttle; every real ESC of the
+//    class scores no better with every completion and is infeasible where it is (M2, M3), so
+//    when that search finds nothing below the N-th best the class is skipped. tests/optimization/joint_search_test.cc checks the bounds
+//    against every feasible combination of a small catalog and the answer against exhaustive
+//    evaluation. Counts: combinations is the product over the free groups of motors x ESCs x
+//    propellers, times the battery options; an outer choice pruned counts all its completions.
 // Everything not pruned is evaluated exactly (MissionEvaluator::Solve): the answer is the
 // true top N over the catalog under (M1)-(M3).
 
@@ -683,7 +747,11 @@ void ResolveGroups(SearchContext* ctx) {
   if (!m.groups.empty()) {
     std::vector<int> free;
     for (int g = 0; g < GroupCount(m); ++g) {
-      ctx->fixed_parts.push_back(FixedGroupParts(m, *ctx->catalog, g));
+      // given_parts: the joint search's virtual ESC (G2, as R5's) in place of the catalog entry.
+      const bool given = ctx->given_parts && g < static_cast<int>(ctx->given_parts->size()) &&
+                         (*ctx->given_parts)[static_cast<std::size_t>(g)].motor;
+      ctx->fixed_parts.push_back(given ? (*ctx->given_parts)[static_cast<std::size_t>(g)]
+                                       : FixedGroupParts(m, *ctx->catalog, g));
       if (!m.groups[g].fixed()) {
         free.push_back(g);
         continue;
@@ -692,13 +760,13 @@ void ResolveGroups(SearchContext* ctx) {
       if (!p.motor->mass_kg) throw DataError("motor '" + p.motor->id + "' has no mass_kg: the mission needs it");
       ctx->fixed_groups_mass_kg += m.groups[g].rotors * (*p.motor->mass_kg + EscMassKg(*p.esc) + PropMassKg(*p.prop));
     }
-    if (free.size() != 1) {
-      std::string names;
-      for (int g : free) names += (names.empty() ? "" : ", ") + m.groups[g].name;
-      throw DataError(m.file + ": $.propulsion: " + std::to_string(free.size()) + " groups without motor/esc/prop" +
-                      (names.empty() ? "" : " (" + names + ")") +
-                      ": optimize chooses the parts of exactly one group; fix the others (a joint search of "
-                      "several groups is not implemented), or use evaluate --pick");
+    if (free.empty()) {
+      throw DataError(m.file + ": $.propulsion: every group has its motor, esc and prop: optimize has nothing to "
+                      "choose; leave a group's parts out, or use evaluate");
+    }
+    if (free.size() > 1) {  // SearchCatalog gives such missions to the joint search (G2) instead
+      throw std::logic_error("ResolveGroups: the one-group stages need exactly one free group, not " +
+                             std::to_string(free.size()));
     }
     ctx->free_group = free.front();
     ctx->fixed_models.resize(m.groups.size());
@@ -720,8 +788,6 @@ void PrepareStages(const Mission& m, const Catalog& cat, SearchContext* ctx) {
   ctx->escs = BuildEscTable(cat, ctx->options);           // stage 2 (R1)
   BuildPropGrids(m, cat, &ctx->grids, &ctx->models);      // stage 3
 }
-
-namespace {
 
 // A wing-borne cruise (lift_to_drag > 0) of a fixed group with a free airspeed in [lo, hi]:
 // a power P_lb with P_lb * SegmentDurationS(hi) <= the segment's energy at every airspeed of
@@ -747,8 +813,6 @@ double FreeCruisePowerLowerBoundW(const Mission& m, const Segment& sg, const Gro
   const double p_ideal = IdealRotorPowerW(ld.thrust_per_rotor_n, parts.prop->diameter_m, m.rho_kg_m3, v);
   return ld.rotors * p_ideal / m.constraints.max_figure_of_merit;
 }
-
-}  // namespace
 
 void FixedGroupPowerBounds(SearchContext* ctx) {
   const Mission& m = *ctx->mission;
@@ -992,9 +1056,11 @@ using namespace search_internal;
 // not pruned scored exactly.
 class BranchAndBound {
  public:
-  BranchAndBound(const SearchContext& ctx, const SearchOptions& opt, MotorHeads heads, SearchResult* out)
+  // cutoff: only results scoring below it are wanted (the joint search's N-th best, G2).
+  BranchAndBound(const SearchContext& ctx, const SearchOptions& opt, MotorHeads heads, SearchResult* out,
+                 double cutoff = kInf)
       : ctx_(ctx), opt_(opt), stream_(ctx, std::move(heads.motors)), n_cands_(static_cast<std::size_t>(heads.pairs)),
-        out_(out), relaxed_(*ctx.mission) {
+        out_(out), relaxed_(*ctx.mission), cutoff_(cutoff) {
     // The virtual ESC (and so the class check) uses the mission without min_hover_throttle: a
     // real ESC's resistance and mass raise the throttle, so that lower limit is the one
     // constraint the virtual ESC may fail when a real one passes (R5). Relaxing it keeps the
@@ -1035,7 +1101,7 @@ class BranchAndBound {
     return i < base_ + ordered_.size() ? &ordered_[i - base_] : nullptr;
   }
   double NthBest() const {
-    return static_cast<int>(out_->best.size()) < opt_.top_n ? kInf : out_->best.back().result.score;
+    return static_cast<int>(out_->best.size()) < opt_.top_n ? cutoff_ : std::min(cutoff_, out_->best.back().result.score);
   }
   void Insert(const Combination& c, MissionResult&& r, double cutoff);
   void Process(const Candidate& cand, std::vector<double> top, Outcome* o) const;
@@ -1049,6 +1115,7 @@ class BranchAndBound {
   std::size_t base_ = 0;
   SearchResult* out_;
   Mission relaxed_;
+  double cutoff_ = kInf;
   std::vector<double> best_cutoffs_;  // parallel to out_->best: the cutoff of each one's Solve
   long long virtual_evals_ = 0;
 };
@@ -1085,7 +1152,9 @@ void BranchAndBound::Process(const Candidate& cand, std::vector<double> top, Out
   const Mission& m = *ctx_.mission;
   const auto& escs = ctx_.catalog->escs();
   const double margin = 1.0 - m.constraints.current_margin;
-  auto threshold_now = [&]() { return static_cast<int>(top.size()) < opt_.top_n ? kInf : top[opt_.top_n - 1]; };
+  auto threshold_now = [&]() {
+    return static_cast<int>(top.size()) < opt_.top_n ? cutoff_ : std::min(cutoff_, top[opt_.top_n - 1]);
+  };
   auto local_prune = [&](const std::string& rule, long long n) { o->pruned[rule] += n; };
   const BatteryOption& bo = ctx_.options[cand.option];
   const PropModel* model = ctx_.models[cand.prop].get();
@@ -1226,14 +1295,27 @@ void BranchAndBound::Run() {
 
 }  // namespace
 
-namespace {
-
-SearchResult SearchExactly(const Mission& m, const Catalog& cat, const SearchOptions& opt) {
+SearchResult search_internal::SearchOneGroup(const Mission& m, const Catalog& cat, const SearchOptions& opt,
+                                             double cutoff, PropGridCache* cache,
+                                             const std::vector<GroupParts>* given_parts) {
   const auto t0 = std::chrono::steady_clock::now();
   if (opt.top_n < 1) throw UsageError("--top " + std::to_string(opt.top_n) + ": must be >= 1");
   SearchResult out;
   SearchContext ctx;
-  PrepareStages(m, cat, &ctx);  // stages 0-3
+  ctx.given_parts = given_parts;
+  if (cache) {  // stages 0-3 with the caller's propeller grids (they depend on the air and limits only)
+    ctx.mission = &m;
+    ctx.catalog = &cat;
+    ResolveGroups(&ctx);
+    ctx.options = BatteryOptions(m, cat);
+    ctx.escs = BuildEscTable(cat, ctx.options);
+    if (!cache->built) BuildPropGrids(m, cat, &cache->grids, &cache->models);
+    cache->built = true;
+    ctx.grids = std::move(cache->grids);
+    ctx.models = std::move(cache->models);
+  } else {
+    PrepareStages(m, cat, &ctx);  // stages 0-3
+  }
   FixedGroupPowerBounds(&ctx);
   out.combinations = static_cast<long long>(cat.motors().size()) * static_cast<long long>(cat.escs().size()) *
                      static_cast<long long>(cat.props().size()) * static_cast<long long>(ctx.options.size());
@@ -1246,9 +1328,17 @@ SearchResult SearchExactly(const Mission& m, const Catalog& cat, const SearchOpt
   out.skipped_without_mass = heads.skipped_without_mass;
   out.candidate_pairs = heads.pairs;
   out.candidate_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  BranchAndBound bb(ctx, opt, std::move(heads), &out);  // stage 5
-  bb.Run();
-  bb.Explain();
+  {
+    BranchAndBound bb(ctx, opt, std::move(heads), &out, cutoff);  // stage 5
+    bb.Run();
+    bb.Explain();
+    out.virtual_evaluations = bb.virtual_evaluations();
+    out.candidate_refills = bb.refills();
+  }
+  if (cache) {
+    cache->grids = std::move(ctx.grids);
+    cache->models = std::move(ctx.models);
+  }
   if (opt.progress) {
     SearchProgress p;
     p.fraction = 1.0;
@@ -1258,11 +1348,18 @@ SearchResult SearchExactly(const Mission& m, const Catalog& cat, const SearchOpt
     p.best_objective = p.has_best ? out.best.front().result.objective : 0.0;
     opt.progress(p);
   }
-  out.virtual_evaluations = bb.virtual_evaluations();
-  out.candidate_refills = bb.refills();
-  for (RankedCombination& b : out.best) AddObjectiveRange(m, b.combination, &b.result);  // credibility.h
   out.pruned = out.combinations - out.searched;
   out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return out;
+}
+
+namespace {
+
+// One free group: stages 0-5 (R0-R8, G1); several: the joint search (G2, joint_search.h).
+SearchResult SearchExactly(const Mission& m, const Catalog& cat, const SearchOptions& opt) {
+  SearchResult out = FreeGroupCount(m) > 1 ? search_internal::JointSearch(m, cat, opt)
+                                           : search_internal::SearchOneGroup(m, cat, opt, kInf, nullptr);
+  for (RankedCombination& b : out.best) AddObjectiveRange(m, b.combination, &b.result);  // credibility.h
   return out;
 }
 

@@ -1,7 +1,8 @@
 // The catalog search of issue #6: the best N combinations (motor, ESC, propeller, battery cell,
 // cells in series) for a mission, exactly as MissionEvaluator::Solve scores each, found by
 // branch and bound with pruning rules that can only remove combinations that are infeasible or
-// cannot enter the top N. The proofs are in search.cc, next to each rule; they rest on the
+// cannot enter the top N. With several free propulsion groups each picks its own motor, ESC and
+// propeller (the joint search, joint_search.h, rule G2). The proofs are in search.cc, next to each rule; they rest on the
 // monotonicity of the model (stated there) and are checked end to end by
 // tests/optimization/search_test.cc against exhaustive evaluation.
 #pragma once
@@ -49,7 +50,9 @@ struct SearchResult {
   std::string relaxed_constraint;  // "" or "min_thrust_to_weight"
   // Every combination evaluated exactly: propulsion mass and objective (for the Pareto front).
   std::vector<std::pair<double, double>> evaluated_mass_objective;
-  long long combinations = 0;  // motors x ESCs x propellers x (battery, cells) options
+  // motors x ESCs x propellers (to the power of the free groups' count) x (battery, cells)
+  // options; saturates at the largest long long (three or more free groups on a large catalog).
+  long long combinations = 0;
   long long searched = 0;      // evaluated exactly
   long long pruned = 0;        // combinations - searched
   std::map<std::string, long long> pruned_by;  // rule -> combinations it removed

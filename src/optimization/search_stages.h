@@ -87,6 +87,8 @@ struct SearchContext {
   // mission (fixed_parts by group index, the free one's entry null; empty without groups).
   int free_group = 0;
   std::vector<GroupParts> fixed_parts;
+  // Set before ResolveGroups: parts that replace fixed groups' catalog ids (SearchOneGroup).
+  const std::vector<GroupParts>* given_parts = nullptr;
   double fixed_groups_mass_kg = 0;  // rotors x (motor + ESC + propeller) of the fixed groups
   int free_rotors = 0;              // GroupRotors(mission, free_group)
   // [option][k][segment]: a lower bound of a fixed group's segment's terminal power (its
@@ -111,7 +113,8 @@ struct CandidateList {
   long long skipped_without_mass = 0;
 };
 // Sets the group fields of ctx (ctx->mission and ->catalog set). DataError (the JSON path) when
-// a fixed part is not in the catalog or when not exactly one group is free.
+// a fixed part is not in the catalog or when every group is fixed; std::logic_error when more
+// than one is free (SearchCatalog gives those to the joint search, joint_search.h).
 void ResolveGroups(SearchContext* ctx);
 
 // Stages 0-3 into *ctx: mission and catalog, ResolveGroups, BatteryOptions, BuildEscTable and
@@ -124,6 +127,13 @@ void PrepareStages(const Mission& m, const Catalog& cat, SearchContext* ctx);
 // max_endurance hover stretch, no capacity range, a non-monotone propeller grid).
 double CapacityPiecesBound(const SearchContext& ctx, int motor, int prop, int option, int esc_class,
                            double esc_mass_kg);
+
+// A wing-borne cruise of a group with a free airspeed: a power P_lb (W, avionics not
+// included) with P_lb * SegmentDurationS(sg, hi) <= the segment's energy at every airspeed of
+// its range, for the group's parts flying at vehicle mass >= mass_kg (search.cc; 0 when no
+// bound applies). Only the ESC's C1, C0 are read (its class).
+double FreeCruisePowerLowerBoundW(const Mission& m, const Segment& sg, const GroupParts& parts,
+                                  const PropModel& model, double mass_kg);
 
 // Fills ctx->fixed_power_lb_w (after stages 1-3 and ResolveGroups).
 inline constexpr int kFixedPowerMasses = 64;
@@ -164,6 +174,22 @@ struct MotorHeads {
 MotorHeads BuildMotorHeads(const SearchContext& ctx, int threads, std::size_t first_pairs = kFirstPairsPerMotor);
 // The surviving pairs of one motor (appended to *out), as BuildCandidates lists them.
 void MotorPairs(const SearchContext& ctx, int motor, std::vector<Candidate>* out);
+
+// Propeller grids and models kept between the one-group searches of the joint search (they
+// depend on the mission's air, ranking and figure-of-merit limit only, which its sub-missions
+// share).
+struct PropGridCache {
+  bool built = false;
+  std::vector<PropGrid> grids;
+  std::vector<std::unique_ptr<PropModel>> models;
+};
+// Stages 0-5 for a mission with exactly one free group: its exact top N among the results
+// scoring below `cutoff` (kInf: all). The results' objective ranges are not computed
+// (AddObjectiveRange: the caller's). cache (optional): the grids, built on first use.
+// given_parts (optional, by group index): parts used in place of a fixed group's catalog ids
+// where the entry's motor is set (the joint search's virtual ESC; they must outlive the call).
+SearchResult SearchOneGroup(const Mission& m, const Catalog& cat, const SearchOptions& opt, double cutoff,
+                            PropGridCache* cache, const std::vector<GroupParts>* given_parts = nullptr);
 
 // Draws candidates in CandidateBefore order from the motor queues (a heap of motors keyed by
 // their next pair), refilling a motor's queue when it runs out.

@@ -216,10 +216,7 @@ TEST_F(SearchTest, PropulsionGroupsEqualExhaustiveEvaluation) {
     EXPECT_EQ(s.best[i].combination.Parts(pusher).motor, pick.motor);
   }
   EXPECT_EQ(s.searched + s.pruned, s.combinations);
-  // Two free groups: refused with the JSON path (a joint search is not implemented).
-  Json both = j;
-  both["propulsion"]["pusher"] = {{"rotors", 1}};
-  EXPECT_THROW(SearchCatalog(ParseMission(both, "both"), cat, so), DataError);
+  // Two free groups: the joint search (G2), tested in joint_search_test.cc.
   // A fixed id not in the catalog: the JSON path and the id.
   Json bad = j;
   bad["propulsion"]["pusher"]["motor"] = "no_such_motor";

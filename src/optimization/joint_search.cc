@@ -1,0 +1,924 @@
+#include "optimization/joint_search.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <initializer_list>
+#include <limits>
+#include <memory>
+#include <stdexcept>
+#include <tuple>
+#include <utility>
+#include <vector>
+
+#include "common/error.h"
+#include "common/units.h"
+#include "model/physics.h"
+#include "optimization/components.h"
+#include "optimization/credibility.h"
+
+namespace dynosize {
+
+// The rule (G2) and its proof are in search.cc's header comment, with R0-R8 and G1.
+
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+constexpr double kMassCeilingKg = 1e5;  // MassFloorKg's search range: beyond any vehicle
+constexpr double kRotorCeilingRadS = 1e5;  // RotorLowerBound's: ~1e6 rpm, beyond any motor
+
+// Neither the motor nor an ESC of these C1, C0 can create energy (model.md section 10; the
+// inequalities of model/physics.h without its rounding allowance, as in ScoreLowerBound): then
+// PDC >= Pmech at every point.
+bool Lossy(const MotorParams& mp, double c1, double c0) {
+  return mp.kt_nm_per_a <= MaxKtPerKe(mp.type) * mp.ke_v_s_per_rad && mp.rm_ohm >= 0 && mp.io_a >= 0 &&
+         mp.io1_a_s_per_rad >= 0 && c0 >= 0 && c1 + c0 >= IdealIdcPerIrmsPerThrottle(mp.type);
+}
+
+long long SaturatingProduct(std::initializer_list<long long> xs) {
+  long long p = 1;
+  for (long long x : xs) {
+    if (__builtin_mul_overflow(p, x, &p)) return std::numeric_limits<long long>::max();
+  }
+  return p;
+}
+
+// x += y, held at the largest long long (counts of three or more free groups).
+void AddCount(long long* x, long long y) {
+  if (__builtin_add_overflow(*x, y, x)) *x = std::numeric_limits<long long>::max();
+}
+
+// Combinations of one free group per battery option: motors x ESCs x propellers.
+long long GroupCombinations(const Catalog& cat) {
+  return SaturatingProduct({static_cast<long long>(cat.motors().size()), static_cast<long long>(cat.escs().size()),
+                            static_cast<long long>(cat.props().size())});
+}
+
+EscParams ClassParams(const search_internal::EscClass& c) {
+  EscParams e;
+  e.c1 = c.c1;
+  e.c0 = c.c0;
+  e.tr_sat = c.tr_sat;
+  e.sat_slope = c.sat_slope;
+  e.resc_ohm = 0.0;  // M2: resistance only adds
+  return e;
+}
+
+double ThrottleLimit(const MissionConstraints& k, double tr_sat) {
+  const double t = std::min(k.max_throttle, 1.0);
+  return k.allow_esc_saturation ? t : std::min(t, tr_sat);
+}
+
+}  // namespace
+
+int FreeGroupCount(const Mission& m) {
+  if (m.groups.empty()) return 1;
+  int n = 0;
+  for (const PropulsionGroup& g : m.groups) n += g.fixed() ? 0 : 1;
+  return n;
+}
+
+namespace search_internal {
+
+RotorBound RotorLowerBound(const Mission& m, const Segment& sg, const PropEntry& prop, const PropModel& model,
+                           double mass_kg) {
+  RotorBound rb;
+  const RotorLoad ld = SegmentRotorLoad(m, sg, mass_kg, sg.airspeed_m_s.lo);
+  rb.rotors = ld.rotors;
+  if (sg.type == SegmentType::kShaft || (sg.type == SegmentType::kCruise && sg.airspeed_m_s.free())) return rb;
+  const double v = ld.axial_airspeed_m_s;
+  // Bisection keeping thrust(lo) <= T (M1: thrust rises with speed), so lo is at or below the
+  // evaluator's root; a propeller that cannot give T below the ceiling turns faster (and R3
+  // then finds the throttle above one).
+  double lo = 0.0, hi = kRotorCeilingRadS;
+  if (model.Evaluate(hi, m.rho_kg_m3, v).thrust_n < ld.thrust_per_rotor_n) {
+    lo = hi;
+  } else {
+    for (int i = 0; i < 60; ++i) {
+      const double mid = 0.5 * (lo + hi);
+      (model.Evaluate(mid, m.rho_kg_m3, v).thrust_n <= ld.thrust_per_rotor_n ? lo : hi) = mid;
+    }
+  }
+  if (!(lo > 0)) return rb;
+  rb.thrust_n = ld.thrust_per_rotor_n;
+  rb.axial_airspeed_m_s = v;
+  PropEvaluation ev = model.Evaluate(lo, m.rho_kg_m3, v);
+  // The scenario's load, as the evaluator flies it (it keeps rising with speed: M1).
+  AdjustPropEvaluation(PropAdjustmentFor(prop, m.objective.ranking), prop.diameter_m, &ev);
+  if (!(ev.torque_nm > 0)) return rb;
+  rb.omega_rad_s = lo;
+  rb.torque_nm = ev.torque_nm;
+  return rb;
+}
+
+SegmentBound SegmentPowerBound(const Mission& m, std::size_t si, const GroupParts& parts, const MotorParams& mp,
+                               const Drive& drive, double tr_max, double esc_max_current_a, const PropModel& model,
+                               const BatteryOption& bo, double mass_kg, const RotorBound& rb) {
+  const Segment& sg = m.segments[si];
+  const MissionConstraints& k = m.constraints;
+  SegmentBound b;
+  b.power_w = m.vehicle.avionics_power_w;
+  if (sg.type == SegmentType::kShaft) return b;
+  if (sg.type == SegmentType::kCruise && sg.airspeed_m_s.free()) {
+    b.power_w += FreeCruisePowerLowerBoundW(m, sg, parts, model, mass_kg);
+    return b;
+  }
+  if (!(rb.omega_rad_s > 0)) return b;
+  // R3 at the bound point: the throttle, Irms and PAC of every real choice are at least these
+  // (M2: zero or the real ESC resistance, the highest voltage the pack can have).
+  const OperatingPoint hi = drive.Inverse(bo.v_full, rb.torque_nm, rb.omega_rad_s);
+  const double margin = 1.0 - k.current_margin;
+  b.irms_lb_a = hi.irms_a;
+  if (hi.throttle > tr_max) {
+    b.infeasible = "throttle";
+  } else if (hi.irms_a > mp.max_current_a * margin) {
+    b.infeasible = "motor_current";
+  } else if (k.enforce_motor_power && hi.pac_w > mp.max_power_w) {
+    b.infeasible = "motor_power";
+  } else if (hi.irms_a > esc_max_current_a * margin) {
+    b.infeasible = "esc_current";
+  }
+  // R7: static-only data in axial flow. The shaft turns no faster than the drive's no-load
+  // speed at full throttle and the full-charge voltage (M2), so J >= V_ax/(n_max*D); above the
+  // mission's max_static_advance_ratio the evaluator fails prop_no_forward_flight_data.
+  const bool static_only = model.data_kind() != PropDataKind::kTables || parts.prop->j_tables.empty();
+  if (!b.infeasible && static_only && rb.axial_airspeed_m_s > 0) {
+    const double n_max = drive.NoLoadSpeed(bo.v_full, 1.0) / (2.0 * kPi);
+    if (n_max > 0 && rb.axial_airspeed_m_s / (n_max * parts.prop->diameter_m) > k.max_static_advance_ratio) {
+      b.infeasible = "prop_no_forward_flight_data";
+    }
+  }
+  // PDC is linear in VDC (eqs 57, 59): the smaller of the two ends bounds every voltage between.
+  const OperatingPoint lo = drive.Inverse(bo.v_cut, rb.torque_nm, rb.omega_rad_s);
+  double pdc = rb.rotors * std::max(0.0, std::min(hi.pdc_w, lo.pdc_w));
+  // Momentum theory: a feasible point's propeller data give P >= P_ideal/max_figure_of_merit
+  // (the evaluator's prop_figure_of_merit, V_ax the inflow unless the data are static-only);
+  // the scenario's power is at least P_ideal (credibility.h: raised, or capped at FM 1), so
+  // P_ideal/max(1, max_figure_of_merit) bounds it in every scenario; and PDC >= Pmech when
+  // neither the motor nor the ESC can create energy (model.md section 10).
+  if (Lossy(drive.motor(), drive.esc().c1, drive.esc().c0)) {
+    const double p_ideal = IdealRotorPowerW(rb.thrust_n, parts.prop->diameter_m, m.rho_kg_m3,
+                                            static_only ? 0.0 : rb.axial_airspeed_m_s);
+    pdc = std::max(pdc, rb.rotors * p_ideal / std::max(1.0, k.max_figure_of_merit));
+  }
+  b.power_w += pdc;
+  return b;
+}
+
+double ScoreFromSegmentPowers(const Mission& m, const std::vector<double>& p_lb_w, const BatteryOption& bo) {
+  auto t_min = [](const Segment& sg) { return SegmentDurationS(sg, sg.airspeed_m_s.hi); };
+  if (m.objective.type == ObjectiveType::kMinEnergy) {
+    double e = 0;
+    for (std::size_t si = 0; si < m.segments.size(); ++si) e += p_lb_w[si] * t_min(m.segments[si]);
+    return e / 3600.0;
+  }
+  if (m.objective.type != ObjectiveType::kMaxEndurance || m.objective.segment_index < 0) return -kInf;
+  const std::size_t ist = static_cast<std::size_t>(m.objective.segment_index);
+  const Segment& st = m.segments[ist];
+  // A stretched segment needs a power bound that holds at every instant: constant thrust.
+  if (st.type == SegmentType::kCruise && st.airspeed_m_s.free()) return -kInf;
+  double e_other = 0;
+  for (std::size_t si = 0; si < m.segments.size(); ++si) {
+    if (si != ist) e_other += p_lb_w[si] * t_min(m.segments[si]);
+  }
+  if (!(p_lb_w[ist] > 0)) return -kInf;
+  const double e_max = bo.ocv_integral_v * AhToCoulomb(bo.capacity_hi_ah);
+  return -(LongestFixedDurationS(m) + std::max(0.0, e_max - e_other) / p_lb_w[ist]);
+}
+
+bool JointBounds::PropAllowed(int group, const PropEntry& p) const {
+  const std::optional<double> d_max = GroupMaxPropDiameterM(m_, group);
+  if (d_max && p.diameter_m > *d_max) return false;
+  if (!p.exclude_reason.empty()) return false;
+  return !(Lifts(group) && FoldingPropRefused(p, m_));
+}
+
+const char* JointBounds::PropRule(int prop) const {
+  const PropEntry& p = cat_.props()[static_cast<std::size_t>(prop)];
+  const std::optional<double> d_max = GroupMaxPropDiameterM(m_, outer_);
+  if (d_max && p.diameter_m > *d_max) return "prop_diameter";
+  if (!p.exclude_reason.empty()) return "catalog_exclude";
+  if (Lifts(outer_) && FoldingPropRefused(p, m_)) return "prop_folding";
+  return nullptr;
+}
+
+const char* JointBounds::MotorRule(int motor, std::size_t o) const {
+  const MotorEntry& mo = cat_.motors()[static_cast<std::size_t>(motor)];
+  if (!mo.exclude_reason.empty()) return "catalog_exclude";
+  if (!mo.mass_kg) return "motor_without_mass";
+  if (Lifts(outer_)) {
+    bool excluded = false;
+    ScenarioMotorParams(mo, m_, nullptr, &excluded);
+    if (excluded) return "motor_unrated";
+    if (options_[o].v_full > MotorMaxVoltageV(mo)) return "motor_voltage";
+  }
+  return nullptr;
+}
+
+JointBounds::JointBounds(const Mission& m, const Catalog& cat, const PropGridCache& cache) : m_(m), cat_(cat) {
+  for (const auto& p : cache.models) models_.push_back(p.get());
+  lift_group_ = std::max(0, LiftGroup(m));
+  // The outer group: a free group that does not lift the vehicle, so that the innermost search
+  // is the lift group's, whose hover gives R2-R4 their grip.
+  std::vector<int> free;
+  for (int g = 0; g < GroupCount(m); ++g) {
+    if (!m.groups[g].fixed()) free.push_back(g);
+  }
+  if (free.size() < 2) throw std::logic_error("JointBounds: needs two or more free groups");
+  outer_ = free.front() == lift_group_ ? free[1] : free.front();
+  options_ = BatteryOptions(m, cat);
+  escs_ = BuildEscTable(cat, options_);
+  const std::size_t n_seg = m.segments.size();
+  for (std::size_t si = 0; si < n_seg; ++si) {
+    if (m.segments[si].group == outer_) outer_segments_.push_back(si);
+  }
+  // Every group's lightest: fixed groups exactly, free ones from the catalog's lightest motor,
+  // propeller (R0 for the group) and ESC (R1 for the option), then LightestSurvivorKg.
+  double motor_min = kInf;
+  for (const MotorEntry& mo : cat.motors()) {
+    if (mo.mass_kg && mo.exclude_reason.empty()) motor_min = std::min(motor_min, *mo.mass_kg);
+  }
+  if (!std::isfinite(motor_min)) motor_min = 0.0;
+  std::vector<double> prop_min(m.groups.size(), kInf);
+  for (int g : free) {
+    for (const PropEntry& p : cat.props()) {
+      if (PropAllowed(g, p)) prop_min[g] = std::min(prop_min[g], PropMassKg(p));
+    }
+    if (!std::isfinite(prop_min[g])) prop_min[g] = 0.0;
+  }
+  double fixed_kg = 0;
+  std::vector<GroupParts> fixed(m.groups.size());
+  for (int g = 0; g < GroupCount(m); ++g) {
+    if (!m.groups[g].fixed()) continue;
+    fixed[g] = FixedGroupParts(m, cat, g);
+    if (!fixed[g].motor->mass_kg) throw DataError("motor '" + fixed[g].motor->id + "' has no mass_kg: the mission needs it");
+    fixed_kg += m.groups[g].rotors * (*fixed[g].motor->mass_kg + EscMassKg(*fixed[g].esc) + PropMassKg(*fixed[g].prop));
+  }
+  std::vector<std::unique_ptr<PropModel>> fixed_models(m.groups.size());
+  for (int g = 0; g < GroupCount(m); ++g) {
+    if (m.groups[g].fixed()) fixed_models[g] = std::make_unique<PropModel>(*fixed[g].prop);
+  }
+  for (const PropGrid& g : cache.grids) monotone_.push_back(g.monotone);
+  mass_floor_kg_.assign(options_.size() * n_seg * cat.props().size(), -1.0);
+  for (std::size_t o = 0; o < options_.size(); ++o) {
+    const BatteryOption& bo = options_[o];
+    const double esc_min = std::isfinite(escs_.min_mass_kg[o]) ? escs_.min_mass_kg[o] : 0.0;
+    const double base = m.vehicle.mass_kg + bo.mass_lo_kg + fixed_kg;
+    std::vector<double> lightest(m.groups.size(), 0.0);
+    for (int g : free) {
+      lightest[g] = m.groups[g].rotors * (motor_min + prop_min[g] + esc_min);
+    }
+    // The lightest choice of each free group that can fly its own segments (R0, R1, R3, R7 at
+    // the lightest vehicle): a feasible choice survives them at its true mass, so at any lighter
+    // one (M1-M3), and so at the lightest vehicle found so far; each pass can only raise the
+    // lightest vehicle, and every pass keeps it a lower bound.
+    auto total = [&]() {
+      double x = base;
+      for (int g : free) x += lightest[g];
+      return x;
+    };
+    for (int pass = 0; pass < 2; ++pass) {
+      const double vehicle_kg = total();
+      for (int g : free) {
+        const double parts_kg = LightestSurvivorKg(g, o, vehicle_kg);
+        lightest[g] = std::max(lightest[g], std::isfinite(parts_kg) ? m.groups[g].rotors * (parts_kg + esc_min)
+                                                                   : lightest[g]);
+      }
+    }
+    const double mass = total();
+    outer_lightest_kg_.push_back(lightest[outer_]);
+    if (free.size() == 2) inner_lightest_kg_.push_back(lightest[free[0] == outer_ ? free[1] : free[0]]);
+    mass_min_kg_.push_back(mass);
+    std::vector<double> p(n_seg, m.vehicle.avionics_power_w);
+    for (std::size_t si = 0; si < n_seg; ++si) {
+      const Segment& sg = m.segments[si];
+      if (sg.group == outer_) continue;
+      if (m.groups[sg.group].fixed()) {  // G1's bound with the group's own drive
+        const GroupParts& parts = fixed[sg.group];
+        const MotorParams mp = ScenarioMotorParams(*parts.motor, m);
+        const Drive d(mp, ScenarioEscParams(*parts.esc, m.objective.ranking));
+        const RotorBound rb = RotorLowerBound(m, sg, *parts.prop, *fixed_models[sg.group], mass);
+        // Feasibility is the evaluator's to judge for a fixed group (no rating check here).
+        p[si] = SegmentPowerBound(m, si, parts, mp, d, kInf, kInf, *fixed_models[sg.group], bo, mass, rb).power_w;
+        continue;
+      }
+      p[si] = MinFreeGroupPower(sg.group, si, o, mass);
+    }
+    other_power_w_.push_back(std::move(p));
+  }
+  const std::size_t n_cache = options_.size() * n_seg * cat.props().size() * static_cast<std::size_t>(kFixedPowerMasses);
+  rotor_cache_.assign(n_cache, RotorBound{});
+  rotor_done_.assign(n_cache, 0);
+  if (free.size() == 2 && m.objective.type == ObjectiveType::kMinEnergy) {
+    inner_ = free[0] == outer_ ? free[1] : free[0];
+    for (std::size_t o = 0; o < options_.size(); ++o) frontier_.push_back(InnerFrontier(o));
+  }
+}
+
+// G2's coupled bound (min_energy, two free groups): the inner group's choices as a frontier of
+// (extra mass over its lightest, least energy of its own segments at the vehicle with that mass
+// and the outer group at its lightest), each choice that survives R0, R1, R3, R7 and the
+// thrust-to-weight rule at that vehicle, taken lightest first and kept when its energy is below
+// every lighter one's. Every feasible inner choice has a frontier point no heavier and with no
+// more energy (M3). Choices whose floor (rotors*max(Q*omega, momentum) per segment) reaches the
+// least energy so far are skipped when their drive cannot create energy (SegmentPowerBound).
+std::vector<JointBounds::FrontierPoint> JointBounds::InnerFrontier(std::size_t o) {
+  const auto& motors = cat_.motors();
+  const auto& props = cat_.props();
+  const BatteryOption& bo = options_[o];
+  const double esc_min = std::isfinite(escs_.min_mass_kg[o]) ? escs_.min_mass_kg[o] : 0.0;
+  const int rotors = m_.groups[static_cast<std::size_t>(inner_)].rotors;
+  std::vector<std::size_t> segs;
+  for (std::size_t si = 0; si < m_.segments.size(); ++si) {
+    if (m_.segments[si].group == inner_) segs.push_back(si);
+  }
+  auto t_min = [&](std::size_t si) { return SegmentDurationS(m_.segments[si], m_.segments[si].airspeed_m_s.hi); };
+  std::vector<double> floor_j(props.size(), kInf);  // per propeller at the lightest vehicle
+  for (std::size_t pi = 0; pi < props.size(); ++pi) {
+    if (!PropAllowed(inner_, props[pi])) continue;
+    const bool static_only = models_[pi]->data_kind() != PropDataKind::kTables || props[pi].j_tables.empty();
+    double e = 0;
+    for (std::size_t si : segs) {
+      const RotorBound& rb = OuterRotor(static_cast<int>(pi), si, o, mass_min_kg_[o]);
+      const double p_ideal = rb.omega_rad_s > 0 ? IdealRotorPowerW(rb.thrust_n, props[pi].diameter_m, m_.rho_kg_m3,
+                                                                   static_only ? 0.0 : rb.axial_airspeed_m_s)
+                                                : 0.0;
+      const double w = std::max(rb.torque_nm * rb.omega_rad_s, p_ideal / std::max(1.0, m_.constraints.max_figure_of_merit));
+      e += (m_.vehicle.avionics_power_w + rb.rotors * w) * t_min(si);
+    }
+    floor_j[pi] = e;
+  }
+  std::vector<std::tuple<double, int, int>> by_mass;
+  for (std::size_t mi = 0; mi < motors.size(); ++mi) {
+    if (!motors[mi].mass_kg || !motors[mi].exclude_reason.empty()) continue;
+    for (std::size_t pi = 0; pi < props.size(); ++pi) {
+      if (!std::isfinite(floor_j[pi])) continue;
+      const double kg = rotors * (*motors[mi].mass_kg + PropMassKg(props[pi]) + esc_min);
+      if (kg >= inner_lightest_kg_[o]) by_mass.emplace_back(kg, static_cast<int>(mi), static_cast<int>(pi));
+    }
+  }
+  std::sort(by_mass.begin(), by_mass.end());
+  std::vector<FrontierPoint> front;
+  double e_min = kInf;
+  for (const auto& [kg, mi, pi] : by_mass) {
+    const MotorEntry& mo = motors[static_cast<std::size_t>(mi)];
+    bool excluded = false;
+    const MotorParams mp = ScenarioMotorParams(mo, m_, nullptr, &excluded);
+    if (Lifts(inner_) && (excluded || bo.v_full > MotorMaxVoltageV(mo))) continue;  // R0, R1
+    const double vehicle_kg = mass_min_kg_[o] - inner_lightest_kg_[o] + kg;
+    const GroupParts parts{&mo, nullptr, &props[static_cast<std::size_t>(pi)]};
+    for (std::size_t c = 0; c < escs_.classes.size(); ++c) {
+      if (escs_.per_option[o][c].empty()) continue;
+      const EscClass& cls = escs_.classes[c];
+      if (Lossy(mp, cls.c1, cls.c0) && floor_j[static_cast<std::size_t>(pi)] >= e_min) continue;
+      const Drive d(mp, ClassParams(cls));
+      if (!ReachesThrustToWeight(inner_, d, pi, vehicle_kg, o)) continue;
+      double e = 0;
+      for (std::size_t si : segs) {
+        const RotorBound& rb = OuterRotor(pi, si, o, vehicle_kg);
+        const SegmentBound b = SegmentPowerBound(m_, si, parts, mp, d, ThrottleLimit(m_.constraints, cls.tr_sat), kInf,
+                                                 *models_[static_cast<std::size_t>(pi)], bo, vehicle_kg, rb);
+        if (b.infeasible) {
+          e = kInf;
+          break;
+        }
+        e += b.power_w * t_min(si);
+      }
+      if (e < e_min) {
+        e_min = e;
+        front.push_back(FrontierPoint{kg - inner_lightest_kg_[o], e});
+      }
+    }
+  }
+  return front;
+}
+
+// R7 as a mass floor: static-only data in axial flow V_ax pass the evaluator only at an advance
+// ratio J = V_ax/(n*D) <= max_static_advance_ratio, so at a speed n >= V_ax/(J_max*D), where the
+// static thrust (M1, the propeller's grid rising) is at least T(n); the segment's thrust rises
+// with the vehicle's mass (M3), so a feasible vehicle weighs at least the mass whose thrust is
+// T(n) (bisection, kept at or below it). kInf: no mass gives it; 0: no floor.
+double JointBounds::MassFloorKg(int prop, std::size_t si, std::size_t o) {
+  const std::size_t i = (o * m_.segments.size() + si) * cat_.props().size() + static_cast<std::size_t>(prop);
+  if (mass_floor_kg_[i] >= 0) return mass_floor_kg_[i];
+  const PropEntry& p = cat_.props()[static_cast<std::size_t>(prop)];
+  const PropModel& model = *models_[static_cast<std::size_t>(prop)];
+  const Segment& sg = m_.segments[si];
+  double floor_kg = 0.0;
+  const bool static_only = model.data_kind() != PropDataKind::kTables || p.j_tables.empty();
+  const double v_ax = SegmentRotorLoad(m_, sg, 1.0, sg.airspeed_m_s.lo).axial_airspeed_m_s;
+  if (static_only && monotone_[static_cast<std::size_t>(prop)] && v_ax > 0 && sg.type != SegmentType::kShaft &&
+      !(sg.type == SegmentType::kCruise && sg.airspeed_m_s.free()) && m_.constraints.max_static_advance_ratio > 0) {
+    const double omega_req = 2.0 * kPi * v_ax / (m_.constraints.max_static_advance_ratio * p.diameter_m);
+    const double t_req = model.Evaluate(omega_req, m_.rho_kg_m3, 0.0).thrust_n;
+    auto thrust_at = [&](double kg) { return SegmentRotorLoad(m_, sg, kg, sg.airspeed_m_s.lo).thrust_per_rotor_n; };
+    double lo = 0.0, hi = kMassCeilingKg;
+    if (!(thrust_at(hi) >= t_req)) {
+      floor_kg = kInf;
+    } else if (thrust_at(lo) < t_req) {
+      for (int it = 0; it < 60; ++it) {  // keeps thrust(lo) < T(n)
+        const double mid = 0.5 * (lo + hi);
+        (thrust_at(mid) < t_req ? lo : hi) = mid;
+      }
+      floor_kg = lo;
+    }
+  }
+  mass_floor_kg_[i] = floor_kg;
+  return floor_kg;
+}
+
+// Thrust-to-weight (checked on the lift group at full throttle): the full-throttle speed is
+// below the drive's no-load speed at full throttle and the full-charge voltage (eqs 42, 48;
+// zero or the real ESC resistance only lowers it), so, the static thrust rising with speed (M1,
+// the propeller's grid checked), the lift rotors give at most T(omega_nl) each; a choice whose
+// T(omega_nl) is below min_thrust_to_weight x the lightest weight fails the limit whatever else
+// is chosen.
+bool JointBounds::ReachesThrustToWeight(int group, const Drive& drive, int prop, double vehicle_kg,
+                                        std::size_t o) const {
+  const MissionConstraints& k = m_.constraints;
+  const int rotors = LiftRotors(m_);
+  if (!Lifts(group) || !(k.min_thrust_to_weight > 0) || rotors <= 0 || !monotone_[static_cast<std::size_t>(prop)]) {
+    return true;
+  }
+  const double w_nl = drive.NoLoadSpeed(options_[o].v_full, 1.0);
+  if (!(w_nl > 0)) return false;
+  const double t_max = models_[static_cast<std::size_t>(prop)]->Evaluate(w_nl, m_.rho_kg_m3, 0.0).thrust_n;
+  return rotors * t_max >= k.min_thrust_to_weight * vehicle_kg * kStandardGravity;
+}
+
+double JointBounds::LightestSurvivorKg(int group, std::size_t o, double vehicle_kg) {
+  const auto& motors = cat_.motors();
+  const auto& props = cat_.props();
+  std::vector<std::tuple<double, int, int>> by_mass;
+  for (std::size_t mi = 0; mi < motors.size(); ++mi) {
+    if (!motors[mi].mass_kg || !motors[mi].exclude_reason.empty()) continue;
+    for (std::size_t pi = 0; pi < props.size(); ++pi) {
+      if (PropAllowed(group, props[pi])) {
+        by_mass.emplace_back(*motors[mi].mass_kg + PropMassKg(props[pi]), static_cast<int>(mi), static_cast<int>(pi));
+      }
+    }
+  }
+  std::sort(by_mass.begin(), by_mass.end());
+  std::vector<std::size_t> segs;
+  for (std::size_t si = 0; si < m_.segments.size(); ++si) {
+    if (m_.segments[si].group == group) segs.push_back(si);
+  }
+  std::vector<RotorBound> rbs(props.size() * segs.size());
+  std::vector<char> done(rbs.size(), 0);
+  const BatteryOption& bo = options_[o];
+  for (const auto& [kg, mi, pi] : by_mass) {
+    const MotorEntry& mo = motors[static_cast<std::size_t>(mi)];
+    bool excluded = false;
+    const MotorParams mp = ScenarioMotorParams(mo, m_, nullptr, &excluded);
+    if (Lifts(group) && (excluded || bo.v_full > MotorMaxVoltageV(mo))) continue;  // R0, R1
+    const GroupParts parts{&mo, nullptr, &props[static_cast<std::size_t>(pi)]};
+    for (std::size_t c = 0; c < escs_.classes.size(); ++c) {
+      if (escs_.per_option[o][c].empty()) continue;
+      const Drive d(mp, ClassParams(escs_.classes[c]));
+      bool ok = ReachesThrustToWeight(group, d, pi, vehicle_kg, o);
+      for (std::size_t k = 0; k < segs.size() && ok; ++k) {
+        const std::size_t j = static_cast<std::size_t>(pi) * segs.size() + k;
+        if (!done[j]) {
+          rbs[j] = RotorLowerBound(m_, m_.segments[segs[k]], props[static_cast<std::size_t>(pi)],
+                                   *models_[static_cast<std::size_t>(pi)], vehicle_kg);
+          done[j] = 1;
+        }
+        ok = !SegmentPowerBound(m_, segs[k], parts, mp, d, ThrottleLimit(m_.constraints, escs_.classes[c].tr_sat), kInf,
+                                *models_[static_cast<std::size_t>(pi)], bo, vehicle_kg, rbs[j]).infeasible;
+      }
+      if (ok) return kg;
+    }
+  }
+  return kInf;
+}
+
+// G2: the least power bound over the group's (motor, ESC class, propeller) choices that survive
+// R0, R1, R3 and R7 at this segment, at the lightest vehicle mass (M3: every heavier one draws
+// no less). Propellers in order of their floor, rotors*max(Q*omega, momentum) + P_avionics (PDC
+// >= Pmech for a drive that cannot create energy; SegmentPowerBound): once the floor reaches the least bound found, no energy-
+// conserving drive on that propeller or a later one can go below it; drives that could create
+// energy are checked on every propeller.
+double JointBounds::MinFreeGroupPower(int group, std::size_t si, std::size_t o, double mass_kg) {
+  const Mission& m = m_;
+  const Segment& sg = m.segments[si];
+  const BatteryOption& bo = options_[o];
+  const auto& props = cat_.props();
+  const auto& motors = cat_.motors();
+  const std::vector<EscClass>& classes = escs_.classes;
+  struct Cand {
+    MotorParams mp;
+    Drive drive;
+    int cls;
+    bool lossy;
+    const MotorEntry* motor;
+  };
+  std::vector<Cand> cands;
+  for (const MotorEntry& mo : motors) {
+    if (!mo.exclude_reason.empty() || !mo.mass_kg) continue;
+    bool excluded = false;
+    const MotorParams mp = ScenarioMotorParams(mo, m, nullptr, &excluded);
+    if (Lifts(group) && (excluded || bo.v_full > MotorMaxVoltageV(mo))) continue;  // R0, R1
+    for (std::size_t c = 0; c < classes.size(); ++c) {
+      if (escs_.per_option[o][c].empty()) continue;  // R1
+      cands.push_back(Cand{mp, Drive(mp, ClassParams(classes[c])), static_cast<int>(c),
+                           Lossy(mp, classes[c].c1, classes[c].c0), &mo});
+    }
+  }
+  double best = kInf;
+  if (sg.type == SegmentType::kCruise && sg.airspeed_m_s.free()) {
+    // FreeCruisePowerLowerBoundW: momentum theory when the drive cannot create energy (the
+    // class's catalog C0 is at most any scenario's), else none.
+    for (const Cand& c : cands) {
+      if (!c.lossy) return m.vehicle.avionics_power_w;
+    }
+    for (std::size_t pi = 0; pi < props.size(); ++pi) {
+      if (!PropAllowed(group, props[pi]) || cands.empty()) continue;
+      const Cand& c = cands.front();
+      const GroupParts parts{c.motor, &cat_.escs()[static_cast<std::size_t>(classes[c.cls].members.front())], &props[pi]};
+      best = std::min(best, m.vehicle.avionics_power_w + FreeCruisePowerLowerBoundW(m, sg, parts, *models_[pi], mass_kg));
+    }
+    return best;
+  }
+  if (sg.type == SegmentType::kShaft) return m.vehicle.avionics_power_w;
+  struct PropFloor {
+    double floor;
+    std::size_t prop;
+    RotorBound rb;
+  };
+  std::vector<PropFloor> floors;
+  for (std::size_t pi = 0; pi < props.size(); ++pi) {
+    if (!PropAllowed(group, props[pi])) continue;
+    RotorBound rb = RotorLowerBound(m, sg, props[pi], *models_[pi], mass_kg);
+    if (!(rb.omega_rad_s > 0)) return m.vehicle.avionics_power_w;  // no bound for this choice
+    const bool static_only = models_[pi]->data_kind() != PropDataKind::kTables || props[pi].j_tables.empty();
+    const double p_ideal = IdealRotorPowerW(rb.thrust_n, props[pi].diameter_m, m.rho_kg_m3,
+                                            static_only ? 0.0 : rb.axial_airspeed_m_s);
+    const double floor_w = std::max(rb.torque_nm * rb.omega_rad_s, p_ideal / std::max(1.0, m.constraints.max_figure_of_merit));
+    floors.push_back({m.vehicle.avionics_power_w + rb.rotors * floor_w, pi, rb});
+  }
+  std::sort(floors.begin(), floors.end(), [](const PropFloor& a, const PropFloor& b) {
+    return a.floor != b.floor ? a.floor < b.floor : a.prop < b.prop;
+  });
+  for (const PropFloor& f : floors) {
+    const bool lossy_done = f.floor >= best;
+    const GroupParts parts{nullptr, nullptr, &props[f.prop]};
+    for (const Cand& c : cands) {
+      if (lossy_done && c.lossy) continue;
+      if (!ReachesThrustToWeight(group, c.drive, static_cast<int>(f.prop), mass_kg, o)) continue;
+      const double tr_max = ThrottleLimit(m.constraints, classes[c.cls].tr_sat);
+      const SegmentBound b = SegmentPowerBound(m, si, parts, c.mp, c.drive, tr_max, kInf, *models_[f.prop], bo,
+                                               mass_kg, f.rb);
+      if (!b.infeasible) best = std::min(best, b.power_w);
+    }
+  }
+  return best;
+}
+
+const RotorBound& JointBounds::OuterRotor(int prop, std::size_t si, std::size_t o, double mass_kg) {
+  // The grid mass at or below mass_kg (G1's geometric grid from the option's lightest vehicle).
+  const double m0 = mass_min_kg_[o];
+  int k = mass_kg > m0 ? static_cast<int>(std::floor(std::log(mass_kg / m0) / std::log(kFixedPowerMassStep))) : 0;
+  k = std::clamp(k, 0, kFixedPowerMasses - 1);
+  while (k > 0 && m0 * std::pow(kFixedPowerMassStep, k) > mass_kg) --k;
+  const std::size_t i = ((o * m_.segments.size() + si) * cat_.props().size() + static_cast<std::size_t>(prop)) *
+                            static_cast<std::size_t>(kFixedPowerMasses) + static_cast<std::size_t>(k);
+  if (!rotor_done_[i]) {
+    const double mk = k == 0 ? std::min(m0, mass_kg) : m0 * std::pow(kFixedPowerMassStep, k);
+    rotor_cache_[i] = RotorLowerBound(m_, m_.segments[si], cat_.props()[static_cast<std::size_t>(prop)],
+                                      *models_[static_cast<std::size_t>(prop)], mk);
+    rotor_done_[i] = 1;
+  }
+  return rotor_cache_[i];
+}
+
+double JointBounds::OuterBound(const Drive& drive, const GroupParts& parts, double esc_max_a,
+                               double tr_max, int prop, std::size_t o, double mass_kg, const char** why,
+                               double* irms_lb) {
+  const MotorParams& mp = drive.motor();
+  scratch_ = other_power_w_[o];
+  *irms_lb = 0;
+  for (double p : scratch_) {
+    if (!(p < kInf)) {  // another free group has no feasible choice with this option
+      *why = "infeasible_bound";
+      return kInf;
+    }
+  }
+  const double raw_kg = mass_kg;
+  for (std::size_t si : outer_segments_) mass_kg = std::max(mass_kg, MassFloorKg(prop, si, o));  // R7
+  const double floor_kg = mass_kg;
+  if (!(mass_kg < kInf)) {
+    *why = "prop_no_forward_flight_data";
+    return kInf;
+  }
+  if (!ReachesThrustToWeight(outer_, drive, prop, mass_kg, o)) {
+    *why = "min_thrust_to_weight";
+    return kInf;
+  }
+  for (std::size_t si : outer_segments_) {
+    const RotorBound& rb = OuterRotor(prop, si, o, mass_kg);
+    const SegmentBound b = SegmentPowerBound(m_, si, parts, mp, drive, tr_max, esc_max_a,
+                                             *models_[static_cast<std::size_t>(prop)], options_[o], mass_kg, rb);
+    if (b.infeasible) {
+      *why = b.infeasible;
+      return kInf;
+    }
+    *irms_lb = std::max(*irms_lb, b.irms_lb_a);
+    scratch_[si] = b.power_w;
+  }
+  const double bound = ScoreFromSegmentPowers(m_, scratch_, options_[o]);
+  if (!coupled_ || inner_ < 0) return bound;
+  // The coupled bound (InnerFrontier): per frontier point, the outer group's segments at the
+  // vehicle with that inner mass (and at least the R7 floor), the inner group's energy, the
+  // other segments as above; the least over the points.
+  auto t_min = [&](std::size_t si) { return SegmentDurationS(m_.segments[si], m_.segments[si].airspeed_m_s.hi); };
+  double e_rest = 0;
+  for (std::size_t si = 0; si < m_.segments.size(); ++si) {
+    const int g = m_.segments[si].group;
+    if (g != outer_ && g != inner_) e_rest += scratch_[si] * t_min(si);
+  }
+  double best = kInf;
+  for (const FrontierPoint& f : frontier_[o]) {
+    const double kg = std::max(raw_kg + f.extra_kg, floor_kg);
+    double e = e_rest + f.energy_j;
+    for (std::size_t si : outer_segments_) {
+      const SegmentBound b = SegmentPowerBound(m_, si, parts, mp, drive, tr_max, esc_max_a,
+                                               *models_[static_cast<std::size_t>(prop)], options_[o], kg,
+                                               OuterRotor(prop, si, o, kg));
+      if (b.infeasible) {
+        e = kInf;
+        break;
+      }
+      e += b.power_w * t_min(si);
+    }
+    best = std::min(best, e);
+    if (!(best / 3600.0 > bound)) return bound;  // no better than the plain bound
+  }
+  if (!(best < kInf)) *why = "infeasible_bound";
+  return std::max(bound, best / 3600.0);
+}
+
+double JointBounds::PairBound(int motor, int prop, std::size_t o, int esc_class, const char** why, double* irms_lb) {
+  const MotorEntry& mo = cat_.motors()[static_cast<std::size_t>(motor)];
+  const EscClass& cls = escs_.classes[static_cast<std::size_t>(esc_class)];
+  const std::vector<int>& members = escs_.per_option[o][static_cast<std::size_t>(esc_class)];
+  if (members.empty()) {
+    *why = "esc_voltage";
+    return kInf;
+  }
+  const MotorParams mp = ScenarioMotorParams(mo, m_);
+  const Drive d(mp, ClassParams(cls));
+  // FreeCruisePowerLowerBoundW reads the ESC's C1, C0: a member's, when the class's catalog
+  // values cannot create energy (a scenario only raises C0); else none of the class is lossy
+  // for certain, and a synthetic member with a negative C0 gives no momentum bound.
+  EscEntry none;
+  none.params = ClassParams(cls);
+  none.params.c0 = -1.0;
+  const EscEntry* esc = Lossy(mp, cls.c1, cls.c0) ? &cat_.escs()[static_cast<std::size_t>(members.front())] : &none;
+  const GroupParts parts{&mo, esc, &cat_.props()[static_cast<std::size_t>(prop)]};
+  const double mass = mass_min_kg_[o] - outer_lightest_kg_[o] +
+                      m_.groups[outer_].rotors * (*mo.mass_kg + PropMassKg(cat_.props()[static_cast<std::size_t>(prop)]) +
+                                                  escs_.min_mass_kg[o]);
+  return OuterBound(d, parts, kInf, ThrottleLimit(m_.constraints, cls.tr_sat), prop, o, mass, why, irms_lb);
+}
+
+double JointBounds::TripleBound(int motor, int esc, int prop, std::size_t o, const char** why) {
+  const MotorEntry& mo = cat_.motors()[static_cast<std::size_t>(motor)];
+  const EscEntry& e = cat_.escs()[static_cast<std::size_t>(esc)];
+  const PropEntry& p = cat_.props()[static_cast<std::size_t>(prop)];
+  const MotorParams mp = ScenarioMotorParams(mo, m_);
+  const EscParams ep = ScenarioEscParams(e, m_.objective.ranking);
+  const Drive d(mp, ep);
+  const double mass = mass_min_kg_[o] - outer_lightest_kg_[o] +
+                      m_.groups[outer_].rotors * (*mo.mass_kg + PropMassKg(p) + EscMassKg(e));
+  double irms_lb = 0;
+  return OuterBound(d, GroupParts{&mo, &e, &p}, ep.max_current_a, ThrottleLimit(m_.constraints, ep.tr_sat),
+                    prop, o, mass, why, &irms_lb);
+}
+
+namespace {
+
+// Appends an inner search's results and counts to *out, keeping the top N.
+void Merge(SearchResult&& r, int top_n, SearchResult* out) {
+  out->searched += r.searched;
+  for (const auto& [rule, n] : r.pruned_by) AddCount(&out->pruned_by[rule], n);
+  out->evaluated_mass_objective.insert(out->evaluated_mass_objective.end(), r.evaluated_mass_objective.begin(),
+                                       r.evaluated_mass_objective.end());
+  out->candidate_pairs += r.candidate_pairs;
+  out->candidate_seconds += r.candidate_seconds;
+  out->virtual_evaluations += r.virtual_evaluations;
+  out->candidate_refills += r.candidate_refills;
+  for (RankedCombination& b : r.best) {
+    if (static_cast<int>(out->best.size()) >= top_n && !(b.result.score < out->best.back().result.score)) continue;
+    auto pos = std::upper_bound(out->best.begin(), out->best.end(), b.result.score,
+                                [](double s, const RankedCombination& x) { return s < x.result.score; });
+    out->best.insert(pos, std::move(b));
+    if (static_cast<int>(out->best.size()) > top_n) out->best.pop_back();
+  }
+}
+
+struct OuterPair {
+  double bound;
+  int motor, prop;
+  std::size_t option;
+};
+
+// The outer group's (motor, propeller, option) pairs that survive R0, R1, R3 with their bound
+// (the least over ESC classes), best first; the pruned ones counted (x `block`: the inner
+// combinations of each).
+std::vector<OuterPair> OuterPairs(const Catalog& cat, JointBounds* jb, long long block, SearchResult* out) {
+  std::vector<OuterPair> pairs;
+  const long long n_esc = static_cast<long long>(cat.escs().size());
+  const long long n_prop = static_cast<long long>(cat.props().size());
+  for (std::size_t mi = 0; mi < cat.motors().size(); ++mi) {
+    if (!cat.motors()[mi].mass_kg) ++out->skipped_without_mass;
+    for (std::size_t o = 0; o < jb->options().size(); ++o) {
+      if (const char* rule = jb->MotorRule(static_cast<int>(mi), o)) {
+        AddCount(&out->pruned_by[rule], SaturatingProduct({n_esc, n_prop, block}));
+        continue;
+      }
+      for (std::size_t pi = 0; pi < cat.props().size(); ++pi) {
+        if (const char* rule = jb->PropRule(static_cast<int>(pi))) {
+          AddCount(&out->pruned_by[rule], SaturatingProduct({n_esc, block}));
+          continue;
+        }
+        double best = kInf, irms = 0;
+        const char* why = "throttle";
+        for (std::size_t c = 0; c < jb->escs().classes.size(); ++c) {
+          if (jb->escs().per_option[o][c].empty()) continue;
+          const char* w = nullptr;
+          const double b = jb->PairBound(static_cast<int>(mi), static_cast<int>(pi), o, static_cast<int>(c), &w, &irms);
+          if (b < kInf) {
+            best = std::min(best, b);
+          } else if (w) {
+            why = w;
+          }
+        }
+        if (!(best < kInf)) {
+          AddCount(&out->pruned_by[why], SaturatingProduct({n_esc, block}));
+          continue;
+        }
+        pairs.push_back(OuterPair{best, static_cast<int>(mi), static_cast<int>(pi), o});
+      }
+    }
+  }
+  std::sort(pairs.begin(), pairs.end(), [](const OuterPair& a, const OuterPair& b) {
+    if (a.bound != b.bound) return a.bound < b.bound;
+    if (a.option != b.option) return a.option < b.option;
+    if (a.motor != b.motor) return a.motor < b.motor;
+    return a.prop < b.prop;
+  });
+  return pairs;
+}
+
+// m with the outer group fixed to (pair's motor, ESC esc, pair's propeller) and the battery to
+// the pair's option.
+Mission SubMission(const Mission& m, const Catalog& cat, int outer, const OuterPair& pr, int esc,
+                   const JointBounds& jb) {
+  Mission sub = m;
+  PropulsionGroup& g = sub.groups[static_cast<std::size_t>(outer)];
+  g.motor_id = cat.motors()[static_cast<std::size_t>(pr.motor)].id;
+  g.esc_id = cat.escs()[static_cast<std::size_t>(esc)].id;
+  g.prop_id = cat.props()[static_cast<std::size_t>(pr.prop)].id;
+  const BatteryOption& bo = jb.options()[pr.option];
+  sub.battery.ids = {bo.entry->id};
+  sub.battery.cells_min = sub.battery.cells_max = bo.cells;
+  return sub;
+}
+
+}  // namespace
+
+SearchResult JointSearch(const Mission& m, const Catalog& cat, const SearchOptions& opt, double cutoff,
+                         PropGridCache* cache) {
+  const auto t0 = std::chrono::steady_clock::now();
+  if (opt.top_n < 1) throw UsageError("--top " + std::to_string(opt.top_n) + ": must be >= 1");
+  PropGridCache own;
+  if (!cache) cache = &own;
+  if (!cache->built) {
+    BuildPropGrids(m, cat, &cache->grids, &cache->models);
+    cache->built = true;
+  }
+  for (int g = 0; g < GroupCount(m); ++g) {  // a fixed id not in the catalog: the JSON path
+    if (m.groups[g].fixed()) FixedGroupParts(m, cat, g);
+  }
+  JointBounds jb(m, cat, *cache);
+  const int outer = jb.outer_group();
+  SearchResult out;
+  const long long per_group = GroupCombinations(cat);
+  long long block = 1;  // the inner combinations of one outer choice and option
+  for (int i = 1; i < FreeGroupCount(m); ++i) block = SaturatingProduct({block, per_group});
+  const long long n_motor = static_cast<long long>(cat.motors().size());
+  const long long n_prop = static_cast<long long>(cat.props().size());
+  const long long n_esc = static_cast<long long>(cat.escs().size());
+  out.combinations = SaturatingProduct({per_group, block, static_cast<long long>(jb.options().size())});
+  AddCount(&out.pruned_by["esc_voltage"], SaturatingProduct({jb.escs().voltage_pruned, n_motor, n_prop, block}));
+  if (jb.escs().excluded_pruned > 0) {
+    AddCount(&out.pruned_by["catalog_exclude"], SaturatingProduct({jb.escs().excluded_pruned, n_motor, n_prop, block}));
+  }
+  std::vector<OuterPair> pairs = OuterPairs(cat, &jb, block, &out);
+  jb.set_coupled(true);  // the tighter bound for the pairs taken (G2)
+  out.candidate_pairs = static_cast<long long>(pairs.size());
+  out.candidate_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  SearchOptions inner_opt = opt;
+  inner_opt.progress = nullptr;
+  auto nth = [&]() {
+    return static_cast<int>(out.best.size()) < opt.top_n ? cutoff : std::min(cutoff, out.best.back().result.score);
+  };
+  auto progress = [&](std::size_t done) {
+    if (!opt.progress) return;
+    SearchProgress p;
+    p.fraction = pairs.empty() ? 1.0 : static_cast<double>(done) / static_cast<double>(pairs.size());
+    p.searched = out.searched;
+    // The rules' counts overlap (an ESC over its voltage rating on a pair R0 removes is counted
+    // by both, as in the one-group search): held to what is not yet searched.
+    for (const auto& [rule, n] : out.pruned_by) AddCount(&p.pruned, n);
+    p.pruned = std::min(p.pruned, out.combinations - out.searched);
+    p.has_best = !out.best.empty();
+    p.best_objective = p.has_best ? out.best.front().result.objective : 0.0;
+    opt.progress(p);
+  };
+  const auto& escs = cat.escs();
+  std::vector<std::pair<double, int>> triples, class_triples;
+  // The virtual ESC (below) only with two free groups (the inner search is the one-group search)
+  // and the catalog's ESC values as the ranking flies them (ScenarioEscParams leaves them).
+  const bool virtual_ok = FreeGroupCount(m) == 2 && m.objective.ranking != DataScenario::kPessimistic &&
+                          m.objective.ranking != DataScenario::kOptimistic;
+  Mission relaxed = m;
+  relaxed.constraints.min_hover_throttle = 0.0;
+  for (std::size_t i = 0; i < pairs.size(); ++i) {
+    if (i % 64 == 0) progress(i);
+    const OuterPair& pr = pairs[i];
+    if (!(pr.bound < nth())) {  // G2: every later pair's bound is at least as bad
+      AddCount(&out.pruned_by["objective_bound"], SaturatingProduct({static_cast<long long>(pairs.size() - i), n_esc, block}));
+      break;
+    }
+    // The pair's ESCs: per class the bound with a zero-resistance ESC, then each ESC's own.
+    triples.clear();
+    for (std::size_t c = 0; c < jb.escs().classes.size(); ++c) {
+      const std::vector<int>& members = jb.escs().per_option[pr.option][c];
+      if (members.empty()) continue;
+      const char* why = "objective_bound";
+      double irms_lb = 0;
+      const double cb = jb.PairBound(pr.motor, pr.prop, pr.option, static_cast<int>(c), &why, &irms_lb);
+      if (!(cb < nth())) {
+        AddCount(&out.pruned_by[cb < kInf ? "objective_bound" : why], SaturatingProduct({static_cast<long long>(members.size()), block}));
+        continue;
+      }
+      class_triples.clear();
+      for (int e : members) {
+        const char* w = "objective_bound";
+        const double tb = jb.TripleBound(pr.motor, e, pr.prop, pr.option, &w);
+        if (!(tb < nth())) {
+          AddCount(&out.pruned_by[tb < kInf ? "objective_bound" : w], block);
+          continue;
+        }
+        class_triples.emplace_back(tb, e);
+      }
+      if (class_triples.size() >= 2 && virtual_ok) {
+        // R5 for the outer group: the class's virtual ESC (no resistance, the lightest of these
+        // ESCs' mass, no current limit) scores no worse than any of them with every completion
+        // (M2, M3), on the mission without min_hover_throttle (the one limit it may fail when a
+        // real ESC passes). Nothing below the N-th best with it: nothing with them either.
+        EscEntry virt;
+        virt.id = "virtual";
+        virt.params = escs[static_cast<std::size_t>(class_triples.front().second)].params;
+        virt.params.resc_ohm = 0.0;
+        virt.params.max_current_a = kInf;
+        double kg = kInf;
+        for (const auto& t : class_triples) kg = std::min(kg, EscMassKg(escs[static_cast<std::size_t>(t.second)]));
+        virt.mass_kg = kg;
+        std::vector<GroupParts> given(m.groups.size());
+        given[static_cast<std::size_t>(outer)] =
+            GroupParts{&cat.motors()[static_cast<std::size_t>(pr.motor)], &virt, &cat.props()[static_cast<std::size_t>(pr.prop)]};
+        progress(i);
+        const SearchResult r = SearchOneGroup(SubMission(relaxed, cat, outer, pr, class_triples.front().second, jb),
+                                              cat, inner_opt, nth(), cache, &given);
+        out.virtual_evaluations += r.searched + r.virtual_evaluations;
+        if (r.best.empty()) {
+          AddCount(&out.pruned_by["objective_bound"], SaturatingProduct({static_cast<long long>(class_triples.size()), block}));
+          continue;
+        }
+      }
+      triples.insert(triples.end(), class_triples.begin(), class_triples.end());
+    }
+    std::sort(triples.begin(), triples.end());
+    for (const auto& [tb, e] : triples) {
+      if (!(tb < nth())) {
+        AddCount(&out.pruned_by["objective_bound"], block);
+        continue;
+      }
+      progress(i);
+      // The outer group fixed to this choice, the battery to this option: the inner search.
+      const Mission sub = SubMission(m, cat, outer, pr, e, jb);
+      SearchResult r = FreeGroupCount(sub) > 1 ? JointSearch(sub, cat, inner_opt, nth(), cache)
+                                               : SearchOneGroup(sub, cat, inner_opt, nth(), cache);
+      Merge(std::move(r), opt.top_n, &out);
+    }
+  }
+  progress(pairs.size());
+  out.pruned = out.combinations - out.searched;
+  out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return out;
+}
+
+}  // namespace search_internal
+}  // namespace dynosize

@@ -1,0 +1,134 @@
+// The catalog search for a mission with several free propulsion groups (issue 14, item 1):
+// each group picks its own motor, ESC and propeller; the battery and its cells are shared.
+// An outer best-first loop over one group's (motor, ESC, propeller, battery option) choices,
+// with a proven lower bound of every completion's score (rule G2, stated with R0-R8 and G1 in
+// search.cc's header comment), and for each outer choice that can still beat the N-th best the
+// search with that group fixed and the N-th best as its cutoff (the one-group search of
+// search_stages.h, or this search again when more than two groups are free). Internal to
+// src/optimization (and its tests); SearchCatalog calls it.
+#pragma once
+
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "catalog/catalog.h"
+#include "mission/flight.h"
+#include "mission/mission.h"
+#include "model/drive.h"
+#include "optimization/search.h"
+#include "optimization/search_stages.h"
+
+namespace dynosize {
+
+// How many groups optimize chooses parts for: those without motor/esc/prop (1 for a mission
+// without "propulsion": its one implicit group).
+int FreeGroupCount(const Mission& m);
+
+namespace search_internal {
+
+// The exact top N (opt.top_n) among the combinations scoring below `cutoff`, over the joint
+// choice of every free group's motor, ESC and propeller and the battery option. Needs
+// FreeGroupCount(m) >= 2. The results' objective ranges are not computed (the caller's).
+SearchResult JointSearch(const Mission& m, const Catalog& cat, const SearchOptions& opt,
+                         double cutoff = std::numeric_limits<double>::infinity(), PropGridCache* cache = nullptr);
+
+// A rotor's speed and torque at or below those of any point that gives the segment's thrust
+// (M1: bisection on the propeller's thrust at the segment's axial airspeed; the torque of the
+// mission's data scenario, credibility.h). omega 0 when no bound applies.
+struct RotorBound {
+  double omega_rad_s = 0, torque_nm = 0;
+  double thrust_n = 0, axial_airspeed_m_s = 0;  // the segment's per-rotor load
+  int rotors = 0;
+};
+RotorBound RotorLowerBound(const Mission& m, const Segment& sg, const PropEntry& prop, const PropModel& model,
+                           double mass_kg);
+
+// G1/G2 for one segment: a lower bound of its terminal power (W, the avionics included) when
+// flown by `drive` (its motor's scenario parameters mp) on `rb`'s propeller at vehicle mass >=
+// the mass rb was computed at; and the rule that makes the segment infeasible whatever else
+// is chosen (R3 at the bound point with the drive at the pack's full-charge voltage), or null.
+struct SegmentBound {
+  double power_w = 0;
+  const char* infeasible = nullptr;
+  double irms_lb_a = 0;  // the motor's Irms at the bound point (R3's ESC-current rule)
+};
+SegmentBound SegmentPowerBound(const Mission& m, std::size_t si, const GroupParts& parts, const MotorParams& mp,
+                               const Drive& drive, double tr_max, double esc_max_current_a, const PropModel& model,
+                               const BatteryOption& bo, double mass_kg, const RotorBound& rb);
+
+// R4's assembly from per-segment terminal power bounds (W, avionics included, by segment):
+// min_energy the sum of power x shortest duration, max_endurance the energy budget of the
+// largest pack; -inf when no bound applies (max_efficiency, a stretched free-airspeed cruise).
+double ScoreFromSegmentPowers(const Mission& m, const std::vector<double>& p_lb_w, const BatteryOption& bo);
+
+// G2's bounds for one mission: the outer group, and per battery option the lightest vehicle
+// and the other groups' per-segment power bounds (fixed groups: their drives; other free
+// groups: the least over their choices that survive R0, R1, R3).
+class JointBounds {
+ public:
+  JointBounds(const Mission& m, const Catalog& cat, const PropGridCache& cache);
+  int outer_group() const { return outer_; }
+  const std::vector<BatteryOption>& options() const { return options_; }
+  const EscTable& escs() const { return escs_; }
+  // The lightest vehicle with option o (every free group at its lightest), kg.
+  double mass_min_kg(std::size_t o) const { return mass_min_kg_[o]; }
+  // The power bound of a segment the outer group does not fly (W; +inf: no choice of its
+  // group survives R0, R1, R3 with option o).
+  double other_power_w(std::size_t o, std::size_t si) const { return other_power_w_[o][si]; }
+  // Lower bounds of the score of every combination that flies the outer group on (motor,
+  // prop) with option o: with any ESC of class esc_class (PairBound), or with ESC esc
+  // (TripleBound). +inf and *why set when no such combination can be feasible. irms_lb: the
+  // motor's Irms lower bound over the group's segments (R3's ESC-current rule).
+  double PairBound(int motor, int prop, std::size_t o, int esc_class, const char** why, double* irms_lb);
+  double TripleBound(int motor, int esc, int prop, std::size_t o, const char** why);
+  // With two free groups and min_energy: tighten PairBound and TripleBound by the coupled bound
+  // (the inner group's frontier of mass and energy; search.cc, G2). Off by default (it costs
+  // more per call): the search turns it on for the pairs it takes.
+  void set_coupled(bool on) { coupled_ = on; }
+  std::size_t frontier_size(std::size_t o) const { return o < frontier_.size() ? frontier_[o].size() : 0; }
+  // R0 for the outer group's propeller and motor (the rule's name, or null).
+  const char* PropRule(int prop) const;
+  const char* MotorRule(int motor, std::size_t o) const;
+
+ private:
+  double OuterBound(const Drive& drive, const GroupParts& parts, double esc_max_a, double tr_max,
+                    int prop, std::size_t o, double mass_kg, const char** why, double* irms_lb);
+  const RotorBound& OuterRotor(int prop, std::size_t si, std::size_t o, double mass_kg);
+  struct FrontierPoint {
+    double extra_kg;  // the inner group's mass over its lightest
+    double energy_j;  // the least energy of its segments with that mass, J
+  };
+  std::vector<FrontierPoint> InnerFrontier(std::size_t o);
+  double MinFreeGroupPower(int group, std::size_t si, std::size_t o, double mass_kg);
+  double MassFloorKg(int prop, std::size_t si, std::size_t o);
+  // The lightest motor + propeller of a free group that survives R0, R1, R3, R7 in every one of
+  // its segments with some ESC class at vehicle mass vehicle_kg (kInf: none), kg per rotor.
+  double LightestSurvivorKg(int group, std::size_t o, double vehicle_kg);
+  bool ReachesThrustToWeight(int group, const Drive& drive, int prop, double vehicle_kg, std::size_t o) const;
+  bool Lifts(int group) const { return group == lift_group_; }
+  bool PropAllowed(int group, const PropEntry& p) const;
+
+  const Mission& m_;
+  const Catalog& cat_;
+  std::vector<const PropModel*> models_;
+  int outer_ = 0, lift_group_ = 0;
+  int inner_ = -1;  // the other free group when there are two and the objective is min_energy
+  bool coupled_ = false;
+  std::vector<std::vector<FrontierPoint>> frontier_;  // per option
+  std::vector<double> inner_lightest_kg_;             // per option
+  std::vector<BatteryOption> options_;
+  EscTable escs_;
+  std::vector<double> mass_min_kg_, outer_lightest_kg_;
+  std::vector<char> monotone_;        // per propeller: its static thrust grid rises (M1)
+  std::vector<double> mass_floor_kg_;  // MassFloorKg's cache by (option, segment, prop); < 0: not yet
+  std::vector<std::vector<double>> other_power_w_;
+  std::vector<std::size_t> outer_segments_;
+  // OuterRotor's cache: [((o * segments + si) * props + prop) * kFixedPowerMasses + k].
+  std::vector<RotorBound> rotor_cache_;
+  std::vector<char> rotor_done_;
+  std::vector<double> scratch_;
+};
+
+}  // namespace search_internal
+}  // namespace dynosize

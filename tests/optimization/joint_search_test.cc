@@ -1,0 +1,301 @@
+// The joint search of several free propulsion groups (optimization/joint_search.h, rule G2 in
+// search.cc) against exhaustive evaluation of every lift x pusher x cells combination of the
+// small catalog, and G2's bounds against the true scores of all of them.
+#include "optimization/joint_search.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "catalog/catalog.h"
+#include "cli_runner.h"
+#include "common/error.h"
+#include "common/json_file.h"
+#include "optimization/mission_eval.h"
+#include "optimization/search.h"
+#include "optimization/small_catalog.h"
+
+namespace dynosize::search_internal {
+namespace {
+
+namespace fs = std::filesystem;
+
+// A small quadplane: four lift rotors climb, hover and descend, one pusher flies a wing-borne
+// cruise; both groups free (no motor/esc/prop). The pusher's frame takes props up to 11 in.
+const char* kFreeQuadplane = R"({
+  "name": "test quadplane, both groups free",
+  "vehicle": {"mass_kg": 0.6, "drag_area_m2": 0.03, "drag_coefficient": 1.0, "avionics_power_w": 4},
+  "propulsion": {
+    "lift": {"rotors": 4, "idle_drag_area_m2": 0.004},
+    "pusher": {"rotors": 1, "max_prop_diameter_m": 0.28}
+  },
+  "battery": {"id": "dc_b_361", "cells": [3, 4], "reserve_soc": 0.25},
+  "constraints": {"allow_folding_props_for_lift": true},
+  "objective": {"type": "min_energy"},
+  "segments": [
+    {"name": "up", "type": "climb", "rate_m_s": 1.5, "distance_m": 20, "group": "lift"},
+    {"name": "cruise", "type": "cruise", "airspeed_m_s": 12, "lift_to_drag": 6, "distance_m": 3000, "group": "pusher"},
+    {"name": "hover", "type": "hover", "duration_s": 30, "group": "lift"},
+    {"name": "down", "type": "climb", "rate_m_s": -1, "distance_m": 20, "group": "lift"}
+  ]
+})";
+
+class JointSearchTest : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    dir_ = testing_util::WriteSmallCatalog("joint");
+    std::ofstream(dir_ / "free.json") << kFreeQuadplane;
+  }
+  static void TearDownTestSuite() { fs::remove_all(dir_); }
+  static fs::path dir_;
+};
+fs::path JointSearchTest::dir_;
+
+struct Scored {
+  double score;
+  std::string name;
+};
+
+std::string Name(const Combination& c, int lift, int pusher) {
+  auto part = [&](int g) { return c.groups[g].motor->id + "," + c.groups[g].esc->id + "," + c.groups[g].prop->id; };
+  return part(lift) + "|" + part(pusher) + "|" + std::to_string(c.cells);
+}
+
+// Every combination (motors without mass left out, as the search does) through the evaluator,
+// with f(combination, result) called for each.
+// Groups other than lift and pusher keep their FixedGroupParts.
+template <typename F>
+void ForEachJoint(const Catalog& cat, const Mission& m, int lift, int pusher, F&& f) {
+  std::vector<std::unique_ptr<PropModel>> models;
+  for (const PropEntry& p : cat.props()) models.push_back(std::make_unique<PropModel>(p));
+  std::vector<GroupParts> base;
+  for (int g = 0; g < GroupCount(m); ++g) base.push_back(FixedGroupParts(m, cat, g));
+  std::vector<const PropModel*> group_models(base.size(), nullptr);
+  for (const MotorEntry& ml : cat.motors()) {
+    if (!ml.mass_kg) continue;
+    for (const EscEntry& el : cat.escs()) {
+      for (std::size_t pl = 0; pl < cat.props().size(); ++pl) {
+        for (const MotorEntry& mp : cat.motors()) {
+          if (!mp.mass_kg) continue;
+          for (const EscEntry& ep : cat.escs()) {
+            for (std::size_t pp = 0; pp < cat.props().size(); ++pp) {
+              for (int cells : {3, 4}) {
+                Combination c{&ml, &el, &cat.props()[pl], &cat.battery("dc_b_361"), cells, {}};
+                c.groups = base;
+                c.groups[lift] = GroupParts{&ml, &el, &cat.props()[pl]};
+                c.groups[pusher] = GroupParts{&mp, &ep, &cat.props()[pp]};
+                group_models[lift] = models[pl].get();
+                group_models[pusher] = models[pp].get();
+                f(c, MissionEvaluator(m, c, models[pl].get(), &group_models).Solve());
+              }
+            }
+          }
+        }
+      }
+    }
+  }
+}
+
+// optimize == the best of exhaustive evaluate, bit for bit; and on the way, G2's bounds are at
+// or below the true score of every feasible combination (the outer pusher's pair and triple
+// bounds, the lift group's least segment power at or below each lift segment's mean power).
+TEST_F(JointSearchTest, TwoFreeGroupsEqualExhaustiveEvaluation) {
+  const Catalog cat = Catalog::Load((dir_ / "catalog").string());
+  const Mission m = ReadMission((dir_ / "free.json").string());
+  ASSERT_EQ(FreeGroupCount(m), 2);
+  const int lift = m.segments[0].group, pusher = m.segments[1].group;
+  PropGridCache cache;
+  BuildPropGrids(m, cat, &cache.grids, &cache.models);
+  cache.built = true;
+  JointBounds jb(m, cat, cache);
+  ASSERT_EQ(jb.outer_group(), pusher) << "the outer group is the one that does not lift";
+  jb.set_coupled(true);  // the bounds below include the coupled one (min_energy)
+  ASSERT_GT(jb.frontier_size(0) + jb.frontier_size(1), 0u);
+  auto index_of = [](const auto& list, const auto* x) { return static_cast<int>(x - list.data()); };
+  std::vector<Scored> all;
+  int checked = 0, lift_checked = 0;
+  ForEachJoint(cat, m, lift, pusher, [&](const Combination& c, const MissionResult& r) {
+    if (!r.feasible) return;
+    all.push_back({r.score, Name(c, lift, pusher)});
+    std::size_t o = 0;
+    while (o < jb.options().size() && jb.options()[o].cells != c.cells) ++o;
+    ASSERT_LT(o, jb.options().size());
+    const int motor = index_of(cat.motors(), c.groups[pusher].motor);
+    const int esc = index_of(cat.escs(), c.groups[pusher].esc);
+    const int prop = index_of(cat.props(), c.groups[pusher].prop);
+    int cls = -1;
+    for (std::size_t k = 0; k < jb.escs().classes.size(); ++k) {
+      for (int e : jb.escs().classes[k].members) cls = e == esc ? static_cast<int>(k) : cls;
+    }
+    const char* why = nullptr;
+    double irms = 0;
+    // Tolerance: none. The bounds are exact inequalities; a rounding-level excess is a defect.
+    EXPECT_LE(jb.PairBound(motor, prop, o, cls, &why, &irms), r.score) << Name(c, lift, pusher);
+    EXPECT_LE(jb.TripleBound(motor, esc, prop, o, &why), r.score) << Name(c, lift, pusher);
+    ++checked;
+    for (std::size_t si = 0; si < r.segments.size(); ++si) {
+      const SegmentResult& sr = r.segments[si];
+      if (sr.group != lift || !(sr.duration_s > 0)) continue;
+      EXPECT_LE(jb.other_power_w(o, si), sr.energy_j / sr.duration_s) << Name(c, lift, pusher) << " " << sr.name;
+      ++lift_checked;
+    }
+  });
+  ASSERT_GE(all.size(), 3u) << "the small catalog must fly the mission";
+  EXPECT_GT(checked, 0);
+  EXPECT_GT(lift_checked, 0);
+  std::sort(all.begin(), all.end(), [](const Scored& a, const Scored& b) {
+    return a.score != b.score ? a.score < b.score : a.name < b.name;
+  });
+  SearchOptions so;
+  so.top_n = 3;
+  const SearchResult s = SearchCatalog(m, cat, so);
+  ASSERT_EQ(s.best.size(), 3u);
+  for (std::size_t i = 0; i < s.best.size(); ++i) {
+    EXPECT_EQ(Name(s.best[i].combination, lift, pusher), all[i].name) << i;
+    EXPECT_EQ(s.best[i].result.score, all[i].score) << i;  // same code path, bit for bit
+  }
+  // Counts: every group's motors x ESCs x props, times the battery options.
+  const long long per_group = static_cast<long long>(cat.motors().size() * cat.escs().size() * cat.props().size());
+  EXPECT_EQ(s.combinations, per_group * per_group * 2);
+  EXPECT_EQ(s.searched + s.pruned, s.combinations);
+  EXPECT_GT(s.pruned, s.searched) << "G2 must prune";
+  // A cutoff between the #1 and #2: only the #1 comes back.
+  PropGridCache cache2;
+  const SearchResult cut = JointSearch(m, cat, so, 0.5 * (all[0].score + all[1].score), &cache2);
+  ASSERT_EQ(cut.best.size(), 1u);
+  EXPECT_EQ(cut.best[0].result.score, all[0].score);
+  // The CLI prints each group's pick.
+  const auto cli = testing_util::RunCli("optimize " + (dir_ / "free.json").string() + " --catalog " +
+                                        (dir_ / "catalog").string() + " --top 1 --json");
+  ASSERT_EQ(cli.code, 0) << cli.err;
+  const Json out = Json::parse(cli.out);
+  const Json& g = out["results"][0]["groups"];
+  const Combination& best = s.best[0].combination;
+  EXPECT_EQ(g["lift"]["motor"], best.groups[lift].motor->id);
+  EXPECT_EQ(g["pusher"]["prop"], best.groups[pusher].prop->id);
+  EXPECT_EQ(g["pusher"]["fixed"], false);
+}
+
+// Two free groups and a fixed one (a sprint on its own pusher): G2 reads the fixed group's
+// segment through its own drive (G1's bound), and the answer is exhaustive evaluation's.
+TEST_F(JointSearchTest, TwoFreeGroupsAndAFixedOneEqualExhaustiveEvaluation) {
+  const Catalog cat = Catalog::Load((dir_ / "catalog").string());
+  Json j = ParseJsonText(kFreeQuadplane, "free");
+  j["propulsion"]["sprint"] = {{"rotors", 1}, {"motor", "dc_m_1020"}, {"esc", "dc_e_56"}, {"prop", "apc_per3_10x45mr"}};
+  j["segments"].insert(j["segments"].begin() + 2, Json{{"name", "dash"}, {"type", "cruise"}, {"airspeed_m_s", 15},
+                                                       {"lift_to_drag", 6}, {"distance_m", 1000}, {"group", "sprint"}});
+  const Mission m = ParseMission(j, "three");
+  ASSERT_EQ(FreeGroupCount(m), 2);
+  const int lift = m.segments[0].group, pusher = m.segments[1].group, sprint = m.segments[2].group;
+  PropGridCache cache;
+  BuildPropGrids(m, cat, &cache.grids, &cache.models);
+  cache.built = true;
+  JointBounds jb(m, cat, cache);
+  jb.set_coupled(true);
+  std::vector<Scored> all;
+  int sprint_checked = 0;
+  ForEachJoint(cat, m, lift, pusher, [&](const Combination& c, const MissionResult& r) {
+    if (!r.feasible) return;
+    all.push_back({r.score, Name(c, lift, pusher)});
+    const std::size_t o = c.cells == jb.options()[0].cells ? 0 : 1;
+    const SegmentResult& sr = r.segments[2];
+    ASSERT_EQ(sr.group, sprint);
+    EXPECT_LE(jb.other_power_w(o, 2), sr.energy_j / sr.duration_s) << Name(c, lift, pusher);
+    ++sprint_checked;
+  });
+  ASSERT_GE(all.size(), 3u);
+  EXPECT_GT(sprint_checked, 0);
+  std::sort(all.begin(), all.end(), [](const Scored& a, const Scored& b) {
+    return a.score != b.score ? a.score < b.score : a.name < b.name;
+  });
+  SearchOptions so;
+  so.top_n = 3;
+  const SearchResult s = SearchCatalog(m, cat, so);
+  ASSERT_EQ(s.best.size(), 3u);
+  for (std::size_t i = 0; i < s.best.size(); ++i) {
+    EXPECT_EQ(Name(s.best[i].combination, lift, pusher), all[i].name) << i;
+    EXPECT_EQ(s.best[i].result.score, all[i].score) << i;
+    EXPECT_EQ(s.best[i].combination.groups[sprint].motor->id, "dc_m_1020");
+  }
+  EXPECT_EQ(s.searched + s.pruned, s.combinations);
+}
+
+// max_endurance with the lift group's loiter stretched (R4's energy budget in G2) on a smaller
+// catalog (3 motors, 2 ESCs, 4 propellers of the small one): optimize == exhaustive evaluate,
+// and the outer bounds are below every feasible score.
+TEST_F(JointSearchTest, MaxEnduranceTwoFreeGroupsEqualExhaustiveEvaluation) {
+  const Catalog small = Catalog::Load((dir_ / "catalog").string());
+  Json doc;
+  doc["motors"] = Json::array();
+  for (const char* id : {"dc_m_1020", "dc_m_18", "dc_m_24"}) doc["motors"].push_back(small.motor(id).json);
+  doc["escs"] = Json::array();
+  for (const char* id : {"dc_e_56", "dc_e_252"}) doc["escs"].push_back(small.esc(id).json);
+  doc["props"] = Json::array();
+  for (const char* id : {"dc_p_372", "dc_p_410", "apc_per3_10x45mr", "apc_per3_15x8e"}) doc["props"].push_back(small.prop(id).json);
+  doc["batteries"] = Json::array({small.battery("dc_b_361").json});
+  fs::create_directories(dir_ / "tiny" / "catalog");
+  std::ofstream(dir_ / "tiny" / "catalog" / "tiny.json") << DumpJson(doc);
+  const Catalog cat = Catalog::Load((dir_ / "tiny" / "catalog").string());
+  Json j = ParseJsonText(kFreeQuadplane, "free");
+  j["objective"] = {{"type", "max_endurance"}, {"segment", "hover"}};
+  const Mission m = ParseMission(j, "endurance");
+  const int lift = m.segments[0].group, pusher = m.segments[1].group;
+  PropGridCache cache;
+  BuildPropGrids(m, cat, &cache.grids, &cache.models);
+  cache.built = true;
+  JointBounds jb(m, cat, cache);
+  auto index_of = [](const auto& list, const auto* x) { return static_cast<int>(x - list.data()); };
+  std::vector<Scored> all;
+  ForEachJoint(cat, m, lift, pusher, [&](const Combination& c, const MissionResult& r) {
+    if (!r.feasible) return;
+    all.push_back({r.score, Name(c, lift, pusher)});
+    const std::size_t o = c.cells == jb.options()[0].cells ? 0 : 1;
+    const char* why = nullptr;
+    EXPECT_LE(jb.TripleBound(index_of(cat.motors(), c.groups[pusher].motor), index_of(cat.escs(), c.groups[pusher].esc),
+                             index_of(cat.props(), c.groups[pusher].prop), o, &why),
+              r.score)
+        << Name(c, lift, pusher);
+  });
+  ASSERT_GE(all.size(), 3u);
+  std::sort(all.begin(), all.end(), [](const Scored& a, const Scored& b) {
+    return a.score != b.score ? a.score < b.score : a.name < b.name;
+  });
+  SearchOptions so;
+  so.top_n = 3;
+  const SearchResult s = SearchCatalog(m, cat, so);
+  ASSERT_EQ(s.best.size(), 3u);
+  for (std::size_t i = 0; i < s.best.size(); ++i) {
+    EXPECT_EQ(Name(s.best[i].combination, lift, pusher), all[i].name) << i;
+    EXPECT_EQ(s.best[i].result.score, all[i].score) << i;
+  }
+  EXPECT_EQ(s.searched + s.pruned, s.combinations);
+}
+
+// Every group fixed: nothing to choose, refused with the JSON path.
+TEST_F(JointSearchTest, EveryGroupFixedIsRefused) {
+  const Catalog cat = Catalog::Load((dir_ / "catalog").string());
+  Json j = ParseJsonText(kFreeQuadplane, "free");
+  for (const char* g : {"lift", "pusher"}) {
+    j["propulsion"][g]["motor"] = cat.motors()[0].id;
+    j["propulsion"][g]["esc"] = cat.escs()[0].id;
+    j["propulsion"][g]["prop"] = cat.props()[0].id;
+  }
+  const Mission m = ParseMission(j, "fixed");
+  EXPECT_EQ(FreeGroupCount(m), 0);
+  try {
+    SearchCatalog(m, cat);
+    ADD_FAILURE() << "no error";
+  } catch (const DataError& e) {
+    EXPECT_NE(std::string(e.what()).find("$.propulsion: every group has its motor, esc and prop"), std::string::npos)
+        << e.what();
+  }
+}
+
+}  // namespace
+}  // namespace dynosize::search_internal
