@@ -57,6 +57,14 @@ std::string EscEnergyViolation(const EscParams& esc, MotorType type = MotorType:
 // negative Rm or Io, io1 < 0).
 std::string MotorEnergyViolation(const MotorParams& motor);
 
+// Neither the motor nor an ESC of these C1, C0 can create energy (section 10: KT <= kp*KE,
+// Rm, Io, io1 >= 0, C0 >= 0, C1 + C0 >= K*kp), the exact inequalities without kPhysicsRelTol:
+// then PDC >= PAC >= Pmech at every operating point, the premise of the search's power bounds.
+inline bool DriveIsLossy(const MotorParams& m, double c1, double c0) {
+  return m.kt_nm_per_a <= MaxKtPerKe(m.type) * m.ke_v_s_per_rad && m.rm_ohm >= 0 && m.io_a >= 0 &&
+         m.io1_a_s_per_rad >= 0 && c0 >= 0 && c1 + c0 >= IdealIdcPerIrmsPerThrottle(m.type);
+}
+
 // True when a computed operating point creates energy: PESC < 0 or eta_motor > 1 (beyond
 // kPhysicsRelTol of the powers involved). Cheap: Drive::Flag calls it for every point.
 inline bool PointCreatesEnergy(const OperatingPoint& p) {

@@ -27,14 +27,6 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 constexpr double kMassCeilingKg = 1e5;  // MassFloorKg's search range: beyond any vehicle
 constexpr double kRotorCeilingRadS = 1e5;  // RotorLowerBound's: ~1e6 rpm, beyond any motor
 
-// Neither the motor nor an ESC of these C1, C0 can create energy (model.md section 10; the
-// inequalities of model/physics.h without its rounding allowance, as in ScoreLowerBound): then
-// PDC >= Pmech at every point.
-bool Lossy(const MotorParams& mp, double c1, double c0) {
-  return mp.kt_nm_per_a <= MaxKtPerKe(mp.type) * mp.ke_v_s_per_rad && mp.rm_ohm >= 0 && mp.io_a >= 0 &&
-         mp.io1_a_s_per_rad >= 0 && c0 >= 0 && c1 + c0 >= IdealIdcPerIrmsPerThrottle(mp.type);
-}
-
 long long SaturatingProduct(std::initializer_list<long long> xs) {
   long long p = 1;
   for (long long x : xs) {
@@ -156,7 +148,7 @@ SegmentBound SegmentPowerBound(const Mission& m, std::size_t si, const GroupPart
   // the scenario's power is at least P_ideal (credibility.h: raised, or capped at FM 1), so
   // P_ideal/max(1, max_figure_of_merit) bounds it in every scenario; and PDC >= Pmech when
   // neither the motor nor the ESC can create energy (model.md section 10).
-  if (Lossy(drive.motor(), drive.esc().c1, drive.esc().c0)) {
+  if (DriveIsLossy(drive.motor(), drive.esc().c1, drive.esc().c0)) {
     const double p_ideal = IdealRotorPowerW(rb.thrust_n, parts.prop->diameter_m, m.rho_kg_m3,
                                             static_only ? 0.0 : rb.axial_airspeed_m_s);
     pdc = std::max(pdc, rb.rotors * p_ideal / std::max(1.0, k.max_figure_of_merit));
@@ -370,7 +362,7 @@ std::vector<JointBounds::FrontierPoint> JointBounds::InnerFrontier(std::size_t o
     for (std::size_t c = 0; c < escs_.classes.size(); ++c) {
       if (escs_.per_option[o][c].empty()) continue;
       const EscClass& cls = escs_.classes[c];
-      if (Lossy(mp, cls.c1, cls.c0) && floor_j[static_cast<std::size_t>(pi)] >= e_min) continue;
+      if (DriveIsLossy(mp, cls.c1, cls.c0) && floor_j[static_cast<std::size_t>(pi)] >= e_min) continue;
       const Drive d(mp, ClassParams(cls));
       if (!ReachesThrustToWeight(inner_, d, pi, vehicle_kg, o)) continue;
       double e = 0;
@@ -521,7 +513,7 @@ double JointBounds::MinFreeGroupPower(int group, std::size_t si, std::size_t o, 
     for (std::size_t c = 0; c < classes.size(); ++c) {
       if (escs_.per_option[o][c].empty()) continue;  // R1
       cands.push_back(Cand{mp, Drive(mp, ClassParams(classes[c])), static_cast<int>(c),
-                           Lossy(mp, classes[c].c1, classes[c].c0), &mo});
+                           DriveIsLossy(mp, classes[c].c1, classes[c].c0), &mo});
     }
   }
   double best = kInf;
@@ -673,7 +665,7 @@ double JointBounds::PairBound(int motor, int prop, std::size_t o, int esc_class,
   EscEntry none;
   none.params = ClassParams(cls);
   none.params.c0 = -1.0;
-  const EscEntry* esc = Lossy(mp, cls.c1, cls.c0) ? &cat_.escs()[static_cast<std::size_t>(members.front())] : &none;
+  const EscEntry* esc = DriveIsLossy(mp, cls.c1, cls.c0) ? &cat_.escs()[static_cast<std::size_t>(members.front())] : &none;
   const GroupParts parts{&mo, esc, &cat_.props()[static_cast<std::size_t>(prop)]};
   const double mass = mass_min_kg_[o] - outer_lightest_kg_[o] +
                       m_.groups[outer_].rotors * (*mo.mass_kg + PropMassKg(cat_.props()[static_cast<std::size_t>(prop)]) +

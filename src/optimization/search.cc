@@ -460,9 +460,7 @@ double ScoreLowerBound(const SearchContext& ctx, const MissionFacts& f, const Mo
     // C1 + C0 >= 1.1095; then eta_motor, eta_esc <= 1; a point that breaks it is infeasible,
     // creates_energy). V is the axial inflow (0 for static-only data: P_ideal rises with V).
     // (The inequalities of model/physics.h without its rounding allowance: exact here.)
-    const bool lossy = mp.kt_nm_per_a <= MaxKtPerKe(mp.type) * mp.ke_v_s_per_rad && mp.rm_ohm >= 0 &&
-                       mp.io_a >= 0 && mp.io1_a_s_per_rad >= 0 && esc_class.c0 >= 0 &&
-                       esc_class.c1 + esc_class.c0 >= IdealIdcPerIrmsPerThrottle(mp.type);
+    const bool lossy = DriveIsLossy(mp, esc_class.c1, esc_class.c0);
     const bool axial_data = !prop.j_tables.empty();
     double e = 0;
     for (std::size_t si = 0; si < m.segments.size(); ++si) {
@@ -487,9 +485,7 @@ double ScoreLowerBound(const SearchContext& ctx, const MissionFacts& f, const Mo
   // stage can create energy, momentum theory's N*P_ideal(T, V)/max_figure_of_merit plus the
   // avionics over its duration (the evaluator's prop_figure_of_merit; V the axial inflow with
   // forward-flight tables, else 0, as PropellerPoint judges it; P_ideal rises with the mass).
-  const bool lossy_drive = mp.kt_nm_per_a <= MaxKtPerKe(mp.type) * mp.ke_v_s_per_rad && mp.rm_ohm >= 0 &&
-                           mp.io_a >= 0 && mp.io1_a_s_per_rad >= 0 && esc_class.c0 >= 0 &&
-                           esc_class.c1 + esc_class.c0 >= IdealIdcPerIrmsPerThrottle(mp.type);
+  const bool lossy_drive = DriveIsLossy(mp, esc_class.c1, esc_class.c0);
   const bool table_data = model.data_kind() == PropDataKind::kTables && !prop.j_tables.empty();
   auto e_other_of = [&](std::size_t stretch) {
     double e_other = 0;
@@ -804,8 +800,7 @@ double FreeCruisePowerLowerBoundW(const Mission& m, const Segment& sg, const Gro
   if (!(sg.lift_to_drag > 0)) return 0.0;
   const MotorParams mp = ScenarioMotorParams(*parts.motor, m);
   const EscParams ep = ScenarioEscParams(*parts.esc, m.objective.ranking);
-  const bool lossy = mp.kt_nm_per_a <= MaxKtPerKe(mp.type) * mp.ke_v_s_per_rad && mp.rm_ohm >= 0 && mp.io_a >= 0 &&
-                     mp.io1_a_s_per_rad >= 0 && ep.c0 >= 0 && ep.c1 + ep.c0 >= IdealIdcPerIrmsPerThrottle(mp.type);
+  const bool lossy = DriveIsLossy(mp, ep.c1, ep.c0);
   if (!lossy) return 0.0;
   const bool axial_data = model.data_kind() == PropDataKind::kTables && !parts.prop->j_tables.empty();
   const double v = axial_data ? (sg.distance_m ? sg.airspeed_m_s.hi : sg.airspeed_m_s.lo) : 0.0;
