@@ -1060,14 +1060,8 @@ bool MissionEvaluator::EarlyExit(double cutoff_score, bool explain, MissionResul
   return false;
 }
 
-MissionResult MissionEvaluator::SolveContinuous(double cutoff_score, bool explain, bool decide) const {
-  if (MissionResult early; EarlyExit(cutoff_score, explain, &early)) return early;
-  // decide: a feasible point that beats the cutoff answers the caller (Solve).
-  auto enough = [&](const MissionResult& r) { return decide && r.feasible && r.score < cutoff_score; };
-  const double decide_cutoff = decide ? cutoff_score : -kInf;  // for WithEndurance
-  // Free variables, each scaled to [0, 1].
-  struct Var { int segment; double lo, hi; };  // segment -1: capacity
-  std::vector<Var> free;
+std::vector<MissionEvaluator::FreeVar> MissionEvaluator::FreeVariables() const {
+  std::vector<FreeVar> free;
   if (m_.battery.capacity_ah && m_.battery.capacity_ah->free()) {
     free.push_back({-1, m_.battery.capacity_ah->lo, m_.battery.capacity_ah->hi});
   }
@@ -1077,74 +1071,93 @@ MissionResult MissionEvaluator::SolveContinuous(double cutoff_score, bool explai
       free.push_back({static_cast<int>(i), s.airspeed_m_s.lo, s.airspeed_m_s.hi});
     }
   }
-  auto vars_at = [&](const double* x) {
-    ContinuousVars v;
-    v.airspeed_m_s.assign(m_.segments.size(), 0.0);
-    if (m_.battery.capacity_ah) v.capacity_ah = m_.battery.capacity_ah->lo;
-    for (std::size_t i = 0; i < free.size(); ++i) {
-      const double val = free[i].lo + std::clamp(x[i], 0.0, 1.0) * (free[i].hi - free[i].lo);
-      if (free[i].segment < 0) v.capacity_ah = val;
-      else v.airspeed_m_s[free[i].segment] = val;
-    }
-    return v;
-  };
-  if (free.empty()) {
-    MissionResult r = WithEndurance(vars_at(nullptr), decide_cutoff);
-    if (enough(r)) return r;
-    if (explain) {
-      Summarize(&r);
-      AddWarnings(&r);
-    }
-    return r;
-  }
+  return free;
+}
 
-  const int n = static_cast<int>(free.size());
-  if (n == 1) {
-    // One free variable (the usual case: the capacity, or one cruise airspeed): a bracketed
-    // 1-D search, which also finds an optimum that sits on a constraint boundary (a heavier
-    // pack breaking a current or thrust-to-weight limit), where COBYLA tends to end just on the
-    // infeasible side and fall back to its coarse start.
-    // With a cutoff (max_endurance, the capacity free): after the grid, the bound of
-    // EnduranceUpperBound over the golden section's bracket decides whether it can still
-    // produce a score below the cutoff.
-    const bool bound_bracket = std::isfinite(cutoff_score) && m_.objective.type == ObjectiveType::kMaxEndurance &&
-                               free[0].segment < 0;
-    // min_energy with the capacity free and a voltage-independent terminal power (C0 = 0, no
-    // supply resistance, as in the check above): every segment's energy rises with the
-    // capacity (M3), so the energy at the bracket's low end bounds every point of it.
-    const bool energy_bracket = std::isfinite(cutoff_score) && m_.objective.type == ObjectiveType::kMinEnergy &&
-                                free[0].segment < 0 &&
-                                std::all_of(groups_.begin(), groups_.end(), [](const GroupDrive& g) {
-                                  return g.drive.esc().c0 == 0.0 && g.drive.esc().rsupply_ohm == 0.0;
-                                });
-    auto bounded = [&](const MissionResult& grid_best, double a, double b) {
-      if (grid_best.feasible && grid_best.score < cutoff_score) return false;
-      if (energy_bracket) {
-        const MissionResult ra = Run(vars_at(&a), 0.0);
-        return ra.segments.size() == m_.segments.size() && ra.energy_wh >= cutoff_score;
-      }
-      if (!bound_bracket) return false;
-      const double ub = EnduranceUpperBound(-cutoff_score, free[0].lo + a * (free[0].hi - free[0].lo),
-                                            free[0].lo + b * (free[0].hi - free[0].lo));
-      return -ub >= cutoff_score;
-    };
-    MissionResult r =
-        SolveOneVariable([&](double x) { return WithEndurance(vars_at(&x), decide_cutoff); }, bounded, enough);
-    if (enough(r)) return r;
-    if (r.bounded_out) return r;
-    if (!explain) return r;
-    std::ostringstream msg;
-    msg << "bracketed 1-D search (9-point grid, golden section to 1e-6 of the range); "
-        << (free[0].segment < 0 ? std::string("capacity_ah")
-                                : m_.segments[free[0].segment].name + ".airspeed_m_s")
-        << " = " << Num(free[0].segment < 0 ? r.capacity_ah : r.segments[free[0].segment].airspeed_m_s, 6);
-    r.solver = msg.str();
+ContinuousVars MissionEvaluator::VarsAt(const std::vector<FreeVar>& free, const double* x) const {
+  ContinuousVars v;
+  v.airspeed_m_s.assign(m_.segments.size(), 0.0);
+  if (m_.battery.capacity_ah) v.capacity_ah = m_.battery.capacity_ah->lo;
+  for (std::size_t i = 0; i < free.size(); ++i) {
+    const double val = free[i].lo + std::clamp(x[i], 0.0, 1.0) * (free[i].hi - free[i].lo);
+    if (free[i].segment < 0) v.capacity_ah = val;
+    else v.airspeed_m_s[free[i].segment] = val;
+  }
+  return v;
+}
+
+MissionResult MissionEvaluator::SolveContinuous(double cutoff_score, bool explain, bool decide) const {
+  if (MissionResult early; EarlyExit(cutoff_score, explain, &early)) return early;
+  const std::vector<FreeVar> free = FreeVariables();  // each scaled to [0, 1]
+  if (free.size() == 1) return SolveOneFree(free, cutoff_score, explain, decide);
+  if (free.size() > 1) return SolveManyFree(free, cutoff_score, explain, decide);
+  // decide: a feasible point that beats the cutoff answers the caller (Solve).
+  MissionResult r = WithEndurance(VarsAt(free, nullptr), decide ? cutoff_score : -kInf);
+  if (decide && r.feasible && r.score < cutoff_score) return r;
+  if (explain) {
     Summarize(&r);
     AddWarnings(&r);
-    return r;
   }
-  // A coarse grid (5 levels per variable, at most 125 points) picks the start; COBYLA
-  // (derivative-free: the objective passes through tabulated propeller data) polishes it.
+  return r;
+}
+
+// One free variable (the usual case: the capacity, or one cruise airspeed): a bracketed 1-D
+// search, which also finds an optimum that sits on a constraint boundary (a heavier pack breaking
+// a current or thrust-to-weight limit), where COBYLA tends to end just on the infeasible side and
+// fall back to its coarse start.
+MissionResult MissionEvaluator::SolveOneFree(const std::vector<FreeVar>& free, double cutoff_score, bool explain,
+                                             bool decide) const {
+  auto enough = [&](const MissionResult& r) { return decide && r.feasible && r.score < cutoff_score; };
+  const double decide_cutoff = decide ? cutoff_score : -kInf;  // for WithEndurance
+  auto vars_at = [&](const double* x) { return VarsAt(free, x); };
+  // With a cutoff (max_endurance, the capacity free): after the grid, the bound of
+  // EnduranceUpperBound over the golden section's bracket decides whether it can still
+  // produce a score below the cutoff.
+  const bool bound_bracket = std::isfinite(cutoff_score) && m_.objective.type == ObjectiveType::kMaxEndurance &&
+                             free[0].segment < 0;
+  // min_energy with the capacity free and a voltage-independent terminal power (C0 = 0, no
+  // supply resistance, as in the check above): every segment's energy rises with the
+  // capacity (M3), so the energy at the bracket's low end bounds every point of it.
+  const bool energy_bracket = std::isfinite(cutoff_score) && m_.objective.type == ObjectiveType::kMinEnergy &&
+                              free[0].segment < 0 &&
+                              std::all_of(groups_.begin(), groups_.end(), [](const GroupDrive& g) {
+                                return g.drive.esc().c0 == 0.0 && g.drive.esc().rsupply_ohm == 0.0;
+                              });
+  auto bounded = [&](const MissionResult& grid_best, double a, double b) {
+    if (grid_best.feasible && grid_best.score < cutoff_score) return false;
+    if (energy_bracket) {
+      const MissionResult ra = Run(vars_at(&a), 0.0);
+      return ra.segments.size() == m_.segments.size() && ra.energy_wh >= cutoff_score;
+    }
+    if (!bound_bracket) return false;
+    const double ub = EnduranceUpperBound(-cutoff_score, free[0].lo + a * (free[0].hi - free[0].lo),
+                                          free[0].lo + b * (free[0].hi - free[0].lo));
+    return -ub >= cutoff_score;
+  };
+  MissionResult r =
+      SolveOneVariable([&](double x) { return WithEndurance(vars_at(&x), decide_cutoff); }, bounded, enough);
+  if (enough(r)) return r;
+  if (r.bounded_out) return r;
+  if (!explain) return r;
+  std::ostringstream msg;
+  msg << "bracketed 1-D search (9-point grid, golden section to 1e-6 of the range); "
+      << (free[0].segment < 0 ? std::string("capacity_ah")
+                              : m_.segments[free[0].segment].name + ".airspeed_m_s")
+      << " = " << Num(free[0].segment < 0 ? r.capacity_ah : r.segments[free[0].segment].airspeed_m_s, 6);
+  r.solver = msg.str();
+  Summarize(&r);
+  AddWarnings(&r);
+  return r;
+}
+
+// Several free variables: a coarse grid (5 levels per variable, at most 125 points) picks the
+// start; COBYLA (derivative-free: the objective passes through tabulated propeller data) polishes it.
+MissionResult MissionEvaluator::SolveManyFree(const std::vector<FreeVar>& free, double cutoff_score, bool explain,
+                                              bool decide) const {
+  auto enough = [&](const MissionResult& r) { return decide && r.feasible && r.score < cutoff_score; };
+  const double decide_cutoff = decide ? cutoff_score : -kInf;  // for WithEndurance
+  auto vars_at = [&](const double* x) { return VarsAt(free, x); };
+  const int n = static_cast<int>(free.size());
   const int levels = 5;
   int total = 1;
   for (int i = 0; i < n && i < 3; ++i) total *= levels;
@@ -1173,7 +1186,7 @@ MissionResult MissionEvaluator::SolveContinuous(double cutoff_score, bool explai
   p.initial_point = best_x;
   p.lower_bounds = Eigen::VectorXd::Zero(n);
   p.upper_bounds = Eigen::VectorXd::Ones(n);
-  for (const Var& v : free) {
+  for (const FreeVar& v : free) {
     p.variable_names.push_back(v.segment < 0 ? "capacity_ah" : m_.segments[v.segment].name + ".airspeed_m_s");
   }
   // Scale of the objective: the grid's best score (so that the solver sees O(1) values).

@@ -233,6 +233,16 @@ class MissionEvaluator {
   MissionResult WithEndurance(ContinuousVars vars,
                               double decide_cutoff = -std::numeric_limits<double>::infinity()) const;
   MissionResult SolveContinuous(double cutoff_score, bool explain, bool decide) const;
+  // A free continuous variable of SolveContinuous: the capacity (segment -1) or a cruise's
+  // airspeed, searched over [lo, hi] as x in [0, 1].
+  struct FreeVar {
+    int segment;
+    double lo, hi;
+  };
+  std::vector<FreeVar> FreeVariables() const;
+  ContinuousVars VarsAt(const std::vector<FreeVar>& free, const double* x) const;  // x: one per free var, or null
+  MissionResult SolveOneFree(const std::vector<FreeVar>& free, double cutoff_score, bool explain, bool decide) const;
+  MissionResult SolveManyFree(const std::vector<FreeVar>& free, double cutoff_score, bool explain, bool decide) const;
   bool EarlyExit(double cutoff_score, bool explain, MissionResult* out) const;
   double StretchStartCurrent(const MissionResult& r) const;
   // An upper bound of the total mission time over the capacity range (max_endurance), tightened
