@@ -67,6 +67,25 @@ std::string Name(const Combination& c, int lift, int pusher) {
   return part(lift) + "|" + part(pusher) + "|" + std::to_string(c.cells);
 }
 
+// optimize's top 3 on m equals the best 3 of `all` (every feasible combination scored by the
+// evaluator), name and score bit for bit (the same code path); returns the search's result.
+SearchResult ExpectTopThreeOfExhaustive(const Catalog& cat, const Mission& m, std::vector<Scored> all, int lift,
+                                        int pusher) {
+  std::sort(all.begin(), all.end(), [](const Scored& a, const Scored& b) {
+    return a.score != b.score ? a.score < b.score : a.name < b.name;
+  });
+  SearchOptions so;
+  so.top_n = 3;
+  SearchResult s = SearchCatalog(m, cat, so);
+  EXPECT_EQ(s.best.size(), 3u);
+  for (std::size_t i = 0; i < s.best.size() && i < all.size(); ++i) {
+    EXPECT_EQ(Name(s.best[i].combination, lift, pusher), all[i].name) << i;
+    EXPECT_EQ(s.best[i].result.score, all[i].score) << i;
+  }
+  EXPECT_EQ(s.searched + s.pruned, s.combinations);
+  return s;
+}
+
 // Every combination (motors without mass left out, as the search does) through the evaluator,
 // with f(combination, result) called for each.
 // Groups other than lift and pusher keep their FixedGroupParts.
@@ -152,18 +171,13 @@ TEST_F(JointSearchTest, TwoFreeGroupsEqualExhaustiveEvaluation) {
   std::sort(all.begin(), all.end(), [](const Scored& a, const Scored& b) {
     return a.score != b.score ? a.score < b.score : a.name < b.name;
   });
+  const SearchResult s = ExpectTopThreeOfExhaustive(cat, m, all, lift, pusher);
+  ASSERT_EQ(s.best.size(), 3u);
   SearchOptions so;
   so.top_n = 3;
-  const SearchResult s = SearchCatalog(m, cat, so);
-  ASSERT_EQ(s.best.size(), 3u);
-  for (std::size_t i = 0; i < s.best.size(); ++i) {
-    EXPECT_EQ(Name(s.best[i].combination, lift, pusher), all[i].name) << i;
-    EXPECT_EQ(s.best[i].result.score, all[i].score) << i;  // same code path, bit for bit
-  }
   // Counts: every group's motors x ESCs x props, times the battery options.
   const long long per_group = static_cast<long long>(cat.motors().size() * cat.escs().size() * cat.props().size());
   EXPECT_EQ(s.combinations, per_group * per_group * 2);
-  EXPECT_EQ(s.searched + s.pruned, s.combinations);
   EXPECT_GT(s.pruned, s.searched) << "G2 must prune";
   // A cutoff between the #1 and #2: only the #1 comes back.
   PropGridCache cache2;
@@ -211,19 +225,8 @@ TEST_F(JointSearchTest, TwoFreeGroupsAndAFixedOneEqualExhaustiveEvaluation) {
   });
   ASSERT_GE(all.size(), 3u);
   EXPECT_GT(sprint_checked, 0);
-  std::sort(all.begin(), all.end(), [](const Scored& a, const Scored& b) {
-    return a.score != b.score ? a.score < b.score : a.name < b.name;
-  });
-  SearchOptions so;
-  so.top_n = 3;
-  const SearchResult s = SearchCatalog(m, cat, so);
-  ASSERT_EQ(s.best.size(), 3u);
-  for (std::size_t i = 0; i < s.best.size(); ++i) {
-    EXPECT_EQ(Name(s.best[i].combination, lift, pusher), all[i].name) << i;
-    EXPECT_EQ(s.best[i].result.score, all[i].score) << i;
-    EXPECT_EQ(s.best[i].combination.groups[sprint].motor->id, "dc_m_1020");
-  }
-  EXPECT_EQ(s.searched + s.pruned, s.combinations);
+  const SearchResult s = ExpectTopThreeOfExhaustive(cat, m, all, lift, pusher);
+  for (const RankedCombination& b : s.best) EXPECT_EQ(b.combination.groups[sprint].motor->id, "dc_m_1020");
 }
 
 // max_endurance with the lift group's loiter stretched (R4's energy budget in G2) on a smaller
@@ -263,18 +266,7 @@ TEST_F(JointSearchTest, MaxEnduranceTwoFreeGroupsEqualExhaustiveEvaluation) {
         << Name(c, lift, pusher);
   });
   ASSERT_GE(all.size(), 3u);
-  std::sort(all.begin(), all.end(), [](const Scored& a, const Scored& b) {
-    return a.score != b.score ? a.score < b.score : a.name < b.name;
-  });
-  SearchOptions so;
-  so.top_n = 3;
-  const SearchResult s = SearchCatalog(m, cat, so);
-  ASSERT_EQ(s.best.size(), 3u);
-  for (std::size_t i = 0; i < s.best.size(); ++i) {
-    EXPECT_EQ(Name(s.best[i].combination, lift, pusher), all[i].name) << i;
-    EXPECT_EQ(s.best[i].result.score, all[i].score) << i;
-  }
-  EXPECT_EQ(s.searched + s.pruned, s.combinations);
+  ExpectTopThreeOfExhaustive(cat, m, all, lift, pusher);
 }
 
 // Every group fixed: nothing to choose, refused with the JSON path.
