@@ -46,6 +46,7 @@ void RunExample(benchmark::State& state, const char* file, double capacity_hi_ah
   state.counters["pruned"] = static_cast<double>(s.pruned);
   state.counters["search_s"] = s.seconds;
   state.counters["candidate_pairs"] = static_cast<double>(s.candidate_pairs);
+  state.counters["candidate_s"] = s.candidate_seconds;
   state.counters["virtual_evals"] = static_cast<double>(s.virtual_evaluations);
 }
 

@@ -72,6 +72,15 @@ namespace dynosize {
 //    later pair has a worse bound). max_efficiency has no such bound (it is not pruned by R4).
 //    A fixed-airspeed cruise stretched gets the same budget with its power bound from
 //    momentum theory (N*P_ideal/max_figure_of_merit + P_avionics, ScoreLowerBound).
+// R9 (hover throttle from above): min_hover_throttle is checked at every hover point at the
+//    pack's full-charge OCV (mission_eval.cc, PropellerPoint). In the free group's first hover
+//    segment each rotor gives at most T_ub, the thrust at the heaviest mass of the pair (the
+//    option's largest pack and heaviest ESC); by (M1) its speed is at most omega_ub, the first
+//    grid speed whose thrust reaches T_ub, and its torque at most the largest grid torque up to
+//    there. With an ESC's own RESC, Drive::Inverse at (omega_ub, Q_ub) and the full-charge OCV
+//    is an upper bound of its hover throttle (M2): below the limit, that ESC fails
+//    min_hover_throttle for the pair whatever else is chosen. Checked per ESC in stage 5, before
+//    the class's virtual ESC (a class whose ESCs all fail it is skipped without one).
 // R8 (capacity pieces): see CapacityPiecesBoundAt; checked per pair and ESC class in stage 5
 //    before any simulation.
 // R5 (ESC dominance): within one pair, an ESC with the same C1, C0, tr_sat, sat_slope as an
@@ -311,6 +320,8 @@ void BuildPropGrids(const Mission& m, const Catalog& cat, std::vector<PropGrid>*
     }
     g.torque_suffix_min[kGrid - 1] = torque[kGrid - 1];
     for (int i = kGrid - 2; i >= 0; --i) g.torque_suffix_min[i] = std::min(torque[i], g.torque_suffix_min[i + 1]);
+    g.torque_prefix_max[0] = torque[0];
+    for (int i = 1; i < kGrid; ++i) g.torque_prefix_max[i] = std::max(torque[i], g.torque_prefix_max[i - 1]);
     const double fom_limit = 1.02 * m.constraints.max_figure_of_merit;  // R6's allowance (PropRule)
     int next_ok = kGrid;
     for (int i = kGrid - 1; i >= 0; --i) {
@@ -718,6 +729,26 @@ void MotorCandidates(const SearchContext& ctx, const MissionFacts& f, std::size_
   }
 }
 
+// R9 with the mission's facts and the motor's scenario parameters given (BranchAndBound calls it
+// per ESC).
+bool HoverThrottleBelowLimit(const SearchContext& ctx, const MissionFacts& f, const MotorParams& mp, int motor,
+                             int prop, int option, const EscEntry& esc) {
+  const Mission& m = *ctx.mission;
+  const PropGrid& g = ctx.grids[static_cast<std::size_t>(prop)];
+  if (!(m.constraints.min_hover_throttle > 0) || f.hover.empty() || !g.monotone) return false;
+  const BatteryOption& bo = ctx.options[static_cast<std::size_t>(option)];
+  const MotorEntry& mo = ctx.catalog->motors()[static_cast<std::size_t>(motor)];
+  // The heaviest the vehicle can be with this ESC: the option's largest pack.
+  const double mass_ub = m.vehicle.mass_kg + bo.mass_hi_kg + ctx.fixed_groups_mass_kg +
+                         ctx.free_rotors * (*mo.mass_kg + g.mass_kg + EscMassKg(esc));
+  const RotorLoad load = SegmentRotorLoad(m, m.segments[static_cast<std::size_t>(f.hover[0])], mass_ub, 0.0);
+  const double* it = std::lower_bound(g.thrust, g.thrust + kGrid, load.thrust_per_rotor_n);
+  if (it == g.thrust + kGrid) return false;  // beyond the grid: no bound
+  const std::size_t i = static_cast<std::size_t>(it - g.thrust);
+  return Drive(mp, esc.params).InverseLight(bo.v_full, g.torque_prefix_max[i], g.omega[i]).throttle <
+         m.constraints.min_hover_throttle;
+}
+
 }  // namespace
 
 double CapacityPiecesBound(const SearchContext& ctx, int motor, int prop, int option, int esc_class,
@@ -733,6 +764,12 @@ double CapacityPiecesBound(const SearchContext& ctx, int motor, int prop, int op
   ideal.c1 = cls.c1; ideal.c0 = cls.c0; ideal.tr_sat = cls.tr_sat; ideal.sat_slope = cls.sat_slope; ideal.resc_ohm = 0.0;
   return CapacityPiecesBoundAt(ctx, FactsOf(m, ctx.free_group), mp, Drive(mp, ideal), cls,
                                static_cast<std::size_t>(prop), static_cast<std::size_t>(option), mass_lb);
+}
+
+bool FailsHoverThrottleBound(const SearchContext& ctx, int motor, int prop, int option, const EscEntry& esc) {
+  const Mission& m = *ctx.mission;
+  const MotorParams mp = ScenarioMotorParams(ctx.catalog->motors()[static_cast<std::size_t>(motor)], m, nullptr, nullptr);
+  return HoverThrottleBelowLimit(ctx, FactsOf(m, ctx.free_group), mp, motor, prop, option, esc);
 }
 
 void ResolveGroups(SearchContext* ctx) {
@@ -1055,7 +1092,7 @@ class BranchAndBound {
   BranchAndBound(const SearchContext& ctx, const SearchOptions& opt, MotorHeads heads, SearchResult* out,
                  double cutoff = kInf)
       : ctx_(ctx), opt_(opt), stream_(ctx, std::move(heads.motors)), n_cands_(static_cast<std::size_t>(heads.pairs)),
-        out_(out), relaxed_(*ctx.mission), cutoff_(cutoff) {
+        out_(out), relaxed_(*ctx.mission), cutoff_(cutoff), facts_(FactsOf(*ctx.mission, ctx.free_group)) {
     // The virtual ESC (and so the class check) uses the mission without min_hover_throttle: a
     // real ESC's resistance and mass raise the throttle, so that lower limit is the one
     // constraint the virtual ESC may fail when a real one passes (R5). Relaxing it keeps the
@@ -1065,7 +1102,7 @@ class BranchAndBound {
     relaxed_.constraints.min_hover_throttle = 0.0;
     relaxed_.constraints.min_thrust_to_weight = 0.0;
     const Mission& m = *ctx.mission;
-    capacity_pieces_ = FactsOf(m, ctx.free_group).stretch_is_hover && m.battery.capacity_ah && m.battery.capacity_ah->free();
+    capacity_pieces_ = facts_.stretch_is_hover && m.battery.capacity_ah && m.battery.capacity_ah->free();
   }
 
   void Run();
@@ -1111,6 +1148,7 @@ class BranchAndBound {
   SearchResult* out_;
   Mission relaxed_;
   double cutoff_ = kInf;
+  MissionFacts facts_;
   std::vector<double> best_cutoffs_;  // parallel to out_->best: the cutoff of each one's Solve
   long long virtual_evals_ = 0;
 };
@@ -1159,6 +1197,7 @@ void BranchAndBound::Process(const Candidate& cand, std::vector<double> top, Out
     c.groups[ctx_.free_group].motor = c.motor;
     c.groups[ctx_.free_group].prop = c.prop;
   }
+  const MotorParams mp = ScenarioMotorParams(*c.motor, m, nullptr, nullptr);  // as MotorCandidates (R9)
   auto set_esc = [&](Combination* x, const EscEntry* e) {
     x->esc = e;
     if (!x->groups.empty()) x->groups[ctx_.free_group].esc = e;
@@ -1173,6 +1212,15 @@ void BranchAndBound::Process(const Candidate& cand, std::vector<double> top, Out
     }
     local_prune("esc_current", static_cast<long long>(list.size() - rated.size()));
     if (rated.empty()) continue;
+    if (m.constraints.min_hover_throttle > 0) {  // R9, per ESC
+      const std::size_t before = rated.size();
+      rated.erase(std::remove_if(rated.begin(), rated.end(), [&](int e) {
+                    return HoverThrottleBelowLimit(ctx_, facts_, mp, cand.motor, cand.prop, cand.option, escs[e]);
+                  }),
+                  rated.end());
+      local_prune("min_hover_throttle", static_cast<long long>(before - rated.size()));
+      if (rated.empty()) continue;
+    }
     // R5: the virtual ESC of the class.
     EscEntry virt;  // only what the evaluator reads (no copy of the entry's JSON)
     virt.id = "virtual";

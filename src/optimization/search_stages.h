@@ -63,6 +63,7 @@ inline constexpr double kGridMinRadS = 30.0, kGridMaxRadS = 6000.0;
 struct PropGrid {
   bool monotone = true;  // static thrust strictly rising on the grid (M1 checked)
   double omega[kGrid], thrust[kGrid], torque_suffix_min[kGrid];
+  double torque_prefix_max[kGrid];  // largest grid torque at or below each speed (R9)
   double fom[kGrid];  // static figure of merit (R6)
   // R6 in O(1): the first grid index >= i whose figure of merit is within 1.02 x the mission's
   // max_figure_of_merit (kGrid when none): every point of [i, j] breaks it iff fom_ok_next[i] > j.
@@ -134,6 +135,11 @@ double CapacityPiecesBound(const SearchContext& ctx, int motor, int prop, int op
 // bound applies). Only the ESC's C1, C0 are read (its class).
 double FreeCruisePowerLowerBoundW(const Mission& m, const Segment& sg, const GroupParts& parts,
                                   const PropModel& model, double mass_kg);
+
+// R9 (search.cc): true when the hover throttle of (motor, prop, option) with this ESC is below
+// the mission's min_hover_throttle at every mass and capacity, so the ESC fails that limit for
+// the pair whatever else is chosen (false when the rule does not apply).
+bool FailsHoverThrottleBound(const SearchContext& ctx, int motor, int prop, int option, const EscEntry& esc);
 
 // Fills ctx->fixed_power_lb_w (after stages 1-3 and ResolveGroups).
 inline constexpr int kFixedPowerMasses = 64;

@@ -1,6 +1,7 @@
 // The stages of the catalog search (optimization/search_stages.h), each on its own: battery
 // options, the ESC table (R1), the propeller grids (M1, R6), and the candidate pairs (R0, R2,
-// R3, R6, R7 remove only pairs that no ESC can fly; R4's bound is below every feasible score).
+// R3, R6, R7 remove only pairs that no ESC can fly; R4's bound is below every feasible score;
+// R9 refuses only ESCs that fail min_hover_throttle).
 #include "optimization/search_stages.h"
 
 #include <gtest/gtest.h>
@@ -208,6 +209,44 @@ TEST_F(SearchStagesTest, CandidatesRemoveOnlyInfeasiblePairsAndBoundTheScore) {
     EXPECT_GT(kept, 0) << objective;
     EXPECT_GT(removed, 0) << objective;
     EXPECT_GT(feasible, 3) << objective;
+  }
+}
+
+// R9 against the exact evaluator: an ESC the hover-throttle bound refuses for a pair fails
+// min_hover_throttle in the full solve of every such combination, with or without a capacity
+// range; the limit is set so that the rule refuses some and lets others through.
+TEST_F(SearchStagesTest, HoverThrottleBoundRefusesOnlyEscsThatFailTheLimit) {
+  const Catalog cat = SmallCatalog();
+  for (const bool capacity_range : {false, true}) {
+    Json j = ParseJsonText(kStageQuad, "quad");
+    j["constraints"]["min_hover_throttle"] = 0.35;
+    if (capacity_range) j["battery"]["capacity_ah"] = {2.0, 6.0};
+    const Mission m = ParseMission(j, "quad");
+    SearchContext ctx;
+    PrepareStages(m, cat, &ctx);
+    int refused = 0, passed = 0;
+    for (std::size_t mi = 0; mi < cat.motors().size(); ++mi) {
+      if (!cat.motors()[mi].mass_kg) continue;
+      for (std::size_t pi = 0; pi < cat.props().size(); ++pi) {
+        for (std::size_t o = 0; o < ctx.options.size(); ++o) {
+          for (const EscEntry& e : cat.escs()) {
+            if (!FailsHoverThrottleBound(ctx, static_cast<int>(mi), static_cast<int>(pi), static_cast<int>(o), e)) {
+              ++passed;
+              continue;
+            }
+            ++refused;
+            const Combination c{&cat.motors()[mi], &e, &cat.props()[pi], ctx.options[o].entry, ctx.options[o].cells};
+            const MissionResult r = MissionEvaluator(m, c).Solve();
+            EXPECT_FALSE(r.feasible) << c.motor->id << " " << e.id << " " << c.prop->id;
+            bool named = false;
+            for (const Violation& v : r.violations) named |= v.constraint == "min_hover_throttle";
+            EXPECT_TRUE(named) << c.motor->id << " " << e.id << " " << c.prop->id;
+          }
+        }
+      }
+    }
+    EXPECT_GT(refused, 0) << "capacity range " << capacity_range;
+    EXPECT_GT(passed, 0) << "capacity range " << capacity_range;
   }
 }
 
