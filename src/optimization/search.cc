@@ -343,6 +343,11 @@ struct MissionFacts {
   // The free group lifts the vehicle (LiftGroup, 0 when none): the evaluator's prop_folding,
   // motor_unrated and motor_voltage checks apply to it (credibility.h).
   bool free_lifts = false;
+  // Stage 4 only (StageFourFacts): per catalog propeller the R0 rule that removes it whatever
+  // the motor (null: none), and R7's largest axial airspeed over the free group's climbs and
+  // wing-borne cruises.
+  std::vector<const char*> prop_frame_rule;
+  double r7_axial_m_s = 0;
 };
 
 // Groups (G1): the rules below speak of the free group's segments only; a segment of a fixed
@@ -362,6 +367,30 @@ MissionFacts FactsOf(const Mission& m, int free_group) {
   f.tr_limit = std::min(m.constraints.max_throttle, 1.0);
   f.free_group = free_group;
   f.free_lifts = free_group == std::max(0, LiftGroup(m));
+  return f;
+}
+
+// FactsOf with what stage 4 reads per propeller (R0) and per pair (R7) worked out once.
+MissionFacts StageFourFacts(const SearchContext& ctx) {
+  const Mission& m = *ctx.mission;
+  MissionFacts f = FactsOf(m, ctx.free_group);
+  const std::optional<double> d_max = GroupMaxPropDiameterM(m, f.free_group);
+  for (const PropEntry& prop : ctx.catalog->props()) {
+    const char* rule = nullptr;
+    if (d_max && prop.diameter_m > *d_max) {
+      rule = "prop_diameter";
+    } else if (!prop.exclude_reason.empty()) {
+      rule = "catalog_exclude";  // the catalog excludes it
+    } else if (f.free_lifts && FoldingPropRefused(prop, m)) {
+      rule = "prop_folding";  // credibility.h
+    }
+    f.prop_frame_rule.push_back(rule);
+  }
+  for (const Segment& sg : m.segments) {
+    if (sg.group != f.free_group) continue;
+    if (sg.type == SegmentType::kClimb && sg.climb_rate_m_s > 0) f.r7_axial_m_s = std::max(f.r7_axial_m_s, sg.climb_rate_m_s);
+    if (sg.type == SegmentType::kCruise && sg.lift_to_drag > 0) f.r7_axial_m_s = std::max(f.r7_axial_m_s, sg.airspeed_m_s.lo);
+  }
   return f;
 }
 
@@ -561,10 +590,7 @@ const char* PropRule(const SearchContext& ctx, const MissionFacts& f, const Moto
   const PropEntry& prop = ctx.catalog->props()[pi];
   const PropGrid& g = ctx.grids[pi];
   const BatteryOption& bo = ctx.options[o];
-  const std::optional<double> d_max = GroupMaxPropDiameterM(m, f.free_group);
-  if (d_max && prop.diameter_m > *d_max) return "prop_diameter";  // R0
-  if (!prop.exclude_reason.empty()) return "catalog_exclude";      // R0: the catalog excludes it
-  if (f.free_lifts && FoldingPropRefused(prop, m)) return "prop_folding";  // R0 (credibility.h)
+  if (const char* rule = f.prop_frame_rule[pi]) return rule;  // R0 (StageFourFacts)
   int lb_idx = 0;  // grid index of omega_lb
   *omega_lb = 0;
   *q_lb = 0;
@@ -581,30 +607,27 @@ const char* PropRule(const SearchContext& ctx, const MissionFacts& f, const Moto
     // T_ub (the heaviest the vehicle can be); if the data break momentum theory (figure of
     // merit > the mission's limit) on that whole bracket, every hover point fails
     // prop_figure_of_merit (mission_eval.cc). The 2 % allowance covers the variation between
-    // grid points.
-    const double mass_ub = m.vehicle.mass_kg + bo.mass_hi_kg + ctx.fixed_groups_mass_kg +
-                           ctx.free_rotors * (*mo.mass_kg + g.mass_kg + ctx.escs.max_mass_kg[o]);
-    const RotorLoad load_ub = SegmentRotorLoad(m, m.segments[f.hover[0]], mass_ub, 0.0);
-    const double* it_ub = std::lower_bound(g.thrust, g.thrust + kGrid, load_ub.thrust_per_rotor_n);
-    const int hi_idx = std::min(static_cast<int>(it_ub - g.thrust), kGrid - 1);
-    // Every grid point of [lb_idx, hi_idx] above 1.02 x the limit (fom_ok_next, BuildPropGrids).
-    if (it_ub != g.thrust + kGrid && (lb_idx > hi_idx || g.fom_ok_next[lb_idx] > hi_idx)) return "prop_figure_of_merit";
+    // grid points. T_ub >= T_lb (M3) puts hi_idx at or above lb_idx, so when the point at
+    // lb_idx keeps the limit the rule cannot fire and T_ub is not needed.
+    if (g.fom_ok_next[lb_idx] != lb_idx) {
+      const double mass_ub = m.vehicle.mass_kg + bo.mass_hi_kg + ctx.fixed_groups_mass_kg +
+                             ctx.free_rotors * (*mo.mass_kg + g.mass_kg + ctx.escs.max_mass_kg[o]);
+      const RotorLoad load_ub = SegmentRotorLoad(m, m.segments[f.hover[0]], mass_ub, 0.0);
+      const double* it_ub = std::lower_bound(g.thrust, g.thrust + kGrid, load_ub.thrust_per_rotor_n);
+      const int hi_idx = std::min(static_cast<int>(it_ub - g.thrust), kGrid - 1);
+      // Every grid point of [lb_idx, hi_idx] above 1.02 x the limit (fom_ok_next, BuildPropGrids).
+      if (it_ub != g.thrust + kGrid && (lb_idx > hi_idx || g.fom_ok_next[lb_idx] > hi_idx)) return "prop_figure_of_merit";
+    }
   }
   if (ctx.models[pi]->data_kind() != PropDataKind::kTables || prop.j_tables.empty()) {
     // R7: static-only data. The shaft cannot turn faster than the motor's no-load speed at full
     // throttle and the full-charge voltage with no ESC resistance, so the advance ratio in a
     // segment with axial airspeed >= V_ax is at least V_ax/(n_max*D); above the mission's
     // max_static_advance_ratio the segment fails prop_no_forward_flight_data whatever else is
-    // chosen.
+    // chosen. (The largest V_ax over the segments, StageFourFacts.)
     const double n_max = w_nl / (2.0 * kPi);
-    for (const Segment& sg : m.segments) {
-      if (sg.group != f.free_group) continue;
-      double v_ax = 0;
-      if (sg.type == SegmentType::kClimb && sg.climb_rate_m_s > 0) v_ax = sg.climb_rate_m_s;
-      if (sg.type == SegmentType::kCruise && sg.lift_to_drag > 0) v_ax = sg.airspeed_m_s.lo;
-      if (n_max > 0 && v_ax / (n_max * prop.diameter_m) > k.max_static_advance_ratio) {
-        return "prop_no_forward_flight_data";
-      }
+    if (n_max > 0 && f.r7_axial_m_s / (n_max * prop.diameter_m) > k.max_static_advance_ratio) {
+      return "prop_no_forward_flight_data";
     }
   }
   if (prop.max_rpm && RadPerSecToRpm(*omega_lb) > *prop.max_rpm) return "prop_max_rpm";  // R2
@@ -702,9 +725,16 @@ void MotorCandidates(const SearchContext& ctx, const MissionFacts& f, std::size_
         pruned->Add(rule, per_pair);
         continue;
       }
-      // R3 and R4 over the ESC classes: the pair survives if any class can.
+      // R3 and R4 over the ESC classes: the pair survives if any class can. R4's bound is
+      // nondecreasing in pdc_lb for a given DriveIsLossy (every term is, and so is each
+      // correctly rounded operation): the least over the classes is the bound at the least
+      // pdc_lb of each kind (a class of each kind at most: ScoreLowerBound reads the class
+      // only through DriveIsLossy).
       bool any = false;
-      double best_bound = kInf, irms_lb = kInf;
+      double irms_lb = kInf;
+      double pdc_min[2] = {kInf, kInf};  // [DriveIsLossy]
+      bool has[2] = {false, false};
+      std::size_t class_of[2] = {0, 0};
       const char* why = "throttle";
       for (std::size_t ci = 0; ci < classes.size(); ++ci) {
         if (ctx.escs.per_option[o][ci].empty()) continue;
@@ -715,14 +745,24 @@ void MotorCandidates(const SearchContext& ctx, const MissionFacts& f, std::size_
         if (k.enforce_motor_power && hi_v.pac_w > mp.max_power_w) { why = "motor_power"; continue; }
         const double pdc_lo_v = bo.v_cut * ideal[ci].InverseLight(bo.v_cut, q_lb, omega_lb).idc_a;  // (59), as Inverse
         const double pdc_lb = std::max(0.0, std::min(hi_v.pdc_w, pdc_lo_v));
-        const double bound = ScoreLowerBound(ctx, f, mp, classes[ci], props[pi], *ctx.models[pi], o, &loads, pdc_lb);
+        const int lossy = DriveIsLossy(mp, classes[ci].c1, classes[ci].c0) ? 1 : 0;
+        if (!has[lossy] || pdc_lb < pdc_min[lossy]) {
+          has[lossy] = true;
+          pdc_min[lossy] = pdc_lb;
+          class_of[lossy] = ci;
+        }
         any = true;
-        best_bound = std::min(best_bound, bound);
         irms_lb = std::min(irms_lb, hi_v.irms_a);
       }
       if (!any) {
         pruned->Add(why, per_pair);
         continue;
+      }
+      double best_bound = kInf;
+      for (int lossy = 0; lossy < 2; ++lossy) {
+        if (!has[lossy]) continue;
+        best_bound = std::min(best_bound, ScoreLowerBound(ctx, f, mp, classes[class_of[lossy]], props[pi],
+                                                          *ctx.models[pi], o, &loads, pdc_min[lossy]));
       }
       cands->push_back(Candidate{best_bound, static_cast<int>(mi), static_cast<int>(pi), static_cast<int>(o), irms_lb});
     }
@@ -936,7 +976,7 @@ bool SkipMotor(const MotorEntry& m, long long per_motor, RuleCounts* pruned, lon
 }  // namespace
 
 CandidateList BuildCandidates(const SearchContext& ctx, int threads) {
-  const MissionFacts f = FactsOf(*ctx.mission, ctx.free_group);
+  const MissionFacts f = StageFourFacts(ctx);
   const auto& motors = ctx.catalog->motors();
   const long long per_motor = static_cast<long long>(ctx.catalog->escs().size()) *
                               static_cast<long long>(ctx.catalog->props().size() * ctx.options.size());
@@ -987,7 +1027,7 @@ void TakeFirst(std::vector<Candidate>* pairs, std::size_t n, MotorQueue* q) {
 }  // namespace
 
 MotorHeads BuildMotorHeads(const SearchContext& ctx, int threads, std::size_t first_pairs) {
-  const MissionFacts f = FactsOf(*ctx.mission, ctx.free_group);
+  const MissionFacts f = StageFourFacts(ctx);
   const auto& motors = ctx.catalog->motors();
   const long long per_motor = static_cast<long long>(ctx.catalog->escs().size()) *
                               static_cast<long long>(ctx.catalog->props().size() * ctx.options.size());
@@ -1028,7 +1068,7 @@ MotorHeads BuildMotorHeads(const SearchContext& ctx, int threads, std::size_t fi
 
 void MotorPairs(const SearchContext& ctx, int motor, std::vector<Candidate>* out) {
   RuleCounts ignored;  // counted once, by BuildMotorHeads
-  MotorCandidates(ctx, FactsOf(*ctx.mission, ctx.free_group), static_cast<std::size_t>(motor), out, &ignored);
+  MotorCandidates(ctx, StageFourFacts(ctx), static_cast<std::size_t>(motor), out, &ignored);
 }
 
 CandidateStream::CandidateStream(const SearchContext& ctx, std::vector<MotorQueue> motors)
@@ -1212,7 +1252,16 @@ void BranchAndBound::Process(const Candidate& cand, std::vector<double> top, Out
     }
     local_prune("esc_current", static_cast<long long>(list.size() - rated.size()));
     if (rated.empty()) continue;
-    if (m.constraints.min_hover_throttle > 0) {  // R9, per ESC
+    // R9, per ESC; skipped when the class's most favourable case (its lightest mass and least
+    // resistance, which give the lowest throttle bound: M1-M3) is not below the limit.
+    EscEntry least;
+    least.params = escs[rated.front()].params;
+    least.mass_kg = EscMassKg(escs[rated.front()]);
+    for (int e : rated) {
+      least.mass_kg = std::min(*least.mass_kg, EscMassKg(escs[e]));
+      least.params.resc_ohm = std::min(least.params.resc_ohm, escs[e].params.resc_ohm);
+    }
+    if (HoverThrottleBelowLimit(ctx_, facts_, mp, cand.motor, cand.prop, cand.option, least)) {
       const std::size_t before = rated.size();
       rated.erase(std::remove_if(rated.begin(), rated.end(), [&](int e) {
                     return HoverThrottleBelowLimit(ctx_, facts_, mp, cand.motor, cand.prop, cand.option, escs[e]);
