@@ -312,6 +312,14 @@ Drive::InverseCurrents Drive::InverseLight(double vdc_v, double torque_nm, doubl
   return {throttle, (esc_.c1 * EffectiveThrottle(throttle) + esc_.c0) * current, current};  // (57)
 }
 
+double Drive::InverseAcPower(double vdc_v, const InverseCurrents& c, double torque_nm, double omega_rad_s) const {
+  if (extended_) return InverseExtended(vdc_v, torque_nm, omega_rad_s).pac_w;
+  // Complete's expressions (the same rounding).
+  const double vll = circuit::LineVoltage(circuit::AppliedVoltage(volt_factor_, vdc_v, EffectiveThrottle(c.throttle)),
+                                          esc_.resc_ohm, c.irms_a);
+  return circuit::AcPower(power_factor_, vll, c.irms_a);
+}
+
 [[gnu::noinline]] OperatingPoint Drive::InverseExtended(double vdc_v, double torque_nm, double omega_rad_s) const {
   const double kt = motor_.kt_nm_per_a;
   const double io = motor_.io1_a_s_per_rad == 0.0

@@ -204,6 +204,8 @@ class Drive {
     double throttle = 0.0, idc_a = 0.0, irms_a = 0.0;
   };
   InverseCurrents InverseLight(double vdc_v, double torque_nm, double omega_rad_s) const;
+  // Inverse's PAC (eq 47) from InverseLight's numbers at the same VDC, bit for bit.
+  double InverseAcPower(double vdc_v, const InverseCurrents& c, double torque_nm, double omega_rad_s) const;
 
   // Derived points at a given VDC and throttle.
   // No-load speed omega_NL = (kv*VDC*TR_eff - Io*R)/KE (eq 49 with Q = 0).

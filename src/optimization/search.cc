@@ -81,6 +81,19 @@ namespace dynosize {
 //    is an upper bound of its hover throttle (M2): below the limit, that ESC fails
 //    min_hover_throttle for the pair whatever else is chosen. Checked per ESC in stage 5, before
 //    the class's virtual ESC (a class whose ESCs all fail it is skipped without one).
+// R10 (the charge the mission must take): the pack's terminal current is at least the
+//    terminal power over the full-charge OCV (V <= OCV <= v_full), so along the mission each
+//    segment takes at least P_lb*t_min/v_full of charge (P_lb its R4 power bound at every
+//    instant, t_min its shortest duration; 0 s for a max_endurance stretch), and the SOC at a
+//    segment's end is at most 1 - (their sum)/Q_max (Q_max the largest capacity; coulomb
+//    counting). Below the reserve, the mission breaks reserve_soc (the SOC only falls). At the
+//    end of a segment whose rotors hold at least (omega_lb, Q_lb) (R4's scaled segments), the
+//    terminal voltage is at most OCV(that SOC) - (P_lb/v_full)*R_min (R_min the pack's
+//    resistance at Q_max, PackAt); the zero-resistance drive's throttle at that voltage is a
+//    lower bound of the throttle there (M2: it falls with the voltage), which the evaluator
+//    checks at every segment end: above the limit (R3's t_max) the class cannot fly the pair.
+//    The evaluator counts charge by the midpoint rule: the charge bound is taken at
+//    kChargeAllowance (1 - 1e-3) of its value against that rule's error.
 // R8 (capacity pieces): see CapacityPiecesBoundAt; checked per pair and ESC class in stage 5
 //    before any simulation.
 // R5 (ESC dominance): within one pair, an ESC with the same C1, C0, tr_sat, sat_slope as an
@@ -176,6 +189,7 @@ namespace dynosize {
 namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
+constexpr double kChargeAllowance = 1.0 - 1e-3;  // R10
 
 // Counts per pruning rule without building a string per pruned pair (rule names are literals).
 class RuleCounts {
@@ -228,6 +242,8 @@ std::vector<BatteryOption> BatteryOptions(const Mission& m, const Catalog& cat) 
       BatteryOption o{&b, s, pack.OcvV(1.0), pack.cutoff_v(d), pack.capacity_ah(), pack.capacity_ah(),
                       pack.mass_kg(), pack.mass_kg(), pack.max_current_a()};
       o.ocv_integral_v = OcvIntegralUpperBound(pack, m.battery.reserve_soc);
+      o.chemistry = pack.params().chemistry;
+      o.ri_at_hi_ohm = pack.ri_ohm();
       if (m.battery.capacity_ah) {
         const double k_lo = m.battery.capacity_ah->lo / pack.capacity_ah();
         const double k_hi = m.battery.capacity_ah->hi / pack.capacity_ah();
@@ -236,6 +252,7 @@ std::vector<BatteryOption> BatteryOptions(const Mission& m, const Catalog& cat) 
         o.mass_lo_kg = pack.mass_kg() * k_lo;
         o.mass_hi_kg = pack.mass_kg() * k_hi;
         o.max_current_hi_a = pack.max_current_a() * k_hi;
+        o.ri_at_hi_ohm = pack.ri_ohm() / k_hi;
       }
       options.push_back(o);
     }
@@ -451,6 +468,42 @@ class PairLoads {
   std::vector<PowerTerm> terms_;
 };
 
+// R4's terminal power bound of segment si at every instant, W, for a pair at the mass of
+// `loads`, given the hover bound's per-rotor PDC pdc_lb. The terminal power of a segment is at
+// least N*PDC_lb + P_avionics when each of its N rotors must give at least T_lb (hover[0]'s
+// per-rotor thrust at the lightest mass, which defines omega_lb and Q_lb) from the same
+// speed-thrust curve: hover segments, and climb or fixed-airspeed cruise segments of a
+// propeller with static-only data (the evaluator reads them at J = 0 in any inflow, so speed
+// and torque are at least omega_lb and Q_lb there too, M1, M2); *scales says so. Any other
+// segment draws at least P_avionics. Everything but pdc_lb depends on the pair only: kept per
+// pair (PairLoads::Term). Requires a hover segment (f.hover not empty).
+double SegmentPowerLowerBoundW(const SearchContext& ctx, const MissionFacts& f, const PropEntry& prop,
+                               const PropModel& model, std::size_t option, PairLoads* loads, std::size_t si,
+                               double pdc_lb, bool* scales = nullptr) {
+  const Mission& m = *ctx.mission;
+  const PairLoads::PowerTerm& t = loads->Term(si, [&](PairLoads::PowerTerm* x) {
+    const Segment& sg = m.segments[si];
+    x->constant = m.vehicle.avionics_power_w;
+    if (sg.group != f.free_group) {  // G1: the fixed group's own bound at the lightest mass
+      if (!ctx.fixed_power_lb_w.empty()) x->constant = FixedPowerLowerBoundW(ctx, option, si, loads->mass_kg());
+      return;
+    }
+    const double t_lb = loads->At(static_cast<std::size_t>(f.hover[0]), false, 0.0).thrust_per_rotor_n;
+    const bool static_only = model.data_kind() != PropDataKind::kTables || prop.j_tables.empty();
+    const bool fixed_v = sg.type != SegmentType::kCruise || !sg.airspeed_m_s.free();
+    if (sg.type == SegmentType::kHover ||
+        (static_only && fixed_v && (sg.type == SegmentType::kClimb || sg.type == SegmentType::kCruise))) {
+      const RotorLoad& ld = loads->At(si, false, sg.type == SegmentType::kCruise ? sg.airspeed_m_s.lo : 0.0);
+      if (ld.thrust_per_rotor_n >= t_lb) {
+        x->scales = true;
+        x->rotors = ld.rotors;
+      }
+    }
+  });
+  if (scales) *scales = t.scales;
+  return t.scales ? t.rotors * pdc_lb + m.vehicle.avionics_power_w : t.constant;
+}
+
 // R4: a lower bound of the score of a (motor, propeller, option) pair with an ESC of class
 // `esc_class`, given the hover bound's per-rotor electrical power pdc_lb at the lightest mass.
 // capacity_hi_ah: the largest capacity the bound covers (0: the option's largest).
@@ -461,34 +514,8 @@ double ScoreLowerBound(const SearchContext& ctx, const MissionFacts& f, const Mo
   const BatteryOption& bo = ctx.options[option];
   const Mission& m = *ctx.mission;
   if (f.hover.empty()) return -kInf;
-  // The terminal power of a segment is at least N*PDC_lb + P_avionics when each of its N rotors
-  // must give at least T_lb (hover[0]'s per-rotor thrust at the lightest mass, which defines
-  // omega_lb and Q_lb) from the same speed-thrust curve: hover segments, and climb or
-  // fixed-airspeed cruise segments of a propeller with static-only data (the evaluator reads
-  // them at J = 0 in any inflow, so speed and torque are at least omega_lb and Q_lb there too,
-  // M1, M2). Any other segment draws at least P_avionics.
-  const double t_lb = loads->At(static_cast<std::size_t>(f.hover[0]), false, 0.0).thrust_per_rotor_n;
-  const bool static_only = model.data_kind() != PropDataKind::kTables || prop.j_tables.empty();
-  // Everything but pdc_lb depends on the pair only: kept per pair (PairLoads::Term).
   auto p_lb_of = [&](std::size_t si) {
-    const PairLoads::PowerTerm& t = loads->Term(si, [&](PairLoads::PowerTerm* x) {
-      const Segment& sg = m.segments[si];
-      x->constant = m.vehicle.avionics_power_w;
-      if (sg.group != f.free_group) {  // G1: the fixed group's own bound at the lightest mass
-        if (!ctx.fixed_power_lb_w.empty()) x->constant = FixedPowerLowerBoundW(ctx, option, si, loads->mass_kg());
-        return;
-      }
-      const bool fixed_v = sg.type != SegmentType::kCruise || !sg.airspeed_m_s.free();
-      if (sg.type == SegmentType::kHover ||
-          (static_only && fixed_v && (sg.type == SegmentType::kClimb || sg.type == SegmentType::kCruise))) {
-        const RotorLoad& ld = loads->At(si, false, sg.type == SegmentType::kCruise ? sg.airspeed_m_s.lo : 0.0);
-        if (ld.thrust_per_rotor_n >= t_lb) {
-          x->scales = true;
-          x->rotors = ld.rotors;
-        }
-      }
-    });
-    return t.scales ? t.rotors * pdc_lb + m.vehicle.avionics_power_w : t.constant;
+    return SegmentPowerLowerBoundW(ctx, f, prop, model, option, loads, si, pdc_lb);
   };
   // The shortest a segment can last (free airspeed: at its top speed).
   auto t_min_of = [&](const Segment& sg) { return SegmentDurationS(sg, sg.airspeed_m_s.hi); };
@@ -577,6 +604,32 @@ double ScoreLowerBound(const SearchContext& ctx, const MissionFacts& f, const Mo
     return p_stretch > 0 ? -(f.t_fixed_max + std::max(0.0, e_max - e_other) / p_stretch) : -kInf;
   }
   return -kInf;
+}
+
+// R10 for one pair and ESC class (see the rule): "throttle" or "reserve_soc" when the charge
+// the mission must take leaves no feasible point, else null.
+const char* ChargeRule(const SearchContext& ctx, const MissionFacts& f, const Drive& ideal, double t_max,
+                       const PropEntry& prop, const PropModel& model, std::size_t option, PairLoads* loads,
+                       double pdc_lb, double q_lb, double omega_lb) {
+  const Mission& m = *ctx.mission;
+  if (f.hover.empty()) return nullptr;
+  const BatteryOption& bo = ctx.options[option];
+  const double q_c = AhToCoulomb(bo.capacity_hi_ah);
+  const int stretch = m.objective.type == ObjectiveType::kMaxEndurance ? m.objective.segment_index : -1;
+  double charge_c = 0;
+  for (std::size_t si = 0; si < m.segments.size(); ++si) {
+    const Segment& sg = m.segments[si];
+    bool scales = false;
+    const double p_w = SegmentPowerLowerBoundW(ctx, f, prop, model, option, loads, si, pdc_lb, &scales);
+    const double t_s = static_cast<int>(si) == stretch ? 0.0 : SegmentDurationS(sg, sg.airspeed_m_s.hi);
+    charge_c += kChargeAllowance * p_w * t_s / bo.v_full;
+    const double soc = 1.0 - charge_c / q_c;
+    if (soc < m.battery.reserve_soc) return "reserve_soc";
+    if (!scales) continue;
+    const double v_ub = bo.OcvV(soc) - p_w / bo.v_full * bo.ri_at_hi_ohm;
+    if (!(v_ub > 0) || ideal.InverseLight(v_ub, q_lb, omega_lb).throttle > t_max) return "throttle";
+  }
+  return nullptr;
 }
 
 // R0, R2, R6, R7 for one (motor, propeller, option) pair: the rule that removes it, or null.
@@ -738,13 +791,21 @@ void MotorCandidates(const SearchContext& ctx, const MissionFacts& f, std::size_
       const char* why = "throttle";
       for (std::size_t ci = 0; ci < classes.size(); ++ci) {
         if (ctx.escs.per_option[o][ci].empty()) continue;
-        const OperatingPoint hi_v = ideal[ci].Inverse(bo.v_full, q_lb, omega_lb);
+        const Drive::InverseCurrents hi_v = ideal[ci].InverseLight(bo.v_full, q_lb, omega_lb);
         const double t_max = k.allow_esc_saturation ? f.tr_limit : std::min(f.tr_limit, classes[ci].tr_sat);
         if (hi_v.throttle > t_max) { why = "throttle"; continue; }
         if (hi_v.irms_a > mp.max_current_a * margin) { why = "motor_current"; continue; }
-        if (k.enforce_motor_power && hi_v.pac_w > mp.max_power_w) { why = "motor_power"; continue; }
+        if (k.enforce_motor_power && ideal[ci].InverseAcPower(bo.v_full, hi_v, q_lb, omega_lb) > mp.max_power_w) {
+          why = "motor_power";
+          continue;
+        }
         const double pdc_lo_v = bo.v_cut * ideal[ci].InverseLight(bo.v_cut, q_lb, omega_lb).idc_a;  // (59), as Inverse
-        const double pdc_lb = std::max(0.0, std::min(hi_v.pdc_w, pdc_lo_v));
+        const double pdc_lb = std::max(0.0, std::min(bo.v_full * hi_v.idc_a, pdc_lo_v));  // (59), as Inverse
+        if (const char* rule = ChargeRule(ctx, f, ideal[ci], t_max, props[pi], *ctx.models[pi], o, &loads, pdc_lb,
+                                          q_lb, omega_lb)) {  // R10
+          why = rule;
+          continue;
+        }
         const int lossy = DriveIsLossy(mp, classes[ci].c1, classes[ci].c0) ? 1 : 0;
         if (!has[lossy] || pdc_lb < pdc_min[lossy]) {
           has[lossy] = true;

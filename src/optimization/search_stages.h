@@ -20,6 +20,7 @@
 #include <string>
 #include <vector>
 
+#include "battery/battery.h"
 #include "catalog/catalog.h"
 #include "mission/mission.h"
 #include "optimization/mission_eval.h"
@@ -35,6 +36,9 @@ struct BatteryOption {
   double capacity_lo_ah = 0, capacity_hi_ah = 0, mass_lo_kg = 0, mass_hi_kg = 0;
   double max_current_hi_a = 0;
   double ocv_integral_v = 0;  // OcvIntegralUpperBound over [reserve, 1]
+  BatteryChemistry chemistry = BatteryChemistry::kLiPo;
+  double ri_at_hi_ohm = 0;  // the pack's resistance at capacity_hi_ah (the least, PackAt)
+  double OcvV(double soc) const { return cells * CellOcvV(chemistry, soc); }  // as BatteryPack::OcvV
 };
 
 // Throws UsageError when no cell count in the mission's range fits any entry, DataError when an

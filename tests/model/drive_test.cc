@@ -246,9 +246,10 @@ TEST(Drive, BatchEqualsScalar) {
   }
 }
 
-// InverseLight is Inverse without the powers: the same throttle, IDC and Irms bit for bit (the
-// evaluator's pack fixed point relies on it to give the same numbers as before), below and
-// above the saturation knee, over 100 % throttle, and with every extension on.
+// InverseLight is Inverse without the powers: the same throttle, IDC and Irms bit for bit, and
+// with InverseAcPower the same PAC (the evaluator's pack fixed point and the search's bounds
+// rely on it to give the same numbers as before), below and above the saturation knee, over
+// 100 % throttle, and with every extension on.
 TEST(Drive, InverseLightEqualsInverse) {
   MotorParams ext_m = TestMotor();
   ext_m.kt_droop_per_a = 0.01;
@@ -270,6 +271,8 @@ TEST(Drive, InverseLightEqualsInverse) {
       EXPECT_EQ(c.throttle, p.throttle) << i;
       EXPECT_EQ(c.idc_a, p.idc_a) << i;
       EXPECT_EQ(c.irms_a, p.irms_a) << i;
+      EXPECT_EQ(d.InverseAcPower(vdc, c, q, w), p.pac_w) << i;
+      EXPECT_EQ(vdc * c.idc_a, p.pdc_w) << i;  // PDC = VDC*IDC (eq 59), as the search reads it
     }
   }
   EXPECT_GT(saturated, 50);  // the saturated branch is exercised
