@@ -311,9 +311,21 @@ EscTable BuildEscTable(const Catalog& cat, const std::vector<BatteryOption>& opt
   return t;
 }
 
+std::vector<double> InflowsOf(const Mission& m) {
+  std::vector<double> v;
+  for (const Segment& sg : m.segments) {
+    if (sg.type == SegmentType::kClimb && sg.climb_rate_m_s > 0) v.push_back(sg.climb_rate_m_s);
+    if (sg.type == SegmentType::kCruise && sg.lift_to_drag > 0 && !sg.airspeed_m_s.free()) v.push_back(sg.airspeed_m_s.lo);
+  }
+  std::sort(v.begin(), v.end());
+  v.erase(std::unique(v.begin(), v.end()), v.end());
+  return v;
+}
+
 void BuildPropGrids(const Mission& m, const Catalog& cat, std::vector<PropGrid>* grids,
                     std::vector<std::unique_ptr<PropModel>>* models) {
   const auto& props = cat.props();
+  const std::vector<double> inflows = InflowsOf(m);
   grids->assign(props.size(), PropGrid{});
   models->clear();
   models->resize(props.size());
@@ -339,6 +351,23 @@ void BuildPropGrids(const Mission& m, const Catalog& cat, std::vector<PropGrid>*
     for (int i = kGrid - 2; i >= 0; --i) g.torque_suffix_min[i] = std::min(torque[i], g.torque_suffix_min[i + 1]);
     g.torque_prefix_max[0] = torque[0];
     for (int i = 1; i < kGrid; ++i) g.torque_prefix_max[i] = std::max(torque[i], g.torque_prefix_max[i - 1]);
+    if (model.data_kind() == PropDataKind::kTables && !props[p].j_tables.empty()) {
+      for (const double v : inflows) {  // R11: as the evaluator reads them in that inflow
+        InflowGrid ig;
+        ig.v_m_s = v;
+        double q[kGrid];
+        for (int i = 0; i < kGrid; ++i) {
+          PropEvaluation ev = model.Evaluate(g.omega[i], m.rho_kg_m3, v);
+          ig.thrust[i] = ev.thrust_n;
+          AdjustPropEvaluation(prop_adj, props[p].diameter_m, &ev);
+          q[i] = ev.torque_nm;
+          if (i > 0 && !(ig.thrust[i] > ig.thrust[i - 1])) ig.monotone = false;
+        }
+        ig.torque_suffix_min[kGrid - 1] = q[kGrid - 1];
+        for (int i = kGrid - 2; i >= 0; --i) ig.torque_suffix_min[i] = std::min(q[i], ig.torque_suffix_min[i + 1]);
+        g.inflow.push_back(ig);
+      }
+    }
     const double fom_limit = 1.02 * m.constraints.max_figure_of_merit;  // R6's allowance (PropRule)
     int next_ok = kGrid;
     for (int i = kGrid - 1; i >= 0; --i) {
@@ -632,6 +661,103 @@ const char* ChargeRule(const SearchContext& ctx, const MissionFacts& f, const Dr
   return nullptr;
 }
 
+// R11: the grid a segment of the free group is read on, with its thrust and torque from below
+// (null when none applies: a shaft segment, a free airspeed, a multirotor cruise with
+// forward-flight tables, whose inflow changes with the mass, or a non-monotone grid).
+struct SegmentGrid {
+  const double* thrust = nullptr;
+  const double* torque_suffix_min = nullptr;
+};
+SegmentGrid GridOf(const PropGrid& g, bool axial_data, const Segment& sg, const RotorLoad& ld) {
+  if (sg.type == SegmentType::kShaft || (sg.type == SegmentType::kCruise && sg.airspeed_m_s.free())) return {};
+  if (!axial_data || ld.axial_airspeed_m_s == 0.0) {
+    if (axial_data && sg.type == SegmentType::kCruise && sg.lift_to_drag <= 0) return {};
+    return g.monotone ? SegmentGrid{g.thrust, g.torque_suffix_min} : SegmentGrid{};
+  }
+  if (sg.type == SegmentType::kCruise && sg.lift_to_drag <= 0) return {};
+  for (const InflowGrid& ig : g.inflow) {
+    if (ig.v_m_s == ld.axial_airspeed_m_s) return ig.monotone ? SegmentGrid{ig.thrust, ig.torque_suffix_min} : SegmentGrid{};
+  }
+  return {};
+}
+
+// R11 for one pair and ESC class with ESCs of at least esc_mass_kg (see the rule): a lower
+// bound of the score (-kInf when none applies), or kInf with *rule set when no ESC of the
+// class can fly the pair.
+double SegmentwiseBoundAt(const SearchContext& ctx, const MissionFacts& f, const MotorParams& mp, const Drive& ideal,
+                          double t_max, int motor, int prop, int option, double esc_mass_kg, const char** rule) {
+  const Mission& m = *ctx.mission;
+  const MissionConstraints& k = m.constraints;
+  *rule = nullptr;
+  const BatteryOption& bo = ctx.options[static_cast<std::size_t>(option)];
+  const PropEntry& pe = ctx.catalog->props()[static_cast<std::size_t>(prop)];
+  const PropGrid& g = ctx.grids[static_cast<std::size_t>(prop)];
+  const MotorEntry& mo = ctx.catalog->motors()[static_cast<std::size_t>(motor)];
+  const double mass_lb = m.vehicle.mass_kg + bo.mass_lo_kg + ctx.fixed_groups_mass_kg +
+                         ctx.free_rotors * (*mo.mass_kg + g.mass_kg + esc_mass_kg);
+  const bool lossy = DriveIsLossy(mp, ideal.esc().c1, ideal.esc().c0);
+  const bool axial_data = ctx.models[static_cast<std::size_t>(prop)]->data_kind() == PropDataKind::kTables &&
+                          !pe.j_tables.empty();
+  const double margin = 1.0 - k.current_margin;
+  const double q_c = AhToCoulomb(bo.capacity_hi_ah);
+  const int stretch = m.objective.type == ObjectiveType::kMaxEndurance ? m.objective.segment_index : -1;
+  const double p_av = m.vehicle.avionics_power_w;
+  double charge_c = 0, e_other = 0, p_stretch = 0;
+  for (std::size_t si = 0; si < m.segments.size(); ++si) {
+    const Segment& sg = m.segments[si];
+    double p_w = p_av;
+    bool point = false;
+    double w = 0, q = 0;
+    if (sg.group != f.free_group) {
+      if (!ctx.fixed_power_lb_w.empty()) p_w = FixedPowerLowerBoundW(ctx, static_cast<std::size_t>(option), si, mass_lb);
+    } else if (sg.type != SegmentType::kShaft && !(sg.type == SegmentType::kCruise && sg.airspeed_m_s.free())) {
+      const RotorLoad ld = SegmentRotorLoad(m, sg, mass_lb, sg.type == SegmentType::kCruise ? sg.airspeed_m_s.lo : 0.0);
+      if (const SegmentGrid sgrid = GridOf(g, axial_data, sg, ld); sgrid.thrust) {
+        const double* it = std::upper_bound(sgrid.thrust, sgrid.thrust + kGrid, ld.thrust_per_rotor_n);
+        const int idx = static_cast<int>(it - sgrid.thrust) - 1;  // last grid thrust <= T
+        if (idx >= 0) {
+          w = g.omega[idx];
+          q = sgrid.torque_suffix_min[idx];
+        }
+        point = true;
+        const Drive::InverseCurrents hi = ideal.InverseLight(bo.v_full, q, w);
+        if (hi.throttle > t_max) { *rule = "throttle"; return kInf; }
+        if (hi.irms_a > mp.max_current_a * margin) { *rule = "motor_current"; return kInf; }
+        if (k.enforce_motor_power && ideal.InverseAcPower(bo.v_full, hi, q, w) > mp.max_power_w) {
+          *rule = "motor_power";
+          return kInf;
+        }
+        const double pdc = std::max(0.0, std::min(bo.v_full * hi.idc_a, bo.v_cut * ideal.InverseLight(bo.v_cut, q, w).idc_a));
+        p_w = ld.rotors * pdc + p_av;
+      }
+      if (lossy) {  // momentum theory, as R4
+        const double p_ideal = IdealRotorPowerW(ld.thrust_per_rotor_n, pe.diameter_m, m.rho_kg_m3,
+                                                axial_data ? ld.axial_airspeed_m_s : 0.0);
+        p_w = std::max(p_w, ld.rotors * p_ideal / k.max_figure_of_merit + p_av);
+      }
+    }
+    const double t_min = static_cast<int>(si) == stretch ? 0.0 : SegmentDurationS(sg, sg.airspeed_m_s.hi);
+    charge_c += kChargeAllowance * p_w * t_min / bo.v_full;
+    const double soc = 1.0 - charge_c / q_c;
+    if (soc < m.battery.reserve_soc) { *rule = "reserve_soc"; return kInf; }
+    if (point) {
+      const double v_ub = bo.OcvV(soc) - p_w / bo.v_full * bo.ri_at_hi_ohm;
+      if (!(v_ub > 0) || ideal.InverseLight(v_ub, q, w).throttle > t_max) { *rule = "throttle"; return kInf; }
+    }
+    if (static_cast<int>(si) == stretch) {
+      p_stretch = p_w;
+    } else {
+      e_other += p_w * t_min;
+    }
+  }
+  if (m.objective.type == ObjectiveType::kMinEnergy) return e_other / 3600.0;
+  if (stretch < 0) return -kInf;
+  const Segment& st = m.segments[static_cast<std::size_t>(stretch)];
+  if (st.type == SegmentType::kShaft || (st.type == SegmentType::kCruise && st.airspeed_m_s.free())) return -kInf;
+  const double e_max = bo.ocv_integral_v * AhToCoulomb(bo.capacity_hi_ah);
+  return p_stretch > 0 ? -(LongestFixedDurationS(m) + std::max(0.0, e_max - e_other) / p_stretch) : -kInf;
+}
+
 // R0, R2, R6, R7 for one (motor, propeller, option) pair: the rule that removes it, or null.
 // Sets omega_lb, q_lb (R2) for the hover bound.
 // w_nl: the largest no-load speed of the motor's zero-resistance drives at full throttle and
@@ -865,6 +991,18 @@ double CapacityPiecesBound(const SearchContext& ctx, int motor, int prop, int op
   ideal.c1 = cls.c1; ideal.c0 = cls.c0; ideal.tr_sat = cls.tr_sat; ideal.sat_slope = cls.sat_slope; ideal.resc_ohm = 0.0;
   return CapacityPiecesBoundAt(ctx, FactsOf(m, ctx.free_group), mp, Drive(mp, ideal), cls,
                                static_cast<std::size_t>(prop), static_cast<std::size_t>(option), mass_lb);
+}
+
+double SegmentwiseBound(const SearchContext& ctx, int motor, int prop, int option, int esc_class, double esc_mass_kg,
+                        const char** rule) {
+  const Mission& m = *ctx.mission;
+  const MotorParams mp = ScenarioMotorParams(ctx.catalog->motors()[static_cast<std::size_t>(motor)], m, nullptr, nullptr);
+  const EscClass& cls = ctx.escs.classes[static_cast<std::size_t>(esc_class)];
+  EscParams ideal;
+  ideal.c1 = cls.c1; ideal.c0 = cls.c0; ideal.tr_sat = cls.tr_sat; ideal.sat_slope = cls.sat_slope; ideal.resc_ohm = 0.0;
+  const MissionFacts f = FactsOf(m, ctx.free_group);
+  const double t_max = m.constraints.allow_esc_saturation ? f.tr_limit : std::min(f.tr_limit, cls.tr_sat);
+  return SegmentwiseBoundAt(ctx, f, mp, Drive(mp, ideal), t_max, motor, prop, option, esc_mass_kg, rule);
 }
 
 bool FailsHoverThrottleBound(const SearchContext& ctx, int motor, int prop, int option, const EscEntry& esc) {
@@ -1345,6 +1483,16 @@ void BranchAndBound::Process(const Candidate& cand, std::vector<double> top, Out
       const double b = CapacityPiecesBound(ctx_, cand.motor, cand.prop, cand.option, static_cast<int>(cl), *virt.mass_kg);
       if (!(b < threshold)) {
         local_prune(std::isfinite(b) ? "objective_bound" : "throttle", static_cast<long long>(rated.size()));
+        continue;
+      }
+    }
+    {  // R11: segment by segment, with the virtual ESC's drive and mass.
+      const char* rule = nullptr;
+      const double t_max = m.constraints.allow_esc_saturation ? facts_.tr_limit : std::min(facts_.tr_limit, virt.params.tr_sat);
+      const double b = SegmentwiseBoundAt(ctx_, facts_, mp, Drive(mp, virt.params), t_max, cand.motor, cand.prop,
+                                          cand.option, *virt.mass_kg, &rule);
+      if (rule || !(b < threshold_now())) {
+        local_prune(rule ? rule : "objective_bound", static_cast<long long>(rated.size()));
         continue;
       }
     }

@@ -64,6 +64,14 @@ EscTable BuildEscTable(const Catalog& cat, const std::vector<BatteryOption>& opt
 inline constexpr int kGrid = 256;
 inline constexpr double kGridMinRadS = 30.0, kGridMaxRadS = 6000.0;
 
+// The thrust and torque of a propeller with forward-flight tables on the speed grid in a fixed
+// axial inflow (a climb's rate, a wing-borne cruise's airspeed: R11).
+struct InflowGrid {
+  double v_m_s = 0;
+  bool monotone = true;  // thrust strictly rising on the grid (M1 checked)
+  double thrust[kGrid], torque_suffix_min[kGrid];
+};
+
 struct PropGrid {
   bool monotone = true;  // static thrust strictly rising on the grid (M1 checked)
   double omega[kGrid], thrust[kGrid], torque_suffix_min[kGrid];
@@ -73,7 +81,15 @@ struct PropGrid {
   // max_figure_of_merit (kGrid when none): every point of [i, j] breaks it iff fom_ok_next[i] > j.
   int fom_ok_next[kGrid];
   double mass_kg = 0;
+  // Forward-flight tables only: one grid per fixed axial inflow of the mission's segments
+  // (InflowsOf), in its order; empty for static-only data (read at J = 0 in any inflow).
+  std::vector<InflowGrid> inflow;
 };
+
+// The mission's fixed positive axial inflows, ascending: climb rates > 0 and the airspeeds of
+// wing-borne cruises at a fixed airspeed (every group's segments: the grids are shared by the
+// joint search's sub-missions).
+std::vector<double> InflowsOf(const Mission& m);
 // Grids and PropModels per catalog propeller (index as Catalog::props()).
 void BuildPropGrids(const Mission& m, const Catalog& cat, std::vector<PropGrid>* grids,
                     std::vector<std::unique_ptr<PropModel>>* models);
@@ -139,6 +155,12 @@ double CapacityPiecesBound(const SearchContext& ctx, int motor, int prop, int op
 // bound applies). Only the ESC's C1, C0 are read (its class).
 double FreeCruisePowerLowerBoundW(const Mission& m, const Segment& sg, const GroupParts& parts,
                                   const PropModel& model, double mass_kg);
+
+// R11 (search.cc): a lower bound of the score of (motor, prop, option) with any ESC of class
+// esc_class weighing at least esc_mass_kg, segment by segment (-kInf when none applies), or
+// kInf with *rule naming the constraint that every such combination breaks.
+double SegmentwiseBound(const SearchContext& ctx, int motor, int prop, int option, int esc_class, double esc_mass_kg,
+                        const char** rule);
 
 // R9 (search.cc): true when the hover throttle of (motor, prop, option) with this ESC is below
 // the mission's min_hover_throttle at every mass and capacity, so the ESC fails that limit for

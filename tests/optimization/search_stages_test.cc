@@ -314,6 +314,55 @@ TEST_F(SearchStagesTest, CruiseStretchBoundIsBelowEveryFeasibleScore) {
   }
 }
 
+// R11 against the exact evaluator: per kept pair, ESC class and ESC of the class (its own
+// mass), the segment-by-segment bound is at or below every feasible score, and "no ESC of the
+// class can fly it" only when that ESC cannot; over max_endurance, min_energy, a capacity range
+// and a fast climb before a cruise. The bounds are compared without tolerance.
+TEST_F(SearchStagesTest, SegmentwiseBoundIsBelowEveryFeasibleScore) {
+  const Catalog cat = SmallCatalog();
+  int feasible = 0, refused = 0, finite = 0;
+  for (int variant = 0; variant < 4; ++variant) {
+    Json j = ParseJsonText(kStageQuad, "quad");
+    if (variant == 1) {
+      j["objective"] = {{"type", "min_energy"}};
+    } else if (variant == 2) {
+      j["battery"]["capacity_ah"] = {2.0, 6.0};
+    } else if (variant == 3) {
+      j["segments"][0]["rate_m_s"] = 6;
+      j["segments"].insert(j["segments"].begin() + 1,
+                           Json::parse(R"({"name": "transit", "type": "cruise", "airspeed_m_s": 12, "distance_m": 2000})"));
+    }
+    const Mission m = ParseMission(j, "quad");
+    SearchContext ctx;
+    PrepareStages(m, cat, &ctx);
+    const CandidateList all = BuildCandidates(ctx, 1);
+    for (const Candidate& cand : all.candidates) {
+      for (std::size_t cl = 0; cl < ctx.escs.classes.size(); ++cl) {
+        for (int e : ctx.escs.per_option[cand.option][cl]) {
+          const EscEntry& esc = cat.escs()[e];
+          const char* rule = nullptr;
+          const double b = SegmentwiseBound(ctx, cand.motor, cand.prop, cand.option, static_cast<int>(cl), EscMassKg(esc), &rule);
+          const BatteryOption& bo = ctx.options[cand.option];
+          const Combination c{&cat.motors()[cand.motor], &esc, &cat.props()[cand.prop], bo.entry, bo.cells};
+          const MissionResult r = MissionEvaluator(m, c).Solve();
+          if (rule) {
+            ++refused;
+            EXPECT_FALSE(r.feasible) << rule << ": " << c.motor->id << " " << esc.id << " " << c.prop->id;
+            continue;
+          }
+          if (std::isfinite(b)) ++finite;
+          if (!r.feasible) continue;
+          ++feasible;
+          EXPECT_LE(b, r.score) << "variant " << variant << ": " << c.motor->id << " " << esc.id << " " << c.prop->id;
+        }
+      }
+    }
+  }
+  EXPECT_GT(feasible, 10);
+  EXPECT_GT(finite, 10);
+  EXPECT_GT(refused, 0) << "the test should see R11 refuse a class";
+}
+
 // R8 against the exact evaluator, capacity sized in [2, 6] Ah: the piecewise bound of a
 // (motor, propeller, option, ESC class) is at or below the score of every ESC of the class
 // (ESC mass at least the one given), and "no piece can be feasible" (kInf) only when no
