@@ -681,11 +681,12 @@ SegmentGrid GridOf(const PropGrid& g, bool axial_data, const Segment& sg, const 
   return {};
 }
 
-// R11 for one pair and ESC class with ESCs of at least esc_mass_kg (see the rule): a lower
-// bound of the score (-kInf when none applies), or kInf with *rule set when no ESC of the
-// class can fly the pair.
+// R11 for one pair and ESC class with ESCs of at least esc_mass_kg and capacities in
+// [cap_a_ah, cap_b_ah] (see the rule): a lower bound of the score (-kInf when none applies), or
+// kInf with *rule set when no such combination can fly the pair.
 double SegmentwiseBoundAt(const SearchContext& ctx, const MissionFacts& f, const MotorParams& mp, const Drive& ideal,
-                          double t_max, int motor, int prop, int option, double esc_mass_kg, const char** rule) {
+                          double t_max, int motor, int prop, int option, double esc_mass_kg, double cap_a_ah,
+                          double cap_b_ah, const char** rule) {
   const Mission& m = *ctx.mission;
   const MissionConstraints& k = m.constraints;
   *rule = nullptr;
@@ -693,13 +694,20 @@ double SegmentwiseBoundAt(const SearchContext& ctx, const MissionFacts& f, const
   const PropEntry& pe = ctx.catalog->props()[static_cast<std::size_t>(prop)];
   const PropGrid& g = ctx.grids[static_cast<std::size_t>(prop)];
   const MotorEntry& mo = ctx.catalog->motors()[static_cast<std::size_t>(motor)];
-  const double mass_lb = m.vehicle.mass_kg + bo.mass_lo_kg + ctx.fixed_groups_mass_kg +
+  // The pack at C_a (its mass rises with the capacity: shrunk by 1e-9 against rounding, as R8)
+  // and the charge, resistance and energy budget of C_b (PackAt).
+  const double span_ah = bo.capacity_hi_ah - bo.capacity_lo_ah;
+  const double pack_kg = span_ah > 0 ? bo.mass_lo_kg + (1.0 - 1e-9) * (bo.mass_hi_kg - bo.mass_lo_kg) *
+                                                           (cap_a_ah - bo.capacity_lo_ah) / span_ah
+                                     : bo.mass_lo_kg;
+  const double mass_lb = m.vehicle.mass_kg + pack_kg + ctx.fixed_groups_mass_kg +
                          ctx.free_rotors * (*mo.mass_kg + g.mass_kg + esc_mass_kg);
+  const double ri_ohm = bo.ri_at_hi_ohm * bo.capacity_hi_ah / cap_b_ah;
   const bool lossy = DriveIsLossy(mp, ideal.esc().c1, ideal.esc().c0);
   const bool axial_data = ctx.models[static_cast<std::size_t>(prop)]->data_kind() == PropDataKind::kTables &&
                           !pe.j_tables.empty();
   const double margin = 1.0 - k.current_margin;
-  const double q_c = AhToCoulomb(bo.capacity_hi_ah);
+  const double q_c = AhToCoulomb(cap_b_ah);
   const int stretch = m.objective.type == ObjectiveType::kMaxEndurance ? m.objective.segment_index : -1;
   const double p_av = m.vehicle.avionics_power_w;
   double charge_c = 0, e_other = 0, p_stretch = 0;
@@ -741,7 +749,7 @@ double SegmentwiseBoundAt(const SearchContext& ctx, const MissionFacts& f, const
     const double soc = 1.0 - charge_c / q_c;
     if (soc < m.battery.reserve_soc) { *rule = "reserve_soc"; return kInf; }
     if (point) {
-      const double v_ub = bo.OcvV(soc) - p_w / bo.v_full * bo.ri_at_hi_ohm;
+      const double v_ub = bo.OcvV(soc) - p_w / bo.v_full * ri_ohm;
       if (!(v_ub > 0) || ideal.InverseLight(v_ub, q, w).throttle > t_max) { *rule = "throttle"; return kInf; }
     }
     if (static_cast<int>(si) == stretch) {
@@ -754,8 +762,34 @@ double SegmentwiseBoundAt(const SearchContext& ctx, const MissionFacts& f, const
   if (stretch < 0) return -kInf;
   const Segment& st = m.segments[static_cast<std::size_t>(stretch)];
   if (st.type == SegmentType::kShaft || (st.type == SegmentType::kCruise && st.airspeed_m_s.free())) return -kInf;
-  const double e_max = bo.ocv_integral_v * AhToCoulomb(bo.capacity_hi_ah);
+  const double e_max = bo.ocv_integral_v * AhToCoulomb(cap_b_ah);
   return p_stretch > 0 ? -(LongestFixedDurationS(m) + std::max(0.0, e_max - e_other) / p_stretch) : -kInf;
+}
+
+// R11 over the option's capacity range in kPieces pieces (one without a range): the least
+// bound over the pieces that may be feasible; kInf with *rule (the first piece's) when none is.
+double SegmentwiseBoundPieces(const SearchContext& ctx, const MissionFacts& f, const MotorParams& mp,
+                              const Drive& ideal, double t_max, int motor, int prop, int option, double esc_mass_kg,
+                              const char** rule) {
+  constexpr int kPieces = 8;
+  const BatteryOption& bo = ctx.options[static_cast<std::size_t>(option)];
+  const bool range = bo.capacity_hi_ah > bo.capacity_lo_ah;
+  const int n = range ? kPieces : 1;
+  double best = kInf;
+  const char* first_rule = nullptr;
+  for (int j = 0; j < n; ++j) {
+    const double a = range ? bo.capacity_lo_ah + (bo.capacity_hi_ah - bo.capacity_lo_ah) * j / n : bo.capacity_lo_ah;
+    const double b = range ? bo.capacity_lo_ah + (bo.capacity_hi_ah - bo.capacity_lo_ah) * (j + 1) / n : bo.capacity_hi_ah;
+    const char* r = nullptr;
+    const double x = SegmentwiseBoundAt(ctx, f, mp, ideal, t_max, motor, prop, option, esc_mass_kg, a, b, &r);
+    if (r) {
+      if (!first_rule) first_rule = r;
+      continue;
+    }
+    best = std::min(best, x);
+  }
+  *rule = best == kInf ? first_rule : nullptr;
+  return best;
 }
 
 // R0, R2, R6, R7 for one (motor, propeller, option) pair: the rule that removes it, or null.
@@ -1002,7 +1036,7 @@ double SegmentwiseBound(const SearchContext& ctx, int motor, int prop, int optio
   ideal.c1 = cls.c1; ideal.c0 = cls.c0; ideal.tr_sat = cls.tr_sat; ideal.sat_slope = cls.sat_slope; ideal.resc_ohm = 0.0;
   const MissionFacts f = FactsOf(m, ctx.free_group);
   const double t_max = m.constraints.allow_esc_saturation ? f.tr_limit : std::min(f.tr_limit, cls.tr_sat);
-  return SegmentwiseBoundAt(ctx, f, mp, Drive(mp, ideal), t_max, motor, prop, option, esc_mass_kg, rule);
+  return SegmentwiseBoundPieces(ctx, f, mp, Drive(mp, ideal), t_max, motor, prop, option, esc_mass_kg, rule);
 }
 
 bool FailsHoverThrottleBound(const SearchContext& ctx, int motor, int prop, int option, const EscEntry& esc) {
@@ -1489,8 +1523,8 @@ void BranchAndBound::Process(const Candidate& cand, std::vector<double> top, Out
     {  // R11: segment by segment, with the virtual ESC's drive and mass.
       const char* rule = nullptr;
       const double t_max = m.constraints.allow_esc_saturation ? facts_.tr_limit : std::min(facts_.tr_limit, virt.params.tr_sat);
-      const double b = SegmentwiseBoundAt(ctx_, facts_, mp, Drive(mp, virt.params), t_max, cand.motor, cand.prop,
-                                          cand.option, *virt.mass_kg, &rule);
+      const double b = SegmentwiseBoundPieces(ctx_, facts_, mp, Drive(mp, virt.params), t_max, cand.motor, cand.prop,
+                                              cand.option, *virt.mass_kg, &rule);
       if (rule || !(b < threshold_now())) {
         local_prune(rule ? rule : "objective_bound", static_cast<long long>(rated.size()));
         continue;
