@@ -81,19 +81,36 @@ namespace dynosize {
 //    is an upper bound of its hover throttle (M2): below the limit, that ESC fails
 //    min_hover_throttle for the pair whatever else is chosen. Checked per ESC in stage 5, before
 //    the class's virtual ESC (a class whose ESCs all fail it is skipped without one).
-// R10 (the charge the mission must take): the pack's terminal current is at least the
-//    terminal power over the full-charge OCV (V <= OCV <= v_full), so along the mission each
-//    segment takes at least P_lb*t_min/v_full of charge (P_lb its R4 power bound at every
-//    instant, t_min its shortest duration; 0 s for a max_endurance stretch), and the SOC at a
-//    segment's end is at most 1 - (their sum)/Q_max (Q_max the largest capacity; coulomb
-//    counting). Below the reserve, the mission breaks reserve_soc (the SOC only falls). At the
-//    end of a segment whose rotors hold at least (omega_lb, Q_lb) (R4's scaled segments), the
-//    terminal voltage is at most OCV(that SOC) - (P_lb/v_full)*R_min (R_min the pack's
-//    resistance at Q_max, PackAt); the zero-resistance drive's throttle at that voltage is a
-//    lower bound of the throttle there (M2: it falls with the voltage), which the evaluator
-//    checks at every segment end: above the limit (R3's t_max) the class cannot fly the pair.
-//    The evaluator counts charge by the midpoint rule: the charge bound is taken at
-//    kChargeAllowance (1 - 1e-3) of its value against that rule's error.
+// R10 (segment by segment, stage 5): before a class's virtual ESC is evaluated, the mission is
+//    bounded segment by segment with the class's zero-resistance drive and the lightest rated
+//    ESC's mass, over the capacity range in pieces [C_a, C_b] (the pack's mass at C_a; its
+//    charge, resistance and energy budget at C_b: PackAt). A segment of the free group with a
+//    fixed axial inflow (hover, a climb: its rate or 0 when descending; a cruise at a fixed
+//    airspeed: wing-borne, or multirotor when the data are static-only, read at J = 0) has a
+//    thrust per rotor of at least T_s, its own at the lightest mass (M3), so by (M1) on the
+//    propeller's grid in that inflow (static, or one grid per climb rate and wing-borne
+//    airspeed for forward-flight tables, built with the scenario's torque and checked to rise)
+//    a speed and torque of at least the grid point at or below T_s. There:
+//    - R3 at the full-charge OCV: throttle, Irms, PAC from below (M2);
+//    - the terminal power is at least N*PDC_s + P_avionics (PDC_s the smaller at the
+//      full-charge and cut-off voltage, eq 59), and, when no stage creates energy, momentum
+//      theory's N*P_ideal/max_figure_of_merit + P_avionics (as R4; P_ideal rises with the
+//      thrust, also in a tilted multirotor cruise: P_ideal = V*D/2 + sqrt((V*D)^2/4 +
+//      T^3/(2*rho*A)) there); any other segment draws at least P_avionics, a fixed group's
+//      segment its G1 bound;
+//    - the charge: the terminal current is at least the terminal power over the full-charge
+//      OCV (V <= OCV <= v_full), so each segment takes at least P_lb*t_min/v_full (0 s for the
+//      max_endurance stretch) and the SOC at its end is at most 1 - (their sum)/Q(C_b)
+//      (coulomb counting); below the reserve the mission breaks reserve_soc (the SOC only
+//      falls). At the end of a segment with a grid point the terminal voltage is at most
+//      OCV(that SOC) - (P_lb/v_full)*R(C_b), and the drive's throttle there from below (M2:
+//      it falls with the voltage) must stay within R3's limit, which the evaluator checks at
+//      every segment end. The evaluator counts charge by the midpoint rule: the charge bound
+//      is taken at kChargeAllowance (1 - 1e-3) of its value against that rule's error;
+//    - the score: R4's budget with each segment's own power bound.
+//    A piece that breaks a limit holds no feasible point; the class is skipped for the pair
+//    when every piece does, or when the least bound over the others is not below the N-th
+//    best (SegmentwiseBound; tests/optimization/search_stages_test.cc against the full solve).
 // R8 (capacity pieces): see CapacityPiecesBoundAt; checked per pair and ESC class in stage 5
 //    before any simulation.
 // R5 (ESC dominance): within one pair, an ESC with the same C1, C0, tr_sat, sat_slope as an
@@ -189,7 +206,7 @@ namespace dynosize {
 namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
-constexpr double kChargeAllowance = 1.0 - 1e-3;  // R10
+constexpr double kChargeAllowance = 1.0 - 1e-3;  // R10's charge bound
 
 // Counts per pruning rule without building a string per pruned pair (rule names are literals).
 class RuleCounts {
@@ -352,7 +369,7 @@ void BuildPropGrids(const Mission& m, const Catalog& cat, std::vector<PropGrid>*
     g.torque_prefix_max[0] = torque[0];
     for (int i = 1; i < kGrid; ++i) g.torque_prefix_max[i] = std::max(torque[i], g.torque_prefix_max[i - 1]);
     if (model.data_kind() == PropDataKind::kTables && !props[p].j_tables.empty()) {
-      for (const double v : inflows) {  // R11: as the evaluator reads them in that inflow
+      for (const double v : inflows) {  // R10: as the evaluator reads them in that inflow
         InflowGrid ig;
         ig.v_m_s = v;
         double q[kGrid];
@@ -508,7 +525,7 @@ class PairLoads {
 // pair (PairLoads::Term). Requires a hover segment (f.hover not empty).
 double SegmentPowerLowerBoundW(const SearchContext& ctx, const MissionFacts& f, const PropEntry& prop,
                                const PropModel& model, std::size_t option, PairLoads* loads, std::size_t si,
-                               double pdc_lb, bool* scales = nullptr) {
+                               double pdc_lb) {
   const Mission& m = *ctx.mission;
   const PairLoads::PowerTerm& t = loads->Term(si, [&](PairLoads::PowerTerm* x) {
     const Segment& sg = m.segments[si];
@@ -529,7 +546,6 @@ double SegmentPowerLowerBoundW(const SearchContext& ctx, const MissionFacts& f, 
       }
     }
   });
-  if (scales) *scales = t.scales;
   return t.scales ? t.rotors * pdc_lb + m.vehicle.avionics_power_w : t.constant;
 }
 
@@ -635,33 +651,7 @@ double ScoreLowerBound(const SearchContext& ctx, const MissionFacts& f, const Mo
   return -kInf;
 }
 
-// R10 for one pair and ESC class (see the rule): "throttle" or "reserve_soc" when the charge
-// the mission must take leaves no feasible point, else null.
-const char* ChargeRule(const SearchContext& ctx, const MissionFacts& f, const Drive& ideal, double t_max,
-                       const PropEntry& prop, const PropModel& model, std::size_t option, PairLoads* loads,
-                       double pdc_lb, double q_lb, double omega_lb) {
-  const Mission& m = *ctx.mission;
-  if (f.hover.empty()) return nullptr;
-  const BatteryOption& bo = ctx.options[option];
-  const double q_c = AhToCoulomb(bo.capacity_hi_ah);
-  const int stretch = m.objective.type == ObjectiveType::kMaxEndurance ? m.objective.segment_index : -1;
-  double charge_c = 0;
-  for (std::size_t si = 0; si < m.segments.size(); ++si) {
-    const Segment& sg = m.segments[si];
-    bool scales = false;
-    const double p_w = SegmentPowerLowerBoundW(ctx, f, prop, model, option, loads, si, pdc_lb, &scales);
-    const double t_s = static_cast<int>(si) == stretch ? 0.0 : SegmentDurationS(sg, sg.airspeed_m_s.hi);
-    charge_c += kChargeAllowance * p_w * t_s / bo.v_full;
-    const double soc = 1.0 - charge_c / q_c;
-    if (soc < m.battery.reserve_soc) return "reserve_soc";
-    if (!scales) continue;
-    const double v_ub = bo.OcvV(soc) - p_w / bo.v_full * bo.ri_at_hi_ohm;
-    if (!(v_ub > 0) || ideal.InverseLight(v_ub, q_lb, omega_lb).throttle > t_max) return "throttle";
-  }
-  return nullptr;
-}
-
-// R11: the grid a segment of the free group is read on, with its thrust and torque from below
+// R10: the grid a segment of the free group is read on, with its thrust and torque from below
 // (null when none applies: a shaft segment, a free airspeed, a multirotor cruise with
 // forward-flight tables, whose inflow changes with the mass, or a non-monotone grid).
 struct SegmentGrid {
@@ -681,7 +671,7 @@ SegmentGrid GridOf(const PropGrid& g, bool axial_data, const Segment& sg, const 
   return {};
 }
 
-// R11 for one pair and ESC class with ESCs of at least esc_mass_kg and capacities in
+// R10 for one pair and ESC class with ESCs of at least esc_mass_kg and capacities in
 // [cap_a_ah, cap_b_ah] (see the rule): a lower bound of the score (-kInf when none applies), or
 // kInf with *rule set when no such combination can fly the pair.
 double SegmentwiseBoundAt(const SearchContext& ctx, const MissionFacts& f, const MotorParams& mp, const Drive& ideal,
@@ -766,7 +756,7 @@ double SegmentwiseBoundAt(const SearchContext& ctx, const MissionFacts& f, const
   return p_stretch > 0 ? -(LongestFixedDurationS(m) + std::max(0.0, e_max - e_other) / p_stretch) : -kInf;
 }
 
-// R11 over the option's capacity range in kPieces pieces (one without a range): the least
+// R10 over the option's capacity range in kPieces pieces (one without a range): the least
 // bound over the pieces that may be feasible; kInf with *rule (the first piece's) when none is.
 double SegmentwiseBoundPieces(const SearchContext& ctx, const MissionFacts& f, const MotorParams& mp,
                               const Drive& ideal, double t_max, int motor, int prop, int option, double esc_mass_kg,
@@ -961,11 +951,6 @@ void MotorCandidates(const SearchContext& ctx, const MissionFacts& f, std::size_
         }
         const double pdc_lo_v = bo.v_cut * ideal[ci].InverseLight(bo.v_cut, q_lb, omega_lb).idc_a;  // (59), as Inverse
         const double pdc_lb = std::max(0.0, std::min(bo.v_full * hi_v.idc_a, pdc_lo_v));  // (59), as Inverse
-        if (const char* rule = ChargeRule(ctx, f, ideal[ci], t_max, props[pi], *ctx.models[pi], o, &loads, pdc_lb,
-                                          q_lb, omega_lb)) {  // R10
-          why = rule;
-          continue;
-        }
         const int lossy = DriveIsLossy(mp, classes[ci].c1, classes[ci].c0) ? 1 : 0;
         if (!has[lossy] || pdc_lb < pdc_min[lossy]) {
           has[lossy] = true;
@@ -1520,7 +1505,7 @@ void BranchAndBound::Process(const Candidate& cand, std::vector<double> top, Out
         continue;
       }
     }
-    {  // R11: segment by segment, with the virtual ESC's drive and mass.
+    {  // R10: segment by segment, with the virtual ESC's drive and mass.
       const char* rule = nullptr;
       const double t_max = m.constraints.allow_esc_saturation ? facts_.tr_limit : std::min(facts_.tr_limit, virt.params.tr_sat);
       const double b = SegmentwiseBoundPieces(ctx_, facts_, mp, Drive(mp, virt.params), t_max, cand.motor, cand.prop,

@@ -65,7 +65,7 @@ inline constexpr int kGrid = 256;
 inline constexpr double kGridMinRadS = 30.0, kGridMaxRadS = 6000.0;
 
 // The thrust and torque of a propeller with forward-flight tables on the speed grid in a fixed
-// axial inflow (a climb's rate, a wing-borne cruise's airspeed: R11).
+// axial inflow (a climb's rate, a wing-borne cruise's airspeed: R10).
 struct InflowGrid {
   double v_m_s = 0;
   bool monotone = true;  // thrust strictly rising on the grid (M1 checked)
@@ -156,7 +156,7 @@ double CapacityPiecesBound(const SearchContext& ctx, int motor, int prop, int op
 double FreeCruisePowerLowerBoundW(const Mission& m, const Segment& sg, const GroupParts& parts,
                                   const PropModel& model, double mass_kg);
 
-// R11 (search.cc): a lower bound of the score of (motor, prop, option) with any ESC of class
+// R10 (search.cc): a lower bound of the score of (motor, prop, option) with any ESC of class
 // esc_class weighing at least esc_mass_kg, segment by segment (-kInf when none applies), or
 // kInf with *rule naming the constraint that every such combination breaks.
 double SegmentwiseBound(const SearchContext& ctx, int motor, int prop, int option, int esc_class, double esc_mass_kg,
