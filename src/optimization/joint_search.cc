@@ -19,7 +19,7 @@
 
 namespace dynosize {
 
-// The rule (G2) and its proof are in search.cc's header comment, with R0-R8 and G1.
+// The rule (G2) and its proof are in search.cc's header comment, with R0-R10 and G1.
 
 namespace {
 

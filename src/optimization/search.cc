@@ -111,8 +111,8 @@ namespace dynosize {
 //    A piece that breaks a limit holds no feasible point; the class is skipped for the pair
 //    when every piece does, or when the least bound over the others is not below the N-th
 //    best (SegmentwiseBound; tests/optimization/search_stages_test.cc against the full solve).
-// R8 (capacity pieces): see CapacityPiecesBoundAt; checked per pair and ESC class in stage 5
-//    before any simulation.
+// R8 (capacity pieces of R4, per pair and class): retired; R10's pieces bound a capacity range
+//    segment by segment, which holds R8's terms and more.
 // R5 (ESC dominance): within one pair, an ESC with the same C1, C0, tr_sat, sat_slope as an
 //    ESC already evaluated but no lighter, no lower in resistance and no higher in current
 //    rating scores no better (M2, M3) and is infeasible if the other is; so when the other is
@@ -684,7 +684,8 @@ double SegmentwiseBoundAt(const SearchContext& ctx, const MissionFacts& f, const
   const PropEntry& pe = ctx.catalog->props()[static_cast<std::size_t>(prop)];
   const PropGrid& g = ctx.grids[static_cast<std::size_t>(prop)];
   const MotorEntry& mo = ctx.catalog->motors()[static_cast<std::size_t>(motor)];
-  // The pack at C_a (its mass rises with the capacity: shrunk by 1e-9 against rounding, as R8)
+  // The pack at C_a (its mass rises with the capacity: the increment shrunk by 1e-9 against rounding, so that it
+  // stays a lower bound)
   // and the charge, resistance and energy budget of C_b (PackAt).
   const double span_ah = bo.capacity_hi_ah - bo.capacity_lo_ah;
   const double pack_kg = span_ah > 0 ? bo.mass_lo_kg + (1.0 - 1e-9) * (bo.mass_hi_kg - bo.mass_lo_kg) *
@@ -756,28 +757,43 @@ double SegmentwiseBoundAt(const SearchContext& ctx, const MissionFacts& f, const
   return p_stretch > 0 ? -(LongestFixedDurationS(m) + std::max(0.0, e_max - e_other) / p_stretch) : -kInf;
 }
 
-// R10 over the option's capacity range in kPieces pieces (one without a range): the least
-// bound over the pieces that may be feasible; kInf with *rule (the first piece's) when none is.
+// R10 over the option's capacity range in pieces (one without a range): the least bound over
+// the pieces that may be feasible; kInf with *rule (the first refusal's) when none is. While
+// the least piece bound is below `threshold`, that piece is halved (each half's bound is valid
+// on its own), up to kMaxSplits times and down to 1/1024 of the range: the bound tightens only
+// as far as it takes to prove "cannot beat the threshold".
 double SegmentwiseBoundPieces(const SearchContext& ctx, const MissionFacts& f, const MotorParams& mp,
                               const Drive& ideal, double t_max, int motor, int prop, int option, double esc_mass_kg,
-                              const char** rule) {
-  constexpr int kPieces = 8;
+                              double threshold, const char** rule) {
+  constexpr int kPieces = 8, kMaxSplits = 24;
   const BatteryOption& bo = ctx.options[static_cast<std::size_t>(option)];
-  const bool range = bo.capacity_hi_ah > bo.capacity_lo_ah;
-  const int n = range ? kPieces : 1;
-  double best = kInf;
+  const double lo = bo.capacity_lo_ah, hi = bo.capacity_hi_ah;
+  const bool range = hi > lo;
   const char* first_rule = nullptr;
-  for (int j = 0; j < n; ++j) {
-    const double a = range ? bo.capacity_lo_ah + (bo.capacity_hi_ah - bo.capacity_lo_ah) * j / n : bo.capacity_lo_ah;
-    const double b = range ? bo.capacity_lo_ah + (bo.capacity_hi_ah - bo.capacity_lo_ah) * (j + 1) / n : bo.capacity_hi_ah;
+  struct Piece {
+    double a, b, bound;
+  };
+  auto piece = [&](double a, double b) {
     const char* r = nullptr;
     const double x = SegmentwiseBoundAt(ctx, f, mp, ideal, t_max, motor, prop, option, esc_mass_kg, a, b, &r);
-    if (r) {
-      if (!first_rule) first_rule = r;
-      continue;
-    }
-    best = std::min(best, x);
+    if (r && !first_rule) first_rule = r;
+    return Piece{a, b, r ? kInf : x};
+  };
+  std::vector<Piece> pieces;
+  const int n = range ? kPieces : 1;
+  for (int j = 0; j < n; ++j) {
+    pieces.push_back(range ? piece(lo + (hi - lo) * j / n, lo + (hi - lo) * (j + 1) / n) : piece(lo, hi));
   }
+  for (int split = 0; range && split < kMaxSplits; ++split) {
+    auto least = std::min_element(pieces.begin(), pieces.end(), [](const Piece& x, const Piece& y) { return x.bound < y.bound; });
+    if (!(least->bound < threshold) || least->b - least->a < (hi - lo) / 1024) break;
+    const Piece whole = *least;
+    const double mid = 0.5 * (whole.a + whole.b);
+    *least = piece(whole.a, mid);
+    pieces.push_back(piece(mid, whole.b));
+  }
+  double best = kInf;
+  for (const Piece& x : pieces) best = std::min(best, x.bound);
   *rule = best == kInf ? first_rule : nullptr;
   return best;
 }
@@ -835,53 +851,6 @@ const char* PropRule(const SearchContext& ctx, const MissionFacts& f, const Moto
   }
   if (prop.max_rpm && RadPerSecToRpm(*omega_lb) > *prop.max_rpm) return "prop_max_rpm";  // R2
   return nullptr;
-}
-
-// R8 (capacity pieces, max_endurance with a hover stretch and a capacity range): R4 takes the
-//    energy of the largest pack with the power at the lightest, a loose bound when the capacity
-//    spans a wide range. Over a piece [C_a, C_b] of the range the vehicle is at least as heavy
-//    as with C_a (the battery's mass rises with its capacity, PackAt), so R2-R4 at that mass
-//    bound every capacity of the piece from below, with the charge of C_b:
-//      score(C) >= R4 bound at mass_lb(C_a) with Q(C_b)   for C in [C_a, C_b],
-//    and when R3 (throttle or motor current at the full-charge voltage with no ESC resistance)
-//    fails at mass_lb(C_a), it fails at every larger capacity (M1-M3): those pieces hold no
-//    feasible point. The pair's bound is the smallest over the pieces that may be feasible
-//    (kInf when none is). Each piece bound is at least R4's (more mass: no less power; less
-//    charge), so it only tightens R4. The battery mass increments are shrunk by 1e-9 against
-//    rounding (a lighter mass keeps the bound a bound).
-double CapacityPiecesBoundAt(const SearchContext& ctx, const MissionFacts& f, const MotorParams& mp,
-                             const Drive& ideal, const EscClass& esc_class, std::size_t pi, std::size_t o,
-                           double mass_lb) {
-  constexpr int kPieces = 8;
-  const Mission& m = *ctx.mission;
-  const MissionConstraints& k = m.constraints;
-  const BatteryOption& bo = ctx.options[o];
-  const PropGrid& g = ctx.grids[pi];
-  if (!f.stretch_is_hover || f.hover.empty() || !g.monotone || !(bo.capacity_hi_ah > bo.capacity_lo_ah)) return -kInf;
-  const double t_max = k.allow_esc_saturation ? f.tr_limit : std::min(f.tr_limit, esc_class.tr_sat);
-  const double margin = 1.0 - k.current_margin;
-  double best = kInf;
-  PairLoads loads(m);
-  for (int j = 0; j < kPieces; ++j) {
-    const double c_b = bo.capacity_lo_ah + (bo.capacity_hi_ah - bo.capacity_lo_ah) * (j + 1) / kPieces;
-    const double mass_j = mass_lb + (1.0 - 1e-9) * (bo.mass_hi_kg - bo.mass_lo_kg) * j / kPieces;
-    const RotorLoad load = SegmentRotorLoad(m, m.segments[f.hover[0]], mass_j, 0.0);
-    const double* it = std::upper_bound(g.thrust, g.thrust + kGrid, load.thrust_per_rotor_n);
-    const int idx = static_cast<int>(it - g.thrust) - 1;  // last grid thrust <= T_lb
-    const double omega_lb = idx >= 0 ? g.omega[idx] : 0.0;
-    const double q_lb = idx >= 0 ? g.torque_suffix_min[idx] : 0.0;
-    const OperatingPoint hi_v = ideal.Inverse(bo.v_full, q_lb, omega_lb);
-    if (hi_v.throttle > t_max || hi_v.irms_a > mp.max_current_a * margin ||
-        (k.enforce_motor_power && hi_v.pac_w > mp.max_power_w)) {
-      break;  // R3 at this mass: this piece and every heavier one are infeasible
-    }
-    const double pdc_lo_v = bo.v_cut * ideal.InverseLight(bo.v_cut, q_lb, omega_lb).idc_a;  // (59), as Inverse
-    const double pdc_lb = std::max(0.0, std::min(hi_v.pdc_w, pdc_lo_v));
-    loads.Reset(mass_j);
-    best = std::min(best, ScoreLowerBound(ctx, f, mp, esc_class, ctx.catalog->props()[pi], *ctx.models[pi], o,
-                                          &loads, pdc_lb, c_b));
-  }
-  return best;
 }
 
 // Stage 4 for one motor: its surviving pairs with their bounds.
@@ -997,23 +966,8 @@ bool HoverThrottleBelowLimit(const SearchContext& ctx, const MissionFacts& f, co
 
 }  // namespace
 
-double CapacityPiecesBound(const SearchContext& ctx, int motor, int prop, int option, int esc_class,
-                           double esc_mass_kg) {
-  const Mission& m = *ctx.mission;
-  const MotorEntry& mo = ctx.catalog->motors()[static_cast<std::size_t>(motor)];
-  const BatteryOption& bo = ctx.options[static_cast<std::size_t>(option)];
-  const double mass_lb = m.vehicle.mass_kg + bo.mass_lo_kg + ctx.fixed_groups_mass_kg +
-                         ctx.free_rotors * (*mo.mass_kg + ctx.grids[static_cast<std::size_t>(prop)].mass_kg + esc_mass_kg);
-  const MotorParams mp = ScenarioMotorParams(mo, m, nullptr, nullptr);  // as MotorCandidates
-  const EscClass& cls = ctx.escs.classes[static_cast<std::size_t>(esc_class)];
-  EscParams ideal;
-  ideal.c1 = cls.c1; ideal.c0 = cls.c0; ideal.tr_sat = cls.tr_sat; ideal.sat_slope = cls.sat_slope; ideal.resc_ohm = 0.0;
-  return CapacityPiecesBoundAt(ctx, FactsOf(m, ctx.free_group), mp, Drive(mp, ideal), cls,
-                               static_cast<std::size_t>(prop), static_cast<std::size_t>(option), mass_lb);
-}
-
 double SegmentwiseBound(const SearchContext& ctx, int motor, int prop, int option, int esc_class, double esc_mass_kg,
-                        const char** rule) {
+                        double threshold, const char** rule) {
   const Mission& m = *ctx.mission;
   const MotorParams mp = ScenarioMotorParams(ctx.catalog->motors()[static_cast<std::size_t>(motor)], m, nullptr, nullptr);
   const EscClass& cls = ctx.escs.classes[static_cast<std::size_t>(esc_class)];
@@ -1021,7 +975,7 @@ double SegmentwiseBound(const SearchContext& ctx, int motor, int prop, int optio
   ideal.c1 = cls.c1; ideal.c0 = cls.c0; ideal.tr_sat = cls.tr_sat; ideal.sat_slope = cls.sat_slope; ideal.resc_ohm = 0.0;
   const MissionFacts f = FactsOf(m, ctx.free_group);
   const double t_max = m.constraints.allow_esc_saturation ? f.tr_limit : std::min(f.tr_limit, cls.tr_sat);
-  return SegmentwiseBoundPieces(ctx, f, mp, Drive(mp, ideal), t_max, motor, prop, option, esc_mass_kg, rule);
+  return SegmentwiseBoundPieces(ctx, f, mp, Drive(mp, ideal), t_max, motor, prop, option, esc_mass_kg, threshold, rule);
 }
 
 bool FailsHoverThrottleBound(const SearchContext& ctx, int motor, int prop, int option, const EscEntry& esc) {
@@ -1359,8 +1313,6 @@ class BranchAndBound {
     // that reach the evaluation check it.
     relaxed_.constraints.min_hover_throttle = 0.0;
     relaxed_.constraints.min_thrust_to_weight = 0.0;
-    const Mission& m = *ctx.mission;
-    capacity_pieces_ = facts_.stretch_is_hover && m.battery.capacity_ah && m.battery.capacity_ah->free();
   }
 
   void Run();
@@ -1400,7 +1352,6 @@ class BranchAndBound {
   const SearchOptions& opt_;
   CandidateStream stream_;
   std::size_t n_cands_ = 0;
-  bool capacity_pieces_ = false;  // R8 applies
   std::vector<Candidate> ordered_;  // drawn candidates from index base_ on (earlier ones done)
   std::size_t base_ = 0;
   SearchResult* out_;
@@ -1496,21 +1447,13 @@ void BranchAndBound::Process(const Candidate& cand, std::vector<double> top, Out
     virt.params.max_current_a = kInf;
     virt.mass_kg = EscMassKg(escs[rated.front()]);
     for (int e : rated) virt.mass_kg = std::min(*virt.mass_kg, EscMassKg(escs[e]));
-    // R8: capacity pieces, with the class's lightest rated ESC, before any simulation.
-    if (capacity_pieces_) {
-      const double threshold = threshold_now();
-      const double b = CapacityPiecesBound(ctx_, cand.motor, cand.prop, cand.option, static_cast<int>(cl), *virt.mass_kg);
-      if (!(b < threshold)) {
-        local_prune(std::isfinite(b) ? "objective_bound" : "throttle", static_cast<long long>(rated.size()));
-        continue;
-      }
-    }
     {  // R10: segment by segment, with the virtual ESC's drive and mass.
       const char* rule = nullptr;
       const double t_max = m.constraints.allow_esc_saturation ? facts_.tr_limit : std::min(facts_.tr_limit, virt.params.tr_sat);
+      const double threshold = threshold_now();
       const double b = SegmentwiseBoundPieces(ctx_, facts_, mp, Drive(mp, virt.params), t_max, cand.motor, cand.prop,
-                                              cand.option, *virt.mass_kg, &rule);
-      if (rule || !(b < threshold_now())) {
+                                              cand.option, *virt.mass_kg, threshold, &rule);
+      if (rule || !(b < threshold)) {
         local_prune(rule ? rule : "objective_bound", static_cast<long long>(rated.size()));
         continue;
       }
@@ -1675,7 +1618,7 @@ SearchResult search_internal::SearchOneGroup(const Mission& m, const Catalog& ca
 
 namespace {
 
-// One free group: stages 0-5 (R0-R8, G1); several: the joint search (G2, joint_search.h).
+// One free group: stages 0-5 (R0-R10, G1); several: the joint search (G2, joint_search.h).
 SearchResult SearchExactly(const Mission& m, const Catalog& cat, const SearchOptions& opt) {
   SearchResult out = FreeGroupCount(m) > 1 ? search_internal::JointSearch(m, cat, opt)
                                            : search_internal::SearchOneGroup(m, cat, opt, kInf, nullptr);

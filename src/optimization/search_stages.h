@@ -5,13 +5,15 @@
 //   2. BuildEscTable     ESC classes (same C1, C0, tr_sat, sat_slope) and, per battery option,
 //                        the ESCs that pass R1 (voltage rating), lightest first;
 //   3. BuildPropGrids    per propeller the static thrust, torque and figure of merit on a
-//                        speed grid at the mission's density (R2, R6);
+//                        speed grid at the mission's density (R2, R6), and with forward-flight
+//                        tables the thrust and torque in each fixed axial inflow (R10);
 //   4. BuildCandidates   every (motor, propeller, battery option) pair that survives R0, R2, R3,
 //                        R6, R7, with a lower bound of its score (R4); the search itself calls
 //                        BuildMotorHeads, which keeps only each motor's first pairs (memory);
 //   5. BranchAndBound    the pairs best bound first (CandidateStream over the motors' queues),
-//                        R8 and the ESCs of each pair with R5, each combination scored exactly
-//                        by MissionEvaluator::Solve.
+//                        per ESC class R9 (hover throttle from above, per ESC), R10 (segment by
+//                        segment) and the virtual ESC (R5), each remaining combination scored
+//                        exactly by MissionEvaluator::Solve.
 // The proofs of the rules are in search.cc. Internal to src/optimization (and its tests).
 #pragma once
 
@@ -142,13 +144,6 @@ void ResolveGroups(SearchContext* ctx);
 // BuildPropGrids (the search then adds the fixed groups' power bounds and stages 4-5).
 void PrepareStages(const Mission& m, const Catalog& cat, SearchContext* ctx);
 
-// R8 (search.cc): a lower bound of the score of (motor, prop, option) with any ESC of class
-// esc_class weighing at least esc_mass_kg, over the mission's capacity range in pieces; kInf
-// when no capacity can be feasible (R3 per piece), -kInf when the rule does not apply (not a
-// max_endurance hover stretch, no capacity range, a non-monotone propeller grid).
-double CapacityPiecesBound(const SearchContext& ctx, int motor, int prop, int option, int esc_class,
-                           double esc_mass_kg);
-
 // A wing-borne cruise of a group with a free airspeed: a power P_lb (W, avionics not
 // included) with P_lb * SegmentDurationS(sg, hi) <= the segment's energy at every airspeed of
 // its range, for the group's parts flying at vehicle mass >= mass_kg (search.cc; 0 when no
@@ -158,9 +153,10 @@ double FreeCruisePowerLowerBoundW(const Mission& m, const Segment& sg, const Gro
 
 // R10 (search.cc): a lower bound of the score of (motor, prop, option) with any ESC of class
 // esc_class weighing at least esc_mass_kg, segment by segment (-kInf when none applies), or
-// kInf with *rule naming the constraint that every such combination breaks.
+// kInf with *rule naming the constraint that every such combination breaks. With a capacity
+// range the pieces are refined while the bound is below `threshold` (kInf: as far as allowed).
 double SegmentwiseBound(const SearchContext& ctx, int motor, int prop, int option, int esc_class, double esc_mass_kg,
-                        const char** rule);
+                        double threshold, const char** rule);
 
 // R9 (search.cc): true when the hover throttle of (motor, prop, option) with this ESC is below
 // the mission's min_hover_throttle at every mass and capacity, so the ESC fails that limit for
