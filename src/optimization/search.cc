@@ -514,6 +514,22 @@ class PairLoads {
   std::vector<PowerTerm> terms_;
 };
 
+// Momentum theory's bound of a propeller segment's terminal power, W, when no stage can create
+// energy: N*P_ideal(T, V)/max_figure_of_merit + P_avionics (the evaluator's
+// prop_figure_of_merit; V the axial inflow with forward-flight tables, else 0, as
+// PropellerPoint judges it; P_ideal rises with the thrust).
+double MomentumPowerW(const Mission& m, const RotorLoad& ld, double diameter_m, bool axial_data) {
+  const double p_ideal =
+      IdealRotorPowerW(ld.thrust_per_rotor_n, diameter_m, m.rho_kg_m3, axial_data ? ld.axial_airspeed_m_s : 0.0);
+  return ld.rotors * p_ideal / m.constraints.max_figure_of_merit + m.vehicle.avionics_power_w;
+}
+
+// R4's energy budget for a stretched segment: the score bound -(t_fixed_max + what the budget
+// leaves after the other segments, at the stretch's least power); -kInf without a power bound.
+double BudgetScore(double t_fixed_max_s, double e_max_j, double e_other_j, double p_stretch_w) {
+  return p_stretch_w > 0 ? -(t_fixed_max_s + std::max(0.0, e_max_j - e_other_j) / p_stretch_w) : -kInf;
+}
+
 // R4's terminal power bound of segment si at every instant, W, for a pair at the mass of
 // `loads`, given the hover bound's per-rotor PDC pdc_lb. The terminal power of a segment is at
 // least N*PDC_lb + P_avionics when each of its N rotors must give at least T_lb (hover[0]'s
@@ -582,11 +598,8 @@ double ScoreLowerBound(const SearchContext& ctx, const MissionFacts& f, const Mo
       if (lossy && sg.group == f.free_group && sg.type != SegmentType::kShaft && fixed_v &&
           (sg.type != SegmentType::kCruise || sg.lift_to_drag > 0)) {
         const double v = sg.type == SegmentType::kCruise ? sg.airspeed_m_s.hi : 0.0;
-        const RotorLoad& ld = loads->At(si, true, v);
-        const double p_ideal = IdealRotorPowerW(ld.thrust_per_rotor_n, prop.diameter_m, m.rho_kg_m3,
-                                                axial_data ? ld.axial_airspeed_m_s : 0.0);
-        e_seg = std::max(e_seg, (ld.rotors * p_ideal / m.constraints.max_figure_of_merit +
-                                 m.vehicle.avionics_power_w) * SegmentDurationS(sg, v));
+        e_seg = std::max(e_seg, MomentumPowerW(m, loads->At(si, true, v), prop.diameter_m, axial_data) *
+                                    SegmentDurationS(sg, v));
       }
       e += e_seg;
     }
@@ -609,11 +622,7 @@ double ScoreLowerBound(const SearchContext& ctx, const MissionFacts& f, const Mo
           !(sg.type == SegmentType::kCruise && sg.airspeed_m_s.free())) {
         e_seg = std::max(e_seg, loads->PerSegment(si, [&]() {
           const double v = sg.type == SegmentType::kCruise ? sg.airspeed_m_s.lo : 0.0;
-          const RotorLoad& ld = loads->At(si, false, v);
-          const double p_ideal = IdealRotorPowerW(ld.thrust_per_rotor_n, prop.diameter_m, m.rho_kg_m3,
-                                                  table_data ? ld.axial_airspeed_m_s : 0.0);
-          return (ld.rotors * p_ideal / m.constraints.max_figure_of_merit + m.vehicle.avionics_power_w) *
-                 SegmentDurationS(sg, v);
+          return MomentumPowerW(m, loads->At(si, false, v), prop.diameter_m, table_data) * SegmentDurationS(sg, v);
         }));
       }
       e_other += e_seg;
@@ -626,7 +635,7 @@ double ScoreLowerBound(const SearchContext& ctx, const MissionFacts& f, const Mo
     const double e_other = e_other_of(static_cast<std::size_t>(m.objective.segment_index));
     const double p_stretch = p_lb_of(static_cast<std::size_t>(m.objective.segment_index));
     const double e_max = bo.ocv_integral_v * AhToCoulomb(capacity_hi_ah > 0 ? capacity_hi_ah : bo.capacity_hi_ah);
-    return p_stretch > 0 ? -(f.t_fixed_max + std::max(0.0, e_max - e_other) / p_stretch) : -kInf;
+    return BudgetScore(f.t_fixed_max, e_max, e_other, p_stretch);
   }
   const std::size_t ist = static_cast<std::size_t>(std::max(0, m.objective.segment_index));
   const Segment& st = m.segments[ist];
@@ -639,14 +648,11 @@ double ScoreLowerBound(const SearchContext& ctx, const MissionFacts& f, const Mo
     // as PropellerPoint judges it), at the lightest mass (M3).
     double p_stretch = p_lb_of(ist);
     if (lossy_drive) {
-      const RotorLoad& ld = loads->At(ist, false, st.airspeed_m_s.lo);
-      const double p_ideal = IdealRotorPowerW(ld.thrust_per_rotor_n, prop.diameter_m, m.rho_kg_m3,
-                                              table_data ? ld.axial_airspeed_m_s : 0.0);
-      p_stretch = std::max(p_stretch, ld.rotors * p_ideal / m.constraints.max_figure_of_merit + m.vehicle.avionics_power_w);
+      p_stretch = std::max(p_stretch, MomentumPowerW(m, loads->At(ist, false, st.airspeed_m_s.lo), prop.diameter_m, table_data));
     }
     const double e_other = e_other_of(ist);
     const double e_max = bo.ocv_integral_v * AhToCoulomb(capacity_hi_ah > 0 ? capacity_hi_ah : bo.capacity_hi_ah);
-    return p_stretch > 0 ? -(f.t_fixed_max + std::max(0.0, e_max - e_other) / p_stretch) : -kInf;
+    return BudgetScore(f.t_fixed_max, e_max, e_other, p_stretch);
   }
   return -kInf;
 }
@@ -729,11 +735,7 @@ double SegmentwiseBoundAt(const SearchContext& ctx, const MissionFacts& f, const
         const double pdc = std::max(0.0, std::min(bo.v_full * hi.idc_a, bo.v_cut * ideal.InverseLight(bo.v_cut, q, w).idc_a));
         p_w = ld.rotors * pdc + p_av;
       }
-      if (lossy) {  // momentum theory, as R4
-        const double p_ideal = IdealRotorPowerW(ld.thrust_per_rotor_n, pe.diameter_m, m.rho_kg_m3,
-                                                axial_data ? ld.axial_airspeed_m_s : 0.0);
-        p_w = std::max(p_w, ld.rotors * p_ideal / k.max_figure_of_merit + p_av);
-      }
+      if (lossy) p_w = std::max(p_w, MomentumPowerW(m, ld, pe.diameter_m, axial_data));  // as R4
     }
     const double t_min = static_cast<int>(si) == stretch ? 0.0 : SegmentDurationS(sg, sg.airspeed_m_s.hi);
     charge_c += kChargeAllowance * p_w * t_min / bo.v_full;
@@ -754,7 +756,7 @@ double SegmentwiseBoundAt(const SearchContext& ctx, const MissionFacts& f, const
   const Segment& st = m.segments[static_cast<std::size_t>(stretch)];
   if (st.type == SegmentType::kShaft || (st.type == SegmentType::kCruise && st.airspeed_m_s.free())) return -kInf;
   const double e_max = bo.ocv_integral_v * AhToCoulomb(cap_b_ah);
-  return p_stretch > 0 ? -(LongestFixedDurationS(m) + std::max(0.0, e_max - e_other) / p_stretch) : -kInf;
+  return BudgetScore(LongestFixedDurationS(m), e_max, e_other, p_stretch);
 }
 
 // R10 over the option's capacity range in pieces (one without a range): the least bound over
