@@ -322,6 +322,7 @@ EscTable BuildEscTable(const Catalog& cat, const std::vector<BatteryOption>& opt
       n_ok += static_cast<long long>(ok.size());
       t.per_option[o].push_back(std::move(ok));
     }
+    t.rated.push_back(n_ok);
     t.voltage_pruned += static_cast<long long>(escs.size()) - n_ok - n_excluded;
     t.excluded_pruned += n_excluded;
   }
@@ -855,6 +856,13 @@ const char* PropRule(const SearchContext& ctx, const MissionFacts& f, const Moto
   return nullptr;
 }
 
+// A motor's combinations with the ESCs that pass R0 and R1 (what a motor-level rule removes).
+long long CombinationsPerMotor(const SearchContext& ctx) {
+  long long n = 0;
+  for (const long long r : ctx.escs.rated) n += r;
+  return n * static_cast<long long>(ctx.catalog->props().size());
+}
+
 // Stage 4 for one motor: its surviving pairs with their bounds.
 void MotorCandidates(const SearchContext& ctx, const MissionFacts& f, std::size_t mi,
                      std::vector<Candidate>* cands, RuleCounts* pruned) {
@@ -862,14 +870,16 @@ void MotorCandidates(const SearchContext& ctx, const MissionFacts& f, std::size_
   const MissionConstraints& k = m.constraints;
   const double margin = 1.0 - k.current_margin;
   const auto& props = ctx.catalog->props();
-  const long long per_pair = static_cast<long long>(ctx.catalog->escs().size());
+  // Each rule counts the combinations it removes: a pair's ESCs that pass R0 and R1 (those that
+  // do not are counted once, as esc_voltage and catalog_exclude).
+  const std::vector<long long>& per_pair = ctx.escs.rated;
   const MotorEntry& mo = ctx.catalog->motors()[mi];
   // credibility.h: the scenario's ratings (estimated from the mass when no source states them),
   // as the evaluator flies them; an unrated motor the mission excludes is refused (R0).
   bool unrated_excluded = false;
   const MotorParams mp = ScenarioMotorParams(mo, m, nullptr, &unrated_excluded);
   if (f.free_lifts && unrated_excluded) {
-    pruned->Add("motor_unrated", per_pair * static_cast<long long>(props.size() * ctx.options.size()));
+    pruned->Add("motor_unrated", CombinationsPerMotor(ctx));
     return;
   }
   const double motor_max_v = f.free_lifts ? MotorMaxVoltageV(mo) : kInf;
@@ -885,7 +895,7 @@ void MotorCandidates(const SearchContext& ctx, const MissionFacts& f, std::size_
   for (std::size_t o = 0; o < ctx.options.size(); ++o) {
     const BatteryOption& bo = ctx.options[o];
     if (bo.v_full > motor_max_v) {  // R1 for the motor's cells_max (credibility.h)
-      pruned->Add("motor_voltage", per_pair * static_cast<long long>(props.size()));
+      pruned->Add("motor_voltage", per_pair[o] * static_cast<long long>(props.size()));
       continue;
     }
     double w_nl = 0;  // R7
@@ -896,7 +906,7 @@ void MotorCandidates(const SearchContext& ctx, const MissionFacts& f, std::size_
       double omega_lb = 0, q_lb = 0;
       loads.Reset(mass_lb);
       if (const char* rule = PropRule(ctx, f, mo, w_nl, pi, o, &loads, &omega_lb, &q_lb)) {
-        pruned->Add(rule, per_pair);
+        pruned->Add(rule, per_pair[o]);
         continue;
       }
       // R3 and R4 over the ESC classes: the pair survives if any class can. R4's bound is
@@ -932,7 +942,7 @@ void MotorCandidates(const SearchContext& ctx, const MissionFacts& f, std::size_
         irms_lb = std::min(irms_lb, hi_v.irms_a);
       }
       if (!any) {
-        pruned->Add(why, per_pair);
+        pruned->Add(why, per_pair[o]);
         continue;
       }
       double best_bound = kInf;
@@ -1152,8 +1162,7 @@ bool SkipMotor(const MotorEntry& m, long long per_motor, RuleCounts* pruned, lon
 CandidateList BuildCandidates(const SearchContext& ctx, int threads) {
   const MissionFacts f = StageFourFacts(ctx);
   const auto& motors = ctx.catalog->motors();
-  const long long per_motor = static_cast<long long>(ctx.catalog->escs().size()) *
-                              static_cast<long long>(ctx.catalog->props().size() * ctx.options.size());
+  const long long per_motor = CombinationsPerMotor(ctx);
   threads = std::max(1, threads);
   std::vector<std::vector<Candidate>> thread_cands(static_cast<std::size_t>(threads));
   std::vector<RuleCounts> thread_pruned(static_cast<std::size_t>(threads));
@@ -1203,12 +1212,11 @@ void TakeFirst(std::vector<Candidate>* pairs, std::size_t n, MotorQueue* q) {
 MotorHeads BuildMotorHeads(const SearchContext& ctx, int threads, std::size_t first_pairs) {
   const MissionFacts f = StageFourFacts(ctx);
   const auto& motors = ctx.catalog->motors();
-  const long long per_motor = static_cast<long long>(ctx.catalog->escs().size()) *
-                              static_cast<long long>(ctx.catalog->props().size() * ctx.options.size());
+  const long long per_motor = CombinationsPerMotor(ctx);
   threads = std::max(1, threads);
   // Per motor, written by one thread each.
   std::vector<MotorQueue> queue(motors.size());
-  std::vector<long long> count(motors.size(), 0);
+  std::vector<long long> count(motors.size(), 0), escs(motors.size(), 0);
   std::vector<RuleCounts> thread_pruned(static_cast<std::size_t>(threads));
   std::vector<long long> thread_skipped(static_cast<std::size_t>(threads), 0);
   auto work = [&](int tid) {
@@ -1218,6 +1226,7 @@ MotorHeads BuildMotorHeads(const SearchContext& ctx, int threads, std::size_t fi
       tmp.clear();
       MotorCandidates(ctx, f, mi, &tmp, &thread_pruned[tid]);
       count[mi] = static_cast<long long>(tmp.size());
+      for (const Candidate& c : tmp) escs[mi] += ctx.escs.rated[static_cast<std::size_t>(c.option)];
       queue[mi].motor = static_cast<int>(mi);
       TakeFirst(&tmp, std::max<std::size_t>(first_pairs, 1), &queue[mi]);
     }
@@ -1232,6 +1241,7 @@ MotorHeads BuildMotorHeads(const SearchContext& ctx, int threads, std::size_t fi
   for (std::size_t mi = 0; mi < motors.size(); ++mi) {
     if (!queue[mi].next.empty()) out.motors.push_back(std::move(queue[mi]));
     out.pairs += count[mi];
+    out.pair_escs += escs[mi];
   }
   for (int t = 0; t < threads; ++t) {
     thread_pruned[t].MergeInto(&out.pruned_by);
@@ -1306,6 +1316,7 @@ class BranchAndBound {
   BranchAndBound(const SearchContext& ctx, const SearchOptions& opt, MotorHeads heads, SearchResult* out,
                  double cutoff = kInf)
       : ctx_(ctx), opt_(opt), stream_(ctx, std::move(heads.motors)), n_cands_(static_cast<std::size_t>(heads.pairs)),
+        undrawn_escs_(heads.pair_escs),
         out_(out), relaxed_(*ctx.mission), cutoff_(cutoff), facts_(FactsOf(*ctx.mission, ctx.free_group)) {
     // The virtual ESC (and so the class check) uses the mission without min_hover_throttle: a
     // real ESC's resistance and mass raise the throttle, so that lower limit is the one
@@ -1354,6 +1365,7 @@ class BranchAndBound {
   const SearchOptions& opt_;
   CandidateStream stream_;
   std::size_t n_cands_ = 0;
+  long long undrawn_escs_ = 0;  // the combinations of the pairs not drawn yet (MotorHeads::pair_escs)
   std::vector<Candidate> ordered_;  // drawn candidates from index base_ on (earlier ones done)
   std::size_t base_ = 0;
   SearchResult* out_;
@@ -1507,7 +1519,6 @@ void BranchAndBound::Process(const Candidate& cand, std::vector<double> top, Out
 // on one thread.
 void BranchAndBound::Run() {
   const Mission& m = *ctx_.mission;
-  const long long per_pair = static_cast<long long>(ctx_.catalog->escs().size());
   bool free_shaft = false;
   for (const Segment& sg : m.segments) free_shaft |= sg.type == SegmentType::kShaft && sg.shaft_omega_rad_s.free();
   const int workers = free_shaft ? 1 : std::max(1, opt_.threads);
@@ -1533,7 +1544,7 @@ void BranchAndBound::Run() {
     while (end - ci < chunk && CandidateAt(end) && CandidateAt(end)->bound < threshold) ++end;
     chunk = std::min(kMaxChunk, 2 * chunk);
     if (end == ci) {  // R4: every later candidate has a bound at least as bad
-      out_->pruned_by["objective_bound"] += per_pair * static_cast<long long>(n_cands - ci);
+      out_->pruned_by["objective_bound"] += undrawn_escs_;
       break;
     }
     std::vector<Outcome> outs(end - ci);
@@ -1552,6 +1563,7 @@ void BranchAndBound::Run() {
       virtual_evals_ += o.virtual_evals;
       for (std::size_t j = 0; j < o.results.size(); ++j) Insert(o.results[j].first, std::move(o.results[j].second), o.cutoffs[j]);
     }
+    for (std::size_t i = ci; i < end; ++i) undrawn_escs_ -= ctx_.escs.rated[static_cast<std::size_t>(ordered_[i - base_].option)];
     ordered_.erase(ordered_.begin(), ordered_.begin() + static_cast<std::ptrdiff_t>(end - base_));
     base_ = end;
     ci = end;

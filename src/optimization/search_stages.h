@@ -58,6 +58,7 @@ struct EscTable {
   // (mass, resistance, -current rating).
   std::vector<std::vector<std::vector<int>>> per_option;
   std::vector<double> min_mass_kg, max_mass_kg;  // per option over its ESCs (inf / 0 if none)
+  std::vector<long long> rated;                  // per option: its ESCs that pass R0 and R1
   long long voltage_pruned = 0;                  // (option, ESC) pairs removed by R1
   long long excluded_pruned = 0;                 // (option, ESC) pairs the catalog excludes (R0)
 };
@@ -194,6 +195,7 @@ struct MotorQueue {
 struct MotorHeads {
   std::vector<MotorQueue> motors;  // those with a surviving pair, motor order
   long long pairs = 0;             // surviving pairs over all motors
+  long long pair_escs = 0;         // their combinations: each pair's option's rated ESCs, summed
   std::map<std::string, long long> pruned_by;
   long long skipped_without_mass = 0;
 };

@@ -1,6 +1,7 @@
 // The catalog search against exhaustive evaluation on a small catalog, the per-segment optimum
 // against a dense grid, infeasible missions, and every printed point reproduced by `simulate`.
 #include "optimization/search.h"
+#include "optimization/joint_search.h"
 #include "optimization/search_stages.h"
 
 #include <initializer_list>
@@ -142,6 +143,11 @@ std::size_t CheckAgainstExhaustive(const Catalog& cat, const Mission& m) {
   }
   EXPECT_EQ(s.searched + s.pruned, s.combinations);
   EXPECT_GT(s.pruned, 0);
+  // Each pruned combination is counted under one rule (one free group: the joint search's
+  // counts are per outer choice).
+  long long by_rule = 0;
+  for (const auto& [rule, n] : s.pruned_by) by_rule += n;
+  if (FreeGroupCount(m) <= 1) EXPECT_EQ(by_rule, s.pruned);
   return all.size();
 }
 
