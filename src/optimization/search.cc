@@ -108,6 +108,10 @@ namespace dynosize {
 //      every segment end. The evaluator counts charge by the midpoint rule: the charge bound
 //      is taken at kChargeAllowance (1 - 1e-3) of its value against that rule's error;
 //    - the score: R4's budget with each segment's own power bound.
+//    A piece whose bound is still below the N-th best gets its speeds bisected within their
+//    grid cells on the propeller model (the largest speed found whose thrust is at most T_s,
+//    so still at or below the true one, M1; the torque there, capped by the grid's least
+//    torque above the cell), then it is halved.
 //    A piece that breaks a limit holds no feasible point; the class is skipped for the pair
 //    when every piece does, or when the least bound over the others is not below the N-th
 //    best (SegmentwiseBound; tests/optimization/search_stages_test.cc against the full solve).
@@ -352,6 +356,7 @@ void BuildPropGrids(const Mission& m, const Catalog& cat, std::vector<PropGrid>*
     const PropModel& model = *(*models)[p];
     const PropAdjustment prop_adj = PropAdjustmentFor(props[p], m.objective.ranking);
     PropGrid& g = (*grids)[p];
+    g.adjustment = prop_adj;
     g.mass_kg = PropMassKg(props[p]);
     double torque[kGrid];
     for (int i = 0; i < kGrid; ++i) {
@@ -664,6 +669,7 @@ double ScoreLowerBound(const SearchContext& ctx, const MissionFacts& f, const Mo
 struct SegmentGrid {
   const double* thrust = nullptr;
   const double* torque_suffix_min = nullptr;
+  double v_m_s = 0;  // the inflow the grid was built in
 };
 SegmentGrid GridOf(const PropGrid& g, bool axial_data, const Segment& sg, const RotorLoad& ld) {
   if (sg.type == SegmentType::kShaft || (sg.type == SegmentType::kCruise && sg.airspeed_m_s.free())) return {};
@@ -673,9 +679,37 @@ SegmentGrid GridOf(const PropGrid& g, bool axial_data, const Segment& sg, const 
   }
   if (sg.type == SegmentType::kCruise && sg.lift_to_drag <= 0) return {};
   for (const InflowGrid& ig : g.inflow) {
-    if (ig.v_m_s == ld.axial_airspeed_m_s) return ig.monotone ? SegmentGrid{ig.thrust, ig.torque_suffix_min} : SegmentGrid{};
+    if (ig.v_m_s == ld.axial_airspeed_m_s) return ig.monotone ? SegmentGrid{ig.thrust, ig.torque_suffix_min, ig.v_m_s} : SegmentGrid{};
   }
   return {};
+}
+
+// R10's speed and torque from below for a thrust T on a segment's grid: the grid point at or
+// below T (0 below the grid), and with refine_steps > 0 the speed bisected that many times
+// within the grid cell on the propeller model itself (the largest speed found whose thrust is
+// at most T: still at or below the root, M1), the torque there (the scenario's), capped by
+// the grid's least torque above the cell. By (M1) the torque at any speed at or above the
+// bisected one is at least its torque there.
+void SpeedTorqueFromBelow(const PropGrid& g, const SegmentGrid& sgrid, const PropModel& model, double diameter_m,
+                          double rho, double thrust_n, int refine_steps, double* omega, double* torque) {
+  const double* it = std::upper_bound(sgrid.thrust, sgrid.thrust + kGrid, thrust_n);
+  const int idx = static_cast<int>(it - sgrid.thrust) - 1;  // last grid thrust <= T
+  *omega = 0;
+  *torque = 0;
+  if (idx < 0) return;
+  *omega = g.omega[idx];
+  *torque = sgrid.torque_suffix_min[idx];
+  if (refine_steps <= 0 || idx + 1 >= kGrid) return;
+  double lo = g.omega[idx], hi = g.omega[idx + 1];
+  for (int k = 0; k < refine_steps; ++k) {
+    const double mid = 0.5 * (lo + hi);
+    (model.Evaluate(mid, rho, sgrid.v_m_s).thrust_n <= thrust_n ? lo = mid : hi = mid);
+  }
+  if (lo == g.omega[idx]) return;
+  PropEvaluation ev = model.Evaluate(lo, rho, sgrid.v_m_s);
+  AdjustPropEvaluation(g.adjustment, diameter_m, &ev);
+  *omega = lo;
+  *torque = std::min(ev.torque_nm, sgrid.torque_suffix_min[idx + 1]);
 }
 
 // R10 for one pair and ESC class with ESCs of at least esc_mass_kg and capacities in
@@ -683,7 +717,7 @@ SegmentGrid GridOf(const PropGrid& g, bool axial_data, const Segment& sg, const 
 // kInf with *rule set when no such combination can fly the pair.
 double SegmentwiseBoundAt(const SearchContext& ctx, const MissionFacts& f, const MotorParams& mp, const Drive& ideal,
                           double t_max, int motor, int prop, int option, double esc_mass_kg, double cap_a_ah,
-                          double cap_b_ah, const char** rule) {
+                          double cap_b_ah, int refine_steps, const char** rule) {
   const Mission& m = *ctx.mission;
   const MissionConstraints& k = m.constraints;
   *rule = nullptr;
@@ -719,12 +753,8 @@ double SegmentwiseBoundAt(const SearchContext& ctx, const MissionFacts& f, const
     } else if (sg.type != SegmentType::kShaft && !(sg.type == SegmentType::kCruise && sg.airspeed_m_s.free())) {
       const RotorLoad ld = SegmentRotorLoad(m, sg, mass_lb, sg.type == SegmentType::kCruise ? sg.airspeed_m_s.lo : 0.0);
       if (const SegmentGrid sgrid = GridOf(g, axial_data, sg, ld); sgrid.thrust) {
-        const double* it = std::upper_bound(sgrid.thrust, sgrid.thrust + kGrid, ld.thrust_per_rotor_n);
-        const int idx = static_cast<int>(it - sgrid.thrust) - 1;  // last grid thrust <= T
-        if (idx >= 0) {
-          w = g.omega[idx];
-          q = sgrid.torque_suffix_min[idx];
-        }
+        SpeedTorqueFromBelow(g, sgrid, *ctx.models[static_cast<std::size_t>(prop)], pe.diameter_m, m.rho_kg_m3,
+                             ld.thrust_per_rotor_n, refine_steps, &w, &q);
         point = true;
         const Drive::InverseCurrents hi = ideal.InverseLight(bo.v_full, q, w);
         if (hi.throttle > t_max) { *rule = "throttle"; return kInf; }
@@ -762,38 +792,46 @@ double SegmentwiseBoundAt(const SearchContext& ctx, const MissionFacts& f, const
 
 // R10 over the option's capacity range in pieces (one without a range): the least bound over
 // the pieces that may be feasible; kInf with *rule (the first refusal's) when none is. While
-// the least piece bound is below `threshold`, that piece is halved (each half's bound is valid
-// on its own), up to kMaxSplits times and down to 1/1024 of the range: the bound tightens only
-// as far as it takes to prove "cannot beat the threshold".
+// the least piece bound is below `threshold`, that piece is tightened: first its speeds are
+// bisected within their grid cells (kRefineSteps), then it is halved (each half's bound is
+// valid on its own), up to kMaxSplits steps and down to 1/1024 of the range: the bound
+// tightens only as far as it takes to prove "cannot beat the threshold".
 double SegmentwiseBoundPieces(const SearchContext& ctx, const MissionFacts& f, const MotorParams& mp,
                               const Drive& ideal, double t_max, int motor, int prop, int option, double esc_mass_kg,
                               double threshold, const char** rule) {
-  constexpr int kPieces = 8, kMaxSplits = 24;
+  constexpr int kPieces = 8, kMaxSplits = 24, kRefineSteps = 6;
   const BatteryOption& bo = ctx.options[static_cast<std::size_t>(option)];
   const double lo = bo.capacity_lo_ah, hi = bo.capacity_hi_ah;
   const bool range = hi > lo;
   const char* first_rule = nullptr;
   struct Piece {
     double a, b, bound;
+    bool refined;
   };
-  auto piece = [&](double a, double b) {
+  auto piece = [&](double a, double b, bool refined) {
     const char* r = nullptr;
-    const double x = SegmentwiseBoundAt(ctx, f, mp, ideal, t_max, motor, prop, option, esc_mass_kg, a, b, &r);
+    const double x = SegmentwiseBoundAt(ctx, f, mp, ideal, t_max, motor, prop, option, esc_mass_kg, a, b,
+                                        refined ? kRefineSteps : 0, &r);
     if (r && !first_rule) first_rule = r;
-    return Piece{a, b, r ? kInf : x};
+    return Piece{a, b, r ? kInf : x, refined};
   };
   std::vector<Piece> pieces;
   const int n = range ? kPieces : 1;
   for (int j = 0; j < n; ++j) {
-    pieces.push_back(range ? piece(lo + (hi - lo) * j / n, lo + (hi - lo) * (j + 1) / n) : piece(lo, hi));
+    pieces.push_back(range ? piece(lo + (hi - lo) * j / n, lo + (hi - lo) * (j + 1) / n, false) : piece(lo, hi, false));
   }
-  for (int split = 0; range && split < kMaxSplits; ++split) {
+  for (int step = 0; step < kMaxSplits; ++step) {
     auto least = std::min_element(pieces.begin(), pieces.end(), [](const Piece& x, const Piece& y) { return x.bound < y.bound; });
-    if (!(least->bound < threshold) || least->b - least->a < (hi - lo) / 1024) break;
+    if (!(least->bound < threshold)) break;
     const Piece whole = *least;
+    if (!whole.refined) {
+      *least = piece(whole.a, whole.b, true);
+      continue;
+    }
+    if (!range || whole.b - whole.a < (hi - lo) / 1024) break;
     const double mid = 0.5 * (whole.a + whole.b);
-    *least = piece(whole.a, mid);
-    pieces.push_back(piece(mid, whole.b));
+    *least = piece(whole.a, mid, true);
+    pieces.push_back(piece(mid, whole.b, true));
   }
   double best = kInf;
   for (const Piece& x : pieces) best = std::min(best, x.bound);

@@ -25,6 +25,7 @@
 #include "battery/battery.h"
 #include "catalog/catalog.h"
 #include "mission/mission.h"
+#include "optimization/credibility.h"
 #include "optimization/mission_eval.h"
 #include "optimization/search.h"
 #include "prop/prop_model.h"
@@ -84,6 +85,7 @@ struct PropGrid {
   // max_figure_of_merit (kGrid when none): every point of [i, j] breaks it iff fom_ok_next[i] > j.
   int fom_ok_next[kGrid];
   double mass_kg = 0;
+  PropAdjustment adjustment;  // the scenario's (credibility.h), as the grids' torque has it
   // Forward-flight tables only: one grid per fixed axial inflow of the mission's segments
   // (InflowsOf), in its order; empty for static-only data (read at J = 0 in any inflow).
   std::vector<InflowGrid> inflow;
