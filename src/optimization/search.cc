@@ -1108,6 +1108,57 @@ double FreeCruisePowerLowerBoundW(const Mission& m, const Segment& sg, const Gro
   return ld.rotors * p_ideal / m.constraints.max_figure_of_merit;
 }
 
+namespace {
+
+// A speed at or below the evaluator's root for thrust T in axial inflow v (thrust rising with
+// speed, M1): bisection keeping thrust(lo) <= T; false when even kGridMaxRadS gives less.
+bool SpeedFromBelow(const PropModel& prop, double rho, double thrust_n, double v_m_s, int steps, double* omega) {
+  double lo = 0.0, hi = kGridMaxRadS;
+  if (!(prop.Evaluate(hi, rho, v_m_s).thrust_n >= thrust_n)) return false;
+  for (int i = 0; i < steps; ++i) {
+    const double mid = 0.5 * (lo + hi);
+    (prop.Evaluate(mid, rho, v_m_s).thrust_n <= thrust_n ? lo : hi) = mid;
+  }
+  *omega = lo;
+  return true;
+}
+
+// G1 for a fixed group's wing-borne cruise with a free airspeed, from its own drive: a power
+// P_lb (W, rotors only) with P_lb * SegmentDurationS(sg, hi) at or below the segment's
+// energy at every airspeed of its range (0 when no bound is found). The thrust W/(L/D) does
+// not depend on the airspeed; the inflow is the airspeed. At kSamples + 1 airspeeds V_k the
+// drive's PDC from below at that thrust (speed by SpeedFromBelow, the torque there, PDC the
+// smaller at the full-charge and cut-off voltage, eq 59). (M4) At a fixed thrust a
+// propeller's power rises with its axial inflow (the ideal power T*(V/2 + sqrt((V/2)^2 +
+// T/(2*rho*A))) does; checked on the samples: a sample below the one before gives no bound).
+// Then on [V_k, V_k+1] the energy P(V)*d/V is at least P(V_k)*d/V_k+1 (by distance; by
+// duration P(V)*t >= P(V_0)*t).
+double FixedFreeCruiseDataPowerW(const Mission& m, const Segment& sg, const GroupParts& parts, const PropModel& prop,
+                                 const BatteryOption& bo, double mass_kg) {
+  constexpr int kSamples = 32;
+  if (!(sg.lift_to_drag > 0)) return 0.0;
+  const Drive d(ScenarioMotorParams(*parts.motor, m), ScenarioEscParams(*parts.esc, m.objective.ranking));
+  const double lo = sg.airspeed_m_s.lo, hi = sg.airspeed_m_s.hi;
+  double prev = 0.0, best = kInf;
+  for (int k = 0; k <= kSamples; ++k) {
+    const double v = lo + (hi - lo) * k / kSamples;
+    const RotorLoad ld = SegmentRotorLoad(m, sg, mass_kg, v);
+    double w = 0;
+    if (!SpeedFromBelow(prop, m.rho_kg_m3, ld.thrust_per_rotor_n, ld.axial_airspeed_m_s, 40, &w)) return 0.0;
+    const double q = prop.Evaluate(w, m.rho_kg_m3, ld.axial_airspeed_m_s).torque_nm;
+    if (!(q > 0)) return 0.0;
+    const double pdc = std::min(d.Inverse(bo.v_full, q, w).pdc_w, d.Inverse(bo.v_cut, q, w).pdc_w);
+    const double p = ld.rotors * std::max(0.0, pdc);
+    if (p < prev) return 0.0;  // M4 not seen on the samples
+    prev = p;
+    if (!sg.distance_m) return p;  // by duration: the least at the lowest airspeed
+    if (k < kSamples) best = std::min(best, p * hi / (lo + (hi - lo) * (k + 1) / kSamples));
+  }
+  return std::isfinite(best) ? best : 0.0;
+}
+
+}  // namespace
+
 void FixedGroupPowerBounds(SearchContext* ctx) {
   const Mission& m = *ctx->mission;
   ctx->fixed_power_lb_w.clear();
@@ -1130,6 +1181,7 @@ void FixedGroupPowerBounds(SearchContext* ctx) {
                             ctx->free_rotors * ((std::isfinite(prop_min) ? prop_min : 0.0) + esc_min);
     std::vector<double> masses(kFixedPowerMasses);
     std::vector<std::vector<double>> table;
+    std::vector<double> data_cruise_w(m.segments.size(), 0.0);
     for (int k = 0; k < kFixedPowerMasses; ++k) {
       const double mass = k == 0 ? mass_min : mass_min * std::pow(kFixedPowerMassStep, k);
       masses[static_cast<std::size_t>(k)] = mass;
@@ -1140,18 +1192,15 @@ void FixedGroupPowerBounds(SearchContext* ctx) {
         const GroupParts& parts = ctx->fixed_parts[sg.group];
         const PropModel& prop = *ctx->fixed_models[sg.group];
         if (sg.type == SegmentType::kCruise && sg.airspeed_m_s.free()) {
-          p_lb[si] += FreeCruisePowerLowerBoundW(m, sg, parts, prop, mass);
+          // The data bound on every 4th mass point, read by the three above it too (M3).
+          if (k % 4 == 0) data_cruise_w[si] = FixedFreeCruiseDataPowerW(m, sg, parts, prop, bo, mass);
+          p_lb[si] += std::max(FreeCruisePowerLowerBoundW(m, sg, parts, prop, mass), data_cruise_w[si]);
           continue;
         }
         const RotorLoad ld = SegmentRotorLoad(m, sg, mass, sg.airspeed_m_s.lo);
-        // A speed at or below the evaluator's root (thrust rising with speed, M1): bisection
-        // keeping thrust(lo) <= T; the torque there is at most the true one.
-        double lo = 0.0, hi = kGridMaxRadS;
-        if (!(prop.Evaluate(hi, m.rho_kg_m3, ld.axial_airspeed_m_s).thrust_n >= ld.thrust_per_rotor_n)) continue;
-        for (int i = 0; i < 60; ++i) {
-          const double mid = 0.5 * (lo + hi);
-          (prop.Evaluate(mid, m.rho_kg_m3, ld.axial_airspeed_m_s).thrust_n <= ld.thrust_per_rotor_n ? lo : hi) = mid;
-        }
+        // A speed at or below the evaluator's root; the torque there is at most the true one.
+        double lo = 0.0;
+        if (!SpeedFromBelow(prop, m.rho_kg_m3, ld.thrust_per_rotor_n, ld.axial_airspeed_m_s, 60, &lo)) continue;
         const double q = prop.Evaluate(lo, m.rho_kg_m3, ld.axial_airspeed_m_s).torque_nm;
         if (!(q > 0)) continue;
         const Drive d(ScenarioMotorParams(*parts.motor, m), ScenarioEscParams(*parts.esc, m.objective.ranking));

@@ -509,7 +509,7 @@ TEST_F(SearchTest, FreeCruiseEnergyBoundsAreBounds) {
 
 // G1 with a free wing-borne cruise airspeed flown by a fixed pusher: the table's power at a
 // combination's mass times the shortest duration is at or below the cruise energy at the
-// airspeed the evaluator picks.
+// airspeed the evaluator picks, and the bound from the pusher's own data (M4) is tight.
 TEST_F(SearchTest, FixedGroupFreeCruiseBoundIsBelowTheEnergy) {
   const Catalog cat = Catalog::Load((dir_ / "catalog").string());
   const Mission single = ParseMission(ParseJsonText(kLiftCruise, "lift"), "lift");
@@ -530,7 +530,7 @@ TEST_F(SearchTest, FixedGroupFreeCruiseBoundIsBelowTheEnergy) {
   ctx.escs = search_internal::BuildEscTable(cat, ctx.options);
   search_internal::BuildPropGrids(m, cat, &ctx.grids, &ctx.models);
   search_internal::FixedGroupPowerBounds(&ctx);
-  int checked = 0, above_avionics = 0;
+  int checked = 0, above_avionics = 0, from_data = 0;
   ForEachCombination(cat, [&](Combination c) {
     if (checked >= 40) return;
     c.groups.assign(2, GroupParts{});
@@ -545,10 +545,14 @@ TEST_F(SearchTest, FixedGroupFreeCruiseBoundIsBelowTheEnergy) {
     const double e_lb = p_lb * SegmentDurationS(m.segments[2], m.segments[2].airspeed_m_s.hi);
     EXPECT_LE(e_lb, r.segments[2].energy_j) << Name(c) << " at " << r.segments[2].airspeed_m_s << " m/s";
     if (p_lb > m.vehicle.avionics_power_w) ++above_avionics;
+    // Momentum theory alone reaches 0.65-0.68 of these energies; the pusher's own data (M4)
+    // about 0.9.
+    if (e_lb > 0.8 * r.segments[2].energy_j) ++from_data;
     ++checked;
   });
   EXPECT_GE(checked, 3);
   EXPECT_GT(above_avionics, 0) << "the free-cruise bound should add to the avionics";
+  EXPECT_GT(from_data, 0) << "the bound from the pusher's own data should grip";
 }
 
 // An entry the catalog marks "exclude" (catalog.h) is never searched: the pick's motor and
