@@ -29,7 +29,9 @@ namespace dynosize {
 //       with the load and do not depend on the ESC except through RESC >= 0, which only adds
 //       to them (eq 48: U = (Rm + RESC)*I + KE*omega); the throttle falls with the voltage;
 //  (M3) more mass means more thrust in every segment (flight.h), hence (M1, M2) more speed,
-//       torque, current and power.
+//       torque, current and power;
+//  (M4) at a fixed thrust a propeller's power rises with its axial inflow (as the ideal power
+//       does; checked on the samples where it is used, FixedFreeCruiseDataPowerW).
 // Bounds on one (motor, propeller, battery option) pair use the lightest the vehicle can be
 // with them: the lightest ESC that can take the cell count and the smallest battery capacity.
 //
@@ -138,7 +140,9 @@ namespace dynosize {
 //    the mass, M3; speed and torque from below by bisection on the thrust, M1; PDC at the
 //    smaller of the full-charge and cut-off voltage, eq 59) plus P_avionics, tabulated on a
 //    mass grid and read at or below each pair's own lightest mass; a wing-borne cruise with a
-//    free airspeed draws at least momentum theory's power (FreeCruisePowerLowerBoundW). The groups are
+//    free airspeed draws at least momentum theory's power (FreeCruisePowerLowerBoundW) and the
+//    power from the group's own drive and data over the airspeed range (M4,
+//    FixedFreeCruiseDataPowerW). The groups are
 //    coupled only through the mass and the shared pack's energy, so each bound stays a bound.
 //    Thrust-to-weight and winding temperature: more mass or ESC resistance only lowers the
 //    first and raises the second, so R5 (the virtual ESC is evaluated without the
@@ -1138,6 +1142,7 @@ double FixedFreeCruiseDataPowerW(const Mission& m, const Segment& sg, const Grou
   constexpr int kSamples = 32;
   if (!(sg.lift_to_drag > 0)) return 0.0;
   const Drive d(ScenarioMotorParams(*parts.motor, m), ScenarioEscParams(*parts.esc, m.objective.ranking));
+  const PropAdjustment adj = PropAdjustmentFor(*parts.prop, m.objective.ranking);
   const double lo = sg.airspeed_m_s.lo, hi = sg.airspeed_m_s.hi;
   double prev = 0.0, best = kInf;
   for (int k = 0; k <= kSamples; ++k) {
@@ -1145,7 +1150,9 @@ double FixedFreeCruiseDataPowerW(const Mission& m, const Segment& sg, const Grou
     const RotorLoad ld = SegmentRotorLoad(m, sg, mass_kg, v);
     double w = 0;
     if (!SpeedFromBelow(prop, m.rho_kg_m3, ld.thrust_per_rotor_n, ld.axial_airspeed_m_s, 40, &w)) return 0.0;
-    const double q = prop.Evaluate(w, m.rho_kg_m3, ld.axial_airspeed_m_s).torque_nm;
+    PropEvaluation ev = prop.Evaluate(w, m.rho_kg_m3, ld.axial_airspeed_m_s);
+    AdjustPropEvaluation(adj, parts.prop->diameter_m, &ev);  // the scenario's torque, as the evaluator's
+    const double q = ev.torque_nm;
     if (!(q > 0)) return 0.0;
     const double pdc = std::min(d.Inverse(bo.v_full, q, w).pdc_w, d.Inverse(bo.v_cut, q, w).pdc_w);
     const double p = ld.rotors * std::max(0.0, pdc);
@@ -1181,7 +1188,6 @@ void FixedGroupPowerBounds(SearchContext* ctx) {
                             ctx->free_rotors * ((std::isfinite(prop_min) ? prop_min : 0.0) + esc_min);
     std::vector<double> masses(kFixedPowerMasses);
     std::vector<std::vector<double>> table;
-    std::vector<double> data_cruise_w(m.segments.size(), 0.0);
     for (int k = 0; k < kFixedPowerMasses; ++k) {
       const double mass = k == 0 ? mass_min : mass_min * std::pow(kFixedPowerMassStep, k);
       masses[static_cast<std::size_t>(k)] = mass;
@@ -1192,9 +1198,8 @@ void FixedGroupPowerBounds(SearchContext* ctx) {
         const GroupParts& parts = ctx->fixed_parts[sg.group];
         const PropModel& prop = *ctx->fixed_models[sg.group];
         if (sg.type == SegmentType::kCruise && sg.airspeed_m_s.free()) {
-          // The data bound on every 4th mass point, read by the three above it too (M3).
-          if (k % 4 == 0) data_cruise_w[si] = FixedFreeCruiseDataPowerW(m, sg, parts, prop, bo, mass);
-          p_lb[si] += std::max(FreeCruisePowerLowerBoundW(m, sg, parts, prop, mass), data_cruise_w[si]);
+          p_lb[si] += std::max(FreeCruisePowerLowerBoundW(m, sg, parts, prop, mass),
+                               FixedFreeCruiseDataPowerW(m, sg, parts, prop, bo, mass));
           continue;
         }
         const RotorLoad ld = SegmentRotorLoad(m, sg, mass, sg.airspeed_m_s.lo);
