@@ -46,20 +46,6 @@ long long GroupCombinations(const Catalog& cat) {
                             static_cast<long long>(cat.props().size())});
 }
 
-EscParams ClassParams(const search_internal::EscClass& c) {
-  EscParams e;
-  e.c1 = c.c1;
-  e.c0 = c.c0;
-  e.tr_sat = c.tr_sat;
-  e.sat_slope = c.sat_slope;
-  e.resc_ohm = 0.0;  // M2: resistance only adds
-  return e;
-}
-
-double ThrottleLimit(const MissionConstraints& k, double tr_sat) {
-  const double t = std::min(k.max_throttle, 1.0);
-  return k.allow_esc_saturation ? t : std::min(t, tr_sat);
-}
 
 }  // namespace
 
@@ -86,10 +72,7 @@ RotorBound RotorLowerBound(const Mission& m, const Segment& sg, const PropEntry&
   if (model.Evaluate(hi, m.rho_kg_m3, v).thrust_n < ld.thrust_per_rotor_n) {
     lo = hi;
   } else {
-    for (int i = 0; i < 60; ++i) {
-      const double mid = 0.5 * (lo + hi);
-      (model.Evaluate(mid, m.rho_kg_m3, v).thrust_n <= ld.thrust_per_rotor_n ? lo : hi) = mid;
-    }
+    lo = BisectSpeedFromBelow(model, m.rho_kg_m3, ld.thrust_per_rotor_n, v, lo, hi, 60);
   }
   if (!(lo > 0)) return rb;
   rb.thrust_n = ld.thrust_per_rotor_n;
@@ -173,25 +156,16 @@ double ScoreFromSegmentPowers(const Mission& m, const std::vector<double>& p_lb_
   for (std::size_t si = 0; si < m.segments.size(); ++si) {
     if (si != ist) e_other += p_lb_w[si] * t_min(m.segments[si]);
   }
-  if (!(p_lb_w[ist] > 0)) return -kInf;
   const double e_max = bo.ocv_integral_v * AhToCoulomb(bo.capacity_hi_ah);
-  return -(LongestFixedDurationS(m) + std::max(0.0, e_max - e_other) / p_lb_w[ist]);
+  return BudgetScore(LongestFixedDurationS(m), e_max, e_other, p_lb_w[ist]);
 }
 
 bool JointBounds::PropAllowed(int group, const PropEntry& p) const {
-  const std::optional<double> d_max = GroupMaxPropDiameterM(m_, group);
-  if (d_max && p.diameter_m > *d_max) return false;
-  if (!p.exclude_reason.empty()) return false;
-  return !(Lifts(group) && FoldingPropRefused(p, m_));
+  return PropFrameRule(m_, group, Lifts(group), p) == nullptr;
 }
 
 const char* JointBounds::PropRule(int prop) const {
-  const PropEntry& p = cat_.props()[static_cast<std::size_t>(prop)];
-  const std::optional<double> d_max = GroupMaxPropDiameterM(m_, outer_);
-  if (d_max && p.diameter_m > *d_max) return "prop_diameter";
-  if (!p.exclude_reason.empty()) return "catalog_exclude";
-  if (Lifts(outer_) && FoldingPropRefused(p, m_)) return "prop_folding";
-  return nullptr;
+  return PropFrameRule(m_, outer_, Lifts(outer_), cat_.props()[static_cast<std::size_t>(prop)]);
 }
 
 const char* JointBounds::MotorRule(int motor, std::size_t o) const {
@@ -363,7 +337,7 @@ std::vector<JointBounds::FrontierPoint> JointBounds::InnerFrontier(std::size_t o
       if (escs_.per_option[o][c].empty()) continue;
       const EscClass& cls = escs_.classes[c];
       if (DriveIsLossy(mp, cls.c1, cls.c0) && floor_j[static_cast<std::size_t>(pi)] >= e_min) continue;
-      const Drive d(mp, ClassParams(cls));
+      const Drive d(mp, ZeroResistanceEsc(cls));
       if (!ReachesThrustToWeight(inner_, d, pi, vehicle_kg, o)) continue;
       double e = 0;
       for (std::size_t si : segs) {
@@ -466,7 +440,7 @@ double JointBounds::LightestSurvivorKg(int group, std::size_t o, double vehicle_
     const GroupParts parts{&mo, nullptr, &props[static_cast<std::size_t>(pi)]};
     for (std::size_t c = 0; c < escs_.classes.size(); ++c) {
       if (escs_.per_option[o][c].empty()) continue;
-      const Drive d(mp, ClassParams(escs_.classes[c]));
+      const Drive d(mp, ZeroResistanceEsc(escs_.classes[c]));
       bool ok = ReachesThrustToWeight(group, d, pi, vehicle_kg, o);
       for (std::size_t k = 0; k < segs.size() && ok; ++k) {
         const std::size_t j = static_cast<std::size_t>(pi) * segs.size() + k;
@@ -512,7 +486,7 @@ double JointBounds::MinFreeGroupPower(int group, std::size_t si, std::size_t o, 
     if (Lifts(group) && (excluded || bo.v_full > MotorMaxVoltageV(mo))) continue;  // R0, R1
     for (std::size_t c = 0; c < classes.size(); ++c) {
       if (escs_.per_option[o][c].empty()) continue;  // R1
-      cands.push_back(Cand{mp, Drive(mp, ClassParams(classes[c])), static_cast<int>(c),
+      cands.push_back(Cand{mp, Drive(mp, ZeroResistanceEsc(classes[c])), static_cast<int>(c),
                            DriveIsLossy(mp, classes[c].c1, classes[c].c0), &mo});
     }
   }
@@ -658,12 +632,12 @@ double JointBounds::PairBound(int motor, int prop, std::size_t o, int esc_class,
     return kInf;
   }
   const MotorParams mp = ScenarioMotorParams(mo, m_);
-  const Drive d(mp, ClassParams(cls));
+  const Drive d(mp, ZeroResistanceEsc(cls));
   // FreeCruisePowerLowerBoundW reads the ESC's C1, C0: a member's, when the class's catalog
   // values cannot create energy (a scenario only raises C0); else none of the class is lossy
   // for certain, and a synthetic member with a negative C0 gives no momentum bound.
   EscEntry none;
-  none.params = ClassParams(cls);
+  none.params = ZeroResistanceEsc(cls);
   none.params.c0 = -1.0;
   const EscEntry* esc = DriveIsLossy(mp, cls.c1, cls.c0) ? &cat_.escs()[static_cast<std::size_t>(members.front())] : &none;
   const GroupParts parts{&mo, esc, &cat_.props()[static_cast<std::size_t>(prop)]};

@@ -337,6 +337,27 @@ EscTable BuildEscTable(const Catalog& cat, const std::vector<BatteryOption>& opt
   return t;
 }
 
+double BudgetScore(double t_fixed_max_s, double e_max_j, double e_other_j, double p_stretch_w) {
+  return p_stretch_w > 0 ? -(t_fixed_max_s + std::max(0.0, e_max_j - e_other_j) / p_stretch_w) : -kInf;
+}
+
+double BisectSpeedFromBelow(const PropModel& model, double rho, double thrust_n, double v_m_s, double lo, double hi,
+                            int steps) {
+  for (int i = 0; i < steps; ++i) {
+    const double mid = 0.5 * (lo + hi);
+    (model.Evaluate(mid, rho, v_m_s).thrust_n <= thrust_n ? lo : hi) = mid;
+  }
+  return lo;
+}
+
+const char* PropFrameRule(const Mission& m, int group, bool lifts, const PropEntry& prop) {
+  const std::optional<double> d_max = GroupMaxPropDiameterM(m, group);
+  if (d_max && prop.diameter_m > *d_max) return "prop_diameter";
+  if (!prop.exclude_reason.empty()) return "catalog_exclude";
+  if (lifts && FoldingPropRefused(prop, m)) return "prop_folding";
+  return nullptr;
+}
+
 std::vector<double> InflowsOf(const Mission& m) {
   std::vector<double> v;
   for (const Segment& sg : m.segments) {
@@ -411,7 +432,6 @@ struct MissionFacts {
   std::vector<int> hover;  // hover segment indices (R2-R4)
   double t_fixed_max = 0;  // the fixed segments' longest total duration (R4)
   bool stretch_is_hover = false;
-  double tr_limit = 1.0;
   int free_group = 0;
   // The free group lifts the vehicle (LiftGroup, 0 when none): the evaluator's prop_folding,
   // motor_unrated and motor_voltage checks apply to it (credibility.h).
@@ -437,7 +457,6 @@ MissionFacts FactsOf(const Mission& m, int free_group) {
   f.stretch_is_hover = m.objective.type == ObjectiveType::kMaxEndurance &&
                        m.segments[m.objective.segment_index].type == SegmentType::kHover &&
                        m.segments[m.objective.segment_index].group == free_group;
-  f.tr_limit = std::min(m.constraints.max_throttle, 1.0);
   f.free_group = free_group;
   f.free_lifts = free_group == std::max(0, LiftGroup(m));
   return f;
@@ -447,17 +466,8 @@ MissionFacts FactsOf(const Mission& m, int free_group) {
 MissionFacts StageFourFacts(const SearchContext& ctx) {
   const Mission& m = *ctx.mission;
   MissionFacts f = FactsOf(m, ctx.free_group);
-  const std::optional<double> d_max = GroupMaxPropDiameterM(m, f.free_group);
   for (const PropEntry& prop : ctx.catalog->props()) {
-    const char* rule = nullptr;
-    if (d_max && prop.diameter_m > *d_max) {
-      rule = "prop_diameter";
-    } else if (!prop.exclude_reason.empty()) {
-      rule = "catalog_exclude";  // the catalog excludes it
-    } else if (f.free_lifts && FoldingPropRefused(prop, m)) {
-      rule = "prop_folding";  // credibility.h
-    }
-    f.prop_frame_rule.push_back(rule);
+    f.prop_frame_rule.push_back(PropFrameRule(m, f.free_group, f.free_lifts, prop));
   }
   for (const Segment& sg : m.segments) {
     if (sg.group != f.free_group) continue;
@@ -532,12 +542,6 @@ double MomentumPowerW(const Mission& m, const RotorLoad& ld, double diameter_m, 
   const double p_ideal =
       IdealRotorPowerW(ld.thrust_per_rotor_n, diameter_m, m.rho_kg_m3, axial_data ? ld.axial_airspeed_m_s : 0.0);
   return ld.rotors * p_ideal / m.constraints.max_figure_of_merit + m.vehicle.avionics_power_w;
-}
-
-// R4's energy budget for a stretched segment: the score bound -(t_fixed_max + what the budget
-// leaves after the other segments, at the stretch's least power); -kInf without a power bound.
-double BudgetScore(double t_fixed_max_s, double e_max_j, double e_other_j, double p_stretch_w) {
-  return p_stretch_w > 0 ? -(t_fixed_max_s + std::max(0.0, e_max_j - e_other_j) / p_stretch_w) : -kInf;
 }
 
 // R4's terminal power bound of segment si at every instant, W, for a pair at the mass of
@@ -704,11 +708,7 @@ void SpeedTorqueFromBelow(const PropGrid& g, const SegmentGrid& sgrid, const Pro
   *omega = g.omega[idx];
   *torque = sgrid.torque_suffix_min[idx];
   if (refine_steps <= 0 || idx + 1 >= kGrid) return;
-  double lo = g.omega[idx], hi = g.omega[idx + 1];
-  for (int k = 0; k < refine_steps; ++k) {
-    const double mid = 0.5 * (lo + hi);
-    (model.Evaluate(mid, rho, sgrid.v_m_s).thrust_n <= thrust_n ? lo = mid : hi = mid);
-  }
+  const double lo = BisectSpeedFromBelow(model, rho, thrust_n, sgrid.v_m_s, g.omega[idx], g.omega[idx + 1], refine_steps);
   if (lo == g.omega[idx]) return;
   PropEvaluation ev = model.Evaluate(lo, rho, sgrid.v_m_s);
   AdjustPropEvaluation(g.adjustment, diameter_m, &ev);
@@ -736,8 +736,7 @@ double SegmentwiseBoundAt(const SearchContext& ctx, const MissionFacts& f, const
   const double pack_kg = span_ah > 0 ? bo.mass_lo_kg + (1.0 - 1e-9) * (bo.mass_hi_kg - bo.mass_lo_kg) *
                                                            (cap_a_ah - bo.capacity_lo_ah) / span_ah
                                      : bo.mass_lo_kg;
-  const double mass_lb = m.vehicle.mass_kg + pack_kg + ctx.fixed_groups_mass_kg +
-                         ctx.free_rotors * (*mo.mass_kg + g.mass_kg + esc_mass_kg);
+  const double mass_lb = VehicleMassKg(ctx, pack_kg, *mo.mass_kg, g.mass_kg, esc_mass_kg);
   const double ri_ohm = bo.ri_at_hi_ohm * bo.capacity_hi_ah / cap_b_ah;
   const bool lossy = DriveIsLossy(mp, ideal.esc().c1, ideal.esc().c0);
   const bool axial_data = ctx.models[static_cast<std::size_t>(prop)]->data_kind() == PropDataKind::kTables &&
@@ -791,7 +790,7 @@ double SegmentwiseBoundAt(const SearchContext& ctx, const MissionFacts& f, const
   const Segment& st = m.segments[static_cast<std::size_t>(stretch)];
   if (st.type == SegmentType::kShaft || (st.type == SegmentType::kCruise && st.airspeed_m_s.free())) return -kInf;
   const double e_max = bo.ocv_integral_v * AhToCoulomb(cap_b_ah);
-  return BudgetScore(LongestFixedDurationS(m), e_max, e_other, p_stretch);
+  return BudgetScore(f.t_fixed_max, e_max, e_other, p_stretch);
 }
 
 // R10 over the option's capacity range in pieces (one without a range): the least bound over
@@ -874,8 +873,7 @@ const char* PropRule(const SearchContext& ctx, const MissionFacts& f, const Moto
     // grid points. T_ub >= T_lb (M3) puts hi_idx at or above lb_idx, so when the point at
     // lb_idx keeps the limit the rule cannot fire and T_ub is not needed.
     if (g.fom_ok_next[lb_idx] != lb_idx) {
-      const double mass_ub = m.vehicle.mass_kg + bo.mass_hi_kg + ctx.fixed_groups_mass_kg +
-                             ctx.free_rotors * (*mo.mass_kg + g.mass_kg + ctx.escs.max_mass_kg[o]);
+      const double mass_ub = VehicleMassKg(ctx, bo.mass_hi_kg, *mo.mass_kg, g.mass_kg, ctx.escs.max_mass_kg[o]);
       const RotorLoad load_ub = SegmentRotorLoad(m, m.segments[f.hover[0]], mass_ub, 0.0);
       const double* it_ub = std::lower_bound(g.thrust, g.thrust + kGrid, load_ub.thrust_per_rotor_n);
       const int hi_idx = std::min(static_cast<int>(it_ub - g.thrust), kGrid - 1);
@@ -928,11 +926,7 @@ void MotorCandidates(const SearchContext& ctx, const MissionFacts& f, std::size_
   const std::vector<EscClass>& classes = ctx.escs.classes;
   // Zero-resistance drives, one per ESC class (R3, R4, R7).
   std::vector<Drive> ideal;
-  for (const EscClass& c : classes) {
-    EscParams e;
-    e.c1 = c.c1; e.c0 = c.c0; e.tr_sat = c.tr_sat; e.sat_slope = c.sat_slope; e.resc_ohm = 0.0;
-    ideal.emplace_back(mp, e);
-  }
+  for (const EscClass& c : classes) ideal.emplace_back(mp, ZeroResistanceEsc(c));
   PairLoads loads(m);
   for (std::size_t o = 0; o < ctx.options.size(); ++o) {
     const BatteryOption& bo = ctx.options[o];
@@ -943,8 +937,7 @@ void MotorCandidates(const SearchContext& ctx, const MissionFacts& f, std::size_
     double w_nl = 0;  // R7
     for (const Drive& d : ideal) w_nl = std::max(w_nl, d.NoLoadSpeed(bo.v_full, 1.0));
     for (std::size_t pi = 0; pi < props.size(); ++pi) {
-      const double mass_lb = m.vehicle.mass_kg + bo.mass_lo_kg + ctx.fixed_groups_mass_kg +
-                             ctx.free_rotors * (*mo.mass_kg + ctx.grids[pi].mass_kg + ctx.escs.min_mass_kg[o]);
+      const double mass_lb = VehicleMassKg(ctx, bo.mass_lo_kg, *mo.mass_kg, ctx.grids[pi].mass_kg, ctx.escs.min_mass_kg[o]);
       double omega_lb = 0, q_lb = 0;
       loads.Reset(mass_lb);
       if (const char* rule = PropRule(ctx, f, mo, w_nl, pi, o, &loads, &omega_lb, &q_lb)) {
@@ -965,7 +958,7 @@ void MotorCandidates(const SearchContext& ctx, const MissionFacts& f, std::size_
       for (std::size_t ci = 0; ci < classes.size(); ++ci) {
         if (ctx.escs.per_option[o][ci].empty()) continue;
         const Drive::InverseCurrents hi_v = ideal[ci].InverseLight(bo.v_full, q_lb, omega_lb);
-        const double t_max = k.allow_esc_saturation ? f.tr_limit : std::min(f.tr_limit, classes[ci].tr_sat);
+        const double t_max = ThrottleLimit(k, classes[ci].tr_sat);
         if (hi_v.throttle > t_max) { why = "throttle"; continue; }
         if (hi_v.irms_a > mp.max_current_a * margin) { why = "motor_current"; continue; }
         if (k.enforce_motor_power && ideal[ci].InverseAcPower(bo.v_full, hi_v, q_lb, omega_lb) > mp.max_power_w) {
@@ -1008,8 +1001,7 @@ bool HoverThrottleBelowLimit(const SearchContext& ctx, const MissionFacts& f, co
   const BatteryOption& bo = ctx.options[static_cast<std::size_t>(option)];
   const MotorEntry& mo = ctx.catalog->motors()[static_cast<std::size_t>(motor)];
   // The heaviest the vehicle can be with this ESC: the option's largest pack.
-  const double mass_ub = m.vehicle.mass_kg + bo.mass_hi_kg + ctx.fixed_groups_mass_kg +
-                         ctx.free_rotors * (*mo.mass_kg + g.mass_kg + EscMassKg(esc));
+  const double mass_ub = VehicleMassKg(ctx, bo.mass_hi_kg, *mo.mass_kg, g.mass_kg, EscMassKg(esc));
   const RotorLoad load = SegmentRotorLoad(m, m.segments[static_cast<std::size_t>(f.hover[0])], mass_ub, 0.0);
   const double* it = std::lower_bound(g.thrust, g.thrust + kGrid, load.thrust_per_rotor_n);
   if (it == g.thrust + kGrid) return false;  // beyond the grid: no bound
@@ -1025,10 +1017,9 @@ double SegmentwiseBound(const SearchContext& ctx, int motor, int prop, int optio
   const Mission& m = *ctx.mission;
   const MotorParams mp = ScenarioMotorParams(ctx.catalog->motors()[static_cast<std::size_t>(motor)], m, nullptr, nullptr);
   const EscClass& cls = ctx.escs.classes[static_cast<std::size_t>(esc_class)];
-  EscParams ideal;
-  ideal.c1 = cls.c1; ideal.c0 = cls.c0; ideal.tr_sat = cls.tr_sat; ideal.sat_slope = cls.sat_slope; ideal.resc_ohm = 0.0;
+  const EscParams ideal = ZeroResistanceEsc(cls);
   const MissionFacts f = FactsOf(m, ctx.free_group);
-  const double t_max = m.constraints.allow_esc_saturation ? f.tr_limit : std::min(f.tr_limit, cls.tr_sat);
+  const double t_max = ThrottleLimit(m.constraints, cls.tr_sat);
   return SegmentwiseBoundPieces(ctx, f, mp, Drive(mp, ideal), t_max, motor, prop, option, esc_mass_kg, threshold, rule);
 }
 
@@ -1117,13 +1108,8 @@ namespace {
 // A speed at or below the evaluator's root for thrust T in axial inflow v (thrust rising with
 // speed, M1): bisection keeping thrust(lo) <= T; false when even kGridMaxRadS gives less.
 bool SpeedFromBelow(const PropModel& prop, double rho, double thrust_n, double v_m_s, int steps, double* omega) {
-  double lo = 0.0, hi = kGridMaxRadS;
-  if (!(prop.Evaluate(hi, rho, v_m_s).thrust_n >= thrust_n)) return false;
-  for (int i = 0; i < steps; ++i) {
-    const double mid = 0.5 * (lo + hi);
-    (prop.Evaluate(mid, rho, v_m_s).thrust_n <= thrust_n ? lo : hi) = mid;
-  }
-  *omega = lo;
+  if (!(prop.Evaluate(kGridMaxRadS, rho, v_m_s).thrust_n >= thrust_n)) return false;
+  *omega = BisectSpeedFromBelow(prop, rho, thrust_n, v_m_s, 0.0, kGridMaxRadS, steps);
   return true;
 }
 
@@ -1555,7 +1541,7 @@ void BranchAndBound::Process(const Candidate& cand, std::vector<double> top, Out
     for (int e : rated) virt.mass_kg = std::min(*virt.mass_kg, EscMassKg(escs[e]));
     {  // R10: segment by segment, with the virtual ESC's drive and mass.
       const char* rule = nullptr;
-      const double t_max = m.constraints.allow_esc_saturation ? facts_.tr_limit : std::min(facts_.tr_limit, virt.params.tr_sat);
+      const double t_max = ThrottleLimit(m.constraints, virt.params.tr_sat);
       const double threshold = threshold_now();
       const double b = SegmentwiseBoundPieces(ctx_, facts_, mp, Drive(mp, virt.params), t_max, cand.motor, cand.prop,
                                               cand.option, *virt.mass_kg, threshold, &rule);

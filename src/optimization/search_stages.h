@@ -17,6 +17,7 @@
 // The proofs of the rules are in search.cc. Internal to src/optimization (and its tests).
 #pragma once
 
+#include <algorithm>
 #include <map>
 #include <memory>
 #include <string>
@@ -64,6 +65,29 @@ struct EscTable {
   long long excluded_pruned = 0;                 // (option, ESC) pairs the catalog excludes (R0)
 };
 EscTable BuildEscTable(const Catalog& cat, const std::vector<BatteryOption>& options);
+
+// The drive of a class with no ESC resistance: a lower bound of every member's throttle,
+// currents and power at a point (M2, search.cc).
+inline EscParams ZeroResistanceEsc(const EscClass& c) {
+  EscParams e;
+  e.c1 = c.c1;
+  e.c0 = c.c0;
+  e.tr_sat = c.tr_sat;
+  e.sat_slope = c.sat_slope;
+  e.resc_ohm = 0.0;
+  return e;
+}
+
+// The highest throttle a feasible point may have: max_throttle (at most 1) and, when
+// saturation is not allowed, the ESC's knee.
+inline double ThrottleLimit(const MissionConstraints& k, double tr_sat) {
+  const double t = std::min(k.max_throttle, 1.0);
+  return k.allow_esc_saturation ? t : std::min(t, tr_sat);
+}
+
+// R0 for a propeller of `group` whatever the motor: the frame's largest diameter, the
+// catalog's exclusion, a folding propeller for lift (credibility.h); null when none applies.
+const char* PropFrameRule(const Mission& m, int group, bool lifts, const PropEntry& prop);
 
 inline constexpr int kGrid = 256;
 inline constexpr double kGridMinRadS = 30.0, kGridMaxRadS = 6000.0;
@@ -132,6 +156,22 @@ struct SearchContext {
   std::vector<PropGrid> grids;
   std::vector<std::unique_ptr<PropModel>> models;
 };
+
+// The vehicle's mass with a pack of pack_kg and each of the free group's rotors carrying a
+// motor, propeller and ESC of these masses (the fixed groups' parts: fixed_groups_mass_kg).
+inline double VehicleMassKg(const SearchContext& ctx, double pack_kg, double motor_kg, double prop_kg, double esc_kg) {
+  return ctx.mission->vehicle.mass_kg + pack_kg + ctx.fixed_groups_mass_kg +
+         ctx.free_rotors * (motor_kg + prop_kg + esc_kg);
+}
+
+// A speed at or below the root of thrust(omega) = T in axial inflow v on [lo, hi] (thrust
+// rising with speed, M1, and thrust(lo) <= T): `steps` bisections keeping thrust(lo) <= T.
+double BisectSpeedFromBelow(const PropModel& model, double rho, double thrust_n, double v_m_s, double lo, double hi,
+                            int steps);
+
+// R4's energy budget for a stretched segment: the score bound -(t_fixed_max + what the budget
+// leaves after the other segments, at the stretch's least power); -kInf without a power bound.
+double BudgetScore(double t_fixed_max_s, double e_max_j, double e_other_j, double p_stretch_w);
 
 struct CandidateList {
   std::vector<Candidate> candidates;  // unordered
