@@ -1,6 +1,7 @@
 #include "optimization/mission_eval.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <sstream>
@@ -36,6 +37,73 @@ bool Better(const MissionResult& a, const MissionResult& b) {
   return a.feasible ? a.score < b.score : a.min_slack > b.min_slack;
 }
 
+// What Brent's method needs of a simulated point: where, and how it compares (as Better).
+struct ResultKey {
+  double x = 0.0;
+  bool feasible = false;
+  double score = 0.0, min_slack = 0.0;
+  static ResultKey Of(const MissionResult& r, double x) { return {x, r.feasible, r.score, r.min_slack}; }
+};
+bool Better(const ResultKey& a, const ResultKey& b) {
+  if (a.feasible != b.feasible) return a.feasible;
+  return a.feasible ? a.score < b.score : a.min_slack > b.min_slack;
+}
+
+// Brent's minimization (Brent 1973, "Algorithms for Minimization without Derivatives", ch. 5)
+// on [a, b] from its best point x (result best) and two more simulated points w (second best)
+// and v: a step to the vertex of the parabola through x, w and v when all three are feasible
+// (infeasible points have no score to fit) and the step is safe (inside [a, b], less than half
+// the step before last), else a golden-section step into the larger side. It keeps the
+// golden section's bracket invariant, so it ends in the same tolerance, in far fewer
+// simulations on the smooth score of a capacity or an airspeed.
+template <typename Simulate, typename Enough>
+MissionResult BrentPolish(const Simulate& simulate, const Enough& enough, double a, double b, double x0,
+                          MissionResult best, ResultKey w, ResultKey v, double tolerance) {
+  constexpr double kGoldenStep = 0.3819660112501051;  // (3 - sqrt(5))/2
+  ResultKey x = ResultKey::Of(best, x0);
+  if (Better(v, w)) std::swap(v, w);
+  const double tol1 = 0.25 * tolerance, tol2 = 2.0 * tol1;  // ends with b - a <= tolerance
+  double d = 0.0, e = b - a;  // the last step and the one before: the grid's neighbours
+  for (int it = 0; it < 200; ++it) {
+    const double m = 0.5 * (a + b);
+    if (std::fabs(x.x - m) <= tol2 - 0.5 * (b - a)) break;
+    bool parabolic = false;
+    if (std::fabs(e) > tol1 && x.feasible && w.feasible && v.feasible) {
+      const double r = (x.x - w.x) * (x.score - v.score);
+      double q = (x.x - v.x) * (x.score - w.score);
+      double p = (x.x - v.x) * q - (x.x - w.x) * r;
+      q = 2.0 * (q - r);
+      if (q > 0) p = -p;
+      q = std::fabs(q);
+      if (std::fabs(p) < std::fabs(0.5 * q * e) && p > q * (a - x.x) && p < q * (b - x.x)) {
+        e = d;
+        d = p / q;
+        const double u = x.x + d;
+        if (u - a < tol2 || b - u < tol2) d = m >= x.x ? tol1 : -tol1;
+        parabolic = true;
+      }
+    }
+    if (!parabolic) {
+      e = x.x >= m ? a - x.x : b - x.x;
+      d = kGoldenStep * e;
+    }
+    const double ux = std::fabs(d) >= tol1 ? x.x + d : x.x + (d >= 0 ? tol1 : -tol1);
+    MissionResult ru = simulate(ux);
+    if (enough(ru)) return ru;
+    const ResultKey u = ResultKey::Of(ru, ux);
+    if (!Better(x, u)) {  // u is no worse: the new best
+      (ux >= x.x ? a : b) = x.x;
+      v = w; w = x; x = u;
+      best = std::move(ru);
+    } else {
+      (ux < x.x ? a : b) = ux;
+      if (!Better(w, u) || w.x == x.x) { v = w; w = u; }
+      else if (!Better(v, u) || v.x == x.x || v.x == w.x) v = u;
+    }
+  }
+  return best;
+}
+
 // The best result over x in [0, 1] of one scaled variable: a 9-point grid brackets the best
 // point, then golden-section search on [x_best - 1/8, x_best + 1/8] down to a width of 1e-6
 // (about 38 simulations). Infeasible points compare worse than every feasible one, so an
@@ -52,16 +120,20 @@ bool Better(const MissionResult& a, const MissionResult& b) {
 template <typename Simulate, typename Bounded, typename Enough>
 MissionResult SolveOneVariable(const Simulate& simulate, const Bounded& bounded_after_grid, const Enough& enough) {
   constexpr int kGrid = 9;
+  constexpr double kTolerance = 1e-6;  // of the scaled variable's range
   MissionResult best = simulate(0.0);
   if (enough(best)) return best;
   double best_x = 0.0;
+  int best_k = 0;
+  std::array<ResultKey, kGrid> grid_keys;
+  grid_keys[0] = ResultKey::Of(best, 0.0);
   for (int k = 1; k < kGrid; ++k) {
     const double x = k / double(kGrid - 1);
     MissionResult r = simulate(x);
     if (enough(r)) return r;
-    if (Better(r, best)) { best = std::move(r); best_x = x; }
+    grid_keys[k] = ResultKey::Of(r, x);
+    if (Better(r, best)) { best = std::move(r); best_x = x; best_k = k; }
   }
-  const double kInvPhi = 0.6180339887498949;  // (sqrt(5) - 1)/2
   double a = std::max(0.0, best_x - 1.0 / (kGrid - 1)), b = std::min(1.0, best_x + 1.0 / (kGrid - 1));
   if (bounded_after_grid(best, a, b)) {
     MissionResult out;
@@ -69,27 +141,17 @@ MissionResult SolveOneVariable(const Simulate& simulate, const Bounded& bounded_
     out.score = kInf;
     return out;
   }
-  double c = b - kInvPhi * (b - a), d = a + kInvPhi * (b - a);
-  MissionResult rc = simulate(c);
-  if (enough(rc)) return rc;
-  MissionResult rd = simulate(d);
-  if (enough(rd)) return rd;
-  while (b - a > 1e-6) {
-    if (Better(rc, rd)) {  // the best lies in [a, d]
-      b = d; d = c; rd = std::move(rc);
-      c = b - kInvPhi * (b - a);
-      rc = simulate(c);
-      if (enough(rc)) return rc;
-    } else {
-      a = c; c = d; rc = std::move(rd);
-      d = a + kInvPhi * (b - a);
-      rd = simulate(d);
-      if (enough(rd)) return rd;
-    }
-    if (Better(rc, best)) best = rc;
-    if (Better(rd, best)) best = rd;
+  // The grid's best on an end of the range: one point a tolerance inside it settles it. If
+  // that point is worse, the variable's unimodal function (the golden section's assumption)
+  // has its best within the tolerance of the end, and every point the golden section would
+  // simulate is worse than the end itself: its answer would be the grid's best.
+  if (best_x == 0.0 || best_x == 1.0) {
+    MissionResult r_in = simulate(best_x == 0.0 ? kTolerance : 1.0 - kTolerance);
+    if (enough(r_in)) return r_in;
+    if (Better(best, r_in)) return best;
   }
-  return best;
+  return BrentPolish(simulate, enough, a, b, best_x, std::move(best), grid_keys[best_k - 1 < 0 ? 0 : best_k - 1],
+                     grid_keys[std::min(best_k + 1, kGrid - 1)], kTolerance);
 }
 
 // Propeller speed for a required thrust: the root of T(omega) - T_req on [0, w_hi], in closed
@@ -152,7 +214,8 @@ namespace eval_internal {
 // Tracks slacks and violations of one simulation.
 class Tracker {
  public:
-  explicit Tracker(MissionResult* r) : r_(r) {}
+  // stretch_phase (RunState::in_stretch): when set, the checks also go into stretch_slacks.
+  explicit Tracker(MissionResult* r, const bool* stretch_phase = nullptr) : r_(r), stretch_phase_(stretch_phase) {}
   // value <= limit (or >= when `at_least`); relative slack (limit - value)/|limit|.
   // `name` and `unit` are literals: no string is built unless the check fails.
   void Check(const char* name, const std::string& segment, double value, double limit,
@@ -162,6 +225,7 @@ class Tracker {
     if (at_least) slack = -slack;
     if (std::isnan(slack)) slack = -kInf;
     r_->min_slack = std::min(r_->min_slack, slack);
+    if (stretch_phase_ && *stretch_phase_) r_->stretch_slacks.Add(name, slack);
     if (seg && slack < seg->active_limit_slack) {
       seg->active_limit_slack = slack;
       seg->active_limit = name;
@@ -180,6 +244,7 @@ class Tracker {
 
  private:
   MissionResult* r_;
+  const bool* stretch_phase_;
 };
 
 }  // namespace eval_internal
@@ -368,6 +433,7 @@ struct MissionEvaluator::RunState {
   BatteryPack pack;
   double cutoff_v = 0, v_full = 0, q_c = 0, current_factor = 1;
   double soc = 1.0, time_s = 0, energy_j = 0;
+  bool in_stretch = false;  // past the first point of the max-endurance stretch (WithEndurance)
 };
 
 // Mission-wide checks of the parts: ESC voltage, the frame, and the lift group's credibility
@@ -504,6 +570,8 @@ bool MissionEvaluator::IntegrateSegment(std::size_t si, bool stretched, double o
   double v = 0, ib = 0;
   bool ok = point_at(soc, &op, &v, &ib);
   if (ok) check_point(op, v, ib);
+  // From here on the checks depend on the stretch's duration (WithEndurance's root function).
+  if (stretched) st->in_stretch = true;
   seg->battery_current_start_a = ib;
   seg->vdc_min_v = seg->vdc_max_v = v;
   seg->throttle_min = seg->throttle_max = op.throttle;
@@ -624,7 +692,7 @@ MissionEvaluator::RunPrefix MissionEvaluator::RunUpTo(const ContinuousVars& vars
 void MissionEvaluator::RunSegments(const ContinuousVars& vars, double stretch_s, bool screen, std::size_t end,
                                    RunPrefix* p) const {
   MissionResult& r = p->r;
-  Tracker track(&r);
+  Tracker track(&r, &p->st.in_stretch);
   for (std::size_t si = p->next; si < end && !p->finished; ++si) {
     const Segment& s = m_.segments[si];
     SegmentResult seg;
@@ -663,7 +731,7 @@ void MissionEvaluator::RunSegments(const ContinuousVars& vars, double stretch_s,
 MissionResult MissionEvaluator::RunFrom(RunPrefix p, const ContinuousVars& vars, double stretch_s, bool screen) const {
   RunSegments(vars, stretch_s, screen, m_.segments.size(), &p);
   if (p.finished) return std::move(p.r);
-  Tracker track(&p.r);
+  Tracker track(&p.r, &p.st.in_stretch);
   FinishRun(p.st, &track, &p.r);
   return std::move(p.r);
 }
@@ -678,47 +746,60 @@ double MissionEvaluator::StretchStartCurrent(const MissionResult& r) const {
 
 MissionResult MissionEvaluator::WithEndurance(ContinuousVars vars, double decide_cutoff) const {
   if (m_.objective.type != ObjectiveType::kMaxEndurance) return Run(vars, 0.0);
-  // The longest stretch that keeps every constraint: min_slack(T) falls with T (SOC and
-  // voltage only fall), so bracket its zero and close in by Illinois regula falsi.
+  // The longest stretch that keeps every constraint. Feasibility at T rests on the checks
+  // before the stretch and at its first point, which do not depend on T (the segments before
+  // it, the shaft points, the full-charge hover throttle), and on the rest, each of whose
+  // slacks falls with T (SOC and voltage only fall). Once the first part holds (at T = 0),
+  // the end of the feasible stretches is bracketed and closed in on by Illinois regula falsi
+  // on the slack of one constraint: the one that fails worst at the bracket's infeasible end
+  // (switched when a probe fails by another). That slack is smooth in T; the smallest slack
+  // of all is not: a limit that does not move with T sits as a floor near 0 on the feasible
+  // side (a thrust-to-weight held at the current rating, the class ESC's voltage limit, which
+  // is exactly the pack's) and slows the regula falsi below a bisection.
   // The segments before the stretch do not depend on it: flown once.
   const RunPrefix prefix = RunUpTo(vars, static_cast<std::size_t>(m_.objective.segment_index), false);
   auto run = [&](double t) { return RunFrom(prefix, vars, t, false); };
+  auto flown = [&](const MissionResult& r) { return r.segments.size() == m_.segments.size(); };
+  // The watched constraint's slack; -1 where the pack gave out (no slack to read).
+  const char* watch = nullptr;
+  auto slack = [&](const MissionResult& r) { return flown(r) ? r.stretch_slacks.Of(watch) : -1.0; };
   MissionResult lo_r = run(0.0);
-  if (lo_r.min_slack < 0 || lo_r.segments.size() < m_.segments.size()) return lo_r;
+  if (lo_r.min_slack < 0 || !flown(lo_r)) return lo_r;
   // lo_r is feasible from here on and its stretch only grows (its score only falls).
   auto decided = [&]() { return lo_r.feasible && lo_r.score < decide_cutoff; };
   if (decided()) return lo_r;
-  double lo = 0.0, f_lo = lo_r.min_slack;
+  double lo = 0.0;
   // First guess: the charge left above the reserve at the stretched segment's start current.
   // The stretched segment draws at least its start current (the voltage only falls, the power
   // does not), so the charge above the reserve lasts at most this long: an infeasible end.
-  const SegmentResult& sr = lo_r.segments[m_.objective.segment_index];
   const double q_c = AhToCoulomb(lo_r.capacity_ah);
   const double i_start = std::max(StretchStartCurrent(lo_r), 1e-9);
   double hi = std::max(1.0, q_c * std::max(lo_r.final_soc - m_.battery.reserve_soc, 1e-4) / i_start * 1.0001);
-  (void)sr;
   MissionResult hi_r = run(hi);
-  for (int i = 0; i < 40 && hi_r.min_slack >= 0; ++i) {
-    lo = hi; f_lo = hi_r.min_slack; lo_r = hi_r;
+  for (int i = 0; i < 40 && hi_r.feasible; ++i) {
+    lo = hi; lo_r = std::move(hi_r);
     if (decided()) return lo_r;
     hi *= 2;
     hi_r = run(hi);
   }
-  double f_hi = hi_r.min_slack;
-  if (!std::isfinite(f_hi)) f_hi = -1.0;
+  watch = hi_r.stretch_slacks.Worst();
+  double f_lo = slack(lo_r), f_hi = slack(hi_r);
   int side = 0;
   for (int it = 0; it < 60 && hi - lo > 1e-6 * hi; ++it) {
     double t = (lo * f_hi - hi * f_lo) / (f_hi - f_lo);
     if (!(t > lo && t < hi)) t = 0.5 * (lo + hi);
     MissionResult tr = run(t);
-    const double ft = std::isfinite(tr.min_slack) ? tr.min_slack : -1.0;
-    if (ft >= 0) {
-      lo = t; f_lo = ft; lo_r = std::move(tr);
+    if (tr.feasible) {
+      lo = t; f_lo = slack(tr); lo_r = std::move(tr);
       if (decided()) return lo_r;
       if (side == -1) f_hi *= 0.5;
       side = -1;
+    } else if (const char* fails = tr.stretch_slacks.Worst(); flown(tr) && !SameConstraint(fails, watch)) {
+      watch = fails;  // another limit ends the stretch first: follow it from here
+      hi = t; f_hi = slack(tr); f_lo = slack(lo_r);
+      side = 0;
     } else {
-      hi = t; f_hi = ft;
+      hi = t; f_hi = slack(tr);
       if (side == 1) f_lo *= 0.5;
       side = 1;
     }

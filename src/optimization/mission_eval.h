@@ -20,6 +20,9 @@
 // so they are solved by a derivative-free NLopt method (COBYLA, see SolveCombination).
 #pragma once
 
+#include <algorithm>
+#include <array>
+#include <cstring>
 #include <limits>
 #include <memory>
 #include <string>
@@ -129,6 +132,45 @@ struct DesignSummary {
   double winding_temp_max_c = 0.0;  // hottest segment
 };
 
+// Two constraint names (the literals the checks pass) are the same constraint.
+inline bool SameConstraint(const char* a, const char* b) {
+  return a == b || (a && b && std::strcmp(a, b) == 0);
+}
+
+// The smallest slack per constraint over a run's stretch-dependent checks (a fixed array: no
+// allocation on the hot path; the constraints are a few literals).
+struct StretchSlacks {
+  static constexpr int kMax = 24;
+  std::array<const char*, kMax> name{};
+  std::array<double, kMax> slack{};
+  int n = 0;
+  // By the literal's address (a name passed from two places may take two entries: Of and
+  // Worst read them by name, so that costs nothing but a slot).
+  void Add(const char* c, double s) {
+    for (int i = 0; i < n; ++i) {
+      if (name[i] == c) {
+        slack[i] = std::min(slack[i], s);
+        return;
+      }
+    }
+    if (n < kMax) { name[n] = c; slack[n++] = s; }
+  }
+  // The slack of constraint c, or the smallest of all when c is null; +inf when not checked.
+  double Of(const char* c) const {
+    double out = std::numeric_limits<double>::infinity();
+    for (int i = 0; i < n; ++i) {
+      if (!c || SameConstraint(name[i], c)) out = std::min(out, slack[i]);
+    }
+    return out;
+  }
+  // The constraint with the smallest slack (null when none was checked).
+  const char* Worst() const {
+    int k = -1;
+    for (int i = 0; i < n; ++i) if (k < 0 || slack[i] < slack[k]) k = i;
+    return k < 0 ? nullptr : name[k];
+  }
+};
+
 struct MissionResult {
   bool feasible = false;
   // Solve(cutoff_score) proved that the score cannot beat the cutoff and stopped early; the
@@ -154,6 +196,9 @@ struct MissionResult {
   int lift_rotors = 0;
   DesignSummary summary;              // filled by Solve/Simulate (not by screening runs)
   double min_slack = 0.0;             // smallest relative constraint slack (< 0: infeasible)
+  // Per constraint, the smallest slack of the checks that depend on the max-endurance
+  // stretch's duration (from its second point on): WithEndurance's root functions. Internal.
+  StretchSlacks stretch_slacks;
   // The tiers of the parts and the objective under the data-uncertainty model
   // (optimization/credibility.h); filled by AddObjectiveRange (evaluate, optimize's top N).
   ObjectiveRange range;

@@ -1418,7 +1418,7 @@ class BranchAndBound {
   struct Outcome {
     std::vector<std::pair<Combination, MissionResult>> results;
     std::vector<double> cutoffs;  // per result, the cutoff its Solve had
-    std::map<std::string, long long> pruned;
+    RuleCounts pruned;
     long long searched = 0, virtual_evals = 0;
   };
 
@@ -1489,7 +1489,7 @@ void BranchAndBound::Process(const Candidate& cand, std::vector<double> top, Out
   auto threshold_now = [&]() {
     return static_cast<int>(top.size()) < opt_.top_n ? cutoff_ : std::min(cutoff_, top[opt_.top_n - 1]);
   };
-  auto local_prune = [&](const std::string& rule, long long n) { o->pruned[rule] += n; };
+  auto local_prune = [&](const char* rule, long long n) { o->pruned.Add(rule, n); };
   const BatteryOption& bo = ctx_.options[cand.option];
   const PropModel* model = ctx_.models[cand.prop].get();
   Combination c{&ctx_.catalog->motors()[cand.motor], nullptr, &ctx_.catalog->props()[cand.prop], bo.entry, bo.cells, {}};
@@ -1503,11 +1503,12 @@ void BranchAndBound::Process(const Candidate& cand, std::vector<double> top, Out
     x->esc = e;
     if (!x->groups.empty()) x->groups[ctx_.free_group].esc = e;
   };
+  std::vector<int> rated;  // per class, reused
   for (std::size_t cl = 0; cl < ctx_.escs.classes.size(); ++cl) {
     const std::vector<int>& list = ctx_.escs.per_option[cand.option][cl];
     if (list.empty()) continue;
     // R3: ESCs rated below the Irms lower bound.
-    std::vector<int> rated;
+    rated.clear();
     for (int e : list) {
       if (escs[e].params.max_current_a * margin >= cand.irms_lb) rated.push_back(e);
     }
@@ -1636,7 +1637,7 @@ void BranchAndBound::Run() {
     run(0);
     for (auto& th : pool) th.join();
     for (Outcome& o : outs) {
-      for (const auto& [rule, n] : o.pruned) out_->pruned_by[rule] += n;
+      o.pruned.MergeInto(&out_->pruned_by);
       out_->searched += o.searched;
       virtual_evals_ += o.virtual_evals;
       for (std::size_t j = 0; j < o.results.size(); ++j) Insert(o.results[j].first, std::move(o.results[j].second), o.cutoffs[j]);

@@ -209,5 +209,62 @@ TEST_F(MissionEvalTest, SummaryAgreesWithTheMission) {
   EXPECT_NEAR(d.reserve_hover_s, 3600.0 * r.capacity_ah * r.final_soc / d.hover_battery_current_a, 1e-6 * d.reserve_hover_s);
 }
 
+// The max_endurance stretch ends on the limit that moves with it: of the checks from the
+// stretch's second point on, the smallest slack is 0 to within the root finder's tolerance.
+// Once with the reserve ending it; once with a throttle limit just below the hover's throttle
+// at the reserve, so that the throttle (rising as the pack's voltage falls) ends it first.
+// This combination's thrust-to-weight is held at the current rating: a limit that does not
+// move with the stretch, with a slack that must not slow or mislead the root finder.
+TEST_F(MissionEvalTest, TheStretchEndsOnTheLimitThatEndsIt) {
+  // The stretch is found to 1e-6 of its length; a slack moves by about as much.
+  constexpr double kSlackTolerance = 1e-5;
+  const Catalog cat = SmallCatalog();
+  const Combination c{&cat.motor("dc_m_1020"), &cat.esc("dc_e_56"), &cat.prop("dc_p_173"), &cat.battery("dc_b_361"), 4};
+  Json j = ParseJsonText(kHoverQuad, "quad");
+  const MissionResult by_reserve = MissionEvaluator(ParseMission(j, "quad"), c).Solve();
+  ASSERT_TRUE(by_reserve.feasible);
+  EXPECT_STREQ(by_reserve.stretch_slacks.Worst(), "reserve_soc");
+  EXPECT_GE(by_reserve.stretch_slacks.Of(nullptr), 0.0);
+  EXPECT_LT(by_reserve.stretch_slacks.Of(nullptr), kSlackTolerance);
+  const SegmentResult& loiter = by_reserve.segments[1];
+  ASSERT_LT(loiter.throttle_min, loiter.throttle_max);
+  j["constraints"]["max_throttle"] = 0.5 * (loiter.throttle_min + loiter.throttle_max);
+  const MissionResult by_throttle = MissionEvaluator(ParseMission(j, "quad"), c).Solve();
+  ASSERT_TRUE(by_throttle.feasible);
+  EXPECT_STREQ(by_throttle.stretch_slacks.Worst(), "max_throttle");
+  EXPECT_GE(by_throttle.stretch_slacks.Of(nullptr), 0.0);
+  EXPECT_LT(by_throttle.stretch_slacks.Of(nullptr), kSlackTolerance);
+  EXPECT_LT(by_throttle.endurance_s, by_reserve.endurance_s);
+  EXPECT_GT(by_throttle.final_soc, by_reserve.final_soc);
+}
+
+// The 1-D search over a capacity range (grid, then Brent's method) finds the best capacity:
+// no capacity of a fine scan, each flown with its own longest stretch, beats it.
+TEST_F(MissionEvalTest, TheCapacitySearchFindsTheBestCapacity) {
+  // Brent's method ends within 1e-6 of the range; the endurance is flat at an inner optimum
+  // and moves ~1e-6 relative per 1e-6 of the range at a boundary one.
+  constexpr double kRelativeTolerance = 1e-6;
+  constexpr int kScan = 60;
+  const Catalog cat = SmallCatalog();
+  Json j = ParseJsonText(kHoverQuad, "quad");
+  j["battery"]["capacity_ah"] = {1.0, 12.0};
+  const Mission m = ParseMission(j, "quad");
+  int checked = 0;
+  for (const char* prop : {"dc_p_173", "dc_p_372"}) {
+    const Combination c{&cat.motor("dc_m_1020"), &cat.esc("dc_e_56"), &cat.prop(prop), &cat.battery("dc_b_361"), 4};
+    const MissionEvaluator ev(m, c);
+    const MissionResult best = ev.Solve();
+    if (!best.feasible) continue;
+    ++checked;
+    for (int k = 0; k <= kScan; ++k) {
+      ContinuousVars v;
+      v.capacity_ah = 1.0 + 11.0 * k / kScan;
+      const MissionResult r = ev.Simulate(v);
+      if (r.feasible) EXPECT_LE(r.endurance_s, best.endurance_s * (1 + kRelativeTolerance)) << prop << " at " << v.capacity_ah << " Ah";
+    }
+  }
+  EXPECT_GT(checked, 0);
+}
+
 }  // namespace
 }  // namespace dynosize
