@@ -1514,15 +1514,38 @@ void BranchAndBound::Process(const Candidate& cand, std::vector<double> top, Out
     }
     local_prune("esc_current", static_cast<long long>(list.size() - rated.size()));
     if (rated.empty()) continue;
+    // R5's virtual ESC of the rated ESCs (only what the evaluator reads: no copy of the JSON).
+    EscEntry virt;
+    virt.id = "virtual";
+    virt.params = escs[rated.front()].params;
+    virt.params.resc_ohm = 0.0;
+    virt.params.max_current_a = kInf;
+    auto lightest = [&]() {
+      double kg = EscMassKg(escs[rated.front()]);
+      for (int e : rated) kg = std::min(kg, EscMassKg(escs[e]));
+      return kg;
+    };
+    virt.mass_kg = lightest();
+    // R10: segment by segment, with the virtual ESC's drive and mass; true when it prunes the
+    // class. First with every rated ESC (it refuses most classes, and R9 is then not needed),
+    // again after R9 when R9 took the lightest away (a heavier virtual ESC: a tighter bound).
+    auto segmentwise_prunes = [&]() {
+      const char* rule = nullptr;
+      const double t_max = ThrottleLimit(m.constraints, virt.params.tr_sat);
+      const double threshold = threshold_now();
+      const double b = SegmentwiseBoundPieces(ctx_, facts_, mp, Drive(mp, virt.params), t_max, cand.motor, cand.prop,
+                                              cand.option, *virt.mass_kg, threshold, &rule);
+      if (!rule && b < threshold) return false;
+      local_prune(rule ? rule : "objective_bound", static_cast<long long>(rated.size()));
+      return true;
+    };
+    if (segmentwise_prunes()) continue;
     // R9, per ESC; skipped when the class's most favourable case (its lightest mass and least
     // resistance, which give the lowest throttle bound: M1-M3) is not below the limit.
     EscEntry least;
     least.params = escs[rated.front()].params;
-    least.mass_kg = EscMassKg(escs[rated.front()]);
-    for (int e : rated) {
-      least.mass_kg = std::min(*least.mass_kg, EscMassKg(escs[e]));
-      least.params.resc_ohm = std::min(least.params.resc_ohm, escs[e].params.resc_ohm);
-    }
+    least.mass_kg = *virt.mass_kg;
+    for (int e : rated) least.params.resc_ohm = std::min(least.params.resc_ohm, escs[e].params.resc_ohm);
     if (HoverThrottleBelowLimit(ctx_, facts_, mp, cand.motor, cand.prop, cand.option, least)) {
       const std::size_t before = rated.size();
       rated.erase(std::remove_if(rated.begin(), rated.end(), [&](int e) {
@@ -1531,24 +1554,9 @@ void BranchAndBound::Process(const Candidate& cand, std::vector<double> top, Out
                   rated.end());
       local_prune("min_hover_throttle", static_cast<long long>(before - rated.size()));
       if (rated.empty()) continue;
-    }
-    // R5: the virtual ESC of the class.
-    EscEntry virt;  // only what the evaluator reads (no copy of the entry's JSON)
-    virt.id = "virtual";
-    virt.params = escs[rated.front()].params;
-    virt.params.resc_ohm = 0.0;
-    virt.params.max_current_a = kInf;
-    virt.mass_kg = EscMassKg(escs[rated.front()]);
-    for (int e : rated) virt.mass_kg = std::min(*virt.mass_kg, EscMassKg(escs[e]));
-    {  // R10: segment by segment, with the virtual ESC's drive and mass.
-      const char* rule = nullptr;
-      const double t_max = ThrottleLimit(m.constraints, virt.params.tr_sat);
-      const double threshold = threshold_now();
-      const double b = SegmentwiseBoundPieces(ctx_, facts_, mp, Drive(mp, virt.params), t_max, cand.motor, cand.prop,
-                                              cand.option, *virt.mass_kg, threshold, &rule);
-      if (rule || !(b < threshold)) {
-        local_prune(rule ? rule : "objective_bound", static_cast<long long>(rated.size()));
-        continue;
+      if (const double kg = lightest(); kg != *virt.mass_kg) {
+        virt.mass_kg = kg;
+        if (segmentwise_prunes()) continue;
       }
     }
     {
