@@ -924,7 +924,10 @@ double MissionEvaluator::EnduranceUpperBound(double target_s, double from_ah, do
     v.airspeed_m_s.assign(m_.segments.size(), 0.0);
     for (std::size_t k = 0; k < m_.segments.size(); ++k) v.airspeed_m_s[k] = m_.segments[k].airspeed_m_s.lo;
     ++runs;
-    const MissionResult r = Run(v, 0.0);
+    // Without energy_fixed only the stretch's start is read: the segments after it are not
+    // flown (their violations would only add to infeasible_from, which may miss some).
+    const MissionResult r =
+        energy_fixed ? Run(v, 0.0) : RunUpTo(v, static_cast<std::size_t>(m_.objective.segment_index) + 1, false).r;
     for (const Violation& x : r.violations) {
       if (RisesWithMass(x.constraint)) infeasible_from = std::min(infeasible_from, c);
     }

@@ -1,6 +1,7 @@
 #include "optimization/search.h"
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <cstring>
@@ -818,6 +819,16 @@ double SegmentwiseBoundPieces(const SearchContext& ctx, const MissionFacts& f, c
     if (r && !first_rule) first_rule = r;
     return Piece{a, b, r ? kInf : x, refined};
   };
+  if (range) {
+    // The whole range as one piece first (the lightest mass with the largest charge: at or
+    // below every piece's bound): it settles most pairs far from the threshold in one step.
+    const Piece whole = piece(lo, hi, false);
+    if (!(whole.bound < threshold)) {
+      *rule = whole.bound == kInf ? first_rule : nullptr;
+      return whole.bound;
+    }
+    first_rule = nullptr;
+  }
   std::vector<Piece> pieces;
   const int n = range ? kPieces : 1;
   for (int j = 0; j < n; ++j) {
@@ -1635,10 +1646,11 @@ void BranchAndBound::Run() {
       break;
     }
     std::vector<Outcome> outs(end - ci);
-    auto run = [&](int tid) {
-      for (std::size_t i = ci + static_cast<std::size_t>(tid); i < end; i += static_cast<std::size_t>(workers)) {
-        Process(ordered_[i - base_], top, &outs[i - ci]);
-      }
+    // Each worker takes the next unprocessed candidate (one exact evaluation can cost as much
+    // as a thousand pruned pairs: a fixed split leaves a thread idle).
+    std::atomic<std::size_t> next{ci};
+    auto run = [&](int) {
+      for (std::size_t i = next++; i < end; i = next++) Process(ordered_[i - base_], top, &outs[i - ci]);
     };
     std::vector<std::thread> pool;
     for (int t = 1; t < workers; ++t) pool.emplace_back(run, t);
