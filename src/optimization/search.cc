@@ -1646,15 +1646,22 @@ void BranchAndBound::Run() {
       break;
     }
     std::vector<Outcome> outs(end - ci);
+    // The chunk's candidates, copied: while the other workers start on them, this thread draws
+    // the next chunk's from the stream (refilling motor queues is serial work), with the
+    // threshold before this chunk's results (at least the final one: the stream only draws
+    // more, and a drawn pair not processed stays counted in undrawn_escs_), then joins them.
+    const std::vector<Candidate> cands(ordered_.begin() + static_cast<std::ptrdiff_t>(ci - base_),
+                                       ordered_.begin() + static_cast<std::ptrdiff_t>(end - base_));
     // Each worker takes the next unprocessed candidate (one exact evaluation can cost as much
     // as a thousand pruned pairs: a fixed split leaves a thread idle).
-    std::atomic<std::size_t> next{ci};
-    auto run = [&](int) {
-      for (std::size_t i = next++; i < end; i = next++) Process(ordered_[i - base_], top, &outs[i - ci]);
+    std::atomic<std::size_t> next{0};
+    auto run = [&]() {
+      for (std::size_t i = next++; i < cands.size(); i = next++) Process(cands[i], top, &outs[i]);
     };
     std::vector<std::thread> pool;
-    for (int t = 1; t < workers; ++t) pool.emplace_back(run, t);
-    run(0);
+    for (int t = 1; t < workers; ++t) pool.emplace_back(run);
+    if (workers > 1) CandidateAt(end + chunk - 1);
+    run();
     for (auto& th : pool) th.join();
     for (Outcome& o : outs) {
       o.pruned.MergeInto(&out_->pruned_by);
