@@ -803,7 +803,7 @@ double SegmentwiseBoundAt(const SearchContext& ctx, const MissionFacts& f, const
 double SegmentwiseBoundPieces(const SearchContext& ctx, const MissionFacts& f, const MotorParams& mp,
                               const Drive& ideal, double t_max, int motor, int prop, int option, double esc_mass_kg,
                               double threshold, const char** rule) {
-  constexpr int kPieces = 8, kMaxSplits = 24, kRefineSteps = 6;
+  constexpr int kPieces = 2, kMaxSplits = 24, kRefineSteps = 6;
   const BatteryOption& bo = ctx.options[static_cast<std::size_t>(option)];
   const double lo = bo.capacity_lo_ah, hi = bo.capacity_hi_ah;
   const bool range = hi > lo;
@@ -819,16 +819,6 @@ double SegmentwiseBoundPieces(const SearchContext& ctx, const MissionFacts& f, c
     if (r && !first_rule) first_rule = r;
     return Piece{a, b, r ? kInf : x, refined};
   };
-  if (range) {
-    // The whole range as one piece first (the lightest mass with the largest charge: at or
-    // below every piece's bound): it settles most pairs far from the threshold in one step.
-    const Piece whole = piece(lo, hi, false);
-    if (!(whole.bound < threshold)) {
-      *rule = whole.bound == kInf ? first_rule : nullptr;
-      return whole.bound;
-    }
-    first_rule = nullptr;
-  }
   std::vector<Piece> pieces;
   const int n = range ? kPieces : 1;
   for (int j = 0; j < n; ++j) {
