@@ -873,7 +873,7 @@ double MissionEvaluator::EnduranceUpperBound(double target_s, double from_ah, do
   // The range starts in kBoundPieces pieces; while the largest piece bound is at least
   // `target_s`, that piece is halved (one more Run), up to kMaxBoundRuns Runs: the bound only
   // tightens as far as it takes to prove "cannot reach target_s".
-  constexpr int kBoundPieces = 6;
+  constexpr int kBoundPieces = 2;
   constexpr int kMaxBoundRuns = 24;
   const Segment& st = m_.segments[m_.objective.segment_index];
   if (st.type == SegmentType::kCruise && st.airspeed_m_s.free()) return kInf;
