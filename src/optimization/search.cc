@@ -305,6 +305,8 @@ EscTable BuildEscTable(const Catalog& cat, const std::vector<BatteryOption>& opt
     it->members.push_back(static_cast<int>(i));
   }
   t.per_option.resize(options.size());
+  t.currents_ascending.resize(options.size());
+  t.running_max_current.resize(options.size());
   t.min_mass_kg.assign(options.size(), kInf);
   t.max_mass_kg.assign(options.size(), 0.0);
   for (std::size_t o = 0; o < options.size(); ++o) {
@@ -329,6 +331,14 @@ EscTable BuildEscTable(const Catalog& cat, const std::vector<BatteryOption>& opt
         return escs[a].params.max_current_a > escs[b].params.max_current_a;
       });
       n_ok += static_cast<long long>(ok.size());
+      std::vector<double> ascending, running_max;
+      for (int i : ok) {
+        ascending.push_back(escs[i].params.max_current_a);
+        running_max.push_back(std::max(running_max.empty() ? -kInf : running_max.back(), escs[i].params.max_current_a));
+      }
+      std::sort(ascending.begin(), ascending.end());
+      t.currents_ascending[o].push_back(std::move(ascending));
+      t.running_max_current[o].push_back(std::move(running_max));
       t.per_option[o].push_back(std::move(ok));
     }
     t.rated.push_back(n_ok);
@@ -1508,25 +1518,26 @@ void BranchAndBound::Process(const Candidate& cand, std::vector<double> top, Out
   for (std::size_t cl = 0; cl < ctx_.escs.classes.size(); ++cl) {
     const std::vector<int>& list = ctx_.escs.per_option[cand.option][cl];
     if (list.empty()) continue;
-    // R3: ESCs rated below the Irms lower bound.
-    rated.clear();
-    for (int e : list) {
-      if (escs[e].params.max_current_a * margin >= cand.irms_lb) rated.push_back(e);
-    }
-    local_prune("esc_current", static_cast<long long>(list.size() - rated.size()));
-    if (rated.empty()) continue;
+    // R3: ESCs rated below the Irms lower bound. How many pass, and the lightest that does,
+    // by binary search (EscTable's sorted currents and running maximum); the list of those
+    // that pass is built only for the classes R10 lets through.
+    auto below_r3 = [&](double current_a) { return current_a * margin < cand.irms_lb; };
+    const std::vector<double>& ascending = ctx_.escs.currents_ascending[cand.option][cl];
+    std::size_t n_rated = static_cast<std::size_t>(
+        ascending.end() - std::partition_point(ascending.begin(), ascending.end(), below_r3));
+    local_prune("esc_current", static_cast<long long>(list.size() - n_rated));
+    if (n_rated == 0) continue;
+    const std::vector<double>& running_max = ctx_.escs.running_max_current[cand.option][cl];
+    const int lightest_rated =
+        list[static_cast<std::size_t>(std::partition_point(running_max.begin(), running_max.end(), below_r3) -
+                                      running_max.begin())];
     // R5's virtual ESC of the rated ESCs (only what the evaluator reads: no copy of the JSON).
     EscEntry virt;
     virt.id = "virtual";
-    virt.params = escs[rated.front()].params;
+    virt.params = escs[lightest_rated].params;
     virt.params.resc_ohm = 0.0;
     virt.params.max_current_a = kInf;
-    auto lightest = [&]() {
-      double kg = EscMassKg(escs[rated.front()]);
-      for (int e : rated) kg = std::min(kg, EscMassKg(escs[e]));
-      return kg;
-    };
-    virt.mass_kg = lightest();
+    virt.mass_kg = EscMassKg(escs[lightest_rated]);
     // R10: segment by segment, with the virtual ESC's drive and mass; true when it prunes the
     // class. First with every rated ESC (it refuses most classes, and R9 is then not needed),
     // again after R9 when R9 took the lightest away (a heavier virtual ESC: a tighter bound).
@@ -1537,10 +1548,14 @@ void BranchAndBound::Process(const Candidate& cand, std::vector<double> top, Out
       const double b = SegmentwiseBoundPieces(ctx_, facts_, mp, Drive(mp, virt.params), t_max, cand.motor, cand.prop,
                                               cand.option, *virt.mass_kg, threshold, &rule);
       if (!rule && b < threshold) return false;
-      local_prune(rule ? rule : "objective_bound", static_cast<long long>(rated.size()));
+      local_prune(rule ? rule : "objective_bound", static_cast<long long>(n_rated));
       return true;
     };
     if (segmentwise_prunes()) continue;
+    rated.clear();
+    for (int e : list) {
+      if (!below_r3(escs[e].params.max_current_a)) rated.push_back(e);
+    }
     // R9, per ESC; skipped when the class's most favourable case (its lightest mass and least
     // resistance, which give the lowest throttle bound: M1-M3) is not below the limit.
     EscEntry least;
@@ -1555,7 +1570,9 @@ void BranchAndBound::Process(const Candidate& cand, std::vector<double> top, Out
                   rated.end());
       local_prune("min_hover_throttle", static_cast<long long>(before - rated.size()));
       if (rated.empty()) continue;
-      if (const double kg = lightest(); kg != *virt.mass_kg) {
+      n_rated = rated.size();
+      // The lists are sorted by mass (BuildEscTable) and `rated` keeps their order.
+      if (const double kg = EscMassKg(escs[rated.front()]); kg != *virt.mass_kg) {
         virt.mass_kg = kg;
         if (segmentwise_prunes()) continue;
       }

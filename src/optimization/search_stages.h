@@ -59,6 +59,10 @@ struct EscTable {
   // [option][class]: the ESCs rated for the option's full-charge voltage (R1), sorted by
   // (mass, resistance, -current rating).
   std::vector<std::vector<std::vector<int>>> per_option;
+  // [option][class], from per_option's lists: their current ratings in ascending order, and
+  // the running maximum of the rating along the list (R3's count and its lightest passing ESC
+  // by binary search).
+  std::vector<std::vector<std::vector<double>>> currents_ascending, running_max_current;
   std::vector<double> min_mass_kg, max_mass_kg;  // per option over its ESCs (inf / 0 if none)
   std::vector<long long> rated;                  // per option: its ESCs that pass R0 and R1
   long long voltage_pruned = 0;                  // (option, ESC) pairs removed by R1
