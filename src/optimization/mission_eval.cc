@@ -51,11 +51,11 @@ bool Better(const ResultKey& a, const ResultKey& b) {
 
 // Brent's minimization (Brent 1973, "Algorithms for Minimization without Derivatives", ch. 5)
 // on [a, b] from its best point x (result best) and two more simulated points w (second best)
-// and v: a step to the vertex of the parabola through x, w and v when all three are feasible
-// (infeasible points have no score to fit) and the step is safe (inside [a, b], less than half
-// the step before last), else a golden-section step into the larger side. It keeps the
-// golden section's bracket invariant, so it ends in the same tolerance, in far fewer
-// simulations on the smooth score of a capacity or an airspeed.
+// and v: a step to the vertex of the parabola through x, w and v when the three are alike (all
+// feasible: fitting the score; all infeasible: fitting the smallest slack, negated) and the
+// step is safe (inside [a, b], less than half the step before last), else a golden-section
+// step into the larger side. It keeps the golden section's bracket invariant, so it ends in
+// the same tolerance, in fewer simulations on the smooth score of a capacity or an airspeed.
 template <typename Simulate, typename Enough>
 MissionResult BrentPolish(const Simulate& simulate, const Enough& enough, double a, double b, double x0,
                           MissionResult best, ResultKey w, ResultKey v, double tolerance) {
@@ -68,9 +68,10 @@ MissionResult BrentPolish(const Simulate& simulate, const Enough& enough, double
     const double m = 0.5 * (a + b);
     if (std::fabs(x.x - m) <= tol2 - 0.5 * (b - a)) break;
     bool parabolic = false;
-    if (std::fabs(e) > tol1 && x.feasible && w.feasible && v.feasible) {
-      const double r = (x.x - w.x) * (x.score - v.score);
-      double q = (x.x - v.x) * (x.score - w.score);
+    if (std::fabs(e) > tol1 && x.feasible == w.feasible && x.feasible == v.feasible) {
+      auto f = [](const ResultKey& k) { return k.feasible ? k.score : -k.min_slack; };
+      const double r = (x.x - w.x) * (f(x) - f(v));
+      double q = (x.x - v.x) * (f(x) - f(w));
       double p = (x.x - v.x) * q - (x.x - w.x) * r;
       q = 2.0 * (q - r);
       if (q > 0) p = -p;
@@ -105,34 +106,40 @@ MissionResult BrentPolish(const Simulate& simulate, const Enough& enough, double
 }
 
 // The best result over x in [0, 1] of one scaled variable: a 9-point grid brackets the best
-// point, then golden-section search on [x_best - 1/8, x_best + 1/8] down to a width of 1e-6
-// (about 38 simulations). Infeasible points compare worse than every feasible one, so an
-// optimum on a constraint boundary is approached from the feasible side. The result is the
-// best point simulated, never worse than the grid's.
+// point, then Brent's method (BrentPolish) on [x_best - 1/8, x_best + 1/8] down to a width of
+// 1e-6; a best on an end of the range is settled by one point inside it. Infeasible points
+// compare worse than every feasible one, so an optimum on a constraint boundary is approached
+// from the feasible side. The result is the best point simulated, never worse than the grid's.
+// The variable's function is taken to be unimodal on the bracket, as any bracketing method
+// takes it.
 //
 // bounded_after_grid(best, a, b): called once after the grid with the grid's best and the
-// golden section's bracket; true when it proves that neither the grid's best nor any point of
-// [a, b] can beat the caller's cutoff. The golden section only simulates points of [a, b], so
-// the result could not beat the cutoff either: the search stops there (a result with
-// bounded_out set).
+// bracket; true when it proves that neither the grid's best nor any point of [a, b] can beat
+// the caller's cutoff. The polish only simulates points of [a, b], so the result could not
+// beat the cutoff either: the search stops there (a result with bounded_out set).
 // enough(r): true when r settles the caller's question (Solve's decide); r is then returned
-// at once.
+// at once. top_first: the grid from x = 1 down (only how soon `enough` is met changes).
 template <typename Simulate, typename Bounded, typename Enough>
-MissionResult SolveOneVariable(const Simulate& simulate, const Bounded& bounded_after_grid, const Enough& enough) {
+MissionResult SolveOneVariable(const Simulate& simulate, const Bounded& bounded_after_grid, const Enough& enough,
+                               bool top_first) {
   constexpr int kGrid = 9;
   constexpr double kTolerance = 1e-6;  // of the scaled variable's range
-  MissionResult best = simulate(0.0);
-  if (enough(best)) return best;
-  double best_x = 0.0;
+  MissionResult best;
+  double best_x = -1.0;
   int best_k = 0;
   std::array<ResultKey, kGrid> grid_keys;
-  grid_keys[0] = ResultKey::Of(best, 0.0);
-  for (int k = 1; k < kGrid; ++k) {
+  for (int i = 0; i < kGrid; ++i) {
+    const int k = top_first ? kGrid - 1 - i : i;
     const double x = k / double(kGrid - 1);
     MissionResult r = simulate(x);
     if (enough(r)) return r;
     grid_keys[k] = ResultKey::Of(r, x);
-    if (Better(r, best)) { best = std::move(r); best_x = x; best_k = k; }
+    // Of equal points the lowest x, so that the grid's best does not depend on the order.
+    if (best_x < 0 || Better(r, best) || (!Better(best, r) && x < best_x)) {
+      best = std::move(r);
+      best_x = x;
+      best_k = k;
+    }
   }
   double a = std::max(0.0, best_x - 1.0 / (kGrid - 1)), b = std::min(1.0, best_x + 1.0 / (kGrid - 1));
   if (bounded_after_grid(best, a, b)) {
@@ -1207,6 +1214,10 @@ MissionResult MissionEvaluator::SolveOneFree(const std::vector<FreeVar>& free, d
                               std::all_of(groups_.begin(), groups_.end(), [](const GroupDrive& g) {
                                 return g.drive.esc().c0 == 0.0 && g.drive.esc().rsupply_ohm == 0.0;
                               });
+  // Deciding (only whether some point beats the cutoff): the grid from the largest capacity
+  // down for max_endurance, where a larger pack is the usual optimum. The order changes only
+  // how soon a point that beats the cutoff is met, not which point is the grid's best.
+  const bool top_first_decides = m_.objective.type == ObjectiveType::kMaxEndurance && free[0].segment < 0;
   auto bounded = [&](const MissionResult& grid_best, double a, double b) {
     if (grid_best.feasible && grid_best.score < cutoff_score) return false;
     if (energy_bracket) {
@@ -1219,7 +1230,8 @@ MissionResult MissionEvaluator::SolveOneFree(const std::vector<FreeVar>& free, d
     return -ub >= cutoff_score;
   };
   MissionResult r =
-      SolveOneVariable([&](double x) { return WithEndurance(vars_at(&x), decide_cutoff); }, bounded, enough);
+      SolveOneVariable([&](double x) { return WithEndurance(vars_at(&x), decide_cutoff); }, bounded, enough,
+                       decide && top_first_decides);
   if (enough(r)) return r;
   if (r.bounded_out) return r;
   if (!explain) return r;
