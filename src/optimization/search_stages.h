@@ -231,7 +231,7 @@ bool CandidateBefore(const Candidate& a, const Candidate& b);
 // from these queues (CandidateStream) and regenerates a motor's next pairs (MotorPairs) only
 // when it has drawn all it holds, so it keeps a few pairs per motor instead of all of them;
 // the sequence it draws is the same as sorting BuildCandidates.
-inline constexpr std::size_t kFirstPairsPerMotor = 64;
+inline constexpr std::size_t kFirstPairsPerMotor = 128;
 struct MotorQueue {
   int motor = 0;
   std::vector<Candidate> next;  // sorted; next[pos] is the motor's next pair
