@@ -822,11 +822,11 @@ namespace {
 // bisection keeps throttle(lo) > t_max. Returns v_hi when even v_hi needs more than t_max, 0
 // when nothing is known.
 double MinVoltageForThrottle(const Drive& drive, double torque_nm, double omega_rad_s, double v_hi, double t_max) {
-  if (!(v_hi > 0) || !(drive.Inverse(v_hi, torque_nm, omega_rad_s).throttle <= t_max)) return v_hi;
+  if (!(v_hi > 0) || !(drive.InverseLight(v_hi, torque_nm, omega_rad_s).throttle <= t_max)) return v_hi;
   double lo = 0.0, hi = v_hi;
   for (int i = 0; i < 50 && hi - lo > 1e-9 * v_hi; ++i) {
     const double mid = 0.5 * (lo + hi);
-    (drive.Inverse(mid, torque_nm, omega_rad_s).throttle > t_max ? lo : hi) = mid;
+    (drive.InverseLight(mid, torque_nm, omega_rad_s).throttle > t_max ? lo : hi) = mid;
   }
   return lo;
 }
@@ -1412,7 +1412,7 @@ bool MissionEvaluator::FullThrottleAt(const BatteryPack& pack, double soc, FullT
       // Along the propeller's curve the current rises with speed (M1, M2 of search.cc): the
       // speed where max(IDC, Irms) reaches the rating.
       auto over = [&](double x) {
-        const OperatingPoint p = drive.Inverse(v, prop_at(x).torque_nm, x);
+        const Drive::InverseCurrents p = drive.InverseLight(v, prop_at(x).torque_nm, x);  // Inverse's, bit for bit
         return i_cap - std::max(p.idc_a, p.irms_a);
       };
       if (over(0.0) > 0.0) w = root(over, 0.0, w);
