@@ -262,13 +262,23 @@ DischargeResult BatteryPack::DischargeAtCurrent(double current_a, const Discharg
       o);
 }
 
-double OcvIntegralUpperBound(const BatteryPack& pack, double reserve_soc) {
-  constexpr int kPieces = 400;
-  double sum = 0;
-  for (int i = 1; i <= kPieces; ++i) {
-    sum += pack.OcvV(reserve_soc + (1.0 - reserve_soc) * i / kPieces);
+double CellOcvIntegral(BatteryChemistry chemistry, double from_soc) {
+  const OcvTable& t = Table(chemistry);
+  constexpr double kStep = 1.0 / (kOcvPoints - 1);
+  const double from = std::clamp(from_soc, 0.0, 1.0);
+  const int i = std::min(static_cast<int>(from / kStep), kOcvPoints - 2);
+  // The part of table interval i above `from`, then whole intervals: trapezoids, exact for
+  // the piecewise-linear curve CellOcvV interpolates.
+  double sum = 0.5 * (CellOcvV(chemistry, from) + t[static_cast<std::size_t>(i + 1)]) * ((i + 1) * kStep - from);
+  for (int k = i + 1; k < kOcvPoints - 1; ++k) {
+    sum += 0.5 * (t[static_cast<std::size_t>(k)] + t[static_cast<std::size_t>(k + 1)]) * kStep;
   }
-  return sum * (1.0 - reserve_soc) / kPieces;
+  return sum;
+}
+
+double OcvIntegralUpperBound(const BatteryPack& pack, double reserve_soc) {
+  constexpr double kRounding = 1e-12;  // relative: the sum's rounding, kept on the upper side
+  return pack.params().n_series * CellOcvIntegral(pack.params().chemistry, reserve_soc) * (1.0 + kRounding);
 }
 
 }  // namespace dynosize

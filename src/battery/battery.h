@@ -113,10 +113,13 @@ class BatteryPack {
   BatteryPackParams p_;
 };
 
+// The integral of CellOcvV(chemistry, soc) d(soc) over [from_soc, 1], V, in closed form (the
+// curve is piecewise linear in its table).
+double CellOcvIntegral(BatteryChemistry chemistry, double from_soc);
 // An upper bound of the integral of OCV(soc) d(soc) over [reserve_soc, 1], V: the terminal
 // energy a pack can give above the reserve is at most this times its charge (V <= OCV while
-// discharging, coulomb counting). OCV rises with SOC, so the right-endpoint sum over 400 pieces
-// over-estimates the integral. The OCV curve per SOC does not depend on the capacity.
+// discharging, coulomb counting). The closed form, raised by 1e-12 against rounding. The OCV
+// curve per SOC does not depend on the capacity.
 double OcvIntegralUpperBound(const BatteryPack& pack, double reserve_soc);
 
 }  // namespace dynosize

@@ -26,6 +26,32 @@ BatteryPackParams OneCell(double cap_ah, double ri_ohm) {
   return p;
 }
 
+// The OCV integral in closed form lies between the lower and upper Riemann sums of the
+// rising curve on a fine grid, for every chemistry and start; the pack's bound is its cells'
+// times it and never below the true integral.
+TEST(BatteryTest, OcvIntegralMatchesFineRiemannSums) {
+  constexpr int kPieces = 20000;  // the sums differ by (OCV(1) - OCV(from)) / kPieces, < 1e-4 V
+  for (BatteryChemistry c : {BatteryChemistry::kLiPo, BatteryChemistry::kLiIon, BatteryChemistry::kLiFePo4,
+                             BatteryChemistry::kNiMh}) {
+    for (double from : {0.0, 0.2, 0.2371, 0.95, 1.0}) {
+      double lower = 0, upper = 0;
+      const double h = (1.0 - from) / kPieces;
+      for (int i = 0; i < kPieces; ++i) {
+        lower += CellOcvV(c, from + i * h) * h;
+        upper += CellOcvV(c, from + (i + 1) * h) * h;
+      }
+      const double exact = CellOcvIntegral(c, from);
+      EXPECT_GE(exact, lower - 1e-12) << ChemistryName(c) << " from " << from;
+      EXPECT_LE(exact, upper + 1e-12) << ChemistryName(c) << " from " << from;
+    }
+  }
+  BatteryPackParams p = OneCell(2.0, 0.01);
+  p.n_series = 4;
+  const BatteryPack pack(p);
+  EXPECT_GE(OcvIntegralUpperBound(pack, 0.2), 4 * CellOcvIntegral(p.chemistry, 0.2));
+  EXPECT_NEAR(OcvIntegralUpperBound(pack, 0.2), 4 * CellOcvIntegral(p.chemistry, 0.2), 1e-9);
+}
+
 TEST(BatteryTest, PackScalesCellsByHand) {
   BatteryPackParams p = OneCell(2.2, 0.006);
   p.n_series = 6;
