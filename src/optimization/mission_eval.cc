@@ -1373,9 +1373,8 @@ bool MissionEvaluator::FullThrottleAt(const BatteryPack& pack, double soc, FullT
     return e;
   };
   const double i_cap = std::min(gd.drive.motor().max_current_a, gd.drive.esc().max_current_a);
-  // Illinois regula falsi for the sign change of h on [a, b] (h(a) > 0 > h(b)).
-  auto root = [](const auto& h, double a, double b) {
-    double fa = h(a), fb = h(b);
+  // Illinois regula falsi for the sign change of h on [a, b] (fa = h(a) > 0 > fb = h(b)).
+  auto root_in = [](const auto& h, double a, double b, double fa, double fb) {
     int side = 0;
     for (int it = 0; it < 100 && b - a > 1e-10 * b; ++it) {
       double c = (a * fb - b * fa) / (fb - fa);
@@ -1394,10 +1393,23 @@ bool MissionEvaluator::FullThrottleAt(const BatteryPack& pack, double soc, FullT
     }
     return 0.5 * (a + b);
   };
+  // The root on [lo, hi] (h(lo) > 0 > h(hi)), first tried within 0.1 % of a guess (the
+  // previous sag iteration's root: the voltage moves little between them), which brackets it
+  // in two evaluations instead of the whole range's ten or more.
+  auto root_near = [&](const auto& h, double guess, double lo, double hi) {
+    if (guess > lo && guess < hi) {
+      const double a = std::max(lo, guess * (1.0 - 1e-3)), b = std::min(hi, guess * (1.0 + 1e-3));
+      if (const double fa = h(a); fa > 0) {
+        if (const double fb = h(b); fb < 0) return root_in(h, a, b, fa, fb);
+      }
+    }
+    return root_in(h, lo, hi, h(lo), h(hi));
+  };
   double v = ocv;
   OperatingPoint op;
   PropEvaluation ev;
   f->current_limited = false;
+  double w_full = 0.0, w_capped = 0.0;  // the previous sag iteration's roots (0: none yet)
   for (int outer = 0; outer < 40; ++outer) {
     // The speed where the motor's full-throttle torque (falling with speed, eqs 42, 48) meets
     // the propeller's static torque (rising, M1 of search.cc).
@@ -1405,7 +1417,7 @@ bool MissionEvaluator::FullThrottleAt(const BatteryPack& pack, double soc, FullT
     if (!(w_nl > 0.0)) return false;
     auto g = [&](double w) { return drive.AtSpeed(v, 1.0, w).torque_nm - prop_at(w).torque_nm; };
     if (!(g(0.0) > 0.0) || !(g(w_nl) < 0.0)) return false;
-    double w = root(g, 0.0, w_nl);
+    double w = w_full = root_near(g, w_full, 0.0, w_nl);
     op = drive.AtSpeed(v, 1.0, w);
     f->current_limited = std::max(op.idc_a, op.irms_a) > i_cap;
     if (f->current_limited) {
@@ -1415,7 +1427,7 @@ bool MissionEvaluator::FullThrottleAt(const BatteryPack& pack, double soc, FullT
         const Drive::InverseCurrents p = drive.InverseLight(v, prop_at(x).torque_nm, x);  // Inverse's, bit for bit
         return i_cap - std::max(p.idc_a, p.irms_a);
       };
-      if (over(0.0) > 0.0) w = root(over, 0.0, w);
+      if (over(0.0) > 0.0) w = w_capped = root_near(over, w_capped, 0.0, w);
       op = drive.Inverse(v, prop_at(w).torque_nm, w);
     }
     ev = prop_at(w);
