@@ -534,14 +534,10 @@ bool MissionEvaluator::IntegrateSegment(std::size_t si, bool stretched, double o
         return false;
       }
       const double next = 0.5 * (ocv + std::sqrt(disc));
-      if (next == vv) break;
-      const bool done = std::fabs(next - vv) < 1e-10 * ocv;
+      // Converged: the point at vv, whose IDC was just computed; the pack's equation holds
+      // there to 1e-10 of the OCV.
+      if (std::fabs(next - vv) < 1e-10 * ocv) break;
       vv = next;
-      if (done) {
-        v_op = vv;
-        idc_op = op ? 0.0 : drive.InverseLight(v_op, torque, omega).idc_a;
-        break;
-      }
     }
     if (op) {
       *op = drive.Inverse(v_op, torque, omega);
