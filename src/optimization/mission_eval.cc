@@ -235,7 +235,7 @@ class Tracker {
     if (stretch_phase_ && *stretch_phase_) r_->stretch_slacks.Add(name, slack);
     if (seg && slack < seg->active_limit_slack) {
       seg->active_limit_slack = slack;
-      seg->active_limit = name;
+      seg->active_limit_id = name;
     }
     if (slack < 0) {
       for (Violation& v : r_->violations) {
@@ -614,7 +614,7 @@ bool MissionEvaluator::IntegrateSegment(std::size_t si, bool stretched, double o
   seg->energy_j = e_seg;
   seg->eta_average = e_seg > 0 ? e_mech / (e_seg - m_.vehicle.avionics_power_w * seg->duration_s) : op.eta_system;
   if (dt <= 0) seg->eta_average = op.eta_system;
-  if (seg->active_limit_slack > kActiveSlack) seg->active_limit.clear();
+  if (seg->active_limit_slack > kActiveSlack) seg->active_limit_id = nullptr;
   st->time_s += seg->duration_s;
   st->energy_j += e_seg;
   return true;
@@ -719,6 +719,7 @@ void MissionEvaluator::RunSegments(const ContinuousVars& vars, double stretch_s,
     double omega = 0, torque = 0;
     const bool ok = SegmentShaftPoint(si, p->st, load, &track, &seg, &omega, &torque) &&
                     IntegrateSegment(si, stretched, omega, torque, &p->st, &track, &seg);
+    if (seg.active_limit_id) seg.active_limit = seg.active_limit_id;
     r.segments.push_back(std::move(seg));
     p->next = si + 1;
     // Not ok: even four times the motor's no-load speed does not give the thrust, or the pack

@@ -101,6 +101,7 @@ struct SegmentResult {
   double eta_average = 0;        // energy-weighted system efficiency (motor + ESC)
   std::string active_limit;      // the tightest constraint ("" if none is within 10 %)
   double active_limit_slack = 0; // its relative slack (negative: violated)
+  const char* active_limit_id = nullptr;  // internal: the check's literal while the segment is flown
   // Steady winding temperature at the segment's hottest point (MissionEvaluator::WindingTempC).
   double winding_temp_c = 0;
   std::string prop_note;         // propeller data held at an edge, if any

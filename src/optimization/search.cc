@@ -1689,7 +1689,7 @@ void BranchAndBound::Run() {
   for (const Segment& sg : m.segments) free_shaft |= sg.type == SegmentType::kShaft && sg.shaft_omega_rad_s.free();
   const int workers = free_shaft ? 1 : std::max(1, opt_.threads);
   const std::size_t n_cands = n_cands_;
-  constexpr std::size_t kMaxChunk = 64;
+  constexpr std::size_t kMaxChunk = 128;
   std::size_t chunk = 2;  // grows while the threshold settles
   WorkerThreads pool(workers - 1);
   std::size_t ci = 0;
