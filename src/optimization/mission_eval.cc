@@ -878,7 +878,9 @@ double MissionEvaluator::EnduranceUpperBound(double target_s, double from_ah, do
   // `target_s`, that piece is halved (one more Run), up to kMaxBoundRuns Runs: the bound only
   // tightens as far as it takes to prove "cannot reach target_s".
   constexpr int kBoundPieces = 2;
-  constexpr int kMaxBoundRuns = 24;
+  // Past a few halvings a piece rarely proves anything more (capacity-sized quadcopter: 24
+  // runs, 8.4 s of CPU; 8 runs, 7.45 s, 5,154 -> 5,193 exact evaluations).
+  constexpr int kMaxBoundRuns = 8;
   const Segment& st = m_.segments[m_.objective.segment_index];
   if (st.type == SegmentType::kCruise && st.airspeed_m_s.free()) return kInf;
   const double t_fixed_max = LongestFixedDurationS(m_);
