@@ -1371,7 +1371,7 @@ bool CandidateStream::Next(double cutoff, Candidate* c) {
       // bound >= cutoff left out (never drawn before the search stops: the cutoff only falls).
       // A refill costs all the motor's pairs whatever it keeps, and refills are serial work:
       // one per motor at most (the capacity-sized quadcopter: 1,711 refills of 8x the last
-      // head -> 1,051, 6.5 s -> 5.9 s, peak memory 60 -> 67 MB).
+      // head -> 1,051, 6.5 s -> 5.9 s, peak RSS 59 -> 65 MiB).
       const std::size_t n = scratch_.max_size();
       scratch_.clear();
       MotorPairs(ctx_, q.motor, &scratch_);
