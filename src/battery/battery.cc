@@ -165,14 +165,7 @@ bool BatteryPack::CurrentForPower(double soc, double power_w, double* current_a)
 }
 
 double BatteryPack::StoredEnergyJ() const {
-  // Trapezoid over the OCV table knots (exact for the piecewise-linear curve).
-  double sum = 0.0;
-  for (int i = 0; i < kOcvPoints - 1; ++i) {
-    const double a = static_cast<double>(i) / (kOcvPoints - 1);
-    const double b = static_cast<double>(i + 1) / (kOcvPoints - 1);
-    sum += 0.5 * (OcvV(a) + OcvV(b)) * (b - a);
-  }
-  return sum * AhToCoulomb(capacity_ah());
+  return p_.n_series * CellOcvIntegral(p_.chemistry, 0.0) * AhToCoulomb(capacity_ah());
 }
 
 template <typename CurrentAt>

@@ -30,24 +30,21 @@ std::string Num(double x, int precision = 4) {
   return o.str();
 }
 
-// Which of two simulated results is better: a feasible one with the lower score, else (both
-// infeasible) the one closer to feasibility (larger smallest relative slack).
-bool Better(const MissionResult& a, const MissionResult& b) {
-  if (a.feasible != b.feasible) return a.feasible;
-  return a.feasible ? a.score < b.score : a.min_slack > b.min_slack;
-}
-
-// What Brent's method needs of a simulated point: where, and how it compares (as Better).
+// A simulated point as the 1-D search compares and fits it: where, and its outcome.
 struct ResultKey {
   double x = 0.0;
   bool feasible = false;
   double score = 0.0, min_slack = 0.0;
   static ResultKey Of(const MissionResult& r, double x) { return {x, r.feasible, r.score, r.min_slack}; }
 };
+
+// Which of two simulated results is better: a feasible one with the lower score, else (both
+// infeasible) the one closer to feasibility (larger smallest relative slack).
 bool Better(const ResultKey& a, const ResultKey& b) {
   if (a.feasible != b.feasible) return a.feasible;
   return a.feasible ? a.score < b.score : a.min_slack > b.min_slack;
 }
+bool Better(const MissionResult& a, const MissionResult& b) { return Better(ResultKey::Of(a, 0), ResultKey::Of(b, 0)); }
 
 // Brent's minimization (Brent 1973, "Algorithms for Minimization without Derivatives", ch. 5)
 // on [a, b] from its best point x (result best) and two more simulated points w (second best)

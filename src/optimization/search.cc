@@ -1372,14 +1372,13 @@ bool CandidateStream::Next(double cutoff, Candidate* c) {
       // A refill costs all the motor's pairs whatever it keeps, and refills are serial work:
       // one per motor at most (the capacity-sized quadcopter: 1,711 refills of 8x the last
       // head -> 1,051, 6.5 s -> 5.9 s, peak RSS 59 -> 65 MiB).
-      const std::size_t n = scratch_.max_size();
       scratch_.clear();
       MotorPairs(ctx_, q.motor, &scratch_);
       const Candidate last = *c;
       scratch_.erase(std::remove_if(scratch_.begin(), scratch_.end(),
                                     [&](const Candidate& x) { return !CandidateBefore(last, x) || !(x.bound < cutoff); }),
                      scratch_.end());
-      TakeFirst(&scratch_, n, &q);
+      TakeFirst(&scratch_, scratch_.size(), &q);
       ++refills_;
     } else {
       q.next.clear();
