@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <fstream>
 #include <set>
 #include <sstream>
@@ -72,7 +73,7 @@ class CheckingSax : public nlohmann::json_sax<Json> {
       f.key = k;
       // A linear search, as ordered_json's own key lookup: objects are small.
       if (std::find(f.keys.begin(), f.keys.end(), k) != f.keys.end()) {
-        throw DataError(name_ + ": " + Path() + ": duplicate key \"" + k +
+        throw DataError(name_ + ": " + Path() + ": duplicate key \"" + Shown(k) +
                         "\" (rule: each key once per object)");
       }
       f.keys.push_back(k);
@@ -104,9 +105,24 @@ class CheckingSax : public nlohmann::json_sax<Json> {
     std::vector<std::string> keys;
   };
 
+  // A key as an error line shows it: control characters escaped, so the message stays one line.
+  static std::string Shown(const std::string& key) {
+    std::string out;
+    for (const char ch : key) {
+      const auto u = static_cast<unsigned char>(ch);
+      if (u < 0x20 || u == 0x7f) {
+        char buf[8];
+        std::snprintf(buf, sizeof buf, "\\u%04x", u);
+        out += buf;
+      } else {
+        out += ch;
+      }
+    }
+    return out;
+  }
   std::string Path() const {
     std::string p;
-    for (const Frame& f : open_) p += "/" + (f.array ? std::to_string(f.index) : f.key);
+    for (const Frame& f : open_) p += "/" + (f.array ? std::to_string(f.index) : Shown(f.key));
     return p.empty() ? std::string("/") : p;
   }
   bool Scalar() {
