@@ -152,8 +152,8 @@ int RunOptimize(const OptimizeOptions& o) {
   const SearchResult s = SearchCatalog(mission, cat, so);
   if (shown) std::cerr << "\r" << std::string(79, ' ') << "\r" << std::flush;
   if (o.stats) {
-    std::cerr << "search: " << s.candidate_pairs << " candidate pairs in " << std::setprecision(3)
-              << s.candidate_seconds << " s (" << s.candidate_refills << " motor queues refilled); "
+    std::cerr << "search: " << s.candidate_pairs << " candidate pairs bounded (" << s.candidate_batches
+              << " batches after the first, which took " << std::setprecision(3) << s.candidate_seconds << " s); "
               << s.virtual_evaluations << " virtual-ESC and "
               << s.searched << " exact evaluations; total " << s.seconds << " s\n";
   }

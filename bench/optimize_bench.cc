@@ -135,6 +135,14 @@ void BM_OptimizeQuadcopterGrowth(benchmark::State& state) {
   state.counters["searched_quarter"] = static_cast<double>(s[0].searched);
   state.counters["searched_half"] = static_cast<double>(s[1].searched);
   state.counters["searched_full"] = static_cast<double>(s[2].searched);
+  state.counters["candidate_s_quarter"] = s[0].candidate_seconds;
+  state.counters["candidate_s_half"] = s[1].candidate_seconds;
+  state.counters["candidate_s_full"] = s[2].candidate_seconds;
+  state.counters["pairs_quarter"] = static_cast<double>(s[0].candidate_pairs);
+  state.counters["pairs_half"] = static_cast<double>(s[1].candidate_pairs);
+  state.counters["pairs_full"] = static_cast<double>(s[2].candidate_pairs);
+  state.counters["virtual_full"] = static_cast<double>(s[2].virtual_evaluations);
+  state.counters["virtual_half"] = static_cast<double>(s[1].virtual_evaluations);
 }
 BENCHMARK(BM_OptimizeQuadcopter)->Unit(benchmark::kSecond)->Iterations(1)->UseRealTime();
 BENCHMARK(BM_OptimizeQuadcopterSizing)->Unit(benchmark::kSecond)->Iterations(1)->UseRealTime();

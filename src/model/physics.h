@@ -65,6 +65,25 @@ inline bool DriveIsLossy(const MotorParams& m, double c1, double c0) {
          m.io1_a_s_per_rad >= 0 && c0 >= 0 && c1 + c0 >= IdealIdcPerIrmsPerThrottle(m.type);
 }
 
+// Losses every operating point of a motor carries beyond the shaft power, for DriveIsLossy's
+// motors without winding heating or KT droop (rth_k_per_w = kt_droop_per_a = 0):
+//   PAC >= Q*omega + copper_w_per_nm2*Q^2 + no_load_torque_nm*omega,
+// copper_w_per_nm2 = kp*Rm/KT^2 and no_load_torque_nm = KT*Io. Proof: PAC = kp*VLL*I (41)
+// with VLL = Rm*I + KE*omega (47, 48), Q = KT*(I - Io - io1*omega) (42), so
+// PAC - Q*omega = kp*Rm*I^2 + (kp*KE - KT)*omega*I + KT*(Io + io1*omega)*omega, each term >= 0
+// (KT <= kp*KE, io1 >= 0), and I >= Q/KT. Both 0 (no floor) for any other motor.
+struct MotorLossFloor {
+  double copper_w_per_nm2 = 0.0;
+  double no_load_torque_nm = 0.0;
+};
+inline MotorLossFloor LossFloorOf(const MotorParams& m) {
+  const bool applies = m.kt_nm_per_a > 0 && m.kt_nm_per_a <= MaxKtPerKe(m.type) * m.ke_v_s_per_rad &&
+                       m.rm_ohm >= 0 && m.io_a >= 0 && m.io1_a_s_per_rad >= 0 && m.rth_k_per_w == 0.0 &&
+                       m.kt_droop_per_a == 0.0;
+  if (!applies) return {};
+  return {MaxKtPerKe(m.type) * m.rm_ohm / (m.kt_nm_per_a * m.kt_nm_per_a), m.kt_nm_per_a * m.io_a};
+}
+
 // True when a computed operating point creates energy: PESC < 0 or eta_motor > 1 (beyond
 // kPhysicsRelTol of the powers involved). Cheap: Drive::Flag calls it for every point.
 inline bool PointCreatesEnergy(const OperatingPoint& p) {

@@ -19,7 +19,7 @@
 
 namespace dynosize {
 
-// The rule (G2) and its proof are in search.cc's header comment, with R0-R10 and G1.
+// The rule (G2) and its proof are in search.cc's header comment, with R0-R11 and G1.
 
 namespace {
 
@@ -672,7 +672,7 @@ void Merge(SearchResult&& r, int top_n, SearchResult* out) {
   out->candidate_pairs += r.candidate_pairs;
   out->candidate_seconds += r.candidate_seconds;
   out->virtual_evaluations += r.virtual_evaluations;
-  out->candidate_refills += r.candidate_refills;
+  out->candidate_batches += r.candidate_batches;
   for (RankedCombination& b : r.best) {
     if (static_cast<int>(out->best.size()) >= top_n && !(b.result.score < out->best.back().result.score)) continue;
     auto pos = std::upper_bound(out->best.begin(), out->best.end(), b.result.score,

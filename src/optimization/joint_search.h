@@ -1,7 +1,7 @@
 // The catalog search for a mission with several free propulsion groups (issue 14, item 1):
 // each group picks its own motor, ESC and propeller; the battery and its cells are shared.
 // An outer best-first loop over one group's (motor, ESC, propeller, battery option) choices,
-// with a proven lower bound of every completion's score (rule G2, stated with R0-R10 and G1 in
+// with a proven lower bound of every completion's score (rule G2, stated with R0-R11 and G1 in
 // search.cc's header comment), and for each outer choice that can still beat the N-th best the
 // search with that group fixed and the N-th best as its cutoff (the one-group search of
 // search_stages.h, or this search again when more than two groups are free). Internal to

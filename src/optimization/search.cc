@@ -121,6 +121,25 @@ namespace dynosize {
 //    A piece that breaks a limit holds no feasible point; the class is skipped for the pair
 //    when every piece does, or when the least bound over the others is not below the N-th
 //    best (SegmentwiseBound; tests/optimization/search_stages_test.cc against the full solve).
+// R11 (stage 4's order: a bound for a whole class of motors). A motor whose drives cannot
+//    create energy with any ESC class (DriveIsLossy: PDC >= PAC) and that has no winding
+//    heating or KT droop has PAC >= Q*omega + a*Q^2 + b*omega at every operating point, with
+//    a = kp*Rm/KT^2 and b = KT*Io (model/physics.h, LossFloorOf: eqs 41, 42, 47, 48). The
+//    motors are put in classes by mass (each from its lightest motor up to 1.1 times it); per
+//    class and per (propeller, option) the key is R4's bound with N*PDC_lb replaced by
+//    N*(Q_lb*omega_lb + a_c*Q_lb^2 + b_c*omega_lb) (times 1 - 1e-9 against rounding), where
+//    (omega_lb, Q_lb) is R2's grid point at the class's lightest mass and a_c, b_c are the
+//    least over the class's motors. For a motor of the class, every combination with that
+//    propeller and option is at least as heavy, so its hover speed and torque are at least
+//    (omega_lb, Q_lb) (M1, M3) and the floor rises with both: the key is below its score, as
+//    R4's bound is, and the pair's bound is the larger of the two. Stage 4 bounds a motor's
+//    pairs in the order of its class's keys, only as the branch and bound reaches them (a key
+//    at or above the N-th best leaves the rest of the motor's pairs unbounded, counted under
+//    objective_bound), so the pairs still come best bound first and the search is unchanged;
+//    what it saves is bounding the pairs that could never be drawn. Motors it does not apply
+//    to have all their pairs bounded as before. Tests: search_stages_test.cc (the key below
+//    every feasible score of the small catalog; the stream draws the sorted BuildCandidates
+//    list).
 // R8 (capacity pieces of R4, per pair and class): retired; R10's pieces bound a capacity range
 //    segment by segment, which holds R8's terms and more.
 // R5 (ESC dominance): within one pair, an ESC with the same C1, C0, tr_sat, sat_slope as an
@@ -234,6 +253,9 @@ class RuleCounts {
   }
   void MergeInto(std::map<std::string, long long>* out) const {
     for (const auto& [name, count] : counts_) (*out)[name] += count;
+  }
+  void MergeInto(RuleCounts* out) const {
+    for (const auto& [name, count] : counts_) out->Add(name, count);
   }
 
  private:
@@ -450,10 +472,11 @@ struct MissionFacts {
   // The free group lifts the vehicle (LiftGroup, 0 when none): the evaluator's prop_folding,
   // motor_unrated and motor_voltage checks apply to it (credibility.h).
   bool free_lifts = false;
-  // Stage 4 only (StageFourFacts): per catalog propeller the R0 rule that removes it whatever
-  // the motor (null: none), and R7's largest axial airspeed over the free group's climbs and
-  // wing-borne cruises.
-  std::vector<const char*> prop_frame_rule;
+  // Stage 4 only (StageFourFacts): the R0 rules that remove propellers whatever the motor,
+  // the propellers they let through, and R7's largest axial airspeed over the free group's
+  // climbs and wing-borne cruises.
+  std::vector<std::pair<const char*, long long>> prop_frame_counts;  // R0 rule -> propellers it removes
+  std::vector<int> frame_ok_props;  // the propellers R0 lets through, index order
   double r7_axial_m_s = 0;
 };
 
@@ -480,8 +503,17 @@ MissionFacts FactsOf(const Mission& m, int free_group) {
 MissionFacts StageFourFacts(const SearchContext& ctx) {
   const Mission& m = *ctx.mission;
   MissionFacts f = FactsOf(m, ctx.free_group);
-  for (const PropEntry& prop : ctx.catalog->props()) {
-    f.prop_frame_rule.push_back(PropFrameRule(m, f.free_group, f.free_lifts, prop));
+  const auto& props = ctx.catalog->props();
+  for (std::size_t pi = 0; pi < props.size(); ++pi) {
+    const char* rule = PropFrameRule(m, f.free_group, f.free_lifts, props[pi]);
+    if (!rule) {
+      f.frame_ok_props.push_back(static_cast<int>(pi));
+      continue;
+    }
+    auto it = std::find_if(f.prop_frame_counts.begin(), f.prop_frame_counts.end(),
+                           [&](const auto& x) { return std::strcmp(x.first, rule) == 0; });
+    if (it == f.prop_frame_counts.end()) it = f.prop_frame_counts.insert(f.prop_frame_counts.end(), {rule, 0});
+    ++it->second;
   }
   for (const Segment& sg : m.segments) {
     if (sg.group != f.free_group) continue;
@@ -597,9 +629,9 @@ double SegmentPowerLowerBoundW(const SearchContext& ctx, const MissionFacts& f, 
 // `esc_class`, given the hover bound's per-rotor electrical power pdc_lb at the lightest mass.
 // capacity_hi_ah: the largest capacity the bound covers (0: the option's largest).
 // loads: PairLoads at mass_lb.
-double ScoreLowerBound(const SearchContext& ctx, const MissionFacts& f, const MotorParams& mp,
-                       const EscClass& esc_class, const PropEntry& prop, const PropModel& model,
-                       std::size_t option, PairLoads* loads, double pdc_lb, double capacity_hi_ah = 0.0) {
+double ScoreLowerBound(const SearchContext& ctx, const MissionFacts& f, bool lossy, const PropEntry& prop,
+                       const PropModel& model, std::size_t option, PairLoads* loads, double pdc_lb,
+                       double capacity_hi_ah = 0.0) {
   const BatteryOption& bo = ctx.options[option];
   const Mission& m = *ctx.mission;
   if (f.hover.empty()) return -kInf;
@@ -616,7 +648,6 @@ double ScoreLowerBound(const SearchContext& ctx, const MissionFacts& f, const Mo
     // C1 + C0 >= 1.1095; then eta_motor, eta_esc <= 1; a point that breaks it is infeasible,
     // creates_energy). V is the axial inflow (0 for static-only data: P_ideal rises with V).
     // (The inequalities of model/physics.h without its rounding allowance: exact here.)
-    const bool lossy = DriveIsLossy(mp, esc_class.c1, esc_class.c0);
     const bool axial_data = !prop.j_tables.empty();
     double e = 0;
     for (std::size_t si = 0; si < m.segments.size(); ++si) {
@@ -638,7 +669,7 @@ double ScoreLowerBound(const SearchContext& ctx, const MissionFacts& f, const Mo
   // stage can create energy, momentum theory's N*P_ideal(T, V)/max_figure_of_merit plus the
   // avionics over its duration (the evaluator's prop_figure_of_merit; V the axial inflow with
   // forward-flight tables, else 0, as PropellerPoint judges it; P_ideal rises with the mass).
-  const bool lossy_drive = DriveIsLossy(mp, esc_class.c1, esc_class.c0);
+  const bool lossy_drive = lossy;
   const bool table_data = model.data_kind() == PropDataKind::kTables && !prop.j_tables.empty();
   auto e_other_of = [&](std::size_t stretch) {
     double e_other = 0;
@@ -856,30 +887,36 @@ double SegmentwiseBoundPieces(const SearchContext& ctx, const MissionFacts& f, c
   return best;
 }
 
-// R0, R2, R6, R7 for one (motor, propeller, option) pair: the rule that removes it, or null.
-// Sets omega_lb, q_lb (R2) for the hover bound.
+// The hover bound's speed and torque from below (R2): the last grid point whose thrust is at
+// most the first hover segment's per-rotor thrust at the mass of `loads` (0, 0 without a
+// hover segment, a monotone grid or such a point). Returns the grid index (0 when none).
+int HoverGridPointFromBelow(const MissionFacts& f, const PropGrid& g, PairLoads* loads, double* omega_lb, double* q_lb) {
+  *omega_lb = 0;
+  *q_lb = 0;
+  if (f.hover.empty() || !g.monotone) return 0;
+  const RotorLoad& load = loads->At(static_cast<std::size_t>(f.hover[0]), false, 0.0);
+  const double* it = std::upper_bound(g.thrust, g.thrust + kGrid, load.thrust_per_rotor_n);
+  const int idx = static_cast<int>(it - g.thrust) - 1;  // last grid thrust <= T_lb
+  if (idx < 0) return 0;
+  *omega_lb = g.omega[idx];
+  *q_lb = g.torque_suffix_min[idx];
+  return idx;
+}
+
+// R2, R6, R7 for one (motor, propeller, option) pair whose propeller passed R0 (counted per
+// motor, MotorSetUp): the rule that removes it, or null. Sets omega_lb, q_lb (R2) for the
+// hover bound.
 // w_nl: the largest no-load speed of the motor's zero-resistance drives at full throttle and
 // the option's full-charge voltage (R7; the same for every propeller, computed once per option).
-const char* PropRule(const SearchContext& ctx, const MissionFacts& f, const MotorEntry& mo, double w_nl,
-                     std::size_t pi, std::size_t o, PairLoads* loads, double* omega_lb, double* q_lb) {
+const char* PropRule(const SearchContext& ctx, const MissionFacts& f, double motor_kg, double w_nl, std::size_t pi,
+                     std::size_t o, PairLoads* loads, double* omega_lb, double* q_lb) {
   const Mission& m = *ctx.mission;
   const MissionConstraints& k = m.constraints;
   const PropEntry& prop = ctx.catalog->props()[pi];
   const PropGrid& g = ctx.grids[pi];
   const BatteryOption& bo = ctx.options[o];
-  if (const char* rule = f.prop_frame_rule[pi]) return rule;  // R0 (StageFourFacts)
-  int lb_idx = 0;  // grid index of omega_lb
-  *omega_lb = 0;
-  *q_lb = 0;
+  const int lb_idx = HoverGridPointFromBelow(f, g, loads, omega_lb, q_lb);  // grid index of omega_lb
   if (!f.hover.empty() && g.monotone) {
-    const RotorLoad& load = loads->At(static_cast<std::size_t>(f.hover[0]), false, 0.0);
-    const double* it = std::upper_bound(g.thrust, g.thrust + kGrid, load.thrust_per_rotor_n);
-    const int idx = static_cast<int>(it - g.thrust) - 1;  // last grid thrust <= T_lb
-    if (idx >= 0) {
-      lb_idx = idx;
-      *omega_lb = g.omega[idx];
-      *q_lb = g.torque_suffix_min[idx];
-    }
     // R6: the hover speed lies between omega_lb and the first grid speed whose thrust reaches
     // T_ub (the heaviest the vehicle can be); if the data break momentum theory (figure of
     // merit > the mission's limit) on that whole bracket, every hover point fails
@@ -887,7 +924,7 @@ const char* PropRule(const SearchContext& ctx, const MissionFacts& f, const Moto
     // grid points. T_ub >= T_lb (M3) puts hi_idx at or above lb_idx, so when the point at
     // lb_idx keeps the limit the rule cannot fire and T_ub is not needed.
     if (g.fom_ok_next[lb_idx] != lb_idx) {
-      const double mass_ub = VehicleMassKg(ctx, bo.mass_hi_kg, *mo.mass_kg, g.mass_kg, ctx.escs.max_mass_kg[o]);
+      const double mass_ub = VehicleMassKg(ctx, bo.mass_hi_kg, motor_kg, g.mass_kg, ctx.escs.max_mass_kg[o]);
       const RotorLoad load_ub = SegmentRotorLoad(m, m.segments[f.hover[0]], mass_ub, 0.0);
       const double* it_ub = std::lower_bound(g.thrust, g.thrust + kGrid, load_ub.thrust_per_rotor_n);
       const int hi_idx = std::min(static_cast<int>(it_ub - g.thrust), kGrid - 1);
@@ -917,92 +954,119 @@ long long CombinationsPerMotor(const SearchContext& ctx) {
   return n * static_cast<long long>(ctx.catalog->props().size());
 }
 
-// Stage 4 for one motor: its surviving pairs with their bounds.
-void MotorCandidates(const SearchContext& ctx, const MissionFacts& f, std::size_t mi,
-                     std::vector<Candidate>* cands, RuleCounts* pruned) {
+// What stage 4 reads for each of one motor's pairs, worked out once per motor (MotorSetUp).
+struct MotorSetup {
+  int motor = 0;
+  double mass_kg = 0;
+  MotorParams mp;           // the scenario's (credibility.h)
+  std::vector<Drive> ideal;  // per ESC class, with no ESC resistance (R3, R4, R7)
+  // Per option: R7's largest no-load speed of those drives at full throttle and the option's
+  // full-charge voltage; NaN when R1 refuses the option for the motor (motor_voltage).
+  std::vector<double> w_nl;
+  bool lossy = true;  // every class's drive is lossy (DriveIsLossy): R11 applies
+  MotorLossFloor loss;  // R11's loss floor (model/physics.h)
+};
+
+// Sets up motor mi (not skipped by SkipMotor) and counts the motor-level rules: the whole
+// motor (motor_unrated), an option (motor_voltage, R1), a propeller (R0, StageFourFacts) for
+// every option the motor can take. False when the motor is refused whole.
+bool MotorSetUp(const SearchContext& ctx, const MissionFacts& f, std::size_t mi, MotorSetup* s, RuleCounts* pruned) {
   const Mission& m = *ctx.mission;
-  const MissionConstraints& k = m.constraints;
-  const double margin = 1.0 - k.current_margin;
-  const auto& props = ctx.catalog->props();
-  // Each rule counts the combinations it removes: a pair's ESCs that pass R0 and R1 (those that
-  // do not are counted once, as esc_voltage and catalog_exclude).
-  const std::vector<long long>& per_pair = ctx.escs.rated;
   const MotorEntry& mo = ctx.catalog->motors()[mi];
   // credibility.h: the scenario's ratings (estimated from the mass when no source states them),
   // as the evaluator flies them; an unrated motor the mission excludes is refused (R0).
   bool unrated_excluded = false;
-  const MotorParams mp = ScenarioMotorParams(mo, m, nullptr, &unrated_excluded);
+  s->motor = static_cast<int>(mi);
+  s->mass_kg = *mo.mass_kg;
+  s->mp = ScenarioMotorParams(mo, m, nullptr, &unrated_excluded);
   if (f.free_lifts && unrated_excluded) {
     pruned->Add("motor_unrated", CombinationsPerMotor(ctx));
-    return;
+    return false;
   }
   const double motor_max_v = f.free_lifts ? MotorMaxVoltageV(mo) : kInf;
-  const std::vector<EscClass>& classes = ctx.escs.classes;
-  // Zero-resistance drives, one per ESC class (R3, R4, R7).
-  std::vector<Drive> ideal;
-  for (const EscClass& c : classes) ideal.emplace_back(mp, ZeroResistanceEsc(c));
-  PairLoads loads(m);
+  s->ideal.clear();
+  s->lossy = true;
+  for (const EscClass& c : ctx.escs.classes) {
+    s->ideal.emplace_back(s->mp, ZeroResistanceEsc(c));
+    s->lossy = s->lossy && DriveIsLossy(s->mp, c.c1, c.c0);
+  }
+  s->loss = s->lossy ? LossFloorOf(s->mp) : MotorLossFloor{};
+  const long long n_props = static_cast<long long>(ctx.catalog->props().size());
+  s->w_nl.assign(ctx.options.size(), std::numeric_limits<double>::quiet_NaN());
   for (std::size_t o = 0; o < ctx.options.size(); ++o) {
     const BatteryOption& bo = ctx.options[o];
+    const long long per_pair = ctx.escs.rated[o];
     if (bo.v_full > motor_max_v) {  // R1 for the motor's cells_max (credibility.h)
-      pruned->Add("motor_voltage", per_pair[o] * static_cast<long long>(props.size()));
+      pruned->Add("motor_voltage", per_pair * n_props);
       continue;
     }
-    double w_nl = 0;  // R7
-    for (const Drive& d : ideal) w_nl = std::max(w_nl, d.NoLoadSpeed(bo.v_full, 1.0));
-    for (std::size_t pi = 0; pi < props.size(); ++pi) {
-      const double mass_lb = VehicleMassKg(ctx, bo.mass_lo_kg, *mo.mass_kg, ctx.grids[pi].mass_kg, ctx.escs.min_mass_kg[o]);
-      double omega_lb = 0, q_lb = 0;
-      loads.Reset(mass_lb);
-      if (const char* rule = PropRule(ctx, f, mo, w_nl, pi, o, &loads, &omega_lb, &q_lb)) {
-        pruned->Add(rule, per_pair[o]);
-        continue;
-      }
-      // R3 and R4 over the ESC classes: the pair survives if any class can. R4's bound is
-      // nondecreasing in pdc_lb for a given DriveIsLossy (every term is, and so is each
-      // correctly rounded operation): the least over the classes is the bound at the least
-      // pdc_lb of each kind (a class of each kind at most: ScoreLowerBound reads the class
-      // only through DriveIsLossy).
-      bool any = false;
-      double irms_lb = kInf;
-      double pdc_min[2] = {kInf, kInf};  // [DriveIsLossy]
-      bool has[2] = {false, false};
-      std::size_t class_of[2] = {0, 0};
-      const char* why = "throttle";
-      for (std::size_t ci = 0; ci < classes.size(); ++ci) {
-        if (ctx.escs.per_option[o][ci].empty()) continue;
-        const Drive::InverseCurrents hi_v = ideal[ci].InverseLight(bo.v_full, q_lb, omega_lb);
-        const double t_max = ThrottleLimit(k, classes[ci].tr_sat);
-        if (hi_v.throttle > t_max) { why = "throttle"; continue; }
-        if (hi_v.irms_a > mp.max_current_a * margin) { why = "motor_current"; continue; }
-        if (k.enforce_motor_power && ideal[ci].InverseAcPower(bo.v_full, hi_v, q_lb, omega_lb) > mp.max_power_w) {
-          why = "motor_power";
-          continue;
-        }
-        const double pdc_lo_v = bo.v_cut * ideal[ci].InverseLight(bo.v_cut, q_lb, omega_lb).idc_a;  // (59), as Inverse
-        const double pdc_lb = std::max(0.0, std::min(bo.v_full * hi_v.idc_a, pdc_lo_v));  // (59), as Inverse
-        const int lossy = DriveIsLossy(mp, classes[ci].c1, classes[ci].c0) ? 1 : 0;
-        if (!has[lossy] || pdc_lb < pdc_min[lossy]) {
-          has[lossy] = true;
-          pdc_min[lossy] = pdc_lb;
-          class_of[lossy] = ci;
-        }
-        any = true;
-        irms_lb = std::min(irms_lb, hi_v.irms_a);
-      }
-      if (!any) {
-        pruned->Add(why, per_pair[o]);
-        continue;
-      }
-      double best_bound = kInf;
-      for (int lossy = 0; lossy < 2; ++lossy) {
-        if (!has[lossy]) continue;
-        best_bound = std::min(best_bound, ScoreLowerBound(ctx, f, mp, classes[class_of[lossy]], props[pi],
-                                                          *ctx.models[pi], o, &loads, pdc_min[lossy]));
-      }
-      cands->push_back(Candidate{best_bound, static_cast<int>(mi), static_cast<int>(pi), static_cast<int>(o), irms_lb});
-    }
+    double w = 0;
+    for (const Drive& d : s->ideal) w = std::max(w, d.NoLoadSpeed(bo.v_full, 1.0));
+    s->w_nl[o] = w;
+    for (const auto& [rule, props] : f.prop_frame_counts) pruned->Add(rule, per_pair * props);  // R0
   }
+  return true;
+}
+
+// Stage 4 for one pair of a set-up motor whose option R1 lets through and whose propeller
+// passed R0: false with its rule counted (its option's ESCs), or true with *c (R4's bound).
+bool PairCandidate(const SearchContext& ctx, const MissionFacts& f, const MotorSetup& s, std::size_t pi, std::size_t o,
+                   PairLoads* loads, Candidate* c, RuleCounts* pruned) {
+  const MissionConstraints& k = ctx.mission->constraints;
+  const double margin = 1.0 - k.current_margin;
+  const BatteryOption& bo = ctx.options[o];
+  const MotorParams& mp = s.mp;
+  const long long per_pair = ctx.escs.rated[o];
+  const double mass_lb = VehicleMassKg(ctx, bo.mass_lo_kg, s.mass_kg, ctx.grids[pi].mass_kg, ctx.escs.min_mass_kg[o]);
+  double omega_lb = 0, q_lb = 0;
+  loads->Reset(mass_lb);
+  if (const char* rule = PropRule(ctx, f, s.mass_kg, s.w_nl[o], pi, o, loads, &omega_lb, &q_lb)) {
+    pruned->Add(rule, per_pair);
+    return false;
+  }
+  // R3 and R4 over the ESC classes: the pair survives if any class can. R4's bound is
+  // nondecreasing in pdc_lb for a given DriveIsLossy (every term is, and so is each correctly
+  // rounded operation): the least over the classes is the bound at the least pdc_lb of each
+  // kind (ScoreLowerBound reads the class only through DriveIsLossy).
+  bool any = false;
+  double irms_lb = kInf;
+  double pdc_min[2] = {kInf, kInf};  // [DriveIsLossy]
+  bool has[2] = {false, false};
+  const char* why = "throttle";
+  const std::vector<EscClass>& classes = ctx.escs.classes;
+  for (std::size_t ci = 0; ci < classes.size(); ++ci) {
+    if (ctx.escs.per_option[o][ci].empty()) continue;
+    const Drive& d = s.ideal[ci];
+    const Drive::InverseCurrents hi_v = d.InverseLight(bo.v_full, q_lb, omega_lb);
+    const double t_max = ThrottleLimit(k, classes[ci].tr_sat);
+    if (hi_v.throttle > t_max) { why = "throttle"; continue; }
+    if (hi_v.irms_a > mp.max_current_a * margin) { why = "motor_current"; continue; }
+    if (k.enforce_motor_power && d.InverseAcPower(bo.v_full, hi_v, q_lb, omega_lb) > mp.max_power_w) {
+      why = "motor_power";
+      continue;
+    }
+    const double pdc_lo_v = bo.v_cut * d.InverseLight(bo.v_cut, q_lb, omega_lb).idc_a;  // (59), as Inverse
+    const double pdc_lb = std::max(0.0, std::min(bo.v_full * hi_v.idc_a, pdc_lo_v));  // (59), as Inverse
+    const int lossy = DriveIsLossy(mp, classes[ci].c1, classes[ci].c0) ? 1 : 0;
+    if (!has[lossy] || pdc_lb < pdc_min[lossy]) {
+      has[lossy] = true;
+      pdc_min[lossy] = pdc_lb;
+    }
+    any = true;
+    irms_lb = std::min(irms_lb, hi_v.irms_a);
+  }
+  if (!any) {
+    pruned->Add(why, per_pair);
+    return false;
+  }
+  const PropEntry& prop = ctx.catalog->props()[pi];
+  double bound = kInf;
+  for (int lossy = 0; lossy < 2; ++lossy) {
+    if (!has[lossy]) continue;
+    bound = std::min(bound, ScoreLowerBound(ctx, f, lossy == 1, prop, *ctx.models[pi], o, loads, pdc_min[lossy]));
+  }
+  *c = Candidate{bound, s.motor, static_cast<int>(pi), static_cast<int>(o), irms_lb};
+  return true;
 }
 
 // R9 with the mission's facts and the motor's scenario parameters given (BranchAndBound calls it
@@ -1249,36 +1313,177 @@ bool SkipMotor(const MotorEntry& m, long long per_motor, RuleCounts* pruned, lon
   return false;
 }
 
+// fn(thread, i) for i in [0, n), i interleaved over `threads` threads (each i on one thread).
+template <typename F>
+void ForEachOnThreads(std::size_t n, int threads, const F& fn) {
+  threads = std::max(1, threads);
+  auto work = [&](int tid) {
+    for (std::size_t i = static_cast<std::size_t>(tid); i < n; i += static_cast<std::size_t>(threads)) fn(tid, i);
+  };
+  std::vector<std::thread> pool;
+  for (int t = 1; t < threads; ++t) pool.emplace_back(work, t);
+  work(0);
+  for (std::thread& th : pool) th.join();
+}
+
+// R11 (stage 4's order; see the rule at the top of the file). The factor keeps the key a bound
+// under rounding (the floor and the evaluator's powers are each within a few ulps).
+constexpr double kPmechRoundingAllowance = 1.0 - 1e-9;
+// The classes: a class runs from its lightest motor up to this factor times that mass
+// (exclusive); its key uses that mass and its members' least loss floors. Measured on the
+// 1.5 kg quadcopter (4.55 M (motor, propeller, option) pairs; pairs bounded, search time):
+// shaft power only (no loss floor), ratio 1.1: 355 k, 0.19 s; with the loss floor, ratio 1.05:
+// 121 k, 0.175 s; 1.1: 146 k, 0.162 s; 1.25: 188 k, 0.163 s; classes split further by the
+// copper-loss coefficient (ratio 4 within a class): 76 k, 0.19 s (the classes' keys cost more
+// than the pairs they save).
+constexpr double kMotorClassMassRatio = 1.1;
+
+struct PropKey {
+  double bound = 0;  // R11: a lower bound of the score of every pair of the class's motors
+  int prop = 0, option = 0;
+};
+
+// R11's key of (pi, o) for lossy motors of at least motor_kg whose loss floors are at least
+// `loss`'s.
+double PropOnlyBound(const SearchContext& ctx, const MissionFacts& f, std::size_t pi, std::size_t o, double motor_kg,
+                     const MotorLossFloor& loss, PairLoads* loads) {
+  const BatteryOption& bo = ctx.options[o];
+  const PropGrid& g = ctx.grids[pi];
+  loads->Reset(VehicleMassKg(ctx, bo.mass_lo_kg, motor_kg, g.mass_kg, ctx.escs.min_mass_kg[o]));
+  double omega_lb = 0, q_lb = 0;
+  HoverGridPointFromBelow(f, g, loads, &omega_lb, &q_lb);
+  const double pac_floor_w =
+      omega_lb * q_lb + loss.copper_w_per_nm2 * q_lb * q_lb + loss.no_load_torque_nm * omega_lb;  // physics.h
+  const double b = ScoreLowerBound(ctx, f, true, ctx.catalog->props()[pi], *ctx.models[pi], o, loads,
+                                   kPmechRoundingAllowance * pac_floor_w);
+  return std::isnan(b) ? -kInf : b;
+}
+
+// R11's class of motors: its lightest mass and its members' least loss floors.
+struct MotorClass {
+  double mass_kg = 0;
+  MotorLossFloor loss;
+};
+
+// Every (propeller R0 lets through, option) with R11's key for the motors of class c, sorted
+// by (key, option, propeller); with lossy false (motors R11 does not apply to) every key is
+// -inf, in option then propeller order.
+std::vector<PropKey> ClassKeys(const SearchContext& ctx, const MissionFacts& f, const MotorClass& c, bool lossy) {
+  PairLoads loads(*ctx.mission);
+  std::vector<PropKey> keys;
+  keys.reserve(f.frame_ok_props.size() * ctx.options.size());
+  for (std::size_t o = 0; o < ctx.options.size(); ++o) {
+    for (const int pi : f.frame_ok_props) {
+      const double b = lossy ? PropOnlyBound(ctx, f, static_cast<std::size_t>(pi), o, c.mass_kg, c.loss, &loads) : -kInf;
+      keys.push_back(PropKey{b, pi, static_cast<int>(o)});
+    }
+  }
+  if (lossy) {
+    std::sort(keys.begin(), keys.end(), [](const PropKey& a, const PropKey& b) {
+      if (a.bound != b.bound) return a.bound < b.bound;
+      return a.option != b.option ? a.option < b.option : a.prop < b.prop;
+    });
+  }
+  return keys;
+}
+
+// R11's classes of the set-up motors (null: skipped or refused): per motor its class, the last
+// class (lightest mass 0, no loss floor) for the motors R11 does not apply to (a drive that
+// may create energy); and the classes.
+std::vector<int> MotorClasses(const std::vector<const MotorSetup*>& setups, std::vector<MotorClass>* classes) {
+  std::vector<std::size_t> lossy;
+  for (std::size_t i = 0; i < setups.size(); ++i) {
+    if (setups[i] && setups[i]->lossy) lossy.push_back(i);
+  }
+  std::stable_sort(lossy.begin(), lossy.end(),
+                   [&](std::size_t a, std::size_t b) { return setups[a]->mass_kg < setups[b]->mass_kg; });
+  std::vector<int> cls(setups.size(), -1);
+  classes->clear();
+  for (const std::size_t i : lossy) {
+    const MotorSetup& s = *setups[i];
+    if (classes->empty() || s.mass_kg >= kMotorClassMassRatio * classes->back().mass_kg) {
+      classes->push_back(MotorClass{s.mass_kg, s.loss});
+    }
+    MotorLossFloor& floor = classes->back().loss;
+    floor.copper_w_per_nm2 = std::min(floor.copper_w_per_nm2, s.loss.copper_w_per_nm2);
+    floor.no_load_torque_nm = std::min(floor.no_load_torque_nm, s.loss.no_load_torque_nm);
+    cls[i] = static_cast<int>(classes->size()) - 1;
+  }
+  classes->push_back(MotorClass{});  // the class without R11
+  for (std::size_t i = 0; i < setups.size(); ++i) {
+    if (setups[i] && !setups[i]->lossy) cls[i] = static_cast<int>(classes->size()) - 1;
+  }
+  return cls;
+}
+
+// The motors of a search set up on `threads` threads (null where skipped or refused; the
+// counts of SkipMotor and MotorSetUp in *pruned, *skipped).
+std::vector<std::unique_ptr<MotorSetup>> SetUpMotors(const SearchContext& ctx, const MissionFacts& f, int threads,
+                                                     RuleCounts* pruned, long long* skipped) {
+  const auto& motors = ctx.catalog->motors();
+  const long long per_motor = CombinationsPerMotor(ctx);
+  std::vector<std::unique_ptr<MotorSetup>> out(motors.size());
+  std::vector<RuleCounts> thread_pruned(static_cast<std::size_t>(std::max(1, threads)));
+  std::vector<long long> thread_skipped(thread_pruned.size(), 0);
+  ForEachOnThreads(motors.size(), threads, [&](int tid, std::size_t mi) {
+    if (SkipMotor(motors[mi], per_motor, &thread_pruned[tid], &thread_skipped[tid])) return;
+    auto s = std::make_unique<MotorSetup>();
+    if (MotorSetUp(ctx, f, mi, s.get(), &thread_pruned[tid])) out[mi] = std::move(s);
+  });
+  for (std::size_t t = 0; t < thread_pruned.size(); ++t) {
+    thread_pruned[t].MergeInto(pruned);
+    *skipped += thread_skipped[t];
+  }
+  return out;
+}
+
+std::vector<const MotorSetup*> Pointers(const std::vector<std::unique_ptr<MotorSetup>>& setups) {
+  std::vector<const MotorSetup*> p;
+  for (const auto& s : setups) p.push_back(s.get());
+  return p;
+}
+
 }  // namespace
 
 CandidateList BuildCandidates(const SearchContext& ctx, int threads) {
   const MissionFacts f = StageFourFacts(ctx);
-  const auto& motors = ctx.catalog->motors();
-  const long long per_motor = CombinationsPerMotor(ctx);
-  threads = std::max(1, threads);
-  std::vector<std::vector<Candidate>> thread_cands(static_cast<std::size_t>(threads));
-  std::vector<RuleCounts> thread_pruned(static_cast<std::size_t>(threads));
-  std::vector<long long> thread_skipped(static_cast<std::size_t>(threads), 0);
-  auto work = [&](int tid) {
-    for (std::size_t mi = static_cast<std::size_t>(tid); mi < motors.size(); mi += static_cast<std::size_t>(threads)) {
-      if (SkipMotor(motors[mi], per_motor, &thread_pruned[tid], &thread_skipped[tid])) continue;
-      MotorCandidates(ctx, f, mi, &thread_cands[tid], &thread_pruned[tid]);
-    }
-  };
-  {
-    std::vector<std::thread> pool;
-    for (int t = 1; t < threads; ++t) pool.emplace_back(work, t);
-    work(0);
-    for (auto& th : pool) th.join();
-  }
+  RuleCounts pruned;
   CandidateList out;
-  for (int t = 0; t < threads; ++t) {
+  const std::vector<std::unique_ptr<MotorSetup>> setups = SetUpMotors(ctx, f, threads, &pruned, &out.skipped_without_mass);
+  std::vector<MotorClass> classes;
+  const std::vector<int> cls = MotorClasses(Pointers(setups), &classes);
+  std::vector<std::vector<Candidate>> thread_cands(static_cast<std::size_t>(std::max(1, threads)));
+  std::vector<RuleCounts> thread_pruned(thread_cands.size());
+  ForEachOnThreads(setups.size(), threads, [&](int tid, std::size_t mi) {
+    if (!setups[mi]) return;
+    const MotorSetup& s = *setups[mi];
+    PairLoads loads(*ctx.mission), key_loads(*ctx.mission);
+    for (std::size_t o = 0; o < ctx.options.size(); ++o) {
+      if (std::isnan(s.w_nl[o])) continue;  // R1 (MotorSetUp)
+      for (const int pi : f.frame_ok_props) {
+        Candidate c;
+        if (!PairCandidate(ctx, f, s, static_cast<std::size_t>(pi), o, &loads, &c, &thread_pruned[tid])) continue;
+        if (s.lossy) {  // R11
+          const MotorClass& k = classes[static_cast<std::size_t>(cls[mi])];
+          c.bound = std::max(c.bound, PropOnlyBound(ctx, f, static_cast<std::size_t>(pi), o, k.mass_kg, k.loss, &key_loads));
+        }
+        thread_cands[tid].push_back(c);
+      }
+    }
+  });
+  for (std::size_t t = 0; t < thread_cands.size(); ++t) {
     out.candidates.insert(out.candidates.end(), thread_cands[t].begin(), thread_cands[t].end());
-    std::vector<Candidate>().swap(thread_cands[t]);
-    thread_pruned[t].MergeInto(&out.pruned_by);
-    out.skipped_without_mass += thread_skipped[t];
+    thread_pruned[t].MergeInto(&pruned);
   }
+  pruned.MergeInto(&out.pruned_by);
   return out;
+}
+
+double PropellerKeyBound(const SearchContext& ctx, int prop, int option, int motor) {
+  const MotorEntry& mo = ctx.catalog->motors()[static_cast<std::size_t>(motor)];
+  PairLoads loads(*ctx.mission);
+  return PropOnlyBound(ctx, StageFourFacts(ctx), static_cast<std::size_t>(prop), static_cast<std::size_t>(option),
+                       *mo.mass_kg, LossFloorOf(ScenarioMotorParams(mo, *ctx.mission, nullptr, nullptr)), &loads);
 }
 
 bool CandidateBefore(const Candidate& a, const Candidate& b) {
@@ -1288,111 +1493,168 @@ bool CandidateBefore(const Candidate& a, const Candidate& b) {
   return a.prop < b.prop;
 }
 
-namespace {
-
-// The first `n` of `pairs` in CandidateBefore order, sorted, into q (complete when that is all).
-void TakeFirst(std::vector<Candidate>* pairs, std::size_t n, MotorQueue* q) {
-  n = std::min(n, pairs->size());
-  std::partial_sort(pairs->begin(), pairs->begin() + static_cast<std::ptrdiff_t>(n), pairs->end(), CandidateBefore);
-  q->next.assign(pairs->begin(), pairs->begin() + static_cast<std::ptrdiff_t>(n));
-  q->pos = 0;
-  q->complete = n == pairs->size();
-}
-
-}  // namespace
-
-MotorHeads BuildMotorHeads(const SearchContext& ctx, int threads, std::size_t first_pairs) {
-  const MissionFacts f = StageFourFacts(ctx);
-  const auto& motors = ctx.catalog->motors();
-  const long long per_motor = CombinationsPerMotor(ctx);
-  threads = std::max(1, threads);
-  // Per motor, written by one thread each.
-  std::vector<MotorQueue> queue(motors.size());
-  std::vector<long long> count(motors.size(), 0), escs(motors.size(), 0);
-  std::vector<RuleCounts> thread_pruned(static_cast<std::size_t>(threads));
-  std::vector<long long> thread_skipped(static_cast<std::size_t>(threads), 0);
-  auto work = [&](int tid) {
-    std::vector<Candidate> tmp;
-    for (std::size_t mi = static_cast<std::size_t>(tid); mi < motors.size(); mi += static_cast<std::size_t>(threads)) {
-      if (SkipMotor(motors[mi], per_motor, &thread_pruned[tid], &thread_skipped[tid])) continue;
-      tmp.clear();
-      MotorCandidates(ctx, f, mi, &tmp, &thread_pruned[tid]);
-      count[mi] = static_cast<long long>(tmp.size());
-      for (const Candidate& c : tmp) escs[mi] += ctx.escs.rated[static_cast<std::size_t>(c.option)];
-      queue[mi].motor = static_cast<int>(mi);
-      TakeFirst(&tmp, std::max<std::size_t>(first_pairs, 1), &queue[mi]);
+// Stage 4 on demand (CandidateStream). Per set-up motor: its class's keys (R11) are walked in
+// order and bounded in batches; the bounded pairs wait in a heap. A motor's head is its next
+// bounded pair when that pair's bound is below the key of its next unbounded one, else that
+// key (a "frontier", drawn first on ties: an unbounded pair may tie with it); the motors are
+// in a heap by head. Drawing a frontier bounds the motor's next batch; drawing a pair returns
+// it. A pair is returned only when its bound is below every frontier, and every unbounded
+// pair's bound is at least its frontier (R11: the pair's bound is the larger of R4's and its
+// key), so the pairs come in CandidateBefore order, as sorting BuildCandidates would give them.
+struct CandidateStream::Impl {
+  struct Motor {
+    std::unique_ptr<MotorSetup> setup;
+    const std::vector<PropKey>* keys = nullptr;  // its class's
+    std::size_t walk = 0;                        // keys before it are bounded (or skipped)
+    std::vector<Candidate> pending;              // a heap: the first in CandidateBefore order on top
+    std::size_t batch = 0;                       // the next batch's size
+    bool Live() const { return walk < keys->size() || !pending.empty(); }
+    bool HeadIsPair() const {
+      return !pending.empty() && (walk == keys->size() || pending.front().bound < (*keys)[walk].bound);
     }
+    double HeadBound() const { return HeadIsPair() ? pending.front().bound : (*keys)[walk].bound; }
   };
-  {
-    std::vector<std::thread> pool;
-    for (int t = 1; t < threads; ++t) pool.emplace_back(work, t);
-    work(0);
-    for (auto& th : pool) th.join();
+  struct BatchCounts {
+    RuleCounts pruned;
+    long long pruned_combinations = 0, bounded = 0;
+  };
+
+  Impl(const SearchContext& c) : ctx(c), f(StageFourFacts(c)), loads(*c.mission) {}
+  // a's head comes after b's.
+  bool After(std::size_t a, std::size_t b) const {
+    const Motor& x = motors[a];
+    const Motor& y = motors[b];
+    const double bx = x.HeadBound(), by = y.HeadBound();
+    if (bx != by) return by < bx;
+    const bool px = x.HeadIsPair(), py = y.HeadIsPair();
+    if (px != py) return px;  // a frontier first
+    if (!px) return y.setup->motor < x.setup->motor;
+    return CandidateBefore(y.pending.front(), x.pending.front());
   }
-  MotorHeads out;
-  for (std::size_t mi = 0; mi < motors.size(); ++mi) {
-    if (!queue[mi].next.empty()) out.motors.push_back(std::move(queue[mi]));
-    out.pairs += count[mi];
-    out.pair_escs += escs[mi];
+  // Bounds up to n more of m's pairs whose key is below the cutoff (pairs at or above it are
+  // never drawn: they stay open).
+  void Expand(Motor* m, double cutoff, std::size_t n, PairLoads* pair_loads, BatchCounts* tally) const {
+    const std::vector<PropKey>& keys = *m->keys;
+    auto first = [](const Candidate& a, const Candidate& b) { return CandidateBefore(b, a); };
+    for (std::size_t done = 0; m->walk < keys.size() && done < n;) {
+      const PropKey& k = keys[m->walk];
+      if (!(k.bound < cutoff)) {
+        m->walk = keys.size();
+        break;
+      }
+      ++m->walk;
+      const std::size_t o = static_cast<std::size_t>(k.option);
+      if (std::isnan(m->setup->w_nl[o])) continue;  // R1 (MotorSetUp counted it)
+      ++done;
+      ++tally->bounded;
+      Candidate c;
+      if (!PairCandidate(ctx, f, *m->setup, static_cast<std::size_t>(k.prop), o, pair_loads, &c, &tally->pruned)) {
+        tally->pruned_combinations += ctx.escs.rated[o];
+        continue;
+      }
+      c.bound = std::max(c.bound, k.bound);  // R11 (-inf when it does not apply)
+      if (!(c.bound < cutoff)) continue;
+      m->pending.push_back(c);
+      std::push_heap(m->pending.begin(), m->pending.end(), first);
+    }
   }
-  for (int t = 0; t < threads; ++t) {
-    thread_pruned[t].MergeInto(&out.pruned_by);
-    out.skipped_without_mass += thread_skipped[t];
+
+  const SearchContext& ctx;
+  const MissionFacts f;
+  std::vector<std::vector<PropKey>> classes;
+  std::vector<Motor> motors;
+  std::vector<std::size_t> heap;  // live motors; the first head on top
+  PairLoads loads;
+  BatchCounts counts;
+  long long open = 0;  // combinations of the pairs neither drawn nor removed by a stage 4 rule
+  long long skipped = 0, batches = 0;
+};
+
+CandidateStream::CandidateStream(const SearchContext& ctx, int threads, std::size_t first_batch)
+    : impl_(std::make_unique<Impl>(ctx)) {
+  Impl& s = *impl_;
+  std::vector<std::unique_ptr<MotorSetup>> setups = SetUpMotors(ctx, s.f, threads, &s.counts.pruned, &s.skipped);
+  std::vector<MotorClass> classes;
+  const std::vector<int> cls = MotorClasses(Pointers(setups), &classes);
+  s.classes.resize(classes.size());
+  ForEachOnThreads(s.classes.size(), threads, [&](int, std::size_t c) {
+    const bool lossy = c + 1 < s.classes.size();
+    bool used = false;
+    for (std::size_t mi = 0; mi < cls.size() && !used; ++mi) used = setups[mi] && cls[mi] == static_cast<int>(c);
+    if (used) s.classes[c] = ClassKeys(ctx, s.f, classes[c], lossy);
+  });
+  long long per_option_props = static_cast<long long>(s.f.frame_ok_props.size());
+  for (std::size_t mi = 0; mi < setups.size(); ++mi) {
+    if (!setups[mi]) continue;
+    Impl::Motor m;
+    m.keys = &s.classes[static_cast<std::size_t>(cls[mi])];
+    m.batch = std::max<std::size_t>(first_batch, 1);
+    for (std::size_t o = 0; o < ctx.options.size(); ++o) {
+      if (!std::isnan(setups[mi]->w_nl[o])) s.open += ctx.escs.rated[o] * per_option_props;
+    }
+    m.setup = std::move(setups[mi]);
+    s.motors.push_back(std::move(m));
   }
-  return out;
+  // Each motor's first batch, on the threads.
+  std::vector<Impl::BatchCounts> thread_counts(static_cast<std::size_t>(std::max(1, threads)));
+  ForEachOnThreads(s.motors.size(), threads, [&](int tid, std::size_t i) {
+    PairLoads loads(*ctx.mission);
+    s.Expand(&s.motors[i], kInf, s.motors[i].batch, &loads, &thread_counts[tid]);
+    s.motors[i].batch = std::min(2 * s.motors[i].batch, kMaxBatch);
+  });
+  for (const Impl::BatchCounts& c : thread_counts) {
+    c.pruned.MergeInto(&s.counts.pruned);
+    s.counts.pruned_combinations += c.pruned_combinations;
+    s.counts.bounded += c.bounded;
+  }
+  s.open -= s.counts.pruned_combinations;
+  s.counts.pruned_combinations = 0;
+  for (std::size_t i = 0; i < s.motors.size(); ++i) {
+    if (s.motors[i].Live()) s.heap.push_back(i);
+  }
+  std::make_heap(s.heap.begin(), s.heap.end(), [&s](std::size_t a, std::size_t b) { return s.After(a, b); });
 }
 
-void MotorPairs(const SearchContext& ctx, int motor, std::vector<Candidate>* out) {
-  RuleCounts ignored;  // counted once, by BuildMotorHeads
-  MotorCandidates(ctx, StageFourFacts(ctx), static_cast<std::size_t>(motor), out, &ignored);
-}
-
-CandidateStream::CandidateStream(const SearchContext& ctx, std::vector<MotorQueue> motors)
-    : ctx_(ctx), queues_(std::move(motors)) {
-  for (std::size_t i = 0; i < queues_.size(); ++i) heap_.push_back(i);
-  std::make_heap(heap_.begin(), heap_.end(), [this](std::size_t a, std::size_t b) { return HeapAfter(a, b); });
-}
-
-bool CandidateStream::HeapAfter(std::size_t a, std::size_t b) const {
-  return CandidateBefore(queues_[b].next[queues_[b].pos], queues_[a].next[queues_[a].pos]);
-}
+CandidateStream::~CandidateStream() = default;
 
 bool CandidateStream::Next(double cutoff, Candidate* c) {
-  if (heap_.empty()) return false;
-  auto after = [this](std::size_t a, std::size_t b) { return HeapAfter(a, b); };
-  std::pop_heap(heap_.begin(), heap_.end(), after);
-  const std::size_t i = heap_.back();
-  heap_.pop_back();
-  MotorQueue& q = queues_[i];
-  *c = q.next[q.pos++];
-  if (q.pos == q.next.size()) {
-    if (!q.complete && c->bound < cutoff) {
-      // All the motor's pairs after c: regenerated (stage 4 is deterministic), those with a
-      // bound >= cutoff left out (never drawn before the search stops: the cutoff only falls).
-      // A refill costs all the motor's pairs whatever it keeps, and refills are serial work:
-      // one per motor at most (the capacity-sized quadcopter: 1,711 refills of 8x the last
-      // head -> 1,051, 6.5 s -> 5.9 s, peak RSS 59 -> 65 MiB).
-      scratch_.clear();
-      MotorPairs(ctx_, q.motor, &scratch_);
-      const Candidate last = *c;
-      scratch_.erase(std::remove_if(scratch_.begin(), scratch_.end(),
-                                    [&](const Candidate& x) { return !CandidateBefore(last, x) || !(x.bound < cutoff); }),
-                     scratch_.end());
-      TakeFirst(&scratch_, scratch_.size(), &q);
-      ++refills_;
+  Impl& s = *impl_;
+  auto after = [&s](std::size_t a, std::size_t b) { return s.After(a, b); };
+  auto first = [](const Candidate& a, const Candidate& b) { return CandidateBefore(b, a); };
+  while (!s.heap.empty()) {
+    std::pop_heap(s.heap.begin(), s.heap.end(), after);
+    const std::size_t i = s.heap.back();
+    s.heap.pop_back();
+    Impl::Motor& m = s.motors[i];
+    const bool pair = m.HeadIsPair();
+    if (pair) {
+      std::pop_heap(m.pending.begin(), m.pending.end(), first);
+      *c = m.pending.back();
+      m.pending.pop_back();
+      s.open -= s.ctx.escs.rated[static_cast<std::size_t>(c->option)];
     } else {
-      q.next.clear();
-      q.pos = 0;
+      s.Expand(&m, cutoff, m.batch, &s.loads, &s.counts);
+      s.open -= s.counts.pruned_combinations;
+      s.counts.pruned_combinations = 0;
+      m.batch = std::min(2 * m.batch, kMaxBatch);
+      ++s.batches;
     }
+    if (m.Live()) {
+      s.heap.push_back(i);
+      std::push_heap(s.heap.begin(), s.heap.end(), after);
+    } else {
+      std::vector<Candidate>().swap(m.pending);
+    }
+    if (pair) return true;
   }
-  if (q.pos < q.next.size()) {
-    heap_.push_back(i);
-    std::push_heap(heap_.begin(), heap_.end(), after);
-  } else {
-    std::vector<Candidate>().swap(q.next);
-  }
-  return true;
+  return false;
 }
+
+long long CandidateStream::batches() const { return impl_->batches; }
+long long CandidateStream::pairs_bounded() const { return impl_->counts.bounded; }
+long long CandidateStream::open_combinations() const { return impl_->open; }
+long long CandidateStream::skipped_without_mass() const { return impl_->skipped; }
+void CandidateStream::MergePrunedInto(std::map<std::string, long long>* out) const { impl_->counts.pruned.MergeInto(out); }
 
 }  // namespace search_internal
 
@@ -1462,11 +1724,9 @@ class WorkerThreads {
 class BranchAndBound {
  public:
   // cutoff: only results scoring below it are wanted (the joint search's N-th best, G2).
-  BranchAndBound(const SearchContext& ctx, const SearchOptions& opt, MotorHeads heads, SearchResult* out,
+  BranchAndBound(const SearchContext& ctx, const SearchOptions& opt, CandidateStream* stream, SearchResult* out,
                  double cutoff = kInf)
-      : ctx_(ctx), opt_(opt), stream_(ctx, std::move(heads.motors)), n_cands_(static_cast<std::size_t>(heads.pairs)),
-        undrawn_escs_(heads.pair_escs),
-        out_(out), relaxed_(*ctx.mission), cutoff_(cutoff), facts_(FactsOf(*ctx.mission, ctx.free_group)) {
+      : ctx_(ctx), opt_(opt), stream_(*stream), open_at_start_(stream->open_combinations()), out_(out), relaxed_(*ctx.mission), cutoff_(cutoff), facts_(FactsOf(*ctx.mission, ctx.free_group)) {
     // The virtual ESC (and so the class check) uses the mission without min_hover_throttle: a
     // real ESC's resistance and mass raise the throttle, so that lower limit is the one
     // constraint the virtual ESC may fail when a real one passes (R5). Relaxing it keeps the
@@ -1483,7 +1743,6 @@ class BranchAndBound {
   // the cutoff it had, so the numbers are the same.
   void Explain() const;
   long long virtual_evaluations() const { return virtual_evals_; }
-  long long refills() const { return stream_.refills(); }
 
  private:
   struct Outcome {
@@ -1494,11 +1753,10 @@ class BranchAndBound {
   };
 
   // Candidates in CandidateBefore order (best bound first, a strict total order). The search
-  // usually stops after a small fraction of them, so they are drawn on demand from the
-  // per-motor stream (stage 4 keeps only each motor's head).
-  // Pairs whose bound is not below the N-th best score are left out of the stream when their
-  // motor is expanded: the search stops at the first such pair (the threshold only falls), and
-  // a pair that comes after it is never drawn.
+  // usually stops after a small fraction of them, so they are drawn on demand from the stream
+  // (stage 4 bounds a pair only when it may come next), with the N-th best score as its
+  // cutoff: the search stops at the first pair not below it (the threshold only falls), and a
+  // pair that comes after it is never drawn.
   const Candidate* CandidateAt(std::size_t i) {  // the i-th best, or null
     Candidate c;
     while (base_ + ordered_.size() <= i && stream_.Next(NthBest(), &c)) ordered_.push_back(c);
@@ -1512,9 +1770,8 @@ class BranchAndBound {
 
   const SearchContext& ctx_;
   const SearchOptions& opt_;
-  CandidateStream stream_;
-  std::size_t n_cands_ = 0;
-  long long undrawn_escs_ = 0;  // the combinations of the pairs not drawn yet (MotorHeads::pair_escs)
+  CandidateStream& stream_;
+  long long open_at_start_ = 0;  // the stream's open combinations before the first draw (progress)
   std::vector<Candidate> ordered_;  // drawn candidates from index base_ on (earlier ones done)
   std::size_t base_ = 0;
   SearchResult* out_;
@@ -1687,15 +1944,16 @@ void BranchAndBound::Run() {
   bool free_shaft = false;
   for (const Segment& sg : m.segments) free_shaft |= sg.type == SegmentType::kShaft && sg.shaft_omega_rad_s.free();
   const int workers = free_shaft ? 1 : std::max(1, opt_.threads);
-  const std::size_t n_cands = n_cands_;
   constexpr std::size_t kMaxChunk = 128;
   std::size_t chunk = 2;  // grows while the threshold settles
   WorkerThreads pool(workers - 1);
   std::size_t ci = 0;
-  while (ci < n_cands) {
+  for (;;) {
     if (opt_.progress) {
       SearchProgress p;
-      p.fraction = static_cast<double>(ci) / static_cast<double>(n_cands);
+      p.fraction = open_at_start_ > 0 ? 1.0 - static_cast<double>(stream_.open_combinations()) /
+                                                  static_cast<double>(open_at_start_)
+                                      : 1.0;
       p.searched = out_->searched;
       p.pruned = 0;
       for (const auto& [rule, n] : out_->pruned_by) p.pruned += n;
@@ -1710,14 +1968,19 @@ void BranchAndBound::Run() {
     while (end - ci < chunk && CandidateAt(end) && CandidateAt(end)->bound < threshold) ++end;
     chunk = std::min(kMaxChunk, 2 * chunk);
     if (end == ci) {  // R4: every later candidate has a bound at least as bad
-      out_->pruned_by["objective_bound"] += undrawn_escs_;
+      // Those never drawn and those drawn for the next chunk (the stream draws ahead).
+      long long undrawn = stream_.open_combinations();
+      for (std::size_t i = ci; i < base_ + ordered_.size(); ++i) {
+        undrawn += ctx_.escs.rated[static_cast<std::size_t>(ordered_[i - base_].option)];
+      }
+      out_->pruned_by["objective_bound"] += undrawn;
       break;
     }
     std::vector<Outcome> outs(end - ci);
     // The chunk's candidates, copied: while the other workers start on them, this thread draws
-    // the next chunk's from the stream (refilling motor queues is serial work), with the
+    // the next chunk's from the stream (bounding a motor's next batch is serial work), with the
     // threshold before this chunk's results (at least the final one: the stream only draws
-    // more, and a drawn pair not processed stays counted in undrawn_escs_), then joins them.
+    // more, and a drawn pair not processed is counted when the search stops), then joins them.
     const std::vector<Candidate> cands(ordered_.begin() + static_cast<std::ptrdiff_t>(ci - base_),
                                        ordered_.begin() + static_cast<std::ptrdiff_t>(end - base_));
     // Each worker takes the next unprocessed candidate (one exact evaluation can cost as much
@@ -1728,7 +1991,10 @@ void BranchAndBound::Run() {
     };
     const std::function<void()> job = run;
     pool.Start(&job);
-    if (workers > 1) CandidateAt(end + chunk - 1);
+    // On one thread too: the stream bounds a motor's next batch against the cutoff of the
+    // moment it is drawn, and the pairs a rule removes are counted then, so the draws must
+    // come at the same moments whatever the number of threads (the counts do not depend on it).
+    CandidateAt(end + chunk - 1);
     run();
     pool.Wait();
     for (Outcome& o : outs) {
@@ -1737,7 +2003,6 @@ void BranchAndBound::Run() {
       virtual_evals_ += o.virtual_evals;
       for (std::size_t j = 0; j < o.results.size(); ++j) Insert(o.results[j].first, std::move(o.results[j].second), o.cutoffs[j]);
     }
-    for (std::size_t i = ci; i < end; ++i) undrawn_escs_ -= ctx_.escs.rated[static_cast<std::size_t>(ordered_[i - base_].option)];
     ordered_.erase(ordered_.begin(), ordered_.begin() + static_cast<std::ptrdiff_t>(end - base_));
     base_ = end;
     ci = end;
@@ -1774,17 +2039,17 @@ SearchResult search_internal::SearchOneGroup(const Mission& m, const Catalog& ca
   if (ctx.escs.excluded_pruned > 0) {
     out.pruned_by["catalog_exclude"] += ctx.escs.excluded_pruned * static_cast<long long>(cat.motors().size() * cat.props().size());
   }
-  MotorHeads heads = BuildMotorHeads(ctx, opt.threads);  // stage 4
-  for (const auto& [rule, n] : heads.pruned_by) out.pruned_by[rule] += n;
-  out.skipped_without_mass = heads.skipped_without_mass;
-  out.candidate_pairs = heads.pairs;
-  out.candidate_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   {
-    BranchAndBound bb(ctx, opt, std::move(heads), &out, cutoff);  // stage 5
+    CandidateStream stream(ctx, opt.threads);  // stage 4 (each motor's first batch)
+    out.candidate_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    BranchAndBound bb(ctx, opt, &stream, &out, cutoff);  // stage 5 (and stage 4 on demand)
     bb.Run();
     bb.Explain();
+    stream.MergePrunedInto(&out.pruned_by);
+    out.skipped_without_mass = stream.skipped_without_mass();
+    out.candidate_pairs = stream.pairs_bounded();
+    out.candidate_batches = stream.batches();
     out.virtual_evaluations = bb.virtual_evaluations();
-    out.candidate_refills = bb.refills();
   }
   if (cache) {
     cache->grids = std::move(ctx.grids);
@@ -1806,7 +2071,7 @@ SearchResult search_internal::SearchOneGroup(const Mission& m, const Catalog& ca
 
 namespace {
 
-// One free group: stages 0-5 (R0-R10, G1); several: the joint search (G2, joint_search.h).
+// One free group: stages 0-5 (R0-R11, G1); several: the joint search (G2, joint_search.h).
 SearchResult SearchExactly(const Mission& m, const Catalog& cat, const SearchOptions& opt) {
   SearchResult out = FreeGroupCount(m) > 1 ? search_internal::JointSearch(m, cat, opt)
                                            : search_internal::SearchOneGroup(m, cat, opt, kInf, nullptr);

@@ -58,12 +58,13 @@ struct SearchResult {
   std::map<std::string, long long> pruned_by;  // rule -> combinations it removed
   long long skipped_without_mass = 0;  // motors without mass_kg (left out, counted in pruned)
   double seconds = 0.0;
-  // Where the time went: candidate pairs built (and the seconds to build them), and the
-  // virtual-ESC evaluations of R5.
+  // Where the time went: the (motor, propeller, option) pairs stage 4 bounded, the seconds to
+  // the end of its first batches (stages 0-3 included), its later batches (bounded as the
+  // branch and bound reached them, R11), and the virtual-ESC evaluations of R5.
   long long candidate_pairs = 0;
   double candidate_seconds = 0.0;
   long long virtual_evaluations = 0;
-  long long candidate_refills = 0;  // motors whose next pairs were regenerated (stage 5)
+  long long candidate_batches = 0;
 };
 
 // Throws UsageError when a mission battery id is not in the catalog or no cell count in the

@@ -8,9 +8,9 @@
 //                        speed grid at the mission's density (R2, R6), and with forward-flight
 //                        tables the thrust and torque in each fixed axial inflow (R10);
 //   4. BuildCandidates   every (motor, propeller, battery option) pair that survives R0, R2, R3,
-//                        R6, R7, with a lower bound of its score (R4); the search itself calls
-//                        BuildMotorHeads, which keeps only each motor's first pairs (memory);
-//   5. BranchAndBound    the pairs best bound first (CandidateStream over the motors' queues),
+//                        R6, R7, with a lower bound of its score (R4, R11); the search itself
+//                        uses CandidateStream, which bounds a pair only when it may be drawn;
+//   5. BranchAndBound    the pairs best bound first (CandidateStream),
 //                        per ESC class R9 (hover throttle from above, per ESC), R10 (segment by
 //                        segment) and the virtual ESC (R5), each remaining combination scored
 //                        exactly by MissionEvaluator::Solve.
@@ -222,34 +222,14 @@ double FixedPowerLowerBoundW(const SearchContext& ctx, std::size_t option, std::
 // ordered by the branch and bound's total order).
 CandidateList BuildCandidates(const SearchContext& ctx, int threads);
 
+// R11 (search.cc): the key of (prop, option) at the mass and loss floor of `motor` (whose
+// drives must not be able to create energy): a lower bound of the score of every combination
+// of that motor with them (-kInf when none applies).
+double PropellerKeyBound(const SearchContext& ctx, int prop, int option, int motor);
+
 // The branch and bound's total order of candidates: best bound first, then option, motor and
 // propeller (a strict total order, so the sequence is unique).
 bool CandidateBefore(const Candidate& a, const Candidate& b);
-
-// Stage 4 without keeping all the pairs (peak memory): per motor, how many pairs survive and
-// the first kFirstPairsPerMotor of them in CandidateBefore order. The branch and bound draws
-// from these queues (CandidateStream) and regenerates a motor's next pairs (MotorPairs) only
-// when it has drawn all it holds, so it keeps a few pairs per motor instead of all of them;
-// the sequence it draws is the same as sorting BuildCandidates.
-inline constexpr std::size_t kFirstPairsPerMotor = 128;
-struct MotorQueue {
-  int motor = 0;
-  std::vector<Candidate> next;  // sorted; next[pos] is the motor's next pair
-  std::size_t pos = 0;
-  bool complete = false;        // next holds all the motor's pairs not yet drawn
-};
-struct MotorHeads {
-  std::vector<MotorQueue> motors;  // those with a surviving pair, motor order
-  long long pairs = 0;             // surviving pairs over all motors
-  long long pair_escs = 0;         // their combinations: each pair's option's rated ESCs, summed
-  std::map<std::string, long long> pruned_by;
-  long long skipped_without_mass = 0;
-};
-// first_pairs: how many pairs each motor's queue starts with (>= 1; tests use small values to
-// exercise the refills).
-MotorHeads BuildMotorHeads(const SearchContext& ctx, int threads, std::size_t first_pairs = kFirstPairsPerMotor);
-// The surviving pairs of one motor (appended to *out), as BuildCandidates lists them.
-void MotorPairs(const SearchContext& ctx, int motor, std::vector<Candidate>* out);
 
 // Propeller grids and models kept between the one-group searches of the joint search (they
 // depend on the mission's air, ranking and figure-of-merit limit only, which its sub-missions
@@ -267,25 +247,36 @@ struct PropGridCache {
 SearchResult SearchOneGroup(const Mission& m, const Catalog& cat, const SearchOptions& opt, double cutoff,
                             PropGridCache* cache, const std::vector<GroupParts>* given_parts = nullptr);
 
-// Draws candidates in CandidateBefore order from the motor queues (a heap of motors keyed by
-// their next pair), refilling a motor's queue when it runs out.
+// Stage 4 on demand: the candidate pairs of BuildCandidates in CandidateBefore order, each
+// bounded only when it may be drawn next. Per motor, the pairs are bounded in the order of
+// R11's keys (search.cc: a bound that holds for every motor of the motor's mass class), in
+// batches (the first, of first_batch pairs per motor, on `threads` threads when the stream is
+// built; each later one twice the last, up to kMaxBatch); a pair whose key is not below the
+// caller's cutoff is never bounded. Tests use small first batches to exercise later ones.
+inline constexpr std::size_t kFirstBatch = 32, kMaxBatch = 512;
 class CandidateStream {
  public:
-  CandidateStream(const SearchContext& ctx, std::vector<MotorQueue> motors);
+  CandidateStream(const SearchContext& ctx, int threads, std::size_t first_batch = kFirstBatch);
+  ~CandidateStream();
+  CandidateStream(const CandidateStream&) = delete;
+  CandidateStream& operator=(const CandidateStream&) = delete;
   // The next candidate, or false when none is left. Pairs with a bound >= cutoff may be left
   // out (a caller that stops at the first bound >= cutoff, with a cutoff that never rises, sees
   // the same sequence up to there): the returned candidate is the true next one when its bound
   // is below the cutoff, else some candidate with a bound >= cutoff.
   bool Next(double cutoff, Candidate* c);
-  long long refills() const { return refills_; }  // motors' pairs regenerated
+  long long batches() const;        // batches bounded after the first ones
+  long long pairs_bounded() const;  // pairs that stage 4's rules and R4 were applied to
+  // The combinations (pairs times their option's rated ESCs) neither drawn nor removed by a
+  // stage 4 rule so far: when the caller stops, R4 (or R11) removed them.
+  long long open_combinations() const;
+  long long skipped_without_mass() const;
+  // The combinations each stage 4 rule removed so far, added to *out.
+  void MergePrunedInto(std::map<std::string, long long>* out) const;
 
  private:
-  bool HeapAfter(std::size_t a, std::size_t b) const;
-  const SearchContext& ctx_;
-  std::vector<MotorQueue> queues_;
-  std::vector<std::size_t> heap_;  // queue indices; the top's next pair comes first
-  std::vector<Candidate> scratch_;
-  long long refills_ = 0;
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
 };
 
 }  // namespace dynosize::search_internal

@@ -16,6 +16,7 @@
 
 #include "battery/battery.h"
 #include "common/error.h"
+#include "model/physics.h"
 #include "optimization/components.h"
 #include "optimization/mission_eval.h"
 #include "optimization/small_catalog.h"
@@ -125,9 +126,10 @@ TEST_F(SearchStagesTest, PropGridsRiseAndStayBelowMomentumTheory) {
   }
 }
 
-// The lazy stream of stage 5 draws exactly the sorted list of stage 4 (the same pairs in the
-// same order), with any initial queue length (refills regenerate a motor's pairs); with a
-// cutoff it draws the same pairs up to the first bound at or above it.
+// The stream of stage 5 draws exactly the sorted list of stage 4 (the same pairs in the same
+// order, the same rule counts), whatever the first batch (later batches walk on in R11's
+// order); with a cutoff it draws the same pairs up to the first bound at or above it, and
+// bounds fewer pairs than there are.
 TEST_F(SearchStagesTest, CandidateStreamDrawsTheSortedCandidateList) {
   const Catalog cat = SmallCatalog();
   const Mission m = ParseMission(ParseJsonText(kStageQuad, "quad"), "quad");
@@ -135,27 +137,31 @@ TEST_F(SearchStagesTest, CandidateStreamDrawsTheSortedCandidateList) {
   PrepareStages(m, cat, &ctx);
   CandidateList all = BuildCandidates(ctx, 1);
   std::sort(all.candidates.begin(), all.candidates.end(), CandidateBefore);
-  ASSERT_GT(all.candidates.size(), 20u) << "the small catalog should give enough pairs to refill queues";
+  ASSERT_GT(all.candidates.size(), 20u) << "the small catalog should give enough pairs for several batches";
   auto same = [](const Candidate& a, const Candidate& b) {
     return a.motor == b.motor && a.prop == b.prop && a.option == b.option && a.bound == b.bound &&
            a.irms_lb == b.irms_lb;
   };
-  for (std::size_t first : {std::size_t{1}, std::size_t{3}, kFirstPairsPerMotor}) {
-    MotorHeads heads = BuildMotorHeads(ctx, 2, first);
-    EXPECT_EQ(heads.pairs, static_cast<long long>(all.candidates.size()));
-    EXPECT_EQ(heads.pruned_by, all.pruned_by);
-    CandidateStream stream(ctx, std::move(heads.motors));
+  long long all_bounded = 0;
+  for (std::size_t first : {std::size_t{1}, std::size_t{3}, kFirstBatch}) {
+    CandidateStream stream(ctx, 2, first);
     std::size_t n = 0;
-    for (Candidate c; stream.Next(std::numeric_limits<double>::infinity(), &c); ++n) {
+    for (Candidate c; stream.Next(kInfinity, &c); ++n) {
       ASSERT_LT(n, all.candidates.size());
       EXPECT_TRUE(same(c, all.candidates[n])) << "first " << first << ", pair " << n;
     }
     EXPECT_EQ(n, all.candidates.size());
-    if (first == 1) EXPECT_GT(stream.refills(), 0);
+    std::map<std::string, long long> pruned_by;
+    stream.MergePrunedInto(&pruned_by);
+    EXPECT_EQ(pruned_by, all.pruned_by) << "first " << first;
+    EXPECT_EQ(stream.open_combinations(), 0) << "every pair drawn or removed by a rule";
+    EXPECT_EQ(stream.skipped_without_mass(), all.skipped_without_mass);
+    if (first == 1) EXPECT_GT(stream.batches(), 0);
+    all_bounded = stream.pairs_bounded();
   }
   // A cutoff in the middle of the bounds: the same pairs below it, then one at or above it.
   const double cutoff = all.candidates[all.candidates.size() / 2].bound;
-  CandidateStream cut(ctx, BuildMotorHeads(ctx, 1, 1).motors);
+  CandidateStream cut(ctx, 1, 1);
   std::size_t n = 0;
   Candidate c;
   while (cut.Next(cutoff, &c) && c.bound < cutoff) {
@@ -165,6 +171,44 @@ TEST_F(SearchStagesTest, CandidateStreamDrawsTheSortedCandidateList) {
   }
   ASSERT_LT(n, all.candidates.size());
   EXPECT_GE(all.candidates[n].bound, cutoff);
+  EXPECT_LT(cut.pairs_bounded(), all_bounded) << "R11's keys should leave pairs above the cutoff unbounded";
+}
+
+// R11 against the exact evaluator: for a motor whose drives cannot create energy, the key of
+// (propeller, option) at the motor's mass is at or below the score of every feasible
+// combination with it, over max_endurance and min_energy (compared without tolerance).
+TEST_F(SearchStagesTest, PropellerKeyIsBelowEveryFeasibleScoreOfALossyMotor) {
+  const Catalog cat = SmallCatalog();
+  for (const char* objective : {"max_endurance", "min_energy"}) {
+    Json j = ParseJsonText(kStageQuad, "quad");
+    j["objective"]["type"] = objective;
+    if (std::string(objective) == "min_energy") j["objective"].erase("segment");
+    const Mission m = ParseMission(j, "quad");
+    SearchContext ctx;
+    PrepareStages(m, cat, &ctx);
+    int feasible = 0, finite = 0;
+    for (std::size_t mi = 0; mi < cat.motors().size(); ++mi) {
+      const MotorEntry& mo = cat.motors()[mi];
+      if (!mo.mass_kg) continue;
+      for (std::size_t pi = 0; pi < cat.props().size(); ++pi) {
+        for (std::size_t o = 0; o < ctx.options.size(); ++o) {
+          const double key = PropellerKeyBound(ctx, static_cast<int>(pi), static_cast<int>(o), static_cast<int>(mi));
+          if (std::isfinite(key)) ++finite;
+          for (const EscEntry& e : cat.escs()) {
+            const Combination c{&mo, &e, &cat.props()[pi], ctx.options[o].entry, ctx.options[o].cells};
+            const MotorParams mp = ScenarioMotorParams(mo, m, nullptr, nullptr);
+            if (!DriveIsLossy(mp, e.params.c1, e.params.c0)) continue;
+            const MissionResult r = MissionEvaluator(m, c).Solve();
+            if (!r.feasible) continue;
+            ++feasible;
+            EXPECT_LE(key, r.score) << objective << ": " << mo.id << " " << e.id << " " << c.prop->id;
+          }
+        }
+      }
+    }
+    EXPECT_GT(feasible, 3) << objective;
+    EXPECT_GT(finite, 10) << objective;
+  }
 }
 
 // Stage 4 against the exact evaluator: a pair it removes has no feasible ESC; a pair it keeps

@@ -705,5 +705,36 @@ TEST_F(SearchTest, EverySegmentPointIsReproducedBySimulate) {
   EXPECT_EQ(o["searched"].get<long long>() + o["pruned"].get<long long>(), o["combinations"].get<long long>());
 }
 
+// The answer and every count do not depend on the number of threads, on the bundled catalog and
+// the quadcopter example (its later stage 4 batches are bounded against the threshold of the
+// moment they are drawn, and the rules count what they remove then); the counts add up to the
+// combinations.
+TEST(SearchThreadsTest, TheAnswerAndTheCountsDoNotDependOnTheThreads) {
+  const Catalog cat = Catalog::Load(std::string(DYNOSIZE_SOURCE_DIR) + "/catalog");
+  const Mission m = ReadMission(std::string(DYNOSIZE_SOURCE_DIR) + "/examples/missions/quadcopter_1p5kg.json");
+  SearchResult r[2];
+  for (int t = 0; t < 2; ++t) {
+    SearchOptions o;
+    o.top_n = 3;
+    o.threads = t + 1;
+    r[t] = SearchCatalog(m, cat, o);
+  }
+  ASSERT_EQ(r[0].best.size(), 3u);
+  ASSERT_EQ(r[1].best.size(), 3u);
+  for (std::size_t i = 0; i < 3; ++i) {
+    EXPECT_EQ(r[0].best[i].combination.motor, r[1].best[i].combination.motor) << i;
+    EXPECT_EQ(r[0].best[i].combination.esc, r[1].best[i].combination.esc) << i;
+    EXPECT_EQ(r[0].best[i].combination.prop, r[1].best[i].combination.prop) << i;
+    EXPECT_EQ(r[0].best[i].result.score, r[1].best[i].result.score) << i;
+  }
+  EXPECT_EQ(r[0].pruned_by, r[1].pruned_by);
+  EXPECT_EQ(r[0].searched, r[1].searched);
+  EXPECT_EQ(r[0].candidate_pairs, r[1].candidate_pairs);
+  EXPECT_EQ(r[0].virtual_evaluations, r[1].virtual_evaluations);
+  long long pruned = 0;
+  for (const auto& [rule, n] : r[0].pruned_by) pruned += n;
+  EXPECT_EQ(r[0].searched + pruned, r[0].combinations);
+}
+
 }  // namespace
 }  // namespace dynosize
