@@ -625,13 +625,12 @@ double SegmentPowerLowerBoundW(const SearchContext& ctx, const MissionFacts& f, 
   return t.scales ? t.rotors * pdc_lb + m.vehicle.avionics_power_w : t.constant;
 }
 
-// R4: a lower bound of the score of a (motor, propeller, option) pair with an ESC of class
-// `esc_class`, given the hover bound's per-rotor electrical power pdc_lb at the lightest mass.
-// capacity_hi_ah: the largest capacity the bound covers (0: the option's largest).
-// loads: PairLoads at mass_lb.
+// R4: a lower bound of the score of a (motor, propeller, option) pair with an ESC class whose
+// drive is lossy or not (DriveIsLossy: only then momentum theory bounds the power drawn),
+// given the hover bound's per-rotor electrical power pdc_lb at the lightest mass (R11: a floor
+// of it that holds for a class of motors). loads: PairLoads at that mass.
 double ScoreLowerBound(const SearchContext& ctx, const MissionFacts& f, bool lossy, const PropEntry& prop,
-                       const PropModel& model, std::size_t option, PairLoads* loads, double pdc_lb,
-                       double capacity_hi_ah = 0.0) {
+                       const PropModel& model, std::size_t option, PairLoads* loads, double pdc_lb) {
   const BatteryOption& bo = ctx.options[option];
   const Mission& m = *ctx.mission;
   if (f.hover.empty()) return -kInf;
@@ -669,7 +668,6 @@ double ScoreLowerBound(const SearchContext& ctx, const MissionFacts& f, bool los
   // stage can create energy, momentum theory's N*P_ideal(T, V)/max_figure_of_merit plus the
   // avionics over its duration (the evaluator's prop_figure_of_merit; V the axial inflow with
   // forward-flight tables, else 0, as PropellerPoint judges it; P_ideal rises with the mass).
-  const bool lossy_drive = lossy;
   const bool table_data = model.data_kind() == PropDataKind::kTables && !prop.j_tables.empty();
   auto e_other_of = [&](std::size_t stretch) {
     double e_other = 0;
@@ -677,7 +675,7 @@ double ScoreLowerBound(const SearchContext& ctx, const MissionFacts& f, bool los
       if (si == stretch) continue;
       const Segment& sg = m.segments[si];
       double e_seg = p_lb_of(si) * t_min_of(sg);
-      if (lossy_drive && sg.group == f.free_group && sg.type != SegmentType::kShaft &&
+      if (lossy && sg.group == f.free_group && sg.type != SegmentType::kShaft &&
           !(sg.type == SegmentType::kCruise && sg.airspeed_m_s.free())) {
         e_seg = std::max(e_seg, loads->PerSegment(si, [&]() {
           const double v = sg.type == SegmentType::kCruise ? sg.airspeed_m_s.lo : 0.0;
@@ -693,7 +691,7 @@ double ScoreLowerBound(const SearchContext& ctx, const MissionFacts& f, bool los
     // over [reserve, 1] (coulomb counting): the energy budget.
     const double e_other = e_other_of(static_cast<std::size_t>(m.objective.segment_index));
     const double p_stretch = p_lb_of(static_cast<std::size_t>(m.objective.segment_index));
-    const double e_max = bo.ocv_integral_v * AhToCoulomb(capacity_hi_ah > 0 ? capacity_hi_ah : bo.capacity_hi_ah);
+    const double e_max = bo.ocv_integral_v * AhToCoulomb(bo.capacity_hi_ah);
     return BudgetScore(f.t_fixed_max, e_max, e_other, p_stretch);
   }
   const std::size_t ist = static_cast<std::size_t>(std::max(0, m.objective.segment_index));
@@ -706,11 +704,11 @@ double ScoreLowerBound(const SearchContext& ctx, const MissionFacts& f, bool los
     // evaluator's prop_figure_of_merit; V the axial inflow with forward-flight tables, else 0,
     // as PropellerPoint judges it), at the lightest mass (M3).
     double p_stretch = p_lb_of(ist);
-    if (lossy_drive) {
+    if (lossy) {
       p_stretch = std::max(p_stretch, MomentumPowerW(m, loads->At(ist, false, st.airspeed_m_s.lo), prop.diameter_m, table_data));
     }
     const double e_other = e_other_of(ist);
-    const double e_max = bo.ocv_integral_v * AhToCoulomb(capacity_hi_ah > 0 ? capacity_hi_ah : bo.capacity_hi_ah);
+    const double e_max = bo.ocv_integral_v * AhToCoulomb(bo.capacity_hi_ah);
     return BudgetScore(f.t_fixed_max, e_max, e_other, p_stretch);
   }
   return -kInf;
@@ -1065,6 +1063,7 @@ bool PairCandidate(const SearchContext& ctx, const MissionFacts& f, const MotorS
     if (!has[lossy]) continue;
     bound = std::min(bound, ScoreLowerBound(ctx, f, lossy == 1, prop, *ctx.models[pi], o, loads, pdc_min[lossy]));
   }
+  if (std::isnan(bound)) bound = -kInf;  // no bound (the order needs a number)
   *c = Candidate{bound, s.motor, static_cast<int>(pi), static_cast<int>(o), irms_lb};
   return true;
 }
@@ -1328,7 +1327,7 @@ void ForEachOnThreads(std::size_t n, int threads, const F& fn) {
 
 // R11 (stage 4's order; see the rule at the top of the file). The factor keeps the key a bound
 // under rounding (the floor and the evaluator's powers are each within a few ulps).
-constexpr double kPmechRoundingAllowance = 1.0 - 1e-9;
+constexpr double kKeyRoundingAllowance = 1.0 - 1e-9;
 // The classes: a class runs from its lightest motor up to this factor times that mass
 // (exclusive); its key uses that mass and its members' least loss floors. Measured on the
 // 1.5 kg quadcopter (4.55 M (motor, propeller, option) pairs; pairs bounded, search time):
@@ -1355,7 +1354,7 @@ double PropOnlyBound(const SearchContext& ctx, const MissionFacts& f, std::size_
   const double pac_floor_w =
       omega_lb * q_lb + loss.copper_w_per_nm2 * q_lb * q_lb + loss.no_load_torque_nm * omega_lb;  // physics.h
   const double b = ScoreLowerBound(ctx, f, true, ctx.catalog->props()[pi], *ctx.models[pi], o, loads,
-                                   kPmechRoundingAllowance * pac_floor_w);
+                                   kKeyRoundingAllowance * pac_floor_w);
   return std::isnan(b) ? -kInf : b;
 }
 
@@ -1516,10 +1515,10 @@ struct CandidateStream::Impl {
   };
   struct BatchCounts {
     RuleCounts pruned;
-    long long pruned_combinations = 0, bounded = 0;
+    long long bounded = 0;
   };
 
-  Impl(const SearchContext& c) : ctx(c), f(StageFourFacts(c)), loads(*c.mission) {}
+  explicit Impl(const SearchContext& c) : ctx(c), f(StageFourFacts(c)), loads(*c.mission) {}
   // a's head comes after b's.
   bool After(std::size_t a, std::size_t b) const {
     const Motor& x = motors[a];
@@ -1532,10 +1531,11 @@ struct CandidateStream::Impl {
     return CandidateBefore(y.pending.front(), x.pending.front());
   }
   // Bounds up to n more of m's pairs whose key is below the cutoff (pairs at or above it are
-  // never drawn: they stay open).
-  void Expand(Motor* m, double cutoff, std::size_t n, PairLoads* pair_loads, BatchCounts* tally) const {
+  // never drawn: they stay open). Returns the combinations a rule removed.
+  long long Expand(Motor* m, double cutoff, std::size_t n, PairLoads* pair_loads, BatchCounts* tally) const {
     const std::vector<PropKey>& keys = *m->keys;
     auto first = [](const Candidate& a, const Candidate& b) { return CandidateBefore(b, a); };
+    long long removed = 0;
     for (std::size_t done = 0; m->walk < keys.size() && done < n;) {
       const PropKey& k = keys[m->walk];
       if (!(k.bound < cutoff)) {
@@ -1549,7 +1549,7 @@ struct CandidateStream::Impl {
       ++tally->bounded;
       Candidate c;
       if (!PairCandidate(ctx, f, *m->setup, static_cast<std::size_t>(k.prop), o, pair_loads, &c, &tally->pruned)) {
-        tally->pruned_combinations += ctx.escs.rated[o];
+        removed += ctx.escs.rated[o];
         continue;
       }
       c.bound = std::max(c.bound, k.bound);  // R11 (-inf when it does not apply)
@@ -1557,6 +1557,7 @@ struct CandidateStream::Impl {
       m->pending.push_back(c);
       std::push_heap(m->pending.begin(), m->pending.end(), first);
     }
+    return removed;
   }
 
   const SearchContext& ctx;
@@ -1577,13 +1578,15 @@ CandidateStream::CandidateStream(const SearchContext& ctx, int threads, std::siz
   std::vector<MotorClass> classes;
   const std::vector<int> cls = MotorClasses(Pointers(setups), &classes);
   s.classes.resize(classes.size());
+  std::vector<char> used(classes.size(), 0);
+  for (std::size_t mi = 0; mi < cls.size(); ++mi) {
+    if (setups[mi]) used[static_cast<std::size_t>(cls[mi])] = 1;
+  }
   ForEachOnThreads(s.classes.size(), threads, [&](int, std::size_t c) {
-    const bool lossy = c + 1 < s.classes.size();
-    bool used = false;
-    for (std::size_t mi = 0; mi < cls.size() && !used; ++mi) used = setups[mi] && cls[mi] == static_cast<int>(c);
-    if (used) s.classes[c] = ClassKeys(ctx, s.f, classes[c], lossy);
+    const bool lossy = c + 1 < s.classes.size();  // the last class is the one without R11
+    if (used[c]) s.classes[c] = ClassKeys(ctx, s.f, classes[c], lossy);
   });
-  long long per_option_props = static_cast<long long>(s.f.frame_ok_props.size());
+  const long long per_option_props = static_cast<long long>(s.f.frame_ok_props.size());
   for (std::size_t mi = 0; mi < setups.size(); ++mi) {
     if (!setups[mi]) continue;
     Impl::Motor m;
@@ -1597,18 +1600,17 @@ CandidateStream::CandidateStream(const SearchContext& ctx, int threads, std::siz
   }
   // Each motor's first batch, on the threads.
   std::vector<Impl::BatchCounts> thread_counts(static_cast<std::size_t>(std::max(1, threads)));
+  std::vector<long long> thread_removed(thread_counts.size(), 0);
   ForEachOnThreads(s.motors.size(), threads, [&](int tid, std::size_t i) {
     PairLoads loads(*ctx.mission);
-    s.Expand(&s.motors[i], kInf, s.motors[i].batch, &loads, &thread_counts[tid]);
+    thread_removed[tid] += s.Expand(&s.motors[i], kInf, s.motors[i].batch, &loads, &thread_counts[tid]);
     s.motors[i].batch = std::min(2 * s.motors[i].batch, kMaxBatch);
   });
-  for (const Impl::BatchCounts& c : thread_counts) {
-    c.pruned.MergeInto(&s.counts.pruned);
-    s.counts.pruned_combinations += c.pruned_combinations;
-    s.counts.bounded += c.bounded;
+  for (std::size_t t = 0; t < thread_counts.size(); ++t) {
+    thread_counts[t].pruned.MergeInto(&s.counts.pruned);
+    s.counts.bounded += thread_counts[t].bounded;
+    s.open -= thread_removed[t];
   }
-  s.open -= s.counts.pruned_combinations;
-  s.counts.pruned_combinations = 0;
   for (std::size_t i = 0; i < s.motors.size(); ++i) {
     if (s.motors[i].Live()) s.heap.push_back(i);
   }
@@ -1633,9 +1635,7 @@ bool CandidateStream::Next(double cutoff, Candidate* c) {
       m.pending.pop_back();
       s.open -= s.ctx.escs.rated[static_cast<std::size_t>(c->option)];
     } else {
-      s.Expand(&m, cutoff, m.batch, &s.loads, &s.counts);
-      s.open -= s.counts.pruned_combinations;
-      s.counts.pruned_combinations = 0;
+      s.open -= s.Expand(&m, cutoff, m.batch, &s.loads, &s.counts);
       m.batch = std::min(2 * m.batch, kMaxBatch);
       ++s.batches;
     }
@@ -1726,7 +1726,14 @@ class BranchAndBound {
   // cutoff: only results scoring below it are wanted (the joint search's N-th best, G2).
   BranchAndBound(const SearchContext& ctx, const SearchOptions& opt, CandidateStream* stream, SearchResult* out,
                  double cutoff = kInf)
-      : ctx_(ctx), opt_(opt), stream_(*stream), open_at_start_(stream->open_combinations()), out_(out), relaxed_(*ctx.mission), cutoff_(cutoff), facts_(FactsOf(*ctx.mission, ctx.free_group)) {
+      : ctx_(ctx),
+        opt_(opt),
+        stream_(*stream),
+        open_at_start_(stream->open_combinations()),
+        out_(out),
+        relaxed_(*ctx.mission),
+        cutoff_(cutoff),
+        facts_(FactsOf(*ctx.mission, ctx.free_group)) {
     // The virtual ESC (and so the class check) uses the mission without min_hover_throttle: a
     // real ESC's resistance and mass raise the throttle, so that lower limit is the one
     // constraint the virtual ESC may fail when a real one passes (R5). Relaxing it keeps the

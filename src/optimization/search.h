@@ -20,7 +20,8 @@ namespace dynosize {
 
 // What the search has done so far, for a progress display.
 struct SearchProgress {
-  double fraction = 0.0;      // of the candidate pairs (an upper bound of the work left)
+  double fraction = 0.0;      // of the candidate pairs' combinations settled (drawn or removed); the
+                              // search usually stops well before 1 (an upper bound of the work left)
   long long searched = 0;     // combinations evaluated exactly so far
   long long pruned = 0;       // combinations removed by a rule so far
   bool has_best = false;

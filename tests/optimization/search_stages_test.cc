@@ -39,6 +39,14 @@ const char* kStageQuad = R"({
   ]
 })";
 
+// The stage quad with objective "max_endurance" (of its loiter) or "min_energy".
+Mission StageQuadFor(const std::string& objective) {
+  Json j = ParseJsonText(kStageQuad, "quad");
+  j["objective"]["type"] = objective;
+  if (objective == "min_energy") j["objective"].erase("segment");
+  return ParseMission(j, "quad");
+}
+
 class SearchStagesTest : public ::testing::Test {
  protected:
   static void SetUpTestSuite() { dir_ = testing_util::WriteSmallCatalog("stages"); }
@@ -180,10 +188,7 @@ TEST_F(SearchStagesTest, CandidateStreamDrawsTheSortedCandidateList) {
 TEST_F(SearchStagesTest, PropellerKeyIsBelowEveryFeasibleScoreOfALossyMotor) {
   const Catalog cat = SmallCatalog();
   for (const char* objective : {"max_endurance", "min_energy"}) {
-    Json j = ParseJsonText(kStageQuad, "quad");
-    j["objective"]["type"] = objective;
-    if (std::string(objective) == "min_energy") j["objective"].erase("segment");
-    const Mission m = ParseMission(j, "quad");
+    const Mission m = StageQuadFor(objective);
     SearchContext ctx;
     PrepareStages(m, cat, &ctx);
     int feasible = 0, finite = 0;
@@ -257,11 +262,8 @@ int ExpectOnlyInfeasiblePairsRemoved(const Catalog& cat, const Mission& m, std::
 TEST_F(SearchStagesTest, CandidatesRemoveOnlyInfeasiblePairsAndBoundTheScore) {
   const Catalog cat = SmallCatalog();
   for (const char* objective : {"max_endurance", "min_energy"}) {
-    Json j = ParseJsonText(kStageQuad, "quad");
-    j["objective"]["type"] = objective;
-    if (std::string(objective) == "min_energy") j["objective"].erase("segment");
     std::map<std::string, long long> pruned_by;
-    EXPECT_GT(ExpectOnlyInfeasiblePairsRemoved(cat, ParseMission(j, "quad"), &pruned_by), 0) << objective;
+    EXPECT_GT(ExpectOnlyInfeasiblePairsRemoved(cat, StageQuadFor(objective), &pruned_by), 0) << objective;
   }
 }
 
