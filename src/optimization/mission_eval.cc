@@ -861,9 +861,11 @@ double MissionEvaluator::EnduranceUpperBound(double target_s, double from_ah, do
   // airspeed): over capacities C in a piece [C_a, C_b] of the range,
   //   t_total(C) <= t_fixed_max + Q(C_b)*integral of OCV over [reserve, 1] / P_stretch(C_a)
   // because more capacity means more mass and so no less power in every segment (M3 of
-  // search.cc), and the terminal energy is at most the OCV-weighted charge above the reserve
-  // (the power P_stretch does not fall as the voltage sags: exact for C0 = 0, eq 59).
-  // P_stretch(C_a) is the terminal power at the start of the stretch, from one Run.
+  // search.cc), and the terminal energy is at most the OCV-weighted charge above the reserve.
+  // P_stretch(C_a) is the terminal power at the start of the stretch, from one Run, less the
+  // part of it that may fall as the voltage sags (voltage_dependent_w below: with C0 > 0 or
+  // a supply resistance, eqs 57, 59), so that it is the least power over the stretch and over
+  // the larger capacities.
   // When the ESC has C0 = 0 and no supply resistance, every segment's terminal power
   // N*PDC + P_avionics = N*C1*U*Irms/kv + P_avionics (eqs 48, 57, 59) does not depend on the
   // voltage, so the other segments' energy at C_a, E_other(C_a), is a lower bound of theirs at
@@ -912,6 +914,21 @@ double MissionEvaluator::EnduranceUpperBound(double target_s, double from_ah, do
   DischargeOptions dopt;
   if (m_.battery.cutoff_cell_v) dopt.cutoff_cell_v = *m_.battery.cutoff_cell_v;
   const double v_cut = pack_lo.cutoff_v(dopt);
+  // The part of one rotor's PDC at the stretch's start point that may fall as the pack sags or
+  // with a larger, stiffer pack. The stretch holds one (torque, speed), so U and Irms are fixed
+  // (eqs 42, 48), and PDC = VDC*(C1*TR_eff + C0)*I with U = kv*(VDC - rsupply*IDC)*TR_eff
+  // (eqs 47, 57, 59, section 9) is C1*U*I/kv + C1*TR_eff*rsupply*IDC*I + C0*VDC*I: the first
+  // term is fixed (and rises with the mass, M3), the second is left out, the third is counted
+  // at the cut-off (every checked point has VDC >= v_cut, battery_cutoff). 0 for C0 = 0 and no
+  // supply resistance, where the start power is the least.
+  const EscParams& stretch_esc = stretch_drive.drive.esc();
+  auto voltage_dependent_w = [&](const OperatingPoint& op) {
+    double w = stretch_esc.c0 * op.irms_a * std::max(0.0, op.vdc_v - v_cut);
+    if (stretch_esc.rsupply_ohm != 0.0) {
+      w += stretch_esc.c1 * op.throttle_effective * stretch_esc.rsupply_ohm * op.idc_a * op.irms_a;
+    }
+    return w;
+  };
   struct Piece {
     double ca, cb, p_ca, e_other_ca, e_before_ca = 0;
     double torque_nm = 0, omega_rad_s = 0;  // the stretch's point at C_a
@@ -936,7 +953,7 @@ double MissionEvaluator::EnduranceUpperBound(double target_s, double from_ah, do
     }
     if (r.segments.size() <= static_cast<std::size_t>(m_.objective.segment_index)) return pc;
     const SegmentResult& s = r.segments[m_.objective.segment_index];
-    const double p = s.battery_current_start_a * s.vdc_max_v;
+    const double p = s.battery_current_start_a * s.vdc_max_v - s.rotors * voltage_dependent_w(s.point);
     pc.p_ca = p > 0 ? p : 0.0;
     if (energy_fixed && r.segments.size() == m_.segments.size()) {
       for (const SegmentResult& x : r.segments) pc.e_other_ca += x.energy_j;  // the stretch: 0 s

@@ -410,6 +410,42 @@ TEST_F(SearchTest, EarlyExitsNeverCutOffAFeasibleScore) {
   }
 }
 
+// The same with an ESC whose DC current has a large part proportional to the phase current
+// alone (C0 = 0.6, C1 = 0.6: PDC = C1*U*I/kv + C0*VDC*I, eqs 57, 59), whose power falls as the
+// pack's voltage sags: the evaluator's endurance bound must not take the stretch's power at
+// its start for its least, with a fixed capacity and with a range.
+TEST_F(SearchTest, EarlyExitsHoldWhenTheEscPowerFallsWithTheVoltage) {
+  const Catalog cat = Catalog::Load((dir_ / "catalog").string());
+  EscEntry esc = cat.esc("dc_e_56");
+  esc.id = "c0_heavy";
+  esc.params.c1 = 0.6;
+  esc.params.c0 = 0.6;
+  for (const bool capacity_range : {false, true}) {
+    Json j = ParseJsonText(kQuad, "quad");
+    if (capacity_range) j["battery"]["capacity_ah"] = {2.0, 6.0};
+    // The hover alone: no other segment's energy hides the stretch's own (the bound is tight).
+    j["segments"] = Json::parse(R"([{"name": "loiter", "type": "hover", "duration_s": 60}])");
+    const Mission m = ParseMission(j, "quad");
+    int checked = 0;
+    for (const auto& mo : cat.motors()) {
+      if (!mo.mass_kg) continue;
+      for (const auto& p : cat.props()) {
+        for (int cells : {3, 4}) {
+          const Combination c{&mo, &esc, &p, &cat.battery("dc_b_361"), cells};
+          const MissionResult full = MissionEvaluator(m, c).Solve();
+          if (!full.feasible) continue;
+          const double cutoff = full.score + 1e-6 * std::fabs(full.score);
+          const MissionResult cut = MissionEvaluator(m, c).Solve(cutoff);
+          EXPECT_FALSE(cut.bounded_out) << Name(c) << (capacity_range ? " (capacity range)" : "");
+          EXPECT_EQ(cut.score, full.score) << Name(c);
+          ++checked;
+        }
+      }
+    }
+    EXPECT_GE(checked, 3) << "capacity range " << capacity_range;
+  }
+}
+
 // Solve's decide (the virtual ESC's question, R5: does the score beat the cutoff?) gives the
 // same answer as the full solve at cutoffs on both sides of the true score, with the stretch
 // alone free, with a capacity range, and with a free cruise airspeed; a "yes" comes with a
