@@ -1833,7 +1833,7 @@ void BranchAndBound::Process(const Candidate& cand, std::vector<double> top, Out
     c.groups[ctx_.free_group].motor = c.motor;
     c.groups[ctx_.free_group].prop = c.prop;
   }
-  const MotorParams mp = ScenarioMotorParams(*c.motor, m, nullptr, nullptr);  // as MotorCandidates (R9)
+  const MotorParams mp = ScenarioMotorParams(*c.motor, m, nullptr, nullptr);  // as MotorSetUp (R9)
   auto set_esc = [&](Combination* x, const EscEntry* e) {
     x->esc = e;
     if (!x->groups.empty()) x->groups[ctx_.free_group].esc = e;
