@@ -6,6 +6,7 @@
 #include <utility>
 
 #include "catalog/catalog.h"
+#include "catalog/in_system.h"
 #include "catalog/prop_credibility.h"
 #include "catalog/schema.h"
 #include "commands.h"
@@ -183,6 +184,27 @@ int RunCatalogShow(const std::string& catalog_dir, const std::string& id) {
     si["kt_over_ke_ideal"] = m.params.type == MotorType::kBldc ? kPacPerVllIrms : 1.0;
     si["file"] = m.file;
     out["derived"] = si;
+    // The in-system law (catalog/in_system.h): the file's numbers and the ones every command uses.
+    if (m.datasheet_params) {
+      const InSystemApplicability a = InSystemApplicabilityOf(m);
+      const MotorParams& raw = *m.datasheet_params;
+      Json law;
+      law["law"] = {{"tier", TierName(m.tier)}, {"fitted_on", a.law->fitted_on}, {"motors", a.law->motors},
+                    {"r_scale", a.law->r_scale}, {"r_add_ohm", a.law->r_add_ohm},
+                    {"io_scale", a.law->io_scale}, {"io_speed", a.law->io_speed},
+                    {"doc", "docs/in-system-law.md"}};
+      law["applied_to"] = Json::array();
+      if (a.r) law["applied_to"].push_back("rm_ohm");
+      if (a.io) law["applied_to"].push_back("io_a");
+      law["datasheet"] = {{"rm_ohm", raw.rm_ohm}, {"io_a", raw.io_a}, {"io1_a_s_per_rad", raw.io1_a_s_per_rad}};
+      law["in_system"] = {{"rm_ohm", m.params.rm_ohm}, {"io_a", m.params.io_a},
+                          {"io1_a_s_per_rad", m.params.io1_a_s_per_rad}};
+      // One motor's scatter about the law, p10-p90 (the ranges of simulate, evaluate, optimize).
+      const MotorParams lo = InSystemSpreadParams(m, false);
+      const MotorParams hi = InSystemSpreadParams(m, true);
+      law["in_system_p10_p90"] = {{"rm_ohm", {lo.rm_ohm, hi.rm_ohm}}, {"io_a", {lo.io_a, hi.io_a}}};
+      out["in_system"] = law;
+    }
   }
   for (const auto& e : cat.escs()) {
     if (e.id != id) continue;

@@ -68,6 +68,17 @@ int RunCatalogShow(const std::string& catalog_dir, const std::string& id);
 int RunCatalogValidate(const std::string& dir, bool json);
 int RunCatalogSchema(bool json);
 
+// `dynosize catalog in-system-law --shared DIR`: the in-system law of catalog/in_system.h fitted
+// on the KDE sheets and DriveCalc's refits (the catalog's drivecalc.json and
+// drivecalc_fitted.json), checked by leaving each motor out: a Markdown report, or with
+// --constants the coefficients as catalog/in_system.cc holds them.
+struct InSystemLawOptions {
+  std::string catalog_dir;
+  std::string shared_data_dir;
+  bool constants = false;
+};
+int RunInSystemLaw(const InSystemLawOptions& o);
+
 struct CalibrateOptions {
   std::string catalog_dir;
   std::vector<std::string> logs;

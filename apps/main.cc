@@ -142,6 +142,8 @@ struct CatalogCli {
   CLI::App* validate_cmd = nullptr;
   CLI::App* import_cmd = nullptr;
   CLI::App* schema_cmd = nullptr;
+  cli::InSystemLawOptions law_opts;
+  CLI::App* law_cmd = nullptr;
 };
 
 void AddCatalogCommands(CLI::App& app, CatalogCli& c) {
@@ -168,6 +170,13 @@ void AddCatalogCommands(CLI::App& app, CatalogCli& c) {
       ->required();
   c.import_cmd->add_option("--out", c.import_opts.out_dir, "catalog folder to write")->required();
   c.import_cmd->add_flag("--json", c.import_opts.json, "print the import report as JSON");
+  c.law_cmd = catalog->add_subcommand(
+      "in-system-law",
+      "fit the law that turns datasheet motor values into in-system ones on measured data, check it "
+      "by leaving each motor out, and print the report (docs/in-system-law.md)");
+  c.law_cmd->add_option("--shared", c.law_opts.shared_data_dir, "the shared data folder (../shared/data)")->required();
+  c.law_cmd->add_flag("--constants", c.law_opts.constants,
+                      "print the fitted coefficients as catalog/in_system.cc holds them instead of the report");
   c.schema_cmd = catalog->add_subcommand("schema", "print every catalog key with its unit and rule");
   c.schema_cmd->add_flag("--json", c.schema_json, "print the schema as JSON");
 }
@@ -347,6 +356,10 @@ int main(int argc, char** argv) {
     if (*cat.validate_cmd) return cli::RunCatalogValidate(cat.validate_dir.empty() ? dir : cat.validate_dir, cat.validate_json);
     if (*cat.schema_cmd) return cli::RunCatalogSchema(cat.schema_json);
     if (*cat.import_cmd) return cli::RunCatalogImport(cat.import_opts);
+    if (*cat.law_cmd) {
+      cat.law_opts.catalog_dir = dir;
+      return cli::RunInSystemLaw(cat.law_opts);
+    }
   } catch (const dynosize::Error& e) {
     return Fail(e.code(), e.what());
   } catch (const std::exception& e) {

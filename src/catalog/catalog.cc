@@ -6,6 +6,7 @@
 #include <set>
 #include <sstream>
 
+#include "catalog/in_system.h"
 #include "catalog/prop_credibility.h"
 #include "catalog/schema.h"
 #include "common/error.h"
@@ -491,6 +492,13 @@ std::string Catalog::AddEntry(ComponentKind kind, const Json& e, EntryBase base)
       }
       const std::string v = MotorEnergyViolation(p);
       if (!v.empty()) return "creates energy: " + v;
+      if (in_system_law_) {
+        const InSystemApplicability a = InSystemApplicabilityOf(m);
+        if (a.any()) {
+          m.datasheet_params = p;
+          p = InSystemMotorParams(p, a.datasheet, *a.law, a.r, a.io);
+        }
+      }
       index_[id] = {kind, motors_.size()};
       motors_.push_back(std::move(m));
       break;
@@ -700,8 +708,9 @@ std::vector<std::string> Catalog::Validate(const std::string& dir) {
   return problems;
 }
 
-Catalog Catalog::Load(const std::string& dir) {
+Catalog Catalog::Load(const std::string& dir, bool in_system_law) {
   Catalog catalog;
+  catalog.in_system_law_ = in_system_law;
   std::vector<std::string> problems;
   const auto files = CatalogFiles(dir);
   if (files.empty()) throw DataError(dir + ": the catalog folder holds no .json file");

@@ -84,6 +84,9 @@ struct MotorEntry : EntryBase {
   // loss_torque_per_omega_nm_s_per_rad*omega)/kt; absent for other data sets.
   std::optional<double> loss_torque_nm;
   std::optional<double> loss_torque_per_omega_nm_s_per_rad;
+  // The entry's own numbers when the in-system law (catalog/in_system.h) replaced params' rm_ohm,
+  // io_a or io1 by the values the motor shows in a system; empty when params are the file's.
+  std::optional<MotorParams> datasheet_params;
 };
 
 struct EscEntry : EntryBase {
@@ -164,7 +167,10 @@ class Catalog {
   // Reads every *.json below `dir` (sorted by path, so the result is deterministic). Throws
   // NoInputError when the folder is missing, DataError listing the problems (the first 20, and
   // how many more) when any file breaks a rule.
-  static Catalog Load(const std::string& dir);
+  // Motors whose resistance or no-load current is a datasheet value get the in-system law's
+  // values (catalog/in_system.h; MotorEntry::datasheet_params keeps the file's) unless
+  // `in_system_law` is false.
+  static Catalog Load(const std::string& dir, bool in_system_law = true);
 
   // Every problem in the folder, one line each ("file: motors[3] id=x: key 'rm_ohm' = -1: must
   // be > 0"); empty when the catalog is valid. Throws NoInputError when the folder is missing.
@@ -197,6 +203,7 @@ class Catalog {
   const Entry& Find(const std::vector<Entry>& entries, ComponentKind kind,
                     const std::string& id) const;
 
+  bool in_system_law_ = false;  // Load's choice; AddDocument alone keeps the file's numbers
   std::vector<MotorEntry> motors_;
   std::vector<EscEntry> escs_;
   std::vector<PropEntry> props_;

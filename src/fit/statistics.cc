@@ -68,6 +68,15 @@ double MedianAbs(std::vector<double> v) {
   return Median(std::move(v));
 }
 
+double Quantile(std::vector<double> v, double q) {
+  if (v.empty()) return std::numeric_limits<double>::quiet_NaN();
+  std::sort(v.begin(), v.end());
+  const double pos = std::clamp(q, 0.0, 1.0) * static_cast<double>(v.size() - 1);
+  const std::size_t lo = static_cast<std::size_t>(std::floor(pos));
+  const std::size_t hi = std::min(lo + 1, v.size() - 1);
+  return v[lo] + (pos - static_cast<double>(lo)) * (v[hi] - v[lo]);
+}
+
 double Aicc(double sse, int n, int p) {
   const double nn = n, pp = p;
   const double base = nn * std::log(std::max(sse, 1e-300) / nn) + 2.0 * pp;

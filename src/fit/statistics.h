@@ -20,3 +20,11 @@ double Aicc(double sse, int n, int p);
 double FDistributionUpperTail(double f, double d1, double d2);
 
 }  // namespace dynosize::fit
+
+namespace dynosize::fit {
+
+// The q-quantile (0 <= q <= 1) of the values by linear interpolation between order statistics
+// (Hyndman & Fan type 7: position q*(n-1)); NaN when empty.
+double Quantile(std::vector<double> v, double q);
+
+}  // namespace dynosize::fit

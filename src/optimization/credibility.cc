@@ -1,5 +1,7 @@
 #include "optimization/credibility.h"
 
+#include "catalog/in_system.h"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -7,6 +9,7 @@
 
 #include "catalog/conventions.h"
 #include "catalog/esc_prior.h"
+#include "catalog/in_system.h"
 #include "catalog/prop_credibility.h"
 #include "common/units.h"
 #include "model/physics.h"
@@ -139,11 +142,20 @@ MotorParams ScenarioMotorParams(const MotorEntry& motor, const Mission& m, bool*
   if (excluded) *excluded = !estimate && (unrated || catalog_estimate);
   const DataScenario s = m.objective.ranking;
   if (s == DataScenario::kPessimistic || s == DataScenario::kOptimistic) {
+    const bool up = s == DataScenario::kPessimistic;
+    // Values the in-system law gave: one motor's p10/p90 scatter about the law (in_system.h,
+    // fitted on measured systems); the others: the tier's band.
+    bool r_law = false, io_law = false;
+    const MotorParams spread = InSystemSpreadParams(motor, up, &r_law, &io_law);
     const double br = 1.0 + ValueBand(ValueTier(motor, "rm_ohm"));
     const double bi = 1.0 + ValueBand(ValueTier(motor, "io_a"));
-    const bool up = s == DataScenario::kPessimistic;
-    p.rm_ohm = up ? p.rm_ohm * br : p.rm_ohm / br;
-    p.io_a = up ? p.io_a * bi : p.io_a / bi;
+    p.rm_ohm = r_law ? spread.rm_ohm : (up ? p.rm_ohm * br : p.rm_ohm / br);
+    if (io_law) {
+      p.io_a = spread.io_a;
+      p.io1_a_s_per_rad = spread.io1_a_s_per_rad;
+    } else {
+      p.io_a = up ? p.io_a * bi : p.io_a / bi;
+    }
   }
   return p;
 }

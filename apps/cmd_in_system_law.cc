@@ -1,0 +1,164 @@
+// `dynosize catalog in-system-law`: fits the in-system law (catalog/in_system.h) on the measured
+// data and prints the report of docs/in-system-law.md (scripts/validation_in_system.sh).
+#include <cmath>
+#include <cstdio>
+#include <iostream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "apps/commands.h"
+#include "catalog/catalog.h"
+#include "catalog/conventions.h"
+#include "common/error.h"
+#include "common/units.h"
+#include "importers/kde_sheets.h"
+#include "stand/in_system_fit.h"
+
+namespace dynosize::cli {
+
+namespace {
+
+std::string Pct(double x) {
+  char b[32];
+  std::snprintf(b, sizeof b, "%.1f %%", 100.0 * x);
+  return b;
+}
+std::string Fix(double x, int d) {
+  char b[32];
+  std::snprintf(b, sizeof b, "%.*f", d, x);
+  return b;
+}
+
+std::vector<stand::LawMotor> KdeLawMotors(const std::string& dir) {
+  std::vector<stand::LawMotor> out;
+  for (const auto& k : ReadKdeSheets(dir)) {
+    if (!k.has_torque()) continue;
+    stand::LawMotor m;
+    m.name = k.name;
+    m.datasheet = {k.kv_rpm_per_v, k.r_dc_ohm, k.io_dc_a, k.io_test_voltage_v};
+    for (const auto& r : k.rows) {
+      m.points.push_back({r.vdc_v, r.throttle, r.idc_a, r.rpm * kRadPerSecPerRpm, r.torque_nm, r.block});
+    }
+    out.push_back(std::move(m));
+  }
+  return out;
+}
+
+// DriveCalc's database motors beside their refits (drivecalc.json "dc_m_N", drivecalc_fitted.json
+// "dc_m_N_fit"), both as the files state them (no law applied).
+std::vector<stand::RefitPair> DriveCalcPairs(const Catalog& raw) {
+  std::vector<stand::RefitPair> out;
+  for (const auto& fit : raw.motors()) {
+    const std::string suffix = "_fit";
+    if (fit.id.size() <= suffix.size() || fit.id.compare(fit.id.size() - suffix.size(), suffix.size(), suffix) != 0) continue;
+    const std::string base = fit.id.substr(0, fit.id.size() - suffix.size());
+    const MotorEntry* db = nullptr;
+    for (const auto& m : raw.motors()) {
+      if (m.id == base) db = &m;
+    }
+    if (db == nullptr || db->params.type != MotorType::kBldc) continue;
+    const InSystemApplicability a = InSystemApplicabilityOf(*db);
+    if (!a.r || !a.io) continue;
+    out.push_back({base, a.datasheet.r_dc_ohm, a.datasheet.io_dc_a, fit.params.rm_ohm / kRmsPerDcResistance,
+                   fit.params.io_a * kIdealIdcPerIrmsPerThrottle});
+  }
+  return out;
+}
+
+std::string CatalogIdsOf(const Catalog& raw, const std::string& name) {
+  std::string ids;
+  for (const auto& m : raw.motors()) {
+    if (m.name == name) ids += (ids.empty() ? "" : ", ") + m.id;
+  }
+  return ids.empty() ? "-" : ids;
+}
+
+void PrintLawConstants(const char* name, const InSystemLaw& l) {
+  std::printf("constexpr InSystemLaw %s{\n    /*r_scale=*/%.4g, /*r_add_ohm=*/%.4g, /*io_scale=*/%.4g, /*io_speed=*/%.4g,\n"
+              "    /*r_ratio_p10=*/%.4g, /*r_ratio_p90=*/%.4g, /*io_ratio_p10=*/%.4g, /*io_ratio_p90=*/%.4g,\n"
+              "    /*motors=*/%d, ...};\n",
+              name, l.r_scale, l.r_add_ohm, l.io_scale, l.io_speed, l.r_ratio_p10, l.r_ratio_p90, l.io_ratio_p10,
+              l.io_ratio_p90, l.motors);
+}
+
+std::string LawText(const InSystemLaw& l) {
+  return "R_dc,sys = " + Fix(l.r_scale, 3) + "*R_dc + " + Fix(1e3 * l.r_add_ohm, 1) + " mOhm; Io_dc,sys = Io_dc*(" +
+         Fix(l.io_scale, 3) + (l.io_speed != 0.0 ? " + " + Fix(l.io_speed, 3) + "*omega/omega_test" : std::string()) +
+         "); one motor's R within x" + Fix(l.r_ratio_p10, 2) + "-" + Fix(l.r_ratio_p90, 2) + ", Io within x" +
+         Fix(l.io_ratio_p10, 2) + "-" + Fix(l.io_ratio_p90, 2) + " (p10-p90)";
+}
+
+void PrintMotorTable(const stand::LawReport& r, const Catalog& raw) {
+  std::cout << "| motor | catalog entry | points | sweeps | plain DC, datasheet values: IDC error / bias | "
+               "in-system law: IDC error / bias | p10-p90 coverage | rpm forward (offset prior) | "
+               "own R, Io over the law |\n|---|---|---|---|---|---|---|---|---|\n";
+  for (const auto& c : r.left_out) {
+    std::cout << "| " << c.name << " | " << CatalogIdsOf(raw, c.name) << " | " << c.points << " | " << c.sweeps
+              << " | " << Pct(c.datasheet_error) << " / " << Pct(c.datasheet_bias) << " | " << Pct(c.law_error)
+              << " / " << Pct(c.law_bias) << " | " << Pct(c.coverage) << " | " << Pct(c.rpm_error_forward)
+              << " (dead band " << Fix(c.deadband_prior, 3) << ") | x" << Fix(c.own.r_ratio, 2) << ", x"
+              << Fix(c.own.io_ratio, 2) << " |\n";
+  }
+  std::cout << "| **all** | | " << r.points << " | " << r.sweeps << " | **" << Pct(r.datasheet_error) << " / "
+            << Pct(r.datasheet_bias) << "** | **" << Pct(r.law_error) << " / " << Pct(r.law_bias) << "** | **"
+            << Pct(r.coverage) << "** | **" << Pct(r.rpm_error_forward) << "** | |\n\n";
+}
+
+}  // namespace
+
+int RunInSystemLaw(const InSystemLawOptions& o) {
+  const std::vector<stand::LawMotor> kde = KdeLawMotors(o.shared_data_dir + "/kde_direct_mfr_sheets");
+  const Catalog raw = Catalog::Load(o.catalog_dir, /*in_system_law=*/false);
+  const std::vector<stand::LawForm> forms = {{true, false}, {false, false}, {true, true}};
+  std::vector<stand::LawReport> reports;
+  std::size_t best = 0;
+  for (const auto& f : forms) {
+    reports.push_back(stand::LeaveOneMotorOut(kde, f));
+    // The held-out current and speed errors together choose the form (both are sizing numbers).
+    const auto score = [](const stand::LawReport& r) { return r.law_error + r.rpm_error_forward; };
+    if (score(reports.back()) < score(reports[best])) best = reports.size() - 1;
+  }
+  stand::RefitLawCheck dc_check;
+  const InSystemLaw dc_law = stand::FitLawFromRefits(DriveCalcPairs(raw), &dc_check);
+  const stand::LawReport& chosen = reports[best];
+  if (o.constants) {
+    PrintLawConstants("kManufacturerStatedLaw", chosen.law);
+    PrintLawConstants("kUserContributedLaw", dc_law);
+    std::printf("constexpr ThrottleOffsetPrior kKdeEscPrior{%.4g, %.4g, %.4g, %d, ...};\n",
+                chosen.throttle.deadband_p10, chosen.throttle.deadband_p50, chosen.throttle.deadband_p90,
+                chosen.throttle.motors);
+    return 0;
+  }
+  std::cout << "## KDE Direct stand sheets: the law by leaving each motor out\n\n"
+            << kde.size() << " motors with measured torque (of 11: KDE2315XF-965 and KDE7208XF-135 have none). "
+            << "Each row: the law fitted on the other motors predicts this motor's DC current at the measured "
+               "speed and torque from its datasheet values (ideal ESC, eq 56); error = median over the sweeps "
+               "of the median |IDC_pred/IDC_meas - 1|, bias the same signed. The plain DC model with the "
+               "datasheet values is the same machine as dynosize's rms model with the same numbers "
+               "(catalog/conventions.h 1.), so its column is both. Coverage: share of the motor's points inside "
+               "the p10-p90 range built from the other motors' scatter about the law. rpm forward: from the "
+               "command at the measured torque, with the dead band prior of the other motors.\n\n"
+            << "| law form | fitted on all 9 | IDC error | IDC bias | coverage | rpm forward |\n|---|---|---|---|---|---|\n";
+  for (const auto& r : reports) {
+    std::cout << "| " << r.form.Describe() << " | " << LawText(r.law) << " | " << Pct(r.law_error) << " | "
+              << Pct(r.law_bias) << " | " << Pct(r.coverage) << " | " << Pct(r.rpm_error_forward) << " |\n";
+  }
+  std::cout << "\nThe form with the smallest held-out current + speed error is the catalog's law for manufacturer-stated entries: **"
+            << chosen.form.Describe() << "**.\n\n";
+  PrintMotorTable(chosen, raw);
+  std::cout << "Throttle offset of the sheets' ESC (KDE-UAS125UVC), dead band fitted per motor: p10 "
+            << Fix(chosen.throttle.deadband_p10, 3) << ", median " << Fix(chosen.throttle.deadband_p50, 3)
+            << ", p90 " << Fix(chosen.throttle.deadband_p90, 3) << " (negative: voltage at zero command).\n\n";
+  std::cout << "## DriveCalc: database values against refits of DriveCalc's own measurements\n\n"
+            << dc_check.pairs << " motors (user_contributed) with R and Io in the database and a refit in "
+            << "catalog/drivecalc_fitted.json (full-throttle points through an ESC and its wiring). Law: "
+            << LawText(dc_law) << ". Held out (10 folds): median |R_pred/R_refit - 1| "
+            << Pct(dc_check.r_error_law) << " (bias " << Pct(dc_check.r_bias_law) << ") against "
+            << Pct(dc_check.r_error_datasheet) << " (bias " << Pct(dc_check.r_bias_datasheet)
+            << ") with the database R; p10-p90 coverage R " << Pct(dc_check.coverage_r) << ", Io "
+            << Pct(dc_check.coverage_io) << ".\n";
+  return 0;
+}
+
+}  // namespace dynosize::cli
