@@ -189,7 +189,7 @@ int RunCatalogShow(const std::string& catalog_dir, const std::string& id) {
       const InSystemApplicability a = InSystemApplicabilityOf(m);
       const MotorParams& raw = *m.datasheet_params;
       Json law;
-      law["law"] = {{"tier", TierName(m.tier)}, {"fitted_on", a.law->fitted_on}, {"motors", a.law->motors},
+      law["law"] = {{"tier", TierName(m.tier)}, {"kind", a.law == &KdeDatasheetLaw() ? "KDE Direct datasheets" : "DriveCalc database"}, {"fitted_on", a.law->fitted_on}, {"motors", a.law->motors},
                     {"r_scale", a.law->r_scale}, {"r_add_ohm", a.law->r_add_ohm},
                     {"io_scale", a.law->io_scale}, {"io_speed", a.law->io_speed},
                     {"doc", "docs/in-system-law.md"}};

@@ -1,5 +1,6 @@
 // `dynosize catalog in-system-law`: fits the in-system law (catalog/in_system.h) on the measured
 // data and prints the report of docs/in-system-law.md (scripts/validation_in_system.sh).
+#include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <iostream>
@@ -66,6 +67,40 @@ std::vector<stand::RefitPair> DriveCalcPairs(const Catalog& raw) {
   return out;
 }
 
+// Lower-case letters and digits only, "goldline" dropped (FAST-UAV writes "AXI 2814/20 GOLD LINE",
+// DriveCalc "AXI 2814-20").
+std::string NameKey(const std::string& name) {
+  std::string k;
+  for (char ch : name) {
+    if (std::isalnum(static_cast<unsigned char>(ch))) k += static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
+  }
+  const auto g = k.find("goldline");
+  if (g != std::string::npos) k.erase(g, 8);
+  return k;
+}
+
+// Manufacturer-stated motors of another maker than KDE (FAST-UAV's datasheet copies) that
+// DriveCalc measured: the same name (NameKey equal, or contained in DriveCalc's) and Kv within 5 %.
+std::vector<stand::RefitPair> ManufacturerPairs(const Catalog& raw, const std::vector<stand::RefitPair>& drivecalc) {
+  std::vector<stand::RefitPair> out;
+  for (const auto& m : raw.motors()) {
+    if (m.tier != DataTier::kManufacturerStated || IsKdeDirectName(m.name) || !m.kv_rpm_per_v) continue;
+    const InSystemApplicability a = InSystemApplicabilityOf(m);
+    if (!a.r || !a.io) continue;
+    const std::string key = NameKey(m.name);
+    if (key.size() < 6) continue;
+    for (const auto& d : drivecalc) {
+      const MotorEntry& db = raw.motor(d.id);
+      if (!db.kv_rpm_per_v || std::fabs(*db.kv_rpm_per_v / *m.kv_rpm_per_v - 1.0) > 0.05) continue;
+      const std::string dk = NameKey(db.name);
+      if (dk != key && dk.find(key) == std::string::npos) continue;
+      out.push_back({m.id, a.datasheet.r_dc_ohm, a.datasheet.io_dc_a, d.r_dc_refit_ohm, d.io_dc_refit_a});
+      break;
+    }
+  }
+  return out;
+}
+
 std::string CatalogIdsOf(const Catalog& raw, const std::string& name) {
   std::string ids;
   for (const auto& m : raw.motors()) {
@@ -110,7 +145,7 @@ void PrintMotorTable(const stand::LawReport& r, const Catalog& raw) {
 int RunInSystemLaw(const InSystemLawOptions& o) {
   const std::vector<stand::LawMotor> kde = KdeLawMotors(o.shared_data_dir + "/kde_direct_mfr_sheets");
   const Catalog raw = Catalog::Load(o.catalog_dir, /*in_system_law=*/false);
-  const std::vector<stand::LawForm> forms = {{true, false}, {false, false}, {true, true}};
+  const std::vector<stand::LawForm> forms = {{true, false}, {false, false}, {false, true}, {true, true}};
   std::vector<stand::LawReport> reports;
   std::size_t best = 0;
   for (const auto& f : forms) {
@@ -122,6 +157,7 @@ int RunInSystemLaw(const InSystemLawOptions& o) {
   stand::RefitLawCheck dc_check;
   const InSystemLaw dc_law = stand::FitLawFromRefits(DriveCalcPairs(raw), &dc_check);
   const stand::LawReport& chosen = reports[best];
+  const std::vector<stand::RefitPair> makers = ManufacturerPairs(raw, DriveCalcPairs(raw));
   if (o.constants) {
     PrintLawConstants("kManufacturerStatedLaw", chosen.law);
     PrintLawConstants("kUserContributedLaw", dc_law);
@@ -150,6 +186,23 @@ int RunInSystemLaw(const InSystemLawOptions& o) {
   std::cout << "Throttle offset of the sheets' ESC (KDE-UAS125UVC), dead band fitted per motor: p10 "
             << Fix(chosen.throttle.deadband_p10, 3) << ", median " << Fix(chosen.throttle.deadband_p50, 3)
             << ", p90 " << Fix(chosen.throttle.deadband_p90, 3) << " (negative: voltage at zero command).\n\n";
+  std::cout << "## Leaving a manufacturer out: AXI's datasheets against DriveCalc's measurements\n\n"
+            << makers.size() << " manufacturer-stated motors of FAST-UAV's catalogue (not KDE) that DriveCalc "
+            << "measured (same name and Kv within 5 %): their datasheet R and Io against DriveCalc's refit of the "
+            << "same motor. Median |pred/refit - 1| (signed median), and the share inside the law's p10-p90:\n\n"
+            << "| values | R error (bias) | Io error (bias) | R, Io inside p10-p90 |\n|---|---|---|---|\n";
+  const std::vector<std::pair<std::string, InSystemLaw>> candidates = {
+      {"datasheet as stated", InSystemLaw{}}, {"KDE law", chosen.law}, {"DriveCalc law", dc_law}};
+  for (const auto& [label, l] : candidates) {
+    const stand::RefitErrors e = stand::EvaluateOnRefits(makers, l);
+    std::cout << "| " << label << " | " << Pct(e.r_error) << " (" << Pct(e.r_bias) << ") | " << Pct(e.io_error) << " ("
+              << Pct(e.io_bias) << ") | " << (label == "datasheet as stated" ? std::string("-") : Pct(e.coverage_r) + ", " + Pct(e.coverage_io))
+              << " |\n";
+  }
+  std::cout << "\nNeither law transfers to another maker: KDE's datasheets are KDE's convention (and KDE's set-up), "
+               "DriveCalc's database is its own. The catalog applies the KDE law to KDE Direct entries and the "
+               "DriveCalc law to DriveCalc's database only; other makers' datasheets keep their values (and the "
+               "tier's band in the ranges).\n\n";
   std::cout << "## DriveCalc: database values against refits of DriveCalc's own measurements\n\n"
             << dc_check.pairs << " motors (user_contributed) with R and Io in the database and a refit in "
             << "catalog/drivecalc_fitted.json (full-throttle points through an ESC and its wiring). Law: "

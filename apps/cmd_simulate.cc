@@ -16,6 +16,7 @@
 #include "io/points_csv.h"
 #include "model/sweep.h"
 #include "report/drive_figures.h"
+#include "catalog/in_system.h"
 #include "report/point_json.h"
 #include "report/stand_figures.h"
 #include "stand/prop_point.h"
@@ -475,14 +476,33 @@ int RunSimulate(const SimulateOptions& o) {
 
   if (point_mode) {
     const OperatingPoint p = Solve(drive, req, o.torque_law);
+    // The same point with the motor at the low and high end of its data's spread
+    // (catalog/in_system.h MotorSpreadParams: the in-system law's scatter, else the tier's band).
+    const OperatingPoint lo = Solve(Drive(MotorSpreadParams(motor, false), esc.params), req, o.torque_law);
+    const OperatingPoint hi = Solve(Drive(MotorSpreadParams(motor, true), esc.params), req, o.torque_law);
+    const auto range = [](double a, double b) { return Json::array({std::min(a, b), std::max(a, b)}); };
     if (o.json) {
       Json j = PointToJson(p);
+      j["idc_a_range"] = range(lo.idc_a, hi.idc_a);
+      j["pdc_w_range"] = range(lo.pdc_w, hi.pdc_w);
+      j["range_basis"] = motor.datasheet_params ? "in-system law p10-p90 (docs/in-system-law.md)"
+                                                : std::string("tier band of the motor's Rm and Io (") + TierName(motor.tier) + ")";
+      CheckJsonFinite(j, "operating point");
       j["motor"] = motor.id;
       j["esc"] = esc.id;
       if (!assumed.empty()) j["assumed"] = assumed;
       std::cout << DumpJson(j);
     } else {
       PrintPoint(title, p);
+      std::ostringstream r;
+      r.setf(std::ios::fixed);
+      r << std::setprecision(2) << "  range p10-p90  IDC " << std::min(lo.idc_a, hi.idc_a) << "-"
+        << std::max(lo.idc_a, hi.idc_a) << " A, " << std::setprecision(1) << "PDC " << std::min(lo.pdc_w, hi.pdc_w)
+        << "-" << std::max(lo.pdc_w, hi.pdc_w) << " W ("
+        << (motor.datasheet_params ? "the in-system law's scatter" : "the motor's tier band") << ")\n";
+      std::cout << r.str();
+      const std::string law = InSystemSummary(motor);
+      if (!law.empty()) std::cout << "  " << law << "\n";
     }
     note_assumed();
     return 0;

@@ -13,11 +13,11 @@ namespace {
 // Fitted by `dynosize in-system-law` (stand/in_system_fit.h) on ../shared/data; the numbers
 // and their check by leaving out are in docs/in-system-law.md. tests/catalog/in_system_test.cc
 // refits them and fails when these drift from the data.
-constexpr InSystemLaw kManufacturerStatedLaw{
+constexpr InSystemLaw kKdeLaw{
     /*r_scale=*/2.183, /*r_add_ohm=*/0.0, /*io_scale=*/3.283, /*io_speed=*/0.0,
     /*r_ratio_p10=*/0.838, /*r_ratio_p90=*/1.435, /*io_ratio_p10=*/0.7522, /*io_ratio_p90=*/1.28,
     /*motors=*/9, "KDE Direct stand sheets (9 motors with torque) against their datasheets"};
-constexpr InSystemLaw kUserContributedLaw{
+constexpr InSystemLaw kDriveCalcLaw{
     /*r_scale=*/1.094, /*r_add_ohm=*/0.01951, /*io_scale=*/0.995, /*io_speed=*/0.0,
     /*r_ratio_p10=*/0.7877, /*r_ratio_p90=*/1.78, /*io_ratio_p10=*/0.8005, /*io_ratio_p90=*/1.464,
     /*motors=*/1120, "DriveCalc database values against refits of DriveCalc's own measurements"};
@@ -48,12 +48,26 @@ std::string Num(double x, int digits) {
 
 }  // namespace
 
-const InSystemLaw* InSystemLawFor(DataTier tier) {
-  switch (tier) {
-    case DataTier::kManufacturerStated: return &kManufacturerStatedLaw;
-    case DataTier::kUserContributed: return &kUserContributedLaw;
-    default: return nullptr;
-  }
+// An entry of DriveCalc's database (catalog/drivecalc.json: source.dataset "DriveCalc DB").
+bool IsDriveCalcDatabaseEntry(const EntryBase& e) {
+  if (!e.json.is_object()) return false;
+  const auto src = e.json.find("source");
+  if (src == e.json.end() || !src->is_object()) return false;
+  const auto d = src->find("dataset");
+  return d != src->end() && d->is_string() && d->get<std::string>() == "DriveCalc DB";
+}
+
+bool IsKdeDirectName(const std::string& name) {
+  return name.size() > 3 && name.compare(0, 3, "KDE") == 0 && name[3] >= '0' && name[3] <= '9';
+}
+
+const InSystemLaw& KdeDatasheetLaw() { return kKdeLaw; }
+const InSystemLaw& DriveCalcDatabaseLaw() { return kDriveCalcLaw; }
+
+const InSystemLaw* InSystemLawFor(const MotorEntry& motor) {
+  if (motor.tier != DataTier::kManufacturerStated && motor.tier != DataTier::kUserContributed) return nullptr;
+  if (IsKdeDirectName(motor.name)) return &kKdeLaw;
+  return IsDriveCalcDatabaseEntry(motor) ? &kDriveCalcLaw : nullptr;
 }
 
 const ThrottleOffsetPrior& KdeEscThrottleOffsetPrior() { return kKdeEscPrior; }
@@ -80,8 +94,8 @@ MotorParams InSystemMotorParams(const MotorParams& raw, const DatasheetMotor& ds
 
 InSystemApplicability InSystemApplicabilityOf(const MotorEntry& motor) {
   InSystemApplicability a;
-  a.law = InSystemLawFor(motor.tier);
-  if (a.law == nullptr || !motor.json.is_object()) return a;
+  a.law = InSystemLawFor(motor);
+  if (!motor.json.is_object()) return a;
   const Json& j = motor.json;
   const bool has_dc = j.contains("rm_dc_ohm");
   const std::string r_label = Label(motor, has_dc ? "rm_dc_ohm" : "rm_ohm");
@@ -98,7 +112,7 @@ InSystemApplicability InSystemApplicabilityOf(const MotorEntry& motor) {
   d.io_test_voltage_v = JsonNumber(j, "io_test_voltage_v");
   // The law is fitted on BLDC motors; a brushed motor's circuit is another machine.
   if (!bldc || !(d.r_dc_ohm > 0.0)) a.r = false;
-  if (!bldc || !(d.io_dc_a > 0.0) || (a.law->io_speed != 0.0 && !(d.io_test_voltage_v > 0.0 && d.kv_rpm_per_v > 0.0))) {
+  if (!bldc || !(d.io_dc_a > 0.0) || (a.law != nullptr && a.law->io_speed != 0.0 && !(d.io_test_voltage_v > 0.0 && d.kv_rpm_per_v > 0.0))) {
     a.io = false;
   }
   return a;
@@ -120,11 +134,38 @@ MotorParams InSystemSpreadParams(const MotorEntry& motor, bool high, bool* r_mov
   return p;
 }
 
+double TierValueBand(DataTier tier) {
+  switch (tier) {
+    case DataTier::kMeasured: return 0.10;
+    case DataTier::kManufacturerComputed:
+    case DataTier::kManufacturerStated: return 0.25;
+    case DataTier::kUserContributed: return 0.60;
+    case DataTier::kAssumed: return 1.00;
+  }
+  return 1.0;
+}
+
+MotorParams MotorSpreadParams(const MotorEntry& motor, bool high) {
+  bool r_law = false, io_law = false;
+  const MotorParams spread = InSystemSpreadParams(motor, high, &r_law, &io_law);
+  MotorParams p = motor.params;
+  const double br = 1.0 + TierValueBand(ValueTier(motor, "rm_ohm"));
+  const double bi = 1.0 + TierValueBand(ValueTier(motor, "io_a"));
+  p.rm_ohm = r_law ? spread.rm_ohm : (high ? p.rm_ohm * br : p.rm_ohm / br);
+  if (io_law) {
+    p.io_a = spread.io_a;
+    p.io1_a_s_per_rad = spread.io1_a_s_per_rad;
+  } else {
+    p.io_a = high ? p.io_a * bi : p.io_a / bi;
+  }
+  return p;
+}
+
 std::string InSystemSummary(const MotorEntry& motor) {
   const InSystemApplicability a = InSystemApplicabilityOf(motor);
   if (!a.any()) return "";
   const MotorParams& raw = motor.datasheet_params ? *motor.datasheet_params : motor.params;
-  std::string s = std::string("in-system law (") + TierName(motor.tier) + ", docs/in-system-law.md):";
+  std::string s = std::string("in-system law (") + (a.law == &kKdeLaw ? "KDE Direct datasheets" : "DriveCalc database") + ", docs/in-system-law.md):";
   if (a.r) {
     s += " R_dc " + Num(raw.rm_ohm / kRmsPerDcResistance, 3) + " -> " +
          Num(motor.params.rm_ohm / kRmsPerDcResistance, 3) + " ohm";

@@ -28,17 +28,6 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 //   user       0.60  DriveCalc's data-base Rm is about 1.6x below a fit of DriveCalc's own
 //                    measurements (catalog/README.md)
 //   assumed    1.00  a factor of 2 either way
-double ValueBand(DataTier tier) {
-  switch (tier) {
-    case DataTier::kMeasured: return 0.10;
-    case DataTier::kManufacturerComputed:
-    case DataTier::kManufacturerStated: return 0.25;
-    case DataTier::kUserContributed: return 0.60;
-    case DataTier::kAssumed: return 1.00;
-  }
-  return 1.0;
-}
-
 bool HasAssumed(const EntryBase& e, const char* key) {
   return std::find(e.assumed_keys.begin(), e.assumed_keys.end(), key) != e.assumed_keys.end();
 }
@@ -142,20 +131,12 @@ MotorParams ScenarioMotorParams(const MotorEntry& motor, const Mission& m, bool*
   if (excluded) *excluded = !estimate && (unrated || catalog_estimate);
   const DataScenario s = m.objective.ranking;
   if (s == DataScenario::kPessimistic || s == DataScenario::kOptimistic) {
-    const bool up = s == DataScenario::kPessimistic;
     // Values the in-system law gave: one motor's p10/p90 scatter about the law (in_system.h,
     // fitted on measured systems); the others: the tier's band.
-    bool r_law = false, io_law = false;
-    const MotorParams spread = InSystemSpreadParams(motor, up, &r_law, &io_law);
-    const double br = 1.0 + ValueBand(ValueTier(motor, "rm_ohm"));
-    const double bi = 1.0 + ValueBand(ValueTier(motor, "io_a"));
-    p.rm_ohm = r_law ? spread.rm_ohm : (up ? p.rm_ohm * br : p.rm_ohm / br);
-    if (io_law) {
-      p.io_a = spread.io_a;
-      p.io1_a_s_per_rad = spread.io1_a_s_per_rad;
-    } else {
-      p.io_a = up ? p.io_a * bi : p.io_a / bi;
-    }
+    const MotorParams spread = MotorSpreadParams(motor, s == DataScenario::kPessimistic);
+    p.rm_ohm = spread.rm_ohm;
+    p.io_a = spread.io_a;
+    p.io1_a_s_per_rad = spread.io1_a_s_per_rad;
   }
   return p;
 }
@@ -166,7 +147,7 @@ EscParams ScenarioEscParams(const EscEntry& esc, DataScenario s) {
   const bool up = s == DataScenario::kPessimistic;
   const DataTier tr = ValueTier(esc, "resc_ohm");
   // An assumed RESC is the prior's law (esc_prior.h): its scatter is a factor exp(sd) either way.
-  const double kr = tr == DataTier::kAssumed ? std::exp(DefaultEscPrior().resistance_log_sd) : 1.0 + ValueBand(tr);
+  const double kr = tr == DataTier::kAssumed ? std::exp(DefaultEscPrior().resistance_log_sd) : 1.0 + TierValueBand(tr);
   p.resc_ohm = up ? p.resc_ohm * kr : p.resc_ohm / kr;
   if (up && ValueTier(esc, "c0") == DataTier::kAssumed) {
     p.c0 = std::max(p.c0, kAssumedEscC0Pessimistic);

@@ -38,9 +38,11 @@
 // nothing), and the computed tier's ratio applies to the manufacturer's raw data P/d, so the
 // factor on the stored data is f' = max(1, f/d) (P' = max(f*P_raw, P_stored, P_ideal/FM_cap)).
 //
-// Motor and ESC parameters in the pessimistic/optimistic scenarios move within a band per value
-// tier (ValueBand in credibility.cc; the tier of rm_ohm, io_a, resc_ohm, c0 by ValueTier): Rm and
-// Io up/down by a relative band; an ESC whose C0 is assumed (the ideal prior, esc_prior.h) gets
+// Motor and ESC parameters in the pessimistic/optimistic scenarios move within their data's
+// spread: a motor's Rm and Io that the in-system law gave (catalog/in_system.h) to one motor's
+// p10/p90 scatter about that law, measured on stand data; other values within a band per value
+// tier (TierValueBand, the tier of rm_ohm, io_a, resc_ohm, c0 by ValueTier; MotorSpreadParams):
+// up/down by a relative band; an ESC whose C0 is assumed (the ideal prior, esc_prior.h) gets
 // C0 = kAssumedEscC0Pessimistic in the pessimistic case, and an assumed RESC is multiplied/
 // divided by exp(resistance_log_sd) of the prior. The credible scenario (the default ranking)
 // leaves motors and ESCs at their catalog values.

@@ -355,4 +355,27 @@ InSystemLaw FitLawFromRefits(const std::vector<RefitPair>& pairs, RefitLawCheck*
   return law;
 }
 
+RefitErrors EvaluateOnRefits(const std::vector<RefitPair>& pairs, const InSystemLaw& law) {
+  std::vector<double> er, ei;
+  int in_r = 0, in_io = 0;
+  for (const auto& p : pairs) {
+    const double r_pred = law.r_scale * p.r_dc_datasheet_ohm + law.r_add_ohm;
+    const double io_pred = law.io_scale * p.io_dc_datasheet_a;  // at the database's test speed
+    er.push_back(r_pred / p.r_dc_refit_ohm - 1.0);
+    ei.push_back(io_pred / p.io_dc_refit_a - 1.0);
+    in_r += p.r_dc_refit_ohm >= law.r_ratio_p10 * r_pred && p.r_dc_refit_ohm <= law.r_ratio_p90 * r_pred;
+    in_io += p.io_dc_refit_a >= law.io_ratio_p10 * io_pred && p.io_dc_refit_a <= law.io_ratio_p90 * io_pred;
+  }
+  RefitErrors e;
+  e.pairs = static_cast<int>(pairs.size());
+  if (pairs.empty()) return e;
+  e.r_error = fit::MedianAbs(er);
+  e.r_bias = fit::Median(er);
+  e.io_error = fit::MedianAbs(ei);
+  e.io_bias = fit::Median(ei);
+  e.coverage_r = static_cast<double>(in_r) / static_cast<double>(pairs.size());
+  e.coverage_io = static_cast<double>(in_io) / static_cast<double>(pairs.size());
+  return e;
+}
+
 }  // namespace dynosize::stand

@@ -115,4 +115,13 @@ struct RefitLawCheck {
 };
 InSystemLaw FitLawFromRefits(const std::vector<RefitPair>& pairs, RefitLawCheck* held_out = nullptr);
 
+// A law (fitted elsewhere) against refit pairs it was not fitted on: median |pred/refit - 1|
+// and median signed error of R and Io, and the share of refits inside the law's p10-p90.
+struct RefitErrors {
+  double r_error = 0.0, r_bias = 0.0, io_error = 0.0, io_bias = 0.0;
+  double coverage_r = 0.0, coverage_io = 0.0;
+  int pairs = 0;
+};
+RefitErrors EvaluateOnRefits(const std::vector<RefitPair>& pairs, const InSystemLaw& law);
+
 }  // namespace dynosize::stand
