@@ -1,6 +1,5 @@
 // `dynosize catalog in-system-law`: fits the in-system law (catalog/in_system.h) on the measured
 // data and prints the report of docs/in-system-law.md (scripts/validation_in_system.sh).
-#include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <iostream>
@@ -14,6 +13,7 @@
 #include "common/error.h"
 #include "common/units.h"
 #include "importers/kde_sheets.h"
+#include "report/in_system_figure.h"
 #include "stand/in_system_fit.h"
 
 namespace dynosize::cli {
@@ -42,61 +42,6 @@ std::vector<stand::LawMotor> KdeLawMotors(const std::string& dir) {
       m.points.push_back({r.vdc_v, r.throttle, r.idc_a, r.rpm * kRadPerSecPerRpm, r.torque_nm, r.block});
     }
     out.push_back(std::move(m));
-  }
-  return out;
-}
-
-// DriveCalc's database motors beside their refits (drivecalc.json "dc_m_N", drivecalc_fitted.json
-// "dc_m_N_fit"), both as the files state them (no law applied).
-std::vector<stand::RefitPair> DriveCalcPairs(const Catalog& raw) {
-  std::vector<stand::RefitPair> out;
-  for (const auto& fit : raw.motors()) {
-    const std::string suffix = "_fit";
-    if (fit.id.size() <= suffix.size() || fit.id.compare(fit.id.size() - suffix.size(), suffix.size(), suffix) != 0) continue;
-    const std::string base = fit.id.substr(0, fit.id.size() - suffix.size());
-    const MotorEntry* db = nullptr;
-    for (const auto& m : raw.motors()) {
-      if (m.id == base) db = &m;
-    }
-    if (db == nullptr || db->params.type != MotorType::kBldc) continue;
-    const InSystemApplicability a = InSystemApplicabilityOf(*db);
-    if (!a.r || !a.io) continue;
-    out.push_back({base, a.datasheet.r_dc_ohm, a.datasheet.io_dc_a, fit.params.rm_ohm / kRmsPerDcResistance,
-                   fit.params.io_a * kIdealIdcPerIrmsPerThrottle});
-  }
-  return out;
-}
-
-// Lower-case letters and digits only, "goldline" dropped (FAST-UAV writes "AXI 2814/20 GOLD LINE",
-// DriveCalc "AXI 2814-20").
-std::string NameKey(const std::string& name) {
-  std::string k;
-  for (char ch : name) {
-    if (std::isalnum(static_cast<unsigned char>(ch))) k += static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
-  }
-  const auto g = k.find("goldline");
-  if (g != std::string::npos) k.erase(g, 8);
-  return k;
-}
-
-// Manufacturer-stated motors of another maker than KDE (FAST-UAV's datasheet copies) that
-// DriveCalc measured: the same name (NameKey equal, or contained in DriveCalc's) and Kv within 5 %.
-std::vector<stand::RefitPair> ManufacturerPairs(const Catalog& raw, const std::vector<stand::RefitPair>& drivecalc) {
-  std::vector<stand::RefitPair> out;
-  for (const auto& m : raw.motors()) {
-    if (m.tier != DataTier::kManufacturerStated || IsKdeDirectName(m.name) || !m.kv_rpm_per_v) continue;
-    const InSystemApplicability a = InSystemApplicabilityOf(m);
-    if (!a.r || !a.io) continue;
-    const std::string key = NameKey(m.name);
-    if (key.size() < 6) continue;
-    for (const auto& d : drivecalc) {
-      const MotorEntry& db = raw.motor(d.id);
-      if (!db.kv_rpm_per_v || std::fabs(*db.kv_rpm_per_v / *m.kv_rpm_per_v - 1.0) > 0.05) continue;
-      const std::string dk = NameKey(db.name);
-      if (dk != key && dk.find(key) == std::string::npos) continue;
-      out.push_back({m.id, a.datasheet.r_dc_ohm, a.datasheet.io_dc_a, d.r_dc_refit_ohm, d.io_dc_refit_a});
-      break;
-    }
   }
   return out;
 }
@@ -155,9 +100,13 @@ int RunInSystemLaw(const InSystemLawOptions& o) {
     if (score(reports.back()) < score(reports[best])) best = reports.size() - 1;
   }
   stand::RefitLawCheck dc_check;
-  const InSystemLaw dc_law = stand::FitLawFromRefits(DriveCalcPairs(raw), &dc_check);
+  const InSystemLaw dc_law = stand::FitLawFromRefits(stand::DriveCalcRefitPairs(raw), &dc_check);
   const stand::LawReport& chosen = reports[best];
-  const std::vector<stand::RefitPair> makers = ManufacturerPairs(raw, DriveCalcPairs(raw));
+  const std::vector<stand::RefitPair> makers = stand::ManufacturerRefitPairs(raw, stand::DriveCalcRefitPairs(raw));
+  if (!o.plot_png.empty()) {
+    WriteInSystemLawFigure(kde, chosen, o.plot_png);
+    std::cerr << "wrote " << o.plot_png << "\n";
+  }
   if (o.constants) {
     PrintLawConstants("kManufacturerStatedLaw", chosen.law);
     PrintLawConstants("kUserContributedLaw", dc_law);

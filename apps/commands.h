@@ -76,6 +76,7 @@ struct InSystemLawOptions {
   std::string catalog_dir;
   std::string shared_data_dir;
   bool constants = false;
+  std::string plot_png;  // measured vs predicted figure of the KDE sheets
 };
 int RunInSystemLaw(const InSystemLawOptions& o);
 

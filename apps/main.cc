@@ -177,6 +177,8 @@ void AddCatalogCommands(CLI::App& app, CatalogCli& c) {
   c.law_cmd->add_option("--shared", c.law_opts.shared_data_dir, "the shared data folder (../shared/data)")->required();
   c.law_cmd->add_flag("--constants", c.law_opts.constants,
                       "print the fitted coefficients as catalog/in_system.cc holds them instead of the report");
+  c.law_cmd->add_option("--plot", c.law_opts.plot_png,
+                        "write the KDE sheets' measured-vs-predicted current figure to this PNG");
   c.schema_cmd = catalog->add_subcommand("schema", "print every catalog key with its unit and rule");
   c.schema_cmd->add_flag("--json", c.schema_json, "print the schema as JSON");
 }

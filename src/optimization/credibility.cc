@@ -243,6 +243,8 @@ void AddObjectiveRange(const Mission& m, const Combination& c, MissionResult* r)
   const double mid = r->feasible ? r->objective : (lo_ok ? lo_v : hi_v);
   g.low = lo_ok ? std::min(lo_v, mid) : mid;
   g.high = hi_ok ? std::max(hi_v, mid) : mid;
+  g.low_flies = lo_ok;
+  g.high_flies = hi_ok;
   g.complete = lo_ok && hi_ok;
   const FmEnvelopeClass& k = FmEnvelopeFor(c.prop->diameter_m);
   const DataTier pt = g.tiers[2].tier;
@@ -262,7 +264,11 @@ void AddObjectiveRange(const Mission& m, const Combination& c, MissionResult* r)
       << Fixed(k.p90, 2) << ") of " << k.n_props << " measured props of " << k.label << " (credible: p50 "
       << Fixed(k.p50, 2) << ")";
   }
-  b << "; motor Rm, Io by their tier (" << TierName(g.tiers[0].tier) << "); ESC RESC";
+  if (c.motor->datasheet_params) {
+    b << "; motor Rm, Io: one motor's p10-p90 about the in-system law (docs/in-system-law.md); ESC RESC";
+  } else {
+    b << "; motor Rm, Io by their tier (" << TierName(g.tiers[0].tier) << "); ESC RESC";
+  }
   if (ValueTier(*c.esc, "c0") == DataTier::kAssumed) b << " and C0 0-" << kAssumedEscC0Pessimistic;
   b << " within the prior's band";
   g.basis = b.str();

@@ -144,9 +144,11 @@ struct ObjectiveRange {
   // (throttle <= 100 %, no current or power ratings, no hover-throttle floor, saturation
   // allowed, no thrust-to-weight or winding-temperature limit; the pack's power, cut-off and
   // reserve still hold), so that it is a number even when those data break a rating;
-  // `*_breaks` lists what that end breaks under the mission's own limits ("" when nothing). An end that cannot fly at all is held at the credible value
-  // and `complete` is false.
+  // `*_breaks` lists what that end breaks under the mission's own limits ("" when nothing). An end
+  // that cannot fly at all has no value (low_flies/high_flies false; held at the credible value
+  // only so that the numbers stay ordered) and `complete` is false.
   double low = 0.0, high = 0.0;
+  bool low_flies = true, high_flies = true;
   std::string low_breaks, high_breaks;
   bool complete = true;
   double as_given = 0.0;  // the objective on the catalog's data as given (no adjustment)

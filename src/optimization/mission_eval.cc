@@ -1524,6 +1524,7 @@ void MissionEvaluator::Summarize(MissionResult* r) const {
   d.reserve_hover_s = AhToCoulomb(pack.capacity_ah()) * std::max(0.0, r->final_soc) / d.hover_battery_current_a;
   d.full_throttle_thrust_n = lift_rotors_ * ft.thrust_per_rotor_n;
   d.full_throttle_current_limited = ft.current_limited;
+  d.can_hover = hover.throttle <= 1.0 && d.full_throttle_thrust_n >= r->total_mass_kg * kStandardGravity;
   // The steepest steady climb at the full-throttle shaft power: momentum theory in axial climb
   // (physics.h: P_ideal = T*(Vc/2 + sqrt(Vc^2/4 + T/(2*rho*A))), Leishman sec. 2.7) with the
   // thrust of a climb segment (weight plus body drag at Vc, flight.h) and the hover's figure of

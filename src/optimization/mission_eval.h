@@ -118,6 +118,10 @@ struct SegmentResult {
 // above the reserve at that current.
 struct DesignSummary {
   bool valid = false;               // false: the hover or the full-throttle point has no solution
+  // false: at half charge the lift rotors cannot hold the weight (the hover needs more than full
+  // throttle, or the full-throttle thrust is below the weight): the hover figures below are not
+  // endurances then and reports leave them out.
+  bool can_hover = true;
   double hover_throttle = 0.0;
   double hover_battery_current_a = 0.0;
   double hover_endurance_s = 0.0;   // hovering from full to the reserve

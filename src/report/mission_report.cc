@@ -55,7 +55,10 @@ void AddCredibilityJson(const Mission& m, const MissionResult& r, Json* j) {
   const ObjectiveRange& g = r.range;
   (*j)["ranking"] = m.objective.ranking == DataScenario::kAsGiven ? "as_given" : "credible";
   if (!g.computed) return;
-  (*j)["objective_range"] = {g.low, g.high};
+  // An end that cannot fly has no value (null), not the headline's.
+  (*j)["objective_range"] = {g.low_flies ? Json(g.low) : Json(nullptr), g.high_flies ? Json(g.high) : Json(nullptr)};
+  // An infeasible result's objective is not a value of the range (it flew part of the mission).
+  (*j)["objective_in_range"] = r.feasible;
   (*j)["objective_range_basis"] = g.basis;
   (*j)["objective_range_complete"] = g.complete;
   if (!g.low_breaks.empty()) (*j)["objective_range_low_breaks"] = g.low_breaks;
@@ -77,9 +80,16 @@ std::string CredibilityText(const Mission& m, const MissionResult& r) {
                      : m.objective.type == ObjectiveType::kMinEnergy  ? " Wh"
                                                                       : " %";
   std::ostringstream o;
-  o << "  " << (credible ? "credible " : "data as given: ") << Fixed(Display(m, r.objective), 2) << unit << ", "
-    << Fixed(Display(m, g.low), 2) << "-" << Fixed(Display(m, g.high), 2) << unit
-    << " with the spread of the data (" << g.basis << ")";
+  const auto end = [&](bool flies, double v) { return flies ? Fixed(Display(m, v), 2) : std::string("(cannot fly)"); };
+  o << "  " << (credible ? "credible " : "data as given: ");
+  if (r.feasible) {
+    o << Fixed(Display(m, r.objective), 2) << unit << ", ";
+  } else {
+    // An infeasible run's objective is what it flew before it broke a limit: not a point of the range.
+    o << "infeasible; ";
+  }
+  o << end(g.low_flies, g.low) << "-" << end(g.high_flies, g.high) << unit << " with the spread of the data ("
+    << g.basis << ")";
   if (credible) {
     o << "; data as given: "
       << (g.as_given_feasible ? Fixed(Display(m, g.as_given), 2) + unit : "infeasible (breaks " + g.as_given_breaks + ")");
@@ -127,12 +137,15 @@ Json MissionResultJson(const Mission& m, const Combination& c, const MissionResu
   j["thrust_to_weight"] = r.thrust_to_weight;
   if (r.summary.valid) {
     const DesignSummary& d = r.summary;
-    j["summary"] = {{"hover_throttle", d.hover_throttle},
-                    {"hover_battery_current_a", d.hover_battery_current_a},
-                    {"hover_endurance_s", d.hover_endurance_s},
+    // A pack that cannot hover has no hover endurance (null, can_hover false).
+    const auto hover_only = [&](double v) { return d.can_hover ? Json(v) : Json(nullptr); };
+    j["summary"] = {{"can_hover", d.can_hover},
+                    {"hover_throttle", d.hover_throttle},
+                    {"hover_battery_current_a", hover_only(d.hover_battery_current_a)},
+                    {"hover_endurance_s", hover_only(d.hover_endurance_s)},
                     {"full_throttle_battery_current_a", d.full_throttle_battery_current_a},
-                    {"full_throttle_endurance_s", d.full_throttle_endurance_s},
-                    {"reserve_hover_s", d.reserve_hover_s},
+                    {"full_throttle_endurance_s", hover_only(d.full_throttle_endurance_s)},
+                    {"reserve_hover_s", hover_only(d.reserve_hover_s)},
                     {"full_throttle_thrust_n", d.full_throttle_thrust_n},
                     {"full_throttle_current_limited", d.full_throttle_current_limited},
                     {"max_climb_rate_m_s", d.max_climb_rate_m_s},
@@ -221,13 +234,19 @@ std::string MissionResultText(const Mission& m, const Combination& c, const Miss
   if (r.summary.valid) {
     const DesignSummary& d = r.summary;
     o << "  thrust/weight " << Fixed(r.thrust_to_weight, 2) << " (" << r.lift_rotors
-      << (m.groups.empty() ? " lift rotors" : " rotors of group " + m.groups[std::max(0, LiftGroup(m))].name) << ", full throttle at the mission's end); at half charge: hover throttle "
-      << Fixed(100 * d.hover_throttle, 1) << " %, hover " << Fixed(d.hover_endurance_s / 60.0, 1)
-      << " min, full throttle " << Fixed(d.full_throttle_endurance_s / 60.0, 1) << " min ("
-      << Fixed(d.full_throttle_battery_current_a, 1) << " A" << (d.full_throttle_current_limited ? ", at the current rating" : "")
-      << "), climb up to "
-      << Fixed(d.max_climb_rate_m_s, 1) << " m/s; reserve at landing " << Fixed(d.reserve_hover_s / 60.0, 1)
-      << " min of hover; winding up to " << Fixed(d.winding_temp_max_c, 0) << " C\n";
+      << (m.groups.empty() ? " lift rotors" : " rotors of group " + m.groups[std::max(0, LiftGroup(m))].name) << ", full throttle at the mission's end); at half charge: ";
+    if (d.can_hover) {
+      o << "hover throttle " << Fixed(100 * d.hover_throttle, 1) << " %, hover " << Fixed(d.hover_endurance_s / 60.0, 1)
+        << " min, full throttle " << Fixed(d.full_throttle_endurance_s / 60.0, 1) << " min ("
+        << Fixed(d.full_throttle_battery_current_a, 1) << " A" << (d.full_throttle_current_limited ? ", at the current rating" : "")
+        << "), climb up to " << Fixed(d.max_climb_rate_m_s, 1) << " m/s; reserve at landing "
+        << Fixed(d.reserve_hover_s / 60.0, 1) << " min of hover";
+    } else {
+      o << "it cannot hover (needs " << Fixed(100 * d.hover_throttle, 1) << " % throttle; full-throttle thrust "
+        << Fixed(d.full_throttle_thrust_n, 1) << " N for a weight of " << Fixed(r.total_mass_kg * kStandardGravity, 1)
+        << " N): no hover endurance";
+    }
+    o << "; winding up to " << Fixed(d.winding_temp_max_c, 0) << " C\n";
   }
   o << CredibilityText(m, r);
   o << "  segment (point: end, worst case)   s     rpm  thr %  eff %  torque N*m  Irms A  IDC A   VDC V   PDC W  PESC W  eta_m  eta_e  eta_s  limit\n";

@@ -1,9 +1,11 @@
 #include "stand/in_system_fit.h"
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <map>
 
+#include "catalog/catalog.h"
 #include "catalog/conventions.h"
 #include "common/error.h"
 #include "common/units.h"
@@ -90,6 +92,19 @@ Eigen::VectorXd FitRelativeCurrent(const std::vector<const LawMotor*>& motors, M
 }
 
 double Median(const std::vector<double>& v) { return fit::Median(v); }
+
+// Lower-case letters and digits only, "goldline" dropped (FAST-UAV writes "AXI 2814/20 GOLD LINE",
+// DriveCalc "AXI 2814-20").
+std::string NameKey(const std::string& name) {
+  std::string k;
+  for (char ch : name) {
+    if (std::isalnum(static_cast<unsigned char>(ch))) k += static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
+  }
+  const auto g = k.find("goldline");
+  if (g != std::string::npos) k.erase(g, 8);
+  return k;
+}
+
 
 }  // namespace
 
@@ -376,6 +391,47 @@ RefitErrors EvaluateOnRefits(const std::vector<RefitPair>& pairs, const InSystem
   e.coverage_r = static_cast<double>(in_r) / static_cast<double>(pairs.size());
   e.coverage_io = static_cast<double>(in_io) / static_cast<double>(pairs.size());
   return e;
+}
+
+// DriveCalc's database motors beside their refits (drivecalc.json "dc_m_N", drivecalc_fitted.json
+// "dc_m_N_fit"), both as the files state them (no law applied).
+std::vector<RefitPair> DriveCalcRefitPairs(const Catalog& raw) {
+  std::map<std::string, const MotorEntry*> by_id;
+  for (const auto& m : raw.motors()) by_id[m.id] = &m;
+  std::vector<RefitPair> out;
+  const std::string suffix = "_fit";
+  for (const auto& fit : raw.motors()) {
+    if (fit.id.size() <= suffix.size() || fit.id.compare(fit.id.size() - suffix.size(), suffix.size(), suffix) != 0) continue;
+    const auto db = by_id.find(fit.id.substr(0, fit.id.size() - suffix.size()));
+    if (db == by_id.end() || db->second->params.type != MotorType::kBldc) continue;
+    const InSystemApplicability a = InSystemApplicabilityOf(*db->second);
+    if (!a.r || !a.io) continue;
+    out.push_back({db->first, a.datasheet.r_dc_ohm, a.datasheet.io_dc_a, fit.params.rm_ohm / kRmsPerDcResistance,
+                   fit.params.io_a * kIdealIdcPerIrmsPerThrottle});
+  }
+  return out;
+}
+
+// Manufacturer-stated motors of another maker than KDE (FAST-UAV's datasheet copies) that
+// DriveCalc measured: the same name (NameKey equal, or contained in DriveCalc's) and Kv within 5 %.
+std::vector<RefitPair> ManufacturerRefitPairs(const Catalog& raw, const std::vector<RefitPair>& drivecalc) {
+  std::vector<RefitPair> out;
+  for (const auto& m : raw.motors()) {
+    if (m.tier != DataTier::kManufacturerStated || IsKdeDirectName(m.name) || !m.kv_rpm_per_v) continue;
+    const InSystemApplicability a = InSystemApplicabilityOf(m);
+    if (!a.r || !a.io) continue;
+    const std::string key = NameKey(m.name);
+    if (key.size() < 6) continue;
+    for (const auto& d : drivecalc) {
+      const MotorEntry& db = raw.motor(d.id);
+      if (!db.kv_rpm_per_v || std::fabs(*db.kv_rpm_per_v / *m.kv_rpm_per_v - 1.0) > 0.05) continue;
+      const std::string dk = NameKey(db.name);
+      if (dk != key && dk.find(key) == std::string::npos) continue;
+      out.push_back({m.id, a.datasheet.r_dc_ohm, a.datasheet.io_dc_a, d.r_dc_refit_ohm, d.io_dc_refit_a});
+      break;
+    }
+  }
+  return out;
 }
 
 }  // namespace dynosize::stand

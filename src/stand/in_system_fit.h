@@ -124,4 +124,13 @@ struct RefitErrors {
 };
 RefitErrors EvaluateOnRefits(const std::vector<RefitPair>& pairs, const InSystemLaw& law);
 
+// DriveCalc's database motors (catalog/drivecalc.json "dc_m_N") beside their refits
+// (drivecalc_fitted.json "dc_m_N_fit"), from a catalog loaded without the law (both as the files
+// state them), DC circuit.
+std::vector<RefitPair> DriveCalcRefitPairs(const Catalog& raw);
+// Manufacturer-stated motors of another maker than KDE that DriveCalc measured (the same name up
+// to punctuation and "Gold Line", or contained in DriveCalc's, and Kv within 5 %): their datasheet
+// values beside `drivecalc`'s refit of the same motor.
+std::vector<RefitPair> ManufacturerRefitPairs(const Catalog& raw, const std::vector<RefitPair>& drivecalc);
+
 }  // namespace dynosize::stand
