@@ -1099,7 +1099,8 @@ bool MissionEvaluator::EarlyExit(double cutoff_score, bool explain, MissionResul
     // min_energy with free cruise airspeeds: every other segment's energy does not depend on
     // them (terminal power N*PDC + P_avionics, and PDC = C1*U*I/kv does not depend on the
     // voltage when C0 = 0, eqs 57, 59), and a wing-borne cruise needs at least the propulsive
-    // work T*d = W/(L/D)*d (electrical >= shaft >= thrust power) plus the avionics.
+    // work T*d (electrical >= shaft >= thrust power) plus the avionics, T = W/(L/D) plus the
+    // added drag at the lowest airspeed of the range (flight.h: the least thrust of the range).
     // With a capacity range the run is at the smallest capacity: a larger pack only adds mass,
     // so every segment's thrust, speed, torque and so its PDC (no supply resistance: the
     // terminal power does not depend on the pack's voltage) rise with it (M3 of search.cc), and
@@ -1119,7 +1120,8 @@ bool MissionEvaluator::EarlyExit(double cutoff_score, bool explain, MissionResul
         if (s.type == SegmentType::kCruise && s.airspeed_m_s.free()) {
           const double d = s.distance_m ? *s.distance_m : *s.duration_s * s.airspeed_m_s.lo;
           const double t_min = s.distance_m ? d / s.airspeed_m_s.hi : *s.duration_s;
-          const double thrust = s.lift_to_drag > 0 ? r0.total_mass_kg * kStandardGravity / s.lift_to_drag : 0.0;
+          const double thrust =
+              s.lift_to_drag > 0 ? SegmentRotorLoad(m_, s, r0.total_mass_kg, s.airspeed_m_s.lo).thrust_total_n : 0.0;
           double e_prop = thrust * d;
           const GroupDrive& gd = groups_[s.group];
           const MotorParams& mp = gd.drive.motor();
@@ -1129,10 +1131,11 @@ bool MissionEvaluator::EarlyExit(double cutoff_score, bool explain, MissionResul
             // Tighter, as FreeCruisePowerLowerBoundW of search.cc: a feasible point's prop power
             // is at least P_ideal(T, V)/max_figure_of_merit (prop_figure_of_merit; V the inflow
             // with forward-flight tables, else 0) and PDC >= Pmech (no stage creates energy);
-            // by distance P_ideal/V falls with V (least at hi), by duration P_ideal rises (lo).
+            // the thrust is least at lo; by distance P_ideal/V falls with V at fixed thrust
+            // (least at hi), by duration P_ideal rises (lo).
             const bool axial = gd.prop->data_kind() == PropDataKind::kTables && !gd.parts.prop->j_tables.empty();
             const double v = axial ? (s.distance_m ? s.airspeed_m_s.hi : s.airspeed_m_s.lo) : 0.0;
-            const RotorLoad ld = SegmentRotorLoad(m_, s, r0.total_mass_kg, s.airspeed_m_s.hi);
+            const RotorLoad ld = SegmentRotorLoad(m_, s, r0.total_mass_kg, s.airspeed_m_s.lo);
             const double p_ideal = IdealRotorPowerW(ld.thrust_per_rotor_n, gd.parts.prop->diameter_m, m_.rho_kg_m3, v);
             e_prop = std::max(e_prop, ld.rotors * p_ideal / m_.constraints.max_figure_of_merit * t_min);
           }
