@@ -268,3 +268,50 @@ TEST_F(MissionEvalTest, TheCapacitySearchFindsTheBestCapacity) {
 
 }  // namespace
 }  // namespace dynosize
+
+namespace dynosize {
+namespace {
+
+// Issue 23 item 3 at the evaluator: the quadplane example with its pick, flown with and without
+// the stopped lift rotors' drag area. The cruise's thrust rises by exactly 1/2*rho*V^2*Cd*A
+// (the pusher's thrust, what its propeller is solved for), and its shaft power and energy rise
+// with it (the same pusher, more load). Uses the bundled catalog.
+TEST(MissionEvalCruiseDragTest, TheQuadplaneCruiseCarriesTheStoppedRotorsDrag) {
+  const std::string root = DYNOSIZE_SOURCE_DIR;
+  const Catalog cat = Catalog::Load(root + "/catalog");
+  Mission m = ReadMission(root + "/examples/missions/quadplane_2kg.json");
+  int lift = 0, pusher = 0;
+  for (int g = 0; g < GroupCount(m); ++g) (m.groups[g].name == "lift" ? lift : pusher) = g;
+  std::size_t cruise = 0;
+  while (m.segments[cruise].type != SegmentType::kCruise) ++cruise;
+  Combination c;
+  c.battery = &cat.battery("dc_b_361");
+  c.cells = 4;
+  c.groups.assign(2, GroupParts{});
+  c.groups[lift] = GroupParts{&cat.motor("dc_m_550"), &cat.esc("dc_e_145"), &cat.prop("uiuc_v2_gwsdd_9.0x5.0_2")};
+  c.groups[pusher] = GroupParts{&cat.motor(m.groups[pusher].motor_id), &cat.esc(m.groups[pusher].esc_id),
+                                &cat.prop(m.groups[pusher].prop_id)};
+  c.motor = c.groups[lift].motor;
+  c.esc = c.groups[lift].esc;
+  c.prop = c.groups[lift].prop;
+  const double area = m.groups[lift].idle_drag_area_m2;
+  ASSERT_GT(area, 0.0);
+  const MissionResult with = MissionEvaluator(m, c).Solve();
+  m.groups[lift].idle_drag_area_m2 = 0.0;
+  const MissionResult without = MissionEvaluator(m, c).Solve();
+  ASSERT_EQ(with.segments.size(), m.segments.size());
+  ASSERT_EQ(without.segments.size(), m.segments.size());
+  EXPECT_DOUBLE_EQ(with.total_mass_kg, without.total_mass_kg);
+  const SegmentResult& a = with.segments[cruise];
+  const SegmentResult& b = without.segments[cruise];
+  const double v = m.segments[cruise].airspeed_m_s.lo;
+  const double added = 0.5 * m.rho_kg_m3 * v * v * m.vehicle.drag_coefficient * area;
+  EXPECT_NEAR(a.thrust_per_rotor_n - b.thrust_per_rotor_n, added, 1e-12 * a.thrust_per_rotor_n);
+  // The propulsive power T*V rises by added*V; the shaft power by at least that (the
+  // propeller's efficiency is below 1).
+  EXPECT_GT(a.point.pmech_w - b.point.pmech_w, added * v);
+  EXPECT_GT(with.energy_wh, without.energy_wh);
+}
+
+}  // namespace
+}  // namespace dynosize
