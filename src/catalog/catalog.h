@@ -35,6 +35,7 @@
 
 #include "common/json_file.h"
 #include "model/drive.h"
+#include "model/gear.h"
 
 namespace dynosize {
 
@@ -84,6 +85,9 @@ struct MotorEntry : EntryBase {
   // loss_torque_per_omega_nm_s_per_rad*omega)/kt; absent for other data sets.
   std::optional<double> loss_torque_nm;
   std::optional<double> loss_torque_per_omega_nm_s_per_rad;
+  // Keys gear_ratio, gear_efficiency (model/gear.h); direct drive when absent. params and
+  // kv_rpm_per_v are the motor's own (at its shaft, before the gearbox).
+  Gear gear;
 };
 
 struct EscEntry : EntryBase {

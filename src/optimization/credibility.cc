@@ -145,7 +145,7 @@ MotorParams ScenarioMotorParams(const MotorEntry& motor, const Mission& m, bool*
     p.rm_ohm = up ? p.rm_ohm * br : p.rm_ohm / br;
     p.io_a = up ? p.io_a * bi : p.io_a / bi;
   }
-  return p;
+  return MotorAtPropellerShaft(p, motor.gear);  // the one place a mission meets the gearbox
 }
 
 EscParams ScenarioEscParams(const EscEntry& esc, DataScenario s) {

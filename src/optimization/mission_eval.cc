@@ -1364,7 +1364,11 @@ double MissionEvaluator::WindingTempC(const OperatingPoint& p, int group) const 
   const double kp = MaxKtPerKe(mp.type);
   const double i = p.irms_a;
   const double p_cu_ref = kp * mp.rm_ohm * i * i;              // copper loss at Rm, W
-  const double p_other = std::max(0.0, p.pac_w - p.pmech_w - p_cu_ref);  // no-load loss, W
+  // The motor's own no-load loss: its shaft power is the propeller's plus the gear loss, which
+  // heats the gearbox, not the winding (model/gear.h; direct drive: pmech_w itself).
+  const Gear& gear = groups_[group].parts.motor->gear;
+  const double p_shaft = gear.geared() ? MotorShaftOf(p.omega_rad_s, p.torque_nm, gear).power_w : p.pmech_w;
+  const double p_other = std::max(0.0, p.pac_w - p_shaft - p_cu_ref);  // no-load loss, W
   const double t_air = m_.air_temperature_c;
   // T - t_air = Rth*(p_cu_ref*(1 + a*(T - T_ref)) + p_other), linear in T.
   const double denom = 1.0 - kAlphaCuPerK * rth_k_per_w_ * p_cu_ref;
