@@ -3,6 +3,7 @@
 // Capacity [mAh], prop Dia/Pitch [in], thrust [g] = a*(n/1000)^b, power [W] = c*(n/1000)^d.
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <map>
 #include <regex>
 #include <set>
@@ -105,8 +106,13 @@ std::string MergedNote(const std::vector<std::size_t>& group, std::size_t i,
 }
 
 // The gear table (Gear.csv): myid -> (ratio, efficiency).
-std::map<std::string, std::pair<double, double>> ReadGearTable(const std::string& dir) {
+// Absent file: an empty table (every geared motor's efficiency assumed), said in the report.
+std::map<std::string, std::pair<double, double>> ReadGearTable(const std::string& dir, ImportedDataset* out) {
   std::map<std::string, std::pair<double, double>> gears;
+  if (!std::filesystem::exists(dir + "/Gear.csv")) {
+    out->report.notes.push_back("Gear.csv absent: every geared motor's gear_efficiency assumed");
+    return gears;
+  }
   const CsvTable t = ReadCsv(dir + "/Gear.csv");
   for (const auto& r : t.rows) {
     const Row row{&t, &r};
@@ -127,7 +133,7 @@ constexpr double kGearRatioMatchRel = 0.02;
 
 void ImportMotors(const std::string& dir, ImportedDataset* out) {
   const CsvTable t = ReadCsv(dir + "/Motors.csv");
-  const auto gear_table = ReadGearTable(dir);
+  const auto gear_table = ReadGearTable(dir, out);
   std::size_t geared = 0, geared_table_eta = 0, colon_not_ratio = 0, linked_not_named = 0;
   if (t.was_latin1) out->report.notes.push_back("Motors.csv decoded as Latin-1");
   // Pass 1: rows that are motors at all, and their duplicate keys.

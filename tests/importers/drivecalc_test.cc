@@ -183,3 +183,65 @@ TEST_F(DriveCalcExcerptTest, OutputValidatesAsACatalog) {
 
 }  // namespace
 }  // namespace dynosize
+
+namespace dynosize {
+namespace {
+
+// The ratio a DriveCalc motor name states, on names as they are in Motors.csv.
+TEST(DriveCalcGearTest, RatioFromRealNames) {
+  struct Case { const char* name; bool stated; double ratio; };
+  const Case cases[] = {
+      {"Kontronik KIRA 650-13/6.7:1", true, 6.7},
+      {"Feigao 28-8L   4,4:1", true, 4.4},
+      {"Multiplex Permax BL-480/6G (4,4:1)", true, 4.4},
+      {"Hacker B50 19S-6,7:1", true, 6.7},
+      {"360x470 11D1520 6,8:1", true, 6.8},
+      {"Mega ACn 22/10/3 4,4/1", true, 4.4},
+      {"Mega ACn 22/30/2  4,4:1", true, 4.4},
+      {"Poly-Tec 600-17 6,1:1 14,8V", true, 6.1},
+      {"AXI 2204-54 (old:5,5mm bell)", false, 1.0},  // a ':' that is no ratio
+      {"parkzone 480 960Kv: T-28", false, 1.0},
+      {"Mega ACn 22/30/1", false, 1.0},               // a winding, not 30:1
+      {"AXI 2212/26 GOLD LINE", false, 1.0},
+  };
+  for (const Case& c : cases) {
+    const NameGearRatio g = GearRatioFromMotorName(c.name);
+    EXPECT_EQ(g.stated, c.stated) << c.name;
+    EXPECT_DOUBLE_EQ(g.ratio, c.ratio) << c.name;
+    EXPECT_TRUE(g.error.empty()) << c.name << ": " << g.error;
+  }
+  // Ratio-like tokens the model cannot take are refused with the reason.
+  const NameGearRatio two = GearRatioFromMotorName("Some Motor 3:2");
+  EXPECT_FALSE(two.stated);
+  EXPECT_NE(two.error.find("\"3:2\": a ratio must be written N:1"), std::string::npos) << two.error;
+  const NameGearRatio half = GearRatioFromMotorName("Some Motor 0,5:1");
+  EXPECT_NE(half.error.find("\"0,5:1\": the ratio must be 1-100"), std::string::npos) << half.error;
+}
+
+// On the whole data set: every name with a ratio becomes a geared entry whose Kv is N x
+// DriveCalc's kV, none is refused, and the import says how many (README "Gearboxes").
+TEST(DriveCalcGearTest, TheDataSetsGearedMotors) {
+  const std::string dir = DYNOSIZE_SHARED_DIR "/data/drivecalc";
+  if (!std::filesystem::is_directory(dir)) GTEST_SKIP() << "no ../shared/data/drivecalc";
+  const ImportedDataset d = ImportDriveCalc(dir);
+  int geared = 0, from_table = 0;
+  for (const Json& m : d.motors) {
+    if (!m.contains("gear_ratio")) continue;
+    ++geared;
+    const NameGearRatio g = GearRatioFromMotorName(m["name"].get<std::string>());
+    EXPECT_TRUE(g.stated) << m["name"];
+    EXPECT_DOUBLE_EQ(m["gear_ratio"].get<double>(), g.ratio);
+    const double eta = m["gear_efficiency"].get<double>();
+    EXPECT_GT(eta, 0.8);
+    EXPECT_LE(eta, 1.0);
+    if (m["source"]["values"]["gear_efficiency"] == "datasheet") ++from_table;
+  }
+  EXPECT_EQ(geared, 80);
+  EXPECT_EQ(from_table, 76);
+  bool noted = false;
+  for (const std::string& n : d.report.notes) noted |= n.find("motors geared by name: 80") != std::string::npos;
+  EXPECT_TRUE(noted);
+}
+
+}  // namespace
+}  // namespace dynosize
