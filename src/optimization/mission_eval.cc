@@ -1104,7 +1104,7 @@ bool MissionEvaluator::EarlyExit(double cutoff_score, bool explain, MissionResul
     // With a capacity range the run is at the smallest capacity: a larger pack only adds mass,
     // so every segment's thrust, speed, torque and so its PDC (no supply resistance: the
     // terminal power does not depend on the pack's voltage) rise with it (M3 of search.cc), and
-    // W/(L/D) too: the same sum bounds the energy at every capacity of the range.
+    // the wing-borne thrust W/(L/D) + added drag too: the same sum bounds the energy at every capacity of the range.
     ContinuousVars v0;
     v0.airspeed_m_s.assign(m_.segments.size(), 0.0);
     if (m_.battery.capacity_ah) v0.capacity_ah = m_.battery.capacity_ah->lo;
