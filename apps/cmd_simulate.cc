@@ -317,15 +317,37 @@ int RunSimulateProp(const SimulateOptions& o) {
   const MotorEntry& motor = catalog.motor(o.motor_id);
   const EscEntry& esc = catalog.esc(o.esc_id);
   const PropEntry& prop_entry = catalog.prop(o.prop_id);
-  const Drive drive(motor.params, esc.params);
+  // A geared motor turns the propeller through its gearbox (model/gear.h): the point is solved
+  // at the propeller shaft and reported at the motor's, with the propeller's speed beside it.
+  const Gear& gear = motor.gear;
+  const Drive drive(MotorAtPropellerShaft(motor.params, gear), esc.params);
+  if (req.rpm) req.rpm = *req.rpm / gear.ratio;  // --rpm is the motor's speed, as without --prop
   const PropModel prop(prop_entry);
   const std::string title = motor.name + " + " + esc.name + " + " + prop_entry.name;
   const std::string assumed = AssumedNote(motor, esc, &prop_entry);
   std::vector<std::string> notes;
   if (point_mode) {
-    const PropPoint pp = SolvePropPoint(drive, prop, req);
+    PropPoint pp = SolvePropPoint(drive, prop, req);
+    const double prop_rpm = pp.drive.rpm;
+    const MotorShaft shaft = MotorShaftOf(pp.drive.omega_rad_s, pp.drive.torque_nm, gear);
+    pp.drive = MotorSidePoint(pp.drive, gear);
+    std::string gear_line;
+    if (gear.geared()) {
+      std::ostringstream g;
+      g << std::fixed << std::setprecision(0) << "  propeller rpm  " << std::setw(10) << prop_rpm
+        << "     (geared " << std::setprecision(2) << gear.ratio << ":1, efficiency " << std::setprecision(3)
+        << gear.efficiency << "; gear loss " << std::setprecision(1) << shaft.gear_loss_w
+        << " W; rpm, torque and Pmech above are the motor's shaft)\n";
+      gear_line = g.str();
+    }
     if (o.json) {
       Json j = PropPointJson(pp);
+      j["prop_rpm"] = prop_rpm;
+      if (gear.geared()) {
+        j["gear_ratio"] = gear.ratio;
+        j["gear_efficiency"] = gear.efficiency;
+        j["gear_loss_w"] = shaft.gear_loss_w;
+      }
       j["motor"] = motor.id;
       j["esc"] = esc.id;
       j["prop"] = prop_entry.id;
@@ -333,7 +355,7 @@ int RunSimulateProp(const SimulateOptions& o) {
       if (!assumed.empty()) j["assumed"] = assumed;
       std::cout << DumpJson(j);
     } else {
-      PrintPoint(title, pp.drive, PropLines(pp, prop_entry, o.rho_kg_m3),
+      PrintPoint(title, pp.drive, gear_line + PropLines(pp, prop_entry, o.rho_kg_m3),
                  pp.figure_of_merit > 1.0 ? std::vector<std::string>{"beats_momentum_theory"}
                                           : std::vector<std::string>{});
       if (pp.figure_of_merit > 1.0) {
@@ -351,6 +373,10 @@ int RunSimulateProp(const SimulateOptions& o) {
       }
     }
   } else {
+    if (gear.geared() && !o.json) {
+      std::cerr << "note: geared " << gear.ratio << ":1 (model/gear.h): the table's rpm and Pmech are the "
+                << "propeller's; the motor turns " << gear.ratio << " x faster\n";
+    }
     const auto rows = PropThrottleTable(drive, prop, req.vdc_v, o.rho_kg_m3);
     std::string figure;
     if (!o.plot_dir.empty()) {

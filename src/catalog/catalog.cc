@@ -3,9 +3,12 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <iomanip>
 #include <set>
 #include <sstream>
 
+#include "catalog/conventions.h"
+#include "catalog/motor_credibility.h"
 #include "catalog/in_system.h"
 #include "catalog/prop_credibility.h"
 #include "catalog/schema.h"
@@ -229,6 +232,8 @@ MotorEntry MotorFromJson(const Json& e, EntryBase base) {
   m.mass_kg = GetOpt(e, "mass_kg");
   m.loss_torque_nm = GetOpt(e, "loss_torque_nm");
   m.loss_torque_per_omega_nm_s_per_rad = GetOpt(e, "loss_torque_per_omega_nm_s_per_rad");
+  m.gear.ratio = Get(e, "gear_ratio", 1.0);
+  m.gear.efficiency = Get(e, "gear_efficiency", 1.0);
   return m;
 }
 
@@ -396,6 +401,34 @@ void CheckPropKeys(const Json& e, const std::string& where, Bad bad,
       !e.contains("j_tables")) {
     bad("thrust_law_n", "missing: a propeller needs performance data (power laws, "
                         "ct_static/cp_static, static_table or j_tables)");
+  }
+}
+
+// gear_ratio and gear_efficiency of a motor (model/gear.h): an efficiency only with a gear, a
+// gear only with its efficiency, and a geared entry's Kv the motor's (motor_credibility.h,
+// kGearedKmRatioMax).
+template <typename Bad>
+void CheckGear(const Json& e, Bad bad) {
+  auto num = [&e](const char* k) {
+    const auto it = e.find(k);
+    return it != e.end() && it->is_number() ? std::optional<double>(it->get<double>()) : std::nullopt;
+  };
+  const std::optional<double> ratio = num("gear_ratio"), eta = num("gear_efficiency");
+  const bool geared = ratio && *ratio > 1.0;
+  if (geared && !eta) bad("gear_efficiency", "missing: a motor with gear_ratio > 1 needs its gearbox's efficiency");
+  if (!geared && eta && *eta != 1.0) bad("gear_efficiency", "must be 1 without a gear (gear_ratio 1 or absent)");
+  if (!geared) return;
+  const std::optional<double> kv = num("kv_rpm_per_v"), mass = num("mass_kg");
+  std::optional<double> r_dc = num("rm_dc_ohm");
+  if (!r_dc && num("rm_ohm") && e.value("type", std::string()) == "bldc") r_dc = *num("rm_ohm") / kRmsPerDcResistance;
+  if (!kv || !r_dc || !mass) return;
+  const double k = GearedKmRatio(*kv, *r_dc, *mass);
+  if (k > kGearedKmRatioMax) {
+    std::ostringstream rule;
+    rule << std::setprecision(3) << "a geared motor's Kv must be the motor's, not the output shaft's: its motor constant Km = "
+         << MotorConstantDc(*kv, *r_dc) << " N*m/sqrt(W) is " << k << " x a typical motor of its mass (at most " << kGearedKmRatioMax
+         << " x; an output-shaft Kv makes it gear_ratio times too large: motor_credibility.h)";
+    bad("kv_rpm_per_v", rule.str());
   }
 }
 
@@ -627,7 +660,10 @@ void Catalog::AddDocument(const Json& doc, const std::string& file,
         bad("ke_v_s_per_rad", "missing: a motor needs ke_v_s_per_rad or kv_rpm_per_v");
       }
       if (kind == ComponentKind::kProp) CheckPropKeys(e, where, bad, problems);
-      if (kind == ComponentKind::kMotor) CheckTestPoints(e, bad);
+      if (kind == ComponentKind::kMotor) {
+        CheckTestPoints(e, bad);
+        CheckGear(e, bad);
+      }
       if (kind == ComponentKind::kBattery) {
         const auto s_it = e.find("cells_series");
         const auto v_it = e.find("voltage_nominal_v");

@@ -35,6 +35,7 @@
 
 #include "common/json_file.h"
 #include "model/drive.h"
+#include "model/gear.h"
 
 namespace dynosize {
 
@@ -87,6 +88,9 @@ struct MotorEntry : EntryBase {
   // The entry's own numbers when the in-system law (catalog/in_system.h) replaced params' rm_ohm,
   // io_a or io1 by the values the motor shows in a system; empty when params are the file's.
   std::optional<MotorParams> datasheet_params;
+  // Keys gear_ratio, gear_efficiency (model/gear.h); direct drive when absent. params and
+  // kv_rpm_per_v are the motor's own (at its shaft, before the gearbox).
+  Gear gear;
 };
 
 struct EscEntry : EntryBase {

@@ -11,6 +11,11 @@
 
 namespace dynosize {
 
+double GearedKmRatio(double kv_rpm_per_v, double r_dc_ohm, double mass_kg) {
+  if (!(mass_kg >= kMassKmLawMinKg && mass_kg <= kMassKmLawMaxKg)) return 0.0;
+  return MotorConstantDc(kv_rpm_per_v, r_dc_ohm) / TypicalMotorConstantForMass(mass_kg);
+}
+
 double MotorConstantDc(double kv_rpm_per_v, double r_dc_ohm) {
   if (!(kv_rpm_per_v > 0.0) || !(r_dc_ohm > 0.0)) return 0.0;
   const double kt_dc = 1.0 / RpmToRadPerSec(kv_rpm_per_v);  // V*s/rad = N*m/A (DC machine)

@@ -45,6 +45,19 @@ inline constexpr double kMassKmLawMaxKg = 2.0;
 // The typical Km of a motor of this mass (the law above).
 double TypicalMotorConstantForMass(double mass_kg);
 
+// Third rule, for geared entries (gear_ratio > 1): the Kv must be the motor's, not the output
+// shaft's. A Kv measured at the output is the motor's divided by the ratio N, which makes Km
+// (~ 1/Kv) N times too large. A geared unit's Km from the motor's own Kv is at most a typical
+// direct-drive motor's of the same mass (its mass holds the gearbox too): on DriveCalc's
+// geared entries with a mass and a resistance it is 0.17-1.12 x the mass law (median 0.31)
+// with Kv = N x DriveCalc's kV (the motor's, README "Gearboxes"), and 0.83-4.9 x (median
+// 1.70) with DriveCalc's kV itself (the output shaft's). An entry above kGearedKmRatioMax x
+// the law is refused by Catalog::Load and `catalog validate` (its Kv reads as the output
+// shaft's). Applies to entries of 10 g to 2 kg with kv_rpm_per_v, a resistance and a mass.
+inline constexpr double kGearedKmRatioMax = 1.2;
+// Km(kv, r_dc) over the typical Km of the mass; 0 when the rule does not apply.
+double GearedKmRatio(double kv_rpm_per_v, double r_dc_ohm, double mass_kg);
+
 // Km = KT_dc/sqrt(R_dc), KT_dc = 60/(2*pi*Kv); 0 when Kv or R_dc is not positive.
 double MotorConstantDc(double kv_rpm_per_v, double r_dc_ohm);
 

@@ -90,6 +90,13 @@ std::vector<KeySpec> Build(ComponentKind kind) {
       add(Num("rm_per_omega_ohm_s_per_rad", false, 0, false, 1,
               "speed-dependent impedance term (DriveCalc K): R(omega) = rm + K*omega, ohm per rad/s"));
       add(Num("max_torque_nm", false, 0, true, 1e4, "peak torque rating, N*m"));
+      // A gearbox between the motor and the propeller (model/gear.h); absent = direct drive.
+      add(Num("gear_ratio", false, 1, false, 100,
+              "motor turns per propeller turn (>= 1; 1 = direct drive, the default); kv, ke, "
+              "rm and the loss terms stay the motor's own: omega_motor = ratio*omega_prop"));
+      add(Num("gear_efficiency", false, 0, true, 1,
+              "gearbox efficiency (0 < eta <= 1; 1 when direct drive): Q_motor = "
+              "Q_prop/(gear_ratio*eta); required with a gear_ratio above 1"));
       // Model extensions of model.md section 9 (src/model/drive.h); absent = 0 = first order.
       add(Num("io1_a_s_per_rad", false, 0, false, 1,
               "speed-dependent no-load current Io(omega) = io_a + io1*omega, A per rad/s"));

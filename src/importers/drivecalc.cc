@@ -3,9 +3,11 @@
 // Capacity [mAh], prop Dia/Pitch [in], thrust [g] = a*(n/1000)^b, power [W] = c*(n/1000)^d.
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <map>
 #include <regex>
 #include <set>
+#include <sstream>
 
 #include "catalog/esc_prior.h"
 #include "catalog/prop_credibility.h"
@@ -103,8 +105,36 @@ std::string MergedNote(const std::vector<std::size_t>& group, std::size_t i,
          myids[i] + " kept";
 }
 
+// The gear table (Gear.csv): myid -> (ratio, efficiency).
+// Absent file: an empty table (every geared motor's efficiency assumed), said in the report.
+std::map<std::string, std::pair<double, double>> ReadGearTable(const std::string& dir, ImportedDataset* out) {
+  std::map<std::string, std::pair<double, double>> gears;
+  if (!std::filesystem::exists(dir + "/Gear.csv")) {
+    out->report.notes.push_back("Gear.csv absent: every geared motor's gear_efficiency assumed");
+    return gears;
+  }
+  const CsvTable t = ReadCsv(dir + "/Gear.csv");
+  for (const auto& r : t.rows) {
+    const Row row{&t, &r};
+    bool ok = true;
+    const double ratio = row.Num("ratG", &ok), eta = row.Num("EtaG", &ok);
+    if (ok && ratio >= 1.0 && eta > 0.0 && eta <= 1.0) gears[row.Str("myid")] = {ratio, eta};
+  }
+  return gears;
+}
+
+// A gearbox's efficiency when DriveCalc's gear table has none for the motor (no gear linked,
+// or a linked gear of another ratio): the median of the table's 63 single-stage gears (0.95-
+// 0.984, 0.9 for the cheapest; README "Gearboxes").
+constexpr double kDefaultGearEfficiency = 0.96;
+// A linked gear-table row is the motor's gearbox when its ratio is the name's within this
+// (LMT's "6:1" is Reisenauer's 5.94:1).
+constexpr double kGearRatioMatchRel = 0.02;
+
 void ImportMotors(const std::string& dir, ImportedDataset* out) {
   const CsvTable t = ReadCsv(dir + "/Motors.csv");
+  const auto gear_table = ReadGearTable(dir, out);
+  std::size_t geared = 0, geared_table_eta = 0, colon_not_ratio = 0, linked_not_named = 0;
   if (t.was_latin1) out->report.notes.push_back("Motors.csv decoded as Latin-1");
   // Pass 1: rows that are motors at all, and their duplicate keys.
   std::vector<const CsvRow*> rows;
@@ -133,6 +163,10 @@ void ImportMotors(const std::string& dir, ImportedDataset* out) {
       out->report.Drop("motors", "Rm = 0 placeholder", example);
       continue;
     }
+    if (const NameGearRatio g = GearRatioFromMotorName(name); !g.error.empty()) {
+      out->report.Drop("motors", "gear ratio in the name not usable: " + g.error, example);
+      continue;
+    }
     rows.push_back(&r);
     myids.push_back(row.Str("myid"));
     // The same numbers to every stated digit (kV, Rm, mass, losses) or the same name and kV.
@@ -150,10 +184,18 @@ void ImportMotors(const std::string& dir, ImportedDataset* out) {
       continue;
     }
     bool ok = true;
-    const double kv = row.Num("kV", &ok), rm = row.Num("Rm", &ok), imax = row.Num("Imax", &ok),
-                 weight_g = row.Num("Weight", &ok), k = row.Num("K", &ok),
-                 mvk = row.Num("MvK", &ok), kl = row.Num("kL", &ok);
+    const double kv_db = row.Num("kV", &ok), rm = row.Num("Rm", &ok), imax = row.Num("Imax", &ok),
+                 weight_g = row.Num("Weight", &ok), k_db = row.Num("K", &ok),
+                 mvk_db = row.Num("MvK", &ok), kl_db = row.Num("kL", &ok);
     const bool brushed = LooksBrushed(name);
+    // A geared motor (ratio N in its name): DriveCalc's kV, loss torques and MData speeds are
+    // the output shaft's (its no-load points give n/U = kV within 1 %, and where a name or
+    // datasheet gives the motor's Kv it is N x kV: README "Gearboxes"). The catalog stores the
+    // motor's own: Kv = N*kV, loss torques /N (MvK) and /N^2 (kL, per motor rad/s), K/N; Io
+    // below is unchanged by it (the same current at the same speed).
+    const NameGearRatio gear = GearRatioFromMotorName(name);
+    const double n = gear.ratio;
+    const double kv = n * kv_db, mvk = mvk_db / n, kl = kl_db / (n * n), k = k_db / n;
     // model.md section 8 (BLDC) / DC machine: KE from Kv; section 5: KT = sqrt(27/10)*KE (BLDC).
     const double ke = brushed ? KeFromKvBrushed(kv) : KeFromKvBldc(kv);
     const double kt = brushed ? ke : kPacPerVllIrms * ke;
@@ -164,16 +206,42 @@ void ImportMotors(const std::string& dir, ImportedDataset* out) {
 
     EntryBuilder b("dc_m_" + myids[i], name);
     b.Set("type", brushed ? "brushed" : "bldc", "derived");
-    b.SetNum("kv_rpm_per_v", kv, "datasheet");
+    b.SetNum("kv_rpm_per_v", kv, gear.stated ? "derived" : "datasheet");
     // DriveCalc's Rm is the R of its DC model U = n/Kv + R*I (catalog/conventions.h); a brushed
     // motor's circuit is that DC circuit itself.
     if (brushed) b.SetNum("rm_ohm", rm, "datasheet");
     else SetResistanceFromDc(&b, rm, "datasheet");
     b.SetNum("io_a", io, "derived", 4);
     b.Set("io_test_voltage_v", kIoTestVoltageV, "derived");  // our evaluation point, see kIoTestVoltageV
-    if (mvk > 0) b.SetNum("loss_torque_nm", mvk, "datasheet");
-    if (kl > 0) b.SetNum("loss_torque_per_omega_nm_s_per_rad", kl, "datasheet");
-    if (k > 0) b.SetNum("rm_per_omega_ohm_s_per_rad", k, "datasheet");
+    const char* at_motor = gear.stated ? "derived" : "datasheet";
+    if (mvk > 0) b.SetNum("loss_torque_nm", mvk, at_motor);
+    if (kl > 0) b.SetNum("loss_torque_per_omega_nm_s_per_rad", kl, at_motor);
+    if (k > 0) b.SetNum("rm_per_omega_ohm_s_per_rad", k, at_motor);
+    std::string gear_note;
+    if (gear.stated) {
+      ++geared;
+      // The gear table's efficiency where the motor's linked gear is the named ratio.
+      const auto linked = gear_table.find(row.Str("mgear_id"));
+      const bool from_table = linked != gear_table.end() &&
+                              std::fabs(linked->second.first - n) <= kGearRatioMatchRel * n;
+      b.SetNum("gear_ratio", n, "derived");
+      if (from_table) {
+        ++geared_table_eta;
+        b.SetNum("gear_efficiency", linked->second.second, "datasheet");
+      } else {
+        b.SetNum("gear_efficiency", kDefaultGearEfficiency, "assumed");
+      }
+      std::ostringstream g;
+      g << "; geared " << n << ":1 (\"" << gear.token << "\" in the name): kv_rpm_per_v = " << n << " x DB kV "
+        << kv_db << " (the motor's; DriveCalc's kV and MData speeds are the output shaft's), loss terms "
+        << "moved to the motor shaft; gear_efficiency "
+        << (from_table ? "from Gear.csv myid " + row.Str("mgear_id") : std::string("assumed (no gear of this ratio in Gear.csv for it)"));
+      gear_note = g.str();
+    } else {
+      const auto linked = gear_table.find(row.Str("mgear_id"));
+      if (linked != gear_table.end() && linked->second.first > 1.0) ++linked_not_named;
+      if (name.find(':') != std::string::npos) ++colon_not_ratio;
+    }
     if (imax > 0) b.SetNum("max_current_a", imax, "datasheet");
     if (weight_g > 0) b.SetNum("mass_kg", GramsToKg(weight_g), "datasheet");
     std::string note = brushed ? "rm_ohm: DB Rm" : "rm_ohm = 0.7492 x DB Rm (DC circuit)";
@@ -182,7 +250,7 @@ void ImportMotors(const std::string& dir, ImportedDataset* out) {
                                weight_g > 0 ? std::optional<double>(GramsToKg(weight_g)) : std::nullopt,
                                brushed);
     if (brushed) note += "; brushed (by name)";
-    if (name.find(':') != std::string::npos) note += "; geared (ratio in name), Kv of the motor";
+    note += gear_note;
     std::string reference = Ref("Motors.csv", row);
     note += MergedNote(group, i, myids, &reference);
     b.Source(kDataset, reference, note);
@@ -190,6 +258,12 @@ void ImportMotors(const std::string& dir, ImportedDataset* out) {
     out->motors.push_back(b.Build());
     out->report.Keep("motors");
   }
+  std::ostringstream g;
+  g << "motors geared by name: " << geared << " (gear_efficiency from Gear.csv for " << geared_table_eta << ", assumed "
+    << kDefaultGearEfficiency << " for " << geared - geared_table_eta << "); " << colon_not_ratio
+    << " names with ':' state no ratio (direct drive); " << linked_not_named
+    << " motors link a gear in Gear.csv without a ratio in the name (direct drive: the name rules)";
+  out->report.notes.push_back(g.str());
 }
 
 void ImportEscs(const std::string& dir, ImportedDataset* out) {
@@ -441,6 +515,37 @@ void ImportProps(const std::string& dir, ImportedDataset* out) {
 }
 
 }  // namespace
+
+NameGearRatio GearRatioFromMotorName(const std::string& name) {
+  NameGearRatio g;
+  // "<N>:<M>" anywhere a number may start; only M = 1 is a ratio the model takes.
+  static const std::regex kColon("(^|[\\s/(\\-])([0-9]+(?:[.,][0-9]+)?)\\s*:\\s*([0-9]+(?:[.,][0-9]+)?)(?![0-9])");
+  static const std::regex kSlash("\\s([0-9]+[.,][0-9]+)/1$");
+  std::smatch m;
+  std::string num, den = "1";
+  if (std::regex_search(name, m, kColon)) {
+    num = m[2].str();
+    den = m[3].str();
+    g.token = num + ":" + den;
+  } else if (std::regex_search(name, m, kSlash)) {
+    num = m[1].str();
+    g.token = num + "/1";
+  } else {
+    return g;
+  }
+  std::replace(num.begin(), num.end(), ',', '.');
+  std::replace(den.begin(), den.end(), ',', '.');
+  const double n = std::stod(num), d = std::stod(den);
+  if (d != 1.0) {
+    g.error = "\"" + g.token + "\": a ratio must be written N:1";
+  } else if (!(n >= 1.0 && n <= 100.0)) {
+    g.error = "\"" + g.token + "\": the ratio must be 1-100 motor turns per propeller turn";
+  } else if (n > 1.0) {  // "1:1" is direct drive
+    g.stated = true;
+    g.ratio = n;
+  }
+  return g;
+}
 
 ImportedDataset ImportDriveCalc(const std::string& dir) {
   ImportedDataset out;

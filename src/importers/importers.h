@@ -36,6 +36,21 @@ void KeepAuditedProp(Json entry, const std::string& example, ImportedDataset* ou
 
 // shared/data/drivecalc: Motors.csv, ESC.csv, Batteries.csv, Props.csv.
 ImportedDataset ImportDriveCalc(const std::string& dir);
+
+// The gear ratio a DriveCalc motor name states (README "Gearboxes"): "<N>:1" after the start,
+// a space, '/', '-' or '(' ("Kontronik KIRA 650-13/6.7:1", "Feigao 28-8L 4,4:1",
+// "Multiplex Permax BL-480/6G (4,4:1)", "Hacker B50 19S-6,7:1"; decimal comma or point), or
+// "<N>/1" after a space at the end of the name with a decimal ("Mega ACn 22/10/3 4,4/1").
+// ratio 1 and stated false when the name states none (a ':' in other text, "960Kv: T-28", is
+// not a ratio); error non-empty for a ratio-like token that is not one the model takes
+// ("<N>:<M>" with M != 1, or N below 1 or above 100).
+struct NameGearRatio {
+  bool stated = false;
+  double ratio = 1.0;
+  std::string token;  // the text it was read from
+  std::string error;
+};
+NameGearRatio GearRatioFromMotorName(const std::string& name);
 // shared/data/fastuav_catalogues: Motors_Data.csv, ESC_data.csv,
 // Non-Dominated-Augmented-Batteries.csv, APC_propellers_MR.csv.
 ImportedDataset ImportFastUav(const std::string& dir);

@@ -16,7 +16,14 @@
 //    axial; the edgewise component is neglected, which is conservative: edgewise flow adds
 //    translational lift).
 //  - cruise with a wing (lift + cruise): the wing carries W, the cruise rotors give
-//    T_total = W/(L/D) along the flight path, axial inflow V.
+//        T_total = W/(L/D) + 1/2*rho*V^2*Cd*A_add
+//    along the flight path, axial inflow V. A_add is the drag area the stated L/D does not
+//    hold (Segment::lift_to_drag_of, mission.h): the idle groups' idle_drag_area_m2 (stopped
+//    rotors) always, plus the body's drag_area_m2 when the L/D is the wing's alone. Cd is
+//    vehicle.drag_coefficient, the one coefficient every area of the mission is multiplied by
+//    (drag_area_m2 and idle_drag_area_m2 are reference areas, Cd*A the drag area proper), as in
+//    the climb and the multirotor cruise. Steady level flight: thrust = total drag, and the
+//    drag of an aircraft flying at W/(L/D) is W/(L/D) by the definition of L/D with L = W.
 //  - coaxial pairs: the lower rotor works in the upper one's wake; at equal thrust the pair
 //    needs kappa_int = 1.2816 times the induced power of two isolated rotors (Leishman sec.
 //    2.14.2, Eq. 2.196, theoretical, fully contracted wake). With ideal P ~ T^(3/2) that is the
@@ -91,11 +98,11 @@ inline RotorLoad SegmentRotorLoad(const Mission& m, const Segment& s, double tot
   RotorLoad r;
   const double w = total_mass_kg * kStandardGravity;
   // Idle groups (stopped lift rotors in cruise) add their drag area to the body's.
-  double area_m2 = m.vehicle.drag_area_m2;
+  double idle_area_m2 = 0.0;
   for (std::size_t g = 0; g < m.groups.size(); ++g) {
-    if (static_cast<int>(g) != s.group) area_m2 += m.groups[g].idle_drag_area_m2;
+    if (static_cast<int>(g) != s.group) idle_area_m2 += m.groups[g].idle_drag_area_m2;
   }
-  const double cda = area_m2 * m.vehicle.drag_coefficient;
+  const double cda = (m.vehicle.drag_area_m2 + idle_area_m2) * m.vehicle.drag_coefficient;
   r.rotors = s.rotors_active > 0 ? s.rotors_active : GroupRotors(m, s.group);
   switch (s.type) {
     case SegmentType::kHover:
@@ -112,7 +119,8 @@ inline RotorLoad SegmentRotorLoad(const Mission& m, const Segment& s, double tot
       const double v = airspeed_m_s;
       const double drag = 0.5 * m.rho_kg_m3 * v * v * cda;
       if (s.lift_to_drag > 0) {
-        r.thrust_total_n = w / s.lift_to_drag;
+        const double add_area_m2 = idle_area_m2 + (s.lift_to_drag_of == LiftToDragOf::kWing ? m.vehicle.drag_area_m2 : 0.0);
+        r.thrust_total_n = w / s.lift_to_drag + 0.5 * m.rho_kg_m3 * v * v * add_area_m2 * m.vehicle.drag_coefficient;
         r.axial_airspeed_m_s = v;
       } else {
         r.thrust_total_n = std::hypot(w, drag);

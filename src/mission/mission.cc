@@ -21,6 +21,8 @@ const char* SegmentTypeName(SegmentType type) {
   return "?";
 }
 
+const char* LiftToDragOfName(LiftToDragOf of) { return of == LiftToDragOf::kWing ? "wing" : "aircraft"; }
+
 const char* ObjectiveTypeName(ObjectiveType type) {
   switch (type) {
     case ObjectiveType::kMaxEndurance: return "max_endurance";
@@ -167,9 +169,21 @@ Segment ReadSegment(const Reader& r, const std::string& path) {
       if (s.climb_rate_m_s == 0.0) r.Fail(r.Path("rate_m_s"), r.At("rate_m_s"), "must not be 0 (use a hover segment)");
       break;
     case SegmentType::kCruise:
-      r.AllowOnly({"name", "type", "duration_s", "distance_m", "airspeed_m_s", "lift_to_drag", "rotors", "group"});
+      r.AllowOnly({"name", "type", "duration_s", "distance_m", "airspeed_m_s", "lift_to_drag", "lift_to_drag_of",
+                   "rotors", "group"});
       s.airspeed_m_s = r.NumberOrRange("airspeed_m_s", 0.0, 150.0, true);
       s.lift_to_drag = r.Number("lift_to_drag", 1.0, 50.0, false, 0.0);
+      // Whose L/D it is (mission.h, LiftToDragOf): "aircraft" (default) or "wing"; only with a
+      // lift_to_drag (a multirotor cruise has no L/D to qualify).
+      if (r.Has("lift_to_drag_of")) {
+        const std::string of = r.String("lift_to_drag_of", std::nullopt);
+        if (!r.Has("lift_to_drag")) {
+          r.Fail(r.Path("lift_to_drag_of"), r.At("lift_to_drag_of"), "needs lift_to_drag (a cruise without a wing has no L/D)");
+        }
+        if (of == "aircraft") s.lift_to_drag_of = LiftToDragOf::kAircraft;
+        else if (of == "wing") s.lift_to_drag_of = LiftToDragOf::kWing;
+        else r.Fail(r.Path("lift_to_drag_of"), r.At("lift_to_drag_of"), "must be one of aircraft, wing");
+      }
       break;
     case SegmentType::kShaft: {
       r.AllowOnly({"name", "type", "duration_s", "power_w", "torque_nm", "rpm", "group"});

@@ -18,6 +18,14 @@ namespace dynosize {
 enum class SegmentType { kHover, kClimb, kCruise, kShaft };
 const char* SegmentTypeName(SegmentType type);
 
+// Whose lift-to-drag ratio a wing-borne cruise states (segment key "lift_to_drag_of"):
+//  - kAircraft ("aircraft", the default): the whole aircraft in its cruise configuration, the
+//    body included (the figure a designer quotes for the airframe); only the stopped rotors of
+//    the idle groups (idle_drag_area_m2) are added.
+//  - kWing ("wing"): the wing alone; the body's drag_area_m2 is added as well.
+enum class LiftToDragOf { kAircraft, kWing };
+const char* LiftToDragOfName(LiftToDragOf of);
+
 // A closed interval; lo == hi for a fixed value.
 struct Range {
   double lo = 0.0;
@@ -34,9 +42,12 @@ struct Segment {
   std::optional<double> distance_m;
   double climb_rate_m_s = 0.0;  // climb: > 0 up, < 0 down (a descent)
   Range airspeed_m_s;           // cruise: fixed or free within bounds
-  // cruise with a wing (lift + cruise): the wing carries the weight, the thrust equals
-  // weight / (L/D) and the flow is axial; 0 = no wing (a multirotor tilts into the wind).
+  // cruise with a wing (lift + cruise): the wing carries the weight and the flow is axial;
+  // 0 = no wing (a multirotor tilts into the wind). The thrust is W/(L/D) plus the drag the
+  // ratio does not hold (mission/flight.h): the idle groups' idle_drag_area_m2 always, and the
+  // body's drag_area_m2 when lift_to_drag_of is kWing.
   double lift_to_drag = 0.0;
+  LiftToDragOf lift_to_drag_of = LiftToDragOf::kAircraft;
   int rotors_active = 0;  // rotors that thrust in this segment; 0 = all of its group's
   // The propulsion group that flies it (index into Mission::groups; 0 without groups).
   int group = 0;

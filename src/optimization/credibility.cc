@@ -138,7 +138,7 @@ MotorParams ScenarioMotorParams(const MotorEntry& motor, const Mission& m, bool*
     p.io_a = spread.io_a;
     p.io1_a_s_per_rad = spread.io1_a_s_per_rad;
   }
-  return p;
+  return MotorAtPropellerShaft(p, motor.gear);  // the one place a mission meets the gearbox
 }
 
 EscParams ScenarioEscParams(const EscEntry& esc, DataScenario s) {

@@ -125,6 +125,10 @@ double MotorMaxVoltageV(const MotorEntry& motor);
 // bands in the pessimistic/optimistic scenarios. *rating_estimated (optional) says whether the
 // power rating is an estimate from the mass (here or by the importer, source.values "assumed");
 // *excluded (optional) whether the mission leaves the motor out (unrated_motors = "exclude").
+// A geared motor (catalog keys gear_ratio, gear_efficiency) is returned as seen at the
+// propeller shaft (model/gear.h, MotorAtPropellerShaft): every drive the evaluator and the
+// search build from it turns the propeller at the propeller's own speed and counts the gear
+// loss, and every bound proven for a direct-drive motor holds for it (gear.h).
 MotorParams ScenarioMotorParams(const MotorEntry& motor, const Mission& mission,
                                 bool* rating_estimated = nullptr, bool* excluded = nullptr);
 EscParams ScenarioEscParams(const EscEntry& esc, DataScenario scenario);

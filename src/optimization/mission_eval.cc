@@ -1099,11 +1099,12 @@ bool MissionEvaluator::EarlyExit(double cutoff_score, bool explain, MissionResul
     // min_energy with free cruise airspeeds: every other segment's energy does not depend on
     // them (terminal power N*PDC + P_avionics, and PDC = C1*U*I/kv does not depend on the
     // voltage when C0 = 0, eqs 57, 59), and a wing-borne cruise needs at least the propulsive
-    // work T*d = W/(L/D)*d (electrical >= shaft >= thrust power) plus the avionics.
+    // work T*d (electrical >= shaft >= thrust power) plus the avionics, T = W/(L/D) plus the
+    // added drag at the lowest airspeed of the range (flight.h: the least thrust of the range).
     // With a capacity range the run is at the smallest capacity: a larger pack only adds mass,
     // so every segment's thrust, speed, torque and so its PDC (no supply resistance: the
     // terminal power does not depend on the pack's voltage) rise with it (M3 of search.cc), and
-    // W/(L/D) too: the same sum bounds the energy at every capacity of the range.
+    // the wing-borne thrust W/(L/D) + added drag too: the same sum bounds the energy at every capacity of the range.
     ContinuousVars v0;
     v0.airspeed_m_s.assign(m_.segments.size(), 0.0);
     if (m_.battery.capacity_ah) v0.capacity_ah = m_.battery.capacity_ah->lo;
@@ -1119,7 +1120,8 @@ bool MissionEvaluator::EarlyExit(double cutoff_score, bool explain, MissionResul
         if (s.type == SegmentType::kCruise && s.airspeed_m_s.free()) {
           const double d = s.distance_m ? *s.distance_m : *s.duration_s * s.airspeed_m_s.lo;
           const double t_min = s.distance_m ? d / s.airspeed_m_s.hi : *s.duration_s;
-          const double thrust = s.lift_to_drag > 0 ? r0.total_mass_kg * kStandardGravity / s.lift_to_drag : 0.0;
+          const double thrust =
+              s.lift_to_drag > 0 ? SegmentRotorLoad(m_, s, r0.total_mass_kg, s.airspeed_m_s.lo).thrust_total_n : 0.0;
           double e_prop = thrust * d;
           const GroupDrive& gd = groups_[s.group];
           const MotorParams& mp = gd.drive.motor();
@@ -1129,10 +1131,11 @@ bool MissionEvaluator::EarlyExit(double cutoff_score, bool explain, MissionResul
             // Tighter, as FreeCruisePowerLowerBoundW of search.cc: a feasible point's prop power
             // is at least P_ideal(T, V)/max_figure_of_merit (prop_figure_of_merit; V the inflow
             // with forward-flight tables, else 0) and PDC >= Pmech (no stage creates energy);
-            // by distance P_ideal/V falls with V (least at hi), by duration P_ideal rises (lo).
+            // the thrust is least at lo; by distance P_ideal/V falls with V at fixed thrust
+            // (least at hi), by duration P_ideal rises (lo).
             const bool axial = gd.prop->data_kind() == PropDataKind::kTables && !gd.parts.prop->j_tables.empty();
             const double v = axial ? (s.distance_m ? s.airspeed_m_s.hi : s.airspeed_m_s.lo) : 0.0;
-            const RotorLoad ld = SegmentRotorLoad(m_, s, r0.total_mass_kg, s.airspeed_m_s.hi);
+            const RotorLoad ld = SegmentRotorLoad(m_, s, r0.total_mass_kg, s.airspeed_m_s.lo);
             const double p_ideal = IdealRotorPowerW(ld.thrust_per_rotor_n, gd.parts.prop->diameter_m, m_.rho_kg_m3, v);
             e_prop = std::max(e_prop, ld.rotors * p_ideal / m_.constraints.max_figure_of_merit * t_min);
           }
@@ -1361,7 +1364,11 @@ double MissionEvaluator::WindingTempC(const OperatingPoint& p, int group) const 
   const double kp = MaxKtPerKe(mp.type);
   const double i = p.irms_a;
   const double p_cu_ref = kp * mp.rm_ohm * i * i;              // copper loss at Rm, W
-  const double p_other = std::max(0.0, p.pac_w - p.pmech_w - p_cu_ref);  // no-load loss, W
+  // The motor's own no-load loss: its shaft power is the propeller's plus the gear loss, which
+  // heats the gearbox, not the winding (model/gear.h; direct drive: pmech_w itself).
+  const Gear& gear = groups_[group].parts.motor->gear;
+  const double p_shaft = gear.geared() ? MotorShaftOf(p.omega_rad_s, p.torque_nm, gear).power_w : p.pmech_w;
+  const double p_other = std::max(0.0, p.pac_w - p_shaft - p_cu_ref);  // no-load loss, W
   const double t_air = m_.air_temperature_c;
   // T - t_air = Rth*(p_cu_ref*(1 + a*(T - T_ref)) + p_other), linear in T.
   const double denom = 1.0 - kAlphaCuPerK * rth_k_per_w_ * p_cu_ref;

@@ -1158,14 +1158,15 @@ void PrepareStages(const Mission& m, const Catalog& cat, SearchContext* ctx) {
 
 // A wing-borne cruise (lift_to_drag > 0) of a fixed group with a free airspeed in [lo, hi]:
 // a power P_lb with P_lb * SegmentDurationS(hi) <= the segment's energy at every airspeed of
-// the range. The thrust W/(L/D) does not depend on the airspeed (flight.h); a feasible point
-// has prop power >= P_ideal(T, V)/max_figure_of_merit (the evaluator's prop_figure_of_merit,
-// V the axial inflow for propellers with forward-flight tables, else 0: PropellerPoint), and
-// PDC >= Pmech when neither the motor nor the ESC can create energy (as in ScoreLowerBound;
-// model.md section 10). By distance the energy is P*d/V, and P_ideal(T, V)/V falls with V:
-// its least value is at hi, with the avionics' P_av*d/hi. By duration the energy is P*t and
-// P_ideal rises with V: the least at lo. 0 when no bound applies (the avionics are counted by
-// the caller).
+// the range. The thrust W/(L/D) + 1/2*rho*V^2*Cd*A_add (flight.h) is least at lo and rises
+// with the airspeed; a feasible point has prop power >= P_ideal(T, V)/max_figure_of_merit (the
+// evaluator's prop_figure_of_merit, V the axial inflow for propellers with forward-flight
+// tables, else 0: PropellerPoint), and PDC >= Pmech when neither the motor nor the ESC can
+// create energy (as in ScoreLowerBound; model.md section 10). P_ideal rises with T, so T(lo)
+// bounds it at every airspeed. By distance the energy is P*d/V, and P_ideal(T, V)/V falls with
+// V at fixed T: its least value is at hi, with the avionics' P_av*d/hi. By duration the energy
+// is P*t and P_ideal rises with V: the least at lo. 0 when no bound applies (the avionics are
+// counted by the caller).
 double FreeCruisePowerLowerBoundW(const Mission& m, const Segment& sg, const GroupParts& parts,
                                   const PropModel& model, double mass_kg) {
   if (!(sg.lift_to_drag > 0)) return 0.0;
@@ -1175,7 +1176,7 @@ double FreeCruisePowerLowerBoundW(const Mission& m, const Segment& sg, const Gro
   if (!lossy) return 0.0;
   const bool axial_data = model.data_kind() == PropDataKind::kTables && !parts.prop->j_tables.empty();
   const double v = axial_data ? (sg.distance_m ? sg.airspeed_m_s.hi : sg.airspeed_m_s.lo) : 0.0;
-  const RotorLoad ld = SegmentRotorLoad(m, sg, mass_kg, sg.airspeed_m_s.hi);  // thrust: any airspeed
+  const RotorLoad ld = SegmentRotorLoad(m, sg, mass_kg, sg.airspeed_m_s.lo);  // the least thrust of the range
   const double p_ideal = IdealRotorPowerW(ld.thrust_per_rotor_n, parts.prop->diameter_m, m.rho_kg_m3, v);
   return ld.rotors * p_ideal / m.constraints.max_figure_of_merit;
 }
@@ -1192,12 +1193,13 @@ bool SpeedFromBelow(const PropModel& prop, double rho, double thrust_n, double v
 
 // G1 for a fixed group's wing-borne cruise with a free airspeed, from its own drive: a power
 // P_lb (W, rotors only) with P_lb * SegmentDurationS(sg, hi) at or below the segment's
-// energy at every airspeed of its range (0 when no bound is found). The thrust W/(L/D) does
-// not depend on the airspeed; the inflow is the airspeed. At kSamples + 1 airspeeds V_k the
+// energy at every airspeed of its range (0 when no bound is found). The thrust W/(L/D) plus
+// the added drag (flight.h) rises with the airspeed; the inflow is the airspeed. At kSamples + 1 airspeeds V_k the
 // drive's PDC from below at that thrust (speed by SpeedFromBelow, the torque there, PDC the
 // smaller at the full-charge and cut-off voltage, eq 59). (M4) At a fixed thrust a
 // propeller's power rises with its axial inflow (the ideal power T*(V/2 + sqrt((V/2)^2 +
-// T/(2*rho*A))) does; checked on the samples: a sample below the one before gives no bound).
+// T/(2*rho*A))) does), and at a fixed inflow with its thrust (M1), which rises with V; checked
+// on the samples: a sample below the one before gives no bound.
 // Then on [V_k, V_k+1] the energy P(V)*d/V is at least P(V_k)*d/V_k+1 (by distance; by
 // duration P(V)*t >= P(V_0)*t).
 double FixedFreeCruiseDataPowerW(const Mission& m, const Segment& sg, const GroupParts& parts, const PropModel& prop,

@@ -10,6 +10,7 @@
 #include "common/units.h"
 #include "mission/flight.h"
 #include "model/drive.h"
+#include "model/gear.h"
 #include "model/physics.h"
 #include "prop/prop_model.h"
 #include "report/gnuplot.h"
@@ -154,7 +155,10 @@ Json MissionResultJson(const Mission& m, const Combination& c, const MissionResu
   }
   Json segs = Json::array();
   for (const SegmentResult& s : r.segments) {
-    const OperatingPoint& p = s.point;
+    // A geared motor: the motor's shaft in rpm, torque, pmech and the efficiencies, the
+    // propeller's beside them (model/gear.h); direct drive: the one shaft.
+    const Gear& gear = c.Parts(s.group).motor->gear;
+    const OperatingPoint p = MotorSidePoint(s.point, gear);
     Json g;
     g["name"] = s.name;
     g["type"] = SegmentTypeName(s.type);
@@ -180,10 +184,19 @@ Json MissionResultJson(const Mission& m, const Combination& c, const MissionResu
     g["eta_motor"] = p.eta_motor;
     g["eta_esc"] = p.eta_esc;
     g["eta_system"] = p.eta_system;
+    if (gear.geared()) {
+      const MotorShaft shaft = MotorShaftOf(s.point.omega_rad_s, s.point.torque_nm, gear);
+      g["gear_ratio"] = gear.ratio;
+      g["gear_efficiency"] = gear.efficiency;
+      g["prop_rpm"] = s.point.rpm;
+      g["prop_torque_nm"] = s.point.torque_nm;
+      g["prop_power_w"] = s.point.pmech_w;
+      g["gear_loss_w"] = shaft.gear_loss_w;
+    }
     g["eta_system_average"] = s.eta_average;
     g["winding_temp_c"] = s.winding_temp_c;
-    if (s.type == SegmentType::kHover && p.pmech_w > 0) {  // of the power flown (credibility.h)
-      g["figure_of_merit"] = IdealRotorPowerW(s.thrust_per_rotor_n, c.Parts(s.group).prop->diameter_m, m.rho_kg_m3) / p.pmech_w;
+    if (s.type == SegmentType::kHover && s.point.pmech_w > 0) {  // of the power flown (credibility.h)
+      g["figure_of_merit"] = IdealRotorPowerW(s.thrust_per_rotor_n, c.Parts(s.group).prop->diameter_m, m.rho_kg_m3) / s.point.pmech_w;
     }
     g["battery_current_a"] = s.battery_current_a;
     g["soc_start"] = s.soc_start;
@@ -251,7 +264,8 @@ std::string MissionResultText(const Mission& m, const Combination& c, const Miss
   o << CredibilityText(m, r);
   o << "  segment (point: end, worst case)   s     rpm  thr %  eff %  torque N*m  Irms A  IDC A   VDC V   PDC W  PESC W  eta_m  eta_e  eta_s  limit\n";
   for (const SegmentResult& s : r.segments) {
-    const OperatingPoint& p = s.point;
+    const Gear& gear = c.Parts(s.group).motor->gear;
+    const OperatingPoint p = MotorSidePoint(s.point, gear);  // the motor's shaft (model/gear.h)
     o << "  " << std::left << std::setw(12) << (s.name + (m.groups.empty() ? "" : "/" + m.groups[s.group].name)).substr(0, 12) << std::setw(7)
       << SegmentTypeName(s.type) << std::right << std::setw(10) << Fixed(s.duration_s, 0)
       << std::setw(8) << Fixed(p.rpm, 0) << std::setw(7) << Fixed(100 * p.throttle, 1)
@@ -267,6 +281,13 @@ std::string MissionResultText(const Mission& m, const Combination& c, const Miss
       << Fixed(100 * s.soc_start, 1) << " -> " << Fixed(100 * s.soc_end, 1) << " %, winding "
       << Fixed(s.winding_temp_c, 0) << " C";
     if (s.type == SegmentType::kCruise) o << ", airspeed " << Fixed(s.airspeed_m_s, 2) << " m/s";
+    if (gear.geared()) {
+      const MotorShaft shaft = MotorShaftOf(s.point.omega_rad_s, s.point.torque_nm, gear);
+      o << "\n      geared " << Fixed(gear.ratio, 2) << ":1 (efficiency " << Fixed(gear.efficiency, 3)
+        << "; the row is the motor's shaft): propeller " << Fixed(s.point.rpm, 0) << " rpm, "
+        << Fixed(s.point.torque_nm, 4) << " N*m, " << Fixed(s.point.pmech_w, 1) << " W; gear loss "
+        << Fixed(shaft.gear_loss_w, 1) << " W";
+    }
     o << "\n";
   }
   for (const Violation& v : r.violations) {
@@ -343,7 +364,8 @@ std::vector<std::string> WriteSegmentMaps(const Mission& m, const Combination& c
       pts.series.push_back({rpm, q});
     }
     const GroupParts parts = c.Parts(s.group);
-    const Drive d(parts.motor->params, parts.esc->params);
+    // At the propeller shaft, as the segment's point (model/gear.h; direct drive: the motor's).
+    const Drive d(MotorAtPropellerShaft(parts.motor->params, parts.motor->gear), parts.esc->params);
     const PropModel prop(*parts.prop);
     const double vdc = s.point.vdc_v;
     const double w_max = d.NoLoadSpeed(vdc, 1.0);

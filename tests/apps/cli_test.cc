@@ -144,3 +144,44 @@ TEST(Cli, CatalogListJsonIsCatalogEntries) {
 
 }  // namespace
 }  // namespace dynosize
+
+namespace dynosize {
+namespace {
+
+// simulate --prop with a geared motor (issue 23 item 4): the motor's rpm and the propeller's
+// prop_rpm side by side, rpm = gear_ratio x prop_rpm, and the propeller's thrust is its data at
+// prop_rpm (the propeller turns at its own speed, not the motor's). The bundled catalog's
+// KIRA 650-13 with its 6.7:1 gearbox and the 24x10 of the sprayer example.
+TEST(Cli, SimulatePropWithAGearedMotorReportsBothSpeeds) {
+  const std::string cat = std::string(DYNOSIZE_SOURCE_DIR) + "/catalog";
+  const auto r = testing_util::RunCli("simulate --catalog " + cat +
+                                      " --motor dc_m_695 --esc dc_e_26 --prop dc_p_304 --vdc 44.4 --throttle 0.4 --json");
+  ASSERT_EQ(r.code, 0) << r.err;
+  const Json j = ParseJsonText(r.out, "simulate");
+  ASSERT_TRUE(j.contains("prop_rpm"));
+  EXPECT_DOUBLE_EQ(j["gear_ratio"].get<double>(), 6.7);
+  EXPECT_NEAR(j["rpm"].get<double>(), 6.7 * j["prop_rpm"].get<double>(), 1e-9 * j["rpm"].get<double>());
+  // The propeller is well below the motor's speed (a 24 in propeller near 3,300 rpm, the motor
+  // near 22,000 rpm at 40 % of 44.4 V).
+  EXPECT_LT(j["prop_rpm"].get<double>(), 5000.0);
+  EXPECT_GT(j["gear_loss_w"].get<double>(), 0.0);
+  // The loss closes the power balance: motor shaft = propeller + gear loss; the motor's
+  // efficiency stays below 1.
+  EXPECT_LT(j["eta_motor"].get<double>(), 1.0);
+  // Text: both speeds.
+  const auto t = testing_util::RunCli("simulate --catalog " + cat +
+                                      " --motor dc_m_695 --esc dc_e_26 --prop dc_p_304 --vdc 44.4 --throttle 0.4");
+  ASSERT_EQ(t.code, 0) << t.err;
+  EXPECT_NE(t.out.find("propeller rpm"), std::string::npos) << t.out;
+  EXPECT_NE(t.out.find("geared 6.70:1"), std::string::npos) << t.out;
+  // Direct drive: prop_rpm is the motor's rpm.
+  const auto d = testing_util::RunCli("simulate --catalog " + cat +
+                                      " --motor dc_m_550 --esc dc_e_145 --prop dc_p_349 --vdc 14.8 --throttle 0.5 --json");
+  ASSERT_EQ(d.code, 0) << d.err;
+  const Json jd = ParseJsonText(d.out, "simulate");
+  EXPECT_EQ(jd["rpm"].get<double>(), jd["prop_rpm"].get<double>());
+  EXPECT_FALSE(jd.contains("gear_ratio"));
+}
+
+}  // namespace
+}  // namespace dynosize

@@ -164,3 +164,49 @@ TEST(Schema, DescribesRules) {
 
 }  // namespace
 }  // namespace dynosize
+
+namespace dynosize {
+namespace {
+
+// gear_ratio / gear_efficiency (model/gear.h) and the check that a geared entry's Kv is the
+// motor's (motor_credibility.h, kGearedKmRatioMax). The KIRA 650-13/6.7:1 of DriveCalc (378 g,
+// R_dc 36.3 mOhm): with the motor's Kv (1323 rpm/V = 6.7 x DriveCalc's kV) Km is 0.35 x a
+// typical motor of its mass; with DriveCalc's kV itself (197.5 rpm/V, the output shaft's) 2.35 x.
+const char* kGeared = R"({"id": "g1", "name": "Kontronik KIRA 650-13/6.7:1", "type": "bldc",
+  "kv_rpm_per_v": 1323.03, "rm_ohm": 0.0272325, "rm_dc_ohm": 0.0363491, "io_a": 0.6364, "mass_kg": 0.378,
+  "gear_ratio": 6.7, "gear_efficiency": 0.968,
+  "source": {"dataset": "unit test"}})";
+
+TEST(Catalog, GearKeysAreReadAndChecked) {
+  {
+    Catalog c;
+    std::vector<std::string> problems;
+    c.AddDocument(ParseJsonText(Doc(std::string(kGoodMotor) + ", " + kGeared), "t.json"), "t.json", &problems);
+    ASSERT_TRUE(problems.empty()) << problems[0];
+    EXPECT_DOUBLE_EQ(c.motor("g1").gear.ratio, 6.7);
+    EXPECT_DOUBLE_EQ(c.motor("g1").gear.efficiency, 0.968);
+    EXPECT_FALSE(c.motor("m1").gear.geared()) << "absent: direct drive";
+  }
+  const std::vector<BadCase> cases = {
+      {"output-shaft Kv", Doc(Edit(kGeared, "\"kv_rpm_per_v\": 1323.03", "\"kv_rpm_per_v\": 197.467")),
+       "motors[0] id=g1: key 'kv_rpm_per_v' = 197.467: a geared motor's Kv must be the motor's, not the output shaft's: "
+       "its motor constant Km = "},
+      {"no efficiency", Doc(Edit(kGeared, ", \"gear_efficiency\": 0.968", "")),
+       "id=g1: key 'gear_efficiency': missing: a motor with gear_ratio > 1 needs its gearbox's efficiency"},
+      {"efficiency without a gear", Doc(Edit(kGoodMotor, "\"io_a\": 0.4", "\"io_a\": 0.4, \"gear_efficiency\": 0.95")),
+       "id=m1: key 'gear_efficiency' = 0.95: must be 1 without a gear"},
+      {"ratio below 1", Doc(Edit(kGeared, "\"gear_ratio\": 6.7, \"gear_efficiency\": 0.968", "\"gear_ratio\": 0.15")),
+       "key 'gear_ratio' = 0.15: must be a finite number >= 1"},
+      {"efficiency above 1", Doc(Edit(kGeared, "\"gear_efficiency\": 0.968", "\"gear_efficiency\": 1.03")),
+       "key 'gear_efficiency' = 1.03: must be a finite number > 0 and <= 1"},
+  };
+  for (const auto& c : cases) {
+    const auto problems = Problems(c.doc);
+    ASSERT_EQ(problems.size(), 1u) << c.what << ": " << (problems.empty() ? "none" : problems[0]);
+    EXPECT_NE(problems[0].find(c.expected), std::string::npos)
+        << c.what << "\n got: " << problems[0] << "\n want: " << c.expected;
+  }
+}
+
+}  // namespace
+}  // namespace dynosize

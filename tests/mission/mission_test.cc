@@ -110,9 +110,9 @@ TEST(MissionTest, ReadsPropulsionGroups) {
   EXPECT_EQ(*GroupMaxPropDiameterM(m, lift), 0.4);
   EXPECT_EQ(LiftGroup(m), lift);
   EXPECT_EQ(LiftRotors(m), 4);
-  // The idle lift rotors add their drag area in cruise (T = W/(L/D) is along the path, so the
-  // drag enters the climbs and multirotor cruise only): in the climb the cruise group's 0 is
-  // added, nothing else.
+  // The idle lift rotors add their drag area while the cruise group flies (the wing-borne
+  // cruise: WingBorneCruiseAddsTheDragItsLiftToDragDoesNotHold): in the climb the cruise
+  // group's 0 is added, nothing else.
   const RotorLoad up = SegmentRotorLoad(m, m.segments[0], 3.0, 0.0);
   EXPECT_EQ(up.rotors, 4);
   const double w = 3.0 * kStandardGravity;
@@ -146,6 +146,30 @@ TEST(MissionTest, BadGroupsGiveOneLineNamingPathValueAndRule) {
   EXPECT_NE(err.find("$.segments[2].group = \"lift\": needs a \"propulsion\" object"), std::string::npos) << err;
 }
 
+// lift_to_drag_of: "aircraft" (the default) or "wing", only beside a lift_to_drag.
+TEST(MissionTest, LiftToDragOfIsReadAndCheckedStrictly) {
+  EXPECT_EQ(Parse(kGroups).segments[1].lift_to_drag_of, LiftToDragOf::kAircraft);
+  const std::string wing = Replace(kGroups, "\"lift_to_drag\": 8,", "\"lift_to_drag\": 8, \"lift_to_drag_of\": \"wing\",");
+  EXPECT_EQ(Parse(wing).segments[1].lift_to_drag_of, LiftToDragOf::kWing);
+  const std::string aircraft = Replace(kGroups, "\"lift_to_drag\": 8,", "\"lift_to_drag\": 8, \"lift_to_drag_of\": \"aircraft\",");
+  EXPECT_EQ(Parse(aircraft).segments[1].lift_to_drag_of, LiftToDragOf::kAircraft);
+  struct Case { std::string from, to, expect; };
+  const Case cases[] = {
+      {"\"lift_to_drag\": 8,", "\"lift_to_drag\": 8, \"lift_to_drag_of\": \"body\",",
+       "$.segments[1].lift_to_drag_of = \"body\": must be one of aircraft, wing"},
+      {"\"lift_to_drag\": 8,", "\"lift_to_drag_of\": \"wing\",",
+       "$.segments[1].lift_to_drag_of = \"wing\": needs lift_to_drag (a cruise without a wing has no L/D)"},
+      {"\"lift_to_drag\": 8,", "\"lift_to_drag\": 8, \"lift_to_drag_of\": 1,", "$.segments[1].lift_to_drag_of = 1"},
+      {"\"duration_s\": 30, \"group\": \"lift\"", "\"duration_s\": 30, \"group\": \"lift\", \"lift_to_drag_of\": \"wing\"",
+       "lift_to_drag_of"},
+  };
+  for (const Case& c : cases) {
+    const std::string err = ErrorOf(Replace(kGroups, c.from, c.to));
+    EXPECT_NE(err.find(c.expect), std::string::npos) << "got: " << err;
+    EXPECT_EQ(err.find('\n'), std::string::npos) << err;
+  }
+}
+
 TEST(MissionTest, CliRefusesABadMissionWithExit65) {
   namespace fs = std::filesystem;
   const fs::path dir = fs::temp_directory_path() / ("dynosize_mission_" + std::to_string(getpid()));
@@ -163,7 +187,8 @@ TEST(MissionTest, CliRefusesABadMissionWithExit65) {
 }
 
 TEST(MissionTest, ExamplesParse) {
-  for (const char* f : {"quadcopter_1p5kg.json", "evtol_lift_cruise.json"}) {
+  for (const char* f : {"quadcopter_1p5kg.json", "evtol_lift_cruise.json", "quadplane_2kg.json",
+                        "sprayer_hexacopter_25kg.json", "fpv_5in.json"}) {
     EXPECT_NO_THROW(ReadMission(std::string(DYNOSIZE_SOURCE_DIR) + "/examples/missions/" + f)) << f;
   }
 }
@@ -184,6 +209,53 @@ TEST(FlightTest, ForceBalance) {
   const RotorLoad climb = SegmentRotorLoad(m, m.segments[0], mass, 0.0);
   EXPECT_NEAR(climb.thrust_total_n, w + 0.5 * m.rho_kg_m3 * 4.0 * 0.05, 1e-12);
   EXPECT_DOUBLE_EQ(climb.axial_airspeed_m_s, 2.0);
+}
+
+// A wing-borne cruise: T = W/(L/D) + 1/2*rho*V^2*Cd*A_add (flight.h), A_add the idle groups'
+// idle_drag_area_m2 always and the body's drag_area_m2 when the L/D is the wing's; Cd the
+// vehicle's drag_coefficient, which multiplies every area. Exact arithmetic: the two sides are
+// the same few products, so the tolerance is a few ulps of the thrust.
+TEST(FlightTest, WingBorneCruiseAddsTheDragItsLiftToDragDoesNotHold) {
+  constexpr double kUlps = 1e-14;
+  Mission m = Parse(kGroups);
+  m.vehicle.drag_coefficient = 1.3;  // a Cd other than 1 shows which areas it multiplies
+  const double mass = 3.0, w = mass * kStandardGravity, v = 18.0, q = 0.5 * m.rho_kg_m3 * v * v;
+  const RotorLoad aircraft = SegmentRotorLoad(m, m.segments[1], mass, v);
+  EXPECT_NEAR(aircraft.thrust_total_n, w / 8 + q * 1.3 * 0.02, kUlps * w);
+  EXPECT_DOUBLE_EQ(aircraft.axial_airspeed_m_s, v);
+  EXPECT_DOUBLE_EQ(aircraft.tilt_rad, 0.0);
+  m.segments[1].lift_to_drag_of = LiftToDragOf::kWing;
+  const RotorLoad wing = SegmentRotorLoad(m, m.segments[1], mass, v);
+  EXPECT_NEAR(wing.thrust_total_n, w / 8 + q * 1.3 * (0.05 + 0.02), kUlps * w);
+  // The thrust rises with the airspeed (what the free-airspeed bounds of search.cc rest on).
+  EXPECT_GT(SegmentRotorLoad(m, m.segments[1], mass, v + 1).thrust_total_n, wing.thrust_total_n);
+}
+
+// The goal on the example itself: the quadplane's cruise thrust rises by exactly
+// 1/2*rho*V^2*Cd*A when a stopped-rotor area A is added, and a body drag area changes nothing
+// while the L/D is the whole aircraft's (the example's "aircraft").
+TEST(FlightTest, QuadplaneCruiseThrustRisesByTheStoppedRotorsDrag) {
+  constexpr double kUlps = 1e-14;
+  Mission m = ReadMission(std::string(DYNOSIZE_SOURCE_DIR) + "/examples/missions/quadplane_2kg.json");
+  std::size_t cruise = 0;
+  while (m.segments[cruise].type != SegmentType::kCruise) ++cruise;
+  const Segment& s = m.segments[cruise];
+  ASSERT_GT(s.lift_to_drag, 0);
+  EXPECT_EQ(s.lift_to_drag_of, LiftToDragOf::kAircraft);
+  int lift = 0;
+  while (m.groups[lift].name != "lift") ++lift;
+  const double mass = 1.878, v = s.airspeed_m_s.lo, cd = m.vehicle.drag_coefficient;
+  m.groups[lift].idle_drag_area_m2 = 0.0;
+  const double t0 = SegmentRotorLoad(m, s, mass, v).thrust_total_n;
+  EXPECT_NEAR(t0, mass * kStandardGravity / s.lift_to_drag, kUlps * t0);
+  for (const double a : {0.006, 0.05}) {
+    m.groups[lift].idle_drag_area_m2 = a;
+    const double t = SegmentRotorLoad(m, s, mass, v).thrust_total_n;
+    EXPECT_NEAR(t - t0, 0.5 * m.rho_kg_m3 * v * v * cd * a, kUlps * t) << a;
+  }
+  m.vehicle.drag_area_m2 = 0.3;
+  const double with_body = SegmentRotorLoad(m, s, mass, v).thrust_total_n;
+  EXPECT_NEAR(with_body - t0, 0.5 * m.rho_kg_m3 * v * v * cd * 0.05, kUlps * with_body);
 }
 
 }  // namespace

@@ -268,3 +268,102 @@ TEST_F(MissionEvalTest, TheCapacitySearchFindsTheBestCapacity) {
 
 }  // namespace
 }  // namespace dynosize
+
+namespace dynosize {
+namespace {
+
+// Issue 23 item 3 at the evaluator: the quadplane example with its pick, flown with and without
+// the stopped lift rotors' drag area. The cruise's thrust rises by exactly 1/2*rho*V^2*Cd*A
+// (the pusher's thrust, what its propeller is solved for), and its shaft power and energy rise
+// with it (the same pusher, more load). Uses the bundled catalog.
+TEST(MissionEvalCruiseDragTest, TheQuadplaneCruiseCarriesTheStoppedRotorsDrag) {
+  const std::string root = DYNOSIZE_SOURCE_DIR;
+  const Catalog cat = Catalog::Load(root + "/catalog");
+  Mission m = ReadMission(root + "/examples/missions/quadplane_2kg.json");
+  int lift = 0, pusher = 0;
+  for (int g = 0; g < GroupCount(m); ++g) (m.groups[g].name == "lift" ? lift : pusher) = g;
+  std::size_t cruise = 0;
+  while (m.segments[cruise].type != SegmentType::kCruise) ++cruise;
+  Combination c;
+  c.battery = &cat.battery("dc_b_361");
+  c.cells = 4;
+  c.groups.assign(2, GroupParts{});
+  c.groups[lift] = GroupParts{&cat.motor("dc_m_550"), &cat.esc("dc_e_145"), &cat.prop("uiuc_v2_gwsdd_9.0x5.0_2")};
+  c.groups[pusher] = GroupParts{&cat.motor(m.groups[pusher].motor_id), &cat.esc(m.groups[pusher].esc_id),
+                                &cat.prop(m.groups[pusher].prop_id)};
+  c.motor = c.groups[lift].motor;
+  c.esc = c.groups[lift].esc;
+  c.prop = c.groups[lift].prop;
+  const double area = m.groups[lift].idle_drag_area_m2;
+  ASSERT_GT(area, 0.0);
+  const MissionResult with = MissionEvaluator(m, c).Solve();
+  m.groups[lift].idle_drag_area_m2 = 0.0;
+  const MissionResult without = MissionEvaluator(m, c).Solve();
+  ASSERT_EQ(with.segments.size(), m.segments.size());
+  ASSERT_EQ(without.segments.size(), m.segments.size());
+  EXPECT_DOUBLE_EQ(with.total_mass_kg, without.total_mass_kg);
+  const SegmentResult& a = with.segments[cruise];
+  const SegmentResult& b = without.segments[cruise];
+  const double v = m.segments[cruise].airspeed_m_s.lo;
+  const double added = 0.5 * m.rho_kg_m3 * v * v * m.vehicle.drag_coefficient * area;
+  EXPECT_NEAR(a.thrust_per_rotor_n - b.thrust_per_rotor_n, added, 1e-12 * a.thrust_per_rotor_n);
+  // The propulsive power T*V rises by added*V; the shaft power by at least that (the
+  // propeller's efficiency is below 1).
+  EXPECT_GT(a.point.pmech_w - b.point.pmech_w, added * v);
+  EXPECT_GT(with.energy_wh, without.energy_wh);
+}
+
+}  // namespace
+}  // namespace dynosize
+
+namespace dynosize {
+namespace {
+
+// Issue 23 item 4 at the evaluator: a geared motor of the small catalog (dc_m_1600, Hacker A20
+// with a 4:1 gearbox of efficiency 0.975) hovers with its propeller turning at the propeller's
+// own speed (its data give the hover thrust there), the motor at 4 x that speed, and the gear
+// loss is in the energy: the same combination with a loss-free gearbox (efficiency 1) draws
+// less, by at least the gear loss (same propeller point, the motor's torque 1/eta higher).
+TEST_F(MissionEvalTest, AGearedMotorTurnsThePropellerAtItsOwnSpeedAndPaysTheGearLoss) {
+  const Catalog cat = SmallCatalog();
+  const Mission m = Quad();
+  const MotorEntry& geared = cat.motor("dc_m_1600");
+  ASSERT_GT(geared.gear.ratio, 1.0);
+  ASSERT_LT(geared.gear.efficiency, 1.0);
+  MotorEntry lossless = geared;
+  lossless.gear.efficiency = 1.0;
+  int checked = 0;
+  for (const EscEntry& e : cat.escs()) {
+    for (const PropEntry& p : cat.props()) {
+      Combination c{&geared, &e, &p, &cat.battery("dc_b_361"), 4};
+      const MissionResult r = MissionEvaluator(m, c).Solve();
+      if (r.segments.size() != m.segments.size() || !r.feasible) continue;
+      const SegmentResult& hover = r.segments[1];
+      ASSERT_EQ(hover.type, SegmentType::kHover);
+      // The propeller's own speed: its data give the hover thrust at the point's speed.
+      const PropEvaluation ev = PropModel(p).Evaluate(hover.point.omega_rad_s, m.rho_kg_m3, 0.0);
+      EXPECT_NEAR(ev.thrust_n, hover.thrust_per_rotor_n, 1e-6 * hover.thrust_per_rotor_n) << p.id;
+      // The motor turns 4x faster against Q/(N*eta): the electrical point is the motor's own.
+      const MotorShaft shaft = MotorShaftOf(hover.point.omega_rad_s, hover.point.torque_nm, geared.gear);
+      const OperatingPoint at_motor = Drive(geared.params, e.params).Inverse(hover.point.vdc_v, shaft.torque_nm, shaft.omega_rad_s);
+      EXPECT_NEAR(at_motor.pdc_w, hover.point.pdc_w, 1e-9 * hover.point.pdc_w) << p.id;
+      // The gear loss in the energy.
+      Combination c1 = c;
+      c1.motor = &lossless;
+      const MissionResult r1 = MissionEvaluator(m, c1).Solve();
+      ASSERT_EQ(r1.segments.size(), m.segments.size());
+      const SegmentResult& h1 = r1.segments[1];
+      EXPECT_GT(r1.objective, r.objective) << p.id << ": max endurance is longer without the gear loss";
+      EXPECT_GT(shaft.gear_loss_w, 0.0);
+      EXPECT_NEAR(h1.point.omega_rad_s, hover.point.omega_rad_s, 1e-3 * hover.point.omega_rad_s) << p.id;
+      // 0.9: the two end points sit at slightly different pack voltages (the lossless run has
+      // drawn less), which moves PDC by a little at the same shaft point.
+      EXPECT_GE(hover.point.pdc_w - h1.point.pdc_w, 0.9 * shaft.gear_loss_w) << p.id;
+      ++checked;
+    }
+  }
+  EXPECT_GT(checked, 0) << "the geared motor must hover with some ESC and propeller of the small catalog";
+}
+
+}  // namespace
+}  // namespace dynosize

@@ -538,6 +538,9 @@ TEST_F(SearchTest, FreeCruiseEnergyBoundsAreBounds) {
   Json j = ParseJsonText(kLiftCruise, "lift");
   j["battery"]["capacity_ah"] = {2.0, 6.0};
   j["segments"][2]["airspeed_m_s"] = {9.0, 16.0};
+  // The wing's L/D: the body's drag is added, so the thrust rises with the airspeed (flight.h)
+  // and the bounds must take its least value over the range.
+  j["segments"][2]["lift_to_drag_of"] = "wing";
   const Mission m = ParseMission(j, "lift");
   // min_energy: 0.90 asks for 10 % less; ten feasible combinations (a test of seconds).
   ExpectCutoffsBoundOutOnlyWhatCannotBeatThem(cat, m, 30, {0.5, 0.90, 1.0 + 1e-6});
@@ -556,6 +559,8 @@ TEST_F(SearchTest, FixedGroupFreeCruiseBoundIsBelowTheEnergy) {
   const Combination& pick = one.best[0].combination;
   Json j = LiftAndFixedPusher(pick);
   j["segments"][2]["airspeed_m_s"] = {9.0, 16.0};
+  // Stopped lift rotors in the cruise: a thrust that rises with the airspeed (flight.h).
+  j["propulsion"]["lift"]["idle_drag_area_m2"] = 0.004;
   const Mission m = ParseMission(j, "groups");
   const int lift = m.segments[0].group, pusher = m.segments[2].group;
   search_internal::SearchContext ctx;

@@ -29,6 +29,9 @@ inline std::filesystem::path WriteSmallCatalog(const std::string& tag) {
     m.erase("exclude");
     doc["motors"].push_back(std::move(m));
   }
+  // A geared motor (Hacker A20-6XL with a 4:1 gearbox of efficiency 0.975, model/gear.h): the
+  // search's bounds and exhaustive evaluation must agree with a gearbox in the drive too.
+  doc["motors"].push_back(full.motor("dc_m_1600").json);
   int extra = 0;
   for (const MotorEntry& m : full.motors()) {  // a few more of the right size
     if (extra < 3 && m.mass_kg && m.kv_rpm_per_v && *m.kv_rpm_per_v > 600 && *m.kv_rpm_per_v < 1000 &&
