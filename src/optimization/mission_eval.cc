@@ -312,6 +312,16 @@ bool PropellerPoint(const Mission& m, const Segment& s, const RotorLoad& load, c
   if (prop_entry.max_rpm) {
     track->Check("prop_max_rpm", s.name, RadPerSecToRpm(*omega), *prop_entry.max_rpm, "rpm", false, seg);
   }
+  // The propeller's speed window around its data (mission.h): beyond it the data do not rank.
+  const PropValidRange& data = prop.valid_range();
+  if (k.prop_below_data_factor > 0) {
+    track->Check("prop_below_data", s.name, RadPerSecToRpm(*omega), k.prop_below_data_factor * data.rpm_lo, "rpm",
+                 true, seg);
+  }
+  if (k.prop_above_data_factor > 0) {
+    track->Check("prop_above_data", s.name, RadPerSecToRpm(*omega), k.prop_above_data_factor * data.rpm_hi, "rpm",
+                 false, seg);
+  }
   if (s.type == SegmentType::kHover && k.min_hover_throttle > 0) {
     // At the full-charge voltage without sag: the lowest throttle this hover can need, and
     // the same at every moment of the mission (so the stretch stays monotone).
@@ -846,6 +856,7 @@ double SocBelowOcv(const BatteryPack& pack, double v, double floor_soc) {
 // and IDC are not in the list: a larger pack also sags less, which lowers both.
 bool RisesWithMass(const std::string& constraint) {
   static const char* const kNames[] = {"esc_voltage", "prop_diameter", "thrust", "motor_power", "prop_max_rpm",
+                                       "prop_above_data",
                                        "max_winding_temp_c", "prop_folding", "motor_unrated",
                                        "motor_voltage"};
   for (const char* name : kNames) {
@@ -1016,7 +1027,9 @@ MissionResult MissionEvaluator::Solve(double cutoff_score, bool explain, bool de
 // (bounded out, infeasible, or the answer itself) in *out and true, or false to go on.
 bool MissionEvaluator::EarlyExit(double cutoff_score, bool explain, MissionResult* out) const {
   const bool capacity_free = m_.battery.capacity_ah && m_.battery.capacity_ah->free();
-  if (std::isfinite(cutoff_score) && m_.constraints.min_hover_throttle > 0) {
+  if (std::isfinite(cutoff_score) && (m_.constraints.min_hover_throttle > 0 || m_.constraints.prop_below_data_factor > 0)) {
+    // The same holds for prop_below_data (the hover speed rises with the mass, M1 and M3 of
+    // search.cc: below the window at the largest pack, below it at every capacity).
     // min_hover_throttle is checked at the full-charge OCV (PropellerPoint), which does not
     // depend on the capacity, with the hover's torque and speed, which rise with the mass
     // (M3 of search.cc); the throttle that holds them rises with them (M2). So the hover
@@ -1049,19 +1062,25 @@ bool MissionEvaluator::EarlyExit(double cutoff_score, bool explain, MissionResul
                               4.0 * w_motor_max, &omega, &ev)) {
         continue;  // no hover point: the check says nothing here
       }
-      AdjustPropEvaluation(gd.prop_adj, gd.parts.prop->diameter_m, &ev);
-      const double throttle = gd.drive.Inverse(v_full, ev.torque_nm, omega).throttle;
-      if (throttle < m_.constraints.min_hover_throttle) {
+      auto infeasible = [&](const char* name, double value, double limit, const char* unit) {
         MissionResult r;
         r.capacity_ah = pack.capacity_ah();
         r.total_mass_kg = mass_kg;
         r.propulsion_mass_kg = mass_kg - m_.vehicle.mass_kg;
-        r.violations.push_back(Violation{"min_hover_throttle", s.name, throttle, m_.constraints.min_hover_throttle, "", true});
-        r.min_slack = (throttle - m_.constraints.min_hover_throttle) / m_.constraints.min_hover_throttle;
+        r.violations.push_back(Violation{name, s.name, value, limit, unit, true});
+        r.min_slack = (value - limit) / limit;
         r.feasible = false;
         r.score = kInf;
         *out = std::move(r);
         return true;
+      };
+      const double rpm_min = m_.constraints.prop_below_data_factor * gd.prop->valid_range().rpm_lo;
+      if (RadPerSecToRpm(omega) < rpm_min) return infeasible("prop_below_data", RadPerSecToRpm(omega), rpm_min, "rpm");
+      if (!(m_.constraints.min_hover_throttle > 0)) continue;
+      AdjustPropEvaluation(gd.prop_adj, gd.parts.prop->diameter_m, &ev);
+      const double throttle = gd.drive.Inverse(v_full, ev.torque_nm, omega).throttle;
+      if (throttle < m_.constraints.min_hover_throttle) {
+        return infeasible("min_hover_throttle", throttle, m_.constraints.min_hover_throttle, "");
       }
     }
   }

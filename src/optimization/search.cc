@@ -140,6 +140,12 @@ namespace dynosize {
 //    to have all their pairs bounded as before. Tests: search_stages_test.cc (the key below
 //    every feasible score of the small catalog; the stream draws the sorted BuildCandidates
 //    list).
+// R12 (the propeller's data window, mission.h: prop_below_data, prop_above_data): a hover speed
+//    above the window at omega_lb (R2) or below it at the speed bound of the heaviest vehicle
+//    (as R6) fails it whatever else is chosen (M1, M3); see the rule (PropRule). The window's
+//    bottom is, like min_hover_throttle, a limit that more mass helps: the virtual ESC is
+//    evaluated without it and an ESC that fails it does not rule out the ESCs it dominates (R5);
+//    MissionEvaluator::EarlyExit decides it at the largest pack.
 // R8 (capacity pieces of R4, per pair and class): retired; R10's pieces bound a capacity range
 //    segment by segment, which holds R8's terms and more.
 // R5 (ESC dominance): within one pair, an ESC with the same C1, C0, tr_sat, sat_slope as an
@@ -262,11 +268,11 @@ class RuleCounts {
   std::vector<std::pair<const char*, long long>> counts_;
 };
 
-// A result that breaks min_hover_throttle (possibly among others) says nothing about a
-// dominated ESC, whose higher throttle may meet it (R5).
+// A result that breaks min_hover_throttle or prop_below_data (possibly among others) says
+// nothing about a dominated ESC, whose higher throttle, or mass and so speed, may meet it (R5).
 bool FailsMinHoverThrottle(const MissionResult& r) {
   for (const Violation& v : r.violations) {
-    if (v.constraint == "min_hover_throttle") return true;
+    if (v.constraint == "min_hover_throttle" || v.constraint == "prop_below_data") return true;
   }
   return false;
 }
@@ -942,6 +948,23 @@ const char* PropRule(const SearchContext& ctx, const MissionFacts& f, double mot
     }
   }
   if (prop.max_rpm && RadPerSecToRpm(*omega_lb) > *prop.max_rpm) return "prop_max_rpm";  // R2
+  // R12 (the propeller's data window, mission.h): every hover speed is at least omega_lb (R2);
+  // above the window's top there, every hover point fails prop_above_data. And at most the first
+  // grid speed whose thrust reaches T_ub (the heaviest the vehicle can be, as R6): below the
+  // window's bottom there, every hover point fails prop_below_data (M1, M3).
+  const PropValidRange& data = ctx.models[pi]->valid_range();
+  if (k.prop_above_data_factor > 0 && RadPerSecToRpm(*omega_lb) > k.prop_above_data_factor * data.rpm_hi) {
+    return "prop_above_data";
+  }
+  if (k.prop_below_data_factor > 0 && !f.hover.empty() && g.monotone) {
+    const double mass_ub = VehicleMassKg(ctx, bo.mass_hi_kg, motor_kg, g.mass_kg, ctx.escs.max_mass_kg[o]);
+    const RotorLoad load_ub = SegmentRotorLoad(m, m.segments[f.hover[0]], mass_ub, 0.0);
+    const double* it_ub = std::lower_bound(g.thrust, g.thrust + kGrid, load_ub.thrust_per_rotor_n);
+    if (it_ub != g.thrust + kGrid &&
+        RadPerSecToRpm(g.omega[it_ub - g.thrust]) < k.prop_below_data_factor * data.rpm_lo) {
+      return "prop_below_data";
+    }
+  }
   return nullptr;
 }
 
@@ -1741,6 +1764,7 @@ class BranchAndBound {
     // bound): its full-throttle solve costs a third of a simulation, and the few real ESCs
     // that reach the evaluation check it.
     relaxed_.constraints.min_hover_throttle = 0.0;
+    relaxed_.constraints.prop_below_data_factor = 0.0;  // a heavier real ESC turns the rotor faster
     relaxed_.constraints.min_thrust_to_weight = 0.0;
   }
 

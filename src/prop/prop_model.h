@@ -102,6 +102,8 @@ class PropModel {
   const PropEntry& entry() const { return entry_; }
   PropDataKind data_kind() const { return kind_; }
   double diameter_m() const { return entry_.diameter_m; }
+  // The data's valid range (catalog/prop_credibility.h, ValidRange of the entry).
+  const PropValidRange& valid_range() const { return range_; }
 
  private:
   // CT, CP at (rpm, J) from the tables; sets the flags of `ev`.
