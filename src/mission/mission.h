@@ -109,7 +109,8 @@ struct MissionConstraints {
   // propeller segment the speed is at least prop_below_data_factor x the low edge of the
   // propeller's valid range and at most prop_above_data_factor x its high edge
   // (catalog/prop_credibility.h, ValidRange); beyond, the data do not rank a combination, which
-  // fails "prop_below_data" / "prop_above_data". 0 = not checked. Below the data the model
+  // fails "prop_below_data" / "prop_above_data" (the bottom is not checked in a descent: the
+  // rotors unload for a landing). 0 = not checked. Below the data the model
   // corrects the coefficients for the Reynolds number (catalog/prop_reynolds.h), fitted and
   // checked on UIUC's tables down to 0.6x their lowest speed.
   double prop_below_data_factor = 0.6;

@@ -765,6 +765,33 @@ void SpeedTorqueFromBelow(const PropGrid& g, const SegmentGrid& sgrid, const Pro
   *torque = std::min(ev.torque_nm, sgrid.torque_suffix_min[idx + 1]);
 }
 
+// R12 (the window's bottom): true when the first hover's speed at the vehicle mass mass_ub_kg (an
+// upper bound of the true mass) is below the propeller's data window, so that it is below it at
+// every mass up to mass_ub_kg (M1, M3).
+bool HoverSpeedBelowWindowAtMass(const SearchContext& ctx, const MissionFacts& f, int prop, double mass_ub_kg) {
+  const Mission& m = *ctx.mission;
+  const PropGrid& g = ctx.grids[static_cast<std::size_t>(prop)];
+  if (!(m.constraints.prop_below_data_factor > 0) || f.hover.empty() || !g.monotone) return false;
+  const RotorLoad load = SegmentRotorLoad(m, m.segments[static_cast<std::size_t>(f.hover[0])], mass_ub_kg, 0.0);
+  const double* it = std::lower_bound(g.thrust, g.thrust + kGrid, load.thrust_per_rotor_n);
+  if (it == g.thrust + kGrid) return false;  // beyond the grid: no bound
+  const PropModel& model = *ctx.models[static_cast<std::size_t>(prop)];
+  const double w_min = RpmToRadPerSec(m.constraints.prop_below_data_factor * model.valid_range().rpm_lo);
+  // The first grid speed whose thrust reaches T_ub is at or above the hover speed (M1).
+  const std::ptrdiff_t i = it - g.thrust;
+  double hi = g.omega[i];
+  if (hi < w_min) return true;
+  if (i == 0 || g.omega[i - 1] >= w_min) return false;  // the speed may be anywhere above w_min
+  // Bisection within the cell on the model (static, as the evaluator reads a hover; the
+  // scenarios do not change thrust): hi stays a speed whose thrust reaches T_ub.
+  double lo = g.omega[i - 1];
+  for (int step = 0; step < 20 && hi >= w_min; ++step) {
+    const double mid = 0.5 * (lo + hi);
+    (model.Evaluate(mid, m.rho_kg_m3, 0.0).thrust_n >= load.thrust_per_rotor_n ? hi : lo) = mid;
+  }
+  return hi * (1.0 + 1e-9) < w_min;  // 1e-9: the evaluator's root is found to a tolerance
+}
+
 // R10 for one pair and ESC class with ESCs of at least esc_mass_kg and capacities in
 // [cap_a_ah, cap_b_ah] (see the rule): a lower bound of the score (-kInf when none applies), or
 // kInf with *rule set when no such combination can fly the pair.
@@ -786,6 +813,17 @@ double SegmentwiseBoundAt(const SearchContext& ctx, const MissionFacts& f, const
                                                            (cap_a_ah - bo.capacity_lo_ah) / span_ah
                                      : bo.mass_lo_kg;
   const double mass_lb = VehicleMassKg(ctx, pack_kg, *mo.mass_kg, g.mass_kg, esc_mass_kg);
+  // R12 (the window's bottom) over the piece: at its heaviest (the pack at C_b, grown by 1e-9
+  // against rounding, and the option's heaviest ESC) the first hover is below the window.
+  if (span_ah > 0 && ctx.mission->constraints.prop_below_data_factor > 0) {
+    const double pack_ub_kg =
+        (1.0 + 1e-9) * (bo.mass_lo_kg + (bo.mass_hi_kg - bo.mass_lo_kg) * (cap_b_ah - bo.capacity_lo_ah) / span_ah);
+    const double mass_ub = VehicleMassKg(ctx, pack_ub_kg, *mo.mass_kg, g.mass_kg, ctx.escs.max_mass_kg[option]);
+    if (HoverSpeedBelowWindowAtMass(ctx, f, prop, mass_ub)) {
+      *rule = "prop_below_data";
+      return kInf;
+    }
+  }
   const double ri_ohm = bo.ri_at_hi_ohm * bo.capacity_hi_ah / cap_b_ah;
   const bool lossy = DriveIsLossy(mp, ideal.esc().c1, ideal.esc().c0);
   const bool axial_data = ctx.models[static_cast<std::size_t>(prop)]->data_kind() == PropDataKind::kTables &&
@@ -808,6 +846,12 @@ double SegmentwiseBoundAt(const SearchContext& ctx, const MissionFacts& f, const
         SpeedTorqueFromBelow(g, sgrid, *ctx.models[static_cast<std::size_t>(prop)], pe.diameter_m, m.rho_kg_m3,
                              ld.thrust_per_rotor_n, refine_steps, &w, &q);
         point = true;
+        // R12 (the window's top): the segment's speed is at least w.
+        if (k.prop_above_data_factor > 0 &&
+            RadPerSecToRpm(w) > k.prop_above_data_factor * ctx.models[static_cast<std::size_t>(prop)]->valid_range().rpm_hi) {
+          *rule = "prop_above_data";
+          return kInf;
+        }
         const Drive::InverseCurrents hi = ideal.InverseLight(bo.v_full, q, w);
         if (hi.throttle > t_max) { *rule = "throttle"; return kInf; }
         if (hi.irms_a > mp.max_current_a * margin) { *rule = "motor_current"; return kInf; }
@@ -1108,6 +1152,16 @@ bool HoverThrottleBelowLimit(const SearchContext& ctx, const MissionFacts& f, co
   const std::size_t i = static_cast<std::size_t>(it - g.thrust);
   return Drive(mp, esc.params).InverseLight(bo.v_full, g.torque_prefix_max[i], g.omega[i]).throttle <
          m.constraints.min_hover_throttle;
+}
+
+// R12 per ESC: the first hover below the propeller's data window at the heaviest the vehicle can
+// be with this ESC (the option's largest pack).
+bool HoverSpeedBelowWindow(const SearchContext& ctx, const MissionFacts& f, int motor, int prop, int option,
+                           double esc_kg) {
+  const BatteryOption& bo = ctx.options[static_cast<std::size_t>(option)];
+  const MotorEntry& mo = ctx.catalog->motors()[static_cast<std::size_t>(motor)];
+  const double mass_ub = VehicleMassKg(ctx, bo.mass_hi_kg, *mo.mass_kg, ctx.grids[static_cast<std::size_t>(prop)].mass_kg, esc_kg);
+  return HoverSpeedBelowWindowAtMass(ctx, f, prop, mass_ub);
 }
 
 }  // namespace
@@ -1925,11 +1979,32 @@ void BranchAndBound::Process(const Candidate& cand, std::vector<double> top, Out
         if (segmentwise_prunes()) continue;
       }
     }
+    // R12 per ESC (the window's bottom): the lightest ESCs fail it first (M3).
+    if (HoverSpeedBelowWindow(ctx_, facts_, cand.motor, cand.prop, cand.option, *virt.mass_kg)) {
+      const std::size_t before = rated.size();
+      rated.erase(std::remove_if(rated.begin(), rated.end(), [&](int e) {
+                    return HoverSpeedBelowWindow(ctx_, facts_, cand.motor, cand.prop, cand.option, EscMassKg(escs[e]));
+                  }),
+                  rated.end());
+      local_prune("prop_below_data", static_cast<long long>(before - rated.size()));
+      if (rated.empty()) continue;
+      n_rated = rated.size();
+      if (const double kg = EscMassKg(escs[rated.front()]); kg != *virt.mass_kg) {
+        virt.mass_kg = kg;
+        if (segmentwise_prunes()) continue;
+      }
+    }
     {
       Combination vc = c;
       set_esc(&vc, &virt);
       const double threshold = threshold_now();
-      const MissionResult vr = MissionEvaluator(relaxed_, vc, model, &ctx_.fixed_model_ptrs).Solve(threshold, false, true);
+      const MissionEvaluator virtual_eval(relaxed_, vc, model, &ctx_.fixed_model_ptrs);
+      // R12: above the window at the lightest vehicle; every ESC of the class is heavier (M3).
+      if (MissionResult w; virtual_eval.DataWindowRefuses(false, &w)) {
+        local_prune("prop_above_data", static_cast<long long>(rated.size()));
+        continue;
+      }
+      const MissionResult vr = virtual_eval.Solve(threshold, false, true);
       ++o->virtual_evals;
       if (vr.bounded_out || !vr.feasible || !(vr.score < threshold)) {
         local_prune(vr.bounded_out || vr.feasible ? "objective_bound" : "infeasible_bound",
@@ -1949,7 +2024,14 @@ void BranchAndBound::Process(const Candidate& cand, std::vector<double> top, Out
       }
       set_esc(&c, &escs[e]);
       const double threshold = threshold_now();
-      MissionResult r = MissionEvaluator(m, c, model, &ctx_.fixed_model_ptrs).Solve(threshold, false);
+      const MissionEvaluator eval(m, c, model, &ctx_.fixed_model_ptrs);
+      if (MissionResult w; eval.DataWindowRefuses(true, &w)) {  // R12, before a solve
+        const bool above = w.violations[0].constraint == "prop_above_data";
+        local_prune(above ? "prop_above_data" : "prop_below_data", 1);
+        done.emplace_back(e, !FailsMinHoverThrottle(w));  // below: a heavier ESC may meet it
+        continue;
+      }
+      MissionResult r = eval.Solve(threshold, false);
       if (r.bounded_out) {
         local_prune("objective_bound", 1);
         done.emplace_back(e, true);
