@@ -30,5 +30,11 @@ echo "data a propeller does not rank a pick (constraints.prop_below_data_factor,
 echo "prop_above_data_factor): the check below goes down to 0.6x."
 echo
 "$exe" catalog prop-reynolds --catalog "$here/catalog"
+echo
+echo "Reading the tables: one law for every propeller is a median. Families whose CT is flat over"
+echo "their measured speeds (APC thin electric apce and slow flyer apcsf, GWS slow flyer, some"
+echo "DA families) are predicted better by holding the edge; the cheap and small ones (APC SP, GWS"
+echo "DD, Master Airscrew, Graupner CP, the folders) far better by the law. The range's p10-p90"
+echo "band is there for that spread."
 } > "$out"
 echo "wrote $out"
