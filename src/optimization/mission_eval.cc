@@ -1667,7 +1667,7 @@ void MissionEvaluator::AddWarnings(MissionResult* r) const {
                             "use more of the range");
     }
     if (!s.prop_note.empty()) {
-      r->warnings.push_back("segment '" + s.name + "': propeller data held at an edge: " + s.prop_note);
+      r->warnings.push_back("segment '" + s.name + "': propeller outside its data: " + s.prop_note);
     }
   }
   for (int g = 0; g < static_cast<int>(groups_.size()); ++g) {
