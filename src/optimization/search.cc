@@ -765,6 +765,22 @@ void SpeedTorqueFromBelow(const PropGrid& g, const SegmentGrid& sgrid, const Pro
   *torque = std::min(ev.torque_nm, sgrid.torque_suffix_min[idx + 1]);
 }
 
+// R12 as a mass floor: a feasible combination hovers at least at the window's bottom w_min, so
+// (M1) each rotor's hover thrust is at least T(w_min), and the vehicle's mass at least the mass
+// whose hover thrust per rotor that is (proportional to the mass, flight.h), shrunk by 1e-9
+// against rounding. 0 when the rule does not apply. Every bound computed at a mass of at least
+// this stays a bound of every feasible score (M3).
+double WindowMassFloorKg(const SearchContext& ctx, const MissionFacts& f, int prop) {
+  const Mission& m = *ctx.mission;
+  const PropGrid& g = ctx.grids[static_cast<std::size_t>(prop)];
+  if (!(m.constraints.prop_below_data_factor > 0) || f.hover.empty() || !g.monotone) return 0.0;
+  const PropModel& model = *ctx.models[static_cast<std::size_t>(prop)];
+  const double w_min = RpmToRadPerSec(m.constraints.prop_below_data_factor * model.valid_range().rpm_lo);
+  const double t_min = model.Evaluate(w_min, m.rho_kg_m3, 0.0).thrust_n;
+  const double per_kg = SegmentRotorLoad(m, m.segments[static_cast<std::size_t>(f.hover[0])], 1.0, 0.0).thrust_per_rotor_n;
+  return per_kg > 0 ? (1.0 - 1e-9) * t_min / per_kg : 0.0;
+}
+
 // R12 (the window's bottom): true when the first hover's speed at the vehicle mass mass_ub_kg (an
 // upper bound of the true mass) is below the propeller's data window, so that it is below it at
 // every mass up to mass_ub_kg (M1, M3).
@@ -812,7 +828,8 @@ double SegmentwiseBoundAt(const SearchContext& ctx, const MissionFacts& f, const
   const double pack_kg = span_ah > 0 ? bo.mass_lo_kg + (1.0 - 1e-9) * (bo.mass_hi_kg - bo.mass_lo_kg) *
                                                            (cap_a_ah - bo.capacity_lo_ah) / span_ah
                                      : bo.mass_lo_kg;
-  const double mass_lb = VehicleMassKg(ctx, pack_kg, *mo.mass_kg, g.mass_kg, esc_mass_kg);
+  const double mass_lb =
+      std::max(VehicleMassKg(ctx, pack_kg, *mo.mass_kg, g.mass_kg, esc_mass_kg), WindowMassFloorKg(ctx, f, prop));
   // R12 (the window's bottom) over the piece: at its heaviest (the pack at C_b, grown by 1e-9
   // against rounding, and the option's heaviest ESC) the first hover is below the window.
   if (span_ah > 0 && ctx.mission->constraints.prop_below_data_factor > 0) {
@@ -1082,7 +1099,8 @@ bool PairCandidate(const SearchContext& ctx, const MissionFacts& f, const MotorS
   const BatteryOption& bo = ctx.options[o];
   const MotorParams& mp = s.mp;
   const long long per_pair = ctx.escs.rated[o];
-  const double mass_lb = VehicleMassKg(ctx, bo.mass_lo_kg, s.mass_kg, ctx.grids[pi].mass_kg, ctx.escs.min_mass_kg[o]);
+  const double mass_lb = std::max(VehicleMassKg(ctx, bo.mass_lo_kg, s.mass_kg, ctx.grids[pi].mass_kg, ctx.escs.min_mass_kg[o]),
+                                  WindowMassFloorKg(ctx, f, static_cast<int>(pi)));  // R12's floor
   double omega_lb = 0, q_lb = 0;
   loads->Reset(mass_lb);
   if (const char* rule = PropRule(ctx, f, s.mass_kg, s.w_nl[o], pi, o, loads, &omega_lb, &q_lb)) {
