@@ -145,7 +145,11 @@ namespace dynosize {
 //    (as R6) fails it whatever else is chosen (M1, M3); see the rule (PropRule). The window's
 //    bottom is, like min_hover_throttle, a limit that more mass helps: the virtual ESC is
 //    evaluated without it and an ESC that fails it does not rule out the ESCs it dominates (R5);
-//    MissionEvaluator::EarlyExit decides it at the largest pack.
+//    A feasible combination's mass is at least the mass whose hover thrust per rotor turns the
+//    propeller at the window's bottom (M1, M3; WindowMassFloorKg): stage 4's pair bound and R10's
+//    pieces are taken at no less. Per ESC and per R10 piece, a hover below the bottom at the
+//    heaviest mass refuses it. MissionEvaluator::DataWindowRefuses decides both ends before a
+//    solve (the search calls it before the virtual ESC, for the top only, and before each ESC).
 // R8 (capacity pieces of R4, per pair and class): retired; R10's pieces bound a capacity range
 //    segment by segment, which holds R8's terms and more.
 // R5 (ESC dominance): within one pair, an ESC with the same C1, C0, tr_sat, sat_slope as an
@@ -425,6 +429,11 @@ void BuildPropGrids(const Mission& m, const Catalog& cat, std::vector<PropGrid>*
     PropGrid& g = (*grids)[p];
     g.adjustment = prop_adj;
     g.mass_kg = PropMassKg(props[p]);
+    if (m.constraints.prop_below_data_factor > 0) {
+      g.window_factor = m.constraints.prop_below_data_factor;
+      g.window_thrust_n =
+          model.Evaluate(RpmToRadPerSec(g.window_factor * model.valid_range().rpm_lo), m.rho_kg_m3, 0.0).thrust_n;
+    }
     double torque[kGrid];
     for (int i = 0; i < kGrid; ++i) {
       g.omega[i] = kGridMinRadS * std::pow(kGridMaxRadS / kGridMinRadS, i / double(kGrid - 1));
@@ -775,8 +784,10 @@ double WindowMassFloorKg(const SearchContext& ctx, const MissionFacts& f, int pr
   const PropGrid& g = ctx.grids[static_cast<std::size_t>(prop)];
   if (!(m.constraints.prop_below_data_factor > 0) || f.hover.empty() || !g.monotone) return 0.0;
   const PropModel& model = *ctx.models[static_cast<std::size_t>(prop)];
-  const double w_min = RpmToRadPerSec(m.constraints.prop_below_data_factor * model.valid_range().rpm_lo);
-  const double t_min = model.Evaluate(w_min, m.rho_kg_m3, 0.0).thrust_n;
+  const double factor = m.constraints.prop_below_data_factor;
+  const double t_min = g.window_factor == factor
+                           ? g.window_thrust_n  // computed once (BuildPropGrids)
+                           : model.Evaluate(RpmToRadPerSec(factor * model.valid_range().rpm_lo), m.rho_kg_m3, 0.0).thrust_n;
   const double per_kg = SegmentRotorLoad(m, m.segments[static_cast<std::size_t>(f.hover[0])], 1.0, 0.0).thrust_per_rotor_n;
   return per_kg > 0 ? (1.0 - 1e-9) * t_min / per_kg : 0.0;
 }
