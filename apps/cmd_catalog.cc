@@ -8,6 +8,7 @@
 #include "catalog/catalog.h"
 #include "catalog/in_system.h"
 #include "catalog/prop_credibility.h"
+#include "catalog/prop_reynolds.h"
 #include "catalog/schema.h"
 #include "commands.h"
 #include "common/error.h"
@@ -313,6 +314,17 @@ int RunCatalogSchema(bool json) {
     j[KindArrayName(k)] = arr;
   }
   if (json) std::cout << DumpJson(j); else std::cout << out.str();
+  return 0;
+}
+
+int RunCatalogPropReynolds(const std::string& catalog_dir) {
+  const Catalog cat = Catalog::Load(catalog_dir);
+  std::vector<const PropEntry*> measured;
+  for (const PropEntry& p : cat.props()) {
+    if (!UiucFamily(p.id).empty() && !p.static_table.rpm.empty()) measured.push_back(&p);
+  }
+  if (measured.empty()) throw DataError(catalog_dir + ": no UIUC propeller with a static table (uiuc_propdb.json)");
+  std::cout << ReynoldsReportMarkdown(measured);
   return 0;
 }
 

@@ -209,7 +209,7 @@ std::vector<std::string> PrintPropTable(const std::string& title, double vdc_v, 
       flags += (flags.empty() ? "" : ",") + std::string(r.point.converged ? "prop_data_edge" : "not_converged");
       std::ostringstream n;
       n << std::fixed << "TR " << std::setprecision(0) << 100 * r.throttle << " %: "
-        << (r.point.converged ? "propeller data held at an edge: " + r.point.prop.Message() : r.point.message);
+        << (r.point.converged ? "propeller outside its data: " + r.point.prop.Message() : r.point.message);
       notes.push_back(n.str());
     }
     o << std::setprecision(0) << std::setw(6) << 100 * r.throttle << std::setw(8) << p.rpm
@@ -367,7 +367,7 @@ int RunSimulateProp(const SimulateOptions& o) {
       if (!pp.converged) {
         notes.push_back(pp.note);
       } else if (!pp.prop.InData()) {
-        notes.push_back("propeller data held at an edge: " + pp.prop.Message());
+        notes.push_back("propeller outside its data: " + pp.prop.Message());
       } else if (!pp.note.empty()) {
         notes.push_back(pp.note);
       }

@@ -67,6 +67,9 @@ int RunCatalogList(const CatalogListOptions& o);
 int RunCatalogShow(const std::string& catalog_dir, const std::string& id);
 int RunCatalogValidate(const std::string& dir, bool json);
 int RunCatalogSchema(bool json);
+// `catalog prop-reynolds`: the Reynolds-number law of catalog/prop_reynolds.h fitted on the
+// catalog's UIUC entries, with its leave-one-family-out check (markdown on stdout).
+int RunCatalogPropReynolds(const std::string& catalog_dir);
 
 // `dynosize catalog in-system-law --shared DIR`: the in-system law of catalog/in_system.h fitted
 // on the KDE sheets and DriveCalc's refits (the catalog's drivecalc.json and

@@ -144,6 +144,7 @@ struct CatalogCli {
   CLI::App* schema_cmd = nullptr;
   cli::InSystemLawOptions law_opts;
   CLI::App* law_cmd = nullptr;
+  CLI::App* reynolds_cmd = nullptr;
 };
 
 void AddCatalogCommands(CLI::App& app, CatalogCli& c) {
@@ -181,6 +182,9 @@ void AddCatalogCommands(CLI::App& app, CatalogCli& c) {
                         "write the KDE sheets' measured-vs-predicted current figure to this PNG");
   c.schema_cmd = catalog->add_subcommand("schema", "print every catalog key with its unit and rule");
   c.schema_cmd->add_flag("--json", c.schema_json, "print the schema as JSON");
+  c.reynolds_cmd = catalog->add_subcommand(
+      "prop-reynolds", "fit the propeller Reynolds-number law on the catalog's measured (UIUC) propellers and "
+                       "check it by leaving each family out (markdown; docs/propeller_reynolds.md)");
 }
 
 CLI::App* AddDiagnoseCommand(CLI::App& app, cli::DiagnoseCliOptions& diag) {
@@ -357,6 +361,7 @@ int main(int argc, char** argv) {
     if (*cat.show_cmd) return cli::RunCatalogShow(dir, cat.show_id);
     if (*cat.validate_cmd) return cli::RunCatalogValidate(cat.validate_dir.empty() ? dir : cat.validate_dir, cat.validate_json);
     if (*cat.schema_cmd) return cli::RunCatalogSchema(cat.schema_json);
+    if (*cat.reynolds_cmd) return cli::RunCatalogPropReynolds(dir);
     if (*cat.import_cmd) return cli::RunCatalogImport(cat.import_opts);
     if (*cat.law_cmd) {
       cat.law_opts.catalog_dir = dir;

@@ -42,15 +42,6 @@ double Median(std::vector<double> v) {
   return v.size() % 2 ? v[m] : 0.5 * (v[m - 1] + v[m]);
 }
 
-// Linear-interpolated quantile (type 7), v sorted.
-double Quantile(const std::vector<double>& v, double q) {
-  if (v.empty()) return 0.0;
-  const double pos = q * static_cast<double>(v.size() - 1);
-  const std::size_t lo = static_cast<std::size_t>(std::floor(pos));
-  const std::size_t hi = std::min(lo + 1, v.size() - 1);
-  return v[lo] + (pos - static_cast<double>(lo)) * (v[hi] - v[lo]);
-}
-
 std::string Num(double x) {
   std::ostringstream o;
   o.precision(4);
@@ -59,6 +50,14 @@ std::string Num(double x) {
 }
 
 }  // namespace
+
+double SortedQuantile(const std::vector<double>& v, double q) {
+  if (v.empty()) return 0.0;
+  const double pos = q * static_cast<double>(v.size() - 1);
+  const std::size_t lo = static_cast<std::size_t>(std::floor(pos));
+  const std::size_t hi = std::min(lo + 1, v.size() - 1);
+  return v[lo] + (pos - static_cast<double>(lo)) * (v[hi] - v[lo]);
+}
 
 PropValidRange ValidRange(const PropEntry& e) {
   PropValidRange r;
@@ -178,9 +177,9 @@ std::vector<FmEnvelopeClass> ComputeFmEnvelope(const std::vector<const PropEntry
     }
     std::sort(v.begin(), v.end());
     c.n_props = static_cast<int>(v.size());
-    c.p10 = Quantile(v, 0.1);
-    c.p50 = Quantile(v, 0.5);
-    c.p90 = Quantile(v, 0.9);
+    c.p10 = SortedQuantile(v, 0.1);
+    c.p50 = SortedQuantile(v, 0.5);
+    c.p90 = SortedQuantile(v, 0.9);
     c.max = v.empty() ? 0.0 : v.back();
   }
   return out;

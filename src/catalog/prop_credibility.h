@@ -84,6 +84,9 @@ const std::vector<FmEnvelopeClass>& FmEnvelope();
 // UIUC's entries); props without a static table are skipped.
 std::vector<FmEnvelopeClass> ComputeFmEnvelope(const std::vector<const PropEntry*>& measured);
 
+// Linear-interpolated quantile (type 7) of sorted values, q in [0, 1]; 0 when empty.
+double SortedQuantile(const std::vector<double>& sorted, double q);
+
 // True when a name says the blades fold ("folding", "klapp", "CAM Carbon", Aeronaut "CAM"
 // folders, UIUC family "ancf"): such propellers are for gliders, not multirotor lift.
 bool NameSaysFolding(const std::string& name);

@@ -116,6 +116,16 @@ struct MissionConstraints {
   double max_winding_temp_c = 120.0;
   // Folding propellers (optimization/credibility.h) may lift a multirotor only when true.
   bool allow_folding_props_for_lift = false;
+  // The propeller's speed window around its data (README "Ranking and credibility"): in every
+  // propeller segment the speed is at least prop_below_data_factor x the low edge of the
+  // propeller's valid range and at most prop_above_data_factor x its high edge
+  // (catalog/prop_credibility.h, ValidRange); beyond, the data do not rank a combination, which
+  // fails "prop_below_data" / "prop_above_data" (the bottom is not checked in a descent: the
+  // rotors unload for a landing). 0 = not checked. Below the data the model
+  // corrects the coefficients for the Reynolds number (catalog/prop_reynolds.h), fitted and
+  // checked on UIUC's tables down to 0.6x their lowest speed.
+  double prop_below_data_factor = 0.6;
+  double prop_above_data_factor = 1.5;
   // Motors without a current or power rating: a power rating estimated from the mass
   // (true, "estimate") or left out ("exclude"); optimization/credibility.h.
   bool estimate_unrated_motors = true;

@@ -11,6 +11,7 @@
 #include "catalog/esc_prior.h"
 #include "catalog/in_system.h"
 #include "catalog/prop_credibility.h"
+#include "catalog/prop_reynolds.h"
 #include "common/units.h"
 #include "model/physics.h"
 #include "optimization/mission_eval.h"
@@ -53,6 +54,9 @@ std::string Fixed(double x, int digits) {
 PropAdjustment PropAdjustmentFor(const PropEntry& prop, DataScenario scenario) {
   PropAdjustment a;
   if (scenario == DataScenario::kAsGiven) return a;
+  const ReynoldsLaw& law = DefaultReynoldsLaw();
+  if (scenario == DataScenario::kPessimistic) a.reynolds_fm_exp = law.fm_p90 - law.fm_exp();
+  if (scenario == DataScenario::kOptimistic) a.reynolds_fm_exp = std::max(law.fm_p10, 0.0) - law.fm_exp();
   const DataTier tier = prop.tier;
   const FmEnvelopeClass& k = FmEnvelopeFor(prop.diameter_m);
   if (tier == DataTier::kMeasured) {
@@ -85,9 +89,15 @@ PropAdjustment PropAdjustmentFor(const PropEntry& prop, DataScenario scenario) {
 
 void AdjustPropEvaluation(const PropAdjustment& adj, double diameter_m, PropEvaluation* ev) {
   if (adj.identity() || !(ev->omega_rad_s > 0.0) || !(ev->power_w > 0.0)) return;
-  if (ev->airspeed_m_s > 0.0 && !ev->no_forward_flight_data) return;  // forward-flight tables
-  double p = adj.power_factor * ev->power_w;
-  if (adj.fm_cap < 1e300) p = std::max(p, IdealRotorPowerW(ev->thrust_n, diameter_m, ev->rho_kg_m3) / adj.fm_cap);
+  // The Reynolds band below the data: r^-x with r <= 1 (x > 0 pessimistic, < 0 optimistic; the
+  // torque Q ~ n^(2 + b - x) still rises with the speed for |x| < 1, search.cc M1).
+  const double k_re = ev->reynolds_ratio < 1.0 && adj.reynolds_fm_exp != 0.0
+                          ? std::pow(ev->reynolds_ratio, -adj.reynolds_fm_exp) : 1.0;
+  double p = k_re * ev->power_w;
+  if (!(ev->airspeed_m_s > 0.0 && !ev->no_forward_flight_data)) {  // static: the tier's rule
+    p *= adj.power_factor;
+    if (adj.fm_cap < 1e300) p = std::max(p, IdealRotorPowerW(ev->thrust_n, diameter_m, ev->rho_kg_m3) / adj.fm_cap);
+  }
   const double k = p / ev->power_w;
   ev->power_w = p;
   ev->torque_nm *= k;
@@ -263,6 +273,16 @@ void AddObjectiveRange(const Mission& m, const Combination& c, MissionResult* r)
     b << "propeller " << TierName(pt) << ": static FM held to the p10-p90 (" << Fixed(k.p10, 2) << "-"
       << Fixed(k.p90, 2) << ") of " << k.n_props << " measured props of " << k.label << " (credible: p50 "
       << Fixed(k.p50, 2) << ")";
+  }
+  double re_ratio = 1.0;  // the lowest speed over the data's low edge flown (Reynolds band)
+  for (const SegmentResult& sr : r->segments) {
+    if (sr.prop_edge) re_ratio = std::min(re_ratio, sr.prop_edge_eval.reynolds_ratio);
+  }
+  if (re_ratio < 1.0) {
+    const ReynoldsLaw& law = DefaultReynoldsLaw();
+    b << "; below its data's lowest speed (down to " << Fixed(re_ratio, 2) << "x) FM x (rpm/rpm_lo)^e, e "
+      << Fixed(std::max(law.fm_p10, 0.0), 2) << "-" << Fixed(law.fm_p90, 2) << " (credible " << Fixed(law.fm_exp(), 2)
+      << ", catalog/prop_reynolds.h)";
   }
   if (c.motor->datasheet_params) {
     b << "; motor Rm, Io: one motor's p10-p90 about the in-system law (docs/in-system-law.md); ESC RESC";

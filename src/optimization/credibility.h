@@ -13,8 +13,11 @@
 // propeller's shaft power (torque) at the thrust is, pointwise, in static evaluations (hover,
 // and static-only data anywhere: forward-flight tables are used as given):
 //     P' = max(f * P, P_ideal(T) / FM_cap)          P_ideal = T^1.5 / sqrt(2*rho*A)
-// (momentum theory, model.md section 10), i.e. FM' = min(FM / f, FM_cap). f and FM_cap per
-// tier and scenario:
+// (momentum theory, model.md section 10), i.e. FM' = min(FM / f, FM_cap). Below the lowest
+// speed of a propeller's data the model's Reynolds correction (catalog/prop_reynolds.h, median
+// exponents) is in P already; the pessimistic and optimistic scenarios widen it with the
+// distance from the data (PropAdjustment::reynolds_fm_exp: the p90 and p10 of the law's FM
+// exponent), every tier. f and FM_cap per tier and scenario:
 //                        credible (ranking)      pessimistic             optimistic
 //   measured             as measured             f = 1.05                f = 0.95 (FM <= 1)
 //   manufacturer         f = 1/0.880, cap p90    f = 1/0.740             f = 1/0.911, cap p90
@@ -98,13 +101,18 @@ inline constexpr double kAssumedEscC0Pessimistic = 0.03;
 struct PropAdjustment {
   double power_factor = 1.0;                                   // f
   double fm_cap = std::numeric_limits<double>::infinity();     // FM_cap
-  bool identity() const { return power_factor == 1.0 && !(fm_cap < 1e300); }
+  // Below the data's lowest speed (PropEvaluation::reynolds_ratio r < 1) the model applies the
+  // Reynolds law's median exponents (catalog/prop_reynolds.h); a scenario moves the figure of
+  // merit's exponent e to its p90 (pessimistic) or max(p10, 0) (optimistic): power at the same
+  // thrust x r^-(e_s - e_applied), in static and forward-flight evaluations alike.
+  double reynolds_fm_exp = 0.0;  // e_s - e_applied
+  bool identity() const { return power_factor == 1.0 && !(fm_cap < 1e300) && reynolds_fm_exp == 0.0; }
 };
 PropAdjustment PropAdjustmentFor(const PropEntry& prop, DataScenario scenario);
 
 // Applies the adjustment to a static evaluation (ev->airspeed_m_s == 0 or static-only data
 // held at J = 0): power and torque rise to the scenario's value, thrust unchanged. Evaluations
-// from forward-flight tables are left as they are.
+// from forward-flight tables get the Reynolds band only (reynolds_fm_exp).
 void AdjustPropEvaluation(const PropAdjustment& adj, double diameter_m, PropEvaluation* ev);
 
 // True when the mission has a segment in which the rotors lift the vehicle (hover, climb, or

@@ -810,6 +810,7 @@ SearchResult JointSearch(const Mission& m, const Catalog& cat, const SearchOptio
                           m.objective.ranking != DataScenario::kOptimistic;
   Mission relaxed = m;
   relaxed.constraints.min_hover_throttle = 0.0;
+  relaxed.constraints.prop_below_data_factor = 0.0;  // as min_hover_throttle (search.cc R12)
   for (std::size_t i = 0; i < pairs.size(); ++i) {
     if (i % 64 == 0) progress(i);
     const OuterPair& pr = pairs[i];

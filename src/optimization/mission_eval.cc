@@ -312,6 +312,19 @@ bool PropellerPoint(const Mission& m, const Segment& s, const RotorLoad& load, c
   if (prop_entry.max_rpm) {
     track->Check("prop_max_rpm", s.name, RadPerSecToRpm(*omega), *prop_entry.max_rpm, "rpm", false, seg);
   }
+  // The propeller's speed window around its data (mission.h): beyond it the data do not rank.
+  // The bottom is not checked in a descent (a climb segment with a negative rate): the rotors
+  // unload below the weight for the seconds of a landing, a dip the Reynolds correction covers,
+  // and a limit there would exclude a propeller for its landing, not for what it is ranked on.
+  const PropValidRange& data = prop.valid_range();
+  if (k.prop_below_data_factor > 0 && !(s.type == SegmentType::kClimb && s.climb_rate_m_s < 0)) {
+    track->Check("prop_below_data", s.name, RadPerSecToRpm(*omega), k.prop_below_data_factor * data.rpm_lo, "rpm",
+                 true, seg);
+  }
+  if (k.prop_above_data_factor > 0) {
+    track->Check("prop_above_data", s.name, RadPerSecToRpm(*omega), k.prop_above_data_factor * data.rpm_hi, "rpm",
+                 false, seg);
+  }
   if (s.type == SegmentType::kHover && k.min_hover_throttle > 0) {
     // At the full-charge voltage without sag: the lowest throttle this hover can need, and
     // the same at every moment of the mission (so the stretch stays monotone).
@@ -846,6 +859,7 @@ double SocBelowOcv(const BatteryPack& pack, double v, double floor_soc) {
 // and IDC are not in the list: a larger pack also sags less, which lowers both.
 bool RisesWithMass(const std::string& constraint) {
   static const char* const kNames[] = {"esc_voltage", "prop_diameter", "thrust", "motor_power", "prop_max_rpm",
+                                       "prop_above_data",
                                        "max_winding_temp_c", "prop_folding", "motor_unrated",
                                        "motor_voltage"};
   for (const char* name : kNames) {
@@ -1012,10 +1026,64 @@ MissionResult MissionEvaluator::Solve(double cutoff_score, bool explain, bool de
   return r;
 }
 
+// The propeller data window (PropellerPoint's prop_above_data, prop_below_data) decided without
+// a solve. The speed of a segment at a fixed inflow rises with the vehicle's mass (its thrust
+// per rotor does, M3 of search.cc, and the speed that gives it, M1). So a segment above the
+// window at the lightest vehicle the continuous variables allow (the smallest capacity of a
+// range, else the mission's) is above it at every capacity (prop_above_data is in RisesWithMass),
+// and a hover below it at the heaviest (the largest capacity of a free range) is below it at
+// every capacity. Segments with a free airspeed are left to the full solve (their inflow is not
+// fixed). In the search many propellers hover inside their data and climb or cruise above it,
+// or hover below it, each for a whole solve before.
+bool MissionEvaluator::DataWindowRefuses(bool below_too, MissionResult* out) const {
+  const MissionConstraints& k = m_.constraints;
+  const bool free_capacity = m_.battery.capacity_ah && m_.battery.capacity_ah->free();
+  for (int pass = 0; pass < 2; ++pass) {
+    const bool above = pass == 0;
+    if (above ? !(k.prop_above_data_factor > 0) : !(below_too && k.prop_below_data_factor > 0)) continue;
+    const double capacity_ah = !m_.battery.capacity_ah         ? 0.0
+                               : (!above && free_capacity) ? m_.battery.capacity_ah->hi
+                                                           : m_.battery.capacity_ah->lo;
+    const BatteryPack pack(PackAt(capacity_ah));
+    const double mass_kg = fixed_mass_kg_ + pack.mass_kg();
+    const double v_full = pack.OcvV(1.0);
+    for (const Segment& s : m_.segments) {
+      if (s.type == SegmentType::kShaft || (s.type == SegmentType::kCruise && s.airspeed_m_s.free())) continue;
+      if (!above && s.type != SegmentType::kHover) continue;
+      const GroupDrive& gd = groups_[s.group];
+      const RotorLoad load = SegmentRotorLoad(m_, s, mass_kg, s.type == SegmentType::kCruise ? s.airspeed_m_s.lo : 0.0);
+      double omega = 0;
+      PropEvaluation ev;
+      const double w_motor_max = std::max(gd.drive.NoLoadSpeed(v_full, 1.0), 1.0);
+      if (!PropSpeedForThrust(*gd.prop, load.thrust_per_rotor_n, m_.rho_kg_m3, load.axial_airspeed_m_s,
+                              4.0 * w_motor_max, &omega, &ev)) {
+        continue;  // the full solve names the thrust
+      }
+      const double rpm = RadPerSecToRpm(omega);
+      const double limit = above ? k.prop_above_data_factor * gd.prop->valid_range().rpm_hi
+                                 : k.prop_below_data_factor * gd.prop->valid_range().rpm_lo;
+      if (above ? rpm > limit : rpm < limit) {
+        MissionResult r;
+        r.capacity_ah = pack.capacity_ah();
+        r.total_mass_kg = mass_kg;
+        r.propulsion_mass_kg = mass_kg - m_.vehicle.mass_kg;
+        r.violations.push_back(Violation{above ? "prop_above_data" : "prop_below_data", s.name, rpm, limit, "rpm", !above});
+        r.min_slack = (above ? limit - rpm : rpm - limit) / limit;
+        r.feasible = false;
+        r.score = kInf;
+        *out = std::move(r);
+        return true;
+      }
+    }
+  }
+  return false;
+}
+
 // The early exits of a search (a finite cutoff), each a proof stated at its block: a result
 // (bounded out, infeasible, or the answer itself) in *out and true, or false to go on.
 bool MissionEvaluator::EarlyExit(double cutoff_score, bool explain, MissionResult* out) const {
   const bool capacity_free = m_.battery.capacity_ah && m_.battery.capacity_ah->free();
+  if (std::isfinite(cutoff_score) && DataWindowRefuses(true, out)) return true;
   if (std::isfinite(cutoff_score) && m_.constraints.min_hover_throttle > 0) {
     // min_hover_throttle is checked at the full-charge OCV (PropellerPoint), which does not
     // depend on the capacity, with the hover's torque and speed, which rise with the mass
@@ -1607,7 +1675,7 @@ void MissionEvaluator::AddWarnings(MissionResult* r) const {
                             "use more of the range");
     }
     if (!s.prop_note.empty()) {
-      r->warnings.push_back("segment '" + s.name + "': propeller data held at an edge: " + s.prop_note);
+      r->warnings.push_back("segment '" + s.name + "': propeller outside its data: " + s.prop_note);
     }
   }
   for (int g = 0; g < static_cast<int>(groups_.size()); ++g) {

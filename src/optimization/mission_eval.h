@@ -243,6 +243,13 @@ class MissionEvaluator {
   // first feasible point whose score beats cutoff_score and returns it, unexplained (feasible,
   // score < cutoff, not the optimum: the optimum is no worse, so the answer to that question
   // is the same); when no point beats it the result is the full solve's.
+  // The propeller data window (constraints.prop_below_data_factor, prop_above_data_factor)
+  // decided without a solve: true, with the infeasible result (one violation, no segments) in
+  // *out, when a segment at a fixed inflow turns its propeller above the window at the lightest
+  // vehicle the continuous variables allow, or (below_too) a hover turns it below the window at
+  // the heaviest; the full solve then fails the same constraint. Solve runs it as an early
+  // exit when it has a cutoff; the search before its solves (search.cc, R12).
+  bool DataWindowRefuses(bool below_too, MissionResult* out) const;
   MissionResult Solve(double cutoff_score = std::numeric_limits<double>::infinity(),
                       bool explain = true, bool decide = false) const;
   // Writes each segment's prop_note from its prop_edge_eval (Solve with explain, and Simulate).

@@ -140,6 +140,16 @@ namespace dynosize {
 //    to have all their pairs bounded as before. Tests: search_stages_test.cc (the key below
 //    every feasible score of the small catalog; the stream draws the sorted BuildCandidates
 //    list).
+// R12 (the propeller's data window, mission.h: prop_below_data, prop_above_data): a hover speed
+//    above the window at omega_lb (R2) or below it at the speed bound of the heaviest vehicle
+//    (as R6) fails it whatever else is chosen (M1, M3); see the rule (PropRule). The window's
+//    bottom is, like min_hover_throttle, a limit that more mass helps: the virtual ESC is
+//    evaluated without it and an ESC that fails it does not rule out the ESCs it dominates (R5);
+//    A feasible combination's mass is at least the mass whose hover thrust per rotor turns the
+//    propeller at the window's bottom (M1, M3; WindowMassFloorKg): stage 4's pair bound and R10's
+//    pieces are taken at no less. Per ESC and per R10 piece, a hover below the bottom at the
+//    heaviest mass refuses it. MissionEvaluator::DataWindowRefuses decides both ends before a
+//    solve (the search calls it before the virtual ESC, for the top only, and before each ESC).
 // R8 (capacity pieces of R4, per pair and class): retired; R10's pieces bound a capacity range
 //    segment by segment, which holds R8's terms and more.
 // R5 (ESC dominance): within one pair, an ESC with the same C1, C0, tr_sat, sat_slope as an
@@ -262,11 +272,11 @@ class RuleCounts {
   std::vector<std::pair<const char*, long long>> counts_;
 };
 
-// A result that breaks min_hover_throttle (possibly among others) says nothing about a
-// dominated ESC, whose higher throttle may meet it (R5).
+// A result that breaks min_hover_throttle or prop_below_data (possibly among others) says
+// nothing about a dominated ESC, whose higher throttle, or mass and so speed, may meet it (R5).
 bool FailsMinHoverThrottle(const MissionResult& r) {
   for (const Violation& v : r.violations) {
-    if (v.constraint == "min_hover_throttle") return true;
+    if (v.constraint == "min_hover_throttle" || v.constraint == "prop_below_data") return true;
   }
   return false;
 }
@@ -419,6 +429,11 @@ void BuildPropGrids(const Mission& m, const Catalog& cat, std::vector<PropGrid>*
     PropGrid& g = (*grids)[p];
     g.adjustment = prop_adj;
     g.mass_kg = PropMassKg(props[p]);
+    if (m.constraints.prop_below_data_factor > 0) {
+      g.window_factor = m.constraints.prop_below_data_factor;
+      g.window_thrust_n =
+          model.Evaluate(RpmToRadPerSec(g.window_factor * model.valid_range().rpm_lo), m.rho_kg_m3, 0.0).thrust_n;
+    }
     double torque[kGrid];
     for (int i = 0; i < kGrid; ++i) {
       g.omega[i] = kGridMinRadS * std::pow(kGridMaxRadS / kGridMinRadS, i / double(kGrid - 1));
@@ -759,6 +774,51 @@ void SpeedTorqueFromBelow(const PropGrid& g, const SegmentGrid& sgrid, const Pro
   *torque = std::min(ev.torque_nm, sgrid.torque_suffix_min[idx + 1]);
 }
 
+// R12 as a mass floor: a feasible combination hovers at least at the window's bottom w_min, so
+// (M1) each rotor's hover thrust is at least T(w_min), and the vehicle's mass at least the mass
+// whose hover thrust per rotor that is (proportional to the mass, flight.h), shrunk by 1e-9
+// against rounding. 0 when the rule does not apply. Every bound computed at a mass of at least
+// this stays a bound of every feasible score (M3).
+double WindowMassFloorKg(const SearchContext& ctx, const MissionFacts& f, int prop) {
+  const Mission& m = *ctx.mission;
+  const PropGrid& g = ctx.grids[static_cast<std::size_t>(prop)];
+  if (!(m.constraints.prop_below_data_factor > 0) || f.hover.empty() || !g.monotone) return 0.0;
+  const PropModel& model = *ctx.models[static_cast<std::size_t>(prop)];
+  const double factor = m.constraints.prop_below_data_factor;
+  const double t_min = g.window_factor == factor
+                           ? g.window_thrust_n  // computed once (BuildPropGrids)
+                           : model.Evaluate(RpmToRadPerSec(factor * model.valid_range().rpm_lo), m.rho_kg_m3, 0.0).thrust_n;
+  const double per_kg = SegmentRotorLoad(m, m.segments[static_cast<std::size_t>(f.hover[0])], 1.0, 0.0).thrust_per_rotor_n;
+  return per_kg > 0 ? (1.0 - 1e-9) * t_min / per_kg : 0.0;
+}
+
+// R12 (the window's bottom): true when the first hover's speed at the vehicle mass mass_ub_kg (an
+// upper bound of the true mass) is below the propeller's data window, so that it is below it at
+// every mass up to mass_ub_kg (M1, M3).
+bool HoverSpeedBelowWindowAtMass(const SearchContext& ctx, const MissionFacts& f, int prop, double mass_ub_kg) {
+  const Mission& m = *ctx.mission;
+  const PropGrid& g = ctx.grids[static_cast<std::size_t>(prop)];
+  if (!(m.constraints.prop_below_data_factor > 0) || f.hover.empty() || !g.monotone) return false;
+  const RotorLoad load = SegmentRotorLoad(m, m.segments[static_cast<std::size_t>(f.hover[0])], mass_ub_kg, 0.0);
+  const double* it = std::lower_bound(g.thrust, g.thrust + kGrid, load.thrust_per_rotor_n);
+  if (it == g.thrust + kGrid) return false;  // beyond the grid: no bound
+  const PropModel& model = *ctx.models[static_cast<std::size_t>(prop)];
+  const double w_min = RpmToRadPerSec(m.constraints.prop_below_data_factor * model.valid_range().rpm_lo);
+  // The first grid speed whose thrust reaches T_ub is at or above the hover speed (M1).
+  const std::ptrdiff_t i = it - g.thrust;
+  double hi = g.omega[i];
+  if (hi < w_min) return true;
+  if (i == 0 || g.omega[i - 1] >= w_min) return false;  // the speed may be anywhere above w_min
+  // Bisection within the cell on the model (static, as the evaluator reads a hover; the
+  // scenarios do not change thrust): hi stays a speed whose thrust reaches T_ub.
+  double lo = g.omega[i - 1];
+  for (int step = 0; step < 20 && hi >= w_min; ++step) {
+    const double mid = 0.5 * (lo + hi);
+    (model.Evaluate(mid, m.rho_kg_m3, 0.0).thrust_n >= load.thrust_per_rotor_n ? hi : lo) = mid;
+  }
+  return hi * (1.0 + 1e-9) < w_min;  // 1e-9: the evaluator's root is found to a tolerance
+}
+
 // R10 for one pair and ESC class with ESCs of at least esc_mass_kg and capacities in
 // [cap_a_ah, cap_b_ah] (see the rule): a lower bound of the score (-kInf when none applies), or
 // kInf with *rule set when no such combination can fly the pair.
@@ -779,7 +839,19 @@ double SegmentwiseBoundAt(const SearchContext& ctx, const MissionFacts& f, const
   const double pack_kg = span_ah > 0 ? bo.mass_lo_kg + (1.0 - 1e-9) * (bo.mass_hi_kg - bo.mass_lo_kg) *
                                                            (cap_a_ah - bo.capacity_lo_ah) / span_ah
                                      : bo.mass_lo_kg;
-  const double mass_lb = VehicleMassKg(ctx, pack_kg, *mo.mass_kg, g.mass_kg, esc_mass_kg);
+  const double mass_lb =
+      std::max(VehicleMassKg(ctx, pack_kg, *mo.mass_kg, g.mass_kg, esc_mass_kg), WindowMassFloorKg(ctx, f, prop));
+  // R12 (the window's bottom) over the piece: at its heaviest (the pack at C_b, grown by 1e-9
+  // against rounding, and the option's heaviest ESC) the first hover is below the window.
+  if (span_ah > 0 && ctx.mission->constraints.prop_below_data_factor > 0) {
+    const double pack_ub_kg =
+        (1.0 + 1e-9) * (bo.mass_lo_kg + (bo.mass_hi_kg - bo.mass_lo_kg) * (cap_b_ah - bo.capacity_lo_ah) / span_ah);
+    const double mass_ub = VehicleMassKg(ctx, pack_ub_kg, *mo.mass_kg, g.mass_kg, ctx.escs.max_mass_kg[option]);
+    if (HoverSpeedBelowWindowAtMass(ctx, f, prop, mass_ub)) {
+      *rule = "prop_below_data";
+      return kInf;
+    }
+  }
   const double ri_ohm = bo.ri_at_hi_ohm * bo.capacity_hi_ah / cap_b_ah;
   const bool lossy = DriveIsLossy(mp, ideal.esc().c1, ideal.esc().c0);
   const bool axial_data = ctx.models[static_cast<std::size_t>(prop)]->data_kind() == PropDataKind::kTables &&
@@ -802,6 +874,12 @@ double SegmentwiseBoundAt(const SearchContext& ctx, const MissionFacts& f, const
         SpeedTorqueFromBelow(g, sgrid, *ctx.models[static_cast<std::size_t>(prop)], pe.diameter_m, m.rho_kg_m3,
                              ld.thrust_per_rotor_n, refine_steps, &w, &q);
         point = true;
+        // R12 (the window's top): the segment's speed is at least w.
+        if (k.prop_above_data_factor > 0 &&
+            RadPerSecToRpm(w) > k.prop_above_data_factor * ctx.models[static_cast<std::size_t>(prop)]->valid_range().rpm_hi) {
+          *rule = "prop_above_data";
+          return kInf;
+        }
         const Drive::InverseCurrents hi = ideal.InverseLight(bo.v_full, q, w);
         if (hi.throttle > t_max) { *rule = "throttle"; return kInf; }
         if (hi.irms_a > mp.max_current_a * margin) { *rule = "motor_current"; return kInf; }
@@ -942,6 +1020,23 @@ const char* PropRule(const SearchContext& ctx, const MissionFacts& f, double mot
     }
   }
   if (prop.max_rpm && RadPerSecToRpm(*omega_lb) > *prop.max_rpm) return "prop_max_rpm";  // R2
+  // R12 (the propeller's data window, mission.h): every hover speed is at least omega_lb (R2);
+  // above the window's top there, every hover point fails prop_above_data. And at most the first
+  // grid speed whose thrust reaches T_ub (the heaviest the vehicle can be, as R6): below the
+  // window's bottom there, every hover point fails prop_below_data (M1, M3).
+  const PropValidRange& data = ctx.models[pi]->valid_range();
+  if (k.prop_above_data_factor > 0 && RadPerSecToRpm(*omega_lb) > k.prop_above_data_factor * data.rpm_hi) {
+    return "prop_above_data";
+  }
+  if (k.prop_below_data_factor > 0 && !f.hover.empty() && g.monotone) {
+    const double mass_ub = VehicleMassKg(ctx, bo.mass_hi_kg, motor_kg, g.mass_kg, ctx.escs.max_mass_kg[o]);
+    const RotorLoad load_ub = SegmentRotorLoad(m, m.segments[f.hover[0]], mass_ub, 0.0);
+    const double* it_ub = std::lower_bound(g.thrust, g.thrust + kGrid, load_ub.thrust_per_rotor_n);
+    if (it_ub != g.thrust + kGrid &&
+        RadPerSecToRpm(g.omega[it_ub - g.thrust]) < k.prop_below_data_factor * data.rpm_lo) {
+      return "prop_below_data";
+    }
+  }
   return nullptr;
 }
 
@@ -1015,7 +1110,8 @@ bool PairCandidate(const SearchContext& ctx, const MissionFacts& f, const MotorS
   const BatteryOption& bo = ctx.options[o];
   const MotorParams& mp = s.mp;
   const long long per_pair = ctx.escs.rated[o];
-  const double mass_lb = VehicleMassKg(ctx, bo.mass_lo_kg, s.mass_kg, ctx.grids[pi].mass_kg, ctx.escs.min_mass_kg[o]);
+  const double mass_lb = std::max(VehicleMassKg(ctx, bo.mass_lo_kg, s.mass_kg, ctx.grids[pi].mass_kg, ctx.escs.min_mass_kg[o]),
+                                  WindowMassFloorKg(ctx, f, static_cast<int>(pi)));  // R12's floor
   double omega_lb = 0, q_lb = 0;
   loads->Reset(mass_lb);
   if (const char* rule = PropRule(ctx, f, s.mass_kg, s.w_nl[o], pi, o, loads, &omega_lb, &q_lb)) {
@@ -1085,6 +1181,16 @@ bool HoverThrottleBelowLimit(const SearchContext& ctx, const MissionFacts& f, co
   const std::size_t i = static_cast<std::size_t>(it - g.thrust);
   return Drive(mp, esc.params).InverseLight(bo.v_full, g.torque_prefix_max[i], g.omega[i]).throttle <
          m.constraints.min_hover_throttle;
+}
+
+// R12 per ESC: the first hover below the propeller's data window at the heaviest the vehicle can
+// be with this ESC (the option's largest pack).
+bool HoverSpeedBelowWindow(const SearchContext& ctx, const MissionFacts& f, int motor, int prop, int option,
+                           double esc_kg) {
+  const BatteryOption& bo = ctx.options[static_cast<std::size_t>(option)];
+  const MotorEntry& mo = ctx.catalog->motors()[static_cast<std::size_t>(motor)];
+  const double mass_ub = VehicleMassKg(ctx, bo.mass_hi_kg, *mo.mass_kg, ctx.grids[static_cast<std::size_t>(prop)].mass_kg, esc_kg);
+  return HoverSpeedBelowWindowAtMass(ctx, f, prop, mass_ub);
 }
 
 }  // namespace
@@ -1743,6 +1849,7 @@ class BranchAndBound {
     // bound): its full-throttle solve costs a third of a simulation, and the few real ESCs
     // that reach the evaluation check it.
     relaxed_.constraints.min_hover_throttle = 0.0;
+    relaxed_.constraints.prop_below_data_factor = 0.0;  // a heavier real ESC turns the rotor faster
     relaxed_.constraints.min_thrust_to_weight = 0.0;
   }
 
@@ -1903,11 +2010,32 @@ void BranchAndBound::Process(const Candidate& cand, std::vector<double> top, Out
         if (segmentwise_prunes()) continue;
       }
     }
+    // R12 per ESC (the window's bottom): the lightest ESCs fail it first (M3).
+    if (HoverSpeedBelowWindow(ctx_, facts_, cand.motor, cand.prop, cand.option, *virt.mass_kg)) {
+      const std::size_t before = rated.size();
+      rated.erase(std::remove_if(rated.begin(), rated.end(), [&](int e) {
+                    return HoverSpeedBelowWindow(ctx_, facts_, cand.motor, cand.prop, cand.option, EscMassKg(escs[e]));
+                  }),
+                  rated.end());
+      local_prune("prop_below_data", static_cast<long long>(before - rated.size()));
+      if (rated.empty()) continue;
+      n_rated = rated.size();
+      if (const double kg = EscMassKg(escs[rated.front()]); kg != *virt.mass_kg) {
+        virt.mass_kg = kg;
+        if (segmentwise_prunes()) continue;
+      }
+    }
     {
       Combination vc = c;
       set_esc(&vc, &virt);
       const double threshold = threshold_now();
-      const MissionResult vr = MissionEvaluator(relaxed_, vc, model, &ctx_.fixed_model_ptrs).Solve(threshold, false, true);
+      const MissionEvaluator virtual_eval(relaxed_, vc, model, &ctx_.fixed_model_ptrs);
+      // R12: above the window at the lightest vehicle; every ESC of the class is heavier (M3).
+      if (MissionResult w; virtual_eval.DataWindowRefuses(false, &w)) {
+        local_prune("prop_above_data", static_cast<long long>(rated.size()));
+        continue;
+      }
+      const MissionResult vr = virtual_eval.Solve(threshold, false, true);
       ++o->virtual_evals;
       if (vr.bounded_out || !vr.feasible || !(vr.score < threshold)) {
         local_prune(vr.bounded_out || vr.feasible ? "objective_bound" : "infeasible_bound",
@@ -1927,7 +2055,14 @@ void BranchAndBound::Process(const Candidate& cand, std::vector<double> top, Out
       }
       set_esc(&c, &escs[e]);
       const double threshold = threshold_now();
-      MissionResult r = MissionEvaluator(m, c, model, &ctx_.fixed_model_ptrs).Solve(threshold, false);
+      const MissionEvaluator eval(m, c, model, &ctx_.fixed_model_ptrs);
+      if (MissionResult w; eval.DataWindowRefuses(true, &w)) {  // R12, before a solve
+        const bool above = w.violations[0].constraint == "prop_above_data";
+        local_prune(above ? "prop_above_data" : "prop_below_data", 1);
+        done.emplace_back(e, !FailsMinHoverThrottle(w));  // below: a heavier ESC may meet it
+        continue;
+      }
+      MissionResult r = eval.Solve(threshold, false);
       if (r.bounded_out) {
         local_prune("objective_bound", 1);
         done.emplace_back(e, true);

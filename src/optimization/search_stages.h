@@ -113,6 +113,9 @@ struct PropGrid {
   // max_figure_of_merit (kGrid when none): every point of [i, j] breaks it iff fom_ok_next[i] > j.
   int fom_ok_next[kGrid];
   double mass_kg = 0;
+  // R12: the static thrust at the window's bottom (window_factor x the valid range's low edge)
+  // of the mission the grid was built for; 0 when that mission does not check it.
+  double window_factor = 0, window_thrust_n = 0;
   PropAdjustment adjustment;  // the scenario's (credibility.h), as the grids' torque has it
   // Forward-flight tables only: one grid per fixed axial inflow of the mission's segments
   // (InflowsOf), in its order; empty for static-only data (read at J = 0 in any inflow).

@@ -147,10 +147,15 @@ std::string PropEvaluation::Message() const {
     if (data != PropDataKind::kTables) {
       auto whole = [](double x) { return std::to_string(std::lround(x)); };
       parts.push_back("rpm " + whole(rpm) + " outside the valid range " + whole(data_rpm_lo) + "-" +
-                      whole(data_rpm_hi) + " of the propeller's data; edge coefficients held");
+                      whole(data_rpm_hi) + " of the propeller's data; " +
+                      (reynolds_ratio < 1.0 ? "edge coefficients corrected" : "edge coefficients held"));
     } else {
       parts.push_back("rpm " + Num(rpm) + (from_sweeps ? " outside the forward-flight sweeps " : " outside the static data ") +
                       Num(data_rpm_lo) + "-" + Num(data_rpm_hi));
+    }
+    if (reynolds_ratio < 1.0) {
+      parts.push_back("at " + Num(reynolds_ratio) +
+                      "x its lowest speed: CT and CP corrected for the lower Reynolds number (catalog/prop_reynolds.h)");
     }
   }
   if (no_forward_flight_data) {
@@ -196,6 +201,7 @@ PropEvaluation PropModel::Evaluate(double omega_rad_s, double rho_kg_m3,
   switch (kind_) {
     case PropDataKind::kTables:
       TableCoefficients(ev.rpm, ev.j, &ev);
+      CorrectBelowData(ev.data_rpm_lo, &ev);  // the lowest rpm of the table read
       break;
     case PropDataKind::kCoefficients:
       ev.ct = *entry_.ct_static;
@@ -206,6 +212,7 @@ PropEvaluation PropModel::Evaluate(double omega_rad_s, double rho_kg_m3,
         ev.data_rpm_hi = range_.rpm_hi;
         ev.rpm_outside_data = ev.rpm < range_.rpm_lo || ev.rpm > range_.rpm_hi;
       }
+      CorrectBelowData(range_.rpm_lo, &ev);  // the assumed band's low edge too
       break;
     case PropDataKind::kPowerLaw: {
       // DriveCalc: T [N] = a*(rpm/1000)^b, P [W] = c*(rpm/1000)^d at law rho, linear in rho;
@@ -224,6 +231,7 @@ PropEvaluation PropModel::Evaluate(double omega_rad_s, double rho_kg_m3,
       ev.data_rpm_hi = range_.rpm_hi;
       ev.rpm_outside_data = rpm_eval != ev.rpm;
       ev.no_forward_flight_data = ev.j > 0;
+      CorrectBelowData(range_.rpm_lo, &ev);
       break;
     }
   }
@@ -232,6 +240,13 @@ PropEvaluation PropModel::Evaluate(double omega_rad_s, double rho_kg_m3,
   ev.power_w = ev.cp * rho_kg_m3 * n * n * n * d5;
   ev.torque_nm = ev.power_w / omega_rad_s;
   return ev;
+}
+
+void PropModel::CorrectBelowData(double rpm_lo, PropEvaluation* ev) const {
+  const ReynoldsFactors f = ReynoldsCorrection(DefaultReynoldsLaw(), ev->rpm, rpm_lo);
+  ev->reynolds_ratio = f.ratio;
+  ev->ct *= f.ct;
+  ev->cp *= f.cp;
 }
 
 bool PropModel::StaticSpeedForThrust(double thrust_n, double rho_kg_m3, double* omega_rad_s) const {
@@ -243,6 +258,12 @@ bool PropModel::StaticSpeedForThrust(double thrust_n, double rho_kg_m3, double* 
     const double ct = *entry_.ct_static;
     if (!(ct > 0)) return false;
     rpm = 60.0 * std::sqrt(thrust_n / (ct * rho_kg_m3 * d4));  // T = CT*rho*n^2*D^4
+    if (rpm < range_.rpm_lo) {
+      // Below the range CT falls as (rpm/rpm_lo)^a (CorrectBelowData): T = T_lo*(rpm/rpm_lo)^(2 + a).
+      const double n_lo = range_.rpm_lo / 60.0;
+      const double t_lo = ct * rho_kg_m3 * n_lo * n_lo * d4;
+      rpm = range_.rpm_lo * std::pow(thrust_n / t_lo, 1.0 / (2.0 + DefaultReynoldsLaw().ct_exp()));
+    }
   } else if (kind_ == PropDataKind::kPowerLaw) {
     const PropPowerLaw& law = *entry_.power_law;
     if (!(law.thrust_law_n > 0) || !(law.thrust_law_exp > 0)) return false;
@@ -252,7 +273,8 @@ bool PropModel::StaticSpeedForThrust(double thrust_n, double rho_kg_m3, double* 
     };
     const double t_lo = thrust_at(range_.rpm_lo), t_hi = thrust_at(range_.rpm_hi);
     if (thrust_n <= t_lo) {
-      rpm = range_.rpm_lo * std::sqrt(thrust_n / t_lo);  // CT held at rpm_lo: T ~ n^2
+      // CT at rpm_lo times the Reynolds correction (rpm/rpm_lo)^a: T ~ n^(2 + a).
+      rpm = range_.rpm_lo * std::pow(thrust_n / t_lo, 1.0 / (2.0 + DefaultReynoldsLaw().ct_exp()));
     } else if (thrust_n >= t_hi) {
       rpm = range_.rpm_hi * std::sqrt(thrust_n / t_hi);  // CT held at rpm_hi
     } else {

@@ -12,15 +12,22 @@
 //   2. constant coefficients ct_static, cp_static (static only, no rpm dependence).
 //   3. DriveCalc power laws T = a*(rpm/1000)^b, P = c*(rpm/1000)^d at law_rho, scaled by rho
 //      (static only), within the entry's valid rpm range (catalog/prop_credibility.h).
-// Outside the data the model does not extrapolate silently: it holds the coefficients at the
-// nearest edge of the data and says so in PropEvaluation (rpm_outside_data, j_outside_data,
-// no_forward_flight_data).
+// Outside the data the model does not extrapolate silently. Below the lowest speed of the data
+// (the valid range's low edge, catalog/prop_credibility.h; for tables the lowest rpm of the table
+// read) the coefficients at that edge are corrected for the lower Reynolds number
+// (catalog/prop_reynolds.h: CT x (rpm/rpm_lo)^a, CP x (rpm/rpm_lo)^b, a >= 0 >= b, fitted on
+// UIUC's measured static tables; the figure of merit only falls), for every kind of data. Above
+// the highest speed and beyond the measured advance ratios the edge coefficients are held (a
+// higher Reynolds number changes little, and compressibility is not in the data). Either way
+// PropEvaluation says so (rpm_outside_data, j_outside_data, no_forward_flight_data,
+// reynolds_ratio).
 #pragma once
 
 #include <string>
 
 #include "catalog/catalog.h"
 #include "catalog/prop_credibility.h"
+#include "catalog/prop_reynolds.h"
 #include "model/drive.h"
 
 namespace dynosize {
@@ -49,6 +56,9 @@ struct PropEvaluation {
   bool at_rest_in_flow = false;  // n = 0 with airspeed > 0 (windmilling is not modelled)
   bool from_sweeps = false;      // kTables: the forward-flight sweeps were used, not the static table
   double data_rpm_lo = 0.0, data_rpm_hi = 0.0;  // the rpm range of that data (power law: max_rpm)
+  // rpm over the low edge of the data when below it (the Reynolds correction was applied at
+  // this ratio, catalog/prop_reynolds.h), else 1.
+  double reynolds_ratio = 1.0;
   // "" when in the data, else one sentence naming the limit ("rpm 1200 outside the static data
   // 2484-6804").
   std::string Message() const;
@@ -85,13 +95,15 @@ class PropModel {
   // allow one: constant coefficients (T = CT*rho*n^2*D^4) and power laws (T = a*(rpm/1000)^b
   // at the law's density, linear in rho; held at the edges of the valid range as Evaluate
   // holds them, so T grows as n^2 outside it). Evaluate(*omega) gives thrust_n to rounding
-  // (a few ulps). False for tables and for a law whose thrust does not rise with the speed
+  // (a few ulps); below the valid range the Reynolds correction makes T ~ n^(2 + a). False for tables and for a law whose thrust does not rise with the speed
   // (the caller then finds the root numerically).
   bool StaticSpeedForThrust(double thrust_n, double rho_kg_m3, double* omega_rad_s) const;
 
   const PropEntry& entry() const { return entry_; }
   PropDataKind data_kind() const { return kind_; }
   double diameter_m() const { return entry_.diameter_m; }
+  // The data's valid range (catalog/prop_credibility.h, ValidRange of the entry).
+  const PropValidRange& valid_range() const { return range_; }
 
  private:
   // CT, CP at (rpm, J) from the tables; sets the flags of `ev`.
@@ -104,6 +116,8 @@ class PropModel {
   std::vector<PropSweep> sweeps_;
   // The data's valid range (power laws: rpm_min/rpm_max or the assumed tip-speed band).
   PropValidRange range_;
+  // Applies the Reynolds correction below rpm_lo to ev's coefficients.
+  void CorrectBelowData(double rpm_lo, PropEvaluation* ev) const;
 };
 
 }  // namespace dynosize

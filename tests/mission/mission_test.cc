@@ -82,6 +82,26 @@ TEST(MissionTest, BadFilesGiveOneLineNamingPathValueAndRule) {
   }
 }
 
+// The propeller data window (mission.h): defaults 0.6 and 1.5, 0 = not checked, a top below 1
+// refused with the path, the value and the rule.
+TEST(MissionTest, PropDataWindowDefaultsAndLimits) {
+  const Mission m = ParseMission(ParseJsonText(kGood, "m.json"), "m.json");
+  EXPECT_DOUBLE_EQ(m.constraints.prop_below_data_factor, 0.6);
+  EXPECT_DOUBLE_EQ(m.constraints.prop_above_data_factor, 1.5);
+  const std::string set = Replace(kGood, "\"name\": \"t\",",
+                                  "\"name\": \"t\", \"constraints\": {\"prop_below_data_factor\": 0, \"prop_above_data_factor\": 2},");
+  const Mission s = ParseMission(ParseJsonText(set, "m.json"), "m.json");
+  EXPECT_DOUBLE_EQ(s.constraints.prop_below_data_factor, 0.0);
+  EXPECT_DOUBLE_EQ(s.constraints.prop_above_data_factor, 2.0);
+  const std::string err = ErrorOf(Replace(kGood, "\"name\": \"t\",",
+                                          "\"name\": \"t\", \"constraints\": {\"prop_above_data_factor\": 0.5},"));
+  EXPECT_NE(err.find("$.constraints.prop_above_data_factor = 0.5: must be 0 (not checked) or at least 1"), std::string::npos)
+      << err;
+  const std::string err2 = ErrorOf(Replace(kGood, "\"name\": \"t\",",
+                                           "\"name\": \"t\", \"constraints\": {\"prop_below_data_factor\": 1.2},"));
+  EXPECT_NE(err2.find("$.constraints.prop_below_data_factor = 1.2"), std::string::npos) << err2;
+}
+
 const char* kGroups = R"({
   "name": "g",
   "vehicle": {"mass_kg": 2.0, "drag_area_m2": 0.05, "drag_coefficient": 1.0},

@@ -13,6 +13,7 @@
 #include "catalog/catalog.h"
 #include "catalog/conventions.h"
 #include "catalog/prop_credibility.h"
+#include "catalog/prop_reynolds.h"
 #include "cli_runner.h"
 #include "common/error.h"
 #include "common/json_file.h"
@@ -50,6 +51,51 @@ Combination OldQuadPick() {
 // Measured over computed FM of the same APC products: UIUC "apcsf D.DxP.P" / "apce ..." (2
 // blades) against APC PER3 "APC DxPSF" / "APC DxPE" of the bundled catalog, on APC's raw data
 // (the catalog's derating undone: FM scales as 1/CP).
+// Below a propeller's data the scenarios widen the Reynolds correction with the distance from
+// the data (credibility.h): the pessimistic power at the same thrust x r^-(e_p90 - e_applied),
+// the optimistic x r^-(max(e_p10, 0) - e_applied); at and above the data nothing changes; the
+// optimistic end never beats the edge's figure of merit (nor momentum theory).
+TEST(CredibilityTest, ReynoldsBandWidensWithTheDistanceFromTheData) {
+  PropEntry p;
+  p.id = "measured";
+  p.diameter_m = 0.254;
+  p.tier = DataTier::kMeasured;
+  p.static_table = {{4000, 6000}, {0.11, 0.12}, {0.045, 0.046}};
+  const PropModel model(p);
+  const ReynoldsLaw& law = DefaultReynoldsLaw();
+  const double rho = 1.225;
+  const PropEvaluation edge = model.Evaluate(RpmToRadPerSec(4000), rho);
+  for (const double rpm : {3600.0, 2400.0, 1600.0}) {
+    const PropEvaluation raw = model.Evaluate(RpmToRadPerSec(rpm), rho);
+    const double r = rpm / 4000.0;
+    ASSERT_DOUBLE_EQ(raw.reynolds_ratio, r);
+    PropEvaluation pess = raw, opt = raw, cred = raw;
+    AdjustPropEvaluation(PropAdjustmentFor(p, DataScenario::kPessimistic), p.diameter_m, &pess);
+    AdjustPropEvaluation(PropAdjustmentFor(p, DataScenario::kOptimistic), p.diameter_m, &opt);
+    AdjustPropEvaluation(PropAdjustmentFor(p, DataScenario::kCredible), p.diameter_m, &cred);
+    EXPECT_DOUBLE_EQ(cred.power_w, raw.power_w);  // measured: the credible value is the model's
+    const double k_pess = (1.0 + kMeasuredPowerBand) * std::pow(r, -(law.fm_p90 - law.fm_exp()));
+    const double k_opt = (1.0 - kMeasuredPowerBand) * std::pow(r, -(std::max(law.fm_p10, 0.0) - law.fm_exp()));
+    EXPECT_NEAR(pess.power_w / raw.power_w, k_pess, 1e-12);
+    EXPECT_NEAR(opt.power_w / raw.power_w, k_opt, 1e-12);
+    EXPECT_EQ(pess.thrust_n, raw.thrust_n);  // thrust is never changed
+    // The band widens with the distance from the data.
+    static double last_width = 0.0;
+    const double width = k_pess / k_opt;
+    EXPECT_GT(width, last_width);
+    last_width = width;
+    // The optimistic end without the measured band is no better than the edge's FM.
+    const double fm_edge = FigureOfMerit(edge.thrust_n, edge.power_w, p.diameter_m, rho);
+    const double fm_opt = FigureOfMerit(opt.thrust_n, opt.power_w / (1.0 - kMeasuredPowerBand), p.diameter_m, rho);
+    EXPECT_LE(fm_opt, fm_edge * (1 + 1e-12));
+    EXPECT_LT(FigureOfMerit(opt.thrust_n, opt.power_w, p.diameter_m, rho), 1.0);
+  }
+  const PropEvaluation in_data = model.Evaluate(RpmToRadPerSec(5000), rho);
+  PropEvaluation pess = in_data;
+  AdjustPropEvaluation(PropAdjustmentFor(p, DataScenario::kPessimistic), p.diameter_m, &pess);
+  EXPECT_NEAR(pess.power_w / in_data.power_w, 1.0 + kMeasuredPowerBand, 1e-12);
+}
+
 TEST(CredibilityTest, ComputedToMeasuredRatioIsThatOfTheSameApcProducts) {
   const std::regex uiuc(R"(UIUC vol \d (apcsf|apce) (\d+\.\d)x(\d+\.\d) \(2 blades\))");
   const std::regex per3(R"(APC (\d+(?:\.\d)?)x(\d+(?:\.\d)?)(SF|E) \(PER3.*)");
@@ -124,12 +170,19 @@ TEST(CredibilityTest, CredibleFigureOfMeritIsTheClassMedianForUserData) {
     EXPECT_NEAR(FigureOfMerit(ev.thrust_n, ev.power_w, p.diameter_m, rho), cs.fm, kTol * cs.fm);
     EXPECT_NEAR(ev.torque_nm * ev.omega_rad_s, ev.power_w, kTol * ev.power_w);
   }
-  // Forward-flight tables are used as given; static-only data in flow are adjusted.
+  // Forward-flight tables are used as given (below their speeds with the Reynolds band only,
+  // prop_reynolds.h); static-only data in flow are adjusted.
   const PropEntry& apc = Bundled().prop("apc_per3_10x45mr");
   const PropEvaluation fwd = PropModel(apc).Evaluate(omega, rho, 8.0);
   PropEvaluation f2 = fwd;
   AdjustPropEvaluation(PropAdjustmentFor(apc, DataScenario::kPessimistic), apc.diameter_m, &f2);
-  EXPECT_EQ(f2.power_w, fwd.power_w);
+  const ReynoldsLaw& law = DefaultReynoldsLaw();
+  const double k_re = fwd.reynolds_ratio < 1.0 ? std::pow(fwd.reynolds_ratio, -(law.fm_p90 - law.fm_exp())) : 1.0;
+  EXPECT_NEAR(f2.power_w, fwd.power_w * k_re, 1e-12 * fwd.power_w);
+  const PropEvaluation fwd_in = PropModel(apc).Evaluate(RpmToRadPerSec(6000), rho, 8.0);
+  PropEvaluation f3 = fwd_in;
+  AdjustPropEvaluation(PropAdjustmentFor(apc, DataScenario::kPessimistic), apc.diameter_m, &f3);
+  EXPECT_EQ(f3.power_w, fwd_in.power_w);
   PropEvaluation s2 = model.Evaluate(omega, rho, 5.0);
   ASSERT_TRUE(s2.no_forward_flight_data);
   const double p_before = s2.power_w;
@@ -151,6 +204,7 @@ TEST(CredibilityTest, DataWorseThanTheCapAreKeptAndMeasuredDataGetTheirBand) {
     const PropEvaluation ev = PropModel(p).Evaluate(RpmToRadPerSec(4000), 1.225, 0.0);
     const double fm = FigureOfMerit(ev.thrust_n, ev.power_w, p.diameter_m, 1.225);
     if (fm >= 0.9 * FmEnvelopeFor(p.diameter_m).p10) continue;
+    if (ev.reynolds_ratio < 1.0) continue;  // below its data the Reynolds band widens the range
     PropEvaluation adj = ev;
     AdjustPropEvaluation(PropAdjustmentFor(p, DataScenario::kPessimistic), p.diameter_m, &adj);
     EXPECT_EQ(adj.power_w, ev.power_w) << p.id;

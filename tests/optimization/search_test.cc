@@ -328,6 +328,62 @@ TEST_F(SearchTest, MinHoverThrottleEqualsExhaustiveEvaluation) {
   EXPECT_GE(CheckAgainstExhaustive(cat, m), 3u);
 }
 
+// The propeller data window (mission.h; search.cc R12): the search equals exhaustive evaluation
+// when the window binds (the defaults, and a tight one), and with it off no combination names it.
+TEST_F(SearchTest, PropDataWindowEqualsExhaustiveEvaluation) {
+  const Catalog cat = Catalog::Load((dir_ / "catalog").string());
+  for (const auto& [below, above] : {std::pair<double, double>{0.6, 1.5}, {0.9, 1.1}, {0.0, 0.0}}) {
+    for (const bool capacity_range : {false, true}) {
+      Json j = ParseJsonText(kQuad, "quad");
+      if (capacity_range) j["battery"]["capacity_ah"] = {2.0, 6.0};
+      j["constraints"]["prop_below_data_factor"] = below;
+      j["constraints"]["prop_above_data_factor"] = above;
+      const Mission m = ParseMission(j, "quad");
+      int named = 0, feasible = 0;
+      ForEachCombination(cat, [&](const Combination& c) {
+        const MissionResult r = MissionEvaluator(m, c).Solve();
+        feasible += r.feasible;
+        for (const Violation& v : r.violations) {
+          named += v.constraint == "prop_below_data" || v.constraint == "prop_above_data";
+        }
+      });
+      if (below > 0) {
+        EXPECT_GE(named, 1) << below << " " << capacity_range << ": the window must bind on this catalog";
+      } else {
+        EXPECT_EQ(named, 0);
+      }
+      if (feasible > 0) CheckAgainstExhaustive(cat, m);
+    }
+  }
+}
+
+// DataWindowRefuses (before a solve, and Solve's early exit) refuses only combinations whose full
+// solve breaks the same constraint.
+TEST_F(SearchTest, DataWindowRefusesOnlyInfeasibleCombinations) {
+  const Catalog cat = Catalog::Load((dir_ / "catalog").string());
+  for (const bool capacity_range : {false, true}) {
+    Json j = ParseJsonText(kQuad, "quad");
+    if (capacity_range) j["battery"]["capacity_ah"] = {2.0, 6.0};
+    j["constraints"]["prop_below_data_factor"] = 0.9;
+    j["constraints"]["prop_above_data_factor"] = 1.1;
+    const Mission m = ParseMission(j, "quad");
+    int refused = 0;
+    ForEachCombination(cat, [&](const Combination& c) {
+      const MissionEvaluator eval(m, c);
+      MissionResult w;
+      if (!eval.DataWindowRefuses(true, &w)) return;
+      ++refused;
+      ASSERT_EQ(w.violations.size(), 1u);
+      const MissionResult full = eval.Solve();
+      EXPECT_FALSE(full.feasible) << Name(c);
+      bool named = false;
+      for (const Violation& v : full.violations) named |= v.constraint == w.violations[0].constraint;
+      EXPECT_TRUE(named) << Name(c) << " " << w.violations[0].constraint;
+    });
+    EXPECT_GE(refused, 1) << "capacity range " << capacity_range;
+  }
+}
+
 // Thrust-to-weight at its default (2.0): more mass and more ESC resistance only lower it, so the
 // virtual ESC and ESC dominance (R5) stay bounds; the search must still equal exhaustive
 // evaluation.

@@ -10,6 +10,8 @@
 
 #include "common/error.h"
 #include "catalog/prop_credibility.h"
+#include "catalog/prop_reynolds.h"
+#include "model/physics.h"
 #include "common/units.h"
 
 namespace dynosize {
@@ -64,25 +66,63 @@ TEST(PropModelTest, PowerLawSaysSoOutsideItsData) {
   EXPECT_FALSE(fwd.InData());
 }
 
-// Outside its valid rpm range a power law is held at the edge (coefficients constant), not
-// extrapolated: the laws' FM drifts with rpm and would beat momentum theory far away.
-TEST(PropModelTest, PowerLawHeldAtTheEdgeOfItsValidRange) {
+// Outside its valid rpm range a power law is not extrapolated (the laws' FM drifts with rpm and
+// would beat momentum theory far away): above it the edge coefficients are held, below it they
+// are corrected for the lower Reynolds number (catalog/prop_reynolds.h): CT falls, CP rises.
+TEST(PropModelTest, PowerLawCorrectedBelowAndHeldAboveItsValidRange) {
   PropEntry p = PowerLawProp();
   p.rpm_min = 15000;
   p.rpm_max = 30000;
   const PropModel m(p);
+  const ReynoldsLaw& law = DefaultReynoldsLaw();
   const PropEvaluation edge = m.Evaluate(RpmToRadPerSec(15000), 1.225, 0.0);
   const PropEvaluation low = m.Evaluate(RpmToRadPerSec(5000), 1.225, 0.0);
   EXPECT_TRUE(edge.InData());
   EXPECT_TRUE(low.rpm_outside_data);
-  EXPECT_NEAR(low.ct, edge.ct, kExactRel * edge.ct);
-  EXPECT_NEAR(low.cp, edge.cp, kExactRel * edge.cp);
-  // Coefficients held: T scales with n^2 from the edge, not with the law's n^2.046544.
-  const double t_held = edge.thrust_n * (5000.0 / 15000.0) * (5000.0 / 15000.0);
-  EXPECT_NEAR(low.thrust_n, t_held, kExactRel * t_held);
-  const double t_law = 0.5022887 * std::pow(5.0, 2.046544) * 9.80665e-3;
-  EXPECT_GT(std::fabs(low.thrust_n - t_law), 1e-3 * t_law);  // the difference is visible
+  const double r = 5000.0 / 15000.0;
+  EXPECT_NEAR(low.reynolds_ratio, r, kExactRel);
+  EXPECT_NEAR(low.ct, edge.ct * std::pow(r, law.ct_exp()), kExactRel * edge.ct);
+  EXPECT_NEAR(low.cp, edge.cp * std::pow(r, law.cp_exp()), kExactRel * edge.cp);
+  EXPECT_LT(low.ct, edge.ct);  // the direction the data show: CT falls, CP rises
+  EXPECT_GT(low.cp, edge.cp);
+  // Figure of merit: below the edge's, so never beyond momentum theory where the data are not.
+  const double fm_edge = FigureOfMerit(edge.thrust_n, edge.power_w, p.diameter_m, 1.225);
+  const double fm_low = FigureOfMerit(low.thrust_n, low.power_w, p.diameter_m, 1.225);
+  EXPECT_NEAR(fm_low / fm_edge, std::pow(r, law.fm_exp()), 1e-9);
+  EXPECT_LT(fm_low, fm_edge);
+  // T ~ n^(2 + a) from the edge, not the law's n^2.046544 nor the held n^2.
+  const double t_corr = edge.thrust_n * std::pow(r, 2.0 + law.ct_exp());
+  EXPECT_NEAR(low.thrust_n, t_corr, kExactRel * t_corr);
+  EXPECT_GT(std::fabs(low.thrust_n - edge.thrust_n * r * r), 1e-3 * t_corr);  // the difference is visible
   EXPECT_NE(low.Message().find("rpm 5000 outside the valid range 15000-30000"), std::string::npos) << low.Message();
+  EXPECT_NE(low.Message().find("lower Reynolds number"), std::string::npos) << low.Message();
+  // Above the range: held.
+  const PropEvaluation top = m.Evaluate(RpmToRadPerSec(30000), 1.225, 0.0);
+  const PropEvaluation high = m.Evaluate(RpmToRadPerSec(40000), 1.225, 0.0);
+  EXPECT_NEAR(high.ct, top.ct, kExactRel * top.ct);
+  EXPECT_NEAR(high.cp, top.cp, kExactRel * top.cp);
+  EXPECT_EQ(high.reynolds_ratio, 1.0);
+  // The closed-form speed for a thrust agrees with Evaluate below the range too.
+  double w = 0;
+  ASSERT_TRUE(m.StaticSpeedForThrust(low.thrust_n, 1.225, &w));
+  EXPECT_NEAR(w, RpmToRadPerSec(5000), 1e-9 * w);
+}
+
+// Constant coefficients (an assumed tip-speed band): corrected below its low edge as well.
+TEST(PropModelTest, CoefficientsCorrectedBelowTheirRange) {
+  PropEntry p;
+  p.id = "coef";
+  p.diameter_m = 0.254;
+  p.ct_static = 0.1;
+  p.cp_static = 0.04;
+  const PropModel m(p);
+  const double lo = m.valid_range().rpm_lo;
+  const PropEvaluation ev = m.Evaluate(RpmToRadPerSec(0.5 * lo), 1.225, 0.0);
+  EXPECT_NEAR(ev.ct, 0.1 * std::pow(0.5, DefaultReynoldsLaw().ct_exp()), 1e-12);
+  EXPECT_NEAR(ev.cp, 0.04 * std::pow(0.5, DefaultReynoldsLaw().cp_exp()), 1e-12);
+  double w = 0;
+  ASSERT_TRUE(m.StaticSpeedForThrust(ev.thrust_n, 1.225, &w));
+  EXPECT_NEAR(w, RpmToRadPerSec(0.5 * lo), 1e-9 * w);
 }
 
 TEST(PropModelTest, RejectsBadInputNamingTheValue) {
@@ -144,7 +184,11 @@ TEST(PropModelTest, TablesFlagEverythingOutsideTheData) {
   const PropModel m(TableProp());
   const PropEvaluation slow = m.Evaluate(RpmToRadPerSec(1000), 1.2, 0.0);
   EXPECT_TRUE(slow.rpm_outside_data);
-  EXPECT_NEAR(slow.ct, 0.10, 1e-12);  // held at the edge, not extrapolated
+  // Not extrapolated: the edge's coefficients with the Reynolds correction (catalog/prop_reynolds.h).
+  EXPECT_NEAR(slow.ct, 0.10 * std::pow(0.5, DefaultReynoldsLaw().ct_exp()), 1e-12);
+  EXPECT_NEAR(slow.cp, 0.040 * std::pow(0.5, DefaultReynoldsLaw().cp_exp()), 1e-12);
+  EXPECT_LT(slow.ct, 0.10);
+  EXPECT_GT(slow.cp, 0.040);
   EXPECT_NE(slow.Message().find("outside the static data"), std::string::npos) << slow.Message();
   const PropEvaluation fastj = m.Evaluate(RpmToRadPerSec(4000), 1.2, 0.9 * (4000.0 / 60) * 0.254);
   EXPECT_TRUE(fastj.j_outside_data);
