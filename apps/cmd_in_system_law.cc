@@ -11,6 +11,7 @@
 #include "catalog/catalog.h"
 #include "catalog/conventions.h"
 #include "common/error.h"
+#include "common/text_format.h"
 #include "common/units.h"
 #include "importers/kde_sheets.h"
 #include "report/in_system_figure.h"
@@ -23,11 +24,6 @@ namespace {
 std::string Pct(double x) {
   char b[32];
   std::snprintf(b, sizeof b, "%.1f %%", 100.0 * x);
-  return b;
-}
-std::string Fix(double x, int d) {
-  char b[32];
-  std::snprintf(b, sizeof b, "%.*f", d, x);
   return b;
 }
 
@@ -63,10 +59,10 @@ void PrintLawConstants(const char* name, const InSystemLaw& l) {
 }
 
 std::string LawText(const InSystemLaw& l) {
-  return "R_dc,sys = " + Fix(l.r_scale, 3) + "*R_dc + " + Fix(1e3 * l.r_add_ohm, 1) + " mOhm; Io_dc,sys = Io_dc*(" +
-         Fix(l.io_scale, 3) + (l.io_speed != 0.0 ? " + " + Fix(l.io_speed, 3) + "*omega/omega_test" : std::string()) +
-         "); one motor's R within x" + Fix(l.r_ratio_p10, 2) + "-" + Fix(l.r_ratio_p90, 2) + ", Io within x" +
-         Fix(l.io_ratio_p10, 2) + "-" + Fix(l.io_ratio_p90, 2) + " (p10-p90)";
+  return "R_dc,sys = " + FixedText(l.r_scale, 3) + "*R_dc + " + FixedText(1e3 * l.r_add_ohm, 1) + " mOhm; Io_dc,sys = Io_dc*(" +
+         FixedText(l.io_scale, 3) + (l.io_speed != 0.0 ? " + " + FixedText(l.io_speed, 3) + "*omega/omega_test" : std::string()) +
+         "); one motor's R within x" + FixedText(l.r_ratio_p10, 2) + "-" + FixedText(l.r_ratio_p90, 2) + ", Io within x" +
+         FixedText(l.io_ratio_p10, 2) + "-" + FixedText(l.io_ratio_p90, 2) + " (p10-p90)";
 }
 
 void PrintMotorTable(const stand::LawReport& r, const Catalog& raw) {
@@ -77,8 +73,8 @@ void PrintMotorTable(const stand::LawReport& r, const Catalog& raw) {
     std::cout << "| " << c.name << " | " << CatalogIdsOf(raw, c.name) << " | " << c.points << " | " << c.sweeps
               << " | " << Pct(c.datasheet_error) << " / " << Pct(c.datasheet_bias) << " | " << Pct(c.law_error)
               << " / " << Pct(c.law_bias) << " | " << Pct(c.coverage) << " | " << Pct(c.rpm_error_forward)
-              << " (dead band " << Fix(c.deadband_prior, 3) << ") | x" << Fix(c.own.r_ratio, 2) << ", x"
-              << Fix(c.own.io_ratio, 2) << " |\n";
+              << " (dead band " << FixedText(c.deadband_prior, 3) << ") | x" << FixedText(c.own.r_ratio, 2) << ", x"
+              << FixedText(c.own.io_ratio, 2) << " |\n";
   }
   std::cout << "| **all** | | " << r.points << " | " << r.sweeps << " | **" << Pct(r.datasheet_error) << " / "
             << Pct(r.datasheet_bias) << "** | **" << Pct(r.law_error) << " / " << Pct(r.law_bias) << "** | **"
@@ -133,8 +129,8 @@ int RunInSystemLaw(const InSystemLawOptions& o) {
             << chosen.form.Describe() << "**.\n\n";
   PrintMotorTable(chosen, raw);
   std::cout << "Throttle offset of the sheets' ESC (KDE-UAS125UVC), dead band fitted per motor: p10 "
-            << Fix(chosen.throttle.deadband_p10, 3) << ", median " << Fix(chosen.throttle.deadband_p50, 3)
-            << ", p90 " << Fix(chosen.throttle.deadband_p90, 3) << " (negative: voltage at zero command).\n\n";
+            << FixedText(chosen.throttle.deadband_p10, 3) << ", median " << FixedText(chosen.throttle.deadband_p50, 3)
+            << ", p90 " << FixedText(chosen.throttle.deadband_p90, 3) << " (negative: voltage at zero command).\n\n";
   std::cout << "## Leaving a manufacturer out: AXI's datasheets against DriveCalc's measurements\n\n"
             << makers.size() << " manufacturer-stated motors of FAST-UAV's catalogue (not KDE) that DriveCalc "
             << "measured (same name and Kv within 5 %): their datasheet R and Io against DriveCalc's refit of the "

@@ -474,18 +474,19 @@ void CheckTestPoints(const Json& e, Bad bad) {
 
 }  // namespace
 
+std::string ValueMethod(const EntryBase& e, const std::string& key) {
+  if (!e.json.is_object()) return "";
+  const auto src = e.json.find("source");
+  if (src == e.json.end() || !src->is_object()) return "";
+  const auto vals = src->find("values");
+  if (vals == src->end() || !vals->is_object()) return "";
+  const auto m = vals->find(key);
+  return m != vals->end() && m->is_string() ? m->get<std::string>() : "";
+}
+
 DataTier ValueTier(const EntryBase& e, const std::string& key) {
-  if (e.json.is_object()) {
-    const auto src = e.json.find("source");
-    if (src != e.json.end() && src->is_object()) {
-      const auto vals = src->find("values");
-      if (vals != src->end() && vals->is_object()) {
-        const auto m = vals->find(key);
-        if (m != vals->end() && m->is_string()) return std::max(MethodTier(m->get<std::string>()), e.tier);
-      }
-    }
-  }
-  return e.tier;
+  const std::string method = ValueMethod(e, key);
+  return method.empty() ? e.tier : std::max(MethodTier(method), e.tier);
 }
 
 const char* TierName(DataTier tier) {

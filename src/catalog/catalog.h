@@ -76,6 +76,8 @@ struct EntryBase {
 // The tier of one value of an entry: from its source.values label (as the tier inference reads
 // it), never better than the entry's tier; the entry's tier when the value has no label.
 DataTier ValueTier(const EntryBase& entry, const std::string& key);
+// The source.values label of one value ("datasheet", "fitted", ...); "" when it has none.
+std::string ValueMethod(const EntryBase& entry, const std::string& key);
 
 struct MotorEntry : EntryBase {
   MotorParams params;

@@ -1,9 +1,9 @@
 #include "catalog/in_system.h"
 
 #include <cmath>
-#include <sstream>
 
 #include "catalog/conventions.h"
+#include "common/text_format.h"
 #include "common/units.h"
 
 namespace dynosize {
@@ -23,27 +23,9 @@ constexpr InSystemLaw kDriveCalcLaw{
     /*motors=*/1120, "DriveCalc database values against refits of DriveCalc's own measurements"};
 constexpr ThrottleOffsetPrior kKdeEscPrior{-0.3013, -0.162, 0.01289, 9, "KDE Direct stand sheets"};
 
-// source.values label of `key` ("" when none).
-std::string Label(const EntryBase& e, const char* key) {
-  if (!e.json.is_object()) return "";
-  const auto src = e.json.find("source");
-  if (src == e.json.end() || !src->is_object()) return "";
-  const auto vals = src->find("values");
-  if (vals == src->end() || !vals->is_object()) return "";
-  const auto m = vals->find(key);
-  return m != vals->end() && m->is_string() ? m->get<std::string>() : "";
-}
-
 double JsonNumber(const Json& j, const char* key) {
   const auto it = j.find(key);
   return it != j.end() && it->is_number() ? it->get<double>() : 0.0;
-}
-
-std::string Num(double x, int digits) {
-  std::ostringstream o;
-  o.precision(digits);
-  o << x;
-  return o.str();
 }
 
 }  // namespace
@@ -98,8 +80,8 @@ InSystemApplicability InSystemApplicabilityOf(const MotorEntry& motor) {
   if (!motor.json.is_object()) return a;
   const Json& j = motor.json;
   const bool has_dc = j.contains("rm_dc_ohm");
-  const std::string r_label = Label(motor, has_dc ? "rm_dc_ohm" : "rm_ohm");
-  const std::string io_label = Label(motor, "io_a");
+  const std::string r_label = ValueMethod(motor, has_dc ? "rm_dc_ohm" : "rm_ohm");
+  const std::string io_label = ValueMethod(motor, "io_a");
   a.r = r_label == "datasheet";
   a.io = io_label == "datasheet" || io_label == "derived";
   DatasheetMotor& d = a.datasheet;
@@ -167,12 +149,12 @@ std::string InSystemSummary(const MotorEntry& motor) {
   const MotorParams& raw = motor.datasheet_params ? *motor.datasheet_params : motor.params;
   std::string s = std::string("in-system law (") + (a.law == &kKdeLaw ? "KDE Direct datasheets" : "DriveCalc database") + ", docs/in-system-law.md):";
   if (a.r) {
-    s += " R_dc " + Num(raw.rm_ohm / kRmsPerDcResistance, 3) + " -> " +
-         Num(motor.params.rm_ohm / kRmsPerDcResistance, 3) + " ohm";
+    s += " R_dc " + FixedText(raw.rm_ohm / kRmsPerDcResistance, 4) + " -> " +
+         FixedText(motor.params.rm_ohm / kRmsPerDcResistance, 4) + " ohm";
   }
   if (a.io) {
-    s += std::string(a.r ? "," : "") + " Io_dc " + Num(raw.io_a * kIdealIdcPerIrmsPerThrottle, 3) +
-         " -> " + Num(motor.params.io_a * kIdealIdcPerIrmsPerThrottle, 3) + " A";
+    s += std::string(a.r ? "," : "") + " Io_dc " + FixedText(raw.io_a * kIdealIdcPerIrmsPerThrottle, 2) +
+         " -> " + FixedText(motor.params.io_a * kIdealIdcPerIrmsPerThrottle, 2) + " A";
   }
   return s;
 }

@@ -51,14 +51,6 @@ std::string Num(double x) {
 
 }  // namespace
 
-double SortedQuantile(const std::vector<double>& v, double q) {
-  if (v.empty()) return 0.0;
-  const double pos = q * static_cast<double>(v.size() - 1);
-  const std::size_t lo = static_cast<std::size_t>(std::floor(pos));
-  const std::size_t hi = std::min(lo + 1, v.size() - 1);
-  return v[lo] + (pos - static_cast<double>(lo)) * (v[hi] - v[lo]);
-}
-
 PropValidRange ValidRange(const PropEntry& e) {
   PropValidRange r;
   for (const PropSweep& s : e.j_tables) {

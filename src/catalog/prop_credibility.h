@@ -27,6 +27,7 @@
 #include <string>
 
 #include "catalog/catalog.h"
+#include "fit/statistics.h"
 
 namespace dynosize {
 
@@ -84,8 +85,8 @@ const std::vector<FmEnvelopeClass>& FmEnvelope();
 // UIUC's entries); props without a static table are skipped.
 std::vector<FmEnvelopeClass> ComputeFmEnvelope(const std::vector<const PropEntry*>& measured);
 
-// Linear-interpolated quantile (type 7) of sorted values, q in [0, 1]; 0 when empty.
-double SortedQuantile(const std::vector<double>& sorted, double q);
+// The quantile of sorted values (fit/statistics.h; one implementation).
+using fit::SortedQuantile;
 
 // True when a name says the blades fold ("folding", "klapp", "CAM Carbon", Aeronaut "CAM"
 // folders, UIUC family "ancf"): such propellers are for gliders, not multirotor lift.

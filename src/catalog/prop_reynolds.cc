@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "catalog/prop_credibility.h"
+#include "common/text_format.h"
 #include "common/units.h"
 
 namespace dynosize {
@@ -27,19 +28,6 @@ double Slope(const std::vector<double>& x, const std::vector<double>& y) {
     sxx += (x[i] - mx) * (x[i] - mx);
   }
   return sxy / sxx;
-}
-
-std::string Fixed(double x, int digits) {
-  std::ostringstream o;
-  o.setf(std::ios::fixed);
-  o.precision(digits);
-  o << x;
-  return o.str();
-}
-
-double MedianOf(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  return SortedQuantile(v, 0.5);
 }
 
 }  // namespace
@@ -175,22 +163,22 @@ std::string ReynoldsReportMarkdown(const std::vector<const PropEntry*>& measured
   std::ostringstream o;
   o << "## The law\n\n"
     << "Propellers fitted: " << law.n_props << " (static tables with at least 3 points spanning at least "
-    << Fixed(kMinSpeedSpan, 1) << "x in rpm; slopes over the lower half of each table's speeds).\n"
+    << FixedText(kMinSpeedSpan, 1) << "x in rpm; slopes over the lower half of each table's speeds).\n"
     << "Re_75 at the lowest measured speed (rho 1.225 kg/m^3, mu " << kAirViscosityPaS
-    << " Pa*s, c/R = " << kChordOverRadius75 << " at 0.75 R): p10 " << Fixed(SortedQuantile(re_lo, 0.1), 0)
-    << ", p50 " << Fixed(SortedQuantile(re_lo, 0.5), 0) << ", p90 " << Fixed(SortedQuantile(re_lo, 0.9), 0)
+    << " Pa*s, c/R = " << kChordOverRadius75 << " at 0.75 R): p10 " << FixedText(SortedQuantile(re_lo, 0.1), 0)
+    << ", p50 " << FixedText(SortedQuantile(re_lo, 0.5), 0) << ", p90 " << FixedText(SortedQuantile(re_lo, 0.9), 0)
     << ".\n\n"
     << "| exponent | p10 | p50 | p90 | applied |\n| --- | --- | --- | --- | --- |\n"
-    << "| a (CT ~ Re^a) | " << Fixed(law.ct_p10, 3) << " | " << Fixed(law.ct_p50, 3) << " | " << Fixed(law.ct_p90, 3)
-    << " | " << Fixed(law.ct_exp(), 3) << " |\n"
-    << "| b (CP ~ Re^b) | " << Fixed(law.cp_p10, 3) << " | " << Fixed(law.cp_p50, 3) << " | " << Fixed(law.cp_p90, 3)
-    << " | " << Fixed(law.cp_exp(), 3) << " |\n"
-    << "| e = 1.5a - b (FM ~ Re^e) | " << Fixed(law.fm_p10, 3) << " | " << Fixed(law.fm_p50, 3) << " | "
-    << Fixed(law.fm_p90, 3) << " | " << Fixed(law.fm_exp(), 3) << " (ranges: p90 pessimistic, max(p10, 0) optimistic) |\n\n";
+    << "| a (CT ~ Re^a) | " << FixedText(law.ct_p10, 3) << " | " << FixedText(law.ct_p50, 3) << " | " << FixedText(law.ct_p90, 3)
+    << " | " << FixedText(law.ct_exp(), 3) << " |\n"
+    << "| b (CP ~ Re^b) | " << FixedText(law.cp_p10, 3) << " | " << FixedText(law.cp_p50, 3) << " | " << FixedText(law.cp_p90, 3)
+    << " | " << FixedText(law.cp_exp(), 3) << " |\n"
+    << "| e = 1.5a - b (FM ~ Re^e) | " << FixedText(law.fm_p10, 3) << " | " << FixedText(law.fm_p50, 3) << " | "
+    << FixedText(law.fm_p90, 3) << " | " << FixedText(law.fm_exp(), 3) << " (ranges: p90 pessimistic, max(p10, 0) optimistic) |\n\n";
   for (double r : {0.8, 0.6, 0.4}) {
-    o << "At " << Fixed(r, 1) << "x the lowest measured speed: CT x " << Fixed(std::pow(r, law.ct_exp()), 3)
-      << ", CP x " << Fixed(std::pow(r, law.cp_exp()), 3) << ", FM x " << Fixed(std::pow(r, law.fm_exp()), 3)
-      << " (p10-p90 " << Fixed(std::pow(r, law.fm_p90), 3) << "-" << Fixed(std::pow(r, std::max(law.fm_p10, 0.0)), 3)
+    o << "At " << FixedText(r, 1) << "x the lowest measured speed: CT x " << FixedText(std::pow(r, law.ct_exp()), 3)
+      << ", CP x " << FixedText(std::pow(r, law.cp_exp()), 3) << ", FM x " << FixedText(std::pow(r, law.fm_exp()), 3)
+      << " (p10-p90 " << FixedText(std::pow(r, law.fm_p90), 3) << "-" << FixedText(std::pow(r, std::max(law.fm_p10, 0.0)), 3)
       << ").\n";
   }
   const std::vector<ReynoldsLeaveOutPoint> pts = ReynoldsLeaveOneFamilyOut(measured);
@@ -212,7 +200,7 @@ std::string ReynoldsReportMarkdown(const std::vector<const PropEntry*>& measured
     if (ratio >= p.fm_ratio_lo * (1 - 1e-12) && ratio <= p.fm_ratio_hi * (1 + 1e-12)) ++covered;
   }
   o << "\n## Leave one family out\n\n"
-    << "Each propeller whose static table spans at least " << Fixed(1 / kLeaveOutFraction, 2)
+    << "Each propeller whose static table spans at least " << FixedText(1 / kLeaveOutFraction, 2)
     << "x pretends its data start at its first point at or above rpm_lo/" << kLeaveOutFraction
     << "; its points down to " << kLeaveOutFraction << "x that edge are predicted from the edge's coefficients, "
     << "held (the rule before the law) or corrected with the law fitted without the propeller's UIUC family. "
@@ -221,8 +209,8 @@ std::string ReynoldsReportMarkdown(const std::vector<const PropEntry*>& measured
     << "| --- | --- | --- | --- | --- |\n";
   auto row = [&](const char* name, const std::vector<double>& h, const std::vector<double>& hb,
                  const std::vector<double>& c, const std::vector<double>& cb) {
-    o << "| " << name << " | " << Fixed(MedianOf(h), 2) << " | " << Fixed(MedianOf(hb), 2) << " | "
-      << Fixed(MedianOf(c), 2) << " | " << Fixed(MedianOf(cb), 2) << " |\n";
+    o << "| " << name << " | " << FixedText(fit::Median(h), 2) << " | " << FixedText(fit::Median(hb), 2) << " | "
+      << FixedText(fit::Median(c), 2) << " | " << FixedText(fit::Median(cb), 2) << " |\n";
   };
   row("CT", ct_h, ct_hb, ct_c, ct_cb);
   row("CP", cp_h, cp_hb, cp_c, cp_cb);
@@ -242,11 +230,11 @@ std::string ReynoldsReportMarkdown(const std::vector<const PropEntry*>& measured
   o << "\nPer UIUC family (each left out of its own law), FM: median absolute error %, held -> corrected:\n\n"
     << "| family | props | points | held | corrected |\n| --- | ---: | ---: | ---: | ---: |\n";
   for (const auto& [name, f] : fams) {
-    o << "| " << name << " | " << f.props.size() << " | " << f.held.size() << " | " << Fixed(MedianOf(f.held), 2)
-      << " | " << Fixed(MedianOf(f.corr), 2) << " |\n";
+    o << "| " << name << " | " << f.props.size() << " | " << f.held.size() << " | " << FixedText(fit::Median(f.held), 2)
+      << " | " << FixedText(fit::Median(f.corr), 2) << " |\n";
   }
   o << "\nMeasured FM/FM_edge inside the law's p10-p90 band: " << covered << " of " << pts.size() << " points ("
-    << Fixed(pts.empty() ? 0.0 : 100.0 * covered / static_cast<double>(pts.size()), 1) << " %).\n";
+    << FixedText(pts.empty() ? 0.0 : 100.0 * covered / static_cast<double>(pts.size()), 1) << " %).\n";
   return o.str();
 }
 

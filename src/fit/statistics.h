@@ -26,5 +26,7 @@ namespace dynosize::fit {
 // The q-quantile (0 <= q <= 1) of the values by linear interpolation between order statistics
 // (Hyndman & Fan type 7: position q*(n-1)); NaN when empty.
 double Quantile(std::vector<double> v, double q);
+// The same of values already sorted ascending (no copy).
+double SortedQuantile(const std::vector<double>& sorted, double q);
 
 }  // namespace dynosize::fit

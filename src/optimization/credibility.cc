@@ -12,6 +12,7 @@
 #include "catalog/in_system.h"
 #include "catalog/prop_credibility.h"
 #include "catalog/prop_reynolds.h"
+#include "common/text_format.h"
 #include "common/units.h"
 #include "model/physics.h"
 #include "optimization/mission_eval.h"
@@ -39,14 +40,6 @@ double MotorKvRpmPerV(const MotorEntry& motor) {
   if (motor.kv_rpm_per_v) return *motor.kv_rpm_per_v;
   const double k = motor.params.type == MotorType::kBldc ? 3.0 / (std::sqrt(2.0) * kPi) : 1.0;
   return k / (motor.params.ke_v_s_per_rad * kPi / 30.0);
-}
-
-std::string Fixed(double x, int digits) {
-  std::ostringstream o;
-  o.setf(std::ios::fixed);
-  o.precision(digits);
-  o << x;
-  return o.str();
 }
 
 }  // namespace
@@ -175,8 +168,8 @@ void AddObjectiveRange(const Mission& m, const Combination& c, MissionResult* r)
   g.tiers.push_back({"battery", c.battery->id, c.battery->tier, why(*c.battery)});
   bool estimated = false, excluded = false;
   const MotorParams rated = ScenarioMotorParams(*c.motor, m, &estimated, &excluded);
-  g.motor_rating = estimated ? "none in the source: " + Fixed(rated.max_power_w, 0) + " W, " +
-                                   Fixed(rated.max_current_a, 1) +
+  g.motor_rating = estimated ? "none in the source: " + FixedText(rated.max_power_w, 0) + " W, " +
+                                   FixedText(rated.max_current_a, 1) +
                                    " A estimated from the mass and Kv (assumed; catalog/conventions.h)"
                    : excluded ? "none in the source: excluded (constraints.unrated_motors = exclude)"
                               : "catalog";
@@ -260,19 +253,19 @@ void AddObjectiveRange(const Mission& m, const Combination& c, MissionResult* r)
   const DataTier pt = g.tiers[2].tier;
   std::ostringstream b;
   if (pt == DataTier::kMeasured) {
-    b << "propeller measured: shaft power +-" << Fixed(100 * kMeasuredPowerBand, 0) << " %";
+    b << "propeller measured: shaft power +-" << FixedText(100 * kMeasuredPowerBand, 0) << " %";
   } else if (pt == DataTier::kManufacturerComputed) {
-    b << "propeller manufacturer_computed: static FM x " << Fixed(kComputedFmRatio.min, 2) << "-"
-      << Fixed(kComputedFmRatio.max, 2) << " (credible " << Fixed(kComputedFmRatio.median, 2) << "), measured/computed of "
-      << kComputedFmRatio.pairs << " APC products, at most the p90 " << Fixed(k.p90, 2) << " of " << k.n_props
+    b << "propeller manufacturer_computed: static FM x " << FixedText(kComputedFmRatio.min, 2) << "-"
+      << FixedText(kComputedFmRatio.max, 2) << " (credible " << FixedText(kComputedFmRatio.median, 2) << "), measured/computed of "
+      << kComputedFmRatio.pairs << " APC products, at most the p90 " << FixedText(k.p90, 2) << " of " << k.n_props
       << " measured props of " << k.label;
     if (c.prop->power_derate_factor > 1.0) {
-      b << " (of the raw data: the catalog's derating x" << Fixed(c.prop->power_derate_factor, 3) << " counts toward it)";
+      b << " (of the raw data: the catalog's derating x" << FixedText(c.prop->power_derate_factor, 3) << " counts toward it)";
     }
   } else {
-    b << "propeller " << TierName(pt) << ": static FM held to the p10-p90 (" << Fixed(k.p10, 2) << "-"
-      << Fixed(k.p90, 2) << ") of " << k.n_props << " measured props of " << k.label << " (credible: p50 "
-      << Fixed(k.p50, 2) << ")";
+    b << "propeller " << TierName(pt) << ": static FM held to the p10-p90 (" << FixedText(k.p10, 2) << "-"
+      << FixedText(k.p90, 2) << ") of " << k.n_props << " measured props of " << k.label << " (credible: p50 "
+      << FixedText(k.p50, 2) << ")";
   }
   double re_ratio = 1.0;  // the lowest speed over the data's low edge flown (Reynolds band)
   for (const SegmentResult& sr : r->segments) {
@@ -280,8 +273,8 @@ void AddObjectiveRange(const Mission& m, const Combination& c, MissionResult* r)
   }
   if (re_ratio < 1.0) {
     const ReynoldsLaw& law = DefaultReynoldsLaw();
-    b << "; below its data's lowest speed (down to " << Fixed(re_ratio, 2) << "x) FM x (rpm/rpm_lo)^e, e "
-      << Fixed(std::max(law.fm_p10, 0.0), 2) << "-" << Fixed(law.fm_p90, 2) << " (credible " << Fixed(law.fm_exp(), 2)
+    b << "; below its data's lowest speed (down to " << FixedText(re_ratio, 2) << "x) FM x (rpm/rpm_lo)^e, e "
+      << FixedText(std::max(law.fm_p10, 0.0), 2) << "-" << FixedText(law.fm_p90, 2) << " (credible " << FixedText(law.fm_exp(), 2)
       << ", catalog/prop_reynolds.h)";
   }
   if (c.motor->datasheet_params) {

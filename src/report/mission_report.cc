@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "common/text_file.h"
+#include "common/text_format.h"
 #include "common/units.h"
 #include "mission/flight.h"
 #include "model/drive.h"
@@ -38,12 +39,6 @@ double Display(const Mission& m, double objective) {
     case ObjectiveType::kMaxEfficiency: return 100.0 * objective;
   }
   return objective;
-}
-
-std::string Fixed(double x, int digits) {
-  std::ostringstream o;
-  o << std::fixed << std::setprecision(digits) << x;
-  return o.str();
 }
 
 // "Name (id)" for a figure title; the id alone when the entry has no name.
@@ -81,10 +76,10 @@ std::string CredibilityText(const Mission& m, const MissionResult& r) {
                      : m.objective.type == ObjectiveType::kMinEnergy  ? " Wh"
                                                                       : " %";
   std::ostringstream o;
-  const auto end = [&](bool flies, double v) { return flies ? Fixed(Display(m, v), 2) : std::string("(cannot fly)"); };
+  const auto end = [&](bool flies, double v) { return flies ? FixedText(Display(m, v), 2) : std::string("(cannot fly)"); };
   o << "  " << (credible ? "credible " : "data as given: ");
   if (r.feasible) {
-    o << Fixed(Display(m, r.objective), 2) << unit << ", ";
+    o << FixedText(Display(m, r.objective), 2) << unit << ", ";
   } else {
     // An infeasible run's objective is what it flew before it broke a limit: not a point of the range.
     o << "infeasible; ";
@@ -93,7 +88,7 @@ std::string CredibilityText(const Mission& m, const MissionResult& r) {
     << g.basis << ")";
   if (credible) {
     o << "; data as given: "
-      << (g.as_given_feasible ? Fixed(Display(m, g.as_given), 2) + unit : "infeasible (breaks " + g.as_given_breaks + ")");
+      << (g.as_given_feasible ? FixedText(Display(m, g.as_given), 2) + unit : "infeasible (breaks " + g.as_given_breaks + ")");
   }
   if (!g.low_breaks.empty()) o << "\n  at the low end it breaks " << g.low_breaks << " (limits relaxed for the number)";
   if (!g.high_breaks.empty()) o << "\n  at the high end it breaks " << g.high_breaks << " (limits relaxed for the number)";
@@ -229,9 +224,9 @@ std::string MissionResultText(const Mission& m, const Combination& c, const Miss
   std::ostringstream o;
   if (m.groups.empty()) {
     o << "motor " << c.motor->id << " + ESC " << c.esc->id << " + prop " << c.prop->id << " + "
-      << c.cells << "S " << c.battery->id << " (" << Fixed(r.capacity_ah, 2) << " Ah)\n";
+      << c.cells << "S " << c.battery->id << " (" << FixedText(r.capacity_ah, 2) << " Ah)\n";
   } else {
-    o << c.cells << "S " << c.battery->id << " (" << Fixed(r.capacity_ah, 2) << " Ah)";
+    o << c.cells << "S " << c.battery->id << " (" << FixedText(r.capacity_ah, 2) << " Ah)";
     for (int g = 0; g < GroupCount(m); ++g) {
       const GroupParts p = c.Parts(g);
       o << (g ? "; " : " with ") << m.groups[g].name << " " << m.groups[g].rotors << " x motor " << p.motor->id
@@ -240,26 +235,26 @@ std::string MissionResultText(const Mission& m, const Combination& c, const Miss
     o << "\n";
   }
   o << "  " << (r.feasible ? "feasible" : "INFEASIBLE") << "; " << ObjectiveLabel(m) << " "
-    << Fixed(Display(m, r.objective), 2) << "; mission " << Fixed(r.endurance_s / 60.0, 2)
-    << " min, " << Fixed(r.energy_wh, 2) << " Wh, final SOC " << Fixed(100 * r.final_soc, 1)
-    << " %; mass " << Fixed(r.total_mass_kg, 3) << " kg (propulsion " << Fixed(r.propulsion_mass_kg, 3)
+    << FixedText(Display(m, r.objective), 2) << "; mission " << FixedText(r.endurance_s / 60.0, 2)
+    << " min, " << FixedText(r.energy_wh, 2) << " Wh, final SOC " << FixedText(100 * r.final_soc, 1)
+    << " %; mass " << FixedText(r.total_mass_kg, 3) << " kg (propulsion " << FixedText(r.propulsion_mass_kg, 3)
     << " kg)\n";
   if (r.summary.valid) {
     const DesignSummary& d = r.summary;
-    o << "  thrust/weight " << Fixed(r.thrust_to_weight, 2) << " (" << r.lift_rotors
+    o << "  thrust/weight " << FixedText(r.thrust_to_weight, 2) << " (" << r.lift_rotors
       << (m.groups.empty() ? " lift rotors" : " rotors of group " + m.groups[std::max(0, LiftGroup(m))].name) << ", full throttle at the mission's end); at half charge: ";
     if (d.can_hover) {
-      o << "hover throttle " << Fixed(100 * d.hover_throttle, 1) << " %, hover " << Fixed(d.hover_endurance_s / 60.0, 1)
-        << " min, full throttle " << Fixed(d.full_throttle_endurance_s / 60.0, 1) << " min ("
-        << Fixed(d.full_throttle_battery_current_a, 1) << " A" << (d.full_throttle_current_limited ? ", at the current rating" : "")
-        << "), climb up to " << Fixed(d.max_climb_rate_m_s, 1) << " m/s; reserve at landing "
-        << Fixed(d.reserve_hover_s / 60.0, 1) << " min of hover";
+      o << "hover throttle " << FixedText(100 * d.hover_throttle, 1) << " %, hover " << FixedText(d.hover_endurance_s / 60.0, 1)
+        << " min, full throttle " << FixedText(d.full_throttle_endurance_s / 60.0, 1) << " min ("
+        << FixedText(d.full_throttle_battery_current_a, 1) << " A" << (d.full_throttle_current_limited ? ", at the current rating" : "")
+        << "), climb up to " << FixedText(d.max_climb_rate_m_s, 1) << " m/s; reserve at landing "
+        << FixedText(d.reserve_hover_s / 60.0, 1) << " min of hover";
     } else {
-      o << "it cannot hover (needs " << Fixed(100 * d.hover_throttle, 1) << " % throttle; full-throttle thrust "
-        << Fixed(d.full_throttle_thrust_n, 1) << " N for a weight of " << Fixed(r.total_mass_kg * kStandardGravity, 1)
+      o << "it cannot hover (needs " << FixedText(100 * d.hover_throttle, 1) << " % throttle; full-throttle thrust "
+        << FixedText(d.full_throttle_thrust_n, 1) << " N for a weight of " << FixedText(r.total_mass_kg * kStandardGravity, 1)
         << " N): no hover endurance";
     }
-    o << "; winding up to " << Fixed(d.winding_temp_max_c, 0) << " C\n";
+    o << "; winding up to " << FixedText(d.winding_temp_max_c, 0) << " C\n";
   }
   o << CredibilityText(m, r);
   o << "  segment (point: end, worst case)   s     rpm  thr %  eff %  torque N*m  Irms A  IDC A   VDC V   PDC W  PESC W  eta_m  eta_e  eta_s  limit\n";
@@ -267,26 +262,26 @@ std::string MissionResultText(const Mission& m, const Combination& c, const Miss
     const Gear& gear = c.Parts(s.group).motor->gear;
     const OperatingPoint p = MotorSidePoint(s.point, gear);  // the motor's shaft (model/gear.h)
     o << "  " << std::left << std::setw(12) << (s.name + (m.groups.empty() ? "" : "/" + m.groups[s.group].name)).substr(0, 12) << std::setw(7)
-      << SegmentTypeName(s.type) << std::right << std::setw(10) << Fixed(s.duration_s, 0)
-      << std::setw(8) << Fixed(p.rpm, 0) << std::setw(7) << Fixed(100 * p.throttle, 1)
-      << std::setw(7) << Fixed(100 * p.throttle_effective, 1) << std::setw(12)
-      << Fixed(p.torque_nm, 5) << std::setw(8) << Fixed(p.irms_a, 2) << std::setw(7)
-      << Fixed(p.idc_a, 2) << std::setw(8) << Fixed(p.vdc_v, 3) << std::setw(8)
-      << Fixed(p.pdc_w, 1) << std::setw(8) << Fixed(p.pesc_w, 2) << std::setw(7)
-      << Fixed(p.eta_motor, 3) << std::setw(7) << Fixed(p.eta_esc, 3) << std::setw(7)
-      << Fixed(p.eta_system, 3) << "  " << (s.active_limit.empty() ? "-" : s.active_limit) << "\n";
-    o << "      over the segment: VDC " << Fixed(s.vdc_max_v, 2) << " -> " << Fixed(s.vdc_min_v, 2)
-      << " V, throttle " << Fixed(100 * s.throttle_min, 1) << "-" << Fixed(100 * s.throttle_max, 1)
-      << " %, IDC " << Fixed(s.idc_min_a, 2) << "-" << Fixed(s.idc_max_a, 2) << " A, SOC "
-      << Fixed(100 * s.soc_start, 1) << " -> " << Fixed(100 * s.soc_end, 1) << " %, winding "
-      << Fixed(s.winding_temp_c, 0) << " C";
-    if (s.type == SegmentType::kCruise) o << ", airspeed " << Fixed(s.airspeed_m_s, 2) << " m/s";
+      << SegmentTypeName(s.type) << std::right << std::setw(10) << FixedText(s.duration_s, 0)
+      << std::setw(8) << FixedText(p.rpm, 0) << std::setw(7) << FixedText(100 * p.throttle, 1)
+      << std::setw(7) << FixedText(100 * p.throttle_effective, 1) << std::setw(12)
+      << FixedText(p.torque_nm, 5) << std::setw(8) << FixedText(p.irms_a, 2) << std::setw(7)
+      << FixedText(p.idc_a, 2) << std::setw(8) << FixedText(p.vdc_v, 3) << std::setw(8)
+      << FixedText(p.pdc_w, 1) << std::setw(8) << FixedText(p.pesc_w, 2) << std::setw(7)
+      << FixedText(p.eta_motor, 3) << std::setw(7) << FixedText(p.eta_esc, 3) << std::setw(7)
+      << FixedText(p.eta_system, 3) << "  " << (s.active_limit.empty() ? "-" : s.active_limit) << "\n";
+    o << "      over the segment: VDC " << FixedText(s.vdc_max_v, 2) << " -> " << FixedText(s.vdc_min_v, 2)
+      << " V, throttle " << FixedText(100 * s.throttle_min, 1) << "-" << FixedText(100 * s.throttle_max, 1)
+      << " %, IDC " << FixedText(s.idc_min_a, 2) << "-" << FixedText(s.idc_max_a, 2) << " A, SOC "
+      << FixedText(100 * s.soc_start, 1) << " -> " << FixedText(100 * s.soc_end, 1) << " %, winding "
+      << FixedText(s.winding_temp_c, 0) << " C";
+    if (s.type == SegmentType::kCruise) o << ", airspeed " << FixedText(s.airspeed_m_s, 2) << " m/s";
     if (gear.geared()) {
       const MotorShaft shaft = MotorShaftOf(s.point.omega_rad_s, s.point.torque_nm, gear);
-      o << "\n      geared " << Fixed(gear.ratio, 2) << ":1 (efficiency " << Fixed(gear.efficiency, 3)
-        << "; the row is the motor's shaft): propeller " << Fixed(s.point.rpm, 0) << " rpm, "
-        << Fixed(s.point.torque_nm, 4) << " N*m, " << Fixed(s.point.pmech_w, 1) << " W; gear loss "
-        << Fixed(shaft.gear_loss_w, 1) << " W";
+      o << "\n      geared " << FixedText(gear.ratio, 2) << ":1 (efficiency " << FixedText(gear.efficiency, 3)
+        << "; the row is the motor's shaft): propeller " << FixedText(s.point.rpm, 0) << " rpm, "
+        << FixedText(s.point.torque_nm, 4) << " N*m, " << FixedText(s.point.pmech_w, 1) << " W; gear loss "
+        << FixedText(shaft.gear_loss_w, 1) << " W";
     }
     o << "\n";
   }
@@ -430,7 +425,7 @@ std::vector<std::string> WriteSegmentMaps(const Mission& m, const Combination& c
     }
     std::ostringstream g;
     g << "set title \"" << PartName(*parts.motor) << " + " << PartName(*parts.esc) << " + " << PartName(*parts.prop)
-      << "\\nsegment '" << s.name << "' (" << SegmentTypeName(s.type) << ") at VDC = " << Fixed(vdc, 2)
+      << "\\nsegment '" << s.name << "' (" << SegmentTypeName(s.type) << ") at VDC = " << FixedText(vdc, 2)
       << " V (its end)\" noenhanced\n"
       << "set xlabel 'speed [rpm]'\nset ylabel 'torque [N m]'\nset view map\n"
       << "set palette defined (0 '#2b083b', 0.35 '#3b528b', 0.6 '#21918c', 0.8 '#5ec962', 1 '#fde725')\n"
@@ -445,7 +440,7 @@ std::vector<std::string> WriteSegmentMaps(const Mission& m, const Combination& c
       // White on the map, invisible in the white key: the key shows them in grey (keyentry).
       << "keyentry with lines lc rgb '#909090' lw 1 title 'contours 40-90 % (white)', "
       << "$lim using 1:2 with lines lw 2 dt 2 lc rgb 'black' title 'throttle limit "
-      << Fixed(100 * m.constraints.max_throttle, 0) << " %', "
+      << FixedText(100 * m.constraints.max_throttle, 0) << " %', "
       << "$load using 1:2 with lines lw 2 lc rgb '#ff7f0e' title 'propeller load line', "
       << "$pts using 1:2 with points pt 6 ps 2 lw 2 lc rgb 'white' notitle, "
       << "keyentry with points pt 6 ps 2 lw 2 lc rgb '#909090' title 'all segments (white rings)', "

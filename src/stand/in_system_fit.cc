@@ -91,8 +91,6 @@ Eigen::VectorXd FitRelativeCurrent(const std::vector<const LawMotor*>& motors, M
   return x;
 }
 
-double Median(const std::vector<double>& v) { return fit::Median(v); }
-
 // Lower-case letters and digits only, "goldline" dropped (FAST-UAV writes "AXI 2814/20 GOLD LINE",
 // DriveCalc "AXI 2814-20").
 std::string NameKey(const std::string& name) {
@@ -167,7 +165,7 @@ SweepErrors CurrentErrorsBySweep(const LawMotor& motor, const InSystemLaw& law) 
   SweepErrors e;
   for (const auto& [s, v] : by_sweep) {
     e.median_abs.push_back(fit::MedianAbs(v));
-    e.median_signed.push_back(Median(v));
+    e.median_signed.push_back(fit::Median(v));
   }
   return e;
 }
@@ -182,7 +180,7 @@ double FitMotorDeadband(const LawMotor& motor, const InSystemLaw& law) {
     // TR_eff = (TR - db)/(1 - db) (model.md section 9, Drive::EffectiveThrottle) solved for db.
     if (tr_eff < kDeadbandMaxEffectiveThrottle) db.push_back((p.throttle - tr_eff) / (1.0 - tr_eff));
   }
-  return db.empty() ? 0.0 : Median(db);
+  return db.empty() ? 0.0 : fit::Median(db);
 }
 
 double ForwardSpeedError(const LawMotor& motor, const InSystemLaw& law, double deadband) {
@@ -195,7 +193,7 @@ double ForwardSpeedError(const LawMotor& motor, const InSystemLaw& law, double d
   }
   std::vector<double> med;
   for (const auto& [s, v] : by_sweep) med.push_back(fit::MedianAbs(v));
-  return Median(med);
+  return fit::Median(med);
 }
 
 namespace {
@@ -229,10 +227,10 @@ LeftOutCheck CheckLeftOut(const std::vector<LawMotor>& motors, const LawForm& fo
   const SweepErrors ds = CurrentErrorsBySweep(motor, InSystemLaw{});
   const SweepErrors lw = CurrentErrorsBySweep(motor, c.law);
   c.sweeps = static_cast<int>(lw.median_abs.size());
-  c.datasheet_error = Median(ds.median_abs);
-  c.datasheet_bias = Median(ds.median_signed);
-  c.law_error = Median(lw.median_abs);
-  c.law_bias = Median(lw.median_signed);
+  c.datasheet_error = fit::Median(ds.median_abs);
+  c.datasheet_bias = fit::Median(ds.median_signed);
+  c.law_error = fit::Median(lw.median_abs);
+  c.law_bias = fit::Median(lw.median_signed);
   int inside = 0;
   const Drive lo = LawDrive(motor, c.law, c.law.r_ratio_p10, c.law.io_ratio_p10);
   const Drive hi = LawDrive(motor, c.law, c.law.r_ratio_p90, c.law.io_ratio_p90);
@@ -244,7 +242,7 @@ LeftOutCheck CheckLeftOut(const std::vector<LawMotor>& motors, const LawForm& fo
     inside += p.idc_a >= std::min(a, b) && p.idc_a <= std::max(a, b) ? 1 : 0;
   }
   c.coverage = c.points ? static_cast<double>(inside) / c.points : 0.0;
-  c.deadband_prior = Median(deadbands);
+  c.deadband_prior = fit::Median(deadbands);
   c.rpm_error_forward = ForwardSpeedError(motor, c.law, c.deadband_prior);
   return c;
 }
@@ -283,12 +281,12 @@ LawReport LeaveOneMotorOut(const std::vector<LawMotor>& motors, const LawForm& f
     rep.sweeps += c.sweeps;
     inside += static_cast<int>(std::lround(c.coverage * c.points));
   }
-  rep.datasheet_error = Median(ds_abs);
-  rep.datasheet_bias = Median(ds_sig);
-  rep.law_error = Median(lw_abs);
-  rep.law_bias = Median(lw_sig);
+  rep.datasheet_error = fit::Median(ds_abs);
+  rep.datasheet_bias = fit::Median(ds_sig);
+  rep.law_error = fit::Median(lw_abs);
+  rep.law_bias = fit::Median(lw_sig);
   rep.coverage = rep.points ? static_cast<double>(inside) / rep.points : 0.0;
-  rep.rpm_error_forward = Median(rpm);
+  rep.rpm_error_forward = fit::Median(rpm);
   return rep;
 }
 
