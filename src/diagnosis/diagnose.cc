@@ -513,22 +513,28 @@ std::string Separation(Cause a, Cause b) {
 // candidate here): the linear start alone can leave the first-order fit in a stalled local
 // minimum on logs whose throttle is not the voltage fraction. Kept only when that fit converged
 // and is physical; the linear start stays otherwise.
-void BaseStartFromCalibration(const SteadyTable& t, const DiagnoseOptions& o, Values* v) {
+// Returns true when the calibration held C1, C0 at the ESC prior although the log's columns
+// would let them be fitted (its rule: without AC columns, C1 or C0 on a bound or with a standard
+// error above half its value): the first-order model of the diagnosis then holds them too, so
+// that both commands fit the same base model to the same log (issue 23).
+bool BaseStartFromCalibration(const SteadyTable& t, const DiagnoseOptions& o, Values* v) {
   calibration::CalibrationOptions co;
   co.fit_throttle_offset = false;
   co.assumed_throttle = o.assumed_throttle;
   co.min_speed_fraction = o.min_speed_fraction;
   co.min_throttle = o.min_throttle;
+  co.labels.kv_rpm_per_v = o.kv_label_rpm_per_v;
   if (o.esc) co.esc_prior = *o.esc;
   calibration::CalibrationResult r;
   try {
     r = calibration::Calibrate(t, co);
   } catch (const Error&) {
-    return;
+    return false;
   }
-  if (!r.converged || !std::isfinite(r.motor.ke_v_s_per_rad) || !std::isfinite(r.motor.rm_ohm)) return;
+  const bool esc_held = r.param(calibration::Param::kC1).note.rfind("held at prior: without AC columns", 0) == 0;
+  if (!r.converged || !std::isfinite(r.motor.ke_v_s_per_rad) || !std::isfinite(r.motor.rm_ohm)) return esc_held;
   for (int k = 0; k < calibration::kParamCount; ++k) {
-    if (r.params[k].at_bound) return;
+    if (r.params[k].at_bound) return esc_held;
   }
   (*v)[kKe] = r.motor.ke_v_s_per_rad;
   (*v)[kKt] = r.motor.kt_nm_per_a;
@@ -537,6 +543,7 @@ void BaseStartFromCalibration(const SteadyTable& t, const DiagnoseOptions& o, Va
   (*v)[kResc] = r.esc.resc_ohm;
   (*v)[kC1] = r.esc.c1;
   (*v)[kC0] = r.esc.c0;
+  return esc_held;
 }
 
 // Rows whose largest |residual| exceeds outlier_sigmas robust sd (sigma): worst first, at most
@@ -627,6 +634,8 @@ identification::Verdict JudgeExtended(const Data& d, const SteadyTable& t, const
   in.has_torque = t.Has(Column::kTorqueNm);
   in.has_ac = t.Has(Column::kVllRmsV) && t.Has(Column::kIrmsA);
   in.has_throttle = t.Has(Column::kThrottle);
+  in.pulse_min_us = t.throttle_pulse_min_us;
+  in.pulse_max_us = t.throttle_pulse_max_us;
   return identification::Judge(in);
 }
 
@@ -668,11 +677,31 @@ Prepared PrepareDiagnosisData(const SteadyTable& t, const DiagnoseOptions& o, Di
   for (int m = 0; m < kMeasCount; ++m) d.measured[m] = t.Has(kMeasColumn[m]);
   for (double w : t.Get(Column::kOmegaRadS)) p.wmax = std::max(p.wmax, w);
   res->row_used.assign(t.rows(), 0);
+  std::vector<std::size_t> cand;
+  for (std::size_t i = 0; i < t.rows(); ++i) {
+    const double tr = p.has_tr ? t.Get(Column::kThrottle)[i] : o.assumed_throttle;
+    if (identification::RowRejection(t.Get(Column::kOmegaRadS)[i], p.wmax, o.min_speed_fraction, p.has_tr, tr,
+                                     o.min_throttle, t.Get(Column::kVdcV)[i]) == nullptr &&
+        !(p.has_nl && t.Get(Column::kNoLoad)[i] != 0.0)) {
+      cand.push_back(i);
+    }
+  }
+  // Speed readings the circuit cannot produce are left out, as calibrate does (fit_rows.h).
+  std::vector<char> spurious(t.rows(), 0);
+  std::string listed;
+  for (const auto& sp : identification::FindSpuriousSpeeds(t, cand, o.assumed_throttle)) {
+    spurious[sp.row] = 1;
+    listed += (listed.empty() ? "" : "; ") + identification::SpuriousSpeedText(t, sp);
+  }
+  if (!listed.empty()) {
+    res->warnings.push_back("speed readings inconsistent with VDC, throttle and current left out: " + listed);
+  }
   for (std::size_t i = 0; i < t.rows(); ++i) {
     const double w = t.Get(Column::kOmegaRadS)[i];
     const double tr = p.has_tr ? t.Get(Column::kThrottle)[i] : o.assumed_throttle;
     const double vdc = t.Get(Column::kVdcV)[i];
-    if (identification::RowRejection(w, p.wmax, o.min_speed_fraction, p.has_tr, tr, o.min_throttle, vdc) != nullptr) {
+    if (spurious[i] ||
+        identification::RowRejection(w, p.wmax, o.min_speed_fraction, p.has_tr, tr, o.min_throttle, vdc) != nullptr) {
       continue;
     }
     const bool nl = p.has_nl && t.Get(Column::kNoLoad)[i] != 0.0;
@@ -718,7 +747,7 @@ Prepared PrepareDiagnosisData(const SteadyTable& t, const DiagnoseOptions& o, Di
 // Stage 2a: linear starts of the base parameters when no catalog entry is given:
 // U = R*I + KE*omega (eq 48) by least squares, I from the AC current or IDC/(C1*TR + C0); then
 // the calibration engine's fit where it is physical (BaseStartFromCalibration).
-void LinearBaseStarts(const SteadyTable& t, const DiagnoseOptions& o, const Prepared& p, Values* values) {
+bool LinearBaseStarts(const SteadyTable& t, const DiagnoseOptions& o, const Prepared& p, Values* values) {
   const Data& d = p.d;
   const std::size_t n = d.rows();
   Values& v = *values;
@@ -749,7 +778,7 @@ void LinearBaseStarts(const SteadyTable& t, const DiagnoseOptions& o, const Prep
     }
     v[kIo] = c > 0 ? std::max(s / c, 0.0) : 0.0;
   }
-  BaseStartFromCalibration(t, o, &v);
+  return BaseStartFromCalibration(t, o, &v);
 }
 
 // Stage 2b: optimisation scales (x = value/scale) and the physical box of every slot.
@@ -840,7 +869,14 @@ Model BuildBaseModel(const SteadyTable& t, const DiagnoseOptions& o, const Prepa
   fr[kIo] = p.any_tk;
   fr[kResc] = p.ac && p.has_tr;
   fr[kC1] = fr[kC0] = d.measured[kMIdc] && p.has_tr && p.levels.size() >= 2 && (p.ac || p.has_q);
-  if (!o.motor) LinearBaseStarts(t, o, p, &v);
+  if (!o.motor && LinearBaseStarts(t, o, p, &v) && fr[kC1] && !p.ac) {
+    fr[kC1] = fr[kC0] = false;
+    v[kC1] = e0.c1;
+    v[kC0] = e0.c0;
+    res->warnings.push_back(std::string("c1, c0 held at the ") + (o.esc ? "ESC entry's" : "ideal ESC's") +
+                            " value: without AC columns this log cannot determine them (the calibration's rule, "
+                            "src/calibration/calibrate.h)");
+  }
   ScalesAndBounds(p, &base);
   for (int s = 0; s < kSlotCount; ++s) {
     if (base.free[s]) res->base_free_parameters.push_back(kSlotName[s]);
@@ -1427,6 +1463,56 @@ void AssembleResult(const SteadyTable& t, const DiagnoseOptions& o, const Data& 
   res->verdict = JudgeExtended(d, t, cur.model, cur.fit, used, cur.cv, *res, o);
 }
 
+// Stage 11 (DiagnoseOptions::calibration_entry): where the extended model is of calibrate's model
+// class - the first-order model with the throttle offset and the saturation knee exactly where
+// calibrate's own F tests keep them - the entry and its status are calibrate's, so that a log has
+// one status. Diagnose weighs its residuals for its tests (errors in variables, diagnose.h) and
+// calibrate for its entry (percent of the column median, Huber): on a log the first-order model
+// cannot follow at low command (tytodb AG5008) the two weightings put Rm in different places.
+void UseCalibrationEntry(const SteadyTable& t, const DiagnoseOptions& o, DiagnoseResult* res) {
+  if (!o.calibration_entry || o.motor) return;
+  bool deadband = false, knee = false;
+  for (const auto& f : res->findings) {
+    if (f.cause == Cause::kThrottleDeadband) deadband = true;
+    else if (f.cause == Cause::kEscSaturation) knee = true;
+    else return;  // an extension calibrate does not fit: diagnose's own entry
+  }
+  calibration::CalibrationOptions co;
+  co.assumed_throttle = o.assumed_throttle;
+  co.min_speed_fraction = o.min_speed_fraction;
+  co.min_throttle = o.min_throttle;
+  co.labels.kv_rpm_per_v = o.kv_label_rpm_per_v;
+  if (o.esc) co.esc_prior = *o.esc;
+  calibration::CalibrationResult r;
+  try {
+    r = calibration::Calibrate(t, co);
+  } catch (const Error&) {
+    return;
+  }
+  const bool cal_deadband = r.param(calibration::Param::kDeadband).fitted;
+  const bool cal_knee = r.param(calibration::Param::kTrSat).fitted;
+  if (cal_deadband != deadband || cal_knee != knee) {
+    res->warnings.push_back(std::string("calibrate's fit of this log keeps ") +
+                            (cal_deadband ? "a throttle offset" : "no throttle offset") + " and " +
+                            (cal_knee ? "a saturation knee" : "no knee") +
+                            ": not the model class of these findings, so the entry and status are diagnose's own");
+    return;
+  }
+  const calibration::CrossValidation cv = calibration::CrossValidateForVerdict(t, co);
+  res->verdict = calibration::JudgeCalibration(r, t, co, &cv);
+  res->extended_motor = r.motor;
+  res->extended_esc = r.esc;
+  res->entry_from_calibration = true;
+  // Diagnose's own fit's complaint about its base parameters is not about this entry.
+  const std::string own = "the extended model still has a base parameter on a physical bound";
+  res->warnings.erase(std::remove_if(res->warnings.begin(), res->warnings.end(),
+                                     [&](const std::string& w) { return w.rfind(own, 0) == 0; }),
+                      res->warnings.end());
+  res->warnings.push_back("entry and status: calibrate's fit of the same model class (first order" +
+                          std::string(deadband ? " + throttle offset" : "") + (knee ? " + saturation knee" : "") +
+                          "), so both commands give this log one status");
+}
+
 }  // namespace
 
 DiagnoseResult Diagnose(const SteadyTable& t, const DiagnoseOptions& o) {
@@ -1452,6 +1538,7 @@ DiagnoseResult Diagnose(const SteadyTable& t, const DiagnoseOptions& o) {
   cur = SearchCandidates(x, p.has_tr, candidates, std::move(cur), &res);
   cur = HoldEscOnBound(x, p.ac, std::move(cur), &res);
   AssembleResult(t, o, d, used, folds, cur, &res);
+  UseCalibrationEntry(t, o, &res);
   return res;
 }
 
