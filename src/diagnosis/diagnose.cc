@@ -240,12 +240,27 @@ FitOut FitProfiled(const Data& d, const std::vector<std::size_t>& rows, const Mo
                    const std::vector<double>& knees, LossType loss, double loss_scale) {
   if (!model.profile_knee) return FitModel(d, rows, model, loss, loss_scale);
   FitOut best;
-  for (double t : knees) {
+  std::size_t jbest = 0;
+  for (std::size_t j = 0; j < knees.size(); ++j) {
     Model m = model;
-    m.values[kTrSat] = t;
+    m.values[kTrSat] = knees[j];
     FitOut f = FitModel(d, rows, m, loss, loss_scale);
-    if (f.ok && (!best.ok || f.sse < best.sse)) best = f;
+    if (f.ok && (!best.ok || f.sse < best.sse)) best = f, jbest = j;
   }
+  if (!best.ok) return best;
+  // The true knee lies between throttle levels, not on the grid: the knee is refined as a free
+  // parameter between the grid neighbours of the best grid knee, starting there. A knee held on
+  // the grid biases the slope (the row between the true and the grid knee is bent wrongly and
+  // the slope and the base parameters absorb it: a hidden 0.45 came out 0.32, issue 23); free,
+  // the slope's standard error also carries the knee's uncertainty.
+  Model m = model;
+  m.values = best.values;
+  m.profile_knee = false;
+  m.free[kTrSat] = true;
+  m.lower[kTrSat] = jbest > 0 ? knees[jbest - 1] : std::max(0.0, knees[jbest] - 0.05);
+  m.upper[kTrSat] = jbest + 1 < knees.size() ? knees[jbest + 1] : std::min(1.0, knees[jbest] + 0.05);
+  const FitOut refined = FitModel(d, rows, m, loss, loss_scale);
+  if (refined.ok && refined.sse <= best.sse) return refined;
   return best;
 }
 
@@ -274,8 +289,13 @@ CvOut CrossValidate(const Data& d, const std::vector<std::size_t>& used,
     // so that no score uses a knee chosen on the scored rows' own fit... up to the neighbourhood.
     std::vector<double> local;
     if (model.profile_knee) {
-      const auto it = std::find(knees.begin(), knees.end(), full.values[kTrSat]);
-      const std::ptrdiff_t c = it - knees.begin();
+      // The grid knee nearest to the full-data knee (refined off the grid by FitProfiled).
+      std::ptrdiff_t c = 0;
+      for (std::size_t j = 1; j < knees.size(); ++j) {
+        if (std::fabs(knees[j] - full.values[kTrSat]) < std::fabs(knees[c] - full.values[kTrSat])) {
+          c = static_cast<std::ptrdiff_t>(j);
+        }
+      }
       for (std::ptrdiff_t j = std::max<std::ptrdiff_t>(0, c - 2);
            j <= std::min<std::ptrdiff_t>(static_cast<std::ptrdiff_t>(knees.size()) - 1, c + 2); ++j) {
         local.push_back(knees[static_cast<std::size_t>(j)]);
@@ -1227,9 +1247,10 @@ Scored ScoreCandidate(const SearchContext& x, const Step& cur, bool base_at_boun
     cs.parameters["tr_sat"] = f.values[kTrSat];
     double step = 0.02;
     for (std::size_t j = 0; j + 1 < x.knees.size(); ++j) {
-      if (x.knees[j] == f.values[kTrSat]) step = x.knees[j + 1] - x.knees[j];
+      if (x.knees[j] <= f.values[kTrSat]) step = x.knees[j + 1] - x.knees[j];
     }
-    cs.stderrs["tr_sat"] = step / std::sqrt(12.0);  // grid resolution
+    // The refined knee's own standard error (FitProfiled), else the grid resolution.
+    cs.stderrs["tr_sat"] = std::isfinite(f.stderr_[kTrSat]) ? f.stderr_[kTrSat] : step / std::sqrt(12.0);
   }
   cs.sse = f.sse;
   cs.aicc = Aicc(f.sse, f.n_terms, f.n_free);
