@@ -103,8 +103,15 @@ std::vector<SpuriousSpeed> FindSpuriousSpeeds(const logs::SteadyTable& t, const 
   if (!std::isfinite(best_med)) return out;
   const double s = 1.4826 * (1.0 + 5.0 / static_cast<double>(n - 3)) * std::sqrt(best_med);
   const double limit = std::max(kSpuriousSpeedSigmas * s, kSpuriousSpeedMinRel);
+  // Only rows at or above the median command: below it an ESC's output is often not proportional
+  // to the command (jmajew: 48 % of the full speed at a 20 % command), and a high reading there
+  // cannot be told from the ESC's curve.
+  std::vector<double> trs;
+  for (const R& q : d) trs.push_back(q.x1 / q.x3);
+  const double tr_median = fit::Median(trs);
   std::vector<std::pair<double, std::size_t>> bad;
   for (std::size_t k = 0; k < n; ++k) {
+    if (d[k].x1 / d[k].x3 < tr_median) continue;
     // Only readings above the circuit's speed: eq 48 caps the speed at a given voltage, throttle
     // and current; a low reading can be a load or ESC effect (the fit's outlier screen sees it).
     const double r = rel(best, d[k]);

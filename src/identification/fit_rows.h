@@ -67,8 +67,9 @@ const char* RowRejection(double omega_rad_s, double omega_max_rad_s, double min_
 // a reading is spurious when r > max(kSpuriousSpeedSigmas*s, kSpuriousSpeedMinRel): only readings
 // above the circuit's speed, which eq 48 caps at the row's voltage, throttle and current (an
 // optical sensor counting twice); a low reading can be a load or ESC effect at low command and is
-// left to the fits' outlier screens. At most a quarter of the rows are flagged (worst first);
-// fewer than 8 rows: none.
+// left to the fits' outlier screens; and only at or above the median command (below it an ESC's
+// output is often not proportional to the command, and a high reading there is the ESC's curve).
+// At most a quarter of the rows are flagged (worst first); fewer than 8 rows: none.
 // rows: the candidate rows of the table (turning, throttle above the floor, VDC > 0); the
 // throttle is assumed_throttle where the log has none.
 inline constexpr double kSpuriousSpeedSigmas = 6.0;
