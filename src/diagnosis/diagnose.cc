@@ -1477,10 +1477,9 @@ void AssembleResult(const SteadyTable& t, const DiagnoseOptions& o, const Data& 
   res->verdict = JudgeExtended(d, t, cur.model, cur.fit, used, cur.cv, *res, o);
 }
 
-// Stage 11 (DiagnoseOptions::calibration_entry): where the extended model is of calibrate's model
-// class - the first-order model with the throttle offset and the saturation knee exactly where
-// calibrate's own F tests keep them - the entry and its status are calibrate's, so that a log has
-// one status. Diagnose weighs its residuals for its tests (errors in variables, diagnose.h) and
+// Stage 11 (DiagnoseOptions::calibration_entry): where calibrate's model holds every finding - no
+// finding, or only a throttle offset / saturation knee that calibrate's own F tests also keep -
+// the entry and its status are calibrate's, so that a log has one status. Diagnose weighs its residuals for its tests (errors in variables, diagnose.h) and
 // calibrate for its entry (percent of the column median, Huber): on a log the first-order model
 // cannot follow at low command (tytodb AG5008) the two weightings put Rm in different places.
 void UseCalibrationEntry(const SteadyTable& t, const DiagnoseOptions& o, DiagnoseResult* res) {
@@ -1505,11 +1504,13 @@ void UseCalibrationEntry(const SteadyTable& t, const DiagnoseOptions& o, Diagnos
   }
   const bool cal_deadband = r.param(calibration::Param::kDeadband).fitted;
   const bool cal_knee = r.param(calibration::Param::kTrSat).fitted;
-  if (cal_deadband != deadband || cal_knee != knee) {
+  // Calibrate's model must hold every finding; an offset or knee it keeps beyond them is its own F
+  // test's call on its own weighting (diagnose.h: the two weigh residuals differently).
+  if ((deadband && !cal_deadband) || (knee && !cal_knee)) {
     res->warnings.push_back(std::string("calibrate's fit of this log keeps ") +
                             (cal_deadband ? "a throttle offset" : "no throttle offset") + " and " +
                             (cal_knee ? "a saturation knee" : "no knee") +
-                            ": not the model class of these findings, so the entry and status are diagnose's own");
+                            ": it does not hold these findings, so the entry and status are diagnose's own");
     return;
   }
   const calibration::CrossValidation cv = calibration::CrossValidateForVerdict(t, co);
@@ -1522,8 +1523,8 @@ void UseCalibrationEntry(const SteadyTable& t, const DiagnoseOptions& o, Diagnos
   res->warnings.erase(std::remove_if(res->warnings.begin(), res->warnings.end(),
                                      [&](const std::string& w) { return w.rfind(own, 0) == 0; }),
                       res->warnings.end());
-  res->warnings.push_back("entry and status: calibrate's fit of the same model class (first order" +
-                          std::string(deadband ? " + throttle offset" : "") + (knee ? " + saturation knee" : "") +
+  res->warnings.push_back("entry and status: calibrate's fit, which holds these findings (first order" +
+                          std::string(cal_deadband ? " + throttle offset" : "") + (cal_knee ? " + saturation knee" : "") +
                           "), so both commands give this log one status");
 }
 

@@ -106,8 +106,8 @@ struct DiagnoseOptions {
   // refitted on the log (its free parameters), the rest are held at these values.
   std::optional<MotorParams> motor;
   std::optional<EscParams> esc;
-  // Where the extended model is of calibrate's model class (no finding, or only a throttle
-  // offset / saturation knee that calibrate's own fit also keeps) and no catalog entry is given,
+  // Where calibrate's model holds every finding (no finding, or only a throttle offset /
+  // saturation knee that calibrate's own fit also keeps) and no catalog entry is given,
   // the entry and its status are calibrate's (src/calibration: one fit and one verdict per model
   // class, so both commands give a log the same status; issue 23). Off: diagnose's own fit and
   // verdict always (the hidden-effect suites, which test detection, not the entry).
