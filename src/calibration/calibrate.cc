@@ -945,15 +945,17 @@ namespace {
 // Io where the log cannot identify it (no torque, no no-load rows: Io does not enter the
 // predictions): the label (--io-label), else the motor prior, else the no-load prior of
 // catalog/noload_prior.h - never 0. The log's largest DC current stands in for the rating and its
-// largest supply voltage for the test voltage.
+// largest supply voltage for the test voltage. Sets motor.io_a, params[kIo] and io_source.
 void HeldIo(const Prepared& pr, const SteadyTable& t, const CalibrationOptions& o, CalibrationResult* res) {
+  ParamEstimate& e = res->params[static_cast<int>(Param::kIo)];
   if (pr.layout.free[static_cast<int>(Param::kIo)]) {
     res->io_source = "fitted";
     return;
   }
   if (o.labels.io_a) {
-    res->motor.io_a = identification::IoFromLabel(*o.labels.io_a);
+    res->motor.io_a = e.value = identification::IoFromLabel(*o.labels.io_a);
     res->io_source = "label";
+    e.note += "; held at the label (--io-label)";
     return;
   }
   if (o.motor_prior && o.motor_prior->io_a > 0.0) {
@@ -968,8 +970,9 @@ void HeldIo(const Prepared& pr, const SteadyTable& t, const CalibrationOptions& 
   const double n0_rpm = identification::KvFromKe(res->motor.ke_v_s_per_rad) * vmax;
   const double io = NoLoadPriorIoA(imax, n0_rpm);
   if (!(io > 0.0)) return;
-  res->motor.io_a = io;
+  res->motor.io_a = e.value = io;
   res->io_source = "no-load prior";
+  e.note += "; assumed from the no-load prior (catalog/noload_prior.h)";
   std::ostringstream w;
   w.precision(3);
   w << "io_a = " << io << " A assumed from the no-load prior (no torque and no no-load rows: the log cannot "
@@ -1060,7 +1063,6 @@ CalibrationResult Calibrate(const SteadyTable& table, const CalibrationOptions& 
   for (const auto& dc : pr.dropped) res.points_dropped += dc.count;
   res.warnings = pr.warnings;
   if (!res.converged) res.warnings.push_back("fit did not converge: " + s.message);
-  HeldIo(pr, table, options, &res);
 
   // Per-parameter report.
   std::vector<int> slots;
@@ -1077,12 +1079,7 @@ CalibrationResult Calibrate(const SteadyTable& table, const CalibrationOptions& 
     e.value = best.params[k];
     e.note = pr.notes[k];
   }
-  if (res.io_source == "label" || res.io_source == "no-load prior") {
-    ParamEstimate& e = res.params[static_cast<int>(Param::kIo)];
-    e.value = res.motor.io_a;
-    e.note += res.io_source == "label" ? "; held at the label (--io-label)"
-                                       : "; assumed from the no-load prior (catalog/noload_prior.h)";
-  }
+  HeldIo(pr, table, options, &res);
   for (std::size_t sl = 0; sl < slots.size() && sl < static_cast<std::size_t>(s.parameters.size()); ++sl) {
     ParamEstimate& e = res.params[slots[sl]];
     e.fitted = true;
