@@ -301,6 +301,7 @@ int RunCalibrate(const CalibrateOptions& o) {
     j["stderr"] = calibration::StandardErrorsJson(r);
     j["identifiable"] = calibration::IdentifiableJson(r);
     j["fit"] = calibration::FitJson(r);
+    j["io_source"] = r.io_source;
     j["warnings"] = r.warnings;
     j["held_out"] = {{"leave_one_out", cv.leave_one_out},
                      {"folds", cv.folds},

@@ -178,6 +178,7 @@ int RunDiagnose(const DiagnoseCliOptions& o) {
   Json j = calibration::VerdictJson(r.verdict);
   j["file"] = r.file;
   j["mode"] = r.mode;
+  j["entry_from_calibration"] = r.entry_from_calibration;
   j["points_used"] = r.points_used;
   j["outlier_rows"] = r.outlier_rows.size();
   j["baseline"] = {{"cv_rmse", CvJson(r.baseline_cv, false)},

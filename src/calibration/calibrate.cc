@@ -9,6 +9,7 @@
 
 #include "common/dual.h"
 #include "common/error.h"
+#include "catalog/noload_prior.h"
 #include "common/units.h"
 #include "fit/linear_least_squares.h"
 #include "fit/statistics.h"
@@ -214,6 +215,29 @@ void DropRow(Prepared* pr, const SteadyTable& t, std::size_t i, const std::strin
   pr->dropped_rows.push_back({i, i < t.source_line.size() ? t.source_line[i] : 0, reason});
 }
 
+// The speed readings of the rows a fit may use (not excluded, not no-load, passing RowRejection)
+// that the circuit cannot produce (identification::FindSpuriousSpeeds).
+std::vector<identification::SpuriousSpeed> SpuriousSpeedRows(const SteadyTable& t, const CalibrationOptions& o,
+                                                             const std::vector<char>* excluded) {
+  if (!t.Has(Column::kOmegaRadS) || !t.Has(Column::kVdcV)) return {};
+  const bool thr = t.Has(Column::kThrottle);
+  const bool has_nl = t.Has(Column::kNoLoad);
+  const auto& w_all = t.Get(Column::kOmegaRadS);
+  double wmax = 0.0;
+  for (double w : w_all) wmax = std::max(wmax, w);
+  std::vector<std::size_t> cand;
+  for (std::size_t i = 0; i < t.rows(); ++i) {
+    if (excluded != nullptr && (*excluded)[i]) continue;
+    if (has_nl && t.Get(Column::kNoLoad)[i] != 0.0) continue;
+    const double tr = thr ? t.Get(Column::kThrottle)[i] : o.assumed_throttle;
+    if (identification::RowRejection(w_all[i], wmax, o.min_speed_fraction, thr, tr, o.min_throttle,
+                                     t.Get(Column::kVdcV)[i]) == nullptr) {
+      cand.push_back(i);
+    }
+  }
+  return identification::FindSpuriousSpeeds(t, cand, o.assumed_throttle);
+}
+
 // Which columns the log has, beyond those Prepared records (the stages of Prepare share it).
 struct LogColumns {
   bool has_q = false;   // torque
@@ -250,8 +274,27 @@ LogColumns SelectFitRows(const SteadyTable& t, const CalibrationOptions& o, cons
 
   FitData& d = pr->data;
   for (int m = 0; m < kMeasCount; ++m) d.measured[m] = t.Has(kMeasColumn[m]);
+  // Speed readings the circuit cannot produce (fit_rows.h) are left out, each with its value (on
+  // the first pass; a refit with `excluded` keeps the first pass's rows and list).
+  std::vector<char> spurious(t.rows(), 0);
+  if (excluded == nullptr) {
+    std::string listed;
+    for (const auto& sp : SpuriousSpeedRows(t, o, excluded)) {
+      spurious[sp.row] = 1;
+      const std::string what = identification::SpuriousSpeedText(t, sp);
+      AddDropLocal(&pr->dropped, "spurious speed reading (inconsistent with VDC, throttle and current)");
+      pr->dropped_rows.push_back({sp.row, sp.row < t.source_line.size() ? t.source_line[sp.row] : 0,
+                                  "spurious speed reading: " + what});
+      listed += (listed.empty() ? "" : "; ") + what;
+    }
+    if (!listed.empty()) {
+      pr->warnings.push_back("speed readings inconsistent with VDC, throttle and current left out (fit_rows.h "
+                             "FindSpuriousSpeeds): " + listed);
+    }
+  }
   for (std::size_t i = 0; i < t.rows(); ++i) {
     if (excluded != nullptr && (*excluded)[i]) continue;
+    if (spurious[i]) continue;
     const double w = w_all[i];
     const double tr = pr->has_throttle ? t.Get(Column::kThrottle)[i] : o.assumed_throttle;
     const bool nl = c.has_nl && t.Get(Column::kNoLoad)[i] != 0.0;
@@ -897,6 +940,49 @@ const char* ParamName(Param p) {
   return "?";
 }
 
+namespace {
+
+// Io where the log cannot identify it (no torque, no no-load rows: Io does not enter the
+// predictions): the label (--io-label), else the motor prior, else the no-load prior of
+// catalog/noload_prior.h - never 0. The log's largest DC current stands in for the rating and its
+// largest supply voltage for the test voltage. Sets motor.io_a, params[kIo] and io_source.
+void HeldIo(const Prepared& pr, const SteadyTable& t, const CalibrationOptions& o, CalibrationResult* res) {
+  ParamEstimate& e = res->params[static_cast<int>(Param::kIo)];
+  if (pr.layout.free[static_cast<int>(Param::kIo)]) {
+    res->io_source = "fitted";
+    return;
+  }
+  if (o.labels.io_a) {
+    res->motor.io_a = e.value = identification::IoFromLabel(*o.labels.io_a);
+    res->io_source = "label";
+    e.note += "; held at the label (--io-label)";
+    return;
+  }
+  if (o.motor_prior && o.motor_prior->io_a > 0.0) {
+    res->io_source = "motor prior";
+    return;
+  }
+  double imax = 0.0, vmax = 0.0;
+  for (std::size_t k = 0; k < pr.data.rows(); ++k) {
+    if (t.Has(Column::kIdcA)) imax = std::max(imax, t.Get(Column::kIdcA)[pr.data.table_row[k]]);
+    vmax = std::max(vmax, pr.data.vdc[k]);
+  }
+  const double n0_rpm = identification::KvFromKe(res->motor.ke_v_s_per_rad) * vmax;
+  const double io = NoLoadPriorIoA(imax, n0_rpm);
+  if (!(io > 0.0)) return;
+  res->motor.io_a = e.value = io;
+  res->io_source = "no-load prior";
+  e.note += "; assumed from the no-load prior (catalog/noload_prior.h)";
+  std::ostringstream w;
+  w.precision(3);
+  w << "io_a = " << io << " A assumed from the no-load prior (no torque and no no-load rows: the log cannot "
+    << "identify Io); largest DC current " << imax << " A for the rating, no-load speed " << n0_rpm << " rpm; "
+    << NoLoadLawText();
+  res->warnings.push_back(w.str());
+}
+
+}  // namespace
+
 bool CalibrationOptions::IsValid(std::string* error) const {
   auto fail = [&](const std::string& m) {
     if (error != nullptr) *error = m;
@@ -944,6 +1030,7 @@ CalibrationResult Calibrate(const SteadyTable& table, const CalibrationOptions& 
       pr2.dropped_rows = pr.dropped_rows;
       pr2.dropped.push_back({"outlier (residual > outlier_sigmas robust sd)", out.size()});
       pr2.dropped_rows.insert(pr2.dropped_rows.end(), out.begin(), out.end());
+      pr2.warnings = pr.warnings;
       pr = std::move(pr2);
       outliers = out.size();
       best = FitWithOffset(pr, options, &knee_found, &knee_note, &offset_found, &offset_note);
@@ -992,6 +1079,7 @@ CalibrationResult Calibrate(const SteadyTable& table, const CalibrationOptions& 
     e.value = best.params[k];
     e.note = pr.notes[k];
   }
+  HeldIo(pr, table, options, &res);
   for (std::size_t sl = 0; sl < slots.size() && sl < static_cast<std::size_t>(s.parameters.size()); ++sl) {
     ParamEstimate& e = res.params[slots[sl]];
     e.fitted = true;
@@ -1196,6 +1284,9 @@ CrossValidation LeaveOneOut(const SteadyTable& t, const CalibrationOptions& opti
     if (!*speed_unknown && !(w > options.min_speed_fraction * wmax)) return false;
     return !(t.Has(Column::kThrottle) && t.Get(Column::kThrottle)[i] < options.min_throttle);
   };
+  // Spurious speed readings are no test of a prediction (the fits leave them out too).
+  std::vector<char> spurious(n, 0);
+  for (const auto& sp : SpuriousSpeedRows(t, options, nullptr)) spurious[sp.row] = 1;
   for (long long g : groups) {
     ++cv.folds;
     std::vector<std::size_t> test;
@@ -1219,7 +1310,7 @@ CrossValidation LeaveOneOut(const SteadyTable& t, const CalibrationOptions& opti
     for (std::size_t i : test) {
       const double w = t.Get(Column::kOmegaRadS)[i];
       bool speed_unknown = false;
-      if (!usable(i, &speed_unknown)) continue;
+      if (spurious[i] || !usable(i, &speed_unknown)) continue;
       const bool no_load = has_nl && t.Get(Column::kNoLoad)[i] != 0.0;
       if (dc.ok && !speed_unknown) AddDcErrors(dc.motor, t, i, options.assumed_throttle, has_q || no_load, &cv);
       const RowPrediction p = PredictRow(t, i, r.motor, r.esc, options.assumed_throttle);
@@ -1325,7 +1416,13 @@ identification::Verdict JudgeCalibration(const CalibrationResult& r, const Stead
   in.has_torque = table.Has(Column::kTorqueNm);
   in.has_ac = table.Has(Column::kVllRmsV) && table.Has(Column::kIrmsA);
   in.has_throttle = table.Has(Column::kThrottle);
-  return identification::Judge(in);
+  in.pulse_min_us = table.throttle_pulse_min_us;
+  in.pulse_max_us = table.throttle_pulse_max_us;
+  identification::Verdict v = identification::Judge(in);
+  if (r.io_source == "no-load prior") {
+    v.summary += " (io_a from the no-load prior: assumed, the log has neither torque nor no-load rows)";
+  }
+  return v;
 }
 
 }  // namespace dynosize::calibration

@@ -150,6 +150,10 @@ struct CalibrationResult {
   MotorParams motor;
   EscParams esc;
   std::array<ParamEstimate, kParamCount> params;
+  // Where motor.io_a comes from: "fitted" (torque or no-load rows), "label" (--io-label), "motor
+  // prior", "no-load prior" (catalog/noload_prior.h: the log cannot identify Io and nothing else
+  // states it; never 0).
+  std::string io_source;
   double r_total_ohm = 0.0;  // Rm + RESC, identifiable whenever Rm or RESC is fitted
   double r_total_standard_error = std::numeric_limits<double>::quiet_NaN();
   std::vector<ColumnFit> fit;  // one per predicted measured column

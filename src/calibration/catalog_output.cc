@@ -81,7 +81,7 @@ Json MotorEntryJson(const std::string& id, const std::string& name, const Calibr
       {"ke_v_s_per_rad", r.motor.ke_v_s_per_rad, Method(r.param(Param::kKe)), ""},
       {"kt_nm_per_a", r.motor.kt_nm_per_a, r.param(Param::kKt).fitted ? "fitted" : "derived", ""},
       {"rm_ohm", r.motor.rm_ohm, Method(r.param(Param::kRm)), ""},
-      {"io_a", r.motor.io_a, Method(r.param(Param::kIo)), ""},
+      {"io_a", r.motor.io_a, r.io_source == "label" ? "datasheet" : Method(r.param(Param::kIo)), ""},
       {"kv_rpm_per_v", kVllRmsPerVdc / (r.motor.ke_v_s_per_rad * kRadPerSecPerRpm), "derived", ""}};
   std::string note = HeldNote(r, {Param::kIo});
   const std::string un = UnidentifiedNote(r, {Param::kKe, Param::kKt, Param::kRm, Param::kIo});

@@ -6,6 +6,9 @@
 #include <map>
 #include <utility>
 
+#include <Eigen/Dense>
+
+#include "common/units.h"
 #include "fit/linear_least_squares.h"
 #include "fit/statistics.h"
 #include "model/dc_motor.h"
@@ -22,6 +25,113 @@ const char* RowRejection(double omega_rad_s, double omega_max_rad_s, double min_
   if (has_throttle && throttle < min_throttle) return "throttle below min_throttle";
   if (!(vdc_v > 0.0)) return "vdc_v not positive";
   return nullptr;
+}
+
+std::vector<SpuriousSpeed> FindSpuriousSpeeds(const logs::SteadyTable& t, const std::vector<std::size_t>& rows,
+                                              double assumed_throttle) {
+  using logs::Column;
+  std::vector<SpuriousSpeed> out;
+  if (!t.Has(Column::kOmegaRadS) || !t.Has(Column::kVdcV) || !t.Has(Column::kIdcA)) return out;
+  const bool thr = t.Has(Column::kThrottle);
+  struct R {
+    std::size_t row;
+    double x1, x2, x3, w;
+  };
+  std::vector<R> d;
+  for (std::size_t i : rows) {
+    const double tr = thr ? t.Get(Column::kThrottle)[i] : assumed_throttle;
+    const double v = t.Get(Column::kVdcV)[i], w = t.Get(Column::kOmegaRadS)[i], idc = t.Get(Column::kIdcA)[i];
+    if (!(tr > 0.0) || !(v > 0.0) || !(w > 0.0) || !std::isfinite(idc)) continue;
+    d.push_back({i, v * tr, idc / tr, v, w});
+  }
+  const std::size_t n = d.size();
+  if (n < 8) return out;
+  std::vector<double> wabs;
+  for (const R& r : d) wabs.push_back(r.w);
+  const double wfloor = 0.05 * fit::Median(wabs);
+  auto rel = [&](const Eigen::Vector3d& c, const R& r) {
+    const double pred = c[0] * r.x1 + c[1] * r.x2 + c[2] * r.x3;
+    return (r.w - pred) / std::max(std::fabs(pred), wfloor);
+  };
+  auto med_sq = [&](const Eigen::Vector3d& c) {
+    std::vector<double> r2;
+    for (const R& r : d) r2.push_back(rel(c, r) * rel(c, r));
+    return fit::Median(std::move(r2));
+  };
+  // Deterministic triples: all of them up to 2000, else a fixed linear congruential sequence.
+  const std::size_t total = n * (n - 1) * (n - 2) / 6;
+  const std::size_t trials = std::min<std::size_t>(total, 2000);
+  unsigned long long state = 88172645463325252ULL;
+  auto next = [&]() {
+    state ^= state << 13;
+    state ^= state >> 7;
+    state ^= state << 17;
+    return static_cast<std::size_t>(state % n);
+  };
+  Eigen::Vector3d best = Eigen::Vector3d::Zero();
+  double best_med = std::numeric_limits<double>::infinity();
+  std::size_t a = 0, b = 1, c = 2;
+  for (std::size_t k = 0; k < trials; ++k) {
+    if (total <= 2000) {
+      if (k > 0 && ++c == n) {
+        if (++b == n - 1) b = ++a + 1;
+        c = b + 1;
+      }
+    } else {
+      a = next();
+      b = next();
+      c = next();
+      if (a == b || b == c || a == c) continue;
+    }
+    Eigen::Matrix3d m;
+    Eigen::Vector3d y;
+    for (int q = 0; q < 3; ++q) {
+      const R& r = d[q == 0 ? a : q == 1 ? b : c];
+      m.row(q) << r.x1, r.x2, r.x3;
+      y[q] = r.w;
+    }
+    const Eigen::FullPivLU<Eigen::Matrix3d> lu(m);
+    if (!lu.isInvertible()) continue;
+    const Eigen::Vector3d coef = lu.solve(y);
+    if (!(coef[0] > 0.0)) continue;  // speed rises with the voltage (eq 48)
+    const double md = med_sq(coef);
+    if (md < best_med) {
+      best_med = md;
+      best = coef;
+    }
+  }
+  if (!std::isfinite(best_med)) return out;
+  const double s = 1.4826 * (1.0 + 5.0 / static_cast<double>(n - 3)) * std::sqrt(best_med);
+  const double limit = std::max(kSpuriousSpeedSigmas * s, kSpuriousSpeedMinRel);
+  // Only rows at or above the median command: below it an ESC's output is often not proportional
+  // to the command (jmajew: 48 % of the full speed at a 20 % command), and a high reading there
+  // cannot be told from the ESC's curve.
+  std::vector<double> trs;
+  for (const R& q : d) trs.push_back(q.x1 / q.x3);
+  const double tr_median = fit::Median(trs);
+  std::vector<std::pair<double, std::size_t>> bad;
+  for (std::size_t k = 0; k < n; ++k) {
+    if (d[k].x1 / d[k].x3 < tr_median) continue;
+    // Only readings above the circuit's speed: eq 48 caps the speed at a given voltage, throttle
+    // and current; a low reading can be a load or ESC effect (the fit's outlier screen sees it).
+    const double r = rel(best, d[k]);
+    if (r > limit) bad.push_back({r, k});
+  }
+  std::sort(bad.begin(), bad.end(), [](const auto& x, const auto& y) { return x.first > y.first; });
+  bad.resize(std::min(bad.size(), n / 4));
+  for (const auto& [r, k] : bad) {
+    const R& q = d[k];
+    out.push_back({q.row, q.w, best[0] * q.x1 + best[1] * q.x2 + best[2] * q.x3});
+  }
+  std::sort(out.begin(), out.end(), [](const SpuriousSpeed& x, const SpuriousSpeed& y) { return x.row < y.row; });
+  return out;
+}
+
+std::string SpuriousSpeedText(const logs::SteadyTable& t, const SpuriousSpeed& s) {
+  const std::size_t line = s.row < t.source_line.size() ? t.source_line[s.row] : 0;
+  return (line > 0 ? "line " + std::to_string(line) : "row " + std::to_string(s.row)) + ": " +
+         std::to_string(static_cast<long long>(std::llround(s.omega_rad_s / kRadPerSecPerRpm))) + " rpm (expected about " +
+         std::to_string(static_cast<long long>(std::llround(s.expected_omega_rad_s / kRadPerSecPerRpm))) + " rpm)";
 }
 
 std::vector<double> ThrottleLevels(const std::vector<double>& throttle) {

@@ -6,6 +6,7 @@
 
 #include <array>
 #include <cstddef>
+#include <string>
 #include <vector>
 
 #include "logs/steady_table.h"
@@ -56,6 +57,32 @@ struct FitRows {
 const char* RowRejection(double omega_rad_s, double omega_max_rad_s, double min_speed_fraction,
                          bool has_throttle, double throttle, double min_throttle, double vdc_v,
                          bool speed_unknown = false);
+
+// Speed readings the circuit cannot produce (an optical tachometer counting a reflection twice,
+// a dropped pulse): eq 48 with the ideal ESC of eq 56 makes the speed linear in the row's known
+// values, omega = a*VDC*TR + b*IDC/TR + c*VDC (a ~ 0.675/KE, b ~ -R/(1.1095*KE), c for a throttle
+// offset: model.md sections 3, 8, 9). Fitted by least median of squares over deterministic
+// triples of rows (a half of the rows may be wrong), its robust scale is
+// s = 1.4826*(1 + 5/(n - 3))*sqrt(median r^2) of the relative residuals r = (omega - pred)/pred;
+// a reading is spurious when r > max(kSpuriousSpeedSigmas*s, kSpuriousSpeedMinRel): only readings
+// above the circuit's speed, which eq 48 caps at the row's voltage, throttle and current (an
+// optical sensor counting twice); a low reading can be a load or ESC effect at low command and is
+// left to the fits' outlier screens; and only at or above the median command (below it an ESC's
+// output is often not proportional to the command, and a high reading there is the ESC's curve).
+// At most a quarter of the rows are flagged (worst first); fewer than 8 rows: none.
+// rows: the candidate rows of the table (turning, throttle above the floor, VDC > 0); the
+// throttle is assumed_throttle where the log has none.
+inline constexpr double kSpuriousSpeedSigmas = 6.0;
+inline constexpr double kSpuriousSpeedMinRel = 0.15;
+struct SpuriousSpeed {
+  std::size_t row = 0;               // table row
+  double omega_rad_s = 0.0;          // the reading
+  double expected_omega_rad_s = 0.0; // the robust circuit fit at the row's VDC, throttle, current
+};
+std::vector<SpuriousSpeed> FindSpuriousSpeeds(const logs::SteadyTable& t, const std::vector<std::size_t>& rows,
+                                              double assumed_throttle);
+// "line 12: 16040 rpm (expected about 3150 rpm)" for warnings and dropped-row reasons.
+std::string SpuriousSpeedText(const logs::SteadyTable& t, const SpuriousSpeed& s);
 
 // The distinct throttle levels of the rows (rounded to 0.001), ascending.
 std::vector<double> ThrottleLevels(const std::vector<double>& throttle);

@@ -27,6 +27,29 @@ void Add(Verdict* v, const std::string& name, bool passed, double value, double 
   v->checks.push_back(c);
 }
 
+// A saturation the data cannot pin down. A flat top (sat_slope near 0: the speed stops rising
+// above the knee) is most often the ESC's end point below the pulse width taken as full throttle:
+// the fix is the end point, named with its value (the knee's pulse width, to 10 us).
+std::string SaturationAdvice(const VerdictInputs& in) {
+  double knee = 1.0, slope = 1.0;
+  for (const auto& p : in.params) {
+    if (p.name == "tr_sat") knee = p.value;
+    if (p.name == "sat_slope") slope = p.value;
+  }
+  constexpr double kFlatSlope = 0.1;  // below this the output barely rises above the knee
+  if (slope < kFlatSlope && knee < 1.0) {
+    if (in.pulse_max_us > in.pulse_min_us && in.pulse_min_us > 0.0) {
+      const std::string us = std::to_string(
+          10 * std::llround((in.pulse_min_us + knee * (in.pulse_max_us - in.pulse_min_us)) / 10.0));
+      return "saturation: the speed stops rising above throttle " + Num(knee) + " (" + us +
+             " us): if that is the ESC's end point, give --esc-max-us " + us;
+    }
+    return "saturation: the speed stops rising above throttle " + Num(knee) +
+           ": if that is the ESC's end point, map the command to it (--esc-max-us for pulse widths)";
+  }
+  return "saturation: log more throttle levels above 80 %";
+}
+
 // Which measurement would identify the parameters the checks complain about.
 std::string Advice(const VerdictInputs& in, const std::vector<std::string>& weak) {
   std::string a;
@@ -43,8 +66,10 @@ std::string Advice(const VerdictInputs& in, const std::vector<std::string>& weak
       add(in.kv_label_rpm_per_v ? "KE: check the throttle range (--esc-min-us/--esc-max-us) or log no-load points"
                                 : "KE: give the motor's label with --kv-label, or log no-load points");
     } else if (n == "io_a") {
-      add(in.has_torque ? "Io: log points at low load (no-load or light propeller)"
-                        : "Io: log torque or no-load points, or give --io-label/--io-label-v");
+      add(in.has_torque ? "Io: give the datasheet's no-load current and its test voltage (--io-label A "
+                          "--io-label-v V), or log points at low load (no-load or light propeller)"
+                        : "Io: give --io-label A --io-label-v V (the datasheet's no-load current and its test "
+                          "voltage), or log torque or no-load points");
     } else if (n == "rm_ohm" || n == "resc_ohm") {
       add(in.has_ac ? "Rm: log more points at high current"
                     : in.has_torque
@@ -60,7 +85,7 @@ std::string Advice(const VerdictInputs& in, const std::vector<std::string>& weak
     } else if (n == "kt_nm_per_a") {
       add("KT: log torque and the AC columns");
     } else if (n == "tr_sat" || n == "sat_slope") {
-      add("saturation: log more throttle levels above 80 %");
+      add(SaturationAdvice(in));
     } else if (n == "first_order_better") {
       add("the first-order model predicts this log better: make the entry with calibrate (its own checks "
           "apply), or log torque and the AC columns so that the extension's ESC can be identified");
@@ -207,6 +232,16 @@ Verdict Judge(const VerdictInputs& in) {
     Add(&v, "held_out_error", err_ok, e, kMaxHeldOutCurrentPercent, d);
     failed = failed || (!err_ok && folds_ok);
     unident = unident || (!err_ok && !folds_ok);
+    if (h.primary_quantity.empty() && std::isfinite(h.median_abs_speed_percent)) {
+      const double es = h.median_abs_speed_percent;
+      const bool speed_ok = es <= kMaxHeldOutSpeedPercent;
+      Add(&v, "held_out_speed_error", speed_ok, es, kMaxHeldOutSpeedPercent,
+          "median |error| of the held-out speed" +
+              std::string(speed_ok ? "" : ": the fit predicts the current but not the speed (check the speed "
+                                          "readings, the throttle range --esc-min-us/--esc-max-us, or the label Kv)"));
+      failed = failed || (!speed_ok && folds_ok);
+      unident = unident || (!speed_ok && !folds_ok);
+    }
     if (std::isfinite(h.rms_percent) && std::isfinite(h.first_order_rms_percent)) {
       const double limit = h.first_order_rms_percent + kMaxHeldOutLossPoints;
       const bool no_worse = h.rms_percent <= limit;

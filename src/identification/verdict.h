@@ -25,6 +25,10 @@
 //   held_out_error                median |error| of the held-out current (or, for logs without
 //                                 torque and AC columns, of the speed predicted from the
 //                                 measured current), percent                     (limit 10)
+//   held_out_speed_error          median |error| of the held-out speed at the measured torque (or
+//                                 from the measured current), where the primary held-out
+//                                 quantity is the DC current: a fit that predicts the current
+//                                 but not the speed is not an entry for sizing   (limit 10)
 //   cross_validation_folds        folds that could be fitted (small tables: each point left out
 //                                 in turn; a fold that cannot be fitted fails it) (limit: all)
 //   held_out_vs_first_order       diagnose only: rms held-out error of the extended model, percent,
@@ -101,6 +105,10 @@ struct VerdictInputs {
   bool has_torque = false;          // for the advice: what measurement would help
   bool has_ac = false;
   bool has_throttle = false;
+  // The throttle came from ESC pulse widths with these end points (logs::SteadyTable; 0 = not a
+  // pulse width): the advice then names the pulse width where the speed stops rising.
+  double pulse_min_us = 0.0;
+  double pulse_max_us = 0.0;
 };
 
 struct Verdict {
@@ -116,6 +124,9 @@ struct Verdict {
 // Limits of the checks (see the header comment).
 inline constexpr double kMaxRelStdErrorPercent = 50.0;
 inline constexpr double kMaxHeldOutCurrentPercent = 10.0;
+// The same limit on the held-out speed (docs/validation.md: the largest median held-out speed
+// error of an ok log was 7.0 % before this check existed).
+inline constexpr double kMaxHeldOutSpeedPercent = 10.0;
 // An extended model may be this much worse (rms held-out error, percentage points) than the
 // first-order model before it is refused: diagnose's smallest cross-validated gain that counts.
 inline constexpr double kMaxHeldOutLossPoints = 1.0;

@@ -34,6 +34,7 @@ struct Slot {
   UnitConversion conv;
   double pulse_min = 0.0, pulse_max = 0.0;  // throttle from a pulse width / command units
   bool pulse = false;
+  bool pulse_us = false;  // the throttle is a pulse width in us (pulse_min/max: --esc-min-us/--esc-max-us)
   // A command column without a unit: values kept raw, scaled after reading (ScaleUnitlessCommand).
   bool scale_from_values = false;
   std::vector<double> values;  // SI, NaN for an empty cell (lenient formats only)
@@ -262,7 +263,7 @@ Plan PlanRcbenchmark(const Header& h, const LogReadOptions& o, const std::string
       }
       const auto u = ParseUnit(Quantity::kThrottle, hc.unit);
       if (u && u->pulse_width_us) {
-        s.pulse = true, s.pulse_min = o.esc_min_us, s.pulse_max = o.esc_max_us;
+        s.pulse = true, s.pulse_us = true, s.pulse_min = o.esc_min_us, s.pulse_max = o.esc_max_us;
       }
     } else if (name == "torque") {
       s.target = Column::kTorqueNm, s.quantity = Quantity::kTorque;
@@ -426,7 +427,7 @@ Plan PlanMapped(const Header& h, bool header_is_data, const LogReadOptions& o,
     s.header = idx < h.cells.size() && !header_is_data ? h.cells[idx] : "#" + std::to_string(idx + 1);
     s.unit = unit;
     s.conv = *u;
-    if (u->pulse_width_us) s.pulse = true, s.pulse_min = o.esc_min_us, s.pulse_max = o.esc_max_us;
+    if (u->pulse_width_us) s.pulse = true, s.pulse_us = true, s.pulse_min = o.esc_min_us, s.pulse_max = o.esc_max_us;
     p.slots.push_back(std::move(s));
   }
   if (seen[static_cast<int>(Column::kIdcA)] < 0) {
@@ -736,6 +737,7 @@ void ScaleUnitlessCommand(Plan* plan, RawRows* rows, SteadyTable* t, const LogRe
     } else if (lo >= kPulseLowUs && hi <= kPulseHighUs) {
       offset = o.esc_min_us;
       span = o.esc_max_us - o.esc_min_us;
+      s.pulse_us = true, s.pulse_min = o.esc_min_us, s.pulse_max = o.esc_max_us;
       note << " read as a pulse width in us (" << offset << ".." << offset + span
            << ", --esc-min-us/--esc-max-us)";
     } else if (lo >= 0.0 && hi <= kCommandMax) {
@@ -795,6 +797,10 @@ std::vector<Slot*> ResolveColumns(Plan* plan, SteadyTable* t) {
       continue;
     }
     chosen[static_cast<int>(s.target)] = &s;
+    if (s.target == Column::kThrottle && s.pulse_us) {
+      t->throttle_pulse_min_us = s.pulse_min;
+      t->throttle_pulse_max_us = s.pulse_max;
+    }
     ci.present = true;
     ci.source_header = s.header;
     ci.source_unit = s.unit;

@@ -80,6 +80,10 @@ struct SteadyTable {
   std::size_t outlier_samples = 0;    // samples rejected by the MAD test inside plateaus
   std::vector<DropCount> dropped;     // rows / plateaus left out, per reason
   std::vector<std::string> notes;     // anything the fit should know (absent throttle, ...)
+  // The throttle came from ESC pulse widths: the end points used (--esc-min-us/--esc-max-us),
+  // throttle = (us - min)/(max - min); both 0 otherwise. Refusal advice names pulse widths.
+  double throttle_pulse_min_us = 0.0;
+  double throttle_pulse_max_us = 0.0;
 
   std::size_t rows() const { return source_line.size(); }
   bool Has(Column c) const { return info[static_cast<int>(c)].present; }

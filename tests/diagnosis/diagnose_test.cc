@@ -20,6 +20,14 @@ using testing_util::Campaign;
 using testing_util::CampaignOptions;
 using testing_util::MakeCampaign;
 
+// The diagnosis as these tests need it: what it detects, not the entry it would write (the
+// calibration entry of DiagnoseOptions::calibration_entry is tested on the real logs).
+DiagnoseResult Detect(const logs::SteadyTable& t) {
+  DiagnoseOptions o;
+  o.calibration_entry = false;
+  return Diagnose(t, o);
+}
+
 // The requirement for a recovered parameter.
 constexpr double kParamRelTol = 0.25;
 
@@ -49,7 +57,7 @@ double MainParameter(const Finding& f) {
 
 void ExpectFound(Cause cause, unsigned seed, const CampaignOptions& co = {}) {
   const Campaign c = MakeCampaign(seed, {cause}, co);
-  const DiagnoseResult r = Diagnose(c.table);
+  const DiagnoseResult r = Detect(c.table);
   SCOPED_TRACE(std::string(CauseId(cause)) + " seed " + std::to_string(seed) + ": found " + Names(r) +
                "\n" + r.FullReport());
   ASSERT_FALSE(r.findings.empty());
@@ -87,7 +95,7 @@ TEST(DiagnoseTest, DcOnlyLogWithoutTorqueRevealsSaturationAndDeadband) {
   ExpectFound(Cause::kEscSaturation, 71, co);
   ExpectFound(Cause::kThrottleDeadband, 72, co);
   // What a log without torque cannot show is said, not guessed.
-  const DiagnoseResult r = Diagnose(MakeCampaign(73, {}, co).table);
+  const DiagnoseResult r = Detect(MakeCampaign(73, {}, co).table);
   bool io1_untestable = false;
   for (const auto& nt : r.not_testable) {
     io1_untestable = io1_untestable || nt.cause == Cause::kSpeedDependentNoLoadCurrent;
@@ -99,7 +107,7 @@ TEST(DiagnoseTest, TwoEffectsAtOnceAreBothFound) {
   for (unsigned s : {81u, 82u}) {
     const Campaign c =
         MakeCampaign(s, {Cause::kEscSaturation, Cause::kSpeedDependentNoLoadCurrent});
-    const DiagnoseResult r = Diagnose(c.table);
+    const DiagnoseResult r = Detect(c.table);
     SCOPED_TRACE("seed " + std::to_string(s) + ": found " + Names(r) + "\n" + r.FullReport());
     ASSERT_GE(r.findings.size(), 2u);
     bool sat = false, io1 = false;
@@ -125,7 +133,7 @@ TEST(DiagnoseTest, IndistinguishableCausesAreReportedAsAmbiguous) {
   // has its own tests).
   co.outliers = 0;
   const Campaign c = MakeCampaign(301, {Cause::kSupplyResistance}, co);
-  const DiagnoseResult r = Diagnose(c.table);
+  const DiagnoseResult r = Detect(c.table);
   SCOPED_TRACE(r.FullReport());
   ASSERT_FALSE(r.findings.empty());
   ASSERT_FALSE(r.ambiguous.empty());
@@ -143,7 +151,7 @@ TEST(DiagnoseTest, CleanCampaignsReportNothing) {
   int clean = 0;
   std::string alarms;
   for (int s = 0; s < kSeeds; ++s) {
-    const DiagnoseResult r = Diagnose(MakeCampaign(1000 + s, {}).table);
+    const DiagnoseResult r = Detect(MakeCampaign(1000 + s, {}).table);
     if (r.findings.empty()) {
       ++clean;
     } else {
@@ -165,7 +173,7 @@ TEST(DiagnoseTest, CleanCampaignsWithoutTorqueReportNothing) {
   int clean = 0;
   std::string alarms;
   for (int s = 0; s < kSeeds; ++s) {
-    const DiagnoseResult r = Diagnose(MakeCampaign(2000 + s, {}, co).table);
+    const DiagnoseResult r = Detect(MakeCampaign(2000 + s, {}, co).table);
     if (r.findings.empty()) {
       ++clean;
     } else {

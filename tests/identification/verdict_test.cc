@@ -45,6 +45,38 @@ const Check* Find(const Verdict& v, const std::string& name) {
   return nullptr;
 }
 
+// Issue 23: a fit that predicts the held-out current but not the speed (heinzgerhard: 44 % rms
+// speed error in-sample with optical-rpm spikes) is refused.
+TEST(Verdict, HeldOutSpeedErrorIsChecked) {
+  VerdictInputs in = GoodInputs();
+  in.held_out->median_abs_speed_percent = 12.0;
+  const Verdict v = Judge(in);
+  EXPECT_EQ(v.status, Status::kFailed) << v.summary;
+  const Check* c = Find(v, "held_out_speed_error");
+  ASSERT_NE(c, nullptr);
+  EXPECT_FALSE(c->passed);
+  EXPECT_EQ(c->limit, kMaxHeldOutSpeedPercent);
+  in.held_out->median_abs_speed_percent = 3.0;
+  EXPECT_EQ(Judge(in).status, Status::kOk);
+}
+
+// Issue 23: refusal advice names the flag that fixes it, with the value the data show.
+TEST(Verdict, AdviceNamesTheEscEndPointAndTheIoLabel) {
+  VerdictInputs in = GoodInputs();
+  in.has_torque = true;
+  in.params.push_back({"tr_sat", 0.92, NAN, true, true, false});
+  in.params.push_back({"sat_slope", 0.0, 0.01, true, true, true});  // flat top, on its bound
+  in.params[2].standard_error = 0.3;                                  // io_a: 60 %
+  in.pulse_min_us = 1000.0;
+  in.pulse_max_us = 2000.0;
+  const Verdict v = Judge(in);
+  ASSERT_NE(v.status, Status::kOk);
+  EXPECT_NE(v.advice.find("--esc-max-us 1920"), std::string::npos) << v.advice;
+  EXPECT_NE(v.advice.find("--io-label"), std::string::npos) << v.advice;
+  in.pulse_min_us = in.pulse_max_us = 0.0;  // throttle not from pulse widths: no value to name
+  EXPECT_EQ(Judge(in).advice.find("--esc-max-us 1920"), std::string::npos);
+}
+
 TEST(Verdict, PhysicalWellDeterminedFitIsOk) {
   const Verdict v = Judge(GoodInputs());
   EXPECT_EQ(v.status, Status::kOk) << v.summary;
