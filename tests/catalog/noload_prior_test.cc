@@ -29,7 +29,8 @@ std::string Fixed(double v, int digits) {
 }
 
 TEST(NoLoadPrior, BundledLawIsTheFitOnTheBundledCatalog) {
-  const Catalog c = Catalog::Load(kCatalog);
+  // The files' datasheet values (Io at its test voltage), not the in-system law's (catalog/in_system.h).
+  const Catalog c = Catalog::Load(kCatalog, /*in_system_law=*/false);
   const NoLoadLaw law = FitNoLoadLaw(c.motors());
   std::cout << "[no-load law] a " << law.a << " b " << law.b_imax << " c " << law.c_speed << " sd " << law.log10_sd
             << " p10 " << law.p10_factor << " p90 " << law.p90_factor << " motors " << law.motors << "\n";
