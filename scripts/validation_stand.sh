@@ -353,7 +353,11 @@ echo "assumption. Both the current at the measured rpm and torque and the forwar
 echo "With 11.1 V the 10-inch sweep's shaft power reaches $(eff_max kde2814_10in) % of VDC*IDC (14-inch:"
 echo "$(eff_max kde2814_14in) %), more than a motor of this size and its ESC deliver: that pack was probably nearer"
 echo "its full 12.6 V. The two sweeps of the same motor and ESC therefore cannot both be read at one"
-echo "voltage, so the gap between them says little about the model."
+echo "voltage, so the gap between them says little about the model. dynosize runs fu_m_105 with the"
+echo "in-system law of KDE's datasheets (R x2.18, Io x3.28: docs/in-system-law.md, fitted and checked on"
+echo "KDE's own sheets, which state their voltage), the DC model with the datasheet values: at an assumed"
+echo "voltage under which the shaft power already reaches $(eff_max kde2814_10in) % of VDC*IDC, every loss"
+echo "the law adds shows as error, so these tables cannot check the law (the KDE sheets do)."
 echo "The forward rpm error is large in relative terms because of the slow rows: a few points of throttle"
 echo "(the ESC's pulse-width map) are a large share of 800-1500 rpm."
 echo

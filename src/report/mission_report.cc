@@ -250,9 +250,15 @@ std::string MissionResultText(const Mission& m, const Combination& c, const Miss
         << "), climb up to " << FixedText(d.max_climb_rate_m_s, 1) << " m/s; reserve at landing "
         << FixedText(d.reserve_hover_s / 60.0, 1) << " min of hover";
     } else {
-      o << "it cannot hover (needs " << FixedText(100 * d.hover_throttle, 1) << " % throttle; full-throttle thrust "
-        << FixedText(d.full_throttle_thrust_n, 1) << " N for a weight of " << FixedText(r.total_mass_kg * kStandardGravity, 1)
-        << " N): no hover endurance";
+      const double weight_n = r.total_mass_kg * kStandardGravity;
+      o << "it cannot hover (";
+      if (d.full_throttle_thrust_n < weight_n) {
+        o << "full-throttle thrust " << FixedText(d.full_throttle_thrust_n, 1) << " N for a weight of "
+          << FixedText(weight_n, 1) << " N";
+      } else {
+        o << "it needs " << FixedText(100 * d.hover_throttle, 1) << " % throttle";
+      }
+      o << "): no hover endurance";
     }
     o << "; winding up to " << FixedText(d.winding_temp_max_c, 0) << " C\n";
   }

@@ -761,6 +761,48 @@ TEST_F(SearchTest, InfeasibleMissionSaysWhichConstraintAndByHowMuch) {
   EXPECT_NE(cli.out.find("(by "), std::string::npos) << cli.out;
 }
 
+// Issue 23 item 7: outputs that agree with themselves. A result that cannot fly its mission
+// shows no credible value (its objective is what it flew before it broke a limit), a design
+// that cannot hover has no hover endurance, and a range's end that cannot fly is null.
+TEST_F(SearchTest, OutputsAgreeWithThemselves) {
+  Json j = ParseJsonText(kQuad, "quad");
+  j["vehicle"]["mass_kg"] = 12.0;  // far too heavy for these components: cannot hover
+  std::ofstream(dir_ / "heavy2.json") << DumpJson(j);
+  const std::string args = "evaluate " + (dir_ / "heavy2.json").string() + " --catalog " + (dir_ / "catalog").string() +
+                           " --motor dc_m_1020 --esc dc_e_56 --prop dc_p_173 --battery dc_b_361 --cells 4";
+  const auto js = testing_util::RunCli(args + " --json");
+  ASSERT_EQ(js.code, 0) << js.err;
+  const Json r = Json::parse(js.out);
+  ASSERT_FALSE(r["feasible"].get<bool>());
+  EXPECT_FALSE(r["objective_in_range"].get<bool>());
+  if (r.contains("summary")) {
+    EXPECT_FALSE(r["summary"]["can_hover"].get<bool>());
+    EXPECT_TRUE(r["summary"]["hover_endurance_s"].is_null());
+    EXPECT_TRUE(r["summary"]["full_throttle_endurance_s"].is_null());
+  }
+  for (const Json& end : r["objective_range"]) EXPECT_TRUE(end.is_null() || end.is_number());
+  if (!r["objective_range_complete"].get<bool>()) {
+    EXPECT_TRUE(r["objective_range"][0].is_null() || r["objective_range"][1].is_null());
+  }
+  const auto tx = testing_util::RunCli(args);
+  ASSERT_EQ(tx.code, 0) << tx.err;
+  EXPECT_NE(tx.out.find("credible infeasible;"), std::string::npos) << tx.out;
+  EXPECT_NE(tx.out.find("it cannot hover"), std::string::npos) << tx.out;
+  EXPECT_EQ(tx.out.find(" min, full throttle "), std::string::npos) << tx.out;  // no endurances
+  // A feasible result lies inside its range.
+  const auto ok = testing_util::RunCli("evaluate " + (dir_ / "quad.json").string() + " --catalog " +
+                                       (dir_ / "catalog").string() +
+                                       " --motor dc_m_1020 --esc dc_e_56 --prop dc_p_173 --battery dc_b_361 --cells 4 --json");
+  ASSERT_EQ(ok.code, 0) << ok.err;
+  const Json f = Json::parse(ok.out);
+  if (f["feasible"].get<bool>()) {
+    EXPECT_TRUE(f["objective_in_range"].get<bool>());
+    const Json& g = f["objective_range"];
+    if (g[0].is_number()) EXPECT_LE(g[0].get<double>(), f["objective"].get<double>());
+    if (g[1].is_number()) EXPECT_GE(g[1].get<double>(), f["objective"].get<double>());
+  }
+}
+
 TEST_F(SearchTest, EverySegmentPointIsReproducedBySimulate) {
   const std::string cat = "--catalog " + (dir_ / "catalog").string();
   // On the data as given: the credible propeller power breaks this motor's current rating.

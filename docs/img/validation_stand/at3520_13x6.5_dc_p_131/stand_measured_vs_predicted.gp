@@ -1,9 +1,9 @@
 # Written by dynosize; run 'gnuplot stand_measured_vs_predicted.gp' to redraw.
 $p0 << EOD
-4.96 4.96506201 4.96601464
-6 6.10161499 6.10284519
-7.26 7.53435513 7.53595357
-8.88 9.45307528 9.45519389
+4.96 5.05204941 5.05303142
+6 6.18018713 6.18144498
+7.26 7.59474957 7.59637019
+8.88 9.47836738 9.48049571
 10.87 11.7097613 11.7125353
 13.47 15.0452044 15.0490256
 16.12 18.4193118 18.4242559
@@ -13,10 +13,10 @@ $p0 << EOD
 34.89 42.1970701 42.2111439
 EOD
 $p1 << EOD
-912 905.84456 905.84456
-1053 1040.56107 1040.56107
-1208 1197.50538 1197.50538
-1396 1390.894 1390.894
+912 875.209111 875.209111
+1053 1014.96338 1014.96338
+1208 1179.34115 1179.34115
+1396 1383.91573 1383.91573
 1619 1603.89918 1603.89918
 1890 1899.97162 1899.97162
 2140 2174.51421 2174.51421
@@ -39,11 +39,11 @@ $p2 << EOD
 34.89 39.9966863 40.0096029
 EOD
 $p3 << EOD
-4834 4277.87091 4277.18232
-5181 4751.90345 4751.09114
-5558 5214.18744 5213.24612
-5990 5665.49845 5664.42377
-6404 6101.80762 6100.59749
+4834 4266.21104 4265.50872
+5181 4741.82737 4741.00148
+5558 5206.44275 5205.48824
+5990 5660.79007 5659.7027
+6404 6100.75353 6099.53127
 6895 6515.81568 6514.51165
 7313 6911.52256 6910.07838
 7732 7295.8948 7294.30942
@@ -52,11 +52,11 @@ $p3 << EOD
 9252 8792.07129 9063.57807
 EOD
 $p4 << EOD
-4.96 3.47642028 3.4754178
-6 4.72531451 4.72383738
-7.26 6.22424594 6.22215983
-8.88 7.98840229 7.98555664
-10.87 10.0169827 10.0132189
+4.96 3.53692611 3.53591524
+6 4.7841376 4.78266222
+7.26 6.27448221 6.27241551
+8.88 8.02199752 8.01919812
+10.87 10.0251876 10.0215073
 13.47 12.4321263 12.4267615
 16.12 15.2016624 15.194772
 19.27 18.313757 18.3050821
@@ -74,13 +74,13 @@ set multiplot layout 3,2 title "TMotor_AT3520_550kv.csv: T-Motor AT3520 550KV + 
 set grid
 set key left top inside
 set size ratio -1
-set title "DC current at the measured rpm\nMAE dynosize 11 %, plain DC 11 %"
+set title "DC current at the measured rpm\nMAE dynosize 11.4 %, plain DC 11.4 %"
 set xlabel 'measured [A]'
 set ylabel 'predicted [A]'
 set xrange [0:44.3217]
 set yrange [0:44.3217]
 plot x with lines lc rgb 'black' title '1:1', 1.1*x with lines dt 2 lc rgb 'gray50' title '+-10 %', 0.9*x with lines dt 2 lc rgb 'gray50' notitle, $p0 using 1:2 with points pt 7 ps 1.9 lc rgb '#d95f0e' title 'dynosize', $p0 using 1:3 with points pt 5 ps 0.7 lc rgb '#1f3b99' title 'plain DC'
-set title "thrust at the measured rpm\nMAE dynosize 1.79 %, plain DC 1.79 %"
+set title "thrust at the measured rpm\nMAE dynosize 2.49 %, plain DC 2.49 %"
 set xlabel 'measured [gf]'
 set ylabel 'predicted [gf]'
 set xrange [0:3915.35]
@@ -92,13 +92,13 @@ set ylabel 'predicted [A]'
 set xrange [0:42.0101]
 set yrange [0:42.0101]
 plot x with lines lc rgb 'black' title '1:1', 1.1*x with lines dt 2 lc rgb 'gray50' title '+-10 %', 0.9*x with lines dt 2 lc rgb 'gray50' notitle, $p2 using 1:2 with points pt 7 ps 1.9 lc rgb '#d95f0e' title 'dynosize', $p2 using 1:3 with points pt 5 ps 0.7 lc rgb '#1f3b99' title 'plain DC'
-set title "speed from the throttle\nMAE dynosize 6.33 %, plain DC 6.08 %"
+set title "speed from the throttle\nMAE dynosize 6.39 %, plain DC 6.14 %"
 set xlabel 'measured [rpm]'
 set ylabel 'predicted [rpm]'
-set xrange [3849.46:9714.6]
-set yrange [3849.46:9714.6]
+set xrange [3838.96:9714.6]
+set yrange [3838.96:9714.6]
 plot x with lines lc rgb 'black' title '1:1', 1.1*x with lines dt 2 lc rgb 'gray50' title '+-10 %', 0.9*x with lines dt 2 lc rgb 'gray50' notitle, $p3 using 1:2 with points pt 7 ps 1.9 lc rgb '#d95f0e' title 'dynosize', $p3 using 1:3 with points pt 5 ps 0.7 lc rgb '#1f3b99' title 'plain DC'
-set title "DC current from the throttle\nMAE dynosize 10 %, plain DC 11.1 %"
+set title "DC current from the throttle\nMAE dynosize 9.7 %, plain DC 10.8 %"
 set xlabel 'measured [A]'
 set ylabel 'predicted [A]'
 set xrange [0:41.2322]

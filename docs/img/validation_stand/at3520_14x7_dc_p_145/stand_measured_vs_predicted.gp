@@ -39,7 +39,7 @@ $p2 << EOD
 44.28 52.7325165 52.7536432
 EOD
 $p3 << EOD
-4423 4152.00008 4151.22408
+4423 4149.93682 4149.15278
 4888 4588.45479 4587.58593
 5313 4995.49524 4994.48571
 5785 5380.41993 5379.26968
@@ -52,7 +52,7 @@ $p3 << EOD
 8762 8035.28727 8262.20718
 EOD
 $p4 << EOD
-5.15 4.12959374 4.12818547
+5.15 4.14030047 4.13891978
 6.71 5.66506119 5.66267803
 8.5 7.60712676 7.60366426
 11.18 9.89299061 9.8881792
@@ -92,13 +92,13 @@ set ylabel 'predicted [A]'
 set xrange [0:55.3913]
 set yrange [0:55.3913]
 plot x with lines lc rgb 'black' title '1:1', 1.1*x with lines dt 2 lc rgb 'gray50' title '+-10 %', 0.9*x with lines dt 2 lc rgb 'gray50' notitle, $p2 using 1:2 with points pt 7 ps 1.9 lc rgb '#d95f0e' title 'dynosize', $p2 using 1:3 with points pt 5 ps 0.7 lc rgb '#1f3b99' title 'plain DC'
-set title "speed from the throttle\nMAE dynosize 7.72 %, plain DC 7.5 %"
+set title "speed from the throttle\nMAE dynosize 7.72 %, plain DC 7.51 %"
 set xlabel 'measured [rpm]'
 set ylabel 'predicted [rpm]'
-set xrange [3736.1:9200.1]
-set yrange [3736.1:9200.1]
+set xrange [3734.24:9200.1]
+set yrange [3734.24:9200.1]
 plot x with lines lc rgb 'black' title '1:1', 1.1*x with lines dt 2 lc rgb 'gray50' title '+-10 %', 0.9*x with lines dt 2 lc rgb 'gray50' notitle, $p3 using 1:2 with points pt 7 ps 1.9 lc rgb '#d95f0e' title 'dynosize', $p3 using 1:3 with points pt 5 ps 0.7 lc rgb '#1f3b99' title 'plain DC'
-set title "DC current from the throttle\nMAE dynosize 8.86 %, plain DC 9.65 %"
+set title "DC current from the throttle\nMAE dynosize 8.84 %, plain DC 9.63 %"
 set xlabel 'measured [A]'
 set ylabel 'predicted [A]'
 set xrange [0:50.9367]

@@ -1,7 +1,7 @@
 # Written by dynosize; run 'gnuplot stand_measured_vs_predicted.gp' to redraw.
 $p0 << EOD
-11.21 13.1309776 13.130339
-13.58 16.4075057 16.406667
+11.21 13.2574984 13.2568495
+13.58 16.4786135 16.4777688
 16.21 19.8362356 19.8351774
 19.14 23.6368583 23.6355471
 23.2 28.9999563 28.9982729
@@ -14,8 +14,8 @@ $p0 << EOD
 72.77 83.1143616 83.1083154
 EOD
 $p1 << EOD
-1674 1776.67009 1776.67009
-1929 2052.60415 2052.60415
+1674 1745.35991 1745.35991
+1929 2036.47108 2036.47108
 2205 2323.86185 2323.86185
 2492 2644.12158 2644.12158
 2864 3070.86259 3070.86259
@@ -42,10 +42,10 @@ $p2 << EOD
 72.77 79.2546455 79.2490274
 EOD
 $p3 << EOD
-4943 4038.75279 4038.89724
-5313 4469.94208 4470.11142
-5650 4895.61953 4895.81493
-5978 5310.34551 5310.5676
+4943 4026.88529 4027.03246
+5313 4460.13935 4460.31141
+5650 4888.69826 4888.89637
+5978 5307.03918 5307.26399
 6382 5714.92413 5715.17343
 6806 6110.06569 6110.34258
 7193 6496.40129 6496.70607
@@ -56,10 +56,10 @@ $p3 << EOD
 8879 8389.96072 8657.90444
 EOD
 $p4 << EOD
-11.21 7.15356198 7.15401636
-13.58 9.70067042 9.70133498
-16.21 12.7742036 12.7751383
-19.14 16.3823145 16.3835838
+11.21 7.260304 7.26076015
+13.58 9.7998623 9.80052365
+16.21 12.8520203 12.8529435
+19.14 16.4232052 16.4244511
 23.2 20.5510927 20.5527673
 27.69 25.3043829 25.3065393
 32.79 30.664082 30.666802
@@ -79,13 +79,13 @@ set multiplot layout 3,2 title "TMotor_AT4125_540kv.csv: T-Motor AT4125 540KV + 
 set grid
 set key left top inside
 set size ratio -1
-set title "DC current at the measured rpm\nMAE dynosize 23.5 %, plain DC 23.5 %"
+set title "DC current at the measured rpm\nMAE dynosize 23.7 %, plain DC 23.7 %"
 set xlabel 'measured [A]'
 set ylabel 'predicted [A]'
 set xrange [0:87.2701]
 set yrange [0:87.2701]
 plot x with lines lc rgb 'black' title '1:1', 1.1*x with lines dt 2 lc rgb 'gray50' title '+-10 %', 0.9*x with lines dt 2 lc rgb 'gray50' notitle, $p0 using 1:2 with points pt 7 ps 1.9 lc rgb '#d95f0e' title 'dynosize', $p0 using 1:3 with points pt 5 ps 0.7 lc rgb '#1f3b99' title 'plain DC'
-set title "thrust at the measured rpm\nMAE dynosize 10.1 %, plain DC 10.1 %"
+set title "thrust at the measured rpm\nMAE dynosize 9.85 %, plain DC 9.85 %"
 set xlabel 'measured [gf]'
 set ylabel 'predicted [gf]'
 set xrange [0:6756.53]
@@ -97,13 +97,13 @@ set ylabel 'predicted [A]'
 set xrange [0:83.2174]
 set yrange [0:83.2174]
 plot x with lines lc rgb 'black' title '1:1', 1.1*x with lines dt 2 lc rgb 'gray50' title '+-10 %', 0.9*x with lines dt 2 lc rgb 'gray50' notitle, $p2 using 1:2 with points pt 7 ps 1.9 lc rgb '#d95f0e' title 'dynosize', $p2 using 1:3 with points pt 5 ps 0.7 lc rgb '#1f3b99' title 'plain DC'
-set title "speed from the throttle\nMAE dynosize 10.7 %, plain DC 10.4 %"
+set title "speed from the throttle\nMAE dynosize 10.7 %, plain DC 10.5 %"
 set xlabel 'measured [rpm]'
 set ylabel 'predicted [rpm]'
-set xrange [3634.88:9322.95]
-set yrange [3634.88:9322.95]
+set xrange [3624.2:9322.95]
+set yrange [3624.2:9322.95]
 plot x with lines lc rgb 'black' title '1:1', 1.1*x with lines dt 2 lc rgb 'gray50' title '+-10 %', 0.9*x with lines dt 2 lc rgb 'gray50' notitle, $p3 using 1:2 with points pt 7 ps 1.9 lc rgb '#d95f0e' title 'dynosize', $p3 using 1:3 with points pt 5 ps 0.7 lc rgb '#1f3b99' title 'plain DC'
-set title "DC current from the throttle\nMAE dynosize 12.8 %, plain DC 12.8 %"
+set title "DC current from the throttle\nMAE dynosize 12.6 %, plain DC 12.6 %"
 set xlabel 'measured [A]'
 set ylabel 'predicted [A]'
 set xrange [0:80.43]
