@@ -27,10 +27,14 @@ std::string Pct(double x) {
   return b;
 }
 
-std::vector<stand::LawMotor> KdeLawMotors(const std::string& dir) {
+// The sheets with measured torque; *without (optional) names the others.
+std::vector<stand::LawMotor> KdeLawMotors(const std::string& dir, std::vector<std::string>* without = nullptr) {
   std::vector<stand::LawMotor> out;
   for (const auto& k : ReadKdeSheets(dir)) {
-    if (!k.has_torque()) continue;
+    if (!k.has_torque()) {
+      if (without) without->push_back(k.name);
+      continue;
+    }
     stand::LawMotor m;
     m.name = k.name;
     m.datasheet = {k.kv_rpm_per_v, k.r_dc_ohm, k.io_dc_a, k.io_test_voltage_v};
@@ -84,7 +88,10 @@ void PrintMotorTable(const stand::LawReport& r, const Catalog& raw) {
 }  // namespace
 
 int RunInSystemLaw(const InSystemLawOptions& o) {
-  const std::vector<stand::LawMotor> kde = KdeLawMotors(o.shared_data_dir + "/kde_direct_mfr_sheets");
+  std::vector<std::string> no_torque;
+  const std::vector<stand::LawMotor> kde = KdeLawMotors(o.shared_data_dir + "/kde_direct_mfr_sheets", &no_torque);
+  std::string no_torque_text;
+  for (const auto& n : no_torque) no_torque_text += (no_torque_text.empty() ? "" : ", ") + n;
   const Catalog raw = Catalog::Load(o.catalog_dir, /*in_system_law=*/false);
   const std::vector<stand::LawForm> forms = {{true, false}, {false, false}, {false, true}, {true, true}};
   std::vector<stand::LawReport> reports;
@@ -112,7 +119,8 @@ int RunInSystemLaw(const InSystemLawOptions& o) {
     return 0;
   }
   std::cout << "## KDE Direct stand sheets: the law by leaving each motor out\n\n"
-            << kde.size() << " motors with measured torque (of 11: KDE2315XF-965 and KDE7208XF-135 have none). "
+            << kde.size() << " motors with measured torque (of " << kde.size() + no_torque.size() << "; "
+            << (no_torque.empty() ? std::string("every sheet has torque") : no_torque_text + " have none") << "). "
             << "Each row: the law fitted on the other motors predicts this motor's DC current at the measured "
                "speed and torque from its datasheet values (ideal ESC, eq 56); error = median over the sweeps "
                "of the median |IDC_pred/IDC_meas - 1|, bias the same signed. The plain DC model with the "
@@ -120,12 +128,12 @@ int RunInSystemLaw(const InSystemLawOptions& o) {
                "(catalog/conventions.h 1.), so its column is both. Coverage: share of the motor's points inside "
                "the p10-p90 range built from the other motors' scatter about the law. rpm forward: from the "
                "command at the measured torque, with the dead band prior of the other motors.\n\n"
-            << "| law form | fitted on all 9 | IDC error | IDC bias | coverage | rpm forward |\n|---|---|---|---|---|---|\n";
+            << "| law form | fitted on all motors | IDC error | IDC bias | coverage | rpm forward |\n|---|---|---|---|---|---|\n";
   for (const auto& r : reports) {
     std::cout << "| " << r.form.Describe() << " | " << LawText(r.law) << " | " << Pct(r.law_error) << " | "
               << Pct(r.law_bias) << " | " << Pct(r.coverage) << " | " << Pct(r.rpm_error_forward) << " |\n";
   }
-  std::cout << "\nThe form with the smallest held-out current + speed error is the catalog's law for manufacturer-stated entries: **"
+  std::cout << "\nThe form with the smallest held-out current + speed error is the catalog's law for KDE Direct datasheets: **"
             << chosen.form.Describe() << "**.\n\n";
   PrintMotorTable(chosen, raw);
   std::cout << "Throttle offset of the sheets' ESC (KDE-UAS125UVC), dead band fitted per motor: p10 "
