@@ -405,6 +405,41 @@ int RunSimulateProp(const SimulateOptions& o) {
   return 0;
 }
 
+// One operating point (text or JSON) with its p10-p90 range: the same point with the motor at
+// the low and high end of its data's spread (catalog/in_system.h MotorSpreadParams: the
+// in-system law's scatter, else the tier's band).
+void PrintPointWithRange(const SimulateOptions& o, const PointRequest& req, const MotorEntry& motor,
+                         const EscEntry& esc, const Drive& drive, const std::string& assumed) {
+  const std::string title = motor.name + " + " + esc.name;
+  const OperatingPoint p = Solve(drive, req, o.torque_law);
+  const OperatingPoint lo = Solve(Drive(MotorSpreadParams(motor, false), esc.params), req, o.torque_law);
+  const OperatingPoint hi = Solve(Drive(MotorSpreadParams(motor, true), esc.params), req, o.torque_law);
+  const auto range = [](double x, double y) { return Json::array({std::min(x, y), std::max(x, y)}); };
+  if (o.json) {
+    Json j = PointToJson(p);
+    j["idc_a_range"] = range(lo.idc_a, hi.idc_a);
+    j["pdc_w_range"] = range(lo.pdc_w, hi.pdc_w);
+    j["range_basis"] = motor.datasheet_params ? "in-system law p10-p90 (docs/in-system-law.md)"
+                                              : std::string("tier band of the motor's Rm and Io (") + TierName(motor.tier) + ")";
+    CheckJsonFinite(j, "operating point");
+    j["motor"] = motor.id;
+    j["esc"] = esc.id;
+    if (!assumed.empty()) j["assumed"] = assumed;
+    std::cout << DumpJson(j);
+    return;
+  }
+  PrintPoint(title, p);
+  std::ostringstream r;
+  r.setf(std::ios::fixed);
+  r << std::setprecision(2) << "  range p10-p90  IDC " << std::min(lo.idc_a, hi.idc_a) << "-"
+    << std::max(lo.idc_a, hi.idc_a) << " A, " << std::setprecision(1) << "PDC " << std::min(lo.pdc_w, hi.pdc_w)
+    << "-" << std::max(lo.pdc_w, hi.pdc_w) << " W ("
+    << (motor.datasheet_params ? "the in-system law's scatter" : "the motor's tier band") << ")\n";
+  std::cout << r.str();
+  const std::string law = InSystemSummary(motor);
+  if (!law.empty()) std::cout << "  " << law << "\n";
+}
+
 }  // namespace
 
 int RunSimulate(const SimulateOptions& o) {
@@ -501,35 +536,7 @@ int RunSimulate(const SimulateOptions& o) {
   }
 
   if (point_mode) {
-    const OperatingPoint p = Solve(drive, req, o.torque_law);
-    // The same point with the motor at the low and high end of its data's spread
-    // (catalog/in_system.h MotorSpreadParams: the in-system law's scatter, else the tier's band).
-    const OperatingPoint lo = Solve(Drive(MotorSpreadParams(motor, false), esc.params), req, o.torque_law);
-    const OperatingPoint hi = Solve(Drive(MotorSpreadParams(motor, true), esc.params), req, o.torque_law);
-    const auto range = [](double a, double b) { return Json::array({std::min(a, b), std::max(a, b)}); };
-    if (o.json) {
-      Json j = PointToJson(p);
-      j["idc_a_range"] = range(lo.idc_a, hi.idc_a);
-      j["pdc_w_range"] = range(lo.pdc_w, hi.pdc_w);
-      j["range_basis"] = motor.datasheet_params ? "in-system law p10-p90 (docs/in-system-law.md)"
-                                                : std::string("tier band of the motor's Rm and Io (") + TierName(motor.tier) + ")";
-      CheckJsonFinite(j, "operating point");
-      j["motor"] = motor.id;
-      j["esc"] = esc.id;
-      if (!assumed.empty()) j["assumed"] = assumed;
-      std::cout << DumpJson(j);
-    } else {
-      PrintPoint(title, p);
-      std::ostringstream r;
-      r.setf(std::ios::fixed);
-      r << std::setprecision(2) << "  range p10-p90  IDC " << std::min(lo.idc_a, hi.idc_a) << "-"
-        << std::max(lo.idc_a, hi.idc_a) << " A, " << std::setprecision(1) << "PDC " << std::min(lo.pdc_w, hi.pdc_w)
-        << "-" << std::max(lo.pdc_w, hi.pdc_w) << " W ("
-        << (motor.datasheet_params ? "the in-system law's scatter" : "the motor's tier band") << ")\n";
-      std::cout << r.str();
-      const std::string law = InSystemSummary(motor);
-      if (!law.empty()) std::cout << "  " << law << "\n";
-    }
+    PrintPointWithRange(o, req, motor, esc, drive, assumed);
     note_assumed();
     return 0;
   }
