@@ -55,7 +55,9 @@ inline MotorShaft MotorShaftOf(double omega_prop_rad_s, double torque_prop_nm, c
   s.omega_rad_s = gear.ratio * omega_prop_rad_s;
   s.torque_nm = torque_prop_nm / (gear.ratio * gear.efficiency);
   s.power_w = s.torque_nm * s.omega_rad_s;
-  s.gear_loss_w = s.power_w - torque_prop_nm * omega_prop_rad_s;
+  // (1/eta - 1)*Q_prop*omega_prop: exactly 0 for a lossless gear (the difference of the two
+  // products is not, where the compiler fuses a multiply and an add).
+  s.gear_loss_w = (1.0 / gear.efficiency - 1.0) * torque_prop_nm * omega_prop_rad_s;
   return s;
 }
 
