@@ -528,6 +528,25 @@ std::string Separation(Cause a, Cause b) {
          "(vll_rms_v, irms_a) to see the motor and the ESC separately";
 }
 
+// calibrate on the same rows with diagnose's options (throttle map, speed and throttle floors, Kv
+// label, ESC prior), the options used in *co; false when calibrate refuses the table.
+bool CalibrateWithDiagnoseOptions(const SteadyTable& t, const DiagnoseOptions& o, bool fit_throttle_offset,
+                                  calibration::CalibrationOptions* co, calibration::CalibrationResult* r) {
+  *co = calibration::CalibrationOptions{};
+  co->fit_throttle_offset = fit_throttle_offset;
+  co->assumed_throttle = o.assumed_throttle;
+  co->min_speed_fraction = o.min_speed_fraction;
+  co->min_throttle = o.min_throttle;
+  co->labels.kv_rpm_per_v = o.kv_label_rpm_per_v;
+  if (o.esc) co->esc_prior = *o.esc;
+  try {
+    *r = calibration::Calibrate(t, *co);
+  } catch (const Error&) {
+    return false;
+  }
+  return true;
+}
+
 // Starting values of the base parameters from the calibration engine (src/calibration: the same
 // base model, its robust fit and its knee profile, without the throttle offset, which is a
 // candidate here): the linear start alone can leave the first-order fit in a stalled local
@@ -535,18 +554,8 @@ std::string Separation(Cause a, Cause b) {
 // and is physical; the linear start stays otherwise.
 void BaseStartFromCalibration(const SteadyTable& t, const DiagnoseOptions& o, Values* v) {
   calibration::CalibrationOptions co;
-  co.fit_throttle_offset = false;
-  co.assumed_throttle = o.assumed_throttle;
-  co.min_speed_fraction = o.min_speed_fraction;
-  co.min_throttle = o.min_throttle;
-  co.labels.kv_rpm_per_v = o.kv_label_rpm_per_v;
-  if (o.esc) co.esc_prior = *o.esc;
   calibration::CalibrationResult r;
-  try {
-    r = calibration::Calibrate(t, co);
-  } catch (const Error&) {
-    return;
-  }
+  if (!CalibrateWithDiagnoseOptions(t, o, /*fit_throttle_offset=*/false, &co, &r)) return;
   if (!r.converged || !std::isfinite(r.motor.ke_v_s_per_rad) || !std::isfinite(r.motor.rm_ohm)) return;
   for (int k = 0; k < calibration::kParamCount; ++k) {
     if (r.params[k].at_bound) return;
@@ -1491,17 +1500,8 @@ void UseCalibrationEntry(const SteadyTable& t, const DiagnoseOptions& o, Diagnos
     else return;  // an extension calibrate does not fit: diagnose's own entry
   }
   calibration::CalibrationOptions co;
-  co.assumed_throttle = o.assumed_throttle;
-  co.min_speed_fraction = o.min_speed_fraction;
-  co.min_throttle = o.min_throttle;
-  co.labels.kv_rpm_per_v = o.kv_label_rpm_per_v;
-  if (o.esc) co.esc_prior = *o.esc;
   calibration::CalibrationResult r;
-  try {
-    r = calibration::Calibrate(t, co);
-  } catch (const Error&) {
-    return;
-  }
+  if (!CalibrateWithDiagnoseOptions(t, o, /*fit_throttle_offset=*/true, &co, &r)) return;
   const bool cal_deadband = r.param(calibration::Param::kDeadband).fitted;
   const bool cal_knee = r.param(calibration::Param::kTrSat).fitted;
   // Calibrate's model must hold every finding; an offset or knee it keeps beyond them is its own F
