@@ -6,6 +6,7 @@
 #include <initializer_list>
 #include <limits>
 #include <memory>
+#include <queue>
 #include <stdexcept>
 #include <tuple>
 #include <utility>
@@ -332,9 +333,12 @@ std::vector<JointBounds::FrontierPoint> JointBounds::InnerFrontier(std::size_t o
     const MotorParams mp = ScenarioMotorParams(mo, m_, nullptr, &excluded);
     if (Lifts(inner_) && (excluded || bo.v_full > MotorMaxVoltageV(mo))) continue;  // R0, R1
     const double vehicle_kg = mass_min_kg_[o] - inner_lightest_kg_[o] + kg;
-    const GroupParts parts{&mo, nullptr, &props[static_cast<std::size_t>(pi)]};
     for (std::size_t c = 0; c < escs_.classes.size(); ++c) {
       if (escs_.per_option[o][c].empty()) continue;
+      // SegmentPowerBound reads the ESC's C1 and C0 for a free-airspeed cruise
+      // (FreeCruisePowerLowerBoundW): a member's, as MinFreeGroupPower does.
+      const EscEntry& member = cat_.escs()[static_cast<std::size_t>(escs_.classes[c].members.front())];
+      const GroupParts parts{&mo, &member, &props[static_cast<std::size_t>(pi)]};
       const EscClass& cls = escs_.classes[c];
       if (DriveIsLossy(mp, cls.c1, cls.c0) && floor_j[static_cast<std::size_t>(pi)] >= e_min) continue;
       const Drive d(mp, ZeroResistanceEsc(cls));
@@ -437,9 +441,12 @@ double JointBounds::LightestSurvivorKg(int group, std::size_t o, double vehicle_
     bool excluded = false;
     const MotorParams mp = ScenarioMotorParams(mo, m_, nullptr, &excluded);
     if (Lifts(group) && (excluded || bo.v_full > MotorMaxVoltageV(mo))) continue;  // R0, R1
-    const GroupParts parts{&mo, nullptr, &props[static_cast<std::size_t>(pi)]};
     for (std::size_t c = 0; c < escs_.classes.size(); ++c) {
       if (escs_.per_option[o][c].empty()) continue;
+      // SegmentPowerBound reads the ESC's C1 and C0 for a free-airspeed cruise
+      // (FreeCruisePowerLowerBoundW): a member's, as MinFreeGroupPower does.
+      const EscEntry& member = cat_.escs()[static_cast<std::size_t>(escs_.classes[c].members.front())];
+      const GroupParts parts{&mo, &member, &props[static_cast<std::size_t>(pi)]};
       const Drive d(mp, ZeroResistanceEsc(escs_.classes[c]));
       bool ok = ReachesThrustToWeight(group, d, pi, vehicle_kg, o);
       for (std::size_t k = 0; k < segs.size() && ok; ++k) {
@@ -751,6 +758,50 @@ Mission SubMission(const Mission& m, const Catalog& cat, int outer, const OuterP
   return sub;
 }
 
+// G3's limit: a virtual-ESC search that finds this many completions below the N-th best may have
+// left some out (its own threshold fell below the cutoff); the class is then searched per ESC.
+constexpr int kCompletionLimit = 512;
+
+// G3 (search.cc): the class's real ESCs of one outer pair against the completions the virtual
+// ESC's search found below the N-th best (`completions`, best first; that search's relaxed
+// mission and the virtual ESC score no worse than the real ESC on the mission, M2, M3, so no
+// other completion can beat the N-th best). Each (ESC, completion) is solved exactly, best
+// virtual score first, until that score reaches the N-th best; the results join *out's top N.
+// G3 (search.cc) for one real ESC e of an outer pair's class: (pair, e) with each completion the
+// virtual ESC's search found below the N-th best (`completions`, best first; that search's relaxed
+// mission and the virtual ESC score no worse than e on the mission, M2, M3, so no other
+// completion scoring below the list's end can beat the N-th best), solved exactly, best virtual
+// score first, until that score reaches the N-th best; the results join *out's top N. Returns
+// the number of solves.
+template <typename NthBest>
+long long SolveAgainstCompletions(const Mission& sub, const Catalog& cat, int outer, int e,
+                                  const std::vector<RankedCombination>& completions,
+                                  const std::vector<const PropModel*>& group_models, const PropGridCache& cache,
+                                  int top_n, const NthBest& nth, SearchResult* out) {
+  long long solved = 0;
+  for (const RankedCombination& done : completions) {
+    const double cutoff = nth();
+    if (!(done.result.score < cutoff)) break;  // every later completion scores no better
+    Combination c = done.combination;
+    c.groups[static_cast<std::size_t>(outer)].esc = &cat.escs()[static_cast<std::size_t>(e)];
+    const PropModel* model = cache.models[static_cast<std::size_t>(c.prop - cat.props().data())].get();
+    const MissionEvaluator eval(sub, c, model, &group_models);
+    MissionResult res = eval.Solve(cutoff, false);
+    ++solved;
+    if (res.bounded_out) continue;
+    ++out->searched;
+    if (!res.feasible) continue;
+    out->evaluated_mass_objective.emplace_back(res.propulsion_mass_kg, res.objective);
+    if (!(res.score < cutoff)) continue;
+    res = eval.Solve(cutoff);  // explained, as the inner search explains its top N (same numbers)
+    auto pos = std::upper_bound(out->best.begin(), out->best.end(), res.score,
+                                [](double s, const RankedCombination& x) { return s < x.result.score; });
+    out->best.insert(pos, RankedCombination{c, std::move(res)});
+    if (static_cast<int>(out->best.size()) > top_n) out->best.pop_back();
+  }
+  return solved;
+}
+
 }  // namespace
 
 SearchResult JointSearch(const Mission& m, const Catalog& cat, const SearchOptions& opt, double cutoff,
@@ -808,15 +859,67 @@ SearchResult JointSearch(const Mission& m, const Catalog& cat, const SearchOptio
   // and the catalog's ESC values as the ranking flies them (ScenarioEscParams leaves them).
   const bool virtual_ok = FreeGroupCount(m) == 2 && m.objective.ranking != DataScenario::kPessimistic &&
                           m.objective.ranking != DataScenario::kOptimistic;
+  // The outer group fixed to (pair, ESC e), the battery to the pair's option: the inner search.
+  auto search_triple = [&](const OuterPair& pr, int e) {
+    const Mission sub = SubMission(m, cat, outer, pr, e, jb);
+    SearchResult r = FreeGroupCount(sub) > 1 ? JointSearch(sub, cat, inner_opt, nth(), cache)
+                                             : SearchOneGroup(sub, cat, inner_opt, nth(), cache);
+    Merge(std::move(r), opt.top_n, &out);
+  };
   Mission relaxed = m;
   relaxed.constraints.min_hover_throttle = 0.0;
   relaxed.constraints.prop_below_data_factor = 0.0;  // as min_hover_throttle (search.cc R12)
-  for (std::size_t i = 0; i < pairs.size(); ++i) {
-    if (i % 64 == 0) progress(i);
-    const OuterPair& pr = pairs[i];
-    if (!(pr.bound < nth())) {  // G2: every later pair's bound is at least as bad
-      AddCount(&out.pruned_by["objective_bound"], SaturatingProduct({static_cast<long long>(pairs.size() - i), n_esc, block}));
+  // Best first on the coupled bound, computed lazily: a pair's uncoupled bound (the order of
+  // `pairs`) is at most its coupled one, so a pair is taken only when its coupled bound is the
+  // least of every pair not yet taken (G2).
+  // The inner searches of single ESCs wait in the same queue with their triple bound (esc >= 0).
+  struct Queued {
+    double bound;
+    std::size_t pair;
+    int esc;  // -1: the pair (its coupled bound)
+    bool operator>(const Queued& o) const {
+      return std::tie(bound, pair, esc) > std::tie(o.bound, o.pair, o.esc);
+    }
+  };
+  std::priority_queue<Queued, std::vector<Queued>, std::greater<>> tightened;
+  std::size_t next = 0, taken = 0;
+  for (;;) {
+    const bool from_list = next < pairs.size() && (tightened.empty() || pairs[next].bound < tightened.top().bound);
+    if (!from_list && tightened.empty()) break;
+    const double least = from_list ? pairs[next].bound : tightened.top().bound;
+    if (!(least < nth())) {  // G2: every pair and triple left has a bound at least as bad
+      long long left = SaturatingProduct({static_cast<long long>(pairs.size() - next), n_esc, block});
+      for (; !tightened.empty(); tightened.pop()) {
+        AddCount(&left, tightened.top().esc < 0 ? SaturatingProduct({n_esc, block}) : block);
+      }
+      AddCount(&out.pruned_by["objective_bound"], left);
       break;
+    }
+    if (from_list) {
+      const OuterPair& pr = pairs[next];
+      double bound = kInf;
+      for (std::size_t c = 0; c < jb.escs().classes.size(); ++c) {
+        if (jb.escs().per_option[pr.option][c].empty()) continue;
+        const char* why = nullptr;
+        double irms_lb = 0;
+        bound = std::min(bound, jb.PairBound(pr.motor, pr.prop, pr.option, static_cast<int>(c), &why, &irms_lb));
+      }
+      if (bound < kInf) {
+        tightened.push(Queued{std::max(bound, pr.bound), next, -1});
+      } else {
+        AddCount(&out.pruned_by["objective_bound"], SaturatingProduct({n_esc, block}));
+      }
+      ++next;
+      continue;
+    }
+    const Queued q = tightened.top();
+    tightened.pop();
+    if (taken++ % 64 == 0) progress(next);
+    const std::size_t i = q.pair;
+    const OuterPair& pr = pairs[i];
+    if (q.esc >= 0) {
+      search_triple(pr, q.esc);
+      continue;
     }
     // The pair's ESCs: per class the bound with a zero-resistance ESC, then each ESC's own.
     triples.clear();
@@ -840,6 +943,13 @@ SearchResult JointSearch(const Mission& m, const Catalog& cat, const SearchOptio
         }
         class_triples.emplace_back(tb, e);
       }
+      std::sort(class_triples.begin(), class_triples.end());
+      if (class_triples.size() >= 2 && virtual_ok && !(nth() < kInf)) {
+        // No N-th best yet: the best-bound ESC's own search first, so that the virtual ESC's
+        // search below has a cutoff (without one it would list every completion).
+        search_triple(pr, class_triples.front().second);
+        class_triples.erase(class_triples.begin());
+      }
       if (class_triples.size() >= 2 && virtual_ok) {
         // R5 for the outer group: the class's virtual ESC (no resistance, the lightest of these
         // ESCs' mass, no current limit) scores no worse than any of them with every completion
@@ -857,29 +967,39 @@ SearchResult JointSearch(const Mission& m, const Catalog& cat, const SearchOptio
         given[static_cast<std::size_t>(outer)] =
             GroupParts{&cat.motors()[static_cast<std::size_t>(pr.motor)], &virt, &cat.props()[static_cast<std::size_t>(pr.prop)]};
         progress(i);
+        // G3: every completion below the N-th best with the virtual ESC, when there are fewer
+        // than kCompletionLimit of them (else the inner search per ESC below).
+        SearchOptions all_opt = inner_opt;
+        all_opt.top_n = kCompletionLimit;
         const SearchResult r = SearchOneGroup(SubMission(relaxed, cat, outer, pr, class_triples.front().second, jb),
-                                              cat, inner_opt, nth(), cache, &given);
+                                              cat, all_opt, nth(), cache, &given);
         out.virtual_evaluations += r.searched + r.virtual_evaluations;
         if (r.best.empty()) {
           AddCount(&out.pruned_by["objective_bound"], SaturatingProduct({static_cast<long long>(class_triples.size()), block}));
           continue;
         }
+        // Every completion not in r.best scores at least `complete_below` with the virtual ESC:
+        // while the N-th best is at or below it, the list is every completion that can matter.
+        const double complete_below =
+            static_cast<int>(r.best.size()) < kCompletionLimit ? kInf : r.best.back().result.score;
+        std::vector<const PropModel*> group_models(m.groups.size(), nullptr);
+        group_models[static_cast<std::size_t>(outer)] = cache->models[static_cast<std::size_t>(pr.prop)].get();
+        for (const auto& [tb, e] : class_triples) {
+          if (!(tb < nth())) {
+            AddCount(&out.pruned_by["objective_bound"], block);
+          } else if (nth() <= complete_below) {
+            const long long solved = SolveAgainstCompletions(SubMission(m, cat, outer, pr, e, jb), cat, outer, e, r.best,
+                                                             group_models, *cache, opt.top_n, nth, &out);
+            AddCount(&out.pruned_by["objective_bound"], block - std::min(block, solved));
+          } else {
+            search_triple(pr, e);
+          }
+        }
+        continue;
       }
       triples.insert(triples.end(), class_triples.begin(), class_triples.end());
     }
-    std::sort(triples.begin(), triples.end());
-    for (const auto& [tb, e] : triples) {
-      if (!(tb < nth())) {
-        AddCount(&out.pruned_by["objective_bound"], block);
-        continue;
-      }
-      progress(i);
-      // The outer group fixed to this choice, the battery to this option: the inner search.
-      const Mission sub = SubMission(m, cat, outer, pr, e, jb);
-      SearchResult r = FreeGroupCount(sub) > 1 ? JointSearch(sub, cat, inner_opt, nth(), cache)
-                                               : SearchOneGroup(sub, cat, inner_opt, nth(), cache);
-      Merge(std::move(r), opt.top_n, &out);
-    }
+    for (const auto& [tb, e] : triples) tightened.push(Queued{std::max(tb, q.bound), i, e});
   }
   progress(pairs.size());
   out.pruned = out.combinations - out.searched;

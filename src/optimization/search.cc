@@ -241,6 +241,23 @@ namespace dynosize {
 //    against every feasible combination of a small catalog and the answer against exhaustive
 //    evaluation. Counts: combinations is the product over the free groups of motors x ESCs x
 //    propellers, times the battery options; an outer choice pruned counts all its completions.
+//    Order: a pair's coupled bound is computed when its uncoupled one is the least in the queue
+//    (the coupled one is at least the uncoupled one), and the per-ESC inner searches wait in the
+//    same queue under their triple bound, so every pair and triple is taken best bound first
+//    and the loop stops at the first bound not below the N-th best. Before any result exists,
+//    a class's best-bound ESC is searched first (its inner search sets the N-th best that the
+//    virtual ESC's search below uses as its cutoff).
+// G3 (the class's real ESCs from one virtual search): the virtual ESC's inner search above asks
+//    for every completion (the inner group's motor, ESC, propeller and the pack) below the N-th
+//    best, up to kCompletionLimit of them (joint_search.cc). With the virtual ESC on the relaxed
+//    mission every completion scores no better with a real ESC e of the class on the mission
+//    (M2, M3, as in R5), so a completion missing from that list cannot beat the N-th best with e
+//    either, when the list holds every completion below it: when fewer than the limit were
+//    found, or when the N-th best is at or below the list's last score (the search's top list is
+//    exact). Then (outer pair, e) is solved exactly with each listed completion, best virtual
+//    score first, until that score reaches the N-th best, instead of a whole inner search per
+//    ESC; otherwise e gets its inner search. A solve is MissionEvaluator::Solve on the mission
+//    with the outer group and the pack fixed, as the inner search's own.
 // Everything not pruned is evaluated exactly (MissionEvaluator::Solve): the answer is the
 // true top N over the catalog under (M1)-(M3).
 
