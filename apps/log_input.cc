@@ -18,4 +18,10 @@ logs::LogReadOptions ToLogReadOptions(const LogInputOptions& in) {
   return ro;
 }
 
+std::string MissingThrottleLine(const logs::SteadyTable& table) {
+  if (table.Has(logs::Column::kThrottle) || table.format == logs::LogFormat::kDriveCalc) return "";
+  return table.file + ": " + table.info[static_cast<int>(logs::Column::kThrottle)].note +
+         " (without one, every point is taken at full throttle)";
+}
+
 }  // namespace dynosize::cli

@@ -1290,6 +1290,42 @@ void ResolveFilters(const Header& h, bool header_is_data, const LogReadOptions& 
   }
 }
 
+// The arguments that read column `c` from header cell `field` in addition to what was read:
+// the map of a mapped read (given, or the synonym table's) or --format rcbenchmark --map.
+std::string ReadArguments(const Header& h, const Plan& plan, const LogReadOptions& o, Column c,
+                          std::size_t field) {
+  std::string line = plan.format == LogFormat::kRcbenchmark ? "--format rcbenchmark " : "";
+  if (plan.format == LogFormat::kMapped && o.column_map.empty()) {
+    bool needs_unit = false;
+    line = ReadyMapLine(h, {}, &needs_unit) + " ";
+  }
+  for (const std::string& e : o.column_map) line += "--map \"" + e + "\" ";
+  const std::string arg = MapArgument(c, h.cells[field]);
+  return line + arg + UnitChoicesFor(arg);
+}
+
+// An absent throttle, voltage, speed, torque or current column: the note names the header
+// cells that look like it (header_synonyms.h) and the arguments that read the first of them.
+void NoteAbsentColumns(const Header& h, const Plan& plan, const LogReadOptions& o, SteadyTable* t) {
+  if (plan.format != LogFormat::kRcbenchmark && plan.format != LogFormat::kMapped) return;
+  std::vector<std::size_t> used;
+  for (const Slot& s : plan.slots) used.push_back(s.field);
+  for (const Column c : {Column::kThrottle, Column::kIdcA, Column::kVdcV, Column::kOmegaRadS,
+                         Column::kTorqueNm}) {
+    ColumnInfo& ci = t->info[static_cast<int>(c)];
+    if (t->Has(c) || !ci.note.empty()) continue;
+    const std::string what = c == Column::kThrottle ? "throttle" : c == Column::kIdcA ? "current"
+                           : c == Column::kVdcV     ? "voltage"
+                           : c == Column::kOmegaRadS ? "speed" : "torque";
+    const std::vector<std::size_t> look = LookalikeColumns(c, h.cells, used);
+    if (look.empty()) continue;
+    std::string names;
+    for (const std::size_t i : look) names += (names.empty() ? "\"" : ", \"") + h.cells[i] + "\"";
+    ci.note = "no " + what + " column found; " + names + (look.size() == 1 ? " looks" : " look") +
+              " like one: to read it, " + ReadArguments(h, plan, o, c, look[0]);
+  }
+}
+
 }  // namespace
 
 std::string LogReadOptions::Validate() const {
@@ -1442,6 +1478,7 @@ SteadyTable ReadLog(const std::string& path, const LogReadOptions& options) {
   if (fmt == LogFormat::kCanonical) CheckCanonicalRanges(t, path);
   if (options.normalize_signs && fmt != LogFormat::kCanonical) NormalizeSigns(&t);
   // What the fit can identify.
+  NoteAbsentColumns(h, plan, options, &t);
   if (!t.Has(Column::kThrottle) && t.info[static_cast<int>(Column::kThrottle)].note.empty()) {
     t.info[static_cast<int>(Column::kThrottle)].note = "no throttle column in this log";
   }
