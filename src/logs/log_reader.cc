@@ -318,16 +318,17 @@ Plan PlanCanonical(const Header& h, const std::string& path) {
                     " in the canonical format; valid names: " + CanonicalNameList());
   }
   std::vector<std::string> missing;
-  for (const Column c : {Column::kTimeS, Column::kVdcV, Column::kThrottle, Column::kOmegaRadS,
-                         Column::kTorqueNm, Column::kIdcA}) {
+  // time_s is optional (a steady table has one row per operating point, no time), and so is
+  // torque_nm, as in every format.
+  for (const Column c : {Column::kVdcV, Column::kThrottle, Column::kOmegaRadS, Column::kIdcA}) {
     if (seen[static_cast<int>(c)] < 0) {
       missing.push_back(c == Column::kOmegaRadS ? "rpm (or omega_rad_s)" : ColumnName(c));
     }
   }
   if (!missing.empty()) {
     throw DataError(path + ": line 1: missing required column(s) " + JoinSorted(missing) +
-                    " of the canonical format (required: time_s, vdc_v, throttle, rpm or "
-                    "omega_rad_s, torque_nm, idc_a)");
+                    " of the canonical format (required: vdc_v, throttle, rpm or omega_rad_s, idc_a; "
+                    "optional: time_s, torque_nm, vll_rms_v, irms_a, pac_w, temp_c, thrust_n)");
   }
   return p;
 }
@@ -621,6 +622,35 @@ std::string NotANumberRule(std::string_view cell, bool decimal_comma) {
   return "not a number (rule: a finite decimal number with '.' as decimal point)";
 }
 
+// A line written with decimal commas read without --decimal-comma: most of its cells hold a
+// comma between digits ("12,5" quoted, or after ';' or tabs), or, split at ',', the line has
+// half again as many cells as the header (every "12,5" became two cells). Checked only when a
+// cell failed, to add the hint to its error. Returns what was seen, or "".
+std::string LooksDecimalComma(std::string_view line, std::size_t header_cells, char delim) {
+  std::vector<std::string_view> cells;
+  SplitFields(line, delim, &cells);
+  if (delim == ',' && header_cells > 0 && 2 * cells.size() >= 3 * header_cells) {
+    return "the line has " + std::to_string(cells.size()) + " cells for " + std::to_string(header_cells) +
+           " header columns";
+  }
+  std::size_t with_comma = 0, nonempty = 0;
+  for (const std::string_view c : cells) {
+    const std::string_view v = Trim(c);
+    if (v.empty()) continue;
+    ++nonempty;
+    for (std::size_t i = 1; i + 1 < v.size(); ++i) {
+      const auto digit = [](char x) { return x >= '0' && x <= '9'; };
+      if (v[i] == ',' && digit(v[i - 1]) && digit(v[i + 1])) {
+        ++with_comma;
+        break;
+      }
+    }
+  }
+  if (nonempty == 0 || 2 * with_comma <= nonempty) return "";
+  return std::to_string(with_comma) + " of the line's " + std::to_string(nonempty) +
+         " cells hold a comma inside a number";
+}
+
 // Counts of rows left out while reading, reported once at the end.
 struct ReadCounts {
   std::size_t other_motor_rows = 0, short_rows = 0, esc_outside = 0, filtered = 0, text_rows = 0;
@@ -848,11 +878,19 @@ void ReadRows(Lines* lr, Plan* plan, const std::string& path, SteadyTable* t,
     }
     if (o.mapped_drop_rows_with_empty_cells && RowHasText(*plan, fields, line_no, &counts)) return;
     char row_outside = 0;
-    for (Slot& s : plan->slots) {
-      if (ReadCell(s, fields[s.field], *plan, o, path, line_no)) {
-        row_outside = 1;
-        ++counts.esc_outside;
+    try {
+      for (Slot& s : plan->slots) {
+        if (ReadCell(s, fields[s.field], *plan, o, path, line_no)) {
+          row_outside = 1;
+          ++counts.esc_outside;
+        }
       }
+    } catch (const DataError& e) {
+      const std::string what = e.what();
+      if (o.decimal_comma || what.find("--decimal-comma") != std::string::npos) throw;
+      const std::string seen = LooksDecimalComma(line, plan->header_cells, t->delimiter);
+      if (seen.empty()) throw;
+      throw DataError(what + " (" + seen + ": decimal commas? read the file with --decimal-comma)");
     }
     rows->line.push_back(line_no);
     rows->esc_outside.push_back(row_outside);
