@@ -55,7 +55,7 @@ const std::vector<HeaderSynonym> kSynonyms = {
 
     {Column::kVdcV, "voltage", "", false, 0},
     {Column::kVdcV, "vdc", "", false, 0},
-    {Column::kVdcV, "volt", "", false, 0},
+    {Column::kVdcV, "volt", "V", false, 0},
     {Column::kVdcV, "volts", "V", false, 0},
     {Column::kVdcV, "batt volts", "V", false, 0},
     {Column::kVdcV, "battery voltage", "", false, 0},
@@ -68,6 +68,7 @@ const std::vector<HeaderSynonym> kSynonyms = {
     {Column::kIdcA, "idc", "", false, 0},
     {Column::kIdcA, "curr", "", false, 0},
     {Column::kIdcA, "amps", "A", false, 0},
+    {Column::kIdcA, "amp", "A", false, 0},
     {Column::kIdcA, "battery current", "", false, 0},
     {Column::kIdcA, "supply current", "", false, 0},
     {Column::kIdcA, "bus current", "", false, 0},

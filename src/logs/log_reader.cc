@@ -276,9 +276,9 @@ LogFormat Detect(const Header& h, const LogReadOptions& o, const std::string& pa
                   QuoteCell(h.raw_line_utf8) + ": " + why +
                   " (docs/log-formats.md lists the header names read). " +
                   (map_line.empty()
-                       ? std::string("Read the table with --map canonical=Header [unit], one per column, e.g. "
-                                     "--map idc_a=Current [A] --map rpm=RPM")
-                       : "Read it with: " + map_line + UnitChoicesFor(map_line)));
+                       ? std::string("Read the table with --format mapped --map canonical=Header [unit], one "
+                                     "per column, e.g. --map \"idc_a=Current [A]\" --map rpm=RPM")
+                       : "Read it with: --format mapped " + map_line + UnitChoicesFor(map_line)));
 }
 
 // ---------------------------------------------------------------- plans per format
