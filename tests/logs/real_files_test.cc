@@ -127,6 +127,7 @@ TEST(RealLogs, EveryStandLogReadsWithAutoExceptTheDocumentedOnes) {
     ASSERT_EQ(a.rows(), b.rows());
     for (int c = 0; c < kColumnCount; ++c) {
       ASSERT_EQ(a.info[c].present, b.info[c].present) << ColumnName(static_cast<Column>(c));
+      if (!a.info[c].present) continue;
       for (std::size_t r = 0; r < a.rows(); ++r) {
         EXPECT_EQ(a.columns[c][r], b.columns[c][r]) << ColumnName(static_cast<Column>(c)) << " row " << r;
       }
