@@ -21,7 +21,6 @@ namespace {
 const std::vector<HeaderSynonym> kSynonyms = {
     {Column::kTimeS, "time", "", false, 0},
     {Column::kTimeS, "elapsed time", "", false, 0},
-    {Column::kTimeS, "time s", "s", false, 0},
 
     {Column::kThrottle, "esc signal", "", true, 0},
     {Column::kThrottle, "esc", "", true, 0},

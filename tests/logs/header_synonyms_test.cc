@@ -6,6 +6,8 @@
 #include <gtest/gtest.h>
 
 #include <cstdio>
+#include <fstream>
+#include <sstream>
 #include <map>
 #include <string>
 #include <vector>
@@ -296,6 +298,21 @@ TEST(DecimalComma, ShiftedCellOfAnUnquotedCommaFileGetsTheHint) {
                                               "0.1,1100,2e16,20.0,5000\n0.2,1100,2.1,20.0,5000\n"));
   EXPECT_TRUE(Contains(plain, "out of range")) << plain;
   EXPECT_FALSE(Contains(plain, "--decimal-comma")) << plain;
+}
+
+TEST(HeaderSynonyms, EveryNameIsDocumented) {
+  std::ifstream in(std::string(DYNOSIZE_SOURCE_DIR) + "/docs/log-formats.md");
+  ASSERT_TRUE(in.good());
+  std::stringstream doc;
+  doc << in.rdbuf();
+  const std::string text = doc.str();
+  const std::size_t section = text.find("## Header synonyms");
+  ASSERT_NE(section, std::string::npos);
+  for (const HeaderSynonym& syn : HeaderSynonyms()) {
+    const std::string want = std::string("`") + syn.name + "`" + (syn.stand ? "*" : "") +
+                             (syn.implied_unit[0] != '\0' ? std::string(" (") + syn.implied_unit + ")" : "");
+    EXPECT_NE(text.find(want, section), std::string::npos) << want;
+  }
 }
 
 TEST(FormatList, EveryReaderIsNamedOnce) {
