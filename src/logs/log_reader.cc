@@ -266,7 +266,7 @@ LogFormat Detect(const Header& h, const LogReadOptions& o, const std::string& pa
   std::string why;
   const std::string unitless = UnitlessColumns(h);
   if (!unitless.empty()) {
-    why = "column(s) " + unitless + " name no unit";
+    why = "column(s) " + unitless + " name no unit (or none dynosize reads)";
   } else if (!current_reads) {
     why = "no current column (\"Current (A)\", \"current_A\", \"Amps\", ...)";
   } else {
@@ -373,6 +373,13 @@ Slot SynonymSlot(const Header& h, const Matched& m, bool stand, const LogReadOpt
   return s;
 }
 
+// The names RCbenchmark / Tyto exports write for their measured columns (their units are
+// checked: a "Torque" without one is an error, as it always was).
+bool IsExportName(const std::string& cell) {
+  const std::string name = NormaliseHeaderName(SplitHeaderCell(cell).name);
+  return name == "time" || name == "torque" || name == "thrust" || name == "voltage" || name == "current";
+}
+
 // Optical speed before electrical: the electrical probe reads spurious values at low
 // throttle (ecosystem-notes.md), the optical one is used whenever it saw anything.
 void SortByRank(std::vector<Slot>* slots, const std::vector<int>& rank) {
@@ -403,6 +410,14 @@ Plan PlanBySynonyms(const Header& h, bool stand, const LogReadOptions& o, const 
   std::vector<int> rank;
   for (const Matched& m : MatchAll(h)) {
     if (m.field >= p.header_cells) continue;
+    // In a stand export, a column named by a table row other than the export's own names
+    // ("Speed (km/h)" beside "Motor Optical Speed (RPM)") is left out when its unit does not
+    // read, as the exports' other columns are; the export's own names keep their unit check.
+    if (stand && !m.match.stand && !UnitReads(m.match) && !IsExportName(h.cells[m.field])) {
+      t->notes.push_back("column \"" + h.cells[m.field] + "\" not read: its unit is not one of " +
+                         ColumnName(m.match.column));
+      continue;
+    }
     if (m.match.column == Column::kTempC) {
       if (have_temp) continue;
       have_temp = true;

@@ -210,6 +210,17 @@ TEST(TytoFlightStandVariant, PwmThrottleSignalHeaderReadsInMicrosecondsRpmKgfNmV
   EXPECT_LT(RelErr(t.Get(Column::kIdcA)[1], 5.4), 1e-12);
 }
 
+TEST(TytoFlightStandVariant, TableNameWithAnUnreadUnitIsLeftOutOfAStandExport) {
+  // A wind-tunnel column "Speed (km/h)" beside the stand's own "Rotation speed (rpm)".
+  std::string s = TytoPwmVariant("PWM throttle signal (\xC2\xB5s)");
+  s.insert(s.find('\n'), ",\"Speed (km/h)\"");
+  const SteadyTable t = ReadLog(WriteTemp("kmh.csv", s));
+  EXPECT_EQ(t.info[static_cast<int>(Column::kOmegaRadS)].source_header, "Rotation speed (rpm)");
+  bool noted = false;
+  for (const auto& n : t.notes) noted = noted || Contains(n, "\"Speed (km/h)\" not read");
+  EXPECT_TRUE(noted);
+}
+
 TEST(MissingQuantity, UnknownCommandColumnIsNamedWithTheArgumentsThatReadIt) {
   const std::string path = WriteTemp("cmd.csv", TytoPwmVariant("Motor command signal (\xC2\xB5s)"));
   const SteadyTable t = ReadLog(path);
