@@ -20,8 +20,10 @@ logs::LogReadOptions ToLogReadOptions(const LogInputOptions& in) {
 
 std::string MissingThrottleLine(const logs::SteadyTable& table) {
   if (table.Has(logs::Column::kThrottle) || table.format == logs::LogFormat::kDriveCalc) return "";
-  return table.file + ": " + table.info[static_cast<int>(logs::Column::kThrottle)].note +
-         " (without one, every point is taken at full throttle)";
+  const std::string& note = table.info[static_cast<int>(logs::Column::kThrottle)].note;
+  const bool says_so = note.rfind("no throttle", 0) == 0;
+  return table.file + ": " + (says_so ? note : "no throttle column: " + note) +
+         " (every point is then taken at full throttle)";
 }
 
 }  // namespace dynosize::cli
