@@ -868,7 +868,7 @@ void ReadRows(Lines* lr, Plan* plan, const std::string& path, SteadyTable* t,
     }
     SplitFields(line, t->delimiter, &fields);
     if (!plan->filters.empty() && !RowSelected(*plan, fields, &counts)) return;
-    CheckOneSetup(*plan, fields, line_no, path, &first_setup);
+    if (!plan->setup_fields.empty()) CheckOneSetup(*plan, fields, line_no, path, &first_setup);
     ++t->data_rows_read;
     if (comma_split_risk && line.find('"') == std::string_view::npos) {
       throw DataError(path + ": line " + std::to_string(line_no) +
@@ -893,31 +893,31 @@ void ReadRows(Lines* lr, Plan* plan, const std::string& path, SteadyTable* t,
     }
     if (o.mapped_drop_rows_with_empty_cells && RowHasText(*plan, fields, line_no, &counts)) return;
     char row_outside = 0;
-    try {
-      for (Slot& s : plan->slots) {
-        if (ReadCell(s, fields[s.field], *plan, o, path, line_no)) {
-          row_outside = 1;
-          ++counts.esc_outside;
-        }
+    for (Slot& s : plan->slots) {
+      if (ReadCell(s, fields[s.field], *plan, o, path, line_no)) {
+        row_outside = 1;
+        ++counts.esc_outside;
       }
-    } catch (const DataError& e) {
-      const std::string what = e.what();
-      if (o.decimal_comma || what.find("--decimal-comma") != std::string::npos) throw;
-      const std::string seen = LooksDecimalComma(line, plan->header_cells, t->delimiter);
-      if (seen.empty()) throw;
-      throw DataError(what + " (" + seen + ": decimal commas? read the file with --decimal-comma)");
     }
     rows->line.push_back(line_no);
     rows->esc_outside.push_back(row_outside);
   };
 
-  if (!plan->has_header) {
-    process(first_data_line, 1);
-  }
-  std::string_view line;
-  while (lr->Next(&line)) {
-    ++t->lines_read;
-    process(line, lr->line_number());
+  // A cell refused on a line written with decimal commas gets the --decimal-comma hint (the
+  // line's view stays valid here: nothing is read after the throw).
+  std::string_view line = first_data_line;
+  try {
+    if (!plan->has_header) process(first_data_line, 1);
+    while (lr->Next(&line)) {
+      ++t->lines_read;
+      process(line, lr->line_number());
+    }
+  } catch (const DataError& e) {
+    const std::string what = e.what();
+    if (o.decimal_comma || what.find("--decimal-comma") != std::string::npos) throw;
+    const std::string seen = LooksDecimalComma(line, plan->header_cells, t->delimiter);
+    if (seen.empty()) throw;
+    throw DataError(what + " (" + seen + ": decimal commas? read the file with --decimal-comma)");
   }
   ReportReadCounts(counts, *plan, path, o, t, rows);
   if (drivecalc_filter) {
