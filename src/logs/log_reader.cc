@@ -180,7 +180,7 @@ bool AllCanonicalNames(const Header& h) {
 
 // The --map arguments that read `h` as a mapped table: the first cell of each column the synonym
 // table names, then, for `missing` columns, the cells that look like them.
-std::string ReadyMapLine(const Header& h, const std::vector<Column>& missing, bool* needs_unit) {
+std::string ReadyMapLine(const Header& h, const std::vector<Column>& missing) {
   std::string line;
   std::vector<char> done(kColumnCount, 0);
   std::vector<std::size_t> used;
@@ -189,18 +189,14 @@ std::string ReadyMapLine(const Header& h, const std::vector<Column>& missing, bo
     if (done[c]) continue;
     done[c] = 1;
     used.push_back(m.field);
-    const std::string arg = MapArgument(m.match.column, h.cells[m.field]);
-    *needs_unit = *needs_unit || arg.find("[UNIT]") != std::string::npos;
-    line += (line.empty() ? "" : " ") + arg;
+    line += (line.empty() ? "" : " ") + MapArgument(m.match.column, h.cells[m.field]);
   }
   for (const Column c : missing) {
     if (done[static_cast<int>(c)]) continue;
     const auto look = LookalikeColumns(c, h.cells, used);
     if (look.empty()) continue;
     used.push_back(look[0]);
-    const std::string arg = MapArgument(c, h.cells[look[0]]);
-    *needs_unit = *needs_unit || arg.find("[UNIT]") != std::string::npos;
-    line += (line.empty() ? "" : " ") + arg;
+    line += (line.empty() ? "" : " ") + MapArgument(c, h.cells[look[0]]);
   }
   return line;
 }
@@ -215,13 +211,13 @@ std::string UnitlessColumns(const Header& h) {
   return out;
 }
 
-// "; replace UNIT by the column's unit (thrust_n: n, gf, ...; ...)" for the columns asking one.
+// " (UNIT: thrust_n: n, gf, ...; ...)" for the --map arguments of `map_line` asking for a unit.
 std::string UnitChoicesFor(const std::string& map_line) {
   std::string out;
   for (const CanonicalName& cn : kCanonicalNames) {
     if (cn.column == Column::kOmegaRadS && std::string(cn.name) == "rpm") continue;
-    if (map_line.find(std::string("\"") + cn.name + "=") == std::string::npos) continue;
     const std::size_t at = map_line.find(std::string("\"") + cn.name + "=");
+    if (at == std::string::npos) continue;
     const std::size_t end = map_line.find('"', at + 1);
     if (map_line.substr(at, end - at).find("[UNIT]") == std::string::npos) continue;
     out += (out.empty() ? "" : "; ") + UnitChoices(cn.column);
@@ -244,25 +240,20 @@ LogFormat Detect(const Header& h, const LogReadOptions& o, const std::string& pa
   // hand-made table that happens to have "ESC throttle (us)" but a bare "Current" (sjkim's
   // A4220) is not one: its other columns have no units to read.
   const std::vector<Matched> matched = MatchAll(h);
-  bool stand_column = false, current_reads = false, command_or_speed = false;
+  bool stand_column = false, current_reads = false, command_or_speed = false, bare_current = false;
   for (const Matched& m : matched) {
     stand_column = stand_column || IsStandColumn(h, m);
-    if (m.match.column == Column::kIdcA && UnitReads(m.match)) current_reads = true;
-    if ((m.match.column == Column::kThrottle || m.match.column == Column::kOmegaRadS) && UnitReads(m.match)) {
-      command_or_speed = true;
-    }
-  }
-  bool bare_current = false;
-  for (const Matched& m : matched) {
-    if (m.match.column == Column::kIdcA && m.match.unit.empty()) bare_current = true;
+    const Column c = m.match.column;
+    if (c == Column::kIdcA && UnitReads(m.match)) current_reads = true;
+    if (c == Column::kIdcA && m.match.unit.empty()) bare_current = true;
+    if ((c == Column::kThrottle || c == Column::kOmegaRadS) && UnitReads(m.match)) command_or_speed = true;
   }
   if (stand_column && !bare_current) return LogFormat::kRcbenchmark;
   // Any other table whose current and command or speed columns are named by the synonym table
   // with units that read ("voltage_V", "thrust_g", "Amps"): a mapped table, map made here.
   if (current_reads && command_or_speed && UnitlessColumns(h).empty()) return LogFormat::kMapped;
-  bool needs_unit = false;
   const std::string map_line =
-      ReadyMapLine(h, {Column::kThrottle, Column::kVdcV, Column::kIdcA, Column::kOmegaRadS}, &needs_unit);
+      ReadyMapLine(h, {Column::kThrottle, Column::kVdcV, Column::kIdcA, Column::kOmegaRadS});
   std::string why;
   const std::string unitless = UnitlessColumns(h);
   if (!unitless.empty()) {
@@ -1348,10 +1339,7 @@ void ResolveFilters(const Header& h, bool header_is_data, const LogReadOptions& 
 std::string ReadArguments(const Header& h, const Plan& plan, const LogReadOptions& o, Column c,
                           std::size_t field) {
   std::string line = plan.format == LogFormat::kRcbenchmark ? "--format rcbenchmark " : "";
-  if (plan.format == LogFormat::kMapped && o.column_map.empty()) {
-    bool needs_unit = false;
-    line = ReadyMapLine(h, {}, &needs_unit) + " ";
-  }
+  if (plan.format == LogFormat::kMapped && o.column_map.empty()) line = ReadyMapLine(h, {}) + " ";
   for (const std::string& e : o.column_map) line += "--map \"" + e + "\" ";
   const std::string arg = MapArgument(c, h.cells[field]);
   return line + arg + UnitChoicesFor(arg);
