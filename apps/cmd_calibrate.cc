@@ -87,6 +87,12 @@ std::string HeldOutBesideDc(const calibration::CrossValidation& cv, bool label) 
   return s;
 }
 
+// The reader's warnings (a missing throttle column) ahead of the fit's.
+std::vector<std::string> WithReaderWarnings(std::vector<std::string> reader, const std::vector<std::string>& fit) {
+  reader.insert(reader.end(), fit.begin(), fit.end());
+  return reader;
+}
+
 void CheckPropOptions(const CalibrateOptions& o) {
   if (o.prop_id.empty()) {
     if (o.prop_diameter_in || o.prop_pitch_in) throw UsageError("calibrate: --prop-diameter-in/--prop-pitch-in need --prop-id");
@@ -225,6 +231,14 @@ int RunCalibrate(const CalibrateOptions& o) {
   if (const std::string e = ro.Validate(); !e.empty()) throw UsageError(e);
   std::vector<logs::SteadyTable> tables;
   for (const auto& l : o.logs) tables.push_back(logs::ReadLog(l, ro));
+  // A log without a throttle column says so first, before any fit advice.
+  std::vector<std::string> reader_warnings;
+  for (const auto& t : tables) {
+    if (std::string w = MissingThrottleLine(t); !w.empty()) reader_warnings.push_back(std::move(w));
+  }
+  if (!o.json) {
+    for (const auto& w : reader_warnings) std::cerr << w << "\n";
+  }
   const logs::SteadyTable table = calibration::MergeLogs(tables);
   CalibrationOptions co;
   co.labels.kv_rpm_per_v = o.kv_label;
@@ -252,7 +266,7 @@ int RunCalibrate(const CalibrateOptions& o) {
       j["esc"] = nullptr;
       j["fit"] = {{"mode", r.mode}, {"converged", false}, {"message", r.message},
                   {"points_used", r.points_used}, {"non_finite_parameter", bad}};
-      j["warnings"] = r.warnings;
+      j["warnings"] = WithReaderWarnings(reader_warnings, r.warnings);
       std::cout << DumpJson(j);
     } else {
       std::cout << "calibrate (" << r.mode << "): FAILED: " << r.message << "\n";
@@ -302,7 +316,7 @@ int RunCalibrate(const CalibrateOptions& o) {
     j["identifiable"] = calibration::IdentifiableJson(r);
     j["fit"] = calibration::FitJson(r);
     j["io_source"] = r.io_source;
-    j["warnings"] = r.warnings;
+    j["warnings"] = WithReaderWarnings(reader_warnings, r.warnings);
     j["held_out"] = {{"leave_one_out", cv.leave_one_out},
                      {"folds", cv.folds},
                      {"failed_folds", cv.failed_folds},

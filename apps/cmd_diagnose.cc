@@ -163,6 +163,8 @@ int RunDiagnose(const DiagnoseCliOptions& o) {
   std::string why;
   if (!opt.IsValid(&why)) throw UsageError("diagnose: " + why);
   const logs::SteadyTable table = logs::ReadLog(o.log, ro);
+  const std::string no_throttle = MissingThrottleLine(table);
+  if (!o.json && !no_throttle.empty()) std::cerr << no_throttle << "\n";
   if (!o.json) std::cerr << table.BriefReport() << "\n";
   const diagnosis::DiagnoseResult r = diagnosis::Diagnose(table, opt);
   if (!o.plot_dir.empty()) {
@@ -240,6 +242,7 @@ int RunDiagnose(const DiagnoseCliOptions& o) {
                          {"cv_rmse_percent", CvJson(r.extended_cv, true)},
                          {"cv_rms_percent_all", NumberOrNull(r.extended_cv_rms_percent)}};
   j["warnings"] = r.warnings;
+  if (!no_throttle.empty()) j["warnings"].insert(j["warnings"].begin(), no_throttle);
   j["dropped_rows"] = r.outlier_reasons;
   j["cross_validation"] = {{"folds", r.cv_folds}, {"leave_one_out", r.leave_one_out},
                            {"baseline_failed_folds", r.baseline_cv_failed_folds},

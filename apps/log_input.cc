@@ -18,4 +18,12 @@ logs::LogReadOptions ToLogReadOptions(const LogInputOptions& in) {
   return ro;
 }
 
+std::string MissingThrottleLine(const logs::SteadyTable& table) {
+  if (table.Has(logs::Column::kThrottle) || table.format == logs::LogFormat::kDriveCalc) return "";
+  const std::string& note = table.info[static_cast<int>(logs::Column::kThrottle)].note;
+  const bool says_so = note.rfind("no throttle", 0) == 0;
+  return table.file + ": " + (says_so ? note : "no throttle column: " + note) +
+         " (every point is then taken at full throttle)";
+}
+
 }  // namespace dynosize::cli

@@ -12,6 +12,7 @@
 
 #include "commands.h"
 #include "common/error.h"
+#include "logs/steady_table.h"
 
 namespace {
 
@@ -34,11 +35,11 @@ int Fail(ExitCode code, const std::string& message) {
   return static_cast<int>(code);
 }
 
-// The log-reading flags of calibrate, diagnose and validate-stand (cli::LogInputOptions), with
-// the formats the command accepts.
-void AddLogInputOptions(CLI::App* cmd, dynosize::cli::LogInputOptions* in,
-                        const std::vector<std::string>& formats, const std::string& where_help) {
-  cmd->add_option("--format", in->format, "log format")->check(CLI::IsMember(formats));
+// The log-reading flags of calibrate, diagnose and validate-stand (cli::LogInputOptions); every
+// reader is offered to every command (logs::LogFormatNames, one list).
+void AddLogInputOptions(CLI::App* cmd, dynosize::cli::LogInputOptions* in, const std::string& where_help) {
+  cmd->add_option("--format", in->format, "log format: " + dynosize::logs::LogFormatHelp())
+      ->check(CLI::IsMember(dynosize::logs::LogFormatNames()));
   cmd->add_option("--map", in->column_map,
                   "mapped tables: canonical_name=Source Header [unit] (repeatable)");
   cmd->add_flag("--drop-incomplete-rows", in->drop_incomplete_rows,
@@ -92,9 +93,7 @@ CLI::App* AddCalibrateCommand(CLI::App& app, cli::CalibrateOptions& cal) {
   calibrate->add_option("logs", cal.logs, "log files of one motor + ESC pair")->required();
   calibrate->add_option("--motor-id", cal.motor_id, "id of the fitted motor entry");
   calibrate->add_option("--esc-id", cal.esc_id, "id of the fitted ESC entry");
-  AddLogInputOptions(calibrate, &cal.input,
-                     {"auto", "canonical", "rcbenchmark", "mapped", "drivecalc", "thrustapp"},
-                     "one motor of a multi-motor table");
+  AddLogInputOptions(calibrate, &cal.input, "one motor of a multi-motor table");
   calibrate->add_option("--drivecalc-motor", cal.drivecalc_motor, "drivecalc: only this motor_id");
   calibrate->add_option("--prior-motor", cal.prior_motor,
                         "catalog motor whose KE, Rm, Io anchor the fit (Gaussian priors) and fill in what the "
@@ -195,9 +194,7 @@ CLI::App* AddDiagnoseCommand(CLI::App& app, cli::DiagnoseCliOptions& diag) {
   diagnose->add_option("log", diag.log, "steady-state or time-series log of one motor + ESC")->required();
   diagnose->add_option("--motor", diag.motor_id, "catalog motor to start from (else fitted on the log)");
   diagnose->add_option("--esc", diag.esc_id, "catalog ESC whose values are held where the log cannot fit them");
-  AddLogInputOptions(diagnose, &diag.input,
-                     {"auto", "canonical", "rcbenchmark", "mapped", "drivecalc", "thrustapp"},
-                     "one motor of a multi-motor table");
+  AddLogInputOptions(diagnose, &diag.input, "one motor of a multi-motor table");
   diagnose->add_option("--folds", diag.folds, "k of the k-fold cross-validation (>= 2)");
   diagnose->add_option("--alpha", diag.alpha, "significance level of the nested F test");
   diagnose->add_flag("--json", diag.json, "print one JSON object (baseline, findings, ambiguous, extended_model)");
@@ -249,14 +246,13 @@ CLI::App* AddValidateStandCommand(CLI::App& app, cli::ValidateStandOptions& vst)
       "validate-stand",
       "predict a measured stand table (thrust, current, rpm, torque) row by row from catalog "
       "entries, dynosize beside the plain first-order DC model");
-  validate_stand->add_option("table", vst.table, "stand table (canonical, RCbenchmark/Tyto or mapped CSV)")->required();
+  validate_stand->add_option("table", vst.table, "stand table (any --format: canonical, RCbenchmark/Tyto, a named-column table, ...)")->required();
   validate_stand->add_option("--motor", vst.motor_id, "motor id from the catalog")->required();
   validate_stand->add_option("--esc", vst.esc_id, "ESC id from the catalog")->required();
   validate_stand->add_option("--prop", vst.prop_id,
                              "propeller id from the catalog (the table's propeller); without it the "
                              "measured torque is the load");
-  AddLogInputOptions(validate_stand, &vst.input, {"auto", "canonical", "rcbenchmark", "mapped"},
-                     "one propeller of a multi-propeller table");
+  AddLogInputOptions(validate_stand, &vst.input, "one propeller of a multi-propeller table");
   validate_stand->add_option("--vdc", vst.vdc_v, "supply voltage, V, for tables without a voltage column");
   validate_stand->add_option("--lines", vst.lines, "FIRST-LAST: only rows from these lines of the file");
   validate_stand->add_option("--rho-kg-m3", vst.rho_kg_m3, "air density, kg/m^3 (default 1.225)");

@@ -8,6 +8,7 @@
 #include "common/error.h"
 #include "common/units.h"
 #include "logs/csv_scan.h"
+#include "logs/header_synonyms.h"
 #include "logs/log_units.h"
 #include "logs/thrustapp.h"
 
@@ -55,6 +56,11 @@ struct Plan {
     std::string header, value;
   };
   std::vector<RowFilter> filters;
+  // A table named by the synonym table, without --where: columns naming the motor ("motor",
+  // "source_file"); rows of a second motor are a DataError (pick one with --where). Several
+  // propellers on one motor stay one read: the torque column makes each row a load point.
+  std::vector<std::size_t> setup_fields;
+  std::vector<std::string> setup_headers;
 };
 
 [[noreturn]] void CellError(const std::string& path, std::size_t line, const std::string& column,
@@ -136,44 +142,134 @@ bool HasCell(const Header& h, const char* name) {
   return false;
 }
 
-// Header names (lower case, unit split off) of the RCbenchmark / Tyto family.
-bool IsCommandName(const std::string& name) {
-  return name == "esc signal" || name == "esc" || name == "esc throttle" || name == "esc command";
+// Every header cell the synonym table names (header_synonyms.h), in header order.
+struct Matched {
+  std::size_t field;
+  HeaderMatch match;
+};
+std::vector<Matched> MatchAll(const Header& h) {
+  std::vector<Matched> out;
+  for (std::size_t i = 0; i < h.cells.size(); ++i) {
+    if (auto m = MatchHeader(h.cells[i])) out.push_back({i, *m});
+  }
+  return out;
 }
-bool IsSpeedName(const std::string& name) {
-  return name == "motor electrical speed" || name == "motor optical speed" ||
-         name == "rotation speed" || name == "motor speed";
+
+// A unit that reads for the column: written or implied, valid for its quantity (throttle may
+// have none: a fraction, or a command scaled from its values in a stand export).
+bool UnitReads(const HeaderMatch& m) {
+  if (m.unit.empty()) return m.column == Column::kThrottle;
+  return ParseUnit(m.quantity, m.unit).has_value();
+}
+
+// A stand export's command or speed column ("ESC signal (µs)", "Rotation speed (rpm)"); a bare
+// "Throttle" is also a manufacturer table's column, so it counts only with a unit.
+bool IsStandColumn(const Header& h, const Matched& m) {
+  if (!m.match.stand) return false;
+  if (m.match.column != Column::kThrottle && m.match.column != Column::kOmegaRadS) return false;
+  const HeaderCell hc = SplitHeaderCell(h.cells[m.field]);
+  return NormaliseHeaderName(hc.name) != "throttle" || (m.match.unit_written && UnitReads(m.match));
+}
+
+bool AllCanonicalNames(const Header& h) {
+  for (const auto& c : h.cells) {
+    if (FindCanonical(c) == nullptr) return false;
+  }
+  return !h.cells.empty();
+}
+
+// The --map arguments that read `h` as a mapped table: the first cell of each column the synonym
+// table names, then, for `missing` columns, the cells that look like them.
+std::string ReadyMapLine(const Header& h, const std::vector<Column>& missing) {
+  std::string line;
+  std::vector<char> done(kColumnCount, 0);
+  std::vector<std::size_t> used;
+  for (const Matched& m : MatchAll(h)) {
+    const int c = static_cast<int>(m.match.column);
+    if (done[c]) continue;
+    done[c] = 1;
+    used.push_back(m.field);
+    line += (line.empty() ? "" : " ") + MapArgument(m.match.column, h.cells[m.field]);
+  }
+  for (const Column c : missing) {
+    if (done[static_cast<int>(c)]) continue;
+    const auto look = LookalikeColumns(c, h.cells, used);
+    if (look.empty()) continue;
+    used.push_back(look[0]);
+    line += (line.empty() ? "" : " ") + MapArgument(c, h.cells[look[0]]);
+  }
+  return line;
+}
+
+// The columns the synonym table names without a unit that reads ("\"Thrust\", \"Current\"").
+std::string UnitlessColumns(const Header& h) {
+  std::string out;
+  for (const Matched& m : MatchAll(h)) {
+    if (UnitReads(m.match)) continue;
+    out += (out.empty() ? "\"" : ", \"") + h.cells[m.field] + "\"";
+  }
+  return out;
+}
+
+// " (UNIT: thrust_n: n, gf, ...; ...)" for the --map arguments of `map_line` asking for a unit.
+std::string UnitChoicesFor(const std::string& map_line) {
+  std::string out;
+  for (const CanonicalName& cn : kCanonicalNames) {
+    if (cn.column == Column::kOmegaRadS && std::string(cn.name) == "rpm") continue;
+    const std::size_t at = map_line.find(std::string("\"") + cn.name + "=");
+    if (at == std::string::npos) continue;
+    const std::size_t end = map_line.find('"', at + 1);
+    if (map_line.substr(at, end - at).find("[UNIT]") == std::string::npos) continue;
+    out += (out.empty() ? "" : "; ") + UnitChoices(cn.column);
+  }
+  return out.empty() ? out : " (UNIT: " + out + ")";
 }
 
 LogFormat Detect(const Header& h, const LogReadOptions& o, const std::string& path) {
   if (IsThrustAppStart(h.raw_line_utf8)) return LogFormat::kThrustApp;
   if (!o.column_map.empty()) return LogFormat::kMapped;
-  if (HasCell(h, "time_s") && HasCell(h, "idc_a")) return LogFormat::kCanonical;
+  // Canonical: time_s and idc_a, or nothing but canonical names (a steady table).
+  if ((HasCell(h, "time_s") && HasCell(h, "idc_a")) || (AllCanonicalNames(h) && HasCell(h, "idc_a"))) {
+    return LogFormat::kCanonical;
+  }
   if (HasCell(h, "motor_id") && HasCell(h, "U") && HasCell(h, "n") && HasCell(h, "I") &&
       HasCell(h, "IsNoLoad")) {
     return LogFormat::kDriveCalc;
   }
   // A stand export names its command or speed column and writes units in the header; a
   // hand-made table that happens to have "ESC throttle (us)" but a bare "Current" (sjkim's
-  // A4220) is not one: its other columns have no units to read, so it needs a map.
-  bool stand_column = false, bare_current = false;
-  for (const auto& c : h.cells) {
-    const HeaderCell hc = SplitHeaderCell(c);
-    const std::string name = AsciiLower(hc.name);
-    if (IsCommandName(name) || IsSpeedName(name)) stand_column = true;
-    if (name == "throttle" && !hc.unit.empty() && ParseUnit(Quantity::kThrottle, hc.unit)) {
-      stand_column = true;  // Tyto Flight Stand: "Throttle (µs)"
-    }
-    if (name == "current" && hc.unit.empty()) bare_current = true;
+  // A4220) is not one: its other columns have no units to read.
+  const std::vector<Matched> matched = MatchAll(h);
+  bool stand_column = false, current_reads = false, command_or_speed = false, bare_current = false;
+  for (const Matched& m : matched) {
+    stand_column = stand_column || IsStandColumn(h, m);
+    const Column c = m.match.column;
+    if (c == Column::kIdcA && UnitReads(m.match)) current_reads = true;
+    if (c == Column::kIdcA && m.match.unit.empty()) bare_current = true;
+    if ((c == Column::kThrottle || c == Column::kOmegaRadS) && UnitReads(m.match)) command_or_speed = true;
   }
   if (stand_column && !bare_current) return LogFormat::kRcbenchmark;
+  // Any other table whose current and command or speed columns are named by the synonym table
+  // with units that read ("voltage_V", "thrust_g", "Amps"): a mapped table, map made here.
+  if (current_reads && command_or_speed && UnitlessColumns(h).empty()) return LogFormat::kMapped;
+  const std::string map_line =
+      ReadyMapLine(h, {Column::kThrottle, Column::kVdcV, Column::kIdcA, Column::kOmegaRadS});
+  std::string why;
+  const std::string unitless = UnitlessColumns(h);
+  if (!unitless.empty()) {
+    why = "column(s) " + unitless + " name no unit (or none dynosize reads)";
+  } else if (!current_reads) {
+    why = "no current column (\"Current (A)\", \"current_A\", \"Amps\", ...)";
+  } else {
+    why = "no throttle or speed column (\"ESC signal (µs)\", \"throttle\", \"rpm\", ...)";
+  }
   throw DataError(path + ": line 1: cannot tell the log format from the header " +
-                  QuoteCell(h.raw_line_utf8) +
-                  ". Known: canonical (header with time_s and idc_a), rcbenchmark/Tyto (\"ESC "
-                  "signal (us)\" or \"Throttle (us)\", \"Motor ... Speed (RPM)\" or \"Rotation "
-                  "speed (rpm)\", \"Current (A)\"), drivecalc (motor_id,U,n,I,IsNoLoad); read any "
-                  "other table with --format mapped --map canonical=Header, e.g. --map "
-                  "idc_a=Current --map rpm=RPM (one --map per column)");
+                  QuoteCell(h.raw_line_utf8) + ": " + why +
+                  " (docs/log-formats.md lists the header names read). " +
+                  (map_line.empty()
+                       ? std::string("Read the table with --format mapped --map canonical=Header [unit], one "
+                                     "per column, e.g. --map \"idc_a=Current [A]\" --map rpm=RPM")
+                       : "Read it with: --format mapped " + map_line + UnitChoicesFor(map_line)));
 }
 
 // ---------------------------------------------------------------- plans per format
@@ -213,96 +309,133 @@ Plan PlanCanonical(const Header& h, const std::string& path) {
                     " in the canonical format; valid names: " + CanonicalNameList());
   }
   std::vector<std::string> missing;
-  for (const Column c : {Column::kTimeS, Column::kVdcV, Column::kThrottle, Column::kOmegaRadS,
-                         Column::kTorqueNm, Column::kIdcA}) {
+  // time_s is optional (a steady table has one row per operating point, no time), and so is
+  // torque_nm, as in every format.
+  for (const Column c : {Column::kVdcV, Column::kThrottle, Column::kOmegaRadS, Column::kIdcA}) {
     if (seen[static_cast<int>(c)] < 0) {
       missing.push_back(c == Column::kOmegaRadS ? "rpm (or omega_rad_s)" : ColumnName(c));
     }
   }
   if (!missing.empty()) {
     throw DataError(path + ": line 1: missing required column(s) " + JoinSorted(missing) +
-                    " of the canonical format (required: time_s, vdc_v, throttle, rpm or "
-                    "omega_rad_s, torque_nm, idc_a)");
+                    " of the canonical format (required: vdc_v, throttle, rpm or omega_rad_s, idc_a; "
+                    "optional: time_s, torque_nm, vll_rms_v, irms_a, pac_w, temp_c, thrust_n)");
   }
   return p;
 }
 
-Plan PlanRcbenchmark(const Header& h, const LogReadOptions& o, const std::string& path,
-                     SteadyTable* t) {
+// A slot reading the header cell the synonym table matched. A command without a unit is a
+// fraction, or in a stand export (`stand`) a command scaled from its values (log_reader.h); any
+// other column must name a unit that reads (written or implied), else a DataError.
+Slot SynonymSlot(const Header& h, const Matched& m, bool stand, const LogReadOptions& o,
+                 const std::string& path, SteadyTable* t) {
+  Slot s;
+  s.field = m.field;
+  s.header = h.cells[m.field];
+  s.unit = m.match.unit;
+  s.target = m.match.column;
+  s.quantity = m.match.quantity;
+  if (s.target == Column::kThrottle && s.unit.empty() && stand) {
+    if (o.esc_unitless_max > o.esc_unitless_min) {
+      s.pulse = true, s.pulse_min = o.esc_unitless_min, s.pulse_max = o.esc_unitless_max;
+      std::ostringstream note;
+      note << "no unit: read as command units " << o.esc_unitless_min << ".." << o.esc_unitless_max
+           << " as configured";
+      t->info[static_cast<int>(Column::kThrottle)].note = note.str();
+    } else {
+      s.scale_from_values = true;  // decided from the values once read
+    }
+    return s;
+  }
+  const auto u = ParseUnit(s.quantity, s.unit);
+  if (!u) {
+    throw DataError(path + ": line 1, column " + std::to_string(m.field + 1) + " \"" + s.header +
+                    "\": " + (s.unit.empty() ? std::string("no unit") : "unit " + QuoteCell(s.unit)) +
+                    " is not a unit of " +
+                    (s.quantity == Quantity::kThrottle ? "an ESC signal" : SiUnit(s.quantity)) +
+                    "; valid: " + ValidUnits(s.quantity) + " (write it in the header, \"Name (unit)\", or " +
+                    MapArgument(s.target, s.header) + " with --format " +
+                    (stand ? "rcbenchmark" : "mapped") + ")");
+  }
+  s.conv = *u;
+  if (u->pulse_width_us) {
+    s.pulse = true, s.pulse_us = true, s.pulse_min = o.esc_min_us, s.pulse_max = o.esc_max_us;
+  }
+  return s;
+}
+
+// The names RCbenchmark / Tyto exports write for their measured columns (their units are
+// checked: a "Torque" without one is an error, as it always was).
+bool IsExportName(const std::string& cell) {
+  const std::string name = NormaliseHeaderName(SplitHeaderCell(cell).name);
+  return name == "time" || name == "torque" || name == "thrust" || name == "voltage" || name == "current";
+}
+
+// Optical speed before electrical: the electrical probe reads spurious values at low
+// throttle (ecosystem-notes.md), the optical one is used whenever it saw anything.
+void SortByRank(std::vector<Slot>* slots, const std::vector<int>& rank) {
+  std::vector<std::size_t> order(slots->size());
+  for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+  std::stable_sort(order.begin(), order.end(),
+                   [&](std::size_t a, std::size_t b) { return rank[a] < rank[b]; });
+  std::vector<Slot> sorted;
+  for (const std::size_t i : order) sorted.push_back(std::move((*slots)[i]));
+  *slots = std::move(sorted);
+}
+
+Slot MappedSlot(const std::string& entry, const Header& h, bool header_is_data, const LogReadOptions& o,
+                const std::string& path, std::vector<int>* seen_columns);
+
+// The columns of a stand export (RCbenchmark / Tyto) or of a table named by the synonym table:
+// every cell the table names (the first temperature only). `stand`: lenient cells, unitless
+// command scaled from its values.
+Plan PlanBySynonyms(const Header& h, bool stand, const LogReadOptions& o, const std::string& path,
+                    SteadyTable* t) {
   Plan p;
-  p.format = LogFormat::kRcbenchmark;
-  p.lenient = true;
+  p.format = stand ? LogFormat::kRcbenchmark : LogFormat::kMapped;
+  p.lenient = stand;
   p.header_cells = h.cells.size();
   // A trailing delimiter leaves an empty last header cell: not a column.
-  while (p.header_cells > 0 && h.cells[p.header_cells - 1].empty()) --p.header_cells;
+  while (stand && p.header_cells > 0 && h.cells[p.header_cells - 1].empty()) --p.header_cells;
   bool have_temp = false;
-  for (std::size_t i = 0; i < p.header_cells; ++i) {
-    const HeaderCell hc = SplitHeaderCell(h.cells[i]);
-    const std::string name = AsciiLower(hc.name);
-    Slot s;
-    s.field = i;
-    s.header = h.cells[i];
-    s.unit = hc.unit;
-    if (name == "time") {
-      s.target = Column::kTimeS, s.quantity = Quantity::kTime;
-    } else if (IsCommandName(name) || name == "throttle") {
-      s.target = Column::kThrottle, s.quantity = Quantity::kThrottle;
-      if (hc.unit.empty()) {
-        s.conv = UnitConversion{};
-        if (o.esc_unitless_max > o.esc_unitless_min) {
-          s.pulse = true, s.pulse_min = o.esc_unitless_min, s.pulse_max = o.esc_unitless_max;
-          std::ostringstream note;
-          note << "no unit: read as command units " << o.esc_unitless_min << ".."
-               << o.esc_unitless_max << " as configured";
-          t->info[static_cast<int>(Column::kThrottle)].note = note.str();
-        } else {
-          s.scale_from_values = true;  // decided from the values once read
-        }
-        p.slots.push_back(std::move(s));
-        continue;
-      }
-      const auto u = ParseUnit(Quantity::kThrottle, hc.unit);
-      if (u && u->pulse_width_us) {
-        s.pulse = true, s.pulse_us = true, s.pulse_min = o.esc_min_us, s.pulse_max = o.esc_max_us;
-      }
-    } else if (name == "torque") {
-      s.target = Column::kTorqueNm, s.quantity = Quantity::kTorque;
-    } else if (name == "thrust") {
-      s.target = Column::kThrustN, s.quantity = Quantity::kForce;
-    } else if (name == "voltage") {
-      s.target = Column::kVdcV, s.quantity = Quantity::kVoltage;
-    } else if (name == "current") {
-      s.target = Column::kIdcA, s.quantity = Quantity::kCurrent;
-    } else if (name == "motor optical speed") {
-      s.target = Column::kOmegaRadS, s.quantity = Quantity::kSpeed;
-    } else if (IsSpeedName(name)) {
-      s.target = Column::kOmegaRadS, s.quantity = Quantity::kSpeed;
-    } else if (name.find("temp") != std::string::npos &&
-               ParseUnit(Quantity::kTemperature, hc.unit) && !have_temp) {
-      s.target = Column::kTempC, s.quantity = Quantity::kTemperature;
+  std::vector<int> rank;
+  for (const Matched& m : MatchAll(h)) {
+    if (m.field >= p.header_cells) continue;
+    // In a stand export, a column named by a table row other than the export's own names
+    // ("Speed (km/h)" beside "Motor Optical Speed (RPM)") is left out when its unit does not
+    // read, as the exports' other columns are; the export's own names keep their unit check.
+    if (stand && !m.match.stand && !UnitReads(m.match) && !IsExportName(h.cells[m.field])) {
+      t->notes.push_back("column \"" + h.cells[m.field] + "\" not read: its unit is not one of " +
+                         ColumnName(m.match.column));
+      continue;
+    }
+    if (m.match.column == Column::kTempC) {
+      if (have_temp) continue;
       have_temp = true;
-    } else {
-      continue;  // powers, efficiencies, accelerations, servos, messages: not needed
     }
-    const auto u = ParseUnit(s.quantity, hc.unit);
-    if (!u) {
-      throw DataError(path + ": line 1, column " + std::to_string(i + 1) + " \"" + h.cells[i] +
-                      "\": unit " + QuoteCell(hc.unit) + " is not a unit of " +
-                      (s.quantity == Quantity::kThrottle ? "an ESC signal" : SiUnit(s.quantity)) +
-                      "; valid: " + ValidUnits(s.quantity));
-    }
-    s.conv = *u;
+    p.slots.push_back(SynonymSlot(h, m, stand, o, path, t));
+    rank.push_back(m.match.column == Column::kOmegaRadS ? 1 + m.match.rank : 0);
+  }
+  SortByRank(&p.slots, rank);
+  // --format rcbenchmark with --map: the map names columns the table does not know (or reads
+  // a column from another cell); the others stay as detected.
+  std::vector<int> seen(kColumnCount, -1);
+  for (const std::string& entry : o.column_map) {
+    Slot s = MappedSlot(entry, h, false, o, path, &seen);
+    p.slots.erase(std::remove_if(p.slots.begin(), p.slots.end(),
+                                 [&](const Slot& x) { return x.target == s.target || x.field == s.field; }),
+                  p.slots.end());
     p.slots.push_back(std::move(s));
   }
-  // Optical speed before electrical: the electrical probe reads spurious values at low
-  // throttle (ecosystem-notes.md), the optical one is used whenever it saw anything.
-  std::stable_sort(p.slots.begin(), p.slots.end(), [](const Slot& a, const Slot& b) {
-    auto rank = [](const Slot& s) {
-      if (s.target != Column::kOmegaRadS) return 0;
-      return AsciiLower(SplitHeaderCell(s.header).name) == "motor optical speed" ? 1 : 2;
-    };
-    return rank(a) < rank(b);
-  });
+  if (!stand) {
+    t->notes.push_back("columns named by the header synonym table (docs/log-formats.md), no --map given");
+    for (std::size_t i = 0; i < h.cells.size() && o.row_filter.empty(); ++i) {
+      const std::string name = NormaliseHeaderName(h.cells[i]);
+      for (const char* id : {"motor", "motor name", "source file", "brand"}) {
+        if (name == id) p.setup_fields.push_back(i), p.setup_headers.push_back(h.cells[i]);
+      }
+    }
+  }
   return p;
 }
 
@@ -350,6 +483,84 @@ Plan PlanDriveCalc(const Header& h, const std::string& path) {
   return p;
 }
 
+// One --map entry ("canonical_name=Source Header [unit]") as a slot; `seen` (per column: the
+// field mapped, or -1) refuses a column mapped twice.
+Slot MappedSlot(const std::string& entry, const Header& h, bool header_is_data, const LogReadOptions& o,
+                const std::string& path, std::vector<int>* seen_columns) {
+  std::vector<int>& seen = *seen_columns;
+  const std::size_t eq = entry.find('=');
+  if (eq == std::string::npos) {
+    throw UsageError("column map entry \"" + entry +
+                     "\": expected canonical_name=Source Header [unit]");
+  }
+  const std::string key(Trim(std::string_view(entry).substr(0, eq)));
+  std::string source(Trim(std::string_view(entry).substr(eq + 1)));
+  const CanonicalName* cn = FindCanonical(key);
+  if (cn == nullptr) {
+    throw UsageError("column map entry \"" + entry + "\": unknown canonical name \"" + key +
+                     "\"; valid: " + CanonicalNameList());
+  }
+  const int col = static_cast<int>(cn->column);
+  if (seen[col] >= 0) {
+    throw UsageError("column map entry \"" + entry + "\": " + ColumnName(cn->column) +
+                     " is mapped twice");
+  }
+  // Locate the source: whole header cell first, then "name [unit]" split.
+  std::size_t idx = h.cells.size();
+  std::string unit;
+  bool unit_from_map = false;
+  if (!source.empty() && source[0] == '#') {
+    const HeaderCell hc = SplitHeaderCell(source);
+    double k = 0;
+    if (!ParseDouble(std::string_view(hc.name).substr(1), &k) || k < 1 || k != std::floor(k)) {
+      throw UsageError("column map entry \"" + entry + "\": \"#k\" needs a column number >= 1");
+    }
+    if (!hc.unit.empty()) unit = hc.unit, unit_from_map = true;
+    idx = static_cast<std::size_t>(k) - 1;
+  } else {
+    for (std::size_t i = 0; i < h.cells.size() && !header_is_data; ++i) {
+      if (h.cells[i] == source) idx = i;
+    }
+    if (idx < h.cells.size()) {
+      unit = SplitHeaderCell(h.cells[idx]).unit;  // the header's own unit, if any
+      if (!unit.empty() && !ParseUnit(cn->quantity, unit)) unit.clear();
+    } else {
+      const HeaderCell want = SplitHeaderCell(source);
+      for (std::size_t i = 0; i < h.cells.size() && !header_is_data; ++i) {
+        if (h.cells[i] == want.name || SplitHeaderCell(h.cells[i]).name == want.name) idx = i;
+      }
+      if (idx < h.cells.size()) {
+        unit = want.unit.empty() ? SplitHeaderCell(h.cells[idx]).unit : want.unit;
+        unit_from_map = !want.unit.empty();
+      }
+    }
+    if (idx >= h.cells.size()) {
+      std::vector<std::string> have;
+      for (const auto& c : h.cells) have.push_back("\"" + c + "\"");
+      throw DataError(path + ": line 1: column map entry \"" + entry + "\": no column \"" +
+                      source + "\" in the header; columns: " +
+                      (header_is_data ? std::string("(no header: use #k)") : JoinSorted(have)));
+    }
+  }
+  if (unit.empty()) unit = cn->default_unit;
+  const auto u = ParseUnit(cn->quantity, unit);
+  if (!u) {
+    throw UsageError("column map entry \"" + entry + "\": unit " + QuoteCell(unit) +
+                     (unit_from_map ? "" : " (from the header)") + " is not valid for " +
+                     key + "; valid: " + ValidUnits(cn->quantity));
+  }
+  seen[col] = static_cast<int>(idx);
+  Slot s;
+  s.target = cn->column;
+  s.quantity = cn->quantity;
+  s.field = idx;
+  s.header = idx < h.cells.size() && !header_is_data ? h.cells[idx] : "#" + std::to_string(idx + 1);
+  s.unit = unit;
+  s.conv = *u;
+  if (u->pulse_width_us) s.pulse = true, s.pulse_us = true, s.pulse_min = o.esc_min_us, s.pulse_max = o.esc_max_us;
+  return s;
+}
+
 Plan PlanMapped(const Header& h, bool header_is_data, const LogReadOptions& o,
                 const std::string& path) {
   Plan p;
@@ -358,77 +569,7 @@ Plan PlanMapped(const Header& h, bool header_is_data, const LogReadOptions& o,
   p.header_cells = h.cells.size();
   std::vector<int> seen(kColumnCount, -1);
   for (const std::string& entry : o.column_map) {
-    const std::size_t eq = entry.find('=');
-    if (eq == std::string::npos) {
-      throw UsageError("column map entry \"" + entry +
-                       "\": expected canonical_name=Source Header [unit]");
-    }
-    const std::string key(Trim(std::string_view(entry).substr(0, eq)));
-    std::string source(Trim(std::string_view(entry).substr(eq + 1)));
-    const CanonicalName* cn = FindCanonical(key);
-    if (cn == nullptr) {
-      throw UsageError("column map entry \"" + entry + "\": unknown canonical name \"" + key +
-                       "\"; valid: " + CanonicalNameList());
-    }
-    const int col = static_cast<int>(cn->column);
-    if (seen[col] >= 0) {
-      throw UsageError("column map entry \"" + entry + "\": " + ColumnName(cn->column) +
-                       " is mapped twice");
-    }
-    // Locate the source: whole header cell first, then "name [unit]" split.
-    std::size_t idx = h.cells.size();
-    std::string unit;
-    bool unit_from_map = false;
-    if (!source.empty() && source[0] == '#') {
-      const HeaderCell hc = SplitHeaderCell(source);
-      double k = 0;
-      if (!ParseDouble(std::string_view(hc.name).substr(1), &k) || k < 1 || k != std::floor(k)) {
-        throw UsageError("column map entry \"" + entry + "\": \"#k\" needs a column number >= 1");
-      }
-      if (!hc.unit.empty()) unit = hc.unit, unit_from_map = true;
-      idx = static_cast<std::size_t>(k) - 1;
-    } else {
-      for (std::size_t i = 0; i < h.cells.size() && !header_is_data; ++i) {
-        if (h.cells[i] == source) idx = i;
-      }
-      if (idx < h.cells.size()) {
-        unit = SplitHeaderCell(h.cells[idx]).unit;  // the header's own unit, if any
-        if (!unit.empty() && !ParseUnit(cn->quantity, unit)) unit.clear();
-      } else {
-        const HeaderCell want = SplitHeaderCell(source);
-        for (std::size_t i = 0; i < h.cells.size() && !header_is_data; ++i) {
-          if (h.cells[i] == want.name || SplitHeaderCell(h.cells[i]).name == want.name) idx = i;
-        }
-        if (idx < h.cells.size()) {
-          unit = want.unit.empty() ? SplitHeaderCell(h.cells[idx]).unit : want.unit;
-          unit_from_map = !want.unit.empty();
-        }
-      }
-      if (idx >= h.cells.size()) {
-        std::vector<std::string> have;
-        for (const auto& c : h.cells) have.push_back("\"" + c + "\"");
-        throw DataError(path + ": line 1: column map entry \"" + entry + "\": no column \"" +
-                        source + "\" in the header; columns: " +
-                        (header_is_data ? std::string("(no header: use #k)") : JoinSorted(have)));
-      }
-    }
-    if (unit.empty()) unit = cn->default_unit;
-    const auto u = ParseUnit(cn->quantity, unit);
-    if (!u) {
-      throw UsageError("column map entry \"" + entry + "\": unit " + QuoteCell(unit) +
-                       (unit_from_map ? "" : " (from the header)") + " is not valid for " +
-                       key + "; valid: " + ValidUnits(cn->quantity));
-    }
-    seen[col] = static_cast<int>(idx);
-    Slot s;
-    s.target = cn->column;
-    s.quantity = cn->quantity;
-    s.field = idx;
-    s.header = idx < h.cells.size() && !header_is_data ? h.cells[idx] : "#" + std::to_string(idx + 1);
-    s.unit = unit;
-    s.conv = *u;
-    if (u->pulse_width_us) s.pulse = true, s.pulse_us = true, s.pulse_min = o.esc_min_us, s.pulse_max = o.esc_max_us;
-    p.slots.push_back(std::move(s));
+    p.slots.push_back(MappedSlot(entry, h, header_is_data, o, path, &seen));
   }
   if (seen[static_cast<int>(Column::kIdcA)] < 0) {
     throw UsageError("column map: idc_a must be mapped (every calibration needs the DC current)");
@@ -487,6 +628,35 @@ std::string NotANumberRule(std::string_view cell, bool decimal_comma) {
   return "not a number (rule: a finite decimal number with '.' as decimal point)";
 }
 
+// A line written with decimal commas read without --decimal-comma: most of its cells hold a
+// comma between digits ("12,5" quoted, or after ';' or tabs), or, split at ',', the line has
+// half again as many cells as the header (every "12,5" became two cells). Checked only when a
+// cell failed, to add the hint to its error. Returns what was seen, or "".
+std::string LooksDecimalComma(std::string_view line, std::size_t header_cells, char delim) {
+  std::vector<std::string_view> cells;
+  SplitFields(line, delim, &cells);
+  if (delim == ',' && header_cells > 0 && 2 * cells.size() >= 3 * header_cells) {
+    return "the line has " + std::to_string(cells.size()) + " cells for " + std::to_string(header_cells) +
+           " header columns";
+  }
+  std::size_t with_comma = 0, nonempty = 0;
+  for (const std::string_view c : cells) {
+    const std::string_view v = Trim(c);
+    if (v.empty()) continue;
+    ++nonempty;
+    for (std::size_t i = 1; i + 1 < v.size(); ++i) {
+      const auto digit = [](char x) { return x >= '0' && x <= '9'; };
+      if (v[i] == ',' && digit(v[i - 1]) && digit(v[i + 1])) {
+        ++with_comma;
+        break;
+      }
+    }
+  }
+  if (nonempty == 0 || 2 * with_comma <= nonempty) return "";
+  return std::to_string(with_comma) + " of the line's " + std::to_string(nonempty) +
+         " cells hold a comma inside a number";
+}
+
 // Counts of rows left out while reading, reported once at the end.
 struct ReadCounts {
   std::size_t other_motor_rows = 0, short_rows = 0, esc_outside = 0, filtered = 0, text_rows = 0;
@@ -508,6 +678,27 @@ bool RowSelected(const Plan& plan, const std::vector<std::string_view>& fields, 
     }
   }
   return true;
+}
+
+// A table of several motors read without --where: the first row's motor cells (`first`) must
+// hold in every row.
+void CheckOneSetup(const Plan& plan, const std::vector<std::string_view>& fields, std::size_t line_no,
+                   const std::string& path, std::vector<std::string>* first) {
+  if (plan.setup_fields.empty()) return;
+  if (first->empty()) {
+    for (const std::size_t f : plan.setup_fields) first->emplace_back(f < fields.size() ? Trim(fields[f]) : "");
+    return;
+  }
+  for (std::size_t k = 0; k < plan.setup_fields.size(); ++k) {
+    const std::size_t f = plan.setup_fields[k];
+    const std::string_view cell = f < fields.size() ? Trim(fields[f]) : std::string_view();
+    if (cell == (*first)[k]) continue;
+    const std::string& header = plan.setup_headers[k];
+    throw DataError(path + ": line " + std::to_string(line_no) + ", column \"" + header + "\": " +
+                    QuoteCell(cell) + " after " + QuoteCell((*first)[k]) +
+                    ": the table holds several motors or reports (rule: one motor per read); "
+                    "keep one with --where \"" + header + "=" + (*first)[k] + "\"");
+  }
 }
 
 // --drop-incomplete-rows: true when a used cell holds text (the row is dropped and counted).
@@ -658,6 +849,7 @@ void ReadRows(Lines* lr, Plan* plan, const std::string& path, SteadyTable* t,
     if (plan->slots[k].target == Column::kMotorId) motor_slot = k;
   }
   ReadCounts counts;
+  std::vector<std::string> first_setup;
   const bool comma_split_risk = o.decimal_comma && t->delimiter == ',';
 
   auto process = [&](std::string_view line, std::size_t line_no) {
@@ -667,6 +859,7 @@ void ReadRows(Lines* lr, Plan* plan, const std::string& path, SteadyTable* t,
     }
     SplitFields(line, t->delimiter, &fields);
     if (!plan->filters.empty() && !RowSelected(*plan, fields, &counts)) return;
+    if (!plan->setup_fields.empty()) CheckOneSetup(*plan, fields, line_no, path, &first_setup);
     ++t->data_rows_read;
     if (comma_split_risk && line.find('"') == std::string_view::npos) {
       throw DataError(path + ": line " + std::to_string(line_no) +
@@ -701,13 +894,21 @@ void ReadRows(Lines* lr, Plan* plan, const std::string& path, SteadyTable* t,
     rows->esc_outside.push_back(row_outside);
   };
 
-  if (!plan->has_header) {
-    process(first_data_line, 1);
-  }
-  std::string_view line;
-  while (lr->Next(&line)) {
-    ++t->lines_read;
-    process(line, lr->line_number());
+  // A cell refused on a line written with decimal commas gets the --decimal-comma hint (the
+  // line's view stays valid here: nothing is read after the throw).
+  std::string_view line = first_data_line;
+  try {
+    if (!plan->has_header) process(first_data_line, 1);
+    while (lr->Next(&line)) {
+      ++t->lines_read;
+      process(line, lr->line_number());
+    }
+  } catch (const DataError& e) {
+    const std::string what = e.what();
+    if (o.decimal_comma || what.find("--decimal-comma") != std::string::npos) throw;
+    const std::string seen = LooksDecimalComma(line, plan->header_cells, t->delimiter);
+    if (seen.empty()) throw;
+    throw DataError(what + " (" + seen + ": decimal commas? read the file with --decimal-comma)");
   }
   ReportReadCounts(counts, *plan, path, o, t, rows);
   if (drivecalc_filter) {
@@ -1133,6 +1334,39 @@ void ResolveFilters(const Header& h, bool header_is_data, const LogReadOptions& 
   }
 }
 
+// The arguments that read column `c` from header cell `field` in addition to what was read:
+// the map of a mapped read (given, or the synonym table's) or --format rcbenchmark --map.
+std::string ReadArguments(const Header& h, const Plan& plan, const LogReadOptions& o, Column c,
+                          std::size_t field) {
+  std::string line = plan.format == LogFormat::kRcbenchmark ? "--format rcbenchmark " : "";
+  if (plan.format == LogFormat::kMapped && o.column_map.empty()) line = ReadyMapLine(h, {}) + " ";
+  for (const std::string& e : o.column_map) line += "--map \"" + e + "\" ";
+  const std::string arg = MapArgument(c, h.cells[field]);
+  return line + arg + UnitChoicesFor(arg);
+}
+
+// An absent throttle, voltage, speed, torque or current column: the note names the header
+// cells that look like it (header_synonyms.h) and the arguments that read the first of them.
+void NoteAbsentColumns(const Header& h, const Plan& plan, const LogReadOptions& o, SteadyTable* t) {
+  if (plan.format != LogFormat::kRcbenchmark && plan.format != LogFormat::kMapped) return;
+  std::vector<std::size_t> used;
+  for (const Slot& s : plan.slots) used.push_back(s.field);
+  for (const Column c : {Column::kThrottle, Column::kIdcA, Column::kVdcV, Column::kOmegaRadS,
+                         Column::kTorqueNm}) {
+    ColumnInfo& ci = t->info[static_cast<int>(c)];
+    if (t->Has(c) || !ci.note.empty()) continue;
+    const std::string what = c == Column::kThrottle ? "throttle" : c == Column::kIdcA ? "current"
+                           : c == Column::kVdcV     ? "voltage"
+                           : c == Column::kOmegaRadS ? "speed" : "torque";
+    const std::vector<std::size_t> look = LookalikeColumns(c, h.cells, used);
+    if (look.empty()) continue;
+    std::string names;
+    for (const std::size_t i : look) names += (names.empty() ? "\"" : ", \"") + h.cells[i] + "\"";
+    ci.note = "no " + what + " column found; " + names + (look.size() == 1 ? " looks" : " look") +
+              " like one: to read it, " + ReadArguments(h, plan, o, c, look[0]);
+  }
+}
+
 }  // namespace
 
 std::string LogReadOptions::Validate() const {
@@ -1151,9 +1385,11 @@ std::string LogReadOptions::Validate() const {
              num(esc_unitless_max) + " (LogReadOptions esc_unitless_min/max): need max > min";
     }
   }
-  if (!column_map.empty() && format != LogFormat::kAuto && format != LogFormat::kMapped) {
+  if (!column_map.empty() && format != LogFormat::kAuto && format != LogFormat::kMapped &&
+      format != LogFormat::kRcbenchmark) {
     return std::string("--map is given with --format ") + LogFormatName(format) +
-           ": a column map needs --format mapped (or auto)";
+           ": a column map needs --format mapped, rcbenchmark (to add columns to the detected "
+           "ones) or auto";
   }
   if (format == LogFormat::kMapped && column_map.empty()) {
     return "--format mapped without --map: name each column, e.g. --map idc_a=Current";
@@ -1197,9 +1433,13 @@ SteadyTable ReadLog(const std::string& path, const LogReadOptions& options) {
   std::string first_data;  // a headerless mapped file's first line is data
   switch (fmt) {
     case LogFormat::kCanonical: plan = PlanCanonical(h, path); break;
-    case LogFormat::kRcbenchmark: plan = PlanRcbenchmark(h, options, path, &t); break;
+    case LogFormat::kRcbenchmark: plan = PlanBySynonyms(h, true, options, path, &t); break;
     case LogFormat::kDriveCalc: plan = PlanDriveCalc(h, path); break;
     case LogFormat::kMapped: {
+      if (options.column_map.empty()) {  // auto-detected: the synonym table names the columns
+        plan = PlanBySynonyms(h, false, options, path, &t);
+        break;
+      }
       bool all_hash = true;
       for (const auto& e : options.column_map) {
         const std::size_t eq = e.find('=');
@@ -1279,6 +1519,7 @@ SteadyTable ReadLog(const std::string& path, const LogReadOptions& options) {
   if (fmt == LogFormat::kCanonical) CheckCanonicalRanges(t, path);
   if (options.normalize_signs && fmt != LogFormat::kCanonical) NormalizeSigns(&t);
   // What the fit can identify.
+  NoteAbsentColumns(h, plan, options, &t);
   if (!t.Has(Column::kThrottle) && t.info[static_cast<int>(Column::kThrottle)].note.empty()) {
     t.info[static_cast<int>(Column::kThrottle)].note = "no throttle column in this log";
   }

@@ -2,34 +2,48 @@
 //
 // Formats (LogFormat; kAuto decides from the header line):
 //  - kCanonical: dynosize's own CSV. Header names exactly from
-//      time_s, vdc_v, throttle, rpm | omega_rad_s, torque_nm, idc_a   (required)
-//      vll_rms_v, irms_a, pac_w, temp_c, thrust_n                     (optional)
-//    one row per operating point, SI units (rpm is the one datasheet unit accepted). Strict: an
+//      vdc_v, throttle, rpm | omega_rad_s, idc_a                               (required)
+//      time_s, torque_nm, vll_rms_v, irms_a, pac_w, temp_c, thrust_n           (optional)
+//    one row per operating point, SI units (rpm is the one datasheet unit accepted); a steady
+//    table (a manufacturer's or a stand's table of operating points) needs no time_s. Strict: an
 //    unknown or repeated column, a row with a different cell count, an empty cell or text in a
 //    number, throttle outside 0..1, vdc_v <= 0, negative vll_rms_v / irms_a are DataErrors
-//    naming file, line, column, value and rule. Detected by a header holding time_s and idc_a.
+//    naming file, line, column, value and rule. Detected by a header holding time_s and idc_a,
+//    or holding idc_a and nothing but canonical names.
 //  - kRcbenchmark: RCbenchmark / Tyto Robotics exports (Series 1520/1580/1585/1780, and the
-//    Tyto Flight Stand software, which quotes every cell), and the same files re-saved by a
-//    spreadsheet. Headers "Name (unit)", units parsed (gf/kgf/N, RPM/rad/s, N*m/N.m/N⋅m, ...).
-//    Command column: "ESC signal", "ESC", "ESC throttle", "ESC command" or "Throttle" (with a
-//    unit: us, %, or a fraction). Throttle = (us - esc_min_us)/(esc_max_us - esc_min_us) for a
+//    Tyto Flight Stand software in all its export variants, which quote every cell), and the
+//    same files re-saved by a spreadsheet. Headers "Name (unit)", names from the header synonym
+//    table (header_synonyms.h, docs/log-formats.md), units parsed (gf/kgf/N, RPM/rad/s,
+//    N*m/N.m/N⋅m, ...). Throttle = (us - esc_min_us)/(esc_max_us - esc_min_us) for a
 //    pulse width. A command without a unit (bhabas_sar_motor_sysid: "ESC signal", 0..2000
 //    command units) is scaled from its values (see ReadLog's note): values within 0..1 are a
 //    fraction, values within 800..2200 a pulse width in us, values within 0..2000 otherwise
-//    command units of 0..2000; else throttle is absent, with a note. Speed: "Motor Optical
-//    Speed", "Motor Electrical Speed", "Rotation speed", "Motor speed" (optical first). Time
-//    series are cut into plateaus (plateau.h); logs already holding one averaged row per step
-//    (median interval >= plateau.summary_min_interval_s) are read row by row. Lenient where the
-//    real files demand it: empty cells (asynchronous sensors) are skipped and counted; rows
-//    with more cells than the header (commas inside "App message", script columns) keep their
-//    named cells; blank and '#' comment lines are skipped and counted. Text in a number is
-//    still a DataError (unless mapped_drop_rows_with_empty_cells). Detected by a command or
-//    speed column above, with the current column (if any) carrying a unit ("Current (A)").
-//  - kMapped: any table with a header (or none) through LogReadOptions::column_map.
+//    command units of 0..2000; else throttle is absent, with a note. Optical speed before
+//    electrical. Time series are cut into plateaus (plateau.h); logs already holding one
+//    averaged row per step (median interval >= plateau.summary_min_interval_s) are read row by
+//    row. Lenient where the real files demand it: empty cells (asynchronous sensors) are
+//    skipped and counted; rows with more cells than the header (commas inside "App message",
+//    script columns) keep their named cells; blank and '#' comment lines are skipped and
+//    counted. Text in a number is still a DataError (unless mapped_drop_rows_with_empty_cells).
+//    Detected by a command or speed column a stand export writes ("ESC signal", "PWM throttle
+//    signal", "Throttle (µs)" with a unit, "Motor Optical Speed", "Rotation speed", ...), with
+//    the current column (if any) carrying a unit ("Current (A)"). With --format rcbenchmark, a
+//    column map adds (or replaces) columns the table does not name.
+//  - kMapped: any table with a header (or none) through LogReadOptions::column_map. Without a
+//    map, kAuto also picks it for a table whose current and throttle or speed columns the
+//    synonym table names with units that read ("voltage_V", "current_A", "thrust_g", "Amps",
+//    "rpm"): the map is made from the table, strict like a given one; a "motor" or
+//    "source_file" column holding a second value is a DataError naming the --where that keeps
+//    one motor.
 //  - kDriveCalc: DriveCalc's MData table (motor_id, U, n, I, IsNoLoad, ...): U -> vdc_v,
 //    n -> omega_rad_s, I -> idc_a, IsNoLoad -> no_load, Temp -> temp_c. Points with n = 0
 //    (speed not measured) are dropped and counted. Detected by motor_id, U, n, I, IsNoLoad.
+//  - kThrustApp: jmajew's ThrustApp reports (thrustapp.h), detected by their first line.
 //
+// A quantity the fit uses (throttle, current, voltage, speed, torque) that is absent gets a
+// note (ColumnInfo::note) naming the header cells that look like it and the arguments that read
+// them; when the format cannot be told, the DataError names what is missing and gives a ready
+// --map line.
 // Every format: a UTF-8 BOM, LF/CRLF/CR line ends, a Latin-1 header and quoted cells
 // ("1.5", RFC 4180; csv_scan.h) are accepted, blank lines and lines starting with '#' are
 // skipped (counted in blank_or_comment_lines); torque is optional everywhere (it identifies KT;
@@ -72,7 +86,7 @@ struct LogReadOptions {
   // for omega). The source is a header cell (matched whole, or by its name without unit) or
   // "#k", the k-th column (1-based) of a file without header. The unit in brackets overrides
   // the header's; without either the canonical column's own unit is assumed. Giving a map
-  // with format kAuto selects kMapped.
+  // with format kAuto selects kMapped; with kRcbenchmark the map adds to the detected columns.
   std::vector<std::string> column_map;
   // CLI --drop-incomplete-rows. kMapped is strict like the canonical format, and kRcbenchmark
   // refuses text in a number. Hand-made tables carry annotation and trailer rows ("6s

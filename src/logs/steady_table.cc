@@ -37,12 +37,42 @@ const char* LogFormatName(LogFormat f) {
   return "?";
 }
 
-LogFormat LogFormatFromName(const std::string& name) {
-  for (LogFormat f : {LogFormat::kAuto, LogFormat::kCanonical, LogFormat::kRcbenchmark, LogFormat::kMapped,
-                      LogFormat::kDriveCalc, LogFormat::kThrustApp}) {
-    if (name == LogFormatName(f)) return f;
+const std::vector<LogFormat>& AllLogFormats() {
+  static const std::vector<LogFormat> all = {LogFormat::kAuto,    LogFormat::kCanonical, LogFormat::kRcbenchmark,
+                                             LogFormat::kMapped,  LogFormat::kDriveCalc, LogFormat::kThrustApp};
+  return all;
+}
+
+std::vector<std::string> LogFormatNames() {
+  std::vector<std::string> names;
+  for (const LogFormat f : AllLogFormats()) names.emplace_back(LogFormatName(f));
+  return names;
+}
+
+std::string LogFormatHelp() {
+  std::string help;
+  for (const LogFormat f : AllLogFormats()) {
+    const char* what = "";
+    switch (f) {
+      case LogFormat::kAuto: what = "detected from the file"; break;
+      case LogFormat::kCanonical: what = "dynosize's CSV"; break;
+      case LogFormat::kRcbenchmark: what = "RCbenchmark / Tyto exports; --map adds columns"; break;
+      case LogFormat::kMapped: what = "any table through --map"; break;
+      case LogFormat::kDriveCalc: what = "DriveCalc MData.csv"; break;
+      case LogFormat::kThrustApp: what = "ThrustApp .tex/.txt reports"; break;
+    }
+    help += std::string(help.empty() ? "" : ", ") + LogFormatName(f) + " (" + what + ")";
   }
-  throw UsageError("--format '" + name + "': valid are auto, canonical, rcbenchmark, mapped, drivecalc, thrustapp");
+  return help;
+}
+
+LogFormat LogFormatFromName(const std::string& name) {
+  std::string valid;
+  for (const LogFormat f : AllLogFormats()) {
+    if (name == LogFormatName(f)) return f;
+    valid += std::string(valid.empty() ? "" : ", ") + LogFormatName(f);
+  }
+  throw UsageError("--format '" + name + "': valid are " + valid);
 }
 
 const std::vector<double>& SteadyTable::Get(Column c) const {

@@ -39,6 +39,11 @@ enum class LogFormat { kAuto, kCanonical, kRcbenchmark, kMapped, kDriveCalc, kTh
 const char* LogFormatName(LogFormat f);
 // The inverse of LogFormatName; UsageError ("--format 'x': valid are ...") for any other name.
 LogFormat LogFormatFromName(const std::string& name);
+// Every format, kAuto first: the one list the commands' --format flags offer.
+const std::vector<LogFormat>& AllLogFormats();
+std::vector<std::string> LogFormatNames();
+// "auto (detected from the file), canonical (dynosize's CSV), ...": the --format help.
+std::string LogFormatHelp();
 
 // Where a column came from.
 struct ColumnInfo {

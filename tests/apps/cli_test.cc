@@ -27,6 +27,16 @@ int Lines(const std::string& s) {
   return n;
 }
 
+// Issue 26: every command that reads a log offers every reader (thrustapp included).
+TEST(Cli, EveryLogCommandListsEveryFormat) {
+  for (const char* cmd : {"calibrate", "diagnose", "validate-stand"}) {
+    const CliRun r = Exec(std::string(cmd) + " --help");
+    EXPECT_EQ(r.code, 0) << cmd;
+    EXPECT_NE(r.out.find("{auto,canonical,rcbenchmark,mapped,drivecalc,thrustapp}"), std::string::npos)
+        << cmd << ": " << r.out;
+  }
+}
+
 TEST(Cli, BadInputGetsOneLineAndExitCode) {
   struct Case {
     std::string args;

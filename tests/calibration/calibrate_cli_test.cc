@@ -212,6 +212,28 @@ TEST(CalibrateCli, PropEntryFromThrustAndTorque) {
   EXPECT_EQ(Slurp(out), before);
 }
 
+// Issue 26: a log without a throttle column says so first, naming the column that looks like
+// one and the arguments that read it, before any fit result or advice; in --json as the first
+// warning.
+TEST(CalibrateCli, MissingThrottleIsNamedFirst) {
+  const std::string dir = TempDir("no_throttle");
+  const std::string canonical = Slurp(WriteCanonicalLog(dir));
+  // The same table with its command under a name the synonym table does not know.
+  std::string renamed = canonical;
+  renamed.replace(0, renamed.find('\n'), "Time (s),vdc_v,command,omega_rad_s,torque_nm,idc_a,vll_rms_v,irms_a,pac_w");
+  const std::string path = dir + "/renamed.csv";
+  std::ofstream(path) << renamed;
+  const CliRun r = Exec("calibrate " + path + " --motor-id m --esc-id e");
+  const std::string first = r.err.substr(0, r.err.find('\n'));
+  EXPECT_NE(first.find("no throttle column found; \"command\" looks like one"), std::string::npos) << r.err;
+  EXPECT_NE(first.find("--map \"throttle=command\""), std::string::npos) << first;
+  EXPECT_NE(first.find("every point is then taken at full throttle"), std::string::npos) << first;
+  const CliRun j = Exec("calibrate " + path + " --motor-id m --esc-id e --json");
+  const Json doc = Json::parse(j.out);
+  ASSERT_FALSE(doc["warnings"].empty());
+  EXPECT_NE(doc["warnings"][0].get<std::string>().find("no throttle column found"), std::string::npos);
+}
+
 TEST(CalibrateCli, MissingIdsIsUsageError) {
   const std::string dir = TempDir("ids");
   const std::string log = WriteCanonicalLog(dir);

@@ -76,8 +76,8 @@ TEST(CanonicalLog, StrictErrorsNameFileLineColumnValueRule) {
 }
 
 TEST(CanonicalLog, HeaderErrors) {
-  std::string e = ErrorOf(WriteTemp("missing.csv", "time_s,vdc_v,throttle,rpm,idc_a\n0,12,0.5,6000,2\n"));
-  EXPECT_TRUE(Contains(e, "missing required column(s) torque_nm")) << e;
+  std::string e = ErrorOf(WriteTemp("missing.csv", "time_s,vdc_v,rpm,idc_a\n0,12,6000,2\n"));
+  EXPECT_TRUE(Contains(e, "missing required column(s) throttle")) << e;
 
   e = ErrorOf(WriteTemp("unknown.csv",
                         "time_s,vdc_v,throttle,rpm,torque_nm,idc_a,zeta,alpha\n0,12,.5,1,1,1,1,1\n"));

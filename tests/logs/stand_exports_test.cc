@@ -152,7 +152,11 @@ TEST(CommandColumns, HandMadeTableIsNotGuessedAndTheMessageNamesTheFlags) {
       "ESC,0.665,1330 ,23.84 ,6.29 ,1.03 ,0.28 ,3909 \n";
   const std::string e = ErrorOf(WriteTemp("a4220.csv", s));
   EXPECT_TRUE(Contains(e, "cannot tell the log format")) << e;
-  EXPECT_TRUE(Contains(e, "--format mapped --map canonical=Header")) << e;
+  EXPECT_TRUE(Contains(e, "\"Voltage\", \"Current\", \"Thrust\", \"Torque\" name no unit")) << e;
+  // A ready map: the columns the synonym table names, a unit to fill in where none is written.
+  EXPECT_TRUE(Contains(e, "--format mapped --map \"throttle=Throttle\" --map \"vdc_v=Voltage [UNIT]\"")) << e;
+  EXPECT_TRUE(Contains(e, "--map \"omega_rad_s=RPM [rpm]\"")) << e;
+  EXPECT_TRUE(Contains(e, "thrust_n: n, gf, g, kgf")) << e;
   EXPECT_FALSE(Contains(e, "LogReadOptions")) << e;
   EXPECT_FALSE(Contains(e, "column_map")) << e;
   EXPECT_EQ(e.find('\n'), std::string::npos) << e;

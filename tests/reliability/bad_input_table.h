@@ -204,8 +204,8 @@ inline std::vector<BadInputCase> BadInputCases() {
                {{"log.csv", CanonicalHeader() + "0,7.2,0.3,3000,0.010,0.8\xB5\n" + CanonicalRows()}},
                cal + "{dir}/log.csv", 65, {"{dir}/log.csv", "line 2", "idc_a", "0.8\\xb5", "not a number"}});
   c.push_back({"canonical_missing_column",
-               {{"log.csv", "time_s,vdc_v,throttle,rpm,idc_a\n0,7.2,0.3,3000,0.8\n1,7.2,0.4,4000,1.4\n"}},
-               cal + "{dir}/log.csv", 65, {"{dir}/log.csv", "line 1", "missing required column(s) torque_nm"}});
+               {{"log.csv", "time_s,vdc_v,rpm,idc_a\n0,7.2,3000,0.8\n1,7.2,4000,1.4\n"}},
+               cal + "{dir}/log.csv", 65, {"{dir}/log.csv", "line 1", "missing required column(s) throttle"}});
   c.push_back({"canonical_extra_column",
                {{"log.csv", "time_s,vdc_v,throttle,rpm,torque_nm,idc_a,colour\n0,7.2,0.3,3000,0.01,0.8,1\n"}},
                cal + "{dir}/log.csv", 65, {"{dir}/log.csv", "line 1", "unknown column(s) \"colour\"", "valid names"}});
