@@ -16,6 +16,7 @@
 #include "model/physics.h"
 #include "optimization/components.h"
 #include "optimization/credibility.h"
+#include "optimization/top_results.h"
 
 namespace dynosize {
 
@@ -663,8 +664,8 @@ double JointBounds::TripleBound(int motor, int esc, int prop, std::size_t o, con
 
 namespace {
 
-// Appends an inner search's results and counts to *out, keeping the top N.
-void Merge(SearchResult&& r, int top_n, SearchResult* out) {
+// Appends an inner search's results and counts to *out, its results to the top N (`top`).
+void Merge(SearchResult&& r, TopResults* top, SearchResult* out) {
   out->searched += r.searched;
   for (const auto& [rule, n] : r.pruned_by) AddCount(&out->pruned_by[rule], n);
   out->evaluated_mass_objective.insert(out->evaluated_mass_objective.end(), r.evaluated_mass_objective.begin(),
@@ -673,13 +674,8 @@ void Merge(SearchResult&& r, int top_n, SearchResult* out) {
   out->candidate_seconds += r.candidate_seconds;
   out->virtual_evaluations += r.virtual_evaluations;
   out->candidate_batches += r.candidate_batches;
-  for (RankedCombination& b : r.best) {
-    if (static_cast<int>(out->best.size()) >= top_n && !(b.result.score < out->best.back().result.score)) continue;
-    auto pos = std::upper_bound(out->best.begin(), out->best.end(), b.result.score,
-                                [](double s, const RankedCombination& x) { return s < x.result.score; });
-    out->best.insert(pos, std::move(b));
-    if (static_cast<int>(out->best.size()) > top_n) out->best.pop_back();
-  }
+  AddCount(&out->unsettled, r.unsettled);
+  for (RankedCombination& b : r.best) top->Add(std::move(b));
 }
 
 struct OuterPair {
@@ -786,20 +782,37 @@ SearchResult JointSearch(const Mission& m, const Catalog& cat, const SearchOptio
   out.candidate_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   SearchOptions inner_opt = opt;
   inner_opt.progress = nullptr;
-  auto nth = [&]() {
-    return static_cast<int>(out.best.size()) < opt.top_n ? cutoff : std::min(cutoff, out.best.back().result.score);
+  TopResults top(opt.top_n, opt.distinct_designs, cutoff);  // top_results.h
+  auto nth = [&]() { return top.Threshold(); };
+  // Stopped before the outer pair i with the least bound `bound` of what is left unsettled there
+  // (the later pairs' bounds are at least pairs[i].bound, sorted) and `left` of its combinations.
+  auto stop = [&](std::size_t i, double bound, long long left) {
+    out.interrupted = true;
+    out.unsettled_bound_score = std::min(out.unsettled_bound_score, bound);
+    if (i + 1 < pairs.size()) out.unsettled_bound_score = std::min(out.unsettled_bound_score, pairs[i + 1].bound);
+    AddCount(&out.unsettled, left);
+    AddCount(&out.unsettled, SaturatingProduct({static_cast<long long>(pairs.size() - i - 1), n_esc, block}));
   };
   auto progress = [&](std::size_t done) {
     if (!opt.progress) return;
     SearchProgress p;
-    p.fraction = pairs.empty() ? 1.0 : static_cast<double>(done) / static_cast<double>(pairs.size());
+    // The share of the bound gap closed (as the one-group search's, search.cc), over the outer pairs.
+    const double first = pairs.empty() ? 0.0 : pairs.front().bound;
+    const double t = nth();
+    if (done >= pairs.size() || !(pairs[done].bound < t)) {
+      p.fraction = 1.0;
+    } else if (std::isfinite(first) && std::isfinite(t) && t > first) {
+      p.fraction = std::clamp((pairs[done].bound - first) / (t - first), 0.0, 1.0);
+    } else {
+      p.fraction = static_cast<double>(done) / static_cast<double>(pairs.size());
+    }
     p.searched = out.searched;
     // The rules' counts overlap (an ESC over its voltage rating on a pair R0 removes is counted
     // by both, as in the one-group search): held to what is not yet searched.
     for (const auto& [rule, n] : out.pruned_by) AddCount(&p.pruned, n);
     p.pruned = std::min(p.pruned, out.combinations - out.searched);
-    p.has_best = !out.best.empty();
-    p.best_objective = p.has_best ? out.best.front().result.objective : 0.0;
+    p.has_best = !top.empty();
+    p.best_objective = top.best_objective();
     opt.progress(p);
   };
   const auto& escs = cat.escs();
@@ -816,6 +829,10 @@ SearchResult JointSearch(const Mission& m, const Catalog& cat, const SearchOptio
     const OuterPair& pr = pairs[i];
     if (!(pr.bound < nth())) {  // G2: every later pair's bound is at least as bad
       AddCount(&out.pruned_by["objective_bound"], SaturatingProduct({static_cast<long long>(pairs.size() - i), n_esc, block}));
+      break;
+    }
+    if (StopRequested(opt)) {
+      stop(i, pr.bound, SaturatingProduct({n_esc, block}));
       break;
     }
     // The pair's ESCs: per class the bound with a zero-resistance ESC, then each ESC's own.
@@ -860,6 +877,7 @@ SearchResult JointSearch(const Mission& m, const Catalog& cat, const SearchOptio
         const SearchResult r = SearchOneGroup(SubMission(relaxed, cat, outer, pr, class_triples.front().second, jb),
                                               cat, inner_opt, nth(), cache, &given);
         out.virtual_evaluations += r.searched + r.virtual_evaluations;
+        if (r.interrupted) break;  // the pair is left unsettled (below)
         if (r.best.empty()) {
           AddCount(&out.pruned_by["objective_bound"], SaturatingProduct({static_cast<long long>(class_triples.size()), block}));
           continue;
@@ -867,22 +885,40 @@ SearchResult JointSearch(const Mission& m, const Catalog& cat, const SearchOptio
       }
       triples.insert(triples.end(), class_triples.begin(), class_triples.end());
     }
+    if (StopRequested(opt)) {  // stopped in the virtual ESC's search: the whole pair is left
+      stop(i, pr.bound, SaturatingProduct({n_esc, block}));
+      break;
+    }
     std::sort(triples.begin(), triples.end());
-    for (const auto& [tb, e] : triples) {
+    for (std::size_t k = 0; k < triples.size() && !out.interrupted; ++k) {
+      const auto& [tb, e] = triples[k];
       if (!(tb < nth())) {
         AddCount(&out.pruned_by["objective_bound"], block);
         continue;
+      }
+      const long long later = SaturatingProduct({static_cast<long long>(triples.size() - k - 1), block});
+      if (StopRequested(opt)) {
+        stop(i, tb, SaturatingProduct({static_cast<long long>(triples.size() - k), block}));
+        break;
       }
       progress(i);
       // The outer group fixed to this choice, the battery to this option: the inner search.
       const Mission sub = SubMission(m, cat, outer, pr, e, jb);
       SearchResult r = FreeGroupCount(sub) > 1 ? JointSearch(sub, cat, inner_opt, nth(), cache)
                                                : SearchOneGroup(sub, cat, inner_opt, nth(), cache);
-      Merge(std::move(r), opt.top_n, &out);
+      const bool inner_stopped = r.interrupted;
+      const double inner_bound = r.unsettled_bound_score;
+      Merge(std::move(r), &top, &out);
+      if (inner_stopped) {  // the rest of this choice, the pair's later choices (sorted), later pairs
+        stop(i, std::min(inner_bound, k + 1 < triples.size() ? triples[k + 1].first : kInf), later);
+      }
     }
+    if (out.interrupted) break;
   }
-  progress(pairs.size());
-  out.pruned = out.combinations - out.searched;
+  if (!out.interrupted) progress(pairs.size());
+  out.best = top.Sorted();
+  out.nth_best_score = top.Threshold();
+  out.pruned = out.combinations - out.searched - out.unsettled;
   out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return out;
 }

@@ -18,6 +18,24 @@
 
 namespace dynosize {
 
+double DisplayObjective(const Mission& m, double objective) {
+  switch (m.objective.type) {
+    case ObjectiveType::kMaxEndurance: return objective / 60.0;
+    case ObjectiveType::kMinEnergy: return objective;
+    case ObjectiveType::kMaxEfficiency: return 100.0 * objective;
+  }
+  return objective;
+}
+
+const char* DisplayUnit(const Mission& m) {
+  switch (m.objective.type) {
+    case ObjectiveType::kMaxEndurance: return " min";
+    case ObjectiveType::kMinEnergy: return " Wh";
+    case ObjectiveType::kMaxEfficiency: return " %";
+  }
+  return "";
+}
+
 namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
@@ -31,15 +49,7 @@ std::string ObjectiveLabel(const Mission& m) {
   return "objective";
 }
 
-// The objective in the unit of the figures and text (minutes, Wh, %).
-double Display(const Mission& m, double objective) {
-  switch (m.objective.type) {
-    case ObjectiveType::kMaxEndurance: return objective / 60.0;
-    case ObjectiveType::kMinEnergy: return objective;
-    case ObjectiveType::kMaxEfficiency: return 100.0 * objective;
-  }
-  return objective;
-}
+double Display(const Mission& m, double objective) { return DisplayObjective(m, objective); }
 
 // "Name (id)" for a figure title; the id alone when the entry has no name.
 std::string PartName(const EntryBase& e) {
@@ -72,9 +82,7 @@ std::string CredibilityText(const Mission& m, const MissionResult& r) {
   const ObjectiveRange& g = r.range;
   if (!g.computed) return "";
   const bool credible = m.objective.ranking != DataScenario::kAsGiven;
-  const char* unit = m.objective.type == ObjectiveType::kMaxEndurance ? " min"
-                     : m.objective.type == ObjectiveType::kMinEnergy  ? " Wh"
-                                                                      : " %";
+  const char* unit = DisplayUnit(m);
   std::ostringstream o;
   const auto end = [&](bool flies, double v) { return flies ? FixedText(Display(m, v), 2) : std::string("(cannot fly)"); };
   o << "  " << (credible ? "credible " : "data as given: ");
@@ -299,6 +307,134 @@ std::string MissionResultText(const Mission& m, const Combination& c, const Miss
   for (const std::string& w : r.warnings) o << "  warning: " << w << "\n";
   if (!r.solver.empty()) o << "  continuous variables: " << r.solver << "\n";
   return o.str();
+}
+
+std::vector<std::vector<int>> IndistinguishableRanks(const SearchResult& s) {
+  std::vector<std::vector<int>> out(s.best.size());
+  for (std::size_t i = 0; i < s.best.size(); ++i) {
+    for (std::size_t j = 0; j < s.best.size(); ++j) {
+      const ObjectiveRange& a = s.best[i].result.range;
+      const ObjectiveRange& b = s.best[j].result.range;
+      // Closed ranges (low <= high, credibility.h) overlap when neither lies wholly below the other.
+      if (i != j && a.computed && b.computed && !(a.high < b.low) && !(b.high < a.low)) {
+        out[i].push_back(static_cast<int>(j) + 1);
+      }
+    }
+  }
+  return out;
+}
+
+namespace {
+
+// "ESC e" or "lift ESC e, cruise ESC f" (the groups whose ESC differs from the result's), then the pack.
+std::string AlternativeParts(const Mission& m, const Combination& best, const Alternative& a) {
+  std::string out;
+  for (int g = 0; g < std::max(1, GroupCount(m)); ++g) {
+    const EscEntry* e = a.combination.Parts(g).esc;
+    if (e == best.Parts(g).esc) continue;
+    out += (out.empty() ? "" : ", ") + (m.groups.empty() ? std::string() : m.groups[g].name + " ") + "ESC " + e->id;
+  }
+  if (a.combination.battery != best.battery || a.combination.cells != best.cells) {
+    out += (out.empty() ? "" : ", ") + std::to_string(a.combination.cells) + "S " + a.combination.battery->id;
+  }
+  if (out.empty()) out = "the same parts";
+  return out + " (" + FixedText(a.capacity_ah, 2) + " Ah)";
+}
+
+}  // namespace
+
+std::string AlternativesText(const Mission& m, const RankedCombination& r, const std::vector<int>& tied) {
+  constexpr std::size_t kListed = 5;  // in the text; JSON lists them all
+  std::ostringstream o;
+  if (!r.alternatives.empty()) {
+    o << "  other ESCs and packs of this design (" << r.alternatives.size() << "):";
+    for (std::size_t k = 0; k < r.alternatives.size() && k < kListed; ++k) {
+      const Alternative& a = r.alternatives[k];
+      o << (k ? "; " : " ") << AlternativeParts(m, r.combination, a) << " "
+        << FixedText(DisplayObjective(m, a.objective), 2) << DisplayUnit(m);
+    }
+    if (r.alternatives.size() > kListed) o << "; and " << r.alternatives.size() - kListed << " more (--json lists them)";
+    o << "\n";
+  }
+  if (!tied.empty()) {
+    o << "  not distinguishable on the data from";
+    for (std::size_t k = 0; k < tied.size(); ++k) o << (k ? ", #" : " #") << tied[k];
+    o << ": their objective ranges overlap this one's\n";
+  }
+  return o.str();
+}
+
+std::string InterruptedText(const Mission& m, const SearchResult& s, int top_n) {
+  if (!s.interrupted) return "";
+  std::ostringstream o;
+  const char* unit = DisplayUnit(m);
+  const bool larger_better = m.objective.type != ObjectiveType::kMinEnergy;
+  o << "interrupted after " << FixedText(s.seconds, 2) << " s: the best found so far, not proven the best ("
+    << s.unsettled << " combinations not yet settled)\n";
+  if (!std::isfinite(s.unsettled_bound_score)) {
+    o << "bound gap: unknown (the objective " << ObjectiveTypeName(m.objective.type)
+      << " has no bound on what is left)\n";
+    return o.str();
+  }
+  const double bound = DisplayObjective(m, ObjectiveOfScore(m.objective.type, s.unsettled_bound_score));
+  o << "bound gap: nothing left unsettled can " << (larger_better ? "exceed " : "go below ") << FixedText(bound, 2)
+    << unit;
+  if (std::isfinite(s.nth_best_score)) {
+    const double nth = DisplayObjective(m, ObjectiveOfScore(m.objective.type, s.nth_best_score));
+    o << "; the " << top_n << (top_n == 1 ? "st" : top_n == 2 ? "nd" : top_n == 3 ? "rd" : "th") << " best found is "
+      << FixedText(nth, 2) << unit << " (gap " << FixedText(std::fabs(bound - nth), 2) << unit << ")";
+  } else {
+    o << "; fewer than " << top_n << " results found so far";
+  }
+  o << "\n";
+  return o.str();
+}
+
+Json SearchResultJson(const Mission& m, const SearchResult& s) {
+  Json j;
+  Json results = Json::array();
+  const std::vector<std::vector<int>> tied = IndistinguishableRanks(s);
+  for (std::size_t i = 0; i < s.best.size(); ++i) {
+    const RankedCombination& b = s.best[i];
+    Json r = MissionResultJson(m, b.combination, b.result);
+    Json alt = Json::array();
+    for (const Alternative& a : b.alternatives) {
+      Json x = {{"battery", a.combination.battery->id}, {"cells", a.combination.cells},
+                {"capacity_ah", a.capacity_ah}, {"objective", a.objective}};
+      if (m.groups.empty()) {
+        x["esc"] = a.combination.esc->id;
+      } else {
+        Json g = Json::object();
+        for (int k = 0; k < GroupCount(m); ++k) g[m.groups[k].name] = a.combination.Parts(k).esc->id;
+        x["esc"] = g;
+      }
+      alt.push_back(x);
+    }
+    r["alternatives"] = alt;
+    r["indistinguishable_from"] = tied[i];
+    results.push_back(r);
+  }
+  j["results"] = results;
+  j["interrupted"] = s.interrupted;
+  if (s.interrupted) {
+    const auto value = [&](double score) {
+      return std::isfinite(score) ? Json(ObjectiveOfScore(m.objective.type, score)) : Json(nullptr);
+    };
+    const bool both = std::isfinite(s.unsettled_bound_score) && std::isfinite(s.nth_best_score);
+    j["bound_gap"] = {{"unsettled_bound", value(s.unsettled_bound_score)},
+                      {"nth_best", value(s.nth_best_score)},
+                      {"gap", both ? Json(std::fabs(s.nth_best_score - s.unsettled_bound_score)) : Json(nullptr)}};
+  }
+  j["searched"] = s.searched;
+  j["pruned"] = s.pruned;
+  j["unsettled"] = s.unsettled;
+  j["combinations"] = s.combinations;
+  Json by = Json::object();
+  for (const auto& [rule, n] : s.pruned_by) by[rule] = n;
+  j["pruned_by"] = by;
+  j["seconds"] = s.seconds;
+  if (!s.relaxed_constraint.empty()) j["relaxed_constraint"] = s.relaxed_constraint;
+  return j;
 }
 
 std::string WriteParetoFigure(const Mission& m, const SearchResult& s, const std::string& dir) {
