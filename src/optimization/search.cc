@@ -2138,7 +2138,11 @@ void BranchAndBound::Run() {
     const TopScores top = board_.scores();
     std::size_t end = ci;
     while (end - ci < chunk && CandidateAt(end) && CandidateAt(end)->bound < threshold) ++end;
-    chunk = std::min(kMaxChunk, 2 * chunk);
+    // Distinct designs: a pair is one design, so its own results cannot tighten its threshold
+    // (TopScores): while fewer than N designs are known every ESC of a chunk's pairs is scored,
+    // so the chunks stay small until the threshold is finite (the capacity-sized quadcopter:
+    // 28 s before its first threshold with growing chunks).
+    chunk = opt_.distinct_designs && !std::isfinite(threshold) ? chunk : std::min(kMaxChunk, 2 * chunk);
     if (end == ci) {  // R4: every later candidate has a bound at least as bad
       // Those never drawn and those drawn for the next chunk (the stream draws ahead).
       long long undrawn = stream_.open_combinations();
