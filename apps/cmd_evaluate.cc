@@ -142,22 +142,27 @@ std::string Elapsed(double s) {
 }
 
 // Progress on a terminal's stderr only (never with --json or --quiet, never into a pipe or a
-// file), and only once the search has run for a second: the elapsed time, the share of the
-// bound gap closed (search.h, SearchProgress) and the best so far in the unit the result prints.
-std::function<void(const SearchProgress&)> ProgressLine(const Mission& mission, bool* shown) {
+// file), and only once the search has run for a second: the elapsed time, the share of the work
+// done (search.h, SearchProgress) and the best so far in the unit the result prints.
+std::function<void(const SearchProgress&)> ProgressLine(const Mission& mission, const OptimizeOptions& o,
+                                                       bool* shown) {
   const auto t0 = std::chrono::steady_clock::now();
-  return [&mission, shown, t0](const SearchProgress& p) {
+  const std::string what = o.variants ? " combinations" : " designs";
+  const int top = o.top;
+  return [&mission, shown, t0, what, top](const SearchProgress& p) {
     const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     if (elapsed < 1.0) return;
     *shown = true;
     std::ostringstream line;
-    line << "\r" << Elapsed(elapsed) << ": " << std::setw(3) << static_cast<int>(100 * p.fraction)
-         << " % of the bound gap closed, " << p.searched << " evaluated";
+    line << "\r" << Elapsed(elapsed) << ": " << std::setw(3) << static_cast<int>(100 * p.fraction) << " % done";
+    // Until N are known the work left is not (SearchProgress::fraction).
+    if (p.found < top && p.fraction < 1.0) line << " (finding the first " << top << what << ": " << p.found << ")";
+    line << ", " << p.searched << " evaluated";
     if (p.has_best) {
       line << ", best " << std::fixed << std::setprecision(2) << DisplayObjective(mission, p.best_objective)
            << DisplayUnit(mission);
     }
-    line << " (Ctrl-C: stop with the best so far)";
+    line << "; Ctrl-C stops with the best so far";
     std::string text = line.str();
     if (text.size() < 79) text += std::string(79 - text.size(), ' ');
     std::cerr << text << std::flush;
@@ -229,7 +234,7 @@ int RunOptimize(const OptimizeOptions& o) {
   const Mission mission = ReadMission(o.mission);
   const Catalog cat = Catalog::Load(o.catalog_dir);
   bool shown = false;
-  if (!o.json && !o.quiet && isatty(fileno(stderr))) so.progress = ProgressLine(mission, &shown);
+  if (!o.json && !o.quiet && isatty(fileno(stderr))) so.progress = ProgressLine(mission, o, &shown);
   const SearchResult s = SearchCatalog(mission, cat, so);
   if (shown) std::cerr << "\r" << std::string(79, ' ') << "\r" << std::flush;
   if (o.stats) {

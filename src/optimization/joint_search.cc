@@ -812,6 +812,7 @@ SearchResult JointSearch(const Mission& m, const Catalog& cat, const SearchOptio
     for (const auto& [rule, n] : out.pruned_by) AddCount(&p.pruned, n);
     p.pruned = std::min(p.pruned, out.combinations - out.searched);
     p.has_best = !top.empty();
+    p.found = top.size();
     p.best_objective = top.best_objective();
     opt.progress(p);
   };

@@ -23,13 +23,14 @@ namespace dynosize {
 
 // What the search has done so far, for a progress display.
 struct SearchProgress {
-  // How far the search has got, 0..1: the share of the bound gap closed (search.cc, Run:
-  // from the least bound of the candidates at the start to the N-th best so far, how far the
-  // least bound of the candidates not yet settled has risen); 1 when the search is done.
+  // How far the search has got, 0..1: the candidate pairs drawn against those drawn plus an
+  // upper bound of those still to draw below the N-th best so far (search.cc, ReportProgress;
+  // the joint search: its outer pairs); 1 when the search is done.
   double fraction = 0.0;
   long long searched = 0;     // combinations evaluated exactly so far
   long long pruned = 0;       // combinations removed by a rule so far
   bool has_best = false;
+  int found = 0;              // of the top N so far (the fraction stays near 0 until all N are)
   double best_objective = 0;  // the best result's objective (its unit: the mission's)
 };
 

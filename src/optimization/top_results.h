@@ -58,6 +58,7 @@ class TopResults {
   double Threshold() const { return scores_.Threshold(); }
   const TopScores& scores() const { return scores_; }
   bool empty() const { return best_.empty(); }
+  int size() const { return static_cast<int>(best_.size()); }
   // The best result's objective (objective_unit), for progress; 0 when empty.
   double best_objective() const;
   // A feasible result (with the alternatives it carries, from an inner search); dropped when it
