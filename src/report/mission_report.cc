@@ -107,6 +107,36 @@ std::string CredibilityText(const Mission& m, const MissionResult& r) {
   return o.str();
 }
 
+// The widths of the segment table's name and group columns: each segment's whole name (names
+// never run together) and its group's.
+struct SegmentColumns {
+  int name = 7, group = 5;  // "segment", "group"
+};
+SegmentColumns SegmentColumnsOf(const Mission& m, const MissionResult& r) {
+  SegmentColumns c;
+  for (const SegmentResult& s : r.segments) {
+    c.name = std::max(c.name, static_cast<int>(s.name.size()));
+    if (!m.groups.empty()) c.group = std::max(c.group, static_cast<int>(m.groups[s.group].name.size()));
+  }
+  return c;
+}
+
+// Two header lines: what the columns hold, then their names (widths as the rows').
+std::string SegmentTableHeader(const Mission& m, const MissionResult& r) {
+  const SegmentColumns c = SegmentColumnsOf(m, r);
+  std::ostringstream o;
+  o << "  each segment at its end (the worst case: lowest voltage, highest throttle); throttle: the command;"
+       " effective: the throttle the ESC delivers (less above its saturation knee);"
+       " efficiencies eta: motor, ESC, motor and ESC together\n";
+  o << "  " << std::left << std::setw(c.name) << "segment";
+  if (!m.groups.empty()) o << "  " << std::setw(c.group) << "group";
+  o << "  " << std::setw(6) << "type" << std::right << std::setw(7) << "s" << std::setw(8) << "rpm" << std::setw(12)
+    << "throttle %" << std::setw(13) << "effective %" << std::setw(11) << "torque N*m" << std::setw(8) << "Irms A"
+    << std::setw(7) << "IDC A" << std::setw(8) << "VDC V" << std::setw(8) << "PDC W" << std::setw(8) << "PESC W"
+    << std::setw(9) << "eta_mot" << std::setw(9) << "eta_esc" << std::setw(9) << "eta_sys" << "  limit\n";
+  return o.str();
+}
+
 }  // namespace
 
 Json MissionResultJson(const Mission& m, const Combination& c, const MissionResult& r) {
@@ -271,18 +301,20 @@ std::string MissionResultText(const Mission& m, const Combination& c, const Miss
     o << "; winding up to " << FixedText(d.winding_temp_max_c, 0) << " C\n";
   }
   o << CredibilityText(m, r);
-  o << "  segment (point: end, worst case)   s     rpm  thr %  eff %  torque N*m  Irms A  IDC A   VDC V   PDC W  PESC W  eta_m  eta_e  eta_s  limit\n";
+  o << SegmentTableHeader(m, r);
+  const SegmentColumns cols = SegmentColumnsOf(m, r);
   for (const SegmentResult& s : r.segments) {
     const Gear& gear = c.Parts(s.group).motor->gear;
     const OperatingPoint p = MotorSidePoint(s.point, gear);  // the motor's shaft (model/gear.h)
-    o << "  " << std::left << std::setw(12) << (s.name + (m.groups.empty() ? "" : "/" + m.groups[s.group].name)).substr(0, 12) << std::setw(7)
-      << SegmentTypeName(s.type) << std::right << std::setw(10) << FixedText(s.duration_s, 0)
-      << std::setw(8) << FixedText(p.rpm, 0) << std::setw(7) << FixedText(100 * p.throttle, 1)
-      << std::setw(7) << FixedText(100 * p.throttle_effective, 1) << std::setw(12)
+    o << "  " << std::left << std::setw(cols.name) << s.name;
+    if (!m.groups.empty()) o << "  " << std::setw(cols.group) << m.groups[s.group].name;
+    o << "  " << std::setw(6) << SegmentTypeName(s.type) << std::right << std::setw(7) << FixedText(s.duration_s, 0)
+      << std::setw(8) << FixedText(p.rpm, 0) << std::setw(12) << FixedText(100 * p.throttle, 1)
+      << std::setw(13) << FixedText(100 * p.throttle_effective, 1) << std::setw(11)
       << FixedText(p.torque_nm, 5) << std::setw(8) << FixedText(p.irms_a, 2) << std::setw(7)
       << FixedText(p.idc_a, 2) << std::setw(8) << FixedText(p.vdc_v, 3) << std::setw(8)
-      << FixedText(p.pdc_w, 1) << std::setw(8) << FixedText(p.pesc_w, 2) << std::setw(7)
-      << FixedText(p.eta_motor, 3) << std::setw(7) << FixedText(p.eta_esc, 3) << std::setw(7)
+      << FixedText(p.pdc_w, 1) << std::setw(8) << FixedText(p.pesc_w, 2) << std::setw(9)
+      << FixedText(p.eta_motor, 3) << std::setw(9) << FixedText(p.eta_esc, 3) << std::setw(9)
       << FixedText(p.eta_system, 3) << "  " << (s.active_limit.empty() ? "-" : s.active_limit) << "\n";
     o << "      over the segment: VDC " << FixedText(s.vdc_max_v, 2) << " -> " << FixedText(s.vdc_min_v, 2)
       << " V, throttle " << FixedText(100 * s.throttle_min, 1) << "-" << FixedText(100 * s.throttle_max, 1)
@@ -326,19 +358,20 @@ std::vector<std::vector<int>> IndistinguishableRanks(const SearchResult& s) {
 
 namespace {
 
-// "ESC e" or "lift ESC e, cruise ESC f" (the groups whose ESC differs from the result's), then the pack.
-std::string AlternativeParts(const Mission& m, const Combination& best, const Alternative& a) {
+// "ESC e" or "lift ESC e, cruise ESC f" (the groups whose ESC differs from the result's), then the
+// pack when it differs (entry, cells or the capacity flown).
+std::string AlternativeParts(const Mission& m, const Combination& best, double best_capacity_ah, const Alternative& a) {
   std::string out;
   for (int g = 0; g < std::max(1, GroupCount(m)); ++g) {
     const EscEntry* e = a.combination.Parts(g).esc;
     if (e == best.Parts(g).esc) continue;
     out += (out.empty() ? "" : ", ") + (m.groups.empty() ? std::string() : m.groups[g].name + " ") + "ESC " + e->id;
   }
-  if (a.combination.battery != best.battery || a.combination.cells != best.cells) {
-    out += (out.empty() ? "" : ", ") + std::to_string(a.combination.cells) + "S " + a.combination.battery->id;
+  if (a.combination.battery != best.battery || a.combination.cells != best.cells || a.capacity_ah != best_capacity_ah) {
+    out += (out.empty() ? "" : ", ") + std::to_string(a.combination.cells) + "S " + a.combination.battery->id + " (" +
+           FixedText(a.capacity_ah, 2) + " Ah)";
   }
-  if (out.empty()) out = "the same parts";
-  return out + " (" + FixedText(a.capacity_ah, 2) + " Ah)";
+  return out.empty() ? "the same parts" : out;
 }
 
 }  // namespace
@@ -350,7 +383,7 @@ std::string AlternativesText(const Mission& m, const RankedCombination& r, const
     o << "  other ESCs and packs of this design (" << r.alternatives.size() << "):";
     for (std::size_t k = 0; k < r.alternatives.size() && k < kListed; ++k) {
       const Alternative& a = r.alternatives[k];
-      o << (k ? "; " : " ") << AlternativeParts(m, r.combination, a) << " "
+      o << (k ? "; " : " ") << AlternativeParts(m, r.combination, r.result.capacity_ah, a) << " "
         << FixedText(DisplayObjective(m, a.objective), 2) << DisplayUnit(m);
     }
     if (r.alternatives.size() > kListed) o << "; and " << r.alternatives.size() - kListed << " more (--json lists them)";
