@@ -6,6 +6,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <sstream>
 #include <string>
 
 #include "cli_runner.h"
@@ -106,6 +107,33 @@ TEST(OptimizeCli, DistinctDesignsByDefaultAndVariantsOnRequest) {
   EXPECT_EQ(jv["results"][1]["prop"], jv["results"][0]["prop"]);
   EXPECT_FALSE(jd["results"][0]["alternatives"].empty());
   EXPECT_EQ(jd["interrupted"], false);
+}
+
+// Item 6: with groups every segment row starts with its whole name and its group (the old table
+// cut "name/group" at 12 characters: "cruise/cruiscruise"), under headers that say what they hold.
+TEST(OptimizeCli, SegmentTableNamesEachSegmentAndItsGroup) {
+  const CliRun r = RunCli("evaluate " + kSource + "/examples/missions/evtol_lift_cruise.json --pick "
+                          "lift=dc_m_334,dc_e_145,dc_p_318 --battery dc_b_361 --cells 6");
+  ASSERT_EQ(r.code, 0) << r.err;
+  const Json m = ReadJsonFile(kSource + "/examples/missions/evtol_lift_cruise.json");
+  for (const std::string h : {"throttle %", "effective %", "eta_mot", "eta_esc", "eta_sys", "group"}) {
+    EXPECT_NE(r.out.find(h), std::string::npos) << h;
+  }
+  EXPECT_EQ(r.out.find("eff %"), std::string::npos);
+  int rows = 0;
+  for (const Json& sg : m["segments"]) {
+    const std::string name = sg["name"], group = sg["group"];
+    std::string row = "\n  " + name + " ";
+    const auto at = r.out.find(row);
+    ASSERT_NE(at, std::string::npos) << name << "\n" << r.out;
+    std::istringstream fields(r.out.substr(at + 1, r.out.find('\n', at + 1) - at - 1));
+    std::string first, second;
+    fields >> first >> second;
+    EXPECT_EQ(first, name);
+    EXPECT_EQ(second, group) << name;
+    ++rows;
+  }
+  EXPECT_GE(rows, 4);
 }
 
 }  // namespace
