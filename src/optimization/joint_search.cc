@@ -732,6 +732,29 @@ std::vector<OuterPair> OuterPairs(const Catalog& cat, JointBounds* jb, long long
   return pairs;
 }
 
+// The progress of the outer loop before pair `done` (SearchProgress): the share of the work, the
+// inner searches' counts so far and the best so far.
+void ReportProgress(const SearchOptions& opt, const std::vector<OuterPair>& pairs, std::size_t done,
+                    const TopResults& top, const SearchResult& out) {
+  if (!opt.progress) return;
+  SearchProgress p;
+  // As the one-group search's (search.cc, ReportProgress): the outer pairs taken against those
+  // taken plus those left below the N-th best (they are sorted by bound).
+  const double t = top.Threshold();
+  const auto below = std::partition_point(pairs.begin(), pairs.end(), [t](const OuterPair& x) { return x.bound < t; });
+  const double left = static_cast<double>(std::max<std::ptrdiff_t>(0, (below - pairs.begin()) - static_cast<std::ptrdiff_t>(done)));
+  p.fraction = left == 0 ? 1.0 : static_cast<double>(done) / (static_cast<double>(done) + left);
+  p.searched = out.searched;
+  // The rules' counts overlap (an ESC over its voltage rating on a pair R0 removes is counted
+  // by both, as in the one-group search): held to what is not yet searched.
+  for (const auto& [rule, n] : out.pruned_by) AddCount(&p.pruned, n);
+  p.pruned = std::min(p.pruned, out.combinations - out.searched);
+  p.has_best = !top.empty();
+  p.found = top.size();
+  p.best_objective = top.best_objective();
+  opt.progress(p);
+}
+
 // m with the outer group fixed to (pair's motor, ESC esc, pair's propeller) and the battery to
 // the pair's option.
 Mission SubMission(const Mission& m, const Catalog& cat, int outer, const OuterPair& pr, int esc,
@@ -793,29 +816,7 @@ SearchResult JointSearch(const Mission& m, const Catalog& cat, const SearchOptio
     AddCount(&out.unsettled, left);
     AddCount(&out.unsettled, SaturatingProduct({static_cast<long long>(pairs.size() - i - 1), n_esc, block}));
   };
-  auto progress = [&](std::size_t done) {
-    if (!opt.progress) return;
-    SearchProgress p;
-    // The share of the bound gap closed (as the one-group search's, search.cc), over the outer pairs.
-    const double first = pairs.empty() ? 0.0 : pairs.front().bound;
-    const double t = nth();
-    if (done >= pairs.size() || !(pairs[done].bound < t)) {
-      p.fraction = 1.0;
-    } else if (std::isfinite(first) && std::isfinite(t) && t > first) {
-      p.fraction = std::clamp((pairs[done].bound - first) / (t - first), 0.0, 1.0);
-    } else {
-      p.fraction = static_cast<double>(done) / static_cast<double>(pairs.size());
-    }
-    p.searched = out.searched;
-    // The rules' counts overlap (an ESC over its voltage rating on a pair R0 removes is counted
-    // by both, as in the one-group search): held to what is not yet searched.
-    for (const auto& [rule, n] : out.pruned_by) AddCount(&p.pruned, n);
-    p.pruned = std::min(p.pruned, out.combinations - out.searched);
-    p.has_best = !top.empty();
-    p.found = top.size();
-    p.best_objective = top.best_objective();
-    opt.progress(p);
-  };
+  auto progress = [&](std::size_t done) { ReportProgress(opt, pairs, done, top, out); };
   const auto& escs = cat.escs();
   std::vector<std::pair<double, int>> triples, class_triples;
   // The virtual ESC (below) only with two free groups (the inner search is the one-group search)
