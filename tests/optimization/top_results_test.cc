@@ -314,5 +314,32 @@ TEST_F(TopResultsTest, StoppedJointSearchStopsItsInnerSearchesToo) {
   EXPECT_GT(stopped, 0);
 }
 
+// Distinct designs keep search.h's promise: the answer and the counts do not depend on the threads.
+TEST(TopResultsThreadsTest, DistinctDesignsDoNotDependOnTheThreads) {
+  const Catalog cat = Catalog::Load(std::string(DYNOSIZE_SOURCE_DIR) + "/catalog");
+  const Mission m = ReadMission(std::string(DYNOSIZE_SOURCE_DIR) + "/examples/missions/quadcopter_1p5kg.json");
+  SearchResult r[2];
+  for (int t = 0; t < 2; ++t) {
+    SearchOptions o;
+    o.top_n = 3;
+    o.threads = t + 1;
+    o.distinct_designs = true;
+    r[t] = SearchCatalog(m, cat, o);
+  }
+  ASSERT_EQ(r[0].best.size(), 3u);
+  ASSERT_EQ(r[1].best.size(), 3u);
+  for (std::size_t i = 0; i < 3; ++i) {
+    EXPECT_EQ(FullName(r[0].best[i].combination), FullName(r[1].best[i].combination)) << i;
+    EXPECT_EQ(r[0].best[i].result.score, r[1].best[i].result.score) << i;
+    ASSERT_EQ(r[0].best[i].alternatives.size(), r[1].best[i].alternatives.size()) << i;
+    for (std::size_t k = 0; k < r[0].best[i].alternatives.size(); ++k) {
+      EXPECT_EQ(FullName(r[0].best[i].alternatives[k].combination), FullName(r[1].best[i].alternatives[k].combination));
+    }
+    for (std::size_t k = 0; k < i; ++k) EXPECT_NE(DesignName(r[0].best[i].combination), DesignName(r[0].best[k].combination));
+  }
+  EXPECT_EQ(r[0].pruned_by, r[1].pruned_by);
+  EXPECT_EQ(r[0].searched, r[1].searched);
+}
+
 }  // namespace
 }  // namespace dynosize::search_internal
