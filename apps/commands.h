@@ -3,6 +3,7 @@
 // exit code, throwing dynosize::Error for bad input (mapped to its exit code by main).
 #pragma once
 
+#include <limits>
 #include <optional>
 #include <string>
 #include <vector>
@@ -166,6 +167,10 @@ struct OptimizeOptions {
   int threads = 2;     // SearchOptions::threads
   bool stats = false;  // where the time went (candidate pairs, virtual-ESC evaluations) on stderr
   std::string plot_dir;
+  bool variants = false;  // every combination on its own (not SearchOptions::distinct_designs)
+  // Stop the search after this many seconds with the best so far (+inf: no limit; 0, < 0 or
+  // NaN: a usage error).
+  double time_limit_s = std::numeric_limits<double>::infinity();
 };
 int RunOptimize(const OptimizeOptions& o);
 

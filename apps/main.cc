@@ -1,8 +1,8 @@
 // dynosize command-line front end: parses flags (CLI11, only here) and calls apps/commands.h.
 //
 // Exit codes (see README): 0 ok, 64 usage, 65 bad input data, 66 missing input, 70 internal
-// error, 73 cannot create output. Results go to stdout, messages to stderr; with --json stdout
-// is exactly one JSON document.
+// error, 73 cannot create output, 130 optimize stopped by SIGINT (its best so far printed).
+// Results go to stdout, messages to stderr; with --json stdout is exactly one JSON document.
 #include <CLI/CLI.hpp>
 
 #include <cstdio>
@@ -236,6 +236,11 @@ CLI::App* AddOptimizeCommand(CLI::App& app, cli::OptimizeOptions& optim) {
   optimize->add_option("--threads", optim.threads, "worker threads (the answer does not depend on it)")
       ->check(CLI::Range(1, 64));
   optimize->add_flag("--stats", optim.stats, "print where the search's time went on stderr");
+  optimize->add_flag("--variants", optim.variants,
+                     "list every combination on its own (default: each result a different motor and propeller "
+                     "per group, its other ESCs and packs listed inside it)");
+  optimize->add_option("--time-limit", optim.time_limit_s,
+                       "stop after S seconds and print the best found so far (marked interrupted; > 0)");
   optimize->add_option("--plot", optim.plot_dir,
                        "write the Pareto front and the top pick's efficiency maps here");
   return optimize;

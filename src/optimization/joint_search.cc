@@ -17,6 +17,7 @@
 #include "model/physics.h"
 #include "optimization/components.h"
 #include "optimization/credibility.h"
+#include "optimization/top_results.h"
 
 namespace dynosize {
 
@@ -670,8 +671,8 @@ double JointBounds::TripleBound(int motor, int esc, int prop, std::size_t o, con
 
 namespace {
 
-// Appends an inner search's results and counts to *out, keeping the top N.
-void Merge(SearchResult&& r, int top_n, SearchResult* out) {
+// Appends an inner search's results and counts to *out, its results to the top N (`top`).
+void Merge(SearchResult&& r, TopResults* top, SearchResult* out) {
   out->searched += r.searched;
   for (const auto& [rule, n] : r.pruned_by) AddCount(&out->pruned_by[rule], n);
   out->evaluated_mass_objective.insert(out->evaluated_mass_objective.end(), r.evaluated_mass_objective.begin(),
@@ -680,13 +681,8 @@ void Merge(SearchResult&& r, int top_n, SearchResult* out) {
   out->candidate_seconds += r.candidate_seconds;
   out->virtual_evaluations += r.virtual_evaluations;
   out->candidate_batches += r.candidate_batches;
-  for (RankedCombination& b : r.best) {
-    if (static_cast<int>(out->best.size()) >= top_n && !(b.result.score < out->best.back().result.score)) continue;
-    auto pos = std::upper_bound(out->best.begin(), out->best.end(), b.result.score,
-                                [](double s, const RankedCombination& x) { return s < x.result.score; });
-    out->best.insert(pos, std::move(b));
-    if (static_cast<int>(out->best.size()) > top_n) out->best.pop_back();
-  }
+  AddCount(&out->unsettled, r.unsettled);
+  for (RankedCombination& b : r.best) top->Add(std::move(b));
 }
 
 struct OuterPair {
@@ -743,6 +739,29 @@ std::vector<OuterPair> OuterPairs(const Catalog& cat, JointBounds* jb, long long
   return pairs;
 }
 
+// The progress of the outer loop before pair `done` (SearchProgress): the share of the work, the
+// inner searches' counts so far and the best so far.
+void ReportProgress(const SearchOptions& opt, const std::vector<OuterPair>& pairs, std::size_t done,
+                    const TopResults& top, const SearchResult& out) {
+  if (!opt.progress) return;
+  SearchProgress p;
+  // As the one-group search's (search.cc, ReportProgress): the outer pairs taken against those
+  // taken plus those left below the N-th best (they are sorted by bound).
+  const double t = top.Threshold();
+  const auto below = std::partition_point(pairs.begin(), pairs.end(), [t](const OuterPair& x) { return x.bound < t; });
+  const double left = static_cast<double>(std::max<std::ptrdiff_t>(0, (below - pairs.begin()) - static_cast<std::ptrdiff_t>(done)));
+  p.fraction = left == 0 ? 1.0 : static_cast<double>(done) / (static_cast<double>(done) + left);
+  p.searched = out.searched;
+  // The rules' counts overlap (an ESC over its voltage rating on a pair R0 removes is counted
+  // by both, as in the one-group search): held to what is not yet searched.
+  for (const auto& [rule, n] : out.pruned_by) AddCount(&p.pruned, n);
+  p.pruned = std::min(p.pruned, out.combinations - out.searched);
+  p.has_best = !top.empty();
+  p.found = top.size();
+  p.best_objective = top.best_objective();
+  opt.progress(p);
+}
+
 // m with the outer group fixed to (pair's motor, ESC esc, pair's propeller) and the battery to
 // the pair's option.
 Mission SubMission(const Mission& m, const Catalog& cat, int outer, const OuterPair& pr, int esc,
@@ -777,7 +796,7 @@ template <typename NthBest>
 long long SolveAgainstCompletions(const Mission& sub, const Catalog& cat, int outer, int e,
                                   const std::vector<RankedCombination>& completions,
                                   const std::vector<const PropModel*>& group_models, const PropGridCache& cache,
-                                  int top_n, const NthBest& nth, SearchResult* out) {
+                                  const NthBest& nth, TopResults* top, SearchResult* out) {
   long long solved = 0;
   for (const RankedCombination& done : completions) {
     const double cutoff = nth();
@@ -794,10 +813,7 @@ long long SolveAgainstCompletions(const Mission& sub, const Catalog& cat, int ou
     out->evaluated_mass_objective.emplace_back(res.propulsion_mass_kg, res.objective);
     if (!(res.score < cutoff)) continue;
     res = eval.Solve(cutoff);  // explained, as the inner search explains its top N (same numbers)
-    auto pos = std::upper_bound(out->best.begin(), out->best.end(), res.score,
-                                [](double s, const RankedCombination& x) { return s < x.result.score; });
-    out->best.insert(pos, RankedCombination{c, std::move(res)});
-    if (static_cast<int>(out->best.size()) > top_n) out->best.pop_back();
+    top->Add(RankedCombination{c, std::move(res), {}}, cutoff);
   }
   return solved;
 }
@@ -837,22 +853,9 @@ SearchResult JointSearch(const Mission& m, const Catalog& cat, const SearchOptio
   out.candidate_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   SearchOptions inner_opt = opt;
   inner_opt.progress = nullptr;
-  auto nth = [&]() {
-    return static_cast<int>(out.best.size()) < opt.top_n ? cutoff : std::min(cutoff, out.best.back().result.score);
-  };
-  auto progress = [&](std::size_t done) {
-    if (!opt.progress) return;
-    SearchProgress p;
-    p.fraction = pairs.empty() ? 1.0 : static_cast<double>(done) / static_cast<double>(pairs.size());
-    p.searched = out.searched;
-    // The rules' counts overlap (an ESC over its voltage rating on a pair R0 removes is counted
-    // by both, as in the one-group search): held to what is not yet searched.
-    for (const auto& [rule, n] : out.pruned_by) AddCount(&p.pruned, n);
-    p.pruned = std::min(p.pruned, out.combinations - out.searched);
-    p.has_best = !out.best.empty();
-    p.best_objective = p.has_best ? out.best.front().result.objective : 0.0;
-    opt.progress(p);
-  };
+  TopResults top(opt.top_n, opt.distinct_designs, cutoff);  // top_results.h
+  auto nth = [&]() { return top.Threshold(); };
+  auto progress = [&](std::size_t done) { ReportProgress(opt, pairs, done, top, out); };
   const auto& escs = cat.escs();
   std::vector<std::pair<double, int>> triples, class_triples;
   // The virtual ESC (below) only with two free groups (the inner search is the one-group search)
@@ -864,7 +867,13 @@ SearchResult JointSearch(const Mission& m, const Catalog& cat, const SearchOptio
     const Mission sub = SubMission(m, cat, outer, pr, e, jb);
     SearchResult r = FreeGroupCount(sub) > 1 ? JointSearch(sub, cat, inner_opt, nth(), cache)
                                              : SearchOneGroup(sub, cat, inner_opt, nth(), cache);
-    Merge(std::move(r), opt.top_n, &out);
+    const bool stopped = r.interrupted;
+    const double unsettled_bound = r.unsettled_bound_score;
+    Merge(std::move(r), &top, &out);
+    if (stopped) {
+      out.interrupted = true;
+      out.unsettled_bound_score = std::min(out.unsettled_bound_score, unsettled_bound);
+    }
   };
   Mission relaxed = m;
   relaxed.constraints.min_hover_throttle = 0.0;
@@ -883,6 +892,21 @@ SearchResult JointSearch(const Mission& m, const Catalog& cat, const SearchOptio
   };
   std::priority_queue<Queued, std::vector<Queued>, std::greater<>> tightened;
   std::size_t next = 0, taken = 0;
+  // Stopped (StopRequested, or an inner search stopped): everything left is unsettled; the item
+  // being taken has bound `bound` and `left` combinations not yet settled, the rest the
+  // queue's and the list's own bounds.
+  auto stop_all = [&](double bound, long long left) {
+    out.interrupted = true;
+    double least = bound;
+    if (next < pairs.size()) least = std::min(least, pairs[next].bound);
+    if (!tightened.empty()) least = std::min(least, tightened.top().bound);
+    out.unsettled_bound_score = std::min(out.unsettled_bound_score, least);
+    AddCount(&out.unsettled, left);
+    AddCount(&out.unsettled, SaturatingProduct({static_cast<long long>(pairs.size() - next), n_esc, block}));
+    for (; !tightened.empty(); tightened.pop()) {
+      AddCount(&out.unsettled, tightened.top().esc < 0 ? SaturatingProduct({n_esc, block}) : block);
+    }
+  };
   for (;;) {
     const bool from_list = next < pairs.size() && (tightened.empty() || pairs[next].bound < tightened.top().bound);
     if (!from_list && tightened.empty()) break;
@@ -893,6 +917,10 @@ SearchResult JointSearch(const Mission& m, const Catalog& cat, const SearchOptio
         AddCount(&left, tightened.top().esc < 0 ? SaturatingProduct({n_esc, block}) : block);
       }
       AddCount(&out.pruned_by["objective_bound"], left);
+      break;
+    }
+    if (StopRequested(opt)) {
+      stop_all(least, 0);
       break;
     }
     if (from_list) {
@@ -919,6 +947,10 @@ SearchResult JointSearch(const Mission& m, const Catalog& cat, const SearchOptio
     const OuterPair& pr = pairs[i];
     if (q.esc >= 0) {
       search_triple(pr, q.esc);
+      if (out.interrupted) {
+        stop_all(q.bound, block);
+        break;
+      }
       continue;
     }
     // The pair's ESCs: per class the bound with a zero-resistance ESC, then each ESC's own.
@@ -949,6 +981,7 @@ SearchResult JointSearch(const Mission& m, const Catalog& cat, const SearchOptio
         // search below has a cutoff (without one it would list every completion).
         search_triple(pr, class_triples.front().second);
         class_triples.erase(class_triples.begin());
+        if (out.interrupted) break;
       }
       if (class_triples.size() >= 2 && virtual_ok) {
         // R5 for the outer group: the class's virtual ESC (no resistance, the lightest of these
@@ -971,9 +1004,14 @@ SearchResult JointSearch(const Mission& m, const Catalog& cat, const SearchOptio
         // than kCompletionLimit of them (else the inner search per ESC below).
         SearchOptions all_opt = inner_opt;
         all_opt.top_n = kCompletionLimit;
+        all_opt.distinct_designs = false;  // every completion, not one per design
         const SearchResult r = SearchOneGroup(SubMission(relaxed, cat, outer, pr, class_triples.front().second, jb),
                                               cat, all_opt, nth(), cache, &given);
         out.virtual_evaluations += r.searched + r.virtual_evaluations;
+        if (r.interrupted) {  // the pair is left unsettled (below)
+          out.interrupted = true;
+          break;
+        }
         if (r.best.empty()) {
           AddCount(&out.pruned_by["objective_bound"], SaturatingProduct({static_cast<long long>(class_triples.size()), block}));
           continue;
@@ -985,24 +1023,35 @@ SearchResult JointSearch(const Mission& m, const Catalog& cat, const SearchOptio
         std::vector<const PropModel*> group_models(m.groups.size(), nullptr);
         group_models[static_cast<std::size_t>(outer)] = cache->models[static_cast<std::size_t>(pr.prop)].get();
         for (const auto& [tb, e] : class_triples) {
+          if (out.interrupted || StopRequested(opt)) {
+            out.interrupted = true;
+            break;
+          }
           if (!(tb < nth())) {
             AddCount(&out.pruned_by["objective_bound"], block);
           } else if (nth() <= complete_below) {
             const long long solved = SolveAgainstCompletions(SubMission(m, cat, outer, pr, e, jb), cat, outer, e, r.best,
-                                                             group_models, *cache, opt.top_n, nth, &out);
+                                                             group_models, *cache, nth, &top, &out);
             AddCount(&out.pruned_by["objective_bound"], block - std::min(block, solved));
           } else {
             search_triple(pr, e);
           }
         }
+        if (out.interrupted) break;
         continue;
       }
       triples.insert(triples.end(), class_triples.begin(), class_triples.end());
     }
+    if (out.interrupted) {  // stopped in this pair's inner searches: the rest of it is unsettled
+      stop_all(q.bound, SaturatingProduct({n_esc, block}));
+      break;
+    }
     for (const auto& [tb, e] : triples) tightened.push(Queued{std::max(tb, q.bound), i, e});
   }
-  progress(pairs.size());
-  out.pruned = out.combinations - out.searched;
+  if (!out.interrupted) progress(pairs.size());
+  out.best = top.Sorted();
+  out.nth_best_score = top.Threshold();
+  out.pruned = out.combinations - out.searched - out.unsettled;
   out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return out;
 }

@@ -669,6 +669,10 @@ void MissionEvaluator::FinishRun(const RunState& st, eval_internal::Tracker* tra
   if (!r.feasible) r.score = kInf;
 }
 
+double ObjectiveOfScore(ObjectiveType type, double score) {
+  return type == ObjectiveType::kMinEnergy ? score : -score;
+}
+
 // A Run stopped before segment `next`: everything Run has at that point (the segments before
 // `next` do not depend on the stretch, so WithEndurance flies them once per set of variables).
 struct MissionEvaluator::RunPrefix {

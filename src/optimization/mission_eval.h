@@ -176,6 +176,10 @@ struct StretchSlacks {
   }
 };
 
+// The objective (MissionResult::objective's unit) of a score (MissionResult::score: -objective for
+// max_*, objective for min_energy); infinities pass through with their sign turned as the score's.
+double ObjectiveOfScore(ObjectiveType type, double score);
+
 struct MissionResult {
   bool feasible = false;
   // Solve(cutoff_score) proved that the score cannot beat the cutoff and stopped early; the

@@ -7,7 +7,10 @@
 // tests/optimization/search_test.cc against exhaustive evaluation.
 #pragma once
 
+#include <atomic>
+#include <chrono>
 #include <functional>
+#include <limits>
 #include <map>
 #include <string>
 #include <vector>
@@ -20,11 +23,14 @@ namespace dynosize {
 
 // What the search has done so far, for a progress display.
 struct SearchProgress {
-  double fraction = 0.0;      // of the candidate pairs' combinations settled (drawn or removed); the
-                              // search usually stops well before 1 (an upper bound of the work left)
+  // How far the search has got, 0..1: the candidate pairs drawn against those drawn plus an
+  // upper bound of those still to draw below the N-th best so far (search.cc, ReportProgress;
+  // the joint search: its outer pairs); 1 when the search is done.
+  double fraction = 0.0;
   long long searched = 0;     // combinations evaluated exactly so far
   long long pruned = 0;       // combinations removed by a rule so far
   bool has_best = false;
+  int found = 0;              // of the top N so far (the fraction stays near 0 until all N are)
   double best_objective = 0;  // the best result's objective (its unit: the mission's)
 };
 
@@ -36,11 +42,34 @@ struct SearchOptions {
   int threads = 2;
   // Called now and then (between chunks of candidate pairs) with the search's state.
   std::function<void(const SearchProgress&)> progress;
+  // A stop request: the search stops between chunks of candidate pairs (the joint search also
+  // between its outer choices) once *stop is true or the deadline has passed, and returns the
+  // best found so far with SearchResult::interrupted set (null / time_point::max(): never).
+  // *stop may be set from another thread or a signal handler.
+  const std::atomic<bool>* stop = nullptr;
+  std::chrono::steady_clock::time_point deadline = std::chrono::steady_clock::time_point::max();
+  // false: the top N are combinations (another ESC or pack of the same motor and propeller is
+  // another entry); true: N different designs, the (motor, propeller) of every group, each with
+  // its other ESCs and packs as alternatives (top_results.h). optimize sets it unless --variants.
+  bool distinct_designs = false;
+};
+
+// True once the options' stop flag is set or their deadline has passed.
+bool StopRequested(const SearchOptions& opt);
+
+// Another ESC or pack of a result's design (SearchOptions::distinct_designs), scored exactly.
+struct Alternative {
+  Combination combination;
+  double objective = 0, score = 0;  // as MissionResult's
+  double capacity_ah = 0;           // the pack's capacity flown
 };
 
 struct RankedCombination {
   Combination combination;
   MissionResult result;
+  // distinct_designs: the design's other combinations scoring below the N-th best design, best
+  // first (every such one: the search cannot have pruned them); empty otherwise.
+  std::vector<Alternative> alternatives;
 };
 
 struct SearchResult {
@@ -55,10 +84,20 @@ struct SearchResult {
   // options; saturates at the largest long long (three or more free groups on a large catalog).
   long long combinations = 0;
   long long searched = 0;      // evaluated exactly
-  long long pruned = 0;        // combinations - searched
+  long long pruned = 0;        // combinations - searched - unsettled
   std::map<std::string, long long> pruned_by;  // rule -> combinations it removed
   long long skipped_without_mass = 0;  // motors without mass_kg (left out, counted in pruned)
   double seconds = 0.0;
+  // The search was stopped (SearchOptions::stop or deadline) before it had settled every
+  // combination: `best` is the best found so far (possibly empty), and every combination not
+  // settled scores at least unsettled_bound_score (a proven lower bound, -inf when the
+  // objective has none, e.g. max_efficiency); nth_best_score is the threshold the search had
+  // (the N-th best's score, +inf while fewer than N were found). unsettled: the combinations
+  // neither evaluated nor pruned (not counted in pruned).
+  bool interrupted = false;
+  double unsettled_bound_score = std::numeric_limits<double>::infinity();
+  double nth_best_score = std::numeric_limits<double>::infinity();
+  long long unsettled = 0;
   // Where the time went: the (motor, propeller, option) pairs stage 4 bounded, the seconds to
   // the end of its first batches (stages 0-3 included), its later batches (bounded as the
   // branch and bound reached them, R11), and the virtual-ESC evaluations of R5.

@@ -276,6 +276,10 @@ class CandidateStream {
   // The combinations (pairs times their option's rated ESCs) neither drawn nor removed by a
   // stage 4 rule so far: when the caller stops, R4 (or R11) removed them.
   long long open_combinations() const;
+  // An upper bound of the pairs still to be drawn below `cutoff` (progress): those waiting in
+  // the motors' heaps and those not yet bounded whose R11 key is below it (a pair's bound is at
+  // least its key).
+  long long PairsLeftBelow(double cutoff) const;
   long long skipped_without_mass() const;
   // The combinations each stage 4 rule removed so far, added to *out.
   void MergePrunedInto(std::map<std::string, long long>* out) const;

@@ -18,6 +18,24 @@
 
 namespace dynosize {
 
+double DisplayObjective(const Mission& m, double objective) {
+  switch (m.objective.type) {
+    case ObjectiveType::kMaxEndurance: return objective / 60.0;
+    case ObjectiveType::kMinEnergy: return objective;
+    case ObjectiveType::kMaxEfficiency: return 100.0 * objective;
+  }
+  return objective;
+}
+
+const char* DisplayUnit(const Mission& m) {
+  switch (m.objective.type) {
+    case ObjectiveType::kMaxEndurance: return " min";
+    case ObjectiveType::kMinEnergy: return " Wh";
+    case ObjectiveType::kMaxEfficiency: return " %";
+  }
+  return "";
+}
+
 namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
@@ -31,15 +49,7 @@ std::string ObjectiveLabel(const Mission& m) {
   return "objective";
 }
 
-// The objective in the unit of the figures and text (minutes, Wh, %).
-double Display(const Mission& m, double objective) {
-  switch (m.objective.type) {
-    case ObjectiveType::kMaxEndurance: return objective / 60.0;
-    case ObjectiveType::kMinEnergy: return objective;
-    case ObjectiveType::kMaxEfficiency: return 100.0 * objective;
-  }
-  return objective;
-}
+double Display(const Mission& m, double objective) { return DisplayObjective(m, objective); }
 
 // "Name (id)" for a figure title; the id alone when the entry has no name.
 std::string PartName(const EntryBase& e) {
@@ -72,9 +82,7 @@ std::string CredibilityText(const Mission& m, const MissionResult& r) {
   const ObjectiveRange& g = r.range;
   if (!g.computed) return "";
   const bool credible = m.objective.ranking != DataScenario::kAsGiven;
-  const char* unit = m.objective.type == ObjectiveType::kMaxEndurance ? " min"
-                     : m.objective.type == ObjectiveType::kMinEnergy  ? " Wh"
-                                                                      : " %";
+  const char* unit = DisplayUnit(m);
   std::ostringstream o;
   const auto end = [&](bool flies, double v) { return flies ? FixedText(Display(m, v), 2) : std::string("(cannot fly)"); };
   o << "  " << (credible ? "credible " : "data as given: ");
@@ -96,6 +104,36 @@ std::string CredibilityText(const Mission& m, const MissionResult& r) {
   o << "\n  data tiers:";
   for (const PartTier& p : g.tiers) o << " " << p.part << " " << TierName(p.tier) << " (" << p.why << ");";
   o << " motor rating: " << g.motor_rating << "\n";
+  return o.str();
+}
+
+// The widths of the segment table's name and group columns: each segment's whole name (names
+// never run together) and its group's.
+struct SegmentColumns {
+  int name = 7, group = 5;  // "segment", "group"
+};
+SegmentColumns SegmentColumnsOf(const Mission& m, const MissionResult& r) {
+  SegmentColumns c;
+  for (const SegmentResult& s : r.segments) {
+    c.name = std::max(c.name, static_cast<int>(s.name.size()));
+    if (!m.groups.empty()) c.group = std::max(c.group, static_cast<int>(m.groups[s.group].name.size()));
+  }
+  return c;
+}
+
+// Two header lines: what the columns hold, then their names (widths as the rows').
+std::string SegmentTableHeader(const Mission& m, const MissionResult& r) {
+  const SegmentColumns c = SegmentColumnsOf(m, r);
+  std::ostringstream o;
+  o << "  each segment at its end (the worst case: lowest voltage, highest throttle); throttle: the command;"
+       " effective: the throttle the ESC delivers (less above its saturation knee);"
+       " efficiencies eta: motor, ESC, motor and ESC together\n";
+  o << "  " << std::left << std::setw(c.name) << "segment";
+  if (!m.groups.empty()) o << "  " << std::setw(c.group) << "group";
+  o << "  " << std::setw(6) << "type" << std::right << std::setw(7) << "s" << std::setw(8) << "rpm" << std::setw(12)
+    << "throttle %" << std::setw(13) << "effective %" << std::setw(11) << "torque N*m" << std::setw(8) << "Irms A"
+    << std::setw(7) << "IDC A" << std::setw(8) << "VDC V" << std::setw(8) << "PDC W" << std::setw(8) << "PESC W"
+    << std::setw(9) << "eta_mot" << std::setw(9) << "eta_esc" << std::setw(9) << "eta_sys" << "  limit\n";
   return o.str();
 }
 
@@ -263,18 +301,20 @@ std::string MissionResultText(const Mission& m, const Combination& c, const Miss
     o << "; winding up to " << FixedText(d.winding_temp_max_c, 0) << " C\n";
   }
   o << CredibilityText(m, r);
-  o << "  segment (point: end, worst case)   s     rpm  thr %  eff %  torque N*m  Irms A  IDC A   VDC V   PDC W  PESC W  eta_m  eta_e  eta_s  limit\n";
+  o << SegmentTableHeader(m, r);
+  const SegmentColumns cols = SegmentColumnsOf(m, r);
   for (const SegmentResult& s : r.segments) {
     const Gear& gear = c.Parts(s.group).motor->gear;
     const OperatingPoint p = MotorSidePoint(s.point, gear);  // the motor's shaft (model/gear.h)
-    o << "  " << std::left << std::setw(12) << (s.name + (m.groups.empty() ? "" : "/" + m.groups[s.group].name)).substr(0, 12) << std::setw(7)
-      << SegmentTypeName(s.type) << std::right << std::setw(10) << FixedText(s.duration_s, 0)
-      << std::setw(8) << FixedText(p.rpm, 0) << std::setw(7) << FixedText(100 * p.throttle, 1)
-      << std::setw(7) << FixedText(100 * p.throttle_effective, 1) << std::setw(12)
+    o << "  " << std::left << std::setw(cols.name) << s.name;
+    if (!m.groups.empty()) o << "  " << std::setw(cols.group) << m.groups[s.group].name;
+    o << "  " << std::setw(6) << SegmentTypeName(s.type) << std::right << std::setw(7) << FixedText(s.duration_s, 0)
+      << std::setw(8) << FixedText(p.rpm, 0) << std::setw(12) << FixedText(100 * p.throttle, 1)
+      << std::setw(13) << FixedText(100 * p.throttle_effective, 1) << std::setw(11)
       << FixedText(p.torque_nm, 5) << std::setw(8) << FixedText(p.irms_a, 2) << std::setw(7)
       << FixedText(p.idc_a, 2) << std::setw(8) << FixedText(p.vdc_v, 3) << std::setw(8)
-      << FixedText(p.pdc_w, 1) << std::setw(8) << FixedText(p.pesc_w, 2) << std::setw(7)
-      << FixedText(p.eta_motor, 3) << std::setw(7) << FixedText(p.eta_esc, 3) << std::setw(7)
+      << FixedText(p.pdc_w, 1) << std::setw(8) << FixedText(p.pesc_w, 2) << std::setw(9)
+      << FixedText(p.eta_motor, 3) << std::setw(9) << FixedText(p.eta_esc, 3) << std::setw(9)
       << FixedText(p.eta_system, 3) << "  " << (s.active_limit.empty() ? "-" : s.active_limit) << "\n";
     o << "      over the segment: VDC " << FixedText(s.vdc_max_v, 2) << " -> " << FixedText(s.vdc_min_v, 2)
       << " V, throttle " << FixedText(100 * s.throttle_min, 1) << "-" << FixedText(100 * s.throttle_max, 1)
@@ -299,6 +339,135 @@ std::string MissionResultText(const Mission& m, const Combination& c, const Miss
   for (const std::string& w : r.warnings) o << "  warning: " << w << "\n";
   if (!r.solver.empty()) o << "  continuous variables: " << r.solver << "\n";
   return o.str();
+}
+
+std::vector<std::vector<int>> IndistinguishableRanks(const SearchResult& s) {
+  std::vector<std::vector<int>> out(s.best.size());
+  for (std::size_t i = 0; i < s.best.size(); ++i) {
+    for (std::size_t j = 0; j < s.best.size(); ++j) {
+      const ObjectiveRange& a = s.best[i].result.range;
+      const ObjectiveRange& b = s.best[j].result.range;
+      // Closed ranges (low <= high, credibility.h) overlap when neither lies wholly below the other.
+      if (i != j && a.computed && b.computed && !(a.high < b.low) && !(b.high < a.low)) {
+        out[i].push_back(static_cast<int>(j) + 1);
+      }
+    }
+  }
+  return out;
+}
+
+namespace {
+
+// "ESC e" or "lift ESC e, cruise ESC f" (the groups whose ESC differs from the result's), then the
+// pack when it differs (entry, cells or the capacity flown).
+std::string AlternativeParts(const Mission& m, const Combination& best, double best_capacity_ah, const Alternative& a) {
+  std::string out;
+  for (int g = 0; g < std::max(1, GroupCount(m)); ++g) {
+    const EscEntry* e = a.combination.Parts(g).esc;
+    if (e == best.Parts(g).esc) continue;
+    out += (out.empty() ? "" : ", ") + (m.groups.empty() ? std::string() : m.groups[g].name + " ") + "ESC " + e->id;
+  }
+  if (a.combination.battery != best.battery || a.combination.cells != best.cells || a.capacity_ah != best_capacity_ah) {
+    out += (out.empty() ? "" : ", ") + std::to_string(a.combination.cells) + "S " + a.combination.battery->id + " (" +
+           FixedText(a.capacity_ah, 2) + " Ah)";
+  }
+  return out.empty() ? "the same parts" : out;
+}
+
+}  // namespace
+
+std::string AlternativesText(const Mission& m, const RankedCombination& r, const std::vector<int>& tied) {
+  constexpr std::size_t kListed = 5;  // in the text; JSON lists them all
+  std::ostringstream o;
+  if (!r.alternatives.empty()) {
+    o << "  other ESCs and packs of this design (" << r.alternatives.size() << "):";
+    for (std::size_t k = 0; k < r.alternatives.size() && k < kListed; ++k) {
+      const Alternative& a = r.alternatives[k];
+      o << (k ? "; " : " ") << AlternativeParts(m, r.combination, r.result.capacity_ah, a) << " "
+        << FixedText(DisplayObjective(m, a.objective), 2) << DisplayUnit(m);
+    }
+    if (r.alternatives.size() > kListed) o << "; and " << r.alternatives.size() - kListed << " more (--json lists them)";
+    o << "\n";
+  }
+  if (!tied.empty()) {
+    o << "  not distinguishable on the data from";
+    for (std::size_t k = 0; k < tied.size(); ++k) o << (k ? ", #" : " #") << tied[k];
+    o << ": their objective ranges overlap this one's\n";
+  }
+  return o.str();
+}
+
+std::string InterruptedText(const Mission& m, const SearchResult& s, int top_n) {
+  if (!s.interrupted) return "";
+  std::ostringstream o;
+  const char* unit = DisplayUnit(m);
+  const bool larger_better = m.objective.type != ObjectiveType::kMinEnergy;
+  o << "interrupted after " << FixedText(s.seconds, 2) << " s: the best found so far, not proven the best ("
+    << s.unsettled << " combinations not yet settled)\n";
+  if (!std::isfinite(s.unsettled_bound_score)) {
+    o << "bound gap: unknown (the objective " << ObjectiveTypeName(m.objective.type)
+      << " has no bound on what is left)\n";
+    return o.str();
+  }
+  const double bound = DisplayObjective(m, ObjectiveOfScore(m.objective.type, s.unsettled_bound_score));
+  o << "bound gap: nothing left unsettled can " << (larger_better ? "exceed " : "go below ") << FixedText(bound, 2)
+    << unit;
+  if (std::isfinite(s.nth_best_score)) {
+    const double nth = DisplayObjective(m, ObjectiveOfScore(m.objective.type, s.nth_best_score));
+    o << "; the " << top_n << (top_n == 1 ? "st" : top_n == 2 ? "nd" : top_n == 3 ? "rd" : "th") << " best found is "
+      << FixedText(nth, 2) << unit << " (gap " << FixedText(std::fabs(bound - nth), 2) << unit << ")";
+  } else {
+    o << "; fewer than " << top_n << " results found so far";
+  }
+  o << "\n";
+  return o.str();
+}
+
+Json SearchResultJson(const Mission& m, const SearchResult& s) {
+  Json j;
+  Json results = Json::array();
+  const std::vector<std::vector<int>> tied = IndistinguishableRanks(s);
+  for (std::size_t i = 0; i < s.best.size(); ++i) {
+    const RankedCombination& b = s.best[i];
+    Json r = MissionResultJson(m, b.combination, b.result);
+    Json alt = Json::array();
+    for (const Alternative& a : b.alternatives) {
+      Json x = {{"battery", a.combination.battery->id}, {"cells", a.combination.cells},
+                {"capacity_ah", a.capacity_ah}, {"objective", a.objective}};
+      if (m.groups.empty()) {
+        x["esc"] = a.combination.esc->id;
+      } else {
+        Json g = Json::object();
+        for (int k = 0; k < GroupCount(m); ++k) g[m.groups[k].name] = a.combination.Parts(k).esc->id;
+        x["esc"] = g;
+      }
+      alt.push_back(x);
+    }
+    r["alternatives"] = alt;
+    r["indistinguishable_from"] = tied[i];
+    results.push_back(r);
+  }
+  j["results"] = results;
+  j["interrupted"] = s.interrupted;
+  if (s.interrupted) {
+    const auto value = [&](double score) {
+      return std::isfinite(score) ? Json(ObjectiveOfScore(m.objective.type, score)) : Json(nullptr);
+    };
+    const bool both = std::isfinite(s.unsettled_bound_score) && std::isfinite(s.nth_best_score);
+    j["bound_gap"] = {{"unsettled_bound", value(s.unsettled_bound_score)},
+                      {"nth_best", value(s.nth_best_score)},
+                      {"gap", both ? Json(std::fabs(s.nth_best_score - s.unsettled_bound_score)) : Json(nullptr)}};
+  }
+  j["searched"] = s.searched;
+  j["pruned"] = s.pruned;
+  j["unsettled"] = s.unsettled;
+  j["combinations"] = s.combinations;
+  Json by = Json::object();
+  for (const auto& [rule, n] : s.pruned_by) by[rule] = n;
+  j["pruned_by"] = by;
+  j["seconds"] = s.seconds;
+  if (!s.relaxed_constraint.empty()) j["relaxed_constraint"] = s.relaxed_constraint;
+  return j;
 }
 
 std::string WriteParetoFigure(const Mission& m, const SearchResult& s, const std::string& dir) {

@@ -20,6 +20,23 @@ Json MissionResultJson(const Mission& mission, const Combination& c, const Missi
 // A human-readable report: objective, masses, one line per segment, limits, warnings.
 std::string MissionResultText(const Mission& mission, const Combination& c, const MissionResult& r);
 
+// The objective in the unit the text prints it in (minutes, Wh, %), and that unit (" min", " Wh", " %").
+double DisplayObjective(const Mission& mission, double objective);
+const char* DisplayUnit(const Mission& mission);
+
+// For each result of a search, the ranks (1-based) of the other results whose objective ranges
+// (ObjectiveRange low-high, credibility.h) overlap its own: not distinguishable on the data.
+std::vector<std::vector<int>> IndistinguishableRanks(const SearchResult& s);
+
+// optimize --json: {"results": [...each with "alternatives" and "indistinguishable_from"...],
+// "designs", "interrupted", "bound_gap" (when interrupted), "searched", "pruned", "unsettled",
+// "combinations", "pruned_by", "seconds", "relaxed_constraint"}.
+Json SearchResultJson(const Mission& mission, const SearchResult& s);
+// The text lines of a result's alternatives and of the ranks it cannot be told from ("" if none).
+std::string AlternativesText(const Mission& mission, const RankedCombination& r, const std::vector<int>& tied);
+// The lines of an interrupted search: why, and the proven bound gap ("" when not interrupted).
+std::string InterruptedText(const Mission& mission, const SearchResult& s, int top_n);
+
 // pareto_front.png: every evaluated combination (objective vs propulsion mass), the
 // non-dominated front and the top picks. Returns the PNG path.
 std::string WriteParetoFigure(const Mission& mission, const SearchResult& s, const std::string& dir);

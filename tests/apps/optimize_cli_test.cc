@@ -1,0 +1,140 @@
+// optimize's stop (issue 24, item 3): --time-limit and SIGINT print the best so far, complete
+// and marked interrupted, with exit 0 and 130; bad --time-limit values are exit 64 with one line.
+// Item 5 on the CLI: distinct designs by default, --variants for every combination.
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+#include "cli_runner.h"
+#include "common/json_file.h"
+
+namespace dynosize {
+namespace {
+
+namespace fs = std::filesystem;
+using testing_util::CliRun;
+using testing_util::RunCli;
+
+const std::string kSource = DYNOSIZE_SOURCE_DIR;
+
+int Lines(const std::string& s) {
+  int n = 0;
+  for (char c : s) n += c == '\n';
+  return n;
+}
+
+// The bundled quadcopter with a capacity range: about 10 s of search on the bundled catalog
+// (measured: 9.6-12 s on the 2-core build machine), so a stop after a fraction of a second
+// always comes mid-search.
+fs::path LongMission() {
+  const fs::path p = fs::temp_directory_path() / ("dynosize_long_" + std::to_string(getpid()) + ".json");
+  Json m = ReadJsonFile(kSource + "/examples/missions/quadcopter_1p5kg.json");
+  m["battery"]["id"] = Json::array({"dc_b_363"});
+  m["battery"]["capacity_ah"] = Json::array({2, 8});
+  std::ofstream(p) << DumpJson(m);
+  return p;
+}
+
+void ExpectCompleteInterruptedJson(const CliRun& r) {
+  Json j;
+  ASSERT_NO_THROW(j = Json::parse(r.out)) << r.out.substr(0, 200);
+  EXPECT_EQ(j["interrupted"], true);
+  ASSERT_TRUE(j.contains("bound_gap"));
+  EXPECT_TRUE(j["results"].is_array());
+  EXPECT_GT(j["unsettled"].get<long long>(), 0);
+  // The proven bound: nothing unsettled beats it (endurance: a number of seconds above the best found).
+  ASSERT_TRUE(j["bound_gap"]["unsettled_bound"].is_number());
+  for (const Json& x : j["results"]) EXPECT_LE(x["objective"].get<double>(), j["bound_gap"]["unsettled_bound"].get<double>() + 1e-9);
+}
+
+TEST(OptimizeCli, BadTimeLimitIsExit64WithOneLine) {
+  for (const std::string v : {"0", "-1", "nan", "-inf"}) {
+    const CliRun r = RunCli("optimize " + kSource + "/examples/missions/quadcopter_1p5kg.json --time-limit=" + v);
+    EXPECT_EQ(r.code, 64) << v << "\n" << r.err;
+    EXPECT_NE(r.err.find("dynosize: --time-limit " + v + ": must be a positive number of seconds"), std::string::npos)
+        << v << "\n" << r.err;
+    EXPECT_EQ(Lines(r.err), 1) << r.err;
+    EXPECT_TRUE(r.out.empty());
+  }
+}
+
+TEST(OptimizeCli, TimeLimitPrintsTheBestSoFarAndExitsZero) {
+  const fs::path m = LongMission();
+  const CliRun r = RunCli("optimize " + m.string() + " --json --time-limit 0.5");
+  EXPECT_EQ(r.code, 0) << r.err;
+  ExpectCompleteInterruptedJson(r);
+  const CliRun t = RunCli("optimize " + m.string() + " --time-limit 0.5");
+  EXPECT_EQ(t.code, 0) << t.err;
+  EXPECT_NE(t.out.find("interrupted after "), std::string::npos) << t.out;
+  EXPECT_NE(t.out.find("bound gap: "), std::string::npos) << t.out;
+  fs::remove(m);
+}
+
+TEST(OptimizeCli, SigintPrintsTheBestSoFarAndExits130) {
+  const fs::path m = LongMission();
+  // The shell starts optimize, sends SIGINT after a second (the search takes about ten) and
+  // returns its exit status.
+  const CliRun r = RunCli("optimize " + m.string() + " --json & p=$!; sleep 1; kill -INT $p; wait $p");
+  EXPECT_EQ(r.code, 130) << r.err;
+  ExpectCompleteInterruptedJson(r);
+  fs::remove(m);
+}
+
+TEST(OptimizeCli, DistinctDesignsByDefaultAndVariantsOnRequest) {
+  const std::string mission = kSource + "/examples/missions/sprayer_hexacopter_25kg.json";
+  const CliRun d = RunCli("optimize " + mission + " --json --top 3");
+  const CliRun v = RunCli("optimize " + mission + " --json --top 3 --variants");
+  ASSERT_EQ(d.code, 0) << d.err;
+  ASSERT_EQ(v.code, 0) << v.err;
+  const Json jd = Json::parse(d.out), jv = Json::parse(v.out);
+  ASSERT_EQ(jd["results"].size(), 3u);
+  ASSERT_EQ(jv["results"].size(), 3u);
+  EXPECT_EQ(jd["results"][0]["motor"], jv["results"][0]["motor"]);
+  EXPECT_EQ(jd["results"][0]["objective"], jv["results"][0]["objective"]);
+  for (std::size_t i = 0; i < 3; ++i) {
+    for (std::size_t k = 0; k < i; ++k) {
+      const Json &a = jd["results"][i], &b = jd["results"][k];
+      EXPECT_FALSE(a["motor"] == b["motor"] && a["prop"] == b["prop"]) << i << " repeats the design of " << k;
+    }
+  }
+  // The bundled sprayer's top 3 combinations are one design with three ESCs (measured): the
+  // first design lists them as alternatives.
+  EXPECT_EQ(jv["results"][1]["motor"], jv["results"][0]["motor"]);
+  EXPECT_EQ(jv["results"][1]["prop"], jv["results"][0]["prop"]);
+  EXPECT_FALSE(jd["results"][0]["alternatives"].empty());
+  EXPECT_EQ(jd["interrupted"], false);
+}
+
+// Item 6: with groups every segment row starts with its whole name and its group (the old table
+// cut "name/group" at 12 characters: "cruise/cruiscruise"), under headers that say what they hold.
+TEST(OptimizeCli, SegmentTableNamesEachSegmentAndItsGroup) {
+  const CliRun r = RunCli("evaluate " + kSource + "/examples/missions/evtol_lift_cruise.json --pick "
+                          "lift=dc_m_334,dc_e_145,dc_p_318 --battery dc_b_361 --cells 6");
+  ASSERT_EQ(r.code, 0) << r.err;
+  const Json m = ReadJsonFile(kSource + "/examples/missions/evtol_lift_cruise.json");
+  for (const std::string h : {"throttle %", "effective %", "eta_mot", "eta_esc", "eta_sys", "group"}) {
+    EXPECT_NE(r.out.find(h), std::string::npos) << h;
+  }
+  EXPECT_EQ(r.out.find("eff %"), std::string::npos);
+  int rows = 0;
+  for (const Json& sg : m["segments"]) {
+    const std::string name = sg["name"], group = sg["group"];
+    std::string row = "\n  " + name + " ";
+    const auto at = r.out.find(row);
+    ASSERT_NE(at, std::string::npos) << name << "\n" << r.out;
+    std::istringstream fields(r.out.substr(at + 1, r.out.find('\n', at + 1) - at - 1));
+    std::string first, second;
+    fields >> first >> second;
+    EXPECT_EQ(first, name);
+    EXPECT_EQ(second, group) << name;
+    ++rows;
+  }
+  EXPECT_GE(rows, 4);
+}
+
+}  // namespace
+}  // namespace dynosize
