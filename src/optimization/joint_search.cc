@@ -394,8 +394,66 @@ double JointBounds::MassFloorKg(int prop, std::size_t si, std::size_t o) {
       floor_kg = lo;
     }
   }
+  floor_kg = std::max(floor_kg, FigureOfMeritMassFloorKg(prop, si, o));
   mass_floor_kg_[i] = floor_kg;
   return floor_kg;
+}
+
+// R6 as a mass floor for the outer group (search.cc, G2): the lightest vehicle at which segment
+// si (a fixed axial inflow) may pass prop_figure_of_merit on propeller `prop`, kg (a lower bound;
+// 0 when nothing is proven). The evaluator's figure of merit is P_ideal(T, v)/P(omega), the
+// propeller's power as given at the speed omega that gives the segment's thrust T (mission_eval.cc,
+// PropellerPoint; model/physics.h). On a mass cell [M_a, M_b] the thrust is in [T(M_a), T(M_b)]
+// (M3), the speed at or below omega_b, a speed whose thrust is at least T(M_b) (M1), so the
+// power is at most P(omega_b) when the power rises with speed on the cell's speeds (checked at
+// kFomSamples speeds, else nothing is proven there), and P_ideal rises with T: the figure of
+// merit is at least P_ideal(T(M_a), v)/P(omega_b). Cells above the limit hold no feasible mass;
+// the floor is the bottom of the first cell that is not proven so, scanning up from the
+// option's lightest vehicle in cells kFomCellRatio wide (kFomCells of them).
+double JointBounds::FigureOfMeritMassFloorKg(int prop, std::size_t si, std::size_t o) const {
+  constexpr int kFomCells = 64, kFomSamples = 8, kSteps = 50;
+  constexpr double kFomCellRatio = 1.03;
+  const Segment& sg = m_.segments[si];
+  const PropEntry& p = cat_.props()[static_cast<std::size_t>(prop)];
+  const PropModel& model = *models_[static_cast<std::size_t>(prop)];
+  const double limit = m_.constraints.max_figure_of_merit;
+  // A fixed inflow: not a shaft segment, a free airspeed or a multirotor cruise (its inflow
+  // changes with the mass, flight.h).
+  const bool fixed_inflow = sg.type != SegmentType::kShaft &&
+                            !(sg.type == SegmentType::kCruise && (sg.airspeed_m_s.free() || !(sg.lift_to_drag > 0)));
+  if (!fixed_inflow || !(limit > 0) || !monotone_[static_cast<std::size_t>(prop)]) {
+    return 0.0;
+  }
+  const bool static_only = model.data_kind() != PropDataKind::kTables || p.j_tables.empty();
+  auto load_at = [&](double kg) { return SegmentRotorLoad(m_, sg, kg, sg.airspeed_m_s.lo); };
+  const double v = load_at(1.0).axial_airspeed_m_s;
+  if (v < 0) return 0.0;  // a descent: PropellerPoint's inflow differs
+  const double v_fom = static_only ? 0.0 : v;  // PropellerPoint: static-only data held to the static bound
+  const double v_eval = static_only ? 0.0 : v;  // static-only data are read at J = 0 in any inflow
+  double kg = mass_min_kg_[o];
+  for (int cell = 0; cell < kFomCells; ++cell) {
+    const double kg_b = kg * kFomCellRatio;
+    const double t_a = load_at(kg).thrust_per_rotor_n, t_b = load_at(kg_b).thrust_per_rotor_n;
+    if (!(model.Evaluate(kRotorCeilingRadS, m_.rho_kg_m3, v_eval).thrust_n >= t_b)) return kg;
+    // omega_b: thrust(hi) >= t_b kept through the bisection (M1).
+    double lo = 0.0, hi = kRotorCeilingRadS;
+    for (int it = 0; it < kSteps; ++it) {
+      const double mid = 0.5 * (lo + hi);
+      (model.Evaluate(mid, m_.rho_kg_m3, v_eval).thrust_n >= t_b ? hi : lo) = mid;
+    }
+    const double w_a = BisectSpeedFromBelow(model, m_.rho_kg_m3, t_a, v_eval, 0.0, hi, kSteps);
+    double p_prev = -kInf, p_b = 0.0;
+    bool rising = true;
+    for (int k = 0; k <= kFomSamples && rising; ++k) {
+      const double w = w_a + (hi - w_a) * k / kFomSamples;
+      p_b = model.Evaluate(w, m_.rho_kg_m3, v_eval).power_w;
+      rising = p_b >= p_prev;
+      p_prev = p_b;
+    }
+    if (!rising || !(p_b > 0) || !(IdealRotorPowerW(t_a, p.diameter_m, m_.rho_kg_m3, v_fom) / p_b > limit)) return kg;
+    kg = kg_b;
+  }
+  return kg;
 }
 
 // Thrust-to-weight (checked on the lift group at full throttle): the full-throttle speed is
@@ -780,6 +838,10 @@ Mission SubMission(const Mission& m, const Catalog& cat, int outer, const OuterP
 // G3's limit: a virtual-ESC search that finds this many completions below the N-th best may have
 // left some out (its own threshold fell below the cutoff); the class is then searched per ESC.
 constexpr int kCompletionLimit = 512;
+// G2's order: while no N-th best is known, an inner search that has not finished after this many
+// solves is put back (an outer choice that no completion makes feasible would otherwise search
+// the whole inner group without a cutoff: 18 s each on the full catalog's quadplane).
+constexpr long long kFirstSearchBudget = 5000;
 
 // G3 (search.cc): the class's real ESCs of one outer pair against the completions the virtual
 // ESC's search found below the N-th best (`completions`, best first; that search's relaxed
@@ -863,10 +925,18 @@ SearchResult JointSearch(const Mission& m, const Catalog& cat, const SearchOptio
   const bool virtual_ok = FreeGroupCount(m) == 2 && m.objective.ranking != DataScenario::kPessimistic &&
                           m.objective.ranking != DataScenario::kOptimistic;
   // The outer group fixed to (pair, ESC e), the battery to the pair's option: the inner search.
-  auto search_triple = [&](const OuterPair& pr, int e) {
+  // budgeted (only while there is no N-th best): an inner search that has not finished within
+  // kFirstSearchBudget solves is dropped (false; its results unused) and taken again later.
+  auto search_triple = [&](const OuterPair& pr, int e, bool budgeted) {
     const Mission sub = SubMission(m, cat, outer, pr, e, jb);
-    SearchResult r = FreeGroupCount(sub) > 1 ? JointSearch(sub, cat, inner_opt, nth(), cache)
-                                             : SearchOneGroup(sub, cat, inner_opt, nth(), cache);
+    SearchOptions o = inner_opt;
+    if (budgeted && FreeGroupCount(sub) == 1) o.evaluation_budget = kFirstSearchBudget;
+    SearchResult r = FreeGroupCount(sub) > 1 ? JointSearch(sub, cat, o, nth(), cache)
+                                             : SearchOneGroup(sub, cat, o, nth(), cache);
+    if (r.interrupted && !StopRequested(opt)) {  // over its budget: taken again later
+      out.virtual_evaluations += r.searched + r.virtual_evaluations;
+      return false;
+    }
     const bool stopped = r.interrupted;
     const double unsettled_bound = r.unsettled_bound_score;
     Merge(std::move(r), &top, &out);
@@ -874,6 +944,7 @@ SearchResult JointSearch(const Mission& m, const Catalog& cat, const SearchOptio
       out.interrupted = true;
       out.unsettled_bound_score = std::min(out.unsettled_bound_score, unsettled_bound);
     }
+    return true;
   };
   Mission relaxed = m;
   relaxed.constraints.min_hover_throttle = 0.0;
@@ -886,10 +957,14 @@ SearchResult JointSearch(const Mission& m, const Catalog& cat, const SearchOptio
     double bound;
     std::size_t pair;
     int esc;  // -1: the pair (its coupled bound)
+    bool unlimited = false;  // taken before (deferred): no budget now
     bool operator>(const Queued& o) const {
       return std::tie(bound, pair, esc) > std::tie(o.bound, o.pair, o.esc);
     }
   };
+  // Items whose budgeted inner search did not finish: back into the queue once an N-th best is
+  // known (their bounds then prune most of them), or, when nothing else is left, unlimited.
+  std::vector<Queued> deferred;
   std::priority_queue<Queued, std::vector<Queued>, std::greater<>> tightened;
   std::size_t next = 0, taken = 0;
   // Stopped (StopRequested, or an inner search stopped): everything left is unsettled; the item
@@ -908,6 +983,14 @@ SearchResult JointSearch(const Mission& m, const Catalog& cat, const SearchOptio
     }
   };
   for (;;) {
+    const bool drained = next == pairs.size() && tightened.empty();
+    if (!deferred.empty() && (nth() < kInf || drained)) {
+      for (Queued d : deferred) {
+        d.unlimited = true;
+        tightened.push(d);
+      }
+      deferred.clear();
+    }
     const bool from_list = next < pairs.size() && (tightened.empty() || pairs[next].bound < tightened.top().bound);
     if (!from_list && tightened.empty()) break;
     const double least = from_list ? pairs[next].bound : tightened.top().bound;
@@ -945,8 +1028,12 @@ SearchResult JointSearch(const Mission& m, const Catalog& cat, const SearchOptio
     if (taken++ % 64 == 0) progress(next);
     const std::size_t i = q.pair;
     const OuterPair& pr = pairs[i];
+    const bool budgeted = !q.unlimited && !(nth() < kInf);
     if (q.esc >= 0) {
-      search_triple(pr, q.esc);
+      if (!search_triple(pr, q.esc, budgeted)) {
+        deferred.push_back(q);
+        continue;
+      }
       if (out.interrupted) {
         stop_all(q.bound, block);
         break;
@@ -955,6 +1042,7 @@ SearchResult JointSearch(const Mission& m, const Catalog& cat, const SearchOptio
     }
     // The pair's ESCs: per class the bound with a zero-resistance ESC, then each ESC's own.
     triples.clear();
+    bool deferred_pair = false, pair_started = false;
     for (std::size_t c = 0; c < jb.escs().classes.size(); ++c) {
       const std::vector<int>& members = jb.escs().per_option[pr.option][c];
       if (members.empty()) continue;
@@ -979,7 +1067,12 @@ SearchResult JointSearch(const Mission& m, const Catalog& cat, const SearchOptio
       if (class_triples.size() >= 2 && virtual_ok && !(nth() < kInf)) {
         // No N-th best yet: the best-bound ESC's own search first, so that the virtual ESC's
         // search below has a cutoff (without one it would list every completion).
-        search_triple(pr, class_triples.front().second);
+        // Put back only before any other work on the pair (nothing of it may be taken twice).
+        if (!search_triple(pr, class_triples.front().second, budgeted && !pair_started)) {
+          deferred_pair = true;  // the whole pair waits (G2's order)
+          break;
+        }
+        pair_started = true;
         class_triples.erase(class_triples.begin());
         if (out.interrupted) break;
       }
@@ -1007,6 +1100,7 @@ SearchResult JointSearch(const Mission& m, const Catalog& cat, const SearchOptio
         all_opt.distinct_designs = false;  // every completion, not one per design
         const SearchResult r = SearchOneGroup(SubMission(relaxed, cat, outer, pr, class_triples.front().second, jb),
                                               cat, all_opt, nth(), cache, &given);
+        pair_started = true;
         out.virtual_evaluations += r.searched + r.virtual_evaluations;
         if (r.interrupted) {  // the pair is left unsettled (below)
           out.interrupted = true;
@@ -1034,13 +1128,17 @@ SearchResult JointSearch(const Mission& m, const Catalog& cat, const SearchOptio
                                                              group_models, *cache, nth, &top, &out);
             AddCount(&out.pruned_by["objective_bound"], block - std::min(block, solved));
           } else {
-            search_triple(pr, e);
+            search_triple(pr, e, false);
           }
         }
         if (out.interrupted) break;
         continue;
       }
       triples.insert(triples.end(), class_triples.begin(), class_triples.end());
+    }
+    if (deferred_pair) {
+      deferred.push_back(q);
+      continue;
     }
     if (out.interrupted) {  // stopped in this pair's inner searches: the rest of it is unsettled
       stop_all(q.bound, SaturatingProduct({n_esc, block}));

@@ -102,6 +102,7 @@ class JointBounds {
   std::vector<FrontierPoint> InnerFrontier(std::size_t o);
   double MinFreeGroupPower(int group, std::size_t si, std::size_t o, double mass_kg);
   double MassFloorKg(int prop, std::size_t si, std::size_t o);
+  double FigureOfMeritMassFloorKg(int prop, std::size_t si, std::size_t o) const;
   // The lightest motor + propeller of a free group that survives R0, R1, R3, R7 in every one of
   // its segments with some ESC class at vehicle mass vehicle_kg (kInf: none), kg per rotor.
   double LightestSurvivorKg(int group, std::size_t o, double vehicle_kg);

@@ -2157,7 +2157,9 @@ void BranchAndBound::Run() {
   for (;;) {
     ReportProgress(ci);
     const double threshold = NthBest();
-    if (StopRequested(opt_) && StopAt(ci, threshold)) break;
+    const bool over_budget =
+        opt_.evaluation_budget > 0 && out_->searched + virtual_evals_ >= opt_.evaluation_budget;
+    if ((over_budget || StopRequested(opt_)) && StopAt(ci, threshold)) break;
     const TopScores top = board_.scores();
     std::size_t end = ci;
     while (end - ci < chunk && CandidateAt(end) && CandidateAt(end)->bound < threshold) ++end;

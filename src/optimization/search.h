@@ -52,6 +52,10 @@ struct SearchOptions {
   // another entry); true: N different designs, the (motor, propeller) of every group, each with
   // its other ESCs and packs as alternatives (top_results.h). optimize sets it unless --variants.
   bool distinct_designs = false;
+  // > 0: the one-group search also stops (interrupted) between chunks once it has solved this
+  // many combinations, real and virtual ESCs together (the joint search's first inner searches,
+  // joint_search.cc, G2's order). A count, so that where it stops does not depend on timing.
+  long long evaluation_budget = 0;
 };
 
 // True once the options' stop flag is set or their deadline has passed.
