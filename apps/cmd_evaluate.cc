@@ -104,7 +104,7 @@ void ChooseParts(const Mission& m, const Catalog& cat, const EvaluateOptions& o,
 
 int RunEvaluate(const EvaluateOptions& o) {
   const Mission mission = ReadMission(o.mission);
-  const Catalog cat = Catalog::Load(o.catalog_dir);
+  const Catalog cat = Catalog::Load(o.catalog);
   Combination c;
   ChooseParts(mission, cat, o, &c);
   c.battery = &cat.battery(o.battery_id);
@@ -127,7 +127,7 @@ int RunEvaluate(const EvaluateOptions& o) {
 
 int RunOptimize(const OptimizeOptions& o) {
   const Mission mission = ReadMission(o.mission);
-  const Catalog cat = Catalog::Load(o.catalog_dir);
+  const Catalog cat = Catalog::Load(o.catalog);
   SearchOptions so;
   so.top_n = o.top;
   so.threads = o.threads;
