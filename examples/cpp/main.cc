@@ -38,8 +38,8 @@ int main(int argc, char** argv) {
     c.cells = 4;
     MissionResult r = MissionEvaluator(mission, c).Solve();
     AddObjectiveRange(mission, c, &r);
-    std::printf("evaluate: %s, objective %.2f %s, thrust/weight %.2f, mass %.3f kg\n",
-                r.feasible ? "feasible" : "infeasible", r.objective, r.objective_unit.c_str(),
+    std::printf("evaluate: %s; mission %.2f min, %.2f Wh; thrust/weight %.2f; mass %.3f kg\n",
+                r.feasible ? "feasible" : "infeasible", r.endurance_s / 60.0, r.energy_wh,
                 r.thrust_to_weight, r.total_mass_kg);
     return 0;
   } catch (const Error& e) {

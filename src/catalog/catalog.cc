@@ -600,8 +600,8 @@ const char* KindNoun(ComponentKind kind) {
 std::string Catalog::ClashRule(const IdOrigin& prev, ComponentKind kind, const std::string& id) const {
   if (prev.folder == folder_) return "duplicate id: already used in " + prev.where;
   if (!override_ids_) {
-    return "clashes with " + prev.where + " of an earlier catalog folder: rename one of them, or "
-           "let the added entry win (--override)";
+    return "clashes with " + prev.where + " (a folder added on top may not redefine an id: rename "
+           "one of them, or let the added entry win with --override)";
   }
   const ComponentKind prev_kind = index_.at(id).first;
   if (prev_kind != kind) {

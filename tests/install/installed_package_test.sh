@@ -34,13 +34,13 @@ unset DYNOSIZE_CATALOG DYNOSIZE_CATALOG_PATH
 out=$("$prefix/bin/dynosize_example") || fail "dynosize_example failed"
 echo "$out"
 grep -q "^catalog $prefix/share/dynosize/catalog: " <<< "$out" || fail "the example did not load the installed catalog"
-example_obj=$(sed -n 's/^evaluate: feasible, objective \([0-9.]*\) .*/\1/p' <<< "$out")
+example_obj=$(sed -n 's/^evaluate: feasible; \(mission [0-9.]* min, [0-9.]* Wh\);.*/\1/p' <<< "$out")
 [ -n "$example_obj" ] || fail "the example's pick is not feasible"
 
 shown=$("$prefix/bin/dynosize" catalog show dc_m_365) || fail "the installed CLI cannot show dc_m_365"
 grep -q "$prefix/share/dynosize/catalog/" <<< "$shown" || fail "the installed CLI did not use the installed catalog"
 cli=$("$prefix/bin/dynosize" evaluate "$source_dir/examples/missions/quadcopter_1p5kg.json" --motor dc_m_365 \
       --esc dc_e_56 --prop dc_p_231 --battery dc_b_363 --cells 4) || fail "the installed CLI's evaluate failed"
-cli_obj=$(sed -n 's/^  feasible; endurance \[min\] \([0-9.]*\);.*/\1/p' <<< "$cli")
-[ "$cli_obj" = "$example_obj" ] || fail "the example's endurance $example_obj min differs from the CLI's '$cli_obj'"
+cli_obj=$(sed -n 's/^  feasible; .*; \(mission [0-9.]* min, [0-9.]* Wh\),.*/\1/p' <<< "$cli")
+[ "$cli_obj" = "$example_obj" ] || fail "the example's '$example_obj' differs from the CLI's '$cli_obj'"
 echo "installed_package: 1 passed, 0 failed"
