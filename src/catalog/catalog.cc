@@ -605,8 +605,8 @@ std::string Catalog::ClashRule(const IdOrigin& prev, ComponentKind kind, const s
   }
   const ComponentKind prev_kind = index_.at(id).first;
   if (prev_kind != kind) {
-    return std::string("cannot override ") + prev.where + ": that entry is a " + KindNoun(prev_kind) +
-           ", this one a " + KindNoun(kind) + " (an override must be of the same kind)";
+    return "cannot override " + prev.where + ": " + KindNoun(prev_kind) + " there, " + KindNoun(kind) +
+           " here (an override must be of the same kind)";
   }
   return "";
 }
