@@ -758,16 +758,7 @@ std::vector<std::string> CatalogFiles(const std::string& dir) {
 }  // namespace
 
 std::vector<std::string> Catalog::Validate(const std::string& dir) {
-  Catalog catalog;
-  std::vector<std::string> problems;
-  for (const auto& file : CatalogFiles(dir)) {
-    try {
-      catalog.AddDocument(ReadJsonFile(file), file, &problems);
-    } catch (const DataError& e) {
-      problems.push_back(e.what());
-    }
-  }
-  return problems;
+  return Validate(CatalogFolders{dir, {}, false});
 }
 
 std::vector<std::string> Catalog::Validate(const CatalogFolders& folders) {

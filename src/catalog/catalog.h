@@ -183,7 +183,8 @@ class Catalog {
   static Catalog Load(const CatalogFolders& folders, bool in_system_law = true);
 
   // Every problem in the folder, one line each ("file: motors[3] id=x: key 'rm_ohm' = -1: must
-  // be > 0"); empty when the catalog is valid. Throws NoInputError when the folder is missing.
+  // be > 0"); empty when the catalog is valid. Throws NoInputError when the folder is missing; a
+  // folder without a .json file is a problem, as for Load.
   static std::vector<std::string> Validate(const std::string& dir);
   // Every problem of the folders read together (clashing ids included).
   static std::vector<std::string> Validate(const CatalogFolders& folders);
