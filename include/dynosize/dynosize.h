@@ -25,6 +25,15 @@
 #include "optimization/search.h"
 #include "prop/prop_model.h"
 
+// The catalog installed with the package this program is built against is its default catalog
+// (catalog/catalog_path.h BundledCatalogDir, step 4): dynosizeConfig.cmake passes its location,
+// and it is registered once, before main.
+#ifdef DYNOSIZE_PACKAGE_CATALOG_DIR
+namespace dynosize::package_detail {
+inline const bool kCatalogRegistered = (SetPackageCatalogDir(DYNOSIZE_PACKAGE_CATALOG_DIR), true);
+}  // namespace dynosize::package_detail
+#endif
+
 // The version of the installed package ("0.1.0"), as `dynosize --version` prints it.
 #ifndef DYNOSIZE_VERSION
 #error "DYNOSIZE_VERSION is set by the target dynosize::dynosize: link it rather than adding the include path alone"

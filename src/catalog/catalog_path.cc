@@ -34,7 +34,14 @@ bool IsBelow(const fs::path& dir, const fs::path& root) {
   return mismatch.first == r.end();
 }
 
+std::string& PackageCatalogDir() {
+  static std::string dir;
+  return dir;
+}
+
 }  // namespace
+
+void SetPackageCatalogDir(const std::string& dir) { PackageCatalogDir() = dir; }
 
 std::string BundledCatalogDir() {
   if (const char* env = std::getenv("DYNOSIZE_CATALOG"); env && *env) return env;
@@ -45,6 +52,7 @@ std::string BundledCatalogDir() {
     if (IsFolder(installed)) return installed.string();
     if (IsBelow(program_dir, DYNOSIZE_BUILD_DIR) && IsFolder(source_catalog)) return source_catalog.string();
   }
+  if (const std::string& package = PackageCatalogDir(); !package.empty() && IsFolder(package)) return package;
   if (IsFolder(DYNOSIZE_INSTALL_CATALOG)) return DYNOSIZE_INSTALL_CATALOG;
   if (IsFolder(source_catalog)) return source_catalog.string();
   return "catalog";

@@ -25,12 +25,18 @@ struct CatalogFolders {
 //   2. <dir of the running program>/../share/dynosize/catalog: a program installed with the
 //      package (the dynosize CLI, or a user's program installed into the same prefix);
 //   3. the source tree's catalog/ when the running program lives in the build tree it was built in;
-//   4. <install prefix>/share/dynosize/catalog of the prefix the build was configured with;
-//   5. the source tree's catalog/ (a program built against the package of a build whose source
-//      tree is still there);
-//   6. "catalog" (relative to the working directory).
-// Only folders that exist are taken at steps 2-5.
+//   4. the catalog of the installed package the program was built against (SetPackageCatalogDir:
+//      <dynosize/dynosize.h> sets it from the location find_package(dynosize) found);
+//   5. <install prefix>/share/dynosize/catalog of the prefix the build was configured with;
+//   6. the source tree's catalog/;
+//   7. "catalog" (relative to the working directory).
+// Only folders that exist are taken at steps 2-6.
 std::string BundledCatalogDir();
+
+// Step 4 of BundledCatalogDir. A program built against the installed package gets it from
+// dynosizeConfig.cmake (the compile definition DYNOSIZE_PACKAGE_CATALOG_DIR of dynosize::dynosize)
+// through <dynosize/dynosize.h>, before main; "" clears it.
+void SetPackageCatalogDir(const std::string& dir);
 
 // The folders of a colon-separated path (DYNOSIZE_CATALOG_PATH), in order; empty elements (a
 // leading, trailing or doubled colon) are skipped.
