@@ -154,6 +154,10 @@ TEST(CatalogPath, TheBuildTreeFindsTheSourceCatalog) {
   EXPECT_TRUE(fs::equivalent(BundledCatalogDir(), fs::path(DYNOSIZE_SOURCE_DIR) / "catalog"))
       << BundledCatalogDir();
   EXPECT_TRUE(fs::equivalent(ResolveCatalogFolders("", {}, false).base, fs::path(DYNOSIZE_SOURCE_DIR) / "catalog"));
+  // An installed package's catalog (step 4) comes after the build tree's own.
+  SetPackageCatalogDir(fs::temp_directory_path().string());
+  EXPECT_TRUE(fs::equivalent(BundledCatalogDir(), fs::path(DYNOSIZE_SOURCE_DIR) / "catalog"));
+  SetPackageCatalogDir("");
 }
 
 }  // namespace
