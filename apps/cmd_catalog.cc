@@ -77,7 +77,7 @@ int RunCatalogList(const CatalogListOptions& o) {
   if ((o.kv_min || o.kv_max) && !o.kind.empty() && o.kind != "motors") {
     throw UsageError("--kv-min/--kv-max filter motors: use them with --kind motors");
   }
-  const Catalog cat = Catalog::Load(o.catalog_dir);
+  const Catalog cat = Catalog::Load(o.catalog);
   const bool all = o.kind.empty();
   const auto motors = Select(cat.motors(), o);
   const auto escs = Select(cat.escs(), o);
@@ -170,8 +170,8 @@ int RunCatalogList(const CatalogListOptions& o) {
   return 0;
 }
 
-int RunCatalogShow(const std::string& catalog_dir, const std::string& id) {
-  const Catalog cat = Catalog::Load(catalog_dir);
+int RunCatalogShow(const CatalogFolders& catalog, const std::string& id) {
+  const Catalog cat = Catalog::Load(catalog);
   Json out;
   bool found = false;
   for (const auto& m : cat.motors()) {
@@ -254,15 +254,17 @@ int RunCatalogShow(const std::string& catalog_dir, const std::string& id) {
   return 0;
 }
 
-int RunCatalogValidate(const std::string& dir, bool json) {
-  const auto problems = Catalog::Validate(dir);
+int RunCatalogValidate(const CatalogFolders& catalog, bool json) {
+  const auto problems = Catalog::Validate(catalog);
+  std::string dir = catalog.base;
+  for (const auto& added : catalog.added) dir += " + " + added;
   if (json) {
     Json j;
     j["valid"] = problems.empty();
     j["problems"] = problems;
     std::cout << DumpJson(j);
   } else if (problems.empty()) {
-    const Catalog cat = Catalog::Load(dir);
+    const Catalog cat = Catalog::Load(catalog);
     std::cout << dir << ": valid: " << cat.motors().size() << " motors, " << cat.escs().size()
               << " ESCs, " << cat.props().size() << " props, " << cat.batteries().size()
               << " batteries\n";
@@ -317,13 +319,13 @@ int RunCatalogSchema(bool json) {
   return 0;
 }
 
-int RunCatalogPropReynolds(const std::string& catalog_dir) {
-  const Catalog cat = Catalog::Load(catalog_dir);
+int RunCatalogPropReynolds(const CatalogFolders& catalog) {
+  const Catalog cat = Catalog::Load(catalog);
   std::vector<const PropEntry*> measured;
   for (const PropEntry& p : cat.props()) {
     if (!UiucFamily(p.id).empty() && !p.static_table.rpm.empty()) measured.push_back(&p);
   }
-  if (measured.empty()) throw DataError(catalog_dir + ": no UIUC propeller with a static table (uiuc_propdb.json)");
+  if (measured.empty()) throw DataError(catalog.base + ": no UIUC propeller with a static table (uiuc_propdb.json)");
   std::cout << ReynoldsReportMarkdown(measured);
   return 0;
 }

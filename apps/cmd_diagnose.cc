@@ -156,7 +156,7 @@ int RunDiagnose(const DiagnoseCliOptions& o) {
   opt.kv_label_rpm_per_v = o.kv_label;
   if (o.kv_label && !(*o.kv_label > 0.0)) throw UsageError("diagnose: --kv-label must be > 0 (rpm per volt)");
   if (!o.motor_id.empty() || !o.esc_id.empty()) {
-    const Catalog cat = Catalog::Load(o.catalog_dir);
+    const Catalog cat = Catalog::Load(o.catalog);
     if (!o.motor_id.empty()) opt.motor = cat.motor(o.motor_id).params;
     if (!o.esc_id.empty()) opt.esc = cat.esc(o.esc_id).params;
   }

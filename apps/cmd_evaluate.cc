@@ -106,7 +106,7 @@ void ChooseParts(const Mission& m, const Catalog& cat, const EvaluateOptions& o,
 
 int RunEvaluate(const EvaluateOptions& o) {
   const Mission mission = ReadMission(o.mission);
-  const Catalog cat = Catalog::Load(o.catalog_dir);
+  const Catalog cat = Catalog::Load(o.catalog);
   Combination c;
   ChooseParts(mission, cat, o, &c);
   c.battery = &cat.battery(o.battery_id);
@@ -232,7 +232,7 @@ int RunOptimize(const OptimizeOptions& o) {
   const SigintToFlag sigint;  // from here on Ctrl-C stops the search instead of the process
   SearchOptions so = OptimizeSearchOptions(o);
   const Mission mission = ReadMission(o.mission);
-  const Catalog cat = Catalog::Load(o.catalog_dir);
+  const Catalog cat = Catalog::Load(o.catalog);
   bool shown = false;
   if (!o.json && !o.quiet && isatty(fileno(stderr))) so.progress = ProgressLine(mission, o, &shown);
   const SearchResult s = SearchCatalog(mission, cat, so);

@@ -92,7 +92,7 @@ int RunInSystemLaw(const InSystemLawOptions& o) {
   const std::vector<stand::LawMotor> kde = KdeLawMotors(o.shared_data_dir + "/kde_direct_mfr_sheets", &no_torque);
   std::string no_torque_text;
   for (const auto& n : no_torque) no_torque_text += (no_torque_text.empty() ? "" : ", ") + n;
-  const Catalog raw = Catalog::Load(o.catalog_dir, /*in_system_law=*/false);
+  const Catalog raw = Catalog::Load(o.catalog, /*in_system_law=*/false);
   const std::vector<stand::LawForm> forms = {{true, false}, {false, false}, {false, true}, {true, true}};
   std::vector<stand::LawReport> reports;
   std::size_t best = 0;

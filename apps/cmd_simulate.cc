@@ -24,13 +24,6 @@
 
 namespace dynosize::cli {
 
-std::string DefaultCatalogDir() {
-  if (const char* env = std::getenv("DYNOSIZE_CATALOG"); env && *env) return env;
-  std::error_code ec;
-  if (std::filesystem::is_directory(DYNOSIZE_DEFAULT_CATALOG, ec)) return DYNOSIZE_DEFAULT_CATALOG;
-  return "catalog";
-}
-
 namespace {
 
 std::string FlagValue(double v) {
@@ -313,7 +306,7 @@ int RunSimulateProp(const SimulateOptions& o) {
       throw UsageError("--prop: " + rule + " (flags --throttle, --rpm, --thrust-n, --vdc, --rho-kg-m3)");
     }
   }
-  const Catalog catalog = Catalog::Load(o.catalog_dir);
+  const Catalog catalog = Catalog::Load(o.catalog);
   const MotorEntry& motor = catalog.motor(o.motor_id);
   const EscEntry& esc = catalog.esc(o.esc_id);
   const PropEntry& prop_entry = catalog.prop(o.prop_id);
@@ -499,7 +492,7 @@ int RunSimulate(const SimulateOptions& o) {
     }
   }
 
-  const Catalog catalog = Catalog::Load(o.catalog_dir);
+  const Catalog catalog = Catalog::Load(o.catalog);
   const MotorEntry& motor = catalog.motor(o.motor_id);
   const EscEntry& esc = catalog.esc(o.esc_id);
   const Drive drive(motor.params, esc.params);

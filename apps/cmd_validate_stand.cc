@@ -197,7 +197,7 @@ int RunValidateStand(const ValidateStandOptions& o) {
     throw UsageError("--rho-kg-m3 " + Pct(po.rho_kg_m3, 4) + ": must be a finite number > 0 and <= 100");
   }
 
-  const Catalog catalog = Catalog::Load(o.catalog_dir);
+  const Catalog catalog = Catalog::Load(o.catalog);
   const MotorEntry& motor = catalog.motor(o.motor_id);
   const EscEntry& esc = catalog.esc(o.esc_id);
   const PropEntry* prop_entry = o.prop_id.empty() ? nullptr : &catalog.prop(o.prop_id);

@@ -8,11 +8,9 @@
 #include <string>
 #include <vector>
 
-namespace dynosize::cli {
+#include "catalog/catalog_path.h"
 
-// The catalog folder used when --catalog is not given: $DYNOSIZE_CATALOG, else the source
-// tree's catalog/ the binary was built from, else ./catalog.
-std::string DefaultCatalogDir();
+namespace dynosize::cli {
 
 // How a measured log or stand table is read: the options calibrate, diagnose and validate-stand
 // share (apps/main.cc registers them once, AddLogInputOptions; ToLogReadOptions converts them).
@@ -26,7 +24,7 @@ struct LogInputOptions {
 };
 
 struct SimulateOptions {
-  std::string catalog_dir;
+  CatalogFolders catalog;  // --catalog, --catalog-add, --override (catalog/catalog_path.h)
   std::string motor_id, esc_id;
   std::optional<double> vdc_v, throttle, torque_nm, rpm;
   std::vector<double> torque_law;  // a, b, c of Q = a + b*omega + c*omega^2 (SI)
@@ -43,7 +41,7 @@ int RunSimulate(const SimulateOptions& o);
 // `dynosize validate-stand TABLE --motor M --esc E [--prop P]`: a measured stand table predicted
 // row by row, dynosize against the plain first-order DC model (src/stand/stand.h).
 struct ValidateStandOptions {
-  std::string catalog_dir;
+  CatalogFolders catalog;  // --catalog, --catalog-add, --override (catalog/catalog_path.h)
   std::string table;
   std::string motor_id, esc_id, prop_id;
   LogInputOptions input;
@@ -59,25 +57,26 @@ struct ValidateStandOptions {
 int RunValidateStand(const ValidateStandOptions& o);
 
 struct CatalogListOptions {
-  std::string catalog_dir;
+  CatalogFolders catalog;  // --catalog, --catalog-add, --override (catalog/catalog_path.h)
   std::string kind;  // "" = all, else motors | escs | props | batteries
   bool json = false;
   std::optional<double> kv_min, kv_max, mass_max_kg, current_min_a;
 };
 int RunCatalogList(const CatalogListOptions& o);
-int RunCatalogShow(const std::string& catalog_dir, const std::string& id);
-int RunCatalogValidate(const std::string& dir, bool json);
+int RunCatalogShow(const CatalogFolders& catalog, const std::string& id);
+// `catalog validate [DIR]`: DIR alone when given, else the folders in use read together.
+int RunCatalogValidate(const CatalogFolders& catalog, bool json);
 int RunCatalogSchema(bool json);
 // `catalog prop-reynolds`: the Reynolds-number law of catalog/prop_reynolds.h fitted on the
 // catalog's UIUC entries, with its leave-one-family-out check (markdown on stdout).
-int RunCatalogPropReynolds(const std::string& catalog_dir);
+int RunCatalogPropReynolds(const CatalogFolders& catalog);
 
 // `dynosize catalog in-system-law --shared DIR`: the in-system law of catalog/in_system.h fitted
 // on the KDE sheets and DriveCalc's refits (the catalog's drivecalc.json and
 // drivecalc_fitted.json), checked by leaving each motor out: a Markdown report, or with
 // --constants the coefficients as catalog/in_system.cc holds them.
 struct InSystemLawOptions {
-  std::string catalog_dir;
+  CatalogFolders catalog;  // --catalog, --catalog-add, --override (catalog/catalog_path.h)
   std::string shared_data_dir;
   bool constants = false;
   std::string plot_png;  // measured vs predicted figure of the KDE sheets
@@ -85,7 +84,7 @@ struct InSystemLawOptions {
 int RunInSystemLaw(const InSystemLawOptions& o);
 
 struct CalibrateOptions {
-  std::string catalog_dir;
+  CatalogFolders catalog;  // --catalog, --catalog-add, --override (catalog/catalog_path.h)
   std::vector<std::string> logs;
   std::string motor_id, esc_id;     // ids of the fitted entries
   LogInputOptions input;
@@ -116,7 +115,7 @@ int RunCalibrate(const CalibrateOptions& o);
 // `dynosize diagnose LOG [--motor ID --esc ID]`: what the model gets wrong in a measured log,
 // the named cause, the extended model and its cross-validated gain (src/diagnosis/diagnose.h).
 struct DiagnoseCliOptions {
-  std::string catalog_dir;
+  CatalogFolders catalog;  // --catalog, --catalog-add, --override (catalog/catalog_path.h)
   std::string log;
   std::string motor_id, esc_id;  // catalog entries to start from (optional)
   LogInputOptions input;
@@ -146,7 +145,7 @@ int RunCatalogImport(const CatalogImportOptions& o);
 // `dynosize evaluate MISSION --motor ID --esc ID --prop ID --battery ID [--cells N] [--json]`:
 // one combination flying the mission (src/optimization/mission_eval.h).
 struct EvaluateOptions {
-  std::string catalog_dir;
+  CatalogFolders catalog;  // --catalog, --catalog-add, --override (catalog/catalog_path.h)
   std::string mission;
   std::string motor_id, esc_id, prop_id, battery_id;
   std::vector<std::string> picks;  // --pick GROUP=MOTOR,ESC,PROP (missions with propulsion groups)
@@ -159,7 +158,7 @@ int RunEvaluate(const EvaluateOptions& o);
 // `dynosize optimize MISSION [--top N] [--json] [--plot DIR]`: the best N combinations of the
 // catalog (src/optimization/search.h).
 struct OptimizeOptions {
-  std::string catalog_dir;
+  CatalogFolders catalog;  // --catalog, --catalog-add, --override (catalog/catalog_path.h)
   std::string mission;
   int top = 5;
   bool json = false;

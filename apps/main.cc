@@ -56,7 +56,7 @@ void AddLogInputOptions(CLI::App* cmd, dynosize::cli::LogInputOptions* in, const
 // One Add*Command per subcommand: registers it and its flags on app, bound to the options
 // struct, and returns it (true once the command line has chosen it).
 
-CLI::App* AddSimulateCommand(CLI::App& app, cli::SimulateOptions& sim, const std::string& catalog_dir) {
+CLI::App* AddSimulateCommand(CLI::App& app, cli::SimulateOptions& sim) {
   auto* simulate = app.add_subcommand(
       "simulate",
       "operating point(s) of a motor + ESC pair: forward (VDC, throttle, load) or inverse "
@@ -81,7 +81,6 @@ CLI::App* AddSimulateCommand(CLI::App& app, cli::SimulateOptions& sim, const std
   simulate->add_option("--thrust-n", sim.thrust_n, "with --prop: the static thrust to hold, N");
   simulate->add_option("--rho-kg-m3", sim.rho_kg_m3, "with --prop: air density, kg/m^3 (default 1.225)");
   simulate->add_flag("--json", sim.json, "print one JSON object");
-  simulate->callback([s = &sim, dir = &catalog_dir] { s->catalog_dir = *dir; });
   return simulate;
 }
 
@@ -285,9 +284,19 @@ int main(int argc, char** argv) {
   app.set_version_flag("--version", std::string(DYNOSIZE_VERSION));
   std::string catalog_dir;
   app.add_option("--catalog", catalog_dir,
-                 "catalog folder (default: $DYNOSIZE_CATALOG or the bundled catalog/)");
+                 "catalog folder (default: $DYNOSIZE_CATALOG or the bundled catalog)");
+  std::vector<std::string> catalog_add;
+  app.add_option("--catalog-add", catalog_add,
+                 "a folder of your own parts read on top of the catalog (repeatable; after the folders "
+                 "of $DYNOSIZE_CATALOG_PATH, colon-separated); an id the catalog already holds is an error")
+      ->take_all()
+      ->allow_extra_args(false);
+  bool catalog_override = false;
+  app.add_flag("--override", catalog_override,
+               "an added entry (--catalog-add, $DYNOSIZE_CATALOG_PATH) replaces the catalog's entry of the "
+               "same id and kind instead of being an error");
   cli::SimulateOptions sim;
-  CLI::App* simulate = AddSimulateCommand(app, sim, catalog_dir);
+  CLI::App* simulate = AddSimulateCommand(app, sim);
   cli::CalibrateOptions cal;
   CLI::App* calibrate = AddCalibrateCommand(app, cal);
   CatalogCli cat;
@@ -330,42 +339,46 @@ int main(int argc, char** argv) {
   }
 
   try {
-    const std::string dir = catalog_dir.empty() ? cli::DefaultCatalogDir() : catalog_dir;
+    const dynosize::CatalogFolders dir =
+        dynosize::ResolveCatalogFolders(catalog_dir, catalog_add, catalog_override);
     if (*simulate) {
-      sim.catalog_dir = dir;
+      sim.catalog = dir;
       return cli::RunSimulate(sim);
     }
     if (*calibrate) {
-      cal.catalog_dir = dir;
+      cal.catalog = dir;
       return cli::RunCalibrate(cal);
     }
     if (*diagnose) {
-      diag.catalog_dir = dir;
+      diag.catalog = dir;
       return cli::RunDiagnose(diag);
     }
     if (*evaluate) {
-      eval.catalog_dir = dir;
+      eval.catalog = dir;
       return cli::RunEvaluate(eval);
     }
     if (*optimize) {
-      optim.catalog_dir = dir;
+      optim.catalog = dir;
       return cli::RunOptimize(optim);
     }
     if (*validate_stand) {
-      vst.catalog_dir = dir;
+      vst.catalog = dir;
       return cli::RunValidateStand(vst);
     }
     if (*cat.list_cmd) {
-      cat.list.catalog_dir = dir;
+      cat.list.catalog = dir;
       return cli::RunCatalogList(cat.list);
     }
     if (*cat.show_cmd) return cli::RunCatalogShow(dir, cat.show_id);
-    if (*cat.validate_cmd) return cli::RunCatalogValidate(cat.validate_dir.empty() ? dir : cat.validate_dir, cat.validate_json);
+    if (*cat.validate_cmd) {
+      return cli::RunCatalogValidate(
+          cat.validate_dir.empty() ? dir : dynosize::CatalogFolders{cat.validate_dir, {}, false}, cat.validate_json);
+    }
     if (*cat.schema_cmd) return cli::RunCatalogSchema(cat.schema_json);
     if (*cat.reynolds_cmd) return cli::RunCatalogPropReynolds(dir);
     if (*cat.import_cmd) return cli::RunCatalogImport(cat.import_opts);
     if (*cat.law_cmd) {
-      cat.law_opts.catalog_dir = dir;
+      cat.law_opts.catalog = dir;
       return cli::RunInSystemLaw(cat.law_opts);
     }
   } catch (const dynosize::Error& e) {

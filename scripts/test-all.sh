@@ -1,7 +1,9 @@
 #!/usr/bin/env bash
 # Everything CI checks, in one place (README command 2 and .ci/run call exactly this script):
 #   1. install what is missing (scripts/setup-debian.sh);
-#   2. Release build (build/) and the whole test suite;
+#   2. Release build (build/) and the whole test suite (ctest: the GoogleTest suite and
+#      installed_package, which installs build/ into a temporary prefix and builds examples/cpp
+#      against it as a user's project would);
 #   3. AddressSanitizer + UndefinedBehaviorSanitizer build with clang (build-asan/), which also
 #      holds the libFuzzer targets of fuzz/;
 #   4. a short fuzz pass over every target (scripts/fuzz.sh, DYNOSIZE_FUZZ_SECONDS in all);

@@ -508,6 +508,17 @@ PropEntry PropEntryFromJson(const Json& e) {
   return PropFromJson(e, std::move(base));
 }
 
+template <typename Entry>
+void Catalog::Put(std::vector<Entry>* entries, ComponentKind kind, Entry entry) {
+  const auto it = index_.find(entry.id);
+  if (it != index_.end() && it->second.first == kind) {
+    (*entries)[it->second.second] = std::move(entry);  // an override (AddDocument checked it)
+    return;
+  }
+  index_[entry.id] = {kind, entries->size()};
+  entries->push_back(std::move(entry));
+}
+
 // Physics at the door (model.md section 10, model/physics.h, catalog/prop_credibility.h): an
 // entry that creates energy or beats momentum theory is refused, whatever its source.
 std::string Catalog::AddEntry(ComponentKind kind, const Json& e, EntryBase base) {
@@ -533,16 +544,14 @@ std::string Catalog::AddEntry(ComponentKind kind, const Json& e, EntryBase base)
           p = InSystemMotorParams(p, a.datasheet, *a.law, a.r, a.io);
         }
       }
-      index_[id] = {kind, motors_.size()};
-      motors_.push_back(std::move(m));
+      Put(&motors_, kind, std::move(m));
       break;
     }
     case ComponentKind::kEsc: {
       EscEntry x = EscFromJson(e, std::move(base));
       const std::string v = EscEnergyViolation(x.params);
       if (!v.empty()) return "creates energy: " + v;
-      index_[id] = {kind, escs_.size()};
-      escs_.push_back(std::move(x));
+      Put(&escs_, kind, std::move(x));
       break;
     }
     case ComponentKind::kProp: {
@@ -553,14 +562,12 @@ std::string Catalog::AddEntry(ComponentKind kind, const Json& e, EntryBase base)
       }
       const std::string v = PropMomentumViolation(x);
       if (!v.empty()) return v;
-      index_[id] = {kind, props_.size()};
-      props_.push_back(std::move(x));
+      Put(&props_, kind, std::move(x));
       break;
     }
     case ComponentKind::kBattery: {
       BatteryEntry x = BatteryFromJson(e, std::move(base));
-      index_[id] = {kind, batteries_.size()};
-      batteries_.push_back(std::move(x));
+      Put(&batteries_, kind, std::move(x));
       break;
     }
   }
@@ -585,6 +592,23 @@ const char* KindNoun(ComponentKind kind) {
     case ComponentKind::kBattery: return "battery";
   }
   return "?";
+}
+
+// An id read a second time: within one folder always a duplicate; from a later folder (one the
+// user added on top) an error naming both files unless overrides are allowed, and then only by an
+// entry of the same kind. "" when the new entry may replace the earlier one.
+std::string Catalog::ClashRule(const IdOrigin& prev, ComponentKind kind, const std::string& id) const {
+  if (prev.folder == folder_) return "duplicate id: already used in " + prev.where;
+  if (!override_ids_) {
+    return "clashes with " + prev.where + " (a folder added on top may not redefine an id: rename "
+           "one of them, or let the added entry win with --override)";
+  }
+  const ComponentKind prev_kind = index_.at(id).first;
+  if (prev_kind != kind) {
+    return "cannot override " + prev.where + ": " + KindNoun(prev_kind) + " there, " + KindNoun(kind) +
+           " here (an override must be of the same kind)";
+  }
+  return "";
 }
 
 void Catalog::AddDocument(const Json& doc, const std::string& file,
@@ -676,16 +700,17 @@ void Catalog::AddDocument(const Json& doc, const std::string& file,
           }
         }
       }
+      std::optional<IdOrigin> replaced;
       if (!id.empty()) {
-        const auto prev = id_file_.find(id);
-        if (prev != id_file_.end()) {
-          bad("id", "duplicate id: already used in " + prev->second);
+        if (const auto prev = id_file_.find(id); prev != id_file_.end()) {
+          const std::string clash = ClashRule(prev->second, kind, id);
+          if (clash.empty()) replaced = prev->second; else bad("id", clash);
         }
       }
       if (problems->size() != before) continue;
 
       // The entry is valid: convert it once, here, to SI parameters.
-      id_file_[id] = where;
+      id_file_[id] = IdOrigin{where, folder_};
       EntryBase base;
       base.id = id;
       base.name = e["name"].get<std::string>();
@@ -706,7 +731,7 @@ void Catalog::AddDocument(const Json& doc, const std::string& file,
       const std::string violation = AddEntry(kind, e, std::move(base));
       if (!violation.empty()) {
         problems->push_back(where + ": " + violation);
-        id_file_.erase(id);
+        if (replaced) id_file_[id] = *replaced; else id_file_.erase(id);
       }
     }
   }
@@ -733,31 +758,48 @@ std::vector<std::string> CatalogFiles(const std::string& dir) {
 }  // namespace
 
 std::vector<std::string> Catalog::Validate(const std::string& dir) {
+  return Validate(CatalogFolders{dir, {}, false});
+}
+
+std::vector<std::string> Catalog::Validate(const CatalogFolders& folders) {
   Catalog catalog;
   std::vector<std::string> problems;
-  for (const auto& file : CatalogFiles(dir)) {
-    try {
-      catalog.AddDocument(ReadJsonFile(file), file, &problems);
-    } catch (const DataError& e) {
-      problems.push_back(e.what());
-    }
-  }
+  catalog.AddFolders(folders, &problems);
   return problems;
 }
 
+void Catalog::AddFolders(const CatalogFolders& folders, std::vector<std::string>* problems) {
+  override_ids_ = folders.override_ids;
+  std::vector<std::string> dirs = {folders.base};
+  dirs.insert(dirs.end(), folders.added.begin(), folders.added.end());
+  // Every folder is listed before any is read, so that a missing one is reported first.
+  std::vector<std::vector<std::string>> files;
+  for (const auto& dir : dirs) files.push_back(CatalogFiles(dir));
+  for (folder_ = 0; folder_ < dirs.size(); ++folder_) {
+    if (files[folder_].empty()) {
+      problems->push_back(dirs[folder_] + ": the catalog folder holds no .json file");
+    }
+    for (const auto& file : files[folder_]) {
+      try {
+        AddDocument(ReadJsonFile(file), file, problems);
+      } catch (const DataError& e) {
+        problems->push_back(e.what());
+      }
+    }
+  }
+  folder_ = 0;
+}
+
 Catalog Catalog::Load(const std::string& dir, bool in_system_law) {
+  return Load(CatalogFolders{dir, {}, false}, in_system_law);
+}
+
+Catalog Catalog::Load(const CatalogFolders& folders, bool in_system_law) {
   Catalog catalog;
   catalog.in_system_law_ = in_system_law;
   std::vector<std::string> problems;
-  const auto files = CatalogFiles(dir);
-  if (files.empty()) throw DataError(dir + ": the catalog folder holds no .json file");
-  for (const auto& file : files) {
-    try {
-      catalog.AddDocument(ReadJsonFile(file), file, &problems);
-    } catch (const DataError& e) {
-      problems.push_back(e.what());
-    }
-  }
+  catalog.AddFolders(folders, &problems);
+  const std::string& dir = folders.base;
   if (!problems.empty()) {
     std::ostringstream msg;
     for (std::size_t i = 0; i < problems.size() && i < kMaxProblemsInError; ++i) {
@@ -765,7 +807,9 @@ Catalog Catalog::Load(const std::string& dir, bool in_system_law) {
     }
     if (problems.size() > kMaxProblemsInError) {
       msg << "\n(and " << problems.size() - kMaxProblemsInError
-          << " more; run 'dynosize catalog validate " << dir << "' for all)";
+          << " more; run 'dynosize catalog validate"
+          << (folders.added.empty() ? " " + dir : std::string(" with the same catalog flags"))
+          << "' for all)";
     }
     throw DataError(msg.str());
   }

@@ -33,6 +33,7 @@
 #include <unordered_map>
 #include <vector>
 
+#include "catalog/catalog_path.h"
 #include "common/json_file.h"
 #include "model/drive.h"
 #include "model/gear.h"
@@ -177,10 +178,16 @@ class Catalog {
   // values (catalog/in_system.h; MotorEntry::datasheet_params keeps the file's) unless
   // `in_system_law` is false.
   static Catalog Load(const std::string& dir, bool in_system_law = true);
+  // The base folder, then each added folder (CatalogFolders). A missing added folder is a
+  // NoInputError, one without a .json file a DataError, as for the base.
+  static Catalog Load(const CatalogFolders& folders, bool in_system_law = true);
 
   // Every problem in the folder, one line each ("file: motors[3] id=x: key 'rm_ohm' = -1: must
-  // be > 0"); empty when the catalog is valid. Throws NoInputError when the folder is missing.
+  // be > 0"); empty when the catalog is valid. Throws NoInputError when the folder is missing; a
+  // folder without a .json file is a problem, as for Load.
   static std::vector<std::string> Validate(const std::string& dir);
+  // Every problem of the folders read together (clashing ids included).
+  static std::vector<std::string> Validate(const CatalogFolders& folders);
 
   // Adds the entries of one parsed catalog document; problems are appended to `problems`.
   void AddDocument(const Json& doc, const std::string& file, std::vector<std::string>* problems);
@@ -205,18 +212,36 @@ class Catalog {
   // (model.md section 10): returns that rule's sentence then, "" when added.
   std::string AddEntry(ComponentKind kind, const Json& e, EntryBase base);
 
+  struct IdOrigin;
+  // Adds a converted entry, or replaces the entry of the same id and kind (an override).
+  template <typename Entry>
+  void Put(std::vector<Entry>* entries, ComponentKind kind, Entry entry);
+  std::string ClashRule(const IdOrigin& prev, ComponentKind kind, const std::string& id) const;
+
   template <typename Entry>
   const Entry& Find(const std::vector<Entry>& entries, ComponentKind kind,
                     const std::string& id) const;
 
+  // Reads every folder of `folders` (in order) into *this; problems are appended.
+  void AddFolders(const CatalogFolders& folders, std::vector<std::string>* problems);
+
   bool in_system_law_ = false;  // Load's choice; AddDocument alone keeps the file's numbers
+  // Which folder of CatalogFolders AddDocument is reading (0: the base) and whether an entry of
+  // a later folder may replace one of an earlier folder with the same id.
+  std::size_t folder_ = 0;
+  bool override_ids_ = false;
   std::vector<MotorEntry> motors_;
   std::vector<EscEntry> escs_;
   std::vector<PropEntry> props_;
   std::vector<BatteryEntry> batteries_;
   // id -> (kind, index); ids are unique across the catalog.
   std::unordered_map<std::string, std::pair<ComponentKind, std::size_t>> index_;
-  std::unordered_map<std::string, std::string> id_file_;
+  // id -> where it was read ("file: motors[3] id=x") and from which folder.
+  struct IdOrigin {
+    std::string where;
+    std::size_t folder = 0;
+  };
+  std::unordered_map<std::string, IdOrigin> id_file_;
 };
 
 }  // namespace dynosize

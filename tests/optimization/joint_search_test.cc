@@ -10,6 +10,7 @@
 #include <fstream>
 #include <limits>
 #include <memory>
+#include <random>
 #include <string>
 #include <vector>
 
@@ -234,8 +235,12 @@ TEST_F(JointSearchTest, TwoFreeGroupsAndAFixedOneEqualExhaustiveEvaluation) {
 // max_endurance with the lift group's loiter stretched (R4's energy budget in G2) on a smaller
 // catalog (3 motors, 2 ESCs, 4 propellers of the small one): optimize == exhaustive evaluate,
 // and the outer bounds are below every feasible score.
-TEST_F(JointSearchTest, MaxEnduranceTwoFreeGroupsEqualExhaustiveEvaluation) {
-  const Catalog small = Catalog::Load((dir_ / "catalog").string());
+// The tiny catalog of the tests below (3 motors, 2 ESCs, 4 propellers of the small one), written
+// once.
+fs::path TinyCatalogDir(const fs::path& dir) {
+  const fs::path out = dir / "tiny" / "catalog";
+  if (fs::exists(out / "tiny.json")) return out;
+  const Catalog small = Catalog::Load((dir / "catalog").string());
   Json doc;
   doc["motors"] = Json::array();
   for (const char* id : {"dc_m_1020", "dc_m_18", "dc_m_24"}) doc["motors"].push_back(small.motor(id).json);
@@ -244,9 +249,13 @@ TEST_F(JointSearchTest, MaxEnduranceTwoFreeGroupsEqualExhaustiveEvaluation) {
   doc["props"] = Json::array();
   for (const char* id : {"dc_p_372", "dc_p_410", "apc_per3_10x45mr", "apc_per3_15x8e"}) doc["props"].push_back(small.prop(id).json);
   doc["batteries"] = Json::array({small.battery("dc_b_361").json});
-  fs::create_directories(dir_ / "tiny" / "catalog");
-  std::ofstream(dir_ / "tiny" / "catalog" / "tiny.json") << DumpJson(doc);
-  const Catalog cat = Catalog::Load((dir_ / "tiny" / "catalog").string());
+  fs::create_directories(out);
+  std::ofstream(out / "tiny.json") << DumpJson(doc);
+  return out;
+}
+
+TEST_F(JointSearchTest, MaxEnduranceTwoFreeGroupsEqualExhaustiveEvaluation) {
+  const Catalog cat = Catalog::Load(TinyCatalogDir(dir_).string());
   Json j = ParseJsonText(kFreeQuadplane, "free");
   j["objective"] = {{"type", "max_endurance"}, {"segment", "hover"}};
   const Mission m = ParseMission(j, "endurance");
@@ -269,6 +278,72 @@ TEST_F(JointSearchTest, MaxEnduranceTwoFreeGroupsEqualExhaustiveEvaluation) {
   });
   ASSERT_GE(all.size(), 3u);
   ExpectTopThreeOfExhaustive(cat, m, all, lift, pusher);
+}
+
+// Issue 24's property test: missions drawn from a seeded generator over the tiny catalog, with two
+// free groups, or two free and a fixed one, with and without a capacity range and a free cruise
+// airspeed, min_energy or max_endurance. Each search equals exhaustive evaluation (top 3, or all
+// feasible when fewer, bit for bit) or is refused with one line; none crashes. The first drawn
+// mission with both ranges is the one that crashed (SIGSEGV in FreeCruisePowerLowerBoundW from
+// JointBounds::LightestSurvivorKg, the free group's parts without an ESC).
+TEST_F(JointSearchTest, GeneratedMissionsEqualExhaustiveEvaluation) {
+  const Catalog cat = Catalog::Load(TinyCatalogDir(dir_).string());
+  std::mt19937 rng(24);  // seeded: the same missions every run
+  constexpr int kMissions = 6;
+  int compared = 0, with_ranges = 0;
+  for (int k = 0; k < kMissions; ++k) {
+    // The first mission has both ranges (the crash); then drawn.
+    const bool airspeed_range = k == 0 || rng() % 2 == 0;
+    const bool capacity_range = k == 0 || rng() % 2 == 0;
+    const bool third_group = k > 0 && rng() % 3 == 0;
+    const bool endurance = k > 0 && rng() % 3 == 0;
+    Json j = ParseJsonText(kFreeQuadplane, "generated");
+    if (airspeed_range) j["segments"][1]["airspeed_m_s"] = Json::array({10, 16});
+    if (capacity_range) j["battery"]["capacity_ah"] = Json::array({2, 5});
+    if (third_group) {
+      j["propulsion"]["sprint"] = {{"rotors", 1}, {"motor", "dc_m_1020"}, {"esc", "dc_e_56"}, {"prop", "apc_per3_10x45mr"}};
+      j["segments"].push_back(Json{{"name", "dash"}, {"type", "cruise"}, {"airspeed_m_s", 12}, {"lift_to_drag", 6},
+                                   {"distance_m", 500}, {"group", "sprint"}});
+    }
+    if (endurance) j["objective"] = {{"type", "max_endurance"}, {"segment", "hover"}};
+    const std::string what = "mission " + std::to_string(k) + (airspeed_range ? " airspeed range" : "") +
+                             (capacity_range ? " capacity range" : "") + (third_group ? " third group" : "") +
+                             (endurance ? " max_endurance" : "");
+    SCOPED_TRACE(what);
+    const Mission m = ParseMission(j, "generated");
+    ASSERT_EQ(FreeGroupCount(m), 2);
+    const int lift = m.segments[0].group, pusher = m.segments[1].group;
+    std::vector<Scored> all;
+    ForEachJoint(cat, m, lift, pusher, [&](const Combination& c, const MissionResult& r) {
+      if (r.feasible) all.push_back({r.score, Name(c, lift, pusher)});
+    });
+    std::sort(all.begin(), all.end(), [](const Scored& a, const Scored& b) {
+      return a.score != b.score ? a.score < b.score : a.name < b.name;
+    });
+    SearchOptions so;
+    so.top_n = 3;
+    SearchResult s;
+    try {
+      s = SearchCatalog(m, cat, so);
+    } catch (const Error& e) {  // a refusal: one line
+      EXPECT_EQ(std::string(e.what()).find('\n'), std::string::npos) << e.what();
+      continue;
+    }
+    if (all.empty()) {  // nothing feasible: the search finds nothing feasible either
+      for (const RankedCombination& b : s.best) EXPECT_FALSE(b.result.feasible);
+      continue;
+    }
+    const std::size_t n = std::min<std::size_t>(3, all.size());
+    ASSERT_EQ(s.best.size(), n);
+    for (std::size_t i = 0; i < n; ++i) {
+      EXPECT_EQ(Name(s.best[i].combination, lift, pusher), all[i].name) << i;
+      EXPECT_EQ(s.best[i].result.score, all[i].score) << i;
+    }
+    ++compared;
+    with_ranges += airspeed_range || capacity_range;
+  }
+  EXPECT_GE(compared, kMissions - 1) << "the generated missions must mostly fly";
+  EXPECT_GE(with_ranges, 1);
 }
 
 // Every group fixed: nothing to choose, refused with the JSON path.
