@@ -247,7 +247,23 @@ namespace dynosize {
 //    same queue under their triple bound, so every pair and triple is taken best bound first
 //    and the loop stops at the first bound not below the N-th best. Before any result exists,
 //    a class's best-bound ESC is searched first (its inner search sets the N-th best that the
-//    virtual ESC's search below uses as its cutoff).
+//    virtual ESC's search below uses as its cutoff). While no N-th best is known, an inner
+//    search that has not finished after kFirstSearchBudget solves (real and virtual ESCs) is
+//    dropped, its results unused, and taken again once an N-th best exists (its bound then
+//    decides) or when nothing else is left (without the budget): the order changes, not what is
+//    searched. Without it an outer choice that no completion makes feasible (a pusher whose
+//    cruise fails prop_figure_of_merit at every mass) searched the whole inner group without a
+//    cutoff, 18 s each.
+//    R6 as a mass floor for the outer group (FigureOfMeritMassFloorKg): in a segment at a fixed
+//    axial inflow v the evaluator's figure of merit is P_ideal(T, v)/P(omega), the propeller's
+//    power as given at the speed that gives the segment's thrust T. On a mass cell [M_a, M_b]
+//    the thrust is in [T(M_a), T(M_b)] (M3) and the speed at or below omega_b, a speed whose
+//    thrust is at least T(M_b) (M1); where the power rises with speed over the cell's speeds
+//    (checked at samples, as the grids are) it is at most P(omega_b), and P_ideal rises with T,
+//    so the figure of merit is at least P_ideal(T(M_a), v)/P(omega_b). A cell where that is
+//    above max_figure_of_merit holds no feasible mass; cells are scanned up from the lightest
+//    vehicle and the floor is the bottom of the first one not proven so. The outer bounds are
+//    read at no less than the floor (as R7's), so they stay bounds (M3).
 // G3 (the class's real ESCs from one virtual search): the virtual ESC's inner search above asks
 //    for every completion (the inner group's motor, ESC, propeller and the pack) below the N-th
 //    best, up to kCompletionLimit of them (joint_search.cc). With the virtual ESC on the relaxed
