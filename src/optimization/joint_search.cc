@@ -882,6 +882,282 @@ long long SolveAgainstCompletions(const Mission& sub, const Catalog& cat, int ou
 
 }  // namespace
 
+namespace {
+
+// G2's loop over the outer group's pairs and triples (search.cc: order, R5, G3), best first from
+// one queue, the inner searches merged into one top N.
+class JointLoop {
+ public:
+  JointLoop(const Mission& m, const Catalog& cat, const SearchOptions& opt, double cutoff, PropGridCache* cache,
+            JointBounds* jb, const std::vector<OuterPair>& pairs, long long block, SearchResult* out)
+      : m_(m), cat_(cat), opt_(opt), cache_(cache), jb_(*jb), pairs_(pairs), block_(block),
+        n_esc_(static_cast<long long>(cat.escs().size())), out_(*out), top_(opt.top_n, opt.distinct_designs, cutoff) {
+    inner_opt_ = opt;
+    inner_opt_.progress = nullptr;
+    // The virtual ESC only with two free groups (the inner search is the one-group search) and
+    // the catalog's ESC values as the ranking flies them (ScenarioEscParams leaves them).
+    virtual_ok_ = FreeGroupCount(m) == 2 && m.objective.ranking != DataScenario::kPessimistic &&
+                  m.objective.ranking != DataScenario::kOptimistic;
+    relaxed_ = m;
+    relaxed_.constraints.min_hover_throttle = 0.0;
+    relaxed_.constraints.prop_below_data_factor = 0.0;  // as min_hover_throttle (search.cc R12)
+  }
+
+  // The whole loop; then out's best, N-th best and progress.
+  void Run();
+
+ private:
+  // A pair (esc -1, under its coupled bound) or one ESC's inner search (under its triple bound).
+  struct Queued {
+    double bound;
+    std::size_t pair;
+    int esc;
+    bool unlimited = false;  // taken before (put back): no budget now
+    bool operator>(const Queued& o) const { return std::tie(bound, pair, esc) > std::tie(o.bound, o.pair, o.esc); }
+  };
+  double Nth() const { return top_.Threshold(); }
+  void Progress(std::size_t done) const { ReportProgress(opt_, pairs_, done, top_, out_); }
+  // The next pair of the list under its coupled bound (G2's order: the uncoupled one is lower).
+  void Tighten();
+  // The outer group fixed to (pair, ESC e), the battery to the pair's option: the inner search.
+  // budgeted (only while there is no N-th best): an inner search that has not finished within
+  // kFirstSearchBudget solves is dropped (false; its results unused) and taken again later.
+  bool SearchTriple(const OuterPair& pr, int e, bool budgeted);
+  // A pair's ESC classes: per class the bounds, the virtual ESC (R5, G3); the single ESCs left
+  // go into the queue. False: the pair was put back (its first inner search over its budget).
+  bool TakePair(const Queued& q);
+  // One class with two or more ESCs below the N-th best (`cls`, best triple bound first): the
+  // virtual ESC's completions, then each real ESC against them (G3) or its own inner search.
+  void VirtualEscClass(const OuterPair& pr, std::size_t i, const std::vector<std::pair<double, int>>& cls);
+  // Everything left is unsettled (a stop): the item being taken has bound `bound` and `left`
+  // combinations not yet settled, the rest the queue's and the list's own bounds.
+  void StopAll(double bound, long long left);
+  long long QueuedCombinations(const Queued& q) const { return q.esc < 0 ? SaturatingProduct({n_esc_, block_}) : block_; }
+
+  const Mission& m_;
+  const Catalog& cat_;
+  const SearchOptions& opt_;
+  PropGridCache* cache_;
+  JointBounds& jb_;
+  const std::vector<OuterPair>& pairs_;
+  const long long block_, n_esc_;
+  SearchResult& out_;
+  TopResults top_;  // top_results.h
+  SearchOptions inner_opt_;
+  bool virtual_ok_ = false;
+  Mission relaxed_;
+  std::priority_queue<Queued, std::vector<Queued>, std::greater<>> queue_;
+  // Items whose budgeted inner search did not finish: back into the queue once an N-th best is
+  // known (their bounds then prune most of them), or, when nothing else is left, unlimited.
+  std::vector<Queued> deferred_;
+  std::size_t next_ = 0;  // the list's next pair not yet in the queue
+};
+
+void JointLoop::Run() {
+  std::size_t taken = 0;
+  for (;;) {
+    const bool drained = next_ == pairs_.size() && queue_.empty();
+    if (!deferred_.empty() && (Nth() < kInf || drained)) {
+      for (Queued d : deferred_) {
+        d.unlimited = true;
+        queue_.push(d);
+      }
+      deferred_.clear();
+    }
+    const bool from_list = next_ < pairs_.size() && (queue_.empty() || pairs_[next_].bound < queue_.top().bound);
+    if (!from_list && queue_.empty()) break;
+    const double least = from_list ? pairs_[next_].bound : queue_.top().bound;
+    if (!(least < Nth())) {  // G2: every pair and triple left has a bound at least as bad
+      long long left = SaturatingProduct({static_cast<long long>(pairs_.size() - next_), n_esc_, block_});
+      for (; !queue_.empty(); queue_.pop()) AddCount(&left, QueuedCombinations(queue_.top()));
+      AddCount(&out_.pruned_by["objective_bound"], left);
+      break;
+    }
+    if (StopRequested(opt_)) {
+      StopAll(least, 0);
+      break;
+    }
+    if (from_list) {
+      Tighten();
+      continue;
+    }
+    const Queued q = queue_.top();
+    queue_.pop();
+    if (taken++ % 64 == 0) Progress(next_);
+    const bool budgeted = !q.unlimited && !(Nth() < kInf);
+    const bool done = q.esc >= 0 ? SearchTriple(pairs_[q.pair], q.esc, budgeted) : TakePair(q);
+    if (!done) {
+      deferred_.push_back(q);
+      continue;
+    }
+    if (out_.interrupted) {  // stopped in this item's inner searches: the rest of it is unsettled
+      StopAll(q.bound, QueuedCombinations(q));
+      break;
+    }
+  }
+  if (!out_.interrupted) Progress(pairs_.size());
+  out_.best = top_.Sorted();
+  out_.nth_best_score = top_.Threshold();
+}
+
+void JointLoop::Tighten() {
+  const OuterPair& pr = pairs_[next_];
+  double bound = kInf;
+  for (std::size_t c = 0; c < jb_.escs().classes.size(); ++c) {
+    if (jb_.escs().per_option[pr.option][c].empty()) continue;
+    const char* why = nullptr;
+    double irms_lb = 0;
+    bound = std::min(bound, jb_.PairBound(pr.motor, pr.prop, pr.option, static_cast<int>(c), &why, &irms_lb));
+  }
+  if (bound < kInf) {
+    queue_.push(Queued{std::max(bound, pr.bound), next_, -1});
+  } else {
+    AddCount(&out_.pruned_by["objective_bound"], SaturatingProduct({n_esc_, block_}));
+  }
+  ++next_;
+}
+
+bool JointLoop::SearchTriple(const OuterPair& pr, int e, bool budgeted) {
+  const Mission sub = SubMission(m_, cat_, jb_.outer_group(), pr, e, jb_);
+  SearchOptions o = inner_opt_;
+  if (budgeted && FreeGroupCount(sub) == 1) o.evaluation_budget = kFirstSearchBudget;
+  SearchResult r = FreeGroupCount(sub) > 1 ? JointSearch(sub, cat_, o, Nth(), cache_)
+                                           : SearchOneGroup(sub, cat_, o, Nth(), cache_);
+  if (r.interrupted && !StopRequested(opt_)) {  // over its budget: taken again later
+    out_.virtual_evaluations += r.searched + r.virtual_evaluations;
+    return false;
+  }
+  const bool stopped = r.interrupted;
+  const double unsettled_bound = r.unsettled_bound_score;
+  Merge(std::move(r), &top_, &out_);
+  if (stopped) {
+    out_.interrupted = true;
+    out_.unsettled_bound_score = std::min(out_.unsettled_bound_score, unsettled_bound);
+  }
+  return true;
+}
+
+bool JointLoop::TakePair(const Queued& q) {
+  const OuterPair& pr = pairs_[q.pair];
+  const bool budgeted = !q.unlimited && !(Nth() < kInf);
+  std::vector<std::pair<double, int>> triples, cls;
+  bool started = false;  // work done on the pair: it may no longer be put back
+  for (std::size_t c = 0; c < jb_.escs().classes.size() && !out_.interrupted; ++c) {
+    const std::vector<int>& members = jb_.escs().per_option[pr.option][c];
+    if (members.empty()) continue;
+    const char* why = "objective_bound";
+    double irms_lb = 0;
+    const double cb = jb_.PairBound(pr.motor, pr.prop, pr.option, static_cast<int>(c), &why, &irms_lb);
+    if (!(cb < Nth())) {
+      AddCount(&out_.pruned_by[cb < kInf ? "objective_bound" : why],
+               SaturatingProduct({static_cast<long long>(members.size()), block_}));
+      continue;
+    }
+    cls.clear();
+    for (int e : members) {
+      const char* w = "objective_bound";
+      const double tb = jb_.TripleBound(pr.motor, e, pr.prop, pr.option, &w);
+      if (tb < Nth()) {
+        cls.emplace_back(tb, e);
+      } else {
+        AddCount(&out_.pruned_by[tb < kInf ? "objective_bound" : w], block_);
+      }
+    }
+    std::sort(cls.begin(), cls.end());
+    if (cls.size() >= 2 && virtual_ok_ && !(Nth() < kInf)) {
+      // No N-th best yet: the best-bound ESC's own search first, so that the virtual ESC's
+      // search has a cutoff (without one it would list every completion). Put back only before
+      // any other work on the pair (nothing of it may be taken twice).
+      if (!SearchTriple(pr, cls.front().second, budgeted && !started)) return false;
+      started = true;
+      cls.erase(cls.begin());
+      if (out_.interrupted) break;
+    }
+    if (cls.size() >= 2 && virtual_ok_) {
+      started = true;
+      VirtualEscClass(pr, q.pair, cls);
+      continue;
+    }
+    triples.insert(triples.end(), cls.begin(), cls.end());
+  }
+  if (!out_.interrupted) {
+    for (const auto& [tb, e] : triples) queue_.push(Queued{std::max(tb, q.bound), q.pair, e});
+  }
+  return true;
+}
+
+void JointLoop::VirtualEscClass(const OuterPair& pr, std::size_t i, const std::vector<std::pair<double, int>>& cls) {
+  const auto& escs = cat_.escs();
+  const int outer = jb_.outer_group();
+  // R5 for the outer group: the class's virtual ESC (no resistance, the lightest of these ESCs'
+  // mass, no current limit) scores no worse than any of them with every completion (M2, M3), on
+  // the mission without min_hover_throttle (the one limit it may fail when a real ESC passes).
+  // Nothing below the N-th best with it: nothing with them either.
+  EscEntry virt;
+  virt.id = "virtual";
+  virt.params = escs[static_cast<std::size_t>(cls.front().second)].params;
+  virt.params.resc_ohm = 0.0;
+  virt.params.max_current_a = kInf;
+  double kg = kInf;
+  for (const auto& t : cls) kg = std::min(kg, EscMassKg(escs[static_cast<std::size_t>(t.second)]));
+  virt.mass_kg = kg;
+  std::vector<GroupParts> given(m_.groups.size());
+  given[static_cast<std::size_t>(outer)] =
+      GroupParts{&cat_.motors()[static_cast<std::size_t>(pr.motor)], &virt, &cat_.props()[static_cast<std::size_t>(pr.prop)]};
+  Progress(i);
+  // G3: every completion below the N-th best with the virtual ESC, up to kCompletionLimit.
+  SearchOptions all_opt = inner_opt_;
+  all_opt.top_n = kCompletionLimit;
+  all_opt.distinct_designs = false;  // every completion, not one per design
+  const SearchResult r = SearchOneGroup(SubMission(relaxed_, cat_, outer, pr, cls.front().second, jb_), cat_,
+                                        all_opt, Nth(), cache_, &given);
+  out_.virtual_evaluations += r.searched + r.virtual_evaluations;
+  if (r.interrupted) {  // the pair is left unsettled (Run)
+    out_.interrupted = true;
+    return;
+  }
+  if (r.best.empty()) {
+    AddCount(&out_.pruned_by["objective_bound"], SaturatingProduct({static_cast<long long>(cls.size()), block_}));
+    return;
+  }
+  // Every completion not in r.best scores at least `complete_below` with the virtual ESC: while
+  // the N-th best is at or below it, the list is every completion that can matter.
+  const double complete_below = static_cast<int>(r.best.size()) < kCompletionLimit ? kInf : r.best.back().result.score;
+  std::vector<const PropModel*> group_models(m_.groups.size(), nullptr);
+  group_models[static_cast<std::size_t>(outer)] = cache_->models[static_cast<std::size_t>(pr.prop)].get();
+  for (const auto& [tb, e] : cls) {
+    if (out_.interrupted || StopRequested(opt_)) {
+      out_.interrupted = true;
+      return;
+    }
+    if (!(tb < Nth())) {
+      AddCount(&out_.pruned_by["objective_bound"], block_);
+    } else if (Nth() <= complete_below) {
+      const long long solved = SolveAgainstCompletions(SubMission(m_, cat_, outer, pr, e, jb_), cat_, outer, e, r.best,
+                                                       group_models, *cache_, [this]() { return Nth(); }, &top_, &out_);
+      AddCount(&out_.pruned_by["objective_bound"], block_ - std::min(block_, solved));
+    } else {
+      SearchTriple(pr, e, false);
+    }
+  }
+}
+
+void JointLoop::StopAll(double bound, long long left) {
+  out_.interrupted = true;
+  double least = bound;
+  if (next_ < pairs_.size()) least = std::min(least, pairs_[next_].bound);
+  if (!queue_.empty()) least = std::min(least, queue_.top().bound);
+  for (const Queued& d : deferred_) least = std::min(least, d.bound);
+  out_.unsettled_bound_score = std::min(out_.unsettled_bound_score, least);
+  AddCount(&out_.unsettled, left);
+  AddCount(&out_.unsettled, SaturatingProduct({static_cast<long long>(pairs_.size() - next_), n_esc_, block_}));
+  for (; !queue_.empty(); queue_.pop()) AddCount(&out_.unsettled, QueuedCombinations(queue_.top()));
+  for (const Queued& d : deferred_) AddCount(&out_.unsettled, QueuedCombinations(d));
+  deferred_.clear();
+}
+
+}  // namespace
+
 SearchResult JointSearch(const Mission& m, const Catalog& cat, const SearchOptions& opt, double cutoff,
                          PropGridCache* cache) {
   const auto t0 = std::chrono::steady_clock::now();
@@ -896,259 +1172,22 @@ SearchResult JointSearch(const Mission& m, const Catalog& cat, const SearchOptio
     if (m.groups[g].fixed()) FixedGroupParts(m, cat, g);
   }
   JointBounds jb(m, cat, *cache);
-  const int outer = jb.outer_group();
   SearchResult out;
   const long long per_group = GroupCombinations(cat);
   long long block = 1;  // the inner combinations of one outer choice and option
   for (int i = 1; i < FreeGroupCount(m); ++i) block = SaturatingProduct({block, per_group});
   const long long n_motor = static_cast<long long>(cat.motors().size());
   const long long n_prop = static_cast<long long>(cat.props().size());
-  const long long n_esc = static_cast<long long>(cat.escs().size());
   out.combinations = SaturatingProduct({per_group, block, static_cast<long long>(jb.options().size())});
   AddCount(&out.pruned_by["esc_voltage"], SaturatingProduct({jb.escs().voltage_pruned, n_motor, n_prop, block}));
   if (jb.escs().excluded_pruned > 0) {
     AddCount(&out.pruned_by["catalog_exclude"], SaturatingProduct({jb.escs().excluded_pruned, n_motor, n_prop, block}));
   }
-  std::vector<OuterPair> pairs = OuterPairs(cat, &jb, block, &out);
+  const std::vector<OuterPair> pairs = OuterPairs(cat, &jb, block, &out);
   jb.set_coupled(true);  // the tighter bound for the pairs taken (G2)
   out.candidate_pairs = static_cast<long long>(pairs.size());
   out.candidate_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  SearchOptions inner_opt = opt;
-  inner_opt.progress = nullptr;
-  TopResults top(opt.top_n, opt.distinct_designs, cutoff);  // top_results.h
-  auto nth = [&]() { return top.Threshold(); };
-  auto progress = [&](std::size_t done) { ReportProgress(opt, pairs, done, top, out); };
-  const auto& escs = cat.escs();
-  std::vector<std::pair<double, int>> triples, class_triples;
-  // The virtual ESC (below) only with two free groups (the inner search is the one-group search)
-  // and the catalog's ESC values as the ranking flies them (ScenarioEscParams leaves them).
-  const bool virtual_ok = FreeGroupCount(m) == 2 && m.objective.ranking != DataScenario::kPessimistic &&
-                          m.objective.ranking != DataScenario::kOptimistic;
-  // The outer group fixed to (pair, ESC e), the battery to the pair's option: the inner search.
-  // budgeted (only while there is no N-th best): an inner search that has not finished within
-  // kFirstSearchBudget solves is dropped (false; its results unused) and taken again later.
-  auto search_triple = [&](const OuterPair& pr, int e, bool budgeted) {
-    const Mission sub = SubMission(m, cat, outer, pr, e, jb);
-    SearchOptions o = inner_opt;
-    if (budgeted && FreeGroupCount(sub) == 1) o.evaluation_budget = kFirstSearchBudget;
-    SearchResult r = FreeGroupCount(sub) > 1 ? JointSearch(sub, cat, o, nth(), cache)
-                                             : SearchOneGroup(sub, cat, o, nth(), cache);
-    if (r.interrupted && !StopRequested(opt)) {  // over its budget: taken again later
-      out.virtual_evaluations += r.searched + r.virtual_evaluations;
-      return false;
-    }
-    const bool stopped = r.interrupted;
-    const double unsettled_bound = r.unsettled_bound_score;
-    Merge(std::move(r), &top, &out);
-    if (stopped) {
-      out.interrupted = true;
-      out.unsettled_bound_score = std::min(out.unsettled_bound_score, unsettled_bound);
-    }
-    return true;
-  };
-  Mission relaxed = m;
-  relaxed.constraints.min_hover_throttle = 0.0;
-  relaxed.constraints.prop_below_data_factor = 0.0;  // as min_hover_throttle (search.cc R12)
-  // Best first on the coupled bound, computed lazily: a pair's uncoupled bound (the order of
-  // `pairs`) is at most its coupled one, so a pair is taken only when its coupled bound is the
-  // least of every pair not yet taken (G2).
-  // The inner searches of single ESCs wait in the same queue with their triple bound (esc >= 0).
-  struct Queued {
-    double bound;
-    std::size_t pair;
-    int esc;  // -1: the pair (its coupled bound)
-    bool unlimited = false;  // taken before (deferred): no budget now
-    bool operator>(const Queued& o) const {
-      return std::tie(bound, pair, esc) > std::tie(o.bound, o.pair, o.esc);
-    }
-  };
-  // Items whose budgeted inner search did not finish: back into the queue once an N-th best is
-  // known (their bounds then prune most of them), or, when nothing else is left, unlimited.
-  std::vector<Queued> deferred;
-  std::priority_queue<Queued, std::vector<Queued>, std::greater<>> tightened;
-  std::size_t next = 0, taken = 0;
-  // Stopped (StopRequested, or an inner search stopped): everything left is unsettled; the item
-  // being taken has bound `bound` and `left` combinations not yet settled, the rest the
-  // queue's and the list's own bounds.
-  auto stop_all = [&](double bound, long long left) {
-    out.interrupted = true;
-    double least = bound;
-    if (next < pairs.size()) least = std::min(least, pairs[next].bound);
-    if (!tightened.empty()) least = std::min(least, tightened.top().bound);
-    out.unsettled_bound_score = std::min(out.unsettled_bound_score, least);
-    AddCount(&out.unsettled, left);
-    AddCount(&out.unsettled, SaturatingProduct({static_cast<long long>(pairs.size() - next), n_esc, block}));
-    for (; !tightened.empty(); tightened.pop()) {
-      AddCount(&out.unsettled, tightened.top().esc < 0 ? SaturatingProduct({n_esc, block}) : block);
-    }
-  };
-  for (;;) {
-    const bool drained = next == pairs.size() && tightened.empty();
-    if (!deferred.empty() && (nth() < kInf || drained)) {
-      for (Queued d : deferred) {
-        d.unlimited = true;
-        tightened.push(d);
-      }
-      deferred.clear();
-    }
-    const bool from_list = next < pairs.size() && (tightened.empty() || pairs[next].bound < tightened.top().bound);
-    if (!from_list && tightened.empty()) break;
-    const double least = from_list ? pairs[next].bound : tightened.top().bound;
-    if (!(least < nth())) {  // G2: every pair and triple left has a bound at least as bad
-      long long left = SaturatingProduct({static_cast<long long>(pairs.size() - next), n_esc, block});
-      for (; !tightened.empty(); tightened.pop()) {
-        AddCount(&left, tightened.top().esc < 0 ? SaturatingProduct({n_esc, block}) : block);
-      }
-      AddCount(&out.pruned_by["objective_bound"], left);
-      break;
-    }
-    if (StopRequested(opt)) {
-      stop_all(least, 0);
-      break;
-    }
-    if (from_list) {
-      const OuterPair& pr = pairs[next];
-      double bound = kInf;
-      for (std::size_t c = 0; c < jb.escs().classes.size(); ++c) {
-        if (jb.escs().per_option[pr.option][c].empty()) continue;
-        const char* why = nullptr;
-        double irms_lb = 0;
-        bound = std::min(bound, jb.PairBound(pr.motor, pr.prop, pr.option, static_cast<int>(c), &why, &irms_lb));
-      }
-      if (bound < kInf) {
-        tightened.push(Queued{std::max(bound, pr.bound), next, -1});
-      } else {
-        AddCount(&out.pruned_by["objective_bound"], SaturatingProduct({n_esc, block}));
-      }
-      ++next;
-      continue;
-    }
-    const Queued q = tightened.top();
-    tightened.pop();
-    if (taken++ % 64 == 0) progress(next);
-    const std::size_t i = q.pair;
-    const OuterPair& pr = pairs[i];
-    const bool budgeted = !q.unlimited && !(nth() < kInf);
-    if (q.esc >= 0) {
-      if (!search_triple(pr, q.esc, budgeted)) {
-        deferred.push_back(q);
-        continue;
-      }
-      if (out.interrupted) {
-        stop_all(q.bound, block);
-        break;
-      }
-      continue;
-    }
-    // The pair's ESCs: per class the bound with a zero-resistance ESC, then each ESC's own.
-    triples.clear();
-    bool deferred_pair = false, pair_started = false;
-    for (std::size_t c = 0; c < jb.escs().classes.size(); ++c) {
-      const std::vector<int>& members = jb.escs().per_option[pr.option][c];
-      if (members.empty()) continue;
-      const char* why = "objective_bound";
-      double irms_lb = 0;
-      const double cb = jb.PairBound(pr.motor, pr.prop, pr.option, static_cast<int>(c), &why, &irms_lb);
-      if (!(cb < nth())) {
-        AddCount(&out.pruned_by[cb < kInf ? "objective_bound" : why], SaturatingProduct({static_cast<long long>(members.size()), block}));
-        continue;
-      }
-      class_triples.clear();
-      for (int e : members) {
-        const char* w = "objective_bound";
-        const double tb = jb.TripleBound(pr.motor, e, pr.prop, pr.option, &w);
-        if (!(tb < nth())) {
-          AddCount(&out.pruned_by[tb < kInf ? "objective_bound" : w], block);
-          continue;
-        }
-        class_triples.emplace_back(tb, e);
-      }
-      std::sort(class_triples.begin(), class_triples.end());
-      if (class_triples.size() >= 2 && virtual_ok && !(nth() < kInf)) {
-        // No N-th best yet: the best-bound ESC's own search first, so that the virtual ESC's
-        // search below has a cutoff (without one it would list every completion).
-        // Put back only before any other work on the pair (nothing of it may be taken twice).
-        if (!search_triple(pr, class_triples.front().second, budgeted && !pair_started)) {
-          deferred_pair = true;  // the whole pair waits (G2's order)
-          break;
-        }
-        pair_started = true;
-        class_triples.erase(class_triples.begin());
-        if (out.interrupted) break;
-      }
-      if (class_triples.size() >= 2 && virtual_ok) {
-        // R5 for the outer group: the class's virtual ESC (no resistance, the lightest of these
-        // ESCs' mass, no current limit) scores no worse than any of them with every completion
-        // (M2, M3), on the mission without min_hover_throttle (the one limit it may fail when a
-        // real ESC passes). Nothing below the N-th best with it: nothing with them either.
-        EscEntry virt;
-        virt.id = "virtual";
-        virt.params = escs[static_cast<std::size_t>(class_triples.front().second)].params;
-        virt.params.resc_ohm = 0.0;
-        virt.params.max_current_a = kInf;
-        double kg = kInf;
-        for (const auto& t : class_triples) kg = std::min(kg, EscMassKg(escs[static_cast<std::size_t>(t.second)]));
-        virt.mass_kg = kg;
-        std::vector<GroupParts> given(m.groups.size());
-        given[static_cast<std::size_t>(outer)] =
-            GroupParts{&cat.motors()[static_cast<std::size_t>(pr.motor)], &virt, &cat.props()[static_cast<std::size_t>(pr.prop)]};
-        progress(i);
-        // G3: every completion below the N-th best with the virtual ESC, when there are fewer
-        // than kCompletionLimit of them (else the inner search per ESC below).
-        SearchOptions all_opt = inner_opt;
-        all_opt.top_n = kCompletionLimit;
-        all_opt.distinct_designs = false;  // every completion, not one per design
-        const SearchResult r = SearchOneGroup(SubMission(relaxed, cat, outer, pr, class_triples.front().second, jb),
-                                              cat, all_opt, nth(), cache, &given);
-        pair_started = true;
-        out.virtual_evaluations += r.searched + r.virtual_evaluations;
-        if (r.interrupted) {  // the pair is left unsettled (below)
-          out.interrupted = true;
-          break;
-        }
-        if (r.best.empty()) {
-          AddCount(&out.pruned_by["objective_bound"], SaturatingProduct({static_cast<long long>(class_triples.size()), block}));
-          continue;
-        }
-        // Every completion not in r.best scores at least `complete_below` with the virtual ESC:
-        // while the N-th best is at or below it, the list is every completion that can matter.
-        const double complete_below =
-            static_cast<int>(r.best.size()) < kCompletionLimit ? kInf : r.best.back().result.score;
-        std::vector<const PropModel*> group_models(m.groups.size(), nullptr);
-        group_models[static_cast<std::size_t>(outer)] = cache->models[static_cast<std::size_t>(pr.prop)].get();
-        for (const auto& [tb, e] : class_triples) {
-          if (out.interrupted || StopRequested(opt)) {
-            out.interrupted = true;
-            break;
-          }
-          if (!(tb < nth())) {
-            AddCount(&out.pruned_by["objective_bound"], block);
-          } else if (nth() <= complete_below) {
-            const long long solved = SolveAgainstCompletions(SubMission(m, cat, outer, pr, e, jb), cat, outer, e, r.best,
-                                                             group_models, *cache, nth, &top, &out);
-            AddCount(&out.pruned_by["objective_bound"], block - std::min(block, solved));
-          } else {
-            search_triple(pr, e, false);
-          }
-        }
-        if (out.interrupted) break;
-        continue;
-      }
-      triples.insert(triples.end(), class_triples.begin(), class_triples.end());
-    }
-    if (deferred_pair) {
-      deferred.push_back(q);
-      continue;
-    }
-    if (out.interrupted) {  // stopped in this pair's inner searches: the rest of it is unsettled
-      stop_all(q.bound, SaturatingProduct({n_esc, block}));
-      break;
-    }
-    for (const auto& [tb, e] : triples) tightened.push(Queued{std::max(tb, q.bound), i, e});
-  }
-  if (!out.interrupted) progress(pairs.size());
-  out.best = top.Sorted();
-  out.nth_best_score = top.Threshold();
+  JointLoop(m, cat, opt, cutoff, cache, &jb, pairs, block, &out).Run();
   out.pruned = out.combinations - out.searched - out.unsettled;
   out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return out;
