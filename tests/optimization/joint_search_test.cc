@@ -26,26 +26,7 @@ namespace dynosize::search_internal {
 namespace {
 
 namespace fs = std::filesystem;
-
-// A small quadplane: four lift rotors climb, hover and descend, one pusher flies a wing-borne
-// cruise; both groups free (no motor/esc/prop). The pusher's frame takes props up to 11 in.
-const char* kFreeQuadplane = R"({
-  "name": "test quadplane, both groups free",
-  "vehicle": {"mass_kg": 0.6, "drag_area_m2": 0.03, "drag_coefficient": 1.0, "avionics_power_w": 4},
-  "propulsion": {
-    "lift": {"rotors": 4, "idle_drag_area_m2": 0.004},
-    "pusher": {"rotors": 1, "max_prop_diameter_m": 0.28}
-  },
-  "battery": {"id": "dc_b_361", "cells": [3, 4], "reserve_soc": 0.25},
-  "constraints": {"allow_folding_props_for_lift": true},
-  "objective": {"type": "min_energy"},
-  "segments": [
-    {"name": "up", "type": "climb", "rate_m_s": 1.5, "distance_m": 20, "group": "lift"},
-    {"name": "cruise", "type": "cruise", "airspeed_m_s": 12, "lift_to_drag": 6, "distance_m": 3000, "group": "pusher"},
-    {"name": "hover", "type": "hover", "duration_s": 30, "group": "lift"},
-    {"name": "down", "type": "climb", "rate_m_s": -1, "distance_m": 20, "group": "lift"}
-  ]
-})";
+using testing_util::kFreeQuadplane;
 
 class JointSearchTest : public ::testing::Test {
  protected:

@@ -27,20 +27,7 @@ namespace dynosize {
 namespace {
 
 namespace fs = std::filesystem;
-
-const char* kQuad = R"({
-  "name": "test quad",
-  "vehicle": {"mass_kg": 0.75, "rotors": 4, "drag_area_m2": 0.04, "drag_coefficient": 1.0, "avionics_power_w": 5},
-  "battery": {"id": "dc_b_361", "cells": [3, 4], "reserve_soc": 0.2},
-  "constraints": {"min_thrust_to_weight": 1.1, "allow_folding_props_for_lift": true},
-  "objective": {"type": "max_endurance", "segment": "loiter"},
-  "segments": [
-    {"name": "takeoff", "type": "climb", "rate_m_s": 2, "distance_m": 30},
-    {"name": "outbound", "type": "cruise", "airspeed_m_s": 10, "distance_m": 1000},
-    {"name": "loiter", "type": "hover", "duration_s": 300},
-    {"name": "landing", "type": "climb", "rate_m_s": -1, "distance_m": 30}
-  ]
-})";
+using testing_util::kQuad;
 
 class SearchTest : public ::testing::Test {
  protected:

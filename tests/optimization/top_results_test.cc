@@ -31,41 +31,9 @@ namespace dynosize::search_internal {
 namespace {
 
 namespace fs = std::filesystem;
+using testing_util::kFreeQuadplane;
+using testing_util::kQuad;
 constexpr double kInf = std::numeric_limits<double>::infinity();
-
-// As search_test.cc's kQuad: one free group, max_endurance.
-const char* kQuad = R"({
-  "name": "test quad",
-  "vehicle": {"mass_kg": 0.75, "rotors": 4, "drag_area_m2": 0.04, "drag_coefficient": 1.0, "avionics_power_w": 5},
-  "battery": {"id": "dc_b_361", "cells": [3, 4], "reserve_soc": 0.2},
-  "constraints": {"min_thrust_to_weight": 1.1, "allow_folding_props_for_lift": true},
-  "objective": {"type": "max_endurance", "segment": "loiter"},
-  "segments": [
-    {"name": "takeoff", "type": "climb", "rate_m_s": 2, "distance_m": 30},
-    {"name": "outbound", "type": "cruise", "airspeed_m_s": 10, "distance_m": 1000},
-    {"name": "loiter", "type": "hover", "duration_s": 300},
-    {"name": "landing", "type": "climb", "rate_m_s": -1, "distance_m": 30}
-  ]
-})";
-
-// As joint_search_test.cc's kFreeQuadplane: both groups free, min_energy.
-const char* kFreeQuadplane = R"({
-  "name": "test quadplane, both groups free",
-  "vehicle": {"mass_kg": 0.6, "drag_area_m2": 0.03, "drag_coefficient": 1.0, "avionics_power_w": 4},
-  "propulsion": {
-    "lift": {"rotors": 4, "idle_drag_area_m2": 0.004},
-    "pusher": {"rotors": 1, "max_prop_diameter_m": 0.28}
-  },
-  "battery": {"id": "dc_b_361", "cells": [3, 4], "reserve_soc": 0.25},
-  "constraints": {"allow_folding_props_for_lift": true},
-  "objective": {"type": "min_energy"},
-  "segments": [
-    {"name": "up", "type": "climb", "rate_m_s": 1.5, "distance_m": 20, "group": "lift"},
-    {"name": "cruise", "type": "cruise", "airspeed_m_s": 12, "lift_to_drag": 6, "distance_m": 3000, "group": "pusher"},
-    {"name": "hover", "type": "hover", "duration_s": 30, "group": "lift"},
-    {"name": "down", "type": "climb", "rate_m_s": -1, "distance_m": 20, "group": "lift"}
-  ]
-})";
 
 class TopResultsTest : public ::testing::Test {
  protected:
