@@ -53,6 +53,16 @@ std::string GpText(const std::string& s) {
   return q;
 }
 
+// A gnuplot title in double quotes (where \n is a line break).
+std::string GpTitle(const std::string& line1, const std::string& line2) {
+  std::string q = "\"";
+  for (char c : line1 + "\n" + line2) {
+    if (c == '"' || c == '\\') q += '\\';
+    q += c == '\n' ? std::string("\\n") : std::string(1, c);
+  }
+  return q + "\"";
+}
+
 double AsNumber(const Json& v, double index) { return v.is_number() ? v.get<double>() : index; }
 
 // The best pick's objective, low and high of every grid point (NaN where none).
@@ -64,8 +74,7 @@ std::vector<PointObjective> Objectives(const SweepResult& r) {
   for (const SweepRow& row : r.rows) {
     if (row.picks.empty() || !row.picks.front().feasible) continue;
     const SweepPick& p = row.picks.front();
-    out[row.index] = {p.objective, std::isfinite(p.objective_low) ? p.objective_low : p.objective,
-                      std::isfinite(p.objective_high) ? p.objective_high : p.objective};
+    out[row.index] = {p.objective, p.objective_low, p.objective_high};
   }
   return out;
 }
@@ -103,10 +112,11 @@ std::string ObjectiveVsKey(const Mission& m, const SweepResult& r, const std::ve
     titles.push_back(title.empty() ? "best pick" : title);
   }
   std::ostringstream g;
-  g << "set title '" << GpText(m.name) << ": " << GpText(ObjectiveLabel(m)) << " vs " << GpText(keys[k].key)
-    << "\\nbest pick per point; band: objective range (pessimistic to optimistic data); gaps: no feasible pick'\n"
+  g << "set title " << GpTitle(m.name + ": " + ObjectiveLabel(m) + " vs " + keys[k].key,
+                               "best pick per point; band: its objective range (pessimistic to optimistic data; "
+                               "none where an end cannot fly)") << "\n"
     << "set xlabel '" << GpText(keys[k].key) << "'\nset ylabel '" << GpText(ObjectiveLabel(m)) << "'\n"
-    << "set key bottom right\n";
+    << "set key inside bottom left\n";
   if (!keys[k].values.front().is_number()) {
     g << "set xtics (";
     for (std::size_t v = 0; v < nk; ++v) g << (v ? ", " : "") << "'" << GpText(ValueText(keys[k].values[v])) << "' " << v;
@@ -172,9 +182,8 @@ std::string Carpet(const Mission& m, const SweepResult& r, const std::vector<Var
     fixed += (fixed.empty() ? "; " : ", ") + keys[j].key + " = " + ValueText(keys[j].values.front());
   }
   std::ostringstream g;
-  g << "set title '" << GpText(m.name) << ": carpet of " << GpText(ObjectiveLabel(m)) << "\\nover "
-    << GpText(keys[0].key) << " (red labels) and " << GpText(keys[1].key) << " (blue labels)" << GpText(fixed)
-    << "; best pick per point'\n"
+  g << "set title " << GpTitle(m.name + ": carpet of " + ObjectiveLabel(m) + ", best pick per point",
+                               "over " + keys[0].key + " (red) and " + keys[1].key + " (blue)" + fixed) << "\n"
     << "set ylabel '" << GpText(ObjectiveLabel(m)) << "'\nunset xtics\nset xlabel 'carpet: each " << GpText(keys[1].key)
     << " step shifts the lines right by half a " << GpText(keys[0].key) << " step'\nunset key\n"
     << "set offsets 0.3, 1.2, 0.5, 0.5\n"

@@ -268,9 +268,8 @@ void CheckKeys(const Json& mission_doc, const std::string& mission_name, const s
     if (k.values.empty()) Usage(k.key, "no values");
     const Json& parent = CheckPath(mission_doc, k, path);
     const PathStep& last = path.back();
-    if (!last.element && !parent.contains(last.name)) {
-      // Not in the document: the reader decides (an unknown key fails below for every value).
-    } else {
+    const bool absent = !last.element && !parent.contains(last.name);
+    if (!absent) {
       const Json& held = last.element ? parent[last.index] : parent[last.name];
       if (held.is_object() || held.is_array()) {
         std::vector<std::string> leaves;
@@ -284,7 +283,8 @@ void CheckKeys(const Json& mission_doc, const std::string& mission_name, const s
         if (!same) Usage(k.key + "=" + v.dump(), std::string("the mission holds ") + KindName(held) + " here");
       }
     }
-    // At least one value gives a mission the reader accepts.
+    // At least one value gives a mission the reader accepts (a key the document does not hold:
+    // the reader decides whether its object may hold it).
     std::string first_rule;
     bool any = false;
     for (const Json& v : k.values) {
@@ -293,10 +293,15 @@ void CheckKeys(const Json& mission_doc, const std::string& mission_name, const s
         any = true;
         break;
       } catch (const DataError& e) {
-        if (first_rule.empty()) first_rule = "=" + v.dump() + ": " + WithoutName(e.what(), mission_name);
+        if (first_rule.empty()) first_rule = WithoutName(e.what(), mission_name);
       }
     }
-    if (!any) Usage(k.key + first_rule, "no value of the key gives a valid mission");
+    if (any) continue;
+    if (absent) {
+      Usage(k.key, "unknown key: the mission has no " + canonical + " and its reader refuses it (" + first_rule +
+                       "; nearest valid keys: " + NearestKeys(mission_doc, k.key) + ")");
+    }
+    Usage(k.key, "no value gives a valid mission (the first, " + k.values.front().dump() + ": " + first_rule + ")");
   }
 }
 
