@@ -121,5 +121,38 @@ TEST_F(SweepCliTest, BadInputIsOneLineAndExit64) {
   EXPECT_EQ(missing.code, 66) << missing.err;
 }
 
+// The bundled quadcopter with a capacity range: about 10 s per point on the bundled catalog
+// (as optimize_cli_test.cc's LongMission), so a stop after a fraction of a second comes mid-point.
+fs::path LongMission() {
+  const fs::path p = fs::temp_directory_path() / ("dynosize_sweep_long_" + std::to_string(getpid()) + ".json");
+  Json m = ReadJsonFile(std::string(DYNOSIZE_SOURCE_DIR) + "/examples/missions/quadcopter_1p5kg.json");
+  m["battery"]["id"] = Json::array({"dc_b_363"});
+  m["battery"]["capacity_ah"] = Json::array({2, 8});
+  std::ofstream(p) << DumpJson(m);
+  return p;
+}
+
+// stderr: only when the shell's redirection reaches the sweep (not a background job's).
+void ExpectCompleteStoppedJson(const CliRun& r, bool check_stderr) {
+  Json j;
+  ASSERT_NO_THROW(j = Json::parse(r.out)) << r.out.substr(0, 200);
+  EXPECT_EQ(j["interrupted"], true);
+  EXPECT_EQ(j["points"], Json(2));
+  EXPECT_TRUE(j["rows"].empty());  // both points were mid-search: no half-done row
+  if (check_stderr) EXPECT_NE(r.err.find("stopped after 0 of 2 points (--time-limit)"), std::string::npos) << r.err;
+}
+
+TEST(SweepCliStop, TimeLimitAndSigintWriteTheRowsDoneSoFar) {
+  const fs::path m = LongMission();
+  const std::string sweep = "sweep " + m.string() + " --vary vehicle.mass_kg=0.7,0.8 --json";
+  const CliRun t = RunCli(sweep + " --time-limit 0.5");
+  EXPECT_EQ(t.code, 0) << t.err;
+  ExpectCompleteStoppedJson(t, true);
+  const CliRun r = RunCli(sweep + " & p=$!; sleep 1; kill -INT $p; wait $p");
+  EXPECT_EQ(r.code, 130) << r.err;
+  ExpectCompleteStoppedJson(r, false);
+  fs::remove(m);
+}
+
 }  // namespace
 }  // namespace dynosize
