@@ -171,7 +171,7 @@ std::string Carpet(const Mission& m, const SweepResult& r, const std::vector<Var
     for (std::size_t ib = 0; ib < nb; ++ib) {
       if (std::isfinite(y[ib])) {
         labels << "set label '" << GpText(keys[0].key + " = " + ValueText(keys[0].values[ia])) << "' at " << x[ib]
-               << "," << y[ib] << " offset 0,-1.2 center tc rgb '#d62728'\n";
+               << "," << y[ib] << " offset -0.8,0 right tc rgb '#d62728'\n";
         break;
       }
     }
@@ -186,7 +186,7 @@ std::string Carpet(const Mission& m, const SweepResult& r, const std::vector<Var
                                "over " + keys[0].key + " (red) and " + keys[1].key + " (blue)" + fixed) << "\n"
     << "set ylabel '" << GpText(ObjectiveLabel(m)) << "'\nunset xtics\nset xlabel 'carpet: each " << GpText(keys[1].key)
     << " step shifts the lines right by half a " << GpText(keys[0].key) << " step'\nunset key\n"
-    << "set offsets 0.3, 1.2, 0.5, 0.5\n"
+    << "set offsets 1.2, 1.2, 0.5, 0.5\n"
     << labels.str() << "plot $b using 1:2 with linespoints pt 7 lw 2 lc rgb '#1f77b4', "
     << "$a using 1:2 with lines lw 1 dt 2 lc rgb '#d62728'\n";
   const std::string path = dir + "/carpet_" + SafeName(keys[0].key) + "_" + SafeName(keys[1].key) + ".png";
