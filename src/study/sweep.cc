@@ -187,7 +187,7 @@ std::string NearestKeys(const Json& doc, const std::string& key) {
   return s;
 }
 
-// The value at the path in `doc` (created when its last member is absent); CheckKeys has
+// The value at the path in `doc` (created when its last member is absent); CheckPath has
 // checked the path.
 Json& Slot(Json& doc, const std::vector<PathStep>& path) {
   Json* j = &doc;
@@ -330,7 +330,11 @@ std::vector<Json> GridPoint(const std::vector<VaryKey>& keys, std::size_t index)
 Json MissionAt(const Json& mission_doc, const std::vector<VaryKey>& keys, const std::vector<Json>& point) {
   if (point.size() != keys.size()) throw InternalError("MissionAt: one value per key");
   Json doc = mission_doc;
-  for (std::size_t i = 0; i < keys.size(); ++i) Slot(doc, ParsePath(keys[i].key)) = point[i];
+  for (std::size_t i = 0; i < keys.size(); ++i) {
+    const std::vector<PathStep> path = ParsePath(keys[i].key);
+    CheckPath(doc, keys[i], path);  // a caller that skipped CheckKeys gets its usage error
+    Slot(doc, path) = point[i];
+  }
   return doc;
 }
 
@@ -386,6 +390,10 @@ SweepPick PickOf(const Mission& m, const SearchResult& s, std::size_t k) {
 SweepRow RunPoint(const Json& mission_doc, const std::string& mission_name, const Catalog& catalog,
                   const std::vector<VaryKey>& keys, std::size_t index, const PointOptions& options) {
   const auto t0 = std::chrono::steady_clock::now();
+  if (index >= GridSize(keys)) {
+    throw UsageError("grid point " + std::to_string(index) + ": the grid has " + std::to_string(GridSize(keys)) +
+                     " points (0 to " + std::to_string(GridSize(keys)) + " - 1)");
+  }
   SweepRow row;
   row.index = index;
   row.values = GridPoint(keys, index);

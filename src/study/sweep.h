@@ -57,7 +57,8 @@ std::size_t GridSize(const std::vector<VaryKey>& keys);
 // The values of grid point `index` (< GridSize), one per key.
 std::vector<Json> GridPoint(const std::vector<VaryKey>& keys, std::size_t index);
 
-// The mission document with point[i] set at keys[i].key (CheckKeys's paths).
+// The mission document with point[i] set at keys[i].key; UsageError (unknown key, the nearest
+// valid keys) when a path is not in the document.
 Json MissionAt(const Json& mission_doc, const std::vector<VaryKey>& keys, const std::vector<Json>& point);
 
 // One pick of a grid point's search (rank 1 = the best).
@@ -102,6 +103,9 @@ struct PointOptions {
 };
 
 // Grid point `index`: MissionAt, ParseMission (mission_name in its messages), SearchCatalog.
+// UsageError when index >= GridSize(keys) or a key's path is not in the document (MissionAt);
+// the other checks of CheckKeys are the caller's (RunSweep makes them): without them a value
+// the mission rejects is a failed row.
 SweepRow RunPoint(const Json& mission_doc, const std::string& mission_name, const Catalog& catalog,
                   const std::vector<VaryKey>& keys, std::size_t index, const PointOptions& options);
 

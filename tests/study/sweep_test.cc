@@ -132,6 +132,11 @@ TEST(SweepPathTest, SetsNestedMembersArrayElementsAndNewMembers) {
   ASSERT_TRUE(m.battery.capacity_ah.has_value());
   EXPECT_EQ(m.battery.capacity_ah->lo, 2.5);
   EXPECT_EQ(*m.segments[2].duration_s, 60.0);
+  // A path not in the document is a usage error here too (a caller that skipped CheckKeys).
+  const VaryKey bad = ParseVary("segments[7].duration_s=1");
+  EXPECT_NE(UsageMessage([&] { MissionAt(Quad(), {bad}, {Json(1)}); }).find("unknown key"), std::string::npos);
+  const VaryKey through = ParseVary("vehicle.mass_kg.x=1");
+  EXPECT_NE(UsageMessage([&] { MissionAt(Quad(), {through}, {Json(1)}); }).find("unknown key"), std::string::npos);
   // "$." as in the reader's messages.
   EXPECT_EQ(MissionAt(Quad(), {ParseVary("$.vehicle.rotors=6")}, {Json(6)})["vehicle"]["rotors"], Json(6));
 }
@@ -224,6 +229,9 @@ TEST_F(SweepRunTest, RowsEqualSeparateSearches) {
     EXPECT_EQ(SweepRowJson(RunPoint(Quad(), "quad.json", *catalog_, keys, i, po), keys),
               SweepRowJson(r.rows[i], keys));
   }
+  EXPECT_NE(UsageMessage([&] { RunPoint(Quad(), "quad.json", *catalog_, keys, 4, PointOptions{}); })
+                .find("the grid has 4 points"),
+            std::string::npos);
   so.threads = 1;
   const SweepResult one = RunSweep(Quad(), "quad.json", *catalog_, keys, so);
   for (std::size_t i = 0; i < 4; ++i) EXPECT_EQ(SweepRowJson(one.rows[i], keys), SweepRowJson(r.rows[i], keys));
