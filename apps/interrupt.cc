@@ -1,6 +1,10 @@
 #include "interrupt.h"
 
 #include <csignal>
+#include <iomanip>
+#include <sstream>
+
+#include "common/error.h"
 
 namespace dynosize::cli {
 
@@ -28,5 +32,28 @@ SigintToFlag::SigintToFlag() {
 SigintToFlag::~SigintToFlag() { sigaction(SIGINT, &g_previous, nullptr); }
 
 const std::atomic<bool>& SigintToFlag::Flag() { return g_sigint; }
+
+std::chrono::steady_clock::time_point DeadlineAfter(double time_limit_s) {
+  if (!(time_limit_s > 0)) {  // NaN too
+    std::ostringstream v;
+    v << time_limit_s;
+    throw UsageError("--time-limit " + v.str() + ": must be a positive number of seconds");
+  }
+  constexpr double kNoDeadlineS = 1e9;  // about 30 years: beyond it, no deadline (no overflow)
+  if (time_limit_s >= kNoDeadlineS) return std::chrono::steady_clock::time_point::max();
+  return std::chrono::steady_clock::now() +
+         std::chrono::duration_cast<std::chrono::steady_clock::duration>(std::chrono::duration<double>(time_limit_s));
+}
+
+std::string ElapsedText(double s) {
+  std::ostringstream o;
+  if (s < 60) {
+    o << std::fixed << std::setprecision(1) << s << " s";
+  } else {
+    o << static_cast<long long>(s / 60) << " min " << std::setw(2) << std::setfill('0') << static_cast<long long>(s) % 60
+      << " s";
+  }
+  return o.str();
+}
 
 }  // namespace dynosize::cli

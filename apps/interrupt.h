@@ -3,6 +3,8 @@
 #pragma once
 
 #include <atomic>
+#include <chrono>
+#include <string>
 
 namespace dynosize::cli {
 
@@ -17,5 +19,12 @@ class SigintToFlag {
   static const std::atomic<bool>& Flag();
   static bool Received() { return Flag().load(); }
 };
+
+// --time-limit S (optimize, sweep): the deadline S seconds from now (time_point::max() beyond
+// about 30 years); UsageError unless S > 0 (NaN too).
+std::chrono::steady_clock::time_point DeadlineAfter(double time_limit_s);
+
+// "12.3 s" / "1 min 05 s": the elapsed time of a progress line (optimize, sweep).
+std::string ElapsedText(double s);
 
 }  // namespace dynosize::cli

@@ -2093,9 +2093,7 @@ void BranchAndBound::ReportProgress(std::size_t ci) {
 
 void BranchAndBound::Run() {
   const Mission& m = *ctx_.mission;
-  bool free_shaft = false;
-  for (const Segment& sg : m.segments) free_shaft |= sg.type == SegmentType::kShaft && sg.shaft_omega_rad_s.free();
-  const int workers = free_shaft ? 1 : std::max(1, opt_.threads);
+  const int workers = NeedsOneThread(m) ? 1 : std::max(1, opt_.threads);
   constexpr std::size_t kMaxChunk = 128;
   std::size_t chunk = 2;  // grows while the threshold settles
   WorkerThreads pool(workers - 1);
@@ -2232,6 +2230,13 @@ SearchResult SearchExactly(const Mission& m, const Catalog& cat, const SearchOpt
 bool StopRequested(const SearchOptions& opt) {
   if (opt.stop && opt.stop->load(std::memory_order_relaxed)) return true;
   return opt.deadline != std::chrono::steady_clock::time_point::max() && std::chrono::steady_clock::now() >= opt.deadline;
+}
+
+bool NeedsOneThread(const Mission& mission) {
+  for (const Segment& sg : mission.segments) {
+    if (sg.type == SegmentType::kShaft && sg.shaft_omega_rad_s.free()) return true;
+  }
+  return false;
 }
 
 SearchResult SearchCatalog(const Mission& m, const Catalog& cat, const SearchOptions& opt) {
