@@ -65,7 +65,13 @@ RotorBound RotorLowerBound(const Mission& m, const Segment& sg, const PropEntry&
   RotorBound rb;
   const RotorLoad ld = SegmentRotorLoad(m, sg, mass_kg, sg.airspeed_m_s.lo);
   rb.rotors = ld.rotors;
-  if (sg.type == SegmentType::kShaft || (sg.type == SegmentType::kCruise && sg.airspeed_m_s.free())) return rb;
+  if (sg.type == SegmentType::kCruise && sg.airspeed_m_s.free()) {
+    CruisePropBound pb{&prop, &model, PropAdjustmentFor(prop, m.objective.ranking), true};
+    pb.with_prop_data = true;
+    rb.free_cruise_lossy_w = FreeCruiseRotorPowerLowerBoundW(m, sg, pb, nullptr, mass_kg);
+    return rb;
+  }
+  if (sg.type == SegmentType::kShaft) return rb;
   const double v = ld.axial_airspeed_m_s;
   // Bisection keeping thrust(lo) <= T (M1: thrust rises with speed), so lo is at or below the
   // evaluator's root; a propeller that cannot give T below the ceiling turns faster (and R3
@@ -96,7 +102,15 @@ SegmentBound SegmentPowerBound(const Mission& m, std::size_t si, const GroupPart
   SegmentBound b;
   b.power_w = m.vehicle.avionics_power_w;
   if (sg.type == SegmentType::kShaft) return b;
+  const bool static_only = model.data_kind() != PropDataKind::kTables || parts.prop->j_tables.empty();
   if (sg.type == SegmentType::kCruise && sg.airspeed_m_s.free()) {
+    // R7 over the range: a wing-borne cruise's inflow is its airspeed, at least lo, and the
+    // shaft turns no faster than n_max (below), so J >= lo/(n_max*D) at every airspeed.
+    const double n_max = drive.NoLoadSpeed(bo.v_full, 1.0) / (2.0 * kPi);
+    if (static_only && sg.lift_to_drag > 0 && n_max > 0 &&
+        sg.airspeed_m_s.lo / (n_max * parts.prop->diameter_m) > k.max_static_advance_ratio) {
+      b.infeasible = "prop_no_forward_flight_data";
+    }
     b.power_w += FreeCruisePowerLowerBoundW(m, sg, parts, model, mass_kg);
     return b;
   }
@@ -118,7 +132,6 @@ SegmentBound SegmentPowerBound(const Mission& m, std::size_t si, const GroupPart
   // R7: static-only data in axial flow. The shaft turns no faster than the drive's no-load
   // speed at full throttle and the full-charge voltage (M2), so J >= V_ax/(n_max*D); above the
   // mission's max_static_advance_ratio the evaluator fails prop_no_forward_flight_data.
-  const bool static_only = model.data_kind() != PropDataKind::kTables || parts.prop->j_tables.empty();
   if (!b.infeasible && static_only && rb.axial_airspeed_m_s > 0) {
     const double n_max = drive.NoLoadSpeed(bo.v_full, 1.0) / (2.0 * kPi);
     if (n_max > 0 && rb.axial_airspeed_m_s / (n_max * parts.prop->diameter_m) > k.max_static_advance_ratio) {
@@ -364,6 +377,25 @@ std::vector<JointBounds::FrontierPoint> JointBounds::InnerFrontier(std::size_t o
   return front;
 }
 
+// R7's floor on one airspeed cell [v_a, v_b] (see MassFloorKg): kInf when no mass reaches the
+// thrust, 0 when every mass does (or the inflow is 0).
+double JointBounds::StaticAdvanceMassFloorKg(const PropModel& model, double diameter_m, const Segment& sg, double v_a,
+                                             double v_b) const {
+  const double v_ax = SegmentRotorLoad(m_, sg, 1.0, v_a).axial_airspeed_m_s;
+  if (!(v_ax > 0)) return 0.0;
+  const double omega_req = 2.0 * kPi * v_ax / (m_.constraints.max_static_advance_ratio * diameter_m);
+  const double t_req = model.Evaluate(omega_req, m_.rho_kg_m3, 0.0).thrust_n;
+  auto thrust_at = [&](double kg) { return SegmentRotorLoad(m_, sg, kg, v_b).thrust_per_rotor_n; };
+  double lo = 0.0, hi = kMassCeilingKg;
+  if (!(thrust_at(hi) >= t_req)) return kInf;
+  if (!(thrust_at(lo) < t_req)) return 0.0;
+  for (int it = 0; it < 60; ++it) {  // keeps thrust(lo) < T(n)
+    const double mid = 0.5 * (lo + hi);
+    (thrust_at(mid) < t_req ? lo : hi) = mid;
+  }
+  return lo;
+}
+
 // R7 as a mass floor: static-only data in axial flow V_ax pass the evaluator only at an advance
 // ratio J = V_ax/(n*D) <= max_static_advance_ratio, so at a speed n >= V_ax/(J_max*D), where the
 // static thrust (M1, the propeller's grid rising) is at least T(n); the segment's thrust rises
@@ -377,24 +409,21 @@ double JointBounds::MassFloorKg(int prop, std::size_t si, std::size_t o) {
   const Segment& sg = m_.segments[si];
   double floor_kg = 0.0;
   const bool static_only = model.data_kind() != PropDataKind::kTables || p.j_tables.empty();
-  const double v_ax = SegmentRotorLoad(m_, sg, 1.0, sg.airspeed_m_s.lo).axial_airspeed_m_s;
-  if (static_only && monotone_[static_cast<std::size_t>(prop)] && v_ax > 0 && sg.type != SegmentType::kShaft &&
-      !(sg.type == SegmentType::kCruise && sg.airspeed_m_s.free()) && m_.constraints.max_static_advance_ratio > 0) {
-    const double omega_req = 2.0 * kPi * v_ax / (m_.constraints.max_static_advance_ratio * p.diameter_m);
-    const double t_req = model.Evaluate(omega_req, m_.rho_kg_m3, 0.0).thrust_n;
-    auto thrust_at = [&](double kg) { return SegmentRotorLoad(m_, sg, kg, sg.airspeed_m_s.lo).thrust_per_rotor_n; };
-    double lo = 0.0, hi = kMassCeilingKg;
-    if (!(thrust_at(hi) >= t_req)) {
-      floor_kg = kInf;
-    } else if (thrust_at(lo) < t_req) {
-      for (int it = 0; it < 60; ++it) {  // keeps thrust(lo) < T(n)
-        const double mid = 0.5 * (lo + hi);
-        (thrust_at(mid) < t_req ? lo : hi) = mid;
-      }
-      floor_kg = lo;
+  const bool free_cruise = sg.type == SegmentType::kCruise && sg.airspeed_m_s.free();
+  if (static_only && monotone_[static_cast<std::size_t>(prop)] && sg.type != SegmentType::kShaft &&
+      (!free_cruise || sg.lift_to_drag > 0) && m_.constraints.max_static_advance_ratio > 0) {
+    // A free (wing-borne) airspeed in cells [V_a, V_b]: the required speed and its static thrust
+    // rise with V (M1), the segment's thrust at a mass is largest at V_b (flight.h), so a
+    // vehicle flying the cell weighs at least the floor of (T(n(V_a)), thrust at V_b); the least
+    // over the cells bounds the whole range. A fixed airspeed is one cell.
+    const int cells = free_cruise ? kFreeCruiseFloorCells : 1;
+    const double lo = sg.airspeed_m_s.lo, span = free_cruise ? sg.airspeed_m_s.hi - lo : 0.0;
+    floor_kg = kInf;
+    for (int c = 0; c < cells && floor_kg > 0; ++c) {
+      const double v_a = lo + span * c / cells, v_b = lo + span * (c + 1) / cells;
+      floor_kg = std::min(floor_kg, StaticAdvanceMassFloorKg(model, p.diameter_m, sg, v_a, v_b));
     }
-  }
-  floor_kg = std::max(floor_kg, FigureOfMeritMassFloorKg(prop, si, o));
+  }  floor_kg = std::max(floor_kg, FigureOfMeritMassFloorKg(prop, si, o));
   mass_floor_kg_[i] = floor_kg;
   return floor_kg;
 }
@@ -646,6 +675,24 @@ double JointBounds::OuterBound(const Drive& drive, const GroupParts& parts, doub
     *why = "min_thrust_to_weight";
     return kInf;
   }
+  // The coupled (lazy) stage only: a free-airspeed cruise's bound from the drive too, cell by
+  // cell (FreeCruisePowerLowerBoundW with the drive: about 1,400 propeller evaluations, too many
+  // for every pair's first bound). At mass_kg, so a floor for every heavier vehicle below (M3).
+  // Every stage: the propeller's own data (RotorBound::free_cruise_lossy_w, cached per grid mass).
+  cruise_floor_w_.assign(m_.segments.size(), 0.0);
+  const bool lossy = DriveIsLossy(mp, drive.esc().c1, drive.esc().c0);
+  for (std::size_t si : outer_segments_) {
+    const Segment& sg = m_.segments[si];
+    if (sg.type != SegmentType::kCruise || !sg.airspeed_m_s.free()) continue;
+    if (lossy) {
+      cruise_floor_w_[si] = m_.vehicle.avionics_power_w + OuterRotor(prop, si, o, mass_kg).free_cruise_lossy_w;
+    }
+    if (coupled_) {
+      const CruiseDriveBound db{&drive, options_[o].v_full, options_[o].v_cut};
+      cruise_floor_w_[si] = std::max(cruise_floor_w_[si], m_.vehicle.avionics_power_w +
+                            FreeCruisePowerLowerBoundW(m_, sg, parts, *models_[static_cast<std::size_t>(prop)], mass_kg, &db));
+    }
+  }
   for (std::size_t si : outer_segments_) {
     const RotorBound& rb = OuterRotor(prop, si, o, mass_kg);
     const SegmentBound b = SegmentPowerBound(m_, si, parts, mp, drive, tr_max, esc_max_a,
@@ -655,7 +702,7 @@ double JointBounds::OuterBound(const Drive& drive, const GroupParts& parts, doub
       return kInf;
     }
     *irms_lb = std::max(*irms_lb, b.irms_lb_a);
-    scratch_[si] = b.power_w;
+    scratch_[si] = std::max(b.power_w, cruise_floor_w_[si]);
   }
   const double bound = ScoreFromSegmentPowers(m_, scratch_, options_[o]);
   if (!coupled_ || inner_ < 0) return bound;
@@ -680,7 +727,7 @@ double JointBounds::OuterBound(const Drive& drive, const GroupParts& parts, doub
         e = kInf;
         break;
       }
-      e += b.power_w * t_min(si);
+      e += std::max(b.power_w, cruise_floor_w_[si]) * t_min(si);
     }
     best = std::min(best, e);
     if (!(best / 3600.0 > bound)) return bound;  // no better than the plain bound

@@ -40,6 +40,10 @@ struct RotorBound {
   double omega_rad_s = 0, torque_nm = 0;
   double thrust_n = 0, axial_airspeed_m_s = 0;  // the segment's per-rotor load
   int rotors = 0;
+  // A wing-borne cruise with a free airspeed: the rotors' power (W) from momentum theory and the
+  // propeller's own data, cell by cell (prop_bounds.h, with_prop_data), for any drive that
+  // cannot create energy; 0 for other segments.
+  double free_cruise_lossy_w = 0;
 };
 RotorBound RotorLowerBound(const Mission& m, const Segment& sg, const PropEntry& prop, const PropModel& model,
                            double mass_kg);
@@ -95,6 +99,9 @@ class JointBounds {
   double OuterBound(const Drive& drive, const GroupParts& parts, double esc_max_a, double tr_max,
                     int prop, std::size_t o, double mass_kg, const char** why, double* irms_lb);
   const RotorBound& OuterRotor(int prop, std::size_t si, std::size_t o, double mass_kg);
+  double StaticAdvanceMassFloorKg(const PropModel& model, double diameter_m, const Segment& sg, double v_a,
+                                  double v_b) const;
+  static constexpr int kFreeCruiseFloorCells = 16;  // R7's floor over a free airspeed range
   struct FrontierPoint {
     double extra_kg;  // the inner group's mass over its lightest
     double energy_j;  // the least energy of its segments with that mass, J
@@ -116,6 +123,7 @@ class JointBounds {
   int outer_ = 0, lift_group_ = 0;
   int inner_ = -1;  // the other free group when there are two and the objective is min_energy
   bool coupled_ = false;
+  std::vector<double> cruise_floor_w_;  // OuterBound's scratch: per segment, a free cruise's drive bound
   std::vector<std::vector<FrontierPoint>> frontier_;  // per option
   std::vector<double> inner_lightest_kg_;             // per option
   std::vector<BatteryOption> options_;

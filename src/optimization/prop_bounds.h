@@ -36,15 +36,19 @@ struct CruisePropBound {
   const PropModel* model = nullptr;
   PropAdjustment adjustment;  // the ranking scenario's (credibility.h)
   bool lossy = false;         // DriveIsLossy: no stage creates energy (model.md section 10)
+  // Also the propeller's own shaft power from its data (lossy only; a speed bisection per
+  // sample, so off where a bound is read per candidate pair).
+  bool with_prop_data = false;
 };
 
 // A wing-borne cruise (lift_to_drag > 0) with a free airspeed in [lo, hi], flown at a vehicle
 // mass of at least mass_kg: P_lb (W, the rotors; the avionics P_av not included) with
 //   (P_lb + P_av) * SegmentDurationS(sg, hi) <= the segment's energy at every airspeed of the range.
 // 0 when no bound applies. The range is cut in cells [V_k, V_k+1]; on each, by the rules of
-// prop_bounds.cc, the rotors' power is at least the larger of momentum theory's
-// P_ideal/max_figure_of_merit and (with `drive`) the drive's PDC from below, and the energy is
-// at least that power plus P_av over the cell's shortest duration. The least cell gives P_lb.
+// prop_bounds.cc, the rotors' power is at least the largest of momentum theory's
+// P_ideal/max_figure_of_merit, (with_prop_data) the propeller's shaft power from below and (with
+// `drive`) the drive's PDC from below, and the energy is at least that power plus P_av over the
+// cell's shortest duration. The least cell gives P_lb.
 double FreeCruiseRotorPowerLowerBoundW(const Mission& m, const Segment& sg, const CruisePropBound& p,
                                        const CruiseDriveBound* drive, double mass_kg);
 

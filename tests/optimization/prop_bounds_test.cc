@@ -40,15 +40,16 @@ Mission Quadplane(const Json& airspeed) {
 }
 
 struct Pusher {
+  explicit Pusher(const char* prop_id = "uiuc_v1_ance_8.5x7.0_2") : prop(Bundled().prop(prop_id)), model(prop) {}
   const MotorEntry& motor = Bundled().motor("fu_m_166");
   const EscEntry& esc = Bundled().esc("dc_e_56");
-  const PropEntry& prop = Bundled().prop("uiuc_v1_ance_8.5x7.0_2");
-  PropModel model{prop};
+  const PropEntry& prop;
+  PropModel model;
 };
 
 // The bound (J) over the mission's airspeed range for a vehicle of mass_kg.
 double CruiseEnergyBoundJ(const Mission& m, const Pusher& p, double mass_kg, bool with_drive,
-                          const PropAdjustment* adjustment = nullptr) {
+                          const PropAdjustment* adjustment = nullptr, bool with_prop_data = false) {
   const Segment& sg = m.segments[1];
   const MotorParams mp = ScenarioMotorParams(p.motor, m);
   const EscParams ep = ScenarioEscParams(p.esc, m.objective.ranking);
@@ -56,7 +57,7 @@ double CruiseEnergyBoundJ(const Mission& m, const Pusher& p, double mass_kg, boo
   const BatteryPack pack(PackFromEntry(Bundled().battery("dc_b_361"), 4));
   const CruiseDriveBound db{&drive, pack.OcvV(1.0), pack.cutoff_v(DischargeOptions{})};
   const CruisePropBound pb{&p.prop, &p.model, adjustment ? *adjustment : PropAdjustmentFor(p.prop, m.objective.ranking),
-                           DriveIsLossy(mp, ep.c1, ep.c0)};
+                           DriveIsLossy(mp, ep.c1, ep.c0), with_prop_data};
   const double p_rotors = FreeCruiseRotorPowerLowerBoundW(m, sg, pb, with_drive ? &db : nullptr, mass_kg);
   return (p_rotors + m.vehicle.avionics_power_w) * SegmentDurationS(sg, sg.airspeed_m_s.hi);
 }
@@ -87,12 +88,28 @@ TEST(PropBoundsTest, FreeCruiseBoundIsBelowEveryFeasibleEnergyAndTightWithTheDri
   ASSERT_LT(least_j, least_feasible_j);
   const double with_drive = CruiseEnergyBoundJ(range, p, mass_kg, true);
   const double momentum_only = CruiseEnergyBoundJ(range, p, mass_kg, false);
+  const double prop_data = CruiseEnergyBoundJ(range, p, mass_kg, false, nullptr, true);
   // Measured: momentum theory alone (cell by cell) 0.93 of the least energy flown on the
   // 0.5 m/s samples (feasible or not), with the drive 0.98; the rest is the cells' width (1/32
   // of the range).
   EXPECT_LT(momentum_only, 0.95 * least_j);
   EXPECT_GT(with_drive, 0.96 * least_j);
   EXPECT_LE(with_drive, least_feasible_j);
+  // The propeller's own shaft power (no motor or ESC losses) adds nothing here: this
+  // propeller's data beat momentum theory's FM 0.8 at the low airspeeds the least cell sits at.
+  EXPECT_GE(prop_data, momentum_only);
+  EXPECT_LE(prop_data, with_drive);
+}
+
+// Where the propeller's data are far from ideal (APC 10x4.5MR, static-only data from FAST-UAV:
+// FM about 0.6), its shaft power bounds the cruise well above momentum theory.
+TEST(PropBoundsTest, PropellerDataGripWhereTheyAreFarFromIdeal) {
+  const Mission range = Quadplane(Json::array({14.0, 24.0}));
+  const Pusher p("fu_p_apc_10x4.5mr");
+  const double momentum_only = CruiseEnergyBoundJ(range, p, 1.8, false);
+  const double prop_data = CruiseEnergyBoundJ(range, p, 1.8, false, nullptr, true);
+  EXPECT_GT(prop_data, 1.1 * momentum_only);
+  EXPECT_LE(prop_data, CruiseEnergyBoundJ(range, p, 1.8, true));
 }
 
 // A scenario that can lower the propeller's power below the data's (a power factor below 1,
