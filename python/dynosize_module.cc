@@ -1,0 +1,377 @@
+// The Python module _dynosize (re-exported by the package python/dynosize): the library's commands
+// (src/api) with keyword arguments named like the CLI's flags, numpy arrays in and out, and the
+// library's errors as Python exceptions carrying the CLI's message (docs/python.md).
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include <cmath>
+#include <limits>
+#include <memory>
+#include <optional>
+#include <string>
+#include <unordered_map>
+#include <vector>
+
+#include "api/calibrate.h"
+#include "api/catalog_json.h"
+#include "api/diagnose.h"
+#include "api/mission_run.h"
+#include "api/simulate.h"
+#include "catalog/catalog.h"
+#include "catalog/catalog_path.h"
+#include "common/error.h"
+#include "mission/mission.h"
+#include "report/mission_report.h"
+#include "report/point_json.h"
+
+namespace py = pybind11;
+using dynosize::Json;
+
+namespace {
+
+// A catalog loaded once and passed to every call (catalog=...): its folders and the loaded entries.
+class PyCatalog {
+ public:
+  PyCatalog(std::optional<std::string> base, std::vector<std::string> added, bool override_ids) {
+    folders_ = dynosize::ResolveCatalogFolders(base.value_or(""), added, override_ids);
+    Reload();
+  }
+  // A folder of the user's own parts on top (as --catalog-add; override_ids as --override).
+  PyCatalog& Add(const std::string& folder, bool override_ids) {
+    dynosize::CatalogFolders next = folders_;
+    next.added.push_back(folder);
+    next.override_ids = next.override_ids || override_ids;
+    auto loaded = std::make_shared<const dynosize::Catalog>(dynosize::Catalog::Load(next));
+    folders_ = next;
+    catalog_ = loaded;
+    return *this;
+  }
+  const dynosize::Catalog& get() const { return *catalog_; }
+  const dynosize::CatalogFolders& folders() const { return folders_; }
+
+ private:
+  void Reload() { catalog_ = std::make_shared<const dynosize::Catalog>(dynosize::Catalog::Load(folders_)); }
+  dynosize::CatalogFolders folders_;
+  std::shared_ptr<const dynosize::Catalog> catalog_;
+};
+
+// The bundled catalog, loaded on first use (the default of every catalog= argument).
+const PyCatalog& CatalogOr(const PyCatalog* given) {
+  if (given != nullptr) return *given;
+  static std::unique_ptr<PyCatalog> bundled;
+  if (!bundled) bundled = std::make_unique<PyCatalog>(std::nullopt, std::vector<std::string>{}, false);
+  return *bundled;
+}
+
+// nlohmann::json -> Python objects (dict, list, str, float, int, bool, None).
+py::object ToPython(const Json& j) {
+  switch (j.type()) {
+    case Json::value_t::object: {
+      py::dict d;
+      for (auto it = j.begin(); it != j.end(); ++it) d[py::str(it.key())] = ToPython(it.value());
+      return std::move(d);
+    }
+    case Json::value_t::array: {
+      py::list l;
+      for (const auto& v : j) l.append(ToPython(v));
+      return std::move(l);
+    }
+    case Json::value_t::string: return py::str(j.get<std::string>());
+    case Json::value_t::boolean: return py::bool_(j.get<bool>());
+    case Json::value_t::number_integer: return py::int_(j.get<long long>());
+    case Json::value_t::number_unsigned: return py::int_(j.get<unsigned long long>());
+    case Json::value_t::number_float: return py::float_(j.get<double>());
+    default: return py::none();
+  }
+}
+
+// A mission given as a file path or as a dict (the mission JSON's content).
+dynosize::Mission MissionOf(const py::object& mission) {
+  if (py::isinstance<py::dict>(mission)) {
+    const std::string text = py::module_::import("json").attr("dumps")(mission).cast<std::string>();
+    return dynosize::ParseMission(Json::parse(text), "<mission dict>");
+  }
+  return dynosize::ReadMission(py::str(mission).cast<std::string>());
+}
+
+// The columns of simulate(): scalars broadcast to the length of the arrays given.
+using Column = std::optional<py::array_t<double, py::array::c_style | py::array::forcecast>>;
+
+std::size_t BroadcastLength(const std::vector<std::pair<const char*, const Column*>>& cols) {
+  std::size_t n = 1;
+  for (const auto& [name, c] : cols) {
+    if (!*c || (*c)->ndim() == 0 || (*c)->size() == 1) continue;
+    if ((*c)->ndim() != 1) throw dynosize::UsageError(std::string(name) + ": give a number or a 1-D array");
+    const auto m = static_cast<std::size_t>((*c)->size());
+    if (n != 1 && m != n) {
+      throw dynosize::UsageError(std::string(name) + ": " + std::to_string(m) + " values where the other arrays have " +
+                                 std::to_string(n));
+    }
+    n = m;
+  }
+  return n;
+}
+
+double At(const Column& c, std::size_t i) {
+  const double* p = c->data();
+  return c->size() == 1 ? p[0] : p[i];
+}
+
+// simulate(): the batch path (api::SimulateBatch, what simulate --batch runs) over arrays.
+py::dict Simulate(const std::string& motor_id, const std::string& esc_id, const Column& vdc_v, const Column& throttle,
+                  const Column& torque_nm, const Column& rpm, const std::string& prop, const Column& thrust_n,
+                  const PyCatalog* catalog) {
+  if (!vdc_v) throw dynosize::UsageError("--vdc is required (supply voltage, V)");
+  const std::size_t n = BroadcastLength(
+      {{"vdc_v", &vdc_v}, {"throttle", &throttle}, {"torque_nm", &torque_nm}, {"rpm", &rpm}, {"thrust_n", &thrust_n}});
+  const dynosize::Catalog& cat = CatalogOr(catalog).get();
+  const dynosize::MotorEntry& motor = cat.motor(motor_id);
+  const dynosize::EscEntry& esc = cat.esc(esc_id);
+  std::vector<dynosize::PointRequest> requests(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    dynosize::PointRequest& r = requests[i];
+    r.row = i;
+    r.vdc_v = At(vdc_v, i);
+    if (throttle) r.throttle = At(throttle, i);
+    if (torque_nm) r.torque_nm = At(torque_nm, i);
+    if (rpm) r.rpm = At(rpm, i);
+    if (thrust_n) r.thrust_n = At(thrust_n, i);
+    r.prop = prop;
+    if (prop.empty()) {
+      if (const std::string rule = dynosize::CheckPointRequest(r); !rule.empty()) {
+        throw dynosize::UsageError("simulate: point " + std::to_string(i) + ": " + rule);
+      }
+    }
+  }
+  std::vector<dynosize::api::BatchPoint> points;
+  {
+    py::gil_scoped_release release;
+    points = dynosize::api::SimulateBatch(cat, dynosize::Drive(motor.params, esc.params), requests, "simulate: point");
+  }
+  // The keys of the point JSON (report/point_json.h), one numpy array each.
+  py::dict out;
+  const auto column = [&](const char* key, auto get) {
+    py::array_t<double> a(static_cast<py::ssize_t>(n));
+    double* d = a.mutable_data();
+    for (std::size_t i = 0; i < n; ++i) d[i] = get(points[i]);
+    out[key] = a;
+  };
+  using BP = dynosize::api::BatchPoint;
+  column("vdc_v", [](const BP& b) { return b.drive.vdc_v; });
+  column("throttle", [](const BP& b) { return b.drive.throttle; });
+  column("throttle_effective", [](const BP& b) { return b.drive.throttle_effective; });
+  column("rpm", [](const BP& b) { return b.drive.rpm; });
+  column("omega_rad_s", [](const BP& b) { return b.drive.omega_rad_s; });
+  column("torque_nm", [](const BP& b) { return b.drive.torque_nm; });
+  column("irms_a", [](const BP& b) { return b.drive.irms_a; });
+  column("vll_rms_v", [](const BP& b) { return b.drive.vll_rms_v; });
+  column("pac_w", [](const BP& b) { return b.drive.pac_w; });
+  column("idc_a", [](const BP& b) { return b.drive.idc_a; });
+  column("pdc_w", [](const BP& b) { return b.drive.pdc_w; });
+  column("pesc_w", [](const BP& b) { return b.drive.pesc_w; });
+  column("pmech_w", [](const BP& b) { return b.drive.pmech_w; });
+  column("eta_motor", [](const BP& b) { return b.drive.eta_motor; });
+  column("eta_esc", [](const BP& b) { return b.drive.eta_esc; });
+  column("eta_system", [](const BP& b) { return b.drive.eta_system; });
+  if (!prop.empty()) {
+    column("thrust_n", [](const BP& b) { return b.thrust_n; });
+    column("g_per_w", [](const BP& b) { return b.g_per_w; });
+  }
+  py::array_t<bool> saturated(static_cast<py::ssize_t>(n)), feasible(static_cast<py::ssize_t>(n));
+  py::array limits(py::dtype("O"), {static_cast<py::ssize_t>(n)});
+  auto* lim = static_cast<PyObject**>(limits.mutable_data());
+  // The limit names joined with ';' (as the --batch CSV's column): one str per distinct set.
+  std::unordered_map<std::uint64_t, py::str> names;
+  for (std::size_t i = 0; i < n; ++i) {
+    const BP& b = points[i];
+    saturated.mutable_data()[i] = b.drive.saturated;
+    feasible.mutable_data()[i] = b.feasible();
+    const std::uint64_t key = (static_cast<std::uint64_t>(b.beats_momentum_theory) << 32) | b.drive.limits;
+    auto it = names.find(key);
+    if (it == names.end()) {
+      std::string s;
+      for (const auto& name : b.LimitNames()) s += (s.empty() ? "" : ";") + name;
+      it = names.emplace(key, py::str(s)).first;
+    }
+    Py_XDECREF(lim[i]);
+    lim[i] = it->second.inc_ref().ptr();
+  }
+  out["saturated"] = saturated;
+  out["feasible"] = feasible;
+  out["limits"] = limits;
+  return out;
+}
+
+py::object Evaluate(const py::object& mission_arg, const std::string& motor, const std::string& esc,
+                    const std::string& prop, const std::string& battery, const std::vector<std::string>& pick,
+                    int cells, const PyCatalog* catalog) {
+  const dynosize::Mission mission = MissionOf(mission_arg);
+  const dynosize::Catalog& cat = CatalogOr(catalog).get();
+  const dynosize::Combination c = dynosize::api::ChooseCombination(mission, cat, {motor, esc, prop, battery, pick, cells});
+  dynosize::MissionResult r;
+  {
+    py::gil_scoped_release release;
+    r = dynosize::api::EvaluateCombination(mission, c);
+  }
+  return ToPython(dynosize::MissionResultJson(mission, c, r));
+}
+
+py::object Optimize(const py::object& mission_arg, int top, int threads, bool variants, double time_limit_s,
+                    const PyCatalog* catalog) {
+  if (top < 1 || top > 1000) throw dynosize::UsageError("--top " + std::to_string(top) + ": must be in [1 - 1000]");
+  if (threads < 1 || threads > 64) {
+    throw dynosize::UsageError("--threads " + std::to_string(threads) + ": must be in [1 - 64]");
+  }
+  dynosize::SearchOptions so = dynosize::api::OptimizeSearchOptions({top, threads, variants, time_limit_s});
+  const dynosize::Mission mission = MissionOf(mission_arg);
+  const dynosize::Catalog& cat = CatalogOr(catalog).get();
+  dynosize::SearchResult s;
+  {
+    py::gil_scoped_release release;
+    s = dynosize::SearchCatalog(mission, cat, so);
+  }
+  return ToPython(dynosize::SearchResultJson(mission, s));
+}
+
+dynosize::api::LogInputOptions LogInput(const std::string& format, const std::vector<std::string>& column_map,
+                                        bool drop_incomplete_rows, bool decimal_comma,
+                                        const std::vector<std::string>& where, double esc_min_us, double esc_max_us) {
+  return {format, column_map, drop_incomplete_rows, decimal_comma, where, esc_min_us, esc_max_us};
+}
+
+}  // namespace
+
+PYBIND11_MODULE(_dynosize, m) {
+  m.doc() = "dynosize: motor + ESC model, catalog, calibration and sizing (docs/python.md)";
+  m.attr("__version__") = DYNOSIZE_VERSION;
+
+  // Errors: bad input -> ValueError, a missing file -> FileNotFoundError, the rest -> dynosize.Error
+  // (a RuntimeError); the message is the CLI's (without its "dynosize: " prefix).
+  static py::exception<dynosize::Error> error(m, "Error", PyExc_RuntimeError);
+  py::register_exception_translator([](std::exception_ptr p) {
+    try {
+      if (p) std::rethrow_exception(p);
+    } catch (const dynosize::UsageError& e) {
+      PyErr_SetString(PyExc_ValueError, e.what());
+    } catch (const dynosize::DataError& e) {
+      PyErr_SetString(PyExc_ValueError, e.what());
+    } catch (const dynosize::NoInputError& e) {
+      PyErr_SetString(PyExc_FileNotFoundError, e.what());
+    } catch (const dynosize::Error& e) {
+      error(e.what());
+    } catch (const Json::exception& e) {
+      PyErr_SetString(PyExc_ValueError, e.what());
+    }
+  });
+
+  py::class_<PyCatalog>(m, "Catalog", "The component catalog, loaded once and passed as catalog=...")
+      .def(py::init<std::optional<std::string>, std::vector<std::string>, bool>(), py::arg("path") = py::none(),
+           py::arg("add") = std::vector<std::string>{}, py::arg("override") = false,
+           "Load the bundled catalog (or the folder path; $DYNOSIZE_CATALOG), then the folders of "
+           "$DYNOSIZE_CATALOG_PATH and add (as --catalog, --catalog-add, --override)")
+      .def("add", &PyCatalog::Add, py::arg("folder"), py::arg("override") = false, py::return_value_policy::reference,
+           "Read a folder of your own parts on top (as --catalog-add); an id the catalog holds is an error "
+           "unless override=True")
+      .def(
+          "list",
+          [](const PyCatalog& c, std::optional<std::string> kind, std::optional<double> kv_min,
+             std::optional<double> kv_max, std::optional<double> mass_max_kg, std::optional<double> current_min_a) {
+            const dynosize::api::CatalogListRequest r{kind.value_or(""), kv_min, kv_max, mass_max_kg, current_min_a};
+            if (!r.kind.empty() && r.kind != "motors" && r.kind != "escs" && r.kind != "props" && r.kind != "batteries") {
+              throw dynosize::UsageError("--kind " + r.kind + ": not in {motors, escs, props, batteries}");
+            }
+            dynosize::api::CheckCatalogListRequest(r);
+            const Json j = dynosize::api::CatalogListJson(c.get(), r);
+            return r.kind.empty() ? ToPython(j) : ToPython(j[r.kind]);
+          },
+          py::arg("kind") = py::none(), py::arg("kv_min") = py::none(), py::arg("kv_max") = py::none(),
+          py::arg("mass_max_kg") = py::none(), py::arg("current_min_a") = py::none(),
+          "The entries as catalog list --json: {kind: [entries]}, or the list of one kind")
+      .def(
+          "show", [](const PyCatalog& c, const std::string& id) { return ToPython(dynosize::api::CatalogShowJson(c.get(), id)); },
+          py::arg("id"), "One entry with its derived SI parameters (catalog show)")
+      .def_property_readonly("folders",
+                             [](const PyCatalog& c) {
+                               std::vector<std::string> f{c.folders().base};
+                               f.insert(f.end(), c.folders().added.begin(), c.folders().added.end());
+                               return f;
+                             })
+      .def("__len__", [](const PyCatalog& c) { return c.get().size(); });
+
+  m.def("bundled_catalog_dir", &dynosize::BundledCatalogDir, "The folder of the bundled catalog");
+
+  m.def("simulate", &Simulate, py::kw_only(), py::arg("motor"), py::arg("esc"), py::arg("vdc_v") = py::none(),
+        py::arg("throttle") = py::none(), py::arg("torque_nm") = py::none(), py::arg("rpm") = py::none(),
+        py::arg("prop") = "", py::arg("thrust_n") = py::none(), py::arg("catalog") = nullptr,
+        "Operating points of a motor + ESC (+ propeller) pair through the batch path of simulate --batch: "
+        "scalars or 1-D arrays (broadcast); a dict of numpy arrays with the CLI's JSON keys");
+  m.def("evaluate", &Evaluate, py::arg("mission"), py::kw_only(), py::arg("motor") = "", py::arg("esc") = "",
+        py::arg("prop") = "", py::arg("battery"), py::arg("pick") = std::vector<std::string>{}, py::arg("cells") = 0,
+        py::arg("catalog") = nullptr, "One combination flying a mission: the dict of evaluate --json");
+  m.def("optimize", &Optimize, py::arg("mission"), py::kw_only(), py::arg("top") = 5, py::arg("threads") = 2,
+        py::arg("variants") = false, py::arg("time_limit_s") = std::numeric_limits<double>::infinity(),
+        py::arg("catalog") = nullptr, "The best combinations of the catalog: the dict of optimize --json");
+  m.def(
+      "calibrate",
+      [](const std::vector<std::string>& logs, const std::string& motor_id, const std::string& esc_id,
+         const std::string& format, const std::vector<std::string>& column_map, bool drop_incomplete_rows,
+         bool decimal_comma, const std::vector<std::string>& where, double esc_min_us, double esc_max_us,
+         long long drivecalc_motor, const std::string& prior_motor, const std::string& prior_esc, bool loo,
+         std::optional<double> kv_label, std::optional<double> rm_label, std::optional<double> io_label,
+         std::optional<double> io_label_v, std::optional<double> mass_kg, std::optional<double> max_current_a,
+         std::optional<double> max_power_w, std::optional<double> esc_max_current_a,
+         std::optional<double> esc_vdc_max_v, std::optional<double> esc_mass_kg, const std::string& prop_id,
+         std::optional<double> prop_diameter_in, std::optional<double> prop_pitch_in, const PyCatalog* catalog) {
+        const dynosize::api::CalibrateRequest r{
+            logs, motor_id, esc_id,
+            LogInput(format, column_map, drop_incomplete_rows, decimal_comma, where, esc_min_us, esc_max_us),
+            drivecalc_motor, prior_motor, prior_esc, loo, kv_label, rm_label, io_label, io_label_v, mass_kg,
+            max_current_a, max_power_w, esc_max_current_a, esc_vdc_max_v, esc_mass_kg, prop_id, prop_diameter_in,
+            prop_pitch_in};
+        const bool priors = !prior_motor.empty() || !prior_esc.empty();
+        const dynosize::Catalog* cat = priors ? &CatalogOr(catalog).get() : nullptr;
+        Json j;
+        {
+          py::gil_scoped_release release;
+          j = dynosize::api::CalibrateLogs(r, cat);
+        }
+        return ToPython(j);
+      },
+      py::arg("logs"), py::kw_only(), py::arg("motor_id"), py::arg("esc_id"), py::arg("format") = "auto",
+      py::arg("map") = std::vector<std::string>{}, py::arg("drop_incomplete_rows") = false,
+      py::arg("decimal_comma") = false, py::arg("where") = std::vector<std::string>{}, py::arg("esc_min_us") = 1000.0,
+      py::arg("esc_max_us") = 2000.0, py::arg("drivecalc_motor") = -1, py::arg("prior_motor") = "",
+      py::arg("prior_esc") = "", py::arg("loo") = false, py::arg("kv_label") = py::none(),
+      py::arg("rm_label") = py::none(), py::arg("io_label") = py::none(), py::arg("io_label_v") = py::none(),
+      py::arg("mass_kg") = py::none(), py::arg("max_current_a") = py::none(), py::arg("max_power_w") = py::none(),
+      py::arg("esc_max_current_a") = py::none(), py::arg("esc_vdc_max_v") = py::none(),
+      py::arg("esc_mass_kg") = py::none(), py::arg("prop_id") = "", py::arg("prop_diameter_in") = py::none(),
+      py::arg("prop_pitch_in") = py::none(), py::arg("catalog") = nullptr,
+      "Fit motor + ESC entries to logs: the dict of calibrate --json (nothing written)");
+  m.def(
+      "diagnose",
+      [](const std::string& log, const std::string& motor, const std::string& esc, const std::string& format,
+         const std::vector<std::string>& column_map, bool drop_incomplete_rows, bool decimal_comma,
+         const std::vector<std::string>& where, double esc_min_us, double esc_max_us, int folds, double alpha,
+         std::optional<double> kv_label, const PyCatalog* catalog) {
+        const dynosize::api::DiagnoseRequest r{
+            log, motor, esc,
+            LogInput(format, column_map, drop_incomplete_rows, decimal_comma, where, esc_min_us, esc_max_us), folds,
+            alpha, kv_label};
+        dynosize::api::CheckDiagnoseRequest(r);
+        const dynosize::Catalog* cat = (!motor.empty() || !esc.empty()) ? &CatalogOr(catalog).get() : nullptr;
+        Json j;
+        {
+          py::gil_scoped_release release;
+          j = dynosize::api::DiagnoseLog(r, cat);
+        }
+        return ToPython(j);
+      },
+      py::arg("log"), py::kw_only(), py::arg("motor") = "", py::arg("esc") = "", py::arg("format") = "auto",
+      py::arg("map") = std::vector<std::string>{}, py::arg("drop_incomplete_rows") = false,
+      py::arg("decimal_comma") = false, py::arg("where") = std::vector<std::string>{}, py::arg("esc_min_us") = 1000.0,
+      py::arg("esc_max_us") = 2000.0, py::arg("folds") = 5, py::arg("alpha") = 1e-3, py::arg("kv_label") = py::none(),
+      py::arg("catalog") = nullptr, "What the model gets wrong in a measured log: the dict of diagnose --json");
+  // The trade-study sweep (issue 25 item 4) is bound here: m.def("sweep", ...).
+}
