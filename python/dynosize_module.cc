@@ -86,6 +86,13 @@ py::object ToPython(const Json& j) {
   }
 }
 
+// A document for Python, after the same finiteness check as the CLI's output (common/json_file.h
+// DumpJson): a non-finite number is a bug (InternalError -> dynosize.Error), never returned.
+py::object Result(const Json& j, const std::string& what) {
+  dynosize::CheckJsonFinite(j, what);
+  return ToPython(j);
+}
+
 // A mission given as a file path or as a dict (the mission JSON's content).
 dynosize::Mission MissionOf(const py::object& mission) {
   if (py::isinstance<py::dict>(mission)) {
@@ -179,7 +186,7 @@ py::dict Simulate(const std::string& motor_id, const std::string& esc_id, const 
     column("g_per_w", [](const BP& b) { return b.g_per_w; });
   }
   py::array_t<bool> saturated(static_cast<py::ssize_t>(n)), feasible(static_cast<py::ssize_t>(n));
-  py::array limits(py::dtype("O"), {static_cast<py::ssize_t>(n)});
+  py::array limits(py::dtype("O"), std::vector<py::ssize_t>{static_cast<py::ssize_t>(n)});
   auto* lim = static_cast<PyObject**>(limits.mutable_data());
   // The limit names joined with ';' (as the --batch CSV's column): one str per distinct set.
   std::unordered_map<std::uint64_t, py::str> names;
@@ -214,7 +221,7 @@ py::object Evaluate(const py::object& mission_arg, const std::string& motor, con
     py::gil_scoped_release release;
     r = dynosize::api::EvaluateCombination(mission, c);
   }
-  return ToPython(dynosize::MissionResultJson(mission, c, r));
+  return Result(dynosize::MissionResultJson(mission, c, r), "evaluate result");
 }
 
 py::object Optimize(const py::object& mission_arg, int top, int threads, bool variants, double time_limit_s,
@@ -231,7 +238,7 @@ py::object Optimize(const py::object& mission_arg, int top, int threads, bool va
     py::gil_scoped_release release;
     s = dynosize::SearchCatalog(mission, cat, so);
   }
-  return ToPython(dynosize::SearchResultJson(mission, s));
+  return Result(dynosize::SearchResultJson(mission, s), "optimize result");
 }
 
 dynosize::api::LogInputOptions LogInput(const std::string& format, const std::vector<std::string>& column_map,
@@ -283,13 +290,13 @@ PYBIND11_MODULE(_dynosize, m) {
             }
             dynosize::api::CheckCatalogListRequest(r);
             const Json j = dynosize::api::CatalogListJson(c.get(), r);
-            return r.kind.empty() ? ToPython(j) : ToPython(j[r.kind]);
+            return r.kind.empty() ? Result(j, "catalog list") : Result(j[r.kind], "catalog list");
           },
           py::arg("kind") = py::none(), py::arg("kv_min") = py::none(), py::arg("kv_max") = py::none(),
           py::arg("mass_max_kg") = py::none(), py::arg("current_min_a") = py::none(),
           "The entries as catalog list --json: {kind: [entries]}, or the list of one kind")
       .def(
-          "show", [](const PyCatalog& c, const std::string& id) { return ToPython(dynosize::api::CatalogShowJson(c.get(), id)); },
+          "show", [](const PyCatalog& c, const std::string& id) { return Result(dynosize::api::CatalogShowJson(c.get(), id), "catalog show"); },
           py::arg("id"), "One entry with its derived SI parameters (catalog show)")
       .def_property_readonly("folders",
                              [](const PyCatalog& c) {
@@ -336,7 +343,7 @@ PYBIND11_MODULE(_dynosize, m) {
           py::gil_scoped_release release;
           j = dynosize::api::CalibrateLogs(r, cat);
         }
-        return ToPython(j);
+        return Result(j, "calibrate result");
       },
       py::arg("logs"), py::kw_only(), py::arg("motor_id"), py::arg("esc_id"), py::arg("format") = "auto",
       py::arg("map") = std::vector<std::string>{}, py::arg("drop_incomplete_rows") = false,
@@ -366,7 +373,7 @@ PYBIND11_MODULE(_dynosize, m) {
           py::gil_scoped_release release;
           j = dynosize::api::DiagnoseLog(r, cat);
         }
-        return ToPython(j);
+        return Result(j, "diagnose result");
       },
       py::arg("log"), py::kw_only(), py::arg("motor") = "", py::arg("esc") = "", py::arg("format") = "auto",
       py::arg("map") = std::vector<std::string>{}, py::arg("drop_incomplete_rows") = false,
