@@ -51,9 +51,11 @@ set_target_properties(_dynosize PROPERTIES LIBRARY_OUTPUT_DIRECTORY ${PROJECT_BI
 configure_file(${PROJECT_SOURCE_DIR}/python/dynosize/__init__.py ${PROJECT_BINARY_DIR}/python/dynosize/__init__.py
                COPYONLY)
 
-# Installed into <prefix>/lib/python3/dist-packages/dynosize (Debian's layout for modules of
-# its python3 packages; set DYNOSIZE_PYTHON_INSTALL_DIR to choose another).
-set(DYNOSIZE_PYTHON_INSTALL_DIR lib/python3/dist-packages CACHE STRING
-    "where cmake --install puts the Python package dynosize (relative to the prefix)")
+# Installed into <prefix>/lib/python3.X/dist-packages/dynosize: with the default prefix /usr/local
+# (or /usr) a directory on Debian's python3 path; under another prefix P, PYTHONPATH=P/lib/python3.X/
+# dist-packages. The package finds the catalog installed beside it (P/share/dynosize/catalog).
+# DYNOSIZE_PYTHON_INSTALL_DIR chooses another place.
+set(DYNOSIZE_PYTHON_INSTALL_DIR lib/python${Python3_VERSION_MAJOR}.${Python3_VERSION_MINOR}/dist-packages
+    CACHE STRING "where cmake --install puts the Python package dynosize (relative to the prefix)")
 install(TARGETS _dynosize LIBRARY DESTINATION ${DYNOSIZE_PYTHON_INSTALL_DIR}/dynosize)
 install(FILES ${PROJECT_SOURCE_DIR}/python/dynosize/__init__.py DESTINATION ${DYNOSIZE_PYTHON_INSTALL_DIR}/dynosize)

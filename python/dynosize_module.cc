@@ -307,6 +307,8 @@ PYBIND11_MODULE(_dynosize, m) {
       .def("__len__", [](const PyCatalog& c) { return c.get().size(); });
 
   m.def("bundled_catalog_dir", &dynosize::BundledCatalogDir, "The folder of the bundled catalog");
+  m.def("_set_package_catalog_dir", &dynosize::SetPackageCatalogDir,
+        "The installed package's catalog (set by the package's __init__ when installed)");
 
   m.def("simulate", &Simulate, py::kw_only(), py::arg("motor"), py::arg("esc"), py::arg("vdc_v") = py::none(),
         py::arg("throttle") = py::none(), py::arg("torque_nm") = py::none(), py::arg("rpm") = py::none(),
