@@ -5,7 +5,9 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <memory>
 #include <optional>
@@ -120,10 +122,14 @@ std::size_t BroadcastLength(const std::vector<std::pair<const char*, const Colum
   return n;
 }
 
-double At(const Column& c, std::size_t i) {
-  const double* p = c->data();
-  return c->size() == 1 ? p[0] : p[i];
-}
+// A column's values without Python calls (read with the GIL released): one value or n.
+struct Values {
+  const double* data = nullptr;
+  bool one = false;
+  explicit Values(const Column& c) : data(c ? c->data() : nullptr), one(c && c->size() == 1) {}
+  explicit operator bool() const { return data != nullptr; }
+  double operator[](std::size_t i) const { return one ? data[0] : data[i]; }
+};
 
 // simulate(): the batch path (api::SimulateBatch, what simulate --batch runs) over arrays.
 py::dict Simulate(const std::string& motor_id, const std::string& esc_id, const Column& vdc_v, const Column& throttle,
@@ -135,74 +141,103 @@ py::dict Simulate(const std::string& motor_id, const std::string& esc_id, const 
   const dynosize::Catalog& cat = CatalogOr(catalog).get();
   const dynosize::MotorEntry& motor = cat.motor(motor_id);
   const dynosize::EscEntry& esc = cat.esc(esc_id);
-  std::vector<dynosize::PointRequest> requests(n);
-  for (std::size_t i = 0; i < n; ++i) {
-    dynosize::PointRequest& r = requests[i];
-    r.row = i;
-    r.vdc_v = At(vdc_v, i);
-    if (throttle) r.throttle = At(throttle, i);
-    if (torque_nm) r.torque_nm = At(torque_nm, i);
-    if (rpm) r.rpm = At(rpm, i);
-    if (thrust_n) r.thrust_n = At(thrust_n, i);
-    r.prop = prop;
-    if (prop.empty()) {
-      if (const std::string rule = dynosize::CheckPointRequest(r); !rule.empty()) {
-        throw dynosize::UsageError("simulate: point " + std::to_string(i) + ": " + rule);
-      }
-    }
-  }
-  std::vector<dynosize::api::BatchPoint> points;
-  {
-    py::gil_scoped_release release;
-    points = dynosize::api::SimulateBatch(cat, dynosize::Drive(motor.params, esc.params), requests, "simulate: point");
-  }
-  // The keys of the point JSON (report/point_json.h), one numpy array each.
-  py::dict out;
-  const auto column = [&](const char* key, auto get) {
-    py::array_t<double> a(static_cast<py::ssize_t>(n));
-    double* d = a.mutable_data();
-    for (std::size_t i = 0; i < n; ++i) d[i] = get(points[i]);
-    out[key] = a;
-  };
+  // The keys of the point JSON (report/point_json.h), one numpy array each, filled chunk by chunk:
+  // the batch path runs on a few thousand points at a time, which stay in the cache.
   using BP = dynosize::api::BatchPoint;
-  column("vdc_v", [](const BP& b) { return b.drive.vdc_v; });
-  column("throttle", [](const BP& b) { return b.drive.throttle; });
-  column("throttle_effective", [](const BP& b) { return b.drive.throttle_effective; });
-  column("rpm", [](const BP& b) { return b.drive.rpm; });
-  column("omega_rad_s", [](const BP& b) { return b.drive.omega_rad_s; });
-  column("torque_nm", [](const BP& b) { return b.drive.torque_nm; });
-  column("irms_a", [](const BP& b) { return b.drive.irms_a; });
-  column("vll_rms_v", [](const BP& b) { return b.drive.vll_rms_v; });
-  column("pac_w", [](const BP& b) { return b.drive.pac_w; });
-  column("idc_a", [](const BP& b) { return b.drive.idc_a; });
-  column("pdc_w", [](const BP& b) { return b.drive.pdc_w; });
-  column("pesc_w", [](const BP& b) { return b.drive.pesc_w; });
-  column("pmech_w", [](const BP& b) { return b.drive.pmech_w; });
-  column("eta_motor", [](const BP& b) { return b.drive.eta_motor; });
-  column("eta_esc", [](const BP& b) { return b.drive.eta_esc; });
-  column("eta_system", [](const BP& b) { return b.drive.eta_system; });
+  using dynosize::OperatingPoint;
+  std::vector<std::pair<const char*, double OperatingPoint::*>> keys = {
+      {"vdc_v", &OperatingPoint::vdc_v},
+      {"throttle", &OperatingPoint::throttle},
+      {"throttle_effective", &OperatingPoint::throttle_effective},
+      {"rpm", &OperatingPoint::rpm},
+      {"omega_rad_s", &OperatingPoint::omega_rad_s},
+      {"torque_nm", &OperatingPoint::torque_nm},
+      {"irms_a", &OperatingPoint::irms_a},
+      {"vll_rms_v", &OperatingPoint::vll_rms_v},
+      {"pac_w", &OperatingPoint::pac_w},
+      {"idc_a", &OperatingPoint::idc_a},
+      {"pdc_w", &OperatingPoint::pdc_w},
+      {"pesc_w", &OperatingPoint::pesc_w},
+      {"pmech_w", &OperatingPoint::pmech_w},
+      {"eta_motor", &OperatingPoint::eta_motor},
+      {"eta_esc", &OperatingPoint::eta_esc},
+      {"eta_system", &OperatingPoint::eta_system}};
+  py::dict out;
+  std::vector<double*> columns;
+  for (const auto& [key, member] : keys) {
+    py::array_t<double> a(static_cast<py::ssize_t>(n));
+    columns.push_back(a.mutable_data());
+    out[key] = a;
+  }
+  double* thrust = nullptr;
+  double* g_per_w = nullptr;
   if (!prop.empty()) {
-    column("thrust_n", [](const BP& b) { return b.thrust_n; });
-    column("g_per_w", [](const BP& b) { return b.g_per_w; });
+    py::array_t<double> t(static_cast<py::ssize_t>(n)), g(static_cast<py::ssize_t>(n));
+    thrust = t.mutable_data();
+    g_per_w = g.mutable_data();
+    out["thrust_n"] = t;
+    out["g_per_w"] = g;
   }
   py::array_t<bool> saturated(static_cast<py::ssize_t>(n)), feasible(static_cast<py::ssize_t>(n));
+  bool* sat = saturated.mutable_data();
+  bool* ok = feasible.mutable_data();
   py::array limits(py::dtype("O"), std::vector<py::ssize_t>{static_cast<py::ssize_t>(n)});
   auto* lim = static_cast<PyObject**>(limits.mutable_data());
-  // The limit names joined with ';' (as the --batch CSV's column): one str per distinct set.
+  // The limit names joined with ';' (as the --batch CSV's column): one str per distinct set of
+  // limits, shared by the points that have it.
   std::unordered_map<std::uint64_t, py::str> names;
-  for (std::size_t i = 0; i < n; ++i) {
-    const BP& b = points[i];
-    saturated.mutable_data()[i] = b.drive.saturated;
-    feasible.mutable_data()[i] = b.feasible();
-    const std::uint64_t key = (static_cast<std::uint64_t>(b.beats_momentum_theory) << 32) | b.drive.limits;
-    auto it = names.find(key);
-    if (it == names.end()) {
-      std::string s;
-      for (const auto& name : b.LimitNames()) s += (s.empty() ? "" : ";") + name;
-      it = names.emplace(key, py::str(s)).first;
+  std::uint64_t last_key = ~std::uint64_t{0};
+  PyObject* last_name = nullptr;
+  const dynosize::Drive drive(motor.params, esc.params);
+  const Values vdc(vdc_v), tr(throttle), q(torque_nm), speed(rpm), thrust_given(thrust_n);
+  {
+    // The GIL stays held: the limit names are Python strings, set point by point.
+    constexpr std::size_t kChunk = 1024;
+    std::vector<dynosize::PointRequest> requests;
+    for (std::size_t begin = 0; begin < n; begin += kChunk) {
+      const std::size_t end = std::min(n, begin + kChunk);
+      requests.resize(end - begin);
+      for (std::size_t i = begin; i < end; ++i) {
+        dynosize::PointRequest& r = requests[i - begin];
+        r.row = i;
+        r.vdc_v = vdc[i];
+        if (tr) r.throttle = tr[i];
+        if (q) r.torque_nm = q[i];
+        if (speed) r.rpm = speed[i];
+        if (thrust_given) r.thrust_n = thrust_given[i];
+        if (!prop.empty()) r.prop = prop;
+        if (prop.empty()) {
+          if (const std::string rule = dynosize::CheckPointRequest(r); !rule.empty()) {
+            throw dynosize::UsageError("simulate: point " + std::to_string(i) + ": " + rule);
+          }
+        }
+      }
+      const std::vector<BP> points = dynosize::api::SimulateBatch(cat, drive, requests, "simulate: point");
+      for (std::size_t i = 0; i < points.size(); ++i) {
+        const BP& b = points[i];
+        for (std::size_t k = 0; k < keys.size(); ++k) columns[k][begin + i] = b.drive.*keys[k].second;
+        if (thrust != nullptr) {
+          thrust[begin + i] = b.thrust_n;
+          g_per_w[begin + i] = b.g_per_w;
+        }
+        sat[begin + i] = b.drive.saturated;
+        ok[begin + i] = b.feasible();
+        const std::uint64_t key = (static_cast<std::uint64_t>(b.beats_momentum_theory) << 32) | b.drive.limits;
+        if (key != last_key) {
+          auto it = names.find(key);
+          if (it == names.end()) {
+            std::string joined;
+            for (const auto& name : b.LimitNames()) joined += (joined.empty() ? "" : ";") + name;
+            it = names.emplace(key, py::str(joined)).first;
+          }
+          last_key = key;
+          last_name = it->second.ptr();
+        }
+        Py_XDECREF(lim[begin + i]);
+        Py_INCREF(last_name);
+        lim[begin + i] = last_name;
+      }
     }
-    Py_XDECREF(lim[i]);
-    lim[i] = it->second.inc_ref().ptr();
   }
   out["saturated"] = saturated;
   out["feasible"] = feasible;
