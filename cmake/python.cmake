@@ -32,14 +32,18 @@ endif()
 set(DYNOSIZE_PYTHON_FOUND ON)
 message(STATUS "dynosize: Python module for ${Python3_EXECUTABLE} (Python ${Python3_VERSION}, pybind11 ${pybind11_VERSION})")
 
-# The libraries go into a shared object: position-independent code.
-set_target_properties(dynosize_core dynosize_optimization PROPERTIES POSITION_INDEPENDENT_CODE ON)
-if(TARGET dynosize_solvers)
-  get_target_property(_type dynosize_solvers TYPE)
-  if(NOT _type STREQUAL "INTERFACE_LIBRARY")
-    set_target_properties(dynosize_solvers PROPERTIES POSITION_INDEPENDENT_CODE ON)
-  endif()
+# The libraries go into a shared object: position-independent code. -fno-semantic-interposition
+# keeps the calls inside the library direct (no symbol of it is replaced at load time), so that
+# the CLI, linked against the same libraries, keeps its speed (README, "Performance").
+set(_dynosize_pic_targets dynosize_core dynosize_optimization)
+get_target_property(_type dynosize_solvers TYPE)
+if(NOT _type STREQUAL "INTERFACE_LIBRARY")
+  list(APPEND _dynosize_pic_targets dynosize_solvers)
 endif()
+foreach(_t ${_dynosize_pic_targets})
+  set_target_properties(${_t} PROPERTIES POSITION_INDEPENDENT_CODE ON)
+  target_compile_options(${_t} PRIVATE -fno-semantic-interposition)
+endforeach()
 
 file(GLOB DYNOSIZE_PYTHON_SOURCES CONFIGURE_DEPENDS ${PROJECT_SOURCE_DIR}/python/*.cc)
 pybind11_add_module(_dynosize ${DYNOSIZE_PYTHON_SOURCES})

@@ -9,17 +9,21 @@ namespace dynosize::api {
 using diagnosis::CauseId;
 using diagnosis::ColumnError;
 
-static Json CvJson(const std::vector<ColumnError>& cv, bool percent) {
+namespace {
+
+Json CvJson(const std::vector<ColumnError>& cv, bool percent) {
   Json j = Json::object();
   for (const auto& c : cv) j[logs::ColumnName(c.column)] = NumberOrNull(percent ? c.rmse_percent : c.rmse);
   return j;
 }
 
-static Json MapJson(const std::map<std::string, double>& m) {
+Json MapJson(const std::map<std::string, double>& m) {
   Json j = Json::object();
   for (const auto& [k, v] : m) j[k] = NumberOrNull(v);
   return j;
 }
+
+}  // namespace
 
 // Catalog-style entry values (SI, catalog keys) of the extended model.
 Json MotorValuesJson(const MotorParams& m) {
@@ -47,7 +51,9 @@ Json EscValuesJson(const EscParams& e) {
   return j;
 }
 
-static Json ScoreJson(const diagnosis::CandidateScore& s) {
+namespace {
+
+Json ScoreJson(const diagnosis::CandidateScore& s) {
   Json j;
   j["cause"] = CauseId(s.cause);
   j["parameters"] = MapJson(s.parameters);
@@ -60,6 +66,8 @@ static Json ScoreJson(const diagnosis::CandidateScore& s) {
   if (!s.note.empty()) j["note"] = s.note;
   return j;
 }
+
+}  // namespace
 
 void CheckDiagnoseRequest(const DiagnoseRequest& o) {
   if (o.kv_label && !(*o.kv_label > 0.0)) throw UsageError("diagnose: --kv-label must be > 0 (rpm per volt)");
