@@ -34,7 +34,7 @@ message(STATUS "dynosize: Python module for ${Python3_EXECUTABLE} (Python ${Pyth
 
 # The libraries go into a shared object: position-independent code. -fno-semantic-interposition
 # keeps the calls inside the library direct (no symbol of it is replaced at load time), so that
-# the CLI, linked against the same libraries, keeps its speed (README, "Performance").
+# the CLI, linked against the same libraries, keeps its speed (docs/python.md).
 set(_dynosize_pic_targets dynosize_core dynosize_optimization)
 get_target_property(_type dynosize_solvers TYPE)
 if(NOT _type STREQUAL "INTERFACE_LIBRARY")

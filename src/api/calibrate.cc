@@ -20,15 +20,6 @@ namespace {
 std::string BaseName(const std::string& p) { return std::filesystem::path(p).filename().string(); }
 
 
-// Numerical guard, independent of the solver's own claim: every reported parameter finite.
-// Returns "" or the first non-finite parameter.
-std::string NonFiniteParameterOf(const calibration::CalibrationResult& r) {
-  for (int k = 0; k < calibration::kParamCount; ++k) {
-    if (!std::isfinite(r.params[k].value)) return calibration::ParamName(static_cast<calibration::Param>(k));
-  }
-  if (!std::isfinite(r.r_total_ohm)) return "r_total_ohm";
-  return "";
-}
 
 // {"median_abs_percent": x, "points": n}
 
@@ -70,7 +61,15 @@ Json ErrorsJson(const std::vector<double>& e) {
   return {{"median_abs_percent", NumberOrNull(MedianAbs(e))}, {"points", e.size()}};
 }
 
-std::string NonFiniteParameter(const calibration::CalibrationResult& r) { return NonFiniteParameterOf(r); }
+// Numerical guard, independent of the solver's own claim: every reported parameter finite.
+// Returns "" or the first non-finite parameter.
+std::string NonFiniteParameter(const calibration::CalibrationResult& r) {
+  for (int k = 0; k < calibration::kParamCount; ++k) {
+    if (!std::isfinite(r.params[k].value)) return calibration::ParamName(static_cast<calibration::Param>(k));
+  }
+  if (!std::isfinite(r.r_total_ohm)) return "r_total_ohm";
+  return "";
+}
 
 CalibrationLogs ReadCalibrationLogs(const CalibrateRequest& o) {
   if (o.logs.empty()) throw UsageError("calibrate: give at least one LOG file");
