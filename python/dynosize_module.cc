@@ -206,10 +206,9 @@ py::dict Simulate(const std::string& motor_id, const std::string& esc_id, const 
         if (speed) r.rpm = speed[i];
         if (thrust_given) r.thrust_n = thrust_given[i];
         if (!prop.empty()) r.prop = prop;
-        if (prop.empty()) {
-          if (const std::string rule = dynosize::CheckPointRequest(r); !rule.empty()) {
-            throw dynosize::UsageError("simulate: point " + std::to_string(i) + ": " + rule);
-          }
+        // The rules of a --batch row (io/points_csv.h), the point's index in the message.
+        if (const std::string rule = dynosize::CheckPointRequest(r); !rule.empty()) {
+          throw dynosize::UsageError("simulate: point:" + std::to_string(i) + ": " + rule);
         }
       }
       const std::vector<BP> points = dynosize::api::SimulateBatch(cat, drive, requests, "simulate: point");

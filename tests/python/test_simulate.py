@@ -69,6 +69,10 @@ def test_propeller_rows(catalog, cli):
     assert got["thrust_n"] == pytest.approx(thrust, rel=1e-6)
     assert set(got) == POINT_KEYS | {"thrust_n", "g_per_w"}
     assert (got["g_per_w"] > 0).all()
+    with pytest.raises(ValueError, match="point:0: a row with a prop takes its load from the propeller"):
+        dynosize.simulate(motor="dc_m_365", esc="dc_e_56", prop="dc_p_231", vdc_v=14.8, throttle=0.5, torque_nm=0.1)
+    with pytest.raises(ValueError, match="no_such_prop"):
+        dynosize.simulate(motor="dc_m_365", esc="dc_e_56", prop="no_such_prop", vdc_v=14.8, throttle=0.5)
 
 
 def test_errors_carry_the_cli_message(catalog, cli):
