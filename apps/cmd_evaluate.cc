@@ -46,18 +46,6 @@ int RunEvaluate(const EvaluateOptions& o) {
 
 namespace {
 
-// "1m05s" / "12.3 s": the elapsed time of the progress line.
-std::string Elapsed(double s) {
-  std::ostringstream o;
-  if (s < 60) {
-    o << std::fixed << std::setprecision(1) << s << " s";
-  } else {
-    o << static_cast<long long>(s / 60) << " min " << std::setw(2) << std::setfill('0') << static_cast<long long>(s) % 60
-      << " s";
-  }
-  return o.str();
-}
-
 // Progress on a terminal's stderr only (never with --json or --quiet, never into a pipe or a
 // file), and only once the search has run for a second: the elapsed time, the share of the work
 // done (search.h, SearchProgress) and the best so far in the unit the result prints.
@@ -71,7 +59,7 @@ std::function<void(const SearchProgress&)> ProgressLine(const Mission& mission, 
     if (elapsed < 1.0) return;
     *shown = true;
     std::ostringstream line;
-    line << "\r" << Elapsed(elapsed) << ": " << std::setw(3) << static_cast<int>(100 * p.fraction) << " % done";
+    line << "\r" << ElapsedText(elapsed) << ": " << std::setw(3) << static_cast<int>(100 * p.fraction) << " % done";
     // Until N are known the work left is not (SearchProgress::fraction).
     if (p.found < top && p.fraction < 1.0) line << " (finding the first " << top << what << ": " << p.found << ")";
     line << ", " << p.searched << " evaluated";

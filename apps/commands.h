@@ -167,4 +167,23 @@ struct OptimizeOptions {
 };
 int RunOptimize(const OptimizeOptions& o);
 
+// `dynosize sweep MISSION --vary KEY=START:STOP:STEP|KEY=v1,v2 ... [--top N] [--out FILE]
+// [--json] [--plot DIR]`: the mission over a full-factorial grid, each point searched
+// (src/study/sweep.h); a CSV (or JSON) row per point.
+struct SweepCliOptions {
+  CatalogFolders catalog;  // --catalog, --catalog-add, --override (catalog/catalog_path.h)
+  std::string mission;
+  std::vector<std::string> vary;
+  int top = 1;
+  bool json = false;
+  bool quiet = false;
+  bool yes = false;    // run a grid over study::kLargeGridPoints points
+  int threads = 2;     // points at once (study::SweepOptions::threads)
+  std::string out;     // "" = stdout
+  std::string plot_dir;
+  bool variants = false;  // SearchOptions::distinct_designs off, as optimize --variants
+  double time_limit_s = std::numeric_limits<double>::infinity();  // as optimize's
+};
+int RunSweep(const SweepCliOptions& o);
+
 }  // namespace dynosize::cli

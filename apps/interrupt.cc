@@ -1,6 +1,10 @@
 #include "interrupt.h"
 
 #include <csignal>
+#include <iomanip>
+#include <sstream>
+
+#include "common/error.h"
 
 namespace dynosize::cli {
 
@@ -28,5 +32,16 @@ SigintToFlag::SigintToFlag() {
 SigintToFlag::~SigintToFlag() { sigaction(SIGINT, &g_previous, nullptr); }
 
 const std::atomic<bool>& SigintToFlag::Flag() { return g_sigint; }
+
+std::string ElapsedText(double s) {
+  std::ostringstream o;
+  if (s < 60) {
+    o << std::fixed << std::setprecision(1) << s << " s";
+  } else {
+    o << static_cast<long long>(s / 60) << " min " << std::setw(2) << std::setfill('0') << static_cast<long long>(s) % 60
+      << " s";
+  }
+  return o.str();
+}
 
 }  // namespace dynosize::cli

@@ -3,6 +3,8 @@
 #pragma once
 
 #include <atomic>
+#include <chrono>
+#include <string>
 
 namespace dynosize::cli {
 
@@ -17,5 +19,8 @@ class SigintToFlag {
   static const std::atomic<bool>& Flag();
   static bool Received() { return Flag().load(); }
 };
+
+// "12.3 s" / "1 min 05 s": the elapsed time of a progress line (optimize, sweep).
+std::string ElapsedText(double s);
 
 }  // namespace dynosize::cli

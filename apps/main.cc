@@ -1,7 +1,7 @@
 // dynosize command-line front end: parses flags (CLI11, only here) and calls apps/commands.h.
 //
 // Exit codes (see README): 0 ok, 64 usage, 65 bad input data, 66 missing input, 70 internal
-// error, 73 cannot create output, 130 optimize stopped by SIGINT (its best so far printed).
+// error, 73 cannot create output, 130 optimize or sweep stopped by SIGINT (its best so far / rows done so far written).
 // Results go to stdout, messages to stderr; with --json stdout is exactly one JSON document.
 #include <CLI/CLI.hpp>
 
@@ -245,6 +245,31 @@ CLI::App* AddOptimizeCommand(CLI::App& app, cli::OptimizeOptions& optim) {
   return optimize;
 }
 
+CLI::App* AddSweepCommand(CLI::App& app, cli::SweepCliOptions& sw) {
+  auto* sweep = app.add_subcommand(
+      "sweep", "a trade study: the mission over a full-factorial grid of values (JSON paths of the mission), "
+               "each point searched as optimize does; one CSV row per point");
+  sweep->add_option("mission", sw.mission, "mission JSON file")->required();
+  sweep->add_option("--vary", sw.vary,
+                    "KEY=START:STOP:STEP or KEY=v1,v2,... with KEY a JSON path of the mission "
+                    "(vehicle.mass_kg, battery.capacity_ah, segments[2].duration_s); repeatable: full factorial")
+      ->required()
+      ->allow_extra_args(false);
+  sweep->add_option("--top", sw.top, "picks per point (one CSV line each)")->check(CLI::Range(1, 1000));
+  sweep->add_option("--out", sw.out, "write the CSV (or JSON) here (default: stdout; atomic)");
+  sweep->add_flag("--json", sw.json, "write the rows as one JSON object");
+  sweep->add_option("--plot", sw.plot_dir,
+                    "write the objective against each key and a carpet plot of the first two keys here");
+  sweep->add_option("--threads", sw.threads, "points run at once (each point's answer does not depend on it)")
+      ->check(CLI::Range(1, 64));
+  sweep->add_flag("--quiet", sw.quiet, "no progress display");
+  sweep->add_flag("--yes", sw.yes, "run a grid of more than 10^6 points");
+  sweep->add_flag("--variants", sw.variants, "rank combinations, not designs (as optimize --variants)");
+  sweep->add_option("--time-limit", sw.time_limit_s,
+                    "stop after S seconds and write the rows done so far (> 0)");
+  return sweep;
+}
+
 CLI::App* AddValidateStandCommand(CLI::App& app, cli::ValidateStandOptions& vst) {
   auto* validate_stand = app.add_subcommand(
       "validate-stand",
@@ -309,14 +334,16 @@ int main(int argc, char** argv) {
   CLI::App* optimize = AddOptimizeCommand(app, optim);
   cli::ValidateStandOptions vst;
   CLI::App* validate_stand = AddValidateStandCommand(app, vst);
+  cli::SweepCliOptions sw;
+  CLI::App* sweep = AddSweepCommand(app, sw);
 
   if (argc > 1 && argv[1][0] != '-') {
     const std::string first = argv[1];
     if (first != "simulate" && first != "catalog" && first != "calibrate" && first != "diagnose" &&
-        first != "evaluate" && first != "optimize" && first != "validate-stand") {
+        first != "evaluate" && first != "optimize" && first != "validate-stand" && first != "sweep") {
       return Fail(ExitCode::kUsage, "unknown subcommand '" + first +
                                         "': valid are simulate, calibrate, diagnose, catalog, evaluate, "
-                                        "optimize, validate-stand (see 'dynosize --help')");
+                                        "optimize, sweep, validate-stand (see 'dynosize --help')");
     }
   }
   try {
@@ -360,6 +387,10 @@ int main(int argc, char** argv) {
     if (*optimize) {
       optim.catalog = dir;
       return cli::RunOptimize(optim);
+    }
+    if (*sweep) {
+      sw.catalog = dir;
+      return cli::RunSweep(sw);
     }
     if (*validate_stand) {
       vst.catalog = dir;

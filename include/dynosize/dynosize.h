@@ -7,6 +7,7 @@
 //   catalog     Catalog::Load, CatalogFolders, BundledCatalogDir, ResolveCatalogFolders
 //   model       Drive (the Brown & Chopra motor + ESC model, model.md eqs 42-59), OperatingPoint
 //   missions    ReadMission, Combination, MissionEvaluator, AddObjectiveRange, SearchCatalog
+//   studies     study::ParseVary, RunPoint, RunSweep (a mission over a grid of values), SweepCsv
 //   calibration Calibrate (fit catalog entries to stand logs), Diagnose
 //   errors      dynosize::Error and its exit codes (UsageError, DataError, NoInputError, ...)
 #pragma once
@@ -24,6 +25,8 @@
 #include "optimization/mission_eval.h"
 #include "optimization/search.h"
 #include "prop/prop_model.h"
+#include "report/sweep_report.h"
+#include "study/sweep.h"
 
 // The catalog installed with the package this program is built against is its default catalog
 // (catalog/catalog_path.h BundledCatalogDir, step 4): dynosizeConfig.cmake passes its location,

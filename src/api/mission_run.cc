@@ -105,21 +105,24 @@ MissionResult EvaluateCombination(const Mission& mission, const Combination& c) 
   return r;
 }
 
-SearchOptions OptimizeSearchOptions(const OptimizeRequest& o) {
-  if (!(o.time_limit_s > 0)) {  // NaN too
+std::chrono::steady_clock::time_point DeadlineAfter(double time_limit_s) {
+  if (!(time_limit_s > 0)) {  // NaN too
     std::ostringstream v;
-    v << o.time_limit_s;
+    v << time_limit_s;
     throw UsageError("--time-limit " + v.str() + ": must be a positive number of seconds");
   }
+  constexpr double kNoDeadlineS = 1e9;  // about 30 years: beyond it, no deadline (no overflow)
+  if (time_limit_s >= kNoDeadlineS) return std::chrono::steady_clock::time_point::max();
+  return std::chrono::steady_clock::now() +
+         std::chrono::duration_cast<std::chrono::steady_clock::duration>(std::chrono::duration<double>(time_limit_s));
+}
+
+SearchOptions OptimizeSearchOptions(const OptimizeRequest& o) {
   SearchOptions so;
+  so.deadline = DeadlineAfter(o.time_limit_s);
   so.top_n = o.top;
   so.threads = o.threads;
   so.distinct_designs = !o.variants;
-  constexpr double kNoDeadlineS = 1e9;  // about 30 years: beyond it, no deadline (no overflow)
-  if (o.time_limit_s < kNoDeadlineS) {
-    so.deadline = std::chrono::steady_clock::now() +
-                  std::chrono::duration_cast<std::chrono::steady_clock::duration>(std::chrono::duration<double>(o.time_limit_s));
-  }
   return so;
 }
 

@@ -3,6 +3,7 @@
 // apps/cmd_evaluate.cc, and the Python module, python/, share them).
 #pragma once
 
+#include <chrono>
 #include <limits>
 #include <string>
 #include <vector>
@@ -39,7 +40,11 @@ struct OptimizeRequest {
   double time_limit_s = std::numeric_limits<double>::infinity();
 };
 
-// SearchOptions of the request, the deadline counted from now. Throws UsageError for a time
+// --time-limit S (optimize, sweep): the deadline S seconds from now (time_point::max() beyond
+// about 30 years); UsageError unless S > 0 (NaN too).
+std::chrono::steady_clock::time_point DeadlineAfter(double time_limit_s);
+
+// SearchOptions of the request, the deadline counted from now (DeadlineAfter). Throws UsageError for a time
 // limit that is not a positive number (NaN too).
 SearchOptions OptimizeSearchOptions(const OptimizeRequest& request);
 

@@ -10,6 +10,7 @@
 #include "common/units.h"
 #include "mission/flight.h"
 #include "model/physics.h"
+#include "optimization/prop_bounds.h"
 #include "optimization/shaft.h"
 #include "solvers/solver.h"
 
@@ -1194,24 +1195,24 @@ bool MissionEvaluator::EarlyExit(double cutoff_score, bool explain, MissionResul
           const double t_min = s.distance_m ? d / s.airspeed_m_s.hi : *s.duration_s;
           const double thrust =
               s.lift_to_drag > 0 ? SegmentRotorLoad(m_, s, r0.total_mass_kg, s.airspeed_m_s.lo).thrust_total_n : 0.0;
-          double e_prop = thrust * d;
+          double e_prop = thrust * d + m_.vehicle.avionics_power_w * t_min;
           const GroupDrive& gd = groups_[s.group];
           const MotorParams& mp = gd.drive.motor();
           const EscParams& ep = gd.drive.esc();
-          if (s.lift_to_drag > 0 && mp.kt_nm_per_a <= MaxKtPerKe(mp.type) * mp.ke_v_s_per_rad && mp.rm_ohm >= 0 &&
-              mp.io_a >= 0 && mp.io1_a_s_per_rad >= 0 && ep.c0 >= 0 && ep.c1 + ep.c0 >= IdealIdcPerIrmsPerThrottle(mp.type)) {
-            // Tighter, as FreeCruisePowerLowerBoundW of search.cc: a feasible point's prop power
-            // is at least P_ideal(T, V)/max_figure_of_merit (prop_figure_of_merit; V the inflow
-            // with forward-flight tables, else 0) and PDC >= Pmech (no stage creates energy);
-            // the thrust is least at lo; by distance P_ideal/V falls with V at fixed thrust
-            // (least at hi), by duration P_ideal rises (lo).
-            const bool axial = gd.prop->data_kind() == PropDataKind::kTables && !gd.parts.prop->j_tables.empty();
-            const double v = axial ? (s.distance_m ? s.airspeed_m_s.hi : s.airspeed_m_s.lo) : 0.0;
-            const RotorLoad ld = SegmentRotorLoad(m_, s, r0.total_mass_kg, s.airspeed_m_s.lo);
-            const double p_ideal = IdealRotorPowerW(ld.thrust_per_rotor_n, gd.parts.prop->diameter_m, m_.rho_kg_m3, v);
-            e_prop = std::max(e_prop, ld.rotors * p_ideal / m_.constraints.max_figure_of_merit * t_min);
-          }
-          e_lb += e_prop + m_.vehicle.avionics_power_w * t_min;
+          // Tighter, cell by cell over the airspeed range (prop_bounds.h): momentum theory when
+          // no stage creates energy, and this group's own drive at the pack's voltage range;
+          // at the smallest capacity's mass, which every larger pack only adds to (M3).
+          const bool lossy = mp.kt_nm_per_a <= MaxKtPerKe(mp.type) * mp.ke_v_s_per_rad && mp.rm_ohm >= 0 &&
+                             mp.io_a >= 0 && mp.io1_a_s_per_rad >= 0 && ep.c0 >= 0 &&
+                             ep.c1 + ep.c0 >= IdealIdcPerIrmsPerThrottle(mp.type);
+          const CruisePropBound pb{gd.parts.prop, gd.prop, gd.prop_adj, lossy};
+          const BatteryPack pack(PackAt(v0.capacity_ah));
+          DischargeOptions dopt;
+          if (m_.battery.cutoff_cell_v) dopt.cutoff_cell_v = *m_.battery.cutoff_cell_v;
+          const CruiseDriveBound db{&gd.drive, pack.OcvV(1.0), pack.cutoff_v(dopt)};
+          const double p_rotors = FreeCruiseRotorPowerLowerBoundW(m_, s, pb, &db, r0.total_mass_kg);
+          e_prop = std::max(e_prop, (p_rotors + m_.vehicle.avionics_power_w) * t_min);
+          e_lb += e_prop;
         } else {
           e_lb += r0.segments[i].energy_j;
         }

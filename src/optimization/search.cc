@@ -36,7 +36,7 @@ namespace dynosize {
 //  (M3) more mass means more thrust in every segment (flight.h), hence (M1, M2) more speed,
 //       torque, current and power;
 //  (M4) at a fixed thrust a propeller's power rises with its axial inflow (as the ideal power
-//       does; checked on the samples where it is used, FixedFreeCruiseDataPowerW).
+//       does; checked on the samples where it is used, prop_bounds.cc).
 // Bounds on one (motor, propeller, battery option) pair use the lightest the vehicle can be
 // with them: the lightest ESC that can take the cell count and the smallest battery capacity.
 //
@@ -174,9 +174,9 @@ namespace dynosize {
 //    the mass, M3; speed and torque from below by bisection on the thrust, M1; PDC at the
 //    smaller of the full-charge and cut-off voltage, eq 59) plus P_avionics, tabulated on a
 //    mass grid and read at or below each pair's own lightest mass; a wing-borne cruise with a
-//    free airspeed draws at least momentum theory's power (FreeCruisePowerLowerBoundW) and the
-//    power from the group's own drive and data over the airspeed range (M4,
-//    FixedFreeCruiseDataPowerW). The groups are
+//    free airspeed draws, cell by cell over its airspeed range, at least the larger of momentum
+//    theory's power and the group's own drive's (M4; prop_bounds.h, FreeCruisePowerLowerBoundW),
+//    over the cell's shortest duration. The groups are
 //    coupled only through the mass and the shared pack's energy, so each bound stays a bound.
 //    Thrust-to-weight and winding temperature: more mass or ESC resistance only lowers the
 //    first and raises the second, so R5 (the virtual ESC is evaluated without the
@@ -419,15 +419,6 @@ EscTable BuildEscTable(const Catalog& cat, const std::vector<BatteryOption>& opt
 
 double BudgetScore(double t_fixed_max_s, double e_max_j, double e_other_j, double p_stretch_w) {
   return p_stretch_w > 0 ? -(t_fixed_max_s + std::max(0.0, e_max_j - e_other_j) / p_stretch_w) : -kInf;
-}
-
-double BisectSpeedFromBelow(const PropModel& model, double rho, double thrust_n, double v_m_s, double lo, double hi,
-                            int steps) {
-  for (int i = 0; i < steps; ++i) {
-    const double mid = 0.5 * (lo + hi);
-    (model.Evaluate(mid, rho, v_m_s).thrust_n <= thrust_n ? lo : hi) = mid;
-  }
-  return lo;
 }
 
 const char* PropFrameRule(const Mission& m, int group, bool lifts, const PropEntry& prop) {
@@ -1296,80 +1287,17 @@ void PrepareStages(const Mission& m, const Catalog& cat, SearchContext* ctx) {
   BuildPropGrids(m, cat, &ctx->grids, &ctx->models);      // stage 3
 }
 
-// A wing-borne cruise (lift_to_drag > 0) of a fixed group with a free airspeed in [lo, hi]:
-// a power P_lb with P_lb * SegmentDurationS(hi) <= the segment's energy at every airspeed of
-// the range. The thrust W/(L/D) + 1/2*rho*V^2*Cd*A_add (flight.h) is least at lo and rises
-// with the airspeed; a feasible point has prop power >= P_ideal(T, V)/max_figure_of_merit (the
-// evaluator's prop_figure_of_merit, V the axial inflow for propellers with forward-flight
-// tables, else 0: PropellerPoint), and PDC >= Pmech when neither the motor nor the ESC can
-// create energy (as in ScoreLowerBound; model.md section 10). P_ideal rises with T, so T(lo)
-// bounds it at every airspeed. By distance the energy is P*d/V, and P_ideal(T, V)/V falls with
-// V at fixed T: its least value is at hi, with the avionics' P_av*d/hi. By duration the energy
-// is P*t and P_ideal rises with V: the least at lo. 0 when no bound applies (the avionics are
-// counted by the caller).
+// G1 for a group's wing-borne cruise with a free airspeed: cell by cell over the airspeed
+// range (prop_bounds.h), momentum theory (the ESC's C1, C0 are read for DriveIsLossy) and,
+// with `drive`, that drive's PDC from below.
 double FreeCruisePowerLowerBoundW(const Mission& m, const Segment& sg, const GroupParts& parts,
-                                  const PropModel& model, double mass_kg) {
-  if (!(sg.lift_to_drag > 0)) return 0.0;
+                                  const PropModel& model, double mass_kg, const CruiseDriveBound* drive) {
   const MotorParams mp = ScenarioMotorParams(*parts.motor, m);
   const EscParams ep = ScenarioEscParams(*parts.esc, m.objective.ranking);
-  const bool lossy = DriveIsLossy(mp, ep.c1, ep.c0);
-  if (!lossy) return 0.0;
-  const bool axial_data = model.data_kind() == PropDataKind::kTables && !parts.prop->j_tables.empty();
-  const double v = axial_data ? (sg.distance_m ? sg.airspeed_m_s.hi : sg.airspeed_m_s.lo) : 0.0;
-  const RotorLoad ld = SegmentRotorLoad(m, sg, mass_kg, sg.airspeed_m_s.lo);  // the least thrust of the range
-  const double p_ideal = IdealRotorPowerW(ld.thrust_per_rotor_n, parts.prop->diameter_m, m.rho_kg_m3, v);
-  return ld.rotors * p_ideal / m.constraints.max_figure_of_merit;
+  const CruisePropBound p{parts.prop, &model, PropAdjustmentFor(*parts.prop, m.objective.ranking),
+                          DriveIsLossy(mp, ep.c1, ep.c0)};
+  return FreeCruiseRotorPowerLowerBoundW(m, sg, p, drive, mass_kg);
 }
-
-namespace {
-
-// A speed at or below the evaluator's root for thrust T in axial inflow v (thrust rising with
-// speed, M1): bisection keeping thrust(lo) <= T; false when even kGridMaxRadS gives less.
-bool SpeedFromBelow(const PropModel& prop, double rho, double thrust_n, double v_m_s, int steps, double* omega) {
-  if (!(prop.Evaluate(kGridMaxRadS, rho, v_m_s).thrust_n >= thrust_n)) return false;
-  *omega = BisectSpeedFromBelow(prop, rho, thrust_n, v_m_s, 0.0, kGridMaxRadS, steps);
-  return true;
-}
-
-// G1 for a fixed group's wing-borne cruise with a free airspeed, from its own drive: a power
-// P_lb (W, rotors only) with P_lb * SegmentDurationS(sg, hi) at or below the segment's
-// energy at every airspeed of its range (0 when no bound is found). The thrust W/(L/D) plus
-// the added drag (flight.h) rises with the airspeed; the inflow is the airspeed. At kSamples + 1 airspeeds V_k the
-// drive's PDC from below at that thrust (speed by SpeedFromBelow, the torque there, PDC the
-// smaller at the full-charge and cut-off voltage, eq 59). (M4) At a fixed thrust a
-// propeller's power rises with its axial inflow (the ideal power T*(V/2 + sqrt((V/2)^2 +
-// T/(2*rho*A))) does), and at a fixed inflow with its thrust (M1), which rises with V; checked
-// on the samples: a sample below the one before gives no bound.
-// Then on [V_k, V_k+1] the energy P(V)*d/V is at least P(V_k)*d/V_k+1 (by distance; by
-// duration P(V)*t >= P(V_0)*t).
-double FixedFreeCruiseDataPowerW(const Mission& m, const Segment& sg, const GroupParts& parts, const PropModel& prop,
-                                 const BatteryOption& bo, double mass_kg) {
-  constexpr int kSamples = 32;
-  if (!(sg.lift_to_drag > 0)) return 0.0;
-  const Drive d(ScenarioMotorParams(*parts.motor, m), ScenarioEscParams(*parts.esc, m.objective.ranking));
-  const PropAdjustment adj = PropAdjustmentFor(*parts.prop, m.objective.ranking);
-  const double lo = sg.airspeed_m_s.lo, hi = sg.airspeed_m_s.hi;
-  double prev = 0.0, best = kInf;
-  for (int k = 0; k <= kSamples; ++k) {
-    const double v = lo + (hi - lo) * k / kSamples;
-    const RotorLoad ld = SegmentRotorLoad(m, sg, mass_kg, v);
-    double w = 0;
-    if (!SpeedFromBelow(prop, m.rho_kg_m3, ld.thrust_per_rotor_n, ld.axial_airspeed_m_s, 40, &w)) return 0.0;
-    PropEvaluation ev = prop.Evaluate(w, m.rho_kg_m3, ld.axial_airspeed_m_s);
-    AdjustPropEvaluation(adj, parts.prop->diameter_m, &ev);  // the scenario's torque, as the evaluator's
-    const double q = ev.torque_nm;
-    if (!(q > 0)) return 0.0;
-    const double pdc = std::min(d.Inverse(bo.v_full, q, w).pdc_w, d.Inverse(bo.v_cut, q, w).pdc_w);
-    const double p = ld.rotors * std::max(0.0, pdc);
-    if (p < prev) return 0.0;  // M4 not seen on the samples
-    prev = p;
-    if (!sg.distance_m) return p;  // by duration: the least at the lowest airspeed
-    if (k < kSamples) best = std::min(best, p * hi / (lo + (hi - lo) * (k + 1) / kSamples));
-  }
-  return std::isfinite(best) ? best : 0.0;
-}
-
-}  // namespace
 
 void FixedGroupPowerBounds(SearchContext* ctx) {
   const Mission& m = *ctx->mission;
@@ -1403,14 +1331,16 @@ void FixedGroupPowerBounds(SearchContext* ctx) {
         const GroupParts& parts = ctx->fixed_parts[sg.group];
         const PropModel& prop = *ctx->fixed_models[sg.group];
         if (sg.type == SegmentType::kCruise && sg.airspeed_m_s.free()) {
-          p_lb[si] += std::max(FreeCruisePowerLowerBoundW(m, sg, parts, prop, mass),
-                               FixedFreeCruiseDataPowerW(m, sg, parts, prop, bo, mass));
+          // G1 with the group's own drive and data.
+          const Drive d(ScenarioMotorParams(*parts.motor, m), ScenarioEscParams(*parts.esc, m.objective.ranking));
+          const CruiseDriveBound db{&d, bo.v_full, bo.v_cut};
+          p_lb[si] += FreeCruisePowerLowerBoundW(m, sg, parts, prop, mass, &db);
           continue;
         }
         const RotorLoad ld = SegmentRotorLoad(m, sg, mass, sg.airspeed_m_s.lo);
         // A speed at or below the evaluator's root; the torque there is at most the true one.
         double lo = 0.0;
-        if (!SpeedFromBelow(prop, m.rho_kg_m3, ld.thrust_per_rotor_n, ld.axial_airspeed_m_s, 60, &lo)) continue;
+        if (!PropSpeedFromBelow(prop, m.rho_kg_m3, ld.thrust_per_rotor_n, ld.axial_airspeed_m_s, 60, &lo)) continue;
         const double q = prop.Evaluate(lo, m.rho_kg_m3, ld.axial_airspeed_m_s).torque_nm;
         if (!(q > 0)) continue;
         const Drive d(ScenarioMotorParams(*parts.motor, m), ScenarioEscParams(*parts.esc, m.objective.ranking));
@@ -2163,9 +2093,7 @@ void BranchAndBound::ReportProgress(std::size_t ci) {
 
 void BranchAndBound::Run() {
   const Mission& m = *ctx_.mission;
-  bool free_shaft = false;
-  for (const Segment& sg : m.segments) free_shaft |= sg.type == SegmentType::kShaft && sg.shaft_omega_rad_s.free();
-  const int workers = free_shaft ? 1 : std::max(1, opt_.threads);
+  const int workers = NeedsOneThread(m) ? 1 : std::max(1, opt_.threads);
   constexpr std::size_t kMaxChunk = 128;
   std::size_t chunk = 2;  // grows while the threshold settles
   WorkerThreads pool(workers - 1);
@@ -2302,6 +2230,13 @@ SearchResult SearchExactly(const Mission& m, const Catalog& cat, const SearchOpt
 bool StopRequested(const SearchOptions& opt) {
   if (opt.stop && opt.stop->load(std::memory_order_relaxed)) return true;
   return opt.deadline != std::chrono::steady_clock::time_point::max() && std::chrono::steady_clock::now() >= opt.deadline;
+}
+
+bool NeedsOneThread(const Mission& mission) {
+  for (const Segment& sg : mission.segments) {
+    if (sg.type == SegmentType::kShaft && sg.shaft_omega_rad_s.free()) return true;
+  }
+  return false;
 }
 
 SearchResult SearchCatalog(const Mission& m, const Catalog& cat, const SearchOptions& opt) {

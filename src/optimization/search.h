@@ -61,6 +61,11 @@ struct SearchOptions {
 // True once the options' stop flag is set or their deadline has passed.
 bool StopRequested(const SearchOptions& opt);
 
+// True when the mission's evaluations must stay on one thread: a free shaft speed is solved by
+// Ipopt, whose MUMPS is not thread-safe (the search then runs one worker; a sweep one point at
+// a time, study/sweep.h).
+bool NeedsOneThread(const Mission& mission);
+
 // Another ESC or pack of a result's design (SearchOptions::distinct_designs), scored exactly.
 struct Alternative {
   Combination combination;

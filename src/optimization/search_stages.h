@@ -28,6 +28,7 @@
 #include "mission/mission.h"
 #include "optimization/credibility.h"
 #include "optimization/mission_eval.h"
+#include "optimization/prop_bounds.h"
 #include "optimization/search.h"
 #include "prop/prop_model.h"
 
@@ -94,7 +95,7 @@ inline double ThrottleLimit(const MissionConstraints& k, double tr_sat) {
 const char* PropFrameRule(const Mission& m, int group, bool lifts, const PropEntry& prop);
 
 inline constexpr int kGrid = 256;
-inline constexpr double kGridMinRadS = 30.0, kGridMaxRadS = 6000.0;
+inline constexpr double kGridMinRadS = 30.0, kGridMaxRadS = kPropSpeedCeilingRadS;
 
 // The thrust and torque of a propeller with forward-flight tables on the speed grid in a fixed
 // axial inflow (a climb's rate, a wing-borne cruise's airspeed: R10).
@@ -171,10 +172,6 @@ inline double VehicleMassKg(const SearchContext& ctx, double pack_kg, double mot
          ctx.free_rotors * (motor_kg + prop_kg + esc_kg);
 }
 
-// A speed at or below the root of thrust(omega) = T in axial inflow v on [lo, hi] (thrust
-// rising with speed, M1, and thrust(lo) <= T): `steps` bisections keeping thrust(lo) <= T.
-double BisectSpeedFromBelow(const PropModel& model, double rho, double thrust_n, double v_m_s, double lo, double hi,
-                            int steps);
 
 // R4's energy budget for a stretched segment: the score bound -(t_fixed_max + what the budget
 // leaves after the other segments, at the stretch's least power); -kInf without a power bound.
@@ -195,11 +192,13 @@ void ResolveGroups(SearchContext* ctx);
 void PrepareStages(const Mission& m, const Catalog& cat, SearchContext* ctx);
 
 // A wing-borne cruise of a group with a free airspeed: a power P_lb (W, avionics not
-// included) with P_lb * SegmentDurationS(sg, hi) <= the segment's energy at every airspeed of
-// its range, for the group's parts flying at vehicle mass >= mass_kg (search.cc; 0 when no
-// bound applies). Only the ESC's C1, C0 are read (its class).
+// included) with (P_lb + P_av) * SegmentDurationS(sg, hi) <= the segment's energy at every
+// airspeed of its range, for the group's parts flying at vehicle mass >= mass_kg (prop_bounds.h
+// FreeCruiseRotorPowerLowerBoundW; 0 when no bound applies). Without `drive` only momentum
+// theory, for which the ESC's C1, C0 are read (its class); with it, also that drive's PDC
+// (a class's zero-resistance drive bounds each of its ESCs, M2).
 double FreeCruisePowerLowerBoundW(const Mission& m, const Segment& sg, const GroupParts& parts,
-                                  const PropModel& model, double mass_kg);
+                                  const PropModel& model, double mass_kg, const CruiseDriveBound* drive = nullptr);
 
 // R10 (search.cc): a lower bound of the score of (motor, prop, option) with any ESC of class
 // esc_class weighing at least esc_mass_kg, segment by segment (-kInf when none applies), or

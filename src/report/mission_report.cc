@@ -36,10 +36,6 @@ const char* DisplayUnit(const Mission& m) {
   return "";
 }
 
-namespace {
-
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-
 std::string ObjectiveLabel(const Mission& m) {
   switch (m.objective.type) {
     case ObjectiveType::kMaxEndurance: return "endurance [min]";
@@ -48,6 +44,10 @@ std::string ObjectiveLabel(const Mission& m) {
   }
   return "objective";
 }
+
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 double Display(const Mission& m, double objective) { return DisplayObjective(m, objective); }
 

@@ -23,6 +23,8 @@ std::string MissionResultText(const Mission& mission, const Combination& c, cons
 // The objective in the unit the text prints it in (minutes, Wh, %), and that unit (" min", " Wh", " %").
 double DisplayObjective(const Mission& mission, double objective);
 const char* DisplayUnit(const Mission& mission);
+// The objective's axis label in figures ("endurance [min]", "energy drawn [Wh]", ...).
+std::string ObjectiveLabel(const Mission& mission);
 
 // For each result of a search, the ranks (1-based) of the other results whose objective ranges
 // (ObjectiveRange low-high, credibility.h) overlap its own: not distinguishable on the data.

@@ -1,0 +1,91 @@
+// `dynosize sweep` (issue 25, item 4): a trade study, the mission over a grid of values.
+#include <unistd.h>
+
+#include <cstdio>
+#include <iomanip>
+#include <iostream>
+#include <sstream>
+
+#include "api/mission_run.h"
+#include "catalog/catalog.h"
+#include "commands.h"
+#include "common/error.h"
+#include "common/json_file.h"
+#include "common/text_file.h"
+#include "interrupt.h"
+#include "mission/mission.h"
+#include "report/sweep_report.h"
+#include "study/sweep.h"
+
+namespace dynosize::cli {
+
+namespace {
+
+// On a terminal's stderr only (never with --quiet, never into a pipe or a file).
+std::function<void(const study::SweepProgress&)> SweepProgressLine(bool* shown) {
+  return [shown](const study::SweepProgress& p) {
+    *shown = true;
+    std::ostringstream line;
+    line << "\r" << ElapsedText(p.seconds) << ": " << p.done << " of " << p.total << " points";
+    if (p.failed) line << " (" << p.failed << " failed)";
+    line << "; Ctrl-C stops with the rows done so far";
+    std::string text = line.str();
+    if (text.size() < 79) text += std::string(79 - text.size(), ' ');
+    std::cerr << text << std::flush;
+  };
+}
+
+}  // namespace
+
+// Exit 130 when SIGINT stopped it (the rows done so far written), 0 otherwise (a time limit too).
+int RunSweep(const SweepCliOptions& o) {
+  const SigintToFlag sigint;  // from here on Ctrl-C stops the sweep instead of the process
+  study::SweepOptions so;
+  so.point.deadline = api::DeadlineAfter(o.time_limit_s);
+  so.point.stop = &SigintToFlag::Flag();
+  so.point.top = o.top;
+  so.point.distinct_designs = !o.variants;
+  so.threads = o.threads;
+  if (o.vary.empty()) throw UsageError("--vary: give at least one KEY=START:STOP:STEP or KEY=v1,v2,...");
+  std::vector<study::VaryKey> keys;
+  for (const std::string& spec : o.vary) keys.push_back(study::ParseVary(spec));
+  const Json doc = ReadJsonFile(o.mission);
+  const Mission base = ParseMission(doc, o.mission);
+  const std::size_t points = study::GridSize(keys);
+  if (points > study::kLargeGridPoints && !o.yes) {
+    throw UsageError("--vary: the grid has " + std::to_string(points) +
+                     " points, over 10^6: give --yes to run it (or a coarser STEP)");
+  }
+  study::CheckKeys(doc, o.mission, keys);
+  const Catalog cat = Catalog::Load(o.catalog);  // once, for every point
+  bool shown = false;
+  if (!o.quiet && isatty(fileno(stderr))) so.progress = SweepProgressLine(&shown);
+  const study::SweepResult r = study::RunSweep(doc, o.mission, cat, keys, so);
+  if (shown) std::cerr << "\r" << std::string(79, ' ') << "\r" << std::flush;
+  std::vector<std::string> figures;
+  if (!o.plot_dir.empty()) figures = study::WriteSweepFigures(base, r, keys, o.plot_dir);
+  // The whole document is built first and written at once (a file: atomically).
+  std::string text;
+  if (o.json) {
+    Json j = study::SweepJson(base, r, keys);
+    if (!figures.empty()) j["figures"] = figures;
+    text = DumpJson(j);
+  } else {
+    text = study::SweepCsv(base, r, keys);
+  }
+  if (o.out.empty()) {
+    std::cout << text << std::flush;
+  } else {
+    WriteFileAtomic(o.out, text);
+  }
+  if (r.interrupted) {
+    std::cerr << "stopped after " << r.rows.size() << " of " << r.total << " points ("
+              << (SigintToFlag::Received() ? "Ctrl-C" : "--time-limit") << "): the rows done so far are written\n";
+  }
+  if (!o.json) {
+    for (const auto& f : figures) std::cerr << "wrote " << f << "\n";
+  }
+  return SigintToFlag::Received() ? 130 : 0;
+}
+
+}  // namespace dynosize::cli

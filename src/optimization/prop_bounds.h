@@ -1,0 +1,51 @@
+// Bounds read from a propeller's data that the search's pruning rules (search.cc) and the
+// evaluator's early exits (mission_eval.cc) both use: a speed from below for a thrust, and the
+// least energy of a wing-borne cruise whose airspeed is free, cell by cell over its range.
+#pragma once
+#include "catalog/catalog.h"
+#include "mission/mission.h"
+#include "model/drive.h"
+#include "optimization/credibility.h"
+#include "prop/prop_model.h"
+
+namespace dynosize {
+
+// The highest rotor speed any bound reads a propeller at (rad/s; 57,000 rpm).
+inline constexpr double kPropSpeedCeilingRadS = 6000.0;
+
+// A speed at or below the root of thrust(omega) = T in axial inflow v on [lo, hi] (thrust
+// rising with speed, search.cc M1, and thrust(lo) <= T): `steps` bisections keeping
+// thrust(lo) <= T.
+double BisectSpeedFromBelow(const PropModel& model, double rho, double thrust_n, double v_m_s, double lo, double hi,
+                            int steps);
+
+// A speed at or below the evaluator's root for thrust T in axial inflow v (thrust rising with
+// speed, M1): bisection on [0, kPropSpeedCeilingRadS] keeping thrust(lo) <= T; false when even
+// the ceiling gives less.
+bool PropSpeedFromBelow(const PropModel& model, double rho, double thrust_n, double v_m_s, int steps, double* omega);
+
+// The group's drive and the pack's voltage range, for the data part of the cruise bound below.
+struct CruiseDriveBound {
+  const Drive* drive = nullptr;  // the scenario's motor and an ESC (a class's ideal one is a bound)
+  double v_full_v = 0, v_cut_v = 0;
+};
+
+// One propulsion group's parts as the cruise bound reads them.
+struct CruisePropBound {
+  const PropEntry* prop = nullptr;
+  const PropModel* model = nullptr;
+  PropAdjustment adjustment;  // the ranking scenario's (credibility.h)
+  bool lossy = false;         // DriveIsLossy: no stage creates energy (model.md section 10)
+};
+
+// A wing-borne cruise (lift_to_drag > 0) with a free airspeed in [lo, hi], flown at a vehicle
+// mass of at least mass_kg: P_lb (W, the rotors; the avionics P_av not included) with
+//   (P_lb + P_av) * SegmentDurationS(sg, hi) <= the segment's energy at every airspeed of the range.
+// 0 when no bound applies. The range is cut in cells [V_k, V_k+1]; on each, by the rules of
+// prop_bounds.cc, the rotors' power is at least the larger of momentum theory's
+// P_ideal/max_figure_of_merit and (with `drive`) the drive's PDC from below, and the energy is
+// at least that power plus P_av over the cell's shortest duration. The least cell gives P_lb.
+double FreeCruiseRotorPowerLowerBoundW(const Mission& m, const Segment& sg, const CruisePropBound& p,
+                                       const CruiseDriveBound* drive, double mass_kg);
+
+}  // namespace dynosize
