@@ -9,6 +9,7 @@
 #include <optional>
 #include <sstream>
 
+#include "api/calibrate.h"
 #include "calibration/catalog_output.h"
 #include "calibration/drivecalc_refit.h"
 #include "calibration/prop_static.h"
@@ -17,7 +18,6 @@
 #include "identification/verdict.h"
 #include "catalog/catalog.h"
 #include "commands.h"
-#include "log_input.h"
 #include "common/error.h"
 #include "common/json_file.h"
 #include "common/text_file.h"
@@ -31,14 +31,6 @@ namespace {
 using calibration::CalibrationOptions;
 using calibration::CalibrationResult;
 
-std::string BaseName(const std::string& p) { return std::filesystem::path(p).filename().string(); }
-
-std::string Datasets(const std::vector<std::string>& logs) {
-  std::string s;
-  for (const auto& l : logs) s += (s.empty() ? "" : ", ") + BaseName(l);
-  return s;
-}
-
 using fit::Median;
 using fit::MedianAbs;
 
@@ -49,21 +41,6 @@ std::string PercentText(double v) {
   std::ostringstream s;
   s << std::setprecision(3) << v;
   return s.str();
-}
-
-// Numerical guard, independent of the solver's own claim: every reported parameter finite.
-// Returns "" or the first non-finite parameter.
-std::string NonFiniteParameter(const CalibrationResult& r) {
-  for (int k = 0; k < calibration::kParamCount; ++k) {
-    if (!std::isfinite(r.params[k].value)) return calibration::ParamName(static_cast<calibration::Param>(k));
-  }
-  if (!std::isfinite(r.r_total_ohm)) return "r_total_ohm";
-  return "";
-}
-
-// {"median_abs_percent": x, "points": n}
-Json ErrJson(const std::vector<double>& e) {
-  return {{"median_abs_percent", NumberOrNull(MedianAbs(e))}, {"points", e.size()}};
 }
 
 // One line: the held-out median |error| of the fitted model and of the plain DC model fitted on
@@ -85,32 +62,6 @@ std::string HeldOutBesideDc(const calibration::CrossValidation& cv, bool label) 
     s += "speed from the current " + med(cv.omega_from_idc_error_percent) + " / " + med(cv.dc_omega_from_idc_error_percent);
   }
   return s;
-}
-
-// The reader's warnings (a missing throttle column) ahead of the fit's.
-std::vector<std::string> WithReaderWarnings(std::vector<std::string> reader, const std::vector<std::string>& fit) {
-  reader.insert(reader.end(), fit.begin(), fit.end());
-  return reader;
-}
-
-void CheckPropOptions(const CalibrateOptions& o) {
-  if (o.prop_id.empty()) {
-    if (o.prop_diameter_in || o.prop_pitch_in) throw UsageError("calibrate: --prop-diameter-in/--prop-pitch-in need --prop-id");
-    return;
-  }
-  if (!o.prop_diameter_in || !(*o.prop_diameter_in > 0.0)) {
-    throw UsageError("calibrate: --prop-id needs --prop-diameter-in > 0 (inch)");
-  }
-  if (o.prop_pitch_in && !(*o.prop_pitch_in > 0.0)) throw UsageError("calibrate: --prop-pitch-in must be > 0 (inch)");
-}
-
-// The static propeller entry of --prop-id (calibration/prop_static.h).
-Json PropEntry(const CalibrateOptions& o, const logs::SteadyTable& table, const calibration::EntryProvenance& prov) {
-  calibration::PropStaticOptions po;
-  po.diameter_m = InchToMeter(*o.prop_diameter_in);
-  if (o.prop_pitch_in) po.pitch_m = InchToMeter(*o.prop_pitch_in);
-  const calibration::PropStaticTable pt = calibration::FitPropStatic(table, po);
-  return calibration::PropEntryJson(o.prop_id, o.prop_id + " (measured)", pt, po, prov);
 }
 
 int RunDriveCalcAll(const CalibrateOptions& o) {
@@ -165,9 +116,9 @@ int RunDriveCalcAll(const CalibrateOptions& o) {
   Json loo;
   if (o.loo) {
     const auto e = calibration::DriveCalcLeaveOneOut(t, all);
-    loo["model"] = {{"idc_loaded", ErrJson(e.model_idc_loaded)}, {"omega_from_idc", ErrJson(e.model_omega)}};
-    loo["baseline_u_n_kv_r_i"] = {{"idc_loaded", ErrJson(e.baseline_idc_loaded)},
-                                  {"omega_from_idc", ErrJson(e.baseline_omega)}};
+    loo["model"] = {{"idc_loaded", api::ErrorsJson(e.model_idc_loaded)}, {"omega_from_idc", api::ErrorsJson(e.model_omega)}};
+    loo["baseline_u_n_kv_r_i"] = {{"idc_loaded", api::ErrorsJson(e.baseline_idc_loaded)},
+                                  {"omega_from_idc", api::ErrorsJson(e.baseline_omega)}};
   }
   const std::string out = o.out.empty() ? o.catalog.base + "/drivecalc_fitted.json" : o.out;
   const std::string comment =
@@ -222,119 +173,48 @@ int RunDriveCalcAll(const CalibrateOptions& o) {
 int RunCalibrate(const CalibrateOptions& o) {
   if (o.logs.empty()) throw UsageError("calibrate: give at least one LOG file");
   if (o.drivecalc_all) return RunDriveCalcAll(o);
-  if (o.motor_id.empty() || o.esc_id.empty()) {
-    throw UsageError("calibrate: --motor-id and --esc-id are required (ids of the fitted entries)");
-  }
-  logs::LogReadOptions ro = ToLogReadOptions(o.input);
-  ro.drivecalc_motor_id = o.drivecalc_motor;
-  ro.drivecalc_keep_no_load_without_speed = true;
-  if (const std::string e = ro.Validate(); !e.empty()) throw UsageError(e);
-  std::vector<logs::SteadyTable> tables;
-  for (const auto& l : o.logs) tables.push_back(logs::ReadLog(l, ro));
-  // A log without a throttle column says so first, before any fit advice.
-  std::vector<std::string> reader_warnings;
-  for (const auto& t : tables) {
-    if (std::string w = MissingThrottleLine(t); !w.empty()) reader_warnings.push_back(std::move(w));
-  }
+  const api::CalibrateRequest request{o.logs,          o.motor_id,          o.esc_id,       o.input,
+                                      o.drivecalc_motor, o.prior_motor,     o.prior_esc,    o.loo,
+                                      o.kv_label,      o.rm_label,          o.io_label,     o.io_label_v,
+                                      o.mass_kg,       o.max_current_a,     o.max_power_w,  o.esc_max_current_a,
+                                      o.esc_vdc_max_v, o.esc_mass_kg,       o.prop_id,      o.prop_diameter_in,
+                                      o.prop_pitch_in};
+  const api::CalibrationLogs in = api::ReadCalibrationLogs(request);
   if (!o.json) {
-    for (const auto& w : reader_warnings) std::cerr << w << "\n";
+    for (const auto& w : in.reader_warnings) std::cerr << w << "\n";
   }
-  const logs::SteadyTable table = calibration::MergeLogs(tables);
-  CalibrationOptions co;
-  co.labels.kv_rpm_per_v = o.kv_label;
-  co.labels.rm_ohm = o.rm_label;
-  co.labels.io_a = o.io_label;
-  co.labels.io_v = o.io_label_v;
-  if (const std::string e = co.labels.Validate(); !e.empty()) throw UsageError("calibrate: " + e);
-  CheckPropOptions(o);
-  if (!o.prior_motor.empty() || !o.prior_esc.empty()) {
-    const Catalog cat = Catalog::Load(o.catalog);
-    if (!o.prior_motor.empty()) co.motor_prior = cat.motor(o.prior_motor).params;
-    if (!o.prior_esc.empty()) co.esc_prior = cat.esc(o.prior_esc).params;
-  }
+  const logs::SteadyTable table = calibration::MergeLogs(in.tables);
+  api::CheckCalibrateRequest(request);
+  std::optional<Catalog> cat;
+  if (!o.prior_motor.empty() || !o.prior_esc.empty()) cat = Catalog::Load(o.catalog);
+  const CalibrationOptions co = api::CalibrationOptionsOf(request, cat ? &*cat : nullptr);
   const CalibrationResult r = calibration::Calibrate(table, co);
   // What was read (rows dropped and why), once the fit has run: a refusal stays one line.
   if (!o.json) {
-    for (const auto& t : tables) std::cerr << t.BriefReport() << "\n";
+    for (const auto& t : in.tables) std::cerr << t.BriefReport() << "\n";
   }
-  if (const std::string bad = NonFiniteParameter(r); !bad.empty()) {
+  if (const std::string bad = api::NonFiniteParameter(r); !bad.empty()) {
     // The fit failed: its status and message, no numbers; --out is not touched.
     if (o.json) {
-      Json j;
-      j["status"] = "failed";
-      j["motor"] = nullptr;
-      j["esc"] = nullptr;
-      j["fit"] = {{"mode", r.mode}, {"converged", false}, {"message", r.message},
-                  {"points_used", r.points_used}, {"non_finite_parameter", bad}};
-      j["warnings"] = WithReaderWarnings(reader_warnings, r.warnings);
-      std::cout << DumpJson(j);
+      std::cout << DumpJson(api::FailedCalibrationJson(r, bad, in.reader_warnings));
     } else {
       std::cout << "calibrate (" << r.mode << "): FAILED: " << r.message << "\n";
     }
-    throw DataError(Datasets(o.logs) + ": the fit failed (" + bad + " is not a finite number; solver: " +
-                    r.message + "): no parameters reported" +
-                    (o.out.empty() ? std::string() : ", " + o.out + " not changed"));
+    throw DataError(api::FailedCalibrationMessage(request, r, bad, o.out));
   }
-  // The status contract: checks over the fit, the label and the held-out (cross-validated) error.
-  const calibration::CrossValidation cv = calibration::CrossValidateForVerdict(table, co);
-  const identification::Verdict verdict = calibration::JudgeCalibration(r, table, co, &cv);
-
-  calibration::EntryProvenance prov;
-  prov.dataset = Datasets(o.logs);
-  std::ostringstream ref;
-  ref << "dynosize calibrate (" << r.mode << "), " << r.points_used << " points, status "
-      << identification::StatusName(verdict.status);
-  prov.reference = ref.str();
-  Json motor = calibration::MotorEntryJson(o.motor_id, o.motor_id + " (fitted)", r, prov);
-  Json esc = calibration::EscEntryJson(o.esc_id, o.esc_id + " (fitted)", r, prov);
-  calibration::AddRatings(&motor, {o.mass_kg, o.max_current_a, o.max_power_w, o.kv_label, std::nullopt});
-  calibration::AddRatings(&esc, {o.esc_mass_kg, o.esc_max_current_a, std::nullopt, std::nullopt, o.esc_vdc_max_v});
-  std::vector<Json> props;
-  if (!o.prop_id.empty()) props.push_back(PropEntry(o, table, prov));
-
-  Json loo;
-  if (o.loo) {
-    const auto lcv = calibration::LeaveOneOut(table, co, true);
-    loo["by"] = table.Has(logs::Column::kThrottle) ? "throttle level" : "row";
-    loo["folds"] = lcv.folds;
-    loo["failed_folds"] = lcv.failed_folds;
-    loo["idc"] = ErrJson(lcv.idc_error_percent);
-    loo["omega_at_torque"] = ErrJson(lcv.omega_error_percent);
-    loo["omega_from_idc"] = ErrJson(lcv.omega_from_idc_error_percent);
-  }
+  const api::CalibrationOutcome out = api::JudgeCalibrationFit(request, table, co, r);
+  const identification::Verdict& verdict = out.verdict;
   if (!o.plot_dir.empty()) {
     for (const auto& f : WriteCalibrationFigures(o.plot_dir, table, r)) {
       if (!o.json) std::cerr << "wrote " << f << "\n";
     }
   }
   if (o.json) {
-    Json j = calibration::VerdictJson(verdict);
-    j["motor"] = motor;
-    j["esc"] = esc;
-    if (!props.empty()) j["prop"] = props[0];
-    j["stderr"] = calibration::StandardErrorsJson(r);
-    j["identifiable"] = calibration::IdentifiableJson(r);
-    j["fit"] = calibration::FitJson(r);
-    j["io_source"] = r.io_source;
-    j["warnings"] = WithReaderWarnings(reader_warnings, r.warnings);
-    j["held_out"] = {{"leave_one_out", cv.leave_one_out},
-                     {"folds", cv.folds},
-                     {"failed_folds", cv.failed_folds},
-                     {"idc", ErrJson(cv.idc_error_percent)},
-                     {"omega_at_torque", ErrJson(cv.omega_error_percent)},
-                     {"omega_from_idc", ErrJson(cv.omega_from_idc_error_percent)},
-                     {"dc_baseline", {{"idc", ErrJson(cv.dc_idc_error_percent)},
-                                      {"omega_at_torque", ErrJson(cv.dc_omega_error_percent)},
-                                      {"omega_from_idc", ErrJson(cv.dc_omega_from_idc_error_percent)}}}};
-    Json dropped = Json::array();
-    for (const auto& d : r.dropped_rows) dropped.push_back({{"line", d.source_line}, {"reason", d.reason}});
-    j["dropped_rows"] = dropped;
-    if (o.loo) j["leave_one_out"] = loo;
-    std::cout << DumpJson(j);
+    std::cout << DumpJson(api::CalibrationJson(request, out, r, in.reader_warnings));
   } else {
     std::cout << r.FullReport();
-    if (o.loo) std::cout << "leave-one-out: " << loo.dump() << "\n";
-    std::cout << HeldOutBesideDc(cv, co.labels.kv_rpm_per_v.has_value()) << "\n";
+    if (o.loo) std::cout << "leave-one-out: " << out.loo.dump() << "\n";
+    std::cout << HeldOutBesideDc(out.cv, co.labels.kv_rpm_per_v.has_value()) << "\n";
     std::cout << verdict.summary << "\n";
     if (!verdict.advice.empty()) std::cout << "next: " << verdict.advice << "\n";
   }
@@ -343,14 +223,14 @@ int RunCalibrate(const CalibrateOptions& o) {
     if (verdict.status != identification::Status::kOk) {
       const identification::Check* c = verdict.FirstFailed();
       std::ostringstream m;
-      m << Datasets(o.logs) << ": " << o.out << " not written: status " << identification::StatusName(verdict.status);
+      m << api::Datasets(o.logs) << ": " << o.out << " not written: status " << identification::StatusName(verdict.status);
       if (c != nullptr) m << ", check " << c->name << " failed (" << c->value << " vs limit " << c->limit << ")";
       throw DataError(m.str());
     }
-    calibration::WriteCatalogEntries(o.out, {motor}, {esc}, o.force,
-                                     "Entries fitted by dynosize calibrate from dynamometer logs.", props);
+    calibration::WriteCatalogEntries(o.out, {out.motor}, {out.esc}, o.force,
+                                     "Entries fitted by dynosize calibrate from dynamometer logs.", out.props);
     if (!o.json) {
-      std::cerr << "wrote " << o.motor_id << ", " << o.esc_id << (props.empty() ? "" : ", " + o.prop_id) << " to "
+      std::cerr << "wrote " << o.motor_id << ", " << o.esc_id << (out.props.empty() ? "" : ", " + o.prop_id) << " to "
                 << o.out << "\n";
     }
   }

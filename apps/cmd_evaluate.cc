@@ -11,6 +11,7 @@
 #include <iostream>
 #include <sstream>
 
+#include "api/mission_run.h"
 #include "catalog/catalog.h"
 #include "commands.h"
 #include "interrupt.h"
@@ -24,96 +25,12 @@
 
 namespace dynosize::cli {
 
-namespace {
-
-int CellsFor(const Mission& m, const BatteryEntry& b, int cells) {
-  if (cells == 0) {
-    if (m.battery.cells_min != m.battery.cells_max) {
-      throw UsageError("--cells: the mission allows " + std::to_string(m.battery.cells_min) + "-" +
-                       std::to_string(m.battery.cells_max) + " cells in series: say which");
-    }
-    cells = m.battery.cells_min;
-  }
-  if (cells % b.cells_series != 0) {
-    throw UsageError("--cells " + std::to_string(cells) + ": battery '" + b.id + "' has " +
-                     std::to_string(b.cells_series) + " cells in series; give a multiple");
-  }
-  return cells;
-}
-
-// The parts of every group: the mission's fixed ones, --pick GROUP=MOTOR,ESC,PROP, and
-// --motor/--esc/--prop for the one group left (or for a mission without groups).
-void ChooseParts(const Mission& m, const Catalog& cat, const EvaluateOptions& o, Combination* c) {
-  const bool single = !o.motor_id.empty() || !o.esc_id.empty() || !o.prop_id.empty();
-  if (single && (o.motor_id.empty() || o.esc_id.empty() || o.prop_id.empty())) {
-    throw UsageError("--motor, --esc and --prop go together (one group's parts)");
-  }
-  if (m.groups.empty()) {
-    if (!o.picks.empty()) {
-      throw UsageError("--pick " + o.picks.front() + ": the mission has no propulsion groups; use --motor, --esc, --prop");
-    }
-    if (!single) throw UsageError("--motor, --esc and --prop are required");
-    c->motor = &cat.motor(o.motor_id);
-    c->esc = &cat.esc(o.esc_id);
-    c->prop = &cat.prop(o.prop_id);
-    return;
-  }
-  c->groups.assign(m.groups.size(), GroupParts{});
-  for (int g = 0; g < GroupCount(m); ++g) c->groups[g] = FixedGroupParts(m, cat, g);
-  for (const std::string& pick : o.picks) {
-    const auto eq = pick.find('=');
-    const auto c1 = pick.find(',', eq == std::string::npos ? 0 : eq);
-    const auto c2 = c1 == std::string::npos ? c1 : pick.find(',', c1 + 1);
-    if (eq == std::string::npos || c1 == std::string::npos || c2 == std::string::npos ||
-        pick.find(',', c2 + 1) != std::string::npos) {
-      throw UsageError("--pick \"" + pick + "\": must be GROUP=MOTOR,ESC,PROP");
-    }
-    const std::string name = pick.substr(0, eq);
-    auto it = std::find_if(m.groups.begin(), m.groups.end(), [&](const PropulsionGroup& x) { return x.name == name; });
-    if (it == m.groups.end()) {
-      std::string valid;
-      for (const auto& x : m.groups) valid += (valid.empty() ? "" : ", ") + x.name;
-      throw UsageError("--pick \"" + pick + "\": no propulsion group '" + name + "' in the mission (valid: " + valid + ")");
-    }
-    GroupParts& p = c->groups[it - m.groups.begin()];
-    p.motor = &cat.motor(pick.substr(eq + 1, c1 - eq - 1));
-    p.esc = &cat.esc(pick.substr(c1 + 1, c2 - c1 - 1));
-    p.prop = &cat.prop(pick.substr(c2 + 1));
-  }
-  std::vector<int> missing;
-  for (int g = 0; g < GroupCount(m); ++g) {
-    if (!c->groups[g].motor) missing.push_back(g);
-  }
-  if (single) {
-    if (missing.size() != 1) {
-      throw UsageError("--motor/--esc/--prop: the mission has " + std::to_string(missing.size()) +
-                       " groups without parts; name each with --pick GROUP=MOTOR,ESC,PROP");
-    }
-    c->groups[missing.front()] = GroupParts{&cat.motor(o.motor_id), &cat.esc(o.esc_id), &cat.prop(o.prop_id)};
-    missing.clear();
-  }
-  if (!missing.empty()) {
-    throw UsageError("--pick: propulsion group '" + m.groups[missing.front()].name +
-                     "' has no parts: give --pick " + m.groups[missing.front()].name + "=MOTOR,ESC,PROP");
-  }
-  const GroupParts lift = c->groups[std::max(0, LiftGroup(m))];
-  c->motor = lift.motor;
-  c->esc = lift.esc;
-  c->prop = lift.prop;
-}
-
-}  // namespace
-
 int RunEvaluate(const EvaluateOptions& o) {
   const Mission mission = ReadMission(o.mission);
   const Catalog cat = Catalog::Load(o.catalog);
-  Combination c;
-  ChooseParts(mission, cat, o, &c);
-  c.battery = &cat.battery(o.battery_id);
-  c.cells = CellsFor(mission, *c.battery, o.cells);
-  const MissionEvaluator ev(mission, c);
-  MissionResult r = ev.Solve();
-  AddObjectiveRange(mission, c, &r);  // objective_range and tiers (optimization/credibility.h)
+  const Combination c =
+      api::ChooseCombination(mission, cat, {o.motor_id, o.esc_id, o.prop_id, o.battery_id, o.picks, o.cells});
+  const MissionResult r = api::EvaluateCombination(mission, c);
   std::vector<std::string> figures;
   if (!o.plot_dir.empty()) figures = WriteSegmentMaps(mission, c, r, o.plot_dir);
   if (o.json) {
@@ -155,16 +72,6 @@ std::function<void(const SearchProgress&)> ProgressLine(const Mission& mission, 
     if (text.size() < 79) text += std::string(79 - text.size(), ' ');
     std::cerr << text << std::flush;
   };
-}
-
-SearchOptions OptimizeSearchOptions(const OptimizeOptions& o) {
-  SearchOptions so;
-  so.deadline = DeadlineAfter(o.time_limit_s);
-  so.top_n = o.top;
-  so.threads = o.threads;
-  so.distinct_designs = !o.variants;
-  so.stop = &SigintToFlag::Flag();
-  return so;
 }
 
 std::string OptimizeText(const Mission& mission, const OptimizeOptions& o, const SearchResult& s) {
@@ -209,7 +116,8 @@ std::string OptimizeText(const Mission& mission, const OptimizeOptions& o, const
 // Exit 130 when SIGINT stopped it (the best so far printed in full), 0 otherwise (a time limit too).
 int RunOptimize(const OptimizeOptions& o) {
   const SigintToFlag sigint;  // from here on Ctrl-C stops the search instead of the process
-  SearchOptions so = OptimizeSearchOptions(o);
+  SearchOptions so = api::OptimizeSearchOptions({o.top, o.threads, o.variants, o.time_limit_s});
+  so.stop = &SigintToFlag::Flag();
   const Mission mission = ReadMission(o.mission);
   const Catalog cat = Catalog::Load(o.catalog);
   bool shown = false;

@@ -8,6 +8,7 @@
 #include <map>
 #include <sstream>
 
+#include "api/simulate.h"
 #include "catalog/catalog.h"
 #include "commands.h"
 #include "common/error.h"
@@ -30,19 +31,6 @@ std::string FlagValue(double v) {
   std::ostringstream s;
   s << v;
   return s.str();
-}
-
-OperatingPoint Solve(const Drive& d, const PointRequest& r, const std::vector<double>& law) {
-  if (!law.empty()) return d.AtLoad(r.vdc_v, *r.throttle, TorqueLaw{law[0], law[1], law[2]});
-  if (r.throttle && r.torque_nm) return d.AtTorque(r.vdc_v, *r.throttle, *r.torque_nm);
-  if (r.throttle && r.rpm) return d.AtSpeed(r.vdc_v, *r.throttle, RpmToRadPerSec(*r.rpm));
-  return d.Inverse(r.vdc_v, *r.torque_nm, RpmToRadPerSec(*r.rpm));
-}
-
-std::string Assumed(const EntryBase& e) {
-  std::string s;
-  for (const auto& k : e.assumed_keys) s += (s.empty() ? "" : ", ") + k;
-  return s;
 }
 
 void PrintPoint(const std::string& title, const OperatingPoint& p, const std::string& extra = "",
@@ -83,10 +71,8 @@ void PrintPoint(const std::string& title, const OperatingPoint& p, const std::st
   std::cout << o.str();
 }
 
-Json SweepJson(const Drive& d, double vdc_v);
-
 void PrintSweep(const std::string& title, const Drive& d, double vdc_v) {
-  CheckJsonFinite(SweepJson(d, vdc_v), "per-throttle table");  // numerical guard, as PrintPoint
+  CheckJsonFinite(api::ThrottleTableJson(d, vdc_v), "per-throttle table");  // numerical guard, as PrintPoint
   std::ostringstream o;
   o << std::fixed << title << " at VDC = " << std::setprecision(2) << vdc_v << " V\n";
   o << "  TR %  TR_eff %  no-load rpm  stall N*m  maxP rpm  maxP W  best-eta rpm  eta_sys %  Irms A\n";
@@ -102,58 +88,6 @@ void PrintSweep(const std::string& title, const Drive& d, double vdc_v) {
   std::cout << o.str();
 }
 
-Json SweepJson(const Drive& d, double vdc_v) {
-  Json rows = Json::array();
-  for (const auto& r : SummarizeThrottles(d, vdc_v)) {
-    Json j;
-    j["throttle"] = r.throttle;
-    j["throttle_effective"] = r.throttle_effective;
-    j["no_load_rpm"] = r.no_load_rpm;
-    j["stall_torque_nm"] = r.stall_torque_nm;
-    j["max_power_rpm"] = r.max_power_rpm;
-    j["max_power_w"] = r.max_power_w;
-    j["max_efficiency_rpm"] = r.max_efficiency_rpm;
-    j["max_eta_system"] = r.max_eta_system;
-    j["at_max_efficiency"] = PointToJson(r.at_max_efficiency);
-    j["esc_timing_figure"] = d.EscTimingFigure(r.throttle);
-    rows.push_back(j);
-  }
-  return rows;
-}
-
-
-// "motor m: rm_ohm, io_a; ESC e: c1; propeller p: mass_kg" (only the parts with assumed keys).
-std::string AssumedNote(const MotorEntry& motor, const EscEntry& esc, const PropEntry* prop) {
-  std::string assumed;
-  const auto add = [&](const char* what, const EntryBase& e) {
-    if (e.assumed_keys.empty()) return;
-    assumed += (assumed.empty() ? "" : "; ") + std::string(what) + " " + e.id + ": " + Assumed(e);
-  };
-  add("motor", motor);
-  add("ESC", esc);
-  if (prop) add("propeller", *prop);
-  return assumed;
-}
-
-// The point JSON of simulate plus the propeller's outputs.
-Json PropPointJson(const PropPoint& pp) {
-  Json j = PointToJson(pp.drive);
-  j["thrust_n"] = pp.thrust_n;
-  j["g_per_w"] = pp.g_per_w;
-  j["figure_of_merit"] = pp.figure_of_merit;
-  if (pp.figure_of_merit > 1.0) {
-    // Momentum theory is a limit like the drive's (model.md section 10): not feasible.
-    j["feasible"] = false;
-    j["limits"].push_back("beats_momentum_theory");
-  }
-  j["prop_in_data"] = pp.prop.InData();
-  if (!pp.prop.InData()) j["prop_note"] = pp.prop.Message();
-  j["converged"] = pp.converged;
-  if (!pp.converged) j["message"] = pp.note;
-  CheckJsonFinite(j, "operating point");
-  return j;
-}
-
 std::string PropLines(const PropPoint& pp, const PropEntry& prop, double rho_kg_m3) {
   std::ostringstream o;
   o << std::fixed << "  propeller      " << prop.name << " (" << prop.id << "), D = " << std::setprecision(4)
@@ -167,26 +101,11 @@ std::string PropLines(const PropPoint& pp, const PropEntry& prop, double rho_kg_
   return o.str();
 }
 
-Json PropTableJson(const std::vector<ThrottleTableRow>& rows) {
-  Json out = Json::array();
-  for (const auto& r : rows) {
-    PropPoint pp;
-    pp.drive = r.point.drive;
-    pp.prop = r.point.prop;
-    pp.converged = r.point.converged;
-    pp.note = r.point.message;
-    pp.thrust_n = r.thrust_n;
-    pp.g_per_w = r.g_per_w;
-    pp.figure_of_merit = r.figure_of_merit;
-    out.push_back(PropPointJson(pp));
-  }
-  return out;
-}
 
 // The manufacturer-style table; returns the notes (propeller data at an edge, no convergence).
 std::vector<std::string> PrintPropTable(const std::string& title, double vdc_v, double rho_kg_m3,
                                         const std::vector<ThrottleTableRow>& rows) {
-  (void)PropTableJson(rows);  // numerical guard, as PrintPoint
+  (void)api::PropTableJson(rows);  // numerical guard, as PrintPoint
   std::vector<std::string> notes;
   std::ostringstream o;
   o << std::fixed << title << " at VDC = " << std::setprecision(2) << vdc_v << " V, rho = "
@@ -218,56 +137,33 @@ std::vector<std::string> PrintPropTable(const std::string& title, double vdc_v, 
 }
 
 
-// A batch row that names a propeller: an unknown id or an unreachable thrust is bad data in the
-// file (exit 65, file:line), not a command-line error.
-PropPoint BatchPropPoint(const Catalog& catalog, const Drive& drive, const std::string& file,
-                         const PointRequest& r, std::map<std::string, PropModel>* props) {
-  const std::string where = file + ":" + std::to_string(r.row) + ": ";
-  try {
-    auto it = props->find(r.prop);
-    if (it == props->end()) it = props->emplace(r.prop, PropModel(catalog.prop(r.prop))).first;
-    PropPointRequest q;
-    q.vdc_v = r.vdc_v;
-    q.throttle = r.throttle;
-    q.rpm = r.rpm;
-    q.thrust_n = r.thrust_n;
-    PropPoint pp = SolvePropPoint(drive, it->second, q);
-    (void)PropPointJson(pp);  // numerical guard
-    return pp;
-  } catch (const UsageError& e) {
-    throw DataError(where + e.what());
-  }
-}
-
 // simulate --batch: one output row per input row (rows may name a propeller).
 void RunBatch(const SimulateOptions& o, const Catalog& catalog, const Drive& drive) {
   const auto requests = ReadPointsCsv(o.batch_csv);
   bool with_prop = false;
   for (const auto& r : requests) with_prop = with_prop || !r.prop.empty();
+  const std::vector<api::BatchPoint> points = api::SimulateBatch(catalog, drive, requests, o.batch_csv);
   std::ostringstream csv;
   const auto& cols = PointCsvColumns();
   for (std::size_t i = 0; i < cols.size(); ++i) csv << (i ? "," : "") << cols[i];
   csv << (with_prop ? ",prop,thrust_n,g_per_w\n" : "\n");
   std::size_t infeasible = 0;
-  std::map<std::string, PropModel> props;  // built once per propeller id
-  for (const auto& r : requests) {
-    if (r.prop.empty()) {
-      const OperatingPoint p = Solve(drive, r, {});
-      if (!p.feasible()) ++infeasible;
-      csv << PointToCsvRow(p) << (with_prop ? ",,,\n" : "\n");
+  for (std::size_t i = 0; i < requests.size(); ++i) {
+    const PointRequest& r = requests[i];
+    const api::BatchPoint& b = points[i];
+    if (!b.feasible()) ++infeasible;
+    if (!b.has_prop) {
+      csv << PointToCsvRow(b.drive) << (with_prop ? ",,,\n" : "\n");
       continue;
     }
-    const PropPoint pp = BatchPropPoint(catalog, drive, o.batch_csv, r, &props);
-    const Json j = PropPointJson(pp);
-    if (!j["feasible"].get<bool>()) ++infeasible;
     std::ostringstream extra;
     extra.precision(10);
-    extra << "," << r.prop << "," << pp.thrust_n << "," << pp.g_per_w;
-    std::string row = PointToCsvRow(pp.drive);
-    if (pp.figure_of_merit > 1.0) {
+    extra << "," << r.prop << "," << b.thrust_n << "," << b.g_per_w;
+    std::string row = PointToCsvRow(b.drive);
+    if (b.beats_momentum_theory) {
       // The last two columns are feasible and limits (report/point_json.h): as the JSON says.
       std::string limits;
-      for (const auto& n : j["limits"]) limits += (limits.empty() ? "" : ";") + n.get<std::string>();
+      for (const auto& n : b.LimitNames()) limits += (limits.empty() ? "" : ";") + n;
       row = row.substr(0, row.rfind(',', row.rfind(',') - 1)) + ",0," + limits;
     }
     csv << row << extra.str() << "\n";
@@ -310,43 +206,24 @@ int RunSimulateProp(const SimulateOptions& o) {
   const MotorEntry& motor = catalog.motor(o.motor_id);
   const EscEntry& esc = catalog.esc(o.esc_id);
   const PropEntry& prop_entry = catalog.prop(o.prop_id);
-  // A geared motor turns the propeller through its gearbox (model/gear.h): the point is solved
-  // at the propeller shaft and reported at the motor's, with the propeller's speed beside it.
   const Gear& gear = motor.gear;
-  const Drive drive(MotorAtPropellerShaft(motor.params, gear), esc.params);
-  if (req.rpm) req.rpm = *req.rpm / gear.ratio;  // --rpm is the motor's speed, as without --prop
-  const PropModel prop(prop_entry);
   const std::string title = motor.name + " + " + esc.name + " + " + prop_entry.name;
-  const std::string assumed = AssumedNote(motor, esc, &prop_entry);
+  const std::string assumed = api::AssumedNote(motor, esc, &prop_entry);
   std::vector<std::string> notes;
   if (point_mode) {
-    PropPoint pp = SolvePropPoint(drive, prop, req);
-    const double prop_rpm = pp.drive.rpm;
-    const MotorShaft shaft = MotorShaftOf(pp.drive.omega_rad_s, pp.drive.torque_nm, gear);
-    pp.drive = MotorSidePoint(pp.drive, gear);
+    const api::PropPointRun run = api::RunPropPoint(motor, esc, prop_entry, req);
+    const PropPoint& pp = run.point;
     std::string gear_line;
     if (gear.geared()) {
       std::ostringstream g;
-      g << std::fixed << std::setprecision(0) << "  propeller rpm  " << std::setw(10) << prop_rpm
+      g << std::fixed << std::setprecision(0) << "  propeller rpm  " << std::setw(10) << run.prop_rpm
         << "     (geared " << std::setprecision(2) << gear.ratio << ":1, efficiency " << std::setprecision(3)
-        << gear.efficiency << "; gear loss " << std::setprecision(1) << shaft.gear_loss_w
+        << gear.efficiency << "; gear loss " << std::setprecision(1) << run.shaft.gear_loss_w
         << " W; rpm, torque and Pmech above are the motor's shaft)\n";
       gear_line = g.str();
     }
     if (o.json) {
-      Json j = PropPointJson(pp);
-      j["prop_rpm"] = prop_rpm;
-      if (gear.geared()) {
-        j["gear_ratio"] = gear.ratio;
-        j["gear_efficiency"] = gear.efficiency;
-        j["gear_loss_w"] = shaft.gear_loss_w;
-      }
-      j["motor"] = motor.id;
-      j["esc"] = esc.id;
-      j["prop"] = prop_entry.id;
-      j["rho_kg_m3"] = o.rho_kg_m3;
-      if (!assumed.empty()) j["assumed"] = assumed;
-      std::cout << DumpJson(j);
+      std::cout << DumpJson(api::PropPointRunJson(run, motor, esc, prop_entry, o.rho_kg_m3));
     } else {
       PrintPoint(title, pp.drive, gear_line + PropLines(pp, prop_entry, o.rho_kg_m3),
                  pp.figure_of_merit > 1.0 ? std::vector<std::string>{"beats_momentum_theory"}
@@ -366,6 +243,9 @@ int RunSimulateProp(const SimulateOptions& o) {
       }
     }
   } else {
+    // The table is the propeller's: solved at its shaft through the gearbox (model/gear.h).
+    const Drive drive(MotorAtPropellerShaft(motor.params, gear), esc.params);
+    const PropModel prop(prop_entry);
     if (gear.geared() && !o.json) {
       std::cerr << "note: geared " << gear.ratio << ":1 (model/gear.h): the table's rpm and Pmech are the "
                 << "propeller's; the motor turns " << gear.ratio << " x faster\n";
@@ -382,7 +262,7 @@ int RunSimulateProp(const SimulateOptions& o) {
       j["prop"] = prop_entry.id;
       j["vdc_v"] = req.vdc_v;
       j["rho_kg_m3"] = o.rho_kg_m3;
-      j["throttles"] = PropTableJson(rows);
+      j["throttles"] = api::PropTableJson(rows);
       j["figures"] = figure.empty() ? Json::array() : Json::array({figure});
       if (!assumed.empty()) j["assumed"] = assumed;
       std::cout << DumpJson(j);
@@ -398,30 +278,18 @@ int RunSimulateProp(const SimulateOptions& o) {
   return 0;
 }
 
-// One operating point (text or JSON) with its p10-p90 range: the same point with the motor at
-// the low and high end of its data's spread (catalog/in_system.h MotorSpreadParams: the
-// in-system law's scatter, else the tier's band).
+// One operating point (text or JSON) with its p10-p90 range (api::SolvePointRange).
 void PrintPointWithRange(const SimulateOptions& o, const PointRequest& req, const MotorEntry& motor,
-                         const EscEntry& esc, const Drive& drive, const std::string& assumed) {
+                         const EscEntry& esc) {
   const std::string title = motor.name + " + " + esc.name;
-  const OperatingPoint p = Solve(drive, req, o.torque_law);
-  const OperatingPoint lo = Solve(Drive(MotorSpreadParams(motor, false), esc.params), req, o.torque_law);
-  const OperatingPoint hi = Solve(Drive(MotorSpreadParams(motor, true), esc.params), req, o.torque_law);
-  const auto range = [](double x, double y) { return Json::array({std::min(x, y), std::max(x, y)}); };
+  const api::PointRange range = api::SolvePointRange(motor, esc, req, o.torque_law);
   if (o.json) {
-    Json j = PointToJson(p);
-    j["idc_a_range"] = range(lo.idc_a, hi.idc_a);
-    j["pdc_w_range"] = range(lo.pdc_w, hi.pdc_w);
-    j["range_basis"] = motor.datasheet_params ? "in-system law p10-p90 (docs/in-system-law.md)"
-                                              : std::string("tier band of the motor's Rm and Io (") + TierName(motor.tier) + ")";
-    CheckJsonFinite(j, "operating point");
-    j["motor"] = motor.id;
-    j["esc"] = esc.id;
-    if (!assumed.empty()) j["assumed"] = assumed;
-    std::cout << DumpJson(j);
+    std::cout << DumpJson(api::PointWithRangeJson(motor, esc, range));
     return;
   }
-  PrintPoint(title, p);
+  const OperatingPoint& lo = range.lo;
+  const OperatingPoint& hi = range.hi;
+  PrintPoint(title, range.point);
   std::ostringstream r;
   r.setf(std::ios::fixed);
   r << std::setprecision(2) << "  range p10-p90  IDC " << std::min(lo.idc_a, hi.idc_a) << "-"
@@ -497,11 +365,7 @@ int RunSimulate(const SimulateOptions& o) {
   const EscEntry& esc = catalog.esc(o.esc_id);
   const Drive drive(motor.params, esc.params);
   const std::string title = motor.name + " + " + esc.name;
-  std::string assumed;
-  if (!motor.assumed_keys.empty()) assumed += "motor " + motor.id + ": " + Assumed(motor);
-  if (!esc.assumed_keys.empty()) {
-    assumed += (assumed.empty() ? "" : "; ") + std::string("ESC ") + esc.id + ": " + Assumed(esc);
-  }
+  const std::string assumed = api::AssumedNote(motor, esc, nullptr);
   // Said once the results are out, so that an error stays the only line on stderr.
   const auto note_assumed = [&] {
     if (!assumed.empty() && !o.json) {
@@ -529,21 +393,14 @@ int RunSimulate(const SimulateOptions& o) {
   }
 
   if (point_mode) {
-    PrintPointWithRange(o, req, motor, esc, drive, assumed);
+    PrintPointWithRange(o, req, motor, esc);
     note_assumed();
     return 0;
   }
 
   // No point given: the characteristic table per throttle at --vdc.
   if (o.json) {
-    Json j;
-    j["motor"] = motor.id;
-    j["esc"] = esc.id;
-    j["vdc_v"] = req.vdc_v;
-    j["throttles"] = SweepJson(drive, req.vdc_v);
-    j["figures"] = figures;
-    if (!assumed.empty()) j["assumed"] = assumed;
-    std::cout << DumpJson(j);
+    std::cout << DumpJson(api::DriveTableJson(motor, esc, req.vdc_v, figures));
   } else {
     PrintSweep(title, drive, req.vdc_v);
   }

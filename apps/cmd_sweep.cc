@@ -6,6 +6,7 @@
 #include <iostream>
 #include <sstream>
 
+#include "api/mission_run.h"
 #include "catalog/catalog.h"
 #include "commands.h"
 #include "common/error.h"
@@ -40,7 +41,7 @@ std::function<void(const study::SweepProgress&)> SweepProgressLine(bool* shown) 
 int RunSweep(const SweepCliOptions& o) {
   const SigintToFlag sigint;  // from here on Ctrl-C stops the sweep instead of the process
   study::SweepOptions so;
-  so.point.deadline = DeadlineAfter(o.time_limit_s);
+  so.point.deadline = api::DeadlineAfter(o.time_limit_s);
   so.point.stop = &SigintToFlag::Flag();
   so.point.top = o.top;
   so.point.distinct_designs = !o.variants;

@@ -9,7 +9,6 @@
 
 #include "catalog/catalog.h"
 #include "commands.h"
-#include "log_input.h"
 #include "common/error.h"
 #include "common/json_file.h"
 #include "common/units.h"
@@ -184,7 +183,7 @@ Json ResultJson(const stand::StandTable& t, const stand::StandResult& r) {
 }  // namespace
 
 int RunValidateStand(const ValidateStandOptions& o) {
-  const logs::LogReadOptions ro = ToLogReadOptions(o.input);
+  const logs::LogReadOptions ro = api::ToLogReadOptions(o.input);
   stand::StandReadOptions so;
   ParseLines(o.lines, &so);
   if (o.vdc_v && !(*o.vdc_v > 0.0 && *o.vdc_v <= 1e5)) {

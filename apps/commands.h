@@ -8,20 +8,14 @@
 #include <string>
 #include <vector>
 
+#include "api/log_input.h"
 #include "catalog/catalog_path.h"
 
 namespace dynosize::cli {
 
 // How a measured log or stand table is read: the options calibrate, diagnose and validate-stand
-// share (apps/main.cc registers them once, AddLogInputOptions; ToLogReadOptions converts them).
-struct LogInputOptions {
-  std::string format = "auto";  // auto | canonical | rcbenchmark | mapped | drivecalc | thrustapp
-  std::vector<std::string> column_map;  // mapped tables: canonical=Header [unit]
-  bool drop_incomplete_rows = false;    // drop rows with an empty or text cell in a used column
-  bool decimal_comma = false;           // numbers written 1,5 (logs::LogReadOptions::decimal_comma)
-  std::vector<std::string> where;       // Header=value row filters (logs::LogReadOptions::row_filter)
-  double esc_min_us = 1000.0, esc_max_us = 2000.0;
-};
+// share (api/log_input.h).
+using api::LogInputOptions;
 
 struct SimulateOptions {
   CatalogFolders catalog;  // --catalog, --catalog-add, --override (catalog/catalog_path.h)

@@ -33,18 +33,6 @@ SigintToFlag::~SigintToFlag() { sigaction(SIGINT, &g_previous, nullptr); }
 
 const std::atomic<bool>& SigintToFlag::Flag() { return g_sigint; }
 
-std::chrono::steady_clock::time_point DeadlineAfter(double time_limit_s) {
-  if (!(time_limit_s > 0)) {  // NaN too
-    std::ostringstream v;
-    v << time_limit_s;
-    throw UsageError("--time-limit " + v.str() + ": must be a positive number of seconds");
-  }
-  constexpr double kNoDeadlineS = 1e9;  // about 30 years: beyond it, no deadline (no overflow)
-  if (time_limit_s >= kNoDeadlineS) return std::chrono::steady_clock::time_point::max();
-  return std::chrono::steady_clock::now() +
-         std::chrono::duration_cast<std::chrono::steady_clock::duration>(std::chrono::duration<double>(time_limit_s));
-}
-
 std::string ElapsedText(double s) {
   std::ostringstream o;
   if (s < 60) {

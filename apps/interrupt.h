@@ -20,10 +20,6 @@ class SigintToFlag {
   static bool Received() { return Flag().load(); }
 };
 
-// --time-limit S (optimize, sweep): the deadline S seconds from now (time_point::max() beyond
-// about 30 years); UsageError unless S > 0 (NaN too).
-std::chrono::steady_clock::time_point DeadlineAfter(double time_limit_s);
-
 // "12.3 s" / "1 min 05 s": the elapsed time of a progress line (optimize, sweep).
 std::string ElapsedText(double s);
 

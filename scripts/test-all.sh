@@ -1,9 +1,10 @@
 #!/usr/bin/env bash
 # Everything CI checks, in one place (README command 2 and .ci/run call exactly this script):
 #   1. install what is missing (scripts/setup-debian.sh);
-#   2. Release build (build/) and the whole test suite (ctest: the GoogleTest suite and
+#   2. Release build (build/) and the whole test suite (ctest: the GoogleTest suite,
 #      installed_package, which installs build/ into a temporary prefix and builds examples/cpp
-#      against it as a user's project would);
+#      against it as a user's project would, and python_module, the pytest suite of tests/python
+#      run by Debian's /usr/bin/python3);
 #   3. AddressSanitizer + UndefinedBehaviorSanitizer build with clang (build-asan/), which also
 #      holds the libFuzzer targets of fuzz/;
 #   4. a short fuzz pass over every target (scripts/fuzz.sh, DYNOSIZE_FUZZ_SECONDS in all);
@@ -23,6 +24,8 @@ cmake --build build -j"$jobs"
 (cd build && ctest --output-on-failure -j2)
 stamp "Release build and tests done"
 
+# No Python module here (-DDYNOSIZE_PYTHON=OFF): an ASan-instrumented extension cannot be loaded
+# by Debian's python3, which is not built with ASan.
 # -O1: the sanitizers' recommended level (fast to compile, readable reports); assertions stay on
 # (no NDEBUG) as an extra check in this build.
 # A build-asan configured with another compiler cannot switch: start it afresh.
@@ -30,7 +33,7 @@ if [ -f build-asan/CMakeCache.txt ] && ! grep -q '^CMAKE_CXX_COMPILER:.*clang' b
   rm -rf build-asan
 fi
 CXX=clang++ cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=Release -DCMAKE_CXX_FLAGS_RELEASE=-O1 \
-  -DDYNOSIZE_SANITIZE=ON -DDYNOSIZE_FUZZ=ON -DDYNOSIZE_BUILD_BENCHMARKS=OFF
+  -DDYNOSIZE_SANITIZE=ON -DDYNOSIZE_FUZZ=ON -DDYNOSIZE_BUILD_BENCHMARKS=OFF -DDYNOSIZE_PYTHON=OFF
 cmake --build build-asan -j"$jobs"
 stamp "ASan/UBSan build done"
 

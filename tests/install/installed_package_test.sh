@@ -4,8 +4,10 @@
 #   2. examples/cpp configured with find_package(dynosize CONFIG) against TMP only, built (one
 #      file) and run from an unrelated folder without DYNOSIZE_CATALOG: it must find TMP's
 #      catalog by itself (the build's own prefix is not TMP) and fly the README's pick;
-#   3. the installed CLI finds the same catalog and gives the same mission numbers.
-# Usage: installed_package_test.sh BUILD_DIR SOURCE_DIR
+#   3. the installed CLI finds the same catalog and gives the same mission numbers;
+#   4. with PYTHON and PY_DIR (the Python module built): the installed package dynosize imported
+#      from TMP/PY_DIR finds TMP's catalog and gives the same mission numbers.
+# Usage: installed_package_test.sh BUILD_DIR SOURCE_DIR [PYTHON PY_DIR]
 set -euo pipefail
 build_dir=$(cd "$1" && pwd)
 source_dir=$(cd "$2" && pwd)
@@ -42,4 +44,22 @@ cli=$("$prefix/bin/dynosize" evaluate "$source_dir/examples/missions/quadcopter_
       --esc dc_e_56 --prop dc_p_231 --battery dc_b_363 --cells 4) || fail "the installed CLI's evaluate failed"
 cli_obj=$(sed -n 's/^  feasible; .*; \(mission [0-9.]* min, [0-9.]* Wh\),.*/\1/p' <<< "$cli")
 [ "$cli_obj" = "$example_obj" ] || fail "the example's '$example_obj' differs from the CLI's '$cli_obj'"
+if [ $# -ge 4 ]; then
+  [ -e "$prefix/$4/dynosize/__init__.py" ] || fail "not installed: $4/dynosize"
+  PYTHONPATH="$prefix/$4" "$3" - "$prefix" "$source_dir" << 'EOF' || fail "the installed Python module failed"
+import json, subprocess, sys
+import dynosize
+prefix, source = sys.argv[1], sys.argv[2]
+mission = source + "/examples/missions/quadcopter_1p5kg.json"
+pick = ["--motor", "dc_m_365", "--esc", "dc_e_56", "--prop", "dc_p_231", "--battery", "dc_b_363", "--cells", "4"]
+c = dynosize.Catalog()
+assert c.folders == [prefix + "/share/dynosize/catalog"], c.folders
+assert dynosize.__file__.startswith(prefix), dynosize.__file__
+e = dynosize.evaluate(mission, motor="dc_m_365", esc="dc_e_56", prop="dc_p_231", battery="dc_b_363", cells=4, catalog=c)
+cli = json.loads(subprocess.run([prefix + "/bin/dynosize", "evaluate", mission, *pick, "--json"], check=True,
+                                capture_output=True, text=True).stdout)
+assert e == cli, "the installed module's evaluate differs from the installed CLI's --json"
+print("installed Python module: catalog", c.folders[0], "objective", e["objective"])
+EOF
+fi
 echo "installed_package: 1 passed, 0 failed"

@@ -1,9 +1,9 @@
-#include "log_input.h"
+#include "api/log_input.h"
 
 #include "common/error.h"
 #include "logs/steady_table.h"
 
-namespace dynosize::cli {
+namespace dynosize::api {
 
 logs::LogReadOptions ToLogReadOptions(const LogInputOptions& in) {
   logs::LogReadOptions ro;
@@ -26,4 +26,4 @@ std::string MissingThrottleLine(const logs::SteadyTable& table) {
          " (every point is then taken at full throttle)";
 }
 
-}  // namespace dynosize::cli
+}  // namespace dynosize::api

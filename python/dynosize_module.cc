@@ -1,0 +1,420 @@
+// The Python module _dynosize (re-exported by the package python/dynosize): the library's commands
+// (src/api) with keyword arguments named like the CLI's flags, numpy arrays in and out, and the
+// library's errors as Python exceptions carrying the CLI's message (docs/python.md).
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <memory>
+#include <optional>
+#include <string>
+#include <unordered_map>
+#include <vector>
+
+#include "api/calibrate.h"
+#include "api/catalog_json.h"
+#include "api/diagnose.h"
+#include "api/mission_run.h"
+#include "api/simulate.h"
+#include "catalog/catalog.h"
+#include "catalog/catalog_path.h"
+#include "common/error.h"
+#include "mission/mission.h"
+#include "report/mission_report.h"
+#include "report/point_json.h"
+
+namespace py = pybind11;
+using dynosize::Json;
+
+namespace {
+
+// A catalog loaded once and passed to every call (catalog=...): its folders and the loaded entries.
+class PyCatalog {
+ public:
+  PyCatalog(std::optional<std::string> base, std::vector<std::string> added, bool override_ids) {
+    folders_ = dynosize::ResolveCatalogFolders(base.value_or(""), added, override_ids);
+    Reload();
+  }
+  // A folder of the user's own parts on top (as --catalog-add; override_ids as --override).
+  PyCatalog& Add(const std::string& folder, bool override_ids) {
+    dynosize::CatalogFolders next = folders_;
+    next.added.push_back(folder);
+    next.override_ids = next.override_ids || override_ids;
+    auto loaded = std::make_shared<const dynosize::Catalog>(dynosize::Catalog::Load(next));
+    folders_ = next;
+    catalog_ = loaded;
+    return *this;
+  }
+  const dynosize::Catalog& get() const { return *catalog_; }
+  const dynosize::CatalogFolders& folders() const { return folders_; }
+
+ private:
+  void Reload() { catalog_ = std::make_shared<const dynosize::Catalog>(dynosize::Catalog::Load(folders_)); }
+  dynosize::CatalogFolders folders_;
+  std::shared_ptr<const dynosize::Catalog> catalog_;
+};
+
+// The bundled catalog, loaded on first use (the default of every catalog= argument).
+const PyCatalog& CatalogOr(const PyCatalog* given) {
+  if (given != nullptr) return *given;
+  static std::unique_ptr<PyCatalog> bundled;
+  if (!bundled) bundled = std::make_unique<PyCatalog>(std::nullopt, std::vector<std::string>{}, false);
+  return *bundled;
+}
+
+// nlohmann::json -> Python objects (dict, list, str, float, int, bool, None).
+py::object ToPython(const Json& j) {
+  switch (j.type()) {
+    case Json::value_t::object: {
+      py::dict d;
+      for (auto it = j.begin(); it != j.end(); ++it) d[py::str(it.key())] = ToPython(it.value());
+      return std::move(d);
+    }
+    case Json::value_t::array: {
+      py::list l;
+      for (const auto& v : j) l.append(ToPython(v));
+      return std::move(l);
+    }
+    case Json::value_t::string: return py::str(j.get<std::string>());
+    case Json::value_t::boolean: return py::bool_(j.get<bool>());
+    case Json::value_t::number_integer: return py::int_(j.get<long long>());
+    case Json::value_t::number_unsigned: return py::int_(j.get<unsigned long long>());
+    case Json::value_t::number_float: return py::float_(j.get<double>());
+    default: return py::none();
+  }
+}
+
+// A document for Python, after the same finiteness check as the CLI's output (common/json_file.h
+// DumpJson): a non-finite number is a bug (InternalError -> dynosize.Error), never returned.
+py::object Result(const Json& j, const std::string& what) {
+  dynosize::CheckJsonFinite(j, what);
+  return ToPython(j);
+}
+
+// A mission given as a file path or as a dict (the mission JSON's content).
+dynosize::Mission MissionOf(const py::object& mission) {
+  if (py::isinstance<py::dict>(mission)) {
+    const std::string text = py::module_::import("json").attr("dumps")(mission).cast<std::string>();
+    return dynosize::ParseMission(Json::parse(text), "<mission dict>");
+  }
+  return dynosize::ReadMission(py::str(mission).cast<std::string>());
+}
+
+// The columns of simulate(): scalars broadcast to the length of the arrays given.
+using Column = std::optional<py::array_t<double, py::array::c_style | py::array::forcecast>>;
+
+std::size_t BroadcastLength(const std::vector<std::pair<const char*, const Column*>>& cols) {
+  std::size_t n = 1;
+  for (const auto& [name, c] : cols) {
+    if (!*c || (*c)->ndim() == 0 || (*c)->size() == 1) continue;
+    if ((*c)->ndim() != 1) throw dynosize::UsageError(std::string(name) + ": give a number or a 1-D array");
+    const auto m = static_cast<std::size_t>((*c)->size());
+    if (n != 1 && m != n) {
+      throw dynosize::UsageError(std::string(name) + ": " + std::to_string(m) + " values where the other arrays have " +
+                                 std::to_string(n));
+    }
+    n = m;
+  }
+  return n;
+}
+
+// A column's values without Python calls (read with the GIL released): one value or n.
+struct Values {
+  const double* data = nullptr;
+  bool one = false;
+  explicit Values(const Column& c) : data(c ? c->data() : nullptr), one(c && c->size() == 1) {}
+  explicit operator bool() const { return data != nullptr; }
+  double operator[](std::size_t i) const { return one ? data[0] : data[i]; }
+};
+
+// simulate(): the batch path (api::SimulateBatch, what simulate --batch runs) over arrays.
+py::dict Simulate(const std::string& motor_id, const std::string& esc_id, const Column& vdc_v, const Column& throttle,
+                  const Column& torque_nm, const Column& rpm, const std::string& prop, const Column& thrust_n,
+                  const PyCatalog* catalog) {
+  if (!vdc_v) throw dynosize::UsageError("--vdc is required (supply voltage, V)");
+  const std::size_t n = BroadcastLength(
+      {{"vdc_v", &vdc_v}, {"throttle", &throttle}, {"torque_nm", &torque_nm}, {"rpm", &rpm}, {"thrust_n", &thrust_n}});
+  const dynosize::Catalog& cat = CatalogOr(catalog).get();
+  const dynosize::MotorEntry& motor = cat.motor(motor_id);
+  const dynosize::EscEntry& esc = cat.esc(esc_id);
+  // The keys of the point JSON (report/point_json.h), one numpy array each, filled chunk by chunk:
+  // the batch path runs on a few thousand points at a time, which stay in the cache.
+  using BP = dynosize::api::BatchPoint;
+  using dynosize::OperatingPoint;
+  std::vector<std::pair<const char*, double OperatingPoint::*>> keys = {
+      {"vdc_v", &OperatingPoint::vdc_v},
+      {"throttle", &OperatingPoint::throttle},
+      {"throttle_effective", &OperatingPoint::throttle_effective},
+      {"rpm", &OperatingPoint::rpm},
+      {"omega_rad_s", &OperatingPoint::omega_rad_s},
+      {"torque_nm", &OperatingPoint::torque_nm},
+      {"irms_a", &OperatingPoint::irms_a},
+      {"vll_rms_v", &OperatingPoint::vll_rms_v},
+      {"pac_w", &OperatingPoint::pac_w},
+      {"idc_a", &OperatingPoint::idc_a},
+      {"pdc_w", &OperatingPoint::pdc_w},
+      {"pesc_w", &OperatingPoint::pesc_w},
+      {"pmech_w", &OperatingPoint::pmech_w},
+      {"eta_motor", &OperatingPoint::eta_motor},
+      {"eta_esc", &OperatingPoint::eta_esc},
+      {"eta_system", &OperatingPoint::eta_system}};
+  py::dict out;
+  std::vector<double*> columns;
+  for (const auto& [key, member] : keys) {
+    py::array_t<double> a(static_cast<py::ssize_t>(n));
+    columns.push_back(a.mutable_data());
+    out[key] = a;
+  }
+  double* thrust = nullptr;
+  double* g_per_w = nullptr;
+  if (!prop.empty()) {
+    py::array_t<double> t(static_cast<py::ssize_t>(n)), g(static_cast<py::ssize_t>(n));
+    thrust = t.mutable_data();
+    g_per_w = g.mutable_data();
+    out["thrust_n"] = t;
+    out["g_per_w"] = g;
+  }
+  py::array_t<bool> saturated(static_cast<py::ssize_t>(n)), feasible(static_cast<py::ssize_t>(n));
+  bool* sat = saturated.mutable_data();
+  bool* ok = feasible.mutable_data();
+  py::array limits(py::dtype("O"), std::vector<py::ssize_t>{static_cast<py::ssize_t>(n)});
+  auto* lim = static_cast<PyObject**>(limits.mutable_data());
+  // The limit names joined with ';' (as the --batch CSV's column): one str per distinct set of
+  // limits, shared by the points that have it.
+  std::unordered_map<std::uint64_t, py::str> names;
+  std::uint64_t last_key = ~std::uint64_t{0};
+  PyObject* last_name = nullptr;
+  const dynosize::Drive drive(motor.params, esc.params);
+  const Values vdc(vdc_v), tr(throttle), q(torque_nm), speed(rpm), thrust_given(thrust_n);
+  {
+    // The GIL stays held: the limit names are Python strings, set point by point.
+    constexpr std::size_t kChunk = 1024;
+    std::vector<dynosize::PointRequest> requests;
+    for (std::size_t begin = 0; begin < n; begin += kChunk) {
+      const std::size_t end = std::min(n, begin + kChunk);
+      requests.resize(end - begin);
+      for (std::size_t i = begin; i < end; ++i) {
+        dynosize::PointRequest& r = requests[i - begin];
+        r.row = i;
+        r.vdc_v = vdc[i];
+        if (tr) r.throttle = tr[i];
+        if (q) r.torque_nm = q[i];
+        if (speed) r.rpm = speed[i];
+        if (thrust_given) r.thrust_n = thrust_given[i];
+        if (!prop.empty()) r.prop = prop;
+        // The rules of a --batch row (io/points_csv.h), the point's index in the message.
+        if (const std::string rule = dynosize::CheckPointRequest(r); !rule.empty()) {
+          throw dynosize::UsageError("simulate: point:" + std::to_string(i) + ": " + rule);
+        }
+      }
+      const std::vector<BP> points = dynosize::api::SimulateBatch(cat, drive, requests, "simulate: point");
+      for (std::size_t i = 0; i < points.size(); ++i) {
+        const BP& b = points[i];
+        for (std::size_t k = 0; k < keys.size(); ++k) columns[k][begin + i] = b.drive.*keys[k].second;
+        if (thrust != nullptr) {
+          thrust[begin + i] = b.thrust_n;
+          g_per_w[begin + i] = b.g_per_w;
+        }
+        sat[begin + i] = b.drive.saturated;
+        ok[begin + i] = b.feasible();
+        const std::uint64_t key = (static_cast<std::uint64_t>(b.beats_momentum_theory) << 32) | b.drive.limits;
+        if (key != last_key) {
+          auto it = names.find(key);
+          if (it == names.end()) {
+            std::string joined;
+            for (const auto& name : b.LimitNames()) joined += (joined.empty() ? "" : ";") + name;
+            it = names.emplace(key, py::str(joined)).first;
+          }
+          last_key = key;
+          last_name = it->second.ptr();
+        }
+        Py_XDECREF(lim[begin + i]);
+        Py_INCREF(last_name);
+        lim[begin + i] = last_name;
+      }
+    }
+  }
+  out["saturated"] = saturated;
+  out["feasible"] = feasible;
+  out["limits"] = limits;
+  return out;
+}
+
+py::object Evaluate(const py::object& mission_arg, const std::string& motor, const std::string& esc,
+                    const std::string& prop, const std::string& battery, const std::vector<std::string>& pick,
+                    int cells, const PyCatalog* catalog) {
+  const dynosize::Mission mission = MissionOf(mission_arg);
+  const dynosize::Catalog& cat = CatalogOr(catalog).get();
+  const dynosize::Combination c = dynosize::api::ChooseCombination(mission, cat, {motor, esc, prop, battery, pick, cells});
+  dynosize::MissionResult r;
+  {
+    py::gil_scoped_release release;
+    r = dynosize::api::EvaluateCombination(mission, c);
+  }
+  return Result(dynosize::MissionResultJson(mission, c, r), "evaluate result");
+}
+
+py::object Optimize(const py::object& mission_arg, int top, int threads, bool variants, double time_limit_s,
+                    const PyCatalog* catalog) {
+  if (top < 1 || top > 1000) throw dynosize::UsageError("--top " + std::to_string(top) + ": must be in [1 - 1000]");
+  if (threads < 1 || threads > 64) {
+    throw dynosize::UsageError("--threads " + std::to_string(threads) + ": must be in [1 - 64]");
+  }
+  dynosize::SearchOptions so = dynosize::api::OptimizeSearchOptions({top, threads, variants, time_limit_s});
+  const dynosize::Mission mission = MissionOf(mission_arg);
+  const dynosize::Catalog& cat = CatalogOr(catalog).get();
+  dynosize::SearchResult s;
+  {
+    py::gil_scoped_release release;
+    s = dynosize::SearchCatalog(mission, cat, so);
+  }
+  return Result(dynosize::SearchResultJson(mission, s), "optimize result");
+}
+
+dynosize::api::LogInputOptions LogInput(const std::string& format, const std::vector<std::string>& column_map,
+                                        bool drop_incomplete_rows, bool decimal_comma,
+                                        const std::vector<std::string>& where, double esc_min_us, double esc_max_us) {
+  return {format, column_map, drop_incomplete_rows, decimal_comma, where, esc_min_us, esc_max_us};
+}
+
+}  // namespace
+
+PYBIND11_MODULE(_dynosize, m) {
+  m.doc() = "dynosize: motor + ESC model, catalog, calibration and sizing (docs/python.md)";
+  m.attr("__version__") = DYNOSIZE_VERSION;
+
+  // Errors: bad input -> ValueError, a missing file -> FileNotFoundError, the rest -> dynosize.Error
+  // (a RuntimeError); the message is the CLI's (without its "dynosize: " prefix).
+  static py::exception<dynosize::Error> error(m, "Error", PyExc_RuntimeError);
+  py::register_exception_translator([](std::exception_ptr p) {
+    try {
+      if (p) std::rethrow_exception(p);
+    } catch (const dynosize::UsageError& e) {
+      PyErr_SetString(PyExc_ValueError, e.what());
+    } catch (const dynosize::DataError& e) {
+      PyErr_SetString(PyExc_ValueError, e.what());
+    } catch (const dynosize::NoInputError& e) {
+      PyErr_SetString(PyExc_FileNotFoundError, e.what());
+    } catch (const dynosize::Error& e) {
+      error(e.what());
+    } catch (const Json::exception& e) {
+      PyErr_SetString(PyExc_ValueError, e.what());
+    }
+  });
+
+  py::class_<PyCatalog>(m, "Catalog", "The component catalog, loaded once and passed as catalog=...")
+      .def(py::init<std::optional<std::string>, std::vector<std::string>, bool>(), py::arg("path") = py::none(),
+           py::arg("add") = std::vector<std::string>{}, py::arg("override") = false,
+           "Load the bundled catalog (or the folder path; $DYNOSIZE_CATALOG), then the folders of "
+           "$DYNOSIZE_CATALOG_PATH and add (as --catalog, --catalog-add, --override)")
+      .def("add", &PyCatalog::Add, py::arg("folder"), py::arg("override") = false, py::return_value_policy::reference,
+           "Read a folder of your own parts on top (as --catalog-add); an id the catalog holds is an error "
+           "unless override=True")
+      .def(
+          "list",
+          [](const PyCatalog& c, std::optional<std::string> kind, std::optional<double> kv_min,
+             std::optional<double> kv_max, std::optional<double> mass_max_kg, std::optional<double> current_min_a) {
+            const dynosize::api::CatalogListRequest r{kind.value_or(""), kv_min, kv_max, mass_max_kg, current_min_a};
+            if (!r.kind.empty() && r.kind != "motors" && r.kind != "escs" && r.kind != "props" && r.kind != "batteries") {
+              throw dynosize::UsageError("--kind " + r.kind + ": not in {motors, escs, props, batteries}");
+            }
+            dynosize::api::CheckCatalogListRequest(r);
+            const Json j = dynosize::api::CatalogListJson(c.get(), r);
+            return r.kind.empty() ? Result(j, "catalog list") : Result(j[r.kind], "catalog list");
+          },
+          py::arg("kind") = py::none(), py::arg("kv_min") = py::none(), py::arg("kv_max") = py::none(),
+          py::arg("mass_max_kg") = py::none(), py::arg("current_min_a") = py::none(),
+          "The entries as catalog list --json: {kind: [entries]}, or the list of one kind")
+      .def(
+          "show", [](const PyCatalog& c, const std::string& id) { return Result(dynosize::api::CatalogShowJson(c.get(), id), "catalog show"); },
+          py::arg("id"), "One entry with its derived SI parameters (catalog show)")
+      .def_property_readonly("folders",
+                             [](const PyCatalog& c) {
+                               std::vector<std::string> f{c.folders().base};
+                               f.insert(f.end(), c.folders().added.begin(), c.folders().added.end());
+                               return f;
+                             })
+      .def("__len__", [](const PyCatalog& c) { return c.get().size(); });
+
+  m.def("bundled_catalog_dir", &dynosize::BundledCatalogDir, "The folder of the bundled catalog");
+  m.def("_set_package_catalog_dir", &dynosize::SetPackageCatalogDir,
+        "The installed package's catalog (set by the package's __init__ when installed)");
+
+  m.def("simulate", &Simulate, py::kw_only(), py::arg("motor"), py::arg("esc"), py::arg("vdc_v") = py::none(),
+        py::arg("throttle") = py::none(), py::arg("torque_nm") = py::none(), py::arg("rpm") = py::none(),
+        py::arg("prop") = "", py::arg("thrust_n") = py::none(), py::arg("catalog") = nullptr,
+        "Operating points of a motor + ESC (+ propeller) pair through the batch path of simulate --batch: "
+        "scalars or 1-D arrays (broadcast); a dict of numpy arrays with the CLI's JSON keys");
+  m.def("evaluate", &Evaluate, py::arg("mission"), py::kw_only(), py::arg("motor") = "", py::arg("esc") = "",
+        py::arg("prop") = "", py::arg("battery"), py::arg("pick") = std::vector<std::string>{}, py::arg("cells") = 0,
+        py::arg("catalog") = nullptr, "One combination flying a mission: the dict of evaluate --json");
+  m.def("optimize", &Optimize, py::arg("mission"), py::kw_only(), py::arg("top") = 5, py::arg("threads") = 2,
+        py::arg("variants") = false, py::arg("time_limit_s") = std::numeric_limits<double>::infinity(),
+        py::arg("catalog") = nullptr, "The best combinations of the catalog: the dict of optimize --json");
+  m.def(
+      "calibrate",
+      [](const std::vector<std::string>& logs, const std::string& motor_id, const std::string& esc_id,
+         const std::string& format, const std::vector<std::string>& column_map, bool drop_incomplete_rows,
+         bool decimal_comma, const std::vector<std::string>& where, double esc_min_us, double esc_max_us,
+         long long drivecalc_motor, const std::string& prior_motor, const std::string& prior_esc, bool loo,
+         std::optional<double> kv_label, std::optional<double> rm_label, std::optional<double> io_label,
+         std::optional<double> io_label_v, std::optional<double> mass_kg, std::optional<double> max_current_a,
+         std::optional<double> max_power_w, std::optional<double> esc_max_current_a,
+         std::optional<double> esc_vdc_max_v, std::optional<double> esc_mass_kg, const std::string& prop_id,
+         std::optional<double> prop_diameter_in, std::optional<double> prop_pitch_in, const PyCatalog* catalog) {
+        const dynosize::api::CalibrateRequest r{
+            logs, motor_id, esc_id,
+            LogInput(format, column_map, drop_incomplete_rows, decimal_comma, where, esc_min_us, esc_max_us),
+            drivecalc_motor, prior_motor, prior_esc, loo, kv_label, rm_label, io_label, io_label_v, mass_kg,
+            max_current_a, max_power_w, esc_max_current_a, esc_vdc_max_v, esc_mass_kg, prop_id, prop_diameter_in,
+            prop_pitch_in};
+        const bool priors = !prior_motor.empty() || !prior_esc.empty();
+        const dynosize::Catalog* cat = priors ? &CatalogOr(catalog).get() : nullptr;
+        Json j;
+        {
+          py::gil_scoped_release release;
+          j = dynosize::api::CalibrateLogs(r, cat);
+        }
+        return Result(j, "calibrate result");
+      },
+      py::arg("logs"), py::kw_only(), py::arg("motor_id"), py::arg("esc_id"), py::arg("format") = "auto",
+      py::arg("map") = std::vector<std::string>{}, py::arg("drop_incomplete_rows") = false,
+      py::arg("decimal_comma") = false, py::arg("where") = std::vector<std::string>{}, py::arg("esc_min_us") = 1000.0,
+      py::arg("esc_max_us") = 2000.0, py::arg("drivecalc_motor") = -1, py::arg("prior_motor") = "",
+      py::arg("prior_esc") = "", py::arg("loo") = false, py::arg("kv_label") = py::none(),
+      py::arg("rm_label") = py::none(), py::arg("io_label") = py::none(), py::arg("io_label_v") = py::none(),
+      py::arg("mass_kg") = py::none(), py::arg("max_current_a") = py::none(), py::arg("max_power_w") = py::none(),
+      py::arg("esc_max_current_a") = py::none(), py::arg("esc_vdc_max_v") = py::none(),
+      py::arg("esc_mass_kg") = py::none(), py::arg("prop_id") = "", py::arg("prop_diameter_in") = py::none(),
+      py::arg("prop_pitch_in") = py::none(), py::arg("catalog") = nullptr,
+      "Fit motor + ESC entries to logs: the dict of calibrate --json (nothing written)");
+  m.def(
+      "diagnose",
+      [](const std::string& log, const std::string& motor, const std::string& esc, const std::string& format,
+         const std::vector<std::string>& column_map, bool drop_incomplete_rows, bool decimal_comma,
+         const std::vector<std::string>& where, double esc_min_us, double esc_max_us, int folds, double alpha,
+         std::optional<double> kv_label, const PyCatalog* catalog) {
+        const dynosize::api::DiagnoseRequest r{
+            log, motor, esc,
+            LogInput(format, column_map, drop_incomplete_rows, decimal_comma, where, esc_min_us, esc_max_us), folds,
+            alpha, kv_label};
+        dynosize::api::CheckDiagnoseRequest(r);
+        const dynosize::Catalog* cat = (!motor.empty() || !esc.empty()) ? &CatalogOr(catalog).get() : nullptr;
+        Json j;
+        {
+          py::gil_scoped_release release;
+          j = dynosize::api::DiagnoseLog(r, cat);
+        }
+        return Result(j, "diagnose result");
+      },
+      py::arg("log"), py::kw_only(), py::arg("motor") = "", py::arg("esc") = "", py::arg("format") = "auto",
+      py::arg("map") = std::vector<std::string>{}, py::arg("drop_incomplete_rows") = false,
+      py::arg("decimal_comma") = false, py::arg("where") = std::vector<std::string>{}, py::arg("esc_min_us") = 1000.0,
+      py::arg("esc_max_us") = 2000.0, py::arg("folds") = 5, py::arg("alpha") = 1e-3, py::arg("kv_label") = py::none(),
+      py::arg("catalog") = nullptr, "What the model gets wrong in a measured log: the dict of diagnose --json");
+  // The trade-study sweep (issue 25 item 4) is bound here: m.def("sweep", ...).
+}
