@@ -46,21 +46,15 @@ int RunSweep(const SweepCliOptions& o) {
   so.point.top = o.top;
   so.point.distinct_designs = !o.variants;
   so.threads = o.threads;
-  if (o.vary.empty()) throw UsageError("--vary: give at least one KEY=START:STOP:STEP or KEY=v1,v2,...");
-  std::vector<study::VaryKey> keys;
-  for (const std::string& spec : o.vary) keys.push_back(study::ParseVary(spec));
-  const Json doc = ReadJsonFile(o.mission);
-  const Mission base = ParseMission(doc, o.mission);
-  const std::size_t points = study::GridSize(keys);
-  if (points > study::kLargeGridPoints && !o.yes) {
-    throw UsageError("--vary: the grid has " + std::to_string(points) +
-                     " points, over 10^6: give --yes to run it (or a coarser STEP)");
-  }
-  study::CheckKeys(doc, o.mission, keys);
+  std::vector<study::VaryKey> vary;
+  for (const std::string& spec : o.vary) vary.push_back(study::ParseVary(spec));
+  const study::SweepPlan plan = study::PlanSweep(ReadJsonFile(o.mission), o.mission, std::move(vary), o.yes);
+  const std::vector<study::VaryKey>& keys = plan.keys;
+  const Mission base = ParseMission(plan.doc, plan.name);
   const Catalog cat = Catalog::Load(o.catalog);  // once, for every point
   bool shown = false;
   if (!o.quiet && isatty(fileno(stderr))) so.progress = SweepProgressLine(&shown);
-  const study::SweepResult r = study::RunSweep(doc, o.mission, cat, keys, so);
+  const study::SweepResult r = study::RunSweep(plan.doc, plan.name, cat, keys, so);
   if (shown) std::cerr << "\r" << std::string(79, ' ') << "\r" << std::flush;
   std::vector<std::string> figures;
   if (!o.plot_dir.empty()) figures = study::WriteSweepFigures(base, r, keys, o.plot_dir);

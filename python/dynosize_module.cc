@@ -26,6 +26,8 @@
 #include "mission/mission.h"
 #include "report/mission_report.h"
 #include "report/point_json.h"
+#include "report/sweep_report.h"
+#include "study/sweep.h"
 
 namespace py = pybind11;
 using dynosize::Json;
@@ -281,6 +283,104 @@ dynosize::api::LogInputOptions LogInput(const std::string& format, const std::ve
   return {format, column_map, drop_incomplete_rows, decimal_comma, where, esc_min_us, esc_max_us};
 }
 
+// sweep(): the plan travels as a plain dict (a distributed study pickles it to every task):
+// the mission document and the keys as JSON text, its name and the grid's size.
+py::dict PlanDict(const dynosize::study::SweepPlan& plan) {
+  Json keys = Json::array();
+  for (const auto& k : plan.keys) keys.push_back({{"key", k.key}, {"values", k.values}});
+  py::dict d;
+  d["mission_json"] = plan.doc.dump();
+  d["name"] = plan.name;
+  d["keys_json"] = keys.dump();
+  d["points"] = plan.points;
+  return d;
+}
+
+dynosize::study::SweepPlan PlanOf(const py::dict& d) {
+  dynosize::study::SweepPlan plan;
+  plan.doc = Json::parse(d["mission_json"].cast<std::string>());
+  plan.name = d["name"].cast<std::string>();
+  for (const Json& k : Json::parse(d["keys_json"].cast<std::string>())) {
+    plan.keys.push_back({k.at("key").get<std::string>(), k.at("values").get<std::vector<Json>>()});
+  }
+  plan.points = d["points"].cast<std::size_t>();
+  return plan;
+}
+
+// grid: {KEY: "START:STOP:STEP" or "v1,v2" (as --vary), or a list of values}.
+py::dict SweepPlanOf(const py::object& mission, const py::dict& grid, bool yes) {
+  Json doc;
+  std::string name = "<mission dict>";
+  const py::module_ json = py::module_::import("json");
+  if (py::isinstance<py::dict>(mission)) {
+    doc = Json::parse(json.attr("dumps")(mission).cast<std::string>());
+  } else {
+    name = py::str(mission).cast<std::string>();
+    doc = dynosize::ReadJsonFile(name);
+  }
+  std::vector<dynosize::study::VaryKey> keys;
+  for (const auto& [k, v] : grid) {
+    const std::string key = py::str(k).cast<std::string>();
+    if (py::isinstance<py::str>(v)) {
+      keys.push_back(dynosize::study::ParseVary(key + "=" + v.cast<std::string>()));
+    } else {
+      const Json values = Json::parse(json.attr("dumps")(py::list(py::reinterpret_borrow<py::object>(v))).cast<std::string>());
+      if (values.empty()) throw dynosize::UsageError("grid['" + key + "']: give at least one value");
+      keys.push_back({key, values.get<std::vector<Json>>()});
+    }
+  }
+  return PlanDict(dynosize::study::PlanSweep(std::move(doc), std::move(name), std::move(keys), yes));
+}
+
+// One grid point, as a task of a distributed study runs it: the row of sweep --json.
+py::object SweepPoint(const py::dict& plan_dict, std::size_t index, int top, bool variants, const PyCatalog* catalog) {
+  const dynosize::study::SweepPlan plan = PlanOf(plan_dict);
+  const dynosize::Catalog& cat = CatalogOr(catalog).get();
+  dynosize::study::PointOptions po;
+  po.top = top;
+  po.distinct_designs = !variants;
+  Json row;
+  {
+    py::gil_scoped_release release;
+    row = dynosize::study::SweepRowJson(dynosize::study::RunPoint(plan.doc, plan.name, cat, plan.keys, index, po),
+                                        plan.keys);
+  }
+  return Result(row, "sweep row");
+}
+
+// Every point on this machine's threads: the dict of sweep --json.
+py::object SweepLocal(const py::dict& plan_dict, int top, bool variants, int threads, const PyCatalog* catalog) {
+  const dynosize::study::SweepPlan plan = PlanOf(plan_dict);
+  const dynosize::Catalog& cat = CatalogOr(catalog).get();
+  dynosize::study::SweepOptions so;
+  so.point.top = top;
+  so.point.distinct_designs = !variants;
+  so.threads = threads;
+  dynosize::study::SweepResult r;
+  {
+    py::gil_scoped_release release;
+    r = dynosize::study::RunSweep(plan.doc, plan.name, cat, plan.keys, so);
+  }
+  return Result(dynosize::study::SweepJson(dynosize::ParseMission(plan.doc, plan.name), r, plan.keys), "sweep result");
+}
+
+// The document from rows gathered from a distributed study's tasks (in grid order).
+py::object SweepDocumentOf(const py::dict& plan_dict, const py::list& rows, double seconds) {
+  const dynosize::study::SweepPlan plan = PlanOf(plan_dict);
+  const py::module_ json = py::module_::import("json");
+  Json rows_json = Json::parse(json.attr("dumps")(rows).cast<std::string>());
+  return Result(dynosize::study::SweepDocument(dynosize::ParseMission(plan.doc, plan.name), plan.keys, plan.points,
+                                               std::move(rows_json), false, seconds),
+                "sweep result");
+}
+
+void CheckSweepOptions(int top, int threads) {
+  if (top < 1 || top > 1000) throw dynosize::UsageError("--top " + std::to_string(top) + ": must be in [1 - 1000]");
+  if (threads < 1 || threads > 64) {
+    throw dynosize::UsageError("--threads " + std::to_string(threads) + ": must be in [1 - 64]");
+  }
+}
+
 }  // namespace
 
 PYBIND11_MODULE(_dynosize, m) {
@@ -337,6 +437,10 @@ PYBIND11_MODULE(_dynosize, m) {
                                std::vector<std::string> f{c.folders().base};
                                f.insert(f.end(), c.folders().added.begin(), c.folders().added.end());
                                return f;
+                             })
+      .def_property_readonly("_spec",
+                             [](const PyCatalog& c) {
+                               return py::make_tuple(c.folders().base, c.folders().added, c.folders().override_ids);
                              })
       .def("__len__", [](const PyCatalog& c) { return c.get().size(); });
 
@@ -416,5 +520,25 @@ PYBIND11_MODULE(_dynosize, m) {
       py::arg("decimal_comma") = false, py::arg("where") = std::vector<std::string>{}, py::arg("esc_min_us") = 1000.0,
       py::arg("esc_max_us") = 2000.0, py::arg("folds") = 5, py::arg("alpha") = 1e-3, py::arg("kv_label") = py::none(),
       py::arg("catalog") = nullptr, "What the model gets wrong in a measured log: the dict of diagnose --json");
-  // The trade-study sweep (issue 25 item 4) is bound here: m.def("sweep", ...).
+  // The trade study (python/dynosize/__init__.py sweep: local, or one task per point on a dask cluster).
+  m.def("_sweep_plan", &SweepPlanOf, py::arg("mission"), py::arg("grid"), py::arg("yes") = false,
+        "The sweep's plan (mission, keys, grid size), checked as the CLI checks --vary");
+  m.def(
+      "_sweep_point",
+      [](const py::dict& plan, std::size_t index, int top, bool variants, const PyCatalog* catalog) {
+        CheckSweepOptions(top, 1);
+        return SweepPoint(plan, index, top, variants, catalog);
+      },
+      py::arg("plan"), py::arg("index"), py::kw_only(), py::arg("top") = 1, py::arg("variants") = false,
+      py::arg("catalog") = nullptr, "One grid point's row of sweep --json");
+  m.def(
+      "_sweep_local",
+      [](const py::dict& plan, int top, bool variants, int threads, const PyCatalog* catalog) {
+        CheckSweepOptions(top, threads);
+        return SweepLocal(plan, top, variants, threads, catalog);
+      },
+      py::arg("plan"), py::kw_only(), py::arg("top") = 1, py::arg("variants") = false, py::arg("threads") = 2,
+      py::arg("catalog") = nullptr, "Every grid point on this machine: the dict of sweep --json");
+  m.def("_sweep_document", &SweepDocumentOf, py::arg("plan"), py::arg("rows"), py::arg("seconds"),
+        "The dict of sweep --json from rows gathered in grid order");
 }

@@ -234,7 +234,8 @@ Json SweepRowJson(const SweepRow& row, const std::vector<VaryKey>& keys) {
   return j;
 }
 
-Json SweepJson(const Mission& base, const SweepResult& result, const std::vector<VaryKey>& keys) {
+Json SweepDocument(const Mission& base, const std::vector<VaryKey>& keys, std::size_t points, Json rows,
+                   bool interrupted, double seconds) {
   Json j;
   j["mission"] = base.name;
   j["objective_type"] = ObjectiveTypeName(base.objective.type);
@@ -243,18 +244,20 @@ Json SweepJson(const Mission& base, const SweepResult& result, const std::vector
   for (const VaryKey& k : keys) ks.push_back({{"key", k.key}, {"values", k.values}});
   j["keys"] = ks;
   std::size_t failed = 0;
-  Json rows = Json::array();
-  for (const SweepRow& r : result.rows) {
-    failed += r.status == "failed";
-    rows.push_back(SweepRowJson(r, keys));
-  }
-  j["points"] = result.total;
-  j["done"] = result.rows.size();
+  for (const Json& r : rows) failed += r.at("status") == "failed";
+  j["points"] = points;
+  j["done"] = rows.size();
   j["failed"] = failed;
-  j["interrupted"] = result.interrupted;
-  j["seconds"] = result.seconds;
-  j["rows"] = rows;
+  j["interrupted"] = interrupted;
+  j["seconds"] = seconds;
+  j["rows"] = std::move(rows);
   return j;
+}
+
+Json SweepJson(const Mission& base, const SweepResult& result, const std::vector<VaryKey>& keys) {
+  Json rows = Json::array();
+  for (const SweepRow& r : result.rows) rows.push_back(SweepRowJson(r, keys));
+  return SweepDocument(base, keys, result.total, std::move(rows), result.interrupted, result.seconds);
 }
 
 std::string SweepCsv(const Mission& base, const SweepResult& result, const std::vector<VaryKey>& keys) {

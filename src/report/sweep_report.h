@@ -22,6 +22,11 @@ Json SweepRowJson(const SweepRow& row, const std::vector<VaryKey>& keys);
 // "points", "done", "failed", "interrupted", "seconds", "rows": [...]}.
 Json SweepJson(const Mission& base, const SweepResult& result, const std::vector<VaryKey>& keys);
 
+// The same document from rows already written by SweepRowJson (a distributed study gathers
+// them from its tasks): `points` grid points, the rows in grid order.
+Json SweepDocument(const Mission& base, const std::vector<VaryKey>& keys, std::size_t points, Json rows,
+                   bool interrupted, double seconds);
+
 // The CSV (header line first): index, the keys, status, rank, feasible, objective_<unit>,
 // objective_low, objective_high, the parts (motor, esc, prop; GROUP_motor ... with groups),
 // battery, cells, capacity_ah, total_mass_kg, thrust_to_weight, binding_limit, reason. One line

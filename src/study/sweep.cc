@@ -317,6 +317,19 @@ std::size_t GridSize(const std::vector<VaryKey>& keys) {
   return n;
 }
 
+SweepPlan PlanSweep(Json mission_doc, std::string mission_name, std::vector<VaryKey> keys, bool allow_large) {
+  if (keys.empty()) throw UsageError("--vary: give at least one KEY=START:STOP:STEP or KEY=v1,v2,...");
+  (void)ParseMission(mission_doc, mission_name);
+  SweepPlan plan{std::move(mission_doc), std::move(mission_name), std::move(keys), 0};
+  plan.points = GridSize(plan.keys);
+  if (plan.points > kLargeGridPoints && !allow_large) {
+    throw UsageError("--vary: the grid has " + std::to_string(plan.points) +
+                     " points, over 10^6: give --yes to run it (or a coarser STEP)");
+  }
+  CheckKeys(plan.doc, plan.name, plan.keys);
+  return plan;
+}
+
 std::vector<Json> GridPoint(const std::vector<VaryKey>& keys, std::size_t index) {
   std::vector<Json> out(keys.size());
   for (std::size_t i = keys.size(); i-- > 0;) {

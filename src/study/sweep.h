@@ -54,6 +54,19 @@ void CheckKeys(const Json& mission_doc, const std::string& mission_name, const s
 // The number of grid points (the product of the value counts); UsageError when it overflows.
 std::size_t GridSize(const std::vector<VaryKey>& keys);
 
+// A sweep checked before it runs (the CLI and the Python module make the same checks): the
+// mission document as read, its name in messages, the keys and the grid's size.
+struct SweepPlan {
+  Json doc;
+  std::string name;
+  std::vector<VaryKey> keys;
+  std::size_t points = 0;
+};
+
+// The mission read by its reader (ParseMission), at least one key, the grid within
+// kLargeGridPoints unless allow_large (the CLI's --yes), then CheckKeys; UsageError otherwise.
+SweepPlan PlanSweep(Json mission_doc, std::string mission_name, std::vector<VaryKey> keys, bool allow_large);
+
 // The values of grid point `index` (< GridSize), one per key.
 std::vector<Json> GridPoint(const std::vector<VaryKey>& keys, std::size_t index);
 
