@@ -1025,8 +1025,8 @@ void MissionEvaluator::FillPropNotes(MissionResult* r) {
   }
 }
 
-MissionResult MissionEvaluator::Solve(double cutoff_score, bool explain, bool decide) const {
-  MissionResult r = SolveContinuous(cutoff_score, explain, decide && std::isfinite(cutoff_score));
+MissionResult MissionEvaluator::Solve(double cutoff_score, bool explain, bool decide, bool search) const {
+  MissionResult r = SolveContinuous(cutoff_score, explain, decide && std::isfinite(cutoff_score), search);
   if (explain) FillPropNotes(&r);
   return r;
 }
@@ -1084,12 +1084,16 @@ bool MissionEvaluator::DataWindowRefuses(bool below_too, MissionResult* out) con
   return false;
 }
 
-// The early exits of a search (a finite cutoff), each a proof stated at its block: a result
-// (bounded out, infeasible, or the answer itself) in *out and true, or false to go on.
-bool MissionEvaluator::EarlyExit(double cutoff_score, bool explain, MissionResult* out) const {
+// The early exits of a search (a finite cutoff, or `search`), each a proof stated at its block: a
+// result (bounded out, infeasible, or the answer itself) in *out and true, or false to go on.
+// The exits that end in an infeasible result need no cutoff, only a caller that reads nothing
+// of an infeasible result but the constraint (Solve's search); the bounds need a finite cutoff.
+bool MissionEvaluator::EarlyExit(double cutoff_score, bool explain, bool search, MissionResult* out) const {
   const bool capacity_free = m_.battery.capacity_ah && m_.battery.capacity_ah->free();
-  if (std::isfinite(cutoff_score) && DataWindowRefuses(true, out)) return true;
-  if (std::isfinite(cutoff_score) && m_.constraints.min_hover_throttle > 0) {
+  const bool bounds = std::isfinite(cutoff_score);
+  const bool screens = bounds || search;
+  if (screens && DataWindowRefuses(true, out)) return true;
+  if (screens && m_.constraints.min_hover_throttle > 0) {
     // min_hover_throttle is checked at the full-charge OCV (PropellerPoint), which does not
     // depend on the capacity, with the hover's torque and speed, which rise with the mass
     // (M3 of search.cc); the throttle that holds them rises with them (M2). So the hover
@@ -1138,7 +1142,7 @@ bool MissionEvaluator::EarlyExit(double cutoff_score, bool explain, MissionResul
       }
     }
   }
-  if (std::isfinite(cutoff_score) && m_.objective.type == ObjectiveType::kMaxEndurance) {
+  if (screens && m_.objective.type == ObjectiveType::kMaxEndurance) {
     // One simulation decides most candidates of a search: infeasible before any stretch.
     // With a capacity range it is run at the smallest capacity (the lightest vehicle), and
     // decides only through constraints that no larger capacity can cure (RisesWithMass).
@@ -1156,8 +1160,8 @@ bool MissionEvaluator::EarlyExit(double cutoff_score, bool explain, MissionResul
         }
       }
     }
-    const double ub = EnduranceUpperBound(-cutoff_score);
-    if (-ub >= cutoff_score) {
+    const double ub = bounds ? EnduranceUpperBound(-cutoff_score) : kInf;
+    if (bounds && -ub >= cutoff_score) {
       MissionResult r;
       r.bounded_out = true;
       r.score = -ub;
@@ -1266,8 +1270,8 @@ ContinuousVars MissionEvaluator::VarsAt(const std::vector<FreeVar>& free, const 
   return v;
 }
 
-MissionResult MissionEvaluator::SolveContinuous(double cutoff_score, bool explain, bool decide) const {
-  if (MissionResult early; EarlyExit(cutoff_score, explain, &early)) return early;
+MissionResult MissionEvaluator::SolveContinuous(double cutoff_score, bool explain, bool decide, bool search) const {
+  if (MissionResult early; EarlyExit(cutoff_score, explain, search, &early)) return early;
   const std::vector<FreeVar> free = FreeVariables();  // each scaled to [0, 1]
   if (free.size() == 1) return SolveOneFree(free, cutoff_score, explain, decide);
   if (free.size() > 1) return SolveManyFree(free, cutoff_score, explain, decide);
