@@ -274,6 +274,12 @@ class MissionEvaluator {
   double WindingTempC(const OperatingPoint& p, int group = 0) const;
   double rth_k_per_w(int group = 0) const { return groups_[group].rth_k_per_w; }
 
+  // The heaviest vehicle (kg) that can meet min_thrust_to_weight: the lift rotors' thrust at
+  // full throttle from the full-charge OCV with no sag over g*min_thrust_to_weight (an upper
+  // bound of the thrust at every state of charge, capacity and stretch; the .cc proves it);
+  // +inf when the mission does not check it or no bound can be given. Solve's search exits use it.
+  double ThrustToWeightMassCeilingKg() const;
+
   double fixed_mass_kg() const { return fixed_mass_kg_; }  // everything but the battery
   double BatteryMassKg(double capacity_ah) const;
   double entry_capacity_ah() const { return base_capacity_ah_; }
@@ -311,6 +317,7 @@ class MissionEvaluator {
   MissionResult SolveOneFree(const std::vector<FreeVar>& free, double cutoff_score, bool explain, bool decide) const;
   MissionResult SolveManyFree(const std::vector<FreeVar>& free, double cutoff_score, bool explain, bool decide) const;
   bool EarlyExit(double cutoff_score, bool explain, bool search, MissionResult* out) const;
+  bool HoverOrWeightRefuses(bool with_weight, MissionResult* out) const;
   double StretchStartCurrent(const MissionResult& r) const;
   // An upper bound of the total mission time over the capacity range (max_endurance), tightened
   // until it falls below target_s or a budget of simulations is spent.
@@ -329,6 +336,8 @@ class MissionEvaluator {
     bool current_limited = false;  // held at the motor's or ESC's current rating below full throttle
   };
   bool FullThrottleAt(const BatteryPack& pack, double soc, FullThrottle* f) const;
+  // The same from a source of open-circuit voltage ocv_v behind r_pack_ohm.
+  bool FullThrottleFrom(double ocv_v, double r_pack_ohm, FullThrottle* f) const;
   // The hover of the whole vehicle (mass_kg) on the lift rotors at `soc` with sag.
   bool HoverAt(const BatteryPack& pack, double soc, double mass_kg, OperatingPoint* op,
                double* battery_current_a, double* shaft_w) const;
