@@ -560,6 +560,34 @@ TEST_F(SearchTest, HoverThrottleExitOnlyRefusesInfeasibleCombinations) {
   }
 }
 
+// Solve's search flag: without a finite cutoff (the search before its top N is full) the exits
+// that end in an infeasible result still run. The answer's feasibility and a feasible answer's
+// score are the full solve's; some combinations must be decided by an exit (fewer segments than
+// the full solve's answer: a screened run or no run), with and without a capacity range.
+TEST_F(SearchTest, SearchSolvesWithoutACutoffScreenOnlyInfeasibleCombinations) {
+  const Catalog cat = Catalog::Load((dir_ / "catalog").string());
+  for (const bool capacity_range : {false, true}) {
+    Json j = ParseJsonText(kQuad, "quad");
+    if (capacity_range) j["battery"]["capacity_ah"] = {2.0, 6.0};
+    j["constraints"]["min_hover_throttle"] = 0.35;
+    const Mission m = ParseMission(j, "quad");
+    int screened = 0, feasible = 0;
+    ForEachCombination(cat, [&](const Combination& c) {
+      const MissionEvaluator ev(m, c);
+      const MissionResult cut = ev.Solve(std::numeric_limits<double>::infinity(), false, false, true);
+      const MissionResult full = ev.Solve(std::numeric_limits<double>::infinity(), false);
+      ASSERT_EQ(cut.feasible, full.feasible) << Name(c);
+      if (full.feasible) {
+        EXPECT_EQ(cut.score, full.score) << Name(c);
+        ++feasible;
+      }
+      if (cut.segments.size() < full.segments.size()) ++screened;  // an exit's shorter answer
+    });
+    EXPECT_GE(feasible, 1) << "capacity range " << capacity_range;
+    EXPECT_GE(screened, 10) << "capacity range " << capacity_range;
+  }
+}
+
 // The thrust-to-weight ceiling (MissionEvaluator::ThrustToWeightMassCeilingKg) is an upper
 // bound: every solved combination, at capacities across a range, has a full-throttle thrust
 // (thrust_to_weight x weight) at or below the ceiling's. And the exit built on it with the hover
