@@ -1025,8 +1025,8 @@ void MissionEvaluator::FillPropNotes(MissionResult* r) {
   }
 }
 
-MissionResult MissionEvaluator::Solve(double cutoff_score, bool explain, bool decide) const {
-  MissionResult r = SolveContinuous(cutoff_score, explain, decide && std::isfinite(cutoff_score));
+MissionResult MissionEvaluator::Solve(double cutoff_score, bool explain, bool decide, bool search) const {
+  MissionResult r = SolveContinuous(cutoff_score, explain, decide && std::isfinite(cutoff_score), search);
   if (explain) FillPropNotes(&r);
   return r;
 }
@@ -1084,61 +1084,124 @@ bool MissionEvaluator::DataWindowRefuses(bool below_too, MissionResult* out) con
   return false;
 }
 
-// The early exits of a search (a finite cutoff), each a proof stated at its block: a result
-// (bounded out, infeasible, or the answer itself) in *out and true, or false to go on.
-bool MissionEvaluator::EarlyExit(double cutoff_score, bool explain, MissionResult* out) const {
+// min_hover_throttle from below and min_thrust_to_weight from above, without a run (EarlyExit;
+// only in a search: the result is infeasible, as the full search's would be, and says so with
+// the constraint the proof rests on).
+// min_hover_throttle is checked at the full-charge OCV (PropellerPoint), which does not depend
+// on the capacity, with the hover's torque and speed, which rise with the mass (M3 of
+// search.cc); the throttle that holds them rises with them (M2). So the hover throttle rises
+// with the capacity: below the limit at a capacity C_h, it is below it at every capacity up to
+// C_h. Without a capacity range the check at the mission's capacity decides it outright: the
+// hover's mass, thrust and full-charge OCV depend on nothing else that is free (the stretch's
+// duration and the cruise airspeeds do not enter them). In the search nearly every real ESC that
+// passes the virtual one's bound fails this limit (issue 14: 96 % of the quadcopter's real-ESC
+// evaluations), each for a whole 1-D search before.
+// min_thrust_to_weight is checked at the run's end (FinishRun) with the lift rotors' thrust at
+// full throttle at the terminal voltage there, which is at most the full-charge OCV (the OCV
+// rises with the SOC, the sag only lowers it); that thrust rises with the voltage
+// (ThrustToWeightMassCeilingKg), so every vehicle heavier than the ceiling m_t fails it, at any
+// capacity, stretch and airspeed. The two together: when the hover throttle is below its limit
+// at C_h, the lightest capacity whose vehicle weighs at least m_t (or the range's top, when none
+// does), every capacity up to C_h fails the first and every capacity above it the second (its
+// vehicle is heavier than m_t: the pack's mass rises with the capacity, PackAt). (The capacity-
+// sized quadcopter's search: 3,834 of its 3,950 solves whose every point was infeasible failed
+// both, each a whole 1-D search of infeasible points before.)
+// with_weight = false: min_hover_throttle at the range's top alone (C_h = the top).
+bool MissionEvaluator::HoverOrWeightRefuses(bool with_weight, MissionResult* out) const {
   const bool capacity_free = m_.battery.capacity_ah && m_.battery.capacity_ah->free();
-  if (std::isfinite(cutoff_score) && DataWindowRefuses(true, out)) return true;
-  if (std::isfinite(cutoff_score) && m_.constraints.min_hover_throttle > 0) {
-    // min_hover_throttle is checked at the full-charge OCV (PropellerPoint), which does not
-    // depend on the capacity, with the hover's torque and speed, which rise with the mass
-    // (M3 of search.cc); the throttle that holds them rises with them (M2). So the hover
-    // throttle is highest with the largest pack: when it is below the limit there, it is at
-    // every capacity of the range, and no choice of the continuous variables is feasible.
-    // Without a capacity range the same check decides it outright: the hover's mass, thrust
-    // and full-charge OCV depend on nothing else that is free (the stretch's duration and the
-    // cruise airspeeds do not enter them). In the search nearly every real ESC that passes the
-    // virtual one's bound fails this limit (issue 14: 96 % of the quadcopter's real-ESC
-    // evaluations), each for a whole 1-D search before.
-    // (Only in a search, with a cutoff: the result is infeasible, as the full search's would
-    // be, and says so with the same constraint. First: a few propeller evaluations, where the
-    // bounds below take up to 24 runs.)
-    // PropellerPoint's check alone, per hover segment, at the largest capacity's mass (the
-    // mission's own capacity, as Run flies it, without a range).
-    const double capacity_ah = !m_.battery.capacity_ah ? 0.0
-                               : capacity_free         ? m_.battery.capacity_ah->hi
-                                                       : m_.battery.capacity_ah->lo;
+  // The range's ends (the mission's own capacity, as Run flies it, without a range).
+  const double c_lo = !m_.battery.capacity_ah ? 0.0 : m_.battery.capacity_ah->lo;
+  const double c_hi = !m_.battery.capacity_ah ? 0.0 : capacity_free ? m_.battery.capacity_ah->hi : c_lo;
+  auto refuse = [&](double capacity_ah, Violation v) {
+    MissionResult r;
     const BatteryPack pack(PackAt(capacity_ah));
-    const double mass_kg = fixed_mass_kg_ + pack.mass_kg();
-    const double v_full = pack.OcvV(1.0);
-    for (const Segment& s : m_.segments) {
-      if (s.type != SegmentType::kHover) continue;
-      const GroupDrive& gd = groups_[s.group];
-      const RotorLoad load = SegmentRotorLoad(m_, s, mass_kg, 0.0);
-      double omega = 0;
-      PropEvaluation ev;
-      const double w_motor_max = std::max(gd.drive.NoLoadSpeed(v_full, 1.0), 1.0);
-      if (!PropSpeedForThrust(*gd.prop, load.thrust_per_rotor_n, m_.rho_kg_m3, load.axial_airspeed_m_s,
-                              4.0 * w_motor_max, &omega, &ev)) {
-        continue;  // no hover point: the check says nothing here
-      }
-      AdjustPropEvaluation(gd.prop_adj, gd.parts.prop->diameter_m, &ev);
-      const double throttle = gd.drive.Inverse(v_full, ev.torque_nm, omega).throttle;
-      if (throttle < m_.constraints.min_hover_throttle) {
-        MissionResult r;
-        r.capacity_ah = pack.capacity_ah();
-        r.total_mass_kg = mass_kg;
-        r.propulsion_mass_kg = mass_kg - m_.vehicle.mass_kg;
-        r.violations.push_back(Violation{"min_hover_throttle", s.name, throttle, m_.constraints.min_hover_throttle, "", true});
-        r.min_slack = (throttle - m_.constraints.min_hover_throttle) / m_.constraints.min_hover_throttle;
-        r.feasible = false;
-        r.score = kInf;
-        *out = std::move(r);
-        return true;
-      }
+    r.capacity_ah = pack.capacity_ah();
+    r.total_mass_kg = fixed_mass_kg_ + pack.mass_kg();
+    r.propulsion_mass_kg = r.total_mass_kg - m_.vehicle.mass_kg;
+    r.min_slack = v.at_least ? (v.value - v.limit) / v.limit : (v.limit - v.value) / v.limit;
+    r.violations.push_back(std::move(v));
+    r.feasible = false;
+    r.score = kInf;
+    *out = std::move(r);
+    return true;
+  };
+  const double m_t = with_weight ? ThrustToWeightMassCeilingKg() : kInf;
+  if (with_weight && !std::isfinite(m_t)) return false;  // the check below was made without it
+  if (fixed_mass_kg_ + BatteryMassKg(c_lo) > m_t) {  // every capacity's vehicle is too heavy
+    const double mass_kg = fixed_mass_kg_ + BatteryMassKg(c_lo);
+    const double limit = m_.constraints.min_thrust_to_weight;
+    return refuse(c_lo, Violation{"min_thrust_to_weight", "", limit * m_t / mass_kg, limit, "", true});
+  }
+  if (!(m_.constraints.min_hover_throttle > 0)) return false;
+  // C_h: the range's top, or the lightest capacity of the range whose vehicle weighs at least
+  // m_t (bisection keeping that side; the pack's mass rises with the capacity).
+  double c_h = c_hi;
+  if (capacity_free && fixed_mass_kg_ + BatteryMassKg(c_hi) > m_t) {
+    double lo = c_lo, hi = c_hi;
+    for (int i = 0; i < 60 && hi - lo > 1e-12 * c_hi; ++i) {
+      const double mid = 0.5 * (lo + hi);
+      (fixed_mass_kg_ + BatteryMassKg(mid) >= m_t ? hi : lo) = mid;
+    }
+    c_h = hi;
+  } else if (with_weight) {
+    return false;  // C_h is the top, where the check was made without the weight
+  }
+  const BatteryPack pack(PackAt(c_h));
+  const double mass_kg = fixed_mass_kg_ + pack.mass_kg();
+  const double v_full = pack.OcvV(1.0);
+  for (const Segment& s : m_.segments) {
+    if (s.type != SegmentType::kHover) continue;
+    const GroupDrive& gd = groups_[s.group];
+    const RotorLoad load = SegmentRotorLoad(m_, s, mass_kg, 0.0);
+    double omega = 0;
+    PropEvaluation ev;
+    const double w_motor_max = std::max(gd.drive.NoLoadSpeed(v_full, 1.0), 1.0);
+    if (!PropSpeedForThrust(*gd.prop, load.thrust_per_rotor_n, m_.rho_kg_m3, load.axial_airspeed_m_s,
+                            4.0 * w_motor_max, &omega, &ev)) {
+      continue;  // no hover point: the check says nothing here
+    }
+    AdjustPropEvaluation(gd.prop_adj, gd.parts.prop->diameter_m, &ev);
+    const double throttle = gd.drive.Inverse(v_full, ev.torque_nm, omega).throttle;
+    if (throttle < m_.constraints.min_hover_throttle) {
+      return refuse(c_h, Violation{"min_hover_throttle", s.name, throttle, m_.constraints.min_hover_throttle, "", true});
     }
   }
-  if (std::isfinite(cutoff_score) && m_.objective.type == ObjectiveType::kMaxEndurance) {
+  return false;
+}
+
+// The lift rotors' full-throttle thrust (FullThrottleAt) rises with the terminal voltage v: the
+// throttle that holds a (torque, speed) falls as v rises (M2 of search.cc), so at full throttle
+// the motor holds at least the torque at every speed from a higher v, and the equilibrium with
+// the propeller's torque, which rises with the speed (M1), moves to a higher speed. Where the
+// current rating caps it, the capped speed rises too: along the propeller's curve Irms depends
+// only on the torque (eq 48) and IDC = PDC/VDC = C1*U*Irms/(kv*VDC) + C0*Irms (eqs 57, 59; no
+// supply resistance) falls as VDC rises. The thrust rises with the speed (M1). The terminal
+// voltage at every state of charge is at most the full-charge OCV, so the thrust from that OCV
+// with no sag (times 1 + kCeilingMargin against the root finders' tolerance, 1e-10 of the
+// speed) bounds the thrust-to-weight check of every run from above.
+double MissionEvaluator::ThrustToWeightMassCeilingKg() const {
+  constexpr double kCeilingMargin = 1e-6;
+  if (!(m_.constraints.min_thrust_to_weight > 0) || lift_rotors_ <= 0 ||
+      groups_[lift_group_].drive.esc().rsupply_ohm != 0.0) {
+    return kInf;
+  }
+  FullThrottle ft;
+  if (!FullThrottleFrom(BatteryPack(pack_base_).OcvV(1.0), 0.0, &ft)) return kInf;
+  return lift_rotors_ * ft.thrust_per_rotor_n * (1.0 + kCeilingMargin) /
+         (kStandardGravity * m_.constraints.min_thrust_to_weight);
+}
+
+// The early exits of a search (a finite cutoff, or `search`), each a proof stated at its block: a
+// result (bounded out, infeasible, or the answer itself) in *out and true, or false to go on.
+// The exits that end in an infeasible result need no cutoff, only a caller that reads nothing
+// of an infeasible result but the constraint (Solve's search); the bounds need a finite cutoff.
+bool MissionEvaluator::EarlyExit(double cutoff_score, bool explain, bool search, MissionResult* out) const {
+  const bool capacity_free = m_.battery.capacity_ah && m_.battery.capacity_ah->free();
+  const bool bounds = std::isfinite(cutoff_score);
+  const bool screens = bounds || search;
+  if (screens && DataWindowRefuses(true, out)) return true;
+  if (screens && HoverOrWeightRefuses(false, out)) return true;
+  if (screens && m_.objective.type == ObjectiveType::kMaxEndurance) {
     // One simulation decides most candidates of a search: infeasible before any stretch.
     // With a capacity range it is run at the smallest capacity (the lightest vehicle), and
     // decides only through constraints that no larger capacity can cure (RisesWithMass).
@@ -1156,6 +1219,14 @@ bool MissionEvaluator::EarlyExit(double cutoff_score, bool explain, MissionResul
         }
       }
     }
+  }
+  // After the screening above, whose exits through constraints that a heavier ESC cannot cure
+  // let the search skip the ESCs this one dominates (search.cc, R5); this one's rests on
+  // min_hover_throttle, which a heavier ESC may meet, and does not. Only with a capacity range:
+  // without one the run above (max_endurance) or below (min_energy) checks the mission's own
+  // thrust-to-weight.
+  if (screens && capacity_free && HoverOrWeightRefuses(true, out)) return true;
+  if (bounds && m_.objective.type == ObjectiveType::kMaxEndurance) {
     const double ub = EnduranceUpperBound(-cutoff_score);
     if (-ub >= cutoff_score) {
       MissionResult r;
@@ -1266,8 +1337,8 @@ ContinuousVars MissionEvaluator::VarsAt(const std::vector<FreeVar>& free, const 
   return v;
 }
 
-MissionResult MissionEvaluator::SolveContinuous(double cutoff_score, bool explain, bool decide) const {
-  if (MissionResult early; EarlyExit(cutoff_score, explain, &early)) return early;
+MissionResult MissionEvaluator::SolveContinuous(double cutoff_score, bool explain, bool decide, bool search) const {
+  if (MissionResult early; EarlyExit(cutoff_score, explain, search, &early)) return early;
   const std::vector<FreeVar> free = FreeVariables();  // each scaled to [0, 1]
   if (free.size() == 1) return SolveOneFree(free, cutoff_score, explain, decide);
   if (free.size() > 1) return SolveManyFree(free, cutoff_score, explain, decide);
@@ -1451,8 +1522,10 @@ double MissionEvaluator::WindingTempC(const OperatingPoint& p, int group) const 
 }
 
 bool MissionEvaluator::FullThrottleAt(const BatteryPack& pack, double soc, FullThrottle* f) const {
-  const double ocv = pack.OcvV(soc);
-  const double r_pack = pack.ri_ohm();
+  return FullThrottleFrom(pack.OcvV(soc), pack.ri_ohm(), f);
+}
+
+bool MissionEvaluator::FullThrottleFrom(double ocv, double r_pack, FullThrottle* f) const {
   const double rho = m_.rho_kg_m3;
   // The drive's current rating (no margin): a motor or ESC is not asked for more for long,
   // whatever the throttle could give.

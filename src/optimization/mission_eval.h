@@ -247,6 +247,12 @@ class MissionEvaluator {
   // first feasible point whose score beats cutoff_score and returns it, unexplained (feasible,
   // score < cutoff, not the optimum: the optimum is no worse, so the answer to that question
   // is the same); when no point beats it the result is the full solve's.
+  // search = true (the branch and bound's evaluations, search.cc): only the result's score, its
+  // feasibility and, when infeasible, whether it fails min_hover_throttle (R5's dominance) are
+  // read, so the early exits that end in an infeasible result (EarlyExit: a constraint no value
+  // of the continuous variables can meet) run even without a finite cutoff, as they do with one
+  // (before the top N is full the search's threshold is infinite; the capacity-sized
+  // quadcopter's search made 14 k such solves, each a whole 1-D search of infeasible points).
   // The propeller data window (constraints.prop_below_data_factor, prop_above_data_factor)
   // decided without a solve: true, with the infeasible result (one violation, no segments) in
   // *out, when a segment at a fixed inflow turns its propeller above the window at the lightest
@@ -255,7 +261,7 @@ class MissionEvaluator {
   // exit when it has a cutoff; the search before its solves (search.cc, R12).
   bool DataWindowRefuses(bool below_too, MissionResult* out) const;
   MissionResult Solve(double cutoff_score = std::numeric_limits<double>::infinity(),
-                      bool explain = true, bool decide = false) const;
+                      bool explain = true, bool decide = false, bool search = false) const;
   // Writes each segment's prop_note from its prop_edge_eval (Solve with explain, and Simulate).
   static void FillPropNotes(MissionResult* r);
 
@@ -267,6 +273,12 @@ class MissionEvaluator {
   // 1) gets kRunawayTempC. Rth is the catalog's rth_k_per_w or AssumedMotorRthKPerW (assumed).
   double WindingTempC(const OperatingPoint& p, int group = 0) const;
   double rth_k_per_w(int group = 0) const { return groups_[group].rth_k_per_w; }
+
+  // The heaviest vehicle (kg) that can meet min_thrust_to_weight: the lift rotors' thrust at
+  // full throttle from the full-charge OCV with no sag over g*min_thrust_to_weight (an upper
+  // bound of the thrust at every state of charge, capacity and stretch; the .cc proves it);
+  // +inf when the mission does not check it or no bound can be given. Solve's search exits use it.
+  double ThrustToWeightMassCeilingKg() const;
 
   double fixed_mass_kg() const { return fixed_mass_kg_; }  // everything but the battery
   double BatteryMassKg(double capacity_ah) const;
@@ -293,7 +305,7 @@ class MissionEvaluator {
   // longest feasible stretch, the answer otherwise, is no worse).
   MissionResult WithEndurance(ContinuousVars vars,
                               double decide_cutoff = -std::numeric_limits<double>::infinity()) const;
-  MissionResult SolveContinuous(double cutoff_score, bool explain, bool decide) const;
+  MissionResult SolveContinuous(double cutoff_score, bool explain, bool decide, bool search) const;
   // A free continuous variable of SolveContinuous: the capacity (segment -1) or a cruise's
   // airspeed, searched over [lo, hi] as x in [0, 1].
   struct FreeVar {
@@ -304,7 +316,8 @@ class MissionEvaluator {
   ContinuousVars VarsAt(const std::vector<FreeVar>& free, const double* x) const;  // x: one per free var, or null
   MissionResult SolveOneFree(const std::vector<FreeVar>& free, double cutoff_score, bool explain, bool decide) const;
   MissionResult SolveManyFree(const std::vector<FreeVar>& free, double cutoff_score, bool explain, bool decide) const;
-  bool EarlyExit(double cutoff_score, bool explain, MissionResult* out) const;
+  bool EarlyExit(double cutoff_score, bool explain, bool search, MissionResult* out) const;
+  bool HoverOrWeightRefuses(bool with_weight, MissionResult* out) const;
   double StretchStartCurrent(const MissionResult& r) const;
   // An upper bound of the total mission time over the capacity range (max_endurance), tightened
   // until it falls below target_s or a budget of simulations is spent.
@@ -323,6 +336,8 @@ class MissionEvaluator {
     bool current_limited = false;  // held at the motor's or ESC's current rating below full throttle
   };
   bool FullThrottleAt(const BatteryPack& pack, double soc, FullThrottle* f) const;
+  // The same from a source of open-circuit voltage ocv_v behind r_pack_ohm.
+  bool FullThrottleFrom(double ocv_v, double r_pack_ohm, FullThrottle* f) const;
   // The hover of the whole vehicle (mass_kg) on the lift rotors at `soc` with sag.
   bool HoverAt(const BatteryPack& pack, double soc, double mass_kg, OperatingPoint* op,
                double* battery_current_a, double* shaft_w) const;

@@ -2005,7 +2005,7 @@ void BranchAndBound::Process(const Candidate& cand, TopScores top, Outcome* o) c
         local_prune("prop_above_data", static_cast<long long>(rated.size()));
         continue;
       }
-      const MissionResult vr = virtual_eval.Solve(threshold, false, true);
+      const MissionResult vr = virtual_eval.Solve(threshold, false, true, true);
       ++o->virtual_evals;
       if (vr.bounded_out || !vr.feasible || !(vr.score < threshold)) {
         local_prune(vr.bounded_out || vr.feasible ? "objective_bound" : "infeasible_bound",
@@ -2032,7 +2032,7 @@ void BranchAndBound::Process(const Candidate& cand, TopScores top, Outcome* o) c
         done.emplace_back(e, !FailsMinHoverThrottle(w));  // below: a heavier ESC may meet it
         continue;
       }
-      MissionResult r = eval.Solve(threshold, false);
+      MissionResult r = eval.Solve(threshold, false, false, true);
       if (r.bounded_out) {
         local_prune("objective_bound", 1);
         done.emplace_back(e, true);

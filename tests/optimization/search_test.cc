@@ -14,6 +14,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 
 #include "catalog/catalog.h"
 #include "cli_runner.h"
@@ -557,6 +558,82 @@ TEST_F(SearchTest, HoverThrottleExitOnlyRefusesInfeasibleCombinations) {
     });
     EXPECT_GE(refused, 1) << "capacity range " << capacity_range;
   }
+}
+
+// Solve's search flag: without a finite cutoff (the search before its top N is full) the exits
+// that end in an infeasible result still run. The answer's feasibility and a feasible answer's
+// score are the full solve's; some combinations must be decided by an exit (fewer segments than
+// the full solve's answer: a screened run or no run), with and without a capacity range.
+TEST_F(SearchTest, SearchSolvesWithoutACutoffScreenOnlyInfeasibleCombinations) {
+  const Catalog cat = Catalog::Load((dir_ / "catalog").string());
+  for (const bool capacity_range : {false, true}) {
+    Json j = ParseJsonText(kQuad, "quad");
+    if (capacity_range) j["battery"]["capacity_ah"] = {2.0, 6.0};
+    j["constraints"]["min_hover_throttle"] = 0.35;
+    const Mission m = ParseMission(j, "quad");
+    int screened = 0, feasible = 0;
+    ForEachCombination(cat, [&](const Combination& c) {
+      const MissionEvaluator ev(m, c);
+      const MissionResult cut = ev.Solve(std::numeric_limits<double>::infinity(), false, false, true);
+      const MissionResult full = ev.Solve(std::numeric_limits<double>::infinity(), false);
+      ASSERT_EQ(cut.feasible, full.feasible) << Name(c);
+      if (full.feasible) {
+        EXPECT_EQ(cut.score, full.score) << Name(c);
+        ++feasible;
+      }
+      if (cut.segments.size() < full.segments.size()) ++screened;  // an exit's shorter answer
+    });
+    EXPECT_GE(feasible, 1) << "capacity range " << capacity_range;
+    EXPECT_GE(screened, 10) << "capacity range " << capacity_range;
+  }
+}
+
+// The thrust-to-weight ceiling (MissionEvaluator::ThrustToWeightMassCeilingKg) is an upper
+// bound: every solved combination, at capacities across a range, has a full-throttle thrust
+// (thrust_to_weight x weight) at or below the ceiling's. And the exit built on it with the hover
+// throttle (EarlyExit, HoverOrWeightRefuses: below min_hover_throttle up to C_h, too heavy above
+// it) only refuses combinations whose full solve is infeasible; with limits set so that both
+// bind, it must refuse some with C_h inside the range (else the test would not exercise it).
+TEST_F(SearchTest, ThrustToWeightCeilingBoundsEveryRunAndItsExitOnlyRefusesInfeasible) {
+  const Catalog cat = Catalog::Load((dir_ / "catalog").string());
+  int bounded = 0, tight = 0, refused = 0, inside = 0;
+  // (min_hover_throttle, min_thrust_to_weight): pairs where the hover throttle passes only with
+  // the larger packs and the thrust-to-weight only with the smaller ones (2-4 refusals each below
+  // the top; 34-68 of the 336 combinations feasible).
+  for (const auto& [hover, tw] : {std::pair{0.30, 2.0}, std::pair{0.30, 2.4}, std::pair{0.35, 2.4}}) {
+  Json j = ParseJsonText(kQuad, "quad");
+  j["battery"]["capacity_ah"] = {2.0, 6.0};
+  j["constraints"]["min_hover_throttle"] = hover;
+  j["constraints"]["min_thrust_to_weight"] = tw;
+  const Mission m = ParseMission(j, "quad");
+  ForEachCombination(cat, [&](const Combination& c) {
+    const MissionEvaluator ev(m, c);
+    const double ceiling_kg = ev.ThrustToWeightMassCeilingKg();
+    for (const double capacity_ah : {2.0, 4.0, 6.0}) {
+      ContinuousVars v;
+      v.capacity_ah = capacity_ah;
+      const MissionResult r = ev.Simulate(v);
+      if (!(r.thrust_to_weight > 0)) continue;
+      // thrust_to_weight = N*T/(m*g) and the ceiling N*T_ub*(1 + 1e-6)/(g*limit).
+      const double thrust_kg = r.thrust_to_weight * r.total_mass_kg;
+      EXPECT_LE(thrust_kg, ceiling_kg * tw) << Name(c) << " at " << capacity_ah << " Ah";
+      ++bounded;
+      if (thrust_kg > 0.9 * ceiling_kg * tw) ++tight;  // the sag is a few per cent
+    }
+    const MissionResult cut = ev.Solve(std::numeric_limits<double>::infinity(), false, false, true);
+    if (cut.feasible || !cut.segments.empty() || cut.violations.size() != 1) return;  // not an exit
+    const std::string& why = cut.violations[0].constraint;
+    if (why != "min_hover_throttle" && why != "min_thrust_to_weight") return;
+    ++refused;
+    if (why == "min_hover_throttle" && cut.capacity_ah < 6.0) ++inside;
+    const MissionResult full = ev.Solve();
+    EXPECT_FALSE(full.feasible) << Name(c) << " refused for " << why << " (" << hover << ", " << tw << ")";
+  });
+  }
+  EXPECT_GE(bounded, 20);
+  EXPECT_GT(tight, 0) << "the ceiling should be within 10 % of some full-throttle thrust";
+  EXPECT_GE(refused, 1);
+  EXPECT_GE(inside, 1) << "no refusal through the hover throttle below the range's top";
 }
 
 // The other side of the early exits (EnduranceUpperBound with its throttle floor, the bound
