@@ -914,7 +914,7 @@ long long SolveAgainstCompletions(const Mission& sub, const Catalog& cat, int ou
     c.groups[static_cast<std::size_t>(outer)].esc = &cat.escs()[static_cast<std::size_t>(e)];
     const PropModel* model = cache.models[static_cast<std::size_t>(c.prop - cat.props().data())].get();
     const MissionEvaluator eval(sub, c, model, &group_models);
-    MissionResult res = eval.Solve(cutoff, false);
+    MissionResult res = eval.Solve(cutoff, false, false, true);  // search: the infeasibility exits too
     ++solved;
     if (res.bounded_out) continue;
     ++out->searched;
