@@ -600,7 +600,9 @@ TEST_F(SearchTest, ThrustToWeightCeilingBoundsEveryRunAndItsExitOnlyRefusesInfea
   // (min_hover_throttle, min_thrust_to_weight): pairs where the hover throttle passes only with
   // the larger packs and the thrust-to-weight only with the smaller ones (2-4 refusals each below
   // the top; 34-68 of the 336 combinations feasible).
-  for (const auto& [hover, tw] : {std::pair{0.30, 2.0}, std::pair{0.30, 2.4}, std::pair{0.35, 2.4}}) {
+  for (const auto& limits : {std::pair{0.30, 2.0}, std::pair{0.30, 2.4}, std::pair{0.35, 2.4}}) {
+  // Plain copies: a lambda may not capture a structured binding (C++17; clang refuses it).
+  const double hover = limits.first, tw = limits.second;
   Json j = ParseJsonText(kQuad, "quad");
   j["battery"]["capacity_ah"] = {2.0, 6.0};
   j["constraints"]["min_hover_throttle"] = hover;

@@ -94,7 +94,7 @@ TEST(SweepParseTest, BadSpecsAreUsageErrorsNamingTheRule) {
       {"[2].a=1", "not a JSON path"},
   };
   for (const auto& [spec, rule] : cases) {
-    const std::string m = UsageMessage([&] { ParseVary(spec); });
+    const std::string m = UsageMessage([&s = spec] { ParseVary(s); });  // a binding is not capturable (C++17)
     EXPECT_NE(m.find(rule), std::string::npos) << spec << " -> " << m;
     EXPECT_EQ(m.find('\n'), std::string::npos) << m;
   }
@@ -155,7 +155,7 @@ TEST(SweepPathTest, BadKeysAreUsageErrorsNamingKeyAndRule) {
       {"segments[1].duration_s=100", {"exactly one of duration_s and distance_m"}},
   };
   for (const auto& [spec, parts] : cases) {
-    const std::string m = UsageMessage([&] { CheckKeys(Quad(), "quad.json", {ParseVary(spec)}); });
+    const std::string m = UsageMessage([&s = spec] { CheckKeys(Quad(), "quad.json", {ParseVary(s)}); });
     for (const std::string& p : parts) EXPECT_NE(m.find(p), std::string::npos) << spec << " -> " << m;
     EXPECT_EQ(m.find('\n'), std::string::npos) << m;
   }
