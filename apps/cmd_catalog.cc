@@ -31,15 +31,6 @@ std::string Cell(std::optional<double> v, double scale, int prec) {
   return s.str();
 }
 
-template <typename Entry>
-std::vector<const Entry*> Select(const std::vector<Entry>& entries, const CatalogListOptions& o) {
-  std::vector<const Entry*> out;
-  for (const auto& e : entries) {
-    if (api::PassesListFilters(ListRequest(o), e.json)) out.push_back(&e);
-  }
-  return out;
-}
-
 std::string Clip(const std::string& s, std::size_t n) {
   return s.size() <= n ? s : s.substr(0, n - 1) + "~";
 }
@@ -50,10 +41,10 @@ int RunCatalogList(const CatalogListOptions& o) {
   api::CheckCatalogListRequest(ListRequest(o));
   const Catalog cat = Catalog::Load(o.catalog);
   const bool all = o.kind.empty();
-  const auto motors = Select(cat.motors(), o);
-  const auto escs = Select(cat.escs(), o);
-  const auto props = Select(cat.props(), o);
-  const auto batteries = Select(cat.batteries(), o);
+  const auto motors = api::SelectForList(cat.motors(), ListRequest(o));
+  const auto escs = api::SelectForList(cat.escs(), ListRequest(o));
+  const auto props = api::SelectForList(cat.props(), ListRequest(o));
+  const auto batteries = api::SelectForList(cat.batteries(), ListRequest(o));
   const bool motor_filter = o.kv_min || o.kv_max;
   if (o.json) {
     std::cout << DumpJson(api::CatalogListJson(cat, ListRequest(o)));

@@ -19,15 +19,6 @@ std::optional<double> Number(const Json& e, const char* key) {
   return it->get<double>();
 }
 
-template <typename Entry>
-std::vector<const Entry*> Select(const std::vector<Entry>& entries, const CatalogListRequest& o) {
-  std::vector<const Entry*> out;
-  for (const auto& e : entries) {
-    if (PassesListFilters(o, e.json)) out.push_back(&e);
-  }
-  return out;
-}
-
 }  // namespace
 
 bool PassesListFilters(const CatalogListRequest& o, const Json& e) {
@@ -63,10 +54,10 @@ void CheckCatalogListRequest(const CatalogListRequest& o) {
 
 Json CatalogListJson(const Catalog& cat, const CatalogListRequest& o) {
   const bool all = o.kind.empty();
-  const auto motors = Select(cat.motors(), o);
-  const auto escs = Select(cat.escs(), o);
-  const auto props = Select(cat.props(), o);
-  const auto batteries = Select(cat.batteries(), o);
+  const auto motors = SelectForList(cat.motors(), o);
+  const auto escs = SelectForList(cat.escs(), o);
+  const auto props = SelectForList(cat.props(), o);
+  const auto batteries = SelectForList(cat.batteries(), o);
   const bool motor_filter = o.kv_min || o.kv_max;
   Json j;
   auto put = [&](const char* kind, const auto& entries) {

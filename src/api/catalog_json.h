@@ -4,6 +4,7 @@
 
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "catalog/catalog.h"
 #include "common/json_file.h"
@@ -21,6 +22,17 @@ struct CatalogListRequest {
 // range, or Kv filters on another kind.
 void CheckCatalogListRequest(const CatalogListRequest& o);
 bool PassesListFilters(const CatalogListRequest& o, const Json& entry);
+
+// The entries of one kind that pass the filters, in catalog order (the JSON list and the CLI's
+// text table both read them).
+template <typename Entry>
+std::vector<const Entry*> SelectForList(const std::vector<Entry>& entries, const CatalogListRequest& o) {
+  std::vector<const Entry*> out;
+  for (const auto& e : entries) {
+    if (PassesListFilters(o, e.json)) out.push_back(&e);
+  }
+  return out;
+}
 
 // {kind: [entries as catalog JSON objects]} (catalog list --json).
 Json CatalogListJson(const Catalog& cat, const CatalogListRequest& o);
