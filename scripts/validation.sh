@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Regenerates docs/validation.md: (1) DriveCalc refit and its leave-one-out errors, (2) the status
-# contract of `dynosize calibrate` (issue 12) on every real log in ../shared/data that names its
+# contract of `dynosize calibrate` on every real log in ../shared/data that names its
 # motor's Kv: status, fitted Kv against the label, the first failed check, held-out errors and
 # whether --out wrote the entry, (3) the sjkim even/odd goal through `simulate`, then (4) the
 # "Diagnosis" section (scripts/validation_diagnosis.sh). Deterministic: the same build and data
@@ -16,7 +16,7 @@ trap 'rm -rf "$tmp"' EXIT
 command -v jq >/dev/null || { echo "validation.sh needs jq" >&2; exit 69; }
 
 pct() { jq -r "$1 | if . == null then \"-\" else (. * 100 | round / 100 | tostring) end" "$2"; }
-# From a `calibrate --json` result: the fitted Kv in rpm per DC volt (model.md section 8), the
+# From a `calibrate --json` result: the fitted Kv in rpm per DC volt (docs/model.md section 8), the
 # first failed check with its value and limit, the held-out speed error.
 kv_fit() { jq -r '.motor.ke_v_s_per_rad as $k | 0.67523723711782957 / ($k * 0.10471975511965977) | round' "$@"; }
 first_failed() { jq -r '[.checks[] | select(.passed | not)][0] | if . == null then "-" else "\(.name) (\(.value * 100 | round / 100) vs \(.limit))" end' "$@"; }
@@ -119,7 +119,7 @@ while IFS=, read -r motor prop; do
     --map idc_a=current_A --map rpm=rpm
 done < "$tmp/ctu_sets"
 
-# The stand data sets added for issue 12.
+# The stand data sets with a Kv label.
 for f in "$data"/elodin_2300kv_6x3_4s/*.csv; do row elodin "$(basename "$f")" 2300 "$f"; done
 for f in "$data"/tytodb_tmotor16x54_9motors/*.csv; do
   b=$(basename "$f" .csv)
