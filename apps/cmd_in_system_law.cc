@@ -113,9 +113,6 @@ int RunInSystemLaw(const InSystemLawOptions& o) {
   if (o.constants) {
     PrintLawConstants("kManufacturerStatedLaw", chosen.law);
     PrintLawConstants("kUserContributedLaw", dc_law);
-    std::printf("constexpr ThrottleOffsetPrior kKdeEscPrior{%.4g, %.4g, %.4g, %d, ...};\n",
-                chosen.throttle.deadband_p10, chosen.throttle.deadband_p50, chosen.throttle.deadband_p90,
-                chosen.throttle.motors);
     return 0;
   }
   std::cout << "## KDE Direct stand sheets: the law by leaving each motor out\n\n"

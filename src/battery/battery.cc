@@ -59,8 +59,6 @@ double CellOcvV(BatteryChemistry chemistry, double soc) {
   return t[static_cast<std::size_t>(i)] * (1 - f) + t[static_cast<std::size_t>(i + 1)] * f;
 }
 
-double CellFullV(BatteryChemistry chemistry) { return Table(chemistry).back(); }
-
 double CellDefaultCutoffV(BatteryChemistry chemistry) {
   switch (chemistry) {
     case BatteryChemistry::kLiPo: return 3.0;

@@ -83,8 +83,6 @@ const InSystemLaw& DriveCalcDatabaseLaw();
 bool IsKdeDirectName(const std::string& name);
 // An entry of DriveCalc's database (source.dataset "DriveCalc DB", catalog/drivecalc.json).
 bool IsDriveCalcDatabaseEntry(const EntryBase& entry);
-// The KDE sheets' ESC (KDE-UAS125UVC): the prior used to check those sheets forward.
-const ThrottleOffsetPrior& KdeEscThrottleOffsetPrior();
 
 // The datasheet values the law starts from (datasheet units at this edge are the catalog's:
 // Kv in rpm/V).

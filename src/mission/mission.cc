@@ -21,8 +21,6 @@ const char* SegmentTypeName(SegmentType type) {
   return "?";
 }
 
-const char* LiftToDragOfName(LiftToDragOf of) { return of == LiftToDragOf::kWing ? "wing" : "aircraft"; }
-
 const char* ObjectiveTypeName(ObjectiveType type) {
   switch (type) {
     case ObjectiveType::kMaxEndurance: return "max_endurance";

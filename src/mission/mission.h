@@ -24,7 +24,6 @@ const char* SegmentTypeName(SegmentType type);
 //    the idle groups (idle_drag_area_m2) are added.
 //  - kWing ("wing"): the wing alone; the body's drag_area_m2 is added as well.
 enum class LiftToDragOf { kAircraft, kWing };
-const char* LiftToDragOfName(LiftToDragOf of);
 
 // A closed interval; lo == hi for a fixed value.
 struct Range {
