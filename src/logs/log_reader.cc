@@ -6,7 +6,9 @@
 #include <sstream>
 
 #include "common/error.h"
+#include "common/numbers.h"
 #include "common/units.h"
+#include "common/text_format.h"
 #include "logs/csv_scan.h"
 #include "logs/header_synonyms.h"
 #include "logs/log_units.h"
@@ -16,7 +18,6 @@ namespace dynosize::logs {
 
 namespace {
 
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 // Throttle computed from a pulse width may exceed 0..1 by rounding only.
 constexpr double kThrottleRoundingSlack = 1e-9;
 // Largest magnitude of a value in SI units (after unit conversion). Far beyond any measurement
@@ -1369,44 +1370,42 @@ void NoteAbsentColumns(const Header& h, const Plan& plan, const LogReadOptions& 
 
 }  // namespace
 
-std::string LogReadOptions::Validate() const {
-  auto num = [](double v) {
-    std::ostringstream s;
-    s << v;
-    return s.str();
+bool LogReadOptions::IsValid(std::string* error) const {
+  auto fail = [&](const std::string& why) {
+    if (error) *error = why;
+    return false;
   };
   if (!(esc_max_us > esc_min_us) || !std::isfinite(esc_min_us) || !std::isfinite(esc_max_us)) {
-    return "--esc-min-us " + num(esc_min_us) + " --esc-max-us " + num(esc_max_us) +
-           ": need finite values with --esc-max-us > --esc-min-us";
+    return fail("--esc-min-us " + SignificantText(esc_min_us) + " --esc-max-us " + SignificantText(esc_max_us) +
+                ": need finite values with --esc-max-us > --esc-min-us");
   }
   if (esc_unitless_max != 0.0 || esc_unitless_min != 0.0) {
     if (!(esc_unitless_max > esc_unitless_min)) {
-      return "unitless ESC command range " + num(esc_unitless_min) + ".." +
-             num(esc_unitless_max) + " (LogReadOptions esc_unitless_min/max): need max > min";
+      return fail("unitless ESC command range " + SignificantText(esc_unitless_min) + ".." +
+                  SignificantText(esc_unitless_max) + " (LogReadOptions esc_unitless_min/max): need max > min");
     }
   }
   if (!column_map.empty() && format != LogFormat::kAuto && format != LogFormat::kMapped &&
       format != LogFormat::kRcbenchmark) {
-    return std::string("--map is given with --format ") + LogFormatName(format) +
-           ": a column map needs --format mapped, rcbenchmark (to add columns to the detected "
-           "ones) or auto";
+    return fail(std::string("--map is given with --format ") + LogFormatName(format) +
+                ": a column map needs --format mapped, rcbenchmark (to add columns to the detected "
+                "ones) or auto");
   }
   if (format == LogFormat::kMapped && column_map.empty()) {
-    return "--format mapped without --map: name each column, e.g. --map idc_a=Current";
+    return fail("--format mapped without --map: name each column, e.g. --map idc_a=Current");
   }
   for (const std::string& f : row_filter) {
     const std::size_t eq = f.find('=');
     if (eq == std::string::npos || Trim(std::string_view(f).substr(0, eq)).empty()) {
-      return "--where \"" + f + "\": expected Header=value, e.g. --where \"motor=T-Motor MN2206\"";
+      return fail("--where \"" + f + "\": expected Header=value, e.g. --where \"motor=T-Motor MN2206\"");
     }
   }
-  if (max_line_bytes < 64) return "LogReadOptions.max_line_bytes must be >= 64";
-  return plateau.Validate();
+  if (max_line_bytes < 64) return fail("LogReadOptions.max_line_bytes must be >= 64");
+  return plateau.IsValid(error);
 }
 
 SteadyTable ReadLog(const std::string& path, const LogReadOptions& options) {
-  const std::string bad = options.Validate();
-  if (!bad.empty()) throw UsageError(bad);
+  if (std::string why; !options.IsValid(&why)) throw UsageError(why);
   SteadyTable t;
   t.file = path;
   LineReader lr(path, options.max_line_bytes);

@@ -6,6 +6,7 @@
 #include <limits>
 #include <sstream>
 
+#include "common/numbers.h"
 #include "common/text_file.h"
 #include "common/text_format.h"
 #include "common/units.h"
@@ -46,8 +47,6 @@ std::string ObjectiveLabel(const Mission& m) {
 }
 
 namespace {
-
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 double Display(const Mission& m, double objective) { return DisplayObjective(m, objective); }
 

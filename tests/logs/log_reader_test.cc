@@ -236,7 +236,7 @@ TEST(RcbenchmarkLog, EscEndPointsAndUnitlessCommand) {
   o4.esc_unitless_max = 2000;
   const SteadyTable t4 = ReadLog(WriteTemp("rcb_unitless2.csv", u), o4);
   EXPECT_NEAR(t4.Get(Column::kThrottle)[0], 0.6, 1e-15);
-  EXPECT_EQ(LogReadOptions{}.Validate(), "");
+  EXPECT_TRUE(LogReadOptions{}.IsValid(nullptr));
   LogReadOptions bad;
   bad.esc_max_us = 900;
   EXPECT_THROW(ReadLog(WriteTemp("rcb_bad_opts.csv", s), bad), UsageError);
