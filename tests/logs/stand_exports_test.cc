@@ -1,4 +1,4 @@
-// The stand exports of issue 12 item 6, on small inline tables (values made up, shapes copied
+// The stand exports (RCbenchmark / Tyto), on small inline tables (values made up, shapes copied
 // from the files in shared/data): Tyto Flight Stand quoted exports, unitless ESC commands,
 // "ESC throttle (us)", trailer rows under --drop-incomplete-rows, --decimal-comma, --where, and
 // tables without torque. The real files are read in real_files_test.cc.
