@@ -40,9 +40,7 @@ using fit::MedianAbs;
 std::string HeldOutBesideDc(const calibration::CrossValidation& cv, bool label) {
   auto med = [](const std::vector<double>& e) {
     const double m = MedianAbs(e);
-    std::ostringstream o;
-    o << std::fixed << std::setprecision(2) << m << " %";
-    return std::isfinite(m) ? o.str() : std::string("-");
+    return std::isfinite(m) ? FixedText(m, 2) + " %" : std::string("-");
   };
   const bool torque = !cv.omega_error_percent.empty();
   std::string s = "held out (" + std::to_string(cv.folds) + " folds), dynosize / plain DC model (" +
