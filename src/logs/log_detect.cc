@@ -8,6 +8,7 @@
 
 #include "common/error.h"
 #include "logs/csv_scan.h"
+#include "logs/log_reader.h"
 #include "logs/header_synonyms.h"
 #include "logs/log_units.h"
 #include "logs/thrustapp.h"

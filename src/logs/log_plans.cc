@@ -11,6 +11,7 @@
 
 #include "common/error.h"
 #include "logs/csv_scan.h"
+#include "logs/log_reader.h"
 #include "logs/header_synonyms.h"
 #include "logs/log_units.h"
 #include "logs/thrustapp.h"
@@ -117,7 +118,7 @@ bool IsExportName(const std::string& cell) {
 }
 
 // Optical speed before electrical: the electrical probe reads spurious values at low
-// throttle (ecosystem-notes.md), the optical one is used whenever it saw anything.
+// throttle, the optical one is used whenever it saw anything.
 void SortByRank(std::vector<Slot>* slots, const std::vector<int>& rank) {
   std::vector<std::size_t> order(slots->size());
   for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;

@@ -9,8 +9,13 @@
 #include <vector>
 
 #include "logs/header_synonyms.h"
-#include "logs/log_reader.h"
 #include "logs/log_units.h"
+#include "logs/plateau.h"
+#include "logs/steady_table.h"
+
+namespace dynosize::logs {
+struct LogReadOptions;  // log_reader.h: its module includes this header, so this header may not include it
+}  // namespace dynosize::logs
 
 namespace dynosize::logs::read_internal {
 

@@ -12,6 +12,7 @@
 #include "common/error.h"
 #include "common/numbers.h"
 #include "logs/csv_scan.h"
+#include "logs/log_reader.h"
 #include "logs/log_units.h"
 #include "logs/thrustapp.h"
 

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "common/error.h"
+#include "logs/log_reader.h"
 #include "logs/plateau.h"
 
 namespace dynosize::logs::read_internal {

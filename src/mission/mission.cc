@@ -30,6 +30,24 @@ const char* ObjectiveTypeName(ObjectiveType type) {
   return "?";
 }
 
+double DisplayObjective(const Mission& m, double objective) {
+  switch (m.objective.type) {
+    case ObjectiveType::kMaxEndurance: return objective / 60.0;
+    case ObjectiveType::kMinEnergy: return objective;
+    case ObjectiveType::kMaxEfficiency: return 100.0 * objective;
+  }
+  return objective;
+}
+
+const char* DisplayUnit(const Mission& m) {
+  switch (m.objective.type) {
+    case ObjectiveType::kMaxEndurance: return " min";
+    case ObjectiveType::kMinEnergy: return " Wh";
+    case ObjectiveType::kMaxEfficiency: return " %";
+  }
+  return "";
+}
+
 namespace {
 
 std::string ValueText(const Json& v) {
@@ -146,7 +164,6 @@ class Reader {
   std::string path_;
 };
 
-constexpr double kInf = std::numeric_limits<double>::infinity();
 
 Segment ReadSegment(const Reader& r, const std::string& path) {
   Segment s;

@@ -177,4 +177,9 @@ Mission ReadMission(const std::string& path);
 // Same for a parsed document; `name` is used in messages.
 Mission ParseMission(const Json& doc, const std::string& name);
 
+// The objective in the unit reports print it in (minutes, Wh, %), and that unit (" min", " Wh",
+// " %").
+double DisplayObjective(const Mission& mission, double objective);
+const char* DisplayUnit(const Mission& mission);
+
 }  // namespace dynosize

@@ -15,7 +15,6 @@
 #include "common/numbers.h"
 #include "mission/mission.h"
 #include "optimization/search.h"
-#include "report/mission_report.h"
 
 namespace dynosize::study {
 
