@@ -164,7 +164,6 @@ class Reader {
   std::string path_;
 };
 
-
 Segment ReadSegment(const Reader& r, const std::string& path) {
   Segment s;
   s.name = r.String("name", std::nullopt);
