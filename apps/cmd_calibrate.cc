@@ -21,6 +21,7 @@
 #include "common/error.h"
 #include "common/json_file.h"
 #include "common/text_file.h"
+#include "common/text_format.h"
 #include "logs/log_reader.h"
 #include "report/calibration_figures.h"
 
@@ -34,23 +35,12 @@ using calibration::CalibrationResult;
 using fit::Median;
 using fit::MedianAbs;
 
-
-// A percentage for the text report: "-" when there is none (never "nan").
-std::string PercentText(double v) {
-  if (!std::isfinite(v)) return "-";
-  std::ostringstream s;
-  s << std::setprecision(3) << v;
-  return s.str();
-}
-
 // One line: the held-out median |error| of the fitted model and of the plain DC model fitted on
 // the same training rows (identification/dc_fit.h), the baseline to beat.
 std::string HeldOutBesideDc(const calibration::CrossValidation& cv, bool label) {
   auto med = [](const std::vector<double>& e) {
     const double m = MedianAbs(e);
-    std::ostringstream o;
-    o << std::fixed << std::setprecision(2) << m << " %";
-    return std::isfinite(m) ? o.str() : std::string("-");
+    return std::isfinite(m) ? FixedText(m, 2) + " %" : std::string("-");
   };
   const bool torque = !cv.omega_error_percent.empty();
   std::string s = "held out (" + std::to_string(cv.folds) + " folds), dynosize / plain DC model (" +
@@ -159,10 +149,10 @@ int RunDriveCalcAll(const CalibrateOptions& o) {
     std::cout << DumpJson(j);
   } else {
     std::cout << "refitted " << all.fits.size() << " of " << all.motors_seen << " DriveCalc motors ("
-              << all.motors_too_few_points << " with too few points, " << all.failures.size()
-              << " failed); " << motors.size() << " with status ok written -> " << out << "\n"
-              << "median rmse: idc " << PercentText(Median(rmse_idc)) << " %, no-load speed "
-              << PercentText(Median(rmse_w)) << " %\n";
+              << all.motors_too_few_points << " with too few points, " << all.failures.size() << " failed); "
+              << motors.size() << " with status ok written -> " << out << "\n"
+              << "median rmse: idc " << SignificantTextOr(Median(rmse_idc), "-", 3) << " %, no-load speed "
+              << SignificantTextOr(Median(rmse_w), "-", 3) << " %\n";
     if (o.loo) std::cout << "leave-one-out: " << loo.dump() << "\n";
   }
   return 0;

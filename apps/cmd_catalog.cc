@@ -14,6 +14,7 @@
 #include "commands.h"
 #include "common/error.h"
 #include "common/json_pretty.h"
+#include "common/text_format.h"
 #include "common/units.h"
 
 namespace dynosize::cli {
@@ -24,12 +25,8 @@ api::CatalogListRequest ListRequest(const CatalogListOptions& o) {
   return {o.kind, o.kv_min, o.kv_max, o.mass_max_kg, o.current_min_a};
 }
 
-std::string Cell(std::optional<double> v, double scale, int prec) {
-  if (!v) return "-";
-  std::ostringstream s;
-  s << std::fixed << std::setprecision(prec) << *v * scale;
-  return s.str();
-}
+// A table cell: the value times `scale` with `prec` decimals, "-" when there is none.
+std::string Cell(std::optional<double> v, double scale, int prec) { return v ? FixedText(*v * scale, prec) : "-"; }
 
 std::string Clip(const std::string& s, std::size_t n) {
   return s.size() <= n ? s : s.substr(0, n - 1) + "~";

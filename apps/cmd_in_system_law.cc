@@ -21,12 +21,6 @@ namespace dynosize::cli {
 
 namespace {
 
-std::string Pct(double x) {
-  char b[32];
-  std::snprintf(b, sizeof b, "%.1f %%", 100.0 * x);
-  return b;
-}
-
 // The sheets with measured torque; *without (optional) names the others.
 std::vector<stand::LawMotor> KdeLawMotors(const std::string& dir, std::vector<std::string>* without = nullptr) {
   std::vector<stand::LawMotor> out;
@@ -74,15 +68,16 @@ void PrintMotorTable(const stand::LawReport& r, const Catalog& raw) {
                "in-system law: IDC error / bias | p10-p90 coverage | rpm forward (offset prior) | "
                "own R, Io over the law |\n|---|---|---|---|---|---|---|---|---|\n";
   for (const auto& c : r.left_out) {
-    std::cout << "| " << c.name << " | " << CatalogIdsOf(raw, c.name) << " | " << c.points << " | " << c.sweeps
-              << " | " << Pct(c.datasheet_error) << " / " << Pct(c.datasheet_bias) << " | " << Pct(c.law_error)
-              << " / " << Pct(c.law_bias) << " | " << Pct(c.coverage) << " | " << Pct(c.rpm_error_forward)
-              << " (dead band " << FixedText(c.deadband_prior, 3) << ") | x" << FixedText(c.own.r_ratio, 2) << ", x"
-              << FixedText(c.own.io_ratio, 2) << " |\n";
+    std::cout << "| " << c.name << " | " << CatalogIdsOf(raw, c.name) << " | " << c.points << " | " << c.sweeps << " | "
+              << PercentText(c.datasheet_error) << " / " << PercentText(c.datasheet_bias) << " | "
+              << PercentText(c.law_error) << " / " << PercentText(c.law_bias) << " | " << PercentText(c.coverage)
+              << " | " << PercentText(c.rpm_error_forward) << " (dead band " << FixedText(c.deadband_prior, 3)
+              << ") | x" << FixedText(c.own.r_ratio, 2) << ", x" << FixedText(c.own.io_ratio, 2) << " |\n";
   }
-  std::cout << "| **all** | | " << r.points << " | " << r.sweeps << " | **" << Pct(r.datasheet_error) << " / "
-            << Pct(r.datasheet_bias) << "** | **" << Pct(r.law_error) << " / " << Pct(r.law_bias) << "** | **"
-            << Pct(r.coverage) << "** | **" << Pct(r.rpm_error_forward) << "** | |\n\n";
+  std::cout << "| **all** | | " << r.points << " | " << r.sweeps << " | **" << PercentText(r.datasheet_error) << " / "
+            << PercentText(r.datasheet_bias) << "** | **" << PercentText(r.law_error) << " / "
+            << PercentText(r.law_bias) << "** | **" << PercentText(r.coverage) << "** | **"
+            << PercentText(r.rpm_error_forward) << "** | |\n\n";
 }
 
 }  // namespace
@@ -113,9 +108,6 @@ int RunInSystemLaw(const InSystemLawOptions& o) {
   if (o.constants) {
     PrintLawConstants("kManufacturerStatedLaw", chosen.law);
     PrintLawConstants("kUserContributedLaw", dc_law);
-    std::printf("constexpr ThrottleOffsetPrior kKdeEscPrior{%.4g, %.4g, %.4g, %d, ...};\n",
-                chosen.throttle.deadband_p10, chosen.throttle.deadband_p50, chosen.throttle.deadband_p90,
-                chosen.throttle.motors);
     return 0;
   }
   std::cout << "## KDE Direct stand sheets: the law by leaving each motor out\n\n"
@@ -130,8 +122,9 @@ int RunInSystemLaw(const InSystemLawOptions& o) {
                "command at the measured torque, with the dead band prior of the other motors.\n\n"
             << "| law form | fitted on all motors | IDC error | IDC bias | coverage | rpm forward |\n|---|---|---|---|---|---|\n";
   for (const auto& r : reports) {
-    std::cout << "| " << r.form.Describe() << " | " << LawText(r.law) << " | " << Pct(r.law_error) << " | "
-              << Pct(r.law_bias) << " | " << Pct(r.coverage) << " | " << Pct(r.rpm_error_forward) << " |\n";
+    std::cout << "| " << r.form.Describe() << " | " << LawText(r.law) << " | " << PercentText(r.law_error) << " | "
+              << PercentText(r.law_bias) << " | " << PercentText(r.coverage) << " | "
+              << PercentText(r.rpm_error_forward) << " |\n";
   }
   std::cout << "\nThe form with the smallest held-out current + speed error is the catalog's law for KDE Direct datasheets: **"
             << chosen.form.Describe() << "**.\n\n";
@@ -148,8 +141,10 @@ int RunInSystemLaw(const InSystemLawOptions& o) {
       {"datasheet as stated", InSystemLaw{}}, {"KDE law", chosen.law}, {"DriveCalc law", dc_law}};
   for (const auto& [label, l] : candidates) {
     const stand::RefitErrors e = stand::EvaluateOnRefits(makers, l);
-    std::cout << "| " << label << " | " << Pct(e.r_error) << " (" << Pct(e.r_bias) << ") | " << Pct(e.io_error) << " ("
-              << Pct(e.io_bias) << ") | " << (label == "datasheet as stated" ? std::string("-") : Pct(e.coverage_r) + ", " + Pct(e.coverage_io))
+    std::cout << "| " << label << " | " << PercentText(e.r_error) << " (" << PercentText(e.r_bias) << ") | "
+              << PercentText(e.io_error) << " (" << PercentText(e.io_bias) << ") | "
+              << (label == "datasheet as stated" ? std::string("-")
+                                                 : PercentText(e.coverage_r) + ", " + PercentText(e.coverage_io))
               << " |\n";
   }
   std::cout << "\nNeither law transfers to another maker: KDE's datasheets are KDE's convention (and KDE's set-up), "
@@ -160,10 +155,10 @@ int RunInSystemLaw(const InSystemLawOptions& o) {
             << dc_check.pairs << " motors (user_contributed) with R and Io in the database and a refit in "
             << "catalog/drivecalc_fitted.json (full-throttle points through an ESC and its wiring). Law: "
             << LawText(dc_law) << ". Held out (10 folds): median |R_pred/R_refit - 1| "
-            << Pct(dc_check.r_error_law) << " (bias " << Pct(dc_check.r_bias_law) << ") against "
-            << Pct(dc_check.r_error_datasheet) << " (bias " << Pct(dc_check.r_bias_datasheet)
-            << ") with the database R; p10-p90 coverage R " << Pct(dc_check.coverage_r) << ", Io "
-            << Pct(dc_check.coverage_io) << ".\n";
+            << PercentText(dc_check.r_error_law) << " (bias " << PercentText(dc_check.r_bias_law) << ") against "
+            << PercentText(dc_check.r_error_datasheet) << " (bias " << PercentText(dc_check.r_bias_datasheet)
+            << ") with the database R; p10-p90 coverage R " << PercentText(dc_check.coverage_r) << ", Io "
+            << PercentText(dc_check.coverage_io) << ".\n";
   return 0;
 }
 

@@ -13,6 +13,7 @@
 #include "commands.h"
 #include "common/error.h"
 #include "common/text_file.h"
+#include "common/text_format.h"
 #include "common/units.h"
 #include "io/points_csv.h"
 #include "model/sweep.h"
@@ -26,12 +27,6 @@
 namespace dynosize::cli {
 
 namespace {
-
-std::string FlagValue(double v) {
-  std::ostringstream s;
-  s << v;
-  return s.str();
-}
 
 void PrintPoint(const std::string& title, const OperatingPoint& p, const std::string& extra = "",
                 const std::vector<std::string>& extra_limits = {}) {
@@ -253,7 +248,7 @@ int RunSimulateProp(const SimulateOptions& o) {
     const auto rows = PropThrottleTable(drive, prop, req.vdc_v, o.rho_kg_m3);
     std::string figure;
     if (!o.plot_dir.empty()) {
-      figure = WriteThrottleTableFigure(rows, title + " at VDC = " + FlagValue(req.vdc_v) + " V", o.plot_dir);
+      figure = WriteThrottleTableFigure(rows, title + " at VDC = " + SignificantText(req.vdc_v) + " V", o.plot_dir);
     }
     if (o.json) {
       Json j;
@@ -322,8 +317,8 @@ int RunSimulate(const SimulateOptions& o) {
   if (o.vdc_v) {
     req.vdc_v = *o.vdc_v;
     if (!(req.vdc_v > 0.0 && req.vdc_v <= kMaxRequestVdcV)) {
-      throw UsageError("--vdc " + FlagValue(*o.vdc_v) + ": must be a finite number > 0 V and <= " +
-                       FlagValue(kMaxRequestVdcV) + " V");
+      throw UsageError("--vdc " + SignificantText(*o.vdc_v) +
+                       ": must be a finite number > 0 V and <= " + SignificantText(kMaxRequestVdcV) + " V");
     }
   }
   if (point_mode) {
@@ -335,24 +330,24 @@ int RunSimulate(const SimulateOptions& o) {
       if (!o.throttle) throw UsageError("--torque-law needs --throttle");
       for (double c : o.torque_law) {
         if (!(std::fabs(c) <= kMaxTorqueLawCoefficient)) {
-          throw UsageError("--torque-law " + FlagValue(c) + ": coefficients must be finite, at most " +
-                           FlagValue(kMaxTorqueLawCoefficient) + " in magnitude (SI)");
+          throw UsageError("--torque-law " + SignificantText(c) + ": coefficients must be finite, at most " +
+                           SignificantText(kMaxTorqueLawCoefficient) + " in magnitude (SI)");
         }
       }
       if (o.torque_law[2] < 0.0) throw UsageError("--torque-law: C must be >= 0 (a propeller's torque grows with speed)");
       req.torque_nm = 0.0;  // for the checks below: one load given (its coefficients are checked above)
     }
     if (o.throttle && !(*o.throttle >= 0.0 && *o.throttle <= 1.0)) {
-      throw UsageError("--throttle " + FlagValue(*o.throttle) +
+      throw UsageError("--throttle " + SignificantText(*o.throttle) +
                        ": must be between 0 and 1 (a fraction: 0.6 for 60 %)");
     }
     if (o.torque_nm && !(*o.torque_nm >= 0.0 && *o.torque_nm <= kMaxRequestTorqueNm)) {
-      throw UsageError("--torque " + FlagValue(*o.torque_nm) + ": must be a finite number >= 0 N*m and <= " +
-                       FlagValue(kMaxRequestTorqueNm) + " N*m");
+      throw UsageError("--torque " + SignificantText(*o.torque_nm) +
+                       ": must be a finite number >= 0 N*m and <= " + SignificantText(kMaxRequestTorqueNm) + " N*m");
     }
     if (o.rpm && !(*o.rpm >= 0.0 && *o.rpm <= kMaxRequestRpm)) {
-      throw UsageError("--rpm " + FlagValue(*o.rpm) + ": must be a finite number >= 0 and <= " +
-                       FlagValue(kMaxRequestRpm));
+      throw UsageError("--rpm " + SignificantText(*o.rpm) +
+                       ": must be a finite number >= 0 and <= " + SignificantText(kMaxRequestRpm));
     }
     if (!CheckPointRequest(req).empty()) {
       throw UsageError("give --throttle with one of --torque, --rpm, --torque-law (forward model), "

@@ -1,4 +1,4 @@
-// `dynosize sweep` (issue 25, item 4): a trade study, the mission over a grid of values.
+// `dynosize sweep`: a trade study, the mission over a grid of values.
 #include <unistd.h>
 
 #include <cstdio>

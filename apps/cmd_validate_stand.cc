@@ -11,6 +11,7 @@
 #include "commands.h"
 #include "common/error.h"
 #include "common/json_file.h"
+#include "common/text_format.h"
 #include "common/units.h"
 #include "logs/log_reader.h"
 #include "report/stand_figures.h"
@@ -43,12 +44,6 @@ void ParseLines(const std::string& text, stand::StandReadOptions* o) {
   }
 }
 
-std::string Pct(double v, int prec = 1) {
-  std::ostringstream o;
-  o << std::fixed << std::setprecision(prec) << v;
-  return o.str();
-}
-
 const char* ColumnLabel(const std::string& c) {
   if (c == "thrust_n") return "thrust";
   if (c == "idc_a") return "DC current";
@@ -74,11 +69,13 @@ void PrintSummary(const stand::StandTable& t, const stand::StandResult& r, const
     o << "    column              n   dynosize MAE %  (bias)   plain DC MAE %  (bias)   better\n";
     for (const stand::ColumnError& a : r.errors[mode][kDynosize]) {
       const stand::ColumnError* b = stand::FindError(r, mode, kPlainDc, a.column);
-      o << "    " << std::left << std::setw(18) << ColumnLabel(a.column) << std::right << std::setw(3)
-        << a.n << std::setw(17) << Pct(a.mae) << std::setw(8) << ("(" + Pct(a.bias) + ")");
+      o << "    " << std::left << std::setw(18) << ColumnLabel(a.column) << std::right << std::setw(3) << a.n
+        << std::setw(17) << FixedText(a.mae, 1) << std::setw(8) << ("(" + FixedText(a.bias, 1) + ")");
       if (b) {
-        o << std::setw(17) << Pct(b->mae) << std::setw(8) << ("(" + Pct(b->bias) + ")") << "   "
-          << (std::fabs(a.mae - b->mae) < 0.05 ? "same" : a.mae < b->mae ? "dynosize" : "plain DC");
+        o << std::setw(17) << FixedText(b->mae, 1) << std::setw(8) << ("(" + FixedText(b->bias, 1) + ")") << "   "
+          << (std::fabs(a.mae - b->mae) < 0.05 ? "same"
+              : a.mae < b->mae                 ? "dynosize"
+                                               : "plain DC");
       }
       o << "\n";
     }
@@ -187,13 +184,13 @@ int RunValidateStand(const ValidateStandOptions& o) {
   stand::StandReadOptions so;
   ParseLines(o.lines, &so);
   if (o.vdc_v && !(*o.vdc_v > 0.0 && *o.vdc_v <= 1e5)) {
-    throw UsageError("--vdc " + Pct(*o.vdc_v, 3) + ": must be a finite number > 0 V and <= 100000 V");
+    throw UsageError("--vdc " + FixedText(*o.vdc_v, 3) + ": must be a finite number > 0 V and <= 100000 V");
   }
   so.vdc_v = o.vdc_v;
   stand::StandOptions po;
   po.rho_kg_m3 = o.rho_kg_m3;
   if (!(po.rho_kg_m3 > 0.0 && po.rho_kg_m3 <= 100.0)) {
-    throw UsageError("--rho-kg-m3 " + Pct(po.rho_kg_m3, 4) + ": must be a finite number > 0 and <= 100");
+    throw UsageError("--rho-kg-m3 " + FixedText(po.rho_kg_m3, 4) + ": must be a finite number > 0 and <= 100");
   }
 
   const Catalog catalog = Catalog::Load(o.catalog);
@@ -237,10 +234,11 @@ int RunValidateStand(const ValidateStandOptions& o) {
   }
   CheckJsonFinite(ResultJson(table, result), "validate-stand result");  // numerical guard
   PrintSummary(table, result, title);
-  std::cout << "\n  plain DC model: label Kv " << Pct(dc.kv_rpm_per_v, 1) << " rpm/V, R = "
+  std::cout << "\n  plain DC model: label Kv " << FixedText(dc.kv_rpm_per_v, 1) << " rpm/V, R = "
             << (numbers == DcBaselineNumbers::kAsStored ? "rm_ohm + resc_ohm = " : "R_dc + RESC_dc = ")
-            << Pct(1000.0 * dc.r_ohm, 2) << " mOhm, Io " << (numbers == DcBaselineNumbers::kAsStored ? "io_a = " : "Io_dc = ")
-            << Pct(dc.io_a, 3) << " A (--baseline " << DcBaselineName(numbers)
+            << FixedText(1000.0 * dc.r_ohm, 2) << " mOhm, Io "
+            << (numbers == DcBaselineNumbers::kAsStored ? "io_a = " : "Io_dc = ") << FixedText(dc.io_a, 3)
+            << " A (--baseline " << DcBaselineName(numbers)
             << "): I = Io + Q/KT_dc, KT_dc = 60/(2*pi*Kv), U = n/Kv + R*I, IDC = U*I/VDC\n";
   if (o.ideal_esc) {
     std::cout << "  ESC: ideal in both models (--ideal-esc: no resistance, no saturation knee, eq 56)\n";

@@ -24,7 +24,7 @@ struct SimulateOptions {
   std::vector<double> torque_law;  // a, b, c of Q = a + b*omega + c*omega^2 (SI)
   std::string batch_csv, out_csv, plot_dir;
   bool json = false;
-  // A catalog propeller as the load (issue 13): with --throttle (forward), --rpm or --thrust-n
+  // A catalog propeller as the load: with --throttle (forward), --rpm or --thrust-n
   // (the throttle solved), or alone (the manufacturer-style table over throttle).
   std::string prop_id;
   std::optional<double> thrust_n;

@@ -381,14 +381,9 @@ void CheckSweepOptions(int top, int threads) {
   }
 }
 
-}  // namespace
-
-PYBIND11_MODULE(_dynosize, m) {
-  m.doc() = "dynosize: motor + ESC model, catalog, calibration and sizing (docs/python.md)";
-  m.attr("__version__") = DYNOSIZE_VERSION;
-
-  // Errors: bad input -> ValueError, a missing file -> FileNotFoundError, the rest -> dynosize.Error
-  // (a RuntimeError); the message is the CLI's (without its "dynosize: " prefix).
+// Errors: bad input -> ValueError, a missing file -> FileNotFoundError, the rest -> dynosize.Error
+// (a RuntimeError); the message is the CLI's (without its "dynosize: " prefix).
+void RegisterErrors(py::module_& m) {
   static py::exception<dynosize::Error> error(m, "Error", PyExc_RuntimeError);
   py::register_exception_translator([](std::exception_ptr p) {
     try {
@@ -405,7 +400,10 @@ PYBIND11_MODULE(_dynosize, m) {
       PyErr_SetString(PyExc_ValueError, e.what());
     }
   });
+}
 
+// dynosize.Catalog and the catalog folders.
+void BindCatalog(py::module_& m) {
   py::class_<PyCatalog>(m, "Catalog", "The component catalog, loaded once and passed as catalog=...")
       .def(py::init<std::optional<std::string>, std::vector<std::string>, bool>(), py::arg("path") = py::none(),
            py::arg("add") = std::vector<std::string>{}, py::arg("override") = false,
@@ -447,7 +445,10 @@ PYBIND11_MODULE(_dynosize, m) {
   m.def("bundled_catalog_dir", &dynosize::BundledCatalogDir, "The folder of the bundled catalog");
   m.def("_set_package_catalog_dir", &dynosize::SetPackageCatalogDir,
         "The installed package's catalog (set by the package's __init__ when installed)");
+}
 
+// The commands: simulate, evaluate, optimize, calibrate, diagnose.
+void BindCommands(py::module_& m) {
   m.def("simulate", &Simulate, py::kw_only(), py::arg("motor"), py::arg("esc"), py::arg("vdc_v") = py::none(),
         py::arg("throttle") = py::none(), py::arg("torque_nm") = py::none(), py::arg("rpm") = py::none(),
         py::arg("prop") = "", py::arg("thrust_n") = py::none(), py::arg("catalog") = nullptr,
@@ -520,7 +521,10 @@ PYBIND11_MODULE(_dynosize, m) {
       py::arg("decimal_comma") = false, py::arg("where") = std::vector<std::string>{}, py::arg("esc_min_us") = 1000.0,
       py::arg("esc_max_us") = 2000.0, py::arg("folds") = 5, py::arg("alpha") = 1e-3, py::arg("kv_label") = py::none(),
       py::arg("catalog") = nullptr, "What the model gets wrong in a measured log: the dict of diagnose --json");
-  // The trade study (python/dynosize/__init__.py sweep: local, or one task per point on a dask cluster).
+}
+
+// The trade study (python/dynosize/__init__.py sweep: local, or one task per point on a dask cluster).
+void BindSweep(py::module_& m) {
   m.def("_sweep_plan", &SweepPlanOf, py::arg("mission"), py::arg("grid"), py::arg("yes") = false,
         "The sweep's plan (mission, keys, grid size), checked as the CLI checks --vary");
   m.def(
@@ -541,4 +545,16 @@ PYBIND11_MODULE(_dynosize, m) {
       py::arg("catalog") = nullptr, "Every grid point on this machine: the dict of sweep --json");
   m.def("_sweep_document", &SweepDocumentOf, py::arg("plan"), py::arg("rows"), py::arg("seconds"),
         "The dict of sweep --json from rows gathered in grid order");
+}
+
+}  // namespace
+
+PYBIND11_MODULE(_dynosize, m) {
+  m.doc() = "dynosize: motor + ESC model, catalog, calibration and sizing (docs/python.md)";
+  m.attr("__version__") = DYNOSIZE_VERSION;
+
+  RegisterErrors(m);
+  BindCatalog(m);
+  BindCommands(m);
+  BindSweep(m);
 }

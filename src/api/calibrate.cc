@@ -79,7 +79,7 @@ CalibrationLogs ReadCalibrationLogs(const CalibrateRequest& o) {
   logs::LogReadOptions ro = ToLogReadOptions(o.input);
   ro.drivecalc_motor_id = o.drivecalc_motor;
   ro.drivecalc_keep_no_load_without_speed = true;
-  if (const std::string e = ro.Validate(); !e.empty()) throw UsageError(e);
+  if (std::string why; !ro.IsValid(&why)) throw UsageError(why);
   CalibrationLogs in;
   for (const auto& l : o.logs) in.tables.push_back(logs::ReadLog(l, ro));
   // A log without a throttle column says so first, before any fit advice.

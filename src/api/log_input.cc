@@ -14,7 +14,7 @@ logs::LogReadOptions ToLogReadOptions(const LogInputOptions& in) {
   ro.row_filter = in.where;
   ro.esc_min_us = in.esc_min_us;
   ro.esc_max_us = in.esc_max_us;
-  if (const std::string e = ro.Validate(); !e.empty()) throw UsageError(e);
+  if (std::string why; !ro.IsValid(&why)) throw UsageError(why);
   return ro;
 }
 

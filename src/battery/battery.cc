@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "common/error.h"
+#include "common/text_format.h"
 #include "common/units.h"
 
 namespace dynosize {
@@ -42,13 +43,6 @@ const OcvTable& Table(BatteryChemistry c) {
   return kLiPo;
 }
 
-std::string Num(double x) {
-  std::ostringstream o;
-  o.precision(6);
-  o << x;
-  return o.str();
-}
-
 }  // namespace
 
 double CellOcvV(BatteryChemistry chemistry, double soc) {
@@ -58,8 +52,6 @@ double CellOcvV(BatteryChemistry chemistry, double soc) {
   const double f = s - i;
   return t[static_cast<std::size_t>(i)] * (1 - f) + t[static_cast<std::size_t>(i + 1)] * f;
 }
-
-double CellFullV(BatteryChemistry chemistry) { return Table(chemistry).back(); }
 
 double CellDefaultCutoffV(BatteryChemistry chemistry) {
   switch (chemistry) {
@@ -97,14 +89,14 @@ bool BatteryPackParams::IsValid(std::string* error) const {
   if (n_series < 1) return fail("n_series = " + std::to_string(n_series) + ": must be >= 1");
   if (n_parallel < 1) return fail("n_parallel = " + std::to_string(n_parallel) + ": must be >= 1");
   if (!(cell_capacity_ah > 0) || !std::isfinite(cell_capacity_ah)) {
-    return fail("cell_capacity_ah = " + Num(cell_capacity_ah) + ": must be a finite number > 0");
+    return fail("cell_capacity_ah = " + SignificantText(cell_capacity_ah) + ": must be a finite number > 0");
   }
   if (!(cell_ri_ohm >= 0) || !std::isfinite(cell_ri_ohm)) {
-    return fail("cell_ri_ohm = " + Num(cell_ri_ohm) + ": must be a finite number >= 0");
+    return fail("cell_ri_ohm = " + SignificantText(cell_ri_ohm) + ": must be a finite number >= 0");
   }
-  if (!(cell_mass_kg >= 0)) return fail("cell_mass_kg = " + Num(cell_mass_kg) + ": must be >= 0");
+  if (!(cell_mass_kg >= 0)) return fail("cell_mass_kg = " + SignificantText(cell_mass_kg) + ": must be >= 0");
   if (!(cell_max_current_a > 0)) {
-    return fail("cell_max_current_a = " + Num(cell_max_current_a) + ": must be > 0");
+    return fail("cell_max_current_a = " + SignificantText(cell_max_current_a) + ": must be > 0");
   }
   return true;
 }
@@ -171,10 +163,10 @@ double BatteryPack::StoredEnergyJ() const {
 template <typename CurrentAt>
 DischargeResult BatteryPack::Discharge(CurrentAt current_at, const DischargeOptions& o) const {
   if (!(o.soc_step > 0 && o.soc_step <= 0.1)) {
-    throw UsageError("DischargeOptions.soc_step = " + Num(o.soc_step) + ": must be in (0, 0.1]");
+    throw UsageError("DischargeOptions.soc_step = " + SignificantText(o.soc_step) + ": must be in (0, 0.1]");
   }
   if (!(o.initial_soc > 0 && o.initial_soc <= 1)) {
-    throw UsageError("DischargeOptions.initial_soc = " + Num(o.initial_soc) + ": must be in (0, 1]");
+    throw UsageError("DischargeOptions.initial_soc = " + SignificantText(o.initial_soc) + ": must be in (0, 1]");
   }
   const double cutoff = cutoff_v(o);
   const double q_c = AhToCoulomb(capacity_ah());
@@ -203,7 +195,7 @@ DischargeResult BatteryPack::Discharge(CurrentAt current_at, const DischargeOpti
     double im = 0, i1 = 0;
     if (!current_at(mid, &im) || !current_at(end, &i1)) {
       r.status = DischargeStatus::kPowerUnreachable;
-      r.message = "the pack can no longer deliver the power at SOC " + Num(end);
+      r.message = "the pack can no longer deliver the power at SOC " + SignificantText(end);
       break;
     }
     const double v1 = TerminalVoltageV(end, i1);
@@ -229,23 +221,22 @@ DischargeResult BatteryPack::Discharge(CurrentAt current_at, const DischargeOpti
   r.final_soc = std::max(soc, 0.0);
   if (r.max_current_a > max_current_a()) {
     r.over_current = true;
-    r.message += std::string(r.message.empty() ? "" : "; ") + "current " + Num(r.max_current_a) +
-                 " A above the continuous rating " + Num(max_current_a()) + " A";
+    r.message += std::string(r.message.empty() ? "" : "; ") + "current " + SignificantText(r.max_current_a) +
+                 " A above the continuous rating " + SignificantText(max_current_a()) + " A";
   }
   return r;
 }
 
 DischargeResult BatteryPack::DischargeAtPower(double power_w, const DischargeOptions& o) const {
   if (!(power_w > 0) || !std::isfinite(power_w)) {
-    throw UsageError("DischargeAtPower: power_w = " + Num(power_w) + ": must be a finite number > 0");
+    throw UsageError("DischargeAtPower: power_w = " + SignificantText(power_w) + ": must be a finite number > 0");
   }
   return Discharge([&](double soc, double* i) { return CurrentForPower(soc, power_w, i); }, o);
 }
 
 DischargeResult BatteryPack::DischargeAtCurrent(double current_a, const DischargeOptions& o) const {
   if (!(current_a > 0) || !std::isfinite(current_a)) {
-    throw UsageError("DischargeAtCurrent: current_a = " + Num(current_a) +
-                     ": must be a finite number > 0");
+    throw UsageError("DischargeAtCurrent: current_a = " + SignificantText(current_a) + ": must be a finite number > 0");
   }
   return Discharge(
       [&](double, double* i) {

@@ -23,8 +23,6 @@ namespace dynosize {
 
 // Open-circuit voltage of one cell at state of charge soc in [0, 1] (clamped), V.
 double CellOcvV(BatteryChemistry chemistry, double soc);
-// Voltage of a fully charged cell (CellOcvV at soc = 1), V.
-double CellFullV(BatteryChemistry chemistry);
 // Usual discharge cut-off of one cell under load, V (LiPo 3.0, Li-ion 2.75, LiFePO4 2.5,
 // NiMH/NiCd 1.0).
 double CellDefaultCutoffV(BatteryChemistry chemistry);

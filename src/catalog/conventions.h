@@ -34,7 +34,7 @@
 //    of ln P about the law 0.61, i.e. a factor 1.8 either way). Brushed motors and motors
 //    without a mass are not estimated: they carry "exclude" (not used by default).
 //    The importers write only the power rating. A power rating does not bound the current of a
-//    motor run far below its Kv's voltage (issue 13: a 40 g, 1964 Kv motor at 42 A rms and 8 %
+//    motor run far below its Kv's voltage (a 40 g, 1964 Kv motor at 42 A rms and 8 %
 //    throttle draws 100 W), so the sizing (optimization/credibility.h) also holds such motors
 //    to the current law of hobby outrunners
 //        I_max [A] = 0.5956 * (m / 1 kg)^1.2816 * Kv^0.9629          (Kv in rpm/V)

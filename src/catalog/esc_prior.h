@@ -41,10 +41,4 @@ inline double PriorEscResistanceOhm(double max_current_a, const EscPrior& prior 
   return MilliohmToOhm(prior.resistance_coef_mohm * std::pow(max_current_a, prior.resistance_exp));
 }
 
-// Text for source.note of entries that use the prior.
-inline const char* EscPriorNote() {
-  return "c1, c0: ideal ESC of eq (56) (c1 = 1.1095, c0 = 0); tr_sat = 0.9, sat_slope = 0.61: "
-         "the MultiStar 30 A knee of model.md section 7; all assumed until a dyno fit";
-}
-
 }  // namespace dynosize

@@ -21,7 +21,6 @@ constexpr InSystemLaw kDriveCalcLaw{
     /*r_scale=*/1.094, /*r_add_ohm=*/0.01951, /*io_scale=*/0.995, /*io_speed=*/0.0,
     /*r_ratio_p10=*/0.7877, /*r_ratio_p90=*/1.78, /*io_ratio_p10=*/0.8005, /*io_ratio_p90=*/1.464,
     /*motors=*/1120, "DriveCalc database values against refits of DriveCalc's own measurements"};
-constexpr ThrottleOffsetPrior kKdeEscPrior{-0.3013, -0.162, 0.01289, 9, "KDE Direct stand sheets"};
 
 double JsonNumber(const Json& j, const char* key) {
   const auto it = j.find(key);
@@ -51,8 +50,6 @@ const InSystemLaw* InSystemLawFor(const MotorEntry& motor) {
   if (IsKdeDirectName(motor.name)) return &kKdeLaw;
   return IsDriveCalcDatabaseEntry(motor) ? &kDriveCalcLaw : nullptr;
 }
-
-const ThrottleOffsetPrior& KdeEscThrottleOffsetPrior() { return kKdeEscPrior; }
 
 MotorParams InSystemMotorParams(const MotorParams& raw, const DatasheetMotor& ds,
                                 const InSystemLaw& law, bool apply_r, bool apply_io,

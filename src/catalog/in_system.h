@@ -1,4 +1,4 @@
-// Motors as they run in a system (issue 23, item 1): the law that turns a motor's datasheet
+// Motors as they run in a system: the law that turns a motor's datasheet
 // values into the values the same motor shows on a stand, behind an ESC and its wiring.
 //
 // Datasheets state the winding resistance cold, measured with an ohmmeter between two leads,
@@ -83,8 +83,6 @@ const InSystemLaw& DriveCalcDatabaseLaw();
 bool IsKdeDirectName(const std::string& name);
 // An entry of DriveCalc's database (source.dataset "DriveCalc DB", catalog/drivecalc.json).
 bool IsDriveCalcDatabaseEntry(const EntryBase& entry);
-// The KDE sheets' ESC (KDE-UAS125UVC): the prior used to check those sheets forward.
-const ThrottleOffsetPrior& KdeEscThrottleOffsetPrior();
 
 // The datasheet values the law starts from (datasheet units at this edge are the catalog's:
 // Kv in rpm/V).
@@ -122,7 +120,7 @@ MotorParams InSystemSpreadParams(const MotorEntry& motor, bool high, bool* r_mov
 
 // Relative band of one value of a tier where no law gives a measured scatter: measured 10 %,
 // manufacturer 25 %, user-contributed 60 %, assumed 100 % (allowances, not fits: the sizing's
-// ranges since issue 13, optimization/credibility.h).
+// ranges, optimization/credibility.h).
 double TierValueBand(DataTier tier);
 
 // A motor's params at the low (high = false) or high end of its data's spread (p10/p90): the

@@ -11,7 +11,7 @@
 // from the bundled catalog and checks them and docs/noload-prior.md.
 //
 // Datasheet Io is measured cold at a low test voltage without ESC and wiring; in a system the
-// no-load loss is higher (issue 23: about 3x on the KDE stand sheets). The law therefore gives a
+// no-load loss is higher (about 3x on the KDE stand sheets). The law therefore gives a
 // low, not a typical, value: calibrate uses it where a log cannot identify Io (no torque, no
 // no-load rows) instead of 0, flagged "assumed", with the log's largest DC current standing in
 // for the rating (a stand rarely runs a motor beyond its rating, so this errs low as well).

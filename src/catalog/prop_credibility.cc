@@ -6,6 +6,7 @@
 #include <sstream>
 #include <vector>
 
+#include "common/text_format.h"
 #include "model/physics.h"
 
 namespace dynosize {
@@ -40,13 +41,6 @@ double Median(std::vector<double> v) {
   std::sort(v.begin(), v.end());
   const std::size_t m = v.size() / 2;
   return v.size() % 2 ? v[m] : 0.5 * (v[m - 1] + v[m]);
-}
-
-std::string Num(double x) {
-  std::ostringstream o;
-  o.precision(4);
-  o << x;
-  return o.str();
 }
 
 }  // namespace
@@ -138,13 +132,13 @@ std::string PropMomentumViolation(const PropEntry& e) {
   if (s.fm_max > kLimit) {
     const PropValidRange r = ValidRange(e);
     auto whole = [](double x) { return std::to_string(std::lround(x)); };
-    return "static figure of merit " + Num(s.fm_max) + " at " + whole(s.rpm_at_max) +
+    return "static figure of merit " + SignificantText(s.fm_max, 4) + " at " + whole(s.rpm_at_max) +
            " rpm (valid range " + whole(r.rpm_lo) + "-" + whole(r.rpm_hi) +
            " rpm) > 1: beats momentum theory (model.md section 10)";
   }
   if (s.axial_fm_max > kLimit) {
-    return "axial-flow figure of merit " + Num(s.axial_fm_max) + " at J = " + Num(s.j_at_axial_max) +
-           " > 1: beats momentum theory (model.md section 10)";
+    return "axial-flow figure of merit " + SignificantText(s.axial_fm_max, 4) +
+           " at J = " + SignificantText(s.j_at_axial_max, 4) + " > 1: beats momentum theory (model.md section 10)";
   }
   return "";
 }

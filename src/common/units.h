@@ -27,12 +27,8 @@ inline constexpr double RadPerSecToRpm(double omega_rad_s) { return omega_rad_s 
 inline constexpr double GramsToKg(double g) { return g * 1e-3; }
 inline constexpr double MilliohmToOhm(double mohm) { return mohm * 1e-3; }
 inline constexpr double InchToMeter(double in) { return in * 0.0254; }
-inline constexpr double MahToCoulomb(double mah) { return mah * 3.6; }
 inline constexpr double MahToAh(double mah) { return mah * 1e-3; }
 inline constexpr double AhToCoulomb(double ah) { return ah * 3600.0; }
-inline constexpr double InchPoundForceToNewtonMeter(double in_lbf) { return in_lbf * 0.1129848290276167; }
-inline constexpr double MphToMeterPerSecond(double mph) { return mph * 0.44704; }
-inline constexpr double OunceToKg(double oz) { return oz * 0.028349523125; }
 // rev/s from rpm (the n of the UIUC coefficient definitions).
 inline constexpr double RpmToRevPerSec(double rpm) { return rpm / 60.0; }
 
@@ -59,11 +55,5 @@ inline constexpr double kNmPerKilogramForceCm = kNewtonPerKilogramForce * 0.01;
 
 inline constexpr double GramForceToNewton(double gf) { return gf * kNewtonPerGramForce; }
 inline constexpr double KilogramForceToNewton(double kgf) { return kgf * kNewtonPerKilogramForce; }
-inline constexpr double KgForceToNewton(double kgf) { return KilogramForceToNewton(kgf); }
-inline constexpr double PoundForceToNewton(double lbf) { return lbf * kNewtonPerPoundForce; }
-inline constexpr double OunceForceToNewton(double ozf) { return ozf * kNewtonPerOunceForce; }
-inline constexpr double FahrenheitToCelsius(double f) { return (f - 32.0) * (5.0 / 9.0); }
-inline constexpr double KelvinToCelsius(double k) { return k - 273.15; }
-inline constexpr double HertzToRadPerSec(double hz) { return hz * 2.0 * kPi; }
 
 }  // namespace dynosize

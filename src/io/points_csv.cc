@@ -7,6 +7,7 @@
 #include "common/error.h"
 #include "common/text_encoding.h"
 #include "common/text_file.h"
+#include "common/text_format.h"
 #include "logs/csv_scan.h"
 
 namespace dynosize {
@@ -32,23 +33,18 @@ std::vector<std::string> SplitComma(const std::string& line) {
 }  // namespace
 
 std::string CheckPointRequest(const PointRequest& r) {
-  auto value = [](double v) {
-    std::ostringstream s;
-    s << v;
-    return s.str();
-  };
   if (!(r.vdc_v > 0.0 && r.vdc_v <= kMaxRequestVdcV)) {
-    return "vdc_v = " + value(r.vdc_v) + ": must be > 0 V and <= " + value(kMaxRequestVdcV) + " V";
+    return "vdc_v = " + SignificantText(r.vdc_v) + ": must be > 0 V and <= " + SignificantText(kMaxRequestVdcV) + " V";
   }
   if (r.throttle && !(*r.throttle >= 0.0 && *r.throttle <= 1.0)) {
-    return "throttle = " + value(*r.throttle) + ": must be between 0 and 1 (a fraction, not percent)";
+    return "throttle = " + SignificantText(*r.throttle) + ": must be between 0 and 1 (a fraction, not percent)";
   }
   if (r.torque_nm && !(*r.torque_nm >= 0.0 && *r.torque_nm <= kMaxRequestTorqueNm)) {
-    return "torque_nm = " + value(*r.torque_nm) + ": must be >= 0 N*m and <= " +
-           value(kMaxRequestTorqueNm) + " N*m";
+    return "torque_nm = " + SignificantText(*r.torque_nm) +
+           ": must be >= 0 N*m and <= " + SignificantText(kMaxRequestTorqueNm) + " N*m";
   }
   if (r.rpm && !(*r.rpm >= 0.0 && *r.rpm <= kMaxRequestRpm)) {
-    return "rpm = " + value(*r.rpm) + ": must be >= 0 and <= " + value(kMaxRequestRpm);
+    return "rpm = " + SignificantText(*r.rpm) + ": must be >= 0 and <= " + SignificantText(kMaxRequestRpm);
   }
   if (!r.prop.empty()) {
     if (r.torque_nm) return "a row with a prop takes its load from the propeller: leave torque_nm empty";
@@ -58,7 +54,8 @@ std::string CheckPointRequest(const PointRequest& r) {
              "throttle solved)";
     }
     if (r.thrust_n && !(*r.thrust_n > 0.0 && *r.thrust_n <= kMaxRequestThrustN)) {
-      return "thrust_n = " + value(*r.thrust_n) + ": must be > 0 N and <= " + value(kMaxRequestThrustN) + " N";
+      return "thrust_n = " + SignificantText(*r.thrust_n) +
+             ": must be > 0 N and <= " + SignificantText(kMaxRequestThrustN) + " N";
     }
     return "";
   }

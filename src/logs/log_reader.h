@@ -128,8 +128,9 @@ struct LogReadOptions {
   // Longest line accepted (a longer one is a DataError: not a text log).
   std::size_t max_line_bytes = 1 << 20;
 
-  // Empty when valid; else names the field, the value and the rule.
-  std::string Validate() const;
+  // True when valid; else false, and *error (when not null) names the field, its value and the
+  // rule.
+  bool IsValid(std::string* error) const;
 };
 
 // Reads `path` into a steady table. Throws NoInputError, DataError or UsageError (see above).

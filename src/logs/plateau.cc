@@ -5,11 +5,12 @@
 #include <limits>
 #include <string>
 
+#include "common/numbers.h"
+
 namespace dynosize::logs {
 
 namespace {
 
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 // 1.4826 = 1/Phi^-1(3/4): MAD -> standard deviation for normally distributed samples.
 constexpr double kMadToSigma = 1.4826;
 
@@ -20,9 +21,10 @@ bool Within(double x, double ref, double band) {
 
 }  // namespace
 
-std::string PlateauOptions::Validate() const {
-  auto bad = [](const char* field, double v, const char* rule) {
-    return std::string("PlateauOptions.") + field + " = " + std::to_string(v) + ": " + rule;
+bool PlateauOptions::IsValid(std::string* error) const {
+  auto bad = [&](const char* field, double v, const char* rule) {
+    if (error) *error = std::string("PlateauOptions.") + field + " = " + std::to_string(v) + ": " + rule;
+    return false;
   };
   if (!(command_step_tolerance > 0.0)) return bad("command_step_tolerance", command_step_tolerance, "must be > 0");
   if (!(settle_time_s >= 0.0)) return bad("settle_time_s", settle_time_s, "must be >= 0");
@@ -48,7 +50,7 @@ std::string PlateauOptions::Validate() const {
     return bad("ramp_max_reversal_fraction", ramp_max_reversal_fraction, "must be in [0, 1)");
   }
   if (!(summary_min_interval_s > 0.0)) return bad("summary_min_interval_s", summary_min_interval_s, "must be > 0");
-  return "";
+  return true;
 }
 
 double MedianOf(const double* x, std::size_t begin, std::size_t end) {

@@ -79,8 +79,9 @@ struct PlateauOptions {
   // (the stands' "steps" scripts write one averaged row per step, 4-5 s apart): no search.
   double summary_min_interval_s = 1.0;
 
-  // Empty when valid; else names the field, its value and the rule.
-  std::string Validate() const;
+  // True when valid; else false, and *error (when not null) names the field, its value and the
+  // rule.
+  bool IsValid(std::string* error) const;
 };
 
 struct Plateau {

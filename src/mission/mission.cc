@@ -21,8 +21,6 @@ const char* SegmentTypeName(SegmentType type) {
   return "?";
 }
 
-const char* LiftToDragOfName(LiftToDragOf of) { return of == LiftToDragOf::kWing ? "wing" : "aircraft"; }
-
 const char* ObjectiveTypeName(ObjectiveType type) {
   switch (type) {
     case ObjectiveType::kMaxEndurance: return "max_endurance";
@@ -30,6 +28,24 @@ const char* ObjectiveTypeName(ObjectiveType type) {
     case ObjectiveType::kMaxEfficiency: return "max_efficiency";
   }
   return "?";
+}
+
+double DisplayObjective(const Mission& m, double objective) {
+  switch (m.objective.type) {
+    case ObjectiveType::kMaxEndurance: return objective / 60.0;
+    case ObjectiveType::kMinEnergy: return objective;
+    case ObjectiveType::kMaxEfficiency: return 100.0 * objective;
+  }
+  return objective;
+}
+
+const char* DisplayUnit(const Mission& m) {
+  switch (m.objective.type) {
+    case ObjectiveType::kMaxEndurance: return " min";
+    case ObjectiveType::kMinEnergy: return " Wh";
+    case ObjectiveType::kMaxEfficiency: return " %";
+  }
+  return "";
 }
 
 namespace {
@@ -147,8 +163,6 @@ class Reader {
   std::string file_;
   std::string path_;
 };
-
-constexpr double kInf = std::numeric_limits<double>::infinity();
 
 Segment ReadSegment(const Reader& r, const std::string& path) {
   Segment s;

@@ -24,7 +24,6 @@ const char* SegmentTypeName(SegmentType type);
 //    the idle groups (idle_drag_area_m2) are added.
 //  - kWing ("wing"): the wing alone; the body's drag_area_m2 is added as well.
 enum class LiftToDragOf { kAircraft, kWing };
-const char* LiftToDragOfName(LiftToDragOf of);
 
 // A closed interval; lo == hi for a fixed value.
 struct Range {
@@ -177,5 +176,10 @@ inline std::string GroupName(const Mission& m, int g) { return m.groups.empty() 
 Mission ReadMission(const std::string& path);
 // Same for a parsed document; `name` is used in messages.
 Mission ParseMission(const Json& doc, const std::string& name);
+
+// The objective in the unit reports print it in (minutes, Wh, %), and that unit (" min", " Wh",
+// " %").
+double DisplayObjective(const Mission& mission, double objective);
+const char* DisplayUnit(const Mission& mission);
 
 }  // namespace dynosize

@@ -20,7 +20,7 @@
 // ESC saturation (model.md section 7): TR_eff = TR up to tr_sat, tr_sat + sat_slope*(TR -
 // tr_sat) above it; TR_eff is used in both (47) and (57).
 //
-// Extensions of model.md section 9 (issue #5, "diagnose"). Each defaults to 0, which reproduces
+// Extensions of model.md section 9, used by `diagnose`. Each defaults to 0, which reproduces
 // the first-order model above exactly (same arithmetic, same results):
 //  - throttle dead band (EscParams::deadband): the command is first mapped through the dead
 //    band, d = max(0, (TR - deadband)/(1 - deadband)), and the saturation knee is then applied

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "common/error.h"
+#include "common/text_format.h"
 #include "common/units.h"
 
 namespace dynosize {
@@ -27,13 +28,6 @@ Interp Lerp(const std::vector<double>& x, const std::vector<double>& y, double x
   const std::size_t i = static_cast<std::size_t>(it - x.begin());
   const double t = (xq - x[i - 1]) / (x[i] - x[i - 1]);
   return {y[i - 1] + t * (y[i] - y[i - 1]), false};
-}
-
-std::string Num(double x) {
-  std::ostringstream o;
-  o.precision(4);
-  o << x;
-  return o.str();
 }
 
 // The catalog reader enforces these rules for entries from files; a PropEntry built in code
@@ -150,21 +144,24 @@ std::string PropEvaluation::Message() const {
                       whole(data_rpm_hi) + " of the propeller's data; " +
                       (reynolds_ratio < 1.0 ? "edge coefficients corrected" : "edge coefficients held"));
     } else {
-      parts.push_back("rpm " + Num(rpm) + (from_sweeps ? " outside the forward-flight sweeps " : " outside the static data ") +
-                      Num(data_rpm_lo) + "-" + Num(data_rpm_hi));
+      parts.push_back("rpm " + SignificantText(rpm, 4) +
+                      (from_sweeps ? " outside the forward-flight sweeps " : " outside the static data ") +
+                      SignificantText(data_rpm_lo, 4) + "-" + SignificantText(data_rpm_hi, 4));
     }
     if (reynolds_ratio < 1.0) {
-      parts.push_back("at " + Num(reynolds_ratio) +
-                      "x its lowest speed: CT and CP corrected for the lower Reynolds number (catalog/prop_reynolds.h)");
+      parts.push_back(
+          "at " + SignificantText(reynolds_ratio, 4) +
+          "x its lowest speed: CT and CP corrected for the lower Reynolds number (catalog/prop_reynolds.h)");
     }
   }
   if (no_forward_flight_data) {
     const char* what = data == PropDataKind::kTables         ? "static data: static coefficients used"
                        : data == PropDataKind::kCoefficients ? "static coefficients: static values used"
                                                              : "static power laws: static values used";
-    parts.push_back("J = " + Num(j) + " but only " + what);
+    parts.push_back("J = " + SignificantText(j, 4) + " but only " + what);
   }
-  if (j_outside_data) parts.push_back("J = " + Num(j) + " outside the measured advance ratios; edge coefficients held");
+  if (j_outside_data)
+    parts.push_back("J = " + SignificantText(j, 4) + " outside the measured advance ratios; edge coefficients held");
   std::string out;
   for (const std::string& p : parts) out += (out.empty() ? "" : "; ") + p;
   return out;
@@ -173,15 +170,15 @@ std::string PropEvaluation::Message() const {
 PropEvaluation PropModel::Evaluate(double omega_rad_s, double rho_kg_m3,
                                    double airspeed_m_s) const {
   if (!std::isfinite(omega_rad_s) || omega_rad_s < 0) {
-    throw UsageError("propeller '" + entry_.id + "': omega_rad_s = " + Num(omega_rad_s) +
+    throw UsageError("propeller '" + entry_.id + "': omega_rad_s = " + SignificantText(omega_rad_s, 4) +
                      " must be a finite number >= 0");
   }
   if (!std::isfinite(rho_kg_m3) || !(rho_kg_m3 > 0)) {
-    throw UsageError("propeller '" + entry_.id + "': rho_kg_m3 = " + Num(rho_kg_m3) +
+    throw UsageError("propeller '" + entry_.id + "': rho_kg_m3 = " + SignificantText(rho_kg_m3, 4) +
                      " must be a finite number > 0");
   }
   if (!std::isfinite(airspeed_m_s) || airspeed_m_s < 0) {
-    throw UsageError("propeller '" + entry_.id + "': airspeed_m_s = " + Num(airspeed_m_s) +
+    throw UsageError("propeller '" + entry_.id + "': airspeed_m_s = " + SignificantText(airspeed_m_s, 4) +
                      " must be a finite number >= 0");
   }
   PropEvaluation ev;
@@ -291,7 +288,7 @@ bool PropModel::StaticSpeedForThrust(double thrust_n, double rho_kg_m3, double* 
 PropEvaluation PropModel::EvaluateAtAdvanceRatio(double omega_rad_s, double rho_kg_m3,
                                                  double j) const {
   if (!std::isfinite(j) || j < 0) {
-    throw UsageError("propeller '" + entry_.id + "': advance ratio J = " + Num(j) +
+    throw UsageError("propeller '" + entry_.id + "': advance ratio J = " + SignificantText(j, 4) +
                      " must be a finite number >= 0");
   }
   // J = V/(n*D) with n = omega/(2*pi) rev/s.
@@ -302,10 +299,10 @@ PropEvaluation PropModel::EvaluateAtAdvanceRatio(double omega_rad_s, double rho_
 LocalTorqueFit PropModel::FitTorqueLaw(double omega0_rad_s, double rho_kg_m3, double airspeed_m_s,
                                        double rel_step) const {
   if (!std::isfinite(omega0_rad_s) || !(omega0_rad_s > 0)) {
-    throw UsageError("FitTorqueLaw: omega0_rad_s = " + Num(omega0_rad_s) + " must be > 0");
+    throw UsageError("FitTorqueLaw: omega0_rad_s = " + SignificantText(omega0_rad_s, 4) + " must be > 0");
   }
   if (!(rel_step > 0 && rel_step <= 0.5)) {
-    throw UsageError("FitTorqueLaw: rel_step = " + Num(rel_step) + " must be in (0, 0.5]");
+    throw UsageError("FitTorqueLaw: rel_step = " + SignificantText(rel_step, 4) + " must be in (0, 0.5]");
   }
   const double w[3] = {omega0_rad_s * (1 - rel_step), omega0_rad_s, omega0_rad_s * (1 + rel_step)};
   double q[3];

@@ -5,7 +5,9 @@
 #include <limits>
 #include <sstream>
 
+#include "common/numbers.h"
 #include "common/text_file.h"
+#include "common/text_format.h"
 #include "common/units.h"
 #include "model/sweep.h"
 #include "report/gnuplot.h"
@@ -14,15 +16,7 @@ namespace dynosize {
 
 namespace {
 
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr int kPointsPerLine = 60;
-
-std::string Fmt(double v, int prec = 3) {
-  std::ostringstream o;
-  o.precision(prec);
-  o << v;
-  return o.str();
-}
 
 // The torque range drawn for one throttle: from no load to the smaller of the stall torque and
 // the torque at the current limit.
@@ -76,7 +70,7 @@ std::string ForEachThrottle(const DriveFigureOptions& o, const std::string& bloc
 
 // A two-line gnuplot title: the pair and voltage, then what the figure shows.
 std::string Title(const DriveFigureOptions& o, const std::string& what) {
-  std::string t = o.title + " at VDC = " + Fmt(o.vdc_v) + " V\\n" + what;
+  std::string t = o.title + " at VDC = " + SignificantText(o.vdc_v, 3) + " V\\n" + what;
   std::string q;
   for (char c : t) {
     if (c == '"') q += "\\\""; else q += c;
@@ -128,11 +122,11 @@ std::string EfficiencyMapFigure(const Drive& d, const DriveFigureOptions& o, con
   s << "set title " << Title(o, "system efficiency Pmech/PDC [%] over torque and speed (inverse model)") << "\n"
     << "set xlabel 'speed [rpm]'\nset ylabel 'torque [N m]'\nset view map\n"
     << "set palette defined (0 '#2b083b', 0.35 '#3b528b', 0.6 '#21918c', 0.8 '#5ec962', 1 '#fde725')\n"
-    << "set cbrange [0:" << (map_above ? Fmt(map_max, 4) : "100") << "]\n"
+    << "set cbrange [0:" << (map_above ? SignificantText(map_max, 4) : "100") << "]\n"
     << "set cblabel 'eta system [%]" << (map_above ? " (above 100: creates energy)" : "") << "'\n"
     << "set key outside bottom center horizontal\n"
-    << "set contour base\nset cntrparam levels discrete 40,60,70,80,85,90"
-    << (map_above ? ",100" : "") << "\nset cntrlabel onecolor\n"
+    << "set contour base\nset cntrparam levels discrete 40,60,70,80,85,90" << (map_above ? ",100" : "")
+    << "\nset cntrlabel onecolor\n"
     << "set xrange [0:" << RadPerSecToRpm(w_max) << "]\nset yrange [0:" << q_max << "]\n"
     << "unset surface\nset table $contours\nsplot $map using 1:2:3 with lines\nunset table\n"
     << "unset contour\nset surface\n"
@@ -157,12 +151,11 @@ std::vector<std::string> WriteDriveFigures(const Drive& d, const DriveFigureOpti
   const std::string palette =
       "set palette defined (0 '#1f3b99', 0.5 '#2ca25f', 1 '#d95f0e')\nunset colorbox\n";
   const std::string limit_note =
-      "lines end at the stall torque or the current limit " + Fmt(o.current_limit_a) + " A";
+      "lines end at the stall torque or the current limit " + SignificantText(o.current_limit_a, 3) + " A";
   const bool saturates = d.esc().tr_sat < 1.0;
-  const std::string sat_note =
-      saturates ? "; ESC saturates above TR " + Fmt(100 * d.esc().tr_sat) + " % (slope " +
-                      Fmt(d.esc().sat_slope, 2) + ")"
-                : "";
+  const std::string sat_note = saturates ? "; ESC saturates above TR " + SignificantText(100 * d.esc().tr_sat, 3) +
+                                               " % (slope " + SignificantText(d.esc().sat_slope, 2) + ")"
+                                         : "";
 
   // 1. Torque and mechanical power vs rpm per throttle (the paper's Fig. 25, eqs 49-50).
   {
@@ -227,7 +220,7 @@ std::vector<std::string> WriteDriveFigures(const Drive& d, const DriveFigureOpti
     const DataBlock b = ThrottleLines(d, o, "eta", 4, [](const OperatingPoint& p) {
       return std::vector<double>{p.rpm, 100 * p.eta_motor, 100 * p.eta_esc, 100 * p.eta_system};
     });
-    // Efficiencies above 100 % are drawn, not clipped (issue 13): a point above the dashed
+    // Efficiencies above 100 % are drawn, not clipped: a point above the dashed
     // 100 % line creates energy (model.md section 10) and must be seen.
     const double eta_max = MaxFinite(b, {1, 2, 3});
     const bool above = eta_max > 100.0;
@@ -236,7 +229,7 @@ std::vector<std::string> WriteDriveFigures(const Drive& d, const DriveFigureOpti
       << Title(o, "efficiencies vs speed per throttle; " + limit_note +
                       (above ? "\\nABOVE 100 %: these parameters create energy (model.md section 10)" : ""))
       << "\n"
-      << "set xlabel 'speed [rpm]'\nset yrange [0:" << (above ? Fmt(1.05 * eta_max, 4) : "105") << "]\n"
+      << "set xlabel 'speed [rpm]'\nset yrange [0:" << (above ? SignificantText(1.05 * eta_max, 4) : "105") << "]\n"
       << "set arrow from graph 0, first 100 to graph 1, first 100 nohead dt 2 lw 2 lc rgb 'red'\n"
       << "set ylabel 'motor [%]'\nplot " << ForEachThrottle(o, "eta", "1:2") << "\n"
       << "set ylabel 'ESC [%]'\nplot " << ForEachThrottle(o, "eta", "1:3") << "\n"

@@ -6,6 +6,7 @@
 #include <limits>
 #include <sstream>
 
+#include "common/numbers.h"
 #include "common/text_file.h"
 #include "common/text_format.h"
 #include "common/units.h"
@@ -18,24 +19,6 @@
 
 namespace dynosize {
 
-double DisplayObjective(const Mission& m, double objective) {
-  switch (m.objective.type) {
-    case ObjectiveType::kMaxEndurance: return objective / 60.0;
-    case ObjectiveType::kMinEnergy: return objective;
-    case ObjectiveType::kMaxEfficiency: return 100.0 * objective;
-  }
-  return objective;
-}
-
-const char* DisplayUnit(const Mission& m) {
-  switch (m.objective.type) {
-    case ObjectiveType::kMaxEndurance: return " min";
-    case ObjectiveType::kMinEnergy: return " Wh";
-    case ObjectiveType::kMaxEfficiency: return " %";
-  }
-  return "";
-}
-
 std::string ObjectiveLabel(const Mission& m) {
   switch (m.objective.type) {
     case ObjectiveType::kMaxEndurance: return "endurance [min]";
@@ -46,8 +29,6 @@ std::string ObjectiveLabel(const Mission& m) {
 }
 
 namespace {
-
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 double Display(const Mission& m, double objective) { return DisplayObjective(m, objective); }
 

@@ -20,9 +20,6 @@ Json MissionResultJson(const Mission& mission, const Combination& c, const Missi
 // A human-readable report: objective, masses, one line per segment, limits, warnings.
 std::string MissionResultText(const Mission& mission, const Combination& c, const MissionResult& r);
 
-// The objective in the unit the text prints it in (minutes, Wh, %), and that unit (" min", " Wh", " %").
-double DisplayObjective(const Mission& mission, double objective);
-const char* DisplayUnit(const Mission& mission);
 // The objective's axis label in figures ("endurance [min]", "energy drawn [Wh]", ...).
 std::string ObjectiveLabel(const Mission& mission);
 

@@ -4,6 +4,7 @@
 #include <sstream>
 
 #include "common/text_file.h"
+#include "common/text_format.h"
 #include "common/units.h"
 #include "report/gnuplot.h"
 
@@ -19,13 +20,6 @@ std::string Quote(const std::string& s) {
     q += c;
   }
   return q + "\"";
-}
-
-std::string Fmt(double v, int prec = 3) {
-  std::ostringstream o;
-  o.precision(prec);
-  o << v;
-  return o.str();
 }
 
 }  // namespace
@@ -98,7 +92,7 @@ std::string ErrorLabel(const stand::StandResult& r, int mode, const std::string&
   const auto* a = stand::FindError(r, mode, stand::kDynosize, column);
   const auto* b = stand::FindError(r, mode, stand::kPlainDc, column);
   if (!a || !b) return "";
-  return "MAE dynosize " + Fmt(a->mae, 3) + " %, plain DC " + Fmt(b->mae, 3) + " %";
+  return "MAE dynosize " + SignificantText(a->mae, 3) + " %, plain DC " + SignificantText(b->mae, 3) + " %";
 }
 
 }  // namespace

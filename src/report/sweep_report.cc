@@ -6,22 +6,15 @@
 #include <limits>
 #include <sstream>
 
+#include "common/numbers.h"
 #include "common/text_file.h"
+#include "common/text_format.h"
 #include "report/gnuplot.h"
 #include "report/mission_report.h"
 
 namespace dynosize::study {
 
 namespace {
-
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-
-std::string Number(double v) {
-  if (!std::isfinite(v)) return "";
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.6g", v);
-  return buf;
-}
 
 // A value as the user wrote it: numbers in JSON form, strings bare.
 std::string ValueText(const Json& v) { return v.is_string() ? v.get<std::string>() : v.dump(); }
@@ -282,17 +275,18 @@ std::string SweepCsv(const Mission& base, const SweepResult& result, const std::
       continue;
     }
     for (const SweepPick& p : r.picks) {
-      o << head.str() << "," << p.rank << "," << (p.feasible ? "true" : "false") << "," << Number(p.objective) << ","
-        << Number(p.objective_low) << "," << Number(p.objective_high);
+      o << head.str() << "," << p.rank << "," << (p.feasible ? "true" : "false") << ","
+        << SignificantTextOr(p.objective, "") << "," << SignificantTextOr(p.objective_low, "") << ","
+        << SignificantTextOr(p.objective_high, "");
       for (int g = 0; g < GroupCount(base); ++g) {
         const std::size_t gi = static_cast<std::size_t>(g);
         const bool has = gi < p.motor.size();
         o << "," << CsvField(has ? p.motor[gi] : "") << "," << CsvField(has ? p.esc[gi] : "") << ","
           << CsvField(has ? p.prop[gi] : "");
       }
-      o << "," << CsvField(p.battery) << "," << p.cells << "," << Number(p.capacity_ah) << ","
-        << Number(p.total_mass_kg) << "," << Number(p.thrust_to_weight) << "," << CsvField(p.binding_limit) << ","
-        << CsvField(r.reason) << "\n";
+      o << "," << CsvField(p.battery) << "," << p.cells << "," << SignificantTextOr(p.capacity_ah, "") << ","
+        << SignificantTextOr(p.total_mass_kg, "") << "," << SignificantTextOr(p.thrust_to_weight, "") << ","
+        << CsvField(p.binding_limit) << "," << CsvField(r.reason) << "\n";
     }
   }
   return o.str();

@@ -3,6 +3,7 @@
 #include <sstream>
 
 #include "common/error.h"
+#include "common/text_format.h"
 #include "common/units.h"
 #include "io/points_csv.h"
 #include "model/physics.h"
@@ -14,12 +15,6 @@ namespace dynosize {
 
 namespace {
 
-std::string Num(double v) {
-  std::ostringstream o;
-  o << v;
-  return o.str();
-}
-
 }  // namespace
 
 std::string CheckPropPointRequest(const PropPointRequest& r) {
@@ -29,19 +24,20 @@ std::string CheckPropPointRequest(const PropPointRequest& r) {
            "throttle solved); the propeller's torque law is the load";
   }
   if (!(r.vdc_v > 0.0 && r.vdc_v <= kMaxRequestVdcV)) {
-    return "vdc_v = " + Num(r.vdc_v) + ": must be > 0 V and <= " + Num(kMaxRequestVdcV) + " V";
+    return "vdc_v = " + SignificantText(r.vdc_v) + ": must be > 0 V and <= " + SignificantText(kMaxRequestVdcV) + " V";
   }
   if (r.throttle && !(*r.throttle >= 0.0 && *r.throttle <= 1.0)) {
-    return "throttle = " + Num(*r.throttle) + ": must be between 0 and 1 (a fraction, not percent)";
+    return "throttle = " + SignificantText(*r.throttle) + ": must be between 0 and 1 (a fraction, not percent)";
   }
   if (r.rpm && !(*r.rpm >= 0.0 && *r.rpm <= kMaxRequestRpm)) {
-    return "rpm = " + Num(*r.rpm) + ": must be >= 0 and <= " + Num(kMaxRequestRpm);
+    return "rpm = " + SignificantText(*r.rpm) + ": must be >= 0 and <= " + SignificantText(kMaxRequestRpm);
   }
   if (r.thrust_n && !(*r.thrust_n > 0.0 && *r.thrust_n <= kMaxRequestThrustN)) {
-    return "thrust_n = " + Num(*r.thrust_n) + ": must be > 0 N and <= " + Num(kMaxRequestThrustN) + " N";
+    return "thrust_n = " + SignificantText(*r.thrust_n) +
+           ": must be > 0 N and <= " + SignificantText(kMaxRequestThrustN) + " N";
   }
   if (!(r.rho_kg_m3 > 0.0 && r.rho_kg_m3 <= 100.0)) {
-    return "air density " + Num(r.rho_kg_m3) + " kg/m^3: must be > 0 and <= 100";
+    return "air density " + SignificantText(r.rho_kg_m3) + " kg/m^3: must be > 0 and <= 100";
   }
   return "";
 }
@@ -63,10 +59,10 @@ PropPoint SolvePropPoint(const Drive& drive, const PropModel& prop, const PropPo
     } else {
       const PropSpeedForThrust s = SpeedForThrust(prop, *r.thrust_n, r.rho_kg_m3);
       if (!s.found) {
-        throw UsageError("thrust " + Num(*r.thrust_n) + " N: propeller '" + prop.entry().id +
-                         "' does not reach it below " + Num(kMaxRequestRpm) +
-                         " rpm within its data (thrust " + Num(s.prop.thrust_n) + " N at " +
-                         Num(s.prop.rpm) + " rpm)");
+        throw UsageError("thrust " + SignificantText(*r.thrust_n) + " N: propeller '" + prop.entry().id +
+                         "' does not reach it below " + SignificantText(kMaxRequestRpm) +
+                         " rpm within its data (thrust " + SignificantText(s.prop.thrust_n) + " N at " +
+                         SignificantText(s.prop.rpm) + " rpm)");
       }
       omega = s.omega_rad_s;
       out.prop = s.prop;

@@ -1,4 +1,4 @@
-// Stand-table predictions (issue 13 item 6): a measured thrust-stand or manufacturer table
+// Stand-table predictions: a measured thrust-stand or manufacturer table
 // (rows of VDC, throttle and/or rpm, and measured thrust, DC current, rpm, torque where present)
 // predicted row by row through catalog entries, by dynosize's rms model (model/drive.h, eqs
 // 42-59) and by the plain first-order DC model (stand/dc_baseline.h) side by side.

@@ -12,9 +12,9 @@
 #include <utility>
 
 #include "common/error.h"
+#include "common/numbers.h"
 #include "mission/mission.h"
 #include "optimization/search.h"
-#include "report/mission_report.h"
 
 namespace dynosize::study {
 
@@ -361,9 +361,8 @@ SweepPick PickOf(const Mission& m, const SearchResult& s, std::size_t k) {
   p.feasible = r.feasible;
   p.objective = DisplayObjective(m, r.objective);
   p.objective_unit = DisplayUnit(m) + 1;  // without the leading space
-  const double nan = std::numeric_limits<double>::quiet_NaN();
-  p.objective_low = r.range.computed && r.range.low_flies ? DisplayObjective(m, r.range.low) : nan;
-  p.objective_high = r.range.computed && r.range.high_flies ? DisplayObjective(m, r.range.high) : nan;
+  p.objective_low = r.range.computed && r.range.low_flies ? DisplayObjective(m, r.range.low) : kNaN;
+  p.objective_high = r.range.computed && r.range.high_flies ? DisplayObjective(m, r.range.high) : kNaN;
   for (int g = 0; g < GroupCount(m); ++g) {
     const GroupParts parts = b.combination.Parts(g);
     p.groups.push_back(GroupName(m, g));

@@ -1,4 +1,4 @@
-// Trade studies (issue 25, item 4): a mission swept over a full-factorial grid of values set at
+// Trade studies: a mission swept over a full-factorial grid of values set at
 // JSON paths of its document, each grid point flown by the catalog search (search.h).
 //
 // A grid point is the mission document with the point's values set (MissionAt), read by the

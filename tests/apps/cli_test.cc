@@ -27,7 +27,7 @@ int Lines(const std::string& s) {
   return n;
 }
 
-// Issue 26: every command that reads a log offers every reader (thrustapp included).
+// Every command that reads a log offers every reader (thrustapp included).
 TEST(Cli, EveryLogCommandListsEveryFormat) {
   for (const char* cmd : {"calibrate", "diagnose", "validate-stand"}) {
     const CliRun r = Exec(std::string(cmd) + " --help");
@@ -158,7 +158,7 @@ TEST(Cli, CatalogListJsonIsCatalogEntries) {
 namespace dynosize {
 namespace {
 
-// simulate --prop with a geared motor (issue 23 item 4): the motor's rpm and the propeller's
+// simulate --prop with a geared motor: the motor's rpm and the propeller's
 // prop_rpm side by side, rpm = gear_ratio x prop_rpm, and the propeller's thrust is its data at
 // prop_rpm (the propeller turns at its own speed, not the motor's). The bundled catalog's
 // KIRA 650-13 with its 6.7:1 gearbox and the 24x10 of the sprayer example.

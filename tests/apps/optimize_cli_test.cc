@@ -1,4 +1,4 @@
-// optimize's stop (issue 24, item 3): --time-limit and SIGINT print the best so far, complete
+// optimize's stop: --time-limit and SIGINT print the best so far, complete
 // and marked interrupted, with exit 0 and 130; bad --time-limit values are exit 64 with one line.
 // Item 5 on the CLI: distinct designs by default, --variants for every combination.
 #include <gtest/gtest.h>

@@ -1,5 +1,5 @@
-// End-to-end tests of `simulate --prop` and `validate-stand` (issue 13 item 6), and of simulate
-// never calling a point that creates energy feasible (issue 13 item 1).
+// End-to-end tests of `simulate --prop` and `validate-stand`, and of simulate
+// never calling a point that creates energy feasible.
 #include <gtest/gtest.h>
 #include <unistd.h>
 

@@ -1,4 +1,4 @@
-// `dynosize sweep` end to end (issue 25, item 4): the CSV and JSON on the small catalog, the
+// `dynosize sweep` end to end: the CSV and JSON on the small catalog, the
 // figures, and every bad --vary as one line with exit 64.
 #include <gtest/gtest.h>
 #include <unistd.h>

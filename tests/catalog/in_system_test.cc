@@ -1,6 +1,6 @@
 // The in-system law (catalog/in_system.h) and its fit (stand/in_system_fit.h): synthetic
-// recovery, the catalog's constants against a refit of the data they came from, the goals of
-// issue 23 by leaving each KDE motor out (skipped without ../shared), and where the law applies.
+// recovery, the catalog's constants against a refit of the data they came from, the law's
+// goals by leaving each KDE motor out (skipped without ../shared), and where the law applies.
 #include <cmath>
 #include <filesystem>
 #include <random>
@@ -116,7 +116,7 @@ TEST(InSystemLawTest, KdeConstantsAreTheRefitOfTheSheets) {
   EXPECT_NEAR(fit.io_scale, law.io_scale, kPrintedDigits * law.io_scale);
 }
 
-// Issue 23's goals on the KDE sheets, each motor left out of the law, its spreads and its
+// The in-system law's goals on the KDE sheets, each motor left out of the law, its spreads and its
 // throttle prior: DC current at the measured speed and torque <= 5 % (median over sweeps),
 // bias within +-2 %, p10-p90 coverage 70-90 %, forward speed from the command <= 5 %; and the
 // datasheet numbers as they are (the plain DC model) miss by more than 10 %, low.

@@ -83,7 +83,7 @@ TEST(RealDataImportTest, UiucPropTables) {
   EXPECT_TRUE(found);
 }
 
-// The flat CSV lost a decimal point in four Aeronaut CAM folder sizes (issue 13): 12.5x6.0 and
+// The flat CSV lost a decimal point in four Aeronaut CAM folder sizes: 12.5x6.0 and
 // 12.5x9.0 had pitch 0.6 and 0.9 in, 12x6.5 and 13x6.5 had diameter 1.2 and 1.3 in.
 TEST(RealDataImportTest, UiucFolderSizesDecodedFromTheName) {
   if (!Have("uiuc_propdb")) GTEST_SKIP() << "no ../shared/data/uiuc_propdb";

@@ -1,4 +1,4 @@
-// Issue 26: the header synonym table (logs/header_synonyms.h). Every synonym of every canonical
+// The header synonym table (logs/header_synonyms.h). Every synonym of every canonical
 // column reads the same numbers; the Tyto Flight Stand variant with "PWM throttle signal (µs)"
 // reads; a missing quantity names its lookalikes and the arguments that read them; canonical
 // steady tables without time_s and torque_nm; the --decimal-comma hint on a shifted cell.

@@ -1,5 +1,5 @@
 // Readers on small excerpts written inside the tests: every quirk of ecosystem-notes.md, the
-// strict canonical format and the reliability rules of issue 7 (error text checked).
+// strict canonical format and the reliability rules of docs/log-formats.md (error text checked).
 #include "logs/log_reader.h"
 
 #include <gtest/gtest.h>
@@ -236,7 +236,7 @@ TEST(RcbenchmarkLog, EscEndPointsAndUnitlessCommand) {
   o4.esc_unitless_max = 2000;
   const SteadyTable t4 = ReadLog(WriteTemp("rcb_unitless2.csv", u), o4);
   EXPECT_NEAR(t4.Get(Column::kThrottle)[0], 0.6, 1e-15);
-  EXPECT_EQ(LogReadOptions{}.Validate(), "");
+  EXPECT_TRUE(LogReadOptions{}.IsValid(nullptr));
   LogReadOptions bad;
   bad.esc_max_us = 900;
   EXPECT_THROW(ReadLog(WriteTemp("rcb_bad_opts.csv", s), bad), UsageError);
@@ -318,7 +318,7 @@ TEST(MappedLog, Errors) {
   o.column_map = {"throttle=Thr", "idc_a=I"};
   e = ErrorOf(WriteTemp("m5.csv", ann), o);
   EXPECT_TRUE(Contains(e, "line 4, column \"Thr\": \"\": empty cell")) << e;
-  // With --drop-incomplete-rows the row goes (issue 12: trailer rows such as "PEAK THRUST"),
+  // With --drop-incomplete-rows the row goes (trailer rows such as "PEAK THRUST"),
   // named in the drop reason; stand_exports_test.cc checks a malformed number stays an error.
   o.mapped_drop_rows_with_empty_cells = true;
   const SteadyTable t6 = ReadLog(WriteTemp("m6.csv", ann), o);

@@ -123,7 +123,9 @@ TEST(Plateau, CommandClassification) {
   EXPECT_EQ(ps.plateaus.size(), 11u);
   PlateauOptions bad;
   bad.settle_band = -1;
-  EXPECT_NE(bad.Validate().find("PlateauOptions.settle_band"), std::string::npos);
+  std::string why;
+  EXPECT_FALSE(bad.IsValid(&why));
+  EXPECT_NE(why.find("PlateauOptions.settle_band"), std::string::npos);
 }
 
 TEST(Plateau, MadOutliersIgnoreNaNAndQuantisedSignals) {

@@ -1,4 +1,4 @@
-// Every real public log in shared/data listed in issue #4 reads without error, with what the
+// Every real public log in shared/data listed below reads without error, with what the
 // data allows (columns present / absent as documented in each folder's README). Skipped when
 // ../shared is absent. The per-file counts are printed (rows read, plateaus, dropped).
 #include <gtest/gtest.h>
@@ -66,7 +66,7 @@ SteadyTable ReadAndPrint(const std::string& path, const LogReadOptions& o = LogR
 #define REQUIRE_SHARED() \
   if (!HaveShared()) GTEST_SKIP() << "shared data folder " << SharedData() << " not found"
 
-// Issue 26: every stand log of shared/data reads with format auto and no --map, except the files
+// Every stand log of shared/data reads with format auto and no --map, except the files
 // docs/log-formats.md lists (no header, or no units), whose error names what is missing and a
 // ready --map line; tables of several motors need --where only. Auto reads give the numbers of
 // the documented --map reads.

@@ -29,7 +29,7 @@ TEST(PhysicsTest, IdealEscSitsOnTheBoundary) {
 
 TEST(PhysicsTest, EscRuleNamesTheBrokenInequality) {
   EscParams esc;
-  esc.c1 = 0.30;  // the sjkim AT2814 fit of issue #12
+  esc.c1 = 0.30;  // an energy-creating fit of sjkim's AT2814 tables
   esc.c0 = 0.23;
   EXPECT_NE(EscEnergyViolation(esc).find("c1 + c0"), std::string::npos);
   esc.c1 = 1.5;
@@ -75,7 +75,7 @@ TEST(PhysicsTest, EscRuleMatchesTheModelOnRandomEscs) {
   EXPECT_GT(failing_seen, failing / 2);
 }
 
-// c1 + c0 = 0.53 (the energy-creating fit of issue #12): simulate at 15 V, TR 0.7, 0.2 N*m must
+// c1 + c0 = 0.53 (the energy-creating fit of sjkim's AT2814 tables): simulate at 15 V, TR 0.7, 0.2 N*m must
 // not be feasible.
 TEST(PhysicsTest, EnergyCreatingEscPointIsInfeasible) {
   EscParams esc;

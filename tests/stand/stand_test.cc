@@ -183,7 +183,7 @@ TEST(StandDcBaseline, DefinitionAndForwardInverseAgree) {
   EXPECT_NEAR(c.omega_rad_s, RpmToRadPerSec(6000.0), 1e-9);
 }
 
-// The resistance convention the stand tables expose (issue 13 item 2): with Io = 0, the rms
+// The resistance convention the stand tables expose: with Io = 0, the rms
 // model gives the DC model's current exactly when Rm_rms = R_dc * (K*kp)^2/kp = 0.7492 * R_dc
 // (PDC = Q*omega + kp*Rm*(Q/KT)^2 with KT = 1.1095*KT_dc, against Q*omega + R_dc*(Q/KT_dc)^2).
 TEST(StandDcBaseline, RmsModelEqualsDcModelAtTheConvertedResistance) {
