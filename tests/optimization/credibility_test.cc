@@ -20,6 +20,7 @@
 #include "common/units.h"
 #include "model/physics.h"
 #include "optimization/mission_eval.h"
+#include "optimization/objective_range.h"
 #include "optimization/search.h"
 #include "prop/prop_model.h"
 
