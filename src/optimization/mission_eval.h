@@ -238,7 +238,7 @@ class MissionEvaluator {
   // airspeeds (NLopt COBYLA through solvers/, checked from several starts), the shaft speeds
   // (Ipopt). This is what `evaluate` and `optimize` report.
   // With cutoff_score: stop early (bounded_out) once a bound proves score >= cutoff_score
-  // (max_endurance only; see EnduranceUpperBound in the .cc).
+  // (max_endurance only; see EnduranceUpperBound, mission_eval_early_exits.cc).
   // explain = false leaves out the warnings, the continuous solver's report, the designer's
   // summary and the propeller notes (text nobody reads for the search's evaluations: it
   // explains its top N again); the numbers are the same.
@@ -276,7 +276,7 @@ class MissionEvaluator {
 
   // The heaviest vehicle (kg) that can meet min_thrust_to_weight: the lift rotors' thrust at
   // full throttle from the full-charge OCV with no sag over g*min_thrust_to_weight (an upper
-  // bound of the thrust at every state of charge, capacity and stretch; the .cc proves it);
+  // bound of the thrust at every state of charge, capacity and stretch; mission_eval_early_exits.cc proves it);
   // +inf when the mission does not check it or no bound can be given. Solve's search exits use it.
   double ThrustToWeightMassCeilingKg() const;
 
