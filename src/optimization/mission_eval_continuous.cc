@@ -205,7 +205,7 @@ MissionResult MissionEvaluator::SolveOneFree(const std::vector<FreeVar>& free, d
   const bool bound_bracket = std::isfinite(cutoff_score) && m_.objective.type == ObjectiveType::kMaxEndurance &&
                              free[0].segment < 0;
   // min_energy with the capacity free and a voltage-independent terminal power (C0 = 0, no
-  // supply resistance, as in the check above): every segment's energy rises with the
+  // supply resistance, as in EarlyExit): every segment's energy rises with the
   // capacity (M3), so the energy at the bracket's low end bounds every point of it.
   const bool energy_bracket = std::isfinite(cutoff_score) && m_.objective.type == ObjectiveType::kMinEnergy &&
                               free[0].segment < 0 &&

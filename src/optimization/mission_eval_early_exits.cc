@@ -275,7 +275,7 @@ bool MissionEvaluator::DataWindowRefuses(bool below_too, MissionResult* out) con
 // C_h. Without a capacity range the check at the mission's capacity decides it outright: the
 // hover's mass, thrust and full-charge OCV depend on nothing else that is free (the stretch's
 // duration and the cruise airspeeds do not enter them). In the search nearly every real ESC that
-// passes the virtual one's bound fails this limit (issue 14: 96 % of the quadcopter's real-ESC
+// passes the virtual one's bound fails this limit (96 % of the quadcopter's real-ESC
 // evaluations), each for a whole 1-D search before.
 // min_thrust_to_weight is checked at the run's end (FinishRun) with the lift rotors' thrust at
 // full throttle at the terminal voltage there, which is at most the full-charge OCV (the OCV
@@ -478,7 +478,7 @@ bool MissionEvaluator::EarlyExit(double cutoff_score, bool explain, bool search,
       }
       if (nothing_free) {
         // Nothing to optimise: r0 (feasible, so the screening never stopped it) is the very
-        // simulation the code below would run again (WithEndurance = Run for min_energy).
+        // simulation SolveContinuous would run again (WithEndurance = Run for min_energy).
         MissionResult r = r0;
         if (explain) {
           Summarize(&r);
