@@ -6,7 +6,7 @@
 
 #include "common/error.h"
 #include "mission/flight.h"
-#include "optimization/credibility.h"
+#include "optimization/objective_range.h"
 
 namespace dynosize::api {
 
@@ -101,7 +101,7 @@ Combination ChooseCombination(const Mission& mission, const Catalog& cat, const 
 MissionResult EvaluateCombination(const Mission& mission, const Combination& c) {
   const MissionEvaluator ev(mission, c);
   MissionResult r = ev.Solve();
-  AddObjectiveRange(mission, c, &r);  // objective_range and tiers (optimization/credibility.h)
+  AddObjectiveRange(mission, c, &r);  // objective_range and tiers (optimization/objective_range.h)
   return r;
 }
 

@@ -1,6 +1,7 @@
-// Trust in the data behind a result (issue 13, item 4, and the sizing side of items 3 and 5):
-// the source tier of each catalog entry, the figure-of-merit envelope of measured propellers,
-// the data scenarios a mission can be flown on, and the objective range of a result.
+// Trust in the data behind a result: the source tier of each catalog entry, the figure-of-merit
+// envelope of measured propellers, the data scenarios a mission can be flown on, and the
+// objective range of a result (its type here; optimization/objective_range.h fills it, above the
+// evaluator, because it flies the mission again under the other scenarios).
 //
 // The trust rules themselves live in the catalog, one implementation each: the source tier of
 // an entry (EntryBase::tier, catalog/conventions.h; ValueTier for one value), the figure-of-merit
@@ -76,9 +77,6 @@
 
 namespace dynosize {
 
-struct Combination;
-struct MissionResult;
-
 // Measured over computed static FM (MedianStaticFigureOfMerit, prop_credibility.h) of the same
 // APC products: UIUC apcsf/apce against the raw APC PER3 SF/E tables of the bundled catalog
 // (stored power / power_derate_factor); recomputed in tests/optimization/credibility_test.cc.
@@ -149,6 +147,7 @@ struct PartTier {
   std::string why;   // "source.tier" (stated in the file) or "source.values" (inferred)
 };
 
+// Filled by AddObjectiveRange (optimization/objective_range.h).
 struct ObjectiveRange {
   bool computed = false;
   // The objective under the pessimistic and the optimistic data, ordered (low <= credible <=
@@ -170,9 +169,5 @@ struct ObjectiveRange {
   std::vector<PartTier> tiers;
   std::string motor_rating;  // "catalog", "... estimated from the mass (assumed)", ...
 };
-
-// Fills result->range: the objective re-solved under the pessimistic, optimistic and as-given
-// scenarios (three more MissionEvaluator::Solve runs; the search calls it for its top N only).
-void AddObjectiveRange(const Mission& mission, const Combination& combination, MissionResult* result);
 
 }  // namespace dynosize

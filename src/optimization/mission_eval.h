@@ -1,5 +1,5 @@
 // One combination (motor, ESC, propeller, battery cell, cells in series) flying one mission:
-// the continuous problem of issue #6.
+// its continuous problem.
 //
 // Per segment the rotors' thrust and axial airspeed follow from the weight (vehicle plus
 // propulsion) and mission/flight.h; the propeller's speed is the root of T_prop(omega) =
@@ -40,7 +40,7 @@ namespace dynosize {
 
 struct RotorLoad;  // mission/flight.h
 namespace eval_internal {
-class Tracker;  // slacks and violations of one Run (mission_eval.cc)
+class Tracker;  // slacks and violations of one Run (mission_eval_flight.cc)
 }  // namespace eval_internal
 
 // The parts of one propulsion group.
@@ -238,7 +238,7 @@ class MissionEvaluator {
   // airspeeds (NLopt COBYLA through solvers/, checked from several starts), the shaft speeds
   // (Ipopt). This is what `evaluate` and `optimize` report.
   // With cutoff_score: stop early (bounded_out) once a bound proves score >= cutoff_score
-  // (max_endurance only; see EnduranceUpperBound in the .cc).
+  // (max_endurance only; see EnduranceUpperBound, mission_eval_early_exits.cc).
   // explain = false leaves out the warnings, the continuous solver's report, the designer's
   // summary and the propeller notes (text nobody reads for the search's evaluations: it
   // explains its top N again); the numbers are the same.
@@ -276,7 +276,7 @@ class MissionEvaluator {
 
   // The heaviest vehicle (kg) that can meet min_thrust_to_weight: the lift rotors' thrust at
   // full throttle from the full-charge OCV with no sag over g*min_thrust_to_weight (an upper
-  // bound of the thrust at every state of charge, capacity and stretch; the .cc proves it);
+  // bound of the thrust at every state of charge, capacity and stretch; mission_eval_early_exits.cc proves it);
   // +inf when the mission does not check it or no bound can be given. Solve's search exits use it.
   double ThrustToWeightMassCeilingKg() const;
 
@@ -285,13 +285,28 @@ class MissionEvaluator {
   double entry_capacity_ah() const { return base_capacity_ah_; }
 
  private:
+  // --- mission_eval.cc: the battery at a capacity.
   BatteryPackParams PackAt(double capacity_ah) const;
+
+  // --- mission_eval_flight.cc: Run and its stages, WithEndurance.
+  // What Run carries from one segment to the next.
+  struct RunState {
+    BatteryPack pack;
+    double cutoff_v = 0, v_full = 0, q_c = 0, current_factor = 1;
+    double soc = 1.0, time_s = 0, energy_j = 0;
+    bool in_stretch = false;  // past the first point of the max-endurance stretch (WithEndurance)
+  };
+  // A Run stopped before segment `next`: everything Run has at that point (the segments before
+  // `next` do not depend on the stretch, so WithEndurance flies them once per set of variables).
+  struct RunPrefix {
+    MissionResult r;
+    RunState st;
+    std::size_t next = 0;
+    bool finished = false;  // the run ended early (r is its final result)
+  };
   // screen: stop at the end of the first segment that breaks a constraint (the result then
   // only says "infeasible"; used by Solve(cutoff) to discard search candidates quickly).
   MissionResult Run(const ContinuousVars& vars, double stretch_s, bool screen = false) const;
-  // Run's stages (mission_eval.cc).
-  struct RunState;
-  struct RunPrefix;
   RunPrefix RunUpTo(const ContinuousVars& vars, std::size_t end, bool screen) const;
   void RunSegments(const ContinuousVars& vars, double stretch_s, bool screen, std::size_t end, RunPrefix* p) const;
   MissionResult RunFrom(RunPrefix p, const ContinuousVars& vars, double stretch_s, bool screen) const;
@@ -301,10 +316,13 @@ class MissionEvaluator {
   bool IntegrateSegment(std::size_t si, bool stretched, double omega, double torque, RunState* st,
                         eval_internal::Tracker* track, SegmentResult* seg) const;
   void FinishRun(const RunState& st, eval_internal::Tracker* track, MissionResult* out) const;
+  double StretchStartCurrent(const MissionResult& r) const;
   // decide_cutoff (Solve's decide): return the first feasible run whose score is below it (the
   // longest feasible stretch, the answer otherwise, is no worse).
   MissionResult WithEndurance(ContinuousVars vars,
                               double decide_cutoff = -std::numeric_limits<double>::infinity()) const;
+
+  // --- mission_eval_continuous.cc: the continuous variables.
   MissionResult SolveContinuous(double cutoff_score, bool explain, bool decide, bool search) const;
   // A free continuous variable of SolveContinuous: the capacity (segment -1) or a cruise's
   // airspeed, searched over [lo, hi] as x in [0, 1].
@@ -316,13 +334,17 @@ class MissionEvaluator {
   ContinuousVars VarsAt(const std::vector<FreeVar>& free, const double* x) const;  // x: one per free var, or null
   MissionResult SolveOneFree(const std::vector<FreeVar>& free, double cutoff_score, bool explain, bool decide) const;
   MissionResult SolveManyFree(const std::vector<FreeVar>& free, double cutoff_score, bool explain, bool decide) const;
+
+  // --- mission_eval_early_exits.cc: the search's early exits and bounds (and the public
+  // DataWindowRefuses and ThrustToWeightMassCeilingKg).
   bool EarlyExit(double cutoff_score, bool explain, bool search, MissionResult* out) const;
   bool HoverOrWeightRefuses(bool with_weight, MissionResult* out) const;
-  double StretchStartCurrent(const MissionResult& r) const;
   // An upper bound of the total mission time over the capacity range (max_endurance), tightened
   // until it falls below target_s or a budget of simulations is spent.
   // [from_ah, to_ah] (to_ah > 0): only that part of the capacity range.
   double EnduranceUpperBound(double target_s, double from_ah = 0.0, double to_ah = 0.0) const;
+
+  // --- mission_eval_summary.cc: the designer's summary and the warnings.
   // The assumed catalog values and the warnings a designer expects (hover throttle over the limit, currents near a rating,
   // ESC saturation, a motor running far below its efficient load, assumed parameters).
   void AddWarnings(MissionResult* r) const;

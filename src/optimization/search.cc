@@ -20,6 +20,7 @@
 #include "model/physics.h"
 #include "optimization/components.h"
 #include "optimization/joint_search.h"
+#include "optimization/objective_range.h"
 #include "optimization/search_stages.h"
 #include "optimization/top_results.h"
 

@@ -59,7 +59,7 @@ bool Names(const MissionResult& r, const std::string& constraint) {
 TEST_F(MissionEvalTest, APointThatCreatesEnergyIsNeverFeasible) {
   const Catalog cat = SmallCatalog();
   const Mission m = Quad();
-  const Combination good{&cat.motor("dc_m_1020"), &cat.esc("dc_e_56"), &cat.prop("dc_p_173"), &cat.battery("dc_b_361"), 4};
+  const Combination good{&cat.motor("dc_m_1020"), &cat.esc("dc_e_56"), &cat.prop("dc_p_173"), &cat.battery("dc_b_361"), 4, {}};
   const MissionResult base = MissionEvaluator(m, good).Solve();
   ASSERT_TRUE(base.feasible) << "the reference combination must fly";
   EXPECT_FALSE(Names(base, "creates_energy"));
@@ -107,7 +107,7 @@ TEST_F(MissionEvalTest, APointThatCreatesEnergyIsNeverFeasible) {
 TEST_F(MissionEvalTest, ThrustToWeightAtFullThrottleOnTheLowestVoltage) {
   const Catalog cat = SmallCatalog();
   const Mission m = Quad();
-  const Combination c{&cat.motor("dc_m_1020"), &cat.esc("dc_e_56"), &cat.prop("dc_p_173"), &cat.battery("dc_b_361"), 4};
+  const Combination c{&cat.motor("dc_m_1020"), &cat.esc("dc_e_56"), &cat.prop("dc_p_173"), &cat.battery("dc_b_361"), 4, {}};
   const MissionResult r = MissionEvaluator(m, c).Solve();
   ASSERT_TRUE(r.feasible);
   ASSERT_EQ(r.lift_rotors, 4);
@@ -139,7 +139,7 @@ TEST_F(MissionEvalTest, ThrustToWeightAtFullThrottleOnTheLowestVoltage) {
   const MissionResult tight = MissionEvaluator(ParseMission(j, "q"), c).Solve();
   EXPECT_TRUE(Names(tight, "min_thrust_to_weight"));
   // max_endurance: a shorter loiter leaves more charge, so the limit may still be met earlier.
-  if (tight.feasible) EXPECT_LT(tight.objective, r.objective);
+  if (tight.feasible) { EXPECT_LT(tight.objective, r.objective); }
   j["constraints"]["min_thrust_to_weight"] = 50.0;
   const MissionResult never = MissionEvaluator(ParseMission(j, "q"), c).Solve();
   EXPECT_FALSE(never.feasible);
@@ -151,7 +151,7 @@ TEST_F(MissionEvalTest, ThrustToWeightAtFullThrottleOnTheLowestVoltage) {
 TEST_F(MissionEvalTest, WindingTemperatureMatchesAHandCalculation) {
   const Catalog cat = SmallCatalog();
   const Mission m = Quad();
-  const Combination c{&cat.motor("dc_m_1020"), &cat.esc("dc_e_56"), &cat.prop("dc_p_173"), &cat.battery("dc_b_361"), 4};
+  const Combination c{&cat.motor("dc_m_1020"), &cat.esc("dc_e_56"), &cat.prop("dc_p_173"), &cat.battery("dc_b_361"), 4, {}};
   const MissionEvaluator ev(m, c);
   const MissionResult r = ev.Solve();
   ASSERT_TRUE(r.feasible);
@@ -187,7 +187,7 @@ TEST_F(MissionEvalTest, WindingTemperatureMatchesAHandCalculation) {
 TEST_F(MissionEvalTest, SummaryAgreesWithTheMission) {
   const Catalog cat = SmallCatalog();
   const Mission m = Quad();
-  const Combination c{&cat.motor("dc_m_1020"), &cat.esc("dc_e_56"), &cat.prop("dc_p_173"), &cat.battery("dc_b_361"), 4};
+  const Combination c{&cat.motor("dc_m_1020"), &cat.esc("dc_e_56"), &cat.prop("dc_p_173"), &cat.battery("dc_b_361"), 4, {}};
   const MissionResult r = MissionEvaluator(m, c).Solve();
   ASSERT_TRUE(r.feasible);
   const DesignSummary& d = r.summary;
@@ -219,7 +219,7 @@ TEST_F(MissionEvalTest, TheStretchEndsOnTheLimitThatEndsIt) {
   // The stretch is found to 1e-6 of its length; a slack moves by about as much.
   constexpr double kSlackTolerance = 1e-5;
   const Catalog cat = SmallCatalog();
-  const Combination c{&cat.motor("dc_m_1020"), &cat.esc("dc_e_56"), &cat.prop("dc_p_173"), &cat.battery("dc_b_361"), 4};
+  const Combination c{&cat.motor("dc_m_1020"), &cat.esc("dc_e_56"), &cat.prop("dc_p_173"), &cat.battery("dc_b_361"), 4, {}};
   Json j = ParseJsonText(kHoverQuad, "quad");
   const MissionResult by_reserve = MissionEvaluator(ParseMission(j, "quad"), c).Solve();
   ASSERT_TRUE(by_reserve.feasible);
@@ -251,7 +251,7 @@ TEST_F(MissionEvalTest, TheCapacitySearchFindsTheBestCapacity) {
   const Mission m = ParseMission(j, "quad");
   int checked = 0;
   for (const char* prop : {"dc_p_173", "dc_p_372"}) {
-    const Combination c{&cat.motor("dc_m_1020"), &cat.esc("dc_e_56"), &cat.prop(prop), &cat.battery("dc_b_361"), 4};
+    const Combination c{&cat.motor("dc_m_1020"), &cat.esc("dc_e_56"), &cat.prop(prop), &cat.battery("dc_b_361"), 4, {}};
     const MissionEvaluator ev(m, c);
     const MissionResult best = ev.Solve();
     if (!best.feasible) continue;
@@ -260,7 +260,9 @@ TEST_F(MissionEvalTest, TheCapacitySearchFindsTheBestCapacity) {
       ContinuousVars v;
       v.capacity_ah = 1.0 + 11.0 * k / kScan;
       const MissionResult r = ev.Simulate(v);
-      if (r.feasible) EXPECT_LE(r.endurance_s, best.endurance_s * (1 + kRelativeTolerance)) << prop << " at " << v.capacity_ah << " Ah";
+      if (r.feasible) {
+        EXPECT_LE(r.endurance_s, best.endurance_s * (1 + kRelativeTolerance)) << prop << " at " << v.capacity_ah << " Ah";
+      }
     }
   }
   EXPECT_GT(checked, 0);
@@ -335,7 +337,7 @@ TEST_F(MissionEvalTest, AGearedMotorTurnsThePropellerAtItsOwnSpeedAndPaysTheGear
   int checked = 0;
   for (const EscEntry& e : cat.escs()) {
     for (const PropEntry& p : cat.props()) {
-      Combination c{&geared, &e, &p, &cat.battery("dc_b_361"), 4};
+      Combination c{&geared, &e, &p, &cat.battery("dc_b_361"), 4, {}};
       const MissionResult r = MissionEvaluator(m, c).Solve();
       if (r.segments.size() != m.segments.size() || !r.feasible) continue;
       const SegmentResult& hover = r.segments[1];
