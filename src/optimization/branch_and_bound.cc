@@ -191,6 +191,9 @@ void BranchAndBound::Explain() const {
   }
 }
 
+// Rule R5 (docs/search.md#r5): an ESC of the same class that is no lighter, no lower in
+// resistance and no higher in rating scores no better (M2, M3); a class's virtual ESC (no
+// resistance, the lightest mass) that cannot enter the top N rules out the whole class.
 // One candidate pair against the N best scores when its chunk started (`top`, updated with
 // this pair's own results, so that the threshold tightens within the pair exactly as it would
 // in a sequential search): virtual ESC per class first (R5), then the real ESCs, lightest first,

@@ -16,6 +16,8 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 
 }  // namespace
 
+// Rule R1 (docs/search.md#r1): an ESC rated below the pack's full-charge voltage fails
+// esc_voltage whatever else is chosen; R0 (docs/search.md#r0): an ESC the catalog excludes.
 EscTable BuildEscTable(const Catalog& cat, const std::vector<BatteryOption>& options) {
   const auto& escs = cat.escs();
   EscTable t;

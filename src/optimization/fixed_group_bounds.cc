@@ -32,6 +32,8 @@ double FreeCruisePowerLowerBoundW(const Mission& m, const Segment& sg, const Gro
   return FreeCruiseRotorPowerLowerBoundW(m, sg, p, drive, mass_kg);
 }
 
+// Rule G1 (docs/search.md#g1): a fixed group's segment draws at least its own drive's PDC at
+// the lightest vehicle mass (M1, M3), tabulated on a mass grid read at or below a pair's mass.
 void FixedGroupPowerBounds(SearchContext* ctx) {
   const Mission& m = *ctx->mission;
   ctx->fixed_power_lb_w.clear();

@@ -9,6 +9,7 @@
 #include <utility>
 #include <vector>
 
+#include "common/error.h"
 #include "common/units.h"
 #include "model/physics.h"
 #include "optimization/components.h"

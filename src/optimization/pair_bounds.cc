@@ -113,6 +113,9 @@ double MomentumPowerW(const Mission& m, const RotorLoad& ld, double diameter_m, 
       IdealRotorPowerW(ld.thrust_per_rotor_n, diameter_m, m.rho_kg_m3, axial_data ? ld.axial_airspeed_m_s : 0.0);
   return ld.rotors * p_ideal / m.constraints.max_figure_of_merit + m.vehicle.avionics_power_w;
 }
+// Rule R4 (docs/search.md#r4): every segment draws at least its power bound for at least its
+// shortest duration, so the score is at least the assembled bound; pairs best bound first,
+// stopping at the first bound not below the N-th best.
 // R4: a lower bound of the score of a (motor, propeller, option) pair with an ESC class whose
 // drive is lossy or not (DriveIsLossy: only then momentum theory bounds the power drawn),
 // given the hover bound's per-rotor electrical power pdc_lb at the lightest mass (R11: a floor
@@ -202,6 +205,8 @@ double ScoreLowerBound(const SearchContext& ctx, const MissionFacts& f, bool los
   return -kInf;
 }
 
+// Rule R12 (docs/search.md#r12): a hover below the propeller's data window fails
+// prop_below_data; more mass turns the rotor faster (M3).
 // R12 as a mass floor: a feasible combination hovers at least at the window's bottom w_min, so
 // (M1) each rotor's hover thrust is at least T(w_min), and the vehicle's mass at least the mass
 // whose hover thrust per rotor that is (proportional to the mass, flight.h), shrunk by 1e-9
@@ -263,6 +268,10 @@ int HoverGridPointFromBelow(const MissionFacts& f, const PropGrid& g, PairLoads*
   return idx;
 }
 
+// Rules R2, R6, R7, R12 (docs/search.md#r2, #r6, #r7, #r12): the hover speed is at least the
+// grid speed of the lightest vehicle's thrust (M1, M3); a propeller whose data break momentum
+// theory, static-only data in fast axial flow, or a speed outside its rpm limit or data window
+// there fails whatever ESC and pack are chosen.
 // R2, R6, R7 for one (motor, propeller, option) pair whose propeller passed R0 (counted per
 // motor, MotorSetUp): the rule that removes it, or null. Sets omega_lb, q_lb (R2) for the
 // hover bound.
@@ -324,6 +333,8 @@ const char* PropRule(const SearchContext& ctx, const MissionFacts& f, double mot
   return nullptr;
 }
 
+// Rule R9 (docs/search.md#r9): the hover throttle at the heaviest vehicle is an upper bound
+// (M1-M3); below min_hover_throttle there, the ESC fails that limit for the pair.
 // R9 with the mission's facts and the motor's scenario parameters given (BranchAndBound calls it
 // per ESC).
 bool HoverThrottleBelowLimit(const SearchContext& ctx, const MissionFacts& f, const MotorParams& mp, int motor,

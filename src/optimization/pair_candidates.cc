@@ -16,6 +16,7 @@ namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
+// Rule R0 (docs/search.md#r0): a motor the catalog excludes is refused whole.
 // R0 (the catalog excludes the motor: catalog.h, "exclude") and a motor without a mass, counted for
 // all of the motor's pairs; true when the motor is skipped.
 bool SkipMotor(const MotorEntry& m, long long per_motor, RuleCounts* pruned, long long* skipped) {
@@ -72,8 +73,9 @@ bool MotorSetUp(const SearchContext& ctx, const MissionFacts& f, std::size_t mi,
   return true;
 }
 
-// R11 (stage 4's order: a key that bounds every pair of a class of motors, docs/search.md#r11). The factor keeps the key a bound
-// under rounding (the floor and the evaluator's powers are each within a few ulps).
+// R11 (stage 4's order: a key that bounds every pair of a class of motors, docs/search.md#r11).
+// The factor keeps the key a bound under rounding (the floor and the evaluator's powers are
+// each within a few ulps).
 constexpr double kKeyRoundingAllowance = 1.0 - 1e-9;
 // The classes: a class runs from its lightest motor up to this factor times that mass
 // (exclusive); its key uses that mass and its members' least loss floors. Measured on the
@@ -110,6 +112,8 @@ bool PairCandidate(const SearchContext& ctx, const MissionFacts& f, const MotorS
     pruned->Add(rule, per_pair);
     return false;
   }
+  // Rule R3 (docs/search.md#r3): throttle, Irms and PAC from below with a zero-resistance ESC
+  // at the full-charge voltage (M2); above a limit no ESC and no capacity can fix it.
   // R3 and R4 over the ESC classes: the pair survives if any class can. R4's bound is
   // nondecreasing in pdc_lb for a given DriveIsLossy (every term is, and so is each correctly
   // rounded operation): the least over the classes is the bound at the least pdc_lb of each
@@ -156,6 +160,8 @@ bool PairCandidate(const SearchContext& ctx, const MissionFacts& f, const MotorS
   return true;
 }
 
+// Rule R11 (docs/search.md#r11): a lossy motor's power is at least its loss floor at R2's
+// speed and torque, so a class's key bounds every pair of its motors.
 // R11's key of (pi, o) for lossy motors of at least motor_kg whose loss floors are at least
 // `loss`'s.
 double PropOnlyBound(const SearchContext& ctx, const MissionFacts& f, std::size_t pi, std::size_t o, double motor_kg,

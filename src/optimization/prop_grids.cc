@@ -20,6 +20,8 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 
 }  // namespace
 
+// Rule R0 (docs/search.md#r0): a propeller over the frame's diameter, or folding for lift, or
+// excluded by the catalog fails whatever motor is chosen.
 const char* PropFrameRule(const Mission& m, int group, bool lifts, const PropEntry& prop) {
   const std::optional<double> d_max = GroupMaxPropDiameterM(m, group);
   if (d_max && prop.diameter_m > *d_max) return "prop_diameter";
@@ -39,6 +41,8 @@ std::vector<double> InflowsOf(const Mission& m) {
   return v;
 }
 
+// The grids read by R2, R6, R9, R10 (docs/search.md): thrust and torque must rise with speed
+// on them (M1, docs/search.md#m1), else the propeller gets no thrust-based pruning.
 void BuildPropGrids(const Mission& m, const Catalog& cat, std::vector<PropGrid>* grids,
                     std::vector<std::unique_ptr<PropModel>>* models) {
   const auto& props = cat.props();

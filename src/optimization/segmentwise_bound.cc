@@ -66,6 +66,9 @@ void SpeedTorqueFromBelow(const PropGrid& g, const SegmentGrid& sgrid, const Pro
   *torque = std::min(ev.torque_nm, sgrid.torque_suffix_min[idx + 1]);
 }
 
+// Rule R10 (docs/search.md#r10): with the class's zero-resistance drive and the lightest
+// mass, each segment's speed, torque, power, charge and terminal voltage are bounded from
+// below (M1-M3); a piece that breaks a limit holds no feasible point.
 // R10 for one pair and ESC class with ESCs of at least esc_mass_kg and capacities in
 // [cap_a_ah, cap_b_ah] (see the rule): a lower bound of the score (-kInf when none applies), or
 // kInf with *rule set when no such combination can fly the pair.
