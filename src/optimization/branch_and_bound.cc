@@ -112,7 +112,6 @@ class BranchAndBound {
         open_at_start_(stream->open_combinations()),
         out_(out),
         relaxed_(*ctx.mission),
-        cutoff_(cutoff),
         facts_(FactsOf(*ctx.mission, ctx.free_group)),
         board_(opt.top_n, opt.distinct_designs, cutoff) {
     // The virtual ESC (and so the class check) uses the mission without min_hover_throttle: a
@@ -154,6 +153,13 @@ class BranchAndBound {
   double NthBest() const { return board_.Threshold(); }
   void Insert(const Combination& c, MissionResult&& r, double cutoff);
   void Process(const Candidate& cand, TopScores top, Outcome* o) const;
+  void RealEscs(const std::vector<int>& rated, Combination* c, const PropModel* model, TopScores* top,
+                Outcome* o) const;
+  // The free group's ESC of a combination.
+  void SetEsc(Combination* x, const EscEntry* e) const {
+    x->esc = e;
+    if (!x->groups.empty()) x->groups[ctx_.free_group].esc = e;
+  }
   // Stops the search before the chunk at ci when a stop was requested and work is left.
   bool StopAt(std::size_t ci, double threshold);
   void ReportProgress(std::size_t ci);
@@ -166,7 +172,6 @@ class BranchAndBound {
   std::size_t base_ = 0;
   SearchResult* out_;
   Mission relaxed_;
-  double cutoff_ = kInf;
   MissionFacts facts_;
   TopResults board_;  // the top N so far (top_results.h); out_->best at the end
   long long virtual_evals_ = 0;
@@ -188,6 +193,48 @@ void BranchAndBound::Explain() const {
                                  ? nullptr
                                  : ctx_.models[static_cast<std::size_t>(b.combination.prop - ctx_.catalog->props().data())].get();
     b.result = MissionEvaluator(*ctx_.mission, b.combination, model, &ctx_.fixed_model_ptrs).Solve(cutoffs[i]);
+  }
+}
+
+// R5 for the real ESCs of a class that passed R3, R9, R10, R12 and the virtual ESC (`rated`,
+// lightest first): each solved exactly unless an ESC already solved dominates it and cannot
+// enter the top N (docs/search.md#r5).
+void BranchAndBound::RealEscs(const std::vector<int>& rated, Combination* c, const PropModel* model, TopScores* top,
+                              Outcome* o) const {
+  const Mission& m = *ctx_.mission;
+  const auto& escs = ctx_.catalog->escs();
+  std::vector<std::pair<int, bool>> done;  // ESC, "cannot enter the top N"
+  for (int e : rated) {
+    bool skip = false;
+    for (const auto& d : done) {
+      if (d.second && Dominates(escs[d.first], escs[e])) { skip = true; break; }
+    }
+    if (skip) {
+      o->pruned.Add("esc_dominated", 1);
+      continue;
+    }
+    SetEsc(c, &escs[e]);
+    const double threshold = top->Threshold();
+    const MissionEvaluator eval(m, *c, model, &ctx_.fixed_model_ptrs);
+    if (MissionResult w; eval.DataWindowRefuses(true, &w)) {  // R12, before a solve
+      const bool above = w.violations[0].constraint == "prop_above_data";
+      o->pruned.Add(above ? "prop_above_data" : "prop_below_data", 1);
+      done.emplace_back(e, !FailsMinHoverThrottle(w));  // below: a heavier ESC may meet it
+      continue;
+    }
+    MissionResult r = eval.Solve(threshold, false, false, true);
+    if (r.bounded_out) {
+      o->pruned.Add("objective_bound", 1);
+      done.emplace_back(e, true);
+      continue;
+    }
+    ++o->searched;
+    done.emplace_back(e, r.feasible ? !(r.score < threshold) : !FailsMinHoverThrottle(r));
+    if (r.feasible) {
+      top->Add(KeyOf(*c, top->distinct_designs()), r.score);
+      o->results.emplace_back(*c, std::move(r));
+      o->cutoffs.push_back(threshold);
+    }
   }
 }
 
@@ -213,10 +260,6 @@ void BranchAndBound::Process(const Candidate& cand, TopScores top, Outcome* o) c
     c.groups[ctx_.free_group].prop = c.prop;
   }
   const MotorParams mp = ScenarioMotorParams(*c.motor, m, nullptr, nullptr);  // as MotorSetUp (R9)
-  auto set_esc = [&](Combination* x, const EscEntry* e) {
-    x->esc = e;
-    if (!x->groups.empty()) x->groups[ctx_.free_group].esc = e;
-  };
   std::vector<int> rated;  // per class, reused
   for (std::size_t cl = 0; cl < ctx_.escs.classes.size(); ++cl) {
     const std::vector<int>& list = ctx_.escs.per_option[cand.option][cl];
@@ -297,7 +340,7 @@ void BranchAndBound::Process(const Candidate& cand, TopScores top, Outcome* o) c
     }
     {
       Combination vc = c;
-      set_esc(&vc, &virt);
+      SetEsc(&vc, &virt);
       const double threshold = threshold_now();
       const MissionEvaluator virtual_eval(relaxed_, vc, model, &ctx_.fixed_model_ptrs);
       // R12: above the window at the lightest vehicle; every ESC of the class is heavier (M3).
@@ -313,39 +356,7 @@ void BranchAndBound::Process(const Candidate& cand, TopScores top, Outcome* o) c
         continue;
       }
     }
-    std::vector<std::pair<int, bool>> done;  // ESC, "cannot enter the top N"
-    for (int e : rated) {
-      bool skip = false;
-      for (const auto& d : done) {
-        if (d.second && Dominates(escs[d.first], escs[e])) { skip = true; break; }
-      }
-      if (skip) {
-        local_prune("esc_dominated", 1);
-        continue;
-      }
-      set_esc(&c, &escs[e]);
-      const double threshold = threshold_now();
-      const MissionEvaluator eval(m, c, model, &ctx_.fixed_model_ptrs);
-      if (MissionResult w; eval.DataWindowRefuses(true, &w)) {  // R12, before a solve
-        const bool above = w.violations[0].constraint == "prop_above_data";
-        local_prune(above ? "prop_above_data" : "prop_below_data", 1);
-        done.emplace_back(e, !FailsMinHoverThrottle(w));  // below: a heavier ESC may meet it
-        continue;
-      }
-      MissionResult r = eval.Solve(threshold, false, false, true);
-      if (r.bounded_out) {
-        local_prune("objective_bound", 1);
-        done.emplace_back(e, true);
-        continue;
-      }
-      ++o->searched;
-      done.emplace_back(e, r.feasible ? !(r.score < threshold) : !FailsMinHoverThrottle(r));
-      if (r.feasible) {
-        top.Add(KeyOf(c, top.distinct_designs()), r.score);
-        o->results.emplace_back(c, std::move(r));
-        o->cutoffs.push_back(threshold);
-      }
-    }
+    RealEscs(rated, &c, model, &top, o);
   }
 }
 
