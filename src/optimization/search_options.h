@@ -47,7 +47,7 @@ struct SearchOptions {
   // joint_search.cc, G2's order). A count, so that where it stops does not depend on timing.
   long long evaluation_budget = 0;
 
-  // Ceres-like: true when the options can be searched with; otherwise false and *error (when
+  // True when the options can be searched with; otherwise false and *error (when
   // not null) says which option breaks which rule.
   bool IsValid(std::string* error) const;
 };

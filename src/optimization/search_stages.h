@@ -1,20 +1,27 @@
-// The stages of the catalog search (one file each, named below), each a function with its own test
+// The stages of the catalog search (one file each), each a function with its own test
 // (tests/optimization/search_stages_test.cc):
-//   1. BatteryOptions    the (battery entry, cells in series) choices with their voltage,
-//                        capacity and mass range and energy budget;
-//   2. BuildEscTable     ESC classes (same C1, C0, tr_sat, sat_slope) and, per battery option,
-//                        the ESCs that pass R1 (voltage rating), lightest first;
-//   3. BuildPropGrids    per propeller the static thrust, torque and figure of merit on a
-//                        speed grid at the mission's density (R2, R6), and with forward-flight
-//                        tables the thrust and torque in each fixed axial inflow (R10);
-//   4. BuildCandidates   every (motor, propeller, battery option) pair that survives R0, R2, R3,
-//                        R6, R7, with a lower bound of its score (R4, R11); the search itself
-//                        uses CandidateStream, which bounds a pair only when it may be drawn;
-//   5. BranchAndBound    the pairs best bound first (CandidateStream),
+//   1. BatteryOptions    (battery_options.cc) the (battery entry, cells in series) choices with
+//                        their voltage, capacity and mass range and energy budget;
+//   2. BuildEscTable     (esc_table.cc) ESC classes (same C1, C0, tr_sat, sat_slope) and, per
+//                        battery option, the ESCs that pass R1 (voltage rating), lightest first;
+//   3. BuildPropGrids    (prop_grids.cc) per propeller the static thrust, torque and figure of
+//                        merit on a speed grid at the mission's density (R2, R6), and with
+//                        forward-flight tables the thrust and torque in each fixed axial inflow
+//                        (R10);
+//   4. BuildCandidates   (pair_candidates.cc; how a pair is bounded: pair_bounds.cc,
+//                        segmentwise_bound.cc) every (motor, propeller, battery option) pair
+//                        that survives R0, R2, R3, R6, R7, with a lower bound of its score (R4,
+//                        R11); the search itself uses CandidateStream (candidate_stream.cc),
+//                        which bounds a pair only when it may be drawn;
+//   5. BranchAndBound    (branch_and_bound.cc) the pairs best bound first (CandidateStream),
 //                        per ESC class R9 (hover throttle from above, per ESC), R10 (segment by
 //                        segment) and the virtual ESC (R5), each remaining combination scored
 //                        exactly by MissionEvaluator::Solve.
-// The rules and their proofs: docs/search.md (anchors #m1, #r0 ... #g3). Internal to src/optimization (and its tests).
+// Stages 0-3 into a SearchContext: search_context.cc; the fixed groups' power bounds (G1):
+// fixed_group_bounds.cc. The entry (search.h, SearchCatalog) dispatches to SearchOneGroup or,
+// with several free groups, to the joint search (joint_search.h); no stage includes it.
+// The rules and their proofs: docs/search.md (anchors #m1, #r0 ... #g3). Internal to
+// src/optimization (and its tests).
 #pragma once
 
 #include <algorithm>

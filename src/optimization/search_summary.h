@@ -1,4 +1,4 @@
-// What a catalog search did, as a report (Ceres' Solver::Summary is the model): how many
+// What a catalog search did, as a report: how many
 // combinations there were, the candidate pairs bounded, what each rule pruned, the
 // combinations solved exactly, the time, and whether the search was stopped and with what gap.
 // Built from a SearchResult (search_result.h), whose counts it reads; the CLI prints
