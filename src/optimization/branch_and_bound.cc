@@ -45,9 +45,8 @@ bool Dominates(const EscEntry& a, const EscEntry& b) {
 // Stage 5: the candidate pairs best bound first, each pair's ESCs with R5, every combination
 // not pruned scored exactly.
 // Worker threads kept for a whole search: Start hands every thread the same job, Wait returns
-// when all have finished it. A chunk of candidates lasts about a millisecond; starting and
-// joining a thread per chunk cost 0.27 s over the first 10 k of the capacity-sized
-// quadcopter's chunks.
+// when all have finished it. A chunk of candidates lasts about a millisecond, too short to
+// start and join a thread per chunk (docs/search.md#constants).
 class WorkerThreads {
  public:
   explicit WorkerThreads(int n) {

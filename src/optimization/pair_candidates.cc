@@ -78,12 +78,8 @@ bool MotorSetUp(const SearchContext& ctx, const MissionFacts& f, std::size_t mi,
 // each within a few ulps).
 constexpr double kKeyRoundingAllowance = 1.0 - 1e-9;
 // The classes: a class runs from its lightest motor up to this factor times that mass
-// (exclusive); its key uses that mass and its members' least loss floors. Measured on the
-// 1.5 kg quadcopter (4.55 M (motor, propeller, option) pairs; pairs bounded, search time):
-// shaft power only (no loss floor), ratio 1.1: 355 k, 0.19 s; with the loss floor, ratio 1.05:
-// 121 k, 0.175 s; 1.1: 146 k, 0.162 s; 1.25: 188 k, 0.163 s; classes split further by the
-// copper-loss coefficient (ratio 4 within a class): 76 k, 0.19 s (the classes' keys cost more
-// than the pairs they save).
+// (exclusive); its key uses that mass and its members' least loss floors. The ratio: the
+// measurements that chose it are in docs/search.md#constants.
 constexpr double kMotorClassMassRatio = 1.1;
 
 }  // namespace

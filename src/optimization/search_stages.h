@@ -263,9 +263,7 @@ SearchResult SearchOneGroup(const Mission& m, const Catalog& cat, const SearchOp
 // batches (the first, of first_batch pairs per motor, on `threads` threads when the stream is
 // built; each later one twice the last, up to kMaxBatch); a pair whose key is not below the
 // caller's cutoff is never bounded. Tests use small first batches to exercise later ones.
-// Measured on the quadcopter (optimize_bench, medians of 3): first batch 8 / 32 / 128 pairs:
-// 128 k / 146 k / 250 k pairs bounded, 0.16 / 0.165 / 0.18 s; the largest batch (128, 512,
-// 4096) changed neither the pairs nor the time.
+// The batch sizes: the measurements that chose them are in docs/search.md#constants.
 inline constexpr std::size_t kFirstBatch = 32, kMaxBatch = 512;
 class CandidateStream {
  public:
