@@ -1,8 +1,8 @@
-// The catalog search for a mission with several free propulsion groups (issue 14, item 1):
+// The catalog search for a mission with several free propulsion groups (G2, docs/search.md#g2):
 // each group picks its own motor, ESC and propeller; the battery and its cells are shared.
 // An outer best-first loop over one group's (motor, ESC, propeller, battery option) choices,
 // with a proven lower bound of every completion's score (rule G2, stated with R0-R11 and G1 in
-// search.cc's header comment), and for each outer choice that can still beat the N-th best the
+// docs/search.md#g2), and for each outer choice that can still beat the N-th best the
 // search with that group fixed and the N-th best as its cutoff (the one-group search of
 // search_stages.h, or this search again when more than two groups are free). Internal to
 // src/optimization (and its tests); SearchCatalog calls it.
@@ -16,7 +16,8 @@
 #include "mission/flight.h"
 #include "mission/mission.h"
 #include "model/drive.h"
-#include "optimization/search.h"
+#include "optimization/search_options.h"
+#include "optimization/search_result.h"
 #include "optimization/search_stages.h"
 
 namespace dynosize {
@@ -87,7 +88,7 @@ class JointBounds {
   double PairBound(int motor, int prop, std::size_t o, int esc_class, const char** why, double* irms_lb);
   double TripleBound(int motor, int esc, int prop, std::size_t o, const char** why);
   // With two free groups and min_energy: tighten PairBound and TripleBound by the coupled bound
-  // (the inner group's frontier of mass and energy; search.cc, G2). Off by default (it costs
+  // (the inner group's frontier of mass and energy; docs/search.md#g2). Off by default (it costs
   // more per call): the search turns it on for the pairs it takes.
   void set_coupled(bool on) { coupled_ = on; }
   std::size_t frontier_size(std::size_t o) const { return o < frontier_.size() ? frontier_[o].size() : 0; }

@@ -86,7 +86,7 @@ CruiseSamples SampleCruise(const Mission& m, const Segment& sg, const CruiseProp
 
 }  // namespace
 
-// The rules (search.cc M1-M4 and R4's momentum bound), on a cell [V_k, V_k+1] of the range:
+// The rules (docs/search.md#m1 to #m4 and R4's momentum bound), on a cell [V_k, V_k+1] of the range:
 // - the thrust W/(L/D) + 1/2*rho*V^2*Cd*A_add (flight.h) rises with V, so it is at least T_k,
 //   its value at V_k (and rises with the mass, M3);
 // - momentum theory: a feasible point's propeller power is at least P_ideal(T, V)/FM_max (the

@@ -1,4 +1,4 @@
-// Bounds read from a propeller's data that the search's pruning rules (search.cc) and the
+// Bounds read from a propeller's data that the search's pruning rules (docs/search.md) and the
 // evaluator's early exits (mission_eval.cc) both use: a speed from below for a thrust, and the
 // least energy of a wing-borne cruise whose airspeed is free, cell by cell over its range.
 #pragma once
@@ -14,7 +14,7 @@ namespace dynosize {
 inline constexpr double kPropSpeedCeilingRadS = 6000.0;
 
 // A speed at or below the root of thrust(omega) = T in axial inflow v on [lo, hi] (thrust
-// rising with speed, search.cc M1, and thrust(lo) <= T): `steps` bisections keeping
+// rising with speed, docs/search.md#m1, and thrust(lo) <= T): `steps` bisections keeping
 // thrust(lo) <= T.
 double BisectSpeedFromBelow(const PropModel& model, double rho, double thrust_n, double v_m_s, double lo, double hi,
                             int steps);

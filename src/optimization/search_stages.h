@@ -1,20 +1,27 @@
-// The stages of the catalog search (search.cc), each a function with its own test
+// The stages of the catalog search (one file each), each a function with its own test
 // (tests/optimization/search_stages_test.cc):
-//   1. BatteryOptions    the (battery entry, cells in series) choices with their voltage,
-//                        capacity and mass range and energy budget;
-//   2. BuildEscTable     ESC classes (same C1, C0, tr_sat, sat_slope) and, per battery option,
-//                        the ESCs that pass R1 (voltage rating), lightest first;
-//   3. BuildPropGrids    per propeller the static thrust, torque and figure of merit on a
-//                        speed grid at the mission's density (R2, R6), and with forward-flight
-//                        tables the thrust and torque in each fixed axial inflow (R10);
-//   4. BuildCandidates   every (motor, propeller, battery option) pair that survives R0, R2, R3,
-//                        R6, R7, with a lower bound of its score (R4, R11); the search itself
-//                        uses CandidateStream, which bounds a pair only when it may be drawn;
-//   5. BranchAndBound    the pairs best bound first (CandidateStream),
+//   1. BatteryOptions    (battery_options.cc) the (battery entry, cells in series) choices with
+//                        their voltage, capacity and mass range and energy budget;
+//   2. BuildEscTable     (esc_table.cc) ESC classes (same C1, C0, tr_sat, sat_slope) and, per
+//                        battery option, the ESCs that pass R1 (voltage rating), lightest first;
+//   3. BuildPropGrids    (prop_grids.cc) per propeller the static thrust, torque and figure of
+//                        merit on a speed grid at the mission's density (R2, R6), and with
+//                        forward-flight tables the thrust and torque in each fixed axial inflow
+//                        (R10);
+//   4. BuildCandidates   (pair_candidates.cc; how a pair is bounded: pair_bounds.cc,
+//                        segmentwise_bound.cc) every (motor, propeller, battery option) pair
+//                        that survives R0, R2, R3, R6, R7, with a lower bound of its score (R4,
+//                        R11); the search itself uses CandidateStream (candidate_stream.cc),
+//                        which bounds a pair only when it may be drawn;
+//   5. BranchAndBound    (branch_and_bound.cc) the pairs best bound first (CandidateStream),
 //                        per ESC class R9 (hover throttle from above, per ESC), R10 (segment by
 //                        segment) and the virtual ESC (R5), each remaining combination scored
 //                        exactly by MissionEvaluator::Solve.
-// The proofs of the rules are in search.cc. Internal to src/optimization (and its tests).
+// Stages 0-3 into a SearchContext: search_context.cc; the fixed groups' power bounds (G1):
+// fixed_group_bounds.cc. The entry (search.h, SearchCatalog) dispatches to SearchOneGroup or,
+// with several free groups, to the joint search (joint_search.h); no stage includes it.
+// The rules and their proofs: docs/search.md (anchors #m1, #r0 ... #g3). Internal to
+// src/optimization (and its tests).
 #pragma once
 
 #include <algorithm>
@@ -29,7 +36,8 @@
 #include "optimization/credibility.h"
 #include "optimization/mission_eval.h"
 #include "optimization/prop_bounds.h"
-#include "optimization/search.h"
+#include "optimization/search_options.h"
+#include "optimization/search_result.h"
 #include "prop/prop_model.h"
 
 namespace dynosize::search_internal {
@@ -72,7 +80,7 @@ struct EscTable {
 EscTable BuildEscTable(const Catalog& cat, const std::vector<BatteryOption>& options);
 
 // The drive of a class with no ESC resistance: a lower bound of every member's throttle,
-// currents and power at a point (M2, search.cc).
+// currents and power at a point (M2, docs/search.md#m2).
 inline EscParams ZeroResistanceEsc(const EscClass& c) {
   EscParams e;
   e.c1 = c.c1;
@@ -200,14 +208,14 @@ void PrepareStages(const Mission& m, const Catalog& cat, SearchContext* ctx);
 double FreeCruisePowerLowerBoundW(const Mission& m, const Segment& sg, const GroupParts& parts,
                                   const PropModel& model, double mass_kg, const CruiseDriveBound* drive = nullptr);
 
-// R10 (search.cc): a lower bound of the score of (motor, prop, option) with any ESC of class
+// R10 (segmentwise_bound.cc, docs/search.md#r10): a lower bound of the score of (motor, prop, option) with any ESC of class
 // esc_class weighing at least esc_mass_kg, segment by segment (-kInf when none applies), or
 // kInf with *rule naming the constraint that every such combination breaks. With a capacity
 // range the pieces are refined while the bound is below `threshold` (kInf: as far as allowed).
 double SegmentwiseBound(const SearchContext& ctx, int motor, int prop, int option, int esc_class, double esc_mass_kg,
                         double threshold, const char** rule);
 
-// R9 (search.cc): true when the hover throttle of (motor, prop, option) with this ESC is below
+// R9 (pair_bounds.cc, docs/search.md#r9): true when the hover throttle of (motor, prop, option) with this ESC is below
 // the mission's min_hover_throttle at every mass and capacity, so the ESC fails that limit for
 // the pair whatever else is chosen (false when the rule does not apply).
 bool FailsHoverThrottleBound(const SearchContext& ctx, int motor, int prop, int option, const EscEntry& esc);
@@ -224,7 +232,7 @@ double FixedPowerLowerBoundW(const SearchContext& ctx, std::size_t option, std::
 // ordered by the branch and bound's total order).
 CandidateList BuildCandidates(const SearchContext& ctx, int threads);
 
-// R11 (search.cc): the key of (prop, option) at the mass and loss floor of `motor` (whose
+// R11 (pair_candidates.cc, docs/search.md#r11): the key of (prop, option) at the mass and loss floor of `motor` (whose
 // drives must not be able to create energy): a lower bound of the score of every combination
 // of that motor with them (-kInf when none applies).
 double PropellerKeyBound(const SearchContext& ctx, int prop, int option, int motor);
@@ -251,13 +259,11 @@ SearchResult SearchOneGroup(const Mission& m, const Catalog& cat, const SearchOp
 
 // Stage 4 on demand: the candidate pairs of BuildCandidates in CandidateBefore order, each
 // bounded only when it may be drawn next. Per motor, the pairs are bounded in the order of
-// R11's keys (search.cc: a bound that holds for every motor of the motor's mass class), in
+// R11's keys (docs/search.md#r11: a bound that holds for every motor of the motor's mass class), in
 // batches (the first, of first_batch pairs per motor, on `threads` threads when the stream is
 // built; each later one twice the last, up to kMaxBatch); a pair whose key is not below the
 // caller's cutoff is never bounded. Tests use small first batches to exercise later ones.
-// Measured on the quadcopter (optimize_bench, medians of 3): first batch 8 / 32 / 128 pairs:
-// 128 k / 146 k / 250 k pairs bounded, 0.16 / 0.165 / 0.18 s; the largest batch (128, 512,
-// 4096) changed neither the pairs nor the time.
+// The batch sizes: the measurements that chose them are in docs/search.md#constants.
 inline constexpr std::size_t kFirstBatch = 32, kMaxBatch = 512;
 class CandidateStream {
  public:

@@ -1,5 +1,5 @@
-// The top-N bookkeeping of the catalog search (issue 24, item 5), shared by the branch and bound
-// (search.cc: its N-th best and the per-pair thresholds) and the joint search's merge of its
+// The top-N bookkeeping of the catalog search, shared by the branch and bound
+// (branch_and_bound.cc: its N-th best and the per-pair thresholds) and the joint search's merge of its
 // inner searches (joint_search.cc): the N best results and the threshold they prune against.
 //
 // Two ways of counting the N (SearchOptions::distinct_designs):
@@ -21,7 +21,7 @@
 #include <vector>
 
 #include "optimization/mission_eval.h"
-#include "optimization/search.h"
+#include "optimization/search_result.h"
 
 namespace dynosize::search_internal {
 

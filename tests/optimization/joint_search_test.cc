@@ -1,5 +1,5 @@
 // The joint search of several free propulsion groups (optimization/joint_search.h, rule G2 in
-// search.cc) against exhaustive evaluation of every lift x pusher x cells combination of the
+// docs/search.md#g2) against exhaustive evaluation of every lift x pusher x cells combination of the
 // small catalog, and G2's bounds against the true scores of all of them.
 #include "optimization/joint_search.h"
 

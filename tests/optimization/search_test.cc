@@ -316,7 +316,7 @@ TEST_F(SearchTest, MinHoverThrottleEqualsExhaustiveEvaluation) {
   EXPECT_GE(CheckAgainstExhaustive(cat, m), 3u);
 }
 
-// The propeller data window (mission.h; search.cc R12): the search equals exhaustive evaluation
+// The propeller data window (mission.h; docs/search.md#r12): the search equals exhaustive evaluation
 // when the window binds (the defaults, and a tight one), and with it off no combination names it.
 TEST_F(SearchTest, PropDataWindowEqualsExhaustiveEvaluation) {
   const Catalog cat = Catalog::Load((dir_ / "catalog").string());

@@ -1,0 +1,194 @@
+// Stage 4 on demand (search_stages.h, CandidateStream): the candidate pairs in the branch and
+// bound's order, each bounded only when it may be drawn next (R11, docs/search.md#r11).
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <memory>
+#include <vector>
+
+#include "optimization/pair_candidates.h"
+
+namespace dynosize::search_internal {
+
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+}  // namespace
+
+// Stage 4 on demand (CandidateStream). Per set-up motor: its class's keys (R11) are walked in
+// order and bounded in batches; the bounded pairs wait in a heap. A motor's head is its next
+// bounded pair when that pair's bound is below the key of its next unbounded one, else that
+// key (a "frontier", drawn first on ties: an unbounded pair may tie with it); the motors are
+// in a heap by head. Drawing a frontier bounds the motor's next batch; drawing a pair returns
+// it. A pair is returned only when its bound is below every frontier, and every unbounded
+// pair's bound is at least its frontier (R11: the pair's bound is the larger of R4's and its
+// key), so the pairs come in CandidateBefore order, as sorting BuildCandidates would give them.
+struct CandidateStream::Impl {
+  struct Motor {
+    std::unique_ptr<MotorSetup> setup;
+    const std::vector<PropKey>* keys = nullptr;  // its class's
+    std::size_t walk = 0;                        // keys before it are bounded (or skipped)
+    std::vector<Candidate> pending;              // a heap: the first in CandidateBefore order on top
+    std::size_t batch = 0;                       // the next batch's size
+    bool Live() const { return walk < keys->size() || !pending.empty(); }
+    bool HeadIsPair() const {
+      return !pending.empty() && (walk == keys->size() || pending.front().bound < (*keys)[walk].bound);
+    }
+    double HeadBound() const { return HeadIsPair() ? pending.front().bound : (*keys)[walk].bound; }
+  };
+  struct BatchCounts {
+    RuleCounts pruned;
+    long long bounded = 0;
+  };
+
+  explicit Impl(const SearchContext& c) : ctx(c), f(StageFourFacts(c)), loads(*c.mission) {}
+  // a's head comes after b's.
+  bool After(std::size_t a, std::size_t b) const {
+    const Motor& x = motors[a];
+    const Motor& y = motors[b];
+    const double bx = x.HeadBound(), by = y.HeadBound();
+    if (bx != by) return by < bx;
+    const bool px = x.HeadIsPair(), py = y.HeadIsPair();
+    if (px != py) return px;  // a frontier first
+    if (!px) return y.setup->motor < x.setup->motor;
+    return CandidateBefore(y.pending.front(), x.pending.front());
+  }
+  // Bounds up to n more of m's pairs whose key is below the cutoff (pairs at or above it are
+  // never drawn: they stay open). Returns the combinations a rule removed.
+  long long Expand(Motor* m, double cutoff, std::size_t n, PairLoads* pair_loads, BatchCounts* tally) const {
+    const std::vector<PropKey>& keys = *m->keys;
+    auto first = [](const Candidate& a, const Candidate& b) { return CandidateBefore(b, a); };
+    long long removed = 0;
+    for (std::size_t done = 0; m->walk < keys.size() && done < n;) {
+      const PropKey& k = keys[m->walk];
+      if (!(k.bound < cutoff)) {
+        m->walk = keys.size();
+        break;
+      }
+      ++m->walk;
+      const std::size_t o = static_cast<std::size_t>(k.option);
+      if (std::isnan(m->setup->w_nl[o])) continue;  // R1 (MotorSetUp counted it)
+      ++done;
+      ++tally->bounded;
+      Candidate c;
+      if (!PairCandidate(ctx, f, *m->setup, static_cast<std::size_t>(k.prop), o, pair_loads, &c, &tally->pruned)) {
+        removed += ctx.escs.rated[o];
+        continue;
+      }
+      c.bound = std::max(c.bound, k.bound);  // R11 (-inf when it does not apply)
+      if (!(c.bound < cutoff)) continue;
+      m->pending.push_back(c);
+      std::push_heap(m->pending.begin(), m->pending.end(), first);
+    }
+    return removed;
+  }
+
+  const SearchContext& ctx;
+  const MissionFacts f;
+  std::vector<std::vector<PropKey>> classes;
+  std::vector<Motor> motors;
+  std::vector<std::size_t> heap;  // live motors; the first head on top
+  PairLoads loads;
+  BatchCounts counts;
+  long long open = 0;  // combinations of the pairs neither drawn nor removed by a stage 4 rule
+  long long skipped = 0, batches = 0;
+};
+
+CandidateStream::CandidateStream(const SearchContext& ctx, int threads, std::size_t first_batch)
+    : impl_(std::make_unique<Impl>(ctx)) {
+  Impl& s = *impl_;
+  std::vector<std::unique_ptr<MotorSetup>> setups = SetUpMotors(ctx, s.f, threads, &s.counts.pruned, &s.skipped);
+  std::vector<MotorClass> classes;
+  const std::vector<int> cls = MotorClasses(Pointers(setups), &classes);
+  s.classes.resize(classes.size());
+  std::vector<char> used(classes.size(), 0);
+  for (std::size_t mi = 0; mi < cls.size(); ++mi) {
+    if (setups[mi]) used[static_cast<std::size_t>(cls[mi])] = 1;
+  }
+  ForEachOnThreads(s.classes.size(), threads, [&](int, std::size_t c) {
+    const bool lossy = c + 1 < s.classes.size();  // the last class is the one without R11
+    if (used[c]) s.classes[c] = ClassKeys(ctx, s.f, classes[c], lossy);
+  });
+  const long long per_option_props = static_cast<long long>(s.f.frame_ok_props.size());
+  for (std::size_t mi = 0; mi < setups.size(); ++mi) {
+    if (!setups[mi]) continue;
+    Impl::Motor m;
+    m.keys = &s.classes[static_cast<std::size_t>(cls[mi])];
+    m.batch = std::max<std::size_t>(first_batch, 1);
+    for (std::size_t o = 0; o < ctx.options.size(); ++o) {
+      if (!std::isnan(setups[mi]->w_nl[o])) s.open += ctx.escs.rated[o] * per_option_props;
+    }
+    m.setup = std::move(setups[mi]);
+    s.motors.push_back(std::move(m));
+  }
+  // Each motor's first batch, on the threads.
+  std::vector<Impl::BatchCounts> thread_counts(static_cast<std::size_t>(std::max(1, threads)));
+  std::vector<long long> thread_removed(thread_counts.size(), 0);
+  ForEachOnThreads(s.motors.size(), threads, [&](int tid, std::size_t i) {
+    PairLoads loads(*ctx.mission);
+    thread_removed[tid] += s.Expand(&s.motors[i], kInf, s.motors[i].batch, &loads, &thread_counts[tid]);
+    s.motors[i].batch = std::min(2 * s.motors[i].batch, kMaxBatch);
+  });
+  for (std::size_t t = 0; t < thread_counts.size(); ++t) {
+    thread_counts[t].pruned.MergeInto(&s.counts.pruned);
+    s.counts.bounded += thread_counts[t].bounded;
+    s.open -= thread_removed[t];
+  }
+  for (std::size_t i = 0; i < s.motors.size(); ++i) {
+    if (s.motors[i].Live()) s.heap.push_back(i);
+  }
+  std::make_heap(s.heap.begin(), s.heap.end(), [&s](std::size_t a, std::size_t b) { return s.After(a, b); });
+}
+
+CandidateStream::~CandidateStream() = default;
+
+bool CandidateStream::Next(double cutoff, Candidate* c) {
+  Impl& s = *impl_;
+  auto after = [&s](std::size_t a, std::size_t b) { return s.After(a, b); };
+  auto first = [](const Candidate& a, const Candidate& b) { return CandidateBefore(b, a); };
+  while (!s.heap.empty()) {
+    std::pop_heap(s.heap.begin(), s.heap.end(), after);
+    const std::size_t i = s.heap.back();
+    s.heap.pop_back();
+    Impl::Motor& m = s.motors[i];
+    const bool pair = m.HeadIsPair();
+    if (pair) {
+      std::pop_heap(m.pending.begin(), m.pending.end(), first);
+      *c = m.pending.back();
+      m.pending.pop_back();
+      s.open -= s.ctx.escs.rated[static_cast<std::size_t>(c->option)];
+    } else {
+      s.open -= s.Expand(&m, cutoff, m.batch, &s.loads, &s.counts);
+      m.batch = std::min(2 * m.batch, kMaxBatch);
+      ++s.batches;
+    }
+    if (m.Live()) {
+      s.heap.push_back(i);
+      std::push_heap(s.heap.begin(), s.heap.end(), after);
+    } else {
+      std::vector<Candidate>().swap(m.pending);
+    }
+    if (pair) return true;
+  }
+  return false;
+}
+
+long long CandidateStream::batches() const { return impl_->batches; }
+long long CandidateStream::pairs_bounded() const { return impl_->counts.bounded; }
+long long CandidateStream::open_combinations() const { return impl_->open; }
+long long CandidateStream::PairsLeftBelow(double cutoff) const {
+  long long n = 0;
+  for (const Impl::Motor& m : impl_->motors) {
+    if (!m.Live()) continue;
+    n += static_cast<long long>(m.pending.size());
+    // The keys from `walk` on are in ascending order (ClassKeys; all -inf when R11 does not apply).
+    const auto first = m.keys->begin() + static_cast<std::ptrdiff_t>(m.walk);
+    n += std::partition_point(first, m.keys->end(), [cutoff](const PropKey& k) { return k.bound < cutoff; }) - first;
+  }
+  return n;
+}
+long long CandidateStream::skipped_without_mass() const { return impl_->skipped; }
+void CandidateStream::MergePrunedInto(std::map<std::string, long long>* out) const { impl_->counts.pruned.MergeInto(out); }
+
+}  // namespace dynosize::search_internal

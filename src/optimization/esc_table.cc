@@ -1,0 +1,79 @@
+// Stage 2 of the catalog search (search_stages.h): the ESC classes and, per battery option, the
+// ESCs rated for its voltage (R1, docs/search.md#r1).
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <vector>
+
+#include "optimization/components.h"
+#include "optimization/search_stages.h"
+
+namespace dynosize::search_internal {
+
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+}  // namespace
+
+// Rule R1 (docs/search.md#r1): an ESC rated below the pack's full-charge voltage fails
+// esc_voltage whatever else is chosen; R0 (docs/search.md#r0): an ESC the catalog excludes.
+EscTable BuildEscTable(const Catalog& cat, const std::vector<BatteryOption>& options) {
+  const auto& escs = cat.escs();
+  EscTable t;
+  for (std::size_t i = 0; i < escs.size(); ++i) {
+    const EscParams& e = escs[i].params;
+    auto it = std::find_if(t.classes.begin(), t.classes.end(), [&](const EscClass& c) {
+      return c.c1 == e.c1 && c.c0 == e.c0 && c.tr_sat == e.tr_sat && c.sat_slope == e.sat_slope;
+    });
+    if (it == t.classes.end()) {
+      t.classes.push_back({e.c1, e.c0, e.tr_sat, e.sat_slope, {}});
+      it = t.classes.end() - 1;
+    }
+    it->members.push_back(static_cast<int>(i));
+  }
+  t.per_option.resize(options.size());
+  t.currents_ascending.resize(options.size());
+  t.running_max_current.resize(options.size());
+  t.min_mass_kg.assign(options.size(), kInf);
+  t.max_mass_kg.assign(options.size(), 0.0);
+  for (std::size_t o = 0; o < options.size(); ++o) {
+    long long n_ok = 0, n_excluded = 0;
+    for (const EscClass& c : t.classes) {
+      std::vector<int> ok;
+      for (int i : c.members) {
+        if (!escs[i].exclude_reason.empty()) {  // R0: the catalog excludes it
+          ++n_excluded;
+          continue;
+        }
+        if (escs[i].params.vdc_max_v >= options[o].v_full) {  // R1
+          ok.push_back(i);
+          t.min_mass_kg[o] = std::min(t.min_mass_kg[o], EscMassKg(escs[i]));
+          t.max_mass_kg[o] = std::max(t.max_mass_kg[o], EscMassKg(escs[i]));
+        }
+      }
+      std::sort(ok.begin(), ok.end(), [&](int a, int b) {
+        const double ma = EscMassKg(escs[a]), mb = EscMassKg(escs[b]);
+        if (ma != mb) return ma < mb;
+        if (escs[a].params.resc_ohm != escs[b].params.resc_ohm) return escs[a].params.resc_ohm < escs[b].params.resc_ohm;
+        return escs[a].params.max_current_a > escs[b].params.max_current_a;
+      });
+      n_ok += static_cast<long long>(ok.size());
+      std::vector<double> ascending, running_max;
+      for (int i : ok) {
+        ascending.push_back(escs[i].params.max_current_a);
+        running_max.push_back(std::max(running_max.empty() ? -kInf : running_max.back(), escs[i].params.max_current_a));
+      }
+      std::sort(ascending.begin(), ascending.end());
+      t.currents_ascending[o].push_back(std::move(ascending));
+      t.running_max_current[o].push_back(std::move(running_max));
+      t.per_option[o].push_back(std::move(ok));
+    }
+    t.rated.push_back(n_ok);
+    t.voltage_pruned += static_cast<long long>(escs.size()) - n_ok - n_excluded;
+    t.excluded_pruned += n_excluded;
+  }
+  return t;
+}
+
+}  // namespace dynosize::search_internal

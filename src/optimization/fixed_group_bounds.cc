@@ -1,0 +1,105 @@
+// G1 (docs/search.md#g1): lower bounds of the power a fixed propulsion group draws, tabulated
+// on a mass grid, and the power bound of a wing-borne cruise with a free airspeed.
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <vector>
+
+#include "mission/flight.h"
+#include "model/physics.h"
+#include "optimization/components.h"
+#include "optimization/credibility.h"
+#include "optimization/prop_bounds.h"
+#include "optimization/search_stages.h"
+
+namespace dynosize::search_internal {
+
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+}  // namespace
+
+// G1 for a group's wing-borne cruise with a free airspeed: cell by cell over the airspeed
+// range (prop_bounds.h), momentum theory (the ESC's C1, C0 are read for DriveIsLossy) and,
+// with `drive`, that drive's PDC from below.
+double FreeCruisePowerLowerBoundW(const Mission& m, const Segment& sg, const GroupParts& parts,
+                                  const PropModel& model, double mass_kg, const CruiseDriveBound* drive) {
+  const MotorParams mp = ScenarioMotorParams(*parts.motor, m);
+  const EscParams ep = ScenarioEscParams(*parts.esc, m.objective.ranking);
+  const CruisePropBound p{parts.prop, &model, PropAdjustmentFor(*parts.prop, m.objective.ranking),
+                          DriveIsLossy(mp, ep.c1, ep.c0)};
+  return FreeCruiseRotorPowerLowerBoundW(m, sg, p, drive, mass_kg);
+}
+
+// Rule G1 (docs/search.md#g1): a fixed group's segment draws at least its own drive's PDC at
+// the lightest vehicle mass (M1, M3), tabulated on a mass grid read at or below a pair's mass.
+void FixedGroupPowerBounds(SearchContext* ctx) {
+  const Mission& m = *ctx->mission;
+  ctx->fixed_power_lb_w.clear();
+  ctx->fixed_power_mass_kg.clear();
+  if (m.groups.empty()) return;
+  // The lightest the vehicle can be with any choice of the free group (M3: every segment's
+  // thrust, and so its speed, torque and power, rises with the mass). The bounds are tabulated
+  // on a geometric mass grid from there (kFixedPowerMasses points, 2 % apart): a pair reads the
+  // grid point at or below its own lightest mass, a bound for it by the same monotonicity.
+  double motor_min = kInf, prop_min = kInf;
+  for (const MotorEntry& mo : ctx->catalog->motors()) {
+    if (mo.mass_kg) motor_min = std::min(motor_min, *mo.mass_kg);
+  }
+  for (const PropGrid& g : ctx->grids) prop_min = std::min(prop_min, g.mass_kg);
+  for (std::size_t o = 0; o < ctx->options.size(); ++o) {
+    const BatteryOption& bo = ctx->options[o];
+    const double esc_min = std::isfinite(ctx->escs.min_mass_kg[o]) ? ctx->escs.min_mass_kg[o] : 0.0;
+    const double mass_min = m.vehicle.mass_kg + bo.mass_lo_kg + ctx->fixed_groups_mass_kg +
+                            ctx->free_rotors * (std::isfinite(motor_min) ? motor_min : 0.0) +
+                            ctx->free_rotors * ((std::isfinite(prop_min) ? prop_min : 0.0) + esc_min);
+    std::vector<double> masses(kFixedPowerMasses);
+    std::vector<std::vector<double>> table;
+    for (int k = 0; k < kFixedPowerMasses; ++k) {
+      const double mass = k == 0 ? mass_min : mass_min * std::pow(kFixedPowerMassStep, k);
+      masses[static_cast<std::size_t>(k)] = mass;
+      std::vector<double> p_lb(m.segments.size(), m.vehicle.avionics_power_w);
+      for (std::size_t si = 0; si < m.segments.size(); ++si) {
+        const Segment& sg = m.segments[si];
+        if (sg.group == ctx->free_group || sg.type == SegmentType::kShaft) continue;
+        const GroupParts& parts = ctx->fixed_parts[sg.group];
+        const PropModel& prop = *ctx->fixed_models[sg.group];
+        if (sg.type == SegmentType::kCruise && sg.airspeed_m_s.free()) {
+          // G1 with the group's own drive and data.
+          const Drive d(ScenarioMotorParams(*parts.motor, m), ScenarioEscParams(*parts.esc, m.objective.ranking));
+          const CruiseDriveBound db{&d, bo.v_full, bo.v_cut};
+          p_lb[si] += FreeCruisePowerLowerBoundW(m, sg, parts, prop, mass, &db);
+          continue;
+        }
+        const RotorLoad ld = SegmentRotorLoad(m, sg, mass, sg.airspeed_m_s.lo);
+        // A speed at or below the evaluator's root; the torque there is at most the true one.
+        double lo = 0.0;
+        if (!PropSpeedFromBelow(prop, m.rho_kg_m3, ld.thrust_per_rotor_n, ld.axial_airspeed_m_s, 60, &lo)) continue;
+        const double q = prop.Evaluate(lo, m.rho_kg_m3, ld.axial_airspeed_m_s).torque_nm;
+        if (!(q > 0)) continue;
+        const Drive d(ScenarioMotorParams(*parts.motor, m), ScenarioEscParams(*parts.esc, m.objective.ranking));
+        const double pdc = std::min(d.Inverse(bo.v_full, q, lo).pdc_w, d.Inverse(bo.v_cut, q, lo).pdc_w);
+        p_lb[si] += ld.rotors * std::max(0.0, pdc);
+      }
+      // Monotone in the mass by M3; the running maximum keeps the table so under rounding too
+      // (each entry is still the bound at a mass at or below its own).
+      if (!table.empty()) {
+        for (std::size_t si = 0; si < p_lb.size(); ++si) p_lb[si] = std::max(p_lb[si], table.back()[si]);
+      }
+      table.push_back(std::move(p_lb));
+    }
+    ctx->fixed_power_lb_w.push_back(std::move(table));
+    ctx->fixed_power_mass_kg.push_back(std::move(masses));
+  }
+}
+
+double FixedPowerLowerBoundW(const SearchContext& ctx, std::size_t option, std::size_t si, double mass_kg) {
+  const std::vector<double>& masses = ctx.fixed_power_mass_kg[option];
+  // The last grid mass at or below mass_kg (the first when mass_kg is below the grid).
+  const auto it = std::upper_bound(masses.begin(), masses.end(), mass_kg);
+  const std::size_t k = it == masses.begin() ? 0 : static_cast<std::size_t>(it - masses.begin()) - 1;
+  return ctx.fixed_power_lb_w[option][k][si];
+}
+
+}  // namespace dynosize::search_internal

@@ -1,0 +1,581 @@
+// The joint search's bounds (joint_search.h; G2, docs/search.md#g2): a rotor's and a segment's
+// power from below, the score assembled from them, the rules and mass floors of the outer and
+// inner groups, and an outer pair's or triple's bound. The other free groups' least power and
+// the coupled frontier: joint_frontier.cc.
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <memory>
+#include <utility>
+#include <vector>
+
+#include "common/error.h"
+#include "common/units.h"
+#include "model/physics.h"
+#include "optimization/components.h"
+#include "optimization/credibility.h"
+#include "optimization/joint_search.h"
+#include "optimization/prop_bounds.h"
+
+namespace dynosize::search_internal {
+
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+constexpr double kMassCeilingKg = 1e5;  // MassFloorKg's search range: beyond any vehicle
+constexpr double kRotorCeilingRadS = 1e5;  // RotorLowerBound's: ~1e6 rpm, beyond any motor
+
+}  // namespace
+
+RotorBound RotorLowerBound(const Mission& m, const Segment& sg, const PropEntry& prop, const PropModel& model,
+                           double mass_kg) {
+  RotorBound rb;
+  const RotorLoad ld = SegmentRotorLoad(m, sg, mass_kg, sg.airspeed_m_s.lo);
+  rb.rotors = ld.rotors;
+  if (sg.type == SegmentType::kCruise && sg.airspeed_m_s.free()) {
+    CruisePropBound pb{&prop, &model, PropAdjustmentFor(prop, m.objective.ranking), true};
+    pb.with_prop_data = true;
+    rb.free_cruise_lossy_w = FreeCruiseRotorPowerLowerBoundW(m, sg, pb, nullptr, mass_kg);
+    return rb;
+  }
+  if (sg.type == SegmentType::kShaft) return rb;
+  const double v = ld.axial_airspeed_m_s;
+  // Bisection keeping thrust(lo) <= T (M1: thrust rises with speed), so lo is at or below the
+  // evaluator's root; a propeller that cannot give T below the ceiling turns faster (and R3
+  // then finds the throttle above one).
+  double lo = 0.0, hi = kRotorCeilingRadS;
+  if (model.Evaluate(hi, m.rho_kg_m3, v).thrust_n < ld.thrust_per_rotor_n) {
+    lo = hi;
+  } else {
+    lo = BisectSpeedFromBelow(model, m.rho_kg_m3, ld.thrust_per_rotor_n, v, lo, hi, 60);
+  }
+  if (!(lo > 0)) return rb;
+  rb.thrust_n = ld.thrust_per_rotor_n;
+  rb.axial_airspeed_m_s = v;
+  PropEvaluation ev = model.Evaluate(lo, m.rho_kg_m3, v);
+  // The scenario's load, as the evaluator flies it (it keeps rising with speed: M1).
+  AdjustPropEvaluation(PropAdjustmentFor(prop, m.objective.ranking), prop.diameter_m, &ev);
+  if (!(ev.torque_nm > 0)) return rb;
+  rb.omega_rad_s = lo;
+  rb.torque_nm = ev.torque_nm;
+  return rb;
+}
+
+SegmentBound SegmentPowerBound(const Mission& m, std::size_t si, const GroupParts& parts, const MotorParams& mp,
+                               const Drive& drive, double tr_max, double esc_max_current_a, const PropModel& model,
+                               const BatteryOption& bo, double mass_kg, const RotorBound& rb) {
+  const Segment& sg = m.segments[si];
+  const MissionConstraints& k = m.constraints;
+  SegmentBound b;
+  b.power_w = m.vehicle.avionics_power_w;
+  if (sg.type == SegmentType::kShaft) return b;
+  const bool static_only = model.data_kind() != PropDataKind::kTables || parts.prop->j_tables.empty();
+  if (sg.type == SegmentType::kCruise && sg.airspeed_m_s.free()) {
+    // R7 over the range: a wing-borne cruise's inflow is its airspeed, at least lo, and the
+    // shaft turns no faster than n_max (below), so J >= lo/(n_max*D) at every airspeed.
+    const double n_max = drive.NoLoadSpeed(bo.v_full, 1.0) / (2.0 * kPi);
+    if (static_only && sg.lift_to_drag > 0 && n_max > 0 &&
+        sg.airspeed_m_s.lo / (n_max * parts.prop->diameter_m) > k.max_static_advance_ratio) {
+      b.infeasible = "prop_no_forward_flight_data";
+    }
+    b.power_w += FreeCruisePowerLowerBoundW(m, sg, parts, model, mass_kg);
+    return b;
+  }
+  if (!(rb.omega_rad_s > 0)) return b;
+  // R3 at the bound point: the throttle, Irms and PAC of every real choice are at least these
+  // (M2: zero or the real ESC resistance, the highest voltage the pack can have).
+  const OperatingPoint hi = drive.Inverse(bo.v_full, rb.torque_nm, rb.omega_rad_s);
+  const double margin = 1.0 - k.current_margin;
+  b.irms_lb_a = hi.irms_a;
+  if (hi.throttle > tr_max) {
+    b.infeasible = "throttle";
+  } else if (hi.irms_a > mp.max_current_a * margin) {
+    b.infeasible = "motor_current";
+  } else if (k.enforce_motor_power && hi.pac_w > mp.max_power_w) {
+    b.infeasible = "motor_power";
+  } else if (hi.irms_a > esc_max_current_a * margin) {
+    b.infeasible = "esc_current";
+  }
+  // R7: static-only data in axial flow. The shaft turns no faster than the drive's no-load
+  // speed at full throttle and the full-charge voltage (M2), so J >= V_ax/(n_max*D); above the
+  // mission's max_static_advance_ratio the evaluator fails prop_no_forward_flight_data.
+  if (!b.infeasible && static_only && rb.axial_airspeed_m_s > 0) {
+    const double n_max = drive.NoLoadSpeed(bo.v_full, 1.0) / (2.0 * kPi);
+    if (n_max > 0 && rb.axial_airspeed_m_s / (n_max * parts.prop->diameter_m) > k.max_static_advance_ratio) {
+      b.infeasible = "prop_no_forward_flight_data";
+    }
+  }
+  // PDC is linear in VDC (eqs 57, 59): the smaller of the two ends bounds every voltage between.
+  const OperatingPoint lo = drive.Inverse(bo.v_cut, rb.torque_nm, rb.omega_rad_s);
+  double pdc = rb.rotors * std::max(0.0, std::min(hi.pdc_w, lo.pdc_w));
+  // Momentum theory: a feasible point's propeller data give P >= P_ideal/max_figure_of_merit
+  // (the evaluator's prop_figure_of_merit, V_ax the inflow unless the data are static-only);
+  // the scenario's power is at least P_ideal (credibility.h: raised, or capped at FM 1), so
+  // P_ideal/max(1, max_figure_of_merit) bounds it in every scenario; and PDC >= Pmech when
+  // neither the motor nor the ESC can create energy (model.md section 10).
+  if (DriveIsLossy(drive.motor(), drive.esc().c1, drive.esc().c0)) {
+    const double p_ideal = IdealRotorPowerW(rb.thrust_n, parts.prop->diameter_m, m.rho_kg_m3,
+                                            static_only ? 0.0 : rb.axial_airspeed_m_s);
+    pdc = std::max(pdc, rb.rotors * p_ideal / std::max(1.0, k.max_figure_of_merit));
+  }
+  b.power_w += pdc;
+  return b;
+}
+
+double ScoreFromSegmentPowers(const Mission& m, const std::vector<double>& p_lb_w, const BatteryOption& bo) {
+  auto t_min = [](const Segment& sg) { return SegmentDurationS(sg, sg.airspeed_m_s.hi); };
+  if (m.objective.type == ObjectiveType::kMinEnergy) {
+    double e = 0;
+    for (std::size_t si = 0; si < m.segments.size(); ++si) e += p_lb_w[si] * t_min(m.segments[si]);
+    return e / 3600.0;
+  }
+  if (m.objective.type != ObjectiveType::kMaxEndurance || m.objective.segment_index < 0) return -kInf;
+  const std::size_t ist = static_cast<std::size_t>(m.objective.segment_index);
+  const Segment& st = m.segments[ist];
+  // A stretched segment needs a power bound that holds at every instant: constant thrust.
+  if (st.type == SegmentType::kCruise && st.airspeed_m_s.free()) return -kInf;
+  double e_other = 0;
+  for (std::size_t si = 0; si < m.segments.size(); ++si) {
+    if (si != ist) e_other += p_lb_w[si] * t_min(m.segments[si]);
+  }
+  const double e_max = bo.ocv_integral_v * AhToCoulomb(bo.capacity_hi_ah);
+  return BudgetScore(LongestFixedDurationS(m), e_max, e_other, p_lb_w[ist]);
+}
+
+bool JointBounds::PropAllowed(int group, const PropEntry& p) const {
+  return PropFrameRule(m_, group, Lifts(group), p) == nullptr;
+}
+
+const char* JointBounds::PropRule(int prop) const {
+  return PropFrameRule(m_, outer_, Lifts(outer_), cat_.props()[static_cast<std::size_t>(prop)]);
+}
+
+const char* JointBounds::MotorRule(int motor, std::size_t o) const {
+  const MotorEntry& mo = cat_.motors()[static_cast<std::size_t>(motor)];
+  if (!mo.exclude_reason.empty()) return "catalog_exclude";
+  if (!mo.mass_kg) return "motor_without_mass";
+  if (Lifts(outer_)) {
+    bool excluded = false;
+    ScenarioMotorParams(mo, m_, nullptr, &excluded);
+    if (excluded) return "motor_unrated";
+    if (options_[o].v_full > MotorMaxVoltageV(mo)) return "motor_voltage";
+  }
+  return nullptr;
+}
+
+JointBounds::JointBounds(const Mission& m, const Catalog& cat, const PropGridCache& cache) : m_(m), cat_(cat) {
+  for (const auto& p : cache.models) models_.push_back(p.get());
+  lift_group_ = std::max(0, LiftGroup(m));
+  // The outer group: a free group that does not lift the vehicle, so that the innermost search
+  // is the lift group's, whose hover gives R2-R4 their grip.
+  std::vector<int> free;
+  for (int g = 0; g < GroupCount(m); ++g) {
+    if (!m.groups[g].fixed()) free.push_back(g);
+  }
+  if (free.size() < 2) throw std::logic_error("JointBounds: needs two or more free groups");
+  outer_ = free.front() == lift_group_ ? free[1] : free.front();
+  options_ = BatteryOptions(m, cat);
+  escs_ = BuildEscTable(cat, options_);
+  const std::size_t n_seg = m.segments.size();
+  for (std::size_t si = 0; si < n_seg; ++si) {
+    if (m.segments[si].group == outer_) outer_segments_.push_back(si);
+  }
+  // Every group's lightest: fixed groups exactly, free ones from the catalog's lightest motor,
+  // propeller (R0 for the group) and ESC (R1 for the option), then LightestSurvivorKg.
+  double motor_min = kInf;
+  for (const MotorEntry& mo : cat.motors()) {
+    if (mo.mass_kg && mo.exclude_reason.empty()) motor_min = std::min(motor_min, *mo.mass_kg);
+  }
+  if (!std::isfinite(motor_min)) motor_min = 0.0;
+  std::vector<double> prop_min(m.groups.size(), kInf);
+  for (int g : free) {
+    for (const PropEntry& p : cat.props()) {
+      if (PropAllowed(g, p)) prop_min[g] = std::min(prop_min[g], PropMassKg(p));
+    }
+    if (!std::isfinite(prop_min[g])) prop_min[g] = 0.0;
+  }
+  double fixed_kg = 0;
+  std::vector<GroupParts> fixed(m.groups.size());
+  for (int g = 0; g < GroupCount(m); ++g) {
+    if (!m.groups[g].fixed()) continue;
+    fixed[g] = FixedGroupParts(m, cat, g);
+    if (!fixed[g].motor->mass_kg) throw DataError("motor '" + fixed[g].motor->id + "' has no mass_kg: the mission needs it");
+    fixed_kg += m.groups[g].rotors * (*fixed[g].motor->mass_kg + EscMassKg(*fixed[g].esc) + PropMassKg(*fixed[g].prop));
+  }
+  std::vector<std::unique_ptr<PropModel>> fixed_models(m.groups.size());
+  for (int g = 0; g < GroupCount(m); ++g) {
+    if (m.groups[g].fixed()) fixed_models[g] = std::make_unique<PropModel>(*fixed[g].prop);
+  }
+  for (const PropGrid& g : cache.grids) monotone_.push_back(g.monotone);
+  mass_floor_kg_.assign(options_.size() * n_seg * cat.props().size(), -1.0);
+  for (std::size_t o = 0; o < options_.size(); ++o) {
+    const BatteryOption& bo = options_[o];
+    const double esc_min = std::isfinite(escs_.min_mass_kg[o]) ? escs_.min_mass_kg[o] : 0.0;
+    const double base = m.vehicle.mass_kg + bo.mass_lo_kg + fixed_kg;
+    std::vector<double> lightest(m.groups.size(), 0.0);
+    for (int g : free) {
+      lightest[g] = m.groups[g].rotors * (motor_min + prop_min[g] + esc_min);
+    }
+    // The lightest choice of each free group that can fly its own segments (R0, R1, R3, R7 at
+    // the lightest vehicle): a feasible choice survives them at its true mass, so at any lighter
+    // one (M1-M3), and so at the lightest vehicle found so far; each pass can only raise the
+    // lightest vehicle, and every pass keeps it a lower bound.
+    auto total = [&]() {
+      double x = base;
+      for (int g : free) x += lightest[g];
+      return x;
+    };
+    for (int pass = 0; pass < 2; ++pass) {
+      const double vehicle_kg = total();
+      for (int g : free) {
+        const double parts_kg = LightestSurvivorKg(g, o, vehicle_kg);
+        lightest[g] = std::max(lightest[g], std::isfinite(parts_kg) ? m.groups[g].rotors * (parts_kg + esc_min)
+                                                                   : lightest[g]);
+      }
+    }
+    const double mass = total();
+    outer_lightest_kg_.push_back(lightest[outer_]);
+    if (free.size() == 2) inner_lightest_kg_.push_back(lightest[free[0] == outer_ ? free[1] : free[0]]);
+    mass_min_kg_.push_back(mass);
+    std::vector<double> p(n_seg, m.vehicle.avionics_power_w);
+    for (std::size_t si = 0; si < n_seg; ++si) {
+      const Segment& sg = m.segments[si];
+      if (sg.group == outer_) continue;
+      if (m.groups[sg.group].fixed()) {  // G1's bound with the group's own drive
+        const GroupParts& parts = fixed[sg.group];
+        const MotorParams mp = ScenarioMotorParams(*parts.motor, m);
+        const Drive d(mp, ScenarioEscParams(*parts.esc, m.objective.ranking));
+        const RotorBound rb = RotorLowerBound(m, sg, *parts.prop, *fixed_models[sg.group], mass);
+        // Feasibility is the evaluator's to judge for a fixed group (no rating check here).
+        p[si] = SegmentPowerBound(m, si, parts, mp, d, kInf, kInf, *fixed_models[sg.group], bo, mass, rb).power_w;
+        continue;
+      }
+      p[si] = MinFreeGroupPower(sg.group, si, o, mass);
+    }
+    other_power_w_.push_back(std::move(p));
+  }
+  const std::size_t n_cache = options_.size() * n_seg * cat.props().size() * static_cast<std::size_t>(kFixedPowerMasses);
+  rotor_cache_.assign(n_cache, RotorBound{});
+  rotor_done_.assign(n_cache, 0);
+  if (free.size() == 2 && m.objective.type == ObjectiveType::kMinEnergy) {
+    inner_ = free[0] == outer_ ? free[1] : free[0];
+    for (std::size_t o = 0; o < options_.size(); ++o) frontier_.push_back(InnerFrontier(o));
+  }
+}
+
+// R7's floor on one airspeed cell [v_a, v_b] (see MassFloorKg): kInf when no mass reaches the
+// thrust, 0 when every mass does (or the inflow is 0).
+double JointBounds::StaticAdvanceMassFloorKg(const PropModel& model, double diameter_m, const Segment& sg, double v_a,
+                                             double v_b) const {
+  const double v_ax = SegmentRotorLoad(m_, sg, 1.0, v_a).axial_airspeed_m_s;
+  if (!(v_ax > 0)) return 0.0;
+  const double omega_req = 2.0 * kPi * v_ax / (m_.constraints.max_static_advance_ratio * diameter_m);
+  const double t_req = model.Evaluate(omega_req, m_.rho_kg_m3, 0.0).thrust_n;
+  auto thrust_at = [&](double kg) { return SegmentRotorLoad(m_, sg, kg, v_b).thrust_per_rotor_n; };
+  double lo = 0.0, hi = kMassCeilingKg;
+  if (!(thrust_at(hi) >= t_req)) return kInf;
+  if (!(thrust_at(lo) < t_req)) return 0.0;
+  for (int it = 0; it < 60; ++it) {  // keeps thrust(lo) < T(n)
+    const double mid = 0.5 * (lo + hi);
+    (thrust_at(mid) < t_req ? lo : hi) = mid;
+  }
+  return lo;
+}
+
+// R7 as a mass floor: static-only data in axial flow V_ax pass the evaluator only at an advance
+// ratio J = V_ax/(n*D) <= max_static_advance_ratio, so at a speed n >= V_ax/(J_max*D), where the
+// static thrust (M1, the propeller's grid rising) is at least T(n); the segment's thrust rises
+// with the vehicle's mass (M3), so a feasible vehicle weighs at least the mass whose thrust is
+// T(n) (bisection, kept at or below it). kInf: no mass gives it; 0: no floor.
+double JointBounds::MassFloorKg(int prop, std::size_t si, std::size_t o) {
+  const std::size_t i = (o * m_.segments.size() + si) * cat_.props().size() + static_cast<std::size_t>(prop);
+  if (mass_floor_kg_[i] >= 0) return mass_floor_kg_[i];
+  const PropEntry& p = cat_.props()[static_cast<std::size_t>(prop)];
+  const PropModel& model = *models_[static_cast<std::size_t>(prop)];
+  const Segment& sg = m_.segments[si];
+  double floor_kg = 0.0;
+  const bool static_only = model.data_kind() != PropDataKind::kTables || p.j_tables.empty();
+  const bool free_cruise = sg.type == SegmentType::kCruise && sg.airspeed_m_s.free();
+  if (static_only && monotone_[static_cast<std::size_t>(prop)] && sg.type != SegmentType::kShaft &&
+      (!free_cruise || sg.lift_to_drag > 0) && m_.constraints.max_static_advance_ratio > 0) {
+    // A free (wing-borne) airspeed in cells [V_a, V_b]: the required speed and its static thrust
+    // rise with V (M1), the segment's thrust at a mass is largest at V_b (flight.h), so a
+    // vehicle flying the cell weighs at least the floor of (T(n(V_a)), thrust at V_b); the least
+    // over the cells bounds the whole range. A fixed airspeed is one cell.
+    const int cells = free_cruise ? kFreeCruiseFloorCells : 1;
+    const double lo = sg.airspeed_m_s.lo, span = free_cruise ? sg.airspeed_m_s.hi - lo : 0.0;
+    floor_kg = kInf;
+    for (int c = 0; c < cells && floor_kg > 0; ++c) {
+      const double v_a = lo + span * c / cells, v_b = lo + span * (c + 1) / cells;
+      floor_kg = std::min(floor_kg, StaticAdvanceMassFloorKg(model, p.diameter_m, sg, v_a, v_b));
+    }
+  }  floor_kg = std::max(floor_kg, FigureOfMeritMassFloorKg(prop, si, o));
+  mass_floor_kg_[i] = floor_kg;
+  return floor_kg;
+}
+
+// R6 as a mass floor for the outer group (docs/search.md#g2): the lightest vehicle at which segment
+// si (a fixed axial inflow) may pass prop_figure_of_merit on propeller `prop`, kg (a lower bound;
+// 0 when nothing is proven). The evaluator's figure of merit is P_ideal(T, v)/P(omega), the
+// propeller's power as given at the speed omega that gives the segment's thrust T (mission_eval.cc,
+// PropellerPoint; model/physics.h). On a mass cell [M_a, M_b] the thrust is in [T(M_a), T(M_b)]
+// (M3), the speed at or below omega_b, a speed whose thrust is at least T(M_b) (M1), so the
+// power is at most P(omega_b) when the power rises with speed on the cell's speeds (checked at
+// kFomSamples speeds, else nothing is proven there), and P_ideal rises with T: the figure of
+// merit is at least P_ideal(T(M_a), v)/P(omega_b). Cells above the limit hold no feasible mass;
+// the floor is the bottom of the first cell that is not proven so, scanning up from the
+// option's lightest vehicle in cells kFomCellRatio wide (kFomCells of them).
+double JointBounds::FigureOfMeritMassFloorKg(int prop, std::size_t si, std::size_t o) const {
+  constexpr int kFomCells = 64, kFomSamples = 8, kSteps = 50;
+  constexpr double kFomCellRatio = 1.03;
+  const Segment& sg = m_.segments[si];
+  const PropEntry& p = cat_.props()[static_cast<std::size_t>(prop)];
+  const PropModel& model = *models_[static_cast<std::size_t>(prop)];
+  const double limit = m_.constraints.max_figure_of_merit;
+  // A fixed inflow: not a shaft segment, a free airspeed or a multirotor cruise (its inflow
+  // changes with the mass, flight.h).
+  const bool fixed_inflow = sg.type != SegmentType::kShaft &&
+                            !(sg.type == SegmentType::kCruise && (sg.airspeed_m_s.free() || !(sg.lift_to_drag > 0)));
+  if (!fixed_inflow || !(limit > 0) || !monotone_[static_cast<std::size_t>(prop)]) {
+    return 0.0;
+  }
+  const bool static_only = model.data_kind() != PropDataKind::kTables || p.j_tables.empty();
+  auto load_at = [&](double kg) { return SegmentRotorLoad(m_, sg, kg, sg.airspeed_m_s.lo); };
+  const double v = load_at(1.0).axial_airspeed_m_s;
+  if (v < 0) return 0.0;  // a descent: PropellerPoint's inflow differs
+  const double v_fom = static_only ? 0.0 : v;  // PropellerPoint: static-only data held to the static bound
+  const double v_eval = static_only ? 0.0 : v;  // static-only data are read at J = 0 in any inflow
+  double kg = mass_min_kg_[o];
+  for (int cell = 0; cell < kFomCells; ++cell) {
+    const double kg_b = kg * kFomCellRatio;
+    const double t_a = load_at(kg).thrust_per_rotor_n, t_b = load_at(kg_b).thrust_per_rotor_n;
+    if (!(model.Evaluate(kRotorCeilingRadS, m_.rho_kg_m3, v_eval).thrust_n >= t_b)) return kg;
+    // omega_b: thrust(hi) >= t_b kept through the bisection (M1).
+    double lo = 0.0, hi = kRotorCeilingRadS;
+    for (int it = 0; it < kSteps; ++it) {
+      const double mid = 0.5 * (lo + hi);
+      (model.Evaluate(mid, m_.rho_kg_m3, v_eval).thrust_n >= t_b ? hi : lo) = mid;
+    }
+    const double w_a = BisectSpeedFromBelow(model, m_.rho_kg_m3, t_a, v_eval, 0.0, hi, kSteps);
+    double p_prev = -kInf, p_b = 0.0;
+    bool rising = true;
+    for (int k = 0; k <= kFomSamples && rising; ++k) {
+      const double w = w_a + (hi - w_a) * k / kFomSamples;
+      p_b = model.Evaluate(w, m_.rho_kg_m3, v_eval).power_w;
+      rising = p_b >= p_prev;
+      p_prev = p_b;
+    }
+    if (!rising || !(p_b > 0) || !(IdealRotorPowerW(t_a, p.diameter_m, m_.rho_kg_m3, v_fom) / p_b > limit)) return kg;
+    kg = kg_b;
+  }
+  return kg;
+}
+
+// Thrust-to-weight (checked on the lift group at full throttle): the full-throttle speed is
+// below the drive's no-load speed at full throttle and the full-charge voltage (eqs 42, 48;
+// zero or the real ESC resistance only lowers it), so, the static thrust rising with speed (M1,
+// the propeller's grid checked), the lift rotors give at most T(omega_nl) each; a choice whose
+// T(omega_nl) is below min_thrust_to_weight x the lightest weight fails the limit whatever else
+// is chosen.
+bool JointBounds::ReachesThrustToWeight(int group, const Drive& drive, int prop, double vehicle_kg,
+                                        std::size_t o) const {
+  const MissionConstraints& k = m_.constraints;
+  const int rotors = LiftRotors(m_);
+  if (!Lifts(group) || !(k.min_thrust_to_weight > 0) || rotors <= 0 || !monotone_[static_cast<std::size_t>(prop)]) {
+    return true;
+  }
+  const double w_nl = drive.NoLoadSpeed(options_[o].v_full, 1.0);
+  if (!(w_nl > 0)) return false;
+  const double t_max = models_[static_cast<std::size_t>(prop)]->Evaluate(w_nl, m_.rho_kg_m3, 0.0).thrust_n;
+  return rotors * t_max >= k.min_thrust_to_weight * vehicle_kg * kStandardGravity;
+}
+
+double JointBounds::LightestSurvivorKg(int group, std::size_t o, double vehicle_kg) {
+  const auto& motors = cat_.motors();
+  const auto& props = cat_.props();
+  std::vector<std::tuple<double, int, int>> by_mass;
+  for (std::size_t mi = 0; mi < motors.size(); ++mi) {
+    if (!motors[mi].mass_kg || !motors[mi].exclude_reason.empty()) continue;
+    for (std::size_t pi = 0; pi < props.size(); ++pi) {
+      if (PropAllowed(group, props[pi])) {
+        by_mass.emplace_back(*motors[mi].mass_kg + PropMassKg(props[pi]), static_cast<int>(mi), static_cast<int>(pi));
+      }
+    }
+  }
+  std::sort(by_mass.begin(), by_mass.end());
+  std::vector<std::size_t> segs;
+  for (std::size_t si = 0; si < m_.segments.size(); ++si) {
+    if (m_.segments[si].group == group) segs.push_back(si);
+  }
+  std::vector<RotorBound> rbs(props.size() * segs.size());
+  std::vector<char> done(rbs.size(), 0);
+  const BatteryOption& bo = options_[o];
+  for (const auto& [kg, mi, pi] : by_mass) {
+    const MotorEntry& mo = motors[static_cast<std::size_t>(mi)];
+    bool excluded = false;
+    const MotorParams mp = ScenarioMotorParams(mo, m_, nullptr, &excluded);
+    if (Lifts(group) && (excluded || bo.v_full > MotorMaxVoltageV(mo))) continue;  // R0, R1
+    for (std::size_t c = 0; c < escs_.classes.size(); ++c) {
+      if (escs_.per_option[o][c].empty()) continue;
+      // SegmentPowerBound reads the ESC's C1 and C0 for a free-airspeed cruise
+      // (FreeCruisePowerLowerBoundW): a member's, as MinFreeGroupPower does.
+      const EscEntry& member = cat_.escs()[static_cast<std::size_t>(escs_.classes[c].members.front())];
+      const GroupParts parts{&mo, &member, &props[static_cast<std::size_t>(pi)]};
+      const Drive d(mp, ZeroResistanceEsc(escs_.classes[c]));
+      bool ok = ReachesThrustToWeight(group, d, pi, vehicle_kg, o);
+      for (std::size_t k = 0; k < segs.size() && ok; ++k) {
+        const std::size_t j = static_cast<std::size_t>(pi) * segs.size() + k;
+        if (!done[j]) {
+          rbs[j] = RotorLowerBound(m_, m_.segments[segs[k]], props[static_cast<std::size_t>(pi)],
+                                   *models_[static_cast<std::size_t>(pi)], vehicle_kg);
+          done[j] = 1;
+        }
+        ok = !SegmentPowerBound(m_, segs[k], parts, mp, d, ThrottleLimit(m_.constraints, escs_.classes[c].tr_sat), kInf,
+                                *models_[static_cast<std::size_t>(pi)], bo, vehicle_kg, rbs[j]).infeasible;
+      }
+      if (ok) return kg;
+    }
+  }
+  return kInf;
+}
+
+const RotorBound& JointBounds::OuterRotor(int prop, std::size_t si, std::size_t o, double mass_kg) {
+  // The grid mass at or below mass_kg (G1's geometric grid from the option's lightest vehicle).
+  const double m0 = mass_min_kg_[o];
+  int k = mass_kg > m0 ? static_cast<int>(std::floor(std::log(mass_kg / m0) / std::log(kFixedPowerMassStep))) : 0;
+  k = std::clamp(k, 0, kFixedPowerMasses - 1);
+  while (k > 0 && m0 * std::pow(kFixedPowerMassStep, k) > mass_kg) --k;
+  const std::size_t i = ((o * m_.segments.size() + si) * cat_.props().size() + static_cast<std::size_t>(prop)) *
+                            static_cast<std::size_t>(kFixedPowerMasses) + static_cast<std::size_t>(k);
+  if (!rotor_done_[i]) {
+    const double mk = k == 0 ? std::min(m0, mass_kg) : m0 * std::pow(kFixedPowerMassStep, k);
+    rotor_cache_[i] = RotorLowerBound(m_, m_.segments[si], cat_.props()[static_cast<std::size_t>(prop)],
+                                      *models_[static_cast<std::size_t>(prop)], mk);
+    rotor_done_[i] = 1;
+  }
+  return rotor_cache_[i];
+}
+
+double JointBounds::OuterBound(const Drive& drive, const GroupParts& parts, double esc_max_a,
+                               double tr_max, int prop, std::size_t o, double mass_kg, const char** why,
+                               double* irms_lb) {
+  const MotorParams& mp = drive.motor();
+  scratch_ = other_power_w_[o];
+  *irms_lb = 0;
+  for (double p : scratch_) {
+    if (!(p < kInf)) {  // another free group has no feasible choice with this option
+      *why = "infeasible_bound";
+      return kInf;
+    }
+  }
+  const double raw_kg = mass_kg;
+  for (std::size_t si : outer_segments_) mass_kg = std::max(mass_kg, MassFloorKg(prop, si, o));  // R7
+  const double floor_kg = mass_kg;
+  if (!(mass_kg < kInf)) {
+    *why = "prop_no_forward_flight_data";
+    return kInf;
+  }
+  if (!ReachesThrustToWeight(outer_, drive, prop, mass_kg, o)) {
+    *why = "min_thrust_to_weight";
+    return kInf;
+  }
+  // The coupled (lazy) stage only: a free-airspeed cruise's bound from the drive too, cell by
+  // cell (FreeCruisePowerLowerBoundW with the drive: about 1,400 propeller evaluations, too many
+  // for every pair's first bound). At mass_kg, so a floor for every heavier vehicle below (M3).
+  // Every stage: the propeller's own data (RotorBound::free_cruise_lossy_w, cached per grid mass).
+  cruise_floor_w_.assign(m_.segments.size(), 0.0);
+  const bool lossy = DriveIsLossy(mp, drive.esc().c1, drive.esc().c0);
+  for (std::size_t si : outer_segments_) {
+    const Segment& sg = m_.segments[si];
+    if (sg.type != SegmentType::kCruise || !sg.airspeed_m_s.free()) continue;
+    if (lossy) {
+      cruise_floor_w_[si] = m_.vehicle.avionics_power_w + OuterRotor(prop, si, o, mass_kg).free_cruise_lossy_w;
+    }
+    if (coupled_) {
+      const CruiseDriveBound db{&drive, options_[o].v_full, options_[o].v_cut};
+      cruise_floor_w_[si] = std::max(cruise_floor_w_[si], m_.vehicle.avionics_power_w +
+                            FreeCruisePowerLowerBoundW(m_, sg, parts, *models_[static_cast<std::size_t>(prop)], mass_kg, &db));
+    }
+  }
+  for (std::size_t si : outer_segments_) {
+    const RotorBound& rb = OuterRotor(prop, si, o, mass_kg);
+    const SegmentBound b = SegmentPowerBound(m_, si, parts, mp, drive, tr_max, esc_max_a,
+                                             *models_[static_cast<std::size_t>(prop)], options_[o], mass_kg, rb);
+    if (b.infeasible) {
+      *why = b.infeasible;
+      return kInf;
+    }
+    *irms_lb = std::max(*irms_lb, b.irms_lb_a);
+    scratch_[si] = std::max(b.power_w, cruise_floor_w_[si]);
+  }
+  const double bound = ScoreFromSegmentPowers(m_, scratch_, options_[o]);
+  if (!coupled_ || inner_ < 0) return bound;
+  // The coupled bound (InnerFrontier): per frontier point, the outer group's segments at the
+  // vehicle with that inner mass (and at least the R7 floor), the inner group's energy, the
+  // other segments as above; the least over the points.
+  auto t_min = [&](std::size_t si) { return SegmentDurationS(m_.segments[si], m_.segments[si].airspeed_m_s.hi); };
+  double e_rest = 0;
+  for (std::size_t si = 0; si < m_.segments.size(); ++si) {
+    const int g = m_.segments[si].group;
+    if (g != outer_ && g != inner_) e_rest += scratch_[si] * t_min(si);
+  }
+  double best = kInf;
+  for (const FrontierPoint& f : frontier_[o]) {
+    const double kg = std::max(raw_kg + f.extra_kg, floor_kg);
+    double e = e_rest + f.energy_j;
+    for (std::size_t si : outer_segments_) {
+      const SegmentBound b = SegmentPowerBound(m_, si, parts, mp, drive, tr_max, esc_max_a,
+                                               *models_[static_cast<std::size_t>(prop)], options_[o], kg,
+                                               OuterRotor(prop, si, o, kg));
+      if (b.infeasible) {
+        e = kInf;
+        break;
+      }
+      e += std::max(b.power_w, cruise_floor_w_[si]) * t_min(si);
+    }
+    best = std::min(best, e);
+    if (!(best / 3600.0 > bound)) return bound;  // no better than the plain bound
+  }
+  if (!(best < kInf)) *why = "infeasible_bound";
+  return std::max(bound, best / 3600.0);
+}
+
+double JointBounds::PairBound(int motor, int prop, std::size_t o, int esc_class, const char** why, double* irms_lb) {
+  const MotorEntry& mo = cat_.motors()[static_cast<std::size_t>(motor)];
+  const EscClass& cls = escs_.classes[static_cast<std::size_t>(esc_class)];
+  const std::vector<int>& members = escs_.per_option[o][static_cast<std::size_t>(esc_class)];
+  if (members.empty()) {
+    *why = "esc_voltage";
+    return kInf;
+  }
+  const MotorParams mp = ScenarioMotorParams(mo, m_);
+  const Drive d(mp, ZeroResistanceEsc(cls));
+  // FreeCruisePowerLowerBoundW reads the ESC's C1, C0: a member's, when the class's catalog
+  // values cannot create energy (a scenario only raises C0); else none of the class is lossy
+  // for certain, and a synthetic member with a negative C0 gives no momentum bound.
+  EscEntry none;
+  none.params = ZeroResistanceEsc(cls);
+  none.params.c0 = -1.0;
+  const EscEntry* esc = DriveIsLossy(mp, cls.c1, cls.c0) ? &cat_.escs()[static_cast<std::size_t>(members.front())] : &none;
+  const GroupParts parts{&mo, esc, &cat_.props()[static_cast<std::size_t>(prop)]};
+  const double mass = mass_min_kg_[o] - outer_lightest_kg_[o] +
+                      m_.groups[outer_].rotors * (*mo.mass_kg + PropMassKg(cat_.props()[static_cast<std::size_t>(prop)]) +
+                                                  escs_.min_mass_kg[o]);
+  return OuterBound(d, parts, kInf, ThrottleLimit(m_.constraints, cls.tr_sat), prop, o, mass, why, irms_lb);
+}
+
+double JointBounds::TripleBound(int motor, int esc, int prop, std::size_t o, const char** why) {
+  const MotorEntry& mo = cat_.motors()[static_cast<std::size_t>(motor)];
+  const EscEntry& e = cat_.escs()[static_cast<std::size_t>(esc)];
+  const PropEntry& p = cat_.props()[static_cast<std::size_t>(prop)];
+  const MotorParams mp = ScenarioMotorParams(mo, m_);
+  const EscParams ep = ScenarioEscParams(e, m_.objective.ranking);
+  const Drive d(mp, ep);
+  const double mass = mass_min_kg_[o] - outer_lightest_kg_[o] +
+                      m_.groups[outer_].rotors * (*mo.mass_kg + PropMassKg(p) + EscMassKg(e));
+  double irms_lb = 0;
+  return OuterBound(d, GroupParts{&mo, &e, &p}, ep.max_current_a, ThrottleLimit(m_.constraints, ep.tr_sat),
+                    prop, o, mass, why, &irms_lb);
+}
+
+}  // namespace dynosize::search_internal

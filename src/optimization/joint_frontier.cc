@@ -1,0 +1,190 @@
+// The joint search's bounds over the other free groups' choices (joint_search.h; G2,
+// docs/search.md#g2): the least power a free group's segment draws over every surviving
+// choice, and the coupled bound's frontier of (extra mass, least energy).
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <memory>
+#include <utility>
+#include <vector>
+
+#include "common/error.h"
+#include "common/units.h"
+#include "model/physics.h"
+#include "optimization/components.h"
+#include "optimization/credibility.h"
+#include "optimization/joint_search.h"
+#include "optimization/prop_bounds.h"
+
+namespace dynosize::search_internal {
+
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+}  // namespace
+
+// G2's coupled bound (min_energy, two free groups): the inner group's choices as a frontier of
+// (extra mass over its lightest, least energy of its own segments at the vehicle with that mass
+// and the outer group at its lightest), each choice that survives R0, R1, R3, R7 and the
+// thrust-to-weight rule at that vehicle, taken lightest first and kept when its energy is below
+// every lighter one's. Every feasible inner choice has a frontier point no heavier and with no
+// more energy (M3). Choices whose floor (rotors*max(Q*omega, momentum) per segment) reaches the
+// least energy so far are skipped when their drive cannot create energy (SegmentPowerBound).
+std::vector<JointBounds::FrontierPoint> JointBounds::InnerFrontier(std::size_t o) {
+  const auto& motors = cat_.motors();
+  const auto& props = cat_.props();
+  const BatteryOption& bo = options_[o];
+  const double esc_min = std::isfinite(escs_.min_mass_kg[o]) ? escs_.min_mass_kg[o] : 0.0;
+  const int rotors = m_.groups[static_cast<std::size_t>(inner_)].rotors;
+  std::vector<std::size_t> segs;
+  for (std::size_t si = 0; si < m_.segments.size(); ++si) {
+    if (m_.segments[si].group == inner_) segs.push_back(si);
+  }
+  auto t_min = [&](std::size_t si) { return SegmentDurationS(m_.segments[si], m_.segments[si].airspeed_m_s.hi); };
+  std::vector<double> floor_j(props.size(), kInf);  // per propeller at the lightest vehicle
+  for (std::size_t pi = 0; pi < props.size(); ++pi) {
+    if (!PropAllowed(inner_, props[pi])) continue;
+    const bool static_only = models_[pi]->data_kind() != PropDataKind::kTables || props[pi].j_tables.empty();
+    double e = 0;
+    for (std::size_t si : segs) {
+      const RotorBound& rb = OuterRotor(static_cast<int>(pi), si, o, mass_min_kg_[o]);
+      const double p_ideal = rb.omega_rad_s > 0 ? IdealRotorPowerW(rb.thrust_n, props[pi].diameter_m, m_.rho_kg_m3,
+                                                                   static_only ? 0.0 : rb.axial_airspeed_m_s)
+                                                : 0.0;
+      const double w = std::max(rb.torque_nm * rb.omega_rad_s, p_ideal / std::max(1.0, m_.constraints.max_figure_of_merit));
+      e += (m_.vehicle.avionics_power_w + rb.rotors * w) * t_min(si);
+    }
+    floor_j[pi] = e;
+  }
+  std::vector<std::tuple<double, int, int>> by_mass;
+  for (std::size_t mi = 0; mi < motors.size(); ++mi) {
+    if (!motors[mi].mass_kg || !motors[mi].exclude_reason.empty()) continue;
+    for (std::size_t pi = 0; pi < props.size(); ++pi) {
+      if (!std::isfinite(floor_j[pi])) continue;
+      const double kg = rotors * (*motors[mi].mass_kg + PropMassKg(props[pi]) + esc_min);
+      if (kg >= inner_lightest_kg_[o]) by_mass.emplace_back(kg, static_cast<int>(mi), static_cast<int>(pi));
+    }
+  }
+  std::sort(by_mass.begin(), by_mass.end());
+  std::vector<FrontierPoint> front;
+  double e_min = kInf;
+  for (const auto& [kg, mi, pi] : by_mass) {
+    const MotorEntry& mo = motors[static_cast<std::size_t>(mi)];
+    bool excluded = false;
+    const MotorParams mp = ScenarioMotorParams(mo, m_, nullptr, &excluded);
+    if (Lifts(inner_) && (excluded || bo.v_full > MotorMaxVoltageV(mo))) continue;  // R0, R1
+    const double vehicle_kg = mass_min_kg_[o] - inner_lightest_kg_[o] + kg;
+    for (std::size_t c = 0; c < escs_.classes.size(); ++c) {
+      if (escs_.per_option[o][c].empty()) continue;
+      // SegmentPowerBound reads the ESC's C1 and C0 for a free-airspeed cruise
+      // (FreeCruisePowerLowerBoundW): a member's, as MinFreeGroupPower does.
+      const EscEntry& member = cat_.escs()[static_cast<std::size_t>(escs_.classes[c].members.front())];
+      const GroupParts parts{&mo, &member, &props[static_cast<std::size_t>(pi)]};
+      const EscClass& cls = escs_.classes[c];
+      if (DriveIsLossy(mp, cls.c1, cls.c0) && floor_j[static_cast<std::size_t>(pi)] >= e_min) continue;
+      const Drive d(mp, ZeroResistanceEsc(cls));
+      if (!ReachesThrustToWeight(inner_, d, pi, vehicle_kg, o)) continue;
+      double e = 0;
+      for (std::size_t si : segs) {
+        const RotorBound& rb = OuterRotor(pi, si, o, vehicle_kg);
+        const SegmentBound b = SegmentPowerBound(m_, si, parts, mp, d, ThrottleLimit(m_.constraints, cls.tr_sat), kInf,
+                                                 *models_[static_cast<std::size_t>(pi)], bo, vehicle_kg, rb);
+        if (b.infeasible) {
+          e = kInf;
+          break;
+        }
+        e += b.power_w * t_min(si);
+      }
+      if (e < e_min) {
+        e_min = e;
+        front.push_back(FrontierPoint{kg - inner_lightest_kg_[o], e});
+      }
+    }
+  }
+  return front;
+}
+
+// G2: the least power bound over the group's (motor, ESC class, propeller) choices that survive
+// R0, R1, R3 and R7 at this segment, at the lightest vehicle mass (M3: every heavier one draws
+// no less). Propellers in order of their floor, rotors*max(Q*omega, momentum) + P_avionics (PDC
+// >= Pmech for a drive that cannot create energy; SegmentPowerBound): once the floor reaches the least bound found, no energy-
+// conserving drive on that propeller or a later one can go below it; drives that could create
+// energy are checked on every propeller.
+double JointBounds::MinFreeGroupPower(int group, std::size_t si, std::size_t o, double mass_kg) {
+  const Mission& m = m_;
+  const Segment& sg = m.segments[si];
+  const BatteryOption& bo = options_[o];
+  const auto& props = cat_.props();
+  const auto& motors = cat_.motors();
+  const std::vector<EscClass>& classes = escs_.classes;
+  struct Cand {
+    MotorParams mp;
+    Drive drive;
+    int cls;
+    bool lossy;
+    const MotorEntry* motor;
+  };
+  std::vector<Cand> cands;
+  for (const MotorEntry& mo : motors) {
+    if (!mo.exclude_reason.empty() || !mo.mass_kg) continue;
+    bool excluded = false;
+    const MotorParams mp = ScenarioMotorParams(mo, m, nullptr, &excluded);
+    if (Lifts(group) && (excluded || bo.v_full > MotorMaxVoltageV(mo))) continue;  // R0, R1
+    for (std::size_t c = 0; c < classes.size(); ++c) {
+      if (escs_.per_option[o][c].empty()) continue;  // R1
+      cands.push_back(Cand{mp, Drive(mp, ZeroResistanceEsc(classes[c])), static_cast<int>(c),
+                           DriveIsLossy(mp, classes[c].c1, classes[c].c0), &mo});
+    }
+  }
+  double best = kInf;
+  if (sg.type == SegmentType::kCruise && sg.airspeed_m_s.free()) {
+    // FreeCruisePowerLowerBoundW: momentum theory when the drive cannot create energy (the
+    // class's catalog C0 is at most any scenario's), else none.
+    for (const Cand& c : cands) {
+      if (!c.lossy) return m.vehicle.avionics_power_w;
+    }
+    for (std::size_t pi = 0; pi < props.size(); ++pi) {
+      if (!PropAllowed(group, props[pi]) || cands.empty()) continue;
+      const Cand& c = cands.front();
+      const GroupParts parts{c.motor, &cat_.escs()[static_cast<std::size_t>(classes[c.cls].members.front())], &props[pi]};
+      best = std::min(best, m.vehicle.avionics_power_w + FreeCruisePowerLowerBoundW(m, sg, parts, *models_[pi], mass_kg));
+    }
+    return best;
+  }
+  if (sg.type == SegmentType::kShaft) return m.vehicle.avionics_power_w;
+  struct PropFloor {
+    double floor;
+    std::size_t prop;
+    RotorBound rb;
+  };
+  std::vector<PropFloor> floors;
+  for (std::size_t pi = 0; pi < props.size(); ++pi) {
+    if (!PropAllowed(group, props[pi])) continue;
+    RotorBound rb = RotorLowerBound(m, sg, props[pi], *models_[pi], mass_kg);
+    if (!(rb.omega_rad_s > 0)) return m.vehicle.avionics_power_w;  // no bound for this choice
+    const bool static_only = models_[pi]->data_kind() != PropDataKind::kTables || props[pi].j_tables.empty();
+    const double p_ideal = IdealRotorPowerW(rb.thrust_n, props[pi].diameter_m, m.rho_kg_m3,
+                                            static_only ? 0.0 : rb.axial_airspeed_m_s);
+    const double floor_w = std::max(rb.torque_nm * rb.omega_rad_s, p_ideal / std::max(1.0, m.constraints.max_figure_of_merit));
+    floors.push_back({m.vehicle.avionics_power_w + rb.rotors * floor_w, pi, rb});
+  }
+  std::sort(floors.begin(), floors.end(), [](const PropFloor& a, const PropFloor& b) {
+    return a.floor != b.floor ? a.floor < b.floor : a.prop < b.prop;
+  });
+  for (const PropFloor& f : floors) {
+    const bool lossy_done = f.floor >= best;
+    const GroupParts parts{nullptr, nullptr, &props[f.prop]};
+    for (const Cand& c : cands) {
+      if (lossy_done && c.lossy) continue;
+      if (!ReachesThrustToWeight(group, c.drive, static_cast<int>(f.prop), mass_kg, o)) continue;
+      const double tr_max = ThrottleLimit(m.constraints, classes[c.cls].tr_sat);
+      const SegmentBound b = SegmentPowerBound(m, si, parts, c.mp, c.drive, tr_max, kInf, *models_[f.prop], bo,
+                                               mass_kg, f.rb);
+      if (!b.infeasible) best = std::min(best, b.power_w);
+    }
+  }
+  return best;
+}
+
+}  // namespace dynosize::search_internal

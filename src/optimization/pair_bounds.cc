@@ -1,0 +1,373 @@
+// How a candidate pair is bounded (pair_bounds.h): R4's score bound and the pair rules R2, R6,
+// R7, R9, R12 (docs/search.md).
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <limits>
+#include <vector>
+
+#include "common/units.h"
+#include "mission/flight.h"
+#include "model/physics.h"
+#include "optimization/components.h"
+#include "optimization/credibility.h"
+#include "optimization/pair_bounds.h"
+#include "optimization/prop_bounds.h"
+
+namespace dynosize::search_internal {
+
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+
+// R4's terminal power bound of segment si at every instant, W, for a pair at the mass of
+// `loads`, given the hover bound's per-rotor PDC pdc_lb. The terminal power of a segment is at
+// least N*PDC_lb + P_avionics when each of its N rotors must give at least T_lb (hover[0]'s
+// per-rotor thrust at the lightest mass, which defines omega_lb and Q_lb) from the same
+// speed-thrust curve: hover segments, and climb or fixed-airspeed cruise segments of a
+// propeller with static-only data (the evaluator reads them at J = 0 in any inflow, so speed
+// and torque are at least omega_lb and Q_lb there too, M1, M2); *scales says so. Any other
+// segment draws at least P_avionics. Everything but pdc_lb depends on the pair only: kept per
+// pair (PairLoads::Term). Requires a hover segment (f.hover not empty).
+double SegmentPowerLowerBoundW(const SearchContext& ctx, const MissionFacts& f, const PropEntry& prop,
+                               const PropModel& model, std::size_t option, PairLoads* loads, std::size_t si,
+                               double pdc_lb) {
+  const Mission& m = *ctx.mission;
+  const PairLoads::PowerTerm& t = loads->Term(si, [&](PairLoads::PowerTerm* x) {
+    const Segment& sg = m.segments[si];
+    x->constant = m.vehicle.avionics_power_w;
+    if (sg.group != f.free_group) {  // G1: the fixed group's own bound at the lightest mass
+      if (!ctx.fixed_power_lb_w.empty()) x->constant = FixedPowerLowerBoundW(ctx, option, si, loads->mass_kg());
+      return;
+    }
+    const double t_lb = loads->At(static_cast<std::size_t>(f.hover[0]), false, 0.0).thrust_per_rotor_n;
+    const bool static_only = model.data_kind() != PropDataKind::kTables || prop.j_tables.empty();
+    const bool fixed_v = sg.type != SegmentType::kCruise || !sg.airspeed_m_s.free();
+    if (sg.type == SegmentType::kHover ||
+        (static_only && fixed_v && (sg.type == SegmentType::kClimb || sg.type == SegmentType::kCruise))) {
+      const RotorLoad& ld = loads->At(si, false, sg.type == SegmentType::kCruise ? sg.airspeed_m_s.lo : 0.0);
+      if (ld.thrust_per_rotor_n >= t_lb) {
+        x->scales = true;
+        x->rotors = ld.rotors;
+      }
+    }
+  });
+  return t.scales ? t.rotors * pdc_lb + m.vehicle.avionics_power_w : t.constant;
+}
+
+}  // namespace
+
+double BudgetScore(double t_fixed_max_s, double e_max_j, double e_other_j, double p_stretch_w) {
+  return p_stretch_w > 0 ? -(t_fixed_max_s + std::max(0.0, e_max_j - e_other_j) / p_stretch_w) : -kInf;
+}
+// Groups (G1): the rules below speak of the free group's segments only; a segment of a fixed
+// group draws at least P_avionics (its drive's power is >= 0), and every group's mass is in
+// mass_lb and mass_ub, so each bound stays a bound.
+MissionFacts FactsOf(const Mission& m, int free_group) {
+  MissionFacts f;
+  for (std::size_t i = 0; i < m.segments.size(); ++i) {
+    if (m.segments[i].type == SegmentType::kHover && m.segments[i].group == free_group) {
+      f.hover.push_back(static_cast<int>(i));
+    }
+  }
+  f.t_fixed_max = LongestFixedDurationS(m);
+  f.stretch_is_hover = m.objective.type == ObjectiveType::kMaxEndurance &&
+                       m.segments[m.objective.segment_index].type == SegmentType::kHover &&
+                       m.segments[m.objective.segment_index].group == free_group;
+  f.free_group = free_group;
+  f.free_lifts = free_group == std::max(0, LiftGroup(m));
+  return f;
+}
+
+// FactsOf with what stage 4 reads per propeller (R0) and per pair (R7) worked out once.
+MissionFacts StageFourFacts(const SearchContext& ctx) {
+  const Mission& m = *ctx.mission;
+  MissionFacts f = FactsOf(m, ctx.free_group);
+  const auto& props = ctx.catalog->props();
+  for (std::size_t pi = 0; pi < props.size(); ++pi) {
+    const char* rule = PropFrameRule(m, f.free_group, f.free_lifts, props[pi]);
+    if (!rule) {
+      f.frame_ok_props.push_back(static_cast<int>(pi));
+      continue;
+    }
+    auto it = std::find_if(f.prop_frame_counts.begin(), f.prop_frame_counts.end(),
+                           [&](const auto& x) { return std::strcmp(x.first, rule) == 0; });
+    if (it == f.prop_frame_counts.end()) it = f.prop_frame_counts.insert(f.prop_frame_counts.end(), {rule, 0});
+    ++it->second;
+  }
+  for (const Segment& sg : m.segments) {
+    if (sg.group != f.free_group) continue;
+    if (sg.type == SegmentType::kClimb && sg.climb_rate_m_s > 0) f.r7_axial_m_s = std::max(f.r7_axial_m_s, sg.climb_rate_m_s);
+    if (sg.type == SegmentType::kCruise && sg.lift_to_drag > 0) f.r7_axial_m_s = std::max(f.r7_axial_m_s, sg.airspeed_m_s.lo);
+  }
+  return f;
+}
+
+// Momentum theory's bound of a propeller segment's terminal power, W, when no stage can create
+// energy: N*P_ideal(T, V)/max_figure_of_merit + P_avionics (the evaluator's
+// prop_figure_of_merit; V the axial inflow with forward-flight tables, else 0, as
+// PropellerPoint judges it; P_ideal rises with the thrust).
+double MomentumPowerW(const Mission& m, const RotorLoad& ld, double diameter_m, bool axial_data) {
+  const double p_ideal =
+      IdealRotorPowerW(ld.thrust_per_rotor_n, diameter_m, m.rho_kg_m3, axial_data ? ld.axial_airspeed_m_s : 0.0);
+  return ld.rotors * p_ideal / m.constraints.max_figure_of_merit + m.vehicle.avionics_power_w;
+}
+// Rule R4 (docs/search.md#r4): every segment draws at least its power bound for at least its
+// shortest duration, so the score is at least the assembled bound; pairs best bound first,
+// stopping at the first bound not below the N-th best.
+// R4: a lower bound of the score of a (motor, propeller, option) pair with an ESC class whose
+// drive is lossy or not (DriveIsLossy: only then momentum theory bounds the power drawn),
+// given the hover bound's per-rotor electrical power pdc_lb at the lightest mass (R11: a floor
+// of it that holds for a class of motors). loads: PairLoads at that mass.
+double ScoreLowerBound(const SearchContext& ctx, const MissionFacts& f, bool lossy, const PropEntry& prop,
+                       const PropModel& model, std::size_t option, PairLoads* loads, double pdc_lb) {
+  const BatteryOption& bo = ctx.options[option];
+  const Mission& m = *ctx.mission;
+  if (f.hover.empty()) return -kInf;
+  auto p_lb_of = [&](std::size_t si) {
+    return SegmentPowerLowerBoundW(ctx, f, prop, model, option, loads, si, pdc_lb);
+  };
+  // The shortest a segment can last (free airspeed: at its top speed).
+  auto t_min_of = [&](const Segment& sg) { return SegmentDurationS(sg, sg.airspeed_m_s.hi); };
+  if (m.objective.type == ObjectiveType::kMinEnergy) {
+    // Per segment the larger of: the hover bound above, and momentum theory. A feasible point
+    // has prop power >= P_ideal/max_figure_of_merit (the evaluator's prop_figure_of_merit
+    // constraint; P_ideal of model/physics.h per rotor), and PDC >= Pmech when neither the
+    // motor nor the ESC can create energy (model.md section 10: KT <= sqrt(27/10)*KE, C0 >= 0,
+    // C1 + C0 >= 1.1095; then eta_motor, eta_esc <= 1; a point that breaks it is infeasible,
+    // creates_energy). V is the axial inflow (0 for static-only data: P_ideal rises with V).
+    // (The inequalities of model/physics.h without its rounding allowance: exact here.)
+    const bool axial_data = !prop.j_tables.empty();
+    double e = 0;
+    for (std::size_t si = 0; si < m.segments.size(); ++si) {
+      const Segment& sg = m.segments[si];
+      double e_seg = p_lb_of(si) * t_min_of(sg);
+      const bool fixed_v = sg.type != SegmentType::kCruise || !sg.airspeed_m_s.free() || sg.lift_to_drag > 0;
+      if (lossy && sg.group == f.free_group && sg.type != SegmentType::kShaft && fixed_v &&
+          (sg.type != SegmentType::kCruise || sg.lift_to_drag > 0)) {
+        const double v = sg.type == SegmentType::kCruise ? sg.airspeed_m_s.hi : 0.0;
+        e_seg = std::max(e_seg, MomentumPowerW(m, loads->At(si, true, v), prop.diameter_m, axial_data) *
+                                    SegmentDurationS(sg, v));
+      }
+      e += e_seg;
+    }
+    return e / 3600.0;
+  }
+  // max_endurance: the other segments' energy, each at least its power bound times its
+  // shortest duration and, for the free group's propeller segments at a fixed airspeed when no
+  // stage can create energy, momentum theory's N*P_ideal(T, V)/max_figure_of_merit plus the
+  // avionics over its duration (the evaluator's prop_figure_of_merit; V the axial inflow with
+  // forward-flight tables, else 0, as PropellerPoint judges it; P_ideal rises with the mass).
+  const bool table_data = model.data_kind() == PropDataKind::kTables && !prop.j_tables.empty();
+  auto e_other_of = [&](std::size_t stretch) {
+    double e_other = 0;
+    for (std::size_t si = 0; si < m.segments.size(); ++si) {
+      if (si == stretch) continue;
+      const Segment& sg = m.segments[si];
+      double e_seg = p_lb_of(si) * t_min_of(sg);
+      if (lossy && sg.group == f.free_group && sg.type != SegmentType::kShaft &&
+          !(sg.type == SegmentType::kCruise && sg.airspeed_m_s.free())) {
+        e_seg = std::max(e_seg, loads->PerSegment(si, [&]() {
+          const double v = sg.type == SegmentType::kCruise ? sg.airspeed_m_s.lo : 0.0;
+          return MomentumPowerW(m, loads->At(si, false, v), prop.diameter_m, table_data) * SegmentDurationS(sg, v);
+        }));
+      }
+      e_other += e_seg;
+    }
+    return e_other;
+  };
+  if (f.stretch_is_hover) {
+    // Terminal energy = integral of V*I dt <= integral of OCV*I dt = Q*integral of OCV(s) ds
+    // over [reserve, 1] (coulomb counting): the energy budget.
+    const double e_other = e_other_of(static_cast<std::size_t>(m.objective.segment_index));
+    const double p_stretch = p_lb_of(static_cast<std::size_t>(m.objective.segment_index));
+    const double e_max = bo.ocv_integral_v * AhToCoulomb(bo.capacity_hi_ah);
+    return BudgetScore(f.t_fixed_max, e_max, e_other, p_stretch);
+  }
+  const std::size_t ist = static_cast<std::size_t>(std::max(0, m.objective.segment_index));
+  const Segment& st = m.segments[ist];
+  if (m.objective.type == ObjectiveType::kMaxEndurance && st.group == f.free_group &&
+      st.type == SegmentType::kCruise && !st.airspeed_m_s.free()) {
+    // The same energy budget with a fixed-airspeed cruise stretched: its thrust is constant, so
+    // at every instant its power is at least p_lb_of (static-only data, above) and, when no
+    // stage can create energy, N*P_ideal(T, V)/max_figure_of_merit + P_avionics (the
+    // evaluator's prop_figure_of_merit; V the axial inflow with forward-flight tables, else 0,
+    // as PropellerPoint judges it), at the lightest mass (M3).
+    double p_stretch = p_lb_of(ist);
+    if (lossy) {
+      p_stretch = std::max(p_stretch, MomentumPowerW(m, loads->At(ist, false, st.airspeed_m_s.lo), prop.diameter_m, table_data));
+    }
+    const double e_other = e_other_of(ist);
+    const double e_max = bo.ocv_integral_v * AhToCoulomb(bo.capacity_hi_ah);
+    return BudgetScore(f.t_fixed_max, e_max, e_other, p_stretch);
+  }
+  return -kInf;
+}
+
+// Rule R12 (docs/search.md#r12): a hover below the propeller's data window fails
+// prop_below_data; more mass turns the rotor faster (M3).
+// R12 as a mass floor: a feasible combination hovers at least at the window's bottom w_min, so
+// (M1) each rotor's hover thrust is at least T(w_min), and the vehicle's mass at least the mass
+// whose hover thrust per rotor that is (proportional to the mass, flight.h), shrunk by 1e-9
+// against rounding. 0 when the rule does not apply. Every bound computed at a mass of at least
+// this stays a bound of every feasible score (M3).
+double WindowMassFloorKg(const SearchContext& ctx, const MissionFacts& f, int prop) {
+  const Mission& m = *ctx.mission;
+  const PropGrid& g = ctx.grids[static_cast<std::size_t>(prop)];
+  if (!(m.constraints.prop_below_data_factor > 0) || f.hover.empty() || !g.monotone) return 0.0;
+  const PropModel& model = *ctx.models[static_cast<std::size_t>(prop)];
+  const double factor = m.constraints.prop_below_data_factor;
+  const double t_min = g.window_factor == factor
+                           ? g.window_thrust_n  // computed once (BuildPropGrids)
+                           : model.Evaluate(RpmToRadPerSec(factor * model.valid_range().rpm_lo), m.rho_kg_m3, 0.0).thrust_n;
+  const double per_kg = SegmentRotorLoad(m, m.segments[static_cast<std::size_t>(f.hover[0])], 1.0, 0.0).thrust_per_rotor_n;
+  return per_kg > 0 ? (1.0 - 1e-9) * t_min / per_kg : 0.0;
+}
+
+// R12 (the window's bottom): true when the first hover's speed at the vehicle mass mass_ub_kg (an
+// upper bound of the true mass) is below the propeller's data window, so that it is below it at
+// every mass up to mass_ub_kg (M1, M3).
+bool HoverSpeedBelowWindowAtMass(const SearchContext& ctx, const MissionFacts& f, int prop, double mass_ub_kg) {
+  const Mission& m = *ctx.mission;
+  const PropGrid& g = ctx.grids[static_cast<std::size_t>(prop)];
+  if (!(m.constraints.prop_below_data_factor > 0) || f.hover.empty() || !g.monotone) return false;
+  const RotorLoad load = SegmentRotorLoad(m, m.segments[static_cast<std::size_t>(f.hover[0])], mass_ub_kg, 0.0);
+  const double* it = std::lower_bound(g.thrust, g.thrust + kGrid, load.thrust_per_rotor_n);
+  if (it == g.thrust + kGrid) return false;  // beyond the grid: no bound
+  const PropModel& model = *ctx.models[static_cast<std::size_t>(prop)];
+  const double w_min = RpmToRadPerSec(m.constraints.prop_below_data_factor * model.valid_range().rpm_lo);
+  // The first grid speed whose thrust reaches T_ub is at or above the hover speed (M1).
+  const std::ptrdiff_t i = it - g.thrust;
+  double hi = g.omega[i];
+  if (hi < w_min) return true;
+  if (i == 0 || g.omega[i - 1] >= w_min) return false;  // the speed may be anywhere above w_min
+  // Bisection within the cell on the model (static, as the evaluator reads a hover; the
+  // scenarios do not change thrust): hi stays a speed whose thrust reaches T_ub.
+  double lo = g.omega[i - 1];
+  for (int step = 0; step < 20 && hi >= w_min; ++step) {
+    const double mid = 0.5 * (lo + hi);
+    (model.Evaluate(mid, m.rho_kg_m3, 0.0).thrust_n >= load.thrust_per_rotor_n ? hi : lo) = mid;
+  }
+  return hi * (1.0 + 1e-9) < w_min;  // 1e-9: the evaluator's root is found to a tolerance
+}
+
+// The hover bound's speed and torque from below (R2): the last grid point whose thrust is at
+// most the first hover segment's per-rotor thrust at the mass of `loads` (0, 0 without a
+// hover segment, a monotone grid or such a point). Returns the grid index (0 when none).
+int HoverGridPointFromBelow(const MissionFacts& f, const PropGrid& g, PairLoads* loads, double* omega_lb, double* q_lb) {
+  *omega_lb = 0;
+  *q_lb = 0;
+  if (f.hover.empty() || !g.monotone) return 0;
+  const RotorLoad& load = loads->At(static_cast<std::size_t>(f.hover[0]), false, 0.0);
+  const double* it = std::upper_bound(g.thrust, g.thrust + kGrid, load.thrust_per_rotor_n);
+  const int idx = static_cast<int>(it - g.thrust) - 1;  // last grid thrust <= T_lb
+  if (idx < 0) return 0;
+  *omega_lb = g.omega[idx];
+  *q_lb = g.torque_suffix_min[idx];
+  return idx;
+}
+
+// Rules R2, R6, R7, R12 (docs/search.md#r2, #r6, #r7, #r12): the hover speed is at least the
+// grid speed of the lightest vehicle's thrust (M1, M3); a propeller whose data break momentum
+// theory, static-only data in fast axial flow, or a speed outside its rpm limit or data window
+// there fails whatever ESC and pack are chosen.
+// R2, R6, R7 for one (motor, propeller, option) pair whose propeller passed R0 (counted per
+// motor, MotorSetUp): the rule that removes it, or null. Sets omega_lb, q_lb (R2) for the
+// hover bound.
+// w_nl: the largest no-load speed of the motor's zero-resistance drives at full throttle and
+// the option's full-charge voltage (R7; the same for every propeller, computed once per option).
+const char* PropRule(const SearchContext& ctx, const MissionFacts& f, double motor_kg, double w_nl, std::size_t pi,
+                     std::size_t o, PairLoads* loads, double* omega_lb, double* q_lb) {
+  const Mission& m = *ctx.mission;
+  const MissionConstraints& k = m.constraints;
+  const PropEntry& prop = ctx.catalog->props()[pi];
+  const PropGrid& g = ctx.grids[pi];
+  const BatteryOption& bo = ctx.options[o];
+  const int lb_idx = HoverGridPointFromBelow(f, g, loads, omega_lb, q_lb);  // grid index of omega_lb
+  if (!f.hover.empty() && g.monotone) {
+    // R6: the hover speed lies between omega_lb and the first grid speed whose thrust reaches
+    // T_ub (the heaviest the vehicle can be); if the data break momentum theory (figure of
+    // merit > the mission's limit) on that whole bracket, every hover point fails
+    // prop_figure_of_merit (mission_eval.cc). The 2 % allowance covers the variation between
+    // grid points. T_ub >= T_lb (M3) puts hi_idx at or above lb_idx, so when the point at
+    // lb_idx keeps the limit the rule cannot fire and T_ub is not needed.
+    if (g.fom_ok_next[lb_idx] != lb_idx) {
+      const double mass_ub = VehicleMassKg(ctx, bo.mass_hi_kg, motor_kg, g.mass_kg, ctx.escs.max_mass_kg[o]);
+      const RotorLoad load_ub = SegmentRotorLoad(m, m.segments[f.hover[0]], mass_ub, 0.0);
+      const double* it_ub = std::lower_bound(g.thrust, g.thrust + kGrid, load_ub.thrust_per_rotor_n);
+      const int hi_idx = std::min(static_cast<int>(it_ub - g.thrust), kGrid - 1);
+      // Every grid point of [lb_idx, hi_idx] above 1.02 x the limit (fom_ok_next, BuildPropGrids).
+      if (it_ub != g.thrust + kGrid && (lb_idx > hi_idx || g.fom_ok_next[lb_idx] > hi_idx)) return "prop_figure_of_merit";
+    }
+  }
+  if (ctx.models[pi]->data_kind() != PropDataKind::kTables || prop.j_tables.empty()) {
+    // R7: static-only data. The shaft cannot turn faster than the motor's no-load speed at full
+    // throttle and the full-charge voltage with no ESC resistance, so the advance ratio in a
+    // segment with axial airspeed >= V_ax is at least V_ax/(n_max*D); above the mission's
+    // max_static_advance_ratio the segment fails prop_no_forward_flight_data whatever else is
+    // chosen. (The largest V_ax over the segments, StageFourFacts.)
+    const double n_max = w_nl / (2.0 * kPi);
+    if (n_max > 0 && f.r7_axial_m_s / (n_max * prop.diameter_m) > k.max_static_advance_ratio) {
+      return "prop_no_forward_flight_data";
+    }
+  }
+  if (prop.max_rpm && RadPerSecToRpm(*omega_lb) > *prop.max_rpm) return "prop_max_rpm";  // R2
+  // R12 (the propeller's data window, mission.h): every hover speed is at least omega_lb (R2);
+  // above the window's top there, every hover point fails prop_above_data. And at most the first
+  // grid speed whose thrust reaches T_ub (the heaviest the vehicle can be, as R6): below the
+  // window's bottom there, every hover point fails prop_below_data (M1, M3).
+  const PropValidRange& data = ctx.models[pi]->valid_range();
+  if (k.prop_above_data_factor > 0 && RadPerSecToRpm(*omega_lb) > k.prop_above_data_factor * data.rpm_hi) {
+    return "prop_above_data";
+  }
+  if (k.prop_below_data_factor > 0 && !f.hover.empty() && g.monotone) {
+    const double mass_ub = VehicleMassKg(ctx, bo.mass_hi_kg, motor_kg, g.mass_kg, ctx.escs.max_mass_kg[o]);
+    const RotorLoad load_ub = SegmentRotorLoad(m, m.segments[f.hover[0]], mass_ub, 0.0);
+    const double* it_ub = std::lower_bound(g.thrust, g.thrust + kGrid, load_ub.thrust_per_rotor_n);
+    if (it_ub != g.thrust + kGrid &&
+        RadPerSecToRpm(g.omega[it_ub - g.thrust]) < k.prop_below_data_factor * data.rpm_lo) {
+      return "prop_below_data";
+    }
+  }
+  return nullptr;
+}
+
+// Rule R9 (docs/search.md#r9): the hover throttle at the heaviest vehicle is an upper bound
+// (M1-M3); below min_hover_throttle there, the ESC fails that limit for the pair.
+// R9 with the mission's facts and the motor's scenario parameters given (BranchAndBound calls it
+// per ESC).
+bool HoverThrottleBelowLimit(const SearchContext& ctx, const MissionFacts& f, const MotorParams& mp, int motor,
+                             int prop, int option, const EscEntry& esc) {
+  const Mission& m = *ctx.mission;
+  const PropGrid& g = ctx.grids[static_cast<std::size_t>(prop)];
+  if (!(m.constraints.min_hover_throttle > 0) || f.hover.empty() || !g.monotone) return false;
+  const BatteryOption& bo = ctx.options[static_cast<std::size_t>(option)];
+  const MotorEntry& mo = ctx.catalog->motors()[static_cast<std::size_t>(motor)];
+  // The heaviest the vehicle can be with this ESC: the option's largest pack.
+  const double mass_ub = VehicleMassKg(ctx, bo.mass_hi_kg, *mo.mass_kg, g.mass_kg, EscMassKg(esc));
+  const RotorLoad load = SegmentRotorLoad(m, m.segments[static_cast<std::size_t>(f.hover[0])], mass_ub, 0.0);
+  const double* it = std::lower_bound(g.thrust, g.thrust + kGrid, load.thrust_per_rotor_n);
+  if (it == g.thrust + kGrid) return false;  // beyond the grid: no bound
+  const std::size_t i = static_cast<std::size_t>(it - g.thrust);
+  return Drive(mp, esc.params).InverseLight(bo.v_full, g.torque_prefix_max[i], g.omega[i]).throttle <
+         m.constraints.min_hover_throttle;
+}
+
+// R12 per ESC: the first hover below the propeller's data window at the heaviest the vehicle can
+// be with this ESC (the option's largest pack).
+bool HoverSpeedBelowWindow(const SearchContext& ctx, const MissionFacts& f, int motor, int prop, int option,
+                           double esc_kg) {
+  const BatteryOption& bo = ctx.options[static_cast<std::size_t>(option)];
+  const MotorEntry& mo = ctx.catalog->motors()[static_cast<std::size_t>(motor)];
+  const double mass_ub = VehicleMassKg(ctx, bo.mass_hi_kg, *mo.mass_kg, ctx.grids[static_cast<std::size_t>(prop)].mass_kg, esc_kg);
+  return HoverSpeedBelowWindowAtMass(ctx, f, prop, mass_ub);
+}
+
+bool FailsHoverThrottleBound(const SearchContext& ctx, int motor, int prop, int option, const EscEntry& esc) {
+  const Mission& m = *ctx.mission;
+  const MotorParams mp = ScenarioMotorParams(ctx.catalog->motors()[static_cast<std::size_t>(motor)], m, nullptr, nullptr);
+  return HoverThrottleBelowLimit(ctx, FactsOf(m, ctx.free_group), mp, motor, prop, option, esc);
+}
+
+}  // namespace dynosize::search_internal

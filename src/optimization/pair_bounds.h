@@ -1,0 +1,159 @@
+// How a candidate (motor, propeller, battery option) pair is bounded (stage 4 of the catalog
+// search, search_stages.h): the mission's facts, the pair's rotor loads, R4's score bound
+// (pair_bounds.cc), R10's segment-by-segment bound (segmentwise_bound.cc) and the rules that
+// refuse a pair or an ESC (R2, R6, R7, R9, R12). The rules: docs/search.md.
+// Internal to src/optimization (and its tests).
+#pragma once
+
+#include <cstddef>
+#include <utility>
+#include <vector>
+
+#include "mission/flight.h"
+#include "mission/mission.h"
+#include "model/drive.h"
+#include "optimization/search_stages.h"
+
+namespace dynosize::search_internal {
+
+// What stage 4 derives once per mission.
+struct MissionFacts {
+  std::vector<int> hover;  // hover segment indices (R2-R4)
+  double t_fixed_max = 0;  // the fixed segments' longest total duration (R4)
+  bool stretch_is_hover = false;
+  int free_group = 0;
+  // The free group lifts the vehicle (LiftGroup, 0 when none): the evaluator's prop_folding,
+  // motor_unrated and motor_voltage checks apply to it (credibility.h).
+  bool free_lifts = false;
+  // Stage 4 only (StageFourFacts): the R0 rules that remove propellers whatever the motor,
+  // the propellers they let through, and R7's largest axial airspeed over the free group's
+  // climbs and wing-borne cruises.
+  std::vector<std::pair<const char*, long long>> prop_frame_counts;  // R0 rule -> propellers it removes
+  std::vector<int> frame_ok_props;  // the propellers R0 lets through, index order
+  double r7_axial_m_s = 0;
+};
+
+// Groups (G1): the rules below speak of the free group's segments only; a segment of a fixed
+// group draws at least P_avionics (its drive's power is >= 0), and every group's mass is in
+// mass_lb and mass_ub, so each bound stays a bound.
+MissionFacts FactsOf(const Mission& m, int free_group);
+
+// FactsOf with what stage 4 reads per propeller (R0) and per pair (R7) worked out once.
+MissionFacts StageFourFacts(const SearchContext& ctx);
+
+// The rotor loads of one pair's lightest mass (SegmentRotorLoad), computed once per pair
+// instead of once per ESC class: per segment at its lowest and highest airspeed (the same
+// numbers, so the bounds do not change).
+class PairLoads {
+ public:
+  explicit PairLoads(const Mission& m) : m_(m), lo_(m.segments.size()), hi_(m.segments.size()) {}
+  void Reset(double mass_kg) {
+    mass_kg_ = mass_kg;
+    for (auto& x : lo_) x.first = false;
+    for (auto& x : hi_) x.first = false;
+    for (auto& x : energy_) x.first = false;
+    for (auto& x : terms_) x.known = false;
+  }
+  // A segment's power bound as ScoreLowerBound's p_lb_of needs it: scales (rotors x the
+  // hover bound's per-rotor PDC + the avionics) or a constant; set by f(&term) once per pair.
+  struct PowerTerm {
+    bool known = false, scales = false;
+    int rotors = 0;
+    double constant = 0;
+  };
+  template <typename F>
+  const PowerTerm& Term(std::size_t si, const F& f) {
+    if (terms_.size() != lo_.size()) terms_.assign(lo_.size(), PowerTerm{});
+    PowerTerm& x = terms_[si];
+    if (!x.known) {
+      x = PowerTerm{};
+      f(&x);
+      x.known = true;
+    }
+    return x;
+  }
+  // A per-segment number that depends only on the pair (its mass and propeller), computed by
+  // f() once per pair (ScoreLowerBound's momentum energy), not once per ESC class.
+  template <typename F>
+  double PerSegment(std::size_t si, const F& f) {
+    if (energy_.size() != lo_.size()) energy_.assign(lo_.size(), {false, 0.0});
+    std::pair<bool, double>& x = energy_[si];
+    if (!x.first) x = {true, f()};
+    return x.second;
+  }
+  // The segment's load at airspeed v_m_s, which must be the same value per (segment, high) for
+  // one mass (the callers pass airspeed_m_s.lo or .hi, or 0).
+  double mass_kg() const { return mass_kg_; }
+  const RotorLoad& At(std::size_t si, bool high, double v_m_s) {
+    std::pair<bool, RotorLoad>& x = (high ? hi_ : lo_)[si];
+    if (!x.first) x = {true, SegmentRotorLoad(m_, m_.segments[si], mass_kg_, v_m_s)};
+    return x.second;
+  }
+
+ private:
+  const Mission& m_;
+  double mass_kg_ = 0;
+  std::vector<std::pair<bool, RotorLoad>> lo_, hi_;
+  std::vector<std::pair<bool, double>> energy_;
+  std::vector<PowerTerm> terms_;
+};
+
+// Momentum theory's bound of a propeller segment's terminal power, W, when no stage can create
+// energy: N*P_ideal(T, V)/max_figure_of_merit + P_avionics (the evaluator's
+// prop_figure_of_merit; V the axial inflow with forward-flight tables, else 0, as
+// PropellerPoint judges it; P_ideal rises with the thrust).
+double MomentumPowerW(const Mission& m, const RotorLoad& ld, double diameter_m, bool axial_data);
+
+// R4: a lower bound of the score of a (motor, propeller, option) pair with an ESC class whose
+// drive is lossy or not (DriveIsLossy: only then momentum theory bounds the power drawn),
+// given the hover bound's per-rotor electrical power pdc_lb at the lightest mass (R11: a floor
+// of it that holds for a class of motors). loads: PairLoads at that mass.
+double ScoreLowerBound(const SearchContext& ctx, const MissionFacts& f, bool lossy, const PropEntry& prop,
+                       const PropModel& model, std::size_t option, PairLoads* loads, double pdc_lb);
+
+// R12 as a mass floor: a feasible combination hovers at least at the window's bottom w_min, so
+// (M1) each rotor's hover thrust is at least T(w_min), and the vehicle's mass at least the mass
+// whose hover thrust per rotor that is (proportional to the mass, flight.h), shrunk by 1e-9
+// against rounding. 0 when the rule does not apply. Every bound computed at a mass of at least
+// this stays a bound of every feasible score (M3).
+double WindowMassFloorKg(const SearchContext& ctx, const MissionFacts& f, int prop);
+
+// R12 (the window's bottom): true when the first hover's speed at the vehicle mass mass_ub_kg (an
+// upper bound of the true mass) is below the propeller's data window, so that it is below it at
+// every mass up to mass_ub_kg (M1, M3).
+bool HoverSpeedBelowWindowAtMass(const SearchContext& ctx, const MissionFacts& f, int prop, double mass_ub_kg);
+
+// R10 over the option's capacity range in pieces (one without a range): the least bound over
+// the pieces that may be feasible; kInf with *rule (the first refusal's) when none is. While
+// the least piece bound is below `threshold`, that piece is tightened: first its speeds are
+// bisected within their grid cells (kRefineSteps), then it is halved (each half's bound is
+// valid on its own), up to kMaxSplits steps and down to 1/1024 of the range: the bound
+// tightens only as far as it takes to prove "cannot beat the threshold".
+double SegmentwiseBoundPieces(const SearchContext& ctx, const MissionFacts& f, const MotorParams& mp,
+                              const Drive& ideal, double t_max, int motor, int prop, int option, double esc_mass_kg,
+                              double threshold, const char** rule);
+
+// The hover bound's speed and torque from below (R2): the last grid point whose thrust is at
+// most the first hover segment's per-rotor thrust at the mass of `loads` (0, 0 without a
+// hover segment, a monotone grid or such a point). Returns the grid index (0 when none).
+int HoverGridPointFromBelow(const MissionFacts& f, const PropGrid& g, PairLoads* loads, double* omega_lb, double* q_lb);
+
+// R2, R6, R7 for one (motor, propeller, option) pair whose propeller passed R0 (counted per
+// motor, MotorSetUp): the rule that removes it, or null. Sets omega_lb, q_lb (R2) for the
+// hover bound.
+// w_nl: the largest no-load speed of the motor's zero-resistance drives at full throttle and
+// the option's full-charge voltage (R7; the same for every propeller, computed once per option).
+const char* PropRule(const SearchContext& ctx, const MissionFacts& f, double motor_kg, double w_nl, std::size_t pi,
+                     std::size_t o, PairLoads* loads, double* omega_lb, double* q_lb);
+
+// R9 with the mission's facts and the motor's scenario parameters given (BranchAndBound calls it
+// per ESC).
+bool HoverThrottleBelowLimit(const SearchContext& ctx, const MissionFacts& f, const MotorParams& mp, int motor,
+                             int prop, int option, const EscEntry& esc);
+
+// R12 per ESC: the first hover below the propeller's data window at the heaviest the vehicle can
+// be with this ESC (the option's largest pack).
+bool HoverSpeedBelowWindow(const SearchContext& ctx, const MissionFacts& f, int motor, int prop, int option,
+                           double esc_kg);
+
+}  // namespace dynosize::search_internal

@@ -1,0 +1,303 @@
+// Stage 4 of the catalog search (pair_candidates.h): the motors set up, each pair refused by a
+// rule or bounded (R3, R4), and R11's keys (docs/search.md).
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <memory>
+#include <vector>
+
+#include "optimization/components.h"
+#include "optimization/credibility.h"
+#include "optimization/pair_candidates.h"
+
+namespace dynosize::search_internal {
+
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+// Rule R0 (docs/search.md#r0): a motor the catalog excludes is refused whole.
+// R0 (the catalog excludes the motor: catalog.h, "exclude") and a motor without a mass, counted for
+// all of the motor's pairs; true when the motor is skipped.
+bool SkipMotor(const MotorEntry& m, long long per_motor, RuleCounts* pruned, long long* skipped) {
+  if (!m.exclude_reason.empty()) {
+    pruned->Add("catalog_exclude", per_motor);
+    return true;
+  }
+  if (!m.mass_kg) {
+    ++*skipped;
+    pruned->Add("motor_without_mass", per_motor);
+    return true;
+  }
+  return false;
+}
+
+// Sets up motor mi (not skipped by SkipMotor) and counts the motor-level rules: the whole
+// motor (motor_unrated), an option (motor_voltage, R1), a propeller (R0, StageFourFacts) for
+// every option the motor can take. False when the motor is refused whole.
+bool MotorSetUp(const SearchContext& ctx, const MissionFacts& f, std::size_t mi, MotorSetup* s, RuleCounts* pruned) {
+  const Mission& m = *ctx.mission;
+  const MotorEntry& mo = ctx.catalog->motors()[mi];
+  // credibility.h: the scenario's ratings (estimated from the mass when no source states them),
+  // as the evaluator flies them; an unrated motor the mission excludes is refused (R0).
+  bool unrated_excluded = false;
+  s->motor = static_cast<int>(mi);
+  s->mass_kg = *mo.mass_kg;
+  s->mp = ScenarioMotorParams(mo, m, nullptr, &unrated_excluded);
+  if (f.free_lifts && unrated_excluded) {
+    pruned->Add("motor_unrated", CombinationsPerMotor(ctx));
+    return false;
+  }
+  const double motor_max_v = f.free_lifts ? MotorMaxVoltageV(mo) : kInf;
+  s->ideal.clear();
+  s->lossy = true;
+  for (const EscClass& c : ctx.escs.classes) {
+    s->ideal.emplace_back(s->mp, ZeroResistanceEsc(c));
+    s->lossy = s->lossy && DriveIsLossy(s->mp, c.c1, c.c0);
+  }
+  s->loss = s->lossy ? LossFloorOf(s->mp) : MotorLossFloor{};
+  const long long n_props = static_cast<long long>(ctx.catalog->props().size());
+  s->w_nl.assign(ctx.options.size(), std::numeric_limits<double>::quiet_NaN());
+  for (std::size_t o = 0; o < ctx.options.size(); ++o) {
+    const BatteryOption& bo = ctx.options[o];
+    const long long per_pair = ctx.escs.rated[o];
+    if (bo.v_full > motor_max_v) {  // R1 for the motor's cells_max (credibility.h)
+      pruned->Add("motor_voltage", per_pair * n_props);
+      continue;
+    }
+    double w = 0;
+    for (const Drive& d : s->ideal) w = std::max(w, d.NoLoadSpeed(bo.v_full, 1.0));
+    s->w_nl[o] = w;
+    for (const auto& [rule, props] : f.prop_frame_counts) pruned->Add(rule, per_pair * props);  // R0
+  }
+  return true;
+}
+
+// R11 (stage 4's order: a key that bounds every pair of a class of motors, docs/search.md#r11).
+// The factor keeps the key a bound under rounding (the floor and the evaluator's powers are
+// each within a few ulps).
+constexpr double kKeyRoundingAllowance = 1.0 - 1e-9;
+// The classes: a class runs from its lightest motor up to this factor times that mass
+// (exclusive); its key uses that mass and its members' least loss floors. The ratio: the
+// measurements that chose it are in docs/search.md#constants.
+constexpr double kMotorClassMassRatio = 1.1;
+
+}  // namespace
+
+// A motor's combinations with the ESCs that pass R0 and R1 (what a motor-level rule removes).
+long long CombinationsPerMotor(const SearchContext& ctx) {
+  long long n = 0;
+  for (const long long r : ctx.escs.rated) n += r;
+  return n * static_cast<long long>(ctx.catalog->props().size());
+}
+
+// Stage 4 for one pair of a set-up motor whose option R1 lets through and whose propeller
+// passed R0: false with its rule counted (its option's ESCs), or true with *c (R4's bound).
+bool PairCandidate(const SearchContext& ctx, const MissionFacts& f, const MotorSetup& s, std::size_t pi, std::size_t o,
+                   PairLoads* loads, Candidate* c, RuleCounts* pruned) {
+  const MissionConstraints& k = ctx.mission->constraints;
+  const double margin = 1.0 - k.current_margin;
+  const BatteryOption& bo = ctx.options[o];
+  const MotorParams& mp = s.mp;
+  const long long per_pair = ctx.escs.rated[o];
+  const double mass_lb = std::max(VehicleMassKg(ctx, bo.mass_lo_kg, s.mass_kg, ctx.grids[pi].mass_kg, ctx.escs.min_mass_kg[o]),
+                                  WindowMassFloorKg(ctx, f, static_cast<int>(pi)));  // R12's floor
+  double omega_lb = 0, q_lb = 0;
+  loads->Reset(mass_lb);
+  if (const char* rule = PropRule(ctx, f, s.mass_kg, s.w_nl[o], pi, o, loads, &omega_lb, &q_lb)) {
+    pruned->Add(rule, per_pair);
+    return false;
+  }
+  // Rule R3 (docs/search.md#r3): throttle, Irms and PAC from below with a zero-resistance ESC
+  // at the full-charge voltage (M2); above a limit no ESC and no capacity can fix it.
+  // R3 and R4 over the ESC classes: the pair survives if any class can. R4's bound is
+  // nondecreasing in pdc_lb for a given DriveIsLossy (every term is, and so is each correctly
+  // rounded operation): the least over the classes is the bound at the least pdc_lb of each
+  // kind (ScoreLowerBound reads the class only through DriveIsLossy).
+  bool any = false;
+  double irms_lb = kInf;
+  double pdc_min[2] = {kInf, kInf};  // [DriveIsLossy]
+  bool has[2] = {false, false};
+  const char* why = "throttle";
+  const std::vector<EscClass>& classes = ctx.escs.classes;
+  for (std::size_t ci = 0; ci < classes.size(); ++ci) {
+    if (ctx.escs.per_option[o][ci].empty()) continue;
+    const Drive& d = s.ideal[ci];
+    const Drive::InverseCurrents hi_v = d.InverseLight(bo.v_full, q_lb, omega_lb);
+    const double t_max = ThrottleLimit(k, classes[ci].tr_sat);
+    if (hi_v.throttle > t_max) { why = "throttle"; continue; }
+    if (hi_v.irms_a > mp.max_current_a * margin) { why = "motor_current"; continue; }
+    if (k.enforce_motor_power && d.InverseAcPower(bo.v_full, hi_v, q_lb, omega_lb) > mp.max_power_w) {
+      why = "motor_power";
+      continue;
+    }
+    const double pdc_lo_v = bo.v_cut * d.InverseLight(bo.v_cut, q_lb, omega_lb).idc_a;  // (59), as Inverse
+    const double pdc_lb = std::max(0.0, std::min(bo.v_full * hi_v.idc_a, pdc_lo_v));  // (59), as Inverse
+    const int lossy = DriveIsLossy(mp, classes[ci].c1, classes[ci].c0) ? 1 : 0;
+    if (!has[lossy] || pdc_lb < pdc_min[lossy]) {
+      has[lossy] = true;
+      pdc_min[lossy] = pdc_lb;
+    }
+    any = true;
+    irms_lb = std::min(irms_lb, hi_v.irms_a);
+  }
+  if (!any) {
+    pruned->Add(why, per_pair);
+    return false;
+  }
+  const PropEntry& prop = ctx.catalog->props()[pi];
+  double bound = kInf;
+  for (int lossy = 0; lossy < 2; ++lossy) {
+    if (!has[lossy]) continue;
+    bound = std::min(bound, ScoreLowerBound(ctx, f, lossy == 1, prop, *ctx.models[pi], o, loads, pdc_min[lossy]));
+  }
+  if (std::isnan(bound)) bound = -kInf;  // no bound (the order needs a number)
+  *c = Candidate{bound, s.motor, static_cast<int>(pi), static_cast<int>(o), irms_lb};
+  return true;
+}
+
+// Rule R11 (docs/search.md#r11): a lossy motor's power is at least its loss floor at R2's
+// speed and torque, so a class's key bounds every pair of its motors.
+// R11's key of (pi, o) for lossy motors of at least motor_kg whose loss floors are at least
+// `loss`'s.
+double PropOnlyBound(const SearchContext& ctx, const MissionFacts& f, std::size_t pi, std::size_t o, double motor_kg,
+                     const MotorLossFloor& loss, PairLoads* loads) {
+  const BatteryOption& bo = ctx.options[o];
+  const PropGrid& g = ctx.grids[pi];
+  loads->Reset(VehicleMassKg(ctx, bo.mass_lo_kg, motor_kg, g.mass_kg, ctx.escs.min_mass_kg[o]));
+  double omega_lb = 0, q_lb = 0;
+  HoverGridPointFromBelow(f, g, loads, &omega_lb, &q_lb);
+  const double pac_floor_w =
+      omega_lb * q_lb + loss.copper_w_per_nm2 * q_lb * q_lb + loss.no_load_torque_nm * omega_lb;  // physics.h
+  const double b = ScoreLowerBound(ctx, f, true, ctx.catalog->props()[pi], *ctx.models[pi], o, loads,
+                                   kKeyRoundingAllowance * pac_floor_w);
+  return std::isnan(b) ? -kInf : b;
+}
+
+// Every (propeller R0 lets through, option) with R11's key for the motors of class c, sorted
+// by (key, option, propeller); with lossy false (motors R11 does not apply to) every key is
+// -inf, in option then propeller order.
+std::vector<PropKey> ClassKeys(const SearchContext& ctx, const MissionFacts& f, const MotorClass& c, bool lossy) {
+  PairLoads loads(*ctx.mission);
+  std::vector<PropKey> keys;
+  keys.reserve(f.frame_ok_props.size() * ctx.options.size());
+  for (std::size_t o = 0; o < ctx.options.size(); ++o) {
+    for (const int pi : f.frame_ok_props) {
+      const double b = lossy ? PropOnlyBound(ctx, f, static_cast<std::size_t>(pi), o, c.mass_kg, c.loss, &loads) : -kInf;
+      keys.push_back(PropKey{b, pi, static_cast<int>(o)});
+    }
+  }
+  if (lossy) {
+    std::sort(keys.begin(), keys.end(), [](const PropKey& a, const PropKey& b) {
+      if (a.bound != b.bound) return a.bound < b.bound;
+      return a.option != b.option ? a.option < b.option : a.prop < b.prop;
+    });
+  }
+  return keys;
+}
+
+// R11's classes of the set-up motors (null: skipped or refused): per motor its class, the last
+// class (lightest mass 0, no loss floor) for the motors R11 does not apply to (a drive that
+// may create energy); and the classes.
+std::vector<int> MotorClasses(const std::vector<const MotorSetup*>& setups, std::vector<MotorClass>* classes) {
+  std::vector<std::size_t> lossy;
+  for (std::size_t i = 0; i < setups.size(); ++i) {
+    if (setups[i] && setups[i]->lossy) lossy.push_back(i);
+  }
+  std::stable_sort(lossy.begin(), lossy.end(),
+                   [&](std::size_t a, std::size_t b) { return setups[a]->mass_kg < setups[b]->mass_kg; });
+  std::vector<int> cls(setups.size(), -1);
+  classes->clear();
+  for (const std::size_t i : lossy) {
+    const MotorSetup& s = *setups[i];
+    if (classes->empty() || s.mass_kg >= kMotorClassMassRatio * classes->back().mass_kg) {
+      classes->push_back(MotorClass{s.mass_kg, s.loss});
+    }
+    MotorLossFloor& floor = classes->back().loss;
+    floor.copper_w_per_nm2 = std::min(floor.copper_w_per_nm2, s.loss.copper_w_per_nm2);
+    floor.no_load_torque_nm = std::min(floor.no_load_torque_nm, s.loss.no_load_torque_nm);
+    cls[i] = static_cast<int>(classes->size()) - 1;
+  }
+  classes->push_back(MotorClass{});  // the class without R11
+  for (std::size_t i = 0; i < setups.size(); ++i) {
+    if (setups[i] && !setups[i]->lossy) cls[i] = static_cast<int>(classes->size()) - 1;
+  }
+  return cls;
+}
+
+// The motors of a search set up on `threads` threads (null where skipped or refused; the
+// counts of SkipMotor and MotorSetUp in *pruned, *skipped).
+std::vector<std::unique_ptr<MotorSetup>> SetUpMotors(const SearchContext& ctx, const MissionFacts& f, int threads,
+                                                     RuleCounts* pruned, long long* skipped) {
+  const auto& motors = ctx.catalog->motors();
+  const long long per_motor = CombinationsPerMotor(ctx);
+  std::vector<std::unique_ptr<MotorSetup>> out(motors.size());
+  std::vector<RuleCounts> thread_pruned(static_cast<std::size_t>(std::max(1, threads)));
+  std::vector<long long> thread_skipped(thread_pruned.size(), 0);
+  ForEachOnThreads(motors.size(), threads, [&](int tid, std::size_t mi) {
+    if (SkipMotor(motors[mi], per_motor, &thread_pruned[tid], &thread_skipped[tid])) return;
+    auto s = std::make_unique<MotorSetup>();
+    if (MotorSetUp(ctx, f, mi, s.get(), &thread_pruned[tid])) out[mi] = std::move(s);
+  });
+  for (std::size_t t = 0; t < thread_pruned.size(); ++t) {
+    thread_pruned[t].MergeInto(pruned);
+    *skipped += thread_skipped[t];
+  }
+  return out;
+}
+
+std::vector<const MotorSetup*> Pointers(const std::vector<std::unique_ptr<MotorSetup>>& setups) {
+  std::vector<const MotorSetup*> p;
+  for (const auto& s : setups) p.push_back(s.get());
+  return p;
+}
+
+CandidateList BuildCandidates(const SearchContext& ctx, int threads) {
+  const MissionFacts f = StageFourFacts(ctx);
+  RuleCounts pruned;
+  CandidateList out;
+  const std::vector<std::unique_ptr<MotorSetup>> setups = SetUpMotors(ctx, f, threads, &pruned, &out.skipped_without_mass);
+  std::vector<MotorClass> classes;
+  const std::vector<int> cls = MotorClasses(Pointers(setups), &classes);
+  std::vector<std::vector<Candidate>> thread_cands(static_cast<std::size_t>(std::max(1, threads)));
+  std::vector<RuleCounts> thread_pruned(thread_cands.size());
+  ForEachOnThreads(setups.size(), threads, [&](int tid, std::size_t mi) {
+    if (!setups[mi]) return;
+    const MotorSetup& s = *setups[mi];
+    PairLoads loads(*ctx.mission), key_loads(*ctx.mission);
+    for (std::size_t o = 0; o < ctx.options.size(); ++o) {
+      if (std::isnan(s.w_nl[o])) continue;  // R1 (MotorSetUp)
+      for (const int pi : f.frame_ok_props) {
+        Candidate c;
+        if (!PairCandidate(ctx, f, s, static_cast<std::size_t>(pi), o, &loads, &c, &thread_pruned[tid])) continue;
+        if (s.lossy) {  // R11
+          const MotorClass& k = classes[static_cast<std::size_t>(cls[mi])];
+          c.bound = std::max(c.bound, PropOnlyBound(ctx, f, static_cast<std::size_t>(pi), o, k.mass_kg, k.loss, &key_loads));
+        }
+        thread_cands[tid].push_back(c);
+      }
+    }
+  });
+  for (std::size_t t = 0; t < thread_cands.size(); ++t) {
+    out.candidates.insert(out.candidates.end(), thread_cands[t].begin(), thread_cands[t].end());
+    thread_pruned[t].MergeInto(&pruned);
+  }
+  pruned.MergeInto(&out.pruned_by);
+  return out;
+}
+
+double PropellerKeyBound(const SearchContext& ctx, int prop, int option, int motor) {
+  const MotorEntry& mo = ctx.catalog->motors()[static_cast<std::size_t>(motor)];
+  PairLoads loads(*ctx.mission);
+  return PropOnlyBound(ctx, StageFourFacts(ctx), static_cast<std::size_t>(prop), static_cast<std::size_t>(option),
+                       *mo.mass_kg, LossFloorOf(ScenarioMotorParams(mo, *ctx.mission, nullptr, nullptr)), &loads);
+}
+
+bool CandidateBefore(const Candidate& a, const Candidate& b) {
+  if (a.bound != b.bound) return a.bound < b.bound;
+  if (a.option != b.option) return a.option < b.option;
+  if (a.motor != b.motor) return a.motor < b.motor;
+  return a.prop < b.prop;
+}
+
+}  // namespace dynosize::search_internal

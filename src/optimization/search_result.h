@@ -1,0 +1,65 @@
+// What the catalog search returns (search.h): the ranked combinations and the counts of what
+// the search did.
+#pragma once
+
+#include <limits>
+#include <map>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "optimization/mission_eval.h"
+
+namespace dynosize {
+
+// Another ESC or pack of a result's design (SearchOptions::distinct_designs), scored exactly.
+struct Alternative {
+  Combination combination;
+  double objective = 0, score = 0;  // as MissionResult's
+  double capacity_ah = 0;           // the pack's capacity flown
+};
+
+struct RankedCombination {
+  Combination combination;
+  MissionResult result;
+  // distinct_designs: the design's other combinations scoring below the N-th best design, best
+  // first (every such one: the search cannot have pruned them); empty otherwise.
+  std::vector<Alternative> alternatives;
+};
+
+struct SearchResult {
+  // At most top_n, best first, all feasible; except when no combination meets
+  // min_thrust_to_weight: then the best without that limit, each infeasible with its
+  // min_thrust_to_weight violation, and relaxed_constraint says so.
+  std::vector<RankedCombination> best;
+  std::string relaxed_constraint;  // "" or "min_thrust_to_weight"
+  // Every combination evaluated exactly: propulsion mass and objective (for the Pareto front).
+  std::vector<std::pair<double, double>> evaluated_mass_objective;
+  // motors x ESCs x propellers (to the power of the free groups' count) x (battery, cells)
+  // options; saturates at the largest long long (three or more free groups on a large catalog).
+  long long combinations = 0;
+  long long searched = 0;      // evaluated exactly
+  long long pruned = 0;        // combinations - searched - unsettled
+  std::map<std::string, long long> pruned_by;  // rule -> combinations it removed
+  long long skipped_without_mass = 0;  // motors without mass_kg (left out, counted in pruned)
+  double seconds = 0.0;
+  // The search was stopped (SearchOptions::stop or deadline) before it had settled every
+  // combination: `best` is the best found so far (possibly empty), and every combination not
+  // settled scores at least unsettled_bound_score (a proven lower bound, -inf when the
+  // objective has none, e.g. max_efficiency); nth_best_score is the threshold the search had
+  // (the N-th best's score, +inf while fewer than N were found). unsettled: the combinations
+  // neither evaluated nor pruned (not counted in pruned).
+  bool interrupted = false;
+  double unsettled_bound_score = std::numeric_limits<double>::infinity();
+  double nth_best_score = std::numeric_limits<double>::infinity();
+  long long unsettled = 0;
+  // Where the time went: the (motor, propeller, option) pairs stage 4 bounded, the seconds to
+  // the end of its first batches (stages 0-3 included), its later batches (bounded as the
+  // branch and bound reached them, R11), and the virtual-ESC evaluations of R5.
+  long long candidate_pairs = 0;
+  double candidate_seconds = 0.0;
+  long long virtual_evaluations = 0;
+  long long candidate_batches = 0;
+};
+
+}  // namespace dynosize
