@@ -62,12 +62,11 @@
 
 namespace dynosize::calibration {
 
-// The base parameters of src/identification/parameters.h, in the same order.
-enum class Param : int { kKe = 0, kKt, kRm, kIo, kResc, kC1, kC0, kTrSat, kSatSlope, kDeadband };
-inline constexpr int kParamCount = identification::kBaseParamCount;
-// "ke_v_s_per_rad", "kt_nm_per_a", "rm_ohm", "io_a", "resc_ohm", "c1", "c0", "tr_sat", "sat_slope",
-// "deadband".
-const char* ParamName(Param p);
+// The parameter table of src/identification/parameters.h; calibrate fits the base parameters,
+// the first kBaseParamCount of it (ParamName: "ke_v_s_per_rad", ..., "deadband").
+using identification::kBaseParamCount;
+using identification::Param;
+using identification::ParamName;
 
 struct CalibrationOptions {
   // Loss for the residuals (in percent of the column's median magnitude) and its scale a:
@@ -149,7 +148,7 @@ struct CalibrationResult {
   std::string mode;  // "ac", "dc", "dc_no_throttle"
   MotorParams motor;
   EscParams esc;
-  std::array<ParamEstimate, kParamCount> params;
+  std::array<ParamEstimate, kBaseParamCount> params;
   // Where motor.io_a comes from: "fitted" (torque or no-load rows), "label" (--io-label), "motor
   // prior", "no-load prior" (catalog/noload_prior.h: the log cannot identify Io and nothing else
   // states it; never 0).
