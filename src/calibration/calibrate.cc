@@ -171,7 +171,7 @@ CalibrationResult Calibrate(const SteadyTable& table, const CalibrationOptions& 
   }
   // Without AC columns the ESC ratio is only seen through the tied KT (section 5): where the log
   // cannot determine C1, C0 (on a bound, or a standard error above half the value) they are held
-  // at the ESC prior (ideal unless --prior-esc) and the fit repeated (issue 12).
+  // at the ESC prior (ideal unless --prior-esc) and the fit repeated.
   if (pr.mode != "ac" && pr.layout.free[kC1I]) {
     const std::string why = EscUndetermined(best.summary);
     if (!why.empty()) {

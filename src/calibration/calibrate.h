@@ -44,6 +44,22 @@
 // Parameters the data cannot pin down are also found numerically: the LM identifiability test
 // (singular values of the unit-scaled Jacobian) flags combinations, and e.g. all rows at one
 // throttle leave the saturation knee unidentified.
+//
+// Files of src/calibration (the parameter table and the row rules shared with diagnose are in
+// src/identification):
+//   calibrate.h/.cc        this interface and Calibrate(): the stages in order, the result
+//   prepare.h/.cc          the rows used (every dropped row with its reason), their residual terms,
+//                          which parameters the log frees
+//   starting_values.h/.cc  how KE, R, KT and Io start (linear sub-problems) and how Io is held
+//                          where the log cannot identify it (label, motor prior, no-load prior)
+//   forward_model.h/.cc    the equations above, the internal parametrisation (KT ratio, ESC
+//                          excess), the residuals with their dual-number Jacobian; PredictRow
+//   joint_fit.h/.cc        the bounded fit with priors, the saturation-knee profile, the throttle
+//                          offset test, the outlier pass, standard errors of KT and c1
+//   cross_validation.cc    LeaveOneOut, CrossValidateForVerdict, JudgeCalibration
+//   calibration_report.cc  BriefReport, FullReport
+//   catalog_output.h/.cc, drivecalc_refit.h/.cc, prop_static.h/.cc: catalog entries, the DriveCalc
+//                          refit and the static propeller table from a calibration
 #pragma once
 
 #include <array>

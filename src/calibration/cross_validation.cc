@@ -121,7 +121,7 @@ CrossValidation LeaveOneOut(const SteadyTable& t, const CalibrationOptions& opti
 }
 
 CrossValidation CrossValidateForVerdict(const SteadyTable& table, const CalibrationOptions& options) {
-  // Up to 15 groups every group is left out in turn (small tables, issue 12); beyond that 10
+  // Up to 15 groups every group is left out in turn (small tables); beyond that 10
   // interleaved folds bound the cost of the verdict.
   constexpr std::size_t kMaxLooGroups = 15;
   constexpr std::size_t kFolds = 10;

@@ -46,6 +46,19 @@
 //     AICc or reaches ambiguity_gain_ratio of its CV gain, and is no longer significant once the
 //     winner is in the model, the data cannot tell the two apart: both are reported, with the
 //     measurement that would separate them.
+//
+// Files of src/diagnosis (the parameter table and the row rules shared with calibrate are in
+// src/identification):
+//   diagnose.h/.cc       this interface and Diagnose(): the stages in order, the verdict, the
+//                        calibration entry
+//   model_fit.h/.cc      one model's fit: parameter slots, predictions, the bounded fit with its
+//                        profiled knee, the k-fold cross-validation
+//   prepare.h/.cc        stages 1-6: rows and terms, the first-order model (free parameters,
+//                        starts, scales, bounds), folds, effective-variance weights, outliers
+//   baseline.h/.cc       stages 7-8: the first-order model cross-validated, worst points, trends
+//   candidates.h/.cc     the hidden-effect extensions (steps 3, 5, 6 above): their slots, their
+//                        fits and scores, the forward selection, ambiguities
+//   diagnose_report.cc   FullReport
 #pragma once
 
 #include <cstddef>
