@@ -64,7 +64,7 @@ Json ErrorsJson(const std::vector<double>& e) {
 // Numerical guard, independent of the solver's own claim: every reported parameter finite.
 // Returns "" or the first non-finite parameter.
 std::string NonFiniteParameter(const calibration::CalibrationResult& r) {
-  for (int k = 0; k < calibration::kParamCount; ++k) {
+  for (int k = 0; k < calibration::kBaseParamCount; ++k) {
     if (!std::isfinite(r.params[k].value)) return calibration::ParamName(static_cast<calibration::Param>(k));
   }
   if (!std::isfinite(r.r_total_ohm)) return "r_total_ohm";
@@ -103,7 +103,7 @@ identification::LabelPriors LabelsOf(const CalibrateRequest& o) {
 }  // namespace
 
 void CheckCalibrateRequest(const CalibrateRequest& o) {
-  if (const std::string e = LabelsOf(o).Validate(); !e.empty()) throw UsageError("calibrate: " + e);
+  if (std::string e; !LabelsOf(o).IsValid(&e)) throw UsageError("calibrate: " + e);
   CheckPropOptions(o);
 }
 

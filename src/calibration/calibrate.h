@@ -44,6 +44,22 @@
 // Parameters the data cannot pin down are also found numerically: the LM identifiability test
 // (singular values of the unit-scaled Jacobian) flags combinations, and e.g. all rows at one
 // throttle leave the saturation knee unidentified.
+//
+// Files of src/calibration (the parameter table and the row rules shared with diagnose are in
+// src/identification):
+//   calibrate.h/.cc        this interface and Calibrate(): the stages in order, the result
+//   prepare.h/.cc          the rows used (every dropped row with its reason), their residual terms,
+//                          which parameters the log frees
+//   starting_values.h/.cc  how KE, R, KT and Io start (linear sub-problems) and how Io is held
+//                          where the log cannot identify it (label, motor prior, no-load prior)
+//   forward_model.h/.cc    the equations above, the internal parametrisation (KT ratio, ESC
+//                          excess), the residuals with their dual-number Jacobian; PredictRow
+//   joint_fit.h/.cc        the bounded fit with priors, the saturation-knee profile, the throttle
+//                          offset test, the outlier pass, standard errors of KT and c1
+//   cross_validation.cc    LeaveOneOut, CrossValidateForVerdict, JudgeCalibration
+//   calibration_report.cc  BriefReport, FullReport
+//   catalog_output.h/.cc, drivecalc_refit.h/.cc, prop_static.h/.cc: catalog entries, the DriveCalc
+//                          refit and the static propeller table from a calibration
 #pragma once
 
 #include <array>
@@ -62,12 +78,11 @@
 
 namespace dynosize::calibration {
 
-// The base parameters of src/identification/parameters.h, in the same order.
-enum class Param : int { kKe = 0, kKt, kRm, kIo, kResc, kC1, kC0, kTrSat, kSatSlope, kDeadband };
-inline constexpr int kParamCount = identification::kBaseParamCount;
-// "ke_v_s_per_rad", "kt_nm_per_a", "rm_ohm", "io_a", "resc_ohm", "c1", "c0", "tr_sat", "sat_slope",
-// "deadband".
-const char* ParamName(Param p);
+// The parameter table of src/identification/parameters.h; calibrate fits the base parameters,
+// the first kBaseParamCount of it (ParamName: "ke_v_s_per_rad", ..., "deadband").
+using identification::kBaseParamCount;
+using identification::Param;
+using identification::ParamName;
 
 struct CalibrationOptions {
   // Loss for the residuals (in percent of the column's median magnitude) and its scale a:
@@ -149,7 +164,7 @@ struct CalibrationResult {
   std::string mode;  // "ac", "dc", "dc_no_throttle"
   MotorParams motor;
   EscParams esc;
-  std::array<ParamEstimate, kParamCount> params;
+  std::array<ParamEstimate, kBaseParamCount> params;
   // Where motor.io_a comes from: "fitted" (torque or no-load rows), "label" (--io-label), "motor
   // prior", "no-load prior" (catalog/noload_prior.h: the log cannot identify Io and nothing else
   // states it; never 0).

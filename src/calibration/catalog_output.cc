@@ -156,14 +156,14 @@ void WriteCatalogEntries(const std::string& path, const std::vector<Json>& motor
 
 Json StandardErrorsJson(const CalibrationResult& r) {
   Json j = Json::object();
-  for (int k = 0; k < kParamCount; ++k) j[ParamName(static_cast<Param>(k))] = NumberOrNull(r.params[k].standard_error);
+  for (int k = 0; k < kBaseParamCount; ++k) j[ParamName(static_cast<Param>(k))] = NumberOrNull(r.params[k].standard_error);
   j["r_total_ohm"] = NumberOrNull(r.r_total_standard_error);
   return j;
 }
 
 Json IdentifiableJson(const CalibrationResult& r) {
   Json j = Json::object();
-  for (int k = 0; k < kParamCount; ++k) j[ParamName(static_cast<Param>(k))] = r.params[k].identifiable;
+  for (int k = 0; k < kBaseParamCount; ++k) j[ParamName(static_cast<Param>(k))] = r.params[k].identifiable;
   j["r_total_ohm"] = true;
   return j;
 }
@@ -181,7 +181,7 @@ Json FitJson(const CalibrationResult& r) {
   j["condition_number"] = NumberOrNull(r.condition_number);
   j["r_total_ohm"] = NumberOrNull(r.r_total_ohm);
   Json notes = Json::object();
-  for (int k = 0; k < kParamCount; ++k) {
+  for (int k = 0; k < kBaseParamCount; ++k) {
     if (!r.params[k].note.empty()) notes[ParamName(static_cast<Param>(k))] = r.params[k].note;
   }
   j["parameter_notes"] = notes;

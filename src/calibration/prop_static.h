@@ -1,5 +1,5 @@
 // A static propeller entry (catalog "static_table": CT, CP vs rpm, J = 0) from the steady rows of
-// a thrust-stand log that measured thrust and torque (issue 12, item 7).
+// a thrust-stand log that measured thrust and torque.
 //
 //   CT = T / (rho * n^2 * D^4),   CP = P / (rho * n^3 * D^5),   P = Q * omega,  n = rpm/60
 // (UIUC definitions, as src/prop/prop_model.h and catalog/README.md use them). Rows within 1 % of

@@ -1,6 +1,6 @@
 // Diagnosis: what the first-order motor + ESC model (../shared/docs/model.md, src/model/drive.h)
 // gets wrong in a measured log, which physical mechanism explains it, and how much better the
-// model predicts held-out data once that mechanism is part of it (issue #5).
+// model predicts held-out data once that mechanism is part of it.
 //
 // Method
 //  1. Rows: the steady rows of the log with the motor turning (as in src/calibration). Known
@@ -34,7 +34,7 @@
 //     of M+c, F test of the nested pair (F = (SSE_M - SSE_M+c)/q / (SSE_M+c/(N - p)), q extra
 //     parameters; the profiled knee counts as 2 and its p value is multiplied by the number of
 //     knees tried, Bonferroni, and by the number of candidates tested at the step, so that alpha
-//     is the step's false-alarm rate; issue 23), AICc, and k-fold cross-validated rms error (folds of rows,
+//     is the step's false-alarm rate), AICc, and k-fold cross-validated rms error (folds of rows,
 //     seeded; every score is on rows the fit did not see). A candidate is significant when
 //     p < alpha, AICc falls, its own parameter is at least 2 standard errors from "no effect"
 //     and not clipped at a bound of its physical range, and the CV error falls by at least
@@ -46,6 +46,19 @@
 //     AICc or reaches ambiguity_gain_ratio of its CV gain, and is no longer significant once the
 //     winner is in the model, the data cannot tell the two apart: both are reported, with the
 //     measurement that would separate them.
+//
+// Files of src/diagnosis (the parameter table and the row rules shared with calibrate are in
+// src/identification):
+//   diagnose.h/.cc       this interface and Diagnose(): the stages in order, the verdict, the
+//                        calibration entry
+//   model_fit.h/.cc      one model's fit: parameter slots, predictions, the bounded fit with its
+//                        profiled knee, the k-fold cross-validation
+//   prepare.h/.cc        stages 1-6: rows and terms, the first-order model (free parameters,
+//                        starts, scales, bounds), folds, effective-variance weights, outliers
+//   baseline.h/.cc       stages 7-8: the first-order model cross-validated, worst points, trends
+//   candidates.h/.cc     the hidden-effect extensions (steps 3, 5, 6 above): their slots, their
+//                        fits and scores, the forward selection, ambiguities
+//   diagnose_report.cc   FullReport
 #pragma once
 
 #include <cstddef>
@@ -74,8 +87,6 @@ inline constexpr int kCauseCount = 6;
 const char* CauseId(Cause c);
 // One sentence: the mechanism and its law.
 const char* CauseDescription(Cause c);
-// Parse an id; false when unknown.
-bool ParseCause(const std::string& id, Cause* c);
 
 struct DiagnoseOptions {
   int folds = 5;             // k of the k-fold cross-validation (>= 2)
@@ -109,7 +120,7 @@ struct DiagnoseOptions {
   // Where calibrate's model holds every finding (no finding, or only a throttle offset /
   // saturation knee that calibrate's own fit also keeps) and no catalog entry is given,
   // the entry and its status are calibrate's (src/calibration: one fit and one verdict per model
-  // class, so both commands give a log the same status; issue 23). Off: diagnose's own fit and
+  // class, so both commands give a log the same status). Off: diagnose's own fit and
   // verdict always (the hidden-effect suites, which test detection, not the entry).
   bool calibration_entry = true;
   // Candidates to consider (default: all).

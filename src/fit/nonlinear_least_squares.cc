@@ -9,6 +9,7 @@
 #include <utility>
 
 #include "common/error.h"
+#include "fit/option_check.h"
 
 namespace dynosize {
 namespace {
@@ -396,12 +397,8 @@ const char* TerminationTypeToString(TerminationType type) {
 }
 
 bool LevenbergMarquardtOptions::IsValid(std::string* error) const {
-  std::ostringstream os;
-  auto fail = [&](const char* field, double value, const char* rule) {
-    os << "LevenbergMarquardtOptions." << field << " = " << value << " " << rule;
-    if (error) *error = os.str();
-    return false;
-  };
+  const fit::OptionCheck check("LevenbergMarquardtOptions", error);
+  auto fail = [&check](const char* field, double value, const char* rule) { return check.Fail(field, value, rule); };
   if (!(function_tolerance >= 0.0)) return fail("function_tolerance", function_tolerance, "must be >= 0");
   if (!(gradient_tolerance >= 0.0)) return fail("gradient_tolerance", gradient_tolerance, "must be >= 0");
   if (!(parameter_tolerance >= 0.0)) return fail("parameter_tolerance", parameter_tolerance, "must be >= 0");

@@ -1,5 +1,5 @@
-// Row rules shared by `calibrate` (src/calibration) and `diagnose` (src/diagnosis), issue 12 "one
-// identification layer": the measured columns a fit compares and its residual terms, which rows
+// Row rules shared by `calibrate` (src/calibration) and `diagnose` (src/diagnosis), the
+// identification layer: the measured columns a fit compares and its residual terms, which rows
 // of a log a fit uses, the throttle levels of those rows, the magnitude that scales a column's
 // residuals to percent, and the robust outlier screen. Each rule exists once, here.
 #pragma once
@@ -121,7 +121,7 @@ CircuitStart LinearCircuitStart(const std::vector<double>& current_a, const std:
 double ResistanceWithKeHeld(const std::vector<double>& current_a, const std::vector<double>& omega_rad_s,
                             const std::vector<double>& u_v, double ke_v_s_per_rad);
 
-// Robust outlier screening (issue 12: never more than 10 % of the points or a whole throttle
+// Robust outlier screening (never more than 10 % of the points or a whole throttle
 // level). rmax[k]: the largest |percent residual| of row k; throttle[k]: its throttle. The rows
 // with rmax above threshold (the caller's outlier_sigmas robust standard deviations) are taken
 // worst first; one is dropped while fewer than cap = floor(max_fraction * rows) are dropped, at

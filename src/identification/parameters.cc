@@ -6,30 +6,31 @@
 
 namespace dynosize::identification {
 
-const char* BaseParamName(BaseParam p) {
-  switch (p) {
-    case BaseParam::kKe: return "ke_v_s_per_rad";
-    case BaseParam::kKt: return "kt_nm_per_a";
-    case BaseParam::kRm: return "rm_ohm";
-    case BaseParam::kIo: return "io_a";
-    case BaseParam::kResc: return "resc_ohm";
-    case BaseParam::kC1: return "c1";
-    case BaseParam::kC0: return "c0";
-    case BaseParam::kTrSat: return "tr_sat";
-    case BaseParam::kSatSlope: return "sat_slope";
-    case BaseParam::kDeadband: return "deadband";
-  }
-  return "?";
+std::array<bool, kParamCount> FreeBaseParams(const LogContent& c) {
+  std::array<bool, kParamCount> free{};
+  free[ParamIndex(Param::kKe)] = true;
+  free[ParamIndex(Param::kRm)] = true;
+  free[ParamIndex(Param::kKt)] = !TieKt(c);
+  free[ParamIndex(Param::kIo)] = c.any_torque_known;
+  free[ParamIndex(Param::kResc)] = c.ac && c.has_throttle;
+  const bool esc_ratio = c.has_idc && c.has_throttle && c.throttle_levels >= 2 && (c.ac || c.has_torque);
+  free[ParamIndex(Param::kC1)] = esc_ratio;
+  free[ParamIndex(Param::kC0)] = esc_ratio;
+  return free;
 }
 
-std::string LabelPriors::Validate() const {
+bool LabelPriors::IsValid(std::string* error) const {
+  auto fail = [error](const std::string& why) {
+    if (error != nullptr) *error = why;
+    return false;
+  };
   auto positive = [](const std::optional<double>& v) { return !v || (std::isfinite(*v) && *v > 0.0); };
-  if (!positive(kv_rpm_per_v)) return "--kv-label " + std::to_string(*kv_rpm_per_v) + ": must be > 0 (rpm per volt)";
-  if (!positive(rm_ohm)) return "--rm-label " + std::to_string(*rm_ohm) + ": must be > 0 (ohm)";
-  if (io_a && !(std::isfinite(*io_a) && *io_a >= 0.0)) return "--io-label " + std::to_string(*io_a) + ": must be >= 0 (A)";
-  if (!positive(io_v)) return "--io-label-v " + std::to_string(*io_v) + ": must be > 0 (V)";
-  if (io_a.has_value() != io_v.has_value()) return "--io-label and --io-label-v go together (no-load current at a voltage)";
-  return "";
+  if (!positive(kv_rpm_per_v)) return fail("--kv-label " + std::to_string(*kv_rpm_per_v) + ": must be > 0 (rpm per volt)");
+  if (!positive(rm_ohm)) return fail("--rm-label " + std::to_string(*rm_ohm) + ": must be > 0 (ohm)");
+  if (io_a && !(std::isfinite(*io_a) && *io_a >= 0.0)) return fail("--io-label " + std::to_string(*io_a) + ": must be >= 0 (A)");
+  if (!positive(io_v)) return fail("--io-label-v " + std::to_string(*io_v) + ": must be > 0 (V)");
+  if (io_a.has_value() != io_v.has_value()) return fail("--io-label and --io-label-v go together (no-load current at a voltage)");
+  return true;
 }
 
 double KeFromLabelKv(double kv_rpm_per_v, MotorType type) {

@@ -4,7 +4,7 @@
 // into box bounds of the fit, and the label priors.
 //
 // Physics as constraints of the fit (model.md section 10, src/model/physics.h):
-//  - KE, KT, Rm > 0 and Io, RESC >= 0: box bounds (kBaseLower/kBaseUpper below).
+//  - KE, KT, Rm > 0 and Io, RESC >= 0: box bounds (kParamTable below).
 //  - ESC energy conservation, PESC >= 0 at every throttle and current, holds exactly when
 //        c0 >= 0   and   c1 + c0 >= K*kp   (K*kp = (3/pi)*sqrt(27/20) = 1.1095, eq 56).
 //    The second inequality couples two parameters; the fit keeps box bounds by optimising the
@@ -26,6 +26,8 @@
 // model's quasi-single-phase Rm and rms Io (section 8), so their priors are wide: 30 % and 50 %.
 #pragma once
 
+#include <array>
+#include <cstddef>
 #include <optional>
 #include <string>
 
@@ -34,26 +36,86 @@
 
 namespace dynosize::identification {
 
-// Base parameters of the model (both commands), in this order.
-enum class BaseParam : int { kKe = 0, kKt, kRm, kIo, kResc, kC1, kC0, kTrSat, kSatSlope, kDeadband };
+// The parameter table: every parameter an identification fit can free, in this order. The first
+// kBaseParamCount are calibrate's model (the first-order model with the ESC's knee and dead
+// band); the others are the extensions that `diagnose` tests (model.md section 9). An array indexed by ParamIndex(p) holds
+// one value per parameter (calibrate's result: the base ones; diagnose's models: all).
+enum class Param : int {
+  kKe = 0, kKt, kRm, kIo, kResc, kC1, kC0, kTrSat, kSatSlope, kDeadband,  // base
+  kIo1, kRth, kDroop, kRsupply                                            // extensions
+};
 inline constexpr int kBaseParamCount = 10;
+inline constexpr int kParamCount = 14;
+constexpr int ParamIndex(Param p) { return static_cast<int>(p); }
 
-// SI names, as in the catalog ("ke_v_s_per_rad", ..., "deadband").
-const char* BaseParamName(BaseParam p);
+// Which command frees a parameter.
+enum class FreedBy : int {
+  kBoth,      // the first-order fit of calibrate and diagnose (when the log identifies it: FreeBaseParams)
+  kProfiled,  // tr_sat: chosen on a grid of knees by both commands, then refined
+  kBothTest,  // sat_slope and deadband: freed by both when their F test is run (knee, offset)
+  kDiagnose,  // an extension only diagnose tests
+};
 
-// Physical box of each base parameter (catalog ranges of src/catalog/schema.cc where they are
-// tighter): KE, KT, Rm strictly positive (a micro-unit floor), Io and RESC >= 0, c0 >= 0 (section
-// 10), tr_sat and sat_slope in [0, 1], deadband in [-0.5, 0.5] (negative: a throttle offset).
-// The c1 slot is bounded through the excess s (ParamsFromFit), the KT slot through f.
-inline constexpr double kBaseLower[kBaseParamCount] = {1e-7, 1e-7, 1e-6, 0.0, 0.0,
-                                                       0.0,  0.0,  0.0,  0.0, -0.5};
-inline constexpr double kBaseUpper[kBaseParamCount] = {10.0, 20.0, 100.0, 200.0, 10.0,
-                                                       5.0,  1.0,  1.0,  1.0,   0.5};
-// Box of the ESC excess s = c1 + c0 - K*kp and of the KT ratio f = KT/(kp*KE).
-inline constexpr double kEscExcessLower = 0.0;
-inline constexpr double kEscExcessUpper = 4.0;
-inline constexpr double kKtRatioLower = 0.05;
-inline constexpr double kKtRatioUpper = 1.0;
+// One row of the table.
+//  name:   SI name, as in the catalog and the JSON ("ke_v_s_per_rad", ..., "rsupply_ohm").
+//  lower, upper: the box of the optimised coordinate. For every parameter but two this is the
+//    physical range (catalog ranges of src/catalog/schema.cc where they are tighter): KE, KT,
+//    Rm strictly positive (a micro-unit floor), Io and RESC >= 0, c0 >= 0 (section 10), tr_sat
+//    and sat_slope in [0, 1], deadband in [-0.5, 0.5] (negative: a throttle offset), Io may not
+//    fall with speed (io1 >= 0: no energy created, section 10), rth, droop, rsupply >= 0. The KT
+//    slot is optimised as the ratio f = KT/(kp*KE) and the c1 slot as the ESC excess
+//    s = c1 + c0 - K*kp (see the header comment), so their boxes are those of f and s.
+//  scale:  the optimisation unit (x = value/scale) where it does not depend on the log; 0 where
+//    it does (diagnose derives it from the first-order fit: src/diagnosis/base_model.cc).
+//  freed_by: which command frees it.
+struct ParamSpec {
+  const char* name;
+  double lower;
+  double upper;
+  double scale;
+  FreedBy freed_by;
+};
+inline constexpr ParamSpec kParamTable[kParamCount] = {
+    {"ke_v_s_per_rad", 1e-7, 10.0, 0.0, FreedBy::kBoth},
+    {"kt_nm_per_a", 0.05, 1.0, 1.0, FreedBy::kBoth},  // the ratio f = KT/(kp*KE)
+    {"rm_ohm", 1e-6, 100.0, 0.0, FreedBy::kBoth},
+    {"io_a", 0.0, 200.0, 0.0, FreedBy::kBoth},
+    {"resc_ohm", 0.0, 10.0, 0.0, FreedBy::kBoth},
+    {"c1", 0.0, 4.0, 1.0, FreedBy::kBoth},  // the excess s = c1 + c0 - K*kp
+    {"c0", 0.0, 1.0, 0.1, FreedBy::kBoth},
+    {"tr_sat", 0.0, 1.0, 1.0, FreedBy::kProfiled},
+    {"sat_slope", 0.0, 1.0, 1.0, FreedBy::kBothTest},
+    {"deadband", -0.5, 0.5, 0.1, FreedBy::kBothTest},
+    {"io1_a_s_per_rad", 0.0, 1.0, 0.0, FreedBy::kDiagnose},
+    {"rth_k_per_w", 0.0, 1000.0, 0.0, FreedBy::kDiagnose},
+    {"kt_droop_per_a", 0.0, 10.0, 0.0, FreedBy::kDiagnose},
+    {"rsupply_ohm", 0.0, 10.0, 0.0, FreedBy::kDiagnose},
+};
+inline constexpr const ParamSpec& Spec(Param p) { return kParamTable[ParamIndex(p)]; }
+inline constexpr const char* ParamName(Param p) { return Spec(p).name; }
+// The first-order model of model.md sections 5-8 (KE, KT, Rm, Io, RESC, C1, C0): the first
+// kFirstOrderParamCount slots. The knee, slope and dead band (sections 7 and 9) complete
+// calibrate's base fit through its F tests; diagnose tests them as extensions.
+inline constexpr int kFirstOrderParamCount = 7;
+inline constexpr bool IsFirstOrderParam(int index) { return index < kFirstOrderParamCount; }
+
+// What a log offers a first-order fit (the columns and rows it has).
+struct LogContent {
+  bool ac = false;                // vll_rms_v and irms_a
+  bool has_torque = false;        // a torque column
+  bool has_throttle = false;      // a throttle column
+  bool has_idc = false;           // an idc_a column
+  bool any_torque_known = false;  // some row has a known torque (torque column or a no-load row)
+  std::size_t throttle_levels = 0;
+};
+// KT is tied to KE by the power balance KT = sqrt(27/10)*KE (model.md section 5) unless torque
+// and the AC columns separate it from the ESC ratio.
+inline bool TieKt(const LogContent& c) { return !(c.has_torque && c.ac); }
+// The base parameters the first-order fit frees on such a log (calibrate.h explains what each
+// column set identifies): KE and Rm always; KT unless tied; Io with a known torque; RESC with
+// the AC columns and a throttle; C1, C0 with idc_a, two or more throttle levels and torque or AC
+// columns. tr_sat, sat_slope and deadband are not freed here (profiled / tested).
+std::array<bool, kParamCount> FreeBaseParams(const LogContent& c);
 
 // c1 from the optimised excess and c0 (the inverse of EscExcess); generic for dual numbers.
 template <typename T>
@@ -83,8 +145,8 @@ struct LabelPriors {
   std::optional<double> io_a;          // DC no-load current at io_v
   std::optional<double> io_v;
   bool any() const { return kv_rpm_per_v || rm_ohm || io_a; }
-  // "" or the first invalid value (non-positive, io without its voltage).
-  std::string Validate() const;
+  // Names the first invalid value (non-positive, io without its voltage) in *error.
+  bool IsValid(std::string* error) const;
 };
 
 // KE of a label Kv (model.md section 8; brushed: KE = 1/(Kv*pi/30)).

@@ -1,4 +1,4 @@
-// The status contract of an identified motor + ESC pair (issue 12): one verdict that `calibrate`
+// The status contract of an identified motor + ESC pair: one verdict that `calibrate`
 // and `diagnose` both report in --json ("status", "checks") and in one line of text, and that
 // decides whether --out may write the entry.
 //

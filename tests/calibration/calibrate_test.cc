@@ -59,7 +59,7 @@ TEST(Calibrate, RecoversAllParametersFromAcColumns) {
   std::cout << r.FullReport();
   ASSERT_TRUE(r.converged) << r.message;
   EXPECT_EQ(r.mode, "ac");
-  for (int k = 0; k < kParamCount; ++k) {
+  for (int k = 0; k < kBaseParamCount; ++k) {
     const Param p = static_cast<Param>(k);
     if (p == Param::kDeadband) continue;  // no offset in this log: tested, not kept
     EXPECT_TRUE(r.param(p).identifiable) << ParamName(p) << ": " << r.param(p).note;

@@ -35,7 +35,7 @@ double KvOf(const CalibrationResult& r) { return kVllRmsPerVdc / (r.motor.ke_v_s
 
 // Every parameter at a bound is named in a warning.
 void ExpectBoundsWarned(const CalibrationResult& r, const std::string& what) {
-  for (int k = 0; k < kParamCount; ++k) {
+  for (int k = 0; k < kBaseParamCount; ++k) {
     if (!r.params[k].at_bound) continue;
     const std::string name = ParamName(static_cast<Param>(k));
     const bool warned = std::any_of(r.warnings.begin(), r.warnings.end(),
@@ -84,7 +84,7 @@ TEST(CalibrateRealLogs, TMotorAt3520MatchesDatasheetKv) {
   EXPECT_GT(r.motor.io_a, 0.0);
   EXPECT_GT(r.r_total_ohm, 0.0);
   EXPECT_TRUE(r.param(Param::kTrSat).identifiable);  // two props, 11 throttle levels
-  for (int k = 0; k < kParamCount; ++k) EXPECT_FALSE(r.params[k].at_bound) << ParamName(static_cast<Param>(k));
+  for (int k = 0; k < kBaseParamCount; ++k) EXPECT_FALSE(r.params[k].at_bound) << ParamName(static_cast<Param>(k));
 }
 
 // The baseline to beat: on the same held-out throttle levels the plain DC model (label Kv, R and

@@ -198,7 +198,7 @@ TEST(Parameters, ExcessAndRatioKeepTheEnergyRules) {
   m.ke_v_s_per_rad = 0.01;
   m.rm_ohm = 0.1;
   m.io_a = 0.3;
-  for (double f : {kKtRatioLower, 0.5, kKtRatioUpper}) {
+  for (double f : {Spec(Param::kKt).lower, 0.5, Spec(Param::kKt).upper}) {
     m.kt_nm_per_a = KtFromRatio(m.ke_v_s_per_rad, f);
     EXPECT_EQ(MotorEnergyViolation(m), "") << f;
   }
@@ -210,13 +210,16 @@ TEST(Parameters, LabelConversions) {
   EXPECT_NEAR(KvFromKe(KeFromLabelKv(2300.0)), 2300.0, 1e-9);
   EXPECT_NEAR(IoFromLabel(1.1095279993106997), 1.0, 1e-12);
   LabelPriors l;
-  EXPECT_EQ(l.Validate(), "");
+  std::string e;
+  EXPECT_TRUE(l.IsValid(&e));
   l.io_a = 0.5;
-  EXPECT_NE(l.Validate().find("--io-label-v"), std::string::npos);
+  EXPECT_FALSE(l.IsValid(&e));
+  EXPECT_NE(e.find("--io-label-v"), std::string::npos) << e;
   l.io_v = 10.0;
-  EXPECT_EQ(l.Validate(), "");
+  EXPECT_TRUE(l.IsValid(nullptr));
   l.kv_rpm_per_v = -3.0;
-  EXPECT_NE(l.Validate().find("--kv-label"), std::string::npos);
+  EXPECT_FALSE(l.IsValid(&e));
+  EXPECT_NE(e.find("--kv-label"), std::string::npos) << e;
 }
 
 TEST(Verdict, EnvelopeEfficienciesOfTheIdealEscAreAtMostOne) {

@@ -1,0 +1,34 @@
+// The stages of `diagnose` before any candidate is scored: the log's rows and residual terms,
+// the first-order model (what is free, starting values, scales, bounds), the cross-validation
+// folds, the effective-variance weights and the outlier screen. Internal to src/diagnosis.
+#pragma once
+
+#include <cstddef>
+#include <vector>
+
+#include "calibration/calibrate.h"
+#include "diagnosis/diagnose.h"
+#include "diagnosis/model_fit.h"
+
+namespace dynosize::diagnosis::internal {
+
+// calibrate on the same rows with diagnose's options (throttle map, speed and throttle floors, Kv
+// label, ESC prior), the options used in *co; false when calibrate refuses the table.
+bool CalibrateWithDiagnoseOptions(const logs::SteadyTable& t, const DiagnoseOptions& o, bool fit_throttle_offset,
+                                  calibration::CalibrationOptions* co, calibration::CalibrationResult* r);
+// Stage 1: what the log offers, and the rows and terms of the fit.
+Prepared PrepareDiagnosisData(const logs::SteadyTable& t, const DiagnoseOptions& o, DiagnoseResult* res);
+// Stage 2: the base (first-order) model: what is free, held values, starts, scales and bounds.
+Model BuildBaseModel(const logs::SteadyTable& t, const DiagnoseOptions& o, const Prepared& p, DiagnoseResult* res);
+// Stage 4: cross-validation folds, seeded.
+Folds AssignFolds(std::size_t n, const DiagnoseOptions& o);
+// Stage 5: effective-variance weights (prepare.cc).
+void ApplyEffectiveVarianceWeights(const std::vector<std::size_t>& used, const Model& base, Prepared* p);
+// Stage 6: outlier screen with the union model (the base model plus every testable candidate).
+// Returns the rows used by every later fit and score; fills res's outlier lists and row_used.
+std::vector<std::size_t> ScreenWithUnionModel(const logs::SteadyTable& t, const DiagnoseOptions& o, const Data& d,
+                                              const Model& base, const std::vector<Cause>& candidates,
+                                              const std::vector<double>& knees, std::vector<std::size_t> used,
+                                              DiagnoseResult* res);
+
+}  // namespace dynosize::diagnosis::internal
