@@ -139,7 +139,9 @@ TEST_F(MissionEvalTest, ThrustToWeightAtFullThrottleOnTheLowestVoltage) {
   const MissionResult tight = MissionEvaluator(ParseMission(j, "q"), c).Solve();
   EXPECT_TRUE(Names(tight, "min_thrust_to_weight"));
   // max_endurance: a shorter loiter leaves more charge, so the limit may still be met earlier.
-  if (tight.feasible) EXPECT_LT(tight.objective, r.objective);
+  if (tight.feasible) {
+    EXPECT_LT(tight.objective, r.objective);
+  }
   j["constraints"]["min_thrust_to_weight"] = 50.0;
   const MissionResult never = MissionEvaluator(ParseMission(j, "q"), c).Solve();
   EXPECT_FALSE(never.feasible);
@@ -260,7 +262,9 @@ TEST_F(MissionEvalTest, TheCapacitySearchFindsTheBestCapacity) {
       ContinuousVars v;
       v.capacity_ah = 1.0 + 11.0 * k / kScan;
       const MissionResult r = ev.Simulate(v);
-      if (r.feasible) EXPECT_LE(r.endurance_s, best.endurance_s * (1 + kRelativeTolerance)) << prop << " at " << v.capacity_ah << " Ah";
+      if (r.feasible) {
+        EXPECT_LE(r.endurance_s, best.endurance_s * (1 + kRelativeTolerance)) << prop << " at " << v.capacity_ah << " Ah";
+      }
     }
   }
   EXPECT_GT(checked, 0);

@@ -135,7 +135,9 @@ std::size_t CheckAgainstExhaustive(const Catalog& cat, const Mission& m) {
   // counts are per outer choice).
   long long by_rule = 0;
   for (const auto& [rule, n] : s.pruned_by) by_rule += n;
-  if (FreeGroupCount(m) <= 1) EXPECT_EQ(by_rule, s.pruned);
+  if (FreeGroupCount(m) <= 1) {
+    EXPECT_EQ(by_rule, s.pruned);
+  }
   return all.size();
 }
 
@@ -864,8 +866,12 @@ TEST_F(SearchTest, OutputsAgreeWithThemselves) {
   if (f["feasible"].get<bool>()) {
     EXPECT_TRUE(f["objective_in_range"].get<bool>());
     const Json& g = f["objective_range"];
-    if (g[0].is_number()) EXPECT_LE(g[0].get<double>(), f["objective"].get<double>());
-    if (g[1].is_number()) EXPECT_GE(g[1].get<double>(), f["objective"].get<double>());
+    if (g[0].is_number()) {
+      EXPECT_LE(g[0].get<double>(), f["objective"].get<double>());
+    }
+    if (g[1].is_number()) {
+      EXPECT_GE(g[1].get<double>(), f["objective"].get<double>());
+    }
   }
 }
 
