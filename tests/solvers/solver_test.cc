@@ -298,8 +298,7 @@ TEST(Solver, UnknownAlgorithmListsEveryValidName) {
 // Each backend can be left out of the build (CMake DYNOSIZE_WITH_IPOPT / DYNOSIZE_WITH_NLOPT):
 // its algorithms stay known names, IsAlgorithmAvailable says why not, and Solve throws that
 // line as UnavailableError (exit code 69) before running anything. In a full build every
-// algorithm is available; the OFF builds check the other branch (README: Building without a
-// solver backend).
+// algorithm is available; a build with either option OFF checks the other branch.
 TEST(Solver, AlgorithmLeftOutOfTheBuildIsUnavailableErrorNamingTheOption) {
   int unavailable = 0;
   for (const std::string& a : AvailableAlgorithms()) {
