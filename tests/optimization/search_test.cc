@@ -23,6 +23,7 @@
 #include "mission/flight.h"
 #include "optimization/mission_eval.h"
 #include "optimization/small_catalog.h"
+#include "solver_backends.h"
 
 namespace dynosize {
 namespace {
@@ -498,6 +499,7 @@ TEST_F(SearchTest, EarlyExitsHoldWhenTheEscPowerFallsWithTheVoltage) {
 // feasible point that beats the cutoff, and some answers must stop early (else the test would
 // not exercise it).
 TEST_F(SearchTest, DecideAnswersAsTheFullSolve) {
+  DYNOSIZE_SKIP_UNLESS_AVAILABLE("nlopt_cobyla");  // free continuous variables (mission_eval.h)
   const Catalog cat = Catalog::Load((dir_ / "catalog").string());
   std::vector<Mission> missions;
   Json q = ParseJsonText(kQuad, "quad");
@@ -658,6 +660,7 @@ TEST_F(SearchTest, EarlyExitsBoundOutOnlyWhatCannotBeatTheCutoff) {
 // energy pre-check at the smallest capacity, with the momentum bound of the free cruise), and
 // the search equals exhaustive evaluation there (G1's free-cruise table: the pusher fixed).
 TEST_F(SearchTest, FreeCruiseEnergyBoundsAreBounds) {
+  DYNOSIZE_SKIP_UNLESS_AVAILABLE("nlopt_cobyla");  // free continuous variables (mission_eval.h)
   const Catalog cat = Catalog::Load((dir_ / "catalog").string());
   Json j = ParseJsonText(kLiftCruise, "lift");
   j["battery"]["capacity_ah"] = {2.0, 6.0};
