@@ -1,4 +1,4 @@
-// Limits (issue 7, item 6): big inputs read in time proportional to their size with bounded
+// Limits: big inputs read in time proportional to their size with bounded
 // memory, pathological inputs refused quickly. Inputs are generated at run time in the temp
 // folder (outside the timed loops). Run:
 //   ./limits_bench --benchmark_min_time=0.2 --benchmark_repetitions=3 --benchmark_report_aggregates_only=true

@@ -23,7 +23,7 @@ namespace {
 // capacity_hi_ah > 0: the example with its battery capacity sized over [2 Ah, capacity_hi_ah]
 // (a continuous variable per combination) instead of the catalog cells' own.
 // airspeed_hi_m_s > 0: every cruise segment's airspeed free in [14 m/s, airspeed_hi_m_s].
-// free_groups: every propulsion group's motor, ESC and propeller left to the search (issue 24).
+// free_groups: every propulsion group's motor, ESC and propeller left to the search (the joint search).
 // limit_s > 0: the search stops after that long (counter "interrupted" 1 when it did).
 void FreeEveryGroup(dynosize::Mission* m) {
   for (dynosize::PropulsionGroup& g : m->groups) g.motor_id = g.esc_id = g.prop_id = "";

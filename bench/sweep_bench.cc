@@ -1,5 +1,5 @@
-// `sweep` (issue 25, item 4, goal: a 3 x 3 sweep of the quadcopter example in <= 3x the time of
-// one optimize per point on 2 threads): the 3 x 3 grid (battery capacity x vehicle mass) as
+// `sweep` (goal: a 3 x 3 sweep of the quadcopter example in <= 3x the time of one optimize per
+// point on 2 threads): the 3 x 3 grid (battery capacity x vehicle mass) as
 // RunSweep runs it (points on 2 threads, each search on one), against the nine searches one
 // after the other as nine optimize runs do them (each on 2 threads). The catalog is loaded once
 // in both (the CLI loads it once per run: `time` the commands for that). Counter "ratio":

@@ -35,12 +35,7 @@ message(STATUS "dynosize: Python module for ${Python3_EXECUTABLE} (Python ${Pyth
 # The libraries go into a shared object: position-independent code. -fno-semantic-interposition
 # keeps the calls inside the library direct (no symbol of it is replaced at load time), so that
 # the CLI, linked against the same libraries, keeps its speed (docs/python.md).
-set(_dynosize_pic_targets dynosize_core dynosize_optimization)
-get_target_property(_type dynosize_solvers TYPE)
-if(NOT _type STREQUAL "INTERFACE_LIBRARY")
-  list(APPEND _dynosize_pic_targets dynosize_solvers)
-endif()
-foreach(_t ${_dynosize_pic_targets})
+foreach(_t dynosize_core dynosize_solvers dynosize_optimization)
   set_target_properties(${_t} PROPERTIES POSITION_INDEPENDENT_CODE ON)
   target_compile_options(${_t} PRIVATE -fno-semantic-interposition)
 endforeach()

@@ -25,6 +25,14 @@ struct CallbackGuard {
   }
 };
 
+// Whether each backend is built in: defined by ipopt_solver.cc / nlopt_solver.cc (true) or, when
+// CMake leaves a backend out (DYNOSIZE_WITH_IPOPT / DYNOSIZE_WITH_NLOPT OFF), by no_ipopt.cc /
+// no_nlopt.cc (false), whose Run* throw UnavailableError with NotBuiltMessage.
+bool IpoptBuilt();
+bool NloptBuilt();
+// "dynosize was not built with <backend> (-D<option>=OFF), which algorithm '<algorithm>' needs; ..."
+std::string NotBuiltMessage(const char* backend, const char* option, const std::string& algorithm);
+
 // A backend run: status as the backend reports it (the wrapper re-checks feasibility later),
 // x, iterations, evaluation counts and message. Rethrows a callback's exception.
 SolverResult RunIpopt(const Problem& problem, const SolverOptions& options);

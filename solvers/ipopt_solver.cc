@@ -173,6 +173,8 @@ class ProblemTnlp : public Ipopt::TNLP {
 
 }  // namespace
 
+bool IpoptBuilt() { return true; }
+
 SolverResult RunIpopt(const Problem& problem, const SolverOptions& options) {
   CallbackGuard guard(problem);
   Ipopt::SmartPtr<ProblemTnlp> tnlp = new ProblemTnlp(&guard);

@@ -102,6 +102,8 @@ AlgorithmChoice Choose(const std::string& name, const Problem& p) {
 
 }  // namespace
 
+bool NloptBuilt() { return true; }
+
 SolverResult RunNlopt(const Problem& problem, const SolverOptions& options, const std::string& algorithm) {
   const AlgorithmChoice choice = Choose(algorithm, problem);
   const unsigned n = static_cast<unsigned>(problem.num_variables);

@@ -258,6 +258,28 @@ const std::vector<std::string>& AvailableAlgorithms() {
   return names;
 }
 
+namespace solvers_internal {
+std::string NotBuiltMessage(const char* backend, const char* option, const std::string& algorithm) {
+  return std::string("dynosize was not built with ") + backend + " (-D" + option + "=OFF), which algorithm '" +
+         algorithm + "' needs; configure with -D" + option + "=ON to use it";
+}
+}  // namespace solvers_internal
+
+bool IsAlgorithmAvailable(const std::string& algorithm, std::string* why) {
+  using solvers_internal::NotBuiltMessage;
+  const auto& all = AvailableAlgorithms();
+  std::string reason;
+  if (std::find(all.begin(), all.end(), algorithm) == all.end()) {
+    reason = "algorithm '" + algorithm + "' is unknown; valid names: " + JoinNames(all);
+  } else if (algorithm == "ipopt" && !solvers_internal::IpoptBuilt()) {
+    reason = NotBuiltMessage("Ipopt", "DYNOSIZE_WITH_IPOPT", algorithm);
+  } else if (algorithm.rfind("nlopt_", 0) == 0 && !solvers_internal::NloptBuilt()) {
+    reason = NotBuiltMessage("NLopt", "DYNOSIZE_WITH_NLOPT", algorithm);
+  }
+  if (why) *why = reason;
+  return reason.empty();
+}
+
 const char* SolverStatusToString(SolverStatus status) {
   switch (status) {
     case SolverStatus::kNotCalled: return "NOT_CALLED";
@@ -277,6 +299,10 @@ SolverResult Solve(const Problem& problem, const SolverOptions& options) {
   std::string why;
   if (!options.IsValid(&why)) throw UsageError(why);
   problem.CheckValid();
+  const bool runs_local = options.algorithm == "multistart" || (IsGlobal(options.algorithm) && options.polish_global_result);
+  if (!IsAlgorithmAvailable(options.algorithm, &why) || (runs_local && !IsAlgorithmAvailable(options.local_algorithm, &why))) {
+    throw UnavailableError(why);
+  }
   const auto t0 = std::chrono::steady_clock::now();
   SolverResult r;
   if (options.algorithm == "multistart") {

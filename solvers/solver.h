@@ -12,7 +12,8 @@
 //   "multistart"    local_algorithm from the initial point and from multistart_count points
 //                   drawn uniformly in the (finite) bounds; the best feasible result wins.
 //
-// Failure tiers (Drake): malformed problem/options throw UsageError; an exception thrown by a
+// Failure tiers (Drake): malformed problem/options throw UsageError; an algorithm whose
+// backend this build left out throws UnavailableError (IsAlgorithmAvailable below); an exception thrown by a
 // user callback is stored, the backend is told to stop, and it is rethrown by Solve(); a
 // numerical outcome (not converged, infeasible) is a status in the result.
 //
@@ -99,5 +100,15 @@ SolverResult Solve(const Problem& problem, const SolverOptions& options);
 
 // Every valid value of SolverOptions::algorithm, in the order listed above.
 const std::vector<std::string>& AvailableAlgorithms();
+
+// Whether the backend that runs `algorithm` is built into this dynosize (Drake's
+// is_available()). Each backend can be left out at configure time: -DDYNOSIZE_WITH_IPOPT=OFF
+// ("ipopt"), -DDYNOSIZE_WITH_NLOPT=OFF (every "nlopt_*"); "multistart" is a wrapper and always
+// available. When not, *why (if not null) gets the one-line message that Solve() throws as
+// UnavailableError (exit code 69), e.g. "dynosize was not built with Ipopt
+// (-DDYNOSIZE_WITH_IPOPT=OFF) ...". Solve() checks options.algorithm, and
+// options.local_algorithm when it runs it (multistart, the polish of a global result).
+// Unknown names are not available (SolverOptions::IsValid names them).
+bool IsAlgorithmAvailable(const std::string& algorithm, std::string* why = nullptr);
 
 }  // namespace dynosize

@@ -18,6 +18,7 @@ enum class ExitCode : int {
   kUsage = 64,        // EX_USAGE: bad command line (unknown flag, value out of range)
   kDataError = 65,    // EX_DATAERR: bad input data (catalog, log, mission)
   kNoInput = 66,      // EX_NOINPUT: an input file or folder does not exist / cannot be read
+  kUnavailable = 69,  // EX_UNAVAILABLE: a solver backend this build left out (solvers/solver.h)
   kInternal = 70,     // EX_SOFTWARE: a bug
   kCantCreate = 73,   // EX_CANTCREAT: an output file cannot be written
 };
@@ -53,6 +54,13 @@ class NoInputError : public Error {
 class CantCreateError : public Error {
  public:
   explicit CantCreateError(const std::string& m) : Error(ExitCode::kCantCreate, m) {}
+};
+
+// A feature this build of dynosize left out: a solver backend switched off at configure time
+// (-DDYNOSIZE_WITH_IPOPT=OFF or -DDYNOSIZE_WITH_NLOPT=OFF, solvers/solver.h).
+class UnavailableError : public Error {
+ public:
+  explicit UnavailableError(const std::string& m) : Error(ExitCode::kUnavailable, m) {}
 };
 
 // A broken internal invariant: a bug in dynosize, not in the input.

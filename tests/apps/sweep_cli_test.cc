@@ -139,7 +139,9 @@ void ExpectCompleteStoppedJson(const CliRun& r, bool check_stderr) {
   EXPECT_EQ(j["interrupted"], true);
   EXPECT_EQ(j["points"], Json(2));
   EXPECT_TRUE(j["rows"].empty());  // both points were mid-search: no half-done row
-  if (check_stderr) EXPECT_NE(r.err.find("stopped after 0 of 2 points (--time-limit)"), std::string::npos) << r.err;
+  if (check_stderr) {
+    EXPECT_NE(r.err.find("stopped after 0 of 2 points (--time-limit)"), std::string::npos) << r.err;
+  }
 }
 
 TEST(SweepCliStop, TimeLimitAndSigintWriteTheRowsDoneSoFar) {

@@ -103,7 +103,9 @@ TEST(IdentificationFollowUps, SpuriousSpeedReadingsAreListedAndLeftOut) {
   EXPECT_EQ(lines, (std::vector<std::size_t>{53, 54, 56, 58}));
   for (const auto& c : r.fit) {
     // In-sample rms speed error below the held-out limit once the spikes are out (was 44 %).
-    if (c.column == logs::Column::kOmegaRadS) EXPECT_LT(c.rmse_percent, identification::kMaxHeldOutSpeedPercent);
+    if (c.column == logs::Column::kOmegaRadS) {
+      EXPECT_LT(c.rmse_percent, identification::kMaxHeldOutSpeedPercent);
+    }
   }
   bool speed_check = false;
   for (const auto& c : v.checks) speed_check = speed_check || c.name == "held_out_speed_error";

@@ -185,7 +185,9 @@ TEST(CalibrateRealLogs, StrawsonFitsArePhysicalAndOkMeansNearLabel) {
           ++ok;
           EXPECT_NEAR(KvOf(r), label, 0.25 * label) << f;
         }
-        if (m == 'g') EXPECT_EQ(vd.status, identification::Status::kOk) << f << ": " << vd.summary;
+        if (m == 'g') {
+          EXPECT_EQ(vd.status, identification::Status::kOk) << f << ": " << vd.summary;
+        }
       }
     }
   }

@@ -158,7 +158,9 @@ TEST(Catalog, BundledCatalogIsValid) {
 
 TEST(Schema, DescribesRules) {
   for (const auto& spec : SchemaFor(ComponentKind::kEsc)) {
-    if (spec.key == "tr_sat") EXPECT_EQ(DescribeRule(spec), "a finite number > 0 and <= 1");
+    if (spec.key == "tr_sat") {
+      EXPECT_EQ(DescribeRule(spec), "a finite number > 0 and <= 1");
+    }
   }
 }
 

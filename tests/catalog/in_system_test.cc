@@ -146,7 +146,9 @@ TEST(InSystemLawTest, AppliesToKdeAndDriveCalcDatasheetsOnly) {
   EXPECT_EQ(InSystemLawFor(db), &DriveCalcDatabaseLaw());
   EXPECT_FALSE(cat.motor("dc_m_2_fit").datasheet_params.has_value());  // fitted: already in a system
   for (const auto& m : cat.motors()) {
-    if (m.tier == DataTier::kMeasured) EXPECT_FALSE(m.datasheet_params.has_value()) << m.id;
+    if (m.tier == DataTier::kMeasured) {
+      EXPECT_FALSE(m.datasheet_params.has_value()) << m.id;
+    }
   }
   // Without the law the file's numbers.
   const Catalog raw = Catalog::Load(kCatalog, false);

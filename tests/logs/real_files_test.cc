@@ -189,9 +189,15 @@ TEST(RealLogs, Aerostack2Xnova) {
   for (const auto& f : CsvFilesIn("aerostack2_xnova_thrustmap")) {
     const SteadyTable t = ReadAndPrint(f);
     EXPECT_TRUE(t.Has(Column::kThrottle) && t.Has(Column::kThrustN) && t.Has(Column::kVdcV)) << f;
-    if (f.find("TM-S") != std::string::npos) EXPECT_EQ(t.delimiter, ';');
-    if (f.find("TM-") != std::string::npos) EXPECT_FALSE(t.Has(Column::kTimeS));
-    if (f.find("SR-ramp") != std::string::npos) EXPECT_FALSE(t.Has(Column::kOmegaRadS));  // rpm all 0
+    if (f.find("TM-S") != std::string::npos) {
+      EXPECT_EQ(t.delimiter, ';');
+    }
+    if (f.find("TM-") != std::string::npos) {
+      EXPECT_FALSE(t.Has(Column::kTimeS));
+    }
+    if (f.find("SR-ramp") != std::string::npos) {
+      EXPECT_FALSE(t.Has(Column::kOmegaRadS));  // rpm all 0
+    }
   }
 }
 
@@ -200,7 +206,9 @@ TEST(RealLogs, DiegosdantonioTinywhoop) {
   for (const auto& f : CsvFilesIn("diegosdantonio_tinywhoop")) {
     const SteadyTable t = ReadAndPrint(f);
     // 2023 tests had no rpm sensor (README).
-    if (f.find("StepsTest2023") != std::string::npos) EXPECT_FALSE(t.Has(Column::kOmegaRadS)) << f;
+    if (f.find("StepsTest2023") != std::string::npos) {
+      EXPECT_FALSE(t.Has(Column::kOmegaRadS)) << f;
+    }
   }
 }
 

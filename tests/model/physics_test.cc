@@ -57,7 +57,9 @@ TEST(PhysicsTest, EscRuleMatchesTheModelOnRandomEscs) {
         const OperatingPoint p = drive.AtTorque(12.0, tr, q);
         if (p.limits & kLimitStalled) continue;
         creates = creates || (p.limits & kLimitCreatesEnergy) != 0;
-        if (physical) EXPECT_GE(p.pesc_w, -1e-9) << "c1 " << esc.c1 << " c0 " << esc.c0;
+        if (physical) {
+          EXPECT_GE(p.pesc_w, -1e-9) << "c1 " << esc.c1 << " c0 " << esc.c0;
+        }
       }
     }
     if (physical) {

@@ -21,6 +21,7 @@
 #include "optimization/mission_eval.h"
 #include "optimization/search.h"
 #include "optimization/small_catalog.h"
+#include "solver_backends.h"
 
 namespace dynosize::search_internal {
 namespace {
@@ -268,6 +269,7 @@ TEST_F(JointSearchTest, MaxEnduranceTwoFreeGroupsEqualExhaustiveEvaluation) {
 // mission with both ranges is the one that crashed (SIGSEGV in FreeCruisePowerLowerBoundW from
 // JointBounds::LightestSurvivorKg, the free group's parts without an ESC).
 TEST_F(JointSearchTest, GeneratedMissionsEqualExhaustiveEvaluation) {
+  DYNOSIZE_SKIP_UNLESS_AVAILABLE("nlopt_cobyla");  // free continuous variables (mission_eval.h)
   const Catalog cat = Catalog::Load(TinyCatalogDir(dir_).string());
   std::mt19937 rng(24);  // seeded: the same missions every run
   constexpr int kMissions = 6;

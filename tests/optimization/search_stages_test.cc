@@ -98,7 +98,9 @@ TEST_F(SearchStagesTest, EscTableKeepsExactlyTheVoltageRatedEscsLightestFirst) {
         const EscEntry& e = cat.escs()[list[i]];
         EXPECT_GE(e.params.vdc_max_v, opts[o].v_full) << e.id;
         EXPECT_EQ(e.params.c1, t.classes[c].c1);
-        if (i > 0) EXPECT_LE(EscMassKg(cat.escs()[list[i - 1]]), EscMassKg(e));
+        if (i > 0) {
+          EXPECT_LE(EscMassKg(cat.escs()[list[i - 1]]), EscMassKg(e));
+        }
       }
     }
   }
@@ -129,7 +131,9 @@ TEST_F(SearchStagesTest, PropGridsRiseAndStayBelowMomentumTheory) {
   for (std::size_t p = 0; p < grids.size(); ++p) {
     if (cat.props()[p].id != "apc_per3_10x45mr") continue;
     for (int i = 0; i < kGrid; ++i) {
-      if (grids[p].thrust[i] > 1.0) EXPECT_LT(grids[p].fom[i], 1.0) << i;
+      if (grids[p].thrust[i] > 1.0) {
+        EXPECT_LT(grids[p].fom[i], 1.0) << i;
+      }
     }
   }
 }
@@ -164,7 +168,9 @@ TEST_F(SearchStagesTest, CandidateStreamDrawsTheSortedCandidateList) {
     EXPECT_EQ(pruned_by, all.pruned_by) << "first " << first;
     EXPECT_EQ(stream.open_combinations(), 0) << "every pair drawn or removed by a rule";
     EXPECT_EQ(stream.skipped_without_mass(), all.skipped_without_mass);
-    if (first == 1) EXPECT_GT(stream.batches(), 0);
+    if (first == 1) {
+      EXPECT_GT(stream.batches(), 0);
+    }
     all_bounded = stream.pairs_bounded();
   }
   // A cutoff in the middle of the bounds: the same pairs below it, then one at or above it.
@@ -249,7 +255,9 @@ int ExpectOnlyInfeasiblePairsRemoved(const Catalog& cat, const Mission& m, std::
           if (!r.feasible) continue;
           ++feasible;
           EXPECT_NE(it, one.candidates.end()) << "a feasible pair was removed: " << c.motor->id << " " << c.prop->id;
-          if (it != one.candidates.end()) EXPECT_LE(it->bound, r.score) << c.motor->id << " " << e.id << " " << c.prop->id;
+          if (it != one.candidates.end()) {
+            EXPECT_LE(it->bound, r.score) << c.motor->id << " " << e.id << " " << c.prop->id;
+          }
         }
       }
     }

@@ -23,6 +23,7 @@
 #include "mission/flight.h"
 #include "optimization/mission_eval.h"
 #include "optimization/small_catalog.h"
+#include "solver_backends.h"
 
 namespace dynosize {
 namespace {
@@ -135,7 +136,9 @@ std::size_t CheckAgainstExhaustive(const Catalog& cat, const Mission& m) {
   // counts are per outer choice).
   long long by_rule = 0;
   for (const auto& [rule, n] : s.pruned_by) by_rule += n;
-  if (FreeGroupCount(m) <= 1) EXPECT_EQ(by_rule, s.pruned);
+  if (FreeGroupCount(m) <= 1) {
+    EXPECT_EQ(by_rule, s.pruned);
+  }
   return all.size();
 }
 
@@ -496,6 +499,7 @@ TEST_F(SearchTest, EarlyExitsHoldWhenTheEscPowerFallsWithTheVoltage) {
 // feasible point that beats the cutoff, and some answers must stop early (else the test would
 // not exercise it).
 TEST_F(SearchTest, DecideAnswersAsTheFullSolve) {
+  DYNOSIZE_SKIP_UNLESS_AVAILABLE("nlopt_cobyla");  // free continuous variables (mission_eval.h)
   const Catalog cat = Catalog::Load((dir_ / "catalog").string());
   std::vector<Mission> missions;
   Json q = ParseJsonText(kQuad, "quad");
@@ -656,6 +660,7 @@ TEST_F(SearchTest, EarlyExitsBoundOutOnlyWhatCannotBeatTheCutoff) {
 // energy pre-check at the smallest capacity, with the momentum bound of the free cruise), and
 // the search equals exhaustive evaluation there (G1's free-cruise table: the pusher fixed).
 TEST_F(SearchTest, FreeCruiseEnergyBoundsAreBounds) {
+  DYNOSIZE_SKIP_UNLESS_AVAILABLE("nlopt_cobyla");  // free continuous variables (mission_eval.h)
   const Catalog cat = Catalog::Load((dir_ / "catalog").string());
   Json j = ParseJsonText(kLiftCruise, "lift");
   j["battery"]["capacity_ah"] = {2.0, 6.0};
@@ -864,8 +869,12 @@ TEST_F(SearchTest, OutputsAgreeWithThemselves) {
   if (f["feasible"].get<bool>()) {
     EXPECT_TRUE(f["objective_in_range"].get<bool>());
     const Json& g = f["objective_range"];
-    if (g[0].is_number()) EXPECT_LE(g[0].get<double>(), f["objective"].get<double>());
-    if (g[1].is_number()) EXPECT_GE(g[1].get<double>(), f["objective"].get<double>());
+    if (g[0].is_number()) {
+      EXPECT_LE(g[0].get<double>(), f["objective"].get<double>());
+    }
+    if (g[1].is_number()) {
+      EXPECT_GE(g[1].get<double>(), f["objective"].get<double>());
+    }
   }
 }
 

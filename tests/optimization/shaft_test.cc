@@ -9,6 +9,7 @@
 
 #include "common/dual.h"
 #include "common/units.h"
+#include "solver_backends.h"
 
 namespace dynosize {
 namespace {
@@ -86,6 +87,7 @@ TEST(ShaftTest, IpoptAndNloptFindTheAnalyticOptimum) {
   ASSERT_GT(w_star, q.omega_rad_s.lo);
   ASSERT_LT(w_star, q.omega_rad_s.hi);
   for (const std::string alg : {"ipopt", "nlopt_slsqp", "nlopt_mma", "nlopt_cobyla"}) {
+    if (!IsAlgorithmAvailable(alg)) continue;  // a build without its backend
     const ShaftSolution s = SolveShaftSpeed(d, q, alg);
     EXPECT_TRUE(s.solved) << alg << ": " << s.message;
     const double tol = alg == "nlopt_cobyla" ? kCobylaSpeedRelTol : kSpeedRelTol;
@@ -96,6 +98,7 @@ TEST(ShaftTest, IpoptAndNloptFindTheAnalyticOptimum) {
 }
 
 TEST(ShaftTest, OptimumBeatsEveryPointOfADenseGrid) {
+  DYNOSIZE_SKIP_UNLESS_AVAILABLE("ipopt");
   EscParams e = IdealEsc();
   e.c0 = 0.02;  // a real ESC: no closed form, the grid is the reference
   e.c1 = 1.15;
@@ -118,6 +121,7 @@ TEST(ShaftTest, OptimumBeatsEveryPointOfADenseGrid) {
 }
 
 TEST(ShaftTest, ThrottleLimitBindsWhenTheOptimumIsOutOfReach) {
+  DYNOSIZE_SKIP_UNLESS_AVAILABLE("ipopt");
   const Drive d(TestMotor(), IdealEsc());
   ShaftRequest q;
   q.vdc_v = 22.2;

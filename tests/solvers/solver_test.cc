@@ -13,6 +13,7 @@
 #include <stdexcept>
 
 #include "common/error.h"
+#include "solver_backends.h"
 
 namespace dynosize {
 namespace {
@@ -136,6 +137,8 @@ void Record(const std::string& algorithm, const std::string& problem, const Solv
 class EveryAlgorithm : public testing::TestWithParam<std::string> {};
 
 TEST_P(EveryAlgorithm, RosenbrockUnbounded) {
+  DYNOSIZE_SKIP_UNLESS_AVAILABLE(GetParam());
+  if (IsGlobal(GetParam())) DYNOSIZE_SKIP_UNLESS_AVAILABLE(OptionsFor(GetParam()).local_algorithm);
   const Problem p = Rosenbrock(false);
   if (IsGlobal(GetParam())) {
     // Global searches sample the box: an unbounded problem is a usage error naming the variable.
@@ -157,6 +160,8 @@ TEST_P(EveryAlgorithm, RosenbrockUnbounded) {
 }
 
 TEST_P(EveryAlgorithm, RosenbrockBounded) {
+  DYNOSIZE_SKIP_UNLESS_AVAILABLE(GetParam());
+  if (IsGlobal(GetParam())) DYNOSIZE_SKIP_UNLESS_AVAILABLE(OptionsFor(GetParam()).local_algorithm);
   const SolverResult r = Solve(Rosenbrock(true), OptionsFor(GetParam()));
   Record(GetParam(), "Rosenbrock bounded", r);
   ASSERT_TRUE(r.is_success()) << r.FullReport();
@@ -166,6 +171,8 @@ TEST_P(EveryAlgorithm, RosenbrockBounded) {
 }
 
 TEST_P(EveryAlgorithm, ActiveBound) {
+  DYNOSIZE_SKIP_UNLESS_AVAILABLE(GetParam());
+  if (IsGlobal(GetParam())) DYNOSIZE_SKIP_UNLESS_AVAILABLE(OptionsFor(GetParam()).local_algorithm);
   const SolverResult r = Solve(RosenbrockActiveBound(), OptionsFor(GetParam()));
   Record(GetParam(), "active bound", r);
   ASSERT_TRUE(r.is_success()) << r.FullReport();
@@ -175,6 +182,8 @@ TEST_P(EveryAlgorithm, ActiveBound) {
 }
 
 TEST_P(EveryAlgorithm, Hs071) {
+  DYNOSIZE_SKIP_UNLESS_AVAILABLE(GetParam());
+  if (IsGlobal(GetParam())) DYNOSIZE_SKIP_UNLESS_AVAILABLE(OptionsFor(GetParam()).local_algorithm);
   SolverOptions o = OptionsFor(GetParam());
   if (GetParam() == "nlopt_cobyla") {
     // Derivative-free COBYLA (NLopt 2.7.1) cycles at HS071's equality constraint and never
@@ -191,6 +200,8 @@ TEST_P(EveryAlgorithm, Hs071) {
 }
 
 TEST_P(EveryAlgorithm, InfeasibleIsAStatusNamingTheConstraint) {
+  DYNOSIZE_SKIP_UNLESS_AVAILABLE(GetParam());
+  if (IsGlobal(GetParam())) DYNOSIZE_SKIP_UNLESS_AVAILABLE(OptionsFor(GetParam()).local_algorithm);
   SolverOptions o = OptionsFor(GetParam());
   // NLopt's constrained DIRECT-L (GN_ORIG_DIRECT_L) never stops on an infeasible problem
   // before its budget and slows to ~1 ms per evaluation there; 2 s is enough to show the status.
@@ -208,6 +219,8 @@ TEST_P(EveryAlgorithm, InfeasibleIsAStatusNamingTheConstraint) {
 }
 
 TEST_P(EveryAlgorithm, CallbackExceptionIsRethrownUnchanged) {
+  DYNOSIZE_SKIP_UNLESS_AVAILABLE(GetParam());
+  if (IsGlobal(GetParam())) DYNOSIZE_SKIP_UNLESS_AVAILABLE(OptionsFor(GetParam()).local_algorithm);
   Problem p = Hs071();
   int calls = 0;
   const ObjectiveFunction inner = p.objective;
@@ -225,6 +238,8 @@ TEST_P(EveryAlgorithm, CallbackExceptionIsRethrownUnchanged) {
 }
 
 TEST_P(EveryAlgorithm, ConstraintCallbackExceptionIsRethrown) {
+  DYNOSIZE_SKIP_UNLESS_AVAILABLE(GetParam());
+  if (IsGlobal(GetParam())) DYNOSIZE_SKIP_UNLESS_AVAILABLE(OptionsFor(GetParam()).local_algorithm);
   Problem p = Hs071();
   const ConstraintFunction inner = p.inequality_constraints;
   int calls = 0;
@@ -236,6 +251,8 @@ TEST_P(EveryAlgorithm, ConstraintCallbackExceptionIsRethrown) {
 }
 
 TEST_P(EveryAlgorithm, OneDimensional) {
+  DYNOSIZE_SKIP_UNLESS_AVAILABLE(GetParam());
+  if (IsGlobal(GetParam())) DYNOSIZE_SKIP_UNLESS_AVAILABLE(OptionsFor(GetParam()).local_algorithm);
   // From x0 = -2 the global ones must find the global minimum; a local method is only promised
   // a local minimum, and Ipopt/MMA do step over the hump into the right well, so for them either
   // minimizer is correct.
@@ -254,6 +271,7 @@ INSTANTIATE_TEST_SUITE_P(Solvers, EveryAlgorithm, testing::ValuesIn(AvailableAlg
                          [](const testing::TestParamInfo<std::string>& i) { return i.param; });
 
 TEST(GlobalAlgorithms, LeaveTheLocalWellThatTrapsLocalOnes) {
+  DYNOSIZE_SKIP_UNLESS_AVAILABLE("nlopt_slsqp");  // every global run here polishes with it
   // From x0 = 2 a local method stops in the right well (x ~ 1.13); global ones find x ~ -1.30.
   for (const std::string a : {"nlopt_direct", "nlopt_isres", "multistart"}) {
     const SolverResult r = Solve(OneDimensional(2.0), OptionsFor(a));
@@ -275,6 +293,43 @@ TEST(Solver, UnknownAlgorithmListsEveryValidName) {
     EXPECT_NE(what.find("'snopt' is unknown"), std::string::npos) << what;
     for (const std::string& name : AvailableAlgorithms()) EXPECT_NE(what.find(name), std::string::npos) << name;
   }
+}
+
+// Each backend can be left out of the build (CMake DYNOSIZE_WITH_IPOPT / DYNOSIZE_WITH_NLOPT):
+// its algorithms stay known names, IsAlgorithmAvailable says why not, and Solve throws that
+// line as UnavailableError (exit code 69) before running anything. In a full build every
+// algorithm is available; a build with either option OFF checks the other branch.
+TEST(Solver, AlgorithmLeftOutOfTheBuildIsUnavailableErrorNamingTheOption) {
+  int unavailable = 0;
+  for (const std::string& a : AvailableAlgorithms()) {
+    std::string why = "not cleared";
+    if (IsAlgorithmAvailable(a, &why)) {
+      EXPECT_EQ(why, "") << a;
+      continue;
+    }
+    ++unavailable;
+    const bool ipopt = a == "ipopt";
+    EXPECT_EQ(why.rfind(ipopt ? "dynosize was not built with Ipopt (-DDYNOSIZE_WITH_IPOPT=OFF)"
+                              : "dynosize was not built with NLopt (-DDYNOSIZE_WITH_NLOPT=OFF)", 0), 0u) << why;
+    EXPECT_NE(why.find("'" + a + "'"), std::string::npos) << why;
+    EXPECT_EQ(why.find('\n'), std::string::npos) << "one line: " << why;
+    try {
+      Solve(Hs071(), OptionsFor(a));
+      ADD_FAILURE() << a << ": expected UnavailableError";
+    } catch (const UnavailableError& e) {
+      EXPECT_EQ(static_cast<int>(e.code()), 69);
+      // multistart itself is a wrapper: the error names its local algorithm's backend.
+      EXPECT_EQ(std::string(e.what()).rfind("dynosize was not built with", 0), 0u) << e.what();
+    }
+  }
+#if !DYNOSIZE_TEST_WITH_IPOPT || !DYNOSIZE_TEST_WITH_NLOPT
+  EXPECT_GT(unavailable, 0) << "this build left a backend out, but every algorithm says it is available";
+#else
+  EXPECT_EQ(unavailable, 0);
+#endif
+  std::string why;
+  EXPECT_FALSE(IsAlgorithmAvailable("snopt", &why));
+  EXPECT_NE(why.find("'snopt' is unknown"), std::string::npos) << why;
 }
 
 TEST(Solver, UntouchedResultSaysSolveWasNotCalled) {
@@ -309,6 +364,7 @@ TEST(Solver, InitialPointOutsideBoundsIsUsageErrorNotClamped) {
 }
 
 TEST(Solver, ReCheckDowngradesAFalseSuccessAndNamesTheConstraint) {
+  DYNOSIZE_SKIP_UNLESS_AVAILABLE("nlopt_slsqp");
   // A backend that claims success at an infeasible point, emulated with a constraint that lies
   // to the solver: SLSQP always asks for the objective's gradient, while the wrapper's re-check
   // evaluates the objective without one and then the constraints. The constraint reports
@@ -334,6 +390,7 @@ TEST(Solver, ReCheckDowngradesAFalseSuccessAndNamesTheConstraint) {
 }
 
 TEST(Ipopt, PrintsNothingOnStdoutAndIgnoresIpoptOptFile) {
+  DYNOSIZE_SKIP_UNLESS_AVAILABLE("ipopt");
   // Two traps of Ipopt (ecosystem-notes.md): its banner on stdout would corrupt `--json`, and
   // Initialize() would read ./ipopt.opt, letting a stray file override our options. Put an
   // ipopt.opt that would cap Ipopt at 1 iteration into the working directory and check both.

@@ -354,7 +354,9 @@ TEST(StandPredict, EachModelReproducesItsOwnTable) {
       EXPECT_LT(e->mae, 1e-6) << mode << col;  // its own table, up to the solver tolerance
       const auto* b = stand::FindError(r, mode, stand::kPlainDc, col);
       ASSERT_NE(b, nullptr);
-      if (std::string(col) == "idc_a") EXPECT_GT(b->mae, 1.0) << mode;  // a different model
+      if (std::string(col) == "idc_a") {
+        EXPECT_GT(b->mae, 1.0) << mode;  // a different model
+      }
     }
   }
   EXPECT_LT(stand::FindError(r, stand::kFromThrottle, stand::kDynosize, "rpm")->mae, 1e-6);
