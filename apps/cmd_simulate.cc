@@ -399,7 +399,7 @@ int RunSimulate(const SimulateOptions& o) {
   } else {
     PrintSweep(title, drive, req.vdc_v);
   }
-  // The table has no feasibility column: say it when its points create energy (model.md
+  // The table has no feasibility column: say it when its points create energy (docs/model.md
   // section 10; the JSON carries the limit per point).
   if (!o.json) {
     int bad = 0, rows = 0;

@@ -1,4 +1,4 @@
-// dynosize used as a library (README, "dynosize as a C++ library"): load the bundled catalog,
+// dynosize used as a library (docs/library.md): load the bundled catalog,
 // run the paper's motor + ESC pair at one operating point, and fly the quadcopter mission with
 // one fixed combination, printing a few numbers.
 //

@@ -1,11 +1,11 @@
 // dynosize as a library: the one header a program built against the installed package includes
 // (find_package(dynosize CONFIG) and target dynosize::dynosize; README, "dynosize as a C++
 // library"). It brings in the public API by area; each header states its own rules and cites
-// model.md. Every module header is installed too (<dynosize/model/drive.h> can also be named
+// docs/model.md. Every module header is installed too (<dynosize/model/drive.h> can also be named
 // as "model/drive.h"), for a program that needs one area only.
 //
 //   catalog     Catalog::Load, CatalogFolders, BundledCatalogDir, ResolveCatalogFolders
-//   model       Drive (the Brown & Chopra motor + ESC model, model.md eqs 42-59), OperatingPoint
+//   model       Drive (the Brown & Chopra motor + ESC model, docs/model.md eqs 42-59), OperatingPoint
 //   missions    ReadMission, Combination, MissionEvaluator, AddObjectiveRange, SearchCatalog
 //   studies     study::ParseVary, RunPoint, RunSweep (a mission over a grid of values), SweepCsv
 //   calibration Calibrate (fit catalog entries to stand logs), Diagnose

@@ -93,7 +93,7 @@ Json PropPointJson(const PropPoint& pp) {
   j["g_per_w"] = pp.g_per_w;
   j["figure_of_merit"] = pp.figure_of_merit;
   if (pp.figure_of_merit > 1.0) {
-    // Momentum theory is a limit like the drive's (model.md section 10): not feasible.
+    // Momentum theory is a limit like the drive's (docs/model.md section 10): not feasible.
     j["feasible"] = false;
     j["limits"].push_back("beats_momentum_theory");
   }

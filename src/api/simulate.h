@@ -23,7 +23,7 @@ namespace dynosize::api {
 OperatingPoint SolvePoint(const Drive& drive, const PointRequest& r, const std::vector<double>& law = {});
 
 // One row of the batch path. A row that names a propeller carries its thrust; a figure of merit
-// above 1 (the propeller data beat momentum theory, model.md section 10) makes it infeasible.
+// above 1 (the propeller data beat momentum theory, docs/model.md section 10) makes it infeasible.
 struct BatchPoint {
   OperatingPoint drive;
   bool has_prop = false;

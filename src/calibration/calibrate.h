@@ -1,5 +1,5 @@
 // Calibration: motor (KE, KT, Rm, Io) and ESC (RESC, C1, C0, tr_sat, sat_slope) parameters of
-// the Brown & Chopra model (../shared/docs/model.md, src/model/drive.h) fitted to the steady
+// the Brown & Chopra model (docs/model.md, src/model/drive.h) fitted to the steady
 // points of a dynamometer / thrust-stand log (logs::SteadyTable).
 //
 // The fit is a forward-model fit: each row's known inputs are VDC, the throttle TR (assumed 1
@@ -26,7 +26,7 @@
 //  - AC columns (vll_rms_v, irms_a) + vdc_v + throttle: all of KE, Rm, RESC separately; with
 //    idc_a also C1, C0 (two or more throttle levels); with torque_nm also KT and Io.
 //  - DC side only (vdc_v, throttle, omega, idc_a [, torque_nm]) - most thrust stands: KT is
-//    tied to KE by the power balance KT = sqrt(27/10)*KE (model.md section 5), and only the
+//    tied to KE by the power balance KT = sqrt(27/10)*KE (docs/model.md section 5), and only the
 //    sum Rm + RESC enters (eq 48): RESC is held at its prior (0 without one), Rm absorbs the
 //    rest, and both are flagged unidentifiable; r_total_ohm reports the sum with its error.
 //    Without torque, IDC = (C1*TR_eff + C0)*(U - KE*omega)/R determines only C1/R and C0/R:
@@ -118,7 +118,7 @@ struct CalibrationOptions {
   // The motor's label (--kv-label, --rm-label, --io-label/--io-label-v): Gaussian priors of the
   // widths in identification/parameters.h; a label takes precedence over motor_prior.
   identification::LabelPriors labels;
-  // Throttle offset / dead band (model.md section 9, EscParams::deadband): with three or more
+  // Throttle offset / dead band (docs/model.md section 9, EscParams::deadband): with three or more
   // throttle levels the fit is repeated with it free and kept when it beats "no offset" by the
   // F test of knee_min_f (one extra parameter).
   bool fit_throttle_offset = true;

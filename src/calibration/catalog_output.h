@@ -3,7 +3,7 @@
 //
 // Provenance: a value the fit determined is "fitted"; one held at a prior or default because
 // the data cannot identify it is "assumed" (so results built on it say so); kv_rpm_per_v is
-// "derived" from the fitted KE by model.md section 8, KT tied to KE is "derived".
+// "derived" from the fitted KE by docs/model.md section 8, KT tied to KE is "derived".
 #pragma once
 
 #include <string>

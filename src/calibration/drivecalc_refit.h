@@ -4,7 +4,7 @@
 // (U, n, I) points imply (shared/data/drivecalc/README.md). Each motor's points - full-throttle
 // runs on different propellers and batteries, plus no-load runs - are fitted with Calibrate()
 // in its no-throttle mode (calibrate.h): every row at full throttle with the ideal ESC, so
-//     U = R_dc*I + omega/Kv_dc,   R_dc = R/(kv*g),  Kv_dc = kv/KE,  g = 1.1095  (model.md 6, 8)
+//     U = R_dc*I + omega/Kv_dc,   R_dc = R/(kv*g),  Kv_dc = kv/KE,  g = 1.1095  (docs/model.md 6, 8)
 // loaded rows predict the current from (U, n), no-load rows the speed and the current from U
 // (Q = 0, I = Io). The fitted R is Rm + RESC + wiring of the measurement set-up.
 #pragma once

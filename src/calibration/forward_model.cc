@@ -33,7 +33,7 @@ bool Residuals(const FitData& d, const Layout& lay, const std::array<double, kBa
 }
 
 // Bounds of each internal parameter: the physical box of identification/parameters.h, with the
-// KT slot bounded as the ratio f and the C1 slot as the excess s (model.md section 10).
+// KT slot bounded as the ratio f and the C1 slot as the excess s (docs/model.md section 10).
 constexpr std::array<double, kBaseParamCount> MakeLower() {
   std::array<double, kBaseParamCount> b{};
   for (int k = 0; k < kBaseParamCount; ++k) b[k] = identification::kParamTable[k].lower;
@@ -53,7 +53,7 @@ const Params kUpper = MakeUpper();
 
 // The fit's parameter vector ("internal", identification/parameters.h): slot kKt holds the
 // ratio f = KT/(kp*KE) (1 when KT is tied to KE), slot kC1 the ESC excess s = c1 + c0 - 1.1095.
-// Both keep the energy rules of model.md section 10 as box bounds.
+// Both keep the energy rules of docs/model.md section 10 as box bounds.
 std::array<double, kBaseParamCount> ToInternal(const MotorParams& m, const EscParams& e) {
   std::array<double, kBaseParamCount> p{};
   p[kKeI] = m.ke_v_s_per_rad;

@@ -62,7 +62,7 @@ struct Layout {
 
 // The fit's parameter vector ("internal", identification/parameters.h): slot kKt holds the
 // ratio f = KT/(kp*KE) (1 when KT is tied to KE), slot kC1 the ESC excess s = c1 + c0 - 1.1095.
-// Both keep the energy rules of model.md section 10 as box bounds.
+// Both keep the energy rules of docs/model.md section 10 as box bounds.
 Params ToInternal(const MotorParams& m, const EscParams& e);
 // Physical parameters of the internal vector (KT = kp*KE*f, c1 = 1.1095 + s - c0).
 MotorParams ToMotor(const Params& p);
@@ -119,7 +119,7 @@ bool PredictGeneric(const T* p, double tr_sat, double vdc, double tr, double ome
 ResidualFunction MakeResidualFunction(const FitData& d, const Layout& lay, const Params& fixed);
 
 // Bounds of each internal parameter: the box of identification/parameters.h (kParamTable), with
-// the KT slot bounded as the ratio f and the C1 slot as the excess s (model.md section 10).
+// the KT slot bounded as the ratio f and the C1 slot as the excess s (docs/model.md section 10).
 extern const Params kLower;
 extern const Params kUpper;
 

@@ -4,7 +4,7 @@
 //   CT = T / (rho * n^2 * D^4),   CP = P / (rho * n^3 * D^5),   P = Q * omega,  n = rpm/60
 // (UIUC definitions, as src/prop/prop_model.h and catalog/README.md use them). Rows within 1 % of
 // each other in speed are averaged into one table point so that the rpm column increases strictly.
-// Every point must satisfy momentum theory: FM = T^1.5/(P*sqrt(2*rho*A)) <= 1 (model.md section
+// Every point must satisfy momentum theory: FM = T^1.5/(P*sqrt(2*rho*A)) <= 1 (docs/model.md section
 // 10, model/physics.h FigureOfMerit); a point that beats it means a thrust or torque calibration
 // error and the table is refused.
 #pragma once

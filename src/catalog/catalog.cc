@@ -519,7 +519,7 @@ void Catalog::Put(std::vector<Entry>* entries, ComponentKind kind, Entry entry) 
   entries->push_back(std::move(entry));
 }
 
-// Physics at the door (model.md section 10, model/physics.h, catalog/prop_credibility.h): an
+// Physics at the door (docs/model.md section 10, model/physics.h, catalog/prop_credibility.h): an
 // entry that creates energy or beats momentum theory is refused, whatever its source.
 std::string Catalog::AddEntry(ComponentKind kind, const Json& e, EntryBase base) {
   const std::string id = base.id;
@@ -528,7 +528,7 @@ std::string Catalog::AddEntry(ComponentKind kind, const Json& e, EntryBase base)
       MotorEntry m = MotorFromJson(e, std::move(base));
       // Catalog numbers carry 6 significant digits: a KT written as sqrt(27/10)*KE may exceed
       // it by the rounding of two numbers (< 1e-5 relative). Such a KT is on the boundary of
-      // model.md section 10, and is set exactly onto it so that no point can gain energy from
+      // docs/model.md section 10, and is set exactly onto it so that no point can gain energy from
       // the last digit.
       MotorParams& p = m.params;
       const double kt_max = MaxKtPerKe(p.type) * p.ke_v_s_per_rad;

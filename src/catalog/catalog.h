@@ -21,7 +21,7 @@
 // The reader is strict (schema.h lists every key, its type, unit and range): unknown keys,
 // missing keys, wrong types, non-finite or out-of-range values and duplicate ids are errors that
 // name the file, the entry (index and id), the key, the value and the rule. Physics at the door
-// (model.md section 10, model/physics.h, catalog/prop_credibility.h): an ESC or a motor whose
+// (docs/model.md section 10, model/physics.h, catalog/prop_credibility.h): an ESC or a motor whose
 // constants create energy, or a propeller whose figure of merit exceeds 1 anywhere in its valid
 // range, is a problem too. Load() refuses a catalog with any problem; Validate() returns every
 // problem in the folder.
@@ -84,7 +84,7 @@ struct MotorEntry : EntryBase {
   MotorParams params;
   std::optional<double> kv_rpm_per_v;
   std::optional<double> mass_kg;
-  // DriveCalc's loss terms (model.md section 9): Io(omega) = (loss_torque_nm +
+  // DriveCalc's loss terms (docs/model.md section 9): Io(omega) = (loss_torque_nm +
   // loss_torque_per_omega_nm_s_per_rad*omega)/kt; absent for other data sets.
   std::optional<double> loss_torque_nm;
   std::optional<double> loss_torque_per_omega_nm_s_per_rad;
@@ -209,7 +209,7 @@ class Catalog {
 
  private:
   // Converts a valid entry to its typed form and adds it, unless it breaks a physical rule
-  // (model.md section 10): returns that rule's sentence then, "" when added.
+  // (docs/model.md section 10): returns that rule's sentence then, "" when added.
   std::string AddEntry(ComponentKind kind, const Json& e, EntryBase base);
 
   struct IdOrigin;

@@ -1,5 +1,5 @@
 // Where the catalog is found when the user names none, and the folders of the user's own parts
-// added on top of it (README, "Catalog"). One rule for the CLI and for programs that use the
+// added on top of it (docs/catalog.md). One rule for the CLI and for programs that use the
 // library.
 #pragma once
 

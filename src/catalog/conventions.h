@@ -1,9 +1,9 @@
 // Catalog conventions that every importer and every hand-written entry follows, in one place.
 //
-// 1. Resistance (model.md sections 2, 6, 8). The catalog's rm_ohm is the resistance of the rms
+// 1. Resistance (docs/model.md sections 2, 6, 8). The catalog's rm_ohm is the resistance of the rms
 //    circuit of eq (42)/(48): VLL,rms = Rm*Irms + KE*omega. Hobby datasheets, DriveCalc and
 //    every stand-table fit state instead the resistance of the DC equivalent circuit at full
-//    throttle (model.md section 2 with V = VDC):
+//    throttle (docs/model.md section 2 with V = VDC):
 //        VDC = R_dc*IDC + n/Kv                                                    (DC model)
 //    With the ideal ESC at TR = 1, eq (48) reads K*VDC = Rm*Irms + KE*omega, K = 3/(sqrt(2)*pi),
 //    and eq (56) gives IDC = g*Irms, g = (3/pi)*sqrt(27/20) = K*sqrt(27/10). With KE from Kv

@@ -1,13 +1,13 @@
 // A documented physical prior for ESCs that have no dynamometer fit.
 //
 // Catalog ESCs (DriveCalc, FAST-UAV) give current ratings and sometimes a resistance, but never
-// the eq (57) constants C1, C0 or the saturation knee of model.md section 7. The prior fills
+// the eq (57) constants C1, C0 or the saturation knee of docs/model.md section 7. The prior fills
 // them in, and every value it supplies is written as "assumed" in source.values, so results
 // built on it say so:
 //   c1 = (3/pi)*sqrt(27/20) ~= 1.1095, c0 = 0    the ideal ESC, eq (56): PDC = PAC, no
 //                                                switching loss beyond RESC
 //   tr_sat = 0.9, sat_slope = 0.61               the one measured knee we have: MultiStar 30 A,
-//                                                model.md section 7 (1230 -> 750 rpm per 10 %)
+//                                                docs/model.md section 7 (1230 -> 750 rpm per 10 %)
 //   resc_ohm (when the data set has none)        a power law in the current rating fitted to
 //                                                the DriveCalc ESCs that state R:
 //      R [mOhm] = 79.18 * Imax[A]^-0.8467        (121 ESCs, log-residual sd 1.57, i.e. a
@@ -23,8 +23,8 @@ namespace dynosize {
 struct EscPrior {
   double c1 = kIdealIdcPerIrmsPerThrottle;  // eq (56)
   double c0 = 0.0;
-  double tr_sat = 0.9;       // model.md section 7
-  double sat_slope = 0.61;   // 750/1230, model.md section 7
+  double tr_sat = 0.9;       // docs/model.md section 7
+  double sat_slope = 0.61;   // 750/1230, docs/model.md section 7
   // R [mOhm] = resistance_coef_mohm * Imax^resistance_exp, from DriveCalc ESC.csv.
   double resistance_coef_mohm = 79.18;
   double resistance_exp = -0.8467;

@@ -60,7 +60,7 @@ MotorParams InSystemMotorParams(const MotorParams& raw, const DatasheetMotor& ds
     p.rm_ohm = RmsCircuitResistanceFromDc(ratio_r * (law.r_scale * ds.r_dc_ohm + law.r_add_ohm));
   }
   if (apply_io) {
-    // (IS2), then eq 56: Io = Io_dc/1.1095, the speed term in io1 (model.md section 9).
+    // (IS2), then eq 56: Io = Io_dc/1.1095, the speed term in io1 (docs/model.md section 9).
     const double io_dc = ratio_io * ds.io_dc_a;
     p.io_a = RmsNoLoadCurrentFromDc(law.io_scale * io_dc);
     const double omega_test_rad_s = ds.kv_rpm_per_v * ds.io_test_voltage_v * kPi / 30.0;

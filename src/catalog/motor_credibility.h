@@ -50,7 +50,7 @@ double TypicalMotorConstantForMass(double mass_kg);
 // (~ 1/Kv) N times too large. A geared unit's Km from the motor's own Kv is at most a typical
 // direct-drive motor's of the same mass (its mass holds the gearbox too): on DriveCalc's
 // geared entries with a mass and a resistance it is 0.17-1.12 x the mass law (median 0.31)
-// with Kv = N x DriveCalc's kV (the motor's, README "Gearboxes"), and 0.83-4.9 x (median
+// with Kv = N x DriveCalc's kV (the motor's, docs/model.md section 12), and 0.83-4.9 x (median
 // 1.70) with DriveCalc's kV itself (the output shaft's). An entry above kGearedKmRatioMax x
 // the law is refused by Catalog::Load and `catalog validate` (its Kv reads as the output
 // shaft's). Applies to entries of 10 g to 2 kg with kv_rpm_per_v, a resistance and a mass.

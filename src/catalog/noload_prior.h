@@ -1,4 +1,4 @@
-// The no-load prior: the model's no-load current Io (rms, model.md section 8) of a motor that
+// The no-load prior: the model's no-load current Io (rms, docs/model.md section 8) of a motor that
 // no log has measured at no load or with torque, from its size and speed.
 //
 // The law (log10, fitted by least squares on the catalog's motors that state Io at a test

@@ -20,7 +20,7 @@
 //
 // Envelope (FmEnvelopeFor): by diameter class, the distribution over UIUC's measured propellers
 // (static tests, volumes 1-3, 239 props) of each propeller's median FM over its measured rpm
-// range (model.md section 10: median 0.555, maximum 0.753 over all classes). Generated from
+// range (docs/model.md section 10: median 0.555, maximum 0.753 over all classes). Generated from
 // catalog/uiuc_propdb.json; tests/catalog/prop_credibility_test.cc recomputes it.
 #pragma once
 
@@ -62,7 +62,7 @@ struct PropFmScan {
 PropFmScan ScanFigureOfMerit(const PropEntry& entry);
 
 // "" when the entry cannot beat momentum theory inside its valid range, else one sentence
-// ("static FM 1.07 at 2000 rpm > 1: beats momentum theory (model.md section 10)").
+// ("static FM 1.07 at 2000 rpm > 1: beats momentum theory (docs/model.md section 10)").
 std::string PropMomentumViolation(const PropEntry& entry);
 
 // The median over the points of the static table of FM = CT^1.5/(CP*sqrt(pi/2)) (the number

@@ -97,7 +97,7 @@ std::vector<KeySpec> Build(ComponentKind kind) {
       add(Num("gear_efficiency", false, 0, true, 1,
               "gearbox efficiency (0 < eta <= 1; 1 when direct drive): Q_motor = "
               "Q_prop/(gear_ratio*eta); required with a gear_ratio above 1"));
-      // Model extensions of model.md section 9 (src/model/drive.h); absent = 0 = first order.
+      // Model extensions of docs/model.md section 9 (src/model/drive.h); absent = 0 = first order.
       add(Num("io1_a_s_per_rad", false, 0, false, 1,
               "speed-dependent no-load current Io(omega) = io_a + io1*omega, A per rad/s"));
       add(Num("rth_k_per_w", false, 0, false, 1000,

@@ -5,7 +5,7 @@
 // is a bug (InternalError, exit 70); a numerical outcome (infeasible, not converged) is a
 // status in a result struct, never an exception.
 //
-// Exit codes follow sysexits.h, as listed in ../shared/docs/ecosystem-notes.md.
+// Exit codes follow sysexits.h (docs/usage.md lists them).
 #pragma once
 
 #include <stdexcept>

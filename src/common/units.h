@@ -32,7 +32,7 @@ inline constexpr double AhToCoulomb(double ah) { return ah * 3600.0; }
 // rev/s from rpm (the n of the UIUC coefficient definitions).
 inline constexpr double RpmToRevPerSec(double rpm) { return rpm / 60.0; }
 
-// model.md section 8: datasheet Kv [rpm per DC volt] is the no-load speed at full throttle of
+// docs/model.md section 8: datasheet Kv [rpm per DC volt] is the no-load speed at full throttle of
 // an ideal ESC, omega = 0.675*VDC/KE, hence KE = (3/(sqrt(2)*pi)) / (Kv*pi/30)
 // [V*s/rad, line-line rms].
 inline constexpr double KeFromKvBldc(double kv_rpm_per_v) {

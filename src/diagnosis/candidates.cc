@@ -244,7 +244,7 @@ void ResolveRivals(const SearchContext& x, const Step& cur, bool base_at_bound, 
 }
 
 // Stage 9c: without AC columns C1, C0 are seen only through the tied KT (section 5). Where the
-// extended model leaves them on a bound of model.md section 10 (the data alone ask for an ESC
+// extended model leaves them on a bound of docs/model.md section 10 (the data alone ask for an ESC
 // that creates energy), the slot on the bound is held at the ESC prior (--esc, else ideal) and
 // the extended model refitted; if the other ESC slot is then on a bound or undetermined
 // (relative standard error above 50 %), it is held too. c0 = 0 on its bound thus leaves a c1 the
@@ -425,7 +425,7 @@ Step HoldEscOnBound(const SearchContext& x, bool ac, Step cur, DiagnoseResult* r
       out->model.values[s] = s == kC0 ? e0.c0 : e0.c1;  // values hold c1 itself (ToCoordinate)
     }
     if (!out->model.free[kC1] && out->model.free[kC0]) {
-      // c1 held, c0 free: c1 + c0 >= K*kp (model.md section 10) becomes a floor on c0 when the
+      // c1 held, c0 free: c1 + c0 >= K*kp (docs/model.md section 10) becomes a floor on c0 when the
       // prior's c1 is below the ideal ratio.
       const double floor = IdealIdcPerIrmsPerThrottle(x.d.motor_type) - out->model.values[kC1];
       out->model.lower[kC0] = std::max(out->model.lower[kC0], floor);

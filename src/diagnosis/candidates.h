@@ -1,4 +1,4 @@
-// The hidden-effect candidates of `diagnose` (model.md section 9; the list in diagnose.h): which
+// The hidden-effect candidates of `diagnose` (docs/model.md section 9; the list in diagnose.h): which
 // parameter slots each adds, which a log can test, how each is fitted on top of the current
 // model and scored (F test, AICc, cross-validated gain), and the greedy forward selection that
 // adds the significant ones. Internal to src/diagnosis.

@@ -1,4 +1,4 @@
-// Diagnosis: what the first-order motor + ESC model (../shared/docs/model.md, src/model/drive.h)
+// Diagnosis: what the first-order motor + ESC model (docs/model.md, src/model/drive.h)
 // gets wrong in a measured log, which physical mechanism explains it, and how much better the
 // model predicts held-out data once that mechanism is part of it.
 //
@@ -18,7 +18,7 @@
 //     column set identifies): KE; R = Rm (+ RESC with AC columns); Io with a known torque; KT with
 //     torque + AC columns (else KT = sqrt(27/10)*KE, section 5); C1, C0 with idc_a, several
 //     throttle levels and torque or AC columns (else held at the ideal ESC of eq 56 or --esc).
-//  3. Candidate extensions (model.md section 9), each adding its own parameters:
+//  3. Candidate extensions (docs/model.md section 9), each adding its own parameters:
 //       esc_saturation                  tr_sat, sat_slope          (section 7; tr_sat profiled)
 //       speed_dependent_no_load_current io1_a_s_per_rad            (needs a known torque)
 //       winding_temperature_rise        rth_k_per_w

@@ -72,7 +72,7 @@ int TermCount(const Data& d, const std::vector<std::size_t>& rows) {
 
 // The optimised coordinate of slot s (identification/parameters.h): the ESC excess
 // s = c1 + c0 - 1.1095 for the c1 slot and the ratio f = KT/(kp*KE) for the KT slot, so that the
-// energy rules of model.md section 10 are box bounds; the value itself for every other slot.
+// energy rules of docs/model.md section 10 are box bounds; the value itself for every other slot.
 double ToCoordinate(int s, const Values& v) {
   if (s == kC1) return identification::EscExcess(v[kC1], v[kC0]);
   if (s == kKt) return v[kKe] > 0.0 ? v[kKt] / (kPacPerVllIrms * v[kKe]) : 1.0;

@@ -146,7 +146,7 @@ void ScalesAndBounds(const Prepared& p, Model* base) {
   sc[kRsupply] = rm_s;
   const double min_level = p.levels.empty() ? 1.0 : p.levels.front();
   // Physical box of identification/parameters.h (kParamTable); the KT and c1 slots are bounded as
-  // the ratio KT/(kp*KE) <= 1 and the excess c1 + c0 - 1.1095 >= 0 (model.md section 10), c0 >= 0.
+  // the ratio KT/(kp*KE) <= 1 and the excess c1 + c0 - 1.1095 >= 0 (docs/model.md section 10), c0 >= 0.
   Values lower{}, upper{};
   for (int k = 0; k < kSlotCount; ++k) {
     lower[k] = id::kParamTable[k].lower;

@@ -49,7 +49,7 @@ struct FitRows {
 // Why a log row is left out of a fit, or nullptr when the fit uses it. The rules, checked in
 // this order:
 //  1. the shaft speed must exceed min_speed_fraction of the largest logged speed (the motor is
-//     turning; below it the steady-state model of model.md section 3 does not hold) - unless
+//     turning; below it the steady-state model of docs/model.md section 3 does not hold) - unless
 //     the row's speed was not measured (speed_unknown: a DriveCalc no-load row, n = 0);
 //  2. with a throttle column, the throttle must reach min_throttle;
 //  3. the supply voltage must be positive (eq 48 needs it).
@@ -61,7 +61,7 @@ const char* RowRejection(double omega_rad_s, double omega_max_rad_s, double min_
 // Speed readings the circuit cannot produce (an optical tachometer counting a reflection twice,
 // a dropped pulse): eq 48 with the ideal ESC of eq 56 makes the speed linear in the row's known
 // values, omega = a*VDC*TR + b*IDC/TR + c*VDC (a ~ 0.675/KE, b ~ -R/(1.1095*KE), c for a throttle
-// offset: model.md sections 3, 8, 9). Fitted by least median of squares over deterministic
+// offset: docs/model.md sections 3, 8, 9). Fitted by least median of squares over deterministic
 // triples of rows (a half of the rows may be wrong), its robust scale is
 // s = 1.4826*(1 + 5/(n - 3))*sqrt(median r^2) of the relative residuals r = (omega - pred)/pred;
 // a reading is spurious when r > max(kSpuriousSpeedSigmas*s, kSpuriousSpeedMinRel): only readings
@@ -100,7 +100,7 @@ std::array<double, kMeasCount> MedianPercentScales(const logs::SteadyTable& t, c
 // The log's torque per DC ampere at its highest throttle command (>= 0.95) against a motor of
 // the label Kv at full duty: the median over those rows of Q/(KT_dc*IDC), KT_dc = 60/(2*pi*Kv).
 // At TR_eff = 1 an ESC that conserves energy has IDC = (C1 + C0)*Irms >= 1.1095*Irms (eq 57,
-// model.md section 10), and KT <= sqrt(27/10)*KE (eq 41), so Q <= KT*Irms <= KT_dc*IDC with
+// docs/model.md section 10), and KT <= sqrt(27/10)*KE (eq 41), so Q <= KT*Irms <= KT_dc*IDC with
 // KT_dc = sqrt(27/10)*KE/1.1095 = 60/(2*pi*Kv) (section 8). A ratio well above 1 is a log no
 // motor near its label can produce: the torque or current sensor's calibration, or the label.
 // NaN without torque, current, throttle or a row at >= 0.95.

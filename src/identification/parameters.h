@@ -1,9 +1,9 @@
 // The identification layer shared by `calibrate` (src/calibration) and `diagnose`
 // (src/diagnosis): the parameter table of the Brown & Chopra model with its SI names and
-// physical bounds, the reparametrisation that turns the energy rules of model.md section 10
+// physical bounds, the reparametrisation that turns the energy rules of docs/model.md section 10
 // into box bounds of the fit, and the label priors.
 //
-// Physics as constraints of the fit (model.md section 10, src/model/physics.h):
+// Physics as constraints of the fit (docs/model.md section 10, src/model/physics.h):
 //  - KE, KT, Rm > 0 and Io, RESC >= 0: box bounds (kParamTable below).
 //  - ESC energy conservation, PESC >= 0 at every throttle and current, holds exactly when
 //        c0 >= 0   and   c1 + c0 >= K*kp   (K*kp = (3/pi)*sqrt(27/20) = 1.1095, eq 56).
@@ -16,7 +16,7 @@
 // A parameter that ends on one of these bounds is reported "at bound": the data push it out of
 // the physical range, and such a fit is never "ok" (src/identification/verdict.h).
 //
-// Label priors (model.md section 10): the Kv printed on a motor is a strong prior. DriveCalc's
+// Label priors (docs/model.md section 10): the Kv printed on a motor is a strong prior. DriveCalc's
 // 8,214 measured points reproduce the stored Kv with a median ratio of 0.997 under
 // U = n/Kv + R*I; labels are printed to 2-3 digits and makers state tolerances of about 5-10 %,
 // so the prior is Gaussian on KE with a 1-sigma of kKvLabelRelSigma = 10 % of the label's KE
@@ -38,7 +38,7 @@ namespace dynosize::identification {
 
 // The parameter table: every parameter an identification fit can free, in this order. The first
 // kBaseParamCount are calibrate's model (the first-order model with the ESC's knee and dead
-// band); the others are the extensions that `diagnose` tests (model.md section 9). An array indexed by ParamIndex(p) holds
+// band); the others are the extensions that `diagnose` tests (docs/model.md section 9). An array indexed by ParamIndex(p) holds
 // one value per parameter (calibrate's result: the base ones; diagnose's models: all).
 enum class Param : int {
   kKe = 0, kKt, kRm, kIo, kResc, kC1, kC0, kTrSat, kSatSlope, kDeadband,  // base
@@ -93,7 +93,7 @@ inline constexpr ParamSpec kParamTable[kParamCount] = {
 };
 inline constexpr const ParamSpec& Spec(Param p) { return kParamTable[ParamIndex(p)]; }
 inline constexpr const char* ParamName(Param p) { return Spec(p).name; }
-// The first-order model of model.md sections 5-8 (KE, KT, Rm, Io, RESC, C1, C0): the first
+// The first-order model of docs/model.md sections 5-8 (KE, KT, Rm, Io, RESC, C1, C0): the first
 // kFirstOrderParamCount slots. The knee, slope and dead band (sections 7 and 9) complete
 // calibrate's base fit through its F tests; diagnose tests them as extensions.
 inline constexpr int kFirstOrderParamCount = 7;
@@ -108,7 +108,7 @@ struct LogContent {
   bool any_torque_known = false;  // some row has a known torque (torque column or a no-load row)
   std::size_t throttle_levels = 0;
 };
-// KT is tied to KE by the power balance KT = sqrt(27/10)*KE (model.md section 5) unless torque
+// KT is tied to KE by the power balance KT = sqrt(27/10)*KE (docs/model.md section 5) unless torque
 // and the AC columns separate it from the ESC ratio.
 inline bool TieKt(const LogContent& c) { return !(c.has_torque && c.ac); }
 // The base parameters the first-order fit frees on such a log (calibrate.h explains what each
@@ -135,7 +135,7 @@ T KtFromRatio(const T& ke, const T& ratio, MotorType type = MotorType::kBldc) {
 inline constexpr double kKvLabelRelSigma = 0.10;
 inline constexpr double kRmLabelRelSigma = 0.30;
 inline constexpr double kIoLabelRelSigma = 0.50;
-// Acceptance: a fitted Kv further than this from the label is refused (model.md section 10).
+// Acceptance: a fitted Kv further than this from the label is refused (docs/model.md section 10).
 inline constexpr double kKvLabelMaxRelDeviation = 0.25;
 
 // What the motor's label or datasheet says (--kv-label, --rm-label, --io-label/--io-label-v).
@@ -149,7 +149,7 @@ struct LabelPriors {
   bool IsValid(std::string* error) const;
 };
 
-// KE of a label Kv (model.md section 8; brushed: KE = 1/(Kv*pi/30)).
+// KE of a label Kv (docs/model.md section 8; brushed: KE = 1/(Kv*pi/30)).
 double KeFromLabelKv(double kv_rpm_per_v, MotorType type = MotorType::kBldc);
 // Kv in rpm per DC volt of a fitted KE (the inverse).
 double KvFromKe(double ke_v_s_per_rad, MotorType type = MotorType::kBldc);

@@ -125,7 +125,7 @@ std::map<std::string, std::pair<double, double>> ReadGearTable(const std::string
 
 // A gearbox's efficiency when DriveCalc's gear table has none for the motor (no gear linked,
 // or a linked gear of another ratio): the median of the table's 63 single-stage gears (0.95-
-// 0.984, 0.9 for the cheapest; README "Gearboxes").
+// 0.984, 0.9 for the cheapest; docs/model.md section 12).
 constexpr double kDefaultGearEfficiency = 0.96;
 // A linked gear-table row is the motor's gearbox when its ratio is the name's within this
 // (LMT's "6:1" is Reisenauer's 5.94:1).
@@ -190,16 +190,16 @@ void ImportMotors(const std::string& dir, ImportedDataset* out) {
     const bool brushed = LooksBrushed(name);
     // A geared motor (ratio N in its name): DriveCalc's kV, loss torques and MData speeds are
     // the output shaft's (its no-load points give n/U = kV within 1 %, and where a name or
-    // datasheet gives the motor's Kv it is N x kV: README "Gearboxes"). The catalog stores the
+    // datasheet gives the motor's Kv it is N x kV: docs/model.md section 12). The catalog stores the
     // motor's own: Kv = N*kV, loss torques /N (MvK) and /N^2 (kL, per motor rad/s), K/N; Io
     // below is unchanged by it (the same current at the same speed).
     const NameGearRatio gear = GearRatioFromMotorName(name);
     const double n = gear.ratio;
     const double kv = n * kv_db, mvk = mvk_db / n, kl = kl_db / (n * n), k = k_db / n;
-    // model.md section 8 (BLDC) / DC machine: KE from Kv; section 5: KT = sqrt(27/10)*KE (BLDC).
+    // docs/model.md section 8 (BLDC) / DC machine: KE from Kv; section 5: KT = sqrt(27/10)*KE (BLDC).
     const double ke = brushed ? KeFromKvBrushed(kv) : KeFromKvBldc(kv);
     const double kt = brushed ? ke : kPacPerVllIrms * ke;
-    // DriveCalc's loss torque MvK + kL*omega is carried by the no-load current: model.md
+    // DriveCalc's loss torque MvK + kL*omega is carried by the no-load current: docs/model.md
     // section 9, Io(omega) = (MvK + kL*omega)/KT, evaluated at the 10 V no-load speed.
     const double omega_ref = RpmToRadPerSec(kv * kIoTestVoltageV);
     const double io = (mvk + kl * omega_ref) / kt;

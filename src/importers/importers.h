@@ -37,7 +37,7 @@ void KeepAuditedProp(Json entry, const std::string& example, ImportedDataset* ou
 // shared/data/drivecalc: Motors.csv, ESC.csv, Batteries.csv, Props.csv.
 ImportedDataset ImportDriveCalc(const std::string& dir);
 
-// The gear ratio a DriveCalc motor name states (README "Gearboxes"): "<N>:1" after the start,
+// The gear ratio a DriveCalc motor name states (docs/model.md section 12): "<N>:1" after the start,
 // a space, '/', '-' or '(' ("Kontronik KIRA 650-13/6.7:1", "Feigao 28-8L 4,4:1",
 // "Multiplex Permax BL-480/6G (4,4:1)", "Hacker B50 19S-6,7:1"; decimal comma or point), or
 // "<N>/1" after a space at the end of the name with a decimal ("Mega ACn 22/10/3 4,4/1").

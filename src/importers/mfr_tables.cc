@@ -5,7 +5,7 @@
 // estimated as follows and marked so:
 //   kv_rpm_per_v  datasheet (from the motor's name)
 //   rm_dc_ohm     fitted: the DC-equivalent circuit at full throttle, V = R*I + rpm/Kv
-//                 (model.md section 2 with the ESC at 100 %), least squares over the
+//                 (docs/model.md section 2 with the ESC at 100 %), least squares over the
 //                 full-throttle rows: R = sum(I*(V - rpm/Kv))/sum(I^2). It includes the ESC and
 //                 the wiring, so it is an upper bound on the winding resistance.
 //   rm_ohm        derived: 0.7492 x rm_dc_ohm, the rms circuit of eq (48) that gives the same

@@ -24,7 +24,7 @@ struct PointRequest {
   std::optional<double> thrust_n;    // only with a prop
 };
 
-// Upper bounds of requested values (README "What dynosize promises about bad input"): far
+// Upper bounds of requested values (docs/reliability.md): far
 // beyond any electric drive, they keep every product the model forms (powers, squared speeds
 // in the torque law) finite, so that a finite request gives finite results.
 inline constexpr double kMaxRequestVdcV = 1e5;       // 100 kV

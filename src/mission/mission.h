@@ -106,7 +106,7 @@ struct MissionConstraints {
   // Propellers with static data only may fly at advance ratios J = V/(n*D) up to this.
   double max_static_advance_ratio = 0.2;
   // Full-throttle static thrust of the lift rotors over the weight, at the lowest pack voltage
-  // of the mission with the sag at that current (README "Sizing": ArduPilot's mixer gives up
+  // of the mission with the sag at that current (docs/missions.md: ArduPilot's mixer gives up
   // altitude for attitude below 2, ArduPilot PR #23512). Checked when the mission lifts the
   // vehicle on its rotors (a hover or climb segment); 0 = not checked.
   double min_thrust_to_weight = 2.0;
@@ -115,7 +115,7 @@ struct MissionConstraints {
   double max_winding_temp_c = 120.0;
   // Folding propellers (optimization/credibility.h) may lift a multirotor only when true.
   bool allow_folding_props_for_lift = false;
-  // The propeller's speed window around its data (README "Ranking and credibility"): in every
+  // The propeller's speed window around its data (docs/ranking.md): in every
   // propeller segment the speed is at least prop_below_data_factor x the low edge of the
   // propeller's valid range and at most prop_above_data_factor x its high edge
   // (catalog/prop_credibility.h, ValidRange); beyond, the data do not rank a combination, which

@@ -1,4 +1,4 @@
-// The first-order rms circuit of model.md (eqs 41, 42, 47, 48, 57 and section 7's knee with
+// The first-order rms circuit of docs/model.md (eqs 41, 42, 47, 48, 57 and section 7's knee with
 // section 9's dead band), written once for every scalar type: Drive evaluates it in doubles,
 // and calibrate's fit evaluates the same functions in dual numbers (common/dual.h) for its
 // exact Jacobians. Each function is one equation; the callers compose them. No I/O, no state.

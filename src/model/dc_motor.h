@@ -7,7 +7,7 @@
 //     KT_dc = 60/(2*pi*Kv)            [N*m/A]  (= 1/Kv in V*s/rad, so KE_dc = KT_dc)
 //     I     = Io + Q/KT_dc            (motor current; Q the shaft torque)
 //     U     = n/Kv + R*I              (motor voltage; n in rpm)
-// (model.md section 10 last paragraph: DriveCalc's 8,214 measured points reproduce the label Kv
+// (docs/model.md section 10 last paragraph: DriveCalc's 8,214 measured points reproduce the label Kv
 // under U = n/Kv + R*I.) The ESC is a lossless chopper of duty d = throttle:
 //     U = d*VDC,   IDC = d*I          (VDC*IDC = U*I)
 //

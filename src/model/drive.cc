@@ -174,7 +174,7 @@ void Drive::Flag(OperatingPoint* p, std::uint32_t limits) const {
   if (i_max > esc_.max_current_a) limits |= kLimitEscCurrent;
   if (p->pac_w > motor_.max_power_w) limits |= kLimitMotorPower;
   if (p->vdc_v > esc_.vdc_max_v) limits |= kLimitEscVoltage;
-  if (PointCreatesEnergy(*p)) limits |= kLimitCreatesEnergy;  // model.md section 10
+  if (PointCreatesEnergy(*p)) limits |= kLimitCreatesEnergy;  // docs/model.md section 10
   p->limits = limits;
 }
 

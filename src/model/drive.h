@@ -1,4 +1,4 @@
-// The combined motor + ESC model of Brown & Chopra (../shared/docs/model.md), closed form.
+// The combined motor + ESC model of Brown & Chopra (docs/model.md), closed form.
 //
 // One "drive" is a motor and the controller that feeds it. Both motor types share the
 // quasi-single-phase circuit
@@ -17,10 +17,10 @@
 //     Pmech   = Q * omega                                        (50)
 //     eta_motor = Pmech/PAC, eta_esc = PAC/PDC (53), eta_system = Pmech/PDC (13)
 //
-// ESC saturation (model.md section 7): TR_eff = TR up to tr_sat, tr_sat + sat_slope*(TR -
+// ESC saturation (docs/model.md section 7): TR_eff = TR up to tr_sat, tr_sat + sat_slope*(TR -
 // tr_sat) above it; TR_eff is used in both (47) and (57).
 //
-// Extensions of model.md section 9, used by `diagnose`. Each defaults to 0, which reproduces
+// Extensions of docs/model.md section 9, used by `diagnose`. Each defaults to 0, which reproduces
 // the first-order model above exactly (same arithmetic, same results):
 //  - throttle dead band (EscParams::deadband): the command is first mapped through the dead
 //    band, d = max(0, (TR - deadband)/(1 - deadband)), and the saturation knee is then applied
@@ -66,7 +66,7 @@
 
 namespace dynosize {
 
-// Temperature coefficient of the resistance of copper near 20 C (model.md section 9), 1/K.
+// Temperature coefficient of the resistance of copper near 20 C (docs/model.md section 9), 1/K.
 inline constexpr double kAlphaCopperPerK = 0.00393;
 
 enum class MotorType { kBldc, kBrushed };
@@ -77,7 +77,7 @@ struct MotorParams {
   double kt_nm_per_a = 0.0;     // torque constant (BLDC: per rms ampere)
   double rm_ohm = 0.0;          // winding resistance of the quasi-single-phase circuit
   double io_a = 0.0;            // no-load current (at omega = 0 when io1_a_s_per_rad != 0)
-  // Extensions (model.md section 9; 0 = the first-order model, see the header comment).
+  // Extensions (docs/model.md section 9; 0 = the first-order model, see the header comment).
   double io1_a_s_per_rad = 0.0;  // Io(omega) = io_a + io1*omega
   double rth_k_per_w = 0.0;      // winding temperature rise per watt of copper loss
   double kt_droop_per_a = 0.0;   // KT(I) = kt/(1 + kt_droop*|I|)
@@ -121,7 +121,7 @@ enum Limit : std::uint32_t {
   kLimitOverrunning = 1u << 7,       // omega above no-load speed: the load drives the motor
   kLimitThermalRunaway = 1u << 8,    // winding temperature rise without a steady state
   kLimitCreatesEnergy = 1u << 9,     // PESC < 0 or eta_motor > 1: parameters that break
-                                     // model.md section 10 (model/physics.h)
+                                     // docs/model.md section 10 (model/physics.h)
 };
 
 // Names of the set bits, in bit order ("throttle_above_one", "motor_current", ...).
@@ -187,7 +187,7 @@ class Drive {
   double ThrottleFromEffective(double throttle_effective) const;
 
   // Forward model: VDC and throttle given, the load sets the operating point.
-  // Constant torque (a hysteresis brake, model.md section 1).
+  // Constant torque (a hysteresis brake, docs/model.md section 1).
   OperatingPoint AtTorque(double vdc_v, double throttle, double torque_nm) const;
   // Fixed speed (a speed-controlled dyno).
   OperatingPoint AtSpeed(double vdc_v, double throttle, double omega_rad_s) const;

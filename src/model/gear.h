@@ -1,5 +1,5 @@
 // A gearbox between a motor and its propeller: the one place where the propeller's speed and
-// torque meet the motor's. A model of this repository (README, "Gearboxes"); model.md has no
+// torque meet the motor's. A model of this repository (docs/model.md section 12); docs/model.md has no
 // gearbox. N = gear_ratio >= 1 (motor turns per propeller turn; 1 = direct drive), eta =
 // gear_efficiency in (0, 1] (the share of the motor's shaft power that reaches the propeller):
 //
@@ -13,7 +13,7 @@
 //     KE' = N*KE,  KT' = N*eta*KT,  io1' = N*io1
 // and the same R, Io, winding heating, KT droop (KT(I) = KT'/(1 + droop*I)) and ratings (the
 // same currents flow; a current rating and a power rating on PAC do not see the gearbox).
-// KT'/KE' = eta*KT/KE <= KT/KE: the equivalent motor stays within model.md section 10 whenever
+// KT'/KE' = eta*KT/KE <= KT/KE: the equivalent motor stays within docs/model.md section 10 whenever
 // the motor does, so every rule and bound written for a direct-drive motor (the search's, the
 // evaluator's) holds for it unchanged, with the gear loss inside its PAC - Pmech.
 // The evaluator and the search fly MotorAtPropellerShaft(params, gear) (optimization/

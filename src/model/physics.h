@@ -1,4 +1,4 @@
-// Physical validity of the model's parameters and points (../shared/docs/model.md section 10):
+// Physical validity of the model's parameters and points (docs/model.md section 10):
 // the one place that decides whether an ESC, a motor, an operating point or a propeller point
 // creates energy or beats momentum theory. The fit (identification), the catalog reader, the
 // operating point (Drive::Flag) and the mission evaluator all ask these functions, so the rule

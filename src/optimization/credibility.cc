@@ -19,9 +19,9 @@ namespace {
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
 // Relative band of Rm and Io per tier of the value (pessimistic x(1 + b), optimistic /(1 + b)):
-//   measured   0.10  a 25 K winding temperature rise at +0.393 %/K (copper, model.md section 9)
+//   measured   0.10  a 25 K winding temperature rise at +0.393 %/K (copper, docs/model.md section 9)
 //   computed,  0.25  datasheets measure R and Io differently from the rms circuit (ohmmeter, Io
-//   stated         at a stated voltage; model.md section 8): an allowance
+//   stated         at a stated voltage; docs/model.md section 8): an allowance
 //   user       0.60  DriveCalc's data-base Rm is about 1.6x below a fit of DriveCalc's own
 //                    measurements (catalog/README.md)
 //   assumed    1.00  a factor of 2 either way
@@ -29,7 +29,7 @@ bool HasAssumed(const EntryBase& e, const char* key) {
   return std::find(e.assumed_keys.begin(), e.assumed_keys.end(), key) != e.assumed_keys.end();
 }
 
-// The motor's Kv: the catalog's, else from KE (model.md section 8: Kv = 0.675/(KE*pi/30) for a
+// The motor's Kv: the catalog's, else from KE (docs/model.md section 8: Kv = 0.675/(KE*pi/30) for a
 // BLDC, 1/(KE*pi/30) brushed), rpm/V.
 double MotorKvRpmPerV(const MotorEntry& motor) {
   if (motor.kv_rpm_per_v) return *motor.kv_rpm_per_v;

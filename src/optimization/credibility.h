@@ -14,7 +14,7 @@
 // propeller's shaft power (torque) at the thrust is, pointwise, in static evaluations (hover,
 // and static-only data anywhere: forward-flight tables are used as given):
 //     P' = max(f * P, P_ideal(T) / FM_cap)          P_ideal = T^1.5 / sqrt(2*rho*A)
-// (momentum theory, model.md section 10), i.e. FM' = min(FM / f, FM_cap). Below the lowest
+// (momentum theory, docs/model.md section 10), i.e. FM' = min(FM / f, FM_cap). Below the lowest
 // speed of a propeller's data the model's Reynolds correction (catalog/prop_reynolds.h, median
 // exponents) is in P already; the pessimistic and optimistic scenarios widen it with the
 // distance from the data (PropAdjustment::reynolds_fm_exp: the p90 and p10 of the law's FM
@@ -27,7 +27,7 @@
 //   user contributed,
 //   assumed
 // "Class" is the propeller's diameter class of the catalog's envelope (FmEnvelopeFor): p10/p50/
-// p90 of the median static figure of merit of UIUC's measured propellers of that class (model.md
+// p90 of the median static figure of merit of UIUC's measured propellers of that class (docs/model.md
 // section 10: 239 props, median 0.555). Manufacturer-computed data (APC PER3 blade-element
 // tables, and APC's computed coefficients in FAST-UAV) are scaled by the ratio measured/computed
 // FM of the same product: the 9 APC products UIUC measured (SF and E families) give 0.740 /
@@ -92,7 +92,7 @@ inline constexpr FmRatio kComputedFmRatio{0.7396, 0.8802, 0.9114, 9};
 inline constexpr double kMeasuredPowerBand = 0.05;
 // Switching-loss term of an ESC whose C1, C0 are the assumed ideal, in the pessimistic
 // scenario: C0 = 0.03 (at 40 % throttle eta_ESC ~ 0.444/0.474 = 94 %; Brown's thesis saw ESC
-// efficiencies as low as 65 %, model.md section 1): an allowance, not a fit.
+// efficiencies as low as 65 %, docs/model.md section 1): an allowance, not a fit.
 inline constexpr double kAssumedEscC0Pessimistic = 0.03;
 
 // How a propeller's static evaluations are adjusted in one scenario.

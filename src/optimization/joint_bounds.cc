@@ -112,7 +112,7 @@ SegmentBound SegmentPowerBound(const Mission& m, std::size_t si, const GroupPart
   // (the evaluator's prop_figure_of_merit, V_ax the inflow unless the data are static-only);
   // the scenario's power is at least P_ideal (credibility.h: raised, or capped at FM 1), so
   // P_ideal/max(1, max_figure_of_merit) bounds it in every scenario; and PDC >= Pmech when
-  // neither the motor nor the ESC can create energy (model.md section 10).
+  // neither the motor nor the ESC can create energy (docs/model.md section 10).
   if (DriveIsLossy(drive.motor(), drive.esc().c1, drive.esc().c0)) {
     const double p_ideal = IdealRotorPowerW(rb.thrust_n, parts.prop->diameter_m, m.rho_kg_m3,
                                             static_only ? 0.0 : rb.axial_airspeed_m_s);

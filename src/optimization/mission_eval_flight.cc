@@ -279,7 +279,7 @@ bool MissionEvaluator::IntegrateSegment(std::size_t si, bool stretched, double o
     seg->winding_temp_c = std::max(seg->winding_temp_c, temp_c);
     track->Check("max_winding_temp_c", s.name, temp_c, k.max_winding_temp_c, "C", false, seg);
     // Physics is the contract: a point where the ESC or the motor puts out more power than
-    // it takes in (model.md section 10; Drive::Flag sets the bit through model/physics.h)
+    // it takes in (docs/model.md section 10; Drive::Flag sets the bit through model/physics.h)
     // is never feasible, whatever the objective gains from it.
     if (op.limits & kLimitCreatesEnergy) {
       track->Check("creates_energy", s.name, CreatedEnergyRatio(op), 1.0, "", false, seg);

@@ -134,7 +134,7 @@ double ScoreLowerBound(const SearchContext& ctx, const MissionFacts& f, bool los
     // Per segment the larger of: the hover bound above, and momentum theory. A feasible point
     // has prop power >= P_ideal/max_figure_of_merit (the evaluator's prop_figure_of_merit
     // constraint; P_ideal of model/physics.h per rotor), and PDC >= Pmech when neither the
-    // motor nor the ESC can create energy (model.md section 10: KT <= sqrt(27/10)*KE, C0 >= 0,
+    // motor nor the ESC can create energy (docs/model.md section 10: KT <= sqrt(27/10)*KE, C0 >= 0,
     // C1 + C0 >= 1.1095; then eta_motor, eta_esc <= 1; a point that breaks it is infeasible,
     // creates_energy). V is the axial inflow (0 for static-only data: P_ideal rises with V).
     // (The inequalities of model/physics.h without its rounding allowance: exact here.)

@@ -91,7 +91,7 @@ CruiseSamples SampleCruise(const Mission& m, const Segment& sg, const CruiseProp
 //   its value at V_k (and rises with the mass, M3);
 // - momentum theory: a feasible point's propeller power is at least P_ideal(T, V)/FM_max (the
 //   evaluator's prop_figure_of_merit, V the axial inflow with forward-flight tables, else 0),
-//   and PDC >= Pmech when no stage creates energy (model.md section 10). P_ideal rises with T
+//   and PDC >= Pmech when no stage creates energy (docs/model.md section 10). P_ideal rises with T
 //   and V, and P_ideal(T, V)/V falls with V at a fixed T;
 // - the propeller's own data (with_prop_data, no stage creating energy): at V_k the shaft power
 //   from below at T_k (speed from below, M1; the scenario's torque there, which only rises);

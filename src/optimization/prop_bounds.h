@@ -35,7 +35,7 @@ struct CruisePropBound {
   const PropEntry* prop = nullptr;
   const PropModel* model = nullptr;
   PropAdjustment adjustment;  // the ranking scenario's (credibility.h)
-  bool lossy = false;         // DriveIsLossy: no stage creates energy (model.md section 10)
+  bool lossy = false;         // DriveIsLossy: no stage creates energy (docs/model.md section 10)
   // Also the propeller's own shaft power from its data (lossy only; a speed bisection per
   // sample, so off where a bound is read per candidate pair).
   bool with_prop_data = false;

@@ -221,7 +221,7 @@ std::vector<std::string> WriteDriveFigures(const Drive& d, const DriveFigureOpti
       return std::vector<double>{p.rpm, 100 * p.eta_motor, 100 * p.eta_esc, 100 * p.eta_system};
     });
     // Efficiencies above 100 % are drawn, not clipped: a point above the dashed
-    // 100 % line creates energy (model.md section 10) and must be seen.
+    // 100 % line creates energy (docs/model.md section 10) and must be seen.
     const double eta_max = MaxFinite(b, {1, 2, 3});
     const bool above = eta_max > 100.0;
     std::ostringstream s;

@@ -4,7 +4,7 @@
 //   idc_over_irms_vs_throttle.png  IDC/Irms vs throttle, ESC vs ideal (Figs. 28-30; eqs 56, 57, 62)
 //   efficiency_vs_rpm.png          motor, ESC and system efficiency vs rpm (Fig. 7 analogue)
 //   efficiency_map.png             system efficiency over torque and rpm with the optimum line
-// Efficiencies are never clipped: values above 100 % (parameters that create energy, model.md
+// Efficiencies are never clipped: values above 100 % (parameters that create energy, docs/model.md
 // section 10) widen the axis / colour range and are marked against a dashed 100 % line.
 #pragma once
 

@@ -11,7 +11,7 @@ DcMotor DcMotorFromCatalog(const MotorEntry& motor, const EscEntry& esc, DcBasel
   if (motor.kv_rpm_per_v) {
     m.kv_rpm_per_v = *motor.kv_rpm_per_v;
   } else {
-    // Invert model.md section 8 (KE = 0.675/(Kv*pi/30); brushed: KE = 1/(Kv*pi/30)).
+    // Invert docs/model.md section 8 (KE = 0.675/(Kv*pi/30); brushed: KE = 1/(Kv*pi/30)).
     const double k = bldc ? kVllRmsPerVdc : 1.0;
     m.kv_rpm_per_v = k / (motor.params.ke_v_s_per_rad * kRadPerSecPerRpm);
   }

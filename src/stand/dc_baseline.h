@@ -5,7 +5,7 @@
 //     KT_dc = 60/(2*pi*Kv)            [N*m/A]  (= 1/Kv in V*s/rad, so KE_dc = KT_dc)
 //     I     = Io + Q/KT_dc            (motor current; Q the shaft torque)
 //     U     = n/Kv + R*I              (motor voltage; n in rpm)
-// (model.md section 10 last paragraph: DriveCalc's 8,214 measured points reproduce the label Kv
+// (docs/model.md section 10 last paragraph: DriveCalc's 8,214 measured points reproduce the label Kv
 // under U = n/Kv + R*I.) The ESC is a lossless chopper of duty d = throttle:
 //     U = d*VDC,   IDC = d*I          (VDC*IDC = U*I)
 // For the comparison to be about the model and not the numbers, the baseline gets the numbers a
@@ -43,7 +43,7 @@ enum class DcBaselineNumbers {
 };
 
 // The baseline for a catalog motor + ESC: label Kv (the catalog's kv_rpm_per_v, else derived
-// from KE by model.md section 8) and R, Io as chosen above.
+// from KE by docs/model.md section 8) and R, Io as chosen above.
 DcMotor DcMotorFromCatalog(const MotorEntry& motor, const EscEntry& esc,
                            DcBaselineNumbers numbers = DcBaselineNumbers::kDatasheet);
 

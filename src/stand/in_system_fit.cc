@@ -24,7 +24,7 @@ constexpr double kResidualLossScale = 0.05;
 // ((TR - TR_eff)/(1 - TR_eff) divides by the distance).
 constexpr double kDeadbandMaxEffectiveThrottle = 0.95;
 
-// The datasheet motor in the catalog's rms circuit (catalog/conventions.h 1., model.md section 8).
+// The datasheet motor in the catalog's rms circuit (catalog/conventions.h 1., docs/model.md section 8).
 MotorParams RawParams(const DatasheetMotor& ds) {
   MotorParams p;
   p.ke_v_s_per_rad = KeFromKvBldc(ds.kv_rpm_per_v);
@@ -177,7 +177,7 @@ double FitMotorDeadband(const LawMotor& motor, const InSystemLaw& law) {
   for (const auto& p : motor.points) {
     if (!Usable(p)) continue;
     const double tr_eff = d.InverseLight(p.vdc_v, p.torque_nm, p.omega_rad_s).throttle;
-    // TR_eff = (TR - db)/(1 - db) (model.md section 9, Drive::EffectiveThrottle) solved for db.
+    // TR_eff = (TR - db)/(1 - db) (docs/model.md section 9, Drive::EffectiveThrottle) solved for db.
     if (tr_eff < kDeadbandMaxEffectiveThrottle) db.push_back((p.throttle - tr_eff) / (1.0 - tr_eff));
   }
   return db.empty() ? 0.0 : fit::Median(db);

@@ -30,7 +30,7 @@ struct PropPoint {
   double thrust_n = 0.0;
   double g_per_w = 0.0;
   // Figure of merit T^1.5/(P*sqrt(2*rho*A)) at the shaft power (model/physics.h; static): above 1
-  // the propeller data beat momentum theory (model.md section 10).
+  // the propeller data beat momentum theory (docs/model.md section 10).
   double figure_of_merit = 0.0;
 };
 

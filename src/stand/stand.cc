@@ -131,7 +131,7 @@ void PredictAtRpm(const StandRow& row, const Drive& drive, const DcMotor& dc,
       prop && FigureOfMerit(*thrust, q * w, prop->diameter_m(), o.rho_kg_m3) > 1.0;
   for (auto& p : out->pred[kAtMeasuredRpm]) {
     p.thrust_n = thrust;
-    if (beats_momentum) {  // model.md section 10: not a credible point
+    if (beats_momentum) {  // docs/model.md section 10: not a credible point
       p.feasible = false;
       p.limits.push_back("beats_momentum_theory");
     }

@@ -1,5 +1,5 @@
 // End-to-end: the user's own parts on top of the bundled catalog (--catalog-add, --override,
-// DYNOSIZE_CATALOG_PATH; README, "Catalog").
+// DYNOSIZE_CATALOG_PATH; docs/catalog.md).
 #include <gtest/gtest.h>
 #include <unistd.h>
 
@@ -73,7 +73,7 @@ TEST_F(CatalogAddCli, OverrideLetsTheAddedEntryWin) {
   const CliRun bundled = RunCli(pair);
   ASSERT_EQ(bundled.code, 0) << bundled.err;
   // The same numbers added again change nothing; a larger resistance draws more current at the
-  // same torque (more copper loss, model.md eq 48).
+  // same torque (more copper loss, docs/model.md eq 48).
   const CliRun same = RunCli(pair + " --catalog-add " + PaperCopy("same", "0.12") + " --override");
   ASSERT_EQ(same.code, 0) << same.err;
   EXPECT_EQ(Idc(same), Idc(bundled));

@@ -30,7 +30,7 @@ int Lines(const std::string& s) {
 // k*omega^2): p, T = 0.2 N*(rpm/1000)^2, P = 0.42 W*(rpm/1000)^3 (figure of merit 0.60 at every
 // speed); and badcat/ with the same plus an ESC that creates energy (c1 + c0 < 1.1095) and
 // "hot", T = 2 N*(rpm/1000)^2, P = 1.5 W*(rpm/1000)^3 (figure of merit 5.3: beats momentum
-// theory), which the catalog reader refuses (model.md section 10).
+// theory), which the catalog reader refuses (docs/model.md section 10).
 class StandCli : public ::testing::Test {
  protected:
   void SetUp() override {
@@ -80,7 +80,7 @@ TEST_F(StandCli, PropAtRpmJsonMatchesHandComputation) {
   EXPECT_NEAR(j["idc_a"].get<double>(), idc, 1e-9 * idc);
   EXPECT_NEAR(j["pmech_w"].get<double>(), power, 1e-9);
   EXPECT_NEAR(j["g_per_w"].get<double>(), 3.2 / kNewtonPerGramForce / (12.0 * idc), 1e-6);
-  // FM = T^1.5/(P*sqrt(2*rho*A)), A = pi*D^2/4 (momentum theory, model.md section 10).
+  // FM = T^1.5/(P*sqrt(2*rho*A)), A = pi*D^2/4 (momentum theory, docs/model.md section 10).
   const double area = kPi * 0.254 * 0.254 / 4.0;
   EXPECT_NEAR(j["figure_of_merit"].get<double>(), std::pow(3.2, 1.5) / (power * std::sqrt(2 * 1.225 * area)), 1e-9);
   EXPECT_EQ(j["prop"], "p");
@@ -123,7 +123,7 @@ TEST_F(StandCli, PropForwardAndThrustAndTable) {
 }
 
 // Propeller data that beat momentum theory (FM > 1) never reach a result: the catalog reader
-// refuses them (model.md section 10), naming the file, the entry and the rule.
+// refuses them (docs/model.md section 10), naming the file, the entry and the rule.
 TEST_F(StandCli, FigureOfMeritAboveOneIsRefusedAtLoad) {
   const CliRun j = RunCli("simulate --catalog " + (dir_ / "badcat").string() +
                           " --motor m --esc e --prop hot --vdc 12 --rpm 3000 --json");
@@ -176,7 +176,7 @@ TEST_F(StandCli, BatchRowsNamePropellers) {
   EXPECT_EQ(Lines(b.err), 1) << b.err;
 }
 
-// An ESC with c1 + c0 < 1.1095 creates energy (model.md section 10): the catalog refuses it at
+// An ESC with c1 + c0 < 1.1095 creates energy (docs/model.md section 10): the catalog refuses it at
 // load (exit 65 naming the rule), so simulate never reports such a point. (Points that create
 // energy through parameters given in code are flagged creates_energy by the model:
 // tests/model/physics_test.cc.)

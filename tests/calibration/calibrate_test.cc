@@ -36,6 +36,7 @@ double TrueValue(const SyntheticSpec& s, Param p) {
     case Param::kTrSat: return s.esc.tr_sat;
     case Param::kSatSlope: return s.esc.sat_slope;
     case Param::kDeadband: return s.esc.deadband;
+    default: break;  // diagnose's extensions: calibrate does not fit them
   }
   return 0.0;
 }

@@ -123,7 +123,7 @@ TEST(CalibratePhysics, OutlierPassIsCappedAndListed) {
   EXPECT_LE(outliers, t.rows() / 10);
 }
 
-// A throttle offset (negative dead band, model.md section 9) in the data is found and fitted.
+// A throttle offset (negative dead band, docs/model.md section 9) in the data is found and fitted.
 TEST(CalibratePhysics, ThrottleOffsetIsFitted) {
   SyntheticSpec s = DefaultSpec();
   s.esc.deadband = -0.08;

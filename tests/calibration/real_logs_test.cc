@@ -76,9 +76,9 @@ TEST(CalibrateRealLogs, TMotorAt3520MatchesDatasheetKv) {
   const auto t = logs::ReadLog(Shared() + "sjkim_mfr_motor_tables/TMotor_AT3520_550kv.csv", o);
   const CalibrationResult r = Calibrate(t);
   EXPECT_TRUE(r.converged);
-  // Datasheet 550 rpm/V. The base fit now includes the throttle offset of model.md section 9
+  // Datasheet 550 rpm/V. The base fit now includes the throttle offset of docs/model.md section 9
   // when the F test keeps it (here it does), and the offset trades with KE and the knee: the
-  // fitted Kv lands about 9 % below the label, well inside the 25 % of model.md section 10.
+  // fitted Kv lands about 9 % below the label, well inside the 25 % of docs/model.md section 10.
   constexpr double kKvRelTol = 0.10;
   EXPECT_NEAR(KvOf(r), 550.0, kKvRelTol * 550.0);
   EXPECT_GT(r.motor.io_a, 0.0);

@@ -25,7 +25,7 @@ struct SyntheticSpec {
   bool throttle_column = true;
 };
 
-// A BLDC of about 900 rpm/V with a 30 A ESC that saturates at 90 % throttle (model.md section 7).
+// A BLDC of about 900 rpm/V with a 30 A ESC that saturates at 90 % throttle (docs/model.md section 7).
 inline SyntheticSpec DefaultSpec() {
   SyntheticSpec s;
   s.motor.ke_v_s_per_rad = kVllRmsPerVdc / (900.0 * kRadPerSecPerRpm);
@@ -33,7 +33,7 @@ inline SyntheticSpec DefaultSpec() {
   s.motor.rm_ohm = 0.12;
   s.motor.io_a = 0.5;
   s.esc.resc_ohm = 0.03;
-  // A physical ESC (model.md section 10: c0 >= 0, c1 + c0 = 1.16 >= 1.1095): switching losses
+  // A physical ESC (docs/model.md section 10: c0 >= 0, c1 + c0 = 1.16 >= 1.1095): switching losses
   // of about 4 % of PAC.
   s.esc.c1 = 1.12;
   s.esc.c0 = 0.04;

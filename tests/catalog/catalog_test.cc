@@ -45,7 +45,7 @@ TEST(Catalog, ValidEntriesConvertToSi) {
   c.AddDocument(ParseJsonText(Doc(kGoodMotor), "t.json"), "t.json", &problems);
   ASSERT_TRUE(problems.empty()) << problems[0];
   const MotorEntry& m = c.motor("m1");
-  // ke from Kv by model.md section 8; kt = sqrt(27/10)*ke by section 5.
+  // ke from Kv by docs/model.md section 8; kt = sqrt(27/10)*ke by section 5.
   EXPECT_NEAR(m.params.ke_v_s_per_rad, KeFromKvBldc(1000.0), 1e-15);
   EXPECT_NEAR(m.params.kt_nm_per_a, kPacPerVllIrms * KeFromKvBldc(1000.0), 1e-15);
   EXPECT_EQ(m.assumed_keys, std::vector<std::string>{"rm_ohm"});

@@ -1,4 +1,4 @@
-// Physics at the door (model.md section 10): the catalog refuses ESCs and motors that create
+// Physics at the door (docs/model.md section 10): the catalog refuses ESCs and motors that create
 // energy and propellers that beat momentum theory inside their valid range; trust tiers; the
 // figure-of-merit envelope of measured propellers; the bundled catalog obeys all of it.
 #include "catalog/prop_credibility.h"
@@ -145,7 +145,7 @@ TEST(FmEnvelope, ClassesCoverEveryDiameter) {
     EXPECT_LT(c.p10, c.p50);
     EXPECT_LT(c.p50, c.p90);
     EXPECT_LE(c.p90, c.max);
-    EXPECT_LT(c.max, 0.8);  // model.md section 10: the largest median is 0.753
+    EXPECT_LT(c.max, 0.8);  // docs/model.md section 10: the largest median is 0.753
   }
 }
 

@@ -1,7 +1,7 @@
 // Dynamometer campaigns made by the model (src/model/drive.h) with a hidden effect of random size
 // (seeded): realistic relative noise (0.3-1 %), a few outliers, uneven coverage (not every
 // throttle at every voltage). The diagnosis tests and bench/diagnose_bench.cc hide one or two
-// model.md section 9 effects in such campaigns and require the diagnosis to find them.
+// docs/model.md section 9 effects in such campaigns and require the diagnosis to find them.
 #pragma once
 
 #include <algorithm>
@@ -83,7 +83,7 @@ inline Campaign MakeCampaign(unsigned seed, const std::vector<Cause>& effects,
   c.motor.rm_ohm = 0.08 + 0.06 * u01(rng);
   c.motor.io_a = 0.4 + 0.4 * u01(rng);
   c.esc.resc_ohm = 0.0;  // DC logs see only Rm + RESC (eq 48): held at 0, Rm carries the sum
-  // With torque the fit identifies C1, C0: a physical, slightly lossy ESC (model.md section 10:
+  // With torque the fit identifies C1, C0: a physical, slightly lossy ESC (docs/model.md section 10:
   // c0 >= 0, c1 + c0 = 1.16 > 1.1095), since the ideal ESC sits on the boundary of the fit's
   // constraint set, where a fit is "on a bound" by construction. Without torque C1, C0 are held
   // at the ideal ESC (calibrate.h): the campaign uses the ESC the fit assumes.

@@ -1,4 +1,4 @@
-// Hidden-effect tests (issue #5): campaigns made by the model with one or two model.md section 9
+// Hidden-effect tests (issue #5): campaigns made by the model with one or two docs/model.md section 9
 // effects of random size (seeded), 0.3-1 % noise, outliers and uneven coverage. The diagnosis must
 // name the cause, recover its parameter within 25 % and report a gain; on clean campaigns it must
 // report nothing in at least 95 % of the seeds.

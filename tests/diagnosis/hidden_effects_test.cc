@@ -6,7 +6,7 @@
 // entry written.
 //
 // Per seed: a clean campaign, one with the saturation knee (slope 0.3-0.7, spread evenly over the
-// seeds) and one with each other effect of model.md section 9 (random size). The default suite
+// seeds) and one with each other effect of docs/model.md section 9 (random size). The default suite
 // (HiddenEffects.*, 6 seeds, 42 campaigns) runs in seconds; HiddenEffectsLong.* runs 40 seeds
 // (280 campaigns, about a minute), labelled long and disabled by default:
 //   build/dynosize_tests --gtest_also_run_disabled_tests --gtest_filter='HiddenEffectsLong*'

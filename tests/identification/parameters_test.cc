@@ -28,7 +28,7 @@ TEST(ParameterTable, BoxesKeepTheEnergyRules) {
     EXPECT_LT(p.lower, p.upper) << p.name;
     EXPECT_GE(p.scale, 0.0) << p.name;
   }
-  // model.md section 10: KT <= kp*KE (ratio f <= 1), the ESC excess and c0 >= 0, Io does not fall
+  // docs/model.md section 10: KT <= kp*KE (ratio f <= 1), the ESC excess and c0 >= 0, Io does not fall
   // with speed; KE and Rm strictly positive.
   EXPECT_EQ(Spec(Param::kKt).upper, 1.0);
   EXPECT_EQ(Spec(Param::kC1).lower, 0.0);

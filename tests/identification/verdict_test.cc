@@ -127,7 +127,7 @@ TEST(Verdict, KvFarFromLabelFails) {
   const Verdict v = Judge(in);
   EXPECT_EQ(v.status, Status::kFailed);
   EXPECT_NEAR(Find(v, "kv_vs_label")->value, 28.0, 0.1);
-  in.kv_label_rpm_per_v = 1150.0;  // 21.7 % off: within the 25 % of model.md section 10
+  in.kv_label_rpm_per_v = 1150.0;  // 21.7 % off: within the 25 % of docs/model.md section 10
   EXPECT_TRUE(Find(Judge(in), "kv_vs_label")->passed);
 }
 
@@ -184,7 +184,7 @@ TEST(Verdict, NotConvergedFails) {
 
 TEST(Parameters, ExcessAndRatioKeepTheEnergyRules) {
   // Any point of the box s >= 0, c0 >= 0 is an ESC that cannot create energy, and f <= 1 a
-  // motor whose efficiency stays <= 1 (model.md section 10).
+  // motor whose efficiency stays <= 1 (docs/model.md section 10).
   for (double s : {0.0, 0.01, 0.5, 4.0}) {
     for (double c0 : {0.0, 0.02, 0.3, 1.0}) {
       EscParams e;
@@ -205,7 +205,7 @@ TEST(Parameters, ExcessAndRatioKeepTheEnergyRules) {
 }
 
 TEST(Parameters, LabelConversions) {
-  // model.md section 8: KE = 0.6752/(Kv*pi/30).
+  // docs/model.md section 8: KE = 0.6752/(Kv*pi/30).
   EXPECT_NEAR(KeFromLabelKv(1000.0), 0.67523723711782957 / (1000.0 * kPi / 30.0), 1e-15);
   EXPECT_NEAR(KvFromKe(KeFromLabelKv(2300.0)), 2300.0, 1e-9);
   EXPECT_NEAR(IoFromLabel(1.1095279993106997), 1.0, 1e-12);

@@ -223,7 +223,7 @@ TEST(DriveCalcGearTest, RatioFromRealNames) {
 }
 
 // On the whole data set: every name with a ratio becomes a geared entry whose Kv is N x
-// DriveCalc's kV, none is refused, and the import says how many (README "Gearboxes").
+// DriveCalc's kV, none is refused, and the import says how many (docs/model.md section 12).
 TEST(DriveCalcGearTest, TheDataSetsGearedMotors) {
   const std::string dir = DYNOSIZE_SHARED_DIR "/data/drivecalc";
   if (!std::filesystem::is_directory(dir)) GTEST_SKIP() << "no ../shared/data/drivecalc";

@@ -32,7 +32,7 @@ EscParams EscWithKneeAndDeadband() {
   return e;
 }
 
-// A 990 rpm/V outrunner (model.md section 8) with KT below the energy bound sqrt(27/10)*KE.
+// A 990 rpm/V outrunner (docs/model.md section 8) with KT below the energy bound sqrt(27/10)*KE.
 MotorParams Motor() {
   MotorParams m;
   m.ke_v_s_per_rad = 0.0065;

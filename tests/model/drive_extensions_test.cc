@@ -1,4 +1,4 @@
-// Model extensions of model.md section 9 (src/model/drive.h): each is checked against the
+// Model extensions of docs/model.md section 9 (src/model/drive.h): each is checked against the
 // equation it implements, and the closed-form and nonlinear paths against each other.
 #include <cmath>
 
@@ -26,7 +26,7 @@ MotorParams Motor() {
 EscParams Esc() {
   EscParams e;
   e.resc_ohm = 0.02;
-  e.c1 = 1.10;  // c1 + c0 = 1.13 >= 1.1095: an ESC that conserves energy (model.md section 10)
+  e.c1 = 1.10;  // c1 + c0 = 1.13 >= 1.1095: an ESC that conserves energy (docs/model.md section 10)
   e.c0 = 0.03;
   e.tr_sat = 0.9;
   e.sat_slope = 0.6;

@@ -82,7 +82,7 @@ TEST(Drive, ForwardSatisfiesCircuitAndPowerBalance) {
   EXPECT_NEAR(kVllRmsPerVdc * 7.2 * 0.6, (e.resc_ohm + m.rm_ohm) * p.irms_a + m.ke_v_s_per_rad * p.omega_rad_s,
               kClosedFormRelTol * 7.2);
   EXPECT_NEAR(p.torque_nm, 0.04, 1e-15);
-  // PESC closed form of model.md section 6 equals PDC - PAC.
+  // PESC closed form of docs/model.md section 6 equals PDC - PAC.
   const double pesc = 7.2 * p.irms_a * ((e.c1 - kIdealIdcPerIrmsPerThrottle) * 0.6 + e.c0) +
                       kPacPerVllIrms * e.resc_ohm * p.irms_a * p.irms_a;
   EXPECT_NEAR(p.pesc_w, pesc, kClosedFormRelTol * p.pdc_w);
@@ -278,7 +278,7 @@ TEST(Drive, InverseLightEqualsInverse) {
   EXPECT_GT(saturated, 50);  // the saturated branch is exercised
 }
 
-// The paper's own check (model.md section 7): EMAX 1900 KV + MultiStar 30 A at 7.2 V, torque-
+// The paper's own check (docs/model.md section 7): EMAX 1900 KV + MultiStar 30 A at 7.2 V, torque-
 // speed lines 1230 rpm apart per 10 % throttle up to 90 % and 750 rpm from 90 % to 100 %.
 TEST(PaperCheck, TorqueSpeedLineSpacingWithShippedEntries) {
   const Catalog cat = Catalog::Load(std::string(DYNOSIZE_SOURCE_DIR) + "/catalog");

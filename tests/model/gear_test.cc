@@ -71,7 +71,7 @@ TEST(GearTest, ThePropellerShaftPointIsTheMotorsPointThroughTheGear) {
   }
 }
 
-// The equivalent motor never creates energy where the motor does not (model.md section 10):
+// The equivalent motor never creates energy where the motor does not (docs/model.md section 10):
 // KT'/KE' = eta*KT/KE.
 TEST(GearTest, TheEquivalentMotorKeepsKtOverKe) {
   const MotorParams m = AMotor();

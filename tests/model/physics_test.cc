@@ -1,4 +1,4 @@
-// model/physics.h: the energy rules of model.md section 10, checked against the model itself.
+// model/physics.h: the energy rules of docs/model.md section 10, checked against the model itself.
 #include "model/physics.h"
 
 #include <gtest/gtest.h>

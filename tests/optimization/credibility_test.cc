@@ -346,7 +346,7 @@ TEST(CredibilityTest, MotorVoltageRatingFromItsCellCount) {
   }
 }
 
-// Parameters that create energy (model.md section 10) never give a feasible result.
+// Parameters that create energy (docs/model.md section 10) never give a feasible result.
 TEST(CredibilityTest, EnergyCreatingPartsAreInfeasible) {
   Combination c = OldQuadPick();
   const Mission m = QuadMission(true);

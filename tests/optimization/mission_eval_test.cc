@@ -54,7 +54,7 @@ bool Names(const MissionResult& r, const std::string& constraint) {
   return false;
 }
 
-// Issue 13 item 1: parameters that break model.md section 10 would fly on free energy; the
+// Issue 13 item 1: parameters that break docs/model.md section 10 would fly on free energy; the
 // evaluator must call such a point infeasible ("creates_energy") and never rank it.
 TEST_F(MissionEvalTest, APointThatCreatesEnergyIsNeverFeasible) {
   const Catalog cat = SmallCatalog();

@@ -95,7 +95,7 @@ inline std::string Replace(std::string text, const std::string& from, const std:
   return text.replace(at, from.size(), to);
 }
 
-// A valid mission (README, "Mission file"): one cruise and one hover segment.
+// A valid mission (docs/missions.md): one cruise and one hover segment.
 inline std::string Mission() {
   return R"({"name": "t", "vehicle": {"mass_kg": 0.75, "rotors": 4},
   "battery": {"id": "b", "cells": 4},

@@ -25,7 +25,7 @@ constexpr double kRelTol = 1e-9;
 MotorParams TestMotor() {
   MotorParams m;
   m.ke_v_s_per_rad = 0.01;
-  m.kt_nm_per_a = kPacPerVllIrms * 0.01;  // sqrt(27/10)*KE, model.md section 5
+  m.kt_nm_per_a = kPacPerVllIrms * 0.01;  // sqrt(27/10)*KE, docs/model.md section 5
   m.rm_ohm = 0.1;
   m.io_a = 0.5;
   return m;
