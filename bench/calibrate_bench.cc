@@ -1,4 +1,4 @@
-// Calibration throughput: refitting every DriveCalc motor from MData.csv (issue #4 target: all
+// Calibration throughput: refitting every DriveCalc motor from MData.csv (target: all
 // ~1,060 motors with a no-load point with rpm and >= 3 loaded points in under 1 s). The file is
 // read once outside the timed loop. Run:
 //   build-bench/calibrate_bench --benchmark_repetitions=5 --benchmark_min_time=0.2

@@ -1,4 +1,4 @@
-// Detection and false-alarm rates of `dynosize diagnose` (issue #5) over many seeded campaigns:
+// Detection and false-alarm rates of `dynosize diagnose` over many seeded campaigns:
 // for each cause and effect size (fraction of the generator's range, tests/diagnosis/campaign.h)
 // the share of campaigns where it is named first ("detected"), named at all, and its parameter
 // recovered within 25 %; for clean campaigns the share with any finding ("false_alarm"). Run:

@@ -1,5 +1,5 @@
 // Google Benchmark of the closed-form model: one operating point, and a batch over many points.
-// Target (issue #2): under 20 ns per point on one core, the batch path vectorised.
+// Target: under 20 ns per point on one core, the batch path vectorised.
 #include <benchmark/benchmark.h>
 
 #include <random>

@@ -1,4 +1,4 @@
-// `optimize` on the full bundled catalog for each example mission (issue #6, #14), and the
+// `optimize` on the full bundled catalog for each example mission, and the
 // quadcopter with its battery capacity sized: wall time, and how many combinations were
 // evaluated exactly and pruned. One iteration each (a search takes
 // seconds). Run: build/optimize_bench --benchmark_repetitions=3
@@ -67,10 +67,10 @@ void BM_OptimizeEvtol(benchmark::State& state) { RunExample(state, "evtol_lift_c
 void BM_OptimizeQuadcopterSizing(benchmark::State& state) { RunExample(state, "quadcopter_1p5kg.json", 8.0); }
 void BM_OptimizeSprayer(benchmark::State& state) { RunExample(state, "sprayer_hexacopter_25kg.json"); }
 void BM_OptimizeQuadplane(benchmark::State& state) { RunExample(state, "quadplane_2kg.json"); }
-// Issue 14's third goal: the quadplane with its capacity sized in [2, 8] Ah and the cruise
+// The quadplane with its capacity sized in [2, 8] Ah and the cruise
 // airspeed free in [14, 24] m/s (two continuous variables per combination).
 void BM_OptimizeQuadplaneSizing(benchmark::State& state) { RunExample(state, "quadplane_2kg.json", 8.0, 24.0); }
-// Issue 24: the lift+cruise examples with both groups free; with the capacity and the cruise
+// The lift+cruise examples with both groups free; with the capacity and the cruise
 // airspeed ranges too, stopped at 120 s (the goal is 30 s; "interrupted" says whether it was met).
 void BM_OptimizeQuadplaneFree(benchmark::State& state) { RunExample(state, "quadplane_2kg.json", 0, 0, true); }
 void BM_OptimizeEvtolFree(benchmark::State& state) { RunExample(state, "evtol_lift_cruise.json", 0, 0, true); }
@@ -81,7 +81,7 @@ void BM_OptimizeEvtolFreeRanges(benchmark::State& state) {
   RunExample(state, "evtol_lift_cruise.json", 8.0, 24.0, true, 120.0);
 }
 
-// Issue 14's growth goal (time per doubling of the catalog <= 2.5x): the quadcopter example on
+// Growth (goal: time per doubling of the catalog <= 2.5x): the quadcopter example on
 // the bundled catalog subsampled to 1/4, 1/2 and all of its motors (every k-th motor in id
 // order, deterministic), and with state.range(0) == 1 its propellers subsampled the same way
 // too (so that the combinations grow 4x per step instead of 2x). The ESCs and batteries are
@@ -170,7 +170,7 @@ void GrowthOf(benchmark::State& state, const char* file, bool free_groups) {
 }
 
 void BM_OptimizeQuadcopterGrowth(benchmark::State& state) { GrowthOf(state, "quadcopter_1p5kg.json", false); }
-// Issue 24: growth per doubling with both groups of the quadplane free.
+// Growth per doubling with both groups of the quadplane free.
 void BM_OptimizeQuadplaneFreeGrowth(benchmark::State& state) { GrowthOf(state, "quadplane_2kg.json", true); }
 BENCHMARK(BM_OptimizeQuadcopter)->Unit(benchmark::kSecond)->Iterations(1)->UseRealTime();
 BENCHMARK(BM_OptimizeQuadcopterSizing)->Unit(benchmark::kSecond)->Iterations(1)->UseRealTime();

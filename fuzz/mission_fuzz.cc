@@ -1,7 +1,7 @@
 // Fuzz target: the strict mission reader (mission/mission.h ReadMission), the path `evaluate`
 // and `optimize` take for their MISSION argument; a mission it accepts is then searched
 // (SearchCatalog) on a small catalog, so that inputs reach the one-group and the joint search
-// with their ranges (issue 24: the seeds in fuzz/seeds/missions/ have two free groups and
+// with their ranges (the seeds in fuzz/seeds/missions/ have two free groups and
 // capacity and airspeed ranges). The search runs under a deadline (SearchOptions::deadline):
 // it stops with the best so far, which is a result, not a finding.
 #include <chrono>

@@ -1,4 +1,4 @@
-// Fuzz target: logs::ReadLog on stand exports with the options of issue 12 item 6: format
+// Fuzz target: logs::ReadLog on stand exports with the options: format
 // detection with --drop-incomplete-rows (Tyto quoted cells, unitless ESC commands, trailer
 // rows), --decimal-comma, and a mapped table filtered by --where.
 #include "fuzz_reader.h"

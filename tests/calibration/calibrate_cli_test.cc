@@ -212,7 +212,7 @@ TEST(CalibrateCli, PropEntryFromThrustAndTorque) {
   EXPECT_EQ(Slurp(out), before);
 }
 
-// Issue 26: a log without a throttle column says so first, naming the column that looks like
+// A log without a throttle column says so first, naming the column that looks like
 // one and the arguments that read it, before any fit result or advice; in --json as the first
 // warning.
 TEST(CalibrateCli, MissingThrottleIsNamedFirst) {

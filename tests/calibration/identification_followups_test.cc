@@ -1,4 +1,4 @@
-// Issue 23 item 6 on the real logs of ../shared/data (skipped when absent): each case was
+// On the real logs of ../shared/data (skipped when absent): each case was
 // reproduced on the file before the change (the numbers in the comments are the old output).
 #include <gtest/gtest.h>
 

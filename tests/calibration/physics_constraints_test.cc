@@ -1,4 +1,4 @@
-// Physics as constraints of the calibration fit (issue 12): whatever the data ask for, no fitted
+// Physics as constraints of the calibration fit: whatever the data ask for, no fitted
 // ESC creates energy and no fitted motor exceeds unit efficiency; a fit pushed onto a bound is
 // reported as such and its verdict is never "ok"; label priors anchor KE.
 #include <gtest/gtest.h>
@@ -19,7 +19,7 @@ using testing_util::DefaultSpec;
 using testing_util::MakeSyntheticLog;
 using testing_util::SyntheticSpec;
 
-// Data made by an ESC that creates energy (c1 + c0 = 0.53, the sjkim AT2814 fit of issue 12),
+// Data made by an ESC that creates energy (c1 + c0 = 0.53, the sjkim AT2814 fit),
 // and by ideal / lossy ESCs with noise, over several seeds: the fitted ESC never has PESC < 0.
 TEST(CalibratePhysics, NoFittedEscCreatesEnergy) {
   struct Case {
@@ -137,7 +137,7 @@ TEST(CalibratePhysics, ThrottleOffsetIsFitted) {
 }
 
 // A table so small that no fold can be fitted: every fold is reported as failed and the verdict
-// is never "ok" (issue 12: "too few points to cross-validate").
+// is never "ok" ("too few points to cross-validate").
 TEST(CalibratePhysics, FoldsThatCannotBeFittedMakeTheStatusNotOk) {
   SyntheticSpec s = DefaultSpec();
   s.ac = false;  // DC with torque: 2 measured values per row, 5 free parameters

@@ -65,8 +65,8 @@ TEST(CalibrateRealLogs, DriveCalcRefitPhysicalAndBeatsBaseline) {
   std::cout << "[real] DriveCalc LOO median |err|: current " << model_i << " % (baseline " << base_i << " %), rpm "
             << model_w << " % (baseline " << base_w << " %)\n";
   EXPECT_LT(model_i, base_i);
-  EXPECT_LT(model_i, 3.0);   // issue #4 aim
-  EXPECT_LT(model_w, 1.5);   // issue #4 aim
+  EXPECT_LT(model_i, 3.0);   // aim
+  EXPECT_LT(model_w, 1.5);   // aim
 }
 
 TEST(CalibrateRealLogs, TMotorAt3520MatchesDatasheetKv) {
@@ -138,7 +138,7 @@ TEST(CalibrateRealLogs, EveryLogWithThrottleCalibratesAndFlagsBounds) {
   EXPECT_EQ(calibrated, static_cast<int>(files.size()));
 }
 
-// Issue 12, the sjkim AT2814 table: before, the fit gave c1 = 0.30, c0 = 0.23 (eta_esc 1.76 at
+// The sjkim AT2814 table: before the physical constraints, the fit gave c1 = 0.30, c0 = 0.23 (eta_esc 1.76 at
 // 15 V) and Kv 2460 against the label 1200. With physics as constraints, the label prior and
 // the throttle offset, the entry is physical, near the label and passes every check.
 TEST(CalibrateRealLogs, At2814WithLabelIsPhysicalAndOk) {

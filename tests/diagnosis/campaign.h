@@ -40,7 +40,7 @@ inline void HideEffect(Cause c, double s, double imax_a, MotorParams* m, EscPara
   switch (c) {
     case Cause::kEscSaturation:
       e->tr_sat = 0.82 + 0.06 * s;     // the knee (grid-profiled)
-      e->sat_slope = 0.7 - 0.4 * s;    // 0.7 .. 0.3 (paper: 0.61; issue 23's range)
+      e->sat_slope = 0.7 - 0.4 * s;    // 0.7 .. 0.3 (paper: 0.61)
       hidden->push_back({c, e->sat_slope});
       break;
     case Cause::kSpeedDependentNoLoadCurrent: {

@@ -1,5 +1,5 @@
 // `dynosize diagnose` end to end: a campaign with a hidden dead band written as a canonical CSV,
-// the JSON contract of issue #5, the readable report, figures and errors.
+// the JSON contract, the readable report, figures and errors.
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>

@@ -1,4 +1,4 @@
-// Hidden-effect tests (issue #5): campaigns made by the model with one or two docs/model.md section 9
+// Hidden-effect tests: campaigns made by the model with one or two docs/model.md section 9
 // effects of random size (seeded), 0.3-1 % noise, outliers and uneven coverage. The diagnosis must
 // name the cause, recover its parameter within 25 % and report a gain; on clean campaigns it must
 // report nothing in at least 95 % of the seeds.
@@ -128,7 +128,7 @@ TEST(DiagnoseTest, IndistinguishableCausesAreReportedAsAmbiguous) {
   co.torque = false;
   co.vdc_v = {14.8};
   co.props = 1;
-  // 14 rows: the outlier screen may drop at most 10 % of them (one row, issue 12), and two wrong
+  // 14 rows: the outlier screen may drop at most 10 % of them (one row), and two wrong
   // rows on this single path bend it as much as the effect does: no outliers here (the screen
   // has its own tests).
   co.outliers = 0;
@@ -158,7 +158,7 @@ TEST(DiagnoseTest, CleanCampaignsReportNothing) {
       alarms += "seed " + std::to_string(1000 + s) + ": " + Names(r) + "\n";
     }
   }
-  // Issue 12: no false alarm at all on these (deterministic) clean campaigns; the issue's
+  // No false alarm at all on these (deterministic) clean campaigns; the
   // original bound was 95 %.
   EXPECT_EQ(clean, kSeeds) << alarms;
   std::cout << "[clean campaigns] " << clean << " of " << kSeeds << " without a finding\n" << alarms;

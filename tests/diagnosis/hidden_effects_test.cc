@@ -1,4 +1,4 @@
-// The hidden-effect suite of issue 23 item 8: campaigns made by the model (campaign.h) over many
+// The hidden-effect suite: campaigns made by the model (campaign.h) over many
 // deterministic seeds, clean ones included and the saturation slope spread over 0.3-0.7. On every
 // seed the diagnosis must name nothing but the hidden effect (no false alarm, clean campaigns
 // included) and, on all but kMaxMissShare of them, name it with its parameter within kStdErrBand
@@ -60,7 +60,7 @@ std::string Names(const DiagnoseResult& r) {
 }
 
 // The share of hidden effects that may be missed or recovered outside the band: 5 %. The last
-// run (issue 23) missed 1 of 42 (default suite: seed 7005, rth 0.975 +- 0.057 for 0.785 hidden)
+// run missed 1 of 42 (default suite: seed 7005, rth 0.975 +- 0.057 for 0.785 hidden)
 // and 2 of 280 (long suite: the same, and seed 8002, rsupply 0.042 ohm at 1 % noise not found:
 // p = 0.0035 after the per-step correction). A false alarm - a finding on a clean campaign, or a
 // cause that was not hidden - is never allowed.

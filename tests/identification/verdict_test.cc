@@ -45,7 +45,7 @@ const Check* Find(const Verdict& v, const std::string& name) {
   return nullptr;
 }
 
-// Issue 23: a fit that predicts the held-out current but not the speed (heinzgerhard: 44 % rms
+// A fit that predicts the held-out current but not the speed (heinzgerhard: 44 % rms
 // speed error in-sample with optical-rpm spikes) is refused.
 TEST(Verdict, HeldOutSpeedErrorIsChecked) {
   VerdictInputs in = GoodInputs();
@@ -60,7 +60,7 @@ TEST(Verdict, HeldOutSpeedErrorIsChecked) {
   EXPECT_EQ(Judge(in).status, Status::kOk);
 }
 
-// Issue 23: refusal advice names the flag that fixes it, with the value the data show.
+// Refusal advice names the flag that fixes it, with the value the data show.
 TEST(Verdict, AdviceNamesTheEscEndPointAndTheIoLabel) {
   VerdictInputs in = GoodInputs();
   in.has_torque = true;
@@ -103,7 +103,7 @@ TEST(Verdict, KeOnBoundIsNeverOk) {
 
 TEST(Verdict, EnergyCreatingEscFails) {
   VerdictInputs in = GoodInputs();
-  in.esc.c1 = 0.30;  // the sjkim AT2814 fit of issue 12: eta_esc up to 1.76
+  in.esc.c1 = 0.30;  // the sjkim AT2814 fit: eta_esc up to 1.76
   in.esc.c0 = 0.23;
   const Verdict v = Judge(in);
   EXPECT_EQ(v.status, Status::kFailed);
@@ -133,7 +133,7 @@ TEST(Verdict, KvFarFromLabelFails) {
 
 TEST(Verdict, LargeRelativeStandardErrorIsUnidentifiable) {
   VerdictInputs in = GoodInputs();
-  in.params[2].standard_error = 318.0;  // Io = 0.5 +- 318 A (xNova, issue 12)
+  in.params[2].standard_error = 318.0;  // Io = 0.5 +- 318 A (xNova)
   const Verdict v = Judge(in);
   EXPECT_EQ(v.status, Status::kUnidentifiable);
   EXPECT_FALSE(Find(v, "rel_std_error")->passed);

@@ -302,7 +302,7 @@ TEST(CredibilityTest, ImporterEstimateCountsAsUnrated) {
   ScenarioMotorParams(Bundled().motor("dc_m_56"), m, &estimated, &excluded);
   EXPECT_FALSE(estimated);
   EXPECT_FALSE(excluded);
-  // Issue 13: the 40 g, 1964 Kv motor (rated 275 W from its mass by the importer) flew the
+  // The 40 g, 1964 Kv motor (rated 275 W from its mass by the importer) flew the
   // eVTOL at 42 A rms and 8 % throttle; the current law holds it near 14 A.
   const MotorEntry& small = Bundled().motor("dc_m_223");
   m.constraints.estimate_unrated_motors = true;

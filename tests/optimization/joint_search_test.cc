@@ -262,7 +262,7 @@ TEST_F(JointSearchTest, MaxEnduranceTwoFreeGroupsEqualExhaustiveEvaluation) {
   ExpectTopThreeOfExhaustive(cat, m, all, lift, pusher);
 }
 
-// Issue 24's property test: missions drawn from a seeded generator over the tiny catalog, with two
+// Property test: missions drawn from a seeded generator over the tiny catalog, with two
 // free groups, or two free and a fixed one, with and without a capacity range and a free cruise
 // airspeed, min_energy or max_endurance. Each search equals exhaustive evaluation (top 3, or all
 // feasible when fewer, bit for bit) or is refused with one line; none crashes. The first drawn

@@ -54,7 +54,7 @@ bool Names(const MissionResult& r, const std::string& constraint) {
   return false;
 }
 
-// Issue 13 item 1: parameters that break docs/model.md section 10 would fly on free energy; the
+// Parameters that break docs/model.md section 10 would fly on free energy; the
 // evaluator must call such a point infeasible ("creates_energy") and never rank it.
 TEST_F(MissionEvalTest, APointThatCreatesEnergyIsNeverFeasible) {
   const Catalog cat = SmallCatalog();
@@ -274,7 +274,7 @@ TEST_F(MissionEvalTest, TheCapacitySearchFindsTheBestCapacity) {
 namespace dynosize {
 namespace {
 
-// Issue 23 item 3 at the evaluator: the quadplane example with its pick, flown with and without
+// The quadplane example with its pick, flown with and without
 // the stopped lift rotors' drag area. The cruise's thrust rises by exactly 1/2*rho*V^2*Cd*A
 // (the pusher's thrust, what its propeller is solved for), and its shaft power and energy rise
 // with it (the same pusher, more load). Uses the bundled catalog.
@@ -321,7 +321,7 @@ TEST(MissionEvalCruiseDragTest, TheQuadplaneCruiseCarriesTheStoppedRotorsDrag) {
 namespace dynosize {
 namespace {
 
-// Issue 23 item 4 at the evaluator: a geared motor of the small catalog (dc_m_1600, Hacker A20
+// A geared motor of the small catalog (dc_m_1600, Hacker A20
 // with a 4:1 gearbox of efficiency 0.975) hovers with its propeller turning at the propeller's
 // own speed (its data give the hover thrust there), the motor at 4 x that speed, and the gear
 // loss is in the energy: the same combination with a loss-free gearbox (efficiency 1) draws

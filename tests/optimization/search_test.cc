@@ -832,7 +832,7 @@ TEST_F(SearchTest, InfeasibleMissionSaysWhichConstraintAndByHowMuch) {
   EXPECT_NE(cli.out.find("(by "), std::string::npos) << cli.out;
 }
 
-// Issue 23 item 7: outputs that agree with themselves. A result that cannot fly its mission
+// Outputs that agree with themselves. A result that cannot fly its mission
 // shows no credible value (its objective is what it flew before it broke a limit), a design
 // that cannot hover has no hover endurance, and a range's end that cannot fly is null.
 TEST_F(SearchTest, OutputsAgreeWithThemselves) {

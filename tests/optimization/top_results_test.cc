@@ -1,4 +1,4 @@
-// Issue 24, items 3 and 5: the top N as distinct designs (each with its alternatives) against
+// The top N as distinct designs (each with its alternatives) against
 // exhaustive evaluation on the small catalog, one free group and two; and a search stopped by
 // its stop flag or deadline, which returns the best found so far with a proven bound.
 #include "optimization/top_results.h"

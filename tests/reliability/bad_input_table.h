@@ -1,4 +1,4 @@
-// The bad-input table: every input dynosize reads, broken in every way the issue lists (issue 7),
+// The bad-input table: every input dynosize reads, broken in every way we know of,
 // each row with the exit code and the words the one-line refusal must contain.
 //
 // A row writes `files` (name -> bytes) into a fresh folder, runs `dynosize ARGS` there and

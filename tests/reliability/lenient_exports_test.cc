@@ -1,4 +1,4 @@
-// Thrust-stand exports are lenient only where their real quirks demand it (issue 7): empty
+// Thrust-stand exports are lenient only where their real quirks demand it: empty
 // cells of asynchronous sensors and ESC arming rows are dropped, and every dropped row is
 // counted per reason and reported; text in a number stays an error. The canonical format
 // refuses the same empty cell.

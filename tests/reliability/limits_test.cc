@@ -1,4 +1,4 @@
-// Pathological inputs are refused quickly with a clear message (issue 7, item 6). The big
+// Pathological inputs are refused quickly with a clear message. The big
 // files are sparse (truncate(2)): they cost no disk and read as NUL bytes. Speed and memory of
 // large valid inputs are measured by bench/limits_bench.cc.
 #include <gtest/gtest.h>

@@ -1,4 +1,4 @@
-// No lost data (issue 7, item 5): a write killed at any moment leaves the earlier file whole,
+// No lost data: a write killed at any moment leaves the earlier file whole,
 // and runs that add entries to the same catalog at the same time all land.
 //
 // Kill moments are drawn from seeded generators; each test also checks that some kills did

@@ -1,4 +1,4 @@
-// Numerical guards (issue 7, item 4): at the edges of the accepted ranges the model still
+// Numerical guards: at the edges of the accepted ranges the model still
 // gives finite results, printed as numbers (text) or checked JSON - never "nan" or "inf" - and
 // a result is either a success or an infeasible point with its violated limits named.
 #include <gtest/gtest.h>
