@@ -1,6 +1,5 @@
 // dynosize as a library: the one header a program built against the installed package includes
-// (find_package(dynosize CONFIG) and target dynosize::dynosize; README, "dynosize as a C++
-// library"). It brings in the public API by area; each header states its own rules and cites
+// (find_package(dynosize CONFIG) and target dynosize::dynosize; docs/library.md). It brings in the public API by area; each header states its own rules and cites
 // docs/model.md. Every module header is installed too (<dynosize/model/drive.h> can also be named
 // as "model/drive.h"), for a program that needs one area only.
 //
@@ -23,6 +22,7 @@
 #include "model/drive.h"
 #include "optimization/credibility.h"
 #include "optimization/mission_eval.h"
+#include "optimization/objective_range.h"
 #include "optimization/search.h"
 #include "prop/prop_model.h"
 #include "report/sweep_report.h"
