@@ -55,7 +55,7 @@ std::string OptimizeText(const Mission& mission, const OptimizeOptions& o, const
   out << mission.name << " (" << o.mission << "): objective " << ObjectiveTypeName(mission.objective.type)
       << (mission.objective.segment.empty() ? "" : " ('" + mission.objective.segment + "')")
       << (mission.objective.ranking == DataScenario::kAsGiven ? ", ranked on the data as given"
-                                                              : ", ranked on the credible value (README: Ranking)")
+                                                              : ", ranked on the credible value (docs/ranking.md)")
       << (o.variants ? "; every combination listed" : "; each result a different design (motor and propeller)")
       << "\n";
   out << s.combinations << " combinations: " << s.searched << " evaluated exactly, " << s.pruned

@@ -1,6 +1,6 @@
 // A mission: the vehicle without its propulsion, the air, the battery to use, the design
-// constraints, the objective and the flight segments. Read from a JSON file (README, "Mission
-// files") by a strict reader: unknown keys, wrong types, out-of-range values and inconsistent
+// constraints, the objective and the flight segments. Read from a JSON file (docs/missions.md) by a strict
+// reader: unknown keys, wrong types, out-of-range values and inconsistent
 // choices are DataError (exit 65) naming file, JSON path, value and rule.
 //
 // All values SI inside (kg, m, s, W, N*m, rad/s); rpm only at the JSON edge ("rpm" keys).
