@@ -28,20 +28,6 @@ using namespace search_internal;
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
-// A result that breaks min_hover_throttle or prop_below_data (possibly among others) says
-// nothing about a dominated ESC, whose higher throttle, or mass and so speed, may meet it (R5).
-bool FailsMinHoverThrottle(const MissionResult& r) {
-  for (const Violation& v : r.violations) {
-    if (v.constraint == "min_hover_throttle" || v.constraint == "prop_below_data") return true;
-  }
-  return false;
-}
-
-bool Dominates(const EscEntry& a, const EscEntry& b) {
-  return EscMassKg(a) <= EscMassKg(b) && a.params.resc_ohm <= b.params.resc_ohm &&
-         a.params.max_current_a >= b.params.max_current_a && a.params.vdc_max_v >= b.params.vdc_max_v;
-}
-
 // Stage 5: the candidate pairs best bound first, each pair's ESCs with R5, every combination
 // not pruned scored exactly.
 // Worker threads kept for a whole search: Start hands every thread the same job, Wait returns
@@ -206,7 +192,7 @@ void BranchAndBound::RealEscs(const std::vector<int>& rated, Combination* c, con
   for (int e : rated) {
     bool skip = false;
     for (const auto& d : done) {
-      if (d.second && Dominates(escs[d.first], escs[e])) { skip = true; break; }
+      if (d.second && EscDominates(escs[d.first], escs[e])) { skip = true; break; }
     }
     if (skip) {
       o->pruned.Add("esc_dominated", 1);
@@ -218,7 +204,7 @@ void BranchAndBound::RealEscs(const std::vector<int>& rated, Combination* c, con
     if (MissionResult w; eval.DataWindowRefuses(true, &w)) {  // R12, before a solve
       const bool above = w.violations[0].constraint == "prop_above_data";
       o->pruned.Add(above ? "prop_above_data" : "prop_below_data", 1);
-      done.emplace_back(e, !FailsMinHoverThrottle(w));  // below: a heavier ESC may meet it
+      done.emplace_back(e, RulesOutDominatedEscs(w));  // below: a heavier ESC may meet it
       continue;
     }
     MissionResult r = eval.Solve(threshold, false, false, true);
@@ -228,7 +214,7 @@ void BranchAndBound::RealEscs(const std::vector<int>& rated, Combination* c, con
       continue;
     }
     ++o->searched;
-    done.emplace_back(e, r.feasible ? !(r.score < threshold) : !FailsMinHoverThrottle(r));
+    done.emplace_back(e, r.feasible ? !(r.score < threshold) : RulesOutDominatedEscs(r));
     if (r.feasible) {
       top->Add(KeyOf(*c, top->distinct_designs()), r.score);
       o->results.emplace_back(*c, std::move(r));

@@ -16,6 +16,23 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 
 }  // namespace
 
+// Rule R5 (docs/search.md#r5).
+bool EscDominates(const EscEntry& a, const EscEntry& b) {
+  return EscMassKg(a) <= EscMassKg(b) && a.params.resc_ohm <= b.params.resc_ohm &&
+         a.params.max_current_a >= b.params.max_current_a && a.params.vdc_max_v >= b.params.vdc_max_v;
+}
+
+// A result that breaks min_hover_throttle or prop_below_data (possibly among others) says
+// nothing about a dominated ESC, whose higher throttle, or mass and so speed, may meet it; nor
+// does a best infeasible point of a range (another point may fail only those two).
+bool RulesOutDominatedEscs(const MissionResult& r) {
+  if (!r.violations_everywhere) return false;
+  for (const Violation& v : r.violations) {
+    if (v.constraint == "min_hover_throttle" || v.constraint == "prop_below_data") return false;
+  }
+  return true;
+}
+
 // Rule R1 (docs/search.md#r1): an ESC rated below the pack's full-charge voltage fails
 // esc_voltage whatever else is chosen; R0 (docs/search.md#r0): an ESC the catalog excludes.
 EscTable BuildEscTable(const Catalog& cat, const std::vector<BatteryOption>& options) {

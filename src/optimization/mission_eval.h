@@ -185,6 +185,11 @@ struct MissionResult {
   // Solve(cutoff_score) proved that the score cannot beat the cutoff and stopped early; the
   // other fields are then incomplete.
   bool bounded_out = false;
+  // Infeasible at every value of the free continuous variables through a violation listed (the
+  // mission has none free, or an early exit proved one over the whole range: the others listed
+  // may hold at the point reported only); false for the best infeasible point of a search over a
+  // range. Only then may the search skip the ESCs a failing one dominates (docs/search.md#r5).
+  bool violations_everywhere = false;
   double objective = 0.0;   // in objective_unit; larger is better for max_*, smaller for min_*
   std::string objective_unit;
   double score = 0.0;       // to minimise: -objective for max_*, objective for min_energy

@@ -182,6 +182,7 @@ MissionResult MissionEvaluator::SolveContinuous(double cutoff_score, bool explai
   if (free.size() > 1) return SolveManyFree(free, cutoff_score, explain, decide);
   // decide: a feasible point that beats the cutoff answers the caller (Solve).
   MissionResult r = WithEndurance(VarsAt(free, nullptr), decide ? cutoff_score : -kInf);
+  r.violations_everywhere = !r.feasible;  // nothing free: the one point is the whole problem
   if (decide && r.feasible && r.score < cutoff_score) return r;
   if (explain) {
     Summarize(&r);

@@ -257,6 +257,7 @@ bool MissionEvaluator::DataWindowRefuses(bool below_too, MissionResult* out) con
         r.min_slack = (above ? limit - rpm : rpm - limit) / limit;
         r.feasible = false;
         r.score = kInf;
+        r.violations_everywhere = true;  // at every capacity and airspeed (above)
         *out = std::move(r);
         return true;
       }
@@ -293,8 +294,9 @@ bool MissionEvaluator::HoverOrWeightRefuses(bool with_weight, MissionResult* out
   // The range's ends (the mission's own capacity, as Run flies it, without a range).
   const double c_lo = !m_.battery.capacity_ah ? 0.0 : m_.battery.capacity_ah->lo;
   const double c_hi = !m_.battery.capacity_ah ? 0.0 : capacity_free ? m_.battery.capacity_ah->hi : c_lo;
-  auto refuse = [&](double capacity_ah, Violation v) {
+  auto refuse = [&](double capacity_ah, Violation v, bool everywhere) {
     MissionResult r;
+    r.violations_everywhere = everywhere;
     const BatteryPack pack(PackAt(capacity_ah));
     r.capacity_ah = pack.capacity_ah();
     r.total_mass_kg = fixed_mass_kg_ + pack.mass_kg();
@@ -311,7 +313,7 @@ bool MissionEvaluator::HoverOrWeightRefuses(bool with_weight, MissionResult* out
   if (fixed_mass_kg_ + BatteryMassKg(c_lo) > m_t) {  // every capacity's vehicle is too heavy
     const double mass_kg = fixed_mass_kg_ + BatteryMassKg(c_lo);
     const double limit = m_.constraints.min_thrust_to_weight;
-    return refuse(c_lo, Violation{"min_thrust_to_weight", "", limit * m_t / mass_kg, limit, "", true});
+    return refuse(c_lo, Violation{"min_thrust_to_weight", "", limit * m_t / mass_kg, limit, "", true}, true);
   }
   if (!(m_.constraints.min_hover_throttle > 0)) return false;
   // C_h: the range's top, or the lightest capacity of the range whose vehicle weighs at least
@@ -344,7 +346,9 @@ bool MissionEvaluator::HoverOrWeightRefuses(bool with_weight, MissionResult* out
     AdjustPropEvaluation(gd.prop_adj, gd.parts.prop->diameter_m, &ev);
     const double throttle = gd.drive.Inverse(v_full, ev.torque_nm, omega).throttle;
     if (throttle < m_.constraints.min_hover_throttle) {
-      return refuse(c_h, Violation{"min_hover_throttle", s.name, throttle, m_.constraints.min_hover_throttle, "", true});
+      // Above C_h (with_weight) the vehicle fails min_thrust_to_weight instead, not this one.
+      return refuse(c_h, Violation{"min_hover_throttle", s.name, throttle, m_.constraints.min_hover_throttle, "", true},
+                    c_h >= c_hi);
     }
   }
   return false;
@@ -394,9 +398,17 @@ bool MissionEvaluator::EarlyExit(double cutoff_score, bool explain, bool search,
     if (!airspeed_free) {
       MissionResult r0 = Run(v0, 0.0, true);
       if (!r0.feasible) {
-        if (!capacity_free) { *out = std::move(r0); return true; }
+        if (!capacity_free) {
+          r0.violations_everywhere = true;  // nothing free: the one point
+          *out = std::move(r0);
+          return true;
+        }
         for (const Violation& v : r0.violations) {
-          if (RisesWithMass(v.constraint)) { *out = r0; return true; }
+          if (RisesWithMass(v.constraint)) {  // it holds at every capacity
+            *out = r0;
+            out->violations_everywhere = true;
+            return true;
+          }
         }
       }
     }
@@ -437,7 +449,11 @@ bool MissionEvaluator::EarlyExit(double cutoff_score, bool explain, bool search,
     for (const Segment& s : m_.segments) airspeed_free |= s.type == SegmentType::kCruise && s.airspeed_m_s.free();
     const bool nothing_free = !airspeed_free && !capacity_free;
     const MissionResult r0 = Run(v0, 0.0, nothing_free);
-    if (nothing_free && !r0.feasible) { *out = std::move(r0); return true; }  // nothing free: this is the answer
+    if (nothing_free && !r0.feasible) {  // nothing free: this is the answer
+      *out = std::move(r0);
+      out->violations_everywhere = true;
+      return true;
+    }
     if (r0.segments.size() == m_.segments.size()) {
       double e_lb = 0;
       for (std::size_t i = 0; i < m_.segments.size(); ++i) {

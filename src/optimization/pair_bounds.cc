@@ -121,8 +121,10 @@ double MomentumPowerW(const Mission& m, const RotorLoad& ld, double diameter_m, 
 // given the hover bound's per-rotor electrical power pdc_lb at the lightest mass (R11: a floor
 // of it that holds for a class of motors). loads: PairLoads at that mass.
 double ScoreLowerBound(const SearchContext& ctx, const MissionFacts& f, bool lossy, const PropEntry& prop,
-                       const PropModel& model, std::size_t option, PairLoads* loads, double pdc_lb) {
+                       const PropModel& model, std::size_t option, PairLoads* loads, double pdc_lb,
+                       double capacity_top_ah) {
   const BatteryOption& bo = ctx.options[option];
+  const double budget_ah = capacity_top_ah > 0 ? capacity_top_ah : bo.capacity_hi_ah;
   const Mission& m = *ctx.mission;
   if (f.hover.empty()) return -kInf;
   auto p_lb_of = [&](std::size_t si) {
@@ -182,7 +184,7 @@ double ScoreLowerBound(const SearchContext& ctx, const MissionFacts& f, bool los
     // over [reserve, 1] (coulomb counting): the energy budget.
     const double e_other = e_other_of(static_cast<std::size_t>(m.objective.segment_index));
     const double p_stretch = p_lb_of(static_cast<std::size_t>(m.objective.segment_index));
-    const double e_max = bo.ocv_integral_v * AhToCoulomb(bo.capacity_hi_ah);
+    const double e_max = bo.ocv_integral_v * AhToCoulomb(budget_ah);
     return BudgetScore(f.t_fixed_max, e_max, e_other, p_stretch);
   }
   const std::size_t ist = static_cast<std::size_t>(std::max(0, m.objective.segment_index));
@@ -199,10 +201,32 @@ double ScoreLowerBound(const SearchContext& ctx, const MissionFacts& f, bool los
       p_stretch = std::max(p_stretch, MomentumPowerW(m, loads->At(ist, false, st.airspeed_m_s.lo), prop.diameter_m, table_data));
     }
     const double e_other = e_other_of(ist);
-    const double e_max = bo.ocv_integral_v * AhToCoulomb(bo.capacity_hi_ah);
+    const double e_max = bo.ocv_integral_v * AhToCoulomb(budget_ah);
     return BudgetScore(f.t_fixed_max, e_max, e_other, p_stretch);
   }
   return -kInf;
+}
+
+// Rule R13 (docs/search.md#r13): R4's budget piece by piece over a capacity range.
+std::vector<double> CapacityPieceEdges(const SearchContext& ctx, const MissionFacts& f, std::size_t option) {
+  const BatteryOption& bo = ctx.options[option];
+  const Mission& m = *ctx.mission;
+  std::vector<double> edges;
+  if (!(bo.capacity_hi_ah > bo.capacity_lo_ah) || !(bo.capacity_lo_ah > 0) ||
+      m.objective.type != ObjectiveType::kMaxEndurance || f.hover.empty()) {
+    return edges;
+  }
+  const double ratio = bo.capacity_hi_ah / bo.capacity_lo_ah;
+  edges.push_back(bo.capacity_lo_ah);
+  for (int j = 1; j < kCapacityPieces; ++j) edges.push_back(bo.capacity_lo_ah * std::pow(ratio, double(j) / kCapacityPieces));
+  edges.push_back(bo.capacity_hi_ah);
+  return edges;
+}
+
+double PackMassLowerBoundKg(const BatteryOption& bo, double capacity_ah) {
+  const double span_ah = bo.capacity_hi_ah - bo.capacity_lo_ah;
+  if (!(span_ah > 0) || capacity_ah <= bo.capacity_lo_ah) return bo.mass_lo_kg;
+  return bo.mass_lo_kg + (1.0 - 1e-9) * (bo.mass_hi_kg - bo.mass_lo_kg) * (capacity_ah - bo.capacity_lo_ah) / span_ah;
 }
 
 // Rule R12 (docs/search.md#r12): a hover below the propeller's data window fails

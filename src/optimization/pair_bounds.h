@@ -108,8 +108,24 @@ double MomentumPowerW(const Mission& m, const RotorLoad& ld, double diameter_m, 
 // drive is lossy or not (DriveIsLossy: only then momentum theory bounds the power drawn),
 // given the hover bound's per-rotor electrical power pdc_lb at the lightest mass (R11: a floor
 // of it that holds for a class of motors). loads: PairLoads at that mass.
+// capacity_top_ah > 0: the energy budget of max_endurance is taken at that capacity instead of
+// the option's largest (R13: a piece of the capacity range whose packs are at most that large,
+// with loads and pdc_lb at the piece's lightest vehicle).
 double ScoreLowerBound(const SearchContext& ctx, const MissionFacts& f, bool lossy, const PropEntry& prop,
-                       const PropModel& model, std::size_t option, PairLoads* loads, double pdc_lb);
+                       const PropModel& model, std::size_t option, PairLoads* loads, double pdc_lb,
+                       double capacity_top_ah = 0.0);
+
+// R13 (docs/search.md#r13): R4's max_endurance budget over the option's capacity range in
+// kCapacityPieces pieces [C_j, C_j+1] (geometric): on a piece every pack holds at most C_j+1's
+// charge and the vehicle weighs at least its mass with C_j's pack, so R4's bound at that mass
+// with C_j+1's budget bounds the piece; the pair's bound is the least over the pieces. The
+// pieces' capacities, ascending (kCapacityPieces + 1 of them from capacity_lo_ah to
+// capacity_hi_ah; empty when the option has no range or the objective no budget).
+inline constexpr int kCapacityPieces = 4;
+std::vector<double> CapacityPieceEdges(const SearchContext& ctx, const MissionFacts& f, std::size_t option);
+// The option's pack mass at capacity_ah of its range, shrunk by 1e-9 against rounding (a lower
+// bound of the pack's true mass there: the mass is proportional to the capacity, PackAt).
+double PackMassLowerBoundKg(const BatteryOption& bo, double capacity_ah);
 
 // R12 as a mass floor: a feasible combination hovers at least at the window's bottom w_min, so
 // (M1) each rotor's hover thrust is at least T(w_min), and the vehicle's mass at least the mass

@@ -91,17 +91,77 @@ long long CombinationsPerMotor(const SearchContext& ctx) {
   return n * static_cast<long long>(ctx.catalog->props().size());
 }
 
-// Stage 4 for one pair of a set-up motor whose option R1 lets through and whose propeller
-// passed R0: false with its rule counted (its option's ESCs), or true with *c (R4's bound).
-bool PairCandidate(const SearchContext& ctx, const MissionFacts& f, const MotorSetup& s, std::size_t pi, std::size_t o,
-                   PairLoads* loads, Candidate* c, RuleCounts* pruned) {
+namespace {
+
+// R3 at one vehicle mass (the mass of `loads`) for every ESC class of option o: the least
+// per-rotor hover PDC bound of the classes that pass, per DriveIsLossy (has[k] false when no
+// class of that kind passes), the least Irms bound over them; the rule of the last class
+// refused in *why. R4's bound is nondecreasing in pdc_lb for a given DriveIsLossy (every term
+// is, and so is each correctly rounded operation): the least over the classes is the bound at
+// the least pdc_lb of each kind (ScoreLowerBound reads the class only through DriveIsLossy).
+struct ClassPowers {
+  double pdc_min[2] = {kInf, kInf};  // [DriveIsLossy]
+  bool has[2] = {false, false};
+  double irms_lb = kInf;
+  const char* why = "throttle";
+  bool Any() const { return has[0] || has[1]; }
+};
+ClassPowers HoverPowersOfClasses(const SearchContext& ctx, const MotorSetup& s, std::size_t o, double omega_lb,
+                                 double q_lb) {
   const MissionConstraints& k = ctx.mission->constraints;
   const double margin = 1.0 - k.current_margin;
   const BatteryOption& bo = ctx.options[o];
   const MotorParams& mp = s.mp;
+  const std::vector<EscClass>& classes = ctx.escs.classes;
+  ClassPowers out;
+  for (std::size_t ci = 0; ci < classes.size(); ++ci) {
+    if (ctx.escs.per_option[o][ci].empty()) continue;
+    const Drive& d = s.ideal[ci];
+    const Drive::InverseCurrents hi_v = d.InverseLight(bo.v_full, q_lb, omega_lb);
+    const double t_max = ThrottleLimit(k, classes[ci].tr_sat);
+    if (hi_v.throttle > t_max) { out.why = "throttle"; continue; }
+    if (hi_v.irms_a > mp.max_current_a * margin) { out.why = "motor_current"; continue; }
+    if (k.enforce_motor_power && d.InverseAcPower(bo.v_full, hi_v, q_lb, omega_lb) > mp.max_power_w) {
+      out.why = "motor_power";
+      continue;
+    }
+    const double pdc_lo_v = bo.v_cut * d.InverseLight(bo.v_cut, q_lb, omega_lb).idc_a;  // (59), as Inverse
+    const double pdc_lb = std::max(0.0, std::min(bo.v_full * hi_v.idc_a, pdc_lo_v));  // (59), as Inverse
+    const int lossy = DriveIsLossy(mp, classes[ci].c1, classes[ci].c0) ? 1 : 0;
+    if (!out.has[lossy] || pdc_lb < out.pdc_min[lossy]) {
+      out.has[lossy] = true;
+      out.pdc_min[lossy] = pdc_lb;
+    }
+    out.irms_lb = std::min(out.irms_lb, hi_v.irms_a);
+  }
+  return out;
+}
+
+// R4's bound from the classes' least powers (the least over the two kinds), with the budget of
+// capacity_top_ah (0: the option's largest).
+double BoundOfPowers(const SearchContext& ctx, const MissionFacts& f, const ClassPowers& p, std::size_t pi,
+                     std::size_t o, PairLoads* loads, double capacity_top_ah) {
+  const PropEntry& prop = ctx.catalog->props()[pi];
+  double bound = kInf;
+  for (int lossy = 0; lossy < 2; ++lossy) {
+    if (!p.has[lossy]) continue;
+    bound = std::min(bound, ScoreLowerBound(ctx, f, lossy == 1, prop, *ctx.models[pi], o, loads, p.pdc_min[lossy],
+                                            capacity_top_ah));
+  }
+  return bound;
+}
+
+}  // namespace
+
+// Stage 4 for one pair of a set-up motor whose option R1 lets through and whose propeller
+// passed R0: false with its rule counted (its option's ESCs), or true with *c (R4's bound).
+bool PairCandidate(const SearchContext& ctx, const MissionFacts& f, const MotorSetup& s, std::size_t pi, std::size_t o,
+                   PairLoads* loads, Candidate* c, RuleCounts* pruned) {
+  const BatteryOption& bo = ctx.options[o];
   const long long per_pair = ctx.escs.rated[o];
-  const double mass_lb = std::max(VehicleMassKg(ctx, bo.mass_lo_kg, s.mass_kg, ctx.grids[pi].mass_kg, ctx.escs.min_mass_kg[o]),
-                                  WindowMassFloorKg(ctx, f, static_cast<int>(pi)));  // R12's floor
+  const double window_floor_kg = WindowMassFloorKg(ctx, f, static_cast<int>(pi));  // R12's floor
+  const double mass_lb =
+      std::max(VehicleMassKg(ctx, bo.mass_lo_kg, s.mass_kg, ctx.grids[pi].mass_kg, ctx.escs.min_mass_kg[o]), window_floor_kg);
   double omega_lb = 0, q_lb = 0;
   loads->Reset(mass_lb);
   if (const char* rule = PropRule(ctx, f, s.mass_kg, s.w_nl[o], pi, o, loads, &omega_lb, &q_lb)) {
@@ -110,49 +170,34 @@ bool PairCandidate(const SearchContext& ctx, const MissionFacts& f, const MotorS
   }
   // Rule R3 (docs/search.md#r3): throttle, Irms and PAC from below with a zero-resistance ESC
   // at the full-charge voltage (M2); above a limit no ESC and no capacity can fix it.
-  // R3 and R4 over the ESC classes: the pair survives if any class can. R4's bound is
-  // nondecreasing in pdc_lb for a given DriveIsLossy (every term is, and so is each correctly
-  // rounded operation): the least over the classes is the bound at the least pdc_lb of each
-  // kind (ScoreLowerBound reads the class only through DriveIsLossy).
-  bool any = false;
-  double irms_lb = kInf;
-  double pdc_min[2] = {kInf, kInf};  // [DriveIsLossy]
-  bool has[2] = {false, false};
-  const char* why = "throttle";
-  const std::vector<EscClass>& classes = ctx.escs.classes;
-  for (std::size_t ci = 0; ci < classes.size(); ++ci) {
-    if (ctx.escs.per_option[o][ci].empty()) continue;
-    const Drive& d = s.ideal[ci];
-    const Drive::InverseCurrents hi_v = d.InverseLight(bo.v_full, q_lb, omega_lb);
-    const double t_max = ThrottleLimit(k, classes[ci].tr_sat);
-    if (hi_v.throttle > t_max) { why = "throttle"; continue; }
-    if (hi_v.irms_a > mp.max_current_a * margin) { why = "motor_current"; continue; }
-    if (k.enforce_motor_power && d.InverseAcPower(bo.v_full, hi_v, q_lb, omega_lb) > mp.max_power_w) {
-      why = "motor_power";
-      continue;
-    }
-    const double pdc_lo_v = bo.v_cut * d.InverseLight(bo.v_cut, q_lb, omega_lb).idc_a;  // (59), as Inverse
-    const double pdc_lb = std::max(0.0, std::min(bo.v_full * hi_v.idc_a, pdc_lo_v));  // (59), as Inverse
-    const int lossy = DriveIsLossy(mp, classes[ci].c1, classes[ci].c0) ? 1 : 0;
-    if (!has[lossy] || pdc_lb < pdc_min[lossy]) {
-      has[lossy] = true;
-      pdc_min[lossy] = pdc_lb;
-    }
-    any = true;
-    irms_lb = std::min(irms_lb, hi_v.irms_a);
-  }
-  if (!any) {
-    pruned->Add(why, per_pair);
+  // R3 and R4 over the ESC classes: the pair survives if any class can.
+  const ClassPowers lightest = HoverPowersOfClasses(ctx, s, o, omega_lb, q_lb);
+  if (!lightest.Any()) {
+    pruned->Add(lightest.why, per_pair);
     return false;
   }
-  const PropEntry& prop = ctx.catalog->props()[pi];
-  double bound = kInf;
-  for (int lossy = 0; lossy < 2; ++lossy) {
-    if (!has[lossy]) continue;
-    bound = std::min(bound, ScoreLowerBound(ctx, f, lossy == 1, prop, *ctx.models[pi], o, loads, pdc_min[lossy]));
+  double bound = BoundOfPowers(ctx, f, lightest, pi, o, loads, 0.0);
+  // Rule R13 (docs/search.md#r13): the budget piece by piece over a capacity range; a piece
+  // where R3 refuses every class holds no feasible point (its mass is a lower bound, M2, M3).
+  if (const std::vector<double> edges = CapacityPieceEdges(ctx, f, o); !edges.empty() && bound < kInf) {
+    double least = kInf;
+    for (std::size_t j = 0; j + 1 < edges.size(); ++j) {
+      ClassPowers p = lightest;
+      if (j > 0) {
+        loads->Reset(std::max(VehicleMassKg(ctx, PackMassLowerBoundKg(bo, edges[j]), s.mass_kg, ctx.grids[pi].mass_kg,
+                                            ctx.escs.min_mass_kg[o]),
+                              window_floor_kg));
+        double w = 0, q = 0;
+        HoverGridPointFromBelow(f, ctx.grids[pi], loads, &w, &q);
+        p = HoverPowersOfClasses(ctx, s, o, w, q);
+        if (!p.Any()) break;  // heavier pieces only need more (M1-M3)
+      }
+      least = std::min(least, BoundOfPowers(ctx, f, p, pi, o, loads, edges[j + 1]));
+    }
+    bound = std::max(bound, least);
   }
   if (std::isnan(bound)) bound = -kInf;  // no bound (the order needs a number)
-  *c = Candidate{bound, s.motor, static_cast<int>(pi), static_cast<int>(o), irms_lb};
+  *c = Candidate{bound, s.motor, static_cast<int>(pi), static_cast<int>(o), lightest.irms_lb};
   return true;
 }
 
@@ -164,14 +209,23 @@ double PropOnlyBound(const SearchContext& ctx, const MissionFacts& f, std::size_
                      const MotorLossFloor& loss, PairLoads* loads) {
   const BatteryOption& bo = ctx.options[o];
   const PropGrid& g = ctx.grids[pi];
-  loads->Reset(VehicleMassKg(ctx, bo.mass_lo_kg, motor_kg, g.mass_kg, ctx.escs.min_mass_kg[o]));
-  double omega_lb = 0, q_lb = 0;
-  HoverGridPointFromBelow(f, g, loads, &omega_lb, &q_lb);
-  const double pac_floor_w =
-      omega_lb * q_lb + loss.copper_w_per_nm2 * q_lb * q_lb + loss.no_load_torque_nm * omega_lb;  // physics.h
-  const double b = ScoreLowerBound(ctx, f, true, ctx.catalog->props()[pi], *ctx.models[pi], o, loads,
-                                   kKeyRoundingAllowance * pac_floor_w);
-  return std::isnan(b) ? -kInf : b;
+  auto key_at = [&](double pack_kg, double capacity_top_ah) {
+    loads->Reset(VehicleMassKg(ctx, pack_kg, motor_kg, g.mass_kg, ctx.escs.min_mass_kg[o]));
+    double omega_lb = 0, q_lb = 0;
+    HoverGridPointFromBelow(f, g, loads, &omega_lb, &q_lb);
+    const double pac_floor_w =
+        omega_lb * q_lb + loss.copper_w_per_nm2 * q_lb * q_lb + loss.no_load_torque_nm * omega_lb;  // physics.h
+    const double b = ScoreLowerBound(ctx, f, true, ctx.catalog->props()[pi], *ctx.models[pi], o, loads,
+                                     kKeyRoundingAllowance * pac_floor_w, capacity_top_ah);
+    return std::isnan(b) ? -kInf : b;
+  };
+  const double whole = key_at(bo.mass_lo_kg, 0.0);
+  // R13 (docs/search.md#r13): the same key piece by piece over a capacity range.
+  const std::vector<double> edges = CapacityPieceEdges(ctx, f, o);
+  if (edges.empty()) return whole;
+  double least = kInf;
+  for (std::size_t j = 0; j + 1 < edges.size(); ++j) least = std::min(least, key_at(PackMassLowerBoundKg(bo, edges[j]), edges[j + 1]));
+  return std::max(whole, least);
 }
 
 // Every (propeller R0 lets through, option) with R11's key for the motors of class c, sorted

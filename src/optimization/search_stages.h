@@ -79,6 +79,12 @@ struct EscTable {
 };
 EscTable BuildEscTable(const Catalog& cat, const std::vector<BatteryOption>& options);
 
+// R5 (esc_table.cc, docs/search.md#r5): a dominates b (no heavier, no more resistance, no lower
+// current or voltage rating; the caller compares ESCs of one class), and whether an infeasible
+// result of the search's solve with a lets the search skip the ESCs a dominates.
+bool EscDominates(const EscEntry& a, const EscEntry& b);
+bool RulesOutDominatedEscs(const MissionResult& infeasible);
+
 // The drive of a class with no ESC resistance: a lower bound of every member's throttle,
 // currents and power at a point (M2, docs/search.md#m2).
 inline EscParams ZeroResistanceEsc(const EscClass& c) {

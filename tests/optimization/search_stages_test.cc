@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <limits>
 #include <map>
@@ -272,6 +273,55 @@ TEST_F(SearchStagesTest, CandidatesRemoveOnlyInfeasiblePairsAndBoundTheScore) {
   for (const char* objective : {"max_endurance", "min_energy"}) {
     std::map<std::string, long long> pruned_by;
     EXPECT_GT(ExpectOnlyInfeasiblePairsRemoved(cat, StageQuadFor(objective), &pruned_by), 0) << objective;
+  }
+}
+
+// R13 against the exact evaluator: with a capacity range (max_endurance), stage 4's pair bound
+// and R11's key, each taken piece by piece over the range, are at or below every feasible score
+// (compared without tolerance), and a pair is removed only when no ESC can fly it. The pieces
+// must also tighten the bound: the mean relative gap between the best feasible score of a pair
+// and its bound stays below max_gap (measured on the small catalog with 4 pieces: 0.53 over
+// [2, 6] Ah and 0.96 over [1.5, 9] Ah; with R4's budget of the whole range, 0.88 and 1.76).
+TEST_F(SearchStagesTest, CapacityPieceBoundsAreBelowEveryFeasibleScore) {
+  const Catalog cat = SmallCatalog();
+  struct Range {
+    double lo, hi, max_gap;
+  };
+  for (const Range& range : {Range{2.0, 6.0, 0.7}, Range{1.5, 9.0, 1.3}}) {
+    const double lo = range.lo, hi = range.hi;
+    Json j = ParseJsonText(kStageQuad, "quad");
+    j["battery"]["capacity_ah"] = {lo, hi};
+    const Mission m = ParseMission(j, "quad");
+    std::map<std::string, long long> pruned_by;
+    ExpectOnlyInfeasiblePairsRemoved(cat, m, &pruned_by);
+    SearchContext ctx;
+    PrepareStages(m, cat, &ctx);
+    const CandidateList all = BuildCandidates(ctx, 1);
+    double gap_sum = 0;
+    int pairs = 0, keys = 0;
+    for (const Candidate& cand : all.candidates) {
+      const BatteryOption& bo = ctx.options[cand.option];
+      const MotorEntry& mo = cat.motors()[cand.motor];
+      const double key = PropellerKeyBound(ctx, cand.prop, cand.option, cand.motor);
+      double best = kInfinity;
+      for (const EscEntry& e : cat.escs()) {
+        const Combination c{&mo, &e, &cat.props()[cand.prop], bo.entry, bo.cells};
+        const MissionResult r = MissionEvaluator(m, c).Solve();
+        if (!r.feasible) continue;
+        best = std::min(best, r.score);
+        if (DriveIsLossy(ScenarioMotorParams(mo, m, nullptr, nullptr), e.params.c1, e.params.c0)) {
+          ++keys;
+          EXPECT_LE(key, r.score) << lo << "-" << hi << " Ah: " << mo.id << " " << e.id << " " << c.prop->id;
+        }
+      }
+      if (!std::isfinite(best)) continue;
+      ++pairs;
+      gap_sum += (best - cand.bound) / std::fabs(best);
+    }
+    ASSERT_GT(pairs, 3) << lo << "-" << hi << " Ah";
+    EXPECT_GT(keys, 3) << lo << "-" << hi << " Ah";
+    EXPECT_LT(gap_sum / pairs, range.max_gap) << lo << "-" << hi << " Ah";
+    std::printf("R13 over [%g, %g] Ah: %d pairs, mean relative gap %.3f\n", lo, hi, pairs, gap_sum / pairs);
   }
 }
 
