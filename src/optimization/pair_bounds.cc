@@ -182,8 +182,14 @@ double ScoreLowerBound(const SearchContext& ctx, const MissionFacts& f, bool los
   if (f.stretch_is_hover) {
     // Terminal energy = integral of V*I dt <= integral of OCV*I dt = Q*integral of OCV(s) ds
     // over [reserve, 1] (coulomb counting): the energy budget.
-    const double e_other = e_other_of(static_cast<std::size_t>(m.objective.segment_index));
-    const double p_stretch = p_lb_of(static_cast<std::size_t>(m.objective.segment_index));
+    // The stretch holds the hover's thrust throughout, so when no stage can create energy its
+    // power is also at least momentum theory's N*P_ideal(T)/max_figure_of_merit + P_avionics
+    // (the evaluator's prop_figure_of_merit, as for the other segments; static: V = 0). The
+    // one bound of a propeller whose grid is not monotone (no R2 point).
+    const std::size_t ist = static_cast<std::size_t>(m.objective.segment_index);
+    const double e_other = e_other_of(ist);
+    double p_stretch = p_lb_of(ist);
+    if (lossy) p_stretch = std::max(p_stretch, MomentumPowerW(m, loads->At(ist, false, 0.0), prop.diameter_m, false));
     const double e_max = bo.ocv_integral_v * AhToCoulomb(budget_ah);
     return BudgetScore(f.t_fixed_max, e_max, e_other, p_stretch);
   }
