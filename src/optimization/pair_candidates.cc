@@ -176,25 +176,23 @@ bool PairCandidate(const SearchContext& ctx, const MissionFacts& f, const MotorS
     pruned->Add(lightest.why, per_pair);
     return false;
   }
-  double bound = BoundOfPowers(ctx, f, lightest, pi, o, loads, 0.0);
-  // Rule R13 (docs/search.md#r13): the budget piece by piece over a capacity range; a piece
-  // where R3 refuses every class holds no feasible point (its mass is a lower bound, M2, M3).
-  if (const std::vector<double> edges = CapacityPieceEdges(ctx, f, o); !edges.empty() && bound < kInf) {
-    double least = kInf;
-    for (std::size_t j = 0; j + 1 < edges.size(); ++j) {
-      ClassPowers p = lightest;
-      if (j > 0) {
-        loads->Reset(std::max(VehicleMassKg(ctx, PackMassLowerBoundKg(bo, edges[j]), s.mass_kg, ctx.grids[pi].mass_kg,
-                                            ctx.escs.min_mass_kg[o]),
-                              window_floor_kg));
-        double w = 0, q = 0;
-        HoverGridPointFromBelow(f, ctx.grids[pi], loads, &w, &q);
-        p = HoverPowersOfClasses(ctx, s, o, w, q);
-        if (!p.Any()) break;  // heavier pieces only need more (M1-M3)
-      }
-      least = std::min(least, BoundOfPowers(ctx, f, p, pi, o, loads, edges[j + 1]));
+  // Rule R13 (docs/search.md#r13): over a capacity range the budget piece by piece (each piece's
+  // bound is at least R4's over the whole range, which is then not needed); a piece where R3
+  // refuses every class holds no feasible point (its mass is a lower bound, M2, M3).
+  const std::vector<double> edges = CapacityPieceEdges(ctx, f, o);
+  double bound = edges.empty() ? BoundOfPowers(ctx, f, lightest, pi, o, loads, 0.0) : kInf;
+  for (std::size_t j = 0; j + 1 < edges.size(); ++j) {
+    ClassPowers p = lightest;
+    if (j > 0) {
+      loads->Reset(std::max(VehicleMassKg(ctx, PackMassLowerBoundKg(bo, edges[j]), s.mass_kg, ctx.grids[pi].mass_kg,
+                                          ctx.escs.min_mass_kg[o]),
+                            window_floor_kg));
+      double w = 0, q = 0;
+      HoverGridPointFromBelow(f, ctx.grids[pi], loads, &w, &q);
+      p = HoverPowersOfClasses(ctx, s, o, w, q);
+      if (!p.Any()) break;  // heavier pieces only need more (M1-M3)
     }
-    bound = std::max(bound, least);
+    bound = std::min(bound, BoundOfPowers(ctx, f, p, pi, o, loads, edges[j + 1]));
   }
   if (std::isnan(bound)) bound = -kInf;  // no bound (the order needs a number)
   *c = Candidate{bound, s.motor, static_cast<int>(pi), static_cast<int>(o), lightest.irms_lb};
@@ -219,13 +217,12 @@ double PropOnlyBound(const SearchContext& ctx, const MissionFacts& f, std::size_
                                      kKeyRoundingAllowance * pac_floor_w, capacity_top_ah);
     return std::isnan(b) ? -kInf : b;
   };
-  const double whole = key_at(bo.mass_lo_kg, 0.0);
-  // R13 (docs/search.md#r13): the same key piece by piece over a capacity range.
+  // R13 (docs/search.md#r13): over a capacity range the same key piece by piece.
   const std::vector<double> edges = CapacityPieceEdges(ctx, f, o);
-  if (edges.empty()) return whole;
+  if (edges.empty()) return key_at(bo.mass_lo_kg, 0.0);
   double least = kInf;
   for (std::size_t j = 0; j + 1 < edges.size(); ++j) least = std::min(least, key_at(PackMassLowerBoundKg(bo, edges[j]), edges[j + 1]));
-  return std::max(whole, least);
+  return least;
 }
 
 // Every (propeller R0 lets through, option) with R11's key for the motors of class c, sorted
