@@ -224,7 +224,9 @@ std::vector<double> CapacityPieceEdges(const SearchContext& ctx, const MissionFa
   }
   const double ratio = bo.capacity_hi_ah / bo.capacity_lo_ah;
   edges.push_back(bo.capacity_lo_ah);
-  for (int j = 1; j < kCapacityPieces; ++j) edges.push_back(bo.capacity_lo_ah * std::pow(ratio, double(j) / kCapacityPieces));
+  for (int j = 1; j < kCapacityPieces; ++j) {
+    edges.push_back(bo.capacity_lo_ah * std::pow(ratio, double(j) / kCapacityPieces));
+  }
   edges.push_back(bo.capacity_hi_ah);
   return edges;
 }

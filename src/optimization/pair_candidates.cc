@@ -160,8 +160,8 @@ bool PairCandidate(const SearchContext& ctx, const MissionFacts& f, const MotorS
   const BatteryOption& bo = ctx.options[o];
   const long long per_pair = ctx.escs.rated[o];
   const double window_floor_kg = WindowMassFloorKg(ctx, f, static_cast<int>(pi));  // R12's floor
-  const double mass_lb =
-      std::max(VehicleMassKg(ctx, bo.mass_lo_kg, s.mass_kg, ctx.grids[pi].mass_kg, ctx.escs.min_mass_kg[o]), window_floor_kg);
+  const double mass_lb = std::max(
+      VehicleMassKg(ctx, bo.mass_lo_kg, s.mass_kg, ctx.grids[pi].mass_kg, ctx.escs.min_mass_kg[o]), window_floor_kg);
   double omega_lb = 0, q_lb = 0;
   loads->Reset(mass_lb);
   if (const char* rule = PropRule(ctx, f, s.mass_kg, s.w_nl[o], pi, o, loads, &omega_lb, &q_lb)) {
@@ -221,7 +221,9 @@ double PropOnlyBound(const SearchContext& ctx, const MissionFacts& f, std::size_
   const std::vector<double> edges = CapacityPieceEdges(ctx, f, o);
   if (edges.empty()) return key_at(bo.mass_lo_kg, 0.0);
   double least = kInf;
-  for (std::size_t j = 0; j + 1 < edges.size(); ++j) least = std::min(least, key_at(PackMassLowerBoundKg(bo, edges[j]), edges[j + 1]));
+  for (std::size_t j = 0; j + 1 < edges.size(); ++j) {
+    least = std::min(least, key_at(PackMassLowerBoundKg(bo, edges[j]), edges[j + 1]));
+  }
   return least;
 }
 

@@ -11,7 +11,7 @@
 //   4. BuildCandidates   (pair_candidates.cc; how a pair is bounded: pair_bounds.cc,
 //                        segmentwise_bound.cc) every (motor, propeller, battery option) pair
 //                        that survives R0, R2, R3, R6, R7, with a lower bound of its score (R4,
-//                        R11); the search itself uses CandidateStream (candidate_stream.cc),
+//                        R11, R13); the search itself uses CandidateStream (candidate_stream.cc),
 //                        which bounds a pair only when it may be drawn;
 //   5. BranchAndBound    (branch_and_bound.cc) the pairs best bound first (CandidateStream),
 //                        per ESC class R9 (hover throttle from above, per ESC), R10 (segment by

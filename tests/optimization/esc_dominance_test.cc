@@ -106,7 +106,7 @@ TEST_F(EscDominanceTest, NoDominatedEscIsFeasibleWhereTheSkipApplies) {
         for (const int cells : {3, 4}) {
           std::vector<MissionResult> search(cat.escs().size()), full(cat.escs().size());
           for (std::size_t e = 0; e < cat.escs().size(); ++e) {
-            const Combination c{&mo, &cat.escs()[e], &p, &cat.battery("dc_b_361"), cells};
+            const Combination c{&mo, &cat.escs()[e], &p, &cat.battery("dc_b_361"), cells, {}};
             const MissionEvaluator ev(m, c);
             search[e] = ev.Solve(kInf, false, false, true);  // as RealEscs solves before a threshold
             full[e] = ev.Solve(kInf, false);

@@ -307,7 +307,7 @@ TEST_F(SearchStagesTest, CapacityPieceBoundsAreBelowEveryFeasibleScore) {
       const double key = PropellerKeyBound(ctx, cand.prop, cand.option, cand.motor);
       double best = kInfinity;
       for (const EscEntry& e : cat.escs()) {
-        const Combination c{&mo, &e, &cat.props()[cand.prop], bo.entry, bo.cells};
+        const Combination c{&mo, &e, &cat.props()[cand.prop], bo.entry, bo.cells, {}};
         const MissionResult r = MissionEvaluator(m, c).Solve();
         if (!r.feasible) continue;
         best = std::min(best, r.score);
@@ -347,7 +347,7 @@ TEST_F(SearchStagesTest, HoverStretchMomentumBoundHoldsWithoutTheGrid) {
                                                                   m.vehicle.avionics_power_w);
     if (cand.bound > avionics_only) ++above_avionics;
     for (const EscEntry& e : cat.escs()) {
-      const Combination c{&cat.motors()[cand.motor], &e, &cat.props()[cand.prop], bo.entry, bo.cells};
+      const Combination c{&cat.motors()[cand.motor], &e, &cat.props()[cand.prop], bo.entry, bo.cells, {}};
       const MissionResult r = MissionEvaluator(m, c).Solve();
       if (!r.feasible) continue;
       ++feasible;
