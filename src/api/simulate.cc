@@ -167,7 +167,10 @@ BatchResult SimulateBatch(const Catalog& catalog, const Drive& drive, const std:
 void CheckBatchColumns(const BatchColumns& in, const std::string& source) {
   std::size_t first = in.n;
   const auto scan = [&](const BatchColumn& c, auto in_range) {
-    if (c) first = std::min(first, FirstOutOfRange(c.data, c.broadcast ? std::min<std::size_t>(1, first) : first, in_range));
+    if (!c || first == 0) return;
+    const std::size_t len = c.broadcast ? 1 : first;  // a broadcast value fails at point 0
+    const std::size_t bad = FirstOutOfRange(c.data, len, in_range);
+    if (bad < len) first = bad;
   };
   scan(in.vdc_v, RequestVdcInRange);
   scan(in.throttle, RequestThrottleInRange);
