@@ -145,10 +145,19 @@ py::dict Simulate(const std::string& motor_id, const std::string& esc_id, const 
   const dynosize::EscEntry& esc = cat.esc(esc_id);
   const auto size = static_cast<py::ssize_t>(n);
   py::dict out;
+  // The number columns are the rows of one C-contiguous (k, n) block, each returned as its own
+  // 1-D array (a view that keeps the block alive): one allocation instead of 16 to 18. Freed and
+  // allocated again call after call, one block of this size is reused by the C library's
+  // allocator, where 16 separate ones are handed back to the kernel and every page of them is
+  // faulted in again (docs/python.md, "Performance").
+  const py::ssize_t count = prop.empty() ? 16 : 18;
+  py::array_t<double> block({count, size});
+  double* next = block.mutable_data();
   const auto number = [&](const char* key) {
-    py::array_t<double> a(size);
-    out[key] = a;
-    return a.mutable_data();
+    double* column = next;
+    next += n;
+    out[key] = py::array_t<double>({size}, {static_cast<py::ssize_t>(sizeof(double))}, column, block);
+    return column;
   };
   dynosize::PointColumns c;
   c.vdc_v = number("vdc_v");
@@ -170,8 +179,11 @@ py::dict Simulate(const std::string& motor_id, const std::string& esc_id, const 
   py::array_t<bool> saturated(size), feasible(size);
   c.saturated = saturated.mutable_data();
   c.feasible = feasible.mutable_data();
-  std::unique_ptr<std::uint32_t[]> codes(new std::uint32_t[n]);  // Limit bits, named below once per code
-  c.limits = codes.get();
+  // The Limit bits, named below once per distinct code: scratch kept by the thread from call to
+  // call (never returned).
+  static thread_local std::vector<std::uint32_t> codes;
+  codes.resize(n);
+  c.limits = codes.data();
   dynosize::api::PropColumns pc;
   std::unique_ptr<bool[]> beats;
   if (!prop.empty()) {
@@ -198,26 +210,43 @@ py::dict Simulate(const std::string& motor_id, const std::string& esc_id, const 
   // makes the point infeasible (as the CLI's JSON).
   py::array limits(py::dtype("O"), std::vector<py::ssize_t>{size});
   auto* lim = static_cast<PyObject**>(limits.mutable_data());
-  std::unordered_map<std::uint64_t, py::str> names;
-  std::uint64_t last_key = ~std::uint64_t{0};
-  PyObject* last_name = nullptr;
+  // Each name is looked up by its code in a table (the Limit bits are 10, model/drive.h; the
+  // propeller's beats_momentum_theory is one more), and a reference per point is added in bulk
+  // after the loop: an increment per point would chain every store on one reference count.
+  constexpr std::uint32_t kCodes = dynosize::kLimitCreatesEnergy << 1;
+  std::vector<py::object> texts(2 * kCodes);  // null until a point has the code
+  std::vector<Py_ssize_t> uses(2 * kCodes, 0);
+  std::uint32_t last_key = ~std::uint32_t{0};
+  PyObject* last = nullptr;
+  Py_ssize_t run = 0;  // points of `last` since the key changed
   for (std::size_t i = 0; i < n; ++i) {
     const bool beat = beats && beats[i];
     if (beat) c.feasible[i] = false;
-    const std::uint64_t key = (static_cast<std::uint64_t>(beat) << 32) | codes[i];
+    const std::uint32_t key = codes[i] + (beat ? kCodes : 0u);
     if (key != last_key) {
-      auto it = names.find(key);
-      if (it == names.end()) {
+      if (last != nullptr) uses[last_key] += run;
+      run = 0;
+      if (!texts[key]) {
         std::string joined;
         for (const auto& name : dynosize::api::BatchLimitNames(codes[i], beat)) joined += (joined.empty() ? "" : ";") + name;
-        it = names.emplace(key, py::str(joined)).first;
+        texts[key] = py::str(joined);
       }
       last_key = key;
-      last_name = it->second.ptr();
+      last = texts[key].ptr();
     }
-    Py_XDECREF(lim[i]);
-    Py_INCREF(last_name);
-    lim[i] = last_name;
+    Py_XDECREF(lim[i]);  // NULL in a new object array
+    lim[i] = last;
+    ++run;
+  }
+  if (last != nullptr) uses[last_key] += run;
+  for (std::uint32_t k = 0; k < 2 * kCodes; ++k) {
+    if (uses[k] == 0) continue;
+    PyObject* text = texts[k].ptr();
+#if PY_VERSION_HEX >= 0x03090000
+    Py_SET_REFCNT(text, Py_REFCNT(text) + uses[k]);
+#else
+    for (Py_ssize_t r = 0; r < uses[k]; ++r) Py_INCREF(text);
+#endif
   }
   out["saturated"] = saturated;
   out["feasible"] = feasible;

@@ -108,13 +108,14 @@ def test_bad_arrays_one_clear_line(catalog):
 
 
 def test_large_batch_is_written_in_place(catalog):
-    # More points than one chunk of the batch, every key one contiguous array of its own.
+    # More points than one chunk of the batch, every key a contiguous, writeable 1-D array (the
+    # numbers are rows of one block, docs/python.md "Performance").
     rng = np.random.default_rng(3)
     n = 5000
     got = dynosize.simulate(motor=MOTOR, esc=ESC, vdc_v=rng.uniform(6, 20, n), torque_nm=rng.uniform(0, 0.1, n),
                             rpm=rng.uniform(0, 20000, n), catalog=catalog)
     for key in POINT_KEYS:
-        assert got[key].shape == (n,) and got[key].flags.c_contiguous and got[key].flags.owndata, key
+        assert got[key].shape == (n,) and got[key].flags.c_contiguous and got[key].flags.writeable, key
     assert got["feasible"].dtype == bool and got["limits"].dtype == object
     assert set(got["limits"][~got["feasible"]]) >= {"throttle_above_one", "esc_voltage"}
     assert (got["limits"][got["feasible"]] == "").all()
@@ -122,4 +123,7 @@ def test_large_batch_is_written_in_place(catalog):
     fwd = dynosize.simulate(motor=MOTOR, esc=ESC, vdc_v=got["vdc_v"], throttle=np.clip(got["throttle"], 0, 1),
                             rpm=got["rpm"], catalog=catalog)
     ok = (got["throttle"] >= 0) & (got["throttle"] <= 1)
+    # 1e-9: the inverse and the forward model round a dozen operations differently (1e-15 each).
     assert fwd["torque_nm"][ok] == pytest.approx(got["torque_nm"][ok], rel=1e-9, abs=1e-12)
+    got["pdc_w"][:] = 0.0  # a column written in place leaves its neighbours alone
+    assert (got["idc_a"] != 0).any() and (got["pac_w"] != 0).any()
