@@ -211,43 +211,36 @@ py::dict Simulate(const std::string& motor_id, const std::string& esc_id, const 
   py::array limits(py::dtype("O"), std::vector<py::ssize_t>{size});
   auto* lim = static_cast<PyObject**>(limits.mutable_data());
   // Each name is looked up by its code in a table (the Limit bits are 10, model/drive.h; the
-  // propeller's beats_momentum_theory is one more), and a reference per point is added in bulk
-  // after the loop: an increment per point would chain every store on one reference count.
+  // propeller's beats_momentum_theory is one more): a first pass counts the points per code, the
+  // names are made for the codes present, and a second pass stores one pointer per point without
+  // a branch; the references are added in bulk (an increment per point would chain every store
+  // on one reference count).
   constexpr std::uint32_t kCodes = dynosize::kLimitCreatesEnergy << 1;
-  std::vector<py::object> texts(2 * kCodes);  // null until a point has the code
   std::vector<Py_ssize_t> uses(2 * kCodes, 0);
-  std::uint32_t last_key = ~std::uint32_t{0};
-  PyObject* last = nullptr;
-  Py_ssize_t run = 0;  // points of `last` since the key changed
   for (std::size_t i = 0; i < n; ++i) {
-    const bool beat = beats && beats[i];
-    if (beat) c.feasible[i] = false;
-    const std::uint32_t key = codes[i] + (beat ? kCodes : 0u);
-    if (key != last_key) {
-      if (last != nullptr) uses[last_key] += run;
-      run = 0;
-      if (!texts[key]) {
-        std::string joined;
-        for (const auto& name : dynosize::api::BatchLimitNames(codes[i], beat)) joined += (joined.empty() ? "" : ";") + name;
-        texts[key] = py::str(joined);
-      }
-      last_key = key;
-      last = texts[key].ptr();
+    if (beats && beats[i]) {
+      c.feasible[i] = false;
+      codes[i] += kCodes;
     }
-    Py_XDECREF(lim[i]);  // NULL in a new object array
-    lim[i] = last;
-    ++run;
+    ++uses[codes[i]];
   }
-  if (last != nullptr) uses[last_key] += run;
+  std::vector<py::object> texts(2 * kCodes);  // null where no point has the code
+  std::vector<PyObject*> text_of(2 * kCodes, nullptr);
   for (std::uint32_t k = 0; k < 2 * kCodes; ++k) {
     if (uses[k] == 0) continue;
-    PyObject* text = texts[k].ptr();
+    std::string joined;
+    for (const auto& name : dynosize::api::BatchLimitNames(k % kCodes, k >= kCodes)) {
+      joined += (joined.empty() ? "" : ";") + name;
+    }
+    texts[k] = py::str(joined);
+    text_of[k] = texts[k].ptr();
 #if PY_VERSION_HEX >= 0x03090000
-    Py_SET_REFCNT(text, Py_REFCNT(text) + uses[k]);
+    Py_SET_REFCNT(text_of[k], Py_REFCNT(text_of[k]) + uses[k]);
 #else
-    for (Py_ssize_t r = 0; r < uses[k]; ++r) Py_INCREF(text);
+    for (Py_ssize_t r = 0; r < uses[k]; ++r) Py_INCREF(text_of[k]);
 #endif
   }
+  for (std::size_t i = 0; i < n; ++i) lim[i] = text_of[codes[i]];  // a new object array holds NULLs
   out["saturated"] = saturated;
   out["feasible"] = feasible;
   out["limits"] = limits;
