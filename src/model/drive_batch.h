@@ -38,7 +38,8 @@ struct BatchInputs {
 };
 
 // The outputs, one array of n per key of OperatingPoint (and of the point JSON); every pointer
-// must be set. feasible[i] is limits[i] == kLimitNone.
+// must be set, and no array may overlap another or an input. feasible[i] is limits[i] ==
+// kLimitNone.
 struct PointColumns {
   double* vdc_v = nullptr;
   double* throttle = nullptr;
