@@ -137,7 +137,7 @@ void RunBatch(const SimulateOptions& o, const Catalog& catalog, const Drive& dri
   const auto requests = ReadPointsCsv(o.batch_csv);
   bool with_prop = false;
   for (const auto& r : requests) with_prop = with_prop || !r.prop.empty();
-  const std::vector<api::BatchPoint> points = api::SimulateBatch(catalog, drive, requests, o.batch_csv);
+  const api::BatchResult points = api::SimulateBatch(catalog, drive, requests, o.batch_csv);
   std::ostringstream csv;
   const auto& cols = PointCsvColumns();
   for (std::size_t i = 0; i < cols.size(); ++i) csv << (i ? "," : "") << cols[i];
@@ -145,20 +145,19 @@ void RunBatch(const SimulateOptions& o, const Catalog& catalog, const Drive& dri
   std::size_t infeasible = 0;
   for (std::size_t i = 0; i < requests.size(); ++i) {
     const PointRequest& r = requests[i];
-    const api::BatchPoint& b = points[i];
-    if (!b.feasible()) ++infeasible;
-    if (!b.has_prop) {
-      csv << PointToCsvRow(b.drive) << (with_prop ? ",,,\n" : "\n");
+    if (!points.feasible(i)) ++infeasible;
+    if (!points.has_prop(i)) {
+      csv << PointToCsvRow(points.point(i)) << (with_prop ? ",,,\n" : "\n");
       continue;
     }
     std::ostringstream extra;
     extra.precision(10);
-    extra << "," << r.prop << "," << b.thrust_n << "," << b.g_per_w;
-    std::string row = PointToCsvRow(b.drive);
-    if (b.beats_momentum_theory) {
+    extra << "," << r.prop << "," << points.thrust_n(i) << "," << points.g_per_w(i);
+    std::string row = PointToCsvRow(points.point(i));
+    if (points.beats_momentum_theory(i)) {
       // The last two columns are feasible and limits (report/point_json.h): as the JSON says.
       std::string limits;
-      for (const auto& n : b.LimitNames()) limits += (limits.empty() ? "" : ";") + n;
+      for (const auto& n : points.LimitNames(i)) limits += (limits.empty() ? "" : ";") + n;
       row = row.substr(0, row.rfind(',', row.rfind(',') - 1)) + ",0," + limits;
     }
     csv << row << extra.str() << "\n";

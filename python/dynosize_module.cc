@@ -124,16 +124,16 @@ std::size_t BroadcastLength(const std::vector<std::pair<const char*, const Colum
   return n;
 }
 
-// A column's values without Python calls (read with the GIL released): one value or n.
-struct Values {
-  const double* data = nullptr;
-  bool one = false;
-  explicit Values(const Column& c) : data(c ? c->data() : nullptr), one(c && c->size() == 1) {}
-  explicit operator bool() const { return data != nullptr; }
-  double operator[](std::size_t i) const { return one ? data[0] : data[i]; }
-};
+// A column as the batch reads it (api/simulate.h BatchColumn): its numpy memory, one value
+// broadcast or n values.
+dynosize::api::BatchColumn ColumnOf(const Column& c) {
+  if (!c) return {};
+  return {c->data(), c->size() == 1};
+}
 
-// simulate(): the batch path (api::SimulateBatch, what simulate --batch runs) over arrays.
+// simulate(): the batch path over arrays (api::SimulateColumns, the model's structure-of-arrays
+// batch of model/drive_batch.h), written straight into the numpy arrays it returns: one array per
+// key of the point JSON (report/point_json.h), allocated once and filled in place.
 py::dict Simulate(const std::string& motor_id, const std::string& esc_id, const Column& vdc_v, const Column& throttle,
                   const Column& torque_nm, const Column& rpm, const std::string& prop, const Column& thrust_n,
                   const PyCatalog* catalog) {
@@ -143,103 +143,104 @@ py::dict Simulate(const std::string& motor_id, const std::string& esc_id, const 
   const dynosize::Catalog& cat = CatalogOr(catalog).get();
   const dynosize::MotorEntry& motor = cat.motor(motor_id);
   const dynosize::EscEntry& esc = cat.esc(esc_id);
-  // The keys of the point JSON (report/point_json.h), one numpy array each, filled chunk by chunk:
-  // the batch path runs on a few thousand points at a time, which stay in the cache.
-  using BP = dynosize::api::BatchPoint;
-  using dynosize::OperatingPoint;
-  std::vector<std::pair<const char*, double OperatingPoint::*>> keys = {
-      {"vdc_v", &OperatingPoint::vdc_v},
-      {"throttle", &OperatingPoint::throttle},
-      {"throttle_effective", &OperatingPoint::throttle_effective},
-      {"rpm", &OperatingPoint::rpm},
-      {"omega_rad_s", &OperatingPoint::omega_rad_s},
-      {"torque_nm", &OperatingPoint::torque_nm},
-      {"irms_a", &OperatingPoint::irms_a},
-      {"vll_rms_v", &OperatingPoint::vll_rms_v},
-      {"pac_w", &OperatingPoint::pac_w},
-      {"idc_a", &OperatingPoint::idc_a},
-      {"pdc_w", &OperatingPoint::pdc_w},
-      {"pesc_w", &OperatingPoint::pesc_w},
-      {"pmech_w", &OperatingPoint::pmech_w},
-      {"eta_motor", &OperatingPoint::eta_motor},
-      {"eta_esc", &OperatingPoint::eta_esc},
-      {"eta_system", &OperatingPoint::eta_system}};
+  const auto size = static_cast<py::ssize_t>(n);
   py::dict out;
-  std::vector<double*> columns;
-  for (const auto& [key, member] : keys) {
-    py::array_t<double> a(static_cast<py::ssize_t>(n));
-    columns.push_back(a.mutable_data());
-    out[key] = a;
-  }
-  double* thrust = nullptr;
-  double* g_per_w = nullptr;
+  // The number columns are the rows of one C-contiguous (k, n) block, each returned as its own
+  // 1-D array (a view that keeps the block alive): one allocation instead of 16 to 18. Freed and
+  // allocated again call after call, one block of this size is reused by the C library's
+  // allocator, where 16 separate ones are handed back to the kernel and every page of them is
+  // faulted in again (docs/python.md, "Performance").
+  const py::ssize_t count = prop.empty() ? 16 : 18;
+  py::array_t<double> block({count, size});
+  double* next = block.mutable_data();
+  const auto number = [&](const char* key) {
+    double* column = next;
+    next += n;
+    out[key] = py::array_t<double>({size}, {static_cast<py::ssize_t>(sizeof(double))}, column, block);
+    return column;
+  };
+  dynosize::PointColumns c;
+  c.vdc_v = number("vdc_v");
+  c.throttle = number("throttle");
+  c.throttle_effective = number("throttle_effective");
+  c.rpm = number("rpm");
+  c.omega_rad_s = number("omega_rad_s");
+  c.torque_nm = number("torque_nm");
+  c.irms_a = number("irms_a");
+  c.vll_rms_v = number("vll_rms_v");
+  c.pac_w = number("pac_w");
+  c.idc_a = number("idc_a");
+  c.pdc_w = number("pdc_w");
+  c.pesc_w = number("pesc_w");
+  c.pmech_w = number("pmech_w");
+  c.eta_motor = number("eta_motor");
+  c.eta_esc = number("eta_esc");
+  c.eta_system = number("eta_system");
+  py::array_t<bool> saturated(size), feasible(size);
+  c.saturated = saturated.mutable_data();
+  c.feasible = feasible.mutable_data();
+  // The Limit bits, named below once per distinct code: scratch kept by the thread from call to
+  // call (never returned).
+  static thread_local std::vector<std::uint32_t> codes;
+  codes.resize(n);
+  c.limits = codes.data();
+  dynosize::api::PropColumns pc;
+  std::unique_ptr<bool[]> beats;
   if (!prop.empty()) {
-    py::array_t<double> t(static_cast<py::ssize_t>(n)), g(static_cast<py::ssize_t>(n));
-    thrust = t.mutable_data();
-    g_per_w = g.mutable_data();
-    out["thrust_n"] = t;
-    out["g_per_w"] = g;
+    pc.thrust_n = number("thrust_n");
+    pc.g_per_w = number("g_per_w");
+    beats.reset(new bool[n]());
+    pc.beats_momentum_theory = beats.get();
   }
-  py::array_t<bool> saturated(static_cast<py::ssize_t>(n)), feasible(static_cast<py::ssize_t>(n));
-  bool* sat = saturated.mutable_data();
-  bool* ok = feasible.mutable_data();
-  py::array limits(py::dtype("O"), std::vector<py::ssize_t>{static_cast<py::ssize_t>(n)});
-  auto* lim = static_cast<PyObject**>(limits.mutable_data());
-  // The limit names joined with ';' (as the --batch CSV's column): one str per distinct set of
-  // limits, shared by the points that have it.
-  std::unordered_map<std::uint64_t, py::str> names;
-  std::uint64_t last_key = ~std::uint64_t{0};
-  PyObject* last_name = nullptr;
+  dynosize::api::BatchColumns in;
+  in.n = n;
+  in.vdc_v = ColumnOf(vdc_v);
+  in.throttle = ColumnOf(throttle);
+  in.torque_nm = ColumnOf(torque_nm);
+  in.rpm = ColumnOf(rpm);
+  in.thrust_n = ColumnOf(thrust_n);
+  in.prop = prop;
   const dynosize::Drive drive(motor.params, esc.params);
-  const Values vdc(vdc_v), tr(throttle), q(torque_nm), speed(rpm), thrust_given(thrust_n);
   {
-    // The GIL stays held: the limit names are Python strings, set point by point.
-    constexpr std::size_t kChunk = 1024;
-    std::vector<dynosize::PointRequest> requests;
-    for (std::size_t begin = 0; begin < n; begin += kChunk) {
-      const std::size_t end = std::min(n, begin + kChunk);
-      requests.resize(end - begin);
-      for (std::size_t i = begin; i < end; ++i) {
-        dynosize::PointRequest& r = requests[i - begin];
-        r.row = i;
-        r.vdc_v = vdc[i];
-        if (tr) r.throttle = tr[i];
-        if (q) r.torque_nm = q[i];
-        if (speed) r.rpm = speed[i];
-        if (thrust_given) r.thrust_n = thrust_given[i];
-        if (!prop.empty()) r.prop = prop;
-        // The rules of a --batch row (io/points_csv.h), the point's index in the message.
-        if (const std::string rule = dynosize::CheckPointRequest(r); !rule.empty()) {
-          throw dynosize::UsageError("simulate: point:" + std::to_string(i) + ": " + rule);
-        }
-      }
-      const std::vector<BP> points = dynosize::api::SimulateBatch(cat, drive, requests, "simulate: point");
-      for (std::size_t i = 0; i < points.size(); ++i) {
-        const BP& b = points[i];
-        for (std::size_t k = 0; k < keys.size(); ++k) columns[k][begin + i] = b.drive.*keys[k].second;
-        if (thrust != nullptr) {
-          thrust[begin + i] = b.thrust_n;
-          g_per_w[begin + i] = b.g_per_w;
-        }
-        sat[begin + i] = b.drive.saturated;
-        ok[begin + i] = b.feasible();
-        const std::uint64_t key = (static_cast<std::uint64_t>(b.beats_momentum_theory) << 32) | b.drive.limits;
-        if (key != last_key) {
-          auto it = names.find(key);
-          if (it == names.end()) {
-            std::string joined;
-            for (const auto& name : b.LimitNames()) joined += (joined.empty() ? "" : ";") + name;
-            it = names.emplace(key, py::str(joined)).first;
-          }
-          last_key = key;
-          last_name = it->second.ptr();
-        }
-        Py_XDECREF(lim[begin + i]);
-        Py_INCREF(last_name);
-        lim[begin + i] = last_name;
-      }
-    }
+    py::gil_scoped_release release;  // no Python object is touched while the points are solved
+    dynosize::api::SimulateColumns(cat, drive, in, "simulate: point", c, pc);
   }
+  // "limits": the names joined with ';' (as the --batch CSV's column), one str per distinct code
+  // shared by the points that have it; a propeller that beats momentum theory adds its name and
+  // makes the point infeasible (as the CLI's JSON).
+  py::array limits(py::dtype("O"), std::vector<py::ssize_t>{size});
+  auto* lim = static_cast<PyObject**>(limits.mutable_data());
+  // Each name is looked up by its code in a table (the Limit bits are 10, model/drive.h; the
+  // propeller's beats_momentum_theory is one more): a first pass counts the points per code, the
+  // names are made for the codes present, and a second pass stores one pointer per point without
+  // a branch; the references are added in bulk (an increment per point would chain every store
+  // on one reference count).
+  constexpr std::uint32_t kCodes = dynosize::kLimitCreatesEnergy << 1;
+  std::vector<Py_ssize_t> uses(2 * kCodes, 0);
+  for (std::size_t i = 0; i < n; ++i) {
+    if (beats && beats[i]) {
+      c.feasible[i] = false;
+      codes[i] += kCodes;
+    }
+    ++uses[codes[i]];
+  }
+  std::vector<py::object> texts(2 * kCodes);  // null where no point has the code
+  std::vector<PyObject*> text_of(2 * kCodes, nullptr);
+  for (std::uint32_t k = 0; k < 2 * kCodes; ++k) {
+    if (uses[k] == 0) continue;
+    std::string joined;
+    for (const auto& name : dynosize::api::BatchLimitNames(k % kCodes, k >= kCodes)) {
+      joined += (joined.empty() ? "" : ";") + name;
+    }
+    texts[k] = py::str(joined);
+    text_of[k] = texts[k].ptr();
+#if PY_VERSION_HEX >= 0x03090000
+    Py_SET_REFCNT(text_of[k], Py_REFCNT(text_of[k]) + uses[k]);
+#else
+    for (Py_ssize_t r = 0; r < uses[k]; ++r) Py_INCREF(text_of[k]);
+#endif
+  }
+  for (std::size_t i = 0; i < n; ++i) lim[i] = text_of[codes[i]];  // a new object array holds NULLs
   out["saturated"] = saturated;
   out["feasible"] = feasible;
   out["limits"] = limits;

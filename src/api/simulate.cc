@@ -17,12 +17,6 @@ OperatingPoint SolvePoint(const Drive& d, const PointRequest& r, const std::vect
   return d.Inverse(r.vdc_v, *r.torque_nm, RpmToRadPerSec(*r.rpm));
 }
 
-std::vector<std::string> BatchPoint::LimitNames() const {
-  std::vector<std::string> names = dynosize::LimitNames(drive.limits);
-  if (beats_momentum_theory) names.push_back("beats_momentum_theory");
-  return names;
-}
-
 namespace {
 
 // A batch row that names a propeller: an unknown id or an unreachable thrust is bad data in the
@@ -54,25 +48,179 @@ std::string Assumed(const EntryBase& e) {
 
 }  // namespace
 
-std::vector<BatchPoint> SimulateBatch(const Catalog& catalog, const Drive& drive,
-                                      const std::vector<PointRequest>& requests, const std::string& source) {
-  std::vector<BatchPoint> out(requests.size());
+BatchResult::BatchResult(std::size_t n)
+    : n_(n), values_(new double[16 * n]), flags_(new bool[2 * n]), limits_(new std::uint32_t[n]) {
+  double* v = values_.get();
+  for (double** c : {&columns_.vdc_v, &columns_.throttle, &columns_.throttle_effective, &columns_.rpm,
+                     &columns_.omega_rad_s, &columns_.torque_nm, &columns_.irms_a, &columns_.vll_rms_v,
+                     &columns_.pac_w, &columns_.idc_a, &columns_.pdc_w, &columns_.pesc_w, &columns_.pmech_w,
+                     &columns_.eta_motor, &columns_.eta_esc, &columns_.eta_system}) {
+    *c = v;
+    v += n;
+  }
+  columns_.saturated = flags_.get();
+  columns_.feasible = flags_.get() + n;
+  columns_.limits = limits_.get();
+}
+
+std::vector<std::string> BatchLimitNames(std::uint32_t limits, bool beats_momentum_theory) {
+  std::vector<std::string> names = LimitNames(limits);
+  if (beats_momentum_theory) names.push_back("beats_momentum_theory");
+  return names;
+}
+
+std::vector<std::string> BatchResult::LimitNames(std::size_t i) const {
+  return BatchLimitNames(columns_.limits[i], beats_momentum_theory(i));
+}
+
+namespace {
+
+// Points gathered per call of the model's batch: the scratch arrays stay in the L1 cache.
+constexpr std::size_t kGather = 512;
+
+// SolvePoint's choice of solve for a request without a torque law.
+BatchMode ModeOf(bool throttle, bool torque, bool rpm) {
+  if (throttle && torque) return BatchMode::kAtTorque;
+  if (throttle && rpm) return BatchMode::kAtSpeed;
+  return BatchMode::kInverse;
+}
+BatchMode ModeOf(const PointRequest& r) { return ModeOf(r.throttle.has_value(), r.torque_nm.has_value(), r.rpm.has_value()); }
+
+PointRequest RequestAt(const BatchColumns& in, std::size_t i) {
+  PointRequest r;
+  r.row = i;
+  r.vdc_v = in.vdc_v[i];
+  if (in.throttle) r.throttle = in.throttle[i];
+  if (in.torque_nm) r.torque_nm = in.torque_nm[i];
+  if (in.rpm) r.rpm = in.rpm[i];
+  if (in.thrust_n) r.thrust_n = in.thrust_n[i];
+  r.prop = in.prop;
+  return r;
+}
+
+// The first index of x[0, n) outside its range (n if none); blocks scanned branch-free.
+template <typename InRange>
+std::size_t FirstOutOfRange(const double* x, std::size_t n, InRange in_range) {
+  constexpr std::size_t kBlock = 256;
+  for (std::size_t begin = 0; begin < n; begin += kBlock) {
+    const std::size_t end = std::min(n, begin + kBlock);
+    unsigned bad = 0;
+    for (std::size_t i = begin; i < end; ++i) bad |= in_range(x[i]) ? 0u : 1u;
+    if (bad == 0) continue;
+    for (std::size_t i = begin; i < end; ++i) {
+      if (!in_range(x[i])) return i;
+    }
+  }
+  return n;
+}
+
+// A column's values for points [begin, begin + m): its own memory, or the scratch filled with
+// the broadcast value.
+const double* Slice(const BatchColumn& c, std::size_t begin, const double* broadcast_fill) {
+  if (!c) return nullptr;
+  return c.broadcast ? broadcast_fill : c.data + begin;
+}
+
+}  // namespace
+
+BatchResult SimulateBatch(const Catalog& catalog, const Drive& drive, const std::vector<PointRequest>& requests,
+                          const std::string& source) {
+  const std::size_t n = requests.size();
+  BatchResult out(n);
+  const bool any_prop = std::any_of(requests.begin(), requests.end(), [](const PointRequest& r) { return !r.prop.empty(); });
+  if (any_prop) {
+    out.prop_rows_.assign(n, 0);
+    out.thrust_n_.assign(n, 0.0);
+    out.g_per_w_.assign(n, 0.0);
+    out.beats_.reset(new bool[n]());
+  }
   std::map<std::string, PropModel> props;  // built once per propeller id
-  for (std::size_t i = 0; i < requests.size(); ++i) {
+  double vdc[kGather], throttle[kGather], torque[kGather], omega[kGather];
+  for (std::size_t i = 0; i < n;) {
     const PointRequest& r = requests[i];
-    BatchPoint& b = out[i];
-    if (r.prop.empty()) {
-      b.drive = SolvePoint(drive, r);
+    if (!r.prop.empty()) {
+      const PropPoint pp = BatchPropPoint(catalog, drive, source, r, &props);
+      out.columns_.Set(i, pp.drive);
+      out.prop_rows_[i] = 1;
+      out.thrust_n_[i] = pp.thrust_n;
+      out.g_per_w_[i] = pp.g_per_w;
+      out.beats_[i] = pp.figure_of_merit > 1.0;
+      ++i;
       continue;
     }
-    const PropPoint pp = BatchPropPoint(catalog, drive, source, r, &props);
-    b.drive = pp.drive;
-    b.has_prop = true;
-    b.thrust_n = pp.thrust_n;
-    b.g_per_w = pp.g_per_w;
-    b.beats_momentum_theory = pp.figure_of_merit > 1.0;
+    // A run of rows of one mode without a propeller: gathered, then solved together.
+    const BatchMode mode = ModeOf(r);
+    std::size_t m = 0;
+    for (; m < kGather && i + m < n && requests[i + m].prop.empty() && ModeOf(requests[i + m]) == mode; ++m) {
+      const PointRequest& q = requests[i + m];
+      vdc[m] = q.vdc_v;
+      throttle[m] = q.throttle.value_or(0.0);
+      torque[m] = q.torque_nm.value_or(0.0);
+      omega[m] = q.rpm ? RpmToRadPerSec(*q.rpm) : 0.0;
+    }
+    SolveBatch(drive, mode, m, {vdc, throttle, torque, omega}, out.columns_.From(i));
+    i += m;
   }
   return out;
+}
+
+void CheckBatchColumns(const BatchColumns& in, const std::string& source) {
+  std::size_t first = in.n;
+  const auto scan = [&](const BatchColumn& c, auto in_range) {
+    if (!c || first == 0) return;
+    const std::size_t len = c.broadcast ? 1 : first;  // a broadcast value fails at point 0
+    const std::size_t bad = FirstOutOfRange(c.data, len, in_range);
+    if (bad < len) first = bad;
+  };
+  // Lambdas, not function pointers: the scans inline the rule.
+  scan(in.vdc_v, [](double x) { return RequestVdcInRange(x); });
+  scan(in.throttle, [](double x) { return RequestThrottleInRange(x); });
+  scan(in.torque_nm, [](double x) { return RequestTorqueInRange(x); });
+  scan(in.rpm, [](double x) { return RequestRpmInRange(x); });
+  scan(in.thrust_n, [](double x) { return RequestThrustInRange(x); });
+  // Every point gives the same keys: a combination CheckPointRequest refuses fails at point 0.
+  if (in.n > 0 && first == in.n && !CheckPointRequest(RequestAt(in, 0)).empty()) first = 0;
+  if (first < in.n) {
+    throw UsageError(source + ":" + std::to_string(first) + ": " + CheckPointRequest(RequestAt(in, first)));
+  }
+}
+
+void SimulateColumns(const Catalog& catalog, const Drive& drive, const BatchColumns& in, const std::string& source,
+                     const PointColumns& out, const PropColumns& prop) {
+  CheckBatchColumns(in, source);
+  if (!in.prop.empty()) {
+    std::map<std::string, PropModel> props;
+    for (std::size_t i = 0; i < in.n; ++i) {
+      const PropPoint pp = BatchPropPoint(catalog, drive, source, RequestAt(in, i), &props);
+      out.Set(i, pp.drive);
+      prop.thrust_n[i] = pp.thrust_n;
+      prop.g_per_w[i] = pp.g_per_w;
+      prop.beats_momentum_theory[i] = pp.figure_of_merit > 1.0;
+    }
+    return;
+  }
+  const BatchMode mode = ModeOf(static_cast<bool>(in.throttle), static_cast<bool>(in.torque_nm), static_cast<bool>(in.rpm));
+  // Broadcast values fill their scratch once; the speed is converted chunk by chunk (rpm at the edge).
+  double vdc[kGather], throttle[kGather], torque[kGather], omega[kGather];
+  if (in.vdc_v.broadcast) std::fill(vdc, vdc + kGather, in.vdc_v[0]);
+  if (in.throttle && in.throttle.broadcast) std::fill(throttle, throttle + kGather, in.throttle[0]);
+  if (in.torque_nm && in.torque_nm.broadcast) std::fill(torque, torque + kGather, in.torque_nm[0]);
+  if (in.rpm && in.rpm.broadcast) std::fill(omega, omega + kGather, RpmToRadPerSec(in.rpm[0]));
+  for (std::size_t begin = 0; begin < in.n; begin += kGather) {
+    const std::size_t m = std::min(kGather, in.n - begin);
+    BatchInputs bi;
+    bi.vdc_v = Slice(in.vdc_v, begin, vdc);
+    bi.throttle = Slice(in.throttle, begin, throttle);
+    bi.torque_nm = Slice(in.torque_nm, begin, torque);
+    if (in.rpm) {
+      if (!in.rpm.broadcast) {
+        const double* rpm = in.rpm.data + begin;
+        for (std::size_t k = 0; k < m; ++k) omega[k] = RpmToRadPerSec(rpm[k]);
+      }
+      bi.omega_rad_s = omega;
+    }
+    SolveBatch(drive, mode, m, bi, out.From(begin));
+  }
 }
 
 std::string AssumedNote(const MotorEntry& motor, const EscEntry& esc, const PropEntry* prop) {

@@ -33,17 +33,17 @@ std::vector<std::string> SplitComma(const std::string& line) {
 }  // namespace
 
 std::string CheckPointRequest(const PointRequest& r) {
-  if (!(r.vdc_v > 0.0 && r.vdc_v <= kMaxRequestVdcV)) {
+  if (!RequestVdcInRange(r.vdc_v)) {
     return "vdc_v = " + SignificantText(r.vdc_v) + ": must be > 0 V and <= " + SignificantText(kMaxRequestVdcV) + " V";
   }
-  if (r.throttle && !(*r.throttle >= 0.0 && *r.throttle <= 1.0)) {
+  if (r.throttle && !RequestThrottleInRange(*r.throttle)) {
     return "throttle = " + SignificantText(*r.throttle) + ": must be between 0 and 1 (a fraction, not percent)";
   }
-  if (r.torque_nm && !(*r.torque_nm >= 0.0 && *r.torque_nm <= kMaxRequestTorqueNm)) {
+  if (r.torque_nm && !RequestTorqueInRange(*r.torque_nm)) {
     return "torque_nm = " + SignificantText(*r.torque_nm) +
            ": must be >= 0 N*m and <= " + SignificantText(kMaxRequestTorqueNm) + " N*m";
   }
-  if (r.rpm && !(*r.rpm >= 0.0 && *r.rpm <= kMaxRequestRpm)) {
+  if (r.rpm && !RequestRpmInRange(*r.rpm)) {
     return "rpm = " + SignificantText(*r.rpm) + ": must be >= 0 and <= " + SignificantText(kMaxRequestRpm);
   }
   if (!r.prop.empty()) {
@@ -53,7 +53,7 @@ std::string CheckPointRequest(const PointRequest& r) {
       return "a row with a prop gives exactly one of throttle (forward), rpm or thrust_n (the "
              "throttle solved)";
     }
-    if (r.thrust_n && !(*r.thrust_n > 0.0 && *r.thrust_n <= kMaxRequestThrustN)) {
+    if (r.thrust_n && !RequestThrustInRange(*r.thrust_n)) {
       return "thrust_n = " + SignificantText(*r.thrust_n) +
              ": must be > 0 N and <= " + SignificantText(kMaxRequestThrustN) + " N";
     }

@@ -33,6 +33,14 @@ inline constexpr double kMaxRequestRpm = 1e7;        // rpm
 inline constexpr double kMaxTorqueLawCoefficient = 1e6;  // |A|, |B|, |C| of the torque law, SI
 inline constexpr double kMaxRequestThrustN = 1e6;    // N
 
+// The range of each requested value (CheckPointRequest's rules, also checked column by column
+// by the batch of api/simulate.h, hence both comparisons always made); false for NaN.
+inline bool RequestVdcInRange(double v) { return (v > 0.0) & (v <= kMaxRequestVdcV); }
+inline bool RequestThrottleInRange(double t) { return (t >= 0.0) & (t <= 1.0); }
+inline bool RequestTorqueInRange(double q) { return (q >= 0.0) & (q <= kMaxRequestTorqueNm); }
+inline bool RequestRpmInRange(double r) { return (r >= 0.0) & (r <= kMaxRequestRpm); }
+inline bool RequestThrustInRange(double t) { return (t > 0.0) & (t <= kMaxRequestThrustN); }
+
 // Throws NoInputError / DataError naming file:line, column, value and rule.
 std::vector<PointRequest> ReadPointsCsv(const std::string& path);
 

@@ -167,15 +167,9 @@ OperatingPoint Drive::Complete(double vdc_v, double throttle, double omega_rad_s
 }
 
 void Drive::Flag(OperatingPoint* p, std::uint32_t limits) const {
-  if (p->throttle > 1.0) limits |= kLimitThrottleAboveOne;
-  if (p->throttle < 0.0) limits |= kLimitThrottleBelowZero;
-  const double i_max = std::max(std::fabs(p->idc_a), std::fabs(p->irms_a));
-  if (i_max > motor_.max_current_a) limits |= kLimitMotorCurrent;
-  if (i_max > esc_.max_current_a) limits |= kLimitEscCurrent;
-  if (p->pac_w > motor_.max_power_w) limits |= kLimitMotorPower;
-  if (p->vdc_v > esc_.vdc_max_v) limits |= kLimitEscVoltage;
-  if (PointCreatesEnergy(*p)) limits |= kLimitCreatesEnergy;  // docs/model.md section 10
-  p->limits = limits;
+  // docs/model.md section 10 and the ratings (model/physics.h).
+  p->limits = limits | RatingLimits(motor_, esc_, p->vdc_v, p->throttle, p->irms_a, p->idc_a, p->pac_w,
+                                    p->pdc_w, p->pesc_w, p->pmech_w);
 }
 
 [[gnu::noinline]] void Drive::CompleteExtended(double vdc_v, double throttle, double omega_rad_s,

@@ -168,6 +168,8 @@ class Drive {
   double r_total_ohm() const { return r_total_ohm_; }
   // kv of eq (46): 3/(sqrt(2)*pi) for a BLDC, 1 for a brushed motor.
   double volt_factor() const { return volt_factor_; }
+  // kp of eq (41): sqrt(27/10) for a BLDC, 1 for a brushed motor.
+  double power_factor() const { return power_factor_; }
 
   // True when a nonlinear extension (rth_k_per_w, kt_droop_per_a) is active.
   bool nonlinear() const { return nonlinear_; }

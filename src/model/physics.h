@@ -23,7 +23,9 @@
 // axial flow V, P_ideal = T*(V/2 + sqrt(V^2/4 + T/(2*rho*A))). FM = P_ideal/P <= 1.
 #pragma once
 
+#include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <string>
 
 #include "model/drive.h"
@@ -85,10 +87,34 @@ inline MotorLossFloor LossFloorOf(const MotorParams& m) {
 }
 
 // True when a computed operating point creates energy: PESC < 0 or eta_motor > 1 (beyond
-// kPhysicsRelTol of the powers involved). Cheap: Drive::Flag calls it for every point.
+// kPhysicsRelTol of the powers involved). Cheap and branch-free: Drive::Flag and the batch of
+// model/drive_batch.h call it for every point.
+inline bool PowersCreateEnergy(double pdc_w, double pac_w, double pesc_w, double pmech_w) {
+  const double tol_w = kPhysicsRelTol * (std::fabs(pdc_w) + std::fabs(pac_w)) + 1e-12;
+  return (pesc_w < -tol_w) | ((pac_w > 0.0) & (pmech_w > pac_w + tol_w));
+}
 inline bool PointCreatesEnergy(const OperatingPoint& p) {
-  const double tol_w = kPhysicsRelTol * (std::fabs(p.pdc_w) + std::fabs(p.pac_w)) + 1e-12;
-  return p.pesc_w < -tol_w || (p.pac_w > 0.0 && p.pmech_w > p.pac_w + tol_w);
+  return PowersCreateEnergy(p.pdc_w, p.pac_w, p.pesc_w, p.pmech_w);
+}
+
+// The limits every operating point is checked against, beyond those its solve sets (stalled,
+// overrunning, thermal runaway): the throttle in [0, 1], max(|IDC|, |Irms|) against the motor's
+// and the ESC's current ratings, PAC against the motor's power rating, VDC against the ESC's
+// voltage rating, and no energy created (above). Limit bits of model/drive.h; branch-free, one
+// rule for Drive::Flag and the batch (which asks for 64-bit lanes, the width of its doubles, so
+// that the compiler vectorises the check).
+template <typename Bits = std::uint32_t>
+inline Bits RatingLimits(const MotorParams& m, const EscParams& e, double vdc_v, double throttle, double irms_a,
+                         double idc_a, double pac_w, double pdc_w, double pesc_w, double pmech_w) {
+  const double i_max = std::max(std::fabs(idc_a), std::fabs(irms_a));
+  const Bits none = 0;
+  return (throttle > 1.0 ? Bits{kLimitThrottleAboveOne} : none) |
+         (throttle < 0.0 ? Bits{kLimitThrottleBelowZero} : none) |
+         (i_max > m.max_current_a ? Bits{kLimitMotorCurrent} : none) |
+         (i_max > e.max_current_a ? Bits{kLimitEscCurrent} : none) |
+         (pac_w > m.max_power_w ? Bits{kLimitMotorPower} : none) |
+         (vdc_v > e.vdc_max_v ? Bits{kLimitEscVoltage} : none) |
+         (PowersCreateEnergy(pdc_w, pac_w, pesc_w, pmech_w) ? Bits{kLimitCreatesEnergy} : none);
 }
 
 // Momentum-theory minimum shaft power for thrust T [N] from a rotor disk of diameter D [m] in

@@ -44,19 +44,87 @@ TEST(ApiSimulate, BatchEqualsPointByPoint) {
     requests.push_back(r);
   }
   const Drive drive = PaperDrive();
-  const auto batch = api::SimulateBatch(Bundled(), drive, requests, "test");
+  const api::BatchResult batch = api::SimulateBatch(Bundled(), drive, requests, "test");
   ASSERT_EQ(batch.size(), requests.size());
   int infeasible = 0;
   for (std::size_t i = 0; i < requests.size(); ++i) {
     const OperatingPoint p = api::SolvePoint(drive, requests[i]);
-    EXPECT_EQ(batch[i].drive.idc_a, p.idc_a) << i;
-    EXPECT_EQ(batch[i].drive.rpm, p.rpm) << i;
-    EXPECT_EQ(batch[i].drive.throttle, p.throttle) << i;
-    EXPECT_EQ(batch[i].drive.limits, p.limits) << i;
-    EXPECT_FALSE(batch[i].has_prop);
-    infeasible += batch[i].feasible() ? 0 : 1;
+    const OperatingPoint b = batch.point(i);
+    EXPECT_EQ(b.idc_a, p.idc_a) << i;
+    EXPECT_EQ(b.rpm, p.rpm) << i;
+    EXPECT_EQ(b.throttle, p.throttle) << i;
+    EXPECT_EQ(b.torque_nm, p.torque_nm) << i;
+    EXPECT_EQ(b.eta_system, p.eta_system) << i;
+    EXPECT_EQ(b.limits, p.limits) << i;
+    EXPECT_EQ(b.saturated, p.saturated) << i;
+    EXPECT_FALSE(batch.has_prop(i));
+    infeasible += batch.feasible(i) ? 0 : 1;
   }
   EXPECT_GT(infeasible, 0);  // the ranges overload the pair somewhere: limits are carried
+}
+
+// Columns (dynosize.simulate's arrays, scalars broadcast) give SimulateBatch's numbers on the
+// same points, to the bit, in runs longer than one gathered chunk.
+TEST(ApiSimulate, ColumnsEqualTheBatchOfRequests) {
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  const std::size_t n = 1500;
+  std::vector<double> torque(n), rpm(n);
+  std::vector<PointRequest> requests(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    torque[i] = 0.1 * u(rng);
+    rpm[i] = 20000.0 * u(rng);
+    requests[i].row = i;
+    requests[i].vdc_v = 7.4;
+    requests[i].torque_nm = torque[i];
+    requests[i].rpm = rpm[i];
+  }
+  const double vdc = 7.4;
+  api::BatchColumns in;
+  in.n = n;
+  in.vdc_v = {&vdc, true};
+  in.torque_nm = {torque.data(), false};
+  in.rpm = {rpm.data(), false};
+  const Drive drive = PaperDrive();
+  api::BatchResult want = api::SimulateBatch(Bundled(), drive, requests, "test");
+  api::BatchResult got(n);
+  api::SimulateColumns(Bundled(), drive, in, "test", got.columns());
+  for (std::size_t i = 0; i < n; ++i) {
+    EXPECT_EQ(got.point(i).throttle, want.point(i).throttle) << i;
+    EXPECT_EQ(got.point(i).pdc_w, want.point(i).pdc_w) << i;
+    EXPECT_EQ(got.point(i).rpm, want.point(i).rpm) << i;
+    EXPECT_EQ(got.point(i).limits, want.point(i).limits) << i;
+  }
+}
+
+// Bad columns: the first point that breaks a rule of CheckPointRequest, with its message.
+TEST(ApiSimulate, BadColumnsNameThePointAndTheRule) {
+  const std::vector<double> vdc = {7.0, 7.2, std::nan(""), -1.0};
+  const double throttle = 0.5, torque = 0.01;
+  api::BatchColumns in;
+  in.n = 4;
+  in.vdc_v = {vdc.data(), false};
+  in.throttle = {&throttle, true};
+  in.torque_nm = {&torque, true};
+  EXPECT_THROW(
+      {
+        try {
+          api::CheckBatchColumns(in, "simulate: point");
+        } catch (const UsageError& e) {
+          EXPECT_STREQ(e.what(), "simulate: point:2: vdc_v = nan: must be > 0 V and <= 100000 V");
+          throw;
+        }
+      },
+      UsageError);
+  in.torque_nm = {};  // throttle alone: no load given, every point (so point 0) breaks the rule
+  in.vdc_v = {vdc.data(), false};
+  in.n = 2;
+  try {
+    api::CheckBatchColumns(in, "simulate: point");
+    FAIL() << "no error";
+  } catch (const UsageError& e) {
+    EXPECT_EQ(std::string(e.what()).rfind("simulate: point:0: give exactly two of throttle", 0), 0u) << e.what();
+  }
 }
 
 // A row naming an unknown propeller is bad data at that row (exit 65), as in the batch file.
