@@ -481,7 +481,7 @@ SearchResult search_internal::SearchOneGroup(const Mission& m, const Catalog& ca
     out.pruned_by["catalog_exclude"] += ctx.escs.excluded_pruned * static_cast<long long>(cat.motors().size() * cat.props().size());
   }
   {
-    CandidateStream stream(ctx, opt.threads);  // stage 4 (each motor's first batch)
+    CandidateStream stream(ctx, opt.threads, kFirstBatch, cutoff);  // stage 4 (each motor's first batch)
     out.candidate_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     BranchAndBound bb(ctx, opt, &stream, &out, cutoff);  // stage 5 (and stage 4 on demand)
     bb.Run();

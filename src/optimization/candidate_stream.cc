@@ -12,7 +12,52 @@ namespace dynosize::search_internal {
 
 namespace {
 
-constexpr double kInf = std::numeric_limits<double>::infinity();
+// R11's keys below a cutoff (docs/search.md#r11-cutoff): per propeller, how many of the lossy
+// classes (MotorClasses: ascending mass) may have a key below `cutoff` for some option. A
+// class's key is at least the key with no loss floor at its own mass (the floor's terms are
+// >= 0 and R4's bound rises with pdc_lb), which rises with the mass (M1, M3): a search
+// over the classes finds the first whose zero-floor key reaches the cutoff (held 1e-9 above it
+// against rounding); that class and every heavier one have keys at or above the cutoff for
+// the propeller, which the stream never walks to. kInf cutoff: every class.
+std::vector<std::size_t> KeyedClasses(const SearchContext& ctx, const MissionFacts& f,
+                                      const std::vector<MotorClass>& classes, double cutoff, int threads) {
+  const std::size_t n_lossy = classes.empty() ? 0 : classes.size() - 1;  // the last class is not lossy
+  std::vector<std::size_t> limit(ctx.catalog->props().size(), n_lossy);
+  if (!std::isfinite(cutoff)) return limit;
+  const double reach = cutoff + 1e-9 * std::abs(cutoff);
+  ForEachOnThreads(f.frame_ok_props.size(), threads, [&](int, std::size_t i) {
+    const std::size_t pi = static_cast<std::size_t>(f.frame_ok_props[i]);
+    PairLoads loads(*ctx.mission);
+    std::size_t most = 0;
+    for (std::size_t o = 0; o < ctx.options.size() && most < n_lossy; ++o) {
+      auto reaches = [&](std::size_t c) {
+        return PropOnlyBound(ctx, f, pi, o, classes[c].mass_kg, MotorLossFloor{}, &loads) >= reach;
+      };
+      // Galloping from `most` (the classes below it are keyed anyway): most propellers reach the
+      // cutoff within a few classes of the lightest; then bisection.
+      std::size_t lo = most, hi = n_lossy;
+      for (std::size_t step = 1; lo < hi; step *= 2) {
+        const std::size_t c = std::min(lo + step - 1, hi - 1);
+        if (reaches(c)) {
+          hi = c;
+          break;
+        }
+        lo = c + 1;
+      }
+      while (lo < hi) {
+        const std::size_t mid = lo + (hi - lo) / 2;
+        if (reaches(mid)) {
+          hi = mid;
+        } else {
+          lo = mid + 1;
+        }
+      }
+      most = lo;
+    }
+    limit[pi] = most;
+  });
+  return limit;
+}
 
 }  // namespace
 
@@ -95,7 +140,7 @@ struct CandidateStream::Impl {
   long long skipped = 0, batches = 0;
 };
 
-CandidateStream::CandidateStream(const SearchContext& ctx, int threads, std::size_t first_batch)
+CandidateStream::CandidateStream(const SearchContext& ctx, int threads, std::size_t first_batch, double cutoff)
     : impl_(std::make_unique<Impl>(ctx)) {
   Impl& s = *impl_;
   std::vector<std::unique_ptr<MotorSetup>> setups = SetUpMotors(ctx, s.f, threads, &s.counts.pruned, &s.skipped);
@@ -106,9 +151,22 @@ CandidateStream::CandidateStream(const SearchContext& ctx, int threads, std::siz
   for (std::size_t mi = 0; mi < cls.size(); ++mi) {
     if (setups[mi]) used[static_cast<std::size_t>(cls[mi])] = 1;
   }
+  // A class's keys for the propellers that may give one below the cutoff (KeyedClasses); the
+  // others' keys are not below it, so the walk never reaches them.
+  const std::vector<std::size_t> keyed = KeyedClasses(ctx, s.f, classes, cutoff, threads);
   ForEachOnThreads(s.classes.size(), threads, [&](int, std::size_t c) {
     const bool lossy = c + 1 < s.classes.size();  // the last class is the one without R11
-    if (used[c]) s.classes[c] = ClassKeys(ctx, s.f, classes[c], lossy);
+    if (!used[c]) return;
+    if (!lossy || !std::isfinite(cutoff)) {
+      s.classes[c] = ClassKeys(ctx, s.f, classes[c], lossy);
+      return;
+    }
+    MissionFacts fc = s.f;
+    fc.frame_ok_props.clear();
+    for (const int pi : s.f.frame_ok_props) {
+      if (keyed[static_cast<std::size_t>(pi)] > c) fc.frame_ok_props.push_back(pi);
+    }
+    s.classes[c] = ClassKeys(ctx, fc, classes[c], true);
   });
   const long long per_option_props = static_cast<long long>(s.f.frame_ok_props.size());
   for (std::size_t mi = 0; mi < setups.size(); ++mi) {
@@ -127,7 +185,7 @@ CandidateStream::CandidateStream(const SearchContext& ctx, int threads, std::siz
   std::vector<long long> thread_removed(thread_counts.size(), 0);
   ForEachOnThreads(s.motors.size(), threads, [&](int tid, std::size_t i) {
     PairLoads loads(*ctx.mission);
-    thread_removed[tid] += s.Expand(&s.motors[i], kInf, s.motors[i].batch, &loads, &thread_counts[tid]);
+    thread_removed[tid] += s.Expand(&s.motors[i], cutoff, s.motors[i].batch, &loads, &thread_counts[tid]);
     s.motors[i].batch = std::min(2 * s.motors[i].batch, kMaxBatch);
   });
   for (std::size_t t = 0; t < thread_counts.size(); ++t) {

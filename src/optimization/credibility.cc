@@ -105,11 +105,11 @@ bool FoldingPropRefused(const PropEntry& prop, const Mission& m) {
 }
 
 double MotorMaxVoltageV(const MotorEntry& motor) {
-  if (!motor.json.is_object() || !motor.json.contains("cells_max") || !motor.json.at("cells_max").is_number()) {
-    return kInf;
-  }
+  if (!motor.json.is_object()) return kInf;
+  const auto it = motor.json.find("cells_max");  // one look-up: the search asks per motor and pair
+  if (it == motor.json.end() || !it->is_number()) return kInf;
   // 1e-9 relative: a full pack's OCV is 4.2 V per cell up to the rounding of its table.
-  return 4.2 * motor.json.at("cells_max").get<double>() * (1.0 + 1e-9);
+  return 4.2 * it->get<double>() * (1.0 + 1e-9);
 }
 
 MotorParams ScenarioMotorParams(const MotorEntry& motor, const Mission& m, bool* rating_estimated,

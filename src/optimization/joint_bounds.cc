@@ -6,6 +6,7 @@
 #include <cmath>
 #include <limits>
 #include <memory>
+#include <tuple>
 #include <utility>
 #include <vector>
 
@@ -234,6 +235,7 @@ JointBounds::JointBounds(const Mission& m, const Catalog& cat, const PropGridCac
       }
     }
     const double mass = total();
+    if (o + 1 == options_.size()) std::vector<std::vector<std::tuple<double, int, int>>>().swap(by_mass_);  // the ctor's only
     outer_lightest_kg_.push_back(lightest[outer_]);
     if (free.size() == 2) inner_lightest_kg_.push_back(lightest[free[0] == outer_ ? free[1] : free[0]]);
     mass_min_kg_.push_back(mass);
@@ -393,16 +395,21 @@ bool JointBounds::ReachesThrustToWeight(int group, const Drive& drive, int prop,
 double JointBounds::LightestSurvivorKg(int group, std::size_t o, double vehicle_kg) {
   const auto& motors = cat_.motors();
   const auto& props = cat_.props();
-  std::vector<std::tuple<double, int, int>> by_mass;
-  for (std::size_t mi = 0; mi < motors.size(); ++mi) {
-    if (!motors[mi].mass_kg || !motors[mi].exclude_reason.empty()) continue;
-    for (std::size_t pi = 0; pi < props.size(); ++pi) {
-      if (PropAllowed(group, props[pi])) {
-        by_mass.emplace_back(*motors[mi].mass_kg + PropMassKg(props[pi]), static_cast<int>(mi), static_cast<int>(pi));
+  // The group's motor + propeller masses, sorted once per group (the same list for every
+  // option and pass).
+  if (by_mass_.size() != m_.groups.size()) by_mass_.resize(m_.groups.size());
+  std::vector<std::tuple<double, int, int>>& by_mass = by_mass_[static_cast<std::size_t>(group)];
+  if (by_mass.empty()) {
+    for (std::size_t mi = 0; mi < motors.size(); ++mi) {
+      if (!motors[mi].mass_kg || !motors[mi].exclude_reason.empty()) continue;
+      for (std::size_t pi = 0; pi < props.size(); ++pi) {
+        if (PropAllowed(group, props[pi])) {
+          by_mass.emplace_back(*motors[mi].mass_kg + PropMassKg(props[pi]), static_cast<int>(mi), static_cast<int>(pi));
+        }
       }
     }
+    std::sort(by_mass.begin(), by_mass.end());
   }
-  std::sort(by_mass.begin(), by_mass.end());
   std::vector<std::size_t> segs;
   for (std::size_t si = 0; si < m_.segments.size(); ++si) {
     if (m_.segments[si].group == group) segs.push_back(si);

@@ -10,6 +10,7 @@
 
 #include <limits>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include "catalog/catalog.h"
@@ -138,6 +139,8 @@ class JointBounds {
   std::vector<RotorBound> rotor_cache_;
   std::vector<char> rotor_done_;
   std::vector<double> scratch_;
+  // LightestSurvivorKg's list per group: (motor + propeller kg, motor, propeller), ascending.
+  std::vector<std::vector<std::tuple<double, int, int>>> by_mass_;
 };
 
 }  // namespace search_internal

@@ -25,6 +25,7 @@
 #pragma once
 
 #include <algorithm>
+#include <limits>
 #include <map>
 #include <memory>
 #include <string>
@@ -269,11 +270,15 @@ SearchResult SearchOneGroup(const Mission& m, const Catalog& cat, const SearchOp
 // batches (the first, of first_batch pairs per motor, on `threads` threads when the stream is
 // built; each later one twice the last, up to kMaxBatch); a pair whose key is not below the
 // caller's cutoff is never bounded. Tests use small first batches to exercise later ones.
+// cutoff: the first batches bound only pairs whose key is below it (a caller that asks Next
+// with cutoffs at or below it, as the joint search's inner searches do, sees the same
+// sequence: a pair whose key is not below the cutoff is never drawn).
 // The batch sizes: the measurements that chose them are in docs/search.md#constants.
 inline constexpr std::size_t kFirstBatch = 32, kMaxBatch = 512;
 class CandidateStream {
  public:
-  CandidateStream(const SearchContext& ctx, int threads, std::size_t first_batch = kFirstBatch);
+  CandidateStream(const SearchContext& ctx, int threads, std::size_t first_batch = kFirstBatch,
+                  double cutoff = std::numeric_limits<double>::infinity());
   ~CandidateStream();
   CandidateStream(const CandidateStream&) = delete;
   CandidateStream& operator=(const CandidateStream&) = delete;

@@ -22,6 +22,7 @@
 #include "model/physics.h"
 #include "optimization/components.h"
 #include "optimization/mission_eval.h"
+#include "optimization/pair_candidates.h"
 #include "optimization/small_catalog.h"
 
 namespace dynosize::search_internal {
@@ -189,6 +190,54 @@ TEST_F(SearchStagesTest, CandidateStreamDrawsTheSortedCandidateList) {
   ASSERT_LT(n, all.candidates.size());
   EXPECT_GE(all.candidates[n].bound, cutoff);
   EXPECT_LT(cut.pairs_bounded(), all_bounded) << "R11's keys should leave pairs above the cutoff unbounded";
+}
+
+// The cutoff given when the stream is built (the joint search's inner searches): the keys of the
+// classes whose zero-loss key reaches it are not computed and the first batches bound only pairs
+// keyed below it (docs/search.md#r11-cutoff); the pairs drawn below the cutoff are the same, in
+// the same order, for cutoffs across the bounds and any first batch.
+TEST_F(SearchStagesTest, CandidateStreamBuiltWithACutoffDrawsTheSamePairsBelowIt) {
+  const Catalog cat = SmallCatalog();
+  for (const char* objective : {"max_endurance", "min_energy"}) {
+    const Mission m = StageQuadFor(objective);
+    SearchContext ctx;
+    PrepareStages(m, cat, &ctx);
+    CandidateList all = BuildCandidates(ctx, 1);
+    std::sort(all.candidates.begin(), all.candidates.end(), CandidateBefore);
+    ASSERT_GT(all.candidates.size(), 20u);
+    // Several motor classes, so that the search over the classes has something to skip.
+    const MissionFacts f = StageFourFacts(ctx);
+    RuleCounts pruned;
+    long long skipped = 0;
+    std::vector<MotorClass> classes;
+    MotorClasses(Pointers(SetUpMotors(ctx, f, 1, &pruned, &skipped)), &classes);
+    ASSERT_GE(classes.size(), 4u) << objective;
+    long long unbounded_pairs = 0;
+    for (const double share : {0.1, 0.5, 0.9}) {
+      const double cutoff = all.candidates[static_cast<std::size_t>(share * static_cast<double>(all.candidates.size()))].bound;
+      for (std::size_t first : {std::size_t{1}, kFirstBatch}) {
+        CandidateStream plain(ctx, 1, first);
+        CandidateStream cut(ctx, 2, first, cutoff);
+        std::size_t n = 0;
+        Candidate c;
+        while (cut.Next(cutoff, &c) && c.bound < cutoff) {
+          ASSERT_LT(n, all.candidates.size());
+          const Candidate& want = all.candidates[n];
+          EXPECT_TRUE(c.motor == want.motor && c.prop == want.prop && c.option == want.option && c.bound == want.bound)
+              << objective << ", cutoff share " << share << ", first " << first << ", pair " << n;
+          ++n;
+        }
+        ASSERT_LT(n, all.candidates.size());
+        EXPECT_GE(all.candidates[n].bound, cutoff) << objective << ", share " << share << ": a pair below the cutoff missed";
+        std::size_t n_plain = 0;
+        for (Candidate p; plain.Next(cutoff, &p) && p.bound < cutoff;) ++n_plain;
+        EXPECT_EQ(n_plain, n);
+        EXPECT_LE(cut.pairs_bounded(), plain.pairs_bounded()) << objective << ", share " << share;
+        unbounded_pairs += plain.pairs_bounded() - cut.pairs_bounded();
+      }
+    }
+    EXPECT_GT(unbounded_pairs, 0) << objective << ": the cutoff should spare some first-batch bounds";
+  }
 }
 
 // R11 against the exact evaluator: for a motor whose drives cannot create energy, the key of
