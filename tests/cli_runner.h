@@ -11,6 +11,8 @@
 #include <sstream>
 #include <string>
 
+#include "common/json_file.h"
+
 namespace dynosize::testing_util {
 
 struct CliRun {
@@ -41,6 +43,26 @@ inline CliRun RunCli(const std::string& args) {
   r.err = ss.str();
   fs::remove(err_file);
   return r;
+}
+
+// A mission whose search outlasts any stop a test sends: the eVTOL example with both propulsion
+// groups free, the capacity in [2, 8] Ah and the cruise airspeed in [14, 24] m/s, which finds
+// nothing feasible within 30 s on the bundled catalog (docs/joint-search.md). A stop after a
+// second or less therefore always comes mid-search, however fast the simpler missions become.
+// Written to a temporary file named after `tag` and the process; the caller removes it.
+inline std::filesystem::path LongSearchMission(const std::string& tag) {
+  namespace fs = std::filesystem;
+  const fs::path p = fs::temp_directory_path() / ("dynosize_" + tag + "_" + std::to_string(getpid()) + ".json");
+  Json m = ReadJsonFile(std::string(DYNOSIZE_SOURCE_DIR) + "/examples/missions/evtol_lift_cruise.json");
+  for (Json& group : m["propulsion"]) {
+    for (const char* part : {"motor", "esc", "prop"}) group.erase(part);
+  }
+  m["battery"]["capacity_ah"] = Json::array({2, 8});
+  for (Json& s : m["segments"]) {
+    if (s["type"] == "cruise") s["airspeed_m_s"] = Json::array({14, 24});
+  }
+  std::ofstream(p) << DumpJson(m);
+  return p;
 }
 
 }  // namespace dynosize::testing_util

@@ -344,7 +344,11 @@ double Drive::InverseAcPower(double vdc_v, const InverseCurrents& c, double torq
     if (disc >= 0.0 && b < 0.0) {
       tre = 2.0 * u / (-b + std::sqrt(disc));
     } else {
-      tre = std::numeric_limits<double>::infinity();
+      // No throttle reaches U: the ESC's output -a*t^2 - b*t peaks below it. The point is
+      // reported at the least throttle it would need, which the supply drop only raises (the
+      // lossless supply's U/(kv*VDC)), and at least full throttle, flagged; an infinite
+      // throttle would leave VLL and PAC without a value.
+      tre = std::max(1.0, u / (volt_factor_ * vdc_v));
       limits |= kLimitThrottleAboveOne;
     }
   }

@@ -27,17 +27,8 @@ int Lines(const std::string& s) {
   return n;
 }
 
-// The bundled quadcopter with a capacity range: about 10 s of search on the bundled catalog
-// (measured: 9.6-12 s on the 2-core build machine), so a stop after a fraction of a second
-// always comes mid-search.
-fs::path LongMission() {
-  const fs::path p = fs::temp_directory_path() / ("dynosize_long_" + std::to_string(getpid()) + ".json");
-  Json m = ReadJsonFile(kSource + "/examples/missions/quadcopter_1p5kg.json");
-  m["battery"]["id"] = Json::array({"dc_b_363"});
-  m["battery"]["capacity_ah"] = Json::array({2, 8});
-  std::ofstream(p) << DumpJson(m);
-  return p;
-}
+// A search that outlasts every stop below (cli_runner.h).
+fs::path LongMission() { return testing_util::LongSearchMission("long"); }
 
 void ExpectCompleteInterruptedJson(const CliRun& r) {
   Json j;
@@ -76,7 +67,7 @@ TEST(OptimizeCli, TimeLimitPrintsTheBestSoFarAndExitsZero) {
 
 TEST(OptimizeCli, SigintPrintsTheBestSoFarAndExits130) {
   const fs::path m = LongMission();
-  // The shell starts optimize, sends SIGINT after a second (the search takes about ten) and
+  // The shell starts optimize, sends SIGINT after a second (the search takes far longer) and
   // returns its exit status.
   const CliRun r = RunCli("optimize " + m.string() + " --json & p=$!; sleep 1; kill -INT $p; wait $p");
   EXPECT_EQ(r.code, 130) << r.err;

@@ -121,16 +121,7 @@ TEST_F(SweepCliTest, BadInputIsOneLineAndExit64) {
   EXPECT_EQ(missing.code, 66) << missing.err;
 }
 
-// The bundled quadcopter with a capacity range: about 10 s per point on the bundled catalog
-// (as optimize_cli_test.cc's LongMission), so a stop after a fraction of a second comes mid-point.
-fs::path LongMission() {
-  const fs::path p = fs::temp_directory_path() / ("dynosize_sweep_long_" + std::to_string(getpid()) + ".json");
-  Json m = ReadJsonFile(std::string(DYNOSIZE_SOURCE_DIR) + "/examples/missions/quadcopter_1p5kg.json");
-  m["battery"]["id"] = Json::array({"dc_b_363"});
-  m["battery"]["capacity_ah"] = Json::array({2, 8});
-  std::ofstream(p) << DumpJson(m);
-  return p;
-}
+fs::path LongMission() { return testing_util::LongSearchMission("sweep_long"); }
 
 // stderr: only when the shell's redirection reaches the sweep (not a background job's).
 void ExpectCompleteStoppedJson(const CliRun& r, bool check_stderr) {
@@ -146,7 +137,7 @@ void ExpectCompleteStoppedJson(const CliRun& r, bool check_stderr) {
 
 TEST(SweepCliStop, TimeLimitAndSigintWriteTheRowsDoneSoFar) {
   const fs::path m = LongMission();
-  const std::string sweep = "sweep " + m.string() + " --vary vehicle.mass_kg=0.7,0.8 --json";
+  const std::string sweep = "sweep " + m.string() + " --vary vehicle.mass_kg=2.4,2.5 --json";
   const CliRun t = RunCli(sweep + " --time-limit 0.5");
   EXPECT_EQ(t.code, 0) << t.err;
   ExpectCompleteStoppedJson(t, true);

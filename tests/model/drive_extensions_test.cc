@@ -186,5 +186,26 @@ TEST(DriveExtensionsTest, CatalogKeysReachTheModel) {
   EXPECT_NE(problems[0].find("< 0.5"), std::string::npos) << problems[0];
 }
 
+// With a supply resistance, a point the ESC cannot reach at any throttle (its output voltage
+// peaks below the winding's need) is flagged, at least full throttle, and every figure finite:
+// simulate's JSON and CSV refuse a non-finite number (docs/model.md section 9's supply drop).
+TEST(DriveExtensionsTest, SupplyDropBeyondReachIsFlaggedAndFinite) {
+  EscParams e = Esc();
+  e.rsupply_ohm = 0.05;
+  const Drive d(Motor(), e);
+  // 0.3 N*m needs about 26 A; at 1,000 rad/s the back-EMF alone is 7.1 V of the 7.2 V supply.
+  const OperatingPoint p = d.Inverse(7.2, 0.3, 1000.0);
+  EXPECT_TRUE(p.limits & kLimitThrottleAboveOne);
+  EXPECT_GE(p.throttle, 1.0);
+  for (double v : {p.throttle, p.throttle_effective, p.irms_a, p.vll_rms_v, p.pac_w, p.idc_a, p.pdc_w, p.pesc_w,
+                   p.pmech_w, p.eta_motor, p.eta_esc, p.eta_system}) {
+    EXPECT_TRUE(std::isfinite(v)) << v;
+  }
+  // A reachable point of the same drive still solves the quadratic (the round trip holds).
+  const OperatingPoint q = d.Inverse(12.0, 0.05, 800.0);
+  ASSERT_FALSE(q.limits & kLimitThrottleAboveOne);
+  ExpectRel(d.AtSpeed(12.0, q.throttle, 800.0).torque_nm, 0.05, 1e-7, "round trip");
+}
+
 }  // namespace
 }  // namespace dynosize
