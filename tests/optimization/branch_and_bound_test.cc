@@ -47,7 +47,7 @@ void CheckDistinctDesigns(const Catalog& cat, const Mission& m, int n, int* alte
     for (const auto& e : cat.escs()) {
       for (const auto& p : cat.props()) {
         for (int cells : {3, 4}) {
-          const Combination c{&mo, &e, &p, &cat.battery("dc_b_361"), cells};
+          const Combination c{&mo, &e, &p, &cat.battery("dc_b_361"), cells, {}};
           const MissionResult r = MissionEvaluator(m, c).Solve();
           if (r.feasible) per_design[Design(c)].emplace_back(r.score, Variant(c));
         }
