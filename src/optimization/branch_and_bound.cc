@@ -8,6 +8,7 @@
 #include <condition_variable>
 #include <functional>
 #include <limits>
+#include <map>
 #include <memory>
 #include <mutex>
 #include <thread>
@@ -111,6 +112,9 @@ class BranchAndBound {
   }
 
   void Run();
+  // R14 (docs/search.md#r14): the deferred combinations of the final top N designs solved with
+  // the final threshold; those below it join their design's alternatives.
+  void ResolveDeferred();
   // Solves the top N again with explain (warnings, the solver's report, the designer's summary,
   // propeller notes): Process scores without them (text for results nobody reads), each with
   // the cutoff it had, so the numbers are the same.
@@ -121,6 +125,9 @@ class BranchAndBound {
   struct Outcome {
     std::vector<std::pair<Combination, MissionResult>> results;
     std::vector<double> cutoffs;  // per result, the cutoff its Solve had
+    // Combinations proven to score no better than their design's best (R14): solved at the end
+    // when their design is in the final top N (ResolveDeferred).
+    std::vector<std::pair<Combination, const char*>> deferred;  // and the rule it is counted under
     RuleCounts pruned;
     long long searched = 0, virtual_evals = 0;
   };
@@ -159,6 +166,7 @@ class BranchAndBound {
   Mission relaxed_;
   MissionFacts facts_;
   TopResults board_;  // the top N so far (top_results.h); out_->best at the end
+  std::map<EntryKey, std::vector<std::pair<Combination, const char*>>> deferred_;  // per design, in candidate order (R14)
   long long virtual_evals_ = 0;
 };
 
@@ -166,6 +174,25 @@ void BranchAndBound::Insert(const Combination& c, MissionResult&& r, double cuto
   if (!r.feasible) return;
   out_->evaluated_mass_objective.emplace_back(r.propulsion_mass_kg, r.objective);
   board_.Add(RankedCombination{c, std::move(r), {}}, cutoff);
+}
+
+void BranchAndBound::ResolveDeferred() {
+  const double threshold = board_.Threshold();
+  std::vector<EntryKey> designs;
+  for (const auto& entry : board_.scores().entries()) designs.push_back(entry.first);
+  for (const EntryKey& design : designs) {
+    const auto it = deferred_.find(design);
+    if (it == deferred_.end()) continue;
+    for (const auto& [c, rule] : it->second) {
+      const PropModel* model = ctx_.models[static_cast<std::size_t>(c.prop - ctx_.catalog->props().data())].get();
+      MissionResult r = MissionEvaluator(*ctx_.mission, c, model, &ctx_.fixed_model_ptrs).Solve(threshold, false, false, true);
+      if (r.bounded_out) continue;  // counted as pruned when deferred
+      --out_->pruned_by[rule];  // solved after all
+      ++out_->searched;
+      Insert(c, std::move(r), threshold);
+    }
+  }
+  deferred_.clear();
 }
 
 void BranchAndBound::Explain() const {
@@ -183,42 +210,70 @@ void BranchAndBound::Explain() const {
 
 // R5 for the real ESCs of a class that passed R3, R9, R10, R12 and the virtual ESC (`rated`,
 // lightest first): each solved exactly unless an ESC already solved dominates it and cannot
-// enter the top N (docs/search.md#r5).
+// enter the top N (docs/search.md#r5). Distinct designs: an ESC of a design already in `top`
+// is solved with that design's best as its cutoff (R14, docs/search.md#r14); one proven no
+// better, and those it dominates, are deferred (Outcome::deferred) instead of solved.
 void BranchAndBound::RealEscs(const std::vector<int>& rated, Combination* c, const PropModel* model, TopScores* top,
                               Outcome* o) const {
   const Mission& m = *ctx_.mission;
   const auto& escs = ctx_.catalog->escs();
-  std::vector<std::pair<int, bool>> done;  // ESC, "cannot enter the top N"
-  for (int e : rated) {
-    bool skip = false;
-    for (const auto& d : done) {
-      if (d.second && EscDominates(escs[d.first], escs[e])) { skip = true; break; }
+  const EntryKey design = top->distinct_designs() ? KeyOf(*c, true) : EntryKey{};
+  auto design_best = [&]() {  // the design's best score in `top` (kInf when not there or not counting designs)
+    if (design.empty()) return kInf;
+    for (const auto& entry : top->entries()) {
+      if (entry.first == design) return entry.second;
     }
-    if (skip) {
-      o->pruned.Add("esc_dominated", 1);
-      continue;
+    return kInf;
+  };
+  // What an ESC already solved proves of those it dominates (R5): nothing; that they cannot
+  // enter the top N; that they score no better than the design's best so far (R14).
+  enum Proof { kNothing, kOut, kNotBelowDesign };
+  std::vector<std::pair<int, Proof>> done;
+  for (int e : rated) {
+    Proof skip = kNothing;
+    for (const auto& d : done) {
+      if (d.second != kNothing && EscDominates(escs[d.first], escs[e])) {
+        skip = d.second;
+        if (skip == kOut) break;
+      }
     }
     SetEsc(c, &escs[e]);
+    if (skip != kNothing) {
+      o->pruned.Add("esc_dominated", 1);
+      if (skip == kNotBelowDesign) o->deferred.emplace_back(*c, "esc_dominated");
+      continue;
+    }
     const double threshold = top->Threshold();
+    const double best = design_best();
+    const double cutoff = std::min(threshold, best);
     const MissionEvaluator eval(m, *c, model, &ctx_.fixed_model_ptrs);
     if (MissionResult w; eval.DataWindowRefuses(true, &w)) {  // R12, before a solve
       const bool above = w.violations[0].constraint == "prop_above_data";
       o->pruned.Add(above ? "prop_above_data" : "prop_below_data", 1);
-      done.emplace_back(e, RulesOutDominatedEscs(w));  // below: a heavier ESC may meet it
+      done.emplace_back(e, RulesOutDominatedEscs(w) ? kOut : kNothing);  // below: a heavier ESC may meet it
       continue;
     }
-    MissionResult r = eval.Solve(threshold, false, false, true);
+    MissionResult r = eval.Solve(cutoff, false, false, true);
     if (r.bounded_out) {
       o->pruned.Add("objective_bound", 1);
-      done.emplace_back(e, true);
+      if (cutoff < threshold) o->deferred.emplace_back(*c, "objective_bound");
+      done.emplace_back(e, cutoff < threshold ? kNotBelowDesign : kOut);
       continue;
     }
     ++o->searched;
-    done.emplace_back(e, r.feasible ? !(r.score < threshold) : RulesOutDominatedEscs(r));
+    Proof proof = kNothing;
+    if (!r.feasible) {
+      proof = RulesOutDominatedEscs(r) ? kOut : kNothing;
+    } else if (!(r.score < threshold)) {
+      proof = kOut;
+    } else if (!(r.score < best)) {
+      proof = kNotBelowDesign;
+    }
+    done.emplace_back(e, proof);
     if (r.feasible) {
       top->Add(KeyOf(*c, top->distinct_designs()), r.score);
       o->results.emplace_back(*c, std::move(r));
-      o->cutoffs.push_back(threshold);
+      o->cutoffs.push_back(cutoff);
     }
   }
 }
@@ -443,6 +498,7 @@ void BranchAndBound::Run() {
       out_->searched += o.searched;
       virtual_evals_ += o.virtual_evals;
       for (std::size_t j = 0; j < o.results.size(); ++j) Insert(o.results[j].first, std::move(o.results[j].second), o.cutoffs[j]);
+      for (auto& d : o.deferred) deferred_[KeyOf(d.first, true)].push_back(std::move(d));
     }
     ordered_.erase(ordered_.begin(), ordered_.begin() + static_cast<std::ptrdiff_t>(end - base_));
     base_ = end;
@@ -485,6 +541,7 @@ SearchResult search_internal::SearchOneGroup(const Mission& m, const Catalog& ca
     out.candidate_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     BranchAndBound bb(ctx, opt, &stream, &out, cutoff);  // stage 5 (and stage 4 on demand)
     bb.Run();
+    bb.ResolveDeferred();
     bb.Explain();
     stream.MergePrunedInto(&out.pruned_by);
     out.skipped_without_mass = stream.skipped_without_mass();
