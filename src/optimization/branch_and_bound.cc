@@ -526,6 +526,7 @@ SearchResult search_internal::SearchOneGroup(const Mission& m, const Catalog& ca
     cache->built = true;
     ctx.grids = std::move(cache->grids);
     ctx.models = std::move(cache->models);
+    ctx.motor_setups = &cache->motor_setups;
   } else {
     PrepareStages(m, cat, &ctx);  // stages 0-3
   }

@@ -6,6 +6,7 @@
 #include <memory>
 #include <vector>
 
+#include "optimization/motor_setup_cache.h"
 #include "optimization/pair_candidates.h"
 
 namespace dynosize::search_internal {
@@ -71,7 +72,7 @@ std::vector<std::size_t> KeyedClasses(const SearchContext& ctx, const MissionFac
 // key), so the pairs come in CandidateBefore order, as sorting BuildCandidates would give them.
 struct CandidateStream::Impl {
   struct Motor {
-    std::unique_ptr<MotorSetup> setup;
+    const MotorSetup* setup = nullptr;  // in `setups`
     const std::vector<PropKey>* keys = nullptr;  // its class's
     std::size_t walk = 0;                        // keys before it are bounded (or skipped)
     std::vector<Candidate> pending;              // a heap: the first in CandidateBefore order on top
@@ -131,6 +132,7 @@ struct CandidateStream::Impl {
 
   const SearchContext& ctx;
   const MissionFacts f;
+  std::shared_ptr<const MotorSetupCache::Entry> setups;  // the motors' set-up (CachedMotorSetups)
   std::vector<std::vector<PropKey>> classes;
   std::vector<Motor> motors;
   std::vector<std::size_t> heap;  // live motors; the first head on top
@@ -143,7 +145,10 @@ struct CandidateStream::Impl {
 CandidateStream::CandidateStream(const SearchContext& ctx, int threads, std::size_t first_batch, double cutoff)
     : impl_(std::make_unique<Impl>(ctx)) {
   Impl& s = *impl_;
-  std::vector<std::unique_ptr<MotorSetup>> setups = SetUpMotors(ctx, s.f, threads, &s.counts.pruned, &s.skipped);
+  s.setups = CachedMotorSetups(ctx, s.f, threads);  // reused between the joint search's inner searches
+  s.setups->pruned.MergeInto(&s.counts.pruned);
+  s.skipped += s.setups->skipped;
+  const std::vector<std::unique_ptr<MotorSetup>>& setups = s.setups->setups;
   std::vector<MotorClass> classes;
   const std::vector<int> cls = MotorClasses(Pointers(setups), &classes);
   s.classes.resize(classes.size());
@@ -177,7 +182,7 @@ CandidateStream::CandidateStream(const SearchContext& ctx, int threads, std::siz
     for (std::size_t o = 0; o < ctx.options.size(); ++o) {
       if (!std::isnan(setups[mi]->w_nl[o])) s.open += ctx.escs.rated[o] * per_option_props;
     }
-    m.setup = std::move(setups[mi]);
+    m.setup = setups[mi].get();
     s.motors.push_back(std::move(m));
   }
   // Each motor's first batch, on the threads.

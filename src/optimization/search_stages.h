@@ -153,6 +153,13 @@ struct Candidate {
 };
 
 // What the stages before the branch and bound share.
+// The motors' stage-4 set-up kept between the one-group searches of the joint search, one
+// entry per distinct set of what the set-up reads (motor_setup_cache.h).
+struct MotorSetupCache {
+  struct Entry;
+  std::vector<std::shared_ptr<const Entry>> entries;
+};
+
 struct SearchContext {
   const Mission* mission = nullptr;
   const Catalog* catalog = nullptr;
@@ -178,6 +185,8 @@ struct SearchContext {
   EscTable escs;
   std::vector<PropGrid> grids;
   std::vector<std::unique_ptr<PropModel>> models;
+  // Optional (SearchOneGroup with a PropGridCache): stage 4's motors set up once per key.
+  MotorSetupCache* motor_setups = nullptr;
 };
 
 // The vehicle's mass with a pack of pack_kg and each of the free group's rotors carrying a
@@ -250,11 +259,12 @@ bool CandidateBefore(const Candidate& a, const Candidate& b);
 
 // Propeller grids and models kept between the one-group searches of the joint search (they
 // depend on the mission's air, ranking and figure-of-merit limit only, which its sub-missions
-// share).
+// share), and the motors' stage-4 set-up (by what it reads, motor_setup_cache.h).
 struct PropGridCache {
   bool built = false;
   std::vector<PropGrid> grids;
   std::vector<std::unique_ptr<PropModel>> models;
+  MotorSetupCache motor_setups;
 };
 // Stages 0-5 for a mission with exactly one free group: its exact top N among the results
 // scoring below `cutoff` (kInf: all). The results' objective ranges are not computed

@@ -6,9 +6,11 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <limits>
+#include <map>
 #include <memory>
 #include <random>
 #include <string>
@@ -19,6 +21,7 @@
 #include "common/error.h"
 #include "common/json_file.h"
 #include "optimization/mission_eval.h"
+#include "optimization/motor_setup_cache.h"
 #include "optimization/search.h"
 #include "optimization/small_catalog.h"
 #include "solver_backends.h"
@@ -347,6 +350,101 @@ TEST_F(JointSearchTest, EveryGroupFixedIsRefused) {
     EXPECT_NE(std::string(e.what()).find("$.propulsion: every group has its motor, esc and prop"), std::string::npos)
         << e.what();
   }
+}
+
+// The motors' set-up kept between the inner searches (motor_setup_cache.h): an inner search
+// with another outer choice but the same battery option reuses it, and what it reuses equals
+// a fresh set-up of that search; another option, or unrated motors excluded, sets the motors
+// up afresh (the pack's voltage sets R7's speeds; the exclusion refuses motors whole).
+TEST_F(JointSearchTest, MotorSetupCacheEqualsAFreshSetUp) {
+  const Catalog cat = Catalog::Load((dir_ / "catalog").string());
+  std::vector<std::string> motors;
+  for (const MotorEntry& mo : cat.motors()) {
+    if (mo.mass_kg && mo.exclude_reason.empty() && motors.size() < 2) motors.push_back(mo.id);
+  }
+  ASSERT_EQ(motors.size(), 2u);
+  // The pusher fixed as the joint search's sub-missions fix it (SubMission).
+  auto sub = [&](const std::string& motor, int cells, const char* unrated) {
+    Json j = ParseJsonText(kFreeQuadplane, "free");
+    j["propulsion"]["pusher"]["motor"] = motor;
+    j["propulsion"]["pusher"]["esc"] = cat.escs().front().id;
+    j["propulsion"]["pusher"]["prop"] = cat.props().front().id;
+    j["battery"]["cells"] = Json::array({cells, cells});
+    j["constraints"]["unrated_motors"] = unrated;
+    return ParseMission(j, "sub");
+  };
+  const Mission a = sub(motors[0], 3, "estimate"), a_other = sub(motors[1], 3, "estimate");
+  const Mission b = sub(motors[0], 4, "estimate"), ex_unrated = sub(motors[0], 3, "exclude");
+  MotorSetupCache cache;
+  auto cached = [&](const Mission& m, SearchContext* ctx) {
+    PrepareStages(m, cat, ctx);
+    ctx->motor_setups = &cache;
+    return CachedMotorSetups(*ctx, StageFourFacts(*ctx), 2);
+  };
+  // Field by field, bit for bit (a cached set-up is the same computation on the same inputs).
+  auto expect_fresh = [&](const MotorSetupCache::Entry& e, const SearchContext& ctx) {
+    RuleCounts pruned;
+    long long skipped = 0;
+    const auto fresh = SetUpMotors(ctx, StageFourFacts(ctx), 1, &pruned, &skipped);
+    std::map<std::string, long long> want, got;
+    pruned.MergeInto(&want);
+    e.pruned.MergeInto(&got);
+    EXPECT_EQ(got, want);
+    EXPECT_EQ(e.skipped, skipped);
+    ASSERT_EQ(e.setups.size(), fresh.size());
+    int compared = 0;
+    for (std::size_t mi = 0; mi < fresh.size(); ++mi) {
+      ASSERT_EQ(e.setups[mi] != nullptr, fresh[mi] != nullptr) << mi;
+      if (!fresh[mi]) continue;
+      const MotorSetup &x = *e.setups[mi], &y = *fresh[mi];
+      EXPECT_EQ(x.motor, y.motor);
+      EXPECT_EQ(x.mass_kg, y.mass_kg);
+      EXPECT_EQ(x.mp.rm_ohm, y.mp.rm_ohm);
+      EXPECT_EQ(x.mp.io_a, y.mp.io_a);
+      EXPECT_EQ(x.mp.kt_nm_per_a, y.mp.kt_nm_per_a);
+      EXPECT_EQ(x.mp.max_current_a, y.mp.max_current_a);
+      EXPECT_EQ(x.mp.max_power_w, y.mp.max_power_w);
+      ASSERT_EQ(x.w_nl.size(), y.w_nl.size());
+      for (std::size_t o = 0; o < y.w_nl.size(); ++o) {
+        EXPECT_TRUE(x.w_nl[o] == y.w_nl[o] || (std::isnan(x.w_nl[o]) && std::isnan(y.w_nl[o]))) << mi << " " << o;
+      }
+      ASSERT_EQ(x.ideal.size(), y.ideal.size());
+      for (std::size_t k = 0; k < y.ideal.size(); ++k) {
+        EXPECT_EQ(x.ideal[k].NoLoadSpeed(ctx.options[0].v_full, 1.0), y.ideal[k].NoLoadSpeed(ctx.options[0].v_full, 1.0));
+      }
+      EXPECT_EQ(x.lossy, y.lossy);
+      EXPECT_EQ(x.loss.copper_w_per_nm2, y.loss.copper_w_per_nm2);
+      EXPECT_EQ(x.loss.no_load_torque_nm, y.loss.no_load_torque_nm);
+      ++compared;
+    }
+    EXPECT_GT(compared, 0);
+  };
+  // Whether two entries' set-ups differ somewhere (which motors, R7's speed, the ratings).
+  auto differ = [](const MotorSetupCache::Entry& e, const MotorSetupCache::Entry& f) {
+    for (std::size_t mi = 0; mi < e.setups.size(); ++mi) {
+      if ((e.setups[mi] != nullptr) != (f.setups[mi] != nullptr)) return true;
+      if (e.setups[mi] && (e.setups[mi]->w_nl[0] != f.setups[mi]->w_nl[0] ||
+                           e.setups[mi]->mp.max_current_a != f.setups[mi]->mp.max_current_a)) {
+        return true;
+      }
+    }
+    return false;
+  };
+  SearchContext ca, ca2, cb, cx;
+  const auto ea = cached(a, &ca);
+  expect_fresh(*ea, ca);
+  const auto ea2 = cached(a_other, &ca2);
+  EXPECT_EQ(ea2.get(), ea.get()) << "another outer motor, the same option: reused";
+  expect_fresh(*ea2, ca2);
+  const auto eb = cached(b, &cb);
+  EXPECT_NE(eb.get(), ea.get()) << "another battery option";
+  EXPECT_TRUE(differ(*eb, *ea)) << "the options must set the motors up differently";
+  expect_fresh(*eb, cb);
+  const auto ex = cached(ex_unrated, &cx);
+  EXPECT_NE(ex.get(), ea.get()) << "unrated motors excluded";
+  EXPECT_TRUE(differ(*ex, *ea)) << "the small catalog must have motors without a stated rating";
+  expect_fresh(*ex, cx);
+  EXPECT_EQ(cache.entries.size(), 3u);
 }
 
 }  // namespace
