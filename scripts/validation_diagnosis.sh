@@ -41,7 +41,9 @@ row() {
     f="none: structured misfit no candidate explains$(jq -r '[.rejected_candidates[] | select(.note != null and .p_value < 0.001) | "\(.cause): \(.note)"] | if length > 0 then " (" + join("; ") + ")" else "" end' "$j")"
   fi
   local w
-  w=$(jq -r '[.warnings[] | select(test("outlier") | not) | .[0:70]] | join("; ")' "$j" | tr '|' '/')
+  # A warning that names the log starts with its path, which depends on where the repository is:
+  # the cell keeps what follows it, so that the page is the same on every machine.
+  w=$(jq -r '[.warnings[] | select(test("outlier") | not) | sub("^[^ ]+\\.(csv|CSV|txt|TXT): "; "") | .[0:70]] | join("; ")' "$j" | tr '|' '/')
   local st
   st=$(jq -r '.status + ([.checks[] | select(.passed | not)][0] | if . == null then "" else ": " + .name end)' "$j")
   echo "| $set | $name | $(jq -r .mode "$j") | $(jq .points_used "$j") | $(r2 .baseline.cv_rms_percent_all "$j") % | $(r2 .extended_model.cv_rms_percent_all "$j") % | $f | $st | $w |"
