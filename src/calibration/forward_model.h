@@ -13,7 +13,7 @@
 #include <string>
 #include <vector>
 
-#include "calibration/calibrate.h"
+#include "calibration/calibration_types.h"
 #include "common/dual.h"
 #include "fit/nonlinear_least_squares.h"
 #include "identification/fit_rows.h"

@@ -49,6 +49,7 @@ const char* CauseDescription(Cause c) {
 namespace internal {
 
 using fit::Aicc;
+using fit::FDistributionUpperTail;
 
 namespace {
 

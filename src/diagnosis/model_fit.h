@@ -12,7 +12,7 @@
 #include <string>
 #include <vector>
 
-#include "diagnosis/diagnose.h"
+#include "diagnosis/diagnosis_types.h"
 #include "fit/nonlinear_least_squares.h"
 #include "identification/fit_rows.h"
 #include "identification/parameters.h"
