@@ -34,7 +34,6 @@ using internal::kMOmega;
 using internal::kMPac;
 using internal::kMVll;
 using internal::kLower;
-using internal::kNaN;
 using internal::kUpper;
 using internal::Layout;
 using internal::Prepare;
