@@ -56,7 +56,8 @@
 //                          where the log cannot identify it (label, motor prior, no-load prior)
 //   forward_model.h/.cc    the equations above, the internal parametrisation (KT ratio, ESC
 //                          excess), the residuals with their dual-number Jacobian
-//   joint_fit.h/.cc        the bounded fit with priors, the saturation-knee profile, the throttle
+//   joint_fit.h/.cc        the bounded fit with priors, the saturation-knee profile (its grid;
+//                          the profile itself is identification/knee_profile.h), the throttle
 //                          offset test, the outlier pass, standard errors of KT and c1
 //   cross_validation.cc    LeaveOneOut, CrossValidateForVerdict, JudgeCalibration
 //   calibration_report.cc  BriefReport, FullReport
