@@ -48,7 +48,8 @@
 // Files of src/calibration (the parameter table and the row rules shared with diagnose are in
 // src/identification):
 //   calibration_types.h    the options and the result (below every stage)
-//   calibrate.h/.cc        this interface and Calibrate(): the stages in order; PredictRow
+//   calibrate.h/.cc        this interface and Calibrate(): the stages in order (with the fit
+//                          without the throttle offset beside them, for diagnose); PredictRow
 //   prepared_fit.h         what Prepare hands to the fit (rows, terms, free parameters, starts)
 //   prepare.h/.cc          the rows used (every dropped row with its reason), their residual terms,
 //                          which parameters the log frees
@@ -83,6 +84,12 @@ namespace dynosize::calibration {
 // (omega_rad_s; vdc_v or the AC columns; enough rows with the motor turning), naming the file,
 // the column and the rule; UsageError for invalid options. Non-convergence is a status.
 CalibrationResult Calibrate(const logs::SteadyTable& table, const CalibrationOptions& options = {});
+// Calibrate, and in *without_offset what Calibrate returns with options.fit_throttle_offset off,
+// from one run: the two share every stage (rows, knee profile, outlier pass, fits) up to the
+// first fit that keeps a throttle offset, and only then go on separately. Diagnose starts from
+// the fit without the offset and takes the entry from the one with it.
+CalibrationResult Calibrate(const logs::SteadyTable& table, const CalibrationOptions& options,
+                            CalibrationResult* without_offset);
 
 // Model predictions for row `row` of `table` with the given parameters, for the columns the fit
 // compares (omega_rad_s only where the torque is known). NaN for a column not predicted.

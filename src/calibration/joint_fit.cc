@@ -196,8 +196,9 @@ bool HasPrior(const CalibrationOptions& o, int k) {
 // offset / dead band free; the offset is kept when it lowers the cost by an F statistic above
 // knee_min_f for its one extra parameter.
 SolveOutcome FitWithOffset(const Prepared& pr, const CalibrationOptions& o, bool* knee_found, std::string* knee_note,
-                           bool* offset_found, std::string* offset_note) {
+                           bool* offset_found, std::string* offset_note, OffsetFreeFit* offset_free) {
   SolveOutcome none = FitWithKnee(pr, o, false, knee_found, knee_note);
+  if (offset_free != nullptr) *offset_free = {none, *knee_found, *knee_note};
   *offset_found = false;
   if (!o.fit_throttle_offset || !pr.has_throttle || pr.levels.size() < 3) {
     *offset_note = !o.fit_throttle_offset ? "not tested (fit_throttle_offset off)"
