@@ -162,8 +162,6 @@ struct OffsetFreeTwin {
   Run run;             // once forked
 };
 
-constexpr const char* kOffsetNotTested = "not tested (fit_throttle_offset off)";
-
 // The stage's fit (FitWithOffset) of run r; a twin that still shares r's path forks when r keeps
 // an offset.
 void FitStage(int stage, const CalibrationOptions& o, Run* r, OffsetFreeTwin* twin) {
@@ -181,7 +179,7 @@ void FitStage(int stage, const CalibrationOptions& o, Run* r, OffsetFreeTwin* tw
   twin->run.knee_found = none.knee_found;
   twin->run.knee_note = std::move(none.knee_note);
   twin->run.offset_found = false;
-  twin->run.offset_note = kOffsetNotTested;
+  twin->run.offset_note = internal::kOffsetNotTestedNote;
 }
 
 // Stage 1: the outlier pass: rows beyond outlier_sigmas dropped and the fit repeated.
@@ -370,7 +368,7 @@ CalibrationResult CalibrateRun(const SteadyTable& table, const CalibrationOption
     *without_offset = Assemble(table, twin.options, twin.run);
   } else {
     // Never forked: the twin took every stage with the run (no offset kept); only its note differs.
-    run.offset_note = kOffsetNotTested;
+    run.offset_note = internal::kOffsetNotTestedNote;
     *without_offset = Assemble(table, twin.options, run);
   }
   return res;

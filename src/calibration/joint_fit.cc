@@ -201,7 +201,7 @@ SolveOutcome FitWithOffset(const Prepared& pr, const CalibrationOptions& o, bool
   if (offset_free != nullptr) *offset_free = {none, *knee_found, *knee_note};
   *offset_found = false;
   if (!o.fit_throttle_offset || !pr.has_throttle || pr.levels.size() < 3) {
-    *offset_note = !o.fit_throttle_offset ? "not tested (fit_throttle_offset off)"
+    *offset_note = !o.fit_throttle_offset ? kOffsetNotTestedNote
                                           : "not testable: fewer than 3 throttle levels";
     return none;
   }

@@ -24,6 +24,9 @@ std::vector<double> RowResidualMax(const Prepared& pr, const Params& p);
 std::string EscUndetermined(const LevenbergMarquardtSummary& s);
 // True when parameter k carries a Gaussian prior in the fit.
 bool HasPrior(const CalibrationOptions& o, int k);
+// FitWithOffset's note on the offset with fit_throttle_offset off.
+inline constexpr const char* kOffsetNotTestedNote = "not tested (fit_throttle_offset off)";
+
 // The fit without the throttle offset that FitWithOffset compares with (its knee profile and
 // knee note): what FitWithOffset returns with fit_throttle_offset off.
 struct OffsetFreeFit {

@@ -22,9 +22,9 @@ using fit::Median;
 
 namespace {
 
-// Starting values of the base parameters from the calibration engine (src/calibration: the same
-// base model, its robust fit and its knee profile, without the throttle offset, which is a
-// candidate here): the linear start alone can leave the first-order fit in a stalled local
+// Starting values of the base parameters from calibrate's fit without the throttle offset
+// (CalibrationFits::base; src/calibration: the same base model, its robust fit and its knee
+// profile; the offset is a candidate here): the linear start alone can leave the first-order fit in a stalled local
 // minimum on logs whose throttle is not the voltage fraction. Kept only when that fit converged
 // and is physical; the linear start stays otherwise.
 void BaseStartFromCalibration(const CalibrationFits& cal, Values* v) {
@@ -78,7 +78,7 @@ std::vector<std::size_t> ScreenOutliers(const Data& d, const SteadyTable& t, con
 
 // Stage 2a: linear starts of the base parameters when no catalog entry is given:
 // U = R*I + KE*omega (eq 48) by least squares, I from the AC current or IDC/(C1*TR + C0); then
-// the calibration engine's fit where it is physical (BaseStartFromCalibration).
+// calibrate's fit where it is physical (BaseStartFromCalibration).
 void LinearBaseStarts(const SteadyTable& t, const Prepared& p, const CalibrationFits& cal, Values* values) {
   const Data& d = p.d;
   const std::size_t n = d.rows();
