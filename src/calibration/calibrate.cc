@@ -29,15 +29,20 @@ using internal::kKtI;
 using internal::kMeasColumn;
 using internal::kMeasCount;
 using internal::kMIdc;
+using internal::kMIrms;
+using internal::kMOmega;
+using internal::kMPac;
+using internal::kMVll;
 using internal::kLower;
-using internal::kNaN;
 using internal::kUpper;
 using internal::Layout;
 using internal::Prepare;
 using internal::Prepared;
+using internal::PredictGeneric;
 using internal::SelectOutliers;
 using internal::SolveOutcome;
 using internal::ToEsc;
+using internal::ToInternal;
 using internal::ToMotor;
 using internal::TransformStandardErrors;
 using logs::Column;
@@ -136,24 +141,53 @@ bool CalibrationOptions::IsValid(std::string* error) const {
   return true;
 }
 
-CalibrationResult Calibrate(const SteadyTable& table, const CalibrationOptions& options) {
-  std::string err;
-  if (!options.IsValid(&err)) throw UsageError("calibration options: " + err);
-  CalibrationResult res;
-  res.solve_called = true;
-  Prepared pr = Prepare(table, options, nullptr);
-  const int nfree_base = static_cast<int>(std::count(pr.layout.free.begin(), pr.layout.free.end(), true));
-  if (pr.data.terms.size() <= static_cast<std::size_t>(nfree_base)) {
-    throw DataError(FileTag(table) + ": " + std::to_string(pr.data.terms.size()) +
-                    " measured values for " + std::to_string(nfree_base) +
-                    " free parameters: calibration needs more rows");
-  }
+namespace {
+
+// The state of one calibration between its stages (Calibrate).
+struct Run {
+  Prepared pr;
+  SolveOutcome best;
   bool knee_found = false, offset_found = false;
   std::string knee_note, offset_note;
-  SolveOutcome best = FitWithOffset(pr, options, &knee_found, &knee_note, &offset_found, &offset_note);
   std::size_t outliers = 0;
-  if (options.outlier_sigmas > 0.0 && best.summary.IsSolutionUsable()) {
-    const std::vector<DroppedRow> out = SelectOutliers(pr, best.params, table, options, nfree_base);
+};
+
+// The same calibration with fit_throttle_offset off, run beside one with it on: both take the
+// same stages with the same rows and fits until the run with the offset tested keeps it (the
+// fit without it is FitWithOffset's "none"); from there on the twin goes its own way.
+struct OffsetFreeTwin {
+  CalibrationOptions options;  // fit_throttle_offset off
+  bool forked = false;
+  int next_stage = 0;  // the stage the forked twin resumes at
+  Run run;             // once forked
+};
+
+// The stage's fit (FitWithOffset) of run r; a twin that still shares r's path forks when r keeps
+// an offset.
+void FitStage(int stage, const CalibrationOptions& o, Run* r, OffsetFreeTwin* twin) {
+  if (twin == nullptr || twin->forked) {
+    r->best = FitWithOffset(r->pr, o, &r->knee_found, &r->knee_note, &r->offset_found, &r->offset_note);
+    return;
+  }
+  internal::OffsetFreeFit none;
+  r->best = FitWithOffset(r->pr, o, &r->knee_found, &r->knee_note, &r->offset_found, &r->offset_note, &none);
+  if (!r->offset_found) return;
+  twin->forked = true;
+  twin->next_stage = stage + 1;
+  twin->run = *r;
+  twin->run.best = std::move(none.outcome);
+  twin->run.knee_found = none.knee_found;
+  twin->run.knee_note = std::move(none.knee_note);
+  twin->run.offset_found = false;
+  twin->run.offset_note = internal::kOffsetNotTestedNote;
+}
+
+// Stage 1: the outlier pass: rows beyond outlier_sigmas dropped and the fit repeated.
+void OutlierPass(const SteadyTable& table, const CalibrationOptions& options, int nfree_base, Run* r,
+                 OffsetFreeTwin* twin) {
+  Prepared& pr = r->pr;
+  if (options.outlier_sigmas > 0.0 && r->best.summary.IsSolutionUsable()) {
+    const std::vector<DroppedRow> out = SelectOutliers(pr, r->best.params, table, options, nfree_base);
     if (!out.empty()) {
       std::vector<char> excl(table.rows(), 1);  // rows dropped before stay dropped
       for (std::size_t i : pr.data.table_row) excl[i] = 0;
@@ -165,24 +199,47 @@ CalibrationResult Calibrate(const SteadyTable& table, const CalibrationOptions& 
       pr2.dropped_rows.insert(pr2.dropped_rows.end(), out.begin(), out.end());
       pr2.warnings = pr.warnings;
       pr = std::move(pr2);
-      outliers = out.size();
-      best = FitWithOffset(pr, options, &knee_found, &knee_note, &offset_found, &offset_note);
+      r->outliers = out.size();
+      FitStage(1, options, r, twin);
     }
   }
-  // Without AC columns the ESC ratio is only seen through the tied KT (section 5): where the log
-  // cannot determine C1, C0 (on a bound, or a standard error above half the value) they are held
-  // at the ESC prior (ideal unless --prior-esc) and the fit repeated.
+}
+
+// Stage 2: without AC columns the ESC ratio is only seen through the tied KT (section 5): where
+// the log cannot determine C1, C0 (on a bound, or a standard error above half the value) they are
+// held at the ESC prior (ideal unless --prior-esc) and the fit repeated.
+void HoldUndeterminedEsc(const CalibrationOptions& options, Run* r, OffsetFreeTwin* twin) {
+  Prepared& pr = r->pr;
   if (pr.mode != "ac" && pr.layout.free[kC1I]) {
-    const std::string why = EscUndetermined(best.summary);
+    const std::string why = EscUndetermined(r->best.summary);
     if (!why.empty()) {
       const EscParams e0 = options.esc_prior ? *options.esc_prior : EscParams{};
       pr.layout.free[kC1I] = pr.layout.free[kC0I] = false;
       pr.start[kC0I] = std::clamp(e0.c0, kLower[kC0I], kUpper[kC0I]);
       pr.start[kC1I] = std::clamp(identification::EscExcess(e0.c1, pr.start[kC0I]), kLower[kC1I], kUpper[kC1I]);
       pr.notes[kC1I] = pr.notes[kC0I] = "held at prior: without AC columns this log cannot determine them (" + why + ")";
-      best = FitWithOffset(pr, options, &knee_found, &knee_note, &offset_found, &offset_note);
+      FitStage(2, options, r, twin);
     }
   }
+}
+
+// The stages from `from` on: 0 the first fit, 1 the outlier pass, 2 the ESC hold.
+void RunStages(const SteadyTable& table, const CalibrationOptions& options, int nfree_base, int from, Run* r,
+               OffsetFreeTwin* twin) {
+  if (from <= 0) FitStage(0, options, r, twin);
+  if (from <= 1) OutlierPass(table, options, nfree_base, r, twin);
+  if (from <= 2) HoldUndeterminedEsc(options, r, twin);
+}
+
+// The result of a run: values, standard errors, flags, notes, column fits and warnings.
+CalibrationResult Assemble(const SteadyTable& table, const CalibrationOptions& options, const Run& run) {
+  const Prepared& pr = run.pr;
+  const SolveOutcome& best = run.best;
+  const bool knee_found = run.knee_found, offset_found = run.offset_found;
+  const std::string& knee_note = run.knee_note;
+  const std::string& offset_note = run.offset_note;
+  CalibrationResult res;
+  res.solve_called = true;
   const auto& s = best.summary;
   res.solver_summary = s;
   res.converged = s.termination_type == TerminationType::kConvergence;
@@ -277,10 +334,86 @@ CalibrationResult Calibrate(const SteadyTable& table, const CalibrationOptions& 
                                       : std::numeric_limits<double>::infinity();
   }
   AddBoundWarnings(pr, &res);
-  if (outliers > 0) res.warnings.push_back(std::to_string(outliers) + " outlier row(s) dropped and the fit repeated");
+  if (run.outliers > 0) res.warnings.push_back(std::to_string(run.outliers) + " outlier row(s) dropped and the fit repeated");
 
   AddColumnFits(pr, table, options, &res);
   return res;
+}
+
+// Calibrate, and with a twin the same with fit_throttle_offset off into *without_offset.
+CalibrationResult CalibrateRun(const SteadyTable& table, const CalibrationOptions& options,
+                               CalibrationResult* without_offset) {
+  std::string err;
+  if (!options.IsValid(&err)) throw UsageError("calibration options: " + err);
+  Run run;
+  run.pr = Prepare(table, options, nullptr);
+  const Prepared& pr = run.pr;
+  const int nfree_base = static_cast<int>(std::count(pr.layout.free.begin(), pr.layout.free.end(), true));
+  if (pr.data.terms.size() <= static_cast<std::size_t>(nfree_base)) {
+    throw DataError(FileTag(table) + ": " + std::to_string(pr.data.terms.size()) +
+                    " measured values for " + std::to_string(nfree_base) +
+                    " free parameters: calibration needs more rows");
+  }
+  OffsetFreeTwin twin;
+  twin.options = options;
+  twin.options.fit_throttle_offset = false;
+  const bool with_twin = without_offset != nullptr && options.fit_throttle_offset;
+  RunStages(table, options, nfree_base, 0, &run, with_twin ? &twin : nullptr);
+  CalibrationResult res = Assemble(table, options, run);
+  if (without_offset == nullptr) return res;
+  if (!with_twin) {
+    *without_offset = res;
+  } else if (twin.forked) {
+    RunStages(table, twin.options, nfree_base, twin.next_stage, &twin.run, nullptr);
+    *without_offset = Assemble(table, twin.options, twin.run);
+  } else {
+    // Never forked: the twin took every stage with the run (no offset kept); only its note differs.
+    run.offset_note = internal::kOffsetNotTestedNote;
+    *without_offset = Assemble(table, twin.options, run);
+  }
+  return res;
+}
+
+}  // namespace
+
+CalibrationResult Calibrate(const SteadyTable& table, const CalibrationOptions& options) {
+  return CalibrateRun(table, options, nullptr);
+}
+
+CalibrationResult Calibrate(const SteadyTable& table, const CalibrationOptions& options,
+                            CalibrationResult* without_offset) {
+  return CalibrateRun(table, options, without_offset);
+}
+
+RowPrediction PredictRow(const SteadyTable& t, std::size_t row, const MotorParams& motor, const EscParams& esc,
+                         double assumed_throttle) {
+  RowPrediction out;
+  const std::array<double, kBaseParamCount> p = ToInternal(motor, esc);
+  const bool has_q = t.Has(Column::kTorqueNm);
+  const bool nl = t.Has(Column::kNoLoad) && t.Get(Column::kNoLoad)[row] != 0.0;
+  const bool tq = has_q || nl;
+  const double tr = t.Has(Column::kThrottle) ? t.Get(Column::kThrottle)[row] : assumed_throttle;
+  double pred[kMeasCount], qp;
+  if (!PredictGeneric(p.data(), esc.tr_sat, t.Get(Column::kVdcV)[row], tr, t.Get(Column::kOmegaRadS)[row],
+                      has_q ? t.Get(Column::kTorqueNm)[row] : 0.0, tq, pred, &qp)) {
+    return out;
+  }
+  if (tq) out.omega_rad_s = pred[kMOmega];
+  {
+    const double tre = circuit::EffectiveThrottle(tr, esc.tr_sat, esc.sat_slope, esc.deadband);
+    const double g = esc.c1 * tre + esc.c0;  // (57): IDC = g*I
+    const double u = circuit::AppliedVoltage(kVllRmsPerVdc, t.Get(Column::kVdcV)[row], tre);
+    if (g > 0.0 && motor.ke_v_s_per_rad > 0.0) {
+      out.omega_from_idc_rad_s = circuit::SpeedAtCurrent(u, motor.rm_ohm + esc.resc_ohm,
+                                                         t.Get(Column::kIdcA)[row] / g, motor.ke_v_s_per_rad);
+    }
+  }
+  if (!tq) out.torque_nm = qp;
+  out.idc_a = pred[kMIdc];
+  out.irms_a = pred[kMIrms];
+  out.vll_rms_v = pred[kMVll];
+  out.pac_w = pred[kMPac];
+  return out;
 }
 
 }  // namespace dynosize::calibration

@@ -4,18 +4,14 @@
 #include <sstream>
 
 #include "calibration/calibrate.h"
+#include "common/text_format.h"
 
 namespace dynosize::calibration {
 
 namespace {
 
 // A standard error for the table: "-" where there is none (held parameters, bounds).
-std::string ErrText(double v) {
-  if (!std::isfinite(v)) return "-";
-  std::ostringstream s;
-  s << std::setprecision(3) << v;
-  return s.str();
-}
+std::string ErrText(double v) { return SignificantTextOr(v, "-", 3); }
 
 }  // namespace
 

@@ -14,7 +14,6 @@
 namespace dynosize::calibration {
 
 using fit::Median;
-using internal::kNaN;
 using internal::SpuriousSpeedRows;
 using logs::Column;
 using logs::SteadyTable;

@@ -108,47 +108,5 @@ EscParams ToEsc(const std::array<double, kBaseParamCount>& p, const std::optiona
 }
 
 }  // namespace internal
-
-using internal::kMeasCount;
-using internal::kMIdc;
-using internal::kMIrms;
-using internal::kMOmega;
-using internal::kMPac;
-using internal::kMVll;
-using internal::PredictGeneric;
-using internal::ToInternal;
-using logs::Column;
-using logs::SteadyTable;
-
-RowPrediction PredictRow(const SteadyTable& t, std::size_t row, const MotorParams& motor, const EscParams& esc,
-                         double assumed_throttle) {
-  RowPrediction out;
-  const std::array<double, kBaseParamCount> p = ToInternal(motor, esc);
-  const bool has_q = t.Has(Column::kTorqueNm);
-  const bool nl = t.Has(Column::kNoLoad) && t.Get(Column::kNoLoad)[row] != 0.0;
-  const bool tq = has_q || nl;
-  const double tr = t.Has(Column::kThrottle) ? t.Get(Column::kThrottle)[row] : assumed_throttle;
-  double pred[kMeasCount], qp;
-  if (!PredictGeneric(p.data(), esc.tr_sat, t.Get(Column::kVdcV)[row], tr, t.Get(Column::kOmegaRadS)[row],
-                      has_q ? t.Get(Column::kTorqueNm)[row] : 0.0, tq, pred, &qp)) {
-    return out;
-  }
-  if (tq) out.omega_rad_s = pred[kMOmega];
-  {
-    const double tre = circuit::EffectiveThrottle(tr, esc.tr_sat, esc.sat_slope, esc.deadband);
-    const double g = esc.c1 * tre + esc.c0;  // (57): IDC = g*I
-    const double u = circuit::AppliedVoltage(kVllRmsPerVdc, t.Get(Column::kVdcV)[row], tre);
-    if (g > 0.0 && motor.ke_v_s_per_rad > 0.0) {
-      out.omega_from_idc_rad_s = circuit::SpeedAtCurrent(u, motor.rm_ohm + esc.resc_ohm,
-                                                         t.Get(Column::kIdcA)[row] / g, motor.ke_v_s_per_rad);
-    }
-  }
-  if (!tq) out.torque_nm = qp;
-  out.idc_a = pred[kMIdc];
-  out.irms_a = pred[kMIrms];
-  out.vll_rms_v = pred[kMVll];
-  out.pac_w = pred[kMPac];
-  return out;
-}
-
 }  // namespace dynosize::calibration
+

@@ -13,8 +13,9 @@
 #include <string>
 #include <vector>
 
-#include "calibration/calibrate.h"
+#include "calibration/calibration_types.h"
 #include "common/dual.h"
+#include "common/numbers.h"
 #include "fit/nonlinear_least_squares.h"
 #include "identification/fit_rows.h"
 #include "identification/parameters.h"
@@ -23,7 +24,6 @@
 
 namespace dynosize::calibration::internal {
 
-inline constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 inline constexpr int kMaxFree = kBaseParamCount - 1;  // every parameter but tr_sat (profiled)
 using D8 = Dual<kMaxFree>;
 using identification::C1FromExcess;

@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "fit/statistics.h"
+#include "identification/knee_profile.h"
 
 namespace dynosize::calibration::internal {
 
@@ -79,7 +80,24 @@ SolveOutcome SolveOnce(const Prepared& pr, const CalibrationOptions& o, double t
   return out;
 }
 
-// Best fit over the knee candidates (and "no knee"); returns the chosen outcome.
+// Calibrate's knee grid: knee_min, knee_min + knee_step, ... below 1, each with at least 2
+// throttle levels on either side. A regular grid (not diagnose's midpoints between levels,
+// diagnosis/candidates.h KneeGrid) because calibrate reports tr_sat at the grid's resolution
+// (standard error knee_step/sqrt(12)) and keeps it by one F test, with no correction for the
+// number of knees tried; the user sets the resolution (knee_step).
+std::vector<double> KneeGrid(const Prepared& pr, const CalibrationOptions& o) {
+  std::vector<double> grid;
+  for (double ts = o.knee_min; ts < 1.0 - 1e-9; ts += o.knee_step) {
+    int above = 0, below = 0;
+    for (double lv : pr.levels) (lv > ts + 1e-9 ? above : below)++;
+    if (above < 2 || below < 2) continue;
+    grid.push_back(ts);
+  }
+  return grid;
+}
+
+// Best fit over the knee candidates (identification/knee_profile.h) and "no knee"; returns the
+// chosen outcome.
 SolveOutcome FitWithKnee(const Prepared& pr, const CalibrationOptions& o, bool free_offset, bool* knee_found,
                          std::string* knee_note) {
   SolveOutcome best = SolveOnce(pr, o, 1.0, false, free_offset, pr.start);
@@ -89,19 +107,13 @@ SolveOutcome FitWithKnee(const Prepared& pr, const CalibrationOptions& o, bool f
     return best;
   }
   const SolveOutcome none = best;
-  SolveOutcome knee;
-  int candidates = 0;
-  for (double ts = o.knee_min; ts < 1.0 - 1e-9; ts += o.knee_step) {
-    int above = 0, below = 0;
-    for (double lv : pr.levels) (lv > ts + 1e-9 ? above : below)++;
-    if (above < 2 || below < 2) continue;
-    ++candidates;
-    std::array<double, kBaseParamCount> start = none.params;
-    start[static_cast<int>(Param::kSatSlope)] = 0.8;
-    SolveOutcome s = SolveOnce(pr, o, ts, true, free_offset, start);
-    if (s.cost < knee.cost) knee = s;
-  }
-  if (candidates == 0) {
+  const std::vector<double> grid = KneeGrid(pr, o);
+  std::array<double, kBaseParamCount> start = none.params;
+  start[static_cast<int>(Param::kSatSlope)] = 0.8;
+  const auto fit_at = [&](double ts, std::size_t) { return SolveOnce(pr, o, ts, true, free_offset, start); };
+  const auto cost_of = [](const SolveOutcome& s) { return s.cost; };
+  const SolveOutcome knee = identification::ProfileKnee<SolveOutcome>(grid, fit_at, cost_of).best_fit;
+  if (grid.empty()) {
     *knee_note = "fewer than 2 throttle levels on either side of every knee candidate (" +
                  std::to_string(pr.levels.size()) + " levels)";
     return best;
@@ -184,11 +196,12 @@ bool HasPrior(const CalibrationOptions& o, int k) {
 // offset / dead band free; the offset is kept when it lowers the cost by an F statistic above
 // knee_min_f for its one extra parameter.
 SolveOutcome FitWithOffset(const Prepared& pr, const CalibrationOptions& o, bool* knee_found, std::string* knee_note,
-                           bool* offset_found, std::string* offset_note) {
+                           bool* offset_found, std::string* offset_note, OffsetFreeFit* offset_free) {
   SolveOutcome none = FitWithKnee(pr, o, false, knee_found, knee_note);
+  if (offset_free != nullptr) *offset_free = {none, *knee_found, *knee_note};
   *offset_found = false;
   if (!o.fit_throttle_offset || !pr.has_throttle || pr.levels.size() < 3) {
-    *offset_note = !o.fit_throttle_offset ? "not tested (fit_throttle_offset off)"
+    *offset_note = !o.fit_throttle_offset ? kOffsetNotTestedNote
                                           : "not testable: fewer than 3 throttle levels";
     return none;
   }

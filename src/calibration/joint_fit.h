@@ -24,10 +24,21 @@ std::vector<double> RowResidualMax(const Prepared& pr, const Params& p);
 std::string EscUndetermined(const LevenbergMarquardtSummary& s);
 // True when parameter k carries a Gaussian prior in the fit.
 bool HasPrior(const CalibrationOptions& o, int k);
+// FitWithOffset's note on the offset with fit_throttle_offset off.
+inline constexpr const char* kOffsetNotTestedNote = "not tested (fit_throttle_offset off)";
+
+// The fit without the throttle offset that FitWithOffset compares with (its knee profile and
+// knee note): what FitWithOffset returns with fit_throttle_offset off.
+struct OffsetFreeFit {
+  SolveOutcome outcome;
+  bool knee_found = false;
+  std::string knee_note;
+};
 // The base fit with its knee profile, and with three or more throttle levels the same with the
-// throttle offset / dead band free, kept when it beats "no offset" by the F test.
+// throttle offset / dead band free, kept when it beats "no offset" by the F test. The fit
+// without the offset goes to *offset_free when given.
 SolveOutcome FitWithOffset(const Prepared& pr, const CalibrationOptions& o, bool* knee_found, std::string* knee_note,
-                           bool* offset_found, std::string* offset_note);
+                           bool* offset_found, std::string* offset_note, OffsetFreeFit* offset_free = nullptr);
 // Rows whose largest residual exceeds outlier_sigmas robust standard deviations (joint_fit.cc).
 std::vector<DroppedRow> SelectOutliers(const Prepared& pr, const Params& p, const logs::SteadyTable& t,
                                        const CalibrationOptions& o, int nfree);

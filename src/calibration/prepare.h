@@ -1,7 +1,7 @@
-// What calibrate fits, before any solve: the rows it uses (every dropped row with its reason),
-// their residual terms, which parameters the log frees (identification::FreeBaseParams) with a
-// note for each it cannot identify, and the starting values (starting_values.h). Internal to
-// src/calibration.
+// What calibrate fits, before any solve (Prepared, prepared_fit.h): the rows it uses (every
+// dropped row with its reason), their residual terms, which parameters the log frees
+// (identification::FreeBaseParams) with a note for each it cannot identify, and the starting
+// values (starting_values.h). Internal to src/calibration.
 #pragma once
 
 #include <array>
@@ -10,30 +10,10 @@
 #include <vector>
 
 #include "calibration/forward_model.h"
+#include "calibration/prepared_fit.h"
 #include "logs/steady_table.h"
 
 namespace dynosize::calibration::internal {
-
-struct Prepared {
-  FitData data;
-  Layout layout;
-  std::array<double, kBaseParamCount> start{};
-  std::array<std::string, kBaseParamCount> notes;
-  std::string mode;
-  bool has_throttle = false;
-  std::vector<double> levels;
-  std::vector<logs::DropCount> dropped;
-  std::vector<DroppedRow> dropped_rows;
-  std::vector<std::string> warnings;
-  double offset_upper = 0.5;  // upper bound of the dead band: below the lowest throttle level
-};
-
-// Which columns the log has, beyond those Prepared records (the stages of Prepare share it).
-struct LogColumns {
-  bool has_q = false;   // torque
-  bool has_nl = false;  // no-load flag
-  bool ac = false;      // vll_rms_v and irms_a
-};
 
 // The speed readings of the rows a fit may use (not excluded, not no-load, passing RowRejection)
 // that the circuit cannot produce (identification::FindSpuriousSpeeds).

@@ -4,7 +4,7 @@
 // prior of catalog/noload_prior.h). Internal to src/calibration.
 #pragma once
 
-#include "calibration/prepare.h"
+#include "calibration/prepared_fit.h"
 
 namespace dynosize::calibration::internal {
 

@@ -14,6 +14,7 @@ namespace dynosize::diagnosis::internal {
 
 using logs::Column;
 using logs::SteadyTable;
+using fit::FDistributionUpperTail;
 
 namespace {
 

@@ -7,7 +7,7 @@
 #include <map>
 #include <vector>
 
-#include "diagnosis/diagnose.h"
+#include "diagnosis/diagnosis_types.h"
 #include "diagnosis/model_fit.h"
 
 namespace dynosize::diagnosis::internal {

@@ -49,6 +49,7 @@ const char* CauseDescription(Cause c) {
 namespace internal {
 
 using fit::Aicc;
+using fit::FDistributionUpperTail;
 
 namespace {
 
@@ -289,7 +290,11 @@ bool BaseAtBound(const Model& m, const Values& v) {
 }
 
 // Knee candidates: midpoints between throttle levels from 0.5 up (or a 0.02 grid when the
-// throttle is continuous), each with at least one level above.
+// throttle is continuous), each with at least one level above. Not calibrate's regular grid
+// (calibration/joint_fit.cc): the F test's p value is multiplied by the number of knees tried
+// (diagnose.h step 5), so diagnose tries few knees, one per gap between two levels (which rows
+// lie above the knee is all a grid point decides), and FitProfiled then frees the knee between
+// the best one's neighbours.
 std::vector<double> KneeGrid(const std::vector<double>& levels) {
   std::vector<double> knees;
   if (levels.size() >= 3) {

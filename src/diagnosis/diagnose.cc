@@ -132,7 +132,8 @@ void AssembleResult(const SteadyTable& t, const DiagnoseOptions& o, const Data& 
 // the entry and its status are calibrate's, so that a log has one status. Diagnose weighs its residuals for its tests (errors in variables, diagnose.h) and
 // calibrate for its entry (percent of the column median, Huber): on a log the first-order model
 // cannot follow at low command (tytodb AG5008) the two weightings put Rm in different places.
-void UseCalibrationEntry(const SteadyTable& t, const DiagnoseOptions& o, DiagnoseResult* res) {
+void UseCalibrationEntry(const SteadyTable& t, const DiagnoseOptions& o, const CalibrationFits& cal,
+                         DiagnoseResult* res) {
   if (!o.calibration_entry || o.motor) return;
   bool deadband = false, knee = false;
   for (const auto& f : res->findings) {
@@ -140,9 +141,9 @@ void UseCalibrationEntry(const SteadyTable& t, const DiagnoseOptions& o, Diagnos
     else if (f.cause == Cause::kEscSaturation) knee = true;
     else return;  // an extension calibrate does not fit: diagnose's own entry
   }
-  calibration::CalibrationOptions co;
-  calibration::CalibrationResult r;
-  if (!CalibrateWithDiagnoseOptions(t, o, /*fit_throttle_offset=*/true, &co, &r)) return;
+  if (!cal.ok || !cal.has_entry) return;
+  const calibration::CalibrationOptions& co = cal.entry_options;
+  const calibration::CalibrationResult& r = cal.entry;
   const bool cal_deadband = r.param(calibration::Param::kDeadband).fitted;
   const bool cal_knee = r.param(calibration::Param::kTrSat).fitted;
   // Calibrate's model must hold every finding; an offset or knee it keeps beyond them is its own F
@@ -179,7 +180,9 @@ DiagnoseResult Diagnose(const logs::SteadyTable& t, const DiagnoseOptions& o) {
   DiagnoseResult res;
   res.file = t.file.empty() ? "log" : t.file;
   in::Prepared p = in::PrepareDiagnosisData(t, o, &res);
-  const in::Model base = in::BuildBaseModel(t, o, p, &res);
+  // Calibrate's fits, once: the base model's starts and the entry (stage 11).
+  const in::CalibrationFits cal = in::CalibrateForDiagnosis(t, o);
+  const in::Model base = in::BuildBaseModel(t, o, p, cal, &res);
   const std::vector<double> knees = in::KneeGrid(p.levels);
   const std::vector<Cause> candidates = in::TestableCandidates(o, p, knees, &res);
   const std::size_t n = p.d.rows();
@@ -196,7 +199,7 @@ DiagnoseResult Diagnose(const logs::SteadyTable& t, const DiagnoseOptions& o) {
   cur = in::SearchCandidates(x, p.has_tr, candidates, std::move(cur), &res);
   cur = in::HoldEscOnBound(x, p.ac, std::move(cur), &res);
   in::AssembleResult(t, o, d, used, folds, cur, &res);
-  in::UseCalibrationEntry(t, o, &res);
+  in::UseCalibrationEntry(t, o, cal, &res);
   return res;
 }
 

@@ -6,6 +6,7 @@
 #include <cstddef>
 
 #include "common/units.h"
+#include "identification/knee_profile.h"
 
 namespace dynosize::diagnosis::internal {
 
@@ -162,19 +163,21 @@ FitOut FitModel(const Data& d, const std::vector<std::size_t>& rows, const Model
   return out;
 }
 
-// Fits the model, profiling tr_sat over `knees` when the model asks for it.
+// Fits the model, profiling tr_sat over `knees` (identification/knee_profile.h) when the model
+// asks for it.
 FitOut FitProfiled(const Data& d, const std::vector<std::size_t>& rows, const Model& model,
                    const std::vector<double>& knees, LossType loss, double loss_scale) {
   if (!model.profile_knee) return FitModel(d, rows, model, loss, loss_scale);
-  FitOut best;
-  std::size_t jbest = 0;
-  for (std::size_t j = 0; j < knees.size(); ++j) {
+  const auto fit_at = [&](double knee, std::size_t) {
     Model m = model;
-    m.values[kTrSat] = knees[j];
-    FitOut f = FitModel(d, rows, m, loss, loss_scale);
-    if (f.ok && (!best.ok || f.sse < best.sse)) best = f, jbest = j;
-  }
-  if (!best.ok) return best;
+    m.values[kTrSat] = knee;
+    return FitModel(d, rows, m, loss, loss_scale);
+  };
+  const auto cost_of = [](const FitOut& f) { return f.ok ? f.sse : std::numeric_limits<double>::infinity(); };
+  const id::KneeProfile<FitOut> profile = id::ProfileKnee<FitOut>(knees, fit_at, cost_of);
+  if (!profile.found()) return FitOut{};
+  const FitOut& best = profile.best_fit;
+  const std::size_t jbest = profile.best;
   // The true knee lies between throttle levels, not on the grid: the knee is refined as a free
   // parameter between the grid neighbours of the best grid knee, starting there. A knee held on
   // the grid biases the slope (the row between the true and the grid knee is bent wrongly and

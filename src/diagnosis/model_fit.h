@@ -12,7 +12,8 @@
 #include <string>
 #include <vector>
 
-#include "diagnosis/diagnose.h"
+#include "common/numbers.h"
+#include "diagnosis/diagnosis_types.h"
 #include "fit/nonlinear_least_squares.h"
 #include "identification/fit_rows.h"
 #include "identification/parameters.h"
@@ -20,8 +21,6 @@
 #include "model/drive.h"
 
 namespace dynosize::diagnosis::internal {
-
-inline constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 // Parameters: the slots of identification/parameters.h (kParamTable). Every model is a subset of
 // them made free; the rest are held.

@@ -22,15 +22,14 @@ using fit::Median;
 
 namespace {
 
-// Starting values of the base parameters from the calibration engine (src/calibration: the same
-// base model, its robust fit and its knee profile, without the throttle offset, which is a
-// candidate here): the linear start alone can leave the first-order fit in a stalled local
+// Starting values of the base parameters from calibrate's fit without the throttle offset
+// (CalibrationFits::base; src/calibration: the same base model, its robust fit and its knee
+// profile; the offset is a candidate here): the linear start alone can leave the first-order fit in a stalled local
 // minimum on logs whose throttle is not the voltage fraction. Kept only when that fit converged
 // and is physical; the linear start stays otherwise.
-void BaseStartFromCalibration(const SteadyTable& t, const DiagnoseOptions& o, Values* v) {
-  calibration::CalibrationOptions co;
-  calibration::CalibrationResult r;
-  if (!CalibrateWithDiagnoseOptions(t, o, /*fit_throttle_offset=*/false, &co, &r)) return;
+void BaseStartFromCalibration(const CalibrationFits& cal, Values* v) {
+  if (!cal.ok) return;
+  const calibration::CalibrationResult& r = cal.base;
   if (!r.converged || !std::isfinite(r.motor.ke_v_s_per_rad) || !std::isfinite(r.motor.rm_ohm)) return;
   for (int k = 0; k < calibration::kBaseParamCount; ++k) {
     if (r.params[k].at_bound) return;
@@ -79,8 +78,8 @@ std::vector<std::size_t> ScreenOutliers(const Data& d, const SteadyTable& t, con
 
 // Stage 2a: linear starts of the base parameters when no catalog entry is given:
 // U = R*I + KE*omega (eq 48) by least squares, I from the AC current or IDC/(C1*TR + C0); then
-// the calibration engine's fit where it is physical (BaseStartFromCalibration).
-void LinearBaseStarts(const SteadyTable& t, const DiagnoseOptions& o, const Prepared& p, Values* values) {
+// calibrate's fit where it is physical (BaseStartFromCalibration).
+void LinearBaseStarts(const SteadyTable& t, const Prepared& p, const CalibrationFits& cal, Values* values) {
   const Data& d = p.d;
   const std::size_t n = d.rows();
   Values& v = *values;
@@ -111,7 +110,7 @@ void LinearBaseStarts(const SteadyTable& t, const DiagnoseOptions& o, const Prep
     }
     v[kIo] = c > 0 ? std::max(s / c, 0.0) : 0.0;
   }
-  BaseStartFromCalibration(t, o, &v);
+  BaseStartFromCalibration(cal, &v);
 }
 
 // Stage 2b: optimisation scales (x = value/scale) and the physical box of every slot.
@@ -159,23 +158,28 @@ void ScalesAndBounds(const Prepared& p, Model* base) {
 
 }  // namespace
 
-// calibrate on the same rows with diagnose's options (throttle map, speed and throttle floors, Kv
-// label, ESC prior), the options used in *co; false when calibrate refuses the table.
-bool CalibrateWithDiagnoseOptions(const SteadyTable& t, const DiagnoseOptions& o, bool fit_throttle_offset,
-                                  calibration::CalibrationOptions* co, calibration::CalibrationResult* r) {
-  *co = calibration::CalibrationOptions{};
-  co->fit_throttle_offset = fit_throttle_offset;
-  co->assumed_throttle = o.assumed_throttle;
-  co->min_speed_fraction = o.min_speed_fraction;
-  co->min_throttle = o.min_throttle;
-  co->labels.kv_rpm_per_v = o.kv_label_rpm_per_v;
-  if (o.esc) co->esc_prior = *o.esc;
+CalibrationFits CalibrateForDiagnosis(const SteadyTable& t, const DiagnoseOptions& o) {
+  CalibrationFits cal;
+  if (o.motor) return cal;
+  calibration::CalibrationOptions& co = cal.entry_options;
+  co.assumed_throttle = o.assumed_throttle;
+  co.min_speed_fraction = o.min_speed_fraction;
+  co.min_throttle = o.min_throttle;
+  co.labels.kv_rpm_per_v = o.kv_label_rpm_per_v;
+  if (o.esc) co.esc_prior = *o.esc;
+  cal.has_entry = o.calibration_entry;
+  co.fit_throttle_offset = cal.has_entry;  // without the entry, only the fit without the offset
   try {
-    *r = calibration::Calibrate(t, *co);
+    if (cal.has_entry) {
+      cal.entry = calibration::Calibrate(t, co, &cal.base);
+    } else {
+      cal.base = calibration::Calibrate(t, co);
+    }
   } catch (const Error&) {
-    return false;
+    return cal;
   }
-  return true;
+  cal.ok = true;
+  return cal;
 }
 
 Prepared PrepareDiagnosisData(const SteadyTable& t, const DiagnoseOptions& o, DiagnoseResult* res) {
@@ -268,7 +272,8 @@ Prepared PrepareDiagnosisData(const SteadyTable& t, const DiagnoseOptions& o, Di
 }
 
 // Stage 2: the base (first-order) model: what is free, held values, starts, scales and bounds.
-Model BuildBaseModel(const SteadyTable& t, const DiagnoseOptions& o, const Prepared& p, DiagnoseResult* res) {
+Model BuildBaseModel(const SteadyTable& t, const DiagnoseOptions& o, const Prepared& p, const CalibrationFits& cal,
+                     DiagnoseResult* res) {
   const Data& d = p.d;
   Model base;
   const MotorParams m0 = o.motor ? *o.motor : MotorParams{};
@@ -295,7 +300,7 @@ Model BuildBaseModel(const SteadyTable& t, const DiagnoseOptions& o, const Prepa
   content.any_torque_known = p.any_tk;
   content.throttle_levels = p.levels.size();
   base.free = id::FreeBaseParams(content);
-  if (!o.motor) LinearBaseStarts(t, o, p, &v);
+  if (!o.motor) LinearBaseStarts(t, p, cal, &v);
   ScalesAndBounds(p, &base);
   for (int s = 0; s < kSlotCount; ++s) {
     if (base.free[s]) res->base_free_parameters.push_back(SlotName(s));

@@ -7,19 +7,28 @@
 #include <vector>
 
 #include "calibration/calibrate.h"
-#include "diagnosis/diagnose.h"
+#include "diagnosis/diagnosis_types.h"
 #include "diagnosis/model_fit.h"
 
 namespace dynosize::diagnosis::internal {
 
-// calibrate on the same rows with diagnose's options (throttle map, speed and throttle floors, Kv
-// label, ESC prior), the options used in *co; false when calibrate refuses the table.
-bool CalibrateWithDiagnoseOptions(const logs::SteadyTable& t, const DiagnoseOptions& o, bool fit_throttle_offset,
-                                  calibration::CalibrationOptions* co, calibration::CalibrationResult* r);
+// Calibrate's fits of the log with diagnose's options (throttle map, speed and throttle floors, Kv
+// label, ESC prior), from one run of calibrate (calibration::Calibrate with without_offset).
+struct CalibrationFits {
+  bool ok = false;         // calibrate ran and accepted the table
+  bool has_entry = false;  // `entry` was fitted (DiagnoseOptions::calibration_entry)
+  calibration::CalibrationOptions entry_options;  // calibrate's options with the throttle offset tested
+  calibration::CalibrationResult base;   // without the throttle offset (a candidate here): the starts
+  calibration::CalibrationResult entry;  // with the throttle offset tested: the entry (stage 11)
+};
+// None without calibrate's fits to use (a catalog motor is given: its values start the fit and
+// the entry is diagnose's own).
+CalibrationFits CalibrateForDiagnosis(const logs::SteadyTable& t, const DiagnoseOptions& o);
 // Stage 1: what the log offers, and the rows and terms of the fit.
 Prepared PrepareDiagnosisData(const logs::SteadyTable& t, const DiagnoseOptions& o, DiagnoseResult* res);
 // Stage 2: the base (first-order) model: what is free, held values, starts, scales and bounds.
-Model BuildBaseModel(const logs::SteadyTable& t, const DiagnoseOptions& o, const Prepared& p, DiagnoseResult* res);
+Model BuildBaseModel(const logs::SteadyTable& t, const DiagnoseOptions& o, const Prepared& p,
+                     const CalibrationFits& cal, DiagnoseResult* res);
 // Stage 4: cross-validation folds, seeded.
 Folds AssignFolds(std::size_t n, const DiagnoseOptions& o);
 // Stage 5: effective-variance weights (prepare.cc).

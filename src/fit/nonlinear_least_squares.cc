@@ -9,13 +9,13 @@
 #include <utility>
 
 #include "common/error.h"
+#include "common/numbers.h"
 #include "fit/option_check.h"
 
 namespace dynosize {
 namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 // rho(s), rho'(s), rho''(s) of the loss at s = r^2.
 struct LossValue {

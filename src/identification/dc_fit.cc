@@ -3,14 +3,13 @@
 #include <cmath>
 #include <limits>
 
+#include "common/numbers.h"
 #include "common/units.h"
 #include "identification/fit_rows.h"
 
 namespace dynosize::identification {
 
 namespace {
-
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 double Duty(const logs::SteadyTable& t, std::size_t i, double assumed_throttle) {
   return t.Has(logs::Column::kThrottle) ? t.Get(logs::Column::kThrottle)[i] : assumed_throttle;

@@ -8,6 +8,7 @@
 
 #include <Eigen/Dense>
 
+#include "common/numbers.h"
 #include "common/units.h"
 #include "fit/linear_least_squares.h"
 #include "fit/statistics.h"
@@ -217,7 +218,6 @@ double ResistanceWithKeHeld(const std::vector<double>& current_a, const std::vec
 }
 
 double TorquePerAmpereVsLabel(const logs::SteadyTable& t, double kv_label_rpm_per_v) {
-  constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
   using logs::Column;
   if (!t.Has(Column::kTorqueNm) || !t.Has(Column::kIdcA) || !t.Has(Column::kThrottle) || !(kv_label_rpm_per_v > 0.0)) {
     return kNaN;

@@ -4,18 +4,14 @@
 #include <cmath>
 #include <sstream>
 
+#include "common/text_format.h"
 #include "identification/parameters.h"
 
 namespace dynosize::identification {
 
 namespace {
 
-std::string Num(double v) {
-  std::ostringstream s;
-  s.precision(3);
-  s << v;
-  return s.str();
-}
+std::string Num(double v) { return SignificantText(v, 3); }
 
 void Add(Verdict* v, const std::string& name, bool passed, double value, double limit, const std::string& detail) {
   Check c;
