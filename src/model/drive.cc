@@ -39,19 +39,6 @@ inline void FillPowers(double vdc_v, double omega_rad_s, OperatingPoint* p) {
 
 }  // namespace
 
-std::vector<std::string> LimitNames(std::uint32_t limits) {
-  static const char* const kNames[] = {"throttle_above_one", "throttle_below_zero",
-                                       "motor_current",      "esc_current",
-                                       "motor_power",        "esc_voltage",
-                                       "stalled",            "overrunning",
-                                       "thermal_runaway",    "creates_energy"};
-  std::vector<std::string> names;
-  for (std::uint32_t bit = 0; bit < sizeof(kNames) / sizeof(kNames[0]); ++bit) {
-    if (limits & (1u << bit)) names.emplace_back(kNames[bit]);
-  }
-  return names;
-}
-
 void OperatingPointBatch::Resize(std::size_t n) {
   for (auto* v : {&omega_rad_s, &torque_nm, &irms_a, &vll_rms_v, &pac_w, &idc_a, &pdc_w, &pesc_w,
                   &pmech_w, &eta_motor, &eta_esc, &eta_system, &throttle_effective}) {
