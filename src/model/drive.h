@@ -79,14 +79,6 @@ struct TorqueLaw {
   double c_nm_s2_per_rad2 = 0.0;
 };
 
-// Structure-of-arrays results for the batch path (no per-point allocation).
-struct OperatingPointBatch {
-  std::vector<double> omega_rad_s, torque_nm, irms_a, vll_rms_v, pac_w, idc_a, pdc_w, pesc_w,
-      pmech_w, eta_motor, eta_esc, eta_system, throttle_effective;
-  void Resize(std::size_t n);
-  std::size_t size() const { return omega_rad_s.size(); }
-};
-
 class Drive {
  public:
   Drive(const MotorParams& motor, const EscParams& esc);
@@ -152,13 +144,6 @@ class Drive {
   double MaxEfficiencySpeed(double vdc_v, double throttle) const;
   // ESC timing figure (t_on + t_off)*f_sw of eq (62): (C1 - (3/pi)*sqrt(27/20))*TR_eff + C0.
   double EscTimingFigure(double throttle) const;
-
-  // Batch forward model for a torque law per point, Q_i = a_i + b_i*omega + c_i*omega^2 (pass
-  // b = c = nullptr for a constant torque a_i). Writes out[i]; limits are not evaluated here
-  // (use AtLoad for a single checked point). Branch-free so that the compiler vectorises it.
-  void AtLoadBatch(std::size_t n, const double* vdc_v, const double* throttle, const double* a_nm,
-                   const double* b_nm_s_per_rad, const double* c_nm_s2_per_rad2,
-                   OperatingPointBatch* out) const;
 
  private:
   // Series resistance of (48) at this effective throttle: Rm + RESC + kv*rsupply*g*TR_eff.

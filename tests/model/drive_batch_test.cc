@@ -187,6 +187,21 @@ TEST(DriveBatch, ExtendedDrivesEqualPointByPoint) {
   }
 }
 
+// The linear extensions alone (Io(omega) and a dead band: closed forms, no root finder) also run
+// Drive's scalar path, whatever the mode, down to the throttle range's ends.
+TEST(DriveBatch, LinearExtensionsEqualPointByPoint) {
+  MotorParams m = RatedMotor();
+  m.io1_a_s_per_rad = 3e-4;
+  EscParams e = RatedEsc();
+  e.deadband = 0.08;
+  const Drive d(m, e);
+  ASSERT_TRUE(d.extended());
+  ASSERT_FALSE(d.nonlinear());
+  for (BatchMode mode : {BatchMode::kInverse, BatchMode::kAtTorque, BatchMode::kAtSpeed}) {
+    ExpectBatchEqualsPointByPoint(d, mode, 600, "linear extensions");
+  }
+}
+
 TEST(DriveBatch, EmptyBatchWritesNothing) {
   const Drive d(RatedMotor(), RatedEsc());
   SolveBatch(d, BatchMode::kInverse, 0, BatchInputs{}, PointColumns{});

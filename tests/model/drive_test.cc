@@ -222,30 +222,6 @@ TEST(Drive, EscTimingFigureEq62) {
   EXPECT_NEAR((p.pesc_w - conduction) / (7.2 * p.irms_a), d.EscTimingFigure(0.5), 1e-12);
 }
 
-TEST(Drive, BatchEqualsScalar) {
-  const Drive d(TestMotor(), TestEsc());
-  std::mt19937 rng(7);
-  std::uniform_real_distribution<double> u(0.0, 1.0);
-  const std::size_t n = 257;  // not a multiple of the vector width
-  std::vector<double> v(n), tr(n), a(n), b(n), c(n);
-  for (std::size_t i = 0; i < n; ++i) {
-    v[i] = 7 + 10 * u(rng);
-    tr[i] = u(rng);
-    a[i] = 0.05 * u(rng);
-    b[i] = 1e-5 * u(rng);
-    c[i] = 2e-7 * u(rng);
-  }
-  OperatingPointBatch out;
-  d.AtLoadBatch(n, v.data(), tr.data(), a.data(), b.data(), c.data(), &out);
-  for (std::size_t i = 0; i < n; ++i) {
-    const OperatingPoint p = d.AtLoad(v[i], tr[i], TorqueLaw{a[i], b[i], c[i]});
-    EXPECT_NEAR(out.omega_rad_s[i], p.omega_rad_s, 1e-9 * (1 + p.omega_rad_s)) << i;
-    EXPECT_NEAR(out.torque_nm[i], p.torque_nm, 1e-12) << i;
-    EXPECT_NEAR(out.pdc_w[i], p.pdc_w, 1e-9 * (1 + p.pdc_w)) << i;
-    EXPECT_NEAR(out.eta_system[i], p.eta_system, 1e-12) << i;
-  }
-}
-
 // InverseLight is Inverse without the powers: the same throttle, IDC and Irms bit for bit, and
 // with InverseAcPower the same PAC (the evaluator's pack fixed point and the search's bounds
 // rely on it to give the same numbers as before), below and above the saturation knee, over
