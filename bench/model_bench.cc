@@ -2,8 +2,6 @@
 // Target: under 20 ns per point on one core, the batch path vectorised.
 #include <benchmark/benchmark.h>
 
-#include <cstdint>
-#include <memory>
 #include <random>
 #include <vector>
 
@@ -86,23 +84,7 @@ BENCHMARK(BM_Inverse);
 
 // The structure-of-arrays batch (model/drive_batch.h, what the CLI's and the Python module's
 // columns run): n points of one mode, the limits checked per point, into 19 output columns
-// allocated once.
-struct BatchColumns {
-  explicit BatchColumns(std::size_t n) : d(16, std::vector<double>(n)), sat(new bool[n]), ok(new bool[n]), lim(n) {
-    double** p[] = {&c.vdc_v, &c.throttle, &c.throttle_effective, &c.rpm, &c.omega_rad_s, &c.torque_nm,
-                    &c.irms_a, &c.vll_rms_v, &c.pac_w, &c.idc_a, &c.pdc_w, &c.pesc_w,
-                    &c.pmech_w, &c.eta_motor, &c.eta_esc, &c.eta_system};
-    for (std::size_t k = 0; k < 16; ++k) *p[k] = d[k].data();
-    c.saturated = sat.get();
-    c.feasible = ok.get();
-    c.limits = lim.data();
-  }
-  std::vector<std::vector<double>> d;
-  std::unique_ptr<bool[]> sat, ok;
-  std::vector<std::uint32_t> lim;
-  PointColumns c;
-};
-
+// allocated once (PointColumnsStorage).
 void SolveBatchBench(benchmark::State& state, BatchMode mode) {
   const Drive d = MakeDrive();
   const std::size_t n = static_cast<std::size_t>(state.range(0));
@@ -117,10 +99,10 @@ void SolveBatchBench(benchmark::State& state, BatchMode mode) {
   bi.throttle = in.tr.data();
   bi.torque_nm = torque.data();
   bi.omega_rad_s = omega.data();
-  BatchColumns out(n);
+  const PointColumnsStorage out(n);
   for (auto _ : state) {
-    SolveBatch(d, mode, n, bi, out.c);
-    benchmark::DoNotOptimize(out.c.pdc_w);
+    SolveBatch(d, mode, n, bi, out.columns());
+    benchmark::DoNotOptimize(out.columns().pdc_w);
     benchmark::ClobberMemory();
   }
   state.SetItemsProcessed(state.iterations() * state.range(0));
