@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "common/error.h"
+#include "common/text_format.h"
 
 namespace dynosize::cli {
 
@@ -34,13 +35,10 @@ SigintToFlag::~SigintToFlag() { sigaction(SIGINT, &g_previous, nullptr); }
 const std::atomic<bool>& SigintToFlag::Flag() { return g_sigint; }
 
 std::string ElapsedText(double s) {
+  if (s < 60) return FixedText(s, 1) + " s";
   std::ostringstream o;
-  if (s < 60) {
-    o << std::fixed << std::setprecision(1) << s << " s";
-  } else {
-    o << static_cast<long long>(s / 60) << " min " << std::setw(2) << std::setfill('0') << static_cast<long long>(s) % 60
-      << " s";
-  }
+  o << static_cast<long long>(s / 60) << " min " << std::setw(2) << std::setfill('0') << static_cast<long long>(s) % 60
+    << " s";
   return o.str();
 }
 

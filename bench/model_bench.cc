@@ -7,6 +7,7 @@
 
 #include "common/units.h"
 #include "model/drive.h"
+#include "model/drive_batch.h"
 
 namespace {
 
@@ -81,20 +82,37 @@ void BM_Inverse(benchmark::State& state) {
 }
 BENCHMARK(BM_Inverse);
 
-void BM_AtLoadBatch(benchmark::State& state) {
+// The structure-of-arrays batch (model/drive_batch.h, what the CLI's and the Python module's
+// columns run): n points of one mode, the limits checked per point, into 19 output columns
+// allocated once (PointColumnsStorage).
+void SolveBatchBench(benchmark::State& state, BatchMode mode) {
   const Drive d = MakeDrive();
   const std::size_t n = static_cast<std::size_t>(state.range(0));
   const Inputs in(n);
-  OperatingPointBatch out;
-  out.Resize(n);  // allocated once; AtLoadBatch only resizes to the same size
+  std::vector<double> torque(n), omega(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    torque[i] = 10 * in.a[i];
+    omega[i] = 500.0 + 1e6 * in.b[i];
+  }
+  BatchInputs bi;
+  bi.vdc_v = in.vdc.data();
+  bi.throttle = in.tr.data();
+  bi.torque_nm = torque.data();
+  bi.omega_rad_s = omega.data();
+  const PointColumnsStorage out(n);
   for (auto _ : state) {
-    d.AtLoadBatch(n, in.vdc.data(), in.tr.data(), in.a.data(), in.b.data(), in.c.data(), &out);
-    benchmark::DoNotOptimize(out.pdc_w.data());
+    SolveBatch(d, mode, n, bi, out.columns());
+    benchmark::DoNotOptimize(out.columns().pdc_w);
     benchmark::ClobberMemory();
   }
   state.SetItemsProcessed(state.iterations() * state.range(0));
 }
-BENCHMARK(BM_AtLoadBatch)->Arg(1024)->Arg(65536);
+void BM_BatchAtTorque(benchmark::State& state) { SolveBatchBench(state, BatchMode::kAtTorque); }
+void BM_BatchInverse(benchmark::State& state) { SolveBatchBench(state, BatchMode::kInverse); }
+void BM_BatchAtSpeed(benchmark::State& state) { SolveBatchBench(state, BatchMode::kAtSpeed); }
+BENCHMARK(BM_BatchAtTorque)->Arg(1024)->Arg(65536);
+BENCHMARK(BM_BatchInverse)->Arg(1024)->Arg(65536);
+BENCHMARK(BM_BatchAtSpeed)->Arg(1024)->Arg(65536);
 
 }  // namespace
 

@@ -48,20 +48,7 @@ std::string Assumed(const EntryBase& e) {
 
 }  // namespace
 
-BatchResult::BatchResult(std::size_t n)
-    : n_(n), values_(new double[16 * n]), flags_(new bool[2 * n]), limits_(new std::uint32_t[n]) {
-  double* v = values_.get();
-  for (double** c : {&columns_.vdc_v, &columns_.throttle, &columns_.throttle_effective, &columns_.rpm,
-                     &columns_.omega_rad_s, &columns_.torque_nm, &columns_.irms_a, &columns_.vll_rms_v,
-                     &columns_.pac_w, &columns_.idc_a, &columns_.pdc_w, &columns_.pesc_w, &columns_.pmech_w,
-                     &columns_.eta_motor, &columns_.eta_esc, &columns_.eta_system}) {
-    *c = v;
-    v += n;
-  }
-  columns_.saturated = flags_.get();
-  columns_.feasible = flags_.get() + n;
-  columns_.limits = limits_.get();
-}
+BatchResult::BatchResult(std::size_t n) : storage_(n) {}
 
 std::vector<std::string> BatchLimitNames(std::uint32_t limits, bool beats_momentum_theory) {
   std::vector<std::string> names = LimitNames(limits);
@@ -70,7 +57,7 @@ std::vector<std::string> BatchLimitNames(std::uint32_t limits, bool beats_moment
 }
 
 std::vector<std::string> BatchResult::LimitNames(std::size_t i) const {
-  return BatchLimitNames(columns_.limits[i], beats_momentum_theory(i));
+  return BatchLimitNames(storage_.columns().limits[i], beats_momentum_theory(i));
 }
 
 namespace {
@@ -140,7 +127,7 @@ BatchResult SimulateBatch(const Catalog& catalog, const Drive& drive, const std:
     const PointRequest& r = requests[i];
     if (!r.prop.empty()) {
       const PropPoint pp = BatchPropPoint(catalog, drive, source, r, &props);
-      out.columns_.Set(i, pp.drive);
+      out.columns().Set(i, pp.drive);
       out.prop_rows_[i] = 1;
       out.thrust_n_[i] = pp.thrust_n;
       out.g_per_w_[i] = pp.g_per_w;
@@ -158,7 +145,7 @@ BatchResult SimulateBatch(const Catalog& catalog, const Drive& drive, const std:
       torque[m] = q.torque_nm.value_or(0.0);
       omega[m] = q.rpm ? RpmToRadPerSec(*q.rpm) : 0.0;
     }
-    SolveBatch(drive, mode, m, {vdc, throttle, torque, omega}, out.columns_.From(i));
+    SolveBatch(drive, mode, m, {vdc, throttle, torque, omega}, out.columns().From(i));
     i += m;
   }
   return out;

@@ -26,32 +26,28 @@ namespace dynosize::api {
 OperatingPoint SolvePoint(const Drive& drive, const PointRequest& r, const std::vector<double>& law = {});
 
 // The batch path's results as columns (structure of arrays): one array per key of the point JSON
-// (model/drive_batch.h PointColumns, over storage this object owns, left uninitialised until the
+// (model/drive_batch.h PointColumns over its PointColumnsStorage, left uninitialised until the
 // solve writes it), and for rows that name a propeller its thrust and g/W. A figure of merit
 // above 1 (the propeller data beat momentum theory, docs/model.md section 10) makes a row
 // infeasible.
 class BatchResult {
  public:
   explicit BatchResult(std::size_t n = 0);
-  std::size_t size() const { return n_; }
-  const PointColumns& columns() const { return columns_; }
-  OperatingPoint point(std::size_t i) const { return columns_.Get(i); }
+  std::size_t size() const { return storage_.size(); }
+  const PointColumns& columns() const { return storage_.columns(); }
+  OperatingPoint point(std::size_t i) const { return columns().Get(i); }
   bool has_prop(std::size_t i) const { return !prop_rows_.empty() && prop_rows_[i] != 0; }
   double thrust_n(std::size_t i) const { return thrust_n_[i]; }
   double g_per_w(std::size_t i) const { return g_per_w_[i]; }
   bool beats_momentum_theory(std::size_t i) const { return has_prop(i) && beats_[i]; }
-  bool feasible(std::size_t i) const { return columns_.feasible[i] && !beats_momentum_theory(i); }
+  bool feasible(std::size_t i) const { return columns().feasible[i] && !beats_momentum_theory(i); }
   // The drive's limit names, then "beats_momentum_theory" (the JSON's "limits").
   std::vector<std::string> LimitNames(std::size_t i) const;
 
  private:
   friend BatchResult SimulateBatch(const Catalog&, const Drive&, const std::vector<PointRequest>&,
                                    const std::string&);
-  std::size_t n_ = 0;
-  std::unique_ptr<double[]> values_;  // the 16 number columns, n each
-  std::unique_ptr<bool[]> flags_;     // saturated, feasible
-  std::unique_ptr<std::uint32_t[]> limits_;
-  PointColumns columns_;
+  PointColumnsStorage storage_;
   std::vector<char> prop_rows_;  // empty when no row names a propeller
   std::vector<double> thrust_n_, g_per_w_;
   std::unique_ptr<bool[]> beats_;

@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "catalog/catalog.h"
+#include "common/numbers.h"
 
 namespace dynosize {
 
@@ -62,7 +63,7 @@ enum class DischargeStatus {
 struct DischargeOptions {
   double initial_soc = 1.0;
   // Cut-off per cell under load, V; NaN = CellDefaultCutoffV(chemistry).
-  double cutoff_cell_v = std::numeric_limits<double>::quiet_NaN();
+  double cutoff_cell_v = kNaN;
   double soc_step = 1e-3;  // integration step in SOC (midpoint rule)
 };
 

@@ -153,17 +153,7 @@ void CheckCoefficientTable(const Json& t, const std::string& path, bool sweep, B
   }
 }
 
-
 DataTier InferTierFromValues(ComponentKind kind, const Json& src);
-
-// The tier of one value from how it was obtained (source.values): measured/fitted -> measured,
-// computed -> manufacturer_computed, datasheet/derived -> manufacturer_stated, else assumed.
-DataTier MethodTier(const std::string& method) {
-  if (method == "measured" || method == "fitted") return DataTier::kMeasured;
-  if (method == "computed") return DataTier::kManufacturerComputed;
-  if (method == "datasheet" || method == "derived") return DataTier::kManufacturerStated;
-  return DataTier::kAssumed;
-}
 
 DataTier TierFromName(const std::string& name) {
   const auto& names = TierNames();
@@ -474,32 +464,6 @@ void CheckTestPoints(const Json& e, Bad bad) {
 
 }  // namespace
 
-std::string ValueMethod(const EntryBase& e, const std::string& key) {
-  if (!e.json.is_object()) return "";
-  const auto src = e.json.find("source");
-  if (src == e.json.end() || !src->is_object()) return "";
-  const auto vals = src->find("values");
-  if (vals == src->end() || !vals->is_object()) return "";
-  const auto m = vals->find(key);
-  return m != vals->end() && m->is_string() ? m->get<std::string>() : "";
-}
-
-DataTier ValueTier(const EntryBase& e, const std::string& key) {
-  const std::string method = ValueMethod(e, key);
-  return method.empty() ? e.tier : std::max(MethodTier(method), e.tier);
-}
-
-const char* TierName(DataTier tier) {
-  return TierNames()[static_cast<std::size_t>(tier)].c_str();
-}
-
-const std::vector<std::string>& TierNames() {
-  static const std::vector<std::string> kNames = {"measured", "manufacturer_computed",
-                                                  "manufacturer_stated", "user_contributed",
-                                                  "assumed"};
-  return kNames;
-}
-
 PropEntry PropEntryFromJson(const Json& e) {
   EntryBase base;
   base.id = e.value("id", std::string());
@@ -572,26 +536,6 @@ std::string Catalog::AddEntry(ComponentKind kind, const Json& e, EntryBase base)
     }
   }
   return "";
-}
-
-const char* KindArrayName(ComponentKind kind) {
-  switch (kind) {
-    case ComponentKind::kMotor: return "motors";
-    case ComponentKind::kEsc: return "escs";
-    case ComponentKind::kProp: return "props";
-    case ComponentKind::kBattery: return "batteries";
-  }
-  return "?";
-}
-
-const char* KindNoun(ComponentKind kind) {
-  switch (kind) {
-    case ComponentKind::kMotor: return "motor";
-    case ComponentKind::kEsc: return "ESC";
-    case ComponentKind::kProp: return "propeller";
-    case ComponentKind::kBattery: return "battery";
-  }
-  return "?";
 }
 
 // An id read a second time: within one folder always a duplicate; from a later folder (one the

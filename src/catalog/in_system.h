@@ -44,8 +44,8 @@
 
 #include <string>
 
-#include "catalog/catalog.h"
-#include "model/drive.h"
+#include "catalog/entries.h"
+#include "model/params.h"
 
 namespace dynosize {
 

@@ -2,12 +2,12 @@
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
 #include <sstream>
 
 #include <Eigen/Dense>
 
 #include "common/error.h"
+#include "common/numbers.h"
 
 namespace dynosize {
 
@@ -73,7 +73,7 @@ NoLoadLaw FitNoLoadLaw(const std::vector<MotorEntry>& motors) {
 double NoLoadPriorIoA(double max_current_a, double no_load_speed_rpm, const NoLoadLaw& law) {
   if (!(max_current_a > 0.0) || !(no_load_speed_rpm > 0.0) || !std::isfinite(max_current_a) ||
       !std::isfinite(no_load_speed_rpm)) {
-    return std::numeric_limits<double>::quiet_NaN();
+    return kNaN;
   }
   return std::pow(10.0, law.a + law.b_imax * std::log10(max_current_a) + law.c_speed * std::log10(no_load_speed_rpm));
 }

@@ -26,7 +26,7 @@
 
 #include <string>
 
-#include "catalog/catalog.h"
+#include "catalog/entries.h"
 #include "fit/statistics.h"
 
 namespace dynosize {

@@ -21,7 +21,7 @@
 #include <string>
 #include <vector>
 
-#include "catalog/catalog.h"
+#include "catalog/entries.h"
 
 namespace dynosize {
 

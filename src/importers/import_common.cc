@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <sstream>
 
+#include "catalog/catalog.h"
 #include "catalog/conventions.h"
 #include "catalog/prop_credibility.h"
 #include "common/error.h"

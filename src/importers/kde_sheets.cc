@@ -1,11 +1,11 @@
 #include "importers/kde_sheets.h"
 
 #include <cmath>
-#include <limits>
 #include <map>
 #include <sstream>
 
 #include "common/error.h"
+#include "common/numbers.h"
 #include "importers/csv.h"
 
 namespace dynosize {
@@ -28,7 +28,7 @@ double LeadingNumber(const CsvTable& t, const CsvRow& row, std::size_t col) {
 
 double Number(const CsvTable& t, const CsvRow& row, std::size_t col, bool allow_empty) {
   const std::string f = t.Field(row, col);
-  if (f.empty() && allow_empty) return std::numeric_limits<double>::quiet_NaN();
+  if (f.empty() && allow_empty) return kNaN;
   const auto v = ParseNumber(f);
   if (!v) throw DataError(t.Where(row) + ": column '" + t.header[col] + "' = '" + f + "': not a number");
   return *v;

@@ -5,8 +5,6 @@
 #include <algorithm>
 #include <cmath>
 
-#include <Eigen/Core>
-
 #include "common/units.h"
 
 namespace dynosize {
@@ -38,26 +36,6 @@ inline void FillPowers(double vdc_v, double omega_rad_s, OperatingPoint* p) {
 }
 
 }  // namespace
-
-std::vector<std::string> LimitNames(std::uint32_t limits) {
-  static const char* const kNames[] = {"throttle_above_one", "throttle_below_zero",
-                                       "motor_current",      "esc_current",
-                                       "motor_power",        "esc_voltage",
-                                       "stalled",            "overrunning",
-                                       "thermal_runaway",    "creates_energy"};
-  std::vector<std::string> names;
-  for (std::uint32_t bit = 0; bit < sizeof(kNames) / sizeof(kNames[0]); ++bit) {
-    if (limits & (1u << bit)) names.emplace_back(kNames[bit]);
-  }
-  return names;
-}
-
-void OperatingPointBatch::Resize(std::size_t n) {
-  for (auto* v : {&omega_rad_s, &torque_nm, &irms_a, &vll_rms_v, &pac_w, &idc_a, &pdc_w, &pesc_w,
-                  &pmech_w, &eta_motor, &eta_esc, &eta_system, &throttle_effective}) {
-    v->resize(n);
-  }
-}
 
 Drive::Drive(const MotorParams& motor, const EscParams& esc)
     : motor_(motor),
@@ -411,89 +389,6 @@ double Drive::MaxEfficiencySpeed(double vdc_v, double throttle) const {
 
 double Drive::EscTimingFigure(double throttle) const {
   return (esc_.c1 - kIdealIdcPerIrmsPerThrottle) * EffectiveThrottle(throttle) + esc_.c0;  // (62)
-}
-
-void Drive::AtLoadBatch(std::size_t n, const double* vdc_v, const double* throttle,
-                        const double* a_nm, const double* b_nm_s_per_rad,
-                        const double* c_nm_s2_per_rad2, OperatingPointBatch* out) const {
-  // Eigen array expressions: each line is one SIMD pass with no branches. The selects of the
-  // scalar path become min/max, which is exact for non-negative load laws (a, b, c >= 0):
-  //  - TR_eff = min(TR, tr_sat) + sat_slope*max(TR - tr_sat, 0)                  (section 7)
-  //  - a stalled drive has omega = max(root, 0) = 0, and then I = U/R >= 0 follows from (48)
-  //    with omega = 0, so the same current formula serves both cases;
-  //  - when running, Q = a + b*w + c*w^2 >= 0, so Q = max(KT*(I - Io), 0) in both cases.
-  if (nonlinear_ || esc_.rsupply_ohm != 0.0) {
-    // Extensions without a common closed form per point: the checked scalar path.
-    out->Resize(n);
-    for (std::size_t i = 0; i < n; ++i) {
-      const TorqueLaw law{a_nm[i], b_nm_s_per_rad ? b_nm_s_per_rad[i] : 0.0,
-                          c_nm_s2_per_rad2 ? c_nm_s2_per_rad2[i] : 0.0};
-      const OperatingPoint p = AtLoad(vdc_v[i], throttle[i], law);
-      out->omega_rad_s[i] = p.omega_rad_s;
-      out->torque_nm[i] = std::max(p.torque_nm, 0.0);
-      out->irms_a[i] = p.irms_a;
-      out->vll_rms_v[i] = p.vll_rms_v;
-      out->pac_w[i] = p.pac_w;
-      out->idc_a[i] = p.idc_a;
-      out->pdc_w[i] = p.pdc_w;
-      out->pesc_w[i] = p.pesc_w;
-      out->pmech_w[i] = p.pmech_w;
-      out->eta_motor[i] = p.eta_motor;
-      out->eta_esc[i] = p.eta_esc;
-      out->eta_system[i] = p.eta_system;
-      out->throttle_effective[i] = p.throttle_effective;
-    }
-    return;
-  }
-  using Arr = Eigen::ArrayXd;
-  using In = Eigen::Map<const Arr>;
-  using Out = Eigen::Map<Arr>;
-  out->Resize(n);
-  const Eigen::Index m = static_cast<Eigen::Index>(n);
-  const In vdc(vdc_v, m), tr(throttle, m), a(a_nm, m);
-  const double kt = motor_.kt_nm_per_a, ke = motor_.ke_v_s_per_rad, io = motor_.io_a;
-  const double inv_r = 1.0 / r_total_ohm_;
-  Out tre(out->throttle_effective.data(), m), w(out->omega_rad_s.data(), m),
-      cur(out->irms_a.data(), m), q(out->torque_nm.data(), m), vll(out->vll_rms_v.data(), m),
-      pac(out->pac_w.data(), m), idc(out->idc_a.data(), m), pdc(out->pdc_w.data(), m),
-      pesc(out->pesc_w.data(), m), pm(out->pmech_w.data(), m), em(out->eta_motor.data(), m),
-      ee(out->eta_esc.data(), m), es(out->eta_system.data(), m);
-  if (esc_.deadband != 0.0) {
-    tre = ((tr - esc_.deadband) / (1.0 - esc_.deadband)).max(0.0);  // dead band, then the knee
-    tre = tre.min(esc_.tr_sat) + esc_.sat_slope * (tre - esc_.tr_sat).max(0.0);
-  } else {
-    tre = tr.min(esc_.tr_sat) + esc_.sat_slope * (tr - esc_.tr_sat).max(0.0);
-  }
-  vll = volt_factor_ * vdc * tre;  // U of (48), kept in vll until (47) below
-  // c*w^2 + B*w + C = 0 with B = b + KT*KE/R, C = a + KT*Io - KT*U/R (as AtLoad); pac and
-  // idc serve as scratch for B and C.
-  pac.setConstant(kt * ke * inv_r);
-  if (motor_.io1_a_s_per_rad != 0.0) pac += kt * motor_.io1_a_s_per_rad;
-  if (b_nm_s_per_rad) pac += In(b_nm_s_per_rad, m);
-  idc = a + kt * io - kt * inv_r * vll;
-  if (c_nm_s2_per_rad2) {
-    const In c(c_nm_s2_per_rad2, m);
-    // |disc| < 0 only when C > 0, where the motor stalls whatever the root (see AtLoad).
-    w = (-2.0 * idc / (pac + (pac.square() - 4.0 * c * idc).abs().sqrt())).max(0.0);
-  } else {
-    w = (-idc / pac).max(0.0);
-  }
-  cur = (vll - ke * w) * inv_r;                            // (48)
-  if (motor_.io1_a_s_per_rad != 0.0) {
-    q = (kt * (cur - io - motor_.io1_a_s_per_rad * w)).max(0.0);  // (42), section 9
-  } else {
-    q = (kt * (cur - io)).max(0.0);                        // (42)
-  }
-  vll = vll - esc_.resc_ohm * cur;                         // (47)
-  pac = power_factor_ * vll * cur;                         // (41), (51)
-  idc = (esc_.c1 * tre + esc_.c0) * cur;                   // (57)
-  pdc = vdc * idc;                                         // (59)
-  pesc = pdc - pac;                                        // (52)
-  pm = q * w;                                              // (50)
-  // Efficiencies: 0 where the numerator or denominator is not positive, as Ratio() does.
-  em = (pac > 0.0 && pm > 0.0).select(pm / pac.max(1e-300), 0.0);
-  ee = (pdc > 0.0 && pac > 0.0).select(pac / pdc.max(1e-300), 0.0);
-  es = (pdc > 0.0 && pm > 0.0).select(pm / pdc.max(1e-300), 0.0);
 }
 
 }  // namespace dynosize

@@ -63,42 +63,13 @@
 #include <vector>
 
 #include "common/units.h"
+#include "model/operating_point.h"
+#include "model/params.h"
 
 namespace dynosize {
 
 // Temperature coefficient of the resistance of copper near 20 C (docs/model.md section 9), 1/K.
 inline constexpr double kAlphaCopperPerK = 0.00393;
-
-enum class MotorType { kBldc, kBrushed };
-
-struct MotorParams {
-  MotorType type = MotorType::kBldc;
-  double ke_v_s_per_rad = 0.0;  // back-EMF constant (BLDC: line-line rms volts per rad/s)
-  double kt_nm_per_a = 0.0;     // torque constant (BLDC: per rms ampere)
-  double rm_ohm = 0.0;          // winding resistance of the quasi-single-phase circuit
-  double io_a = 0.0;            // no-load current (at omega = 0 when io1_a_s_per_rad != 0)
-  // Extensions (docs/model.md section 9; 0 = the first-order model, see the header comment).
-  double io1_a_s_per_rad = 0.0;  // Io(omega) = io_a + io1*omega
-  double rth_k_per_w = 0.0;      // winding temperature rise per watt of copper loss
-  double kt_droop_per_a = 0.0;   // KT(I) = kt/(1 + kt_droop*|I|)
-  // Ratings; +inf when the catalog gives none.
-  double max_current_a = std::numeric_limits<double>::infinity();
-  double max_power_w = std::numeric_limits<double>::infinity();
-};
-
-struct EscParams {
-  double resc_ohm = 0.0;  // equivalent series resistance (eq 47)
-  // DC/AC current ratio IDC/Irms = c1*TR_eff + c0 (eq 57). Defaults: the ideal ESC (eq 56).
-  double c1 = kIdealIdcPerIrmsPerThrottle;
-  double c0 = 0.0;
-  double tr_sat = 1.0;     // throttle above which the ESC saturates (section 7)
-  double sat_slope = 1.0;  // fraction of the nominal voltage slope delivered above tr_sat
-  double deadband = 0.0;   // command range that produces no voltage (-1 < deadband < 1;
-                           // negative: a throttle offset)
-  double rsupply_ohm = 0.0;  // wire/connector resistance between the VDC sense point and ESC
-  double max_current_a = std::numeric_limits<double>::infinity();
-  double vdc_max_v = std::numeric_limits<double>::infinity();
-};
 
 // A load torque law Q = a + b*omega + c*omega^2 (a propeller: c > 0; a hysteresis brake: b = c
 // = 0; viscous friction: b > 0).
@@ -106,56 +77,6 @@ struct TorqueLaw {
   double a_nm = 0.0;
   double b_nm_s_per_rad = 0.0;
   double c_nm_s2_per_rad2 = 0.0;
-};
-
-// Why an operating point is not feasible; bits of OperatingPoint::limits.
-enum Limit : std::uint32_t {
-  kLimitNone = 0,
-  kLimitThrottleAboveOne = 1u << 0,  // the required throttle exceeds 100 %
-  kLimitThrottleBelowZero = 1u << 1, // the required throttle is negative
-  kLimitMotorCurrent = 1u << 2,      // max(IDC, Irms) above the motor's current rating
-  kLimitEscCurrent = 1u << 3,        // max(IDC, Irms) above the ESC's current rating
-  kLimitMotorPower = 1u << 4,        // PAC above the motor's power rating
-  kLimitEscVoltage = 1u << 5,        // VDC above the ESC's voltage rating
-  kLimitStalled = 1u << 6,           // the load torque exceeds the stall torque: omega = 0
-  kLimitOverrunning = 1u << 7,       // omega above no-load speed: the load drives the motor
-  kLimitThermalRunaway = 1u << 8,    // winding temperature rise without a steady state
-  kLimitCreatesEnergy = 1u << 9,     // PESC < 0 or eta_motor > 1: parameters that break
-                                     // docs/model.md section 10 (model/physics.h)
-};
-
-// Names of the set bits, in bit order ("throttle_above_one", "motor_current", ...).
-std::vector<std::string> LimitNames(std::uint32_t limits);
-
-struct OperatingPoint {
-  double vdc_v = 0.0;
-  double throttle = 0.0;
-  double throttle_effective = 0.0;
-  bool saturated = false;
-  double omega_rad_s = 0.0;
-  double rpm = 0.0;
-  double torque_nm = 0.0;
-  double irms_a = 0.0;     // BLDC: rms phase current; brushed: DC motor current
-  double vll_rms_v = 0.0;  // BLDC: line-line rms voltage; brushed: terminal voltage
-  double pac_w = 0.0;
-  double idc_a = 0.0;
-  double pdc_w = 0.0;
-  double pesc_w = 0.0;
-  double pmech_w = 0.0;
-  double eta_motor = 0.0;
-  double eta_esc = 0.0;
-  double eta_system = 0.0;
-  double winding_rise_k = 0.0;  // steady copper temperature rise (0 without rth_k_per_w)
-  std::uint32_t limits = kLimitNone;
-  bool feasible() const { return limits == kLimitNone; }
-};
-
-// Structure-of-arrays results for the batch path (no per-point allocation).
-struct OperatingPointBatch {
-  std::vector<double> omega_rad_s, torque_nm, irms_a, vll_rms_v, pac_w, idc_a, pdc_w, pesc_w,
-      pmech_w, eta_motor, eta_esc, eta_system, throttle_effective;
-  void Resize(std::size_t n);
-  std::size_t size() const { return omega_rad_s.size(); }
 };
 
 class Drive {
@@ -223,13 +144,6 @@ class Drive {
   double MaxEfficiencySpeed(double vdc_v, double throttle) const;
   // ESC timing figure (t_on + t_off)*f_sw of eq (62): (C1 - (3/pi)*sqrt(27/20))*TR_eff + C0.
   double EscTimingFigure(double throttle) const;
-
-  // Batch forward model for a torque law per point, Q_i = a_i + b_i*omega + c_i*omega^2 (pass
-  // b = c = nullptr for a constant torque a_i). Writes out[i]; limits are not evaluated here
-  // (use AtLoad for a single checked point). Branch-free so that the compiler vectorises it.
-  void AtLoadBatch(std::size_t n, const double* vdc_v, const double* throttle, const double* a_nm,
-                   const double* b_nm_s_per_rad, const double* c_nm_s2_per_rad2,
-                   OperatingPointBatch* out) const;
 
  private:
   // Series resistance of (48) at this effective throttle: Rm + RESC + kv*rsupply*g*TR_eff.

@@ -63,6 +63,21 @@ void PointColumns::Set(std::size_t i, const OperatingPoint& p) const {
   limits[i] = p.limits;
 }
 
+PointColumnsStorage::PointColumnsStorage(std::size_t n)
+    : n_(n), values_(new double[16 * n]), flags_(new bool[2 * n]), limits_(new std::uint32_t[n]) {
+  double* v = values_.get();
+  for (double** c : {&columns_.vdc_v, &columns_.throttle, &columns_.throttle_effective, &columns_.rpm,
+                     &columns_.omega_rad_s, &columns_.torque_nm, &columns_.irms_a, &columns_.vll_rms_v,
+                     &columns_.pac_w, &columns_.idc_a, &columns_.pdc_w, &columns_.pesc_w, &columns_.pmech_w,
+                     &columns_.eta_motor, &columns_.eta_esc, &columns_.eta_system}) {
+    *c = v;
+    v += n;
+  }
+  columns_.saturated = flags_.get();
+  columns_.feasible = flags_.get() + n;
+  columns_.limits = limits_.get();
+}
+
 OperatingPoint PointColumns::Get(std::size_t i) const {
   OperatingPoint p;
   p.vdc_v = vdc_v[i];

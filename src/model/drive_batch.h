@@ -11,11 +11,12 @@
 // vectorises the loops. A drive with an extension of section 9 (dead band, supply resistance,
 // Io(omega), heating, droop) runs Drive's scalar path point by point into the same arrays.
 //
-// No I/O, no allocation.
+// No I/O; no allocation but PointColumnsStorage's, once per batch.
 #pragma once
 
 #include <cstddef>
 #include <cstdint>
+#include <memory>
 
 #include "model/drive.h"
 
@@ -67,6 +68,22 @@ struct PointColumns {
   void Set(std::size_t i, const OperatingPoint& p) const;
   // Reads the point at index i back (winding_rise_k is 0: the batch does not report it).
   OperatingPoint Get(std::size_t i) const;
+};
+
+// PointColumns for n points over storage this object owns (left uninitialised until a solve
+// writes it): the 16 number columns in one block, the two flag columns in another.
+class PointColumnsStorage {
+ public:
+  explicit PointColumnsStorage(std::size_t n = 0);
+  std::size_t size() const { return n_; }
+  const PointColumns& columns() const { return columns_; }
+
+ private:
+  std::size_t n_ = 0;
+  std::unique_ptr<double[]> values_;
+  std::unique_ptr<bool[]> flags_;  // saturated, feasible
+  std::unique_ptr<std::uint32_t[]> limits_;
+  PointColumns columns_;
 };
 
 // Solves n points of one mode on the drive into out[0, n).

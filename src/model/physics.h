@@ -28,7 +28,9 @@
 #include <cstdint>
 #include <string>
 
-#include "model/drive.h"
+#include "common/units.h"
+#include "model/operating_point.h"
+#include "model/params.h"
 
 namespace dynosize {
 

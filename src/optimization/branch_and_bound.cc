@@ -5,16 +5,14 @@
 #include <atomic>
 #include <chrono>
 #include <cmath>
-#include <condition_variable>
 #include <functional>
 #include <limits>
 #include <map>
 #include <memory>
-#include <mutex>
-#include <thread>
 #include <vector>
 
 #include "common/error.h"
+#include "common/worker_threads.h"
 #include "optimization/components.h"
 #include "optimization/pair_bounds.h"
 #include "optimization/rule_counts.h"
@@ -31,62 +29,6 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 
 // Stage 5: the candidate pairs best bound first, each pair's ESCs with R5, every combination
 // not pruned scored exactly.
-// Worker threads kept for a whole search: Start hands every thread the same job, Wait returns
-// when all have finished it. A chunk of candidates lasts about a millisecond, too short to
-// start and join a thread per chunk (docs/search.md#constants).
-class WorkerThreads {
- public:
-  explicit WorkerThreads(int n) {
-    for (int i = 0; i < n; ++i) threads_.emplace_back([this] { Loop(); });
-  }
-  ~WorkerThreads() {
-    {
-      std::lock_guard<std::mutex> lock(mu_);
-      stop_ = true;
-    }
-    start_.notify_all();
-    for (std::thread& t : threads_) t.join();
-  }
-  void Start(const std::function<void()>* job) {
-    {
-      std::lock_guard<std::mutex> lock(mu_);
-      job_ = job;
-      running_ = static_cast<int>(threads_.size());
-      ++generation_;
-    }
-    start_.notify_all();
-  }
-  void Wait() {
-    std::unique_lock<std::mutex> lock(mu_);
-    done_.wait(lock, [this] { return running_ == 0; });
-  }
-
- private:
-  void Loop() {
-    long seen = 0;
-    while (true) {
-      const std::function<void()>* job = nullptr;
-      {
-        std::unique_lock<std::mutex> lock(mu_);
-        start_.wait(lock, [&] { return stop_ || generation_ != seen; });
-        if (stop_) return;
-        seen = generation_;
-        job = job_;
-      }
-      (*job)();
-      std::lock_guard<std::mutex> lock(mu_);
-      if (--running_ == 0) done_.notify_one();
-    }
-  }
-  std::mutex mu_;
-  std::condition_variable start_, done_;
-  const std::function<void()>* job_ = nullptr;
-  long generation_ = 0;
-  int running_ = 0;
-  bool stop_ = false;
-  std::vector<std::thread> threads_;
-};
-
 class BranchAndBound {
  public:
   // cutoff: only results scoring below it are wanted (the joint search's N-th best, G2).
@@ -447,6 +389,8 @@ void BranchAndBound::Run() {
   const int workers = NeedsOneThread(m) ? 1 : std::max(1, opt_.threads);
   constexpr std::size_t kMaxChunk = 128;
   std::size_t chunk = 2;  // grows while the threshold settles
+  // Kept for the whole search: a chunk of candidates lasts about a millisecond, too short to
+  // start and join a thread per chunk (docs/search.md#constants).
   WorkerThreads pool(workers - 1);
   std::size_t ci = 0;
   for (;;) {
@@ -482,16 +426,19 @@ void BranchAndBound::Run() {
     // Each worker takes the next unprocessed candidate (one exact evaluation can cost as much
     // as a thousand pruned pairs: a fixed split leaves a thread idle).
     std::atomic<std::size_t> next{0};
+    // An exception of one evaluation stops the others at their next candidate; Wait rethrows it.
     auto run = [&]() {
-      for (std::size_t i = next++; i < cands.size(); i = next++) Process(cands[i], top, &outs[i]);
+      for (std::size_t i = next++; i < cands.size() && !pool.failed(); i = next++) Process(cands[i], top, &outs[i]);
     };
     const std::function<void()> job = run;
     pool.Start(&job);
     // On one thread too: the stream bounds a motor's next batch against the cutoff of the
     // moment it is drawn, and the pairs a rule removes are counted then, so the draws must
     // come at the same moments whatever the number of threads (the counts do not depend on it).
-    CandidateAt(end + chunk - 1);
-    run();
+    pool.RunHere([&] {
+      CandidateAt(end + chunk - 1);
+      run();
+    });
     pool.Wait();
     for (Outcome& o : outs) {
       o.pruned.MergeInto(&out_->pruned_by);

@@ -8,6 +8,7 @@
 #include <sstream>
 #include <string>
 
+#include "common/text_format.h"
 #include "optimization/mission_eval.h"
 #include "optimization/mission_eval_internal.h"
 #include "solvers/solver.h"
@@ -15,7 +16,6 @@
 namespace dynosize {
 
 using eval_internal::kInf;
-using eval_internal::Num;
 
 namespace {
 
@@ -238,7 +238,7 @@ MissionResult MissionEvaluator::SolveOneFree(const std::vector<FreeVar>& free, d
   msg << "bracketed 1-D search (9-point grid, golden section to 1e-6 of the range); "
       << (free[0].segment < 0 ? std::string("capacity_ah")
                               : m_.segments[free[0].segment].name + ".airspeed_m_s")
-      << " = " << Num(free[0].segment < 0 ? r.capacity_ah : r.segments[free[0].segment].airspeed_m_s, 6);
+      << " = " << SignificantText(free[0].segment < 0 ? r.capacity_ah : r.segments[free[0].segment].airspeed_m_s, 6);
   r.solver = msg.str();
   Summarize(&r);
   AddWarnings(&r);
@@ -323,7 +323,7 @@ MissionResult MissionEvaluator::SolveManyFree(const std::vector<FreeVar>& free, 
   std::ostringstream msg;
   msg << sr.BriefReport();
   for (int i = 0; i < n; ++i) msg << (i ? ", " : "; ") << p.variable_names[i] << " = "
-                                  << Num(free[i].lo + std::clamp(xs[i], 0.0, 1.0) * (free[i].hi - free[i].lo), 6);
+                                  << SignificantText(free[i].lo + std::clamp(xs[i], 0.0, 1.0) * (free[i].hi - free[i].lo), 6);
   r.solver = msg.str();
   Summarize(&r);
   AddWarnings(&r);

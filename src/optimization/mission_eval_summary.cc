@@ -6,6 +6,7 @@
 #include <cmath>
 #include <string>
 
+#include "common/text_format.h"
 #include "common/units.h"
 #include "mission/flight.h"
 #include "model/physics.h"
@@ -15,7 +16,6 @@
 
 namespace dynosize {
 
-using eval_internal::Num;
 
 bool MissionEvaluator::FullThrottleAt(const BatteryPack& pack, double soc, FullThrottle* f) const {
   return FullThrottleFrom(pack.OcvV(soc), pack.ri_ohm(), f);
@@ -204,8 +204,8 @@ void MissionEvaluator::AddWarnings(MissionResult* r) const {
   r->assumed = assumed_;
   for (const Violation& v : r->violations) {
     if (v.constraint == "max_throttle") {
-      r->warnings.push_back("segment '" + v.segment + "': throttle " + Num(100 * v.value, 3) +
-                            " % above the " + Num(100 * v.limit, 3) +
+      r->warnings.push_back("segment '" + v.segment + "': throttle " + SignificantText(100 * v.value, 3) +
+                            " % above the " + SignificantText(100 * v.limit, 3) +
                             " % limit (no control authority left)");
     }
   }
@@ -218,16 +218,16 @@ void MissionEvaluator::AddWarnings(MissionResult* r) const {
     const double i = std::max(p.idc_a, p.irms_a);
     auto near = [&](const char* what, double rating) {
       if (std::isfinite(rating) && i > 0.8 * rating && i <= rating) {
-        r->warnings.push_back("segment '" + s.name + "': current " + Num(i, 3) + " A is " +
-                              Num(100 * i / rating, 3) + " % of the " + what + " rating " +
-                              Num(rating, 3) + " A");
+        r->warnings.push_back("segment '" + s.name + "': current " + SignificantText(i, 3) + " A is " +
+                              SignificantText(100 * i / rating, 3) + " % of the " + what + " rating " +
+                              SignificantText(rating, 3) + " A");
       }
     };
     near("motor", mp.max_current_a);
     near("ESC", ep.max_current_a);
     if (s.throttle_max > ep.tr_sat) {
       r->warnings.push_back("segment '" + s.name + "': ESC in saturation (throttle up to " +
-                            Num(100 * s.throttle_max, 3) + " % > knee " + Num(100 * ep.tr_sat, 3) +
+                            SignificantText(100 * s.throttle_max, 3) + " % > knee " + SignificantText(100 * ep.tr_sat, 3) +
                             " %): the speed per throttle step falls");
     }
     if (s.type != SegmentType::kShaft && p.throttle > 0 && p.throttle <= 1) {
@@ -237,14 +237,14 @@ void MissionEvaluator::AddWarnings(MissionResult* r) const {
       const OperatingPoint best = drive.AtSpeed(p.vdc_v, p.throttle, w_opt);
       if (p.omega_rad_s > w_opt && p.eta_system < best.eta_system - 0.10) {
         r->warnings.push_back("segment '" + s.name + "': motor running below the current of "
-                              "optimal efficiency (" + Num(p.irms_a, 3) + " A vs " +
-                              Num(best.irms_a, 3) + " A, system efficiency " +
-                              Num(100 * p.eta_system, 3) + " % vs " + Num(100 * best.eta_system, 3) +
+                              "optimal efficiency (" + SignificantText(p.irms_a, 3) + " A vs " +
+                              SignificantText(best.irms_a, 3) + " A, system efficiency " +
+                              SignificantText(100 * p.eta_system, 3) + " % vs " + SignificantText(100 * best.eta_system, 3) +
                               " %): a smaller motor would do");
       }
     }
     if (p.throttle > 0 && p.throttle < 0.2) {
-      r->warnings.push_back("segment '" + s.name + "': throttle only " + Num(100 * p.throttle, 3) +
+      r->warnings.push_back("segment '" + s.name + "': throttle only " + SignificantText(100 * p.throttle, 3) +
                             " %: coarse speed control; a lower-Kv motor or fewer cells would "
                             "use more of the range");
     }
@@ -262,7 +262,7 @@ void MissionEvaluator::AddWarnings(MissionResult* r) const {
     }
     if (gd.rating_estimated) {
       r->warnings.push_back("motor " + motor_id + " has no current or power rating in its source: "
-                            "ratings " + Num(mp.max_power_w, 3) + " W, " + Num(mp.max_current_a, 3) +
+                            "ratings " + SignificantText(mp.max_power_w, 3) + " W, " + SignificantText(mp.max_current_a, 3) +
                             " A estimated from its mass and Kv (laws of hobby outrunners, catalog/conventions.h, "
                             "assumed)");
     }

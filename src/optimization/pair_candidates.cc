@@ -6,6 +6,7 @@
 #include <memory>
 #include <vector>
 
+#include "common/numbers.h"
 #include "optimization/components.h"
 #include "optimization/credibility.h"
 #include "optimization/pair_candidates.h"
@@ -57,7 +58,7 @@ bool MotorSetUp(const SearchContext& ctx, const MissionFacts& f, std::size_t mi,
   }
   s->loss = s->lossy ? LossFloorOf(s->mp) : MotorLossFloor{};
   const long long n_props = static_cast<long long>(ctx.catalog->props().size());
-  s->w_nl.assign(ctx.options.size(), std::numeric_limits<double>::quiet_NaN());
+  s->w_nl.assign(ctx.options.size(), kNaN);
   for (std::size_t o = 0; o < ctx.options.size(); ++o) {
     const BatteryOption& bo = ctx.options[o];
     const long long per_pair = ctx.escs.rated[o];

@@ -6,9 +6,9 @@
 #include <algorithm>
 #include <cstddef>
 #include <memory>
-#include <thread>
 #include <vector>
 
+#include "common/worker_threads.h"
 #include "model/physics.h"
 #include "optimization/pair_bounds.h"
 #include "optimization/rule_counts.h"
@@ -36,19 +36,6 @@ struct MotorSetup {
 // passed R0: false with its rule counted (its option's ESCs), or true with *c (R4's bound).
 bool PairCandidate(const SearchContext& ctx, const MissionFacts& f, const MotorSetup& s, std::size_t pi, std::size_t o,
                    PairLoads* loads, Candidate* c, RuleCounts* pruned);
-
-// fn(thread, i) for i in [0, n), i interleaved over `threads` threads (each i on one thread).
-template <typename F>
-void ForEachOnThreads(std::size_t n, int threads, const F& fn) {
-  threads = std::max(1, threads);
-  auto work = [&](int tid) {
-    for (std::size_t i = static_cast<std::size_t>(tid); i < n; i += static_cast<std::size_t>(threads)) fn(tid, i);
-  };
-  std::vector<std::thread> pool;
-  for (int t = 1; t < threads; ++t) pool.emplace_back(work, t);
-  work(0);
-  for (std::thread& th : pool) th.join();
-}
 
 struct PropKey {
   double bound = 0;  // R11: a lower bound of the score of every pair of the class's motors

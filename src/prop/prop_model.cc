@@ -45,6 +45,11 @@ void CheckTable(const std::string& id, const std::string& what, const std::vecto
   }
 }
 
+// The UsageError of an argument that breaks its rule: "<who>: <name> = <value> must be <rule>".
+[[noreturn]] void ThrowBadArgument(const std::string& who, const char* name, double value, const char* rule) {
+  throw UsageError(who + ": " + name + " = " + SignificantText(value, 4) + " must be " + rule);
+}
+
 }  // namespace
 
 PropModel::PropModel(const PropEntry& entry) : entry_(entry) {
@@ -170,16 +175,13 @@ std::string PropEvaluation::Message() const {
 PropEvaluation PropModel::Evaluate(double omega_rad_s, double rho_kg_m3,
                                    double airspeed_m_s) const {
   if (!std::isfinite(omega_rad_s) || omega_rad_s < 0) {
-    throw UsageError("propeller '" + entry_.id + "': omega_rad_s = " + SignificantText(omega_rad_s, 4) +
-                     " must be a finite number >= 0");
+    ThrowBadArgument("propeller '" + entry_.id + "'", "omega_rad_s", omega_rad_s, "a finite number >= 0");
   }
   if (!std::isfinite(rho_kg_m3) || !(rho_kg_m3 > 0)) {
-    throw UsageError("propeller '" + entry_.id + "': rho_kg_m3 = " + SignificantText(rho_kg_m3, 4) +
-                     " must be a finite number > 0");
+    ThrowBadArgument("propeller '" + entry_.id + "'", "rho_kg_m3", rho_kg_m3, "a finite number > 0");
   }
   if (!std::isfinite(airspeed_m_s) || airspeed_m_s < 0) {
-    throw UsageError("propeller '" + entry_.id + "': airspeed_m_s = " + SignificantText(airspeed_m_s, 4) +
-                     " must be a finite number >= 0");
+    ThrowBadArgument("propeller '" + entry_.id + "'", "airspeed_m_s", airspeed_m_s, "a finite number >= 0");
   }
   PropEvaluation ev;
   ev.omega_rad_s = omega_rad_s;
@@ -288,8 +290,7 @@ bool PropModel::StaticSpeedForThrust(double thrust_n, double rho_kg_m3, double* 
 PropEvaluation PropModel::EvaluateAtAdvanceRatio(double omega_rad_s, double rho_kg_m3,
                                                  double j) const {
   if (!std::isfinite(j) || j < 0) {
-    throw UsageError("propeller '" + entry_.id + "': advance ratio J = " + SignificantText(j, 4) +
-                     " must be a finite number >= 0");
+    ThrowBadArgument("propeller '" + entry_.id + "'", "advance ratio J", j, "a finite number >= 0");
   }
   // J = V/(n*D) with n = omega/(2*pi) rev/s.
   const double v = j * (omega_rad_s / (2.0 * kPi)) * entry_.diameter_m;
@@ -299,10 +300,10 @@ PropEvaluation PropModel::EvaluateAtAdvanceRatio(double omega_rad_s, double rho_
 LocalTorqueFit PropModel::FitTorqueLaw(double omega0_rad_s, double rho_kg_m3, double airspeed_m_s,
                                        double rel_step) const {
   if (!std::isfinite(omega0_rad_s) || !(omega0_rad_s > 0)) {
-    throw UsageError("FitTorqueLaw: omega0_rad_s = " + SignificantText(omega0_rad_s, 4) + " must be > 0");
+    ThrowBadArgument("FitTorqueLaw", "omega0_rad_s", omega0_rad_s, "> 0");
   }
   if (!(rel_step > 0 && rel_step <= 0.5)) {
-    throw UsageError("FitTorqueLaw: rel_step = " + SignificantText(rel_step, 4) + " must be in (0, 0.5]");
+    ThrowBadArgument("FitTorqueLaw", "rel_step", rel_step, "in (0, 0.5]");
   }
   const double w[3] = {omega0_rad_s * (1 - rel_step), omega0_rad_s, omega0_rad_s * (1 + rel_step)};
   double q[3];

@@ -19,6 +19,7 @@
 #include <string>
 #include <vector>
 
+#include "catalog/catalog.h"
 #include "catalog/in_system.h"
 
 namespace dynosize::stand {

@@ -4,7 +4,6 @@
 #include <cerrno>
 #include <cmath>
 #include <cstdlib>
-#include <exception>
 #include <limits>
 #include <mutex>
 #include <set>
@@ -13,6 +12,7 @@
 
 #include "common/error.h"
 #include "common/numbers.h"
+#include "common/worker_threads.h"
 #include "mission/mission.h"
 #include "optimization/search.h"
 
@@ -460,43 +460,39 @@ SweepResult RunSweep(const Json& mission_doc, const std::string& mission_name, c
   std::mutex mu;
   SweepProgress progress;
   progress.total = out.total;
-  std::exception_ptr error;
+  // An exception of a point (or of the progress callback) stops the other threads at their next
+  // point and is rethrown here once all have joined.
+  FirstException error;
   auto work = [&]() {
-    while (!interrupted.load()) {
-      if (StopRequested(stop_check)) {
-        interrupted.store(true);
-        break;
-      }
-      const std::size_t i = next.fetch_add(1);
-      if (i >= out.total) break;
-      SweepRow row;
-      try {
-        row = RunPoint(mission_doc, mission_name, catalog, keys, i, po);
-      } catch (...) {
+    error.Capture([&] {
+      while (!interrupted.load() && !error.failed()) {
+        if (StopRequested(stop_check)) {
+          interrupted.store(true);
+          break;
+        }
+        const std::size_t i = next.fetch_add(1);
+        if (i >= out.total) break;
+        SweepRow row = RunPoint(mission_doc, mission_name, catalog, keys, i, po);
+        if (row.status == "stopped") {
+          interrupted.store(true);
+          break;
+        }
         const std::lock_guard<std::mutex> lock(mu);
-        if (!error) error = std::current_exception();
-        interrupted.store(true);
-        break;
+        rows[i] = std::move(row);
+        finished[i] = 1;
+        ++progress.done;
+        if (rows[i].status == "failed") ++progress.failed;
+        progress.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+        if (options.progress) options.progress(progress);
       }
-      if (row.status == "stopped") {
-        interrupted.store(true);
-        break;
-      }
-      const std::lock_guard<std::mutex> lock(mu);
-      rows[i] = std::move(row);
-      finished[i] = 1;
-      ++progress.done;
-      if (rows[i].status == "failed") ++progress.failed;
-      progress.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-      if (options.progress) options.progress(progress);
-    }
+    });
   };
   const int threads = NeedsOneThread(base) ? 1 : std::max(1, options.threads);
   std::vector<std::thread> pool;
   for (int t = 1; t < threads; ++t) pool.emplace_back(work);
   work();
   for (std::thread& t : pool) t.join();
-  if (error) std::rethrow_exception(error);
+  error.Rethrow();
   for (std::size_t i = 0; i < out.total; ++i) {
     if (finished[i]) out.rows.push_back(std::move(rows[i]));
   }

@@ -13,6 +13,7 @@
 #include <map>
 #include <sstream>
 
+#include "catalog/catalog.h"
 #include "catalog/prop_credibility.h"
 #include "common/json_file.h"
 

@@ -4,12 +4,12 @@
 
 #include <cstdint>
 #include <cstring>
-#include <memory>
 #include <random>
 #include <string>
 #include <vector>
 
 #include "common/units.h"
+#include "model/paper_drive.h"
 
 namespace dynosize {
 namespace {
@@ -22,41 +22,15 @@ std::uint64_t Bits(double x) {
   return b;
 }
 
-// Owned columns for n points.
-struct Columns {
-  explicit Columns(std::size_t n) : d(16, std::vector<double>(n)), sat(new bool[n]), ok(new bool[n]), lim(n) {
-    double** p[] = {&c.vdc_v, &c.throttle, &c.throttle_effective, &c.rpm, &c.omega_rad_s, &c.torque_nm,
-                    &c.irms_a, &c.vll_rms_v, &c.pac_w, &c.idc_a, &c.pdc_w, &c.pesc_w,
-                    &c.pmech_w, &c.eta_motor, &c.eta_esc, &c.eta_system};
-    for (std::size_t k = 0; k < 16; ++k) *p[k] = d[k].data();
-    c.saturated = sat.get();
-    c.feasible = ok.get();
-    c.limits = lim.data();
-  }
-  std::vector<std::vector<double>> d;
-  std::unique_ptr<bool[]> sat, ok;
-  std::vector<std::uint32_t> lim;
-  PointColumns c;
-};
-
-// The paper's pair (model/drive_test.cc) with ratings low enough that the grid crosses each.
+// The paper's pair (model/paper_drive.h) with ratings low enough that the grid crosses each.
 MotorParams RatedMotor() {
-  MotorParams m;
-  m.ke_v_s_per_rad = 0.0037745;
-  m.kt_nm_per_a = kPacPerVllIrms * m.ke_v_s_per_rad;
-  m.rm_ohm = 0.12;
-  m.io_a = 0.5;
+  MotorParams m = paper_drive::Motor();
   m.max_current_a = 25.0;
   m.max_power_w = 150.0;
   return m;
 }
 EscParams RatedEsc() {
-  EscParams e;
-  e.resc_ohm = 0.02;
-  e.c1 = 1.2;
-  e.c0 = 0.03;
-  e.tr_sat = 0.9;
-  e.sat_slope = 0.61;
+  EscParams e = paper_drive::Esc();
   e.max_current_a = 30.0;
   e.vdc_max_v = 16.8;
   return e;
@@ -95,25 +69,25 @@ OperatingPoint PointByPoint(const Drive& d, BatchMode mode, const Grid& g, std::
 // Runs the batch and the scalar path on the grid; returns the union of the limits seen.
 std::uint32_t ExpectBatchEqualsPointByPoint(const Drive& d, BatchMode mode, std::size_t n, const std::string& what) {
   const Grid g = SeededGrid(n);
-  Columns out(n);
+  const PointColumnsStorage out(n);
   BatchInputs in;
   in.vdc_v = g.vdc.data();
   in.throttle = g.throttle.data();
   in.torque_nm = g.torque.data();
   in.omega_rad_s = g.omega.data();
-  SolveBatch(d, mode, n, in, out.c);
+  SolveBatch(d, mode, n, in, out.columns());
   std::uint32_t seen = 0;
   int mismatches = 0;
   for (std::size_t i = 0; i < n && mismatches < 5; ++i) {
     const OperatingPoint p = PointByPoint(d, mode, g, i);
-    const OperatingPoint b = out.c.Get(i);
+    const OperatingPoint b = out.columns().Get(i);
     const double want[] = {p.vdc_v, p.throttle, p.throttle_effective, p.rpm, p.omega_rad_s, p.torque_nm,
                            p.irms_a, p.vll_rms_v, p.pac_w, p.idc_a, p.pdc_w, p.pesc_w,
                            p.pmech_w, p.eta_motor, p.eta_esc, p.eta_system};
     const double got[] = {b.vdc_v, b.throttle, b.throttle_effective, b.rpm, b.omega_rad_s, b.torque_nm,
                           b.irms_a, b.vll_rms_v, b.pac_w, b.idc_a, b.pdc_w, b.pesc_w,
                           b.pmech_w, b.eta_motor, b.eta_esc, b.eta_system};
-    bool same = b.limits == p.limits && b.saturated == p.saturated && out.c.feasible[i] == p.feasible();
+    bool same = b.limits == p.limits && b.saturated == p.saturated && out.columns().feasible[i] == p.feasible();
     for (std::size_t k = 0; k < 16; ++k) same = same && Bits(got[k]) == Bits(want[k]);
     if (!same) {
       ++mismatches;
@@ -184,6 +158,21 @@ TEST(DriveBatch, ExtendedDrivesEqualPointByPoint) {
   ASSERT_TRUE(d.extended());
   for (BatchMode mode : {BatchMode::kInverse, BatchMode::kAtTorque, BatchMode::kAtSpeed}) {
     ExpectBatchEqualsPointByPoint(d, mode, 600, "extended");
+  }
+}
+
+// The linear extensions alone (Io(omega) and a dead band: closed forms, no root finder) also run
+// Drive's scalar path, whatever the mode, down to the throttle range's ends.
+TEST(DriveBatch, LinearExtensionsEqualPointByPoint) {
+  MotorParams m = RatedMotor();
+  m.io1_a_s_per_rad = 3e-4;
+  EscParams e = RatedEsc();
+  e.deadband = 0.08;
+  const Drive d(m, e);
+  ASSERT_TRUE(d.extended());
+  ASSERT_FALSE(d.nonlinear());
+  for (BatchMode mode : {BatchMode::kInverse, BatchMode::kAtTorque, BatchMode::kAtSpeed}) {
+    ExpectBatchEqualsPointByPoint(d, mode, 600, "linear extensions");
   }
 }
 

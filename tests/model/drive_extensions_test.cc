@@ -129,30 +129,6 @@ TEST(DriveExtensionsTest, TorqueConstantDroopAndPropellerLoad) {
     const auto inv = d.Inverse(12.0, p.torque_nm, p.omega_rad_s);
     ExpectRel(inv.throttle, tr, 1e-7, "inverse");
   }
-  // The batch path agrees with the scalar path.
-  const double vdc[2] = {12.0, 12.0}, tr[2] = {0.4, 0.9}, a[2] = {0.0, 0.0}, c[2] = {4e-7, 4e-7};
-  OperatingPointBatch b;
-  d.AtLoadBatch(2, vdc, tr, a, nullptr, c, &b);
-  for (int i = 0; i < 2; ++i) {
-    ExpectRel(b.omega_rad_s[i], d.AtLoad(12.0, tr[i], prop).omega_rad_s, 1e-12, "batch");
-  }
-}
-
-TEST(DriveExtensionsTest, LinearExtensionsInTheVectorisedBatch) {
-  MotorParams m = Motor();
-  m.io1_a_s_per_rad = 3e-4;
-  EscParams e = Esc();
-  e.deadband = 0.08;
-  const Drive d(m, e);
-  const double vdc[3] = {11.1, 12.0, 14.8}, tr[3] = {0.05, 0.6, 1.0}, a[3] = {0, 0, 0},
-               c[3] = {3e-7, 3e-7, 3e-7};
-  OperatingPointBatch b;
-  d.AtLoadBatch(3, vdc, tr, a, nullptr, c, &b);
-  for (int i = 0; i < 3; ++i) {
-    const auto p = d.AtLoad(vdc[i], tr[i], TorqueLaw{0.0, 0.0, c[i]});
-    EXPECT_NEAR(b.omega_rad_s[i], p.omega_rad_s, 1e-9 * std::max(1.0, p.omega_rad_s));
-    EXPECT_NEAR(b.idc_a[i], p.idc_a, 1e-9 * std::max(1.0, p.idc_a));
-  }
 }
 
 TEST(DriveExtensionsTest, CatalogKeysReachTheModel) {

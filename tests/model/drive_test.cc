@@ -7,6 +7,7 @@
 
 #include "catalog/catalog.h"
 #include "common/units.h"
+#include "model/paper_drive.h"
 
 namespace dynosize {
 namespace {
@@ -17,25 +18,6 @@ constexpr double kClosedFormRelTol = 1e-12;
 // Numerical maxima found by golden-section search to 1e-10 of the bracket: the located argmax
 // of a smooth function is only good to about sqrt(1e-10)*scale, hence 1e-5 relative.
 constexpr double kArgmaxRelTol = 1e-5;
-
-MotorParams TestMotor() {
-  MotorParams m;
-  m.ke_v_s_per_rad = 0.0037745;
-  m.kt_nm_per_a = kPacPerVllIrms * m.ke_v_s_per_rad;
-  m.rm_ohm = 0.12;
-  m.io_a = 0.5;
-  return m;
-}
-
-EscParams TestEsc() {
-  EscParams e;
-  e.resc_ohm = 0.02;
-  e.c1 = 1.2;
-  e.c0 = 0.03;
-  e.tr_sat = 0.9;
-  e.sat_slope = 0.61;
-  return e;
-}
 
 // Maximises f on [lo, hi] by golden-section search.
 template <typename F>
@@ -62,7 +44,7 @@ TEST(Constants, PaperIdentities) {
 }
 
 TEST(Drive, IdealEscHasUnitEfficiencyAndTenNinthsRatio) {
-  MotorParams m = TestMotor();
+  MotorParams m = paper_drive::Motor();
   EscParams ideal;  // defaults: resc 0, c1 = (3/pi)*sqrt(27/20), c0 0, no saturation
   const Drive d(m, ideal);
   for (double tr : {0.3, 0.6, 1.0}) {
@@ -74,7 +56,7 @@ TEST(Drive, IdealEscHasUnitEfficiencyAndTenNinthsRatio) {
 }
 
 TEST(Drive, ForwardSatisfiesCircuitAndPowerBalance) {
-  const Drive d(TestMotor(), TestEsc());
+  const Drive d(paper_drive::Motor(), paper_drive::Esc());
   const OperatingPoint p = d.AtTorque(7.2, 0.6, 0.04);
   const auto& m = d.motor();
   const auto& e = d.esc();
@@ -127,7 +109,7 @@ TEST(Drive, BrushedMaxPowerAtHalfNoLoadSpeedAndEq14Optimum) {
 }
 
 TEST(Drive, CombinedOptimumAgainstNumericalMaximum) {
-  const Drive d(TestMotor(), TestEsc());
+  const Drive d(paper_drive::Motor(), paper_drive::Esc());
   for (double tr : {0.4, 0.7, 0.95}) {
     const double w_nl = d.NoLoadSpeed(14.8, tr);
     const double w_num =
@@ -139,7 +121,7 @@ TEST(Drive, CombinedOptimumAgainstNumericalMaximum) {
 }
 
 TEST(Drive, ForwardInverseRoundTrip) {
-  const Drive d(TestMotor(), TestEsc());
+  const Drive d(paper_drive::Motor(), paper_drive::Esc());
   std::mt19937 rng(20261121);
   std::uniform_real_distribution<double> tr_dist(0.15, 1.0), q_dist(0.0, 0.08),
       v_dist(7.0, 16.8);
@@ -157,7 +139,7 @@ TEST(Drive, ForwardInverseRoundTrip) {
 }
 
 TEST(Drive, PropellerLoadMatchesQuadraticLaw) {
-  const Drive d(TestMotor(), TestEsc());
+  const Drive d(paper_drive::Motor(), paper_drive::Esc());
   const TorqueLaw prop{0.001, 2e-6, 1.2e-7};
   for (double tr : {0.2, 0.5, 0.9, 1.0}) {
     const OperatingPoint p = d.AtLoad(11.1, tr, prop);
@@ -169,7 +151,7 @@ TEST(Drive, PropellerLoadMatchesQuadraticLaw) {
 }
 
 TEST(Drive, SaturationAboveKneeReducesSlope) {
-  const Drive d(TestMotor(), TestEsc());
+  const Drive d(paper_drive::Motor(), paper_drive::Esc());
   EXPECT_DOUBLE_EQ(d.EffectiveThrottle(0.8), 0.8);
   EXPECT_NEAR(d.EffectiveThrottle(1.0), 0.9 + 0.61 * 0.1, 1e-15);
   EXPECT_NEAR(d.ThrottleFromEffective(d.EffectiveThrottle(0.97)), 0.97, 1e-15);
@@ -178,9 +160,9 @@ TEST(Drive, SaturationAboveKneeReducesSlope) {
 }
 
 TEST(Drive, LimitsAreFlagged) {
-  MotorParams m = TestMotor();
+  MotorParams m = paper_drive::Motor();
   m.max_current_a = 5.0;
-  EscParams e = TestEsc();
+  EscParams e = paper_drive::Esc();
   e.vdc_max_v = 12.0;
   const Drive d(m, e);
   // Inverse above full throttle.
@@ -214,7 +196,7 @@ TEST(Drive, LimitsAreFlagged) {
 }
 
 TEST(Drive, EscTimingFigureEq62) {
-  const Drive d(TestMotor(), TestEsc());
+  const Drive d(paper_drive::Motor(), paper_drive::Esc());
   EXPECT_NEAR(d.EscTimingFigure(0.5), (1.2 - kIdealIdcPerIrmsPerThrottle) * 0.5 + 0.03, 1e-15);
   // Derived from PESC: the switching-like part over VDC*Irms.
   const OperatingPoint p = d.AtTorque(7.2, 0.5, 0.03);
@@ -222,43 +204,19 @@ TEST(Drive, EscTimingFigureEq62) {
   EXPECT_NEAR((p.pesc_w - conduction) / (7.2 * p.irms_a), d.EscTimingFigure(0.5), 1e-12);
 }
 
-TEST(Drive, BatchEqualsScalar) {
-  const Drive d(TestMotor(), TestEsc());
-  std::mt19937 rng(7);
-  std::uniform_real_distribution<double> u(0.0, 1.0);
-  const std::size_t n = 257;  // not a multiple of the vector width
-  std::vector<double> v(n), tr(n), a(n), b(n), c(n);
-  for (std::size_t i = 0; i < n; ++i) {
-    v[i] = 7 + 10 * u(rng);
-    tr[i] = u(rng);
-    a[i] = 0.05 * u(rng);
-    b[i] = 1e-5 * u(rng);
-    c[i] = 2e-7 * u(rng);
-  }
-  OperatingPointBatch out;
-  d.AtLoadBatch(n, v.data(), tr.data(), a.data(), b.data(), c.data(), &out);
-  for (std::size_t i = 0; i < n; ++i) {
-    const OperatingPoint p = d.AtLoad(v[i], tr[i], TorqueLaw{a[i], b[i], c[i]});
-    EXPECT_NEAR(out.omega_rad_s[i], p.omega_rad_s, 1e-9 * (1 + p.omega_rad_s)) << i;
-    EXPECT_NEAR(out.torque_nm[i], p.torque_nm, 1e-12) << i;
-    EXPECT_NEAR(out.pdc_w[i], p.pdc_w, 1e-9 * (1 + p.pdc_w)) << i;
-    EXPECT_NEAR(out.eta_system[i], p.eta_system, 1e-12) << i;
-  }
-}
-
 // InverseLight is Inverse without the powers: the same throttle, IDC and Irms bit for bit, and
 // with InverseAcPower the same PAC (the evaluator's pack fixed point and the search's bounds
 // rely on it to give the same numbers as before), below and above the saturation knee, over
 // 100 % throttle, and with every extension on.
 TEST(Drive, InverseLightEqualsInverse) {
-  MotorParams ext_m = TestMotor();
+  MotorParams ext_m = paper_drive::Motor();
   ext_m.kt_droop_per_a = 0.01;
   ext_m.io1_a_s_per_rad = 2e-4;
   ext_m.rth_k_per_w = 2.0;
-  EscParams ext_e = TestEsc();
+  EscParams ext_e = paper_drive::Esc();
   ext_e.deadband = 0.05;
   ext_e.rsupply_ohm = 0.03;
-  const Drive drives[2] = {Drive(TestMotor(), TestEsc()), Drive(ext_m, ext_e)};
+  const Drive drives[2] = {Drive(paper_drive::Motor(), paper_drive::Esc()), Drive(ext_m, ext_e)};
   std::mt19937 rng(11);
   std::uniform_real_distribution<double> u(0.0, 1.0);
   int saturated = 0;

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <filesystem>
 #include <limits>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -283,6 +284,28 @@ TEST_F(SweepRunTest, CsvLinesHaveTheHeadersFields) {
   EXPECT_EQ(csv.rfind("index,vehicle.mass_kg,status,rank,feasible,objective_min,objective_low,objective_high,motor,", 0),
             0u)
       << csv;
+}
+
+// An exception on one of the sweep's threads (here the progress callback's, called on the thread
+// that finished the point) reaches RunSweep's caller instead of ending the program.
+TEST_F(SweepRunTest, AnExceptionOnAPointsThreadReachesTheCaller) {
+  const std::vector<VaryKey> keys = {ParseVary("vehicle.mass_kg=0.5,0.6,0.7,0.8")};
+  SweepOptions so;
+  so.threads = 2;
+  std::atomic<int> calls{0};
+  so.progress = [&](const SweepProgress&) {
+    ++calls;
+    throw std::runtime_error("progress failed");
+  };
+  try {
+    RunSweep(Quad(), "quad.json", *catalog_, keys, so);
+    ADD_FAILURE() << "no exception reached the caller";
+  } catch (const std::runtime_error& e) {
+    EXPECT_EQ(std::string(e.what()), "progress failed");
+  }
+  // Each thread stops at its next point: at most one finished point per thread reported.
+  EXPECT_GE(calls.load(), 1);
+  EXPECT_LE(calls.load(), 2);
 }
 
 TEST_F(SweepRunTest, AStopKeepsOnlyFinishedRows) {
