@@ -5,28 +5,19 @@
 #include <random>
 #include <vector>
 
-#include "common/units.h"
 #include "model/drive.h"
 #include "model/drive_batch.h"
+#include "model/paper_drive.h"
 
 namespace {
 
 using namespace dynosize;
 
+// The tests' paper drive with a 30 A motor rating, so that the limits are checked on the way.
 Drive MakeDrive() {
-  MotorParams m;
-  m.ke_v_s_per_rad = 0.0037745;
-  m.kt_nm_per_a = kPacPerVllIrms * m.ke_v_s_per_rad;
-  m.rm_ohm = 0.12;
-  m.io_a = 0.5;
+  MotorParams m = paper_drive::Motor();
   m.max_current_a = 30;
-  EscParams e;
-  e.resc_ohm = 0.02;
-  e.c1 = 1.2;
-  e.c0 = 0.03;
-  e.tr_sat = 0.9;
-  e.sat_slope = 0.61;
-  return Drive(m, e);
+  return Drive(m, paper_drive::Esc());
 }
 
 struct Inputs {

@@ -16,6 +16,7 @@ namespace {
 using testing_util::DefaultSpec;
 using testing_util::MakeSyntheticLog;
 using testing_util::SyntheticSpec;
+using testing_util::ThrottleOffsetSpec;
 
 // Bit for bit: the report prints every value, error, flag and note; the values are compared
 // exactly too, beyond the report's digits.
@@ -59,10 +60,7 @@ bool CheckTwin(const logs::SteadyTable& t) {
 }
 
 TEST(CalibrateOffsetFreeTwin, OffsetKeptTheRunsPartAfterTheFirstFit) {
-  SyntheticSpec s = DefaultSpec();
-  s.esc.deadband = -0.08;
-  s.esc.tr_sat = 1.0;
-  s.esc.sat_slope = 1.0;
+  SyntheticSpec s = ThrottleOffsetSpec();
   s.noise_rel = 0.003;
   EXPECT_TRUE(CheckTwin(MakeSyntheticLog(s)));
 }
@@ -75,10 +73,9 @@ TEST(CalibrateOffsetFreeTwin, OutlierPassWithAndWithoutOffset) {
   SyntheticSpec s = DefaultSpec();
   s.outliers = 3;
   CheckTwin(MakeSyntheticLog(s));
-  s.esc.deadband = -0.08;
-  s.esc.tr_sat = 1.0;
-  s.esc.sat_slope = 1.0;
-  EXPECT_TRUE(CheckTwin(MakeSyntheticLog(s)));
+  SyntheticSpec offset = ThrottleOffsetSpec();
+  offset.outliers = 3;
+  EXPECT_TRUE(CheckTwin(MakeSyntheticLog(offset)));
 }
 
 TEST(CalibrateOffsetFreeTwin, DcLogWithTheEscHeld) {

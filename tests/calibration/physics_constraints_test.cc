@@ -18,6 +18,7 @@ namespace {
 using testing_util::DefaultSpec;
 using testing_util::MakeSyntheticLog;
 using testing_util::SyntheticSpec;
+using testing_util::ThrottleOffsetSpec;
 
 // Data made by an ESC that creates energy (c1 + c0 = 0.53, the sjkim AT2814 fit),
 // and by ideal / lossy ESCs with noise, over several seeds: the fitted ESC never has PESC < 0.
@@ -125,10 +126,7 @@ TEST(CalibratePhysics, OutlierPassIsCappedAndListed) {
 
 // A throttle offset (negative dead band, docs/model.md section 9) in the data is found and fitted.
 TEST(CalibratePhysics, ThrottleOffsetIsFitted) {
-  SyntheticSpec s = DefaultSpec();
-  s.esc.deadband = -0.08;
-  s.esc.tr_sat = 1.0;
-  s.esc.sat_slope = 1.0;
+  SyntheticSpec s = ThrottleOffsetSpec();
   s.noise_rel = 0.003;
   const CalibrationResult r = Calibrate(MakeSyntheticLog(s));
   ASSERT_TRUE(r.param(Param::kDeadband).fitted) << r.FullReport();

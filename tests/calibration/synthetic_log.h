@@ -43,6 +43,16 @@ inline SyntheticSpec DefaultSpec() {
   return s;
 }
 
+// DefaultSpec's drive with a throttle offset (a negative dead band, docs/model.md section 9) and
+// no saturation knee, so that the offset is what the fit must find.
+inline SyntheticSpec ThrottleOffsetSpec() {
+  SyntheticSpec s = DefaultSpec();
+  s.esc.deadband = -0.08;
+  s.esc.tr_sat = 1.0;
+  s.esc.sat_slope = 1.0;
+  return s;
+}
+
 inline logs::SteadyTable MakeSyntheticLog(const SyntheticSpec& s) {
   using logs::Column;
   const Drive drive(s.motor, s.esc);

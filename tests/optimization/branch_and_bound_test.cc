@@ -42,18 +42,10 @@ using Scored = std::vector<std::pair<double, std::string>>;
 // them; the number of alternatives in *alternatives.
 void CheckDistinctDesigns(const Catalog& cat, const Mission& m, int n, int* alternatives) {
   std::map<std::string, Scored> per_design;
-  for (const auto& mo : cat.motors()) {
-    if (!mo.mass_kg) continue;
-    for (const auto& e : cat.escs()) {
-      for (const auto& p : cat.props()) {
-        for (int cells : {3, 4}) {
-          const Combination c{&mo, &e, &p, &cat.battery("dc_b_361"), cells, {}};
-          const MissionResult r = MissionEvaluator(m, c).Solve();
-          if (r.feasible) per_design[Design(c)].emplace_back(r.score, Variant(c));
-        }
-      }
-    }
-  }
+  testing_util::ForEachCombination(cat, [&](const Combination& c) {
+    const MissionResult r = MissionEvaluator(m, c).Solve();
+    if (r.feasible) per_design[Design(c)].emplace_back(r.score, Variant(c));
+  });
   std::vector<std::pair<double, std::string>> designs;  // (best score, design)
   for (auto& [d, v] : per_design) {
     std::sort(v.begin(), v.end());

@@ -29,6 +29,7 @@ namespace dynosize {
 namespace {
 
 namespace fs = std::filesystem;
+using testing_util::ForEachCombination;
 using testing_util::kQuad;
 
 class SearchTest : public ::testing::Test {
@@ -54,20 +55,6 @@ const char* kLiftCruise = R"({
     {"name": "down", "type": "climb", "rate_m_s": -1, "distance_m": 20, "rotors": 4}
   ]
 })";
-
-// Every combination of the small catalog with the test battery, 3S and 4S (motors without mass
-// are left out, as the search does).
-template <typename F>
-void ForEachCombination(const Catalog& cat, F&& f) {
-  for (const auto& mo : cat.motors()) {
-    if (!mo.mass_kg) continue;
-    for (const auto& e : cat.escs()) {
-      for (const auto& p : cat.props()) {
-        for (int cells : {3, 4}) f(Combination{&mo, &e, &p, &cat.battery("dc_b_361"), cells});
-      }
-    }
-  }
-}
 
 std::string Name(const Combination& c) {
   return c.motor->id + "|" + c.esc->id + "|" + c.prop->id + "|" + std::to_string(c.cells);

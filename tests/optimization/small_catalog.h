@@ -11,6 +11,7 @@
 
 #include "catalog/catalog.h"
 #include "common/json_file.h"
+#include "optimization/mission_eval.h"
 
 namespace dynosize::testing_util {
 
@@ -49,6 +50,20 @@ inline std::filesystem::path WriteSmallCatalog(const std::string& tag) {
   doc["batteries"].push_back(full.battery("dc_b_361").json);
   std::ofstream(dir / "catalog" / "small.json") << DumpJson(doc);
   return dir;
+}
+
+// Every combination of the small catalog with its battery, 3S and 4S (motors without mass are left
+// out, as the search does): exhaustive evaluation's list, which the search tests compare with.
+template <typename F>
+void ForEachCombination(const Catalog& cat, F&& f) {
+  for (const auto& mo : cat.motors()) {
+    if (!mo.mass_kg) continue;
+    for (const auto& e : cat.escs()) {
+      for (const auto& p : cat.props()) {
+        for (int cells : {3, 4}) f(Combination{&mo, &e, &p, &cat.battery("dc_b_361"), cells, {}});
+      }
+    }
+  }
 }
 
 // Missions flown on the small catalog by the search tests (search_test.cc, joint_search_test.cc,

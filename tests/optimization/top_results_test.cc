@@ -73,18 +73,10 @@ std::string FullName(const Combination& c) {
 // does) for a mission without groups.
 std::vector<Scored> ExhaustiveOneGroup(const Catalog& cat, const Mission& m) {
   std::vector<Scored> all;
-  for (const auto& mo : cat.motors()) {
-    if (!mo.mass_kg) continue;
-    for (const auto& e : cat.escs()) {
-      for (const auto& p : cat.props()) {
-        for (int cells : {3, 4}) {
-          const Combination c{&mo, &e, &p, &cat.battery("dc_b_361"), cells, {}};
-          const MissionResult r = MissionEvaluator(m, c).Solve();
-          if (r.feasible) all.push_back({r.score, DesignName(c), FullName(c)});
-        }
-      }
-    }
-  }
+  testing_util::ForEachCombination(cat, [&](const Combination& c) {
+    const MissionResult r = MissionEvaluator(m, c).Solve();
+    if (r.feasible) all.push_back({r.score, DesignName(c), FullName(c)});
+  });
   return all;
 }
 
