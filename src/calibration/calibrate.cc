@@ -340,9 +340,10 @@ CalibrationResult Assemble(const SteadyTable& table, const CalibrationOptions& o
   return res;
 }
 
-// Calibrate, and with a twin the same with fit_throttle_offset off into *without_offset.
-CalibrationResult CalibrateRun(const SteadyTable& table, const CalibrationOptions& options,
-                               CalibrationResult* without_offset) {
+}  // namespace
+
+CalibrationResult Calibrate(const SteadyTable& table, const CalibrationOptions& options,
+                            CalibrationResult* without_offset) {
   std::string err;
   if (!options.IsValid(&err)) throw UsageError("calibration options: " + err);
   Run run;
@@ -372,17 +373,6 @@ CalibrationResult CalibrateRun(const SteadyTable& table, const CalibrationOption
     *without_offset = Assemble(table, twin.options, run);
   }
   return res;
-}
-
-}  // namespace
-
-CalibrationResult Calibrate(const SteadyTable& table, const CalibrationOptions& options) {
-  return CalibrateRun(table, options, nullptr);
-}
-
-CalibrationResult Calibrate(const SteadyTable& table, const CalibrationOptions& options,
-                            CalibrationResult* without_offset) {
-  return CalibrateRun(table, options, without_offset);
 }
 
 RowPrediction PredictRow(const SteadyTable& t, std::size_t row, const MotorParams& motor, const EscParams& esc,

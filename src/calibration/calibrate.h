@@ -83,13 +83,12 @@ namespace dynosize::calibration {
 // Fits the parameters to `table`. Throws DataError when the log lacks what any fit needs
 // (omega_rad_s; vdc_v or the AC columns; enough rows with the motor turning), naming the file,
 // the column and the rule; UsageError for invalid options. Non-convergence is a status.
-CalibrationResult Calibrate(const logs::SteadyTable& table, const CalibrationOptions& options = {});
-// Calibrate, and in *without_offset what Calibrate returns with options.fit_throttle_offset off,
-// from one run: the two share every stage (rows, knee profile, outlier pass, fits) up to the
+// With without_offset, it also holds what Calibrate returns with options.fit_throttle_offset off,
+// from the same run: the two share every stage (rows, knee profile, outlier pass, fits) up to the
 // first fit that keeps a throttle offset, and only then go on separately. Diagnose starts from
 // the fit without the offset and takes the entry from the one with it.
-CalibrationResult Calibrate(const logs::SteadyTable& table, const CalibrationOptions& options,
-                            CalibrationResult* without_offset);
+CalibrationResult Calibrate(const logs::SteadyTable& table, const CalibrationOptions& options = {},
+                            CalibrationResult* without_offset = nullptr);
 
 // Model predictions for row `row` of `table` with the given parameters, for the columns the fit
 // compares (omega_rad_s only where the torque is known). NaN for a column not predicted.
