@@ -147,6 +147,30 @@ MissionResult SolveOneVariable(const Simulate& simulate, const Bounded& bounded_
                      grid_keys[std::min(best_k + 1, kGrid - 1)], kTolerance);
 }
 
+// The last feasible point on the segment from `feasible_x` (feasible) to `infeasible_x` (not),
+// by bisection on the segment's parameter: kSteps halvings keeping the lower end feasible, so
+// the answer is feasible whatever the shape of the feasible set. simulate(x) solves at a scaled
+// point; its result and point are returned (*x).
+template <typename Simulate>
+MissionResult LastFeasibleOnSegment(const Simulate& simulate, const Eigen::VectorXd& feasible_x,
+                                    const Eigen::VectorXd& infeasible_x, Eigen::VectorXd* x) {
+  constexpr int kSteps = 24;  // 6e-8 of the segment: below the solver's relative tolerance, 1e-6
+  double lo = 0.0, hi = 1.0;
+  MissionResult best = simulate(feasible_x);
+  for (int i = 0; i < kSteps; ++i) {
+    const double mid = 0.5 * (lo + hi);
+    MissionResult r = simulate(Eigen::VectorXd(feasible_x + mid * (infeasible_x - feasible_x)));
+    if (r.feasible) {
+      lo = mid;
+      best = std::move(r);
+    } else {
+      hi = mid;
+    }
+  }
+  *x = feasible_x + lo * (infeasible_x - feasible_x);
+  return best;
+}
+
 }  // namespace
 
 std::vector<MissionEvaluator::FreeVar> MissionEvaluator::FreeVariables() const {
@@ -318,10 +342,28 @@ MissionResult MissionEvaluator::SolveManyFree(const std::vector<FreeVar>& free, 
   if (sr.x.size() == n && sr.x.allFinite()) xs = sr.x;
   MissionResult r = WithEndurance(vars_at(xs.data()));
   const MissionResult grid = WithEndurance(vars_at(best_x.data()));
-  if (!(r.feasible && r.score <= grid.score) && grid.feasible) r = grid;  // never worse than the grid
+  double broke_by = 0;  // > 0: COBYLA's answer broke a constraint by this relative slack
+  if (!r.feasible && grid.feasible && xs != best_x) {
+    // COBYLA ended just outside a constraint it was following (an optimum on a feasibility
+    // boundary, e.g. the smallest pack that still meets a limit): the last feasible point on
+    // the segment from the grid's (feasible) best to its answer.
+    broke_by = -r.min_slack;
+    const Eigen::VectorXd from = best_x, to = xs;
+    r = LastFeasibleOnSegment([&](const Eigen::VectorXd& xv) { return WithEndurance(vars_at(xv.data())); }, from, to,
+                              &xs);
+  }
+  if (!(r.feasible && r.score <= grid.score) && grid.feasible) {  // never worse than the grid
+    r = grid;
+    xs = best_x;
+    broke_by = 0;
+  }
   if (!explain) return r;
   std::ostringstream msg;
   msg << sr.BriefReport();
+  if (broke_by > 0) {
+    msg << "; its answer broke a constraint by " << SignificantText(broke_by, 2)
+        << " (relative slack): the last feasible point towards it from the grid's best";
+  }
   for (int i = 0; i < n; ++i) msg << (i ? ", " : "; ") << p.variable_names[i] << " = "
                                   << SignificantText(free[i].lo + std::clamp(xs[i], 0.0, 1.0) * (free[i].hi - free[i].lo), 6);
   r.solver = msg.str();
