@@ -534,7 +534,8 @@ double JointBounds::OuterBound(const Drive& drive, const GroupParts& parts, doub
   }
   // A free-airspeed cruise's bound from the propeller's samples at the grid mass at or below
   // mass_kg (OuterCruiseFloorW: momentum theory, the shaft power and the motor's loss floor; the
-  // coupled stage also the drive's PDC), so a floor for every heavier vehicle below (M3).
+  // coupled stage also the drive's PDC), so a floor for every heavier vehicle below (M3;
+  // docs/search.md#g2-free-cruise).
   cruise_floor_w_.assign(m_.segments.size(), 0.0);
   cruise_point_at_.assign(m_.segments.size(), kNoIndex);
   cruise_point_w_.assign(m_.segments.size(), 0.0);
@@ -543,10 +544,10 @@ double JointBounds::OuterBound(const Drive& drive, const GroupParts& parts, doub
     if (sg.type != SegmentType::kCruise || !sg.airspeed_m_s.free()) continue;
     cruise_floor_w_[si] = OuterCruiseFloorW(drive, prop, si, o, mass_kg);
     cruise_point_at_[si] = kNoIndex - 1;  // a free cruise: read again per frontier point
-    // R2, R12's top and R3 over the airspeed range: every airspeed's point is at least the
-    // samples' first (their speeds and torques checked to rise, as for the drive's bound,
-    // prop_bounds.cc); so is its speed, which the evaluator holds to the propeller's max_rpm
-    // and the data window's top.
+    // R2, R12's top and R3 over the airspeed range (docs/search.md#g2-free-cruise): every
+    // airspeed's point is at least the samples' first (their speeds and torques checked to
+    // rise, as for the drive's bound, prop_bounds.cc); so is its speed, which the evaluator
+    // holds to the propeller's max_rpm and the data window's top.
     const FreeCruiseSamples& s = OuterCruise(prop, si, o, mass_kg);
     if (const char* rule = FreeCruiseSpeedRule(prop, s)) {
       *why = rule;
