@@ -25,21 +25,31 @@ namespace {
 constexpr double kInf = std::numeric_limits<double>::infinity();
 constexpr double kMassCeilingKg = 1e5;  // MassFloorKg's search range: beyond any vehicle
 constexpr double kRotorCeilingRadS = 1e5;  // RotorLowerBound's: ~1e6 rpm, beyond any motor
+constexpr std::size_t kNoIndex = std::numeric_limits<std::size_t>::max();  // OuterBound's: not a free cruise
 
 }  // namespace
+
+// R3 at a point (torque, speed) at or below every real point's, `hi` the drive's there at the
+// pack's full-charge voltage: the throttle, Irms and PAC of every real choice are at least these
+// (M2: zero or the real ESC resistance, the highest voltage the pack can have). The rule broken,
+// or null.
+const char* DriveRule(const MissionConstraints& k, const MotorParams& mp, const OperatingPoint& hi, double tr_max,
+                      double esc_max_current_a) {
+  const double margin = 1.0 - k.current_margin;
+  if (hi.throttle > tr_max) return "throttle";
+  if (hi.irms_a > mp.max_current_a * margin) return "motor_current";
+  if (k.enforce_motor_power && hi.pac_w > mp.max_power_w) return "motor_power";
+  if (hi.irms_a > esc_max_current_a * margin) return "esc_current";
+  return nullptr;
+}
 
 RotorBound RotorLowerBound(const Mission& m, const Segment& sg, const PropEntry& prop, const PropModel& model,
                            double mass_kg) {
   RotorBound rb;
   const RotorLoad ld = SegmentRotorLoad(m, sg, mass_kg, sg.airspeed_m_s.lo);
   rb.rotors = ld.rotors;
-  if (sg.type == SegmentType::kCruise && sg.airspeed_m_s.free()) {
-    CruisePropBound pb{&prop, &model, PropAdjustmentFor(prop, m.objective.ranking), true};
-    pb.with_prop_data = true;
-    rb.free_cruise_lossy_w = FreeCruiseRotorPowerLowerBoundW(m, sg, pb, nullptr, mass_kg);
-    return rb;
-  }
-  if (sg.type == SegmentType::kShaft) return rb;
+  // A free cruise's speeds are its samples' (JointBounds::OuterCruise); a shaft has none.
+  if ((sg.type == SegmentType::kCruise && sg.airspeed_m_s.free()) || sg.type == SegmentType::kShaft) return rb;
   const double v = ld.axial_airspeed_m_s;
   // Bisection keeping thrust(lo) <= T (M1: thrust rises with speed), so lo is at or below the
   // evaluator's root; a propeller that cannot give T below the ceiling turns faster (and R3
@@ -83,20 +93,10 @@ SegmentBound SegmentPowerBound(const Mission& m, std::size_t si, const GroupPart
     return b;
   }
   if (!(rb.omega_rad_s > 0)) return b;
-  // R3 at the bound point: the throttle, Irms and PAC of every real choice are at least these
-  // (M2: zero or the real ESC resistance, the highest voltage the pack can have).
+  // R3 at the bound point.
   const OperatingPoint hi = drive.Inverse(bo.v_full, rb.torque_nm, rb.omega_rad_s);
-  const double margin = 1.0 - k.current_margin;
   b.irms_lb_a = hi.irms_a;
-  if (hi.throttle > tr_max) {
-    b.infeasible = "throttle";
-  } else if (hi.irms_a > mp.max_current_a * margin) {
-    b.infeasible = "motor_current";
-  } else if (k.enforce_motor_power && hi.pac_w > mp.max_power_w) {
-    b.infeasible = "motor_power";
-  } else if (hi.irms_a > esc_max_current_a * margin) {
-    b.infeasible = "esc_current";
-  }
+  b.infeasible = DriveRule(k, mp, hi, tr_max, esc_max_current_a);
   // R7: static-only data in axial flow. The shaft turns no faster than the drive's no-load
   // speed at full throttle and the full-charge voltage (M2), so J >= V_ax/(n_max*D); above the
   // mission's max_static_advance_ratio the evaluator fails prop_no_forward_flight_data.
@@ -166,6 +166,7 @@ const char* JointBounds::MotorRule(int motor, std::size_t o) const {
 
 JointBounds::JointBounds(const Mission& m, const Catalog& cat, const PropGridCache& cache) : m_(m), cat_(cat) {
   for (const auto& p : cache.models) models_.push_back(p.get());
+  for (const PropEntry& p : cat.props()) adjustments_.push_back(PropAdjustmentFor(p, m.objective.ranking));
   lift_group_ = std::max(0, LiftGroup(m));
   // The outer group: a free group that does not lift the vehicle, so that the innermost search
   // is the lift group's, whose hover gives R2-R4 their grip.
@@ -259,6 +260,7 @@ JointBounds::JointBounds(const Mission& m, const Catalog& cat, const PropGridCac
   const std::size_t n_cache = options_.size() * n_seg * cat.props().size() * static_cast<std::size_t>(kFixedPowerMasses);
   rotor_cache_.assign(n_cache, RotorBound{});
   rotor_done_.assign(n_cache, 0);
+  cruise_index_.assign(n_cache, -1);
   if (free.size() == 2 && m.objective.type == ObjectiveType::kMinEnergy) {
     inner_ = free[0] == outer_ ? free[1] : free[0];
     for (std::size_t o = 0; o < options_.size(); ++o) frontier_.push_back(InnerFrontier(o));
@@ -446,21 +448,65 @@ double JointBounds::LightestSurvivorKg(int group, std::size_t o, double vehicle_
   return kInf;
 }
 
-const RotorBound& JointBounds::OuterRotor(int prop, std::size_t si, std::size_t o, double mass_kg) {
+std::size_t JointBounds::RotorCacheIndex(int prop, std::size_t si, std::size_t o, double mass_kg,
+                                         double* grid_kg) const {
   // The grid mass at or below mass_kg (G1's geometric grid from the option's lightest vehicle).
   const double m0 = mass_min_kg_[o];
   int k = mass_kg > m0 ? static_cast<int>(std::floor(std::log(mass_kg / m0) / std::log(kFixedPowerMassStep))) : 0;
   k = std::clamp(k, 0, kFixedPowerMasses - 1);
   while (k > 0 && m0 * std::pow(kFixedPowerMassStep, k) > mass_kg) --k;
-  const std::size_t i = ((o * m_.segments.size() + si) * cat_.props().size() + static_cast<std::size_t>(prop)) *
-                            static_cast<std::size_t>(kFixedPowerMasses) + static_cast<std::size_t>(k);
+  *grid_kg = k == 0 ? std::min(m0, mass_kg) : m0 * std::pow(kFixedPowerMassStep, k);
+  return ((o * m_.segments.size() + si) * cat_.props().size() + static_cast<std::size_t>(prop)) *
+             static_cast<std::size_t>(kFixedPowerMasses) + static_cast<std::size_t>(k);
+}
+
+const RotorBound& JointBounds::OuterRotor(int prop, std::size_t si, std::size_t o, double mass_kg) {
+  double mk = 0;
+  const std::size_t i = RotorCacheIndex(prop, si, o, mass_kg, &mk);
   if (!rotor_done_[i]) {
-    const double mk = k == 0 ? std::min(m0, mass_kg) : m0 * std::pow(kFixedPowerMassStep, k);
     rotor_cache_[i] = RotorLowerBound(m_, m_.segments[si], cat_.props()[static_cast<std::size_t>(prop)],
                                       *models_[static_cast<std::size_t>(prop)], mk);
     rotor_done_[i] = 1;
   }
   return rotor_cache_[i];
+}
+
+const FreeCruiseSamples& JointBounds::OuterCruise(int prop, std::size_t si, std::size_t o, double mass_kg) {
+  double mk = 0;
+  const std::size_t i = RotorCacheIndex(prop, si, o, mass_kg, &mk);
+  if (cruise_index_[i] < 0) {
+    const std::size_t pi = static_cast<std::size_t>(prop);
+    const CruisePropBound pb{&cat_.props()[pi], models_[pi], adjustments_[pi], true};
+    cruise_index_[i] = static_cast<int>(cruise_samples_.size());
+    cruise_samples_.push_back(SampleFreeCruise(m_, m_.segments[si], pb, mk, true));
+  }
+  return cruise_samples_[static_cast<std::size_t>(cruise_index_[i])];
+}
+
+const char* JointBounds::FreeCruiseSpeedRule(int prop, const FreeCruiseSamples& s) const {
+  if (!s.points || !s.point_rises) return nullptr;
+  const PropEntry& p = cat_.props()[static_cast<std::size_t>(prop)];
+  const double rpm = RadPerSecToRpm(s.omega[0]);
+  if (p.max_rpm && rpm > *p.max_rpm) return "prop_max_rpm";  // R2
+  const double factor = m_.constraints.prop_above_data_factor;
+  if (factor > 0 && rpm > factor * models_[static_cast<std::size_t>(prop)]->valid_range().rpm_hi) {
+    return "prop_above_data";  // R12
+  }
+  return nullptr;
+}
+
+double JointBounds::OuterCruiseFloorW(const Drive& drive, int prop, std::size_t si, std::size_t o, double mass_kg) {
+  const std::size_t pi = static_cast<std::size_t>(prop);
+  const MotorParams& mp = drive.motor();
+  // The drive's own ESC values decide whether a stage can create energy: a class's catalog C1,
+  // C0 (each real member's scenario values only raise C0) or the real ESC's scenario values.
+  CruisePropBound pb{&cat_.props()[pi], models_[pi], adjustments_[pi], DriveIsLossy(mp, drive.esc().c1, drive.esc().c0)};
+  pb.with_prop_data = true;
+  const MotorLossFloor loss = LossFloorOf(mp);
+  const CruiseDriveBound db{&drive, options_[o].v_full, options_[o].v_cut};
+  return m_.vehicle.avionics_power_w +
+         FreeCruiseRotorPowerFromSamples(m_, m_.segments[si], pb, OuterCruise(prop, si, o, mass_kg),
+                                         coupled_ ? &db : nullptr, &loss);
 }
 
 double JointBounds::OuterBound(const Drive& drive, const GroupParts& parts, double esc_max_a,
@@ -486,22 +532,34 @@ double JointBounds::OuterBound(const Drive& drive, const GroupParts& parts, doub
     *why = "min_thrust_to_weight";
     return kInf;
   }
-  // The coupled (lazy) stage only: a free-airspeed cruise's bound from the drive too, cell by
-  // cell (FreeCruisePowerLowerBoundW with the drive: about 1,400 propeller evaluations, too many
-  // for every pair's first bound). At mass_kg, so a floor for every heavier vehicle below (M3).
-  // Every stage: the propeller's own data (RotorBound::free_cruise_lossy_w, cached per grid mass).
+  // A free-airspeed cruise's bound from the propeller's samples at the grid mass at or below
+  // mass_kg (OuterCruiseFloorW: momentum theory, the shaft power and the motor's loss floor; the
+  // coupled stage also the drive's PDC), so a floor for every heavier vehicle below (M3;
+  // docs/search.md#g2-free-cruise).
   cruise_floor_w_.assign(m_.segments.size(), 0.0);
-  const bool lossy = DriveIsLossy(mp, drive.esc().c1, drive.esc().c0);
+  cruise_point_at_.assign(m_.segments.size(), kNoIndex);
+  cruise_point_w_.assign(m_.segments.size(), 0.0);
   for (std::size_t si : outer_segments_) {
     const Segment& sg = m_.segments[si];
     if (sg.type != SegmentType::kCruise || !sg.airspeed_m_s.free()) continue;
-    if (lossy) {
-      cruise_floor_w_[si] = m_.vehicle.avionics_power_w + OuterRotor(prop, si, o, mass_kg).free_cruise_lossy_w;
+    cruise_floor_w_[si] = OuterCruiseFloorW(drive, prop, si, o, mass_kg);
+    cruise_point_at_[si] = kNoIndex - 1;  // a free cruise: read again per frontier point
+    // R2, R12's top and R3 over the airspeed range (docs/search.md#g2-free-cruise): every
+    // airspeed's point is at least the samples' first (their speeds and torques checked to
+    // rise, as for the drive's bound, prop_bounds.cc); so is its speed, which the evaluator
+    // holds to the propeller's max_rpm and the data window's top.
+    const FreeCruiseSamples& s = OuterCruise(prop, si, o, mass_kg);
+    if (const char* rule = FreeCruiseSpeedRule(prop, s)) {
+      *why = rule;
+      return kInf;
     }
-    if (coupled_) {
-      const CruiseDriveBound db{&drive, options_[o].v_full, options_[o].v_cut};
-      cruise_floor_w_[si] = std::max(cruise_floor_w_[si], m_.vehicle.avionics_power_w +
-                            FreeCruisePowerLowerBoundW(m_, sg, parts, *models_[static_cast<std::size_t>(prop)], mass_kg, &db));
+    if (s.points && s.point_rises) {
+      const OperatingPoint hi = drive.Inverse(options_[o].v_full, s.torque[0], s.omega[0]);
+      *irms_lb = std::max(*irms_lb, hi.irms_a);
+      if (const char* rule = DriveRule(m_.constraints, mp, hi, tr_max, esc_max_a)) {
+        *why = rule;
+        return kInf;
+      }
     }
   }
   for (std::size_t si : outer_segments_) {
@@ -538,7 +596,19 @@ double JointBounds::OuterBound(const Drive& drive, const GroupParts& parts, doub
         e = kInf;
         break;
       }
-      e += std::max(b.power_w, cruise_floor_w_[si]) * t_min(si);
+      double floor_w = cruise_floor_w_[si];  // at raw_kg <= kg
+      if (cruise_point_at_[si] != kNoIndex) {
+        // A free cruise at this point's mass: its samples at the grid mass at or below kg, read
+        // once per grid mass (the frontier's masses rise).
+        double grid_kg = 0;
+        const std::size_t i = RotorCacheIndex(prop, si, o, kg, &grid_kg);
+        if (i != cruise_point_at_[si]) {
+          cruise_point_at_[si] = i;
+          cruise_point_w_[si] = OuterCruiseFloorW(drive, prop, si, o, kg);
+        }
+        floor_w = std::max(floor_w, cruise_point_w_[si]);
+      }
+      e += std::max(b.power_w, floor_w) * t_min(si);
     }
     best = std::min(best, e);
     if (!(best / 3600.0 > bound)) return bound;  // no better than the plain bound

@@ -8,8 +8,10 @@
 #include <cmath>
 #include <initializer_list>
 #include <limits>
+#include <map>
 #include <memory>
 #include <queue>
+#include <set>
 #include <stdexcept>
 #include <tuple>
 #include <utility>
@@ -75,6 +77,24 @@ void Merge(SearchResult&& r, TopResults* top, SearchResult* out) {
   out->candidate_batches += r.candidate_batches;
   AddCount(&out->unsettled, r.unsettled);
   for (RankedCombination& b : r.best) top->Add(std::move(b));
+}
+
+// Adds `results` (exact solves) to *top, leaving out the combinations it already holds as a
+// result or a listed alternative (an item stopped while taken again may have found them too).
+void AddUnheld(std::vector<RankedCombination>&& results, TopResults* top) {
+  std::set<EntryKey> held;
+  for (const RankedCombination& r : top->Sorted()) {
+    held.insert(KeyOf(r.combination, false));
+    for (const Alternative& a : r.alternatives) held.insert(KeyOf(a.combination, false));
+  }
+  for (RankedCombination& r : results) {
+    if (held.count(KeyOf(r.combination, false)) > 0) continue;
+    auto& alt = r.alternatives;
+    alt.erase(std::remove_if(alt.begin(), alt.end(),
+                             [&](const Alternative& a) { return held.count(KeyOf(a.combination, false)) > 0; }),
+              alt.end());
+    top->Add(std::move(r));
+  }
 }
 
 struct OuterPair {
@@ -172,10 +192,6 @@ Mission SubMission(const Mission& m, const Catalog& cat, int outer, const OuterP
 // G3's limit: a virtual-ESC search that finds this many completions below the N-th best may have
 // left some out (its own threshold fell below the cutoff); the class is then searched per ESC.
 constexpr int kCompletionLimit = 512;
-// G2's order: while no N-th best is known, an inner search that has not finished after this many
-// solves is put back (an outer choice that no completion makes feasible would otherwise search
-// the whole inner group without a cutoff: 18 s each on the full catalog's quadplane).
-constexpr long long kFirstSearchBudget = 5000;
 
 // G3 (docs/search.md#g3): the class's real ESCs of one outer pair against the completions the virtual
 // ESC's search found below the N-th best (`completions`, best first; that search's relaxed
@@ -223,9 +239,12 @@ namespace {
 class JointLoop {
  public:
   JointLoop(const Mission& m, const Catalog& cat, const SearchOptions& opt, double cutoff, PropGridCache* cache,
-            JointBounds* jb, const std::vector<OuterPair>& pairs, long long block, SearchResult* out)
+            JointBounds* jb, const std::vector<OuterPair>& pairs, long long block, long long first_search_budget,
+            SearchResult* out)
       : m_(m), cat_(cat), opt_(opt), cache_(cache), jb_(*jb), pairs_(pairs), block_(block),
-        n_esc_(static_cast<long long>(cat.escs().size())), out_(*out), top_(opt.top_n, opt.distinct_designs, cutoff) {
+        first_search_budget_(first_search_budget),
+        n_esc_(static_cast<long long>(cat.escs().size())), out_(*out), top_(opt.top_n, opt.distinct_designs, cutoff),
+        put_back_(opt.top_n, opt.distinct_designs, cutoff) {
     inner_opt_ = opt;
     inner_opt_.progress = nullptr;
     // The virtual ESC only with two free groups (the inner search is the one-group search) and
@@ -249,13 +268,19 @@ class JointLoop {
     bool unlimited = false;  // taken before (put back): no budget now
     bool operator>(const Queued& o) const { return std::tie(bound, pair, esc) > std::tie(o.bound, o.pair, o.esc); }
   };
-  double Nth() const { return top_.Threshold(); }
+  // What the loop prunes against: the N-th best of the results kept, or of those found by the
+  // inner searches put back, whichever is lower (G2's order, docs/search.md#g2).
+  double Nth() const {
+    const double t = put_back_.Threshold();
+    return std::min(top_.Threshold(), t < kInf ? std::nextafter(t, kInf) : kInf);
+  }
   void Progress(std::size_t done) const { ReportProgress(opt_, pairs_, done, top_, out_); }
   // The next pair of the list under its coupled bound (G2's order: the uncoupled one is lower).
   void Tighten();
   // The outer group fixed to (pair, ESC e), the battery to the pair's option: the inner search.
   // budgeted (only while there is no N-th best): an inner search that has not finished within
-  // kFirstSearchBudget solves is dropped (false; its results unused) and taken again later.
+  // first_search_budget_ solves is put back (false) and taken again later; its results only
+  // lower Nth() (put_back_) and join the top N if the search is stopped first.
   bool SearchTriple(const OuterPair& pr, int e, bool budgeted);
   // A pair's ESC classes: per class the bounds, the virtual ESC (R5, G3); the single ESCs left
   // go into the queue. False: the pair was put back (its first inner search over its budget).
@@ -274,9 +299,16 @@ class JointLoop {
   PropGridCache* cache_;
   JointBounds& jb_;
   const std::vector<OuterPair>& pairs_;
-  const long long block_, n_esc_;
+  const long long block_, first_search_budget_, n_esc_;
   SearchResult& out_;
   TopResults top_;  // top_results.h
+  // The scores of the results of inner searches put back over their budget (not kept: their
+  // items are searched again), for Nth() only.
+  TopScores put_back_;
+  // Those results per item put back and not yet taken again (by (pair, esc)): they join the top N
+  // only when the search is stopped first (StopAll); taken again, the item finds them itself.
+  std::map<std::pair<std::size_t, int>, std::vector<RankedCombination>> put_back_results_;
+  std::vector<RankedCombination> last_put_back_;  // SearchTriple's, for Run
   SearchOptions inner_opt_;
   bool virtual_ok_ = false;
   Mission relaxed_;
@@ -322,8 +354,11 @@ void JointLoop::Run() {
     const bool done = q.esc >= 0 ? SearchTriple(pairs_[q.pair], q.esc, budgeted) : TakePair(q);
     if (!done) {
       deferred_.push_back(q);
+      put_back_results_[{q.pair, q.esc}] = std::move(last_put_back_);
+      last_put_back_.clear();
       continue;
     }
+    if (!out_.interrupted) put_back_results_.erase({q.pair, q.esc});  // found again
     if (out_.interrupted) {  // stopped in this item's inner searches: the rest of it is unsettled
       StopAll(q.bound, QueuedCombinations(q));
       break;
@@ -354,11 +389,13 @@ void JointLoop::Tighten() {
 bool JointLoop::SearchTriple(const OuterPair& pr, int e, bool budgeted) {
   const Mission sub = SubMission(m_, cat_, jb_.outer_group(), pr, e, jb_);
   SearchOptions o = inner_opt_;
-  if (budgeted && FreeGroupCount(sub) == 1) o.evaluation_budget = kFirstSearchBudget;
+  if (budgeted && FreeGroupCount(sub) == 1) o.evaluation_budget = first_search_budget_;
   SearchResult r = FreeGroupCount(sub) > 1 ? JointSearch(sub, cat_, o, Nth(), cache_)
                                            : SearchOneGroup(sub, cat_, o, Nth(), cache_);
   if (r.interrupted && !StopRequested(opt_)) {  // over its budget: taken again later
     out_.virtual_evaluations += r.searched + r.virtual_evaluations;
+    for (const RankedCombination& b : r.best) put_back_.Add(KeyOf(b.combination, opt_.distinct_designs), b.result.score);
+    last_put_back_ = std::move(r.best);
     return false;
   }
   const bool stopped = r.interrupted;
@@ -478,6 +515,9 @@ void JointLoop::VirtualEscClass(const OuterPair& pr, std::size_t i, const std::v
 
 void JointLoop::StopAll(double bound, long long left) {
   out_.interrupted = true;
+  // The results of the items put back and not taken again: exact solves, not yet in the top N.
+  for (auto& entry : put_back_results_) AddUnheld(std::move(entry.second), &top_);
+  put_back_results_.clear();
   double least = bound;
   if (next_ < pairs_.size()) least = std::min(least, pairs_[next_].bound);
   if (!queue_.empty()) least = std::min(least, queue_.top().bound);
@@ -493,7 +533,7 @@ void JointLoop::StopAll(double bound, long long left) {
 }  // namespace
 
 SearchResult JointSearch(const Mission& m, const Catalog& cat, const SearchOptions& opt, double cutoff,
-                         PropGridCache* cache) {
+                         PropGridCache* cache, long long first_search_budget) {
   const auto t0 = std::chrono::steady_clock::now();
   if (std::string why; !opt.IsValid(&why)) throw UsageError(why);
   PropGridCache own;
@@ -521,7 +561,7 @@ SearchResult JointSearch(const Mission& m, const Catalog& cat, const SearchOptio
   jb.set_coupled(true);  // the tighter bound for the pairs taken (G2)
   out.candidate_pairs = static_cast<long long>(pairs.size());
   out.candidate_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  JointLoop(m, cat, opt, cutoff, cache, &jb, pairs, block, &out).Run();
+  JointLoop(m, cat, opt, cutoff, cache, &jb, pairs, block, first_search_budget, &out).Run();
   out.pruned = out.combinations - out.searched - out.unsettled;
   out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return out;

@@ -8,6 +8,7 @@
 // src/optimization (and its tests); SearchCatalog calls it.
 #pragma once
 
+#include <deque>
 #include <limits>
 #include <string>
 #include <tuple>
@@ -17,6 +18,7 @@
 #include "mission/flight.h"
 #include "mission/mission.h"
 #include "model/drive.h"
+#include "optimization/prop_bounds.h"
 #include "optimization/search_options.h"
 #include "optimization/search_result.h"
 #include "optimization/search_stages.h"
@@ -29,11 +31,18 @@ int FreeGroupCount(const Mission& m);
 
 namespace search_internal {
 
+// G2's order: while no N-th best is known, an inner search that has not finished after this many
+// solves is put back (an outer choice that no completion makes feasible would otherwise search
+// the whole inner group without a cutoff: 18 s each on the full catalog's quadplane).
+inline constexpr long long kFirstSearchBudget = 5000;
+
 // The exact top N (opt.top_n) among the combinations scoring below `cutoff`, over the joint
 // choice of every free group's motor, ESC and propeller and the battery option. Needs
 // FreeGroupCount(m) >= 2. The results' objective ranges are not computed (the caller's).
+// first_search_budget: kFirstSearchBudget (the tests set another, to put inner searches back).
 SearchResult JointSearch(const Mission& m, const Catalog& cat, const SearchOptions& opt,
-                         double cutoff = std::numeric_limits<double>::infinity(), PropGridCache* cache = nullptr);
+                         double cutoff = std::numeric_limits<double>::infinity(), PropGridCache* cache = nullptr,
+                         long long first_search_budget = kFirstSearchBudget);
 
 // A rotor's speed and torque at or below those of any point that gives the segment's thrust
 // (M1: bisection on the propeller's thrust at the segment's axial airspeed; the torque of the
@@ -42,10 +51,6 @@ struct RotorBound {
   double omega_rad_s = 0, torque_nm = 0;
   double thrust_n = 0, axial_airspeed_m_s = 0;  // the segment's per-rotor load
   int rotors = 0;
-  // A wing-borne cruise with a free airspeed: the rotors' power (W) from momentum theory and the
-  // propeller's own data, cell by cell (prop_bounds.h, with_prop_data), for any drive that
-  // cannot create energy; 0 for other segments.
-  double free_cruise_lossy_w = 0;
 };
 RotorBound RotorLowerBound(const Mission& m, const Segment& sg, const PropEntry& prop, const PropModel& model,
                            double mass_kg);
@@ -62,6 +67,12 @@ struct SegmentBound {
 SegmentBound SegmentPowerBound(const Mission& m, std::size_t si, const GroupParts& parts, const MotorParams& mp,
                                const Drive& drive, double tr_max, double esc_max_current_a, const PropModel& model,
                                const BatteryOption& bo, double mass_kg, const RotorBound& rb);
+
+// R3 at a point from below (the drive's operating point `hi` there at the pack's full-charge
+// voltage): the rule whatever else is chosen breaks (throttle, motor_current, motor_power,
+// esc_current), or null.
+const char* DriveRule(const MissionConstraints& k, const MotorParams& mp, const OperatingPoint& hi, double tr_max,
+                      double esc_max_current_a);
 
 // R4's assembly from per-segment terminal power bounds (W, avionics included, by segment):
 // min_energy the sum of power x shortest duration, max_endurance the energy budget of the
@@ -101,6 +112,20 @@ class JointBounds {
   double OuterBound(const Drive& drive, const GroupParts& parts, double esc_max_a, double tr_max,
                     int prop, std::size_t o, double mass_kg, const char** why, double* irms_lb);
   const RotorBound& OuterRotor(int prop, std::size_t si, std::size_t o, double mass_kg);
+  // The caches' index of (prop, si, o) at the grid mass at or below mass_kg (G1's geometric grid
+  // from the option's lightest vehicle), and that grid mass (kg).
+  std::size_t RotorCacheIndex(int prop, std::size_t si, std::size_t o, double mass_kg, double* grid_kg) const;
+  // A free cruise's samples (prop_bounds.h, with points) at the grid mass at or below mass_kg,
+  // kept per (prop, si, o, grid mass): they do not depend on the motor or the ESC.
+  const FreeCruiseSamples& OuterCruise(int prop, std::size_t si, std::size_t o, double mass_kg);
+  // The outer group's free cruise si on `prop` flown by `drive` at a vehicle of at least mass_kg:
+  // a bound of its terminal power (W, the avionics included) from OuterCruise's samples: momentum
+  // theory, and for a drive that cannot create energy the propeller's shaft power raised by the
+  // motor's loss floor (LossFloorOf); with the coupled stage also the drive's PDC.
+  double OuterCruiseFloorW(const Drive& drive, int prop, std::size_t si, std::size_t o, double mass_kg);
+  // R2 (max_rpm) and R12's top (prop_above_data) over a free cruise's range from its samples:
+  // the rule every airspeed breaks, or null.
+  const char* FreeCruiseSpeedRule(int prop, const FreeCruiseSamples& s) const;
   double StaticAdvanceMassFloorKg(const PropModel& model, double diameter_m, const Segment& sg, double v_a,
                                   double v_b) const;
   static constexpr int kFreeCruiseFloorCells = 16;  // R7's floor over a free airspeed range
@@ -125,7 +150,11 @@ class JointBounds {
   int outer_ = 0, lift_group_ = 0;
   int inner_ = -1;  // the other free group when there are two and the objective is min_energy
   bool coupled_ = false;
-  std::vector<double> cruise_floor_w_;  // OuterBound's scratch: per segment, a free cruise's drive bound
+  std::vector<double> cruise_floor_w_;  // OuterBound's scratch: per segment, a free cruise's bound
+  // OuterBound's scratch for the frontier points: per free cruise, the cache index last read
+  // and its bound.
+  std::vector<std::size_t> cruise_point_at_;
+  std::vector<double> cruise_point_w_;
   std::vector<std::vector<FrontierPoint>> frontier_;  // per option
   std::vector<double> inner_lightest_kg_;             // per option
   std::vector<BatteryOption> options_;
@@ -138,6 +167,10 @@ class JointBounds {
   // OuterRotor's cache: [((o * segments + si) * props + prop) * kFixedPowerMasses + k].
   std::vector<RotorBound> rotor_cache_;
   std::vector<char> rotor_done_;
+  // OuterCruise's cache: per rotor_cache_ index, the entry in cruise_samples_ (-1: not yet).
+  std::vector<int> cruise_index_;
+  std::deque<FreeCruiseSamples> cruise_samples_;
+  std::vector<PropAdjustment> adjustments_;  // per propeller, the ranking scenario's
   std::vector<double> scratch_;
   // LightestSurvivorKg's list per group: (motor + propeller kg, motor, propeller), ascending.
   std::vector<std::vector<std::tuple<double, int, int>>> by_mass_;

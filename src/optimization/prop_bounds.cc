@@ -37,56 +37,45 @@ double BisectSpeedFromBelow(const PropModel& model, double rho, double thrust_n,
   return lo;
 }
 
-namespace {
-
-constexpr int kCells = 32;
-
-// The samples V_k of the range and, from below at (T_k, V_k), the rotors' shaft power and
-// (with a drive) PDC; a kind whose samples do not rise with k is switched off (M4).
-struct CruiseSamples {
-  std::array<double, kCells + 1> v{}, thrust{}, shaft_w{}, drive_w{};
-  int rotors = 0;
-  bool shaft_ok = false, drive_ok = false;
-};
-
-CruiseSamples SampleCruise(const Mission& m, const Segment& sg, const CruisePropBound& p,
-                           const CruiseDriveBound* drive, double mass_kg) {
-  CruiseSamples c;
-  c.drive_ok = drive != nullptr && drive->drive != nullptr;
-  c.shaft_ok = p.lossy && p.with_prop_data;
+FreeCruiseSamples SampleFreeCruise(const Mission& m, const Segment& sg, const CruisePropBound& p, double mass_kg,
+                                   bool with_points) {
+  FreeCruiseSamples s;
+  s.points = s.shaft_rises = s.point_rises = with_points;
   const double lo = sg.airspeed_m_s.lo, hi = sg.airspeed_m_s.hi;
-  for (int k = 0; k <= kCells; ++k) {
-    c.v[k] = lo + (hi - lo) * k / kCells;
-    const RotorLoad ld = SegmentRotorLoad(m, sg, mass_kg, c.v[k]);
-    c.rotors = ld.rotors;
-    c.thrust[k] = ld.thrust_per_rotor_n;
-    if (!c.drive_ok && !c.shaft_ok) continue;
-    double w = 0;
-    PropEvaluation ev;
-    if (PropSpeedFromBelow(*p.model, m.rho_kg_m3, c.thrust[k], ld.axial_airspeed_m_s, 40, &w)) {
-      ev = p.model->Evaluate(w, m.rho_kg_m3, ld.axial_airspeed_m_s);
-      AdjustPropEvaluation(p.adjustment, p.prop->diameter_m, &ev);  // the scenario's torque, as the evaluator's
-    }
+  for (int k = 0; k <= kFreeCruiseCells; ++k) {
+    s.v[k] = lo + (hi - lo) * k / kFreeCruiseCells;
+    const RotorLoad ld = SegmentRotorLoad(m, sg, mass_kg, s.v[k]);
+    s.rotors = ld.rotors;
+    s.thrust[k] = ld.thrust_per_rotor_n;
+    if (!s.points) continue;
+    // A speed from below (M1); when even the ceiling gives less than T_k the rotor turns faster
+    // than the ceiling, and its torque there is at least the ceiling's (M1).
+    double w = kPropSpeedCeilingRadS;
+    PropSpeedFromBelow(*p.model, m.rho_kg_m3, s.thrust[k], ld.axial_airspeed_m_s, 40, &w);
+    PropEvaluation ev = p.model->Evaluate(w, m.rho_kg_m3, ld.axial_airspeed_m_s);
+    AdjustPropEvaluation(p.adjustment, p.prop->diameter_m, &ev);  // the scenario's torque, as the evaluator's
     if (!(ev.torque_nm > 0)) {
-      c.shaft_ok = c.drive_ok = false;
+      s.points = s.shaft_rises = s.point_rises = false;
       continue;
     }
-    c.shaft_w[k] = ld.rotors * ev.torque_nm * w;
-    if (c.drive_ok) {
-      const Drive& d = *drive->drive;
-      const double pdc = std::min(d.Inverse(drive->v_full_v, ev.torque_nm, w).pdc_w,
-                                  d.Inverse(drive->v_cut_v, ev.torque_nm, w).pdc_w);
-      c.drive_w[k] = ld.rotors * std::max(0.0, pdc);
-    }
-    if (k > 0 && c.shaft_w[k] < c.shaft_w[k - 1]) c.shaft_ok = false;  // M4 not seen on the samples
-    if (k > 0 && c.drive_w[k] < c.drive_w[k - 1]) c.drive_ok = false;
+    s.omega[k] = w;
+    s.torque[k] = ev.torque_nm;
+    if (k > 0 && s.rotors * s.torque[k] * w < s.rotors * s.torque[k - 1] * s.omega[k - 1]) s.shaft_rises = false;
+    if (k > 0 && (w < s.omega[k - 1] || s.torque[k] < s.torque[k - 1])) s.point_rises = false;
   }
-  return c;
+  return s;
 }
+
+namespace {
+
+// A loss floor's rounding allowance: the floor is a sum of products that the evaluator's PAC
+// equals at best (R11's kKeyRoundingAllowance, pair_candidates.cc).
+constexpr double kLossFloorRounding = 1.0 - 1e-9;
 
 }  // namespace
 
-// The rules (docs/search.md#m1 to #m4 and R4's momentum bound), on a cell [V_k, V_k+1] of the range:
+// The rules (docs/search.md#m1 to #m4, R4's momentum bound and G1's free cruise), on a cell
+// [V_k, V_k+1] of the range:
 // - the thrust W/(L/D) + 1/2*rho*V^2*Cd*A_add (flight.h) rises with V, so it is at least T_k,
 //   its value at V_k (and rises with the mass, M3);
 // - momentum theory: a feasible point's propeller power is at least P_ideal(T, V)/FM_max (the
@@ -97,32 +86,60 @@ CruiseSamples SampleCruise(const Mission& m, const Segment& sg, const CruiseProp
 //   from below at T_k (speed from below, M1; the scenario's torque there, which only rises);
 //   PDC >= Pmech. (M4) At a fixed thrust the power rises with the inflow, and with the thrust
 //   at a fixed inflow: the samples are checked to rise, else this part is not used at all;
+// - the motor's loss floor (with `loss`, no stage creating energy): PDC >= PAC >= Q*omega +
+//   a*Q^2 + b*omega (model/physics.h, LossFloorOf), which rises with Q and omega; the speed and
+//   torque at the cell's points are at least (omega_k, Q_k) as the drive's below (the samples'
+//   speeds and torques are each checked to rise, else this part is not used);
 // - the drive (with `drive`): at V_k its PDC at that point, the smaller at the full-charge and
 //   cut-off voltage (linear in VDC, eq 59), rising by M4 and M2 (checked the same way);
 // - by distance d the energy is P(V)*d/V >= (P_k + P_av)*d/V_k+1; by duration t it is
 //   P(V)*t >= (P_k + P_av)*t, with P_k the largest of the power bounds (momentum theory read
 //   at V_k+1 by distance, at V_k by duration).
-double FreeCruiseRotorPowerLowerBoundW(const Mission& m, const Segment& sg, const CruisePropBound& p,
-                                       const CruiseDriveBound* drive, double mass_kg) {
+double FreeCruiseRotorPowerFromSamples(const Mission& m, const Segment& sg, const CruisePropBound& p,
+                                       const FreeCruiseSamples& s, const CruiseDriveBound* drive,
+                                       const MotorLossFloor* loss) {
   if (!(sg.lift_to_drag > 0) || p.prop == nullptr || p.model == nullptr) return 0.0;
   const double hi = sg.airspeed_m_s.hi;
   const bool by_distance = sg.distance_m.has_value();
   const bool axial_data = p.model->data_kind() == PropDataKind::kTables && !p.prop->j_tables.empty();
   const bool momentum = p.lossy && ScenarioKeepsPower(p.adjustment) && m.constraints.max_figure_of_merit > 0;
+  const bool shaft = p.lossy && p.with_prop_data && s.points && s.shaft_rises;
+  const bool floor = shaft && loss != nullptr && s.point_rises &&
+                     (loss->copper_w_per_nm2 > 0 || loss->no_load_torque_nm > 0);
+  std::array<double, kFreeCruiseCells + 1> drive_w{};
+  bool drive_ok = drive != nullptr && drive->drive != nullptr && s.points;
+  for (int k = 0; k <= kFreeCruiseCells && drive_ok; ++k) {
+    const Drive& d = *drive->drive;
+    const double pdc = std::min(d.Inverse(drive->v_full_v, s.torque[k], s.omega[k]).pdc_w,
+                                d.Inverse(drive->v_cut_v, s.torque[k], s.omega[k]).pdc_w);
+    drive_w[k] = s.rotors * std::max(0.0, pdc);
+    if (k > 0 && drive_w[k] < drive_w[k - 1]) drive_ok = false;  // M4, M2 not seen on the samples
+  }
   const double p_av = m.vehicle.avionics_power_w;
-  const CruiseSamples c = SampleCruise(m, sg, p, drive, mass_kg);
   double best = kInf;
-  for (int k = 0; k < kCells; ++k) {
-    const double v_read = by_distance ? c.v[k + 1] : c.v[k];
+  for (int k = 0; k < kFreeCruiseCells; ++k) {
+    const double v_read = by_distance ? s.v[k + 1] : s.v[k];
     const double v_in = axial_data ? v_read : 0.0;  // a wing-borne cruise's inflow is its airspeed (flight.h)
-    double p_k = momentum ? c.rotors * IdealRotorPowerW(c.thrust[k], p.prop->diameter_m, m.rho_kg_m3, v_in) /
+    double p_k = momentum ? s.rotors * IdealRotorPowerW(s.thrust[k], p.prop->diameter_m, m.rho_kg_m3, v_in) /
                                 m.constraints.max_figure_of_merit
                           : 0.0;
-    if (c.shaft_ok) p_k = std::max(p_k, c.shaft_w[k]);
-    if (c.drive_ok) p_k = std::max(p_k, c.drive_w[k]);
-    best = std::min(best, by_distance ? (p_k + p_av) * hi / c.v[k + 1] : p_k + p_av);
+    if (shaft) p_k = std::max(p_k, s.rotors * s.torque[k] * s.omega[k]);
+    if (floor) {
+      const double q = s.torque[k], w = s.omega[k];
+      p_k = std::max(p_k, kLossFloorRounding * s.rotors *
+                              (q * w + loss->copper_w_per_nm2 * q * q + loss->no_load_torque_nm * w));
+    }
+    if (drive_ok) p_k = std::max(p_k, drive_w[k]);
+    best = std::min(best, by_distance ? (p_k + p_av) * hi / s.v[k + 1] : p_k + p_av);
   }
   return std::isfinite(best) ? std::max(0.0, best - p_av) : 0.0;
+}
+
+double FreeCruiseRotorPowerLowerBoundW(const Mission& m, const Segment& sg, const CruisePropBound& p,
+                                       const CruiseDriveBound* drive, double mass_kg) {
+  if (!(sg.lift_to_drag > 0) || p.prop == nullptr || p.model == nullptr) return 0.0;
+  const bool with_points = (drive != nullptr && drive->drive != nullptr) || (p.lossy && p.with_prop_data);
+  return FreeCruiseRotorPowerFromSamples(m, sg, p, SampleFreeCruise(m, sg, p, mass_kg, with_points), drive);
 }
 
 }  // namespace dynosize

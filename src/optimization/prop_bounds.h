@@ -2,9 +2,12 @@
 // evaluator's early exits (mission_eval.cc) both use: a speed from below for a thrust, and the
 // least energy of a wing-borne cruise whose airspeed is free, cell by cell over its range.
 #pragma once
+#include <array>
+
 #include "catalog/catalog.h"
 #include "mission/mission.h"
 #include "model/drive.h"
+#include "model/physics.h"
 #include "optimization/credibility.h"
 #include "prop/prop_model.h"
 
@@ -41,14 +44,41 @@ struct CruisePropBound {
   bool with_prop_data = false;
 };
 
+// The cells the airspeed range of a free cruise is cut in (docs/search.md#g1).
+inline constexpr int kFreeCruiseCells = 32;
+
+// A free cruise's samples at one vehicle mass, read from the propeller alone (no motor, no ESC):
+// the airspeeds V_k = lo + (hi - lo)*k/kFreeCruiseCells, the thrust per rotor T_k there and,
+// from below at (T_k, V_k), the rotor's speed and the scenario's torque. A bound for every
+// vehicle at least that heavy (M1, M3), so it can be kept per propeller and mass and read with
+// any drive.
+struct FreeCruiseSamples {
+  std::array<double, kFreeCruiseCells + 1> v{}, thrust{}, omega{}, torque{};
+  int rotors = 0;
+  bool points = false;       // every sample has its speed and torque (else none of them is used)
+  bool shaft_rises = false;  // Q_k*omega_k rises with k (M4 seen on the samples)
+  bool point_rises = false;  // Q_k and omega_k each rise with k (so does every loss floor)
+};
+
+// The samples of a wing-borne cruise with a free airspeed at vehicle mass mass_kg; the speeds and
+// torques only `with_points` (a speed bisection per sample).
+FreeCruiseSamples SampleFreeCruise(const Mission& m, const Segment& sg, const CruisePropBound& p, double mass_kg,
+                                   bool with_points);
+
 // A wing-borne cruise (lift_to_drag > 0) with a free airspeed in [lo, hi], flown at a vehicle
-// mass of at least mass_kg: P_lb (W, the rotors; the avionics P_av not included) with
+// mass of at least the samples' mass: P_lb (W, the rotors; the avionics P_av not included) with
 //   (P_lb + P_av) * SegmentDurationS(sg, hi) <= the segment's energy at every airspeed of the range.
 // 0 when no bound applies. The range is cut in cells [V_k, V_k+1]; on each, by the rules of
 // prop_bounds.cc, the rotors' power is at least the largest of momentum theory's
-// P_ideal/max_figure_of_merit, (with_prop_data) the propeller's shaft power from below and (with
-// `drive`) the drive's PDC from below, and the energy is at least that power plus P_av over the
-// cell's shortest duration. The least cell gives P_lb.
+// P_ideal/max_figure_of_merit, (with_prop_data) the propeller's shaft power from below, raised
+// by the motor's loss floor `loss` (model/physics.h, LossFloorOf) when given, and (with `drive`)
+// the drive's PDC from below, and the energy is at least that power plus P_av over the cell's
+// shortest duration. The least cell gives P_lb.
+double FreeCruiseRotorPowerFromSamples(const Mission& m, const Segment& sg, const CruisePropBound& p,
+                                       const FreeCruiseSamples& s, const CruiseDriveBound* drive,
+                                       const MotorLossFloor* loss = nullptr);
+
+// The same from samples taken at mass_kg (with points when the bound reads them).
 double FreeCruiseRotorPowerLowerBoundW(const Mission& m, const Segment& sg, const CruisePropBound& p,
                                        const CruiseDriveBound* drive, double mass_kg);
 

@@ -6,9 +6,11 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <iostream>
 #include <limits>
 #include <map>
 #include <memory>
@@ -330,6 +332,110 @@ TEST_F(JointSearchTest, GeneratedMissionsEqualExhaustiveEvaluation) {
   }
   EXPECT_GE(compared, kMissions - 1) << "the generated missions must mostly fly";
   EXPECT_GE(with_ranges, 1);
+}
+
+// A free cruise airspeed on the pusher (the outer group): its pair bounds, uncoupled and coupled,
+// and its triple bounds are at or below every feasible combination's score. They read the
+// propeller's samples over the range (prop_bounds.h) with the motor's loss floor, R2, R12's top
+// and R3 at the samples' first point (docs/search.md#g2, a free cruise's outer bound).
+TEST_F(JointSearchTest, FreeAirspeedOuterBoundsBelowEveryFeasibleScore) {
+  DYNOSIZE_SKIP_UNLESS_AVAILABLE("nlopt_cobyla");  // a free airspeed (mission_eval.h)
+  const Catalog cat = Catalog::Load((dir_ / "catalog").string());
+  Json j = ParseJsonText(kFreeQuadplane, "free airspeed");
+  j["segments"][1]["airspeed_m_s"] = Json::array({10, 16});
+  const Mission m = ParseMission(j, "free airspeed");
+  const int lift = m.segments[0].group, pusher = m.segments[1].group;
+  PropGridCache cache;
+  BuildPropGrids(m, cat, &cache.grids, &cache.models);
+  cache.built = true;
+  JointBounds jb(m, cat, cache);
+  ASSERT_EQ(jb.outer_group(), pusher);
+  auto index_of = [](const auto& list, const auto* x) { return static_cast<int>(x - list.data()); };
+  int checked = 0, ruled_out = 0;
+  double closest = std::numeric_limits<double>::infinity();  // the least score / coupled pair bound
+  ForEachJoint(cat, m, lift, pusher, [&](const Combination& c, const MissionResult& r) {
+    std::size_t o = 0;
+    while (o < jb.options().size() && jb.options()[o].cells != c.cells) ++o;
+    ASSERT_LT(o, jb.options().size());
+    const int motor = index_of(cat.motors(), c.groups[pusher].motor);
+    const int esc = index_of(cat.escs(), c.groups[pusher].esc);
+    const int prop = index_of(cat.props(), c.groups[pusher].prop);
+    int cls = -1;
+    for (std::size_t k = 0; k < jb.escs().classes.size(); ++k) {
+      for (int e : jb.escs().classes[k].members) cls = e == esc ? static_cast<int>(k) : cls;
+    }
+    if (cls < 0) return;  // an ESC below the pack's voltage (R1)
+    const char* why = nullptr;
+    double irms = 0;
+    jb.set_coupled(false);
+    const double uncoupled = jb.PairBound(motor, prop, o, cls, &why, &irms);
+    jb.set_coupled(true);
+    const double coupled = jb.PairBound(motor, prop, o, cls, &why, &irms);
+    const double triple = jb.TripleBound(motor, esc, prop, o, &why);
+    if (!(triple < std::numeric_limits<double>::infinity())) ++ruled_out;
+    if (!r.feasible) return;
+    // Tolerance: none. The bounds are exact inequalities; a rounding-level excess is a defect.
+    EXPECT_LE(uncoupled, r.score) << Name(c, lift, pusher);
+    EXPECT_LE(coupled, r.score) << Name(c, lift, pusher);
+    EXPECT_LE(triple, r.score) << Name(c, lift, pusher);
+    closest = std::min(closest, r.score / coupled);
+    ++checked;
+  });
+  EXPECT_GT(checked, 0) << "the small catalog must fly the mission";
+  EXPECT_GT(ruled_out, 0) << "some pusher choices must be ruled out over the whole range";
+  std::cout << "closest coupled pair bound: score / bound " << closest << ", " << checked << " feasible, "
+            << ruled_out << " ruled out\n";
+}
+
+// An inner search put back over its first-search budget (G2's order): its results lower the
+// threshold the loop prunes against until its item is taken again, and the answer is still
+// exhaustive evaluation's. A search stopped before the item is taken again returns those
+// results (exact solves) instead of nothing.
+TEST_F(JointSearchTest, InnerSearchesPutBackKeepTheAnswerAndShowTheirResultsOnAStop) {
+  const Catalog cat = Catalog::Load(TinyCatalogDir(dir_).string());
+  const Mission m = ReadMission((dir_ / "free.json").string());
+  const int lift = m.segments[0].group, pusher = m.segments[1].group;
+  std::vector<Scored> all;
+  ForEachJoint(cat, m, lift, pusher, [&](const Combination& c, const MissionResult& r) {
+    if (r.feasible) all.push_back({r.score, Name(c, lift, pusher)});
+  });
+  std::sort(all.begin(), all.end(), [](const Scored& a, const Scored& b) {
+    return a.score != b.score ? a.score < b.score : a.name < b.name;
+  });
+  ASSERT_GE(all.size(), 3u);
+  SearchOptions so;
+  so.top_n = 3;
+  for (long long budget : {1LL, 4LL, kFirstSearchBudget}) {
+    SCOPED_TRACE("budget " + std::to_string(budget));
+    PropGridCache cache;
+    const SearchResult s = JointSearch(m, cat, so, std::numeric_limits<double>::infinity(), &cache, budget);
+    ASSERT_EQ(s.best.size(), 3u);
+    for (std::size_t i = 0; i < 3; ++i) {
+      EXPECT_EQ(Name(s.best[i].combination, lift, pusher), all[i].name) << i;
+      EXPECT_EQ(s.best[i].result.score, all[i].score) << i;
+    }
+  }
+  // Stopped at the loop's second progress report: with a budget of 4 solves the second inner
+  // search is put back with 3 results, which set the threshold, and the pair is taken again at
+  // once, reporting before its virtual ESC's search. The results it found are there (nothing
+  // else was kept yet), each an exhaustive evaluation's.
+  std::atomic<bool> stop{false};
+  int reports = 0;
+  so.stop = &stop;
+  so.progress = [&](const SearchProgress&) {
+    if (++reports == 2) stop = true;
+  };
+  PropGridCache cache;
+  const SearchResult s = JointSearch(m, cat, so, std::numeric_limits<double>::infinity(), &cache, 4);
+  EXPECT_TRUE(s.interrupted);
+  ASSERT_FALSE(s.best.empty()) << "the put-back search's results are shown";
+  for (const RankedCombination& b : s.best) {
+    const auto it = std::find_if(all.begin(), all.end(), [&](const Scored& x) {
+      return x.name == Name(b.combination, lift, pusher);
+    });
+    ASSERT_NE(it, all.end()) << Name(b.combination, lift, pusher);
+    EXPECT_EQ(b.result.score, it->score);
+  }
 }
 
 // Every group fixed: nothing to choose, refused with the JSON path.
