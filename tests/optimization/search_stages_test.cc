@@ -376,6 +376,73 @@ TEST_F(SearchStagesTest, CapacityPieceBoundsAreBelowEveryFeasibleScore) {
   }
 }
 
+// R13's pieces passed over (docs/search.md#r13, "assembled only while it can be the least"): a
+// piece after the first is assembled at its own mass only when the first piece's terms with its
+// budget, then its own stretch power with the first piece's other segments, are below the least
+// so far. Every pair's bound (and whether it is kept, its Irms bound) and every R11 key is the
+// same number as with every piece assembled, bit for bit, over a hover stretch and a
+// fixed-airspeed cruise stretch, two capacity ranges; and pieces are passed over.
+TEST_F(SearchStagesTest, CapacityPiecesPassedOverLeaveEveryPairBoundAndKeyTheSame) {
+  const Catalog cat = SmallCatalog();
+  Json j = ParseJsonText(kStageQuad, "quad");
+  Json cruise = j;
+  cruise["segments"] = Json::parse(R"([
+    {"name": "takeoff", "type": "climb", "rate_m_s": 2, "distance_m": 30},
+    {"name": "hover", "type": "hover", "duration_s": 20},
+    {"name": "flight", "type": "cruise", "airspeed_m_s": 10, "distance_m": 1000},
+    {"name": "landing", "type": "climb", "rate_m_s": -1, "distance_m": 30}
+  ])");
+  cruise["objective"] = {{"type", "max_endurance"}, {"segment", "flight"}};
+  for (Json& mission : std::vector<Json>{j, cruise}) {
+    for (const auto& range : {std::make_pair(2.0, 6.0), std::make_pair(1.5, 9.0), std::make_pair(8.0, 60.0), std::make_pair(10.0, 200.0)}) {
+      mission["battery"]["capacity_ah"] = {range.first, range.second};
+      const Mission m = ParseMission(mission, "quad");
+      const std::string what = m.segments[static_cast<std::size_t>(m.objective.segment_index)].name + " over [" +
+                               std::to_string(range.first) + ", " + std::to_string(range.second) + "] Ah";
+      SearchContext ctx;
+      PrepareStages(m, cat, &ctx);
+      const MissionFacts f = StageFourFacts(ctx);
+      MissionFacts every = f;
+      every.every_capacity_piece = true;
+      RuleCounts pruned;
+      long long skipped = 0;
+      const auto setups = SetUpMotors(ctx, f, 1, &pruned, &skipped);
+      PairLoads loads(m), every_loads(m);
+      int pairs = 0, keys = 0;
+      for (const auto& s : setups) {
+        if (!s) continue;
+        for (std::size_t o = 0; o < ctx.options.size(); ++o) {
+          if (std::isnan(s->w_nl[o])) continue;
+          for (const int pi : f.frame_ok_props) {
+            const std::size_t p = static_cast<std::size_t>(pi);
+            Candidate a, b;
+            RuleCounts ra, rb;
+            const bool kept = PairCandidate(ctx, f, *s, p, o, &loads, &a, &ra);
+            ASSERT_EQ(kept, PairCandidate(ctx, every, *s, p, o, &every_loads, &b, &rb)) << what;
+            if (kept) {
+              ++pairs;
+              EXPECT_TRUE(a.bound == b.bound && a.irms_lb == b.irms_lb)
+                  << what << ": " << cat.motors()[static_cast<std::size_t>(s->motor)].id << " " << cat.props()[p].id
+                  << " bound " << a.bound << " against " << b.bound;
+            }
+            if (!s->lossy) continue;
+            ++keys;
+            const double key = PropOnlyBound(ctx, f, p, o, s->mass_kg, s->loss, &loads);
+            const double every_key = PropOnlyBound(ctx, every, p, o, s->mass_kg, s->loss, &every_loads);
+            EXPECT_TRUE(key == every_key) << what << ": key " << key << " against " << every_key;
+          }
+        }
+      }
+      EXPECT_GT(pairs, 10) << what;
+      EXPECT_GT(keys, 10) << what;
+      EXPECT_GT(loads.pieces_skipped, 0) << what;
+      EXPECT_EQ(every_loads.pieces_skipped, 0) << what;
+      std::printf("R13 pieces passed over, %s: %lld of %d pairs' and keys' %d\n", what.c_str(), loads.pieces_skipped,
+                  pairs + keys, 3 * (pairs + keys));
+    }
+  }
+}
+
 // R4's max_endurance hover stretch without R2's grid point (a propeller whose grid is not
 // monotone, forced here on every propeller): the stretch's power is then momentum theory's
 // N*P_ideal/max_figure_of_merit + P_avionics alone. The bound is at or below every feasible score
