@@ -180,7 +180,7 @@ double StretchOnlyBound(KindTerms piece, const KindTerms& first, double budget_a
 // Stage 4 for one pair of a set-up motor whose option R1 lets through and whose propeller
 // passed R0: false with its rule counted (its option's ESCs), or true with *c (R4's bound).
 bool PairCandidate(const SearchContext& ctx, const MissionFacts& f, const MotorSetup& s, std::size_t pi, std::size_t o,
-                   PairLoads* loads, Candidate* c, RuleCounts* pruned) {
+                   PairLoads* loads, Candidate* c, RuleCounts* pruned, double cutoff) {
   const BatteryOption& bo = ctx.options[o];
   const long long per_pair = ctx.escs.rated[o];
   const double window_floor_kg = WindowMassFloorKg(ctx, f, static_cast<int>(pi));  // R12's floor
@@ -205,13 +205,23 @@ bool PairCandidate(const SearchContext& ctx, const MissionFacts& f, const MotorS
   // refuses every class holds no feasible point (its mass is a lower bound, M2, M3).
   std::vector<double> scratch;
   const std::vector<double>& edges = PieceEdges(ctx, f, o, &scratch);
-  const KindTerms first = TermsOfPowers(ctx, f, lightest, pi, o, loads);
-  double bound = first.At(edges.empty() ? bo.capacity_hi_ah : edges[1]);
+  // The first piece: its stretch power alone first (the other segments' energy 0, which theirs is
+  // not below); assembled only when that is below the cutoff.
+  KindTerms first = TermsOfPowers(ctx, f, lightest, pi, o, loads, !edges.empty());
+  double bound = kInf;
+  if (edges.empty() || f.every_capacity_piece || !(first.At(edges[1]) >= cutoff)) {
+    if (!edges.empty()) first = TermsOfPowers(ctx, f, lightest, pi, o, loads);
+    bound = first.At(edges.empty() ? bo.capacity_hi_ah : edges[1]);
+  } else {
+    ++loads->pieces_skipped;
+  }
   // The other pieces, heaviest first: a piece is assembled at its own mass only when the first
-  // piece's terms with its budget (a bound of it at a lighter mass, M3) are below the least so
-  // far (docs/search.md#r13, "assembled only while it can be the least").
+  // piece's terms with its budget (a bound of it at a lighter mass, M3), then its own stretch
+  // power with them, are below both the least so far and the cutoff (docs/search.md#r13,
+  // "assembled only while it can be the least").
   for (std::size_t j = edges.size() < 3 ? 0 : edges.size() - 2; j > 0; --j) {
-    if (!f.every_capacity_piece && first.At(edges[j + 1]) >= bound) {
+    const double target = std::min(bound, cutoff);
+    if (!f.every_capacity_piece && first.At(edges[j + 1]) >= target) {
       ++loads->pieces_skipped;
       continue;
     }
@@ -223,7 +233,7 @@ bool PairCandidate(const SearchContext& ctx, const MissionFacts& f, const MotorS
     const ClassPowers p = HoverPowersOfClasses(ctx, s, o, w, q);
     if (!p.Any()) continue;  // no feasible point here (nor in a heavier piece, M1-M3)
     if (!f.every_capacity_piece &&
-        StretchOnlyBound(TermsOfPowers(ctx, f, p, pi, o, loads, true), first, edges[j + 1]) >= bound) {
+        StretchOnlyBound(TermsOfPowers(ctx, f, p, pi, o, loads, true), first, edges[j + 1]) >= target) {
       ++loads->pieces_skipped;
       continue;
     }

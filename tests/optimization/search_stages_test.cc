@@ -379,9 +379,10 @@ TEST_F(SearchStagesTest, CapacityPieceBoundsAreBelowEveryFeasibleScore) {
 // R13's pieces passed over (docs/search.md#r13, "assembled only while it can be the least"): a
 // piece after the first is assembled at its own mass only when the first piece's terms with its
 // budget, then its own stretch power with the first piece's other segments, are below the least
-// so far. Every pair's bound (and whether it is kept, its Irms bound) and every R11 key is the
-// same number as with every piece assembled, bit for bit, over a hover stretch and a
-// fixed-airspeed cruise stretch, two capacity ranges; and pieces are passed over.
+// so far and the cutoff. Every pair's bound (and whether it is kept, its rule, its Irms bound)
+// and every R11 key is the same number as with every piece assembled, bit for bit, over a hover
+// stretch and a fixed-airspeed cruise stretch and four capacity ranges; with a cutoff the bound
+// is the same when below it, else at or above it; and pieces are passed over.
 TEST_F(SearchStagesTest, CapacityPiecesPassedOverLeaveEveryPairBoundAndKeyTheSame) {
   const Catalog cat = SmallCatalog();
   Json j = ParseJsonText(kStageQuad, "quad");
@@ -407,7 +408,7 @@ TEST_F(SearchStagesTest, CapacityPiecesPassedOverLeaveEveryPairBoundAndKeyTheSam
       RuleCounts pruned;
       long long skipped = 0;
       const auto setups = SetUpMotors(ctx, f, 1, &pruned, &skipped);
-      PairLoads loads(m), every_loads(m);
+      PairLoads loads(m), every_loads(m), cut_loads(m);
       int pairs = 0, keys = 0;
       for (const auto& s : setups) {
         if (!s) continue;
@@ -419,11 +420,28 @@ TEST_F(SearchStagesTest, CapacityPiecesPassedOverLeaveEveryPairBoundAndKeyTheSam
             RuleCounts ra, rb;
             const bool kept = PairCandidate(ctx, f, *s, p, o, &loads, &a, &ra);
             ASSERT_EQ(kept, PairCandidate(ctx, every, *s, p, o, &every_loads, &b, &rb)) << what;
+            std::map<std::string, long long> rule_a, rule_b;
+            ra.MergeInto(&rule_a);
+            rb.MergeInto(&rule_b);
+            EXPECT_EQ(rule_a, rule_b) << what;
             if (kept) {
               ++pairs;
               EXPECT_TRUE(a.bound == b.bound && a.irms_lb == b.irms_lb)
                   << what << ": " << cat.motors()[static_cast<std::size_t>(s->motor)].id << " " << cat.props()[p].id
                   << " bound " << a.bound << " against " << b.bound;
+              // With a cutoff (the stream's N-th best): the same bound when it is below the
+              // cutoff, else one at or above it; at, just above and just below the bound.
+              for (const double cutoff : {b.bound, std::nextafter(b.bound, kInfinity), std::nextafter(b.bound, -kInfinity),
+                                          b.bound + 0.05 * std::fabs(b.bound), b.bound - 0.05 * std::fabs(b.bound)}) {
+                Candidate x;
+                RuleCounts rx;
+                ASSERT_TRUE(PairCandidate(ctx, f, *s, p, o, &cut_loads, &x, &rx, cutoff)) << what;
+                if (b.bound < cutoff) {
+                  EXPECT_TRUE(x.bound == b.bound) << what << ": cutoff " << cutoff << ", " << x.bound << " against " << b.bound;
+                } else {
+                  EXPECT_GE(x.bound, cutoff) << what << ": " << x.bound << " below the cutoff, bound " << b.bound;
+                }
+              }
             }
             if (!s->lossy) continue;
             ++keys;
@@ -437,8 +455,11 @@ TEST_F(SearchStagesTest, CapacityPiecesPassedOverLeaveEveryPairBoundAndKeyTheSam
       EXPECT_GT(keys, 10) << what;
       EXPECT_GT(loads.pieces_skipped, 0) << what;
       EXPECT_EQ(every_loads.pieces_skipped, 0) << what;
-      std::printf("R13 pieces passed over, %s: %lld of %d pairs' and keys' %d\n", what.c_str(), loads.pieces_skipped,
-                  pairs + keys, 3 * (pairs + keys));
+      EXPECT_GT(cut_loads.pieces_skipped, loads.pieces_skipped) << what;
+      std::printf("R13, %s: %d pairs and %d keys, %lld of their %d later pieces passed over; with 5 cutoffs per "
+                  "pair %lld of %d pieces\n",
+                  what.c_str(), pairs, keys, loads.pieces_skipped, 3 * (pairs + keys), cut_loads.pieces_skipped,
+                  5 * 4 * pairs);
     }
   }
 }
