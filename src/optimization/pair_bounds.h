@@ -145,7 +145,7 @@ ScoreBoundTerms ScoreLowerBoundTerms(const SearchContext& ctx, const MissionFact
 // with C_j+1's budget bounds the piece; the pair's bound is the least over the pieces. The
 // pieces' capacities, ascending (kCapacityPieces + 1 of them from capacity_lo_ah to
 // capacity_hi_ah; empty when the option has no range or the objective no budget).
-inline constexpr int kCapacityPieces = 4;
+inline constexpr int kCapacityPieces = 12;
 std::vector<double> CapacityPieceEdges(const SearchContext& ctx, const MissionFacts& f, std::size_t option);
 // CapacityPieceEdges as StageFourFacts keeps them; computed into *scratch when f has none.
 const std::vector<double>& PieceEdges(const SearchContext& ctx, const MissionFacts& f, std::size_t option,
