@@ -118,7 +118,8 @@ struct CandidateStream::Impl {
       ++done;
       ++tally->bounded;
       Candidate c;
-      if (!PairCandidate(ctx, f, *m->setup, static_cast<std::size_t>(k.prop), o, pair_loads, &c, &tally->pruned)) {
+      if (!PairCandidate(ctx, f, *m->setup, static_cast<std::size_t>(k.prop), o, pair_loads, &c, &tally->pruned,
+                         cutoff)) {
         removed += ctx.escs.rated[o];
         continue;
       }

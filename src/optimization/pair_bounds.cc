@@ -101,6 +101,7 @@ MissionFacts StageFourFacts(const SearchContext& ctx) {
     if (sg.type == SegmentType::kClimb && sg.climb_rate_m_s > 0) f.r7_axial_m_s = std::max(f.r7_axial_m_s, sg.climb_rate_m_s);
     if (sg.type == SegmentType::kCruise && sg.lift_to_drag > 0) f.r7_axial_m_s = std::max(f.r7_axial_m_s, sg.airspeed_m_s.lo);
   }
+  for (std::size_t o = 0; o < ctx.options.size(); ++o) f.capacity_edges.push_back(CapacityPieceEdges(ctx, f, o));
   return f;
 }
 
@@ -120,13 +121,15 @@ double MomentumPowerW(const Mission& m, const RotorLoad& ld, double diameter_m, 
 // drive is lossy or not (DriveIsLossy: only then momentum theory bounds the power drawn),
 // given the hover bound's per-rotor electrical power pdc_lb at the lightest mass (R11: a floor
 // of it that holds for a class of motors). loads: PairLoads at that mass.
-double ScoreLowerBound(const SearchContext& ctx, const MissionFacts& f, bool lossy, const PropEntry& prop,
-                       const PropModel& model, std::size_t option, PairLoads* loads, double pdc_lb,
-                       double capacity_top_ah) {
+ScoreBoundTerms ScoreLowerBoundTerms(const SearchContext& ctx, const MissionFacts& f, bool lossy, const PropEntry& prop,
+                                     const PropModel& model, std::size_t option, PairLoads* loads, double pdc_lb,
+                                     bool stretch_only) {
   const BatteryOption& bo = ctx.options[option];
-  const double budget_ah = capacity_top_ah > 0 ? capacity_top_ah : bo.capacity_hi_ah;
   const Mission& m = *ctx.mission;
-  if (f.hover.empty()) return -kInf;
+  ScoreBoundTerms out;
+  out.ocv_integral_v = bo.ocv_integral_v;
+  out.t_fixed_s = f.t_fixed_max;
+  if (f.hover.empty()) return out;
   auto p_lb_of = [&](std::size_t si) {
     return SegmentPowerLowerBoundW(ctx, f, prop, model, option, loads, si, pdc_lb);
   };
@@ -154,7 +157,8 @@ double ScoreLowerBound(const SearchContext& ctx, const MissionFacts& f, bool los
       }
       e += e_seg;
     }
-    return e / 3600.0;
+    out.bound = e / 3600.0;
+    return out;
   }
   // max_endurance: the other segments' energy, each at least its power bound times its
   // shortest duration and, for the free group's propeller segments at a fixed airspeed when no
@@ -187,11 +191,13 @@ double ScoreLowerBound(const SearchContext& ctx, const MissionFacts& f, bool los
     // (the evaluator's prop_figure_of_merit, as for the other segments; static: V = 0). The
     // one bound of a propeller whose grid is not monotone (no R2 point).
     const std::size_t ist = static_cast<std::size_t>(m.objective.segment_index);
-    const double e_other = e_other_of(ist);
+    const double e_other = stretch_only ? 0.0 : e_other_of(ist);
     double p_stretch = p_lb_of(ist);
     if (lossy) p_stretch = std::max(p_stretch, MomentumPowerW(m, loads->At(ist, false, 0.0), prop.diameter_m, false));
-    const double e_max = bo.ocv_integral_v * AhToCoulomb(budget_ah);
-    return BudgetScore(f.t_fixed_max, e_max, e_other, p_stretch);
+    out.budgeted = true;
+    out.e_other_j = e_other;
+    out.p_stretch_w = p_stretch;
+    return out;
   }
   const std::size_t ist = static_cast<std::size_t>(std::max(0, m.objective.segment_index));
   const Segment& st = m.segments[ist];
@@ -206,11 +212,22 @@ double ScoreLowerBound(const SearchContext& ctx, const MissionFacts& f, bool los
     if (lossy) {
       p_stretch = std::max(p_stretch, MomentumPowerW(m, loads->At(ist, false, st.airspeed_m_s.lo), prop.diameter_m, table_data));
     }
-    const double e_other = e_other_of(ist);
-    const double e_max = bo.ocv_integral_v * AhToCoulomb(budget_ah);
-    return BudgetScore(f.t_fixed_max, e_max, e_other, p_stretch);
+    out.budgeted = true;
+    out.e_other_j = stretch_only ? 0.0 : e_other_of(ist);
+    out.p_stretch_w = p_stretch;
   }
-  return -kInf;
+  return out;
+}
+
+double ScoreBoundTerms::At(double budget_ah) const {
+  return budgeted ? BudgetScore(t_fixed_s, ocv_integral_v * AhToCoulomb(budget_ah), e_other_j, p_stretch_w) : bound;
+}
+
+double ScoreLowerBound(const SearchContext& ctx, const MissionFacts& f, bool lossy, const PropEntry& prop,
+                       const PropModel& model, std::size_t option, PairLoads* loads, double pdc_lb,
+                       double capacity_top_ah) {
+  const double budget_ah = capacity_top_ah > 0 ? capacity_top_ah : ctx.options[option].capacity_hi_ah;
+  return ScoreLowerBoundTerms(ctx, f, lossy, prop, model, option, loads, pdc_lb).At(budget_ah);
 }
 
 // Rule R13 (docs/search.md#r13): R4's budget piece by piece over a capacity range.
@@ -229,6 +246,13 @@ std::vector<double> CapacityPieceEdges(const SearchContext& ctx, const MissionFa
   }
   edges.push_back(bo.capacity_hi_ah);
   return edges;
+}
+
+const std::vector<double>& PieceEdges(const SearchContext& ctx, const MissionFacts& f, std::size_t option,
+                                      std::vector<double>* scratch) {
+  if (option < f.capacity_edges.size()) return f.capacity_edges[option];
+  *scratch = CapacityPieceEdges(ctx, f, option);
+  return *scratch;
 }
 
 double PackMassLowerBoundKg(const BatteryOption& bo, double capacity_ah) {

@@ -6,6 +6,7 @@
 #pragma once
 
 #include <cstddef>
+#include <limits>
 #include <utility>
 #include <vector>
 
@@ -31,6 +32,11 @@ struct MissionFacts {
   std::vector<std::pair<const char*, long long>> prop_frame_counts;  // R0 rule -> propellers it removes
   std::vector<int> frame_ok_props;  // the propellers R0 lets through, index order
   double r7_axial_m_s = 0;
+  // R13's pieces all assembled at their own mass (none passed over while it cannot be the
+  // least): the same bounds, for the tests that check so.
+  bool every_capacity_piece = false;
+  // Stage 4 only (StageFourFacts): CapacityPieceEdges per battery option, computed once.
+  std::vector<std::vector<double>> capacity_edges;
 };
 
 // Groups (G1): the rules below speak of the free group's segments only; a segment of a fixed
@@ -84,6 +90,8 @@ class PairLoads {
   // The segment's load at airspeed v_m_s, which must be the same value per (segment, high) for
   // one mass (the callers pass airspeed_m_s.lo or .hi, or 0).
   double mass_kg() const { return mass_kg_; }
+  // R13's pieces passed over without their own assembly (PairCandidate, PropOnlyBound).
+  long long pieces_skipped = 0;
   const RotorLoad& At(std::size_t si, bool high, double v_m_s) {
     std::pair<bool, RotorLoad>& x = (high ? hi_ : lo_)[si];
     if (!x.first) x = {true, SegmentRotorLoad(m_, m_.segments[si], mass_kg_, v_m_s)};
@@ -115,14 +123,33 @@ double ScoreLowerBound(const SearchContext& ctx, const MissionFacts& f, bool los
                        const PropModel& model, std::size_t option, PairLoads* loads, double pdc_lb,
                        double capacity_top_ah = 0.0);
 
+// ScoreLowerBound before its budget: with a max_endurance budget (budgeted), BudgetScore's other
+// terms at the mass of `loads` (the fixed segments' longest time, the other segments' energy
+// and the stretch's power bound), so that one assembly serves every budget; else the bound.
+// stretch_only: the other segments' energy is not assembled (e_other_j 0; R13's pieces put a
+// lighter piece's in its place, PairCandidate).
+struct ScoreBoundTerms {
+  bool budgeted = false;
+  double bound = -std::numeric_limits<double>::infinity();  // when not budgeted
+  double t_fixed_s = 0, e_other_j = 0, p_stretch_w = 0, ocv_integral_v = 0;
+  // The bound with the budget of a pack of budget_ah (ScoreLowerBound's capacity_top_ah).
+  double At(double budget_ah) const;
+};
+ScoreBoundTerms ScoreLowerBoundTerms(const SearchContext& ctx, const MissionFacts& f, bool lossy, const PropEntry& prop,
+                                     const PropModel& model, std::size_t option, PairLoads* loads, double pdc_lb,
+                                     bool stretch_only = false);
+
 // R13 (docs/search.md#r13): R4's max_endurance budget over the option's capacity range in
 // kCapacityPieces pieces [C_j, C_j+1] (geometric): on a piece every pack holds at most C_j+1's
 // charge and the vehicle weighs at least its mass with C_j's pack, so R4's bound at that mass
 // with C_j+1's budget bounds the piece; the pair's bound is the least over the pieces. The
 // pieces' capacities, ascending (kCapacityPieces + 1 of them from capacity_lo_ah to
 // capacity_hi_ah; empty when the option has no range or the objective no budget).
-inline constexpr int kCapacityPieces = 4;
+inline constexpr int kCapacityPieces = 12;
 std::vector<double> CapacityPieceEdges(const SearchContext& ctx, const MissionFacts& f, std::size_t option);
+// CapacityPieceEdges as StageFourFacts keeps them; computed into *scratch when f has none.
+const std::vector<double>& PieceEdges(const SearchContext& ctx, const MissionFacts& f, std::size_t option,
+                                      std::vector<double>* scratch);
 // The option's pack mass at capacity_ah of its range, shrunk by 1e-9 against rounding (a lower
 // bound of the pack's true mass there: the mass is proportional to the capacity, PackAt).
 double PackMassLowerBoundKg(const BatteryOption& bo, double capacity_ah);

@@ -138,18 +138,41 @@ ClassPowers HoverPowersOfClasses(const SearchContext& ctx, const MotorSetup& s, 
   return out;
 }
 
-// R4's bound from the classes' least powers (the least over the two kinds), with the budget of
-// capacity_top_ah (0: the option's largest).
-double BoundOfPowers(const SearchContext& ctx, const MissionFacts& f, const ClassPowers& p, std::size_t pi,
-                     std::size_t o, PairLoads* loads, double capacity_top_ah) {
-  const PropEntry& prop = ctx.catalog->props()[pi];
-  double bound = kInf;
-  for (int lossy = 0; lossy < 2; ++lossy) {
-    if (!p.has[lossy]) continue;
-    bound = std::min(bound, ScoreLowerBound(ctx, f, lossy == 1, prop, *ctx.models[pi], o, loads, p.pdc_min[lossy],
-                                            capacity_top_ah));
+// R4's terms (ScoreLowerBoundTerms) at the mass of `loads` for each kind of class that passes
+// (ClassPowers), and the bound with a budget: the least over the kinds.
+struct KindTerms {
+  ScoreBoundTerms terms[2];  // [DriveIsLossy]
+  bool has[2] = {false, false};
+  double At(double budget_ah) const {
+    double bound = kInf;
+    for (int lossy = 0; lossy < 2; ++lossy) {
+      if (has[lossy]) bound = std::min(bound, terms[lossy].At(budget_ah));
+    }
+    return bound;
   }
-  return bound;
+};
+KindTerms TermsOfPowers(const SearchContext& ctx, const MissionFacts& f, const ClassPowers& p, std::size_t pi,
+                        std::size_t o, PairLoads* loads, bool stretch_only = false) {
+  const PropEntry& prop = ctx.catalog->props()[pi];
+  KindTerms out;
+  for (int lossy = 0; lossy < 2; ++lossy) {
+    out.has[lossy] = p.has[lossy];
+    if (p.has[lossy]) {
+      out.terms[lossy] =
+          ScoreLowerBoundTerms(ctx, f, lossy == 1, prop, *ctx.models[pi], o, loads, p.pdc_min[lossy], stretch_only);
+    }
+  }
+  return out;
+}
+
+// R13's piece bound from below without the piece's own other segments: its stretch power with
+// the first piece's other segments' energy (a lighter vehicle's, M3; 0, which energy is not
+// below, for a kind the first piece lacks). At most the piece's bound.
+double StretchOnlyBound(KindTerms piece, const KindTerms& first, double budget_ah) {
+  for (int lossy = 0; lossy < 2; ++lossy) {
+    piece.terms[lossy].e_other_j = first.has[lossy] ? first.terms[lossy].e_other_j : 0.0;
+  }
+  return piece.At(budget_ah);
 }
 
 }  // namespace
@@ -157,7 +180,7 @@ double BoundOfPowers(const SearchContext& ctx, const MissionFacts& f, const Clas
 // Stage 4 for one pair of a set-up motor whose option R1 lets through and whose propeller
 // passed R0: false with its rule counted (its option's ESCs), or true with *c (R4's bound).
 bool PairCandidate(const SearchContext& ctx, const MissionFacts& f, const MotorSetup& s, std::size_t pi, std::size_t o,
-                   PairLoads* loads, Candidate* c, RuleCounts* pruned) {
+                   PairLoads* loads, Candidate* c, RuleCounts* pruned, double cutoff) {
   const BatteryOption& bo = ctx.options[o];
   const long long per_pair = ctx.escs.rated[o];
   const double window_floor_kg = WindowMassFloorKg(ctx, f, static_cast<int>(pi));  // R12's floor
@@ -180,20 +203,41 @@ bool PairCandidate(const SearchContext& ctx, const MissionFacts& f, const MotorS
   // Rule R13 (docs/search.md#r13): over a capacity range the budget piece by piece (each piece's
   // bound is at least R4's over the whole range, which is then not needed); a piece where R3
   // refuses every class holds no feasible point (its mass is a lower bound, M2, M3).
-  const std::vector<double> edges = CapacityPieceEdges(ctx, f, o);
-  double bound = edges.empty() ? BoundOfPowers(ctx, f, lightest, pi, o, loads, 0.0) : kInf;
-  for (std::size_t j = 0; j + 1 < edges.size(); ++j) {
-    ClassPowers p = lightest;
-    if (j > 0) {
-      loads->Reset(std::max(VehicleMassKg(ctx, PackMassLowerBoundKg(bo, edges[j]), s.mass_kg, ctx.grids[pi].mass_kg,
-                                          ctx.escs.min_mass_kg[o]),
-                            window_floor_kg));
-      double w = 0, q = 0;
-      HoverGridPointFromBelow(f, ctx.grids[pi], loads, &w, &q);
-      p = HoverPowersOfClasses(ctx, s, o, w, q);
-      if (!p.Any()) break;  // heavier pieces only need more (M1-M3)
+  std::vector<double> scratch;
+  const std::vector<double>& edges = PieceEdges(ctx, f, o, &scratch);
+  // The first piece: its stretch power alone first (the other segments' energy 0, which theirs is
+  // not below); assembled only when that is below the cutoff.
+  KindTerms first = TermsOfPowers(ctx, f, lightest, pi, o, loads, !edges.empty());
+  double bound = kInf;
+  if (edges.empty() || f.every_capacity_piece || !(first.At(edges[1]) >= cutoff)) {
+    if (!edges.empty()) first = TermsOfPowers(ctx, f, lightest, pi, o, loads);
+    bound = first.At(edges.empty() ? bo.capacity_hi_ah : edges[1]);
+  } else {
+    ++loads->pieces_skipped;
+  }
+  // The other pieces, heaviest first: a piece is assembled at its own mass only when the first
+  // piece's terms with its budget (a bound of it at a lighter mass, M3), then its own stretch
+  // power with them, are below both the least so far and the cutoff (docs/search.md#r13,
+  // "assembled only while it can be the least").
+  for (std::size_t j = edges.size() < 3 ? 0 : edges.size() - 2; j > 0; --j) {
+    const double target = std::min(bound, cutoff);
+    if (!f.every_capacity_piece && first.At(edges[j + 1]) >= target) {
+      ++loads->pieces_skipped;
+      continue;
     }
-    bound = std::min(bound, BoundOfPowers(ctx, f, p, pi, o, loads, edges[j + 1]));
+    loads->Reset(std::max(VehicleMassKg(ctx, PackMassLowerBoundKg(bo, edges[j]), s.mass_kg, ctx.grids[pi].mass_kg,
+                                        ctx.escs.min_mass_kg[o]),
+                          window_floor_kg));
+    double w = 0, q = 0;
+    HoverGridPointFromBelow(f, ctx.grids[pi], loads, &w, &q);
+    const ClassPowers p = HoverPowersOfClasses(ctx, s, o, w, q);
+    if (!p.Any()) continue;  // no feasible point here (nor in a heavier piece, M1-M3)
+    if (!f.every_capacity_piece &&
+        StretchOnlyBound(TermsOfPowers(ctx, f, p, pi, o, loads, true), first, edges[j + 1]) >= target) {
+      ++loads->pieces_skipped;
+      continue;
+    }
+    bound = std::min(bound, TermsOfPowers(ctx, f, p, pi, o, loads).At(edges[j + 1]));
   }
   if (std::isnan(bound)) bound = -kInf;  // no bound (the order needs a number)
   *c = Candidate{bound, s.motor, static_cast<int>(pi), static_cast<int>(o), lightest.irms_lb};
@@ -208,22 +252,41 @@ double PropOnlyBound(const SearchContext& ctx, const MissionFacts& f, std::size_
                      const MotorLossFloor& loss, PairLoads* loads) {
   const BatteryOption& bo = ctx.options[o];
   const PropGrid& g = ctx.grids[pi];
-  auto key_at = [&](double pack_kg, double capacity_top_ah) {
+  auto terms_at = [&](double pack_kg, bool stretch_only) {
     loads->Reset(VehicleMassKg(ctx, pack_kg, motor_kg, g.mass_kg, ctx.escs.min_mass_kg[o]));
     double omega_lb = 0, q_lb = 0;
     HoverGridPointFromBelow(f, g, loads, &omega_lb, &q_lb);
     const double pac_floor_w =
         omega_lb * q_lb + loss.copper_w_per_nm2 * q_lb * q_lb + loss.no_load_torque_nm * omega_lb;  // physics.h
-    const double b = ScoreLowerBound(ctx, f, true, ctx.catalog->props()[pi], *ctx.models[pi], o, loads,
-                                     kKeyRoundingAllowance * pac_floor_w, capacity_top_ah);
+    return ScoreLowerBoundTerms(ctx, f, true, ctx.catalog->props()[pi], *ctx.models[pi], o, loads,
+                                kKeyRoundingAllowance * pac_floor_w, stretch_only);
+  };
+  auto key_of = [](const ScoreBoundTerms& t, double budget_ah) {
+    const double b = t.At(budget_ah);
     return std::isnan(b) ? -kInf : b;
   };
-  // R13 (docs/search.md#r13): over a capacity range the same key piece by piece.
-  const std::vector<double> edges = CapacityPieceEdges(ctx, f, o);
-  if (edges.empty()) return key_at(bo.mass_lo_kg, 0.0);
-  double least = kInf;
-  for (std::size_t j = 0; j + 1 < edges.size(); ++j) {
-    least = std::min(least, key_at(PackMassLowerBoundKg(bo, edges[j]), edges[j + 1]));
+  // R13 (docs/search.md#r13): over a capacity range the same key piece by piece, the other
+  // pieces assembled only while they can be the least (as PairCandidate).
+  std::vector<double> scratch;
+  const std::vector<double>& edges = PieceEdges(ctx, f, o, &scratch);
+  const ScoreBoundTerms first = terms_at(bo.mass_lo_kg, false);
+  if (edges.empty()) return key_of(first, bo.capacity_hi_ah);
+  double least = key_of(first, edges[1]);
+  for (std::size_t j = edges.size() - 2; j > 0; --j) {
+    if (!f.every_capacity_piece && key_of(first, edges[j + 1]) >= least) {
+      ++loads->pieces_skipped;
+      continue;
+    }
+    const double pack_kg = PackMassLowerBoundKg(bo, edges[j]);
+    if (!f.every_capacity_piece) {
+      ScoreBoundTerms stretch = terms_at(pack_kg, true);
+      stretch.e_other_j = first.e_other_j;  // a lighter vehicle's (M3)
+      if (key_of(stretch, edges[j + 1]) >= least) {
+        ++loads->pieces_skipped;
+        continue;
+      }
+    }
+    least = std::min(least, key_of(terms_at(pack_kg, false), edges[j + 1]));
   }
   return least;
 }

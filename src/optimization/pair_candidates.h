@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cstddef>
+#include <limits>
 #include <memory>
 #include <vector>
 
@@ -34,8 +35,12 @@ struct MotorSetup {
 
 // Stage 4 for one pair of a set-up motor whose option R1 lets through and whose propeller
 // passed R0: false with its rule counted (its option's ESCs), or true with *c (R4's bound).
+// cutoff: only a bound below it is needed (the stream drops a pair at or above it): when the
+// pair's bound is below the cutoff *c holds it, else a bound at or above the cutoff (R13's
+// pieces are assembled only while they may be below both, docs/search.md#r13).
 bool PairCandidate(const SearchContext& ctx, const MissionFacts& f, const MotorSetup& s, std::size_t pi, std::size_t o,
-                   PairLoads* loads, Candidate* c, RuleCounts* pruned);
+                   PairLoads* loads, Candidate* c, RuleCounts* pruned,
+                   double cutoff = std::numeric_limits<double>::infinity());
 
 struct PropKey {
   double bound = 0;  // R11: a lower bound of the score of every pair of the class's motors

@@ -69,28 +69,96 @@ void SpeedTorqueFromBelow(const PropGrid& g, const SegmentGrid& sgrid, const Pro
 // Rule R10 (docs/search.md#r10): with the class's zero-resistance drive and the lightest
 // mass, each segment's speed, torque, power, charge and terminal voltage are bounded from
 // below (M1-M3); a piece that breaks a limit holds no feasible point.
-// R10 for one pair and ESC class with ESCs of at least esc_mass_kg and capacities in
-// [cap_a_ah, cap_b_ah] (see the rule): a lower bound of the score (-kInf when none applies), or
-// kInf with *rule set when no such combination can fly the pair.
-double SegmentwiseBoundAt(const SearchContext& ctx, const MissionFacts& f, const MotorParams& mp, const Drive& ideal,
-                          double t_max, int motor, int prop, int option, double esc_mass_kg, double cap_a_ah,
-                          double cap_b_ah, int refine_steps, const char** rule) {
+// R10's terms of a piece that depend only on its lightest vehicle (the pack at C_a): per
+// segment its power bound and, with a grid point, its speed and torque from below; and the
+// first segment (in mission order) whose speed or drive limit refuses the piece at that mass.
+// A piece [C_a, C_b] and its left half [C_a, (C_a + C_b)/2] share them.
+struct PieceMass {
+  struct Seg {
+    double p_w = 0, w = 0, q = 0;
+    bool point = false;
+  };
+  std::vector<Seg> segs;
+  std::size_t refused_at = 0;  // segs.size() when no segment is refused
+  const char* rule = nullptr;
+};
+
+// PieceMass for ESCs of at least esc_mass_kg and the pack at cap_a_ah.
+PieceMass PieceMassAt(const SearchContext& ctx, const MissionFacts& f, const MotorParams& mp, const Drive& ideal,
+                      double t_max, int motor, int prop, int option, double esc_mass_kg, double cap_a_ah,
+                      int refine_steps) {
   const Mission& m = *ctx.mission;
   const MissionConstraints& k = m.constraints;
-  *rule = nullptr;
   const BatteryOption& bo = ctx.options[static_cast<std::size_t>(option)];
   const PropEntry& pe = ctx.catalog->props()[static_cast<std::size_t>(prop)];
   const PropGrid& g = ctx.grids[static_cast<std::size_t>(prop)];
   const MotorEntry& mo = ctx.catalog->motors()[static_cast<std::size_t>(motor)];
-  // The pack at C_a (its mass rises with the capacity: the increment shrunk by 1e-9 against rounding, so that it
-  // stays a lower bound)
-  // and the charge, resistance and energy budget of C_b (PackAt).
+  // The pack at C_a (its mass rises with the capacity: the increment shrunk by 1e-9 against
+  // rounding, so that it stays a lower bound).
   const double span_ah = bo.capacity_hi_ah - bo.capacity_lo_ah;
   const double pack_kg = span_ah > 0 ? bo.mass_lo_kg + (1.0 - 1e-9) * (bo.mass_hi_kg - bo.mass_lo_kg) *
                                                            (cap_a_ah - bo.capacity_lo_ah) / span_ah
                                      : bo.mass_lo_kg;
   const double mass_lb =
       std::max(VehicleMassKg(ctx, pack_kg, *mo.mass_kg, g.mass_kg, esc_mass_kg), WindowMassFloorKg(ctx, f, prop));
+  const bool lossy = DriveIsLossy(mp, ideal.esc().c1, ideal.esc().c0);
+  const bool axial_data = ctx.models[static_cast<std::size_t>(prop)]->data_kind() == PropDataKind::kTables &&
+                          !pe.j_tables.empty();
+  const double margin = 1.0 - k.current_margin;
+  PieceMass out;
+  out.segs.resize(m.segments.size());
+  out.refused_at = m.segments.size();
+  for (std::size_t si = 0; si < m.segments.size(); ++si) {
+    const Segment& sg = m.segments[si];
+    PieceMass::Seg& x = out.segs[si];
+    x.p_w = m.vehicle.avionics_power_w;
+    if (sg.group != f.free_group) {
+      if (!ctx.fixed_power_lb_w.empty()) x.p_w = FixedPowerLowerBoundW(ctx, static_cast<std::size_t>(option), si, mass_lb);
+      continue;
+    }
+    if (sg.type == SegmentType::kShaft || (sg.type == SegmentType::kCruise && sg.airspeed_m_s.free())) continue;
+    const RotorLoad ld = SegmentRotorLoad(m, sg, mass_lb, sg.type == SegmentType::kCruise ? sg.airspeed_m_s.lo : 0.0);
+    if (const SegmentGrid sgrid = GridOf(g, axial_data, sg, ld); sgrid.thrust) {
+      SpeedTorqueFromBelow(g, sgrid, *ctx.models[static_cast<std::size_t>(prop)], pe.diameter_m, m.rho_kg_m3,
+                           ld.thrust_per_rotor_n, refine_steps, &x.w, &x.q);
+      x.point = true;
+      auto refuse = [&](const char* rule) {
+        out.refused_at = si;
+        out.rule = rule;
+        return out;
+      };
+      // R12 (the window's top): the segment's speed is at least w.
+      if (k.prop_above_data_factor > 0 &&
+          RadPerSecToRpm(x.w) > k.prop_above_data_factor * ctx.models[static_cast<std::size_t>(prop)]->valid_range().rpm_hi) {
+        return refuse("prop_above_data");
+      }
+      const Drive::InverseCurrents hi = ideal.InverseLight(bo.v_full, x.q, x.w);
+      if (hi.throttle > t_max) return refuse("throttle");
+      if (hi.irms_a > mp.max_current_a * margin) return refuse("motor_current");
+      if (k.enforce_motor_power && ideal.InverseAcPower(bo.v_full, hi, x.q, x.w) > mp.max_power_w) {
+        return refuse("motor_power");
+      }
+      const double pdc = std::max(0.0, std::min(bo.v_full * hi.idc_a, bo.v_cut * ideal.InverseLight(bo.v_cut, x.q, x.w).idc_a));
+      x.p_w = ld.rotors * pdc + m.vehicle.avionics_power_w;
+    }
+    if (lossy) x.p_w = std::max(x.p_w, MomentumPowerW(m, ld, pe.diameter_m, axial_data));  // as R4
+  }
+  return out;
+}
+
+// R10 for one pair and ESC class with ESCs of at least esc_mass_kg and capacities in
+// [cap_a_ah, cap_b_ah] (see the rule), given the piece's PieceMass at cap_a_ah: a lower bound
+// of the score (-kInf when none applies), or kInf with *rule set when no such combination can
+// fly the pair.
+double SegmentwiseBoundAt(const SearchContext& ctx, const MissionFacts& f, const Drive& ideal, double t_max,
+                          int motor, int prop, int option, const PieceMass& at_a, double cap_b_ah, const char** rule) {
+  const Mission& m = *ctx.mission;
+  *rule = nullptr;
+  const BatteryOption& bo = ctx.options[static_cast<std::size_t>(option)];
+  const PropGrid& g = ctx.grids[static_cast<std::size_t>(prop)];
+  const MotorEntry& mo = ctx.catalog->motors()[static_cast<std::size_t>(motor)];
+  // The charge, resistance and energy budget of C_b (PackAt).
+  const double span_ah = bo.capacity_hi_ah - bo.capacity_lo_ah;
   // R12 (the window's bottom) over the piece: at its heaviest (the pack at C_b, grown by 1e-9
   // against rounding, and the option's heaviest ESC) the first hover is below the window.
   if (span_ah > 0 && ctx.mission->constraints.prop_below_data_factor > 0) {
@@ -103,57 +171,28 @@ double SegmentwiseBoundAt(const SearchContext& ctx, const MissionFacts& f, const
     }
   }
   const double ri_ohm = bo.ri_at_hi_ohm * bo.capacity_hi_ah / cap_b_ah;
-  const bool lossy = DriveIsLossy(mp, ideal.esc().c1, ideal.esc().c0);
-  const bool axial_data = ctx.models[static_cast<std::size_t>(prop)]->data_kind() == PropDataKind::kTables &&
-                          !pe.j_tables.empty();
-  const double margin = 1.0 - k.current_margin;
   const double q_c = AhToCoulomb(cap_b_ah);
   const int stretch = m.objective.type == ObjectiveType::kMaxEndurance ? m.objective.segment_index : -1;
-  const double p_av = m.vehicle.avionics_power_w;
   double charge_c = 0, e_other = 0, p_stretch = 0;
   for (std::size_t si = 0; si < m.segments.size(); ++si) {
-    const Segment& sg = m.segments[si];
-    double p_w = p_av;
-    bool point = false;
-    double w = 0, q = 0;
-    if (sg.group != f.free_group) {
-      if (!ctx.fixed_power_lb_w.empty()) p_w = FixedPowerLowerBoundW(ctx, static_cast<std::size_t>(option), si, mass_lb);
-    } else if (sg.type != SegmentType::kShaft && !(sg.type == SegmentType::kCruise && sg.airspeed_m_s.free())) {
-      const RotorLoad ld = SegmentRotorLoad(m, sg, mass_lb, sg.type == SegmentType::kCruise ? sg.airspeed_m_s.lo : 0.0);
-      if (const SegmentGrid sgrid = GridOf(g, axial_data, sg, ld); sgrid.thrust) {
-        SpeedTorqueFromBelow(g, sgrid, *ctx.models[static_cast<std::size_t>(prop)], pe.diameter_m, m.rho_kg_m3,
-                             ld.thrust_per_rotor_n, refine_steps, &w, &q);
-        point = true;
-        // R12 (the window's top): the segment's speed is at least w.
-        if (k.prop_above_data_factor > 0 &&
-            RadPerSecToRpm(w) > k.prop_above_data_factor * ctx.models[static_cast<std::size_t>(prop)]->valid_range().rpm_hi) {
-          *rule = "prop_above_data";
-          return kInf;
-        }
-        const Drive::InverseCurrents hi = ideal.InverseLight(bo.v_full, q, w);
-        if (hi.throttle > t_max) { *rule = "throttle"; return kInf; }
-        if (hi.irms_a > mp.max_current_a * margin) { *rule = "motor_current"; return kInf; }
-        if (k.enforce_motor_power && ideal.InverseAcPower(bo.v_full, hi, q, w) > mp.max_power_w) {
-          *rule = "motor_power";
-          return kInf;
-        }
-        const double pdc = std::max(0.0, std::min(bo.v_full * hi.idc_a, bo.v_cut * ideal.InverseLight(bo.v_cut, q, w).idc_a));
-        p_w = ld.rotors * pdc + p_av;
-      }
-      if (lossy) p_w = std::max(p_w, MomentumPowerW(m, ld, pe.diameter_m, axial_data));  // as R4
+    if (si == at_a.refused_at) {  // the speed or drive limits at the lightest mass
+      *rule = at_a.rule;
+      return kInf;
     }
+    const Segment& sg = m.segments[si];
+    const PieceMass::Seg& x = at_a.segs[si];
     const double t_min = static_cast<int>(si) == stretch ? 0.0 : SegmentDurationS(sg, sg.airspeed_m_s.hi);
-    charge_c += kChargeAllowance * p_w * t_min / bo.v_full;
+    charge_c += kChargeAllowance * x.p_w * t_min / bo.v_full;
     const double soc = 1.0 - charge_c / q_c;
     if (soc < m.battery.reserve_soc) { *rule = "reserve_soc"; return kInf; }
-    if (point) {
-      const double v_ub = bo.OcvV(soc) - p_w / bo.v_full * ri_ohm;
-      if (!(v_ub > 0) || ideal.InverseLight(v_ub, q, w).throttle > t_max) { *rule = "throttle"; return kInf; }
+    if (x.point) {
+      const double v_ub = bo.OcvV(soc) - x.p_w / bo.v_full * ri_ohm;
+      if (!(v_ub > 0) || ideal.InverseLight(v_ub, x.q, x.w).throttle > t_max) { *rule = "throttle"; return kInf; }
     }
     if (static_cast<int>(si) == stretch) {
-      p_stretch = p_w;
+      p_stretch = x.p_w;
     } else {
-      e_other += p_w * t_min;
+      e_other += x.p_w * t_min;
     }
   }
   if (m.objective.type == ObjectiveType::kMinEnergy) return e_other / 3600.0;
@@ -183,31 +222,39 @@ double SegmentwiseBoundPieces(const SearchContext& ctx, const MissionFacts& f, c
   struct Piece {
     double a, b, bound;
     bool refined;
+    std::size_t mass;  // its PieceMass in `masses`
   };
-  auto piece = [&](double a, double b, bool refined) {
+  std::vector<PieceMass> masses;
+  // A piece [a, b]; `mass` its PieceMass when known (a left half's is its whole's), else the size
+  // of `masses`.
+  auto piece = [&](double a, double b, bool refined, std::size_t mass) {
+    if (mass == masses.size()) {
+      masses.push_back(PieceMassAt(ctx, f, mp, ideal, t_max, motor, prop, option, esc_mass_kg, a,
+                                   refined ? kRefineSteps : 0));
+    }
     const char* r = nullptr;
-    const double x = SegmentwiseBoundAt(ctx, f, mp, ideal, t_max, motor, prop, option, esc_mass_kg, a, b,
-                                        refined ? kRefineSteps : 0, &r);
+    const double x = SegmentwiseBoundAt(ctx, f, ideal, t_max, motor, prop, option, masses[mass], b, &r);
     if (r && !first_rule) first_rule = r;
-    return Piece{a, b, r ? kInf : x, refined};
+    return Piece{a, b, r ? kInf : x, refined, mass};
   };
   std::vector<Piece> pieces;
   const int n = range ? kPieces : 1;
   for (int j = 0; j < n; ++j) {
-    pieces.push_back(range ? piece(lo + (hi - lo) * j / n, lo + (hi - lo) * (j + 1) / n, false) : piece(lo, hi, false));
+    pieces.push_back(range ? piece(lo + (hi - lo) * j / n, lo + (hi - lo) * (j + 1) / n, false, masses.size())
+                           : piece(lo, hi, false, masses.size()));
   }
   for (int step = 0; step < kMaxSplits; ++step) {
     auto least = std::min_element(pieces.begin(), pieces.end(), [](const Piece& x, const Piece& y) { return x.bound < y.bound; });
     if (!(least->bound < threshold)) break;
     const Piece whole = *least;
     if (!whole.refined) {
-      *least = piece(whole.a, whole.b, true);
+      *least = piece(whole.a, whole.b, true, masses.size());
       continue;
     }
     if (!range || whole.b - whole.a < (hi - lo) / 1024) break;
     const double mid = 0.5 * (whole.a + whole.b);
-    *least = piece(whole.a, mid, true);
-    pieces.push_back(piece(mid, whole.b, true));
+    *least = piece(whole.a, mid, true, whole.mass);  // the same lightest vehicle
+    pieces.push_back(piece(mid, whole.b, true, masses.size()));
   }
   double best = kInf;
   for (const Piece& x : pieces) best = std::min(best, x.bound);

@@ -332,7 +332,8 @@ TEST_F(SearchStagesTest, CandidatesRemoveOnlyInfeasiblePairsAndBoundTheScore) {
 // (compared without tolerance), and a pair is removed only when no ESC can fly it. The pieces
 // must also tighten the bound: the mean relative gap between the best feasible score of a pair
 // and its bound stays below max_gap (measured on the small catalog with 4 pieces: 0.53 over
-// [2, 6] Ah and 0.96 over [1.5, 9] Ah; with R4's budget of the whole range, 0.88 and 1.76).
+// [2, 6] Ah and 0.96 over [1.5, 9] Ah; with 12: 0.43 and 0.69; with R4's budget of the whole
+// range, 0.88 and 1.76).
 TEST_F(SearchStagesTest, CapacityPieceBoundsAreBelowEveryFeasibleScore) {
   const Catalog cat = SmallCatalog();
   struct Range {
@@ -373,6 +374,94 @@ TEST_F(SearchStagesTest, CapacityPieceBoundsAreBelowEveryFeasibleScore) {
     EXPECT_GT(keys, 3) << lo << "-" << hi << " Ah";
     EXPECT_LT(gap_sum / pairs, range.max_gap) << lo << "-" << hi << " Ah";
     std::printf("R13 over [%g, %g] Ah: %d pairs, mean relative gap %.3f\n", lo, hi, pairs, gap_sum / pairs);
+  }
+}
+
+// R13's pieces passed over (docs/search.md#r13, "assembled only while it can be the least"): a
+// piece after the first is assembled at its own mass only when the first piece's terms with its
+// budget, then its own stretch power with the first piece's other segments, are below the least
+// so far and the cutoff. Every pair's bound (and whether it is kept, its rule, its Irms bound)
+// and every R11 key is the same number as with every piece assembled, bit for bit, over a hover
+// stretch and a fixed-airspeed cruise stretch and four capacity ranges; with a cutoff the bound
+// is the same when below it, else at or above it; and pieces are passed over.
+TEST_F(SearchStagesTest, CapacityPiecesPassedOverLeaveEveryPairBoundAndKeyTheSame) {
+  const Catalog cat = SmallCatalog();
+  Json j = ParseJsonText(kStageQuad, "quad");
+  Json cruise = j;
+  cruise["segments"] = Json::parse(R"([
+    {"name": "takeoff", "type": "climb", "rate_m_s": 2, "distance_m": 30},
+    {"name": "hover", "type": "hover", "duration_s": 20},
+    {"name": "flight", "type": "cruise", "airspeed_m_s": 10, "distance_m": 1000},
+    {"name": "landing", "type": "climb", "rate_m_s": -1, "distance_m": 30}
+  ])");
+  cruise["objective"] = {{"type", "max_endurance"}, {"segment", "flight"}};
+  for (Json& mission : std::vector<Json>{j, cruise}) {
+    for (const auto& range : {std::make_pair(2.0, 6.0), std::make_pair(1.5, 9.0), std::make_pair(8.0, 60.0), std::make_pair(10.0, 200.0)}) {
+      mission["battery"]["capacity_ah"] = {range.first, range.second};
+      const Mission m = ParseMission(mission, "quad");
+      const std::string what = m.segments[static_cast<std::size_t>(m.objective.segment_index)].name + " over [" +
+                               std::to_string(range.first) + ", " + std::to_string(range.second) + "] Ah";
+      SearchContext ctx;
+      PrepareStages(m, cat, &ctx);
+      const MissionFacts f = StageFourFacts(ctx);
+      MissionFacts every = f;
+      every.every_capacity_piece = true;
+      RuleCounts pruned;
+      long long skipped = 0;
+      const auto setups = SetUpMotors(ctx, f, 1, &pruned, &skipped);
+      PairLoads loads(m), every_loads(m), cut_loads(m);
+      int pairs = 0, keys = 0;
+      for (const auto& s : setups) {
+        if (!s) continue;
+        for (std::size_t o = 0; o < ctx.options.size(); ++o) {
+          if (std::isnan(s->w_nl[o])) continue;
+          for (const int pi : f.frame_ok_props) {
+            const std::size_t p = static_cast<std::size_t>(pi);
+            Candidate a, b;
+            RuleCounts ra, rb;
+            const bool kept = PairCandidate(ctx, f, *s, p, o, &loads, &a, &ra);
+            ASSERT_EQ(kept, PairCandidate(ctx, every, *s, p, o, &every_loads, &b, &rb)) << what;
+            std::map<std::string, long long> rule_a, rule_b;
+            ra.MergeInto(&rule_a);
+            rb.MergeInto(&rule_b);
+            EXPECT_EQ(rule_a, rule_b) << what;
+            if (kept) {
+              ++pairs;
+              EXPECT_TRUE(a.bound == b.bound && a.irms_lb == b.irms_lb)
+                  << what << ": " << cat.motors()[static_cast<std::size_t>(s->motor)].id << " " << cat.props()[p].id
+                  << " bound " << a.bound << " against " << b.bound;
+              // With a cutoff (the stream's N-th best): the same bound when it is below the
+              // cutoff, else one at or above it; at, just above and just below the bound.
+              for (const double cutoff : {b.bound, std::nextafter(b.bound, kInfinity), std::nextafter(b.bound, -kInfinity),
+                                          b.bound + 0.05 * std::fabs(b.bound), b.bound - 0.05 * std::fabs(b.bound)}) {
+                Candidate x;
+                RuleCounts rx;
+                ASSERT_TRUE(PairCandidate(ctx, f, *s, p, o, &cut_loads, &x, &rx, cutoff)) << what;
+                if (b.bound < cutoff) {
+                  EXPECT_TRUE(x.bound == b.bound) << what << ": cutoff " << cutoff << ", " << x.bound << " against " << b.bound;
+                } else {
+                  EXPECT_GE(x.bound, cutoff) << what << ": " << x.bound << " below the cutoff, bound " << b.bound;
+                }
+              }
+            }
+            if (!s->lossy) continue;
+            ++keys;
+            const double key = PropOnlyBound(ctx, f, p, o, s->mass_kg, s->loss, &loads);
+            const double every_key = PropOnlyBound(ctx, every, p, o, s->mass_kg, s->loss, &every_loads);
+            EXPECT_TRUE(key == every_key) << what << ": key " << key << " against " << every_key;
+          }
+        }
+      }
+      EXPECT_GT(pairs, 10) << what;
+      EXPECT_GT(keys, 10) << what;
+      EXPECT_GT(loads.pieces_skipped, 0) << what;
+      EXPECT_EQ(every_loads.pieces_skipped, 0) << what;
+      EXPECT_GT(cut_loads.pieces_skipped, loads.pieces_skipped) << what;
+      std::printf("R13, %s: %d pairs and %d keys, %lld of their %d later pieces passed over; with 5 cutoffs per "
+                  "pair %lld of %d pieces\n",
+                  what.c_str(), pairs, keys, loads.pieces_skipped, (kCapacityPieces - 1) * (pairs + keys), cut_loads.pieces_skipped,
+                  5 * kCapacityPieces * pairs);
+    }
   }
 }
 
