@@ -261,7 +261,9 @@ JointBounds::JointBounds(const Mission& m, const Catalog& cat, const PropGridCac
   rotor_done_.assign(n_cache, 0);
   if (free.size() == 2 && m.objective.type == ObjectiveType::kMinEnergy) {
     inner_ = free[0] == outer_ ? free[1] : free[0];
-    for (std::size_t o = 0; o < options_.size(); ++o) frontier_.push_back(InnerFrontier(o));
+    frontier_.assign(options_.size(), std::vector<std::vector<FrontierPoint>>(kFrontierLevels));
+    frontier_done_.assign(options_.size(), std::vector<char>(kFrontierLevels, 0));
+    for (std::size_t o = 0; o < options_.size(); ++o) Frontier(o, 0.0);
   }
 }
 
@@ -517,9 +519,10 @@ double JointBounds::OuterBound(const Drive& drive, const GroupParts& parts, doub
   }
   const double bound = ScoreFromSegmentPowers(m_, scratch_, options_[o]);
   if (!coupled_ || inner_ < 0) return bound;
-  // The coupled bound (InnerFrontier): per frontier point, the outer group's segments at the
-  // vehicle with that inner mass (and at least the R7 floor), the inner group's energy, the
-  // other segments as above; the least over the points.
+  // The coupled bound (InnerFrontier): per frontier point of the level at or below this outer
+  // choice's extra mass (Frontier), the outer group's segments at the vehicle with that inner
+  // mass (and at least the R7 floor), the inner group's energy, the other segments as above; the
+  // least over the points.
   auto t_min = [&](std::size_t si) { return SegmentDurationS(m_.segments[si], m_.segments[si].airspeed_m_s.hi); };
   double e_rest = 0;
   for (std::size_t si = 0; si < m_.segments.size(); ++si) {
@@ -527,7 +530,7 @@ double JointBounds::OuterBound(const Drive& drive, const GroupParts& parts, doub
     if (g != outer_ && g != inner_) e_rest += scratch_[si] * t_min(si);
   }
   double best = kInf;
-  for (const FrontierPoint& f : frontier_[o]) {
+  for (const FrontierPoint& f : Frontier(o, raw_kg - mass_min_kg_[o])) {
     const double kg = std::max(raw_kg + f.extra_kg, floor_kg);
     double e = e_rest + f.energy_j;
     for (std::size_t si : outer_segments_) {
