@@ -80,6 +80,9 @@ class JointBounds {
   const EscTable& escs() const { return escs_; }
   // The lightest vehicle with option o (every free group at its lightest), kg.
   double mass_min_kg(std::size_t o) const { return mass_min_kg_[o]; }
+  // The outer group's and (two free groups) the inner group's lightest with option o, kg.
+  double outer_lightest_kg(std::size_t o) const { return outer_lightest_kg_[o]; }
+  double inner_lightest_kg(std::size_t o) const { return o < inner_lightest_kg_.size() ? inner_lightest_kg_[o] : 0.0; }
   // The power bound of a segment the outer group does not fly (W; +inf: no choice of its
   // group survives R0, R1, R3 with option o).
   double other_power_w(std::size_t o, std::size_t si) const { return other_power_w_[o][si]; }
