@@ -36,6 +36,11 @@ const std::vector<JointBounds::FrontierPoint>& JointBounds::Frontier(std::size_t
     k = steps < kFrontierLevels - 1 ? static_cast<int>(std::floor(steps)) : kFrontierLevels - 1;
     while (k > 0 && !(FrontierLevelKg(o, k) <= outer_extra_kg)) --k;  // at or below, after rounding
   }
+  // A level already computed up to kFrontierLevelReuse below serves (any level at or below the
+  // extra mass is a bound; each level costs a walk over the inner group's choices).
+  for (int j = k; j >= 0 && j >= k - kFrontierLevelReuse; --j) {
+    if (frontier_done_[o][static_cast<std::size_t>(j)]) return frontier_[o][static_cast<std::size_t>(j)];
+  }
   const std::size_t ki = static_cast<std::size_t>(k);
   if (!frontier_done_[o][ki]) {
     frontier_[o][ki] = InnerFrontier(o, FrontierLevelKg(o, k));

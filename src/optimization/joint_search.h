@@ -113,6 +113,7 @@ class JointBounds {
   double FrontierLevelKg(std::size_t o, int k) const { return k * kFrontierLevelStep * mass_min_kg_[o]; }
   static constexpr int kFrontierLevels = 48;         // levels of the outer group's extra mass
   static constexpr double kFrontierLevelStep = 0.01;  // a level's step, of the lightest vehicle
+  static constexpr int kFrontierLevelReuse = 3;       // Frontier: a computed level this far below serves
   // R0 for the outer group's propeller and motor (the rule's name, or null).
   const char* PropRule(int prop) const;
   const char* MotorRule(int motor, std::size_t o) const;
