@@ -263,6 +263,7 @@ JointBounds::JointBounds(const Mission& m, const Catalog& cat, const PropGridCac
     inner_ = free[0] == outer_ ? free[1] : free[0];
     frontier_.assign(options_.size(), std::vector<std::vector<FrontierPoint>>(kFrontierLevels));
     frontier_done_.assign(options_.size(), std::vector<char>(kFrontierLevels, 0));
+    inner_dead_.assign(options_.size(), std::vector<bool>());
     for (std::size_t o = 0; o < options_.size(); ++o) Frontier(o, 0.0);
   }
 }
@@ -530,19 +531,32 @@ double JointBounds::OuterBound(const Drive& drive, const GroupParts& parts, doub
     if (g != outer_ && g != inner_) e_rest += scratch_[si] * t_min(si);
   }
   double best = kInf;
+  // The outer segments' energy depends on kg only through OuterRotor's grid mass (a free-airspeed
+  // cruise reads kg itself): points on one grid mass share it.
+  bool reuse = !outer_segments_.empty();
+  for (std::size_t si : outer_segments_) {
+    reuse = reuse && !(m_.segments[si].type == SegmentType::kCruise && m_.segments[si].airspeed_m_s.free());
+  }
+  const RotorBound* last_rb = nullptr;
+  double e_outer = 0;
   for (const FrontierPoint& f : Frontier(o, raw_kg - mass_min_kg_[o])) {
     const double kg = std::max(raw_kg + f.extra_kg, floor_kg);
-    double e = e_rest + f.energy_j;
-    for (std::size_t si : outer_segments_) {
-      const SegmentBound b = SegmentPowerBound(m_, si, parts, mp, drive, tr_max, esc_max_a,
-                                               *models_[static_cast<std::size_t>(prop)], options_[o], kg,
-                                               OuterRotor(prop, si, o, kg));
-      if (b.infeasible) {
-        e = kInf;
-        break;
+    const RotorBound* rb0 = reuse ? &OuterRotor(prop, outer_segments_.front(), o, kg) : nullptr;
+    if (!rb0 || rb0 != last_rb) {
+      e_outer = 0;
+      for (std::size_t si : outer_segments_) {
+        const SegmentBound b = SegmentPowerBound(m_, si, parts, mp, drive, tr_max, esc_max_a,
+                                                 *models_[static_cast<std::size_t>(prop)], options_[o], kg,
+                                                 OuterRotor(prop, si, o, kg));
+        if (b.infeasible) {
+          e_outer = kInf;
+          break;
+        }
+        e_outer += std::max(b.power_w, cruise_floor_w_[si]) * t_min(si);
       }
-      e += std::max(b.power_w, cruise_floor_w_[si]) * t_min(si);
+      last_rb = rb0;
     }
+    const double e = e_rest + f.energy_j + e_outer;
     best = std::min(best, e);
     if (!(best / 3600.0 > bound)) return bound;  // no better than the plain bound
   }

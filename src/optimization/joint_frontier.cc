@@ -102,29 +102,47 @@ std::vector<JointBounds::FrontierPoint> JointBounds::InnerFrontier(std::size_t o
   }
   // Per motor: its scenario parameters and R0, R1 (the lift group's voltage rule).
   std::vector<MotorParams> mps(motors.size());
-  std::vector<char> usable(motors.size(), 0);
+  std::vector<char> usable(motors.size(), 0);  // 0: not yet, 1: usable, 2: fails R0/R1
+  std::vector<char> all_lossy(motors.size(), 0);  // no drive of the motor can create energy
   std::vector<std::size_t> classes;
   for (std::size_t c = 0; c < escs_.classes.size(); ++c) {
     if (!escs_.per_option[o][c].empty()) classes.push_back(c);
   }
+  std::vector<double> prop_kg(props.size());
+  for (std::size_t pi = 0; pi < props.size(); ++pi) prop_kg[pi] = PropMassKg(props[pi]);
+  // Level 0 records the (motor, propeller) pairs that fail a rule with every ESC class; they fail
+  // it at every level, whose vehicles are heavier (the rules' monotonicity, M1-M3, above).
+  const bool level0 = !(outer_extra_kg > 0);
+  std::vector<bool>& dead = inner_dead_[o];
+  if (level0) dead.assign(inner_by_mass_.size(), false);
   std::vector<FrontierPoint> front;
   double e_min = kInf;
-  for (std::uint32_t code : inner_by_mass_) {
+  for (std::size_t n = 0; n < inner_by_mass_.size(); ++n) {
+    if (!level0 && dead[n]) continue;
+    const std::uint32_t code = inner_by_mass_[n];
     const std::size_t mi = code / props.size(), pi = code % props.size();
     const MotorEntry& mo = motors[mi];
-    const double kg = rotors * (*mo.mass_kg + PropMassKg(props[pi]) + esc_min);
+    const double kg = rotors * (*mo.mass_kg + prop_kg[pi] + esc_min);
     if (kg < inner_lightest_kg_[o]) continue;
     if (!usable[mi]) {
       bool excluded = false;
       mps[mi] = ScenarioMotorParams(mo, m_, nullptr, &excluded);
       usable[mi] = Lifts(inner_) && (excluded || bo.v_full > MotorMaxVoltageV(mo)) ? 2 : 1;  // R0, R1
+      all_lossy[mi] = 1;
+      for (std::size_t c : classes) {
+        if (!DriveIsLossy(mps[mi], escs_.classes[c].c1, escs_.classes[c].c0)) all_lossy[mi] = 0;
+      }
     }
-    if (usable[mi] != 1) continue;
+    if (usable[mi] != 1 || (all_lossy[mi] && floor_j[pi] >= e_min)) continue;  // as the class loop's skip
     const MotorParams& mp = mps[mi];
     const double vehicle_kg = base_kg - inner_lightest_kg_[o] + kg;
+    bool all_fail = true;
     for (std::size_t c : classes) {
       const EscClass& cls = escs_.classes[c];
-      if (DriveIsLossy(mp, cls.c1, cls.c0) && floor_j[pi] >= e_min) continue;
+      if (DriveIsLossy(mp, cls.c1, cls.c0) && floor_j[pi] >= e_min) {
+        all_fail = false;
+        continue;
+      }
       // SegmentPowerBound reads the ESC's C1 and C0 for a free-airspeed cruise
       // (FreeCruisePowerLowerBoundW): a member's, as MinFreeGroupPower does.
       const EscEntry& member = cat_.escs()[static_cast<std::size_t>(cls.members.front())];
@@ -142,11 +160,13 @@ std::vector<JointBounds::FrontierPoint> JointBounds::InnerFrontier(std::size_t o
         }
         e += b.power_w * t_min(si);
       }
+      all_fail = all_fail && !(e < kInf);
       if (e < e_min) {
         e_min = e;
         front.push_back(FrontierPoint{kg - inner_lightest_kg_[o], e});
       }
     }
+    if (level0 && all_fail) dead[n] = true;
   }
   return front;
 }

@@ -149,6 +149,9 @@ class JointBounds {
   // InnerFrontier's inner (motor, propeller) pairs, motor * props + propeller, by motor +
   // propeller mass ascending (built on its first call).
   std::vector<std::uint32_t> inner_by_mass_;
+  // Per option, by position in inner_by_mass_: the pair fails a rule with every ESC class at
+  // level 0 (so at every level).
+  std::vector<std::vector<bool>> inner_dead_;
   std::vector<double> inner_lightest_kg_;             // per option
   std::vector<BatteryOption> options_;
   EscTable escs_;
