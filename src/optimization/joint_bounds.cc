@@ -263,7 +263,10 @@ JointBounds::JointBounds(const Mission& m, const Catalog& cat, const PropGridCac
   cruise_index_.assign(n_cache, -1);
   if (free.size() == 2 && m.objective.type == ObjectiveType::kMinEnergy) {
     inner_ = free[0] == outer_ ? free[1] : free[0];
-    for (std::size_t o = 0; o < options_.size(); ++o) frontier_.push_back(InnerFrontier(o));
+    frontier_.assign(options_.size(), std::vector<std::vector<FrontierPoint>>(kFrontierLevels));
+    frontier_done_.assign(options_.size(), std::vector<char>(kFrontierLevels, 0));
+    inner_dead_.assign(options_.size(), std::vector<bool>());
+    for (std::size_t o = 0; o < options_.size(); ++o) Frontier(o, 0.0);
   }
 }
 
@@ -575,9 +578,10 @@ double JointBounds::OuterBound(const Drive& drive, const GroupParts& parts, doub
   }
   const double bound = ScoreFromSegmentPowers(m_, scratch_, options_[o]);
   if (!coupled_ || inner_ < 0) return bound;
-  // The coupled bound (InnerFrontier): per frontier point, the outer group's segments at the
-  // vehicle with that inner mass (and at least the R7 floor), the inner group's energy, the
-  // other segments as above; the least over the points.
+  // The coupled bound (InnerFrontier): per frontier point of the level at or below this outer
+  // choice's extra mass (Frontier), the outer group's segments at the vehicle with that inner
+  // mass (and at least the R7 floor), the inner group's energy, the other segments as above; the
+  // least over the points.
   auto t_min = [&](std::size_t si) { return SegmentDurationS(m_.segments[si], m_.segments[si].airspeed_m_s.hi); };
   double e_rest = 0;
   for (std::size_t si = 0; si < m_.segments.size(); ++si) {
@@ -585,31 +589,45 @@ double JointBounds::OuterBound(const Drive& drive, const GroupParts& parts, doub
     if (g != outer_ && g != inner_) e_rest += scratch_[si] * t_min(si);
   }
   double best = kInf;
-  for (const FrontierPoint& f : frontier_[o]) {
+  // The outer segments' energy depends on kg only through OuterRotor's grid mass (a free-airspeed
+  // cruise reads kg itself): points on one grid mass share it. Energy of an infeasible point is
+  // kInf, shared too: the same rotor bound fails the same way.
+  bool reuse = !outer_segments_.empty();
+  for (std::size_t si : outer_segments_) {
+    reuse = reuse && !(m_.segments[si].type == SegmentType::kCruise && m_.segments[si].airspeed_m_s.free());
+  }
+  const RotorBound* last_rb = nullptr;
+  double e_outer = 0;
+  for (const FrontierPoint& f : Frontier(o, raw_kg - mass_min_kg_[o])) {
     const double kg = std::max(raw_kg + f.extra_kg, floor_kg);
-    double e = e_rest + f.energy_j;
-    for (std::size_t si : outer_segments_) {
-      const SegmentBound b = SegmentPowerBound(m_, si, parts, mp, drive, tr_max, esc_max_a,
-                                               *models_[static_cast<std::size_t>(prop)], options_[o], kg,
-                                               OuterRotor(prop, si, o, kg));
-      if (b.infeasible) {
-        e = kInf;
-        break;
-      }
-      double floor_w = cruise_floor_w_[si];  // at raw_kg <= kg
-      if (cruise_point_at_[si] != kNoIndex) {
-        // A free cruise at this point's mass: its samples at the grid mass at or below kg, read
-        // once per grid mass (the frontier's masses rise).
-        double grid_kg = 0;
-        const std::size_t i = RotorCacheIndex(prop, si, o, kg, &grid_kg);
-        if (i != cruise_point_at_[si]) {
-          cruise_point_at_[si] = i;
-          cruise_point_w_[si] = OuterCruiseFloorW(drive, prop, si, o, kg);
+    const RotorBound* rb0 = reuse ? &OuterRotor(prop, outer_segments_.front(), o, kg) : nullptr;
+    if (!rb0 || rb0 != last_rb) {
+      e_outer = 0;
+      for (std::size_t si : outer_segments_) {
+        const SegmentBound b = SegmentPowerBound(m_, si, parts, mp, drive, tr_max, esc_max_a,
+                                                 *models_[static_cast<std::size_t>(prop)], options_[o], kg,
+                                                 OuterRotor(prop, si, o, kg));
+        if (b.infeasible) {
+          e_outer = kInf;
+          break;
         }
-        floor_w = std::max(floor_w, cruise_point_w_[si]);
+        double floor_w = cruise_floor_w_[si];  // at raw_kg <= kg
+        if (cruise_point_at_[si] != kNoIndex) {
+          // A free cruise at this point's mass: its samples at the grid mass at or below kg, read
+          // once per grid mass (the frontier's masses rise).
+          double grid_kg = 0;
+          const std::size_t i = RotorCacheIndex(prop, si, o, kg, &grid_kg);
+          if (i != cruise_point_at_[si]) {
+            cruise_point_at_[si] = i;
+            cruise_point_w_[si] = OuterCruiseFloorW(drive, prop, si, o, kg);
+          }
+          floor_w = std::max(floor_w, cruise_point_w_[si]);
+        }
+        e_outer += std::max(b.power_w, floor_w) * t_min(si);
       }
-      e += std::max(b.power_w, floor_w) * t_min(si);
+      last_rb = rb0;
     }
+    const double e = e_rest + f.energy_j + e_outer;
     best = std::min(best, e);
     if (!(best / 3600.0 > bound)) return bound;  // no better than the plain bound
   }

@@ -3,6 +3,7 @@
 // choice, and the coupled bound's frontier of (extra mass, least energy).
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <memory>
 #include <utility>
@@ -24,31 +25,58 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 
 }  // namespace
 
+// The frontier of the level at or below outer_extra_kg (docs/search.md#g2-levels): level k
+// puts the outer group k * kFrontierLevelStep of the option's lightest vehicle above its
+// lightest, so a completion whose outer choice is at least that much heavier weighs at least
+// the vehicle each of the level's points was computed at (M3). Computed when first asked.
+const std::vector<JointBounds::FrontierPoint>& JointBounds::Frontier(std::size_t o, double outer_extra_kg) {
+  int k = 0;
+  if (outer_extra_kg > 0) {
+    const double steps = outer_extra_kg / (kFrontierLevelStep * mass_min_kg_[o]);
+    k = steps < kFrontierLevels - 1 ? static_cast<int>(std::floor(steps)) : kFrontierLevels - 1;
+    while (k > 0 && !(FrontierLevelKg(o, k) <= outer_extra_kg)) --k;  // at or below, after rounding
+  }
+  // A level already computed up to kFrontierLevelReuse below serves (any level at or below the
+  // extra mass is a bound; each level costs a walk over the inner group's choices).
+  for (int j = k; j >= 0 && j >= k - kFrontierLevelReuse; --j) {
+    if (frontier_done_[o][static_cast<std::size_t>(j)]) return frontier_[o][static_cast<std::size_t>(j)];
+  }
+  const std::size_t ki = static_cast<std::size_t>(k);
+  if (!frontier_done_[o][ki]) {
+    frontier_[o][ki] = InnerFrontier(o, FrontierLevelKg(o, k));
+    frontier_done_[o][ki] = 1;
+  }
+  return frontier_[o][ki];
+}
+
 // G2's coupled bound (min_energy, two free groups): the inner group's choices as a frontier of
 // (extra mass over its lightest, least energy of its own segments at the vehicle with that mass
-// and the outer group at its lightest), each choice that survives R0, R1, R3, R7 and the
-// thrust-to-weight rule at that vehicle, taken lightest first and kept when its energy is below
-// every lighter one's. Every feasible inner choice has a frontier point no heavier and with no
-// more energy (M3). Choices whose floor (rotors*max(Q*omega, momentum) per segment) reaches the
-// least energy so far are skipped when their drive cannot create energy (SegmentPowerBound).
-std::vector<JointBounds::FrontierPoint> JointBounds::InnerFrontier(std::size_t o) {
+// and the outer group outer_extra_kg above its lightest), each choice that survives R0, R1, R3,
+// R7 and the thrust-to-weight rule at that vehicle, taken lightest first and kept when its
+// energy is below every lighter one's. Every feasible inner choice of a completion whose outer
+// choice is at least outer_extra_kg above the outer group's lightest has a frontier point no
+// heavier and with no more energy (M3). Choices whose floor (rotors*max(Q*omega, momentum) per
+// segment) reaches the least energy so far are skipped when their drive cannot create energy
+// (SegmentPowerBound).
+std::vector<JointBounds::FrontierPoint> JointBounds::InnerFrontier(std::size_t o, double outer_extra_kg) {
   const auto& motors = cat_.motors();
   const auto& props = cat_.props();
   const BatteryOption& bo = options_[o];
   const double esc_min = std::isfinite(escs_.min_mass_kg[o]) ? escs_.min_mass_kg[o] : 0.0;
   const int rotors = m_.groups[static_cast<std::size_t>(inner_)].rotors;
+  const double base_kg = mass_min_kg_[o] + outer_extra_kg;  // the vehicle with the inner group at its lightest
   std::vector<std::size_t> segs;
   for (std::size_t si = 0; si < m_.segments.size(); ++si) {
     if (m_.segments[si].group == inner_) segs.push_back(si);
   }
   auto t_min = [&](std::size_t si) { return SegmentDurationS(m_.segments[si], m_.segments[si].airspeed_m_s.hi); };
-  std::vector<double> floor_j(props.size(), kInf);  // per propeller at the lightest vehicle
+  std::vector<double> floor_j(props.size(), kInf);  // per propeller at the lightest vehicle of the level
   for (std::size_t pi = 0; pi < props.size(); ++pi) {
     if (!PropAllowed(inner_, props[pi])) continue;
     const bool static_only = models_[pi]->data_kind() != PropDataKind::kTables || props[pi].j_tables.empty();
     double e = 0;
     for (std::size_t si : segs) {
-      const RotorBound& rb = OuterRotor(static_cast<int>(pi), si, o, mass_min_kg_[o]);
+      const RotorBound& rb = OuterRotor(static_cast<int>(pi), si, o, base_kg);
       const double p_ideal = rb.omega_rad_s > 0 ? IdealRotorPowerW(rb.thrust_n, props[pi].diameter_m, m_.rho_kg_m3,
                                                                    static_only ? 0.0 : rb.axial_airspeed_m_s)
                                                 : 0.0;
@@ -57,50 +85,88 @@ std::vector<JointBounds::FrontierPoint> JointBounds::InnerFrontier(std::size_t o
     }
     floor_j[pi] = e;
   }
-  std::vector<std::tuple<double, int, int>> by_mass;
-  for (std::size_t mi = 0; mi < motors.size(); ++mi) {
-    if (!motors[mi].mass_kg || !motors[mi].exclude_reason.empty()) continue;
-    for (std::size_t pi = 0; pi < props.size(); ++pi) {
-      if (!std::isfinite(floor_j[pi])) continue;
-      const double kg = rotors * (*motors[mi].mass_kg + PropMassKg(props[pi]) + esc_min);
-      if (kg >= inner_lightest_kg_[o]) by_mass.emplace_back(kg, static_cast<int>(mi), static_cast<int>(pi));
+  // The (motor, propeller) list by mass, built once for every option and level (the order of
+  // motor + propeller mass is the order of the group's mass: the ESC adds the same to each).
+  if (inner_by_mass_.empty()) {
+    std::vector<std::pair<double, std::uint32_t>> list;
+    for (std::size_t mi = 0; mi < motors.size(); ++mi) {
+      if (!motors[mi].mass_kg || !motors[mi].exclude_reason.empty()) continue;
+      for (std::size_t pi = 0; pi < props.size(); ++pi) {
+        if (!PropAllowed(inner_, props[pi])) continue;
+        list.emplace_back(*motors[mi].mass_kg + PropMassKg(props[pi]), static_cast<std::uint32_t>(mi * props.size() + pi));
+      }
     }
+    std::sort(list.begin(), list.end());
+    inner_by_mass_.reserve(list.size());
+    for (const auto& e : list) inner_by_mass_.push_back(e.second);
   }
-  std::sort(by_mass.begin(), by_mass.end());
+  // Per motor: its scenario parameters and R0, R1 (the lift group's voltage rule).
+  std::vector<MotorParams> mps(motors.size());
+  std::vector<char> usable(motors.size(), 0);  // 0: not yet, 1: usable, 2: fails R0/R1
+  std::vector<char> all_lossy(motors.size(), 0);  // no drive of the motor can create energy
+  std::vector<std::size_t> classes;
+  for (std::size_t c = 0; c < escs_.classes.size(); ++c) {
+    if (!escs_.per_option[o][c].empty()) classes.push_back(c);
+  }
+  std::vector<double> prop_kg(props.size());
+  for (std::size_t pi = 0; pi < props.size(); ++pi) prop_kg[pi] = PropMassKg(props[pi]);
+  // Level 0 records the (motor, propeller) pairs that fail a rule with every ESC class; they fail
+  // it at every level, whose vehicles are heavier (the rules' monotonicity, M1-M3, above).
+  const bool level0 = !(outer_extra_kg > 0);
+  std::vector<bool>& dead = inner_dead_[o];
+  if (level0) dead.assign(inner_by_mass_.size(), false);
   std::vector<FrontierPoint> front;
   double e_min = kInf;
-  for (const auto& [kg, mi, pi] : by_mass) {
-    const MotorEntry& mo = motors[static_cast<std::size_t>(mi)];
-    bool excluded = false;
-    const MotorParams mp = ScenarioMotorParams(mo, m_, nullptr, &excluded);
-    if (Lifts(inner_) && (excluded || bo.v_full > MotorMaxVoltageV(mo))) continue;  // R0, R1
-    const double vehicle_kg = mass_min_kg_[o] - inner_lightest_kg_[o] + kg;
-    for (std::size_t c = 0; c < escs_.classes.size(); ++c) {
-      if (escs_.per_option[o][c].empty()) continue;
+  for (std::size_t n = 0; n < inner_by_mass_.size(); ++n) {
+    if (!level0 && dead[n]) continue;
+    const std::uint32_t code = inner_by_mass_[n];
+    const std::size_t mi = code / props.size(), pi = code % props.size();
+    const MotorEntry& mo = motors[mi];
+    const double kg = rotors * (*mo.mass_kg + prop_kg[pi] + esc_min);
+    if (kg < inner_lightest_kg_[o]) continue;
+    if (!usable[mi]) {
+      bool excluded = false;
+      mps[mi] = ScenarioMotorParams(mo, m_, nullptr, &excluded);
+      usable[mi] = Lifts(inner_) && (excluded || bo.v_full > MotorMaxVoltageV(mo)) ? 2 : 1;  // R0, R1
+      all_lossy[mi] = 1;
+      for (std::size_t c : classes) {
+        if (!DriveIsLossy(mps[mi], escs_.classes[c].c1, escs_.classes[c].c0)) all_lossy[mi] = 0;
+      }
+    }
+    if (usable[mi] != 1 || (all_lossy[mi] && floor_j[pi] >= e_min)) continue;  // as the class loop's skip
+    const MotorParams& mp = mps[mi];
+    const double vehicle_kg = base_kg - inner_lightest_kg_[o] + kg;
+    bool all_fail = true;
+    for (std::size_t c : classes) {
+      const EscClass& cls = escs_.classes[c];
+      if (DriveIsLossy(mp, cls.c1, cls.c0) && floor_j[pi] >= e_min) {
+        all_fail = false;
+        continue;
+      }
       // SegmentPowerBound reads the ESC's C1 and C0 for a free-airspeed cruise
       // (FreeCruisePowerLowerBoundW): a member's, as MinFreeGroupPower does.
-      const EscEntry& member = cat_.escs()[static_cast<std::size_t>(escs_.classes[c].members.front())];
-      const GroupParts parts{&mo, &member, &props[static_cast<std::size_t>(pi)]};
-      const EscClass& cls = escs_.classes[c];
-      if (DriveIsLossy(mp, cls.c1, cls.c0) && floor_j[static_cast<std::size_t>(pi)] >= e_min) continue;
+      const EscEntry& member = cat_.escs()[static_cast<std::size_t>(cls.members.front())];
+      const GroupParts parts{&mo, &member, &props[pi]};
       const Drive d(mp, ZeroResistanceEsc(cls));
-      if (!ReachesThrustToWeight(inner_, d, pi, vehicle_kg, o)) continue;
+      if (!ReachesThrustToWeight(inner_, d, static_cast<int>(pi), vehicle_kg, o)) continue;
       double e = 0;
       for (std::size_t si : segs) {
-        const RotorBound& rb = OuterRotor(pi, si, o, vehicle_kg);
+        const RotorBound& rb = OuterRotor(static_cast<int>(pi), si, o, vehicle_kg);
         const SegmentBound b = SegmentPowerBound(m_, si, parts, mp, d, ThrottleLimit(m_.constraints, cls.tr_sat), kInf,
-                                                 *models_[static_cast<std::size_t>(pi)], bo, vehicle_kg, rb);
+                                                 *models_[pi], bo, vehicle_kg, rb);
         if (b.infeasible) {
           e = kInf;
           break;
         }
         e += b.power_w * t_min(si);
       }
+      all_fail = all_fail && !(e < kInf);
       if (e < e_min) {
         e_min = e;
         front.push_back(FrontierPoint{kg - inner_lightest_kg_[o], e});
       }
     }
+    if (level0 && all_fail) dead[n] = true;
   }
   return front;
 }

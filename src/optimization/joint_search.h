@@ -8,6 +8,7 @@
 // src/optimization (and its tests); SearchCatalog calls it.
 #pragma once
 
+#include <cstdint>
 #include <deque>
 #include <limits>
 #include <string>
@@ -90,6 +91,9 @@ class JointBounds {
   const EscTable& escs() const { return escs_; }
   // The lightest vehicle with option o (every free group at its lightest), kg.
   double mass_min_kg(std::size_t o) const { return mass_min_kg_[o]; }
+  // The outer group's and (two free groups) the inner group's lightest with option o, kg.
+  double outer_lightest_kg(std::size_t o) const { return outer_lightest_kg_[o]; }
+  double inner_lightest_kg(std::size_t o) const { return o < inner_lightest_kg_.size() ? inner_lightest_kg_[o] : 0.0; }
   // The power bound of a segment the outer group does not fly (W; +inf: no choice of its
   // group survives R0, R1, R3 with option o).
   double other_power_w(std::size_t o, std::size_t si) const { return other_power_w_[o][si]; }
@@ -103,7 +107,24 @@ class JointBounds {
   // (the inner group's frontier of mass and energy; docs/search.md#g2). Off by default (it costs
   // more per call): the search turns it on for the pairs it takes.
   void set_coupled(bool on) { coupled_ = on; }
-  std::size_t frontier_size(std::size_t o) const { return o < frontier_.size() ? frontier_[o].size() : 0; }
+  std::size_t frontier_size(std::size_t o) const { return o < frontier_.size() ? frontier_[o][0].size() : 0; }
+  // The coupled bound's frontier of the inner group (two free groups, min_energy) for option o
+  // and an outer choice outer_extra_kg heavier than the outer group's lightest: (the inner
+  // group's extra mass over its lightest, the least energy of its segments, J, at the vehicle
+  // with that mass and the outer group kFrontierLevelStep-levels heavier, at or below
+  // outer_extra_kg). Every feasible inner choice of such a completion has a point no heavier
+  // with no more energy (docs/search.md#g2-levels). Empty without an inner group.
+  struct FrontierPoint {
+    double extra_kg;  // the inner group's mass over its lightest
+    double energy_j;  // the least energy of its segments with that mass, J
+  };
+  const std::vector<FrontierPoint>& Frontier(std::size_t o, double outer_extra_kg);
+  // The outer group's extra mass of level k of option o's frontier, kg (k * the step * the
+  // option's lightest vehicle).
+  double FrontierLevelKg(std::size_t o, int k) const { return k * kFrontierLevelStep * mass_min_kg_[o]; }
+  static constexpr int kFrontierLevels = 48;         // levels of the outer group's extra mass
+  static constexpr double kFrontierLevelStep = 0.01;  // a level's step, of the lightest vehicle
+  static constexpr int kFrontierLevelReuse = 3;       // Frontier: a computed level this far below serves
   // R0 for the outer group's propeller and motor (the rule's name, or null).
   const char* PropRule(int prop) const;
   const char* MotorRule(int motor, std::size_t o) const;
@@ -129,11 +150,7 @@ class JointBounds {
   double StaticAdvanceMassFloorKg(const PropModel& model, double diameter_m, const Segment& sg, double v_a,
                                   double v_b) const;
   static constexpr int kFreeCruiseFloorCells = 16;  // R7's floor over a free airspeed range
-  struct FrontierPoint {
-    double extra_kg;  // the inner group's mass over its lightest
-    double energy_j;  // the least energy of its segments with that mass, J
-  };
-  std::vector<FrontierPoint> InnerFrontier(std::size_t o);
+  std::vector<FrontierPoint> InnerFrontier(std::size_t o, double outer_extra_kg);
   double MinFreeGroupPower(int group, std::size_t si, std::size_t o, double mass_kg);
   double MassFloorKg(int prop, std::size_t si, std::size_t o);
   double FigureOfMeritMassFloorKg(int prop, std::size_t si, std::size_t o) const;
@@ -155,7 +172,15 @@ class JointBounds {
   // and its bound.
   std::vector<std::size_t> cruise_point_at_;
   std::vector<double> cruise_point_w_;
-  std::vector<std::vector<FrontierPoint>> frontier_;  // per option
+  // [option][level] (Frontier's levels, computed when first asked; level 0 by the constructor).
+  std::vector<std::vector<std::vector<FrontierPoint>>> frontier_;
+  std::vector<std::vector<char>> frontier_done_;
+  // InnerFrontier's inner (motor, propeller) pairs, motor * props + propeller, by motor +
+  // propeller mass ascending (built on its first call).
+  std::vector<std::uint32_t> inner_by_mass_;
+  // Per option, by position in inner_by_mass_: the pair fails a rule with every ESC class at
+  // level 0 (so at every level).
+  std::vector<std::vector<bool>> inner_dead_;
   std::vector<double> inner_lightest_kg_;             // per option
   std::vector<BatteryOption> options_;
   EscTable escs_;

@@ -184,6 +184,47 @@ TEST_F(JointSearchTest, TwoFreeGroupsEqualExhaustiveEvaluation) {
   EXPECT_EQ(g["pusher"]["fixed"], false);
 }
 
+// G2's coupled frontier per level of the outer group's extra mass (docs/search.md#g2-levels):
+// for every feasible combination of the small catalog, the frontier of the level at or below its
+// pusher's extra mass has a point no heavier than its lift group (with the option's lightest
+// ESC) whose energy is at most the lift segments' true energy. Checked to fail when the level is
+// the heaviest whatever the pusher's mass (every inner energy read at a vehicle 47 % heavier).
+TEST_F(JointSearchTest, CoupledFrontierLevelsAreBelowEveryLiftGroupsEnergy) {
+  const Catalog cat = Catalog::Load((dir_ / "catalog").string());
+  const Mission m = ReadMission((dir_ / "free.json").string());
+  const int lift = m.segments[0].group, pusher = m.segments[1].group;
+  PropGridCache cache;
+  BuildPropGrids(m, cat, &cache.grids, &cache.models);
+  cache.built = true;
+  JointBounds jb(m, cat, cache);
+  ASSERT_EQ(jb.outer_group(), pusher);
+  int checked = 0, above_level0 = 0;
+  ForEachJoint(cat, m, lift, pusher, [&](const Combination& c, const MissionResult& r) {
+    if (!r.feasible) return;
+    std::size_t o = 0;
+    while (o < jb.options().size() && jb.options()[o].cells != c.cells) ++o;
+    ASSERT_LT(o, jb.options().size());
+    const GroupParts& pl = c.groups[lift];
+    const GroupParts& pp = c.groups[pusher];
+    const double inner_extra = m.groups[lift].rotors * (*pl.motor->mass_kg + PropMassKg(*pl.prop) + jb.escs().min_mass_kg[o]) -
+                               jb.inner_lightest_kg(o);
+    const double outer_extra = m.groups[pusher].rotors * (*pp.motor->mass_kg + PropMassKg(*pp.prop) + EscMassKg(*pp.esc)) -
+                               jb.outer_lightest_kg(o);
+    double lift_j = 0;
+    for (const SegmentResult& sr : r.segments) lift_j += sr.group == lift ? sr.energy_j : 0.0;
+    double least_j = std::numeric_limits<double>::infinity();
+    for (const auto& f : jb.Frontier(o, outer_extra)) {
+      if (f.extra_kg <= inner_extra) least_j = std::min(least_j, f.energy_j);
+    }
+    // Tolerance: none (an exact inequality). Infinite: the frontier lost a feasible choice.
+    EXPECT_LE(least_j, lift_j) << Name(c, lift, pusher) << " outer extra " << outer_extra << " kg";
+    ++checked;
+    if (outer_extra >= jb.FrontierLevelKg(o, 1)) ++above_level0;
+  });
+  EXPECT_GT(checked, 0);
+  EXPECT_GT(above_level0, 0) << "some feasible pusher must read a level above 0";
+}
+
 // Two free groups and a fixed one (a sprint on its own pusher): G2 reads the fixed group's
 // segment through its own drive (G1's bound), and the answer is exhaustive evaluation's. The dash
 // is flown at 12 m/s: with the stopped lift rotors' drag (flight.h) dc_m_1020's 10x4.5 has no
