@@ -360,6 +360,7 @@ MissionResult MissionEvaluator::SolveManyFree(const std::vector<FreeVar>& free, 
   if (!explain) return r;
   std::ostringstream msg;
   msg << sr.BriefReport();
+  if (scale != 1.0) msg << " (f: the objective over the grid's best, " << SignificantText(best_score, 6) << ")";
   if (broke_by > 0) {
     msg << "; its answer broke a constraint by " << SignificantText(broke_by, 2)
         << " (relative slack): the last feasible point towards it from the grid's best";
