@@ -427,8 +427,16 @@ void BranchAndBound::Run() {
     // as a thousand pruned pairs: a fixed split leaves a thread idle).
     std::atomic<std::size_t> next{0};
     // An exception of one evaluation stops the others at their next candidate; Wait rethrows it.
+    // A stop (SIGINT, the time limit) too, checked before a candidate is taken: a chunk of
+    // solves with a free airspeed can last seconds. The candidates are taken in order and each
+    // taken one is finished, so those done are the chunk's first min(next, size), and the rest
+    // stay drawn for StopAt to count as unsettled.
     auto run = [&]() {
-      for (std::size_t i = next++; i < cands.size() && !pool.failed(); i = next++) Process(cands[i], top, &outs[i]);
+      while (!pool.failed() && !StopRequested(opt_)) {
+        const std::size_t i = next++;
+        if (i >= cands.size()) break;
+        Process(cands[i], top, &outs[i]);
+      }
     };
     const std::function<void()> job = run;
     pool.Start(&job);
@@ -440,6 +448,8 @@ void BranchAndBound::Run() {
       run();
     });
     pool.Wait();
+    end = ci + std::min(next.load(), cands.size());  // fewer only after a stop
+    outs.resize(end - ci);
     for (Outcome& o : outs) {
       o.pruned.MergeInto(&out_->pruned_by);
       out_->searched += o.searched;

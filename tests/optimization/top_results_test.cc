@@ -16,6 +16,7 @@
 #include <memory>
 #include <set>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "catalog/catalog.h"
@@ -272,6 +273,53 @@ TEST_F(TopResultsTest, StoppedJointSearchStopsItsInnerSearchesToo) {
     ExpectStoppedSearchIsValid(s, all, 3, "joint, after " + std::to_string(calls) + " progress calls");
   }
   EXPECT_GT(stopped, 0);
+}
+
+// A stop can come in the middle of a chunk of candidates (the workers check it before taking
+// each one): the candidates not taken stay unsettled, so every count and the bound still hold.
+// The stop comes from another thread after a delay; whatever the moment, the checks must hold.
+// The bundled catalog's quadcopter: its search takes about 0.15 s, much of it in chunks of
+// solves (the small catalog's is mostly set-up, so a stop seldom lands in a chunk). With two
+// threads one of them draws the next chunk while the other solves, so a stop lands among a
+// chunk's solves mostly with one.
+TEST(TopResultsStopTest, StopInTheMiddleOfAChunkLeavesTheCountsAndTheBoundValid) {
+  const Catalog cat = Catalog::Load(std::string(DYNOSIZE_SOURCE_DIR) + "/catalog");
+  const Mission m = ReadMission(std::string(DYNOSIZE_SOURCE_DIR) + "/examples/missions/quadcopter_1p5kg.json");
+  SearchOptions so;
+  so.top_n = 3;
+  so.threads = 2;
+  const SearchResult full = SearchCatalog(m, cat, so);
+  ASSERT_FALSE(full.best.empty());
+  const RankedCombination& best = full.best.front();
+  int with_solves = 0;
+  for (int delay_ms = 10; delay_ms <= 200; delay_ms += 10) {
+    std::atomic<bool> stop{false};
+    so.stop = &stop;
+    // One thread draws and solves in turn, so a stop lands among the solves more often.
+    so.threads = delay_ms % 20 == 0 ? 2 : 1;
+    std::thread stopper([&stop, delay_ms] {
+      std::this_thread::sleep_for(std::chrono::milliseconds(delay_ms));
+      stop = true;
+    });
+    const SearchResult s = SearchCatalog(m, cat, so);
+    stopper.join();
+    const std::string what = "stopped after " + std::to_string(delay_ms) + " ms";
+    if (!s.interrupted) continue;
+    if (s.searched > 0) ++with_solves;
+    EXPECT_GT(s.unsettled, 0) << what;
+    // `pruned` is what the others leave; the rules' own counts must add up to it (a candidate
+    // neither solved nor counted as unsettled would be missing from them).
+    long long by_rule = 0;
+    for (const auto& [rule, n] : s.pruned_by) by_rule += n;
+    EXPECT_EQ(s.searched + by_rule + s.unsettled, s.combinations) << what;
+    ASSERT_TRUE(std::isfinite(s.unsettled_bound_score)) << what;
+    bool found = false;
+    for (const RankedCombination& b : s.best) found = found || FullName(b.combination) == FullName(best.combination);
+    if (!found) {
+      EXPECT_GE(best.result.score, s.unsettled_bound_score) << what << ": the best was lost below the bound";
+    }
+  }
+  EXPECT_GT(with_solves, 0) << "no stop came after the first solves";
 }
 
 // Distinct designs keep search.h's promise: the answer and the counts do not depend on the threads.
