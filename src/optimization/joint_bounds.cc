@@ -316,7 +316,8 @@ double JointBounds::MassFloorKg(int prop, std::size_t si, std::size_t o) {
       const double v_a = lo + span * c / cells, v_b = lo + span * (c + 1) / cells;
       floor_kg = std::min(floor_kg, StaticAdvanceMassFloorKg(model, p.diameter_m, sg, v_a, v_b));
     }
-  }  floor_kg = std::max(floor_kg, FigureOfMeritMassFloorKg(prop, si, o));
+  }
+  floor_kg = std::max(floor_kg, FigureOfMeritMassFloorKg(prop, si, o));
   mass_floor_kg_[i] = floor_kg;
   return floor_kg;
 }

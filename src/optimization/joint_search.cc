@@ -193,11 +193,6 @@ Mission SubMission(const Mission& m, const Catalog& cat, int outer, const OuterP
 // left some out (its own threshold fell below the cutoff); the class is then searched per ESC.
 constexpr int kCompletionLimit = 512;
 
-// G3 (docs/search.md#g3): the class's real ESCs of one outer pair against the completions the virtual
-// ESC's search found below the N-th best (`completions`, best first; that search's relaxed
-// mission and the virtual ESC score no worse than the real ESC on the mission, M2, M3, so no
-// other completion can beat the N-th best). Each (ESC, completion) is solved exactly, best
-// virtual score first, until that score reaches the N-th best; the results join *out's top N.
 // G3 (docs/search.md#g3) for one real ESC e of an outer pair's class: (pair, e) with each completion the
 // virtual ESC's search found below the N-th best (`completions`, best first; that search's relaxed
 // mission and the virtual ESC score no worse than e on the mission, M2, M3, so no other
