@@ -74,6 +74,7 @@ void Merge(SearchResult&& r, TopResults* top, SearchResult* out) {
   out->candidate_pairs += r.candidate_pairs;
   out->candidate_seconds += r.candidate_seconds;
   out->virtual_evaluations += r.virtual_evaluations;
+  out->put_back_solves += r.put_back_solves;
   out->candidate_batches += r.candidate_batches;
   AddCount(&out->unsettled, r.unsettled);
   for (RankedCombination& b : r.best) top->Add(std::move(b));
@@ -389,6 +390,7 @@ bool JointLoop::SearchTriple(const OuterPair& pr, int e, bool budgeted) {
                                            : SearchOneGroup(sub, cat_, o, Nth(), cache_);
   if (r.interrupted && !StopRequested(opt_)) {  // over its budget: taken again later
     out_.virtual_evaluations += r.searched + r.virtual_evaluations;
+    out_.put_back_solves += r.searched + r.virtual_evaluations;
     for (const RankedCombination& b : r.best) put_back_.Add(KeyOf(b.combination, opt_.distinct_designs), b.result.score);
     last_put_back_ = std::move(r.best);
     return false;

@@ -59,6 +59,10 @@ struct SearchResult {
   long long candidate_pairs = 0;
   double candidate_seconds = 0.0;
   long long virtual_evaluations = 0;
+  // Of virtual_evaluations, the solves of the joint search's inner searches put back over their
+  // first budget (real combinations, counted once they are taken again; on a stop before that,
+  // their results are shown but the combinations stay unsettled).
+  long long put_back_solves = 0;
   long long candidate_batches = 0;
 };
 

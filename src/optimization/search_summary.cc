@@ -19,6 +19,7 @@ SearchSummary SearchSummary::From(const SearchResult& r) {
   s.pruned_by = r.pruned_by;
   s.solved = r.searched;
   s.virtual_evaluations = r.virtual_evaluations;
+  s.put_back_solves = r.put_back_solves;
   s.skipped_without_mass = r.skipped_without_mass;
   s.seconds = r.seconds;
   s.candidate_seconds = r.candidate_seconds;
@@ -47,7 +48,9 @@ std::string SearchSummary::BriefReport() const {
   std::ostringstream o;
   o << "search: " << results << " results, " << combinations << " combinations, " << candidate_pairs
     << " candidate pairs bounded, " << pruned << " pruned, " << solved << " solved exactly ("
-    << virtual_evaluations << " virtual-ESC solves besides), " << FixedText(seconds, 3) << " s, "
+    << virtual_evaluations << " virtual-ESC solves besides"
+    << (put_back_solves > 0 ? ", " + std::to_string(put_back_solves) + " of them in inner searches put back over their budget" : "")
+    << "), " << FixedText(seconds, 3) << " s, "
     << (interrupted ? "interrupted (gap " + GapText(Gap()) + ")" : "done");
   return o.str();
 }
@@ -60,7 +63,9 @@ std::string SearchSummary::FullReport() const {
     << "  combinations             " << combinations << "\n"
     << "  candidate pairs bounded  " << candidate_pairs << " (" << candidate_batches << " batches after the first)\n"
     << "  solved exactly           " << solved << "\n"
-    << "  virtual-ESC solves       " << virtual_evaluations << "\n"
+    << "  virtual-ESC solves       " << virtual_evaluations
+    << (put_back_solves > 0 ? " (" + std::to_string(put_back_solves) + " in inner searches put back over their budget)" : "")
+    << "\n"
     << "  pruned                   " << pruned << "\n";
   for (const auto& [rule, n] : pruned_by) {
     if (n != 0) o << "    " << rule << std::string(rule.size() < 22 ? 22 - rule.size() : 1, ' ') << n << "\n";

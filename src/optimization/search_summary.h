@@ -24,7 +24,8 @@ struct SearchSummary {
   long long pruned = 0;             // combinations removed by a rule
   std::map<std::string, long long> pruned_by;  // rule -> combinations it removed
   long long solved = 0;             // combinations solved exactly (MissionEvaluator::Solve)
-  long long virtual_evaluations = 0;  // virtual-ESC solves (R5)
+  long long virtual_evaluations = 0;  // virtual-ESC solves (R5), put_back_solves included
+  long long put_back_solves = 0;      // solves of inner searches put back over their budget
   long long skipped_without_mass = 0;
   double seconds = 0.0;             // elapsed, the whole search
   double candidate_seconds = 0.0;   // to the end of stage 4's first batches (stages 0-3 included)

@@ -109,6 +109,21 @@ TEST(SearchSummaryTest, TheGapIsTheNthBestAboveTheBoundOfWhatIsLeft) {
   EXPECT_EQ(s.Gap(), 0.0);
 }
 
+// The joint search's inner searches put back over their budget solve real combinations whose
+// results can be shown on a stop while the combinations stay unsettled: the reports say where
+// those solves are counted (else "0 solved exactly" beside shown results reads as a bug).
+TEST(SearchSummaryTest, SolvesOfPutBackSearchesAreNamed) {
+  SearchSummary s;
+  s.virtual_evaluations = 120;
+  EXPECT_EQ(s.BriefReport().find("put back"), std::string::npos) << s.BriefReport();
+  s.put_back_solves = 100;
+  EXPECT_NE(s.BriefReport().find("(120 virtual-ESC solves besides, 100 of them in inner searches put back over their budget)"),
+            std::string::npos)
+      << s.BriefReport();
+  EXPECT_NE(s.FullReport().find("120 (100 in inner searches put back over their budget)"), std::string::npos)
+      << s.FullReport();
+}
+
 // optimize --stats prints the summary's brief report, one line on stderr, and leaves stdout alone.
 TEST(SearchSummaryTest, OptimizeStatsPrintsTheBriefReport) {
   const std::string mission = kSourceDir + "/examples/missions/fpv_5in.json";
