@@ -32,7 +32,7 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 // pair (PairLoads::Term). Requires a hover segment (f.hover not empty).
 double SegmentPowerLowerBoundW(const SearchContext& ctx, const MissionFacts& f, const PropEntry& prop,
                                const PropModel& model, std::size_t option, PairLoads* loads, std::size_t si,
-                               double pdc_lb) {
+                               double pdc_lb, int* scaled_rotors = nullptr) {
   const Mission& m = *ctx.mission;
   const PairLoads::PowerTerm& t = loads->Term(si, [&](PairLoads::PowerTerm* x) {
     const Segment& sg = m.segments[si];
@@ -53,6 +53,7 @@ double SegmentPowerLowerBoundW(const SearchContext& ctx, const MissionFacts& f, 
       }
     }
   });
+  if (scaled_rotors) *scaled_rotors = t.scales ? t.rotors : 0;
   return t.scales ? t.rotors * pdc_lb + m.vehicle.avionics_power_w : t.constant;
 }
 
@@ -192,7 +193,7 @@ ScoreBoundTerms ScoreLowerBoundTerms(const SearchContext& ctx, const MissionFact
     // one bound of a propeller whose grid is not monotone (no R2 point).
     const std::size_t ist = static_cast<std::size_t>(m.objective.segment_index);
     const double e_other = stretch_only ? 0.0 : e_other_of(ist);
-    double p_stretch = p_lb_of(ist);
+    double p_stretch = SegmentPowerLowerBoundW(ctx, f, prop, model, option, loads, ist, pdc_lb, &out.stretch_rotors);
     if (lossy) p_stretch = std::max(p_stretch, MomentumPowerW(m, loads->At(ist, false, 0.0), prop.diameter_m, false));
     out.budgeted = true;
     out.e_other_j = e_other;
@@ -208,7 +209,7 @@ ScoreBoundTerms ScoreLowerBoundTerms(const SearchContext& ctx, const MissionFact
     // stage can create energy, N*P_ideal(T, V)/max_figure_of_merit + P_avionics (the
     // evaluator's prop_figure_of_merit; V the axial inflow with forward-flight tables, else 0,
     // as PropellerPoint judges it), at the lightest mass (M3).
-    double p_stretch = p_lb_of(ist);
+    double p_stretch = SegmentPowerLowerBoundW(ctx, f, prop, model, option, loads, ist, pdc_lb, &out.stretch_rotors);
     if (lossy) {
       p_stretch = std::max(p_stretch, MomentumPowerW(m, loads->At(ist, false, st.airspeed_m_s.lo), prop.diameter_m, table_data));
     }
@@ -217,6 +218,10 @@ ScoreBoundTerms ScoreLowerBoundTerms(const SearchContext& ctx, const MissionFact
     out.p_stretch_w = p_stretch;
   }
   return out;
+}
+
+double ScoreBoundTerms::StretchPowerAtLeastW(double pdc_lb_w, double avionics_w) const {
+  return stretch_rotors > 0 ? std::max(p_stretch_w, stretch_rotors * pdc_lb_w + avionics_w) : p_stretch_w;
 }
 
 double ScoreBoundTerms::At(double budget_ah) const {

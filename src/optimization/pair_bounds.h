@@ -132,6 +132,13 @@ struct ScoreBoundTerms {
   bool budgeted = false;
   double bound = -std::numeric_limits<double>::infinity();  // when not budgeted
   double t_fixed_s = 0, e_other_j = 0, p_stretch_w = 0, ocv_integral_v = 0;
+  // The stretch's power bound scales with the hover bound's per-rotor PDC (R4): p_stretch_w is
+  // at least stretch_rotors*pdc_lb + P_avionics (0: a constant, no such term).
+  int stretch_rotors = 0;
+  // A lower bound of the stretch power of a heavier vehicle of the same pair (R13): this
+  // one's (every term rises with the mass, M1-M3) and the drive's term at pdc_lb_w, a lower
+  // bound of the heavier vehicle's hover PDC.
+  double StretchPowerAtLeastW(double pdc_lb_w, double avionics_w) const;
   // The bound with the budget of a pack of budget_ah (ScoreLowerBound's capacity_top_ah).
   double At(double budget_ah) const;
 };

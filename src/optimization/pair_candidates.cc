@@ -175,6 +175,70 @@ double StretchOnlyBound(KindTerms piece, const KindTerms& first, double budget_a
   return piece.At(budget_ah);
 }
 
+// R13's heavier pieces from the first piece's drive (docs/search.md#r13, "a heavier piece's
+// drive from the first's"). For a drive without extensions (Drive::extended) and a
+// zero-resistance ESC (eqs 42, 48, 57): I = Q/KT + Io and U = Rm*I + KE*omega, the same for
+// every ESC class, and a class's DC current at VDC is (C1*x + C0)*I with x = U/(kv*VDC) its
+// effective throttle. At a grid point (omega, Q) >= (omega_0, Q_0), with r_I = I/I_0 >= 1,
+// r_U = U/U_0 >= 1 and kappa >= C0/C1 for every class (C1 > 0, C0 >= 0):
+// (C1*x + C0) >= (C1*x_0 + C0)*(1 + (r_U - 1)*x_0/(x_0 + kappa)), and x_0/(x_0 + kappa) is
+// least at the full-charge voltage (x_0 smallest). So each class's PDC at both voltages, hence
+// R3's least PDC over the classes (classes refused at the lighter vehicle stay refused, M2),
+// is at least Factor() times the first piece's (held 1e-9 below against rounding).
+struct PdcGrowth {
+  bool ok = false;
+  double i0_a = 0, u0_v = 0, share = 0;  // share = x_0/(x_0 + kappa)
+  double Factor(const MotorParams& mp, double omega_rad_s, double q_nm) const {
+    const double i_a = q_nm / mp.kt_nm_per_a + mp.io_a;                          // (42)
+    const double u_v = mp.rm_ohm * i_a + mp.ke_v_s_per_rad * omega_rad_s;       // (48)
+    return (1.0 - 1e-9) * (i_a / i0_a) * (1.0 + (u_v / u0_v - 1.0) * share);  // (57)
+  }
+};
+PdcGrowth PdcGrowthOf(const SearchContext& ctx, const MotorSetup& s, std::size_t o, double omega_lb, double q_lb) {
+  PdcGrowth g;
+  const MotorParams& mp = s.mp;
+  const std::vector<EscClass>& classes = ctx.escs.classes;
+  if (s.ideal.size() != classes.size() || classes.empty() || !(mp.kt_nm_per_a > 0) || !(mp.rm_ohm >= 0) ||
+      !(mp.ke_v_s_per_rad > 0)) {
+    return g;
+  }
+  double kappa = 0;
+  for (std::size_t ci = 0; ci < classes.size(); ++ci) {
+    if (s.ideal[ci].extended() || !(classes[ci].c1 > 0) || !(classes[ci].c0 >= 0)) return g;
+    kappa = std::max(kappa, classes[ci].c0 / classes[ci].c1);
+  }
+  g.i0_a = q_lb / mp.kt_nm_per_a + mp.io_a;
+  g.u0_v = mp.rm_ohm * g.i0_a + mp.ke_v_s_per_rad * omega_lb;
+  const Drive& d = s.ideal[0];
+  const double x0 = d.EffectiveThrottle(d.InverseLight(ctx.options[o].v_full, q_lb, omega_lb).throttle);
+  if (!(g.i0_a > 0) || !(g.u0_v > 0) || !(x0 > 0)) return g;
+  g.share = x0 / (x0 + kappa);
+  g.ok = true;
+  return g;
+}
+
+// The first piece's terms with each kind's stretch power raised to the drive's term at
+// `factor` times its PDC (PdcGrowth): a lower bound of a heavier piece's bound when every
+// kind of class the motor has passes R3 at the first piece.
+double GrownStretchBound(KindTerms first, const ClassPowers& lightest, double factor, double avionics_w,
+                         double budget_ah) {
+  for (int lossy = 0; lossy < 2; ++lossy) {
+    if (!first.has[lossy]) continue;
+    ScoreBoundTerms& t = first.terms[lossy];
+    t.p_stretch_w = t.StretchPowerAtLeastW(factor * lightest.pdc_min[lossy], avionics_w);
+  }
+  return first.At(budget_ah);
+}
+
+// True when every kind (DriveIsLossy) of the option's ESC classes passes R3 in `p`.
+bool EveryKindPasses(const SearchContext& ctx, const MotorSetup& s, std::size_t o, const ClassPowers& p) {
+  for (std::size_t ci = 0; ci < ctx.escs.classes.size(); ++ci) {
+    if (ctx.escs.per_option[o][ci].empty()) continue;
+    if (!p.has[DriveIsLossy(s.mp, ctx.escs.classes[ci].c1, ctx.escs.classes[ci].c0) ? 1 : 0]) return false;
+  }
+  return true;
+}
+
 }  // namespace
 
 // Stage 4 for one pair of a set-up motor whose option R1 lets through and whose propeller
@@ -216,9 +280,14 @@ bool PairCandidate(const SearchContext& ctx, const MissionFacts& f, const MotorS
     ++loads->pieces_skipped;
   }
   // The other pieces, heaviest first: a piece is assembled at its own mass only when the first
-  // piece's terms with its budget (a bound of it at a lighter mass, M3), then its own stretch
+  // piece's terms with its budget (a bound of it at a lighter mass, M3), then with the stretch
+  // power its grid point gives the first piece's drive (PdcGrowth), then its own stretch
   // power with them, are below both the least so far and the cutoff (docs/search.md#r13,
   // "assembled only while it can be the least").
+  const PdcGrowth growth = edges.size() < 3 || f.every_capacity_piece || !EveryKindPasses(ctx, s, o, lightest)
+                               ? PdcGrowth{}
+                               : PdcGrowthOf(ctx, s, o, omega_lb, q_lb);
+  const double avionics_w = ctx.mission->vehicle.avionics_power_w;
   for (std::size_t j = edges.size() < 3 ? 0 : edges.size() - 2; j > 0; --j) {
     const double target = std::min(bound, cutoff);
     if (!f.every_capacity_piece && first.At(edges[j + 1]) >= target) {
@@ -230,6 +299,11 @@ bool PairCandidate(const SearchContext& ctx, const MissionFacts& f, const MotorS
                           window_floor_kg));
     double w = 0, q = 0;
     HoverGridPointFromBelow(f, ctx.grids[pi], loads, &w, &q);
+    if (growth.ok &&
+        GrownStretchBound(first, lightest, growth.Factor(s.mp, w, q), avionics_w, edges[j + 1]) >= target) {
+      ++loads->pieces_skipped;
+      continue;
+    }
     const ClassPowers p = HoverPowersOfClasses(ctx, s, o, w, q);
     if (!p.Any()) continue;  // no feasible point here (nor in a heavier piece, M1-M3)
     if (!f.every_capacity_piece &&
@@ -252,15 +326,21 @@ double PropOnlyBound(const SearchContext& ctx, const MissionFacts& f, std::size_
                      const MotorLossFloor& loss, PairLoads* loads) {
   const BatteryOption& bo = ctx.options[o];
   const PropGrid& g = ctx.grids[pi];
-  auto terms_at = [&](double pack_kg, bool stretch_only) {
+  // The floor of the hover's per-rotor power at the vehicle with a pack of pack_kg (loads set
+  // to that mass), and R4's terms with it.
+  auto floor_at = [&](double pack_kg) {
     loads->Reset(VehicleMassKg(ctx, pack_kg, motor_kg, g.mass_kg, ctx.escs.min_mass_kg[o]));
     double omega_lb = 0, q_lb = 0;
     HoverGridPointFromBelow(f, g, loads, &omega_lb, &q_lb);
     const double pac_floor_w =
         omega_lb * q_lb + loss.copper_w_per_nm2 * q_lb * q_lb + loss.no_load_torque_nm * omega_lb;  // physics.h
-    return ScoreLowerBoundTerms(ctx, f, true, ctx.catalog->props()[pi], *ctx.models[pi], o, loads,
-                                kKeyRoundingAllowance * pac_floor_w, stretch_only);
+    return kKeyRoundingAllowance * pac_floor_w;
   };
+  auto terms_with = [&](double pdc_lb_w, bool stretch_only) {
+    return ScoreLowerBoundTerms(ctx, f, true, ctx.catalog->props()[pi], *ctx.models[pi], o, loads, pdc_lb_w,
+                                stretch_only);
+  };
+  auto terms_at = [&](double pack_kg, bool stretch_only) { return terms_with(floor_at(pack_kg), stretch_only); };
   auto key_of = [](const ScoreBoundTerms& t, double budget_ah) {
     const double b = t.At(budget_ah);
     return std::isnan(b) ? -kInf : b;
@@ -277,16 +357,24 @@ double PropOnlyBound(const SearchContext& ctx, const MissionFacts& f, std::size_
       ++loads->pieces_skipped;
       continue;
     }
-    const double pack_kg = PackMassLowerBoundKg(bo, edges[j]);
+    const double pdc_lb_w = floor_at(PackMassLowerBoundKg(bo, edges[j]));
     if (!f.every_capacity_piece) {
-      ScoreBoundTerms stretch = terms_at(pack_kg, true);
+      // The first piece's terms with the stretch's drive term at this piece's floor (its own
+      // stretch power is at least that and the first's, M1-M3), then its own stretch power.
+      ScoreBoundTerms grown = first;
+      grown.p_stretch_w = first.StretchPowerAtLeastW(pdc_lb_w, ctx.mission->vehicle.avionics_power_w);
+      if (key_of(grown, edges[j + 1]) >= least) {
+        ++loads->pieces_skipped;
+        continue;
+      }
+      ScoreBoundTerms stretch = terms_with(pdc_lb_w, true);
       stretch.e_other_j = first.e_other_j;  // a lighter vehicle's (M3)
       if (key_of(stretch, edges[j + 1]) >= least) {
         ++loads->pieces_skipped;
         continue;
       }
     }
-    least = std::min(least, key_of(terms_at(pack_kg, false), edges[j + 1]));
+    least = std::min(least, key_of(terms_with(pdc_lb_w, false), edges[j + 1]));
   }
   return least;
 }
