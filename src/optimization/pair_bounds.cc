@@ -124,7 +124,7 @@ double MomentumPowerW(const Mission& m, const RotorLoad& ld, double diameter_m, 
 // of it that holds for a class of motors). loads: PairLoads at that mass.
 ScoreBoundTerms ScoreLowerBoundTerms(const SearchContext& ctx, const MissionFacts& f, bool lossy, const PropEntry& prop,
                                      const PropModel& model, std::size_t option, PairLoads* loads, double pdc_lb,
-                                     bool stretch_only) {
+                                     bool stretch_only, std::vector<SegmentEnergyFloor>* floors) {
   const BatteryOption& bo = ctx.options[option];
   const Mission& m = *ctx.mission;
   ScoreBoundTerms out;
@@ -169,18 +169,27 @@ ScoreBoundTerms ScoreLowerBoundTerms(const SearchContext& ctx, const MissionFact
   const bool table_data = model.data_kind() == PropDataKind::kTables && !prop.j_tables.empty();
   auto e_other_of = [&](std::size_t stretch) {
     double e_other = 0;
+    if (floors) floors->clear();
     for (std::size_t si = 0; si < m.segments.size(); ++si) {
       if (si == stretch) continue;
       const Segment& sg = m.segments[si];
-      double e_seg = p_lb_of(si) * t_min_of(sg);
+      SegmentEnergyFloor x;
+      const double p_lb = SegmentPowerLowerBoundW(ctx, f, prop, model, option, loads, si, pdc_lb, &x.rotors);
+      x.t_min_s = t_min_of(sg);
+      double e_seg = p_lb * x.t_min_s;
       if (lossy && sg.group == f.free_group && sg.type != SegmentType::kShaft &&
           !(sg.type == SegmentType::kCruise && sg.airspeed_m_s.free())) {
-        e_seg = std::max(e_seg, loads->PerSegment(si, [&]() {
+        x.momentum_j = loads->PerSegment(si, [&]() {
           const double v = sg.type == SegmentType::kCruise ? sg.airspeed_m_s.lo : 0.0;
           return MomentumPowerW(m, loads->At(si, false, v), prop.diameter_m, table_data) * SegmentDurationS(sg, v);
-        }));
+        });
+        e_seg = std::max(e_seg, x.momentum_j);
       }
       e_other += e_seg;
+      if (floors) {
+        x.constant_w = p_lb;
+        floors->push_back(x);
+      }
     }
     return e_other;
   };
@@ -218,6 +227,15 @@ ScoreBoundTerms ScoreLowerBoundTerms(const SearchContext& ctx, const MissionFact
     out.p_stretch_w = p_stretch;
   }
   return out;
+}
+
+double OtherEnergyAtLeastJ(const std::vector<SegmentEnergyFloor>& floors, double pdc_lb_w, double avionics_w) {
+  double e = 0;
+  for (const SegmentEnergyFloor& x : floors) {
+    const double p_lb = x.rotors > 0 ? x.rotors * pdc_lb_w + avionics_w : x.constant_w;
+    e += std::max(p_lb * x.t_min_s, x.momentum_j);
+  }
+  return e;
 }
 
 double ScoreBoundTerms::StretchPowerAtLeastW(double pdc_lb_w, double avionics_w) const {

@@ -47,6 +47,16 @@ MissionFacts FactsOf(const Mission& m, int free_group);
 // FactsOf with what stage 4 reads per propeller (R0) and per pair (R7) worked out once.
 MissionFacts StageFourFacts(const SearchContext& ctx);
 
+// One of the other segments' terms of R4's max_endurance energy (ScoreLowerBoundTerms) at one
+// vehicle mass, kept so that a heavier vehicle's can be bounded from below without its own
+// assembly (R13, OtherEnergyAtLeastJ).
+struct SegmentEnergyFloor {
+  int rotors = 0;         // > 0: the power bound is rotors*pdc_lb + P_avionics
+  double constant_w = 0;  // else this (P_avionics, or a fixed group's G1 bound)
+  double t_min_s = 0;     // the segment's shortest duration
+  double momentum_j = -std::numeric_limits<double>::infinity();  // momentum theory's energy (-inf: none)
+};
+
 // The rotor loads of one pair's lightest mass (SegmentRotorLoad), computed once per pair
 // instead of once per ESC class: per segment at its lowest and highest airspeed (the same
 // numbers, so the bounds do not change).
@@ -92,6 +102,8 @@ class PairLoads {
   double mass_kg() const { return mass_kg_; }
   // R13's pieces passed over without their own assembly (PairCandidate, PropOnlyBound).
   long long pieces_skipped = 0;
+  // Scratch for the first piece's SegmentEnergyFloor per kind of drive ([DriveIsLossy]).
+  std::vector<SegmentEnergyFloor> floors[2];
   const RotorLoad& At(std::size_t si, bool high, double v_m_s) {
     std::pair<bool, RotorLoad>& x = (high ? hi_ : lo_)[si];
     if (!x.first) x = {true, SegmentRotorLoad(m_, m_.segments[si], mass_kg_, v_m_s)};
@@ -142,9 +154,17 @@ struct ScoreBoundTerms {
   // The bound with the budget of a pack of budget_ah (ScoreLowerBound's capacity_top_ah).
   double At(double budget_ah) const;
 };
+// floors (optional): when the other segments' energy is assembled, its terms, in segment order.
 ScoreBoundTerms ScoreLowerBoundTerms(const SearchContext& ctx, const MissionFacts& f, bool lossy, const PropEntry& prop,
                                      const PropModel& model, std::size_t option, PairLoads* loads, double pdc_lb,
-                                     bool stretch_only = false);
+                                     bool stretch_only = false, std::vector<SegmentEnergyFloor>* floors = nullptr);
+
+// R13: the other segments' energy (ScoreBoundTerms::e_other_j) of a vehicle at least as heavy as
+// the one `floors` was assembled at, whose hover bound's per-rotor PDC is at least pdc_lb_w: each
+// term at least the lighter vehicle's (its thrust, momentum bound and fixed groups' bounds rise
+// with the mass, M1-M3) with that PDC; the same operations in the same order, so it is at most
+// the heavier vehicle's assembled number.
+double OtherEnergyAtLeastJ(const std::vector<SegmentEnergyFloor>& floors, double pdc_lb_w, double avionics_w);
 
 // R13 (docs/search.md#r13): R4's max_endurance budget over the option's capacity range in
 // kCapacityPieces pieces [C_j, C_j+1] (geometric): on a piece every pack holds at most C_j+1's

@@ -151,27 +151,40 @@ struct KindTerms {
     return bound;
   }
 };
+// keep_floors: the other segments' terms kept in loads->floors (SegmentEnergyFloor, R13).
 KindTerms TermsOfPowers(const SearchContext& ctx, const MissionFacts& f, const ClassPowers& p, std::size_t pi,
-                        std::size_t o, PairLoads* loads, bool stretch_only = false) {
+                        std::size_t o, PairLoads* loads, bool stretch_only = false, bool keep_floors = false) {
   const PropEntry& prop = ctx.catalog->props()[pi];
   KindTerms out;
   for (int lossy = 0; lossy < 2; ++lossy) {
     out.has[lossy] = p.has[lossy];
     if (p.has[lossy]) {
-      out.terms[lossy] =
-          ScoreLowerBoundTerms(ctx, f, lossy == 1, prop, *ctx.models[pi], o, loads, p.pdc_min[lossy], stretch_only);
+      out.terms[lossy] = ScoreLowerBoundTerms(ctx, f, lossy == 1, prop, *ctx.models[pi], o, loads, p.pdc_min[lossy],
+                                              stretch_only, keep_floors ? &loads->floors[lossy] : nullptr);
     }
   }
   return out;
 }
 
-// R13's piece bound from below without the piece's own other segments: its stretch power with
-// the first piece's other segments' energy (a lighter vehicle's, M3; 0, which energy is not
-// below, for a kind the first piece lacks). At most the piece's bound.
-double StretchOnlyBound(KindTerms piece, const KindTerms& first, double budget_ah) {
-  for (int lossy = 0; lossy < 2; ++lossy) {
-    piece.terms[lossy].e_other_j = first.has[lossy] ? first.terms[lossy].e_other_j : 0.0;
+// R13: the other segments' energy of a heavier piece from below, per kind: from the first piece's
+// terms (loads->floors, when kept) with that kind's PDC bound pdc_lb_w[kind]
+// (OtherEnergyAtLeastJ), else the first piece's energy (a lighter vehicle's, M3), or 0 (which
+// energy is not below) for a kind the first piece lacks.
+struct OtherEnergyFloor {
+  const KindTerms* first = nullptr;
+  const PairLoads* loads = nullptr;  // null: no floors kept
+  double avionics_w = 0;
+  double At(int lossy, double pdc_lb_w) const {
+    if (!first->has[lossy]) return 0.0;
+    if (!loads) return first->terms[lossy].e_other_j;
+    return OtherEnergyAtLeastJ(loads->floors[lossy], pdc_lb_w, avionics_w);
   }
+};
+
+// R13's piece bound from below without the piece's own other segments: its stretch power with
+// the other segments' energy from below (OtherEnergyFloor). At most the piece's bound.
+double StretchOnlyBound(KindTerms piece, const ClassPowers& p, const OtherEnergyFloor& e, double budget_ah) {
+  for (int lossy = 0; lossy < 2; ++lossy) piece.terms[lossy].e_other_j = e.At(lossy, p.pdc_min[lossy]);
   return piece.At(budget_ah);
 }
 
@@ -220,12 +233,14 @@ PdcGrowth PdcGrowthOf(const SearchContext& ctx, const MotorSetup& s, std::size_t
 // The first piece's terms with each kind's stretch power raised to the drive's term at
 // `factor` times its PDC (PdcGrowth): a lower bound of a heavier piece's bound when every
 // kind of class the motor has passes R3 at the first piece.
-double GrownStretchBound(KindTerms first, const ClassPowers& lightest, double factor, double avionics_w,
+double GrownStretchBound(KindTerms first, const ClassPowers& lightest, double factor, const OtherEnergyFloor& e,
                          double budget_ah) {
   for (int lossy = 0; lossy < 2; ++lossy) {
     if (!first.has[lossy]) continue;
     ScoreBoundTerms& t = first.terms[lossy];
-    t.p_stretch_w = t.StretchPowerAtLeastW(factor * lightest.pdc_min[lossy], avionics_w);
+    const double pdc_lb_w = factor * lightest.pdc_min[lossy];
+    t.p_stretch_w = t.StretchPowerAtLeastW(pdc_lb_w, e.avionics_w);
+    t.e_other_j = e.At(lossy, pdc_lb_w);
   }
   return first.At(budget_ah);
 }
@@ -273,8 +288,13 @@ bool PairCandidate(const SearchContext& ctx, const MissionFacts& f, const MotorS
   // not below); assembled only when that is below the cutoff.
   KindTerms first = TermsOfPowers(ctx, f, lightest, pi, o, loads, !edges.empty());
   double bound = kInf;
+  const double avionics_w = ctx.mission->vehicle.avionics_power_w;
+  OtherEnergyFloor e_floor{&first, nullptr, avionics_w};
   if (edges.empty() || f.every_capacity_piece || !(first.At(edges[1]) >= cutoff)) {
-    if (!edges.empty()) first = TermsOfPowers(ctx, f, lightest, pi, o, loads);
+    if (!edges.empty()) {
+      first = TermsOfPowers(ctx, f, lightest, pi, o, loads, false, true);
+      e_floor.loads = loads;
+    }
     bound = first.At(edges.empty() ? bo.capacity_hi_ah : edges[1]);
   } else {
     ++loads->pieces_skipped;
@@ -287,7 +307,6 @@ bool PairCandidate(const SearchContext& ctx, const MissionFacts& f, const MotorS
   const PdcGrowth growth = edges.size() < 3 || f.every_capacity_piece || !EveryKindPasses(ctx, s, o, lightest)
                                ? PdcGrowth{}
                                : PdcGrowthOf(ctx, s, o, omega_lb, q_lb);
-  const double avionics_w = ctx.mission->vehicle.avionics_power_w;
   for (std::size_t j = edges.size() < 3 ? 0 : edges.size() - 2; j > 0; --j) {
     const double target = std::min(bound, cutoff);
     if (!f.every_capacity_piece && first.At(edges[j + 1]) >= target) {
@@ -300,14 +319,14 @@ bool PairCandidate(const SearchContext& ctx, const MissionFacts& f, const MotorS
     double w = 0, q = 0;
     HoverGridPointFromBelow(f, ctx.grids[pi], loads, &w, &q);
     if (growth.ok &&
-        GrownStretchBound(first, lightest, growth.Factor(s.mp, w, q), avionics_w, edges[j + 1]) >= target) {
+        GrownStretchBound(first, lightest, growth.Factor(s.mp, w, q), e_floor, edges[j + 1]) >= target) {
       ++loads->pieces_skipped;
       continue;
     }
     const ClassPowers p = HoverPowersOfClasses(ctx, s, o, w, q);
     if (!p.Any()) continue;  // no feasible point here (nor in a heavier piece, M1-M3)
     if (!f.every_capacity_piece &&
-        StretchOnlyBound(TermsOfPowers(ctx, f, p, pi, o, loads, true), first, edges[j + 1]) >= target) {
+        StretchOnlyBound(TermsOfPowers(ctx, f, p, pi, o, loads, true), p, e_floor, edges[j + 1]) >= target) {
       ++loads->pieces_skipped;
       continue;
     }
@@ -336,11 +355,10 @@ double PropOnlyBound(const SearchContext& ctx, const MissionFacts& f, std::size_
         omega_lb * q_lb + loss.copper_w_per_nm2 * q_lb * q_lb + loss.no_load_torque_nm * omega_lb;  // physics.h
     return kKeyRoundingAllowance * pac_floor_w;
   };
-  auto terms_with = [&](double pdc_lb_w, bool stretch_only) {
+  auto terms_with = [&](double pdc_lb_w, bool stretch_only, std::vector<SegmentEnergyFloor>* floors = nullptr) {
     return ScoreLowerBoundTerms(ctx, f, true, ctx.catalog->props()[pi], *ctx.models[pi], o, loads, pdc_lb_w,
-                                stretch_only);
+                                stretch_only, floors);
   };
-  auto terms_at = [&](double pack_kg, bool stretch_only) { return terms_with(floor_at(pack_kg), stretch_only); };
   auto key_of = [](const ScoreBoundTerms& t, double budget_ah) {
     const double b = t.At(budget_ah);
     return std::isnan(b) ? -kInf : b;
@@ -349,8 +367,8 @@ double PropOnlyBound(const SearchContext& ctx, const MissionFacts& f, std::size_
   // pieces assembled only while they can be the least (as PairCandidate).
   std::vector<double> scratch;
   const std::vector<double>& edges = PieceEdges(ctx, f, o, &scratch);
-  const ScoreBoundTerms first = terms_at(bo.mass_lo_kg, false);
-  if (edges.empty()) return key_of(first, bo.capacity_hi_ah);
+  if (edges.empty()) return key_of(terms_with(floor_at(bo.mass_lo_kg), false), bo.capacity_hi_ah);
+  const ScoreBoundTerms first = terms_with(floor_at(bo.mass_lo_kg), false, &loads->floors[1]);
   double least = key_of(first, edges[1]);
   for (std::size_t j = edges.size() - 2; j > 0; --j) {
     if (!f.every_capacity_piece && key_of(first, edges[j + 1]) >= least) {
@@ -361,14 +379,16 @@ double PropOnlyBound(const SearchContext& ctx, const MissionFacts& f, std::size_
     if (!f.every_capacity_piece) {
       // The first piece's terms with the stretch's drive term at this piece's floor (its own
       // stretch power is at least that and the first's, M1-M3), then its own stretch power.
+      const double avionics_w = ctx.mission->vehicle.avionics_power_w;
       ScoreBoundTerms grown = first;
-      grown.p_stretch_w = first.StretchPowerAtLeastW(pdc_lb_w, ctx.mission->vehicle.avionics_power_w);
+      grown.p_stretch_w = first.StretchPowerAtLeastW(pdc_lb_w, avionics_w);
+      grown.e_other_j = OtherEnergyAtLeastJ(loads->floors[1], pdc_lb_w, avionics_w);  // a lighter vehicle's terms
       if (key_of(grown, edges[j + 1]) >= least) {
         ++loads->pieces_skipped;
         continue;
       }
       ScoreBoundTerms stretch = terms_with(pdc_lb_w, true);
-      stretch.e_other_j = first.e_other_j;  // a lighter vehicle's (M3)
+      stretch.e_other_j = grown.e_other_j;
       if (key_of(stretch, edges[j + 1]) >= least) {
         ++loads->pieces_skipped;
         continue;
