@@ -313,15 +313,30 @@ bool PairCandidate(const SearchContext& ctx, const MissionFacts& f, const MotorS
       ++loads->pieces_skipped;
       continue;
     }
-    loads->Reset(std::max(VehicleMassKg(ctx, PackMassLowerBoundKg(bo, edges[j]), s.mass_kg, ctx.grids[pi].mass_kg,
-                                        ctx.escs.min_mass_kg[o]),
-                          window_floor_kg));
+    const double mass_kg = std::max(VehicleMassKg(ctx, PackMassLowerBoundKg(bo, edges[j]), s.mass_kg,
+                                                  ctx.grids[pi].mass_kg, ctx.escs.min_mass_kg[o]),
+                                    window_floor_kg);
+    loads->Reset(mass_kg);
     double w = 0, q = 0;
     HoverGridPointFromBelow(f, ctx.grids[pi], loads, &w, &q);
-    if (growth.ok &&
-        GrownStretchBound(first, lightest, growth.Factor(s.mp, w, q), e_floor, edges[j + 1]) >= target) {
+    auto grown_out = [&]() {
+      return growth.ok && GrownStretchBound(first, lightest, growth.Factor(s.mp, w, q), e_floor, edges[j + 1]) >= target;
+    };
+    if (!f.every_capacity_piece && grown_out()) {
       ++loads->pieces_skipped;
       continue;
+    }
+    if (!f.every_capacity_piece && !e_floor.loads) {
+      // The first piece was passed over below the cutoff: its other segments are assembled now
+      // (once; the tests of this piece and the lighter ones then take them, SegmentEnergyFloor).
+      loads->Reset(mass_lb);
+      first = TermsOfPowers(ctx, f, lightest, pi, o, loads, false, true);
+      e_floor.loads = loads;
+      loads->Reset(mass_kg);
+      if (first.At(edges[j + 1]) >= target || grown_out()) {
+        ++loads->pieces_skipped;
+        continue;
+      }
     }
     const ClassPowers p = HoverPowersOfClasses(ctx, s, o, w, q);
     if (!p.Any()) continue;  // no feasible point here (nor in a heavier piece, M1-M3)
@@ -378,18 +393,15 @@ double PropOnlyBound(const SearchContext& ctx, const MissionFacts& f, std::size_
     const double pdc_lb_w = floor_at(PackMassLowerBoundKg(bo, edges[j]));
     if (!f.every_capacity_piece) {
       // The first piece's terms with the stretch's drive term at this piece's floor (its own
-      // stretch power is at least that and the first's, M1-M3), then its own stretch power.
+      // stretch power is at least that and the first's, M1-M3) and its other segments' terms
+      // at that floor (OtherEnergyAtLeastJ).
+      // (Its own stretch power with these other segments, the pairs' next test, passed over
+      // 1 k more of the capacity-sized quadcopter's 181 k pieces: not taken.)
       const double avionics_w = ctx.mission->vehicle.avionics_power_w;
       ScoreBoundTerms grown = first;
       grown.p_stretch_w = first.StretchPowerAtLeastW(pdc_lb_w, avionics_w);
       grown.e_other_j = OtherEnergyAtLeastJ(loads->floors[1], pdc_lb_w, avionics_w);  // a lighter vehicle's terms
       if (key_of(grown, edges[j + 1]) >= least) {
-        ++loads->pieces_skipped;
-        continue;
-      }
-      ScoreBoundTerms stretch = terms_with(pdc_lb_w, true);
-      stretch.e_other_j = grown.e_other_j;
-      if (key_of(stretch, edges[j + 1]) >= least) {
         ++loads->pieces_skipped;
         continue;
       }
