@@ -65,8 +65,29 @@ double BudgetScore(double t_fixed_max_s, double e_max_j, double e_other_j, doubl
 // Groups (G1): the rules below speak of the free group's segments only; a segment of a fixed
 // group draws at least P_avionics (its drive's power is >= 0), and every group's mass is in
 // mass_lb and mass_ub, so each bound stays a bound.
+std::vector<std::size_t> LoadTwins(const Mission& m) {
+  const std::vector<Segment>& sgs = m.segments;
+  std::vector<std::size_t> twin(sgs.size());
+  for (std::size_t i = 0; i < sgs.size(); ++i) {
+    const Segment& a = sgs[i];
+    twin[i] = i;
+    for (std::size_t j = 0; j < i; ++j) {
+      const Segment& b = sgs[j];
+      if (a.type == b.type && a.group == b.group && a.climb_rate_m_s == b.climb_rate_m_s &&
+          a.airspeed_m_s.lo == b.airspeed_m_s.lo && a.airspeed_m_s.hi == b.airspeed_m_s.hi &&
+          a.lift_to_drag == b.lift_to_drag && a.lift_to_drag_of == b.lift_to_drag_of &&
+          a.rotors_active == b.rotors_active) {
+        twin[i] = twin[j];
+        break;
+      }
+    }
+  }
+  return twin;
+}
+
 MissionFacts FactsOf(const Mission& m, int free_group) {
   MissionFacts f;
+  f.load_twin = LoadTwins(m);
   for (std::size_t i = 0; i < m.segments.size(); ++i) {
     if (m.segments[i].type == SegmentType::kHover && m.segments[i].group == free_group) {
       f.hover.push_back(static_cast<int>(i));
@@ -181,7 +202,9 @@ ScoreBoundTerms ScoreLowerBoundTerms(const SearchContext& ctx, const MissionFact
           !(sg.type == SegmentType::kCruise && sg.airspeed_m_s.free())) {
         x.momentum_j = loads->PerSegment(si, [&]() {
           const double v = sg.type == SegmentType::kCruise ? sg.airspeed_m_s.lo : 0.0;
-          return MomentumPowerW(m, loads->At(si, false, v), prop.diameter_m, table_data) * SegmentDurationS(sg, v);
+          const double p_w = loads->PerLoad(
+              si, [&]() { return MomentumPowerW(m, loads->At(si, false, v), prop.diameter_m, table_data); });
+          return p_w * SegmentDurationS(sg, v);
         });
         e_seg = std::max(e_seg, x.momentum_j);
       }

@@ -35,6 +35,8 @@ struct MissionFacts {
   // R13's pieces all assembled at their own mass (none passed over while it cannot be the
   // least): the same bounds, for the tests that check so.
   bool every_capacity_piece = false;
+  // LoadTwins of the mission.
+  std::vector<std::size_t> load_twin;
   // Stage 4 only (StageFourFacts): CapacityPieceEdges per battery option, computed once.
   std::vector<std::vector<double>> capacity_edges;
 };
@@ -46,6 +48,12 @@ MissionFacts FactsOf(const Mission& m, int free_group);
 
 // FactsOf with what stage 4 reads per propeller (R0) and per pair (R7) worked out once.
 MissionFacts StageFourFacts(const SearchContext& ctx);
+
+// Per segment, the first segment (itself or an earlier one) whose rotor load is the same function
+// of the vehicle mass (SegmentRotorLoad reads the same fields: type, group, climb rate, airspeed
+// range, lift-to-drag and its reference, active rotors): such segments share one load, the same
+// numbers (an out-and-back mission's two cruises).
+std::vector<std::size_t> LoadTwins(const Mission& m);
 
 // One of the other segments' terms of R4's max_endurance energy (ScoreLowerBoundTerms) at one
 // vehicle mass, kept so that a heavier vehicle's can be bounded from below without its own
@@ -62,12 +70,14 @@ struct SegmentEnergyFloor {
 // numbers, so the bounds do not change).
 class PairLoads {
  public:
-  explicit PairLoads(const Mission& m) : m_(m), lo_(m.segments.size()), hi_(m.segments.size()) {}
+  explicit PairLoads(const Mission& m)
+      : m_(m), lo_(m.segments.size()), hi_(m.segments.size()), twin_(LoadTwins(m)) {}
   void Reset(double mass_kg) {
     mass_kg_ = mass_kg;
     for (auto& x : lo_) x.first = false;
     for (auto& x : hi_) x.first = false;
     for (auto& x : energy_) x.first = false;
+    for (auto& x : momentum_) x.first = false;
     for (auto& x : terms_) x.known = false;
   }
   // A segment's power bound as ScoreLowerBound's p_lb_of needs it: scales (rotors x the
@@ -97,6 +107,15 @@ class PairLoads {
     if (!x.first) x = {true, f()};
     return x.second;
   }
+  // A number that depends only on the pair and the segment's load (LoadTwins), computed by f()
+  // once per pair and load (ScoreLowerBound's momentum power).
+  template <typename F>
+  double PerLoad(std::size_t si, const F& f) {
+    if (momentum_.size() != lo_.size()) momentum_.assign(lo_.size(), {false, 0.0});
+    std::pair<bool, double>& x = momentum_[twin_[si]];
+    if (!x.first) x = {true, f()};
+    return x.second;
+  }
   // The segment's load at airspeed v_m_s, which must be the same value per (segment, high) for
   // one mass (the callers pass airspeed_m_s.lo or .hi, or 0).
   double mass_kg() const { return mass_kg_; }
@@ -105,6 +124,7 @@ class PairLoads {
   // Scratch for the first piece's SegmentEnergyFloor per kind of drive ([DriveIsLossy]).
   std::vector<SegmentEnergyFloor> floors[2];
   const RotorLoad& At(std::size_t si, bool high, double v_m_s) {
+    si = twin_[si];
     std::pair<bool, RotorLoad>& x = (high ? hi_ : lo_)[si];
     if (!x.first) x = {true, SegmentRotorLoad(m_, m_.segments[si], mass_kg_, v_m_s)};
     return x.second;
@@ -114,7 +134,8 @@ class PairLoads {
   const Mission& m_;
   double mass_kg_ = 0;
   std::vector<std::pair<bool, RotorLoad>> lo_, hi_;
-  std::vector<std::pair<bool, double>> energy_;
+  std::vector<std::size_t> twin_;
+  std::vector<std::pair<bool, double>> energy_, momentum_;
   std::vector<PowerTerm> terms_;
 };
 

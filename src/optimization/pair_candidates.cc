@@ -181,11 +181,21 @@ struct OtherEnergyFloor {
   }
 };
 
-// R13's piece bound from below without the piece's own other segments: its stretch power with
-// the other segments' energy from below (OtherEnergyFloor). At most the piece's bound.
-double StretchOnlyBound(KindTerms piece, const ClassPowers& p, const OtherEnergyFloor& e, double budget_ah) {
-  for (int lossy = 0; lossy < 2; ++lossy) piece.terms[lossy].e_other_j = e.At(lossy, p.pdc_min[lossy]);
-  return piece.At(budget_ah);
+// R13's piece bound from below with its own R3 (p) and the first piece's terms: per kind of
+// class the piece has, the first piece's stretch power raised to the drive's term at the piece's
+// PDC (StretchPowerAtLeastW) and the other segments' energy from below (OtherEnergyFloor); -inf
+// when the first piece lacks a kind the piece has. At most the piece's bound.
+double OwnPdcBound(const KindTerms& first, const ClassPowers& p, const OtherEnergyFloor& e, double budget_ah) {
+  double bound = kInf;
+  for (int lossy = 0; lossy < 2; ++lossy) {
+    if (!p.has[lossy]) continue;
+    if (!first.has[lossy]) return -kInf;
+    ScoreBoundTerms t = first.terms[lossy];
+    t.p_stretch_w = t.StretchPowerAtLeastW(p.pdc_min[lossy], e.avionics_w);
+    t.e_other_j = e.At(lossy, p.pdc_min[lossy]);
+    bound = std::min(bound, t.At(budget_ah));
+  }
+  return bound;
 }
 
 // R13's heavier pieces from the first piece's drive (docs/search.md#r13, "a heavier piece's
@@ -310,8 +320,10 @@ bool PairCandidate(const SearchContext& ctx, const MissionFacts& f, const MotorS
   for (std::size_t j = edges.size() < 3 ? 0 : edges.size() - 2; j > 0; --j) {
     const double target = std::min(bound, cutoff);
     if (!f.every_capacity_piece && first.At(edges[j + 1]) >= target) {
-      ++loads->pieces_skipped;
-      continue;
+      // So are the lighter pieces': a smaller budget scores no better (BudgetScore), and the
+      // target only falls.
+      loads->pieces_skipped += static_cast<long long>(j);
+      break;
     }
     const double mass_kg = std::max(VehicleMassKg(ctx, PackMassLowerBoundKg(bo, edges[j]), s.mass_kg,
                                                   ctx.grids[pi].mass_kg, ctx.escs.min_mass_kg[o]),
@@ -340,8 +352,9 @@ bool PairCandidate(const SearchContext& ctx, const MissionFacts& f, const MotorS
     }
     const ClassPowers p = HoverPowersOfClasses(ctx, s, o, w, q);
     if (!p.Any()) continue;  // no feasible point here (nor in a heavier piece, M1-M3)
-    if (!f.every_capacity_piece &&
-        StretchOnlyBound(TermsOfPowers(ctx, f, p, pi, o, loads, true), p, e_floor, edges[j + 1]) >= target) {
+    // (Its own stretch power, momentum theory's included, would cost an assembly of the
+    // stretch per piece: the keys' measure, docs/search.md#r13, found it not worth it.)
+    if (!f.every_capacity_piece && OwnPdcBound(first, p, e_floor, edges[j + 1]) >= target) {
       ++loads->pieces_skipped;
       continue;
     }
@@ -387,8 +400,8 @@ double PropOnlyBound(const SearchContext& ctx, const MissionFacts& f, std::size_
   double least = key_of(first, edges[1]);
   for (std::size_t j = edges.size() - 2; j > 0; --j) {
     if (!f.every_capacity_piece && key_of(first, edges[j + 1]) >= least) {
-      ++loads->pieces_skipped;
-      continue;
+      loads->pieces_skipped += static_cast<long long>(j);  // and the lighter pieces (as PairCandidate)
+      break;
     }
     const double pdc_lb_w = floor_at(PackMassLowerBoundKg(bo, edges[j]));
     if (!f.every_capacity_piece) {
