@@ -357,6 +357,23 @@ bool HoverSpeedBelowWindowAtMass(const SearchContext& ctx, const MissionFacts& f
 // The hover bound's speed and torque from below (R2): the last grid point whose thrust is at
 // most the first hover segment's per-rotor thrust at the mass of `loads` (0, 0 without a
 // hover segment, a monotone grid or such a point). Returns the grid index (0 when none).
+void HoverGridPointInBracket(const MissionFacts& f, const PropGrid& g, PairLoads* loads, int* lo, int hi,
+                             double* omega_lb, double* q_lb) {
+  *omega_lb = 0;
+  *q_lb = 0;
+  if (f.hover.empty() || !g.monotone) {
+    *lo = -1;
+    return;
+  }
+  const RotorLoad& load = loads->At(static_cast<std::size_t>(f.hover[0]), false, 0.0);
+  // Every grid thrust up to *lo is at or below the load's and every one after hi above it.
+  const double* it = std::upper_bound(g.thrust + (*lo + 1), g.thrust + (hi + 1), load.thrust_per_rotor_n);
+  *lo = static_cast<int>(it - g.thrust) - 1;
+  if (*lo < 0) return;
+  *omega_lb = g.omega[*lo];
+  *q_lb = g.torque_suffix_min[*lo];
+}
+
 int HoverGridPointFromBelow(const MissionFacts& f, const PropGrid& g, PairLoads* loads, double* omega_lb, double* q_lb) {
   *omega_lb = 0;
   *q_lb = 0;
@@ -380,13 +397,16 @@ int HoverGridPointFromBelow(const MissionFacts& f, const PropGrid& g, PairLoads*
 // w_nl: the largest no-load speed of the motor's zero-resistance drives at full throttle and
 // the option's full-charge voltage (R7; the same for every propeller, computed once per option).
 const char* PropRule(const SearchContext& ctx, const MissionFacts& f, double motor_kg, double w_nl, std::size_t pi,
-                     std::size_t o, PairLoads* loads, double* omega_lb, double* q_lb) {
+                     std::size_t o, PairLoads* loads, double* omega_lb, double* q_lb, int* lb_idx) {
   const Mission& m = *ctx.mission;
   const MissionConstraints& k = m.constraints;
   const PropEntry& prop = ctx.catalog->props()[pi];
   const PropGrid& g = ctx.grids[pi];
   const BatteryOption& bo = ctx.options[o];
-  const int lb_idx = HoverGridPointFromBelow(f, g, loads, omega_lb, q_lb);  // grid index of omega_lb
+  int raw_idx = -1;
+  HoverGridPointInBracket(f, g, loads, &raw_idx, kGrid - 1, omega_lb, q_lb);
+  if (lb_idx) *lb_idx = raw_idx;
+  const int lb_idx_0 = std::max(0, raw_idx);  // grid index of omega_lb (0 when none)
   if (!f.hover.empty() && g.monotone) {
     // R6: the hover speed lies between omega_lb and the first grid speed whose thrust reaches
     // T_ub (the heaviest the vehicle can be); if the data break momentum theory (figure of
@@ -394,13 +414,13 @@ const char* PropRule(const SearchContext& ctx, const MissionFacts& f, double mot
     // prop_figure_of_merit (mission_eval.cc). The 2 % allowance covers the variation between
     // grid points. T_ub >= T_lb (M3) puts hi_idx at or above lb_idx, so when the point at
     // lb_idx keeps the limit the rule cannot fire and T_ub is not needed.
-    if (g.fom_ok_next[lb_idx] != lb_idx) {
+    if (g.fom_ok_next[lb_idx_0] != lb_idx_0) {
       const double mass_ub = VehicleMassKg(ctx, bo.mass_hi_kg, motor_kg, g.mass_kg, ctx.escs.max_mass_kg[o]);
       const RotorLoad load_ub = SegmentRotorLoad(m, m.segments[f.hover[0]], mass_ub, 0.0);
       const double* it_ub = std::lower_bound(g.thrust, g.thrust + kGrid, load_ub.thrust_per_rotor_n);
       const int hi_idx = std::min(static_cast<int>(it_ub - g.thrust), kGrid - 1);
       // Every grid point of [lb_idx, hi_idx] above 1.02 x the limit (fom_ok_next, BuildPropGrids).
-      if (it_ub != g.thrust + kGrid && (lb_idx > hi_idx || g.fom_ok_next[lb_idx] > hi_idx)) return "prop_figure_of_merit";
+      if (it_ub != g.thrust + kGrid && (lb_idx_0 > hi_idx || g.fom_ok_next[lb_idx_0] > hi_idx)) return "prop_figure_of_merit";
     }
   }
   if (ctx.models[pi]->data_kind() != PropDataKind::kTables || prop.j_tables.empty()) {

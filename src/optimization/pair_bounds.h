@@ -228,14 +228,21 @@ double SegmentwiseBoundPieces(const SearchContext& ctx, const MissionFacts& f, c
 // most the first hover segment's per-rotor thrust at the mass of `loads` (0, 0 without a
 // hover segment, a monotone grid or such a point). Returns the grid index (0 when none).
 int HoverGridPointFromBelow(const MissionFacts& f, const PropGrid& g, PairLoads* loads, double* omega_lb, double* q_lb);
+// The same point when its raw grid index (-1: no grid thrust at or below the load's) is known to
+// lie in [*lo, hi]: at a vehicle at least as heavy as the one whose raw index is *lo and no
+// heavier than the one whose raw index is hi (the load's thrust rises with the mass, M3, the
+// grid's with the index, M1); found in that bracket. *lo is set to the point's raw index.
+void HoverGridPointInBracket(const MissionFacts& f, const PropGrid& g, PairLoads* loads, int* lo, int hi,
+                             double* omega_lb, double* q_lb);
 
 // R2, R6, R7 for one (motor, propeller, option) pair whose propeller passed R0 (counted per
 // motor, MotorSetUp): the rule that removes it, or null. Sets omega_lb, q_lb (R2) for the
 // hover bound.
 // w_nl: the largest no-load speed of the motor's zero-resistance drives at full throttle and
 // the option's full-charge voltage (R7; the same for every propeller, computed once per option).
+// lb_idx (optional): the raw grid index of (omega_lb, q_lb), -1 when none (HoverGridPointInBracket).
 const char* PropRule(const SearchContext& ctx, const MissionFacts& f, double motor_kg, double w_nl, std::size_t pi,
-                     std::size_t o, PairLoads* loads, double* omega_lb, double* q_lb);
+                     std::size_t o, PairLoads* loads, double* omega_lb, double* q_lb, int* lb_idx = nullptr);
 
 // R9 with the mission's facts and the motor's scenario parameters given (BranchAndBound calls it
 // per ESC).

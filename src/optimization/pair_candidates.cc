@@ -276,8 +276,9 @@ bool PairCandidate(const SearchContext& ctx, const MissionFacts& f, const MotorS
   const double mass_lb = std::max(
       VehicleMassKg(ctx, bo.mass_lo_kg, s.mass_kg, ctx.grids[pi].mass_kg, ctx.escs.min_mass_kg[o]), window_floor_kg);
   double omega_lb = 0, q_lb = 0;
+  int first_idx = -1;  // the first piece's raw grid index (HoverGridPointInBracket)
   loads->Reset(mass_lb);
-  if (const char* rule = PropRule(ctx, f, s.mass_kg, s.w_nl[o], pi, o, loads, &omega_lb, &q_lb)) {
+  if (const char* rule = PropRule(ctx, f, s.mass_kg, s.w_nl[o], pi, o, loads, &omega_lb, &q_lb, &first_idx)) {
     pruned->Add(rule, per_pair);
     return false;
   }
@@ -317,6 +318,7 @@ bool PairCandidate(const SearchContext& ctx, const MissionFacts& f, const MotorS
   const PdcGrowth growth = edges.size() < 3 || f.every_capacity_piece || !EveryKindPasses(ctx, s, o, lightest)
                                ? PdcGrowth{}
                                : PdcGrowthOf(ctx, s, o, omega_lb, q_lb);
+  int heavier_idx = kGrid - 1;  // the last piece's raw grid index: the pieces go heaviest first
   for (std::size_t j = edges.size() < 3 ? 0 : edges.size() - 2; j > 0; --j) {
     const double target = std::min(bound, cutoff);
     if (!f.every_capacity_piece && first.At(edges[j + 1]) >= target) {
@@ -330,7 +332,9 @@ bool PairCandidate(const SearchContext& ctx, const MissionFacts& f, const MotorS
                                     window_floor_kg);
     loads->Reset(mass_kg);
     double w = 0, q = 0;
-    HoverGridPointFromBelow(f, ctx.grids[pi], loads, &w, &q);
+    int idx = first_idx;
+    HoverGridPointInBracket(f, ctx.grids[pi], loads, &idx, heavier_idx, &w, &q);
+    heavier_idx = idx;
     auto grown_out = [&]() {
       return growth.ok && GrownStretchBound(first, lightest, growth.Factor(s.mp, w, q), e_floor, edges[j + 1]) >= target;
     };
@@ -374,11 +378,17 @@ double PropOnlyBound(const SearchContext& ctx, const MissionFacts& f, std::size_
   const BatteryOption& bo = ctx.options[o];
   const PropGrid& g = ctx.grids[pi];
   // The floor of the hover's per-rotor power at the vehicle with a pack of pack_kg (loads set
-  // to that mass), and R4's terms with it.
+  // to that mass), and R4's terms with it. The raw grid indices (HoverGridPointInBracket) of the first piece and of the last piece
+  // (the pieces go heaviest first), which bracket every later piece's.
+  int first_idx = -1, heavier_idx = kGrid - 1;
+  bool first_call = true;  // the first piece's
   auto floor_at = [&](double pack_kg) {
     loads->Reset(VehicleMassKg(ctx, pack_kg, motor_kg, g.mass_kg, ctx.escs.min_mass_kg[o]));
     double omega_lb = 0, q_lb = 0;
-    HoverGridPointFromBelow(f, g, loads, &omega_lb, &q_lb);
+    int idx = first_idx;
+    HoverGridPointInBracket(f, g, loads, &idx, heavier_idx, &omega_lb, &q_lb);
+    (first_call ? first_idx : heavier_idx) = idx;
+    first_call = false;
     const double pac_floor_w =
         omega_lb * q_lb + loss.copper_w_per_nm2 * q_lb * q_lb + loss.no_load_torque_nm * omega_lb;  // physics.h
     return kKeyRoundingAllowance * pac_floor_w;
