@@ -32,7 +32,7 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 // pair (PairLoads::Term). Requires a hover segment (f.hover not empty).
 double SegmentPowerLowerBoundW(const SearchContext& ctx, const MissionFacts& f, const PropEntry& prop,
                                const PropModel& model, std::size_t option, PairLoads* loads, std::size_t si,
-                               double pdc_lb) {
+                               double pdc_lb, int* scaled_rotors = nullptr) {
   const Mission& m = *ctx.mission;
   const PairLoads::PowerTerm& t = loads->Term(si, [&](PairLoads::PowerTerm* x) {
     const Segment& sg = m.segments[si];
@@ -53,6 +53,7 @@ double SegmentPowerLowerBoundW(const SearchContext& ctx, const MissionFacts& f, 
       }
     }
   });
+  if (scaled_rotors) *scaled_rotors = t.scales ? t.rotors : 0;
   return t.scales ? t.rotors * pdc_lb + m.vehicle.avionics_power_w : t.constant;
 }
 
@@ -64,8 +65,29 @@ double BudgetScore(double t_fixed_max_s, double e_max_j, double e_other_j, doubl
 // Groups (G1): the rules below speak of the free group's segments only; a segment of a fixed
 // group draws at least P_avionics (its drive's power is >= 0), and every group's mass is in
 // mass_lb and mass_ub, so each bound stays a bound.
+std::vector<std::size_t> LoadTwins(const Mission& m) {
+  const std::vector<Segment>& sgs = m.segments;
+  std::vector<std::size_t> twin(sgs.size());
+  for (std::size_t i = 0; i < sgs.size(); ++i) {
+    const Segment& a = sgs[i];
+    twin[i] = i;
+    for (std::size_t j = 0; j < i; ++j) {
+      const Segment& b = sgs[j];
+      if (a.type == b.type && a.group == b.group && a.climb_rate_m_s == b.climb_rate_m_s &&
+          a.airspeed_m_s.lo == b.airspeed_m_s.lo && a.airspeed_m_s.hi == b.airspeed_m_s.hi &&
+          a.lift_to_drag == b.lift_to_drag && a.lift_to_drag_of == b.lift_to_drag_of &&
+          a.rotors_active == b.rotors_active) {
+        twin[i] = twin[j];
+        break;
+      }
+    }
+  }
+  return twin;
+}
+
 MissionFacts FactsOf(const Mission& m, int free_group) {
   MissionFacts f;
+  f.load_twin = LoadTwins(m);
   for (std::size_t i = 0; i < m.segments.size(); ++i) {
     if (m.segments[i].type == SegmentType::kHover && m.segments[i].group == free_group) {
       f.hover.push_back(static_cast<int>(i));
@@ -123,7 +145,7 @@ double MomentumPowerW(const Mission& m, const RotorLoad& ld, double diameter_m, 
 // of it that holds for a class of motors). loads: PairLoads at that mass.
 ScoreBoundTerms ScoreLowerBoundTerms(const SearchContext& ctx, const MissionFacts& f, bool lossy, const PropEntry& prop,
                                      const PropModel& model, std::size_t option, PairLoads* loads, double pdc_lb,
-                                     bool stretch_only) {
+                                     bool stretch_only, std::vector<SegmentEnergyFloor>* floors) {
   const BatteryOption& bo = ctx.options[option];
   const Mission& m = *ctx.mission;
   ScoreBoundTerms out;
@@ -168,18 +190,29 @@ ScoreBoundTerms ScoreLowerBoundTerms(const SearchContext& ctx, const MissionFact
   const bool table_data = model.data_kind() == PropDataKind::kTables && !prop.j_tables.empty();
   auto e_other_of = [&](std::size_t stretch) {
     double e_other = 0;
+    if (floors) floors->clear();
     for (std::size_t si = 0; si < m.segments.size(); ++si) {
       if (si == stretch) continue;
       const Segment& sg = m.segments[si];
-      double e_seg = p_lb_of(si) * t_min_of(sg);
+      SegmentEnergyFloor x;
+      const double p_lb = SegmentPowerLowerBoundW(ctx, f, prop, model, option, loads, si, pdc_lb, &x.rotors);
+      x.t_min_s = t_min_of(sg);
+      double e_seg = p_lb * x.t_min_s;
       if (lossy && sg.group == f.free_group && sg.type != SegmentType::kShaft &&
           !(sg.type == SegmentType::kCruise && sg.airspeed_m_s.free())) {
-        e_seg = std::max(e_seg, loads->PerSegment(si, [&]() {
+        x.momentum_j = loads->PerSegment(si, [&]() {
           const double v = sg.type == SegmentType::kCruise ? sg.airspeed_m_s.lo : 0.0;
-          return MomentumPowerW(m, loads->At(si, false, v), prop.diameter_m, table_data) * SegmentDurationS(sg, v);
-        }));
+          const double p_w = loads->PerLoad(
+              si, [&]() { return MomentumPowerW(m, loads->At(si, false, v), prop.diameter_m, table_data); });
+          return p_w * SegmentDurationS(sg, v);
+        });
+        e_seg = std::max(e_seg, x.momentum_j);
       }
       e_other += e_seg;
+      if (floors) {
+        x.constant_w = p_lb;
+        floors->push_back(x);
+      }
     }
     return e_other;
   };
@@ -192,7 +225,7 @@ ScoreBoundTerms ScoreLowerBoundTerms(const SearchContext& ctx, const MissionFact
     // one bound of a propeller whose grid is not monotone (no R2 point).
     const std::size_t ist = static_cast<std::size_t>(m.objective.segment_index);
     const double e_other = stretch_only ? 0.0 : e_other_of(ist);
-    double p_stretch = p_lb_of(ist);
+    double p_stretch = SegmentPowerLowerBoundW(ctx, f, prop, model, option, loads, ist, pdc_lb, &out.stretch_rotors);
     if (lossy) p_stretch = std::max(p_stretch, MomentumPowerW(m, loads->At(ist, false, 0.0), prop.diameter_m, false));
     out.budgeted = true;
     out.e_other_j = e_other;
@@ -208,7 +241,7 @@ ScoreBoundTerms ScoreLowerBoundTerms(const SearchContext& ctx, const MissionFact
     // stage can create energy, N*P_ideal(T, V)/max_figure_of_merit + P_avionics (the
     // evaluator's prop_figure_of_merit; V the axial inflow with forward-flight tables, else 0,
     // as PropellerPoint judges it), at the lightest mass (M3).
-    double p_stretch = p_lb_of(ist);
+    double p_stretch = SegmentPowerLowerBoundW(ctx, f, prop, model, option, loads, ist, pdc_lb, &out.stretch_rotors);
     if (lossy) {
       p_stretch = std::max(p_stretch, MomentumPowerW(m, loads->At(ist, false, st.airspeed_m_s.lo), prop.diameter_m, table_data));
     }
@@ -217,6 +250,19 @@ ScoreBoundTerms ScoreLowerBoundTerms(const SearchContext& ctx, const MissionFact
     out.p_stretch_w = p_stretch;
   }
   return out;
+}
+
+double OtherEnergyAtLeastJ(const std::vector<SegmentEnergyFloor>& floors, double pdc_lb_w, double avionics_w) {
+  double e = 0;
+  for (const SegmentEnergyFloor& x : floors) {
+    const double p_lb = x.rotors > 0 ? x.rotors * pdc_lb_w + avionics_w : x.constant_w;
+    e += std::max(p_lb * x.t_min_s, x.momentum_j);
+  }
+  return e;
+}
+
+double ScoreBoundTerms::StretchPowerAtLeastW(double pdc_lb_w, double avionics_w) const {
+  return stretch_rotors > 0 ? std::max(p_stretch_w, stretch_rotors * pdc_lb_w + avionics_w) : p_stretch_w;
 }
 
 double ScoreBoundTerms::At(double budget_ah) const {
@@ -311,6 +357,23 @@ bool HoverSpeedBelowWindowAtMass(const SearchContext& ctx, const MissionFacts& f
 // The hover bound's speed and torque from below (R2): the last grid point whose thrust is at
 // most the first hover segment's per-rotor thrust at the mass of `loads` (0, 0 without a
 // hover segment, a monotone grid or such a point). Returns the grid index (0 when none).
+void HoverGridPointInBracket(const MissionFacts& f, const PropGrid& g, PairLoads* loads, int* lo, int hi,
+                             double* omega_lb, double* q_lb) {
+  *omega_lb = 0;
+  *q_lb = 0;
+  if (f.hover.empty() || !g.monotone) {
+    *lo = -1;
+    return;
+  }
+  const RotorLoad& load = loads->At(static_cast<std::size_t>(f.hover[0]), false, 0.0);
+  // Every grid thrust up to *lo is at or below the load's and every one after hi above it.
+  const double* it = std::upper_bound(g.thrust + (*lo + 1), g.thrust + (hi + 1), load.thrust_per_rotor_n);
+  *lo = static_cast<int>(it - g.thrust) - 1;
+  if (*lo < 0) return;
+  *omega_lb = g.omega[*lo];
+  *q_lb = g.torque_suffix_min[*lo];
+}
+
 int HoverGridPointFromBelow(const MissionFacts& f, const PropGrid& g, PairLoads* loads, double* omega_lb, double* q_lb) {
   *omega_lb = 0;
   *q_lb = 0;
@@ -334,13 +397,16 @@ int HoverGridPointFromBelow(const MissionFacts& f, const PropGrid& g, PairLoads*
 // w_nl: the largest no-load speed of the motor's zero-resistance drives at full throttle and
 // the option's full-charge voltage (R7; the same for every propeller, computed once per option).
 const char* PropRule(const SearchContext& ctx, const MissionFacts& f, double motor_kg, double w_nl, std::size_t pi,
-                     std::size_t o, PairLoads* loads, double* omega_lb, double* q_lb) {
+                     std::size_t o, PairLoads* loads, double* omega_lb, double* q_lb, int* lb_idx) {
   const Mission& m = *ctx.mission;
   const MissionConstraints& k = m.constraints;
   const PropEntry& prop = ctx.catalog->props()[pi];
   const PropGrid& g = ctx.grids[pi];
   const BatteryOption& bo = ctx.options[o];
-  const int lb_idx = HoverGridPointFromBelow(f, g, loads, omega_lb, q_lb);  // grid index of omega_lb
+  int raw_idx = -1;
+  HoverGridPointInBracket(f, g, loads, &raw_idx, kGrid - 1, omega_lb, q_lb);
+  if (lb_idx) *lb_idx = raw_idx;
+  const int lb_idx_0 = std::max(0, raw_idx);  // grid index of omega_lb (0 when none)
   if (!f.hover.empty() && g.monotone) {
     // R6: the hover speed lies between omega_lb and the first grid speed whose thrust reaches
     // T_ub (the heaviest the vehicle can be); if the data break momentum theory (figure of
@@ -348,13 +414,13 @@ const char* PropRule(const SearchContext& ctx, const MissionFacts& f, double mot
     // prop_figure_of_merit (mission_eval.cc). The 2 % allowance covers the variation between
     // grid points. T_ub >= T_lb (M3) puts hi_idx at or above lb_idx, so when the point at
     // lb_idx keeps the limit the rule cannot fire and T_ub is not needed.
-    if (g.fom_ok_next[lb_idx] != lb_idx) {
+    if (g.fom_ok_next[lb_idx_0] != lb_idx_0) {
       const double mass_ub = VehicleMassKg(ctx, bo.mass_hi_kg, motor_kg, g.mass_kg, ctx.escs.max_mass_kg[o]);
       const RotorLoad load_ub = SegmentRotorLoad(m, m.segments[f.hover[0]], mass_ub, 0.0);
       const double* it_ub = std::lower_bound(g.thrust, g.thrust + kGrid, load_ub.thrust_per_rotor_n);
       const int hi_idx = std::min(static_cast<int>(it_ub - g.thrust), kGrid - 1);
       // Every grid point of [lb_idx, hi_idx] above 1.02 x the limit (fom_ok_next, BuildPropGrids).
-      if (it_ub != g.thrust + kGrid && (lb_idx > hi_idx || g.fom_ok_next[lb_idx] > hi_idx)) return "prop_figure_of_merit";
+      if (it_ub != g.thrust + kGrid && (lb_idx_0 > hi_idx || g.fom_ok_next[lb_idx_0] > hi_idx)) return "prop_figure_of_merit";
     }
   }
   if (ctx.models[pi]->data_kind() != PropDataKind::kTables || prop.j_tables.empty()) {

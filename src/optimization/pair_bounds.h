@@ -35,6 +35,8 @@ struct MissionFacts {
   // R13's pieces all assembled at their own mass (none passed over while it cannot be the
   // least): the same bounds, for the tests that check so.
   bool every_capacity_piece = false;
+  // LoadTwins of the mission.
+  std::vector<std::size_t> load_twin;
   // Stage 4 only (StageFourFacts): CapacityPieceEdges per battery option, computed once.
   std::vector<std::vector<double>> capacity_edges;
 };
@@ -47,17 +49,35 @@ MissionFacts FactsOf(const Mission& m, int free_group);
 // FactsOf with what stage 4 reads per propeller (R0) and per pair (R7) worked out once.
 MissionFacts StageFourFacts(const SearchContext& ctx);
 
+// Per segment, the first segment (itself or an earlier one) whose rotor load is the same function
+// of the vehicle mass (SegmentRotorLoad reads the same fields: type, group, climb rate, airspeed
+// range, lift-to-drag and its reference, active rotors): such segments share one load, the same
+// numbers (an out-and-back mission's two cruises).
+std::vector<std::size_t> LoadTwins(const Mission& m);
+
+// One of the other segments' terms of R4's max_endurance energy (ScoreLowerBoundTerms) at one
+// vehicle mass, kept so that a heavier vehicle's can be bounded from below without its own
+// assembly (R13, OtherEnergyAtLeastJ).
+struct SegmentEnergyFloor {
+  int rotors = 0;         // > 0: the power bound is rotors*pdc_lb + P_avionics
+  double constant_w = 0;  // else this (P_avionics, or a fixed group's G1 bound)
+  double t_min_s = 0;     // the segment's shortest duration
+  double momentum_j = -std::numeric_limits<double>::infinity();  // momentum theory's energy (-inf: none)
+};
+
 // The rotor loads of one pair's lightest mass (SegmentRotorLoad), computed once per pair
 // instead of once per ESC class: per segment at its lowest and highest airspeed (the same
 // numbers, so the bounds do not change).
 class PairLoads {
  public:
-  explicit PairLoads(const Mission& m) : m_(m), lo_(m.segments.size()), hi_(m.segments.size()) {}
+  explicit PairLoads(const Mission& m)
+      : m_(m), lo_(m.segments.size()), hi_(m.segments.size()), twin_(LoadTwins(m)) {}
   void Reset(double mass_kg) {
     mass_kg_ = mass_kg;
     for (auto& x : lo_) x.first = false;
     for (auto& x : hi_) x.first = false;
     for (auto& x : energy_) x.first = false;
+    for (auto& x : momentum_) x.first = false;
     for (auto& x : terms_) x.known = false;
   }
   // A segment's power bound as ScoreLowerBound's p_lb_of needs it: scales (rotors x the
@@ -87,12 +107,24 @@ class PairLoads {
     if (!x.first) x = {true, f()};
     return x.second;
   }
+  // A number that depends only on the pair and the segment's load (LoadTwins), computed by f()
+  // once per pair and load (ScoreLowerBound's momentum power).
+  template <typename F>
+  double PerLoad(std::size_t si, const F& f) {
+    if (momentum_.size() != lo_.size()) momentum_.assign(lo_.size(), {false, 0.0});
+    std::pair<bool, double>& x = momentum_[twin_[si]];
+    if (!x.first) x = {true, f()};
+    return x.second;
+  }
   // The segment's load at airspeed v_m_s, which must be the same value per (segment, high) for
   // one mass (the callers pass airspeed_m_s.lo or .hi, or 0).
   double mass_kg() const { return mass_kg_; }
   // R13's pieces passed over without their own assembly (PairCandidate, PropOnlyBound).
   long long pieces_skipped = 0;
+  // Scratch for the first piece's SegmentEnergyFloor per kind of drive ([DriveIsLossy]).
+  std::vector<SegmentEnergyFloor> floors[2];
   const RotorLoad& At(std::size_t si, bool high, double v_m_s) {
+    si = twin_[si];
     std::pair<bool, RotorLoad>& x = (high ? hi_ : lo_)[si];
     if (!x.first) x = {true, SegmentRotorLoad(m_, m_.segments[si], mass_kg_, v_m_s)};
     return x.second;
@@ -102,7 +134,8 @@ class PairLoads {
   const Mission& m_;
   double mass_kg_ = 0;
   std::vector<std::pair<bool, RotorLoad>> lo_, hi_;
-  std::vector<std::pair<bool, double>> energy_;
+  std::vector<std::size_t> twin_;
+  std::vector<std::pair<bool, double>> energy_, momentum_;
   std::vector<PowerTerm> terms_;
 };
 
@@ -132,12 +165,27 @@ struct ScoreBoundTerms {
   bool budgeted = false;
   double bound = -std::numeric_limits<double>::infinity();  // when not budgeted
   double t_fixed_s = 0, e_other_j = 0, p_stretch_w = 0, ocv_integral_v = 0;
+  // The stretch's power bound scales with the hover bound's per-rotor PDC (R4): p_stretch_w is
+  // at least stretch_rotors*pdc_lb + P_avionics (0: a constant, no such term).
+  int stretch_rotors = 0;
+  // A lower bound of the stretch power of a heavier vehicle of the same pair (R13): this
+  // one's (every term rises with the mass, M1-M3) and the drive's term at pdc_lb_w, a lower
+  // bound of the heavier vehicle's hover PDC.
+  double StretchPowerAtLeastW(double pdc_lb_w, double avionics_w) const;
   // The bound with the budget of a pack of budget_ah (ScoreLowerBound's capacity_top_ah).
   double At(double budget_ah) const;
 };
+// floors (optional): when the other segments' energy is assembled, its terms, in segment order.
 ScoreBoundTerms ScoreLowerBoundTerms(const SearchContext& ctx, const MissionFacts& f, bool lossy, const PropEntry& prop,
                                      const PropModel& model, std::size_t option, PairLoads* loads, double pdc_lb,
-                                     bool stretch_only = false);
+                                     bool stretch_only = false, std::vector<SegmentEnergyFloor>* floors = nullptr);
+
+// R13: the other segments' energy (ScoreBoundTerms::e_other_j) of a vehicle at least as heavy as
+// the one `floors` was assembled at, whose hover bound's per-rotor PDC is at least pdc_lb_w: each
+// term at least the lighter vehicle's (its thrust, momentum bound and fixed groups' bounds rise
+// with the mass, M1-M3) with that PDC; the same operations in the same order, so it is at most
+// the heavier vehicle's assembled number.
+double OtherEnergyAtLeastJ(const std::vector<SegmentEnergyFloor>& floors, double pdc_lb_w, double avionics_w);
 
 // R13 (docs/search.md#r13): R4's max_endurance budget over the option's capacity range in
 // kCapacityPieces pieces [C_j, C_j+1] (geometric): on a piece every pack holds at most C_j+1's
@@ -180,14 +228,21 @@ double SegmentwiseBoundPieces(const SearchContext& ctx, const MissionFacts& f, c
 // most the first hover segment's per-rotor thrust at the mass of `loads` (0, 0 without a
 // hover segment, a monotone grid or such a point). Returns the grid index (0 when none).
 int HoverGridPointFromBelow(const MissionFacts& f, const PropGrid& g, PairLoads* loads, double* omega_lb, double* q_lb);
+// The same point when its raw grid index (-1: no grid thrust at or below the load's) is known to
+// lie in [*lo, hi]: at a vehicle at least as heavy as the one whose raw index is *lo and no
+// heavier than the one whose raw index is hi (the load's thrust rises with the mass, M3, the
+// grid's with the index, M1); found in that bracket. *lo is set to the point's raw index.
+void HoverGridPointInBracket(const MissionFacts& f, const PropGrid& g, PairLoads* loads, int* lo, int hi,
+                             double* omega_lb, double* q_lb);
 
 // R2, R6, R7 for one (motor, propeller, option) pair whose propeller passed R0 (counted per
 // motor, MotorSetUp): the rule that removes it, or null. Sets omega_lb, q_lb (R2) for the
 // hover bound.
 // w_nl: the largest no-load speed of the motor's zero-resistance drives at full throttle and
 // the option's full-charge voltage (R7; the same for every propeller, computed once per option).
+// lb_idx (optional): the raw grid index of (omega_lb, q_lb), -1 when none (HoverGridPointInBracket).
 const char* PropRule(const SearchContext& ctx, const MissionFacts& f, double motor_kg, double w_nl, std::size_t pi,
-                     std::size_t o, PairLoads* loads, double* omega_lb, double* q_lb);
+                     std::size_t o, PairLoads* loads, double* omega_lb, double* q_lb, int* lb_idx = nullptr);
 
 // R9 with the mission's facts and the motor's scenario parameters given (BranchAndBound calls it
 // per ESC).

@@ -151,28 +151,117 @@ struct KindTerms {
     return bound;
   }
 };
+// keep_floors: the other segments' terms kept in loads->floors (SegmentEnergyFloor, R13).
 KindTerms TermsOfPowers(const SearchContext& ctx, const MissionFacts& f, const ClassPowers& p, std::size_t pi,
-                        std::size_t o, PairLoads* loads, bool stretch_only = false) {
+                        std::size_t o, PairLoads* loads, bool stretch_only = false, bool keep_floors = false) {
   const PropEntry& prop = ctx.catalog->props()[pi];
   KindTerms out;
   for (int lossy = 0; lossy < 2; ++lossy) {
     out.has[lossy] = p.has[lossy];
     if (p.has[lossy]) {
-      out.terms[lossy] =
-          ScoreLowerBoundTerms(ctx, f, lossy == 1, prop, *ctx.models[pi], o, loads, p.pdc_min[lossy], stretch_only);
+      out.terms[lossy] = ScoreLowerBoundTerms(ctx, f, lossy == 1, prop, *ctx.models[pi], o, loads, p.pdc_min[lossy],
+                                              stretch_only, keep_floors ? &loads->floors[lossy] : nullptr);
     }
   }
   return out;
 }
 
-// R13's piece bound from below without the piece's own other segments: its stretch power with
-// the first piece's other segments' energy (a lighter vehicle's, M3; 0, which energy is not
-// below, for a kind the first piece lacks). At most the piece's bound.
-double StretchOnlyBound(KindTerms piece, const KindTerms& first, double budget_ah) {
-  for (int lossy = 0; lossy < 2; ++lossy) {
-    piece.terms[lossy].e_other_j = first.has[lossy] ? first.terms[lossy].e_other_j : 0.0;
+// R13: the other segments' energy of a heavier piece from below, per kind: from the first piece's
+// terms (loads->floors, when kept) with that kind's PDC bound pdc_lb_w[kind]
+// (OtherEnergyAtLeastJ), else the first piece's energy (a lighter vehicle's, M3), or 0 (which
+// energy is not below) for a kind the first piece lacks.
+struct OtherEnergyFloor {
+  const KindTerms* first = nullptr;
+  const PairLoads* loads = nullptr;  // null: no floors kept
+  double avionics_w = 0;
+  double At(int lossy, double pdc_lb_w) const {
+    if (!first->has[lossy]) return 0.0;
+    if (!loads) return first->terms[lossy].e_other_j;
+    return OtherEnergyAtLeastJ(loads->floors[lossy], pdc_lb_w, avionics_w);
   }
-  return piece.At(budget_ah);
+};
+
+// R13's piece bound from below with its own R3 (p) and the first piece's terms: per kind of
+// class the piece has, the first piece's stretch power raised to the drive's term at the piece's
+// PDC (StretchPowerAtLeastW) and the other segments' energy from below (OtherEnergyFloor); -inf
+// when the first piece lacks a kind the piece has. At most the piece's bound.
+double OwnPdcBound(const KindTerms& first, const ClassPowers& p, const OtherEnergyFloor& e, double budget_ah) {
+  double bound = kInf;
+  for (int lossy = 0; lossy < 2; ++lossy) {
+    if (!p.has[lossy]) continue;
+    if (!first.has[lossy]) return -kInf;
+    ScoreBoundTerms t = first.terms[lossy];
+    t.p_stretch_w = t.StretchPowerAtLeastW(p.pdc_min[lossy], e.avionics_w);
+    t.e_other_j = e.At(lossy, p.pdc_min[lossy]);
+    bound = std::min(bound, t.At(budget_ah));
+  }
+  return bound;
+}
+
+// R13's heavier pieces from the first piece's drive (docs/search.md#r13, "a heavier piece's
+// drive from the first's"). For a drive without extensions (Drive::extended) and a
+// zero-resistance ESC (eqs 42, 48, 57): I = Q/KT + Io and U = Rm*I + KE*omega, the same for
+// every ESC class, and a class's DC current at VDC is (C1*x + C0)*I with x = U/(kv*VDC) its
+// effective throttle. At a grid point (omega, Q) >= (omega_0, Q_0), with r_I = I/I_0 >= 1,
+// r_U = U/U_0 >= 1 and kappa >= C0/C1 for every class (C1 > 0, C0 >= 0):
+// (C1*x + C0) >= (C1*x_0 + C0)*(1 + (r_U - 1)*x_0/(x_0 + kappa)), and x_0/(x_0 + kappa) is
+// least at the full-charge voltage (x_0 smallest). So each class's PDC at both voltages, hence
+// R3's least PDC over the classes (classes refused at the lighter vehicle stay refused, M2),
+// is at least Factor() times the first piece's (held 1e-9 below against rounding).
+struct PdcGrowth {
+  bool ok = false;
+  double i0_a = 0, u0_v = 0, share = 0;  // share = x_0/(x_0 + kappa)
+  double Factor(const MotorParams& mp, double omega_rad_s, double q_nm) const {
+    const double i_a = q_nm / mp.kt_nm_per_a + mp.io_a;                          // (42)
+    const double u_v = mp.rm_ohm * i_a + mp.ke_v_s_per_rad * omega_rad_s;       // (48)
+    return (1.0 - 1e-9) * (i_a / i0_a) * (1.0 + (u_v / u0_v - 1.0) * share);  // (57)
+  }
+};
+PdcGrowth PdcGrowthOf(const SearchContext& ctx, const MotorSetup& s, std::size_t o, double omega_lb, double q_lb) {
+  PdcGrowth g;
+  const MotorParams& mp = s.mp;
+  const std::vector<EscClass>& classes = ctx.escs.classes;
+  if (s.ideal.size() != classes.size() || classes.empty() || !(mp.kt_nm_per_a > 0) || !(mp.rm_ohm >= 0) ||
+      !(mp.ke_v_s_per_rad > 0)) {
+    return g;
+  }
+  double kappa = 0;
+  for (std::size_t ci = 0; ci < classes.size(); ++ci) {
+    if (s.ideal[ci].extended() || !(classes[ci].c1 > 0) || !(classes[ci].c0 >= 0)) return g;
+    kappa = std::max(kappa, classes[ci].c0 / classes[ci].c1);
+  }
+  g.i0_a = q_lb / mp.kt_nm_per_a + mp.io_a;
+  g.u0_v = mp.rm_ohm * g.i0_a + mp.ke_v_s_per_rad * omega_lb;
+  const Drive& d = s.ideal[0];
+  const double x0 = d.EffectiveThrottle(d.InverseLight(ctx.options[o].v_full, q_lb, omega_lb).throttle);
+  if (!(g.i0_a > 0) || !(g.u0_v > 0) || !(x0 > 0)) return g;
+  g.share = x0 / (x0 + kappa);
+  g.ok = true;
+  return g;
+}
+
+// The first piece's terms with each kind's stretch power raised to the drive's term at
+// `factor` times its PDC (PdcGrowth): a lower bound of a heavier piece's bound when every
+// kind of class the motor has passes R3 at the first piece.
+double GrownStretchBound(KindTerms first, const ClassPowers& lightest, double factor, const OtherEnergyFloor& e,
+                         double budget_ah) {
+  for (int lossy = 0; lossy < 2; ++lossy) {
+    if (!first.has[lossy]) continue;
+    ScoreBoundTerms& t = first.terms[lossy];
+    const double pdc_lb_w = factor * lightest.pdc_min[lossy];
+    t.p_stretch_w = t.StretchPowerAtLeastW(pdc_lb_w, e.avionics_w);
+    t.e_other_j = e.At(lossy, pdc_lb_w);
+  }
+  return first.At(budget_ah);
+}
+
+// True when every kind (DriveIsLossy) of the option's ESC classes passes R3 in `p`.
+bool EveryKindPasses(const SearchContext& ctx, const MotorSetup& s, std::size_t o, const ClassPowers& p) {
+  for (std::size_t ci = 0; ci < ctx.escs.classes.size(); ++ci) {
+    if (ctx.escs.per_option[o][ci].empty()) continue;
+    if (!p.has[DriveIsLossy(s.mp, ctx.escs.classes[ci].c1, ctx.escs.classes[ci].c0) ? 1 : 0]) return false;
+  }
+  return true;
 }
 
 }  // namespace
@@ -187,8 +276,9 @@ bool PairCandidate(const SearchContext& ctx, const MissionFacts& f, const MotorS
   const double mass_lb = std::max(
       VehicleMassKg(ctx, bo.mass_lo_kg, s.mass_kg, ctx.grids[pi].mass_kg, ctx.escs.min_mass_kg[o]), window_floor_kg);
   double omega_lb = 0, q_lb = 0;
+  int first_idx = -1;  // the first piece's raw grid index (HoverGridPointInBracket)
   loads->Reset(mass_lb);
-  if (const char* rule = PropRule(ctx, f, s.mass_kg, s.w_nl[o], pi, o, loads, &omega_lb, &q_lb)) {
+  if (const char* rule = PropRule(ctx, f, s.mass_kg, s.w_nl[o], pi, o, loads, &omega_lb, &q_lb, &first_idx)) {
     pruned->Add(rule, per_pair);
     return false;
   }
@@ -209,31 +299,66 @@ bool PairCandidate(const SearchContext& ctx, const MissionFacts& f, const MotorS
   // not below); assembled only when that is below the cutoff.
   KindTerms first = TermsOfPowers(ctx, f, lightest, pi, o, loads, !edges.empty());
   double bound = kInf;
+  const double avionics_w = ctx.mission->vehicle.avionics_power_w;
+  OtherEnergyFloor e_floor{&first, nullptr, avionics_w};
   if (edges.empty() || f.every_capacity_piece || !(first.At(edges[1]) >= cutoff)) {
-    if (!edges.empty()) first = TermsOfPowers(ctx, f, lightest, pi, o, loads);
+    if (!edges.empty()) {
+      first = TermsOfPowers(ctx, f, lightest, pi, o, loads, false, true);
+      e_floor.loads = loads;
+    }
     bound = first.At(edges.empty() ? bo.capacity_hi_ah : edges[1]);
   } else {
     ++loads->pieces_skipped;
   }
   // The other pieces, heaviest first: a piece is assembled at its own mass only when the first
-  // piece's terms with its budget (a bound of it at a lighter mass, M3), then its own stretch
+  // piece's terms with its budget (a bound of it at a lighter mass, M3), then with the stretch
+  // power its grid point gives the first piece's drive (PdcGrowth), then its own stretch
   // power with them, are below both the least so far and the cutoff (docs/search.md#r13,
   // "assembled only while it can be the least").
+  const PdcGrowth growth = edges.size() < 3 || f.every_capacity_piece || !EveryKindPasses(ctx, s, o, lightest)
+                               ? PdcGrowth{}
+                               : PdcGrowthOf(ctx, s, o, omega_lb, q_lb);
+  int heavier_idx = kGrid - 1;  // the last piece's raw grid index: the pieces go heaviest first
   for (std::size_t j = edges.size() < 3 ? 0 : edges.size() - 2; j > 0; --j) {
     const double target = std::min(bound, cutoff);
     if (!f.every_capacity_piece && first.At(edges[j + 1]) >= target) {
+      // So are the lighter pieces': a smaller budget scores no better (BudgetScore), and the
+      // target only falls.
+      loads->pieces_skipped += static_cast<long long>(j);
+      break;
+    }
+    const double mass_kg = std::max(VehicleMassKg(ctx, PackMassLowerBoundKg(bo, edges[j]), s.mass_kg,
+                                                  ctx.grids[pi].mass_kg, ctx.escs.min_mass_kg[o]),
+                                    window_floor_kg);
+    loads->Reset(mass_kg);
+    double w = 0, q = 0;
+    int idx = first_idx;
+    HoverGridPointInBracket(f, ctx.grids[pi], loads, &idx, heavier_idx, &w, &q);
+    heavier_idx = idx;
+    auto grown_out = [&]() {
+      return growth.ok && GrownStretchBound(first, lightest, growth.Factor(s.mp, w, q), e_floor, edges[j + 1]) >= target;
+    };
+    if (!f.every_capacity_piece && grown_out()) {
       ++loads->pieces_skipped;
       continue;
     }
-    loads->Reset(std::max(VehicleMassKg(ctx, PackMassLowerBoundKg(bo, edges[j]), s.mass_kg, ctx.grids[pi].mass_kg,
-                                        ctx.escs.min_mass_kg[o]),
-                          window_floor_kg));
-    double w = 0, q = 0;
-    HoverGridPointFromBelow(f, ctx.grids[pi], loads, &w, &q);
+    if (!f.every_capacity_piece && !e_floor.loads) {
+      // The first piece was passed over below the cutoff: its other segments are assembled now
+      // (once; the tests of this piece and the lighter ones then take them, SegmentEnergyFloor).
+      loads->Reset(mass_lb);
+      first = TermsOfPowers(ctx, f, lightest, pi, o, loads, false, true);
+      e_floor.loads = loads;
+      loads->Reset(mass_kg);
+      if (first.At(edges[j + 1]) >= target || grown_out()) {
+        ++loads->pieces_skipped;
+        continue;
+      }
+    }
     const ClassPowers p = HoverPowersOfClasses(ctx, s, o, w, q);
     if (!p.Any()) continue;  // no feasible point here (nor in a heavier piece, M1-M3)
-    if (!f.every_capacity_piece &&
-        StretchOnlyBound(TermsOfPowers(ctx, f, p, pi, o, loads, true), first, edges[j + 1]) >= target) {
+    // (Its own stretch power, momentum theory's included, would cost an assembly of the
+    // stretch per piece: the keys' measure, docs/search.md#r13, found it not worth it.)
+    if (!f.every_capacity_piece && OwnPdcBound(first, p, e_floor, edges[j + 1]) >= target) {
       ++loads->pieces_skipped;
       continue;
     }
@@ -252,14 +377,25 @@ double PropOnlyBound(const SearchContext& ctx, const MissionFacts& f, std::size_
                      const MotorLossFloor& loss, PairLoads* loads) {
   const BatteryOption& bo = ctx.options[o];
   const PropGrid& g = ctx.grids[pi];
-  auto terms_at = [&](double pack_kg, bool stretch_only) {
+  // The floor of the hover's per-rotor power at the vehicle with a pack of pack_kg (loads set
+  // to that mass), and R4's terms with it. The raw grid indices (HoverGridPointInBracket) of the first piece and of the last piece
+  // (the pieces go heaviest first), which bracket every later piece's.
+  int first_idx = -1, heavier_idx = kGrid - 1;
+  bool first_call = true;  // the first piece's
+  auto floor_at = [&](double pack_kg) {
     loads->Reset(VehicleMassKg(ctx, pack_kg, motor_kg, g.mass_kg, ctx.escs.min_mass_kg[o]));
     double omega_lb = 0, q_lb = 0;
-    HoverGridPointFromBelow(f, g, loads, &omega_lb, &q_lb);
+    int idx = first_idx;
+    HoverGridPointInBracket(f, g, loads, &idx, heavier_idx, &omega_lb, &q_lb);
+    (first_call ? first_idx : heavier_idx) = idx;
+    first_call = false;
     const double pac_floor_w =
         omega_lb * q_lb + loss.copper_w_per_nm2 * q_lb * q_lb + loss.no_load_torque_nm * omega_lb;  // physics.h
-    return ScoreLowerBoundTerms(ctx, f, true, ctx.catalog->props()[pi], *ctx.models[pi], o, loads,
-                                kKeyRoundingAllowance * pac_floor_w, stretch_only);
+    return kKeyRoundingAllowance * pac_floor_w;
+  };
+  auto terms_with = [&](double pdc_lb_w, bool stretch_only, std::vector<SegmentEnergyFloor>* floors = nullptr) {
+    return ScoreLowerBoundTerms(ctx, f, true, ctx.catalog->props()[pi], *ctx.models[pi], o, loads, pdc_lb_w,
+                                stretch_only, floors);
   };
   auto key_of = [](const ScoreBoundTerms& t, double budget_ah) {
     const double b = t.At(budget_ah);
@@ -269,24 +405,31 @@ double PropOnlyBound(const SearchContext& ctx, const MissionFacts& f, std::size_
   // pieces assembled only while they can be the least (as PairCandidate).
   std::vector<double> scratch;
   const std::vector<double>& edges = PieceEdges(ctx, f, o, &scratch);
-  const ScoreBoundTerms first = terms_at(bo.mass_lo_kg, false);
-  if (edges.empty()) return key_of(first, bo.capacity_hi_ah);
+  if (edges.empty()) return key_of(terms_with(floor_at(bo.mass_lo_kg), false), bo.capacity_hi_ah);
+  const ScoreBoundTerms first = terms_with(floor_at(bo.mass_lo_kg), false, &loads->floors[1]);
   double least = key_of(first, edges[1]);
   for (std::size_t j = edges.size() - 2; j > 0; --j) {
     if (!f.every_capacity_piece && key_of(first, edges[j + 1]) >= least) {
-      ++loads->pieces_skipped;
-      continue;
+      loads->pieces_skipped += static_cast<long long>(j);  // and the lighter pieces (as PairCandidate)
+      break;
     }
-    const double pack_kg = PackMassLowerBoundKg(bo, edges[j]);
+    const double pdc_lb_w = floor_at(PackMassLowerBoundKg(bo, edges[j]));
     if (!f.every_capacity_piece) {
-      ScoreBoundTerms stretch = terms_at(pack_kg, true);
-      stretch.e_other_j = first.e_other_j;  // a lighter vehicle's (M3)
-      if (key_of(stretch, edges[j + 1]) >= least) {
+      // The first piece's terms with the stretch's drive term at this piece's floor (its own
+      // stretch power is at least that and the first's, M1-M3) and its other segments' terms
+      // at that floor (OtherEnergyAtLeastJ).
+      // (Its own stretch power with these other segments, the pairs' next test, passed over
+      // 1 k more of the capacity-sized quadcopter's 181 k pieces: not taken.)
+      const double avionics_w = ctx.mission->vehicle.avionics_power_w;
+      ScoreBoundTerms grown = first;
+      grown.p_stretch_w = first.StretchPowerAtLeastW(pdc_lb_w, avionics_w);
+      grown.e_other_j = OtherEnergyAtLeastJ(loads->floors[1], pdc_lb_w, avionics_w);  // a lighter vehicle's terms
+      if (key_of(grown, edges[j + 1]) >= least) {
         ++loads->pieces_skipped;
         continue;
       }
     }
-    least = std::min(least, key_of(terms_at(pack_kg, false), edges[j + 1]));
+    least = std::min(least, key_of(terms_with(pdc_lb_w, false), edges[j + 1]));
   }
   return least;
 }

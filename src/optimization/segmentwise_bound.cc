@@ -117,6 +117,12 @@ PieceMass PieceMassAt(const SearchContext& ctx, const MissionFacts& f, const Mot
       continue;
     }
     if (sg.type == SegmentType::kShaft || (sg.type == SegmentType::kCruise && sg.airspeed_m_s.free())) continue;
+    const std::size_t twin = si < f.load_twin.size() ? f.load_twin[si] : si;
+    if (twin != si && out.refused_at == m.segments.size()) {
+      // The same load as an earlier segment (LoadTwins): the same speed, torque, limits and power.
+      x = out.segs[twin];
+      continue;
+    }
     const RotorLoad ld = SegmentRotorLoad(m, sg, mass_lb, sg.type == SegmentType::kCruise ? sg.airspeed_m_s.lo : 0.0);
     if (const SegmentGrid sgrid = GridOf(g, axial_data, sg, ld); sgrid.thrust) {
       SpeedTorqueFromBelow(g, sgrid, *ctx.models[static_cast<std::size_t>(prop)], pe.diameter_m, m.rho_kg_m3,

@@ -465,6 +465,76 @@ TEST_F(SearchStagesTest, CapacityPiecesPassedOverLeaveEveryPairBoundAndKeyTheSam
   }
 }
 
+// R13's heavier pieces from the first piece's terms (docs/search.md#r13, "a heavier piece from
+// the first piece's terms"): with the first (lightest) piece's SegmentEnergyFloor and a heavier
+// vehicle's hover PDC bound (here R11's loss floor at its own grid point, as the keys take it),
+// OtherEnergyAtLeastJ and StretchPowerAtLeastW are at most that vehicle's assembled other
+// segments' energy and stretch power, bit for bit comparable (no tolerance), over a hover and a
+// cruise stretch; and they are above the first piece's own (they tighten the test). Made 1 %
+// eager (the floors' energy times 1.01) it fails.
+TEST_F(SearchStagesTest, HeavierPieceBoundsFromTheFirstPieceStayBelowTheirAssembly) {
+  const Catalog cat = SmallCatalog();
+  Json j = ParseJsonText(kStageQuad, "quad");
+  Json cruise = j;
+  cruise["segments"] = Json::parse(R"([
+    {"name": "takeoff", "type": "climb", "rate_m_s": 2, "distance_m": 30},
+    {"name": "hover", "type": "hover", "duration_s": 20},
+    {"name": "flight", "type": "cruise", "airspeed_m_s": 10, "distance_m": 1000},
+    {"name": "landing", "type": "climb", "rate_m_s": -1, "distance_m": 30}
+  ])");
+  cruise["objective"] = {{"type", "max_endurance"}, {"segment", "flight"}};
+  for (Json& mission : std::vector<Json>{j, cruise}) {
+    mission["battery"]["capacity_ah"] = {1.5, 9.0};
+    const Mission m = ParseMission(mission, "quad");
+    SearchContext ctx;
+    PrepareStages(m, cat, &ctx);
+    const MissionFacts f = StageFourFacts(ctx);
+    RuleCounts pruned;
+    long long skipped = 0;
+    const auto setups = SetUpMotors(ctx, f, 1, &pruned, &skipped);
+    PairLoads loads(m);
+    std::vector<SegmentEnergyFloor> floors;
+    int checked = 0, tighter_e = 0, tighter_p = 0;
+    const double avionics_w = m.vehicle.avionics_power_w;
+    for (const auto& s : setups) {
+      if (!s || !s->lossy) continue;
+      for (std::size_t o = 0; o < ctx.options.size(); ++o) {
+        const BatteryOption& bo = ctx.options[o];
+        for (const int pi : f.frame_ok_props) {
+          const std::size_t p = static_cast<std::size_t>(pi);
+          auto pdc_at = [&](double pack_kg) {
+            loads.Reset(VehicleMassKg(ctx, pack_kg, s->mass_kg, ctx.grids[p].mass_kg, ctx.escs.min_mass_kg[o]));
+            double w = 0, q = 0;
+            HoverGridPointFromBelow(f, ctx.grids[p], &loads, &w, &q);
+            return w * q + s->loss.copper_w_per_nm2 * q * q + s->loss.no_load_torque_nm * w;
+          };
+          const double pdc0 = pdc_at(bo.mass_lo_kg);
+          const ScoreBoundTerms first = ScoreLowerBoundTerms(ctx, f, true, cat.props()[p], *ctx.models[p], o, &loads,
+                                                             pdc0, false, &floors);
+          ASSERT_TRUE(first.budgeted);
+          for (const double c_ah : {2.0, 3.5, 6.0, 9.0}) {
+            const double pdc = pdc_at(PackMassLowerBoundKg(bo, c_ah));
+            const ScoreBoundTerms t =
+                ScoreLowerBoundTerms(ctx, f, true, cat.props()[p], *ctx.models[p], o, &loads, pdc);
+            const double e_lb = OtherEnergyAtLeastJ(floors, pdc, avionics_w);
+            const double p_lb = first.StretchPowerAtLeastW(pdc, avionics_w);
+            ++checked;
+            EXPECT_LE(e_lb, t.e_other_j) << cat.props()[p].id << " at " << c_ah << " Ah";
+            EXPECT_LE(p_lb, t.p_stretch_w) << cat.props()[p].id << " at " << c_ah << " Ah";
+            tighter_e += e_lb > first.e_other_j;
+            tighter_p += p_lb > first.p_stretch_w;
+          }
+        }
+      }
+    }
+    EXPECT_GT(checked, 100);
+    EXPECT_GT(tighter_e, checked / 4);
+    EXPECT_GT(tighter_p, checked / 4);
+    std::printf("R13 from the first piece: %d heavier vehicles, other energy tighter on %d, stretch power on %d\n",
+                checked, tighter_e, tighter_p);
+  }
+}
+
 // R4's max_endurance hover stretch without R2's grid point (a propeller whose grid is not
 // monotone, forced here on every propeller): the stretch's power is then momentum theory's
 // N*P_ideal/max_figure_of_merit + P_avionics alone. The bound is at or below every feasible score
