@@ -265,7 +265,9 @@ JointBounds::JointBounds(const Mission& m, const Catalog& cat, const PropGridCac
     inner_ = free[0] == outer_ ? free[1] : free[0];
     frontier_.assign(options_.size(), std::vector<std::vector<FrontierPoint>>(kFrontierLevels));
     frontier_done_.assign(options_.size(), std::vector<char>(kFrontierLevels, 0));
-    inner_dead_.assign(options_.size(), std::vector<bool>());
+    inner_floor0_.assign(options_.size(), std::vector<float>());
+    inner_floor_.assign(options_.size(), std::vector<float>());
+    inner_floor_level_.assign(options_.size(), 0);
     for (std::size_t o = 0; o < options_.size(); ++o) Frontier(o, 0.0);
   }
 }

@@ -187,17 +187,20 @@ TEST_F(JointSearchTest, TwoFreeGroupsEqualExhaustiveEvaluation) {
 // G2's coupled frontier per level of the outer group's extra mass (docs/search.md#g2-levels):
 // for every feasible combination of the small catalog, the frontier of the level at or below its
 // pusher's extra mass has a point no heavier than its lift group (with the option's lightest
-// ESC) whose energy is at most the lift segments' true energy. Checked to fail when the level is
-// the heaviest whatever the pusher's mass (every inner energy read at a vehicle 47 % heavier).
-TEST_F(JointSearchTest, CoupledFrontierLevelsAreBelowEveryLiftGroupsEnergy) {
-  const Catalog cat = Catalog::Load((dir_ / "catalog").string());
-  const Mission m = ReadMission((dir_ / "free.json").string());
+// ESC) whose energy is at most the lift segments' true energy. `first`: levels computed first
+// (every option, in that order) before the check reads them.
+void ExpectFrontierLevelsBelowLiftEnergy(const fs::path& dir, const std::vector<int>& first) {
+  const Catalog cat = Catalog::Load((dir / "catalog").string());
+  const Mission m = ReadMission((dir / "free.json").string());
   const int lift = m.segments[0].group, pusher = m.segments[1].group;
   PropGridCache cache;
   BuildPropGrids(m, cat, &cache.grids, &cache.models);
   cache.built = true;
   JointBounds jb(m, cat, cache);
   ASSERT_EQ(jb.outer_group(), pusher);
+  for (std::size_t o = 0; o < jb.options().size(); ++o) {
+    for (int k : first) jb.Frontier(o, jb.FrontierLevelKg(o, k));
+  }
   int checked = 0, above_level0 = 0;
   ForEachJoint(cat, m, lift, pusher, [&](const Combination& c, const MissionResult& r) {
     if (!r.feasible) return;
@@ -223,6 +226,24 @@ TEST_F(JointSearchTest, CoupledFrontierLevelsAreBelowEveryLiftGroupsEnergy) {
   });
   EXPECT_GT(checked, 0);
   EXPECT_GT(above_level0, 0) << "some feasible pusher must read a level above 0";
+}
+
+// The levels in the order the check asks them. Checked to fail when the level is the heaviest
+// whatever the pusher's mass (every inner energy read at a vehicle 47 % heavier).
+TEST_F(JointSearchTest, CoupledFrontierLevelsAreBelowEveryLiftGroupsEnergy) {
+  ExpectFrontierLevelsBelowLiftEnergy(dir_, {});
+}
+
+// Every level computed, heaviest first then lightest first: a level skips the (motor,
+// propeller) pairs whose energy at a level at or below it reaches its least energy so far
+// (inner_floor_), and must not take a heavier level's. Checked to fail when a level reads the
+// latest level's floors whatever that level is.
+TEST_F(JointSearchTest, CoupledFrontierLevelsInAnyOrderAreBelowEveryLiftGroupsEnergy) {
+  std::vector<int> down;
+  for (int k = JointBounds::kFrontierLevels - 1; k >= 0; --k) down.push_back(k);
+  ExpectFrontierLevelsBelowLiftEnergy(dir_, down);
+  std::vector<int> up(down.rbegin(), down.rend());
+  ExpectFrontierLevelsBelowLiftEnergy(dir_, up);
 }
 
 // Two free groups and a fixed one (a sprint on its own pusher): G2 reads the fixed group's
