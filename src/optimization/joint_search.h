@@ -147,6 +147,11 @@ class JointBounds {
   // R2 (max_rpm) and R12's top (prop_above_data) over a free cruise's range from its samples:
   // the rule every airspeed breaks, or null.
   const char* FreeCruiseSpeedRule(int prop, const FreeCruiseSamples& s) const;
+  // R10's charge and voltage for the outer group (docs/search.md#g2-voltage): with scratch_
+  // holding every segment's terminal power bound, the rule (throttle, reserve_soc) that the
+  // outer group's segments on `prop` flown by `drive` break at a vehicle of at least mass_kg
+  // with the voltage the charge drawn by then leaves, or null.
+  const char* VoltageLeftRule(const Drive& drive, int prop, std::size_t o, double mass_kg, double tr_max);
   double StaticAdvanceMassFloorKg(const PropModel& model, double diameter_m, const Segment& sg, double v_a,
                                   double v_b) const;
   static constexpr int kFreeCruiseFloorCells = 16;  // R7's floor over a free airspeed range
