@@ -26,6 +26,9 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 constexpr double kMassCeilingKg = 1e5;  // MassFloorKg's search range: beyond any vehicle
 constexpr double kRotorCeilingRadS = 1e5;  // RotorLowerBound's: ~1e6 rpm, beyond any motor
 constexpr std::size_t kNoIndex = std::numeric_limits<std::size_t>::max();  // OuterBound's: not a free cruise
+// VoltageLeftRule's charge bound is taken at this fraction of its value against the evaluator's
+// midpoint rule (R10's allowance, docs/search.md#r10).
+constexpr double kChargeAllowance = 1.0 - 1e-3;
 
 }  // namespace
 
@@ -265,7 +268,9 @@ JointBounds::JointBounds(const Mission& m, const Catalog& cat, const PropGridCac
     inner_ = free[0] == outer_ ? free[1] : free[0];
     frontier_.assign(options_.size(), std::vector<std::vector<FrontierPoint>>(kFrontierLevels));
     frontier_done_.assign(options_.size(), std::vector<char>(kFrontierLevels, 0));
-    inner_dead_.assign(options_.size(), std::vector<bool>());
+    inner_floor0_.assign(options_.size(), std::vector<float>());
+    inner_floor_.assign(options_.size(), std::vector<float>());
+    inner_floor_level_.assign(options_.size(), 0);
     for (std::size_t o = 0; o < options_.size(); ++o) Frontier(o, 0.0);
   }
 }
@@ -513,6 +518,33 @@ double JointBounds::OuterCruiseFloorW(const Drive& drive, int prop, std::size_t 
                                          coupled_ ? &db : nullptr, &loss);
 }
 
+const char* JointBounds::VoltageLeftRule(const Drive& drive, int prop, std::size_t o, double mass_kg, double tr_max) {
+  const BatteryOption& bo = options_[o];
+  const double q_c = AhToCoulomb(bo.capacity_hi_ah);
+  const int stretch = m_.objective.type == ObjectiveType::kMaxEndurance ? m_.objective.segment_index : -1;
+  double charge_c = 0;
+  for (std::size_t si = 0; si < m_.segments.size(); ++si) {
+    const Segment& sg = m_.segments[si];
+    // The terminal current is at least the power bound over the full-charge OCV, so the charge
+    // drawn by the segment's end is at least the sum's (R10, coulomb counting).
+    const double t_min = static_cast<int>(si) == stretch ? 0.0 : SegmentDurationS(sg, sg.airspeed_m_s.hi);
+    charge_c += kChargeAllowance * scratch_[si] * t_min / bo.v_full;
+    const double soc = 1.0 - charge_c / q_c;
+    if (soc < m_.battery.reserve_soc) return "reserve_soc";  // the SOC only falls
+    if (sg.group != outer_ || sg.type == SegmentType::kShaft || (sg.type == SegmentType::kCruise && sg.airspeed_m_s.free())) {
+      continue;
+    }
+    const RotorBound& rb = OuterRotor(prop, si, o, mass_kg);
+    if (!(rb.omega_rad_s > 0)) continue;
+    // At the segment's end the terminal voltage is at most OCV(soc) less the least current's
+    // drop on the pack's least resistance; the throttle that holds the point falls as the
+    // voltage rises (M2), and the point is at or below the segment's own (M1, M3).
+    const double v_ub = bo.OcvV(soc) - scratch_[si] / bo.v_full * bo.ri_at_hi_ohm;
+    if (!(v_ub > 0) || drive.InverseLight(v_ub, rb.torque_nm, rb.omega_rad_s).throttle > tr_max) return "throttle";
+  }
+  return nullptr;
+}
+
 double JointBounds::OuterBound(const Drive& drive, const GroupParts& parts, double esc_max_a,
                                double tr_max, int prop, std::size_t o, double mass_kg, const char** why,
                                double* irms_lb) {
@@ -576,6 +608,10 @@ double JointBounds::OuterBound(const Drive& drive, const GroupParts& parts, doub
     }
     *irms_lb = std::max(*irms_lb, b.irms_lb_a);
     scratch_[si] = std::max(b.power_w, cruise_floor_w_[si]);
+  }
+  if (const char* rule = VoltageLeftRule(drive, prop, o, mass_kg, tr_max)) {
+    *why = rule;
+    return kInf;
   }
   const double bound = ScoreFromSegmentPowers(m_, scratch_, options_[o]);
   if (!coupled_ || inner_ < 0) return bound;

@@ -23,6 +23,13 @@ namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
+// e as a float no greater than e (a lower bound stays one).
+float FloatBelow(double e) {
+  float f = static_cast<float>(e);
+  if (static_cast<double>(f) > e) f = std::nextafter(f, -std::numeric_limits<float>::infinity());
+  return f;
+}
+
 }  // namespace
 
 // The frontier of the level at or below outer_extra_kg (docs/search.md#g2-levels): level k
@@ -43,7 +50,7 @@ const std::vector<JointBounds::FrontierPoint>& JointBounds::Frontier(std::size_t
   }
   const std::size_t ki = static_cast<std::size_t>(k);
   if (!frontier_done_[o][ki]) {
-    frontier_[o][ki] = InnerFrontier(o, FrontierLevelKg(o, k));
+    frontier_[o][ki] = InnerFrontier(o, k);
     frontier_done_[o][ki] = 1;
   }
   return frontier_[o][ki];
@@ -51,14 +58,16 @@ const std::vector<JointBounds::FrontierPoint>& JointBounds::Frontier(std::size_t
 
 // G2's coupled bound (min_energy, two free groups): the inner group's choices as a frontier of
 // (extra mass over its lightest, least energy of its own segments at the vehicle with that mass
-// and the outer group outer_extra_kg above its lightest), each choice that survives R0, R1, R3,
-// R7 and the thrust-to-weight rule at that vehicle, taken lightest first and kept when its
-// energy is below every lighter one's. Every feasible inner choice of a completion whose outer
-// choice is at least outer_extra_kg above the outer group's lightest has a frontier point no
-// heavier and with no more energy (M3). Choices whose floor (rotors*max(Q*omega, momentum) per
-// segment) reaches the least energy so far are skipped when their drive cannot create energy
-// (SegmentPowerBound).
-std::vector<JointBounds::FrontierPoint> JointBounds::InnerFrontier(std::size_t o, double outer_extra_kg) {
+// and the outer group FrontierLevelKg(o, level) above its lightest), each choice that survives
+// R0, R1, R3, R7 and the thrust-to-weight rule at that vehicle, taken lightest first and kept
+// when its energy is below every lighter one's. Every feasible inner choice of a completion
+// whose outer choice is at least that much above the outer group's lightest has a frontier
+// point no heavier and with no more energy (M3). Choices whose floor (rotors*max(Q*omega,
+// momentum) per segment) reaches the least energy so far are skipped when their drive cannot
+// create energy (SegmentPowerBound), and so are the (motor, propeller) pairs whose energy at a
+// level at or below this one (inner_floor_) reaches it (docs/search.md#g2-levels).
+std::vector<JointBounds::FrontierPoint> JointBounds::InnerFrontier(std::size_t o, int level) {
+  const double outer_extra_kg = FrontierLevelKg(o, level);
   const auto& motors = cat_.motors();
   const auto& props = cat_.props();
   const BatteryOption& bo = options_[o];
@@ -110,15 +119,24 @@ std::vector<JointBounds::FrontierPoint> JointBounds::InnerFrontier(std::size_t o
   }
   std::vector<double> prop_kg(props.size());
   for (std::size_t pi = 0; pi < props.size(); ++pi) prop_kg[pi] = PropMassKg(props[pi]);
-  // Level 0 records the (motor, propeller) pairs that fail a rule with every ESC class; they fail
-  // it at every level, whose vehicles are heavier (the rules' monotonicity, M1-M3, above).
-  const bool level0 = !(outer_extra_kg > 0);
-  std::vector<bool>& dead = inner_dead_[o];
-  if (level0) dead.assign(inner_by_mass_.size(), false);
+  // Each pair's energy floor from a level at or below this one (level 0's, or the latest's
+  // when found at or below): a bound at this level too, whose vehicles are heavier (M1-M3;
+  // +inf: the pair fails a rule with every ESC class). This level's floors replace the latest
+  // when it is at or above theirs.
+  const bool level0 = level == 0;
+  if (level0) {
+    inner_floor0_[o].assign(inner_by_mass_.size(), -std::numeric_limits<float>::infinity());
+    inner_floor_[o] = inner_floor0_[o];
+    inner_floor_level_[o] = 0;
+  }
+  const std::vector<float>& known = inner_floor_level_[o] <= level ? inner_floor_[o] : inner_floor0_[o];
+  std::vector<float>* record = inner_floor_level_[o] <= level ? &inner_floor_[o] : nullptr;
+  if (record) inner_floor_level_[o] = level;
   std::vector<FrontierPoint> front;
   double e_min = kInf;
   for (std::size_t n = 0; n < inner_by_mass_.size(); ++n) {
-    if (!level0 && dead[n]) continue;
+    const float e_known = known[n];
+    if (e_known >= e_min) continue;  // a lighter point has no more energy
     const std::uint32_t code = inner_by_mass_[n];
     const std::size_t mi = code / props.size(), pi = code % props.size();
     const MotorEntry& mo = motors[mi];
@@ -133,14 +151,17 @@ std::vector<JointBounds::FrontierPoint> JointBounds::InnerFrontier(std::size_t o
         if (!DriveIsLossy(mps[mi], escs_.classes[c].c1, escs_.classes[c].c0)) all_lossy[mi] = 0;
       }
     }
-    if (usable[mi] != 1 || (all_lossy[mi] && floor_j[pi] >= e_min)) continue;  // as the class loop's skip
+    if (usable[mi] != 1 || (all_lossy[mi] && floor_j[pi] >= e_min)) {  // as the class loop's skip
+      if (record) (*record)[n] = usable[mi] != 1 ? FloatBelow(kInf) : std::max(e_known, FloatBelow(floor_j[pi]));
+      continue;
+    }
     const MotorParams& mp = mps[mi];
     const double vehicle_kg = base_kg - inner_lightest_kg_[o] + kg;
-    bool all_fail = true;
+    double e_pair = kInf;  // the least over the classes (a skipped class: its floor)
     for (std::size_t c : classes) {
       const EscClass& cls = escs_.classes[c];
       if (DriveIsLossy(mp, cls.c1, cls.c0) && floor_j[pi] >= e_min) {
-        all_fail = false;
+        e_pair = std::min(e_pair, floor_j[pi]);
         continue;
       }
       // SegmentPowerBound reads the ESC's C1 and C0 for a free-airspeed cruise
@@ -160,14 +181,15 @@ std::vector<JointBounds::FrontierPoint> JointBounds::InnerFrontier(std::size_t o
         }
         e += b.power_w * t_min(si);
       }
-      all_fail = all_fail && !(e < kInf);
+      e_pair = std::min(e_pair, e);
       if (e < e_min) {
         e_min = e;
         front.push_back(FrontierPoint{kg - inner_lightest_kg_[o], e});
       }
     }
-    if (level0 && all_fail) dead[n] = true;
+    if (record) (*record)[n] = std::max(e_known, FloatBelow(e_pair));
   }
+  if (level0) inner_floor0_[o] = inner_floor_[o];
   return front;
 }
 

@@ -147,10 +147,15 @@ class JointBounds {
   // R2 (max_rpm) and R12's top (prop_above_data) over a free cruise's range from its samples:
   // the rule every airspeed breaks, or null.
   const char* FreeCruiseSpeedRule(int prop, const FreeCruiseSamples& s) const;
+  // R10's charge and voltage for the outer group (docs/search.md#g2-voltage): with scratch_
+  // holding every segment's terminal power bound, the rule (throttle, reserve_soc) that the
+  // outer group's segments on `prop` flown by `drive` break at a vehicle of at least mass_kg
+  // with the voltage the charge drawn by then leaves, or null.
+  const char* VoltageLeftRule(const Drive& drive, int prop, std::size_t o, double mass_kg, double tr_max);
   double StaticAdvanceMassFloorKg(const PropModel& model, double diameter_m, const Segment& sg, double v_a,
                                   double v_b) const;
   static constexpr int kFreeCruiseFloorCells = 16;  // R7's floor over a free airspeed range
-  std::vector<FrontierPoint> InnerFrontier(std::size_t o, double outer_extra_kg);
+  std::vector<FrontierPoint> InnerFrontier(std::size_t o, int level);
   double MinFreeGroupPower(int group, std::size_t si, std::size_t o, double mass_kg);
   double MassFloorKg(int prop, std::size_t si, std::size_t o);
   double FigureOfMeritMassFloorKg(int prop, std::size_t si, std::size_t o) const;
@@ -178,9 +183,12 @@ class JointBounds {
   // InnerFrontier's inner (motor, propeller) pairs, motor * props + propeller, by motor +
   // propeller mass ascending (built on its first call).
   std::vector<std::uint32_t> inner_by_mass_;
-  // Per option, by position in inner_by_mass_: the pair fails a rule with every ESC class at
-  // level 0 (so at every level).
-  std::vector<std::vector<bool>> inner_dead_;
+  // Per option, by position in inner_by_mass_: a lower bound of the pair's energy (J, float
+  // rounded down; +inf: it fails a rule with every ESC class) at every level at or above the one
+  // it was found at (docs/search.md#g2-levels): level 0's, and the latest's, found at levels at
+  // or below inner_floor_level_[o].
+  std::vector<std::vector<float>> inner_floor0_, inner_floor_;
+  std::vector<int> inner_floor_level_;
   std::vector<double> inner_lightest_kg_;             // per option
   std::vector<BatteryOption> options_;
   EscTable escs_;

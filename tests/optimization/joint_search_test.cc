@@ -187,17 +187,20 @@ TEST_F(JointSearchTest, TwoFreeGroupsEqualExhaustiveEvaluation) {
 // G2's coupled frontier per level of the outer group's extra mass (docs/search.md#g2-levels):
 // for every feasible combination of the small catalog, the frontier of the level at or below its
 // pusher's extra mass has a point no heavier than its lift group (with the option's lightest
-// ESC) whose energy is at most the lift segments' true energy. Checked to fail when the level is
-// the heaviest whatever the pusher's mass (every inner energy read at a vehicle 47 % heavier).
-TEST_F(JointSearchTest, CoupledFrontierLevelsAreBelowEveryLiftGroupsEnergy) {
-  const Catalog cat = Catalog::Load((dir_ / "catalog").string());
-  const Mission m = ReadMission((dir_ / "free.json").string());
+// ESC) whose energy is at most the lift segments' true energy. `first`: levels computed first
+// (every option, in that order) before the check reads them.
+void ExpectFrontierLevelsBelowLiftEnergy(const fs::path& dir, const std::vector<int>& first) {
+  const Catalog cat = Catalog::Load((dir / "catalog").string());
+  const Mission m = ReadMission((dir / "free.json").string());
   const int lift = m.segments[0].group, pusher = m.segments[1].group;
   PropGridCache cache;
   BuildPropGrids(m, cat, &cache.grids, &cache.models);
   cache.built = true;
   JointBounds jb(m, cat, cache);
   ASSERT_EQ(jb.outer_group(), pusher);
+  for (std::size_t o = 0; o < jb.options().size(); ++o) {
+    for (int k : first) jb.Frontier(o, jb.FrontierLevelKg(o, k));
+  }
   int checked = 0, above_level0 = 0;
   ForEachJoint(cat, m, lift, pusher, [&](const Combination& c, const MissionResult& r) {
     if (!r.feasible) return;
@@ -223,6 +226,24 @@ TEST_F(JointSearchTest, CoupledFrontierLevelsAreBelowEveryLiftGroupsEnergy) {
   });
   EXPECT_GT(checked, 0);
   EXPECT_GT(above_level0, 0) << "some feasible pusher must read a level above 0";
+}
+
+// The levels in the order the check asks them. Checked to fail when the level is the heaviest
+// whatever the pusher's mass (every inner energy read at a vehicle 47 % heavier).
+TEST_F(JointSearchTest, CoupledFrontierLevelsAreBelowEveryLiftGroupsEnergy) {
+  ExpectFrontierLevelsBelowLiftEnergy(dir_, {});
+}
+
+// Every level computed, heaviest first then lightest first: a level skips the (motor,
+// propeller) pairs whose energy at a level at or below it reaches its least energy so far
+// (inner_floor_), and must not take a heavier level's. Checked to fail when a level reads the
+// latest level's floors whatever that level is.
+TEST_F(JointSearchTest, CoupledFrontierLevelsInAnyOrderAreBelowEveryLiftGroupsEnergy) {
+  std::vector<int> down;
+  for (int k = JointBounds::kFrontierLevels - 1; k >= 0; --k) down.push_back(k);
+  ExpectFrontierLevelsBelowLiftEnergy(dir_, down);
+  std::vector<int> up(down.rbegin(), down.rend());
+  ExpectFrontierLevelsBelowLiftEnergy(dir_, up);
 }
 
 // Two free groups and a fixed one (a sprint on its own pusher): G2 reads the fixed group's
@@ -306,6 +327,70 @@ TEST_F(JointSearchTest, MaxEnduranceTwoFreeGroupsEqualExhaustiveEvaluation) {
   });
   ASSERT_GE(all.size(), 3u);
   ExpectTopThreeOfExhaustive(cat, m, all, lift, pusher);
+}
+
+// R10's charge and voltage in G2's outer bound (docs/search.md#g2-voltage): on the tiny catalog
+// with a long cruise, over a sweep of max_throttle, the pusher's pair and triple bounds stay at
+// or below every feasible score, and some pusher is refused for its throttle where the same
+// mission with a short cruise (the same throttle at full charge) is not. Checked to fail when
+// the charge drawn is taken twice too large (not at 1.5 times: the charge bound is loose).
+TEST_F(JointSearchTest, VoltageLeftRefusesOnlyInfeasiblePushers) {
+  const Catalog cat = Catalog::Load(TinyCatalogDir(dir_).string());
+  auto index_of = [](const auto& list, const auto* x) { return static_cast<int>(x - list.data()); };
+  const double kInf = std::numeric_limits<double>::infinity();
+  int refused = 0, checked = 0;
+  for (int step = 0; step < 20; ++step) {  // max_throttle 0.5 to 0.975
+    const double t_max = 0.5 + 0.025 * step;
+    Json j = ParseJsonText(kFreeQuadplane, "free");
+    j["constraints"]["max_throttle"] = t_max;
+    j["segments"][1]["distance_m"] = 100;
+    const Mission short_m = ParseMission(j, "short cruise");
+    j["segments"][1]["distance_m"] = 8000;
+    const Mission m = ParseMission(j, "long cruise");
+    const int lift = m.segments[0].group, pusher = m.segments[1].group;
+    PropGridCache cache, cache_short;
+    BuildPropGrids(m, cat, &cache.grids, &cache.models);
+    BuildPropGrids(short_m, cat, &cache_short.grids, &cache_short.models);
+    cache.built = cache_short.built = true;
+    JointBounds jb(m, cat, cache), jb_short(short_m, cat, cache_short);
+    ASSERT_EQ(jb.outer_group(), pusher);
+    for (std::size_t o = 0; o < jb.options().size(); ++o) {
+      for (std::size_t mi = 0; mi < cat.motors().size(); ++mi) {
+        for (std::size_t ei = 0; ei < cat.escs().size(); ++ei) {
+          for (std::size_t pi = 0; pi < cat.props().size(); ++pi) {
+            const int mo = static_cast<int>(mi), e = static_cast<int>(ei), p = static_cast<int>(pi);
+            const char* why = nullptr;
+            const char* why_short = nullptr;
+            const double b = jb.TripleBound(mo, e, p, o, &why);
+            const double b_short = jb_short.TripleBound(mo, e, p, o, &why_short);
+            if (!(b < kInf) && why && std::string(why) == "throttle" && b_short < kInf) ++refused;
+          }
+        }
+      }
+    }
+    jb.set_coupled(true);
+    ForEachJoint(cat, m, lift, pusher, [&](const Combination& c, const MissionResult& r) {
+      if (!r.feasible) return;
+      std::size_t o = 0;
+      while (o < jb.options().size() && jb.options()[o].cells != c.cells) ++o;
+      ASSERT_LT(o, jb.options().size());
+      const int motor = index_of(cat.motors(), c.groups[pusher].motor);
+      const int esc = index_of(cat.escs(), c.groups[pusher].esc);
+      const int prop = index_of(cat.props(), c.groups[pusher].prop);
+      int cls = -1;
+      for (std::size_t k = 0; k < jb.escs().classes.size(); ++k) {
+        for (int x : jb.escs().classes[k].members) cls = x == esc ? static_cast<int>(k) : cls;
+      }
+      const char* why = nullptr;
+      double irms = 0;
+      // Tolerance: none (exact inequalities).
+      EXPECT_LE(jb.PairBound(motor, prop, o, cls, &why, &irms), r.score) << Name(c, lift, pusher) << " " << t_max;
+      EXPECT_LE(jb.TripleBound(motor, esc, prop, o, &why), r.score) << Name(c, lift, pusher) << " " << t_max;
+      ++checked;
+    });
+  }
+  EXPECT_GT(refused, 0) << "the long cruise's voltage must refuse some pusher";
+  EXPECT_GT(checked, 0);
 }
 
 // Property test: missions drawn from a seeded generator over the tiny catalog, with two
