@@ -26,9 +26,6 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 constexpr double kMassCeilingKg = 1e5;  // MassFloorKg's search range: beyond any vehicle
 constexpr double kRotorCeilingRadS = 1e5;  // RotorLowerBound's: ~1e6 rpm, beyond any motor
 constexpr std::size_t kNoIndex = std::numeric_limits<std::size_t>::max();  // OuterBound's: not a free cruise
-// VoltageLeftRule's charge bound is taken at this fraction of its value against the evaluator's
-// midpoint rule (R10's allowance, docs/search.md#r10).
-constexpr double kChargeAllowance = 1.0 - 1e-3;
 
 }  // namespace
 

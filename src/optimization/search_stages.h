@@ -236,6 +236,11 @@ double SegmentwiseBound(const SearchContext& ctx, int motor, int prop, int optio
 // the pair whatever else is chosen (false when the rule does not apply).
 bool FailsHoverThrottleBound(const SearchContext& ctx, int motor, int prop, int option, const EscEntry& esc);
 
+// R10's charge bound (docs/search.md#r10), and G2's voltage left before a segment
+// (docs/search.md#g2-voltage): the charge a segment must draw, P_lb * t_min / v_full, is taken
+// at this fraction of its value, against the evaluator's midpoint rule.
+inline constexpr double kChargeAllowance = 1.0 - 1e-3;
+
 // Fills ctx->fixed_power_lb_w (after stages 1-3 and ResolveGroups).
 inline constexpr int kFixedPowerMasses = 64;
 inline constexpr double kFixedPowerMassStep = 1.02;

@@ -19,7 +19,6 @@ namespace dynosize::search_internal {
 namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
-constexpr double kChargeAllowance = 1.0 - 1e-3;  // R10's charge bound
 
 // R10: the grid a segment of the free group is read on, with its thrust and torque from below
 // (null when none applies: a shaft segment, a free airspeed, a multirotor cruise with
