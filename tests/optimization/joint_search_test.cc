@@ -74,6 +74,26 @@ SearchResult ExpectTopThreeOfExhaustive(const Catalog& cat, const Mission& m, st
   return s;
 }
 
+// The outer (pusher) choice of a combination as JointBounds indexes it: the battery option, the
+// motor, ESC and propeller, and the ESC's class (-1: an ESC below the pack's voltage, R1).
+struct OuterIndex {
+  std::size_t option = 0;
+  int motor = -1, esc = -1, prop = -1, esc_class = -1;
+};
+
+OuterIndex OuterIndexOf(const JointBounds& jb, const Catalog& cat, const Combination& c, int pusher) {
+  OuterIndex x;
+  while (x.option < jb.options().size() && jb.options()[x.option].cells != c.cells) ++x.option;
+  const GroupParts& g = c.groups[static_cast<std::size_t>(pusher)];
+  x.motor = static_cast<int>(g.motor - cat.motors().data());
+  x.esc = static_cast<int>(g.esc - cat.escs().data());
+  x.prop = static_cast<int>(g.prop - cat.props().data());
+  for (std::size_t k = 0; k < jb.escs().classes.size(); ++k) {
+    for (int e : jb.escs().classes[k].members) x.esc_class = e == x.esc ? static_cast<int>(k) : x.esc_class;
+  }
+  return x;
+}
+
 // Every combination (motors without mass left out, as the search does) through the evaluator,
 // with f(combination, result) called for each.
 // Groups other than lift and pusher keep their FixedGroupParts.
@@ -124,22 +144,15 @@ TEST_F(JointSearchTest, TwoFreeGroupsEqualExhaustiveEvaluation) {
   ASSERT_EQ(jb.outer_group(), pusher) << "the outer group is the one that does not lift";
   jb.set_coupled(true);  // the bounds below include the coupled one (min_energy)
   ASSERT_GT(jb.frontier_size(0) + jb.frontier_size(1), 0u);
-  auto index_of = [](const auto& list, const auto* x) { return static_cast<int>(x - list.data()); };
   std::vector<Scored> all;
   int checked = 0, lift_checked = 0;
   ForEachJoint(cat, m, lift, pusher, [&](const Combination& c, const MissionResult& r) {
     if (!r.feasible) return;
     all.push_back({r.score, Name(c, lift, pusher)});
-    std::size_t o = 0;
-    while (o < jb.options().size() && jb.options()[o].cells != c.cells) ++o;
-    ASSERT_LT(o, jb.options().size());
-    const int motor = index_of(cat.motors(), c.groups[pusher].motor);
-    const int esc = index_of(cat.escs(), c.groups[pusher].esc);
-    const int prop = index_of(cat.props(), c.groups[pusher].prop);
-    int cls = -1;
-    for (std::size_t k = 0; k < jb.escs().classes.size(); ++k) {
-      for (int e : jb.escs().classes[k].members) cls = e == esc ? static_cast<int>(k) : cls;
-    }
+    const OuterIndex x = OuterIndexOf(jb, cat, c, pusher);
+    ASSERT_LT(x.option, jb.options().size());
+    const std::size_t o = x.option;
+    const int motor = x.motor, esc = x.esc, prop = x.prop, cls = x.esc_class;
     const char* why = nullptr;
     double irms = 0;
     // Tolerance: none. The bounds are exact inequalities; a rounding-level excess is a defect.
@@ -336,7 +349,6 @@ TEST_F(JointSearchTest, MaxEnduranceTwoFreeGroupsEqualExhaustiveEvaluation) {
 // the charge drawn is taken twice too large (not at 1.5 times: the charge bound is loose).
 TEST_F(JointSearchTest, VoltageLeftRefusesOnlyInfeasiblePushers) {
   const Catalog cat = Catalog::Load(TinyCatalogDir(dir_).string());
-  auto index_of = [](const auto& list, const auto* x) { return static_cast<int>(x - list.data()); };
   const double kInf = std::numeric_limits<double>::infinity();
   int refused = 0, checked = 0;
   for (int step = 0; step < 20; ++step) {  // max_throttle 0.5 to 0.975
@@ -371,16 +383,10 @@ TEST_F(JointSearchTest, VoltageLeftRefusesOnlyInfeasiblePushers) {
     jb.set_coupled(true);
     ForEachJoint(cat, m, lift, pusher, [&](const Combination& c, const MissionResult& r) {
       if (!r.feasible) return;
-      std::size_t o = 0;
-      while (o < jb.options().size() && jb.options()[o].cells != c.cells) ++o;
-      ASSERT_LT(o, jb.options().size());
-      const int motor = index_of(cat.motors(), c.groups[pusher].motor);
-      const int esc = index_of(cat.escs(), c.groups[pusher].esc);
-      const int prop = index_of(cat.props(), c.groups[pusher].prop);
-      int cls = -1;
-      for (std::size_t k = 0; k < jb.escs().classes.size(); ++k) {
-        for (int x : jb.escs().classes[k].members) cls = x == esc ? static_cast<int>(k) : cls;
-      }
+      const OuterIndex x = OuterIndexOf(jb, cat, c, pusher);
+      ASSERT_LT(x.option, jb.options().size());
+      const std::size_t o = x.option;
+      const int motor = x.motor, esc = x.esc, prop = x.prop, cls = x.esc_class;
       const char* why = nullptr;
       double irms = 0;
       // Tolerance: none (exact inequalities).
@@ -476,20 +482,13 @@ TEST_F(JointSearchTest, FreeAirspeedOuterBoundsBelowEveryFeasibleScore) {
   cache.built = true;
   JointBounds jb(m, cat, cache);
   ASSERT_EQ(jb.outer_group(), pusher);
-  auto index_of = [](const auto& list, const auto* x) { return static_cast<int>(x - list.data()); };
   int checked = 0, ruled_out = 0;
   double closest = std::numeric_limits<double>::infinity();  // the least score / coupled pair bound
   ForEachJoint(cat, m, lift, pusher, [&](const Combination& c, const MissionResult& r) {
-    std::size_t o = 0;
-    while (o < jb.options().size() && jb.options()[o].cells != c.cells) ++o;
-    ASSERT_LT(o, jb.options().size());
-    const int motor = index_of(cat.motors(), c.groups[pusher].motor);
-    const int esc = index_of(cat.escs(), c.groups[pusher].esc);
-    const int prop = index_of(cat.props(), c.groups[pusher].prop);
-    int cls = -1;
-    for (std::size_t k = 0; k < jb.escs().classes.size(); ++k) {
-      for (int e : jb.escs().classes[k].members) cls = e == esc ? static_cast<int>(k) : cls;
-    }
+    const OuterIndex x = OuterIndexOf(jb, cat, c, pusher);
+    ASSERT_LT(x.option, jb.options().size());
+    const std::size_t o = x.option;
+    const int motor = x.motor, esc = x.esc, prop = x.prop, cls = x.esc_class;
     if (cls < 0) return;  // an ESC below the pack's voltage (R1)
     const char* why = nullptr;
     double irms = 0;

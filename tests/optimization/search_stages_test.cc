@@ -377,15 +377,9 @@ TEST_F(SearchStagesTest, CapacityPieceBoundsAreBelowEveryFeasibleScore) {
   }
 }
 
-// R13's pieces passed over (docs/search.md#r13, "assembled only while it can be the least"): a
-// piece after the first is assembled at its own mass only when the first piece's terms with its
-// budget, then its own stretch power with the first piece's other segments, are below the least
-// so far and the cutoff. Every pair's bound (and whether it is kept, its rule, its Irms bound)
-// and every R11 key is the same number as with every piece assembled, bit for bit, over a hover
-// stretch and a fixed-airspeed cruise stretch and four capacity ranges; with a cutoff the bound
-// is the same when below it, else at or above it; and pieces are passed over.
-TEST_F(SearchStagesTest, CapacityPiecesPassedOverLeaveEveryPairBoundAndKeyTheSame) {
-  const Catalog cat = SmallCatalog();
+// The quadcopter's mission with its hover as the max_endurance stretch, and the same with a
+// fixed-airspeed cruise stretch (R13's two kinds of stretch).
+std::vector<Json> HoverAndCruiseStretches() {
   Json j = ParseJsonText(kStageQuad, "quad");
   Json cruise = j;
   cruise["segments"] = Json::parse(R"([
@@ -395,7 +389,19 @@ TEST_F(SearchStagesTest, CapacityPiecesPassedOverLeaveEveryPairBoundAndKeyTheSam
     {"name": "landing", "type": "climb", "rate_m_s": -1, "distance_m": 30}
   ])");
   cruise["objective"] = {{"type", "max_endurance"}, {"segment", "flight"}};
-  for (Json& mission : std::vector<Json>{j, cruise}) {
+  return {j, cruise};
+}
+
+// R13's pieces passed over (docs/search.md#r13, "assembled only while it can be the least"): a
+// piece after the first is assembled at its own mass only when the first piece's terms with its
+// budget, then its own stretch power with the first piece's other segments, are below the least
+// so far and the cutoff. Every pair's bound (and whether it is kept, its rule, its Irms bound)
+// and every R11 key is the same number as with every piece assembled, bit for bit, over a hover
+// stretch and a fixed-airspeed cruise stretch and four capacity ranges; with a cutoff the bound
+// is the same when below it, else at or above it; and pieces are passed over.
+TEST_F(SearchStagesTest, CapacityPiecesPassedOverLeaveEveryPairBoundAndKeyTheSame) {
+  const Catalog cat = SmallCatalog();
+  for (Json& mission : HoverAndCruiseStretches()) {
     for (const auto& range : {std::make_pair(2.0, 6.0), std::make_pair(1.5, 9.0), std::make_pair(8.0, 60.0), std::make_pair(10.0, 200.0)}) {
       mission["battery"]["capacity_ah"] = {range.first, range.second};
       const Mission m = ParseMission(mission, "quad");
@@ -474,16 +480,7 @@ TEST_F(SearchStagesTest, CapacityPiecesPassedOverLeaveEveryPairBoundAndKeyTheSam
 // eager (the floors' energy times 1.01) it fails.
 TEST_F(SearchStagesTest, HeavierPieceBoundsFromTheFirstPieceStayBelowTheirAssembly) {
   const Catalog cat = SmallCatalog();
-  Json j = ParseJsonText(kStageQuad, "quad");
-  Json cruise = j;
-  cruise["segments"] = Json::parse(R"([
-    {"name": "takeoff", "type": "climb", "rate_m_s": 2, "distance_m": 30},
-    {"name": "hover", "type": "hover", "duration_s": 20},
-    {"name": "flight", "type": "cruise", "airspeed_m_s": 10, "distance_m": 1000},
-    {"name": "landing", "type": "climb", "rate_m_s": -1, "distance_m": 30}
-  ])");
-  cruise["objective"] = {{"type", "max_endurance"}, {"segment", "flight"}};
-  for (Json& mission : std::vector<Json>{j, cruise}) {
+  for (Json& mission : HoverAndCruiseStretches()) {
     mission["battery"]["capacity_ah"] = {1.5, 9.0};
     const Mission m = ParseMission(mission, "quad");
     SearchContext ctx;
