@@ -279,7 +279,9 @@ TEST_F(TopResultsTest, StoppedJointSearchStopsItsInnerSearchesToo) {
 // each one): the candidates not taken stay unsettled, so every count and the bound still hold.
 // The stop comes from another thread after a delay; whatever the moment, the checks must hold.
 // The bundled catalog's quadcopter: its search takes about 0.15 s, much of it in chunks of
-// solves (the small catalog's is mostly set-up, so a stop seldom lands in a chunk). With two
+// solves (the small catalog's is mostly set-up, so a stop seldom lands in a chunk); the stops
+// come at fractions of the time the whole search took on this build (ten times more under the
+// sanitizers). With two
 // threads one of them draws the next chunk while the other solves, so a stop lands among a
 // chunk's solves mostly with one.
 TEST(TopResultsStopTest, StopInTheMiddleOfAChunkLeavesTheCountsAndTheBoundValid) {
@@ -287,23 +289,26 @@ TEST(TopResultsStopTest, StopInTheMiddleOfAChunkLeavesTheCountsAndTheBoundValid)
   const Mission m = ReadMission(std::string(DYNOSIZE_SOURCE_DIR) + "/examples/missions/quadcopter_1p5kg.json");
   SearchOptions so;
   so.top_n = 3;
-  so.threads = 2;
+  so.threads = 1;
+  const auto t0 = std::chrono::steady_clock::now();
   const SearchResult full = SearchCatalog(m, cat, so);
+  const auto whole = std::chrono::steady_clock::now() - t0;  // scales with the build (sanitizers)
   ASSERT_FALSE(full.best.empty());
   const RankedCombination& best = full.best.front();
   int with_solves = 0;
-  for (int delay_ms = 10; delay_ms <= 200; delay_ms += 10) {
+  for (int k = 1; k <= 20; ++k) {  // stops at 5 %, 10 %, ..., 100 % of the whole search's time
     std::atomic<bool> stop{false};
     so.stop = &stop;
     // One thread draws and solves in turn, so a stop lands among the solves more often.
-    so.threads = delay_ms % 20 == 0 ? 2 : 1;
-    std::thread stopper([&stop, delay_ms] {
-      std::this_thread::sleep_for(std::chrono::milliseconds(delay_ms));
+    so.threads = k % 2 == 0 ? 2 : 1;
+    const auto delay = whole * k / 20;
+    std::thread stopper([&stop, delay] {
+      std::this_thread::sleep_for(delay);
       stop = true;
     });
     const SearchResult s = SearchCatalog(m, cat, so);
     stopper.join();
-    const std::string what = "stopped after " + std::to_string(delay_ms) + " ms";
+    const std::string what = "stopped at " + std::to_string(5 * k) + " % of the search's time";
     if (!s.interrupted) continue;
     if (s.searched > 0) ++with_solves;
     EXPECT_GT(s.unsettled, 0) << what;
