@@ -129,6 +129,18 @@ void ForEachJoint(const Catalog& cat, const Mission& m, int lift, int pusher, F&
   }
 }
 
+// Every feasible combination's score (ForEachJoint), best first, ties by name.
+std::vector<Scored> FeasibleScoresSorted(const Catalog& cat, const Mission& m, int lift, int pusher) {
+  std::vector<Scored> all;
+  ForEachJoint(cat, m, lift, pusher, [&](const Combination& c, const MissionResult& r) {
+    if (r.feasible) all.push_back({r.score, Name(c, lift, pusher)});
+  });
+  std::sort(all.begin(), all.end(), [](const Scored& a, const Scored& b) {
+    return a.score != b.score ? a.score < b.score : a.name < b.name;
+  });
+  return all;
+}
+
 // optimize == the best of exhaustive evaluate, bit for bit; and on the way, G2's bounds are at
 // or below the true score of every feasible combination (the outer pusher's pair and triple
 // bounds, the lift group's least segment power at or below each lift segment's mean power).
@@ -433,13 +445,7 @@ TEST_F(JointSearchTest, GeneratedMissionsEqualExhaustiveEvaluation) {
     const Mission m = ParseMission(j, "generated");
     ASSERT_EQ(FreeGroupCount(m), 2);
     const int lift = m.segments[0].group, pusher = m.segments[1].group;
-    std::vector<Scored> all;
-    ForEachJoint(cat, m, lift, pusher, [&](const Combination& c, const MissionResult& r) {
-      if (r.feasible) all.push_back({r.score, Name(c, lift, pusher)});
-    });
-    std::sort(all.begin(), all.end(), [](const Scored& a, const Scored& b) {
-      return a.score != b.score ? a.score < b.score : a.name < b.name;
-    });
+    const std::vector<Scored> all = FeasibleScoresSorted(cat, m, lift, pusher);
     SearchOptions so;
     so.top_n = 3;
     SearchResult s;
@@ -520,13 +526,7 @@ TEST_F(JointSearchTest, InnerSearchesPutBackKeepTheAnswerAndShowTheirResultsOnAS
   const Catalog cat = Catalog::Load(TinyCatalogDir(dir_).string());
   const Mission m = ReadMission((dir_ / "free.json").string());
   const int lift = m.segments[0].group, pusher = m.segments[1].group;
-  std::vector<Scored> all;
-  ForEachJoint(cat, m, lift, pusher, [&](const Combination& c, const MissionResult& r) {
-    if (r.feasible) all.push_back({r.score, Name(c, lift, pusher)});
-  });
-  std::sort(all.begin(), all.end(), [](const Scored& a, const Scored& b) {
-    return a.score != b.score ? a.score < b.score : a.name < b.name;
-  });
+  const std::vector<Scored> all = FeasibleScoresSorted(cat, m, lift, pusher);
   ASSERT_GE(all.size(), 3u);
   SearchOptions so;
   so.top_n = 3;

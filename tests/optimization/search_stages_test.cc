@@ -606,13 +606,7 @@ TEST_F(SearchStagesTest, HoverThrottleBoundRefusesOnlyEscsThatFailTheLimit) {
 // bound is at or below the score of every feasible ESC, and a removed pair has none.
 TEST_F(SearchStagesTest, CruiseStretchBoundIsBelowEveryFeasibleScore) {
   const Catalog cat = SmallCatalog();
-  Json j = ParseJsonText(kStageQuad, "quad");
-  j["segments"] = Json::parse(R"([
-    {"name": "takeoff", "type": "climb", "rate_m_s": 2, "distance_m": 30},
-    {"name": "hover", "type": "hover", "duration_s": 20},
-    {"name": "flight", "type": "cruise", "airspeed_m_s": 10, "distance_m": 1000},
-    {"name": "landing", "type": "climb", "rate_m_s": -1, "distance_m": 30}
-  ])");
+  Json j = HoverAndCruiseStretches()[1];  // its objective is set per stretch below
   for (const char* stretch : {"flight", "hover"}) {  // the cruise in the stretch, then among the others
     j["objective"] = {{"type", "max_endurance"}, {"segment", stretch}};
     const Mission m = ParseMission(j, "quad");
