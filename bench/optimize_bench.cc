@@ -167,6 +167,9 @@ void GrowthOf(benchmark::State& state, const char* file, bool free_groups) {
   state.counters["virtual_quarter"] = static_cast<double>(s[0].virtual_evaluations);
   state.counters["virtual_half"] = static_cast<double>(s[1].virtual_evaluations);
   state.counters["virtual_full"] = static_cast<double>(s[2].virtual_evaluations);
+  state.counters["put_back_quarter"] = static_cast<double>(s[0].put_back_solves);
+  state.counters["put_back_half"] = static_cast<double>(s[1].put_back_solves);
+  state.counters["put_back_full"] = static_cast<double>(s[2].put_back_solves);
 }
 
 void BM_OptimizeQuadcopterGrowth(benchmark::State& state) { GrowthOf(state, "quadcopter_1p5kg.json", false); }

@@ -305,6 +305,26 @@ void BranchAndBound::Process(const Candidate& cand, TopScores top, Outcome* o) c
         if (segmentwise_prunes()) continue;
       }
     }
+    // The fixed groups' mass floor per ESC (R7, R6; FixedMassFloorRule): the lightest ESCs fail it
+    // first.
+    const double motor_kg = *c.motor->mass_kg, prop_kg = ctx_.grids[static_cast<std::size_t>(cand.prop)].mass_kg;
+    if (FixedMassFloorRule(ctx_, cand.option, motor_kg, prop_kg, *virt.mass_kg)) {
+      const std::size_t before = rated.size();
+      const char* rule = nullptr;
+      rated.erase(std::remove_if(rated.begin(), rated.end(), [&](int e) {
+                    const char* r = FixedMassFloorRule(ctx_, cand.option, motor_kg, prop_kg, EscMassKg(escs[e]));
+                    if (r) rule = r;
+                    return r != nullptr;
+                  }),
+                  rated.end());
+      local_prune(rule, static_cast<long long>(before - rated.size()));
+      if (rated.empty()) continue;
+      n_rated = rated.size();
+      if (const double kg = EscMassKg(escs[rated.front()]); kg != *virt.mass_kg) {
+        virt.mass_kg = kg;
+        if (segmentwise_prunes()) continue;
+      }
+    }
     // R12 per ESC (the window's bottom): the lightest ESCs fail it first (M3).
     if (HoverSpeedBelowWindow(ctx_, facts_, cand.motor, cand.prop, cand.option, *virt.mass_kg)) {
       const std::size_t before = rated.size();

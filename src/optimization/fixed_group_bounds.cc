@@ -18,6 +18,25 @@ namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
+// R7 and R6 as mass floors (mass_floors.h) of the fixed groups' segments, each on its group's
+// own propeller, scanned up from mass_min_kg: the highest (a feasible vehicle passes them all).
+MassFloor FixedGroupsMassFloor(const SearchContext& ctx, double mass_min_kg) {
+  const Mission& m = *ctx.mission;
+  const auto& props = ctx.catalog->props();
+  MassFloor out;
+  for (const Segment& sg : m.segments) {
+    if (sg.group == ctx.free_group) continue;
+    const GroupParts& parts = ctx.fixed_parts[static_cast<std::size_t>(sg.group)];
+    // The grids are the catalog's: a fixed propeller outside it gets no floor (M1 unchecked).
+    const std::ptrdiff_t pi = parts.prop - props.data();
+    if (pi < 0 || pi >= static_cast<std::ptrdiff_t>(props.size())) continue;
+    const MassFloor f = SegmentMassFloorKg(m, sg, *parts.prop, *ctx.fixed_models[static_cast<std::size_t>(sg.group)],
+                                           ctx.grids[static_cast<std::size_t>(pi)].monotone, mass_min_kg);
+    if (f.kg > out.kg) out = f;
+  }
+  return out;
+}
+
 }  // namespace
 
 // G1 for a group's wing-borne cruise with a free airspeed: cell by cell over the airspeed
@@ -38,6 +57,7 @@ void FixedGroupPowerBounds(SearchContext* ctx) {
   const Mission& m = *ctx->mission;
   ctx->fixed_power_lb_w.clear();
   ctx->fixed_power_mass_kg.clear();
+  ctx->fixed_mass_floor.clear();
   if (m.groups.empty()) return;
   // The lightest the vehicle can be with any choice of the free group (M3: every segment's
   // thrust, and so its speed, torque and power, rises with the mass). The bounds are tabulated
@@ -54,6 +74,7 @@ void FixedGroupPowerBounds(SearchContext* ctx) {
     const double mass_min = m.vehicle.mass_kg + bo.mass_lo_kg + ctx->fixed_groups_mass_kg +
                             ctx->free_rotors * (std::isfinite(motor_min) ? motor_min : 0.0) +
                             ctx->free_rotors * ((std::isfinite(prop_min) ? prop_min : 0.0) + esc_min);
+    ctx->fixed_mass_floor.push_back(FixedGroupsMassFloor(*ctx, mass_min));
     std::vector<double> masses(kFixedPowerMasses);
     std::vector<std::vector<double>> table;
     for (int k = 0; k < kFixedPowerMasses; ++k) {

@@ -16,6 +16,7 @@
 #include "optimization/components.h"
 #include "optimization/credibility.h"
 #include "optimization/joint_search.h"
+#include "optimization/mass_floors.h"
 #include "optimization/prop_bounds.h"
 
 namespace dynosize::search_internal {
@@ -23,7 +24,6 @@ namespace dynosize::search_internal {
 namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
-constexpr double kMassCeilingKg = 1e5;  // MassFloorKg's search range: beyond any vehicle
 constexpr double kRotorCeilingRadS = 1e5;  // RotorLowerBound's: ~1e6 rpm, beyond any motor
 constexpr std::size_t kNoIndex = std::numeric_limits<std::size_t>::max();  // OuterBound's: not a free cruise
 
@@ -209,7 +209,6 @@ JointBounds::JointBounds(const Mission& m, const Catalog& cat, const PropGridCac
     if (m.groups[g].fixed()) fixed_models[g] = std::make_unique<PropModel>(*fixed[g].prop);
   }
   for (const PropGrid& g : cache.grids) monotone_.push_back(g.monotone);
-  mass_floor_kg_.assign(options_.size() * n_seg * cat.props().size(), -1.0);
   for (std::size_t o = 0; o < options_.size(); ++o) {
     const BatteryOption& bo = options_[o];
     const double esc_min = std::isfinite(escs_.min_mass_kg[o]) ? escs_.min_mass_kg[o] : 0.0;
@@ -260,6 +259,7 @@ JointBounds::JointBounds(const Mission& m, const Catalog& cat, const PropGridCac
   const std::size_t n_cache = options_.size() * n_seg * cat.props().size() * static_cast<std::size_t>(kFixedPowerMasses);
   rotor_cache_.assign(n_cache, RotorBound{});
   rotor_done_.assign(n_cache, 0);
+  mass_floor_kg_.assign(n_cache, -1.0);
   cruise_index_.assign(n_cache, -1);
   if (free.size() == 2 && m.objective.type == ObjectiveType::kMinEnergy) {
     inner_ = free[0] == outer_ ? free[1] : free[0];
@@ -272,113 +272,24 @@ JointBounds::JointBounds(const Mission& m, const Catalog& cat, const PropGridCac
   }
 }
 
-// R7's floor on one airspeed cell [v_a, v_b] (see MassFloorKg): kInf when no mass reaches the
-// thrust, 0 when every mass does (or the inflow is 0).
-double JointBounds::StaticAdvanceMassFloorKg(const PropModel& model, double diameter_m, const Segment& sg, double v_a,
-                                             double v_b) const {
-  const double v_ax = SegmentRotorLoad(m_, sg, 1.0, v_a).axial_airspeed_m_s;
-  if (!(v_ax > 0)) return 0.0;
-  const double omega_req = 2.0 * kPi * v_ax / (m_.constraints.max_static_advance_ratio * diameter_m);
-  const double t_req = model.Evaluate(omega_req, m_.rho_kg_m3, 0.0).thrust_n;
-  auto thrust_at = [&](double kg) { return SegmentRotorLoad(m_, sg, kg, v_b).thrust_per_rotor_n; };
-  double lo = 0.0, hi = kMassCeilingKg;
-  if (!(thrust_at(hi) >= t_req)) return kInf;
-  if (!(thrust_at(lo) < t_req)) return 0.0;
-  for (int it = 0; it < 60; ++it) {  // keeps thrust(lo) < T(n)
-    const double mid = 0.5 * (lo + hi);
-    (thrust_at(mid) < t_req ? lo : hi) = mid;
-  }
-  return lo;
-}
-
-// R7 as a mass floor: static-only data in axial flow V_ax pass the evaluator only at an advance
-// ratio J = V_ax/(n*D) <= max_static_advance_ratio, so at a speed n >= V_ax/(J_max*D), where the
-// static thrust (M1, the propeller's grid rising) is at least T(n); the segment's thrust rises
-// with the vehicle's mass (M3), so a feasible vehicle weighs at least the mass whose thrust is
-// T(n) (bisection, kept at or below it). kInf: no mass gives it; 0: no floor.
-double JointBounds::MassFloorKg(int prop, std::size_t si, std::size_t o) {
-  const std::size_t i = (o * m_.segments.size() + si) * cat_.props().size() + static_cast<std::size_t>(prop);
+// R7 and R6 as mass floors of the outer group's segment si on `prop` (mass_floors.h) for a
+// vehicle of at least mass_kg: scanned up from the grid mass at or below it (RotorCacheIndex; a
+// floor found from a lighter grid mass that reaches this one serves), kept per grid mass. kInf:
+// no mass passes; at most the grid mass: no floor above it.
+double JointBounds::MassFloorKg(int prop, std::size_t si, std::size_t o, double mass_kg) {
+  double grid_kg = 0;
+  const std::size_t i = RotorCacheIndex(prop, si, o, mass_kg, &grid_kg);
   if (mass_floor_kg_[i] >= 0) return mass_floor_kg_[i];
-  const PropEntry& p = cat_.props()[static_cast<std::size_t>(prop)];
-  const PropModel& model = *models_[static_cast<std::size_t>(prop)];
-  const Segment& sg = m_.segments[si];
-  double floor_kg = 0.0;
-  const bool static_only = model.data_kind() != PropDataKind::kTables || p.j_tables.empty();
-  const bool free_cruise = sg.type == SegmentType::kCruise && sg.airspeed_m_s.free();
-  if (static_only && monotone_[static_cast<std::size_t>(prop)] && sg.type != SegmentType::kShaft &&
-      (!free_cruise || sg.lift_to_drag > 0) && m_.constraints.max_static_advance_ratio > 0) {
-    // A free (wing-borne) airspeed in cells [V_a, V_b]: the required speed and its static thrust
-    // rise with V (M1), the segment's thrust at a mass is largest at V_b (flight.h), so a
-    // vehicle flying the cell weighs at least the floor of (T(n(V_a)), thrust at V_b); the least
-    // over the cells bounds the whole range. A fixed airspeed is one cell.
-    const int cells = free_cruise ? kFreeCruiseFloorCells : 1;
-    const double lo = sg.airspeed_m_s.lo, span = free_cruise ? sg.airspeed_m_s.hi - lo : 0.0;
-    floor_kg = kInf;
-    for (int c = 0; c < cells && floor_kg > 0; ++c) {
-      const double v_a = lo + span * c / cells, v_b = lo + span * (c + 1) / cells;
-      floor_kg = std::min(floor_kg, StaticAdvanceMassFloorKg(model, p.diameter_m, sg, v_a, v_b));
-    }
+  const std::size_t k = i % static_cast<std::size_t>(kFixedPowerMasses);
+  if (k > 0 && mass_floor_kg_[i - 1] >= grid_kg) {
+    mass_floor_kg_[i] = mass_floor_kg_[i - 1];
+  } else {
+    mass_floor_kg_[i] = SegmentMassFloorKg(m_, m_.segments[si], cat_.props()[static_cast<std::size_t>(prop)],
+                                           *models_[static_cast<std::size_t>(prop)],
+                                           monotone_[static_cast<std::size_t>(prop)], grid_kg)
+                            .kg;
   }
-  floor_kg = std::max(floor_kg, FigureOfMeritMassFloorKg(prop, si, o));
-  mass_floor_kg_[i] = floor_kg;
-  return floor_kg;
-}
-
-// R6 as a mass floor for the outer group (docs/search.md#g2): the lightest vehicle at which segment
-// si (a fixed axial inflow) may pass prop_figure_of_merit on propeller `prop`, kg (a lower bound;
-// 0 when nothing is proven). The evaluator's figure of merit is P_ideal(T, v)/P(omega), the
-// propeller's power as given at the speed omega that gives the segment's thrust T (mission_eval.cc,
-// PropellerPoint; model/physics.h). On a mass cell [M_a, M_b] the thrust is in [T(M_a), T(M_b)]
-// (M3), the speed at or below omega_b, a speed whose thrust is at least T(M_b) (M1), so the
-// power is at most P(omega_b) when the power rises with speed on the cell's speeds (checked at
-// kFomSamples speeds, else nothing is proven there), and P_ideal rises with T: the figure of
-// merit is at least P_ideal(T(M_a), v)/P(omega_b). Cells above the limit hold no feasible mass;
-// the floor is the bottom of the first cell that is not proven so, scanning up from the
-// option's lightest vehicle in cells kFomCellRatio wide (kFomCells of them).
-double JointBounds::FigureOfMeritMassFloorKg(int prop, std::size_t si, std::size_t o) const {
-  constexpr int kFomCells = 64, kFomSamples = 8, kSteps = 50;
-  constexpr double kFomCellRatio = 1.03;
-  const Segment& sg = m_.segments[si];
-  const PropEntry& p = cat_.props()[static_cast<std::size_t>(prop)];
-  const PropModel& model = *models_[static_cast<std::size_t>(prop)];
-  const double limit = m_.constraints.max_figure_of_merit;
-  // A fixed inflow: not a shaft segment, a free airspeed or a multirotor cruise (its inflow
-  // changes with the mass, flight.h).
-  const bool fixed_inflow = sg.type != SegmentType::kShaft &&
-                            !(sg.type == SegmentType::kCruise && (sg.airspeed_m_s.free() || !(sg.lift_to_drag > 0)));
-  if (!fixed_inflow || !(limit > 0) || !monotone_[static_cast<std::size_t>(prop)]) {
-    return 0.0;
-  }
-  const bool static_only = model.data_kind() != PropDataKind::kTables || p.j_tables.empty();
-  auto load_at = [&](double kg) { return SegmentRotorLoad(m_, sg, kg, sg.airspeed_m_s.lo); };
-  const double v = load_at(1.0).axial_airspeed_m_s;
-  if (v < 0) return 0.0;  // a descent: PropellerPoint's inflow differs
-  const double v_fom = static_only ? 0.0 : v;  // PropellerPoint: static-only data held to the static bound
-  const double v_eval = static_only ? 0.0 : v;  // static-only data are read at J = 0 in any inflow
-  double kg = mass_min_kg_[o];
-  for (int cell = 0; cell < kFomCells; ++cell) {
-    const double kg_b = kg * kFomCellRatio;
-    const double t_a = load_at(kg).thrust_per_rotor_n, t_b = load_at(kg_b).thrust_per_rotor_n;
-    if (!(model.Evaluate(kRotorCeilingRadS, m_.rho_kg_m3, v_eval).thrust_n >= t_b)) return kg;
-    // omega_b: thrust(hi) >= t_b kept through the bisection (M1).
-    double lo = 0.0, hi = kRotorCeilingRadS;
-    for (int it = 0; it < kSteps; ++it) {
-      const double mid = 0.5 * (lo + hi);
-      (model.Evaluate(mid, m_.rho_kg_m3, v_eval).thrust_n >= t_b ? hi : lo) = mid;
-    }
-    const double w_a = BisectSpeedFromBelow(model, m_.rho_kg_m3, t_a, v_eval, 0.0, hi, kSteps);
-    double p_prev = -kInf, p_b = 0.0;
-    bool rising = true;
-    for (int k = 0; k <= kFomSamples && rising; ++k) {
-      const double w = w_a + (hi - w_a) * k / kFomSamples;
-      p_b = model.Evaluate(w, m_.rho_kg_m3, v_eval).power_w;
-      rising = p_b >= p_prev;
-      p_prev = p_b;
-    }
-    if (!rising || !(p_b > 0) || !(IdealRotorPowerW(t_a, p.diameter_m, m_.rho_kg_m3, v_fom) / p_b > limit)) return kg;
-    kg = kg_b;
-  }
-  return kg;
+  return mass_floor_kg_[i];
 }
 
 // Thrust-to-weight (checked on the lift group at full throttle): the full-throttle speed is
@@ -555,7 +466,10 @@ double JointBounds::OuterBound(const Drive& drive, const GroupParts& parts, doub
     }
   }
   const double raw_kg = mass_kg;
-  for (std::size_t si : outer_segments_) mass_kg = std::max(mass_kg, MassFloorKg(prop, si, o));  // R7
+  // R7, R6: the floors scanned from the pair's own mass in the coupled stage (the pairs taken),
+  // from the option's lightest vehicle before it (every pair: one scan per propeller).
+  const double scan_from_kg = coupled_ ? raw_kg : mass_min_kg_[o];
+  for (std::size_t si : outer_segments_) mass_kg = std::max(mass_kg, MassFloorKg(prop, si, o, scan_from_kg));
   const double floor_kg = mass_kg;
   if (!(mass_kg < kInf)) {
     *why = "prop_no_forward_flight_data";

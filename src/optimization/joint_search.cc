@@ -198,28 +198,50 @@ constexpr int kCompletionLimit = 512;
 // virtual ESC's search found below the N-th best (`completions`, best first; that search's relaxed
 // mission and the virtual ESC score no worse than e on the mission, M2, M3, so no other
 // completion scoring below the list's end can beat the N-th best), solved exactly, best virtual
-// score first, until that score reaches the N-th best; the results join *out's top N. Returns
-// the number of solves.
+// score first, until that score reaches the N-th best; the results join *out's top N.
+// R5 across the class (docs/search.md#g3): out_at[j] holds the class's ESCs whose solve with
+// completion j was proven unable to beat the N-th best of its moment (at or above it, or
+// infeasible as RulesOutDominatedEscs says); an ESC one of them dominates scores no better with
+// it (M2, M3), against an N-th best that has only fallen since, and is not solved (counted in
+// *dominated). e joins out_at where its own solves are so proven. Returns the number of solves.
 template <typename NthBest>
 long long SolveAgainstCompletions(const Mission& sub, const Catalog& cat, int outer, int e,
                                   const std::vector<RankedCombination>& completions,
                                   const std::vector<const PropModel*>& group_models, const PropGridCache& cache,
-                                  const NthBest& nth, TopResults* top, SearchResult* out) {
+                                  const NthBest& nth, std::vector<std::vector<int>>* out_at, long long* dominated,
+                                  TopResults* top, SearchResult* out) {
+  const auto& escs = cat.escs();
+  const EscEntry& esc = escs[static_cast<std::size_t>(e)];
   long long solved = 0;
-  for (const RankedCombination& done : completions) {
+  for (std::size_t j = 0; j < completions.size(); ++j) {
+    const RankedCombination& done = completions[j];
     const double cutoff = nth();
     if (!(done.result.score < cutoff)) break;  // every later completion scores no better
+    std::vector<int>& out_j = (*out_at)[j];
+    if (std::any_of(out_j.begin(), out_j.end(), [&](int d) { return EscDominates(escs[static_cast<std::size_t>(d)], esc); })) {
+      ++*dominated;
+      continue;
+    }
     Combination c = done.combination;
-    c.groups[static_cast<std::size_t>(outer)].esc = &cat.escs()[static_cast<std::size_t>(e)];
+    c.groups[static_cast<std::size_t>(outer)].esc = &esc;
     const PropModel* model = cache.models[static_cast<std::size_t>(c.prop - cat.props().data())].get();
     const MissionEvaluator eval(sub, c, model, &group_models);
     MissionResult res = eval.Solve(cutoff, false, false, true);  // search: the infeasibility exits too
     ++solved;
-    if (res.bounded_out) continue;
+    if (res.bounded_out) {
+      out_j.push_back(e);
+      continue;
+    }
     ++out->searched;
-    if (!res.feasible) continue;
+    if (!res.feasible) {
+      if (RulesOutDominatedEscs(res)) out_j.push_back(e);
+      continue;
+    }
     out->evaluated_mass_objective.emplace_back(res.propulsion_mass_kg, res.objective);
-    if (!(res.score < cutoff)) continue;
+    if (!(res.score < cutoff)) {
+      out_j.push_back(e);
+      continue;
+    }
     res = eval.Solve(cutoff);  // explained, as the inner search explains its top N (same numbers)
     top->Add(RankedCombination{c, std::move(res), {}}, cutoff);
   }
@@ -493,6 +515,7 @@ void JointLoop::VirtualEscClass(const OuterPair& pr, std::size_t i, const std::v
   const double complete_below = static_cast<int>(r.best.size()) < kCompletionLimit ? kInf : r.best.back().result.score;
   std::vector<const PropModel*> group_models(m_.groups.size(), nullptr);
   group_models[static_cast<std::size_t>(outer)] = cache_->models[static_cast<std::size_t>(pr.prop)].get();
+  std::vector<std::vector<int>> out_at(r.best.size());  // SolveAgainstCompletions' R5
   for (const auto& [tb, e] : cls) {
     if (out_.interrupted || StopRequested(opt_)) {
       out_.interrupted = true;
@@ -501,9 +524,12 @@ void JointLoop::VirtualEscClass(const OuterPair& pr, std::size_t i, const std::v
     if (!(tb < Nth())) {
       AddCount(&out_.pruned_by["objective_bound"], block_);
     } else if (Nth() <= complete_below) {
-      const long long solved = SolveAgainstCompletions(SubMission(m_, cat_, outer, pr, e, jb_), cat_, outer, e, r.best,
-                                                       group_models, *cache_, [this]() { return Nth(); }, &top_, &out_);
-      AddCount(&out_.pruned_by["objective_bound"], block_ - std::min(block_, solved));
+      long long dominated = 0;
+      const long long solved =
+          SolveAgainstCompletions(SubMission(m_, cat_, outer, pr, e, jb_), cat_, outer, e, r.best, group_models,
+                                  *cache_, [this]() { return Nth(); }, &out_at, &dominated, &top_, &out_);
+      AddCount(&out_.pruned_by["esc_dominated"], dominated);
+      AddCount(&out_.pruned_by["objective_bound"], block_ - std::min(block_, solved + dominated));
     } else {
       SearchTriple(pr, e, false);
     }

@@ -152,13 +152,9 @@ class JointBounds {
   // outer group's segments on `prop` flown by `drive` break at a vehicle of at least mass_kg
   // with the voltage the charge drawn by then leaves, or null.
   const char* VoltageLeftRule(const Drive& drive, int prop, std::size_t o, double mass_kg, double tr_max);
-  double StaticAdvanceMassFloorKg(const PropModel& model, double diameter_m, const Segment& sg, double v_a,
-                                  double v_b) const;
-  static constexpr int kFreeCruiseFloorCells = 16;  // R7's floor over a free airspeed range
   std::vector<FrontierPoint> InnerFrontier(std::size_t o, int level);
   double MinFreeGroupPower(int group, std::size_t si, std::size_t o, double mass_kg);
-  double MassFloorKg(int prop, std::size_t si, std::size_t o);
-  double FigureOfMeritMassFloorKg(int prop, std::size_t si, std::size_t o) const;
+  double MassFloorKg(int prop, std::size_t si, std::size_t o, double mass_kg);
   // The lightest motor + propeller of a free group that survives R0, R1, R3, R7 in every one of
   // its segments with some ESC class at vehicle mass vehicle_kg (kInf: none), kg per rotor.
   double LightestSurvivorKg(int group, std::size_t o, double vehicle_kg);
@@ -194,7 +190,7 @@ class JointBounds {
   EscTable escs_;
   std::vector<double> mass_min_kg_, outer_lightest_kg_;
   std::vector<char> monotone_;        // per propeller: its static thrust grid rises (M1)
-  std::vector<double> mass_floor_kg_;  // MassFloorKg's cache by (option, segment, prop); < 0: not yet
+  std::vector<double> mass_floor_kg_;  // MassFloorKg's cache by RotorCacheIndex; < 0: not yet
   std::vector<std::vector<double>> other_power_w_;
   std::vector<std::size_t> outer_segments_;
   // OuterRotor's cache: [((o * segments + si) * props + prop) * kFixedPowerMasses + k].

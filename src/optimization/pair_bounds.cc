@@ -327,6 +327,16 @@ double WindowMassFloorKg(const SearchContext& ctx, const MissionFacts& f, int pr
   return per_kg > 0 ? (1.0 - 1e-9) * t_min / per_kg : 0.0;
 }
 
+double FixedMassFloorKg(const SearchContext& ctx, std::size_t o) {
+  return o < ctx.fixed_mass_floor.size() ? ctx.fixed_mass_floor[o].kg : 0.0;
+}
+
+const char* FixedMassFloorRule(const SearchContext& ctx, std::size_t o, double motor_kg, double prop_kg, double esc_kg) {
+  if (o >= ctx.fixed_mass_floor.size() || !ctx.fixed_mass_floor[o].rule) return nullptr;
+  const double mass_ub_kg = VehicleMassKg(ctx, ctx.options[o].mass_hi_kg, motor_kg, prop_kg, esc_kg);
+  return mass_ub_kg < ctx.fixed_mass_floor[o].kg ? ctx.fixed_mass_floor[o].rule : nullptr;
+}
+
 // R12 (the window's bottom): true when the first hover's speed at the vehicle mass mass_ub_kg (an
 // upper bound of the true mass) is below the propeller's data window, so that it is below it at
 // every mass up to mass_ub_kg (M1, M3).

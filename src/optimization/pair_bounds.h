@@ -209,6 +209,15 @@ double PackMassLowerBoundKg(const BatteryOption& bo, double capacity_ah);
 // this stays a bound of every feasible score (M3).
 double WindowMassFloorKg(const SearchContext& ctx, const MissionFacts& f, int prop);
 
+// The fixed groups' R7 and R6 mass floor for option o (SearchContext::fixed_mass_floor), kg (0
+// without one): every bound computed at a mass of at least this stays a bound of every feasible
+// score (M3).
+double FixedMassFloorKg(const SearchContext& ctx, std::size_t o);
+// The same floor as a rule: the one a combination of option o whose free group carries motors,
+// propellers and ESCs of these masses breaks whatever its pack (the option's heaviest still
+// leaves the vehicle below the floor), or null.
+const char* FixedMassFloorRule(const SearchContext& ctx, std::size_t o, double motor_kg, double prop_kg, double esc_kg);
+
 // R12 (the window's bottom): true when the first hover's speed at the vehicle mass mass_ub_kg (an
 // upper bound of the true mass) is below the propeller's data window, so that it is below it at
 // every mass up to mass_ub_kg (M1, M3).

@@ -272,9 +272,15 @@ bool PairCandidate(const SearchContext& ctx, const MissionFacts& f, const MotorS
                    PairLoads* loads, Candidate* c, RuleCounts* pruned, double cutoff) {
   const BatteryOption& bo = ctx.options[o];
   const long long per_pair = ctx.escs.rated[o];
-  const double window_floor_kg = WindowMassFloorKg(ctx, f, static_cast<int>(pi));  // R12's floor
-  const double mass_lb = std::max(
-      VehicleMassKg(ctx, bo.mass_lo_kg, s.mass_kg, ctx.grids[pi].mass_kg, ctx.escs.min_mass_kg[o]), window_floor_kg);
+  // The fixed groups' mass floor (R7, R6): a pair whose heaviest combination is below it.
+  if (const char* rule = FixedMassFloorRule(ctx, o, s.mass_kg, ctx.grids[pi].mass_kg, ctx.escs.max_mass_kg[o])) {
+    pruned->Add(rule, per_pair);
+    return false;
+  }
+  // R12's floor and the fixed groups'.
+  const double floor_kg = std::max(WindowMassFloorKg(ctx, f, static_cast<int>(pi)), FixedMassFloorKg(ctx, o));
+  const double mass_lb =
+      std::max(VehicleMassKg(ctx, bo.mass_lo_kg, s.mass_kg, ctx.grids[pi].mass_kg, ctx.escs.min_mass_kg[o]), floor_kg);
   double omega_lb = 0, q_lb = 0;
   int first_idx = -1;  // the first piece's raw grid index (HoverGridPointInBracket)
   loads->Reset(mass_lb);
@@ -329,7 +335,7 @@ bool PairCandidate(const SearchContext& ctx, const MissionFacts& f, const MotorS
     }
     const double mass_kg = std::max(VehicleMassKg(ctx, PackMassLowerBoundKg(bo, edges[j]), s.mass_kg,
                                                   ctx.grids[pi].mass_kg, ctx.escs.min_mass_kg[o]),
-                                    window_floor_kg);
+                                    floor_kg);
     loads->Reset(mass_kg);
     double w = 0, q = 0;
     int idx = first_idx;

@@ -35,6 +35,7 @@
 #include "catalog/catalog.h"
 #include "mission/mission.h"
 #include "optimization/credibility.h"
+#include "optimization/mass_floors.h"
 #include "optimization/mission_eval.h"
 #include "optimization/prop_bounds.h"
 #include "optimization/search_options.h"
@@ -177,6 +178,10 @@ struct SearchContext {
   // without groups.
   std::vector<std::vector<std::vector<double>>> fixed_power_lb_w;
   std::vector<std::vector<double>> fixed_power_mass_kg;
+  // [option]: the fixed groups' R7 and R6 mass floor (mass_floors.h; FixedGroupPowerBounds): a
+  // feasible combination's vehicle weighs at least fixed_mass_floor[o].kg (0: no floor, +inf:
+  // no mass passes), else it breaks fixed_mass_floor[o].rule. Empty without groups.
+  std::vector<MassFloor> fixed_mass_floor;
   // PropModels of the fixed groups' propellers (by group index; null for the free group),
   // built once and shared by every evaluation.
   std::vector<std::unique_ptr<PropModel>> fixed_models;
@@ -241,7 +246,7 @@ bool FailsHoverThrottleBound(const SearchContext& ctx, int motor, int prop, int 
 // at this fraction of its value, against the evaluator's midpoint rule.
 inline constexpr double kChargeAllowance = 1.0 - 1e-3;
 
-// Fills ctx->fixed_power_lb_w (after stages 1-3 and ResolveGroups).
+// Fills ctx->fixed_power_lb_w and ctx->fixed_mass_floor (after stages 1-3 and ResolveGroups).
 inline constexpr int kFixedPowerMasses = 64;
 inline constexpr double kFixedPowerMassStep = 1.02;
 void FixedGroupPowerBounds(SearchContext* ctx);

@@ -98,8 +98,8 @@ PieceMass PieceMassAt(const SearchContext& ctx, const MissionFacts& f, const Mot
   const double pack_kg = span_ah > 0 ? bo.mass_lo_kg + (1.0 - 1e-9) * (bo.mass_hi_kg - bo.mass_lo_kg) *
                                                            (cap_a_ah - bo.capacity_lo_ah) / span_ah
                                      : bo.mass_lo_kg;
-  const double mass_lb =
-      std::max(VehicleMassKg(ctx, pack_kg, *mo.mass_kg, g.mass_kg, esc_mass_kg), WindowMassFloorKg(ctx, f, prop));
+  const double mass_lb = std::max({VehicleMassKg(ctx, pack_kg, *mo.mass_kg, g.mass_kg, esc_mass_kg),
+                                   WindowMassFloorKg(ctx, f, prop), FixedMassFloorKg(ctx, static_cast<std::size_t>(option))});
   const bool lossy = DriveIsLossy(mp, ideal.esc().c1, ideal.esc().c0);
   const bool axial_data = ctx.models[static_cast<std::size_t>(prop)]->data_kind() == PropDataKind::kTables &&
                           !pe.j_tables.empty();

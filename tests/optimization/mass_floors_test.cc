@@ -1,0 +1,131 @@
+// R7 and R6 as vehicle mass floors (optimization/mass_floors.h) on real catalog propellers: every
+// vehicle lighter than the floor fails the rule in the evaluator itself, and a search whose
+// fixed pusher cannot pass prop_figure_of_merit at any mass refuses every lift choice without a
+// solve (the fixed groups' floor, SearchContext::fixed_mass_floor).
+#include "optimization/mass_floors.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <string>
+#include <vector>
+
+#include "catalog/catalog.h"
+#include "common/json_file.h"
+#include "optimization/mission_eval.h"
+#include "optimization/search.h"
+#include "optimization/search_stages.h"
+
+namespace dynosize {
+namespace {
+
+using search_internal::MassFloor;
+using search_internal::SegmentMassFloorKg;
+
+const Catalog& Bundled() {
+  static const Catalog cat = Catalog::Load(std::string(DYNOSIZE_SOURCE_DIR) + "/catalog");
+  return cat;
+}
+
+// The quadplane example (cruise at 18 m/s, L/D 10) with its lift group fixed to the both-free
+// search's pick and the pusher to fu_m_166 + dc_e_138 on `pusher_prop`.
+Json QuadplaneJson(const std::string& pusher_prop) {
+  Json j = ReadJsonFile(std::string(DYNOSIZE_SOURCE_DIR) + "/examples/missions/quadplane_2kg.json");
+  j["propulsion"]["lift"]["motor"] = "dc_m_550";
+  j["propulsion"]["lift"]["esc"] = "dc_e_145";
+  j["propulsion"]["lift"]["prop"] = "uiuc_v2_gwsdd_9.0x5.0_2";
+  j["propulsion"]["pusher"]["motor"] = "fu_m_166";
+  j["propulsion"]["pusher"]["esc"] = "dc_e_138";
+  j["propulsion"]["pusher"]["prop"] = pusher_prop;
+  return j;
+}
+
+// Every group's parts as the mission names them, with the 4S pack of dc_b_361.
+Combination FixedCombination(const Mission& m) {
+  Combination c;
+  c.battery = &Bundled().battery("dc_b_361");
+  c.cells = 4;
+  for (int g = 0; g < GroupCount(m); ++g) c.groups.push_back(FixedGroupParts(m, Bundled(), g));
+  return c;
+}
+
+// Whether the evaluator finds the quadplane with `pusher_prop`, its vehicle made heavier so that
+// the whole weighs total_kg, to break prop_figure_of_merit in its cruise.
+bool CruiseFailsFigureOfMerit(const std::string& pusher_prop, double total_kg, double base_total_kg) {
+  Json j = QuadplaneJson(pusher_prop);
+  j["vehicle"]["mass_kg"] = j["vehicle"]["mass_kg"].get<double>() + (total_kg - base_total_kg);
+  const Mission m = ParseMission(j, "quadplane");
+  const Combination c = FixedCombination(m);
+  const MissionResult r = MissionEvaluator(m, c).Solve();
+  EXPECT_NEAR(r.total_mass_kg, total_kg, 1e-9);
+  return std::any_of(r.violations.begin(), r.violations.end(), [](const Violation& v) {
+    return v.constraint == "prop_figure_of_merit" && v.segment == "cruise";
+  });
+}
+
+// Propellers of UIUC's forward-flight tables a 10 in pusher might fly: some pass the figure of
+// merit limit at 18 m/s, some fail it from the lightest vehicle up.
+const char* const kPusherProps[] = {"uiuc_v1_apcsf_9.0x6.0_2", "uiuc_v1_apcsf_8.0x6.0_2", "uiuc_v3_ancf_10.0x6.0_2",
+                                    "uiuc_v1_ance_8.5x7.0_2",  "uiuc_v3_ancf_10.0x8.0_2", "uiuc_v2_gwsdd_9.0x5.0_2"};
+
+TEST(MassFloorsTest, EveryVehicleBelowTheFloorFailsTheRuleInTheEvaluator) {
+  // The vehicle weighs at least 1.6 kg with any lift choice (the joint search's lightest, about
+  // 1.62-1.74 kg); the samples stop at kCheckedUpToKg (a vehicle twice the example's).
+  constexpr double kStartKg = 1.6, kCheckedUpToKg = 3.8;
+  constexpr int kSamples = 24;
+  int with_floor = 0, without = 0;
+  for (const char* id : kPusherProps) {
+    const Mission m = ParseMission(QuadplaneJson(id), "quadplane");
+    const PropEntry& p = Bundled().prop(id);
+    const PropModel model(p);
+    const MassFloor f = SegmentMassFloorKg(m, m.segments[1], p, model, /*monotone=*/true, kStartKg);
+    // No floor (0, or the scan's start: nothing proven above it).
+    if (f.kg <= kStartKg) {
+      EXPECT_TRUE(f.kg == 0.0 || f.kg == kStartKg) << id << ": a floor below the scan's start, " << f.kg;
+      ++without;
+      continue;
+    }
+    ++with_floor;
+    EXPECT_STREQ(f.rule, "prop_figure_of_merit") << id;
+    const double base_total_kg = MissionEvaluator(m, FixedCombination(m)).Solve().total_mass_kg;
+    const double top_kg = std::min(f.kg, kCheckedUpToKg);
+    for (int k = 0; k < kSamples; ++k) {
+      const double kg = kStartKg + (top_kg - kStartKg) * k / kSamples;
+      EXPECT_TRUE(CruiseFailsFigureOfMerit(id, kg, base_total_kg)) << id << " at " << kg << " kg (floor " << f.kg << ")";
+    }
+  }
+  // Neither side of the test is empty: the pusher propellers of the example's search on both.
+  EXPECT_GE(with_floor, 1);
+  EXPECT_GE(without, 1);
+}
+
+TEST(MassFloorsTest, AFixedPusherFailingEveryMassIsRefusedWithoutASolve) {
+  // APC SF 9x6 at 18 m/s: its figure of merit rises with the thrust and is above 0.8 from the
+  // lightest vehicle up (the test above); every lift choice is refused by the floor, before
+  // any solve (before the floor, the joint search spent a whole inner search budget on it).
+  Json j = QuadplaneJson("uiuc_v1_apcsf_9.0x6.0_2");
+  j["propulsion"]["lift"].erase("motor");
+  j["propulsion"]["lift"].erase("esc");
+  j["propulsion"]["lift"].erase("prop");
+  const Mission m = ParseMission(j, "quadplane");
+  SearchOptions o;
+  o.top_n = 3;
+  const SearchResult r = SearchCatalog(m, Bundled(), o);
+  EXPECT_TRUE(r.best.empty());
+  EXPECT_EQ(r.searched, 0);
+  EXPECT_EQ(r.virtual_evaluations, 0);
+  ASSERT_TRUE(r.pruned_by.count("prop_figure_of_merit"));
+  EXPECT_GT(r.pruned_by.at("prop_figure_of_merit"), 0);
+  // The evaluator agrees on lift choices of every weight: the lightest and heaviest motors of the
+  // catalog that the example's lift propeller can carry.
+  for (const char* motor : {"dc_m_550", "dc_m_242", "fu_m_167"}) {
+    Json e = QuadplaneJson("uiuc_v1_apcsf_9.0x6.0_2");
+    e["propulsion"]["lift"]["motor"] = motor;
+    const Mission me = ParseMission(e, "quadplane");
+    const MissionResult res = MissionEvaluator(me, FixedCombination(me)).Solve();
+    EXPECT_FALSE(res.feasible) << motor;
+  }
+}
+
+}  // namespace
+}  // namespace dynosize
