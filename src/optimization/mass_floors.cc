@@ -64,107 +64,152 @@ double StaticAdvanceMassFloorKg(const Mission& m, const Segment& sg, const PropE
   return floor_kg;
 }
 
-// R6 on one mass cell [M_a, M_b] at a fixed axial inflow v (the evaluator's figure of merit is
-// P_ideal(T, v)/P(omega), the propeller's power as given at the speed omega that gives the
-// segment's thrust T; mission_eval.cc, PropellerPoint; model/physics.h). The thrust is in
-// [T(M_a), T(M_b)] (M3), the speed at or below omega_b, a speed whose thrust is at least T(M_b)
-// (M1), so the power is at most P(omega_b) when the power rises with speed on the cell's speeds
-// (checked at kFomSamples speeds, else nothing is proven there), and P_ideal rises with T: the
-// figure of merit is at least P_ideal(T(M_a), v)/P(omega_b). *proven: that is above the limit,
-// so the cell holds no feasible mass. *worth_refining: not proven, but the figure of merit may
-// be above the limit somewhere on the cell (P_ideal(T(M_b), v)/P(omega_a), omega_a a speed at or
-// below the one of T(M_a), is above it): halves may be proven where the whole is not.
+// R6 on one cell of vehicle masses [M_a, M_b] and airspeeds [V_a, V_b] (one airspeed when the
+// segment's is fixed). The evaluator's figure of merit is P_ideal(T, v)/P(omega), the
+// propeller's power as given at the speed omega that gives the segment's thrust T in its axial
+// inflow v (mission_eval.cc, PropellerPoint; model/physics.h); a wing-borne cruise's inflow is
+// its airspeed and its thrust rises with the mass (M3) and the airspeed (flight.h). On the cell
+// T is in [T(M_a, V_a), T(M_b, V_b)]. At any inflow V of the cell the speed is at or below that
+// of T_b = T(M_b, V_b) (M1) and the power at most the power there when it rises with speed
+// (checked at kFomSamples speeds at V_a and V_b); that power is at most the one at V_b (M4,
+// checked between V_a and V_b), itself at most P(omega_b, V_b), omega_b a speed whose thrust is
+// at least T_b. P_ideal rises with T and v: the figure of merit is at least
+// P_ideal(T_a, V_a)/P(omega_b, V_b). *proven: that is above the limit, so the cell holds no
+// feasible point. *worth_refining: not proven, but P_ideal(T_b, V_b) over the least power seen
+// is above the limit: smaller cells may be proven where this one is not. Static-only data are
+// read at J = 0 in any inflow and held to the static bound (v = 0), as PropellerPoint does.
 struct FomCells {
   const Mission& m;
   const Segment& sg;
   const PropEntry& p;
   const PropModel& model;
-  double v_eval, v_fom, limit;
+  double limit;
+  bool static_only;
 
-  void Check(double kg_a, double kg_b, bool* proven, bool* worth_refining) const {
+  struct Point {
+    double thrust_n, v_m_s;  // the load and the inflow the data are read at
+  };
+  Point At(double kg, double airspeed_m_s) const {
+    const RotorLoad l = SegmentRotorLoad(m, sg, kg, airspeed_m_s);
+    return {l.thrust_per_rotor_n, static_only ? 0.0 : l.axial_airspeed_m_s};
+  }
+  // At inflow v: a speed whose thrust is at least t_hi (*omega_hi) and the power at the kFomSamples
+  // speeds from one at or below that of t_lo up to it; false when the thrust cannot be reached or
+  // the power does not rise on them. *p_lo, *p_hi: the first and last samples' power.
+  bool RisingPower(double t_lo, double t_hi, double v, double* p_lo, double* p_hi) const {
     constexpr int kFomSamples = 8, kSteps = 50;
-    *proven = *worth_refining = false;
-    const double t_a = Load(kg_a).thrust_per_rotor_n, t_b = Load(kg_b).thrust_per_rotor_n;
-    if (!(model.Evaluate(kRotorCeilingRadS, m.rho_kg_m3, v_eval).thrust_n >= t_b)) return;
-    // omega_b: thrust(hi) >= t_b kept through the bisection (M1).
-    double lo = 0.0, hi = kRotorCeilingRadS;
+    if (!(model.Evaluate(kRotorCeilingRadS, m.rho_kg_m3, v).thrust_n >= t_hi)) return false;
+    double lo = 0.0, hi = kRotorCeilingRadS;  // thrust(hi) >= t_hi kept through the bisection (M1)
     for (int it = 0; it < kSteps; ++it) {
       const double mid = 0.5 * (lo + hi);
-      (model.Evaluate(mid, m.rho_kg_m3, v_eval).thrust_n >= t_b ? hi : lo) = mid;
+      (model.Evaluate(mid, m.rho_kg_m3, v).thrust_n >= t_hi ? hi : lo) = mid;
     }
-    const double w_a = BisectSpeedFromBelow(model, m.rho_kg_m3, t_a, v_eval, 0.0, hi, kSteps);
-    double p_prev = -kInf, p_a = 0.0, p_b = 0.0;
-    bool rising = true;
-    for (int k = 0; k <= kFomSamples && rising; ++k) {
-      const double w = w_a + (hi - w_a) * k / kFomSamples;
-      p_b = model.Evaluate(w, m.rho_kg_m3, v_eval).power_w;
-      if (k == 0) p_a = p_b;
-      rising = p_b >= p_prev;
-      p_prev = p_b;
+    const double w_lo = BisectSpeedFromBelow(model, m.rho_kg_m3, t_lo, v, 0.0, hi, kSteps);
+    double p_prev = -kInf, power_w = 0.0;
+    for (int k = 0; k <= kFomSamples; ++k) {
+      power_w = model.Evaluate(w_lo + (hi - w_lo) * k / kFomSamples, m.rho_kg_m3, v).power_w;
+      if (k == 0) *p_lo = power_w;
+      if (!(power_w >= p_prev)) return false;
+      p_prev = power_w;
     }
-    if (!rising || !(p_b > 0)) return;
-    *proven = IdealRotorPowerW(t_a, p.diameter_m, m.rho_kg_m3, v_fom) / p_b > limit;
-    *worth_refining = !*proven && p_a > 0 && IdealRotorPowerW(t_b, p.diameter_m, m.rho_kg_m3, v_fom) / p_a > limit;
+    *p_hi = power_w;
+    return power_w > 0;
   }
-  // The highest mass x in [kg_a, kg_b] with [kg_a, x] proven to hold no feasible mass (kg_a when
-  // none), halving a cell worth refining up to `depth` times.
-  double ProvenUpTo(double kg_a, double kg_b, int depth) const {
+  void Check(double kg_a, double kg_b, double va, double vb, bool* proven, bool* worth_refining) const {
+    *proven = *worth_refining = false;
+    const Point a = At(kg_a, va), b = At(kg_b, vb);
+    double p_lo_b = 0, p_b = 0;
+    if (!RisingPower(a.thrust_n, b.thrust_n, b.v_m_s, &p_lo_b, &p_b)) return;
+    double p_lo = p_lo_b;
+    if (vb > va && !static_only) {  // M1 at V_a, and M4: the power at T_b no higher at V_a
+      const Point a_b = At(kg_b, va);
+      double p_hi_a = 0;
+      if (!RisingPower(a.thrust_n, a_b.thrust_n, a.v_m_s, &p_lo, &p_hi_a) || p_hi_a > p_b) return;
+    }
+    *proven = IdealRotorPowerW(a.thrust_n, p.diameter_m, m.rho_kg_m3, a.v_m_s) / p_b > limit;
+    *worth_refining =
+        !*proven && p_lo > 0 && IdealRotorPowerW(b.thrust_n, p.diameter_m, m.rho_kg_m3, b.v_m_s) / p_lo > limit;
+  }
+  // The highest mass x in [kg_a, kg_b] with [kg_a, x] x [va, vb] proven to hold no feasible point
+  // (kg_a when none); a cell worth refining is halved up to `depth` times, in whichever of its
+  // mass and airspeed is the wider relative to its value.
+  double ProvenUpTo(double kg_a, double kg_b, double va, double vb, int depth) const {
     bool proven = false, refine = false;
-    Check(kg_a, kg_b, &proven, &refine);
+    Check(kg_a, kg_b, va, vb, &proven, &refine);
     if (proven) return kg_b;
     if (!refine || depth == 0) return kg_a;
+    if (vb > va && (vb - va) / va > kg_b / kg_a - 1.0) {
+      const double vm = 0.5 * (va + vb);
+      return std::min(ProvenUpTo(kg_a, kg_b, va, vm, depth - 1), ProvenUpTo(kg_a, kg_b, vm, vb, depth - 1));
+    }
     const double mid = std::sqrt(kg_a * kg_b);
-    const double x = ProvenUpTo(kg_a, mid, depth - 1);
-    return x < mid ? x : ProvenUpTo(mid, kg_b, depth - 1);
+    const double x = ProvenUpTo(kg_a, mid, va, vb, depth - 1);
+    return x < mid ? x : ProvenUpTo(mid, kg_b, va, vb, depth - 1);
   }
-  RotorLoad Load(double kg) const { return SegmentRotorLoad(m, sg, kg, sg.airspeed_m_s.lo); }
   // A screen, not a proof (no floor is always a valid answer): false when the figure of merit at
-  // kScreenSpeeds speeds of the data whose thrust is at least the lightest vehicle's (thrust_min_n)
-  // is below the limit by kScreenMargin everywhere, so that no cell would be proven; most
-  // propellers, whose scan would otherwise check a cell per query.
-  bool MayBreakLimit(double thrust_min_n) const {
+  // kScreenSpeeds speeds of the data at the range's airspeeds va and vb, where the thrust is at
+  // least the lightest vehicle's there, is below the limit by kScreenMargin everywhere, so that
+  // no cell would be proven; most propellers, whose scan would otherwise check cells per query.
+  bool MayBreakLimit(double mass_min_kg, double va, double vb) const {
     constexpr int kScreenSpeeds = 48;
     constexpr double kScreenMargin = 0.95, kSpeedLoRadS = 50.0, kSpeedHiRadS = 1e4;
-    for (int k = 0; k < kScreenSpeeds; ++k) {
-      const double w = kSpeedLoRadS * std::pow(kSpeedHiRadS / kSpeedLoRadS, k / double(kScreenSpeeds - 1));
-      const PropEvaluation ev = model.Evaluate(w, m.rho_kg_m3, v_eval);
-      if (ev.thrust_n >= thrust_min_n && ev.power_w > 0 &&
-          IdealRotorPowerW(ev.thrust_n, p.diameter_m, m.rho_kg_m3, v_fom) / ev.power_w > kScreenMargin * limit) {
-        return true;
+    for (const double airspeed : {va, vb}) {
+      const Point lightest = At(mass_min_kg, airspeed);
+      for (int k = 0; k < kScreenSpeeds; ++k) {
+        const double w = kSpeedLoRadS * std::pow(kSpeedHiRadS / kSpeedLoRadS, k / double(kScreenSpeeds - 1));
+        const PropEvaluation ev = model.Evaluate(w, m.rho_kg_m3, lightest.v_m_s);
+        if (ev.thrust_n >= lightest.thrust_n && ev.power_w > 0 &&
+            IdealRotorPowerW(ev.thrust_n, p.diameter_m, m.rho_kg_m3, lightest.v_m_s) / ev.power_w >
+                kScreenMargin * limit) {
+          return true;
+        }
       }
     }
     return false;
   }
 };
 
-// R6's floor: cells of FomCells scanned up from mass_min_kg, kFomCellRatio wide (kFomCells of
-// them, each halved up to kFomRefinements times where worth it): the floor is the lowest mass not
-// proven to hold no feasible vehicle. A propeller whose figure of merit is above the limit at
+// R6's floor. At a fixed airspeed: cells of FomCells scanned up from mass_min_kg, kFomCellRatio
+// wide (kFomCells of them, each halved up to kFomRefinements times where worth it); the floor is
+// the lowest mass not proven to hold no feasible vehicle. A wing-borne cruise with a free
+// airspeed: the range in kFomAirspeedCells cells, each scanned so (kFomCellsFree mass cells,
+// kFomRefinementsFree halvings in mass or airspeed); a feasible point lies in one of them, so
+// the floor is the least of theirs. A propeller whose figure of merit is above the limit at
 // every mass (it can rise with the thrust) gets a floor above any vehicle the search builds.
 double FigureOfMeritMassFloorKg(const Mission& m, const Segment& sg, const PropEntry& p, const PropModel& model,
                                 bool monotone, double mass_min_kg) {
   constexpr int kFomCells = 64, kFomRefinements = 4;
+  constexpr int kFomAirspeedCells = 8, kFomCellsFree = 24, kFomRefinementsFree = 6;
   constexpr double kFomCellRatio = 1.03;
   const double limit = m.constraints.max_figure_of_merit;
-  // A fixed inflow: not a shaft segment, a free airspeed or a multirotor cruise (its inflow
-  // changes with the mass, flight.h).
-  const bool fixed_inflow = sg.type != SegmentType::kShaft &&
-                            !(sg.type == SegmentType::kCruise && (sg.airspeed_m_s.free() || !(sg.lift_to_drag > 0)));
-  if (!fixed_inflow || !(limit > 0) || !monotone || !(mass_min_kg > 0)) return 0.0;
-  const bool static_only = model.data_kind() != PropDataKind::kTables || p.j_tables.empty();
-  const double v = SegmentRotorLoad(m, sg, 1.0, sg.airspeed_m_s.lo).axial_airspeed_m_s;
-  if (v < 0) return 0.0;  // a descent: PropellerPoint's inflow differs
-  // PropellerPoint: static-only data are read at J = 0 in any inflow and held to the static bound.
-  const FomCells cells{m, sg, p, model, static_only ? 0.0 : v, static_only ? 0.0 : v, limit};
-  if (!cells.MayBreakLimit(cells.Load(mass_min_kg).thrust_per_rotor_n)) return 0.0;
-  double kg = mass_min_kg;
-  for (int cell = 0; cell < kFomCells; ++cell) {
-    const double kg_b = kg * kFomCellRatio;
-    const double x = cells.ProvenUpTo(kg, kg_b, kFomRefinements);
-    if (x < kg_b) return x;
-    kg = kg_b;
+  // A shaft segment has no figure of merit; a multirotor cruise's inflow changes with the mass
+  // (flight.h).
+  const bool free_airspeed = sg.type == SegmentType::kCruise && sg.airspeed_m_s.free();
+  if (sg.type == SegmentType::kShaft || (sg.type == SegmentType::kCruise && !(sg.lift_to_drag > 0)) ||
+      !(limit > 0) || !monotone || !(mass_min_kg > 0)) {
+    return 0.0;
   }
-  return kg;
+  const bool static_only = model.data_kind() != PropDataKind::kTables || p.j_tables.empty();
+  const FomCells cells{m, sg, p, model, limit, static_only};
+  const double lo = sg.airspeed_m_s.lo, hi = free_airspeed ? sg.airspeed_m_s.hi : lo;
+  if (SegmentRotorLoad(m, sg, 1.0, lo).axial_airspeed_m_s < 0) return 0.0;  // a descent: PropellerPoint's inflow differs
+  if (!cells.MayBreakLimit(mass_min_kg, lo, hi)) return 0.0;
+  const int airspeed_cells = free_airspeed ? kFomAirspeedCells : 1;
+  const int mass_cells = free_airspeed ? kFomCellsFree : kFomCells;
+  const int depth = free_airspeed ? kFomRefinementsFree : kFomRefinements;
+  double floor_kg = kInf;
+  for (int c = 0; c < airspeed_cells && floor_kg > mass_min_kg; ++c) {
+    const double va = lo + (hi - lo) * c / airspeed_cells, vb = lo + (hi - lo) * (c + 1) / airspeed_cells;
+    double kg = mass_min_kg;
+    for (int cell = 0; cell < mass_cells && kg < floor_kg; ++cell) {
+      const double kg_b = kg * kFomCellRatio;
+      const double x = cells.ProvenUpTo(kg, kg_b, va, vb, depth);
+      kg = x;
+      if (x < kg_b) break;
+    }
+    floor_kg = std::min(floor_kg, kg);
+  }
+  return floor_kg;
 }
 
 }  // namespace

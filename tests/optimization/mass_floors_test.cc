@@ -50,9 +50,12 @@ Combination FixedCombination(const Mission& m) {
 }
 
 // Whether the evaluator finds the quadplane with `pusher_prop`, its vehicle made heavier so that
-// the whole weighs total_kg, to break prop_figure_of_merit in its cruise.
-bool CruiseFailsFigureOfMerit(const std::string& pusher_prop, double total_kg, double base_total_kg) {
+// the whole weighs total_kg, to break prop_figure_of_merit in its cruise (flown at airspeed_m_s,
+// or the example's 18 m/s when 0).
+bool CruiseFailsFigureOfMerit(const std::string& pusher_prop, double total_kg, double base_total_kg,
+                              double airspeed_m_s = 0.0) {
   Json j = QuadplaneJson(pusher_prop);
+  if (airspeed_m_s > 0) j["segments"][1]["airspeed_m_s"] = airspeed_m_s;
   j["vehicle"]["mass_kg"] = j["vehicle"]["mass_kg"].get<double>() + (total_kg - base_total_kg);
   const Mission m = ParseMission(j, "quadplane");
   const Combination c = FixedCombination(m);
@@ -95,6 +98,41 @@ TEST(MassFloorsTest, EveryVehicleBelowTheFloorFailsTheRuleInTheEvaluator) {
     }
   }
   // Neither side of the test is empty: the pusher propellers of the example's search on both.
+  EXPECT_GE(with_floor, 1);
+  EXPECT_GE(without, 1);
+}
+
+// The same over a free cruise airspeed in [14, 20] m/s (APC SF 9x6 breaks the limit at every
+// airspeed up to 20 m/s and meets it at 24): a point (mass, airspeed) below the floor fails the
+// rule (each sampled mass at five airspeeds, flown as a fixed one by the evaluator).
+TEST(MassFloorsTest, WithAFreeAirspeedEveryPointBelowTheFloorFailsTheRule) {
+  constexpr double kStartKg = 1.6, kCheckedUpToKg = 3.2;
+  constexpr int kSamples = 8;
+  int with_floor = 0, without = 0;
+  for (const char* id : kPusherProps) {
+    Json j = QuadplaneJson(id);
+    j["segments"][1]["airspeed_m_s"] = Json::array({14.0, 20.0});
+    const Mission m = ParseMission(j, "quadplane");
+    const PropEntry& p = Bundled().prop(id);
+    const PropModel model(p);
+    const MassFloor f = SegmentMassFloorKg(m, m.segments[1], p, model, /*monotone=*/true, kStartKg);
+    if (f.kg <= kStartKg) {
+      EXPECT_TRUE(f.kg == 0.0 || f.kg == kStartKg) << id << ": a floor below the scan's start, " << f.kg;
+      ++without;
+      continue;
+    }
+    ++with_floor;
+    EXPECT_STREQ(f.rule, "prop_figure_of_merit") << id;
+    const Mission fixed = ParseMission(QuadplaneJson(id), "quadplane");
+    const double base_total_kg = MissionEvaluator(fixed, FixedCombination(fixed)).Solve().total_mass_kg;
+    const double top_kg = std::min(f.kg, kCheckedUpToKg);
+    for (int k = 0; k < kSamples; ++k) {
+      const double kg = kStartKg + (top_kg - kStartKg) * k / kSamples;
+      for (double v : {14.0, 15.5, 17.0, 18.5, 20.0}) {
+        EXPECT_TRUE(CruiseFailsFigureOfMerit(id, kg, base_total_kg, v)) << id << " at " << kg << " kg, " << v << " m/s";
+      }
+    }
+  }
   EXPECT_GE(with_floor, 1);
   EXPECT_GE(without, 1);
 }
