@@ -1,4 +1,4 @@
-// R7 and R6 as floors of the vehicle's mass (mass_floors.h; docs/search.md#g2).
+// R7 and R6 as floors of the vehicle's mass (mass_floors.h; docs/search.md#mass-floors).
 #include "optimization/mass_floors.h"
 
 #include <algorithm>

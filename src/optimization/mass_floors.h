@@ -1,4 +1,4 @@
-// R7 and R6 as floors of the vehicle's mass (docs/search.md#g2, "R6 as a mass floor"): a segment
+// R7 and R6 as floors of the vehicle's mass (docs/search.md#mass-floors): a segment
 // flown on a given propeller can pass the evaluator's static-advance-ratio and figure-of-merit
 // rules only at a vehicle at least this heavy. Shared by the joint search's outer group
 // (JointBounds::MassFloorKg) and the one-group search's fixed groups (SearchContext's
