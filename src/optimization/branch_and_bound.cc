@@ -279,6 +279,20 @@ void BranchAndBound::Process(const Candidate& cand, TopScores top, Outcome* o) c
       local_prune(rule ? rule : "objective_bound", static_cast<long long>(n_rated));
       return true;
     };
+    // Drops the rated ESCs that `fails` (counted under `rule`); true when that settles the class:
+    // none is left, or R10 prunes it again with the lightest left (a heavier virtual ESC). The
+    // lists are sorted by mass (BuildEscTable) and `rated` keeps their order.
+    auto drop_escs = [&](const char* rule, auto&& fails) {
+      const std::size_t before = rated.size();
+      rated.erase(std::remove_if(rated.begin(), rated.end(), fails), rated.end());
+      local_prune(rule, static_cast<long long>(before - rated.size()));
+      if (rated.empty()) return true;
+      n_rated = rated.size();
+      const double kg = EscMassKg(escs[rated.front()]);
+      if (kg == *virt.mass_kg) return false;
+      virt.mass_kg = kg;
+      return segmentwise_prunes();
+    };
     if (segmentwise_prunes()) continue;
     rated.clear();
     for (int e : list) {
@@ -290,55 +304,27 @@ void BranchAndBound::Process(const Candidate& cand, TopScores top, Outcome* o) c
     least.params = escs[rated.front()].params;
     least.mass_kg = *virt.mass_kg;
     for (int e : rated) least.params.resc_ohm = std::min(least.params.resc_ohm, escs[e].params.resc_ohm);
-    if (HoverThrottleBelowLimit(ctx_, facts_, mp, cand.motor, cand.prop, cand.option, least)) {
-      const std::size_t before = rated.size();
-      rated.erase(std::remove_if(rated.begin(), rated.end(), [&](int e) {
-                    return HoverThrottleBelowLimit(ctx_, facts_, mp, cand.motor, cand.prop, cand.option, escs[e]);
-                  }),
-                  rated.end());
-      local_prune("min_hover_throttle", static_cast<long long>(before - rated.size()));
-      if (rated.empty()) continue;
-      n_rated = rated.size();
-      // The lists are sorted by mass (BuildEscTable) and `rated` keeps their order.
-      if (const double kg = EscMassKg(escs[rated.front()]); kg != *virt.mass_kg) {
-        virt.mass_kg = kg;
-        if (segmentwise_prunes()) continue;
-      }
+    if (HoverThrottleBelowLimit(ctx_, facts_, mp, cand.motor, cand.prop, cand.option, least) &&
+        drop_escs("min_hover_throttle", [&](int e) {
+          return HoverThrottleBelowLimit(ctx_, facts_, mp, cand.motor, cand.prop, cand.option, escs[e]);
+        })) {
+      continue;
     }
     // The fixed groups' mass floor per ESC (R7, R6; FixedMassFloorRule): the lightest ESCs fail it
     // first.
     const double motor_kg = *c.motor->mass_kg, prop_kg = ctx_.grids[static_cast<std::size_t>(cand.prop)].mass_kg;
-    if (FixedMassFloorRule(ctx_, cand.option, motor_kg, prop_kg, *virt.mass_kg)) {
-      const std::size_t before = rated.size();
-      const char* rule = nullptr;
-      rated.erase(std::remove_if(rated.begin(), rated.end(), [&](int e) {
-                    const char* r = FixedMassFloorRule(ctx_, cand.option, motor_kg, prop_kg, EscMassKg(escs[e]));
-                    if (r) rule = r;
-                    return r != nullptr;
-                  }),
-                  rated.end());
-      local_prune(rule, static_cast<long long>(before - rated.size()));
-      if (rated.empty()) continue;
-      n_rated = rated.size();
-      if (const double kg = EscMassKg(escs[rated.front()]); kg != *virt.mass_kg) {
-        virt.mass_kg = kg;
-        if (segmentwise_prunes()) continue;
-      }
+    if (const char* rule = FixedMassFloorRule(ctx_, cand.option, motor_kg, prop_kg, *virt.mass_kg);
+        rule && drop_escs(rule, [&](int e) {
+          return FixedMassFloorRule(ctx_, cand.option, motor_kg, prop_kg, EscMassKg(escs[e])) != nullptr;
+        })) {
+      continue;
     }
     // R12 per ESC (the window's bottom): the lightest ESCs fail it first (M3).
-    if (HoverSpeedBelowWindow(ctx_, facts_, cand.motor, cand.prop, cand.option, *virt.mass_kg)) {
-      const std::size_t before = rated.size();
-      rated.erase(std::remove_if(rated.begin(), rated.end(), [&](int e) {
-                    return HoverSpeedBelowWindow(ctx_, facts_, cand.motor, cand.prop, cand.option, EscMassKg(escs[e]));
-                  }),
-                  rated.end());
-      local_prune("prop_below_data", static_cast<long long>(before - rated.size()));
-      if (rated.empty()) continue;
-      n_rated = rated.size();
-      if (const double kg = EscMassKg(escs[rated.front()]); kg != *virt.mass_kg) {
-        virt.mass_kg = kg;
-        if (segmentwise_prunes()) continue;
-      }
+    if (HoverSpeedBelowWindow(ctx_, facts_, cand.motor, cand.prop, cand.option, *virt.mass_kg) &&
+        drop_escs("prop_below_data", [&](int e) {
+          return HoverSpeedBelowWindow(ctx_, facts_, cand.motor, cand.prop, cand.option, EscMassKg(escs[e]));
+        })) {
+      continue;
     }
     {
       Combination vc = c;

@@ -73,14 +73,21 @@ bool CruiseFailsFigureOfMerit(const std::string& pusher_prop, double total_kg, d
 const char* const kPusherProps[] = {"uiuc_v1_apcsf_9.0x6.0_2", "uiuc_v1_apcsf_8.0x6.0_2", "uiuc_v3_ancf_10.0x6.0_2",
                                     "uiuc_v1_ance_8.5x7.0_2",  "uiuc_v3_ancf_10.0x8.0_2", "uiuc_v2_gwsdd_9.0x5.0_2"};
 
-TEST(MassFloorsTest, EveryVehicleBelowTheFloorFailsTheRuleInTheEvaluator) {
-  // The vehicle weighs at least 1.6 kg with any lift choice (the joint search's lightest, about
-  // 1.62-1.74 kg); the samples stop at kCheckedUpToKg (a vehicle twice the example's).
-  constexpr double kStartKg = 1.6, kCheckedUpToKg = 3.8;
-  constexpr int kSamples = 24;
+// For each of kPusherProps: the cruise's floor from kStartKg with the cruise airspeed
+// `airspeed` (a number or a [lo, hi] range); where there is one, the evaluator flies the vehicle
+// at kSamples masses from kStartKg up to the floor (at most checked_up_to_kg), each at every
+// airspeed of `flown_at` (0: the example's), and finds prop_figure_of_merit broken in the
+// cruise every time. Both kinds of propeller must be among them: with a floor and without.
+// The vehicle weighs at least 1.6 kg with any lift choice (the joint search's lightest, about
+// 1.62-1.74 kg).
+void ExpectEveryPointBelowTheFloorFails(const Json& airspeed, const std::vector<double>& flown_at,
+                                        double checked_up_to_kg, int samples) {
+  constexpr double kStartKg = 1.6;
   int with_floor = 0, without = 0;
   for (const char* id : kPusherProps) {
-    const Mission m = ParseMission(QuadplaneJson(id), "quadplane");
+    Json j = QuadplaneJson(id);
+    j["segments"][1]["airspeed_m_s"] = airspeed;
+    const Mission m = ParseMission(j, "quadplane");
     const PropEntry& p = Bundled().prop(id);
     const PropModel model(p);
     const MassFloor f = SegmentMassFloorKg(m, m.segments[1], p, model, /*monotone=*/true, kStartKg);
@@ -92,51 +99,31 @@ TEST(MassFloorsTest, EveryVehicleBelowTheFloorFailsTheRuleInTheEvaluator) {
     }
     ++with_floor;
     EXPECT_STREQ(f.rule, "prop_figure_of_merit") << id;
-    const double base_total_kg = MissionEvaluator(m, FixedCombination(m)).Solve().total_mass_kg;
-    const double top_kg = std::min(f.kg, kCheckedUpToKg);
-    for (int k = 0; k < kSamples; ++k) {
-      const double kg = kStartKg + (top_kg - kStartKg) * k / kSamples;
-      EXPECT_TRUE(CruiseFailsFigureOfMerit(id, kg, base_total_kg)) << id << " at " << kg << " kg (floor " << f.kg << ")";
+    const Mission fixed = ParseMission(QuadplaneJson(id), "quadplane");
+    const double base_total_kg = MissionEvaluator(fixed, FixedCombination(fixed)).Solve().total_mass_kg;
+    const double top_kg = std::min(f.kg, checked_up_to_kg);
+    for (int k = 0; k < samples; ++k) {
+      const double kg = kStartKg + (top_kg - kStartKg) * k / samples;
+      for (double v : flown_at) {
+        EXPECT_TRUE(CruiseFailsFigureOfMerit(id, kg, base_total_kg, v))
+            << id << " at " << kg << " kg, " << v << " m/s (floor " << f.kg << ")";
+      }
     }
   }
-  // Neither side of the test is empty: the pusher propellers of the example's search on both.
   EXPECT_GE(with_floor, 1);
   EXPECT_GE(without, 1);
+}
+
+// At the example's 18 m/s, up to 3.8 kg (a vehicle twice the example's).
+TEST(MassFloorsTest, EveryVehicleBelowTheFloorFailsTheRuleInTheEvaluator) {
+  ExpectEveryPointBelowTheFloorFails(18.0, {0.0}, 3.8, 24);
 }
 
 // The same over a free cruise airspeed in [14, 20] m/s (APC SF 9x6 breaks the limit at every
 // airspeed up to 20 m/s and meets it at 24): a point (mass, airspeed) below the floor fails the
 // rule (each sampled mass at five airspeeds, flown as a fixed one by the evaluator).
 TEST(MassFloorsTest, WithAFreeAirspeedEveryPointBelowTheFloorFailsTheRule) {
-  constexpr double kStartKg = 1.6, kCheckedUpToKg = 3.2;
-  constexpr int kSamples = 8;
-  int with_floor = 0, without = 0;
-  for (const char* id : kPusherProps) {
-    Json j = QuadplaneJson(id);
-    j["segments"][1]["airspeed_m_s"] = Json::array({14.0, 20.0});
-    const Mission m = ParseMission(j, "quadplane");
-    const PropEntry& p = Bundled().prop(id);
-    const PropModel model(p);
-    const MassFloor f = SegmentMassFloorKg(m, m.segments[1], p, model, /*monotone=*/true, kStartKg);
-    if (f.kg <= kStartKg) {
-      EXPECT_TRUE(f.kg == 0.0 || f.kg == kStartKg) << id << ": a floor below the scan's start, " << f.kg;
-      ++without;
-      continue;
-    }
-    ++with_floor;
-    EXPECT_STREQ(f.rule, "prop_figure_of_merit") << id;
-    const Mission fixed = ParseMission(QuadplaneJson(id), "quadplane");
-    const double base_total_kg = MissionEvaluator(fixed, FixedCombination(fixed)).Solve().total_mass_kg;
-    const double top_kg = std::min(f.kg, kCheckedUpToKg);
-    for (int k = 0; k < kSamples; ++k) {
-      const double kg = kStartKg + (top_kg - kStartKg) * k / kSamples;
-      for (double v : {14.0, 15.5, 17.0, 18.5, 20.0}) {
-        EXPECT_TRUE(CruiseFailsFigureOfMerit(id, kg, base_total_kg, v)) << id << " at " << kg << " kg, " << v << " m/s";
-      }
-    }
-  }
-  EXPECT_GE(with_floor, 1);
-  EXPECT_GE(without, 1);
+  ExpectEveryPointBelowTheFloorFails(Json::array({14.0, 20.0}), {14.0, 15.5, 17.0, 18.5, 20.0}, 3.2, 8);
 }
 
 TEST(MassFloorsTest, AFixedPusherFailingEveryMassIsRefusedWithoutASolve) {
