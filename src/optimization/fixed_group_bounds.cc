@@ -18,15 +18,35 @@ namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
+// R3 over a fixed group's free-airspeed cruise sg at a vehicle of at least mass_min_kg
+// (FreeCruiseTorqueRule with the group's own drive; M3: the torque floor rises with the mass):
+// the rule every airspeed breaks, or null.
+const char* FixedCruiseTorqueRule(const Mission& m, const Segment& sg, const GroupParts& parts, const PropModel& model,
+                                  const BatteryOption& bo, double mass_min_kg) {
+  const MotorParams mp = ScenarioMotorParams(*parts.motor, m);
+  const EscParams ep = ScenarioEscParams(*parts.esc, m.objective.ranking);
+  const CruisePropBound pb{parts.prop, &model, PropAdjustmentFor(*parts.prop, m.objective.ranking),
+                           DriveIsLossy(mp, ep.c1, ep.c0)};
+  const FreeCruiseSamples s = SampleFreeCruise(m, sg, pb, mass_min_kg, false);
+  return FreeCruiseTorqueRule(m.constraints, Drive(mp, ep), s, bo.v_full, ThrottleLimit(m.constraints, ep.tr_sat),
+                              ep.max_current_a);
+}
+
 // R7 and R6 as mass floors (mass_floors.h) of the fixed groups' segments, each on its group's
 // own propeller, scanned up from mass_min_kg: the highest (a feasible vehicle passes them all).
-MassFloor FixedGroupsMassFloor(const SearchContext& ctx, double mass_min_kg) {
+// A free-airspeed cruise that breaks R3 at every mass (FixedCruiseTorqueRule) is a floor beyond
+// any vehicle.
+MassFloor FixedGroupsMassFloor(const SearchContext& ctx, const BatteryOption& bo, double mass_min_kg) {
   const Mission& m = *ctx.mission;
   const auto& props = ctx.catalog->props();
   MassFloor out;
   for (const Segment& sg : m.segments) {
     if (sg.group == ctx.free_group) continue;
     const GroupParts& parts = ctx.fixed_parts[static_cast<std::size_t>(sg.group)];
+    if (sg.type == SegmentType::kCruise && sg.airspeed_m_s.free() && sg.lift_to_drag > 0) {
+      const PropModel& model = *ctx.fixed_models[static_cast<std::size_t>(sg.group)];
+      if (const char* rule = FixedCruiseTorqueRule(m, sg, parts, model, bo, mass_min_kg)) return MassFloor{kInf, rule};
+    }
     // The grids are the catalog's: a fixed propeller outside it gets no floor (M1 unchecked).
     const std::ptrdiff_t pi = parts.prop - props.data();
     if (pi < 0 || pi >= static_cast<std::ptrdiff_t>(props.size())) continue;
@@ -38,6 +58,24 @@ MassFloor FixedGroupsMassFloor(const SearchContext& ctx, double mass_min_kg) {
 }
 
 }  // namespace
+
+const char* DriveRule(const MissionConstraints& k, const MotorParams& mp, const OperatingPoint& hi, double tr_max,
+                      double esc_max_current_a) {
+  const double margin = 1.0 - k.current_margin;
+  if (hi.throttle > tr_max) return "throttle";
+  if (hi.irms_a > mp.max_current_a * margin) return "motor_current";
+  if (k.enforce_motor_power && hi.pac_w > mp.max_power_w) return "motor_power";
+  if (hi.irms_a > esc_max_current_a * margin) return "esc_current";
+  return nullptr;
+}
+
+const char* FreeCruiseTorqueRule(const MissionConstraints& k, const Drive& drive, const FreeCruiseSamples& s,
+                                 double v_full_v, double tr_max, double esc_max_current_a, double* irms_lb) {
+  if (!(s.torque_floor_nm > 0)) return nullptr;
+  const OperatingPoint lo = drive.Inverse(v_full_v, s.torque_floor_nm, 0.0);
+  if (irms_lb) *irms_lb = std::max(*irms_lb, lo.irms_a);
+  return DriveRule(k, drive.motor(), lo, tr_max, esc_max_current_a);
+}
 
 // G1 for a group's wing-borne cruise with a free airspeed: cell by cell over the airspeed
 // range (prop_bounds.h), momentum theory (the ESC's C1, C0 are read for DriveIsLossy) and,
@@ -74,7 +112,7 @@ void FixedGroupPowerBounds(SearchContext* ctx) {
     const double mass_min = m.vehicle.mass_kg + bo.mass_lo_kg + ctx->fixed_groups_mass_kg +
                             ctx->free_rotors * (std::isfinite(motor_min) ? motor_min : 0.0) +
                             ctx->free_rotors * ((std::isfinite(prop_min) ? prop_min : 0.0) + esc_min);
-    ctx->fixed_mass_floor.push_back(FixedGroupsMassFloor(*ctx, mass_min));
+    ctx->fixed_mass_floor.push_back(FixedGroupsMassFloor(*ctx, bo, mass_min));
     std::vector<double> masses(kFixedPowerMasses);
     std::vector<std::vector<double>> table;
     for (int k = 0; k < kFixedPowerMasses; ++k) {

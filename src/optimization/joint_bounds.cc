@@ -29,20 +29,6 @@ constexpr std::size_t kNoIndex = std::numeric_limits<std::size_t>::max();  // Ou
 
 }  // namespace
 
-// R3 at a point (torque, speed) at or below every real point's, `hi` the drive's there at the
-// pack's full-charge voltage: the throttle, Irms and PAC of every real choice are at least these
-// (M2: zero or the real ESC resistance, the highest voltage the pack can have). The rule broken,
-// or null.
-const char* DriveRule(const MissionConstraints& k, const MotorParams& mp, const OperatingPoint& hi, double tr_max,
-                      double esc_max_current_a) {
-  const double margin = 1.0 - k.current_margin;
-  if (hi.throttle > tr_max) return "throttle";
-  if (hi.irms_a > mp.max_current_a * margin) return "motor_current";
-  if (k.enforce_motor_power && hi.pac_w > mp.max_power_w) return "motor_power";
-  if (hi.irms_a > esc_max_current_a * margin) return "esc_current";
-  return nullptr;
-}
-
 RotorBound RotorLowerBound(const Mission& m, const Segment& sg, const PropEntry& prop, const PropModel& model,
                            double mass_kg) {
   RotorBound rb;
@@ -494,7 +480,8 @@ double JointBounds::OuterBound(const Drive& drive, const GroupParts& parts, doub
     // R2, R12's top and R3 over the airspeed range (docs/search.md#g2-free-cruise): every
     // airspeed's point is at least the samples' first (their speeds and torques checked to
     // rise, as for the drive's bound, prop_bounds.cc); so is its speed, which the evaluator
-    // holds to the propeller's max_rpm and the data window's top.
+    // holds to the propeller's max_rpm and the data window's top. R3 at the torque floor too
+    // (docs/search.md#g1-torque-floor), which needs no rise.
     const FreeCruiseSamples& s = OuterCruise(prop, si, o, mass_kg);
     if (const char* rule = FreeCruiseSpeedRule(prop, s)) {
       *why = rule;
@@ -507,6 +494,10 @@ double JointBounds::OuterBound(const Drive& drive, const GroupParts& parts, doub
         *why = rule;
         return kInf;
       }
+    }
+    if (const char* rule = FreeCruiseTorqueRule(m_.constraints, drive, s, options_[o].v_full, tr_max, esc_max_a, irms_lb)) {
+      *why = rule;
+      return kInf;
     }
   }
   for (std::size_t si : outer_segments_) {

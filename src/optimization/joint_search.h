@@ -69,12 +69,6 @@ SegmentBound SegmentPowerBound(const Mission& m, std::size_t si, const GroupPart
                                const Drive& drive, double tr_max, double esc_max_current_a, const PropModel& model,
                                const BatteryOption& bo, double mass_kg, const RotorBound& rb);
 
-// R3 at a point from below (the drive's operating point `hi` there at the pack's full-charge
-// voltage): the rule whatever else is chosen breaks (throttle, motor_current, motor_power,
-// esc_current), or null.
-const char* DriveRule(const MissionConstraints& k, const MotorParams& mp, const OperatingPoint& hi, double tr_max,
-                      double esc_max_current_a);
-
 // R4's assembly from per-segment terminal power bounds (W, avionics included, by segment):
 // min_energy the sum of power x shortest duration, max_endurance the energy budget of the
 // largest pack; -inf when no bound applies (max_efficiency, a stretched free-airspeed cruise).

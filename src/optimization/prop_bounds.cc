@@ -5,6 +5,7 @@
 #include <cmath>
 #include <limits>
 
+#include "common/units.h"
 #include "mission/flight.h"
 #include "model/physics.h"
 
@@ -37,6 +38,31 @@ double BisectSpeedFromBelow(const PropModel& model, double rho, double thrust_n,
   return lo;
 }
 
+namespace {
+
+// FreeCruiseSamples::torque_floor_nm (docs/search.md#g1-torque-floor). A feasible point passes
+// prop_figure_of_merit, so the data's power is at least P_ideal(T, V)/max_figure_of_merit (V the
+// airspeed with forward-flight tables, else 0, as the evaluator judges it), and the scenario's
+// power no less (ScenarioKeepsPower); P_ideal rises with T and V and the thrust is at least T_0
+// over the range (the samples' first, at the lightest mass: M3). It passes prop_max_rpm and
+// prop_above_data, so omega <= the smaller of max_rpm and prop_above_data_factor x the data's
+// top. Q = P/omega is then at least P_ideal(T_0, V_0)/(max_figure_of_merit * that speed).
+double TorqueFloorNm(const Mission& m, const CruisePropBound& p, const FreeCruiseSamples& s) {
+  const MissionConstraints& k = m.constraints;
+  if (!(k.max_figure_of_merit > 0) || !ScenarioKeepsPower(p.adjustment) || !(s.thrust[0] > 0)) return 0.0;
+  double omega_ub = kInf;
+  if (p.prop->max_rpm) omega_ub = RpmToRadPerSec(*p.prop->max_rpm);
+  if (k.prop_above_data_factor > 0) {
+    omega_ub = std::min(omega_ub, RpmToRadPerSec(k.prop_above_data_factor * p.model->valid_range().rpm_hi));
+  }
+  if (!(omega_ub > 0 && omega_ub < kInf)) return 0.0;
+  const bool axial_data = p.model->data_kind() == PropDataKind::kTables && !p.prop->j_tables.empty();
+  const double p_ideal = IdealRotorPowerW(s.thrust[0], p.prop->diameter_m, m.rho_kg_m3, axial_data ? s.v[0] : 0.0);
+  return p_ideal / k.max_figure_of_merit / omega_ub;
+}
+
+}  // namespace
+
 FreeCruiseSamples SampleFreeCruise(const Mission& m, const Segment& sg, const CruisePropBound& p, double mass_kg,
                                    bool with_points) {
   FreeCruiseSamples s;
@@ -63,6 +89,7 @@ FreeCruiseSamples SampleFreeCruise(const Mission& m, const Segment& sg, const Cr
     if (k > 0 && s.rotors * s.torque[k] * w < s.rotors * s.torque[k - 1] * s.omega[k - 1]) s.shaft_rises = false;
     if (k > 0 && (w < s.omega[k - 1] || s.torque[k] < s.torque[k - 1])) s.point_rises = false;
   }
+  if (sg.lift_to_drag > 0 && p.prop != nullptr && p.model != nullptr) s.torque_floor_nm = TorqueFloorNm(m, p, s);
   return s;
 }
 

@@ -58,6 +58,10 @@ struct FreeCruiseSamples {
   bool points = false;       // every sample has its speed and torque (else none of them is used)
   bool shaft_rises = false;  // Q_k*omega_k rises with k (M4 seen on the samples)
   bool point_rises = false;  // Q_k and omega_k each rise with k (so does every loss floor)
+  // A torque per rotor that every feasible point of the range reaches, N*m (0: none; needs no
+  // points): R6's momentum power at the range's least thrust over the highest speed R2 and
+  // R12's top allow (docs/search.md#g1-torque-floor).
+  double torque_floor_nm = 0;
 };
 
 // The samples of a wing-borne cruise with a free airspeed at vehicle mass mass_kg; the speeds and

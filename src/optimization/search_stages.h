@@ -106,6 +106,20 @@ inline double ThrottleLimit(const MissionConstraints& k, double tr_sat) {
   return k.allow_esc_saturation ? t : std::min(t, tr_sat);
 }
 
+// R3 at a point from below (the drive's operating point `hi` there at the pack's full-charge
+// voltage): the throttle, Irms and PAC of every real choice are at least these (M2: zero or the
+// real ESC resistance, the highest voltage the pack can have). The rule whatever else is chosen
+// breaks (throttle, motor_current, motor_power, esc_current), or null.
+const char* DriveRule(const MissionConstraints& k, const MotorParams& mp, const OperatingPoint& hi, double tr_max,
+                      double esc_max_current_a);
+
+// R3 over a wing-borne cruise's free airspeed range (docs/search.md#g1-torque-floor): `drive`
+// at the samples' torque floor, at standstill and the full-charge voltage v_full_v, is at or
+// below every feasible point of the range (M2: Irms and PAC rise with the torque and the speed).
+// The rule it breaks (DriveRule), or null; *irms_lb (if given) raised to its Irms.
+const char* FreeCruiseTorqueRule(const MissionConstraints& k, const Drive& drive, const FreeCruiseSamples& s,
+                                 double v_full_v, double tr_max, double esc_max_current_a, double* irms_lb = nullptr);
+
 // R0 for a propeller of `group` whatever the motor: the frame's largest diameter, the
 // catalog's exclusion, a folding propeller for lift (credibility.h); null when none applies.
 const char* PropFrameRule(const Mission& m, int group, bool lifts, const PropEntry& prop);

@@ -15,6 +15,7 @@
 #include "optimization/mission_eval.h"
 #include "optimization/search.h"
 #include "optimization/search_stages.h"
+#include "solver_backends.h"
 
 namespace dynosize {
 namespace {
@@ -151,6 +152,43 @@ TEST(MassFloorsTest, AFixedPusherFailingEveryMassIsRefusedWithoutASolve) {
     const Mission me = ParseMission(e, "quadplane");
     const MissionResult res = MissionEvaluator(me, FixedCombination(me)).Solve();
     EXPECT_FALSE(res.feasible) << motor;
+  }
+}
+
+// R3 over a free airspeed (FreeCruiseTorqueRule, docs/search.md#g1-torque-floor): a fixed
+// pusher whose motor cannot carry the cruise's torque floor anywhere in the range refuses every
+// lift choice before any solve. fu_m_118 is a 1.2 g maxon EC 4 (0.47 A) on a GWS 9x7: the floor
+// is about 0.05 N*m, some 60 A. The joint search used to take such pushers first (their bound is
+// the lightest) and spent a whole inner search budget on each.
+TEST(MassFloorsTest, AFixedPusherThatCannotCarryTheCruiseTorqueIsRefusedWithoutASolve) {
+  DYNOSIZE_SKIP_UNLESS_AVAILABLE("nlopt_cobyla");  // a free airspeed (mission_eval.h)
+  Json j = QuadplaneJson("uiuc_v1_gwssf_9.0x7.0_2");
+  j["propulsion"]["pusher"]["motor"] = "fu_m_118";
+  j["segments"][1]["airspeed_m_s"] = Json::array({14.0, 24.0});
+  Json free = j;
+  free["propulsion"]["lift"].erase("motor");
+  free["propulsion"]["lift"].erase("esc");
+  free["propulsion"]["lift"].erase("prop");
+  SearchOptions o;
+  o.top_n = 3;
+  const SearchResult r = SearchCatalog(ParseMission(free, "quadplane"), Bundled(), o);
+  EXPECT_TRUE(r.best.empty());
+  EXPECT_EQ(r.searched, 0);
+  EXPECT_EQ(r.virtual_evaluations, 0);
+  ASSERT_TRUE(r.pruned_by.count("motor_current"));
+  EXPECT_GT(r.pruned_by.at("motor_current"), 0);
+  // Refused by the pusher's rule, not one lift pair at a time by the power its bound reads
+  // (without the rule every pair's bound failed reserve_soc, throttle or prop_above_data).
+  for (const char* rule : {"reserve_soc", "throttle", "prop_above_data"}) EXPECT_EQ(r.pruned_by.count(rule), 0u) << rule;
+  // The evaluator agrees at every airspeed of the range, flown as a fixed one.
+  for (double v = 14.0; v <= 24.0 + 1e-9; v += 2.5) {
+    Json e = j;
+    e["segments"][1]["airspeed_m_s"] = v;
+    const Mission m = ParseMission(e, "quadplane");
+    const MissionResult res = MissionEvaluator(m, FixedCombination(m)).Solve();
+    EXPECT_TRUE(std::any_of(res.violations.begin(), res.violations.end(), [](const Violation& x) {
+      return x.constraint == "motor_current" && x.segment == "cruise";
+    })) << v << " m/s";
   }
 }
 
