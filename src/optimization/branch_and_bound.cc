@@ -319,6 +319,14 @@ void BranchAndBound::Process(const Candidate& cand, TopScores top, Outcome* o) c
         })) {
       continue;
     }
+    // The fixed groups' mass ceiling per ESC (FixedMassCeilingRule): the heaviest ESCs fail it
+    // first.
+    if (const char* rule = FixedMassCeilingRule(ctx_, cand.option, motor_kg, prop_kg, ctx_.escs.max_mass_kg[cand.option]);
+        rule && drop_escs(rule, [&](int e) {
+          return FixedMassCeilingRule(ctx_, cand.option, motor_kg, prop_kg, EscMassKg(escs[e])) != nullptr;
+        })) {
+      continue;
+    }
     // R12 per ESC (the window's bottom): the lightest ESCs fail it first (M3).
     if (HoverSpeedBelowWindow(ctx_, facts_, cand.motor, cand.prop, cand.option, *virt.mass_kg) &&
         drop_escs("prop_below_data", [&](int e) {

@@ -57,6 +57,42 @@ MassFloor FixedGroupsMassFloor(const SearchContext& ctx, const BatteryOption& bo
   return out;
 }
 
+// The heaviest the vehicle may be for the fixed groups' free-airspeed cruises to pass R2, R12's
+// top and R3 (FixedCruiseTorqueRule; docs/search.md#g1-torque-floor): the floor point rises with
+// the mass (the range's least thrust does, M3), so the rule that fails at some mass fails at
+// every heavier one. Bisection on the mass ratio from mass_min_kg (which passes) up to
+// kCeilingSpan times it: the ceiling is a mass at which the rule fails, at most kCeilingRel
+// above the heaviest that passes. {+inf, null} when none fails within the span.
+MassFloor FixedGroupsMassCeiling(const SearchContext& ctx, const BatteryOption& bo, double mass_min_kg) {
+  constexpr double kCeilingSpan = 64.0;  // a vehicle 64 times the lightest: beyond any pack
+  constexpr double kCeilingRel = 1e-4;   // the bisection's resolution, of the mass
+  const Mission& m = *ctx.mission;
+  MassFloor out{kInf, nullptr};
+  for (const Segment& sg : m.segments) {
+    if (sg.group == ctx.free_group || sg.type != SegmentType::kCruise || !sg.airspeed_m_s.free() ||
+        !(sg.lift_to_drag > 0)) {
+      continue;
+    }
+    const GroupParts& parts = ctx.fixed_parts[static_cast<std::size_t>(sg.group)];
+    const PropModel& model = *ctx.fixed_models[static_cast<std::size_t>(sg.group)];
+    const double hi_kg = std::min(out.kg, kCeilingSpan * mass_min_kg);
+    const char* rule = FixedCruiseTorqueRule(m, sg, parts, model, bo, hi_kg);
+    if (!rule) continue;
+    double lo = mass_min_kg, hi = hi_kg;  // lo passes, hi fails
+    while (hi - lo > kCeilingRel * lo) {
+      const double mid = std::sqrt(lo * hi);
+      if (const char* r = FixedCruiseTorqueRule(m, sg, parts, model, bo, mid)) {
+        hi = mid;
+        rule = r;
+      } else {
+        lo = mid;
+      }
+    }
+    out = MassFloor{hi, rule};
+  }
+  return out;
+}
+
 }  // namespace
 
 const char* DriveRule(const MissionConstraints& k, const MotorParams& mp, const OperatingPoint& hi, double tr_max,
@@ -71,8 +107,9 @@ const char* DriveRule(const MissionConstraints& k, const MotorParams& mp, const 
 
 const char* FreeCruiseTorqueRule(const MissionConstraints& k, const Drive& drive, const FreeCruiseSamples& s,
                                  double v_full_v, double tr_max, double esc_max_current_a, double* irms_lb) {
-  if (!(s.torque_floor_nm > 0)) return nullptr;
-  const OperatingPoint lo = drive.Inverse(v_full_v, s.torque_floor_nm, 0.0);
+  if (s.omega_floor_rad_s > s.omega_ub_rad_s) return s.omega_ub_rule;  // R2, R12's top
+  if (!(s.torque_floor_nm > 0) && !(s.omega_floor_rad_s > 0)) return nullptr;
+  const OperatingPoint lo = drive.Inverse(v_full_v, s.torque_floor_nm, s.omega_floor_rad_s);
   if (irms_lb) *irms_lb = std::max(*irms_lb, lo.irms_a);
   return DriveRule(k, drive.motor(), lo, tr_max, esc_max_current_a);
 }
@@ -96,6 +133,7 @@ void FixedGroupPowerBounds(SearchContext* ctx) {
   ctx->fixed_power_lb_w.clear();
   ctx->fixed_power_mass_kg.clear();
   ctx->fixed_mass_floor.clear();
+  ctx->fixed_mass_ceiling.clear();
   if (m.groups.empty()) return;
   // The lightest the vehicle can be with any choice of the free group (M3: every segment's
   // thrust, and so its speed, torque and power, rises with the mass). The bounds are tabulated
@@ -113,6 +151,9 @@ void FixedGroupPowerBounds(SearchContext* ctx) {
                             ctx->free_rotors * (std::isfinite(motor_min) ? motor_min : 0.0) +
                             ctx->free_rotors * ((std::isfinite(prop_min) ? prop_min : 0.0) + esc_min);
     ctx->fixed_mass_floor.push_back(FixedGroupsMassFloor(*ctx, bo, mass_min));
+    // (A floor beyond any vehicle refuses everything already.)
+    ctx->fixed_mass_ceiling.push_back(ctx->fixed_mass_floor.back().kg < kInf ? FixedGroupsMassCeiling(*ctx, bo, mass_min)
+                                                                             : MassFloor{kInf, nullptr});
     std::vector<double> masses(kFixedPowerMasses);
     std::vector<std::vector<double>> table;
     for (int k = 0; k < kFixedPowerMasses; ++k) {

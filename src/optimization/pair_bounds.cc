@@ -337,6 +337,13 @@ const char* FixedMassFloorRule(const SearchContext& ctx, std::size_t o, double m
   return mass_ub_kg < ctx.fixed_mass_floor[o].kg ? ctx.fixed_mass_floor[o].rule : nullptr;
 }
 
+const char* FixedMassCeilingRule(const SearchContext& ctx, std::size_t o, double motor_kg, double prop_kg,
+                                 double esc_kg) {
+  if (o >= ctx.fixed_mass_ceiling.size() || !ctx.fixed_mass_ceiling[o].rule) return nullptr;
+  const double mass_lb_kg = VehicleMassKg(ctx, ctx.options[o].mass_lo_kg, motor_kg, prop_kg, esc_kg);
+  return mass_lb_kg >= ctx.fixed_mass_ceiling[o].kg ? ctx.fixed_mass_ceiling[o].rule : nullptr;
+}
+
 // R12 (the window's bottom): true when the first hover's speed at the vehicle mass mass_ub_kg (an
 // upper bound of the true mass) is below the propeller's data window, so that it is below it at
 // every mass up to mass_ub_kg (M1, M3).

@@ -217,6 +217,11 @@ double FixedMassFloorKg(const SearchContext& ctx, std::size_t o);
 // propellers and ESCs of these masses breaks whatever its pack (the option's heaviest still
 // leaves the vehicle below the floor), or null.
 const char* FixedMassFloorRule(const SearchContext& ctx, std::size_t o, double motor_kg, double prop_kg, double esc_kg);
+// The fixed groups' mass ceiling (SearchContext::fixed_mass_ceiling) as a rule: the one a
+// combination of option o with these masses breaks whatever its pack (the option's lightest
+// still leaves the vehicle at or above the ceiling), or null.
+const char* FixedMassCeilingRule(const SearchContext& ctx, std::size_t o, double motor_kg, double prop_kg,
+                                 double esc_kg);
 
 // R12 (the window's bottom): true when the first hover's speed at the vehicle mass mass_ub_kg (an
 // upper bound of the true mass) is below the propeller's data window, so that it is below it at

@@ -277,6 +277,12 @@ bool PairCandidate(const SearchContext& ctx, const MissionFacts& f, const MotorS
     pruned->Add(rule, per_pair);
     return false;
   }
+  // Their mass ceiling (R2, R12's top, R3 over a free cruise): a pair whose lightest combination
+  // is at or above it.
+  if (const char* rule = FixedMassCeilingRule(ctx, o, s.mass_kg, ctx.grids[pi].mass_kg, ctx.escs.min_mass_kg[o])) {
+    pruned->Add(rule, per_pair);
+    return false;
+  }
   // R12's floor and the fixed groups'.
   const double floor_kg = std::max(WindowMassFloorKg(ctx, f, static_cast<int>(pi)), FixedMassFloorKg(ctx, o));
   const double mass_lb =

@@ -15,6 +15,11 @@ namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
+// A floor's rounding allowance: a loss floor is a sum of products that the evaluator's PAC
+// equals at best (R11's kKeyRoundingAllowance, pair_candidates.cc), and the evaluator's speed
+// and torque may equal the floor point's (SetFloorPoint).
+constexpr double kLossFloorRounding = 1.0 - 1e-9;
+
 // Whether the scenario's adjustment keeps a propeller's power at or above the data's
 // (credibility.cc AdjustPropEvaluation: a Reynolds exponent below 0 or a power factor below 1
 // lowers it). The evaluator's prop_figure_of_merit judges the data as given, so only then
@@ -40,25 +45,40 @@ double BisectSpeedFromBelow(const PropModel& model, double rho, double thrust_n,
 
 namespace {
 
-// FreeCruiseSamples::torque_floor_nm (docs/search.md#g1-torque-floor). A feasible point passes
-// prop_figure_of_merit, so the data's power is at least P_ideal(T, V)/max_figure_of_merit (V the
-// airspeed with forward-flight tables, else 0, as the evaluator judges it), and the scenario's
-// power no less (ScenarioKeepsPower); P_ideal rises with T and V and the thrust is at least T_0
-// over the range (the samples' first, at the lightest mass: M3). It passes prop_max_rpm and
-// prop_above_data, so omega <= the smaller of max_rpm and prop_above_data_factor x the data's
-// top. Q = P/omega is then at least P_ideal(T_0, V_0)/(max_figure_of_merit * that speed).
-double TorqueFloorNm(const Mission& m, const CruisePropBound& p, const FreeCruiseSamples& s) {
+// FreeCruiseSamples' floor point and speed limit (docs/search.md#g1-torque-floor), for a
+// feasible point of the range at a vehicle of at least the samples' mass:
+// - its thrust is at least T_0 (the samples' first, at the lightest mass: M3) and at most
+//   max_thrust_coefficient()*rho*n^2*D^4 (prop_model.h), so omega >= 2*pi*sqrt(T_0/(CT_max*rho*D^4));
+// - it passes prop_max_rpm and prop_above_data, so omega <= the smaller of max_rpm and
+//   prop_above_data_factor x the data's top;
+// - it passes prop_figure_of_merit, so the data's power is at least P_ideal(T, V)/max_figure_of_merit
+//   (V the airspeed with forward-flight tables, else 0, as the evaluator judges it), and the
+//   scenario's power no less (ScenarioKeepsPower); P_ideal rises with T and V, so
+//   Q = P/omega >= P_ideal(T_0, V_0)/(max_figure_of_merit * the speed limit).
+void SetFloorPoint(const Mission& m, const CruisePropBound& p, FreeCruiseSamples* s) {
   const MissionConstraints& k = m.constraints;
-  if (!(k.max_figure_of_merit > 0) || !ScenarioKeepsPower(p.adjustment) || !(s.thrust[0] > 0)) return 0.0;
-  double omega_ub = kInf;
-  if (p.prop->max_rpm) omega_ub = RpmToRadPerSec(*p.prop->max_rpm);
-  if (k.prop_above_data_factor > 0) {
-    omega_ub = std::min(omega_ub, RpmToRadPerSec(k.prop_above_data_factor * p.model->valid_range().rpm_hi));
+  const double t0 = s->thrust[0], d = p.prop->diameter_m;
+  if (!(t0 > 0)) return;
+  if (p.prop->max_rpm) {
+    s->omega_ub_rad_s = RpmToRadPerSec(*p.prop->max_rpm);
+    s->omega_ub_rule = "prop_max_rpm";
   }
-  if (!(omega_ub > 0 && omega_ub < kInf)) return 0.0;
+  if (k.prop_above_data_factor > 0) {
+    const double top = RpmToRadPerSec(k.prop_above_data_factor * p.model->valid_range().rpm_hi);
+    if (top < s->omega_ub_rad_s) {
+      s->omega_ub_rad_s = top;
+      s->omega_ub_rule = "prop_above_data";
+    }
+  }
+  const double ct_max = p.model->max_thrust_coefficient();
+  // Both floors held kLossFloorRounding under their value: the evaluator's point may equal them.
+  if (ct_max > 0) {
+    s->omega_floor_rad_s = kLossFloorRounding * 2.0 * kPi * std::sqrt(t0 / (ct_max * m.rho_kg_m3 * d * d * d * d));
+  }
+  if (!(k.max_figure_of_merit > 0) || !ScenarioKeepsPower(p.adjustment) || !(s->omega_ub_rad_s < kInf)) return;
   const bool axial_data = p.model->data_kind() == PropDataKind::kTables && !p.prop->j_tables.empty();
-  const double p_ideal = IdealRotorPowerW(s.thrust[0], p.prop->diameter_m, m.rho_kg_m3, axial_data ? s.v[0] : 0.0);
-  return p_ideal / k.max_figure_of_merit / omega_ub;
+  const double p_ideal = IdealRotorPowerW(t0, d, m.rho_kg_m3, axial_data ? s->v[0] : 0.0);
+  s->torque_floor_nm = kLossFloorRounding * p_ideal / k.max_figure_of_merit / s->omega_ub_rad_s;
 }
 
 }  // namespace
@@ -89,17 +109,10 @@ FreeCruiseSamples SampleFreeCruise(const Mission& m, const Segment& sg, const Cr
     if (k > 0 && s.rotors * s.torque[k] * w < s.rotors * s.torque[k - 1] * s.omega[k - 1]) s.shaft_rises = false;
     if (k > 0 && (w < s.omega[k - 1] || s.torque[k] < s.torque[k - 1])) s.point_rises = false;
   }
-  if (sg.lift_to_drag > 0 && p.prop != nullptr && p.model != nullptr) s.torque_floor_nm = TorqueFloorNm(m, p, s);
+  if (sg.lift_to_drag > 0 && p.prop != nullptr && p.model != nullptr) SetFloorPoint(m, p, &s);
   return s;
 }
 
-namespace {
-
-// A loss floor's rounding allowance: the floor is a sum of products that the evaluator's PAC
-// equals at best (R11's kKeyRoundingAllowance, pair_candidates.cc).
-constexpr double kLossFloorRounding = 1.0 - 1e-9;
-
-}  // namespace
 
 // The rules (docs/search.md#m1 to #m4, R4's momentum bound and G1's free cruise), on a cell
 // [V_k, V_k+1] of the range:

@@ -3,6 +3,7 @@
 // least energy of a wing-borne cruise whose airspeed is free, cell by cell over its range.
 #pragma once
 #include <array>
+#include <limits>
 
 #include "catalog/catalog.h"
 #include "mission/mission.h"
@@ -58,10 +59,14 @@ struct FreeCruiseSamples {
   bool points = false;       // every sample has its speed and torque (else none of them is used)
   bool shaft_rises = false;  // Q_k*omega_k rises with k (M4 seen on the samples)
   bool point_rises = false;  // Q_k and omega_k each rise with k (so does every loss floor)
-  // A torque per rotor that every feasible point of the range reaches, N*m (0: none; needs no
-  // points): R6's momentum power at the range's least thrust over the highest speed R2 and
-  // R12's top allow (docs/search.md#g1-torque-floor).
-  double torque_floor_nm = 0;
+  // A point per rotor that every feasible point of the range is at or above (needs no points;
+  // docs/search.md#g1-torque-floor): the speed that the range's least thrust needs at the
+  // propeller's largest CT (0: none), and R6's momentum power at that thrust over the highest
+  // speed R2 and R12's top allow (0: none). That speed (rad/s, +inf: no limit) and the rule
+  // that sets it.
+  double omega_floor_rad_s = 0, torque_floor_nm = 0;
+  double omega_ub_rad_s = std::numeric_limits<double>::infinity();
+  const char* omega_ub_rule = nullptr;
 };
 
 // The samples of a wing-borne cruise with a free airspeed at vehicle mass mass_kg; the speeds and

@@ -113,10 +113,11 @@ inline double ThrottleLimit(const MissionConstraints& k, double tr_sat) {
 const char* DriveRule(const MissionConstraints& k, const MotorParams& mp, const OperatingPoint& hi, double tr_max,
                       double esc_max_current_a);
 
-// R3 over a wing-borne cruise's free airspeed range (docs/search.md#g1-torque-floor): `drive`
-// at the samples' torque floor, at standstill and the full-charge voltage v_full_v, is at or
-// below every feasible point of the range (M2: Irms and PAC rise with the torque and the speed).
-// The rule it breaks (DriveRule), or null; *irms_lb (if given) raised to its Irms.
+// R2, R12's top and R3 over a wing-borne cruise's free airspeed range
+// (docs/search.md#g1-torque-floor): the samples' speed floor above their speed limit fails the
+// limit's rule; `drive` at the floor point and the full-charge voltage v_full_v is at or below
+// every feasible point of the range (M2: throttle, Irms and PAC rise with the torque and the
+// speed). The rule broken (DriveRule), or null; *irms_lb (if given) raised to the point's Irms.
 const char* FreeCruiseTorqueRule(const MissionConstraints& k, const Drive& drive, const FreeCruiseSamples& s,
                                  double v_full_v, double tr_max, double esc_max_current_a, double* irms_lb = nullptr);
 
@@ -196,6 +197,10 @@ struct SearchContext {
   // feasible combination's vehicle weighs at least fixed_mass_floor[o].kg (0: no floor, +inf:
   // no mass passes), else it breaks fixed_mass_floor[o].rule. Empty without groups.
   std::vector<MassFloor> fixed_mass_floor;
+  // [option]: the fixed groups' mass ceiling (FixedGroupPowerBounds; docs/search.md#g1-torque-floor):
+  // a vehicle of fixed_mass_ceiling[o].kg or more breaks fixed_mass_ceiling[o].rule (+inf with a
+  // null rule: none). Empty without groups.
+  std::vector<MassFloor> fixed_mass_ceiling;
   // PropModels of the fixed groups' propellers (by group index; null for the free group),
   // built once and shared by every evaluation.
   std::vector<std::unique_ptr<PropModel>> fixed_models;
@@ -260,7 +265,8 @@ bool FailsHoverThrottleBound(const SearchContext& ctx, int motor, int prop, int 
 // at this fraction of its value, against the evaluator's midpoint rule.
 inline constexpr double kChargeAllowance = 1.0 - 1e-3;
 
-// Fills ctx->fixed_power_lb_w and ctx->fixed_mass_floor (after stages 1-3 and ResolveGroups).
+// Fills ctx->fixed_power_lb_w, ctx->fixed_mass_floor and ctx->fixed_mass_ceiling (after stages
+// 1-3 and ResolveGroups).
 inline constexpr int kFixedPowerMasses = 64;
 inline constexpr double kFixedPowerMassStep = 1.02;
 void FixedGroupPowerBounds(SearchContext* ctx);

@@ -1,6 +1,7 @@
 #include "prop/prop_model.h"
 
 #include <algorithm>
+#include <limits>
 #include <cmath>
 #include <sstream>
 #include <vector>
@@ -89,6 +90,34 @@ PropModel::PropModel(const PropEntry& entry) : entry_(entry) {
     throw UsageError("propeller '" + entry_.id + "': diameter_m must be > 0");
   }
   range_ = ValidRange(entry_);
+  ct_max_ = MaxThrustCoefficient();
+}
+
+double PropModel::MaxThrustCoefficient() const {
+  double ct = -std::numeric_limits<double>::infinity();
+  switch (kind_) {
+    case PropDataKind::kTables:
+      for (double c : entry_.static_table.ct) ct = std::max(ct, c);
+      for (const PropSweep& s : sweeps_) {
+        for (double c : s.ct) ct = std::max(ct, c);
+      }
+      break;
+    case PropDataKind::kCoefficients:
+      ct = *entry_.ct_static;
+      break;
+    case PropDataKind::kPowerLaw: {
+      // Evaluate's CT inside the range: a*(rpm/1000)^b/(rho_law*n^2*D^4), a power of the speed.
+      const PropPowerLaw& law = *entry_.power_law;
+      const double d = entry_.diameter_m, d4 = d * d * d * d;
+      for (double rpm : {range_.rpm_lo, range_.rpm_hi}) {
+        const double n = rpm / 60.0;
+        if (!(n > 0)) continue;
+        ct = std::max(ct, law.thrust_law_n * std::pow(rpm / 1000.0, law.thrust_law_exp) / (law.rho_kg_m3 * n * n * d4));
+      }
+      break;
+    }
+  }
+  return ct;
 }
 
 void PropModel::TableCoefficients(double rpm, double j, PropEvaluation* ev) const {

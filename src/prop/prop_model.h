@@ -104,6 +104,12 @@ class PropModel {
   double diameter_m() const { return entry_.diameter_m; }
   // The data's valid range (catalog/prop_credibility.h, ValidRange of the entry).
   const PropValidRange& valid_range() const { return range_; }
+  // The largest CT any evaluation returns (at any speed, density and airspeed): the tables'
+  // largest (interpolation stays between the points, the edges are held), the constant CT, or
+  // the power law's CT at the ends of its range (a power of the speed between them); the
+  // Reynolds correction below the data only lowers CT (a >= 0). So at every speed
+  // T <= max_thrust_coefficient()*rho*n^2*D^4.
+  double max_thrust_coefficient() const { return ct_max_; }
 
  private:
   // CT, CP at (rpm, J) from the tables; sets the flags of `ev`.
@@ -116,6 +122,8 @@ class PropModel {
   std::vector<PropSweep> sweeps_;
   // The data's valid range (power laws: rpm_min/rpm_max or the assumed tip-speed band).
   PropValidRange range_;
+  double ct_max_ = 0.0;  // max_thrust_coefficient()
+  double MaxThrustCoefficient() const;  // for ct_max_, once
   // Applies the Reynolds correction below rpm_lo to ev's coefficients.
   void CorrectBelowData(double rpm_lo, PropEvaluation* ev) const;
 };

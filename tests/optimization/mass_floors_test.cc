@@ -41,11 +41,11 @@ Json QuadplaneJson(const std::string& pusher_prop) {
   return j;
 }
 
-// Every group's parts as the mission names them, with the 4S pack of dc_b_361.
-Combination FixedCombination(const Mission& m) {
+// Every group's parts as the mission names them, with a pack of `cells` cells `battery`.
+Combination FixedCombination(const Mission& m, int cells = 4, const char* battery = "dc_b_361") {
   Combination c;
-  c.battery = &Bundled().battery("dc_b_361");
-  c.cells = 4;
+  c.battery = &Bundled().battery(battery);
+  c.cells = cells;
   for (int g = 0; g < GroupCount(m); ++g) c.groups.push_back(FixedGroupParts(m, Bundled(), g));
   return c;
 }
@@ -189,6 +189,60 @@ TEST(MassFloorsTest, AFixedPusherThatCannotCarryTheCruiseTorqueIsRefusedWithoutA
     EXPECT_TRUE(std::any_of(res.violations.begin(), res.violations.end(), [](const Violation& x) {
       return x.constraint == "motor_current" && x.segment == "cruise";
     })) << v << " m/s";
+  }
+}
+
+// The fixed groups' mass ceiling (SearchContext::fixed_mass_ceiling, docs/search.md#g1-torque-floor):
+// the eVTOL example's cruise on a GWS 9x7 with dc_m_335 and an 18 A ESC (dc_e_14), its airspeed
+// free in [14, 24] m/s. Every vehicle at or above the ceiling breaks, at every airspeed of the
+// range flown as a fixed one, the speed, merit or drive limits the rule stands for; the lift
+// choices that leave the vehicle there are refused before any solve.
+TEST(MassFloorsTest, EveryVehicleAtOrAboveTheCeilingFailsTheCruiseInTheEvaluator) {
+  Json j = ReadJsonFile(std::string(DYNOSIZE_SOURCE_DIR) + "/examples/missions/evtol_lift_cruise.json");
+  j["propulsion"]["cruise"]["motor"] = "dc_m_335";
+  j["propulsion"]["cruise"]["esc"] = "dc_e_14";
+  j["propulsion"]["cruise"]["prop"] = "uiuc_v1_gwssf_9.0x7.0_2";
+  j["segments"][2]["airspeed_m_s"] = Json::array({14.0, 24.0});
+  Json free = j;
+  free["battery"]["capacity_ah"] = Json::array({2.0, 8.0});
+  free["propulsion"]["lift"].erase("motor");
+  free["propulsion"]["lift"].erase("esc");
+  free["propulsion"]["lift"].erase("prop");
+  const Mission m = ParseMission(free, "evtol");
+  search_internal::SearchContext ctx;
+  search_internal::PrepareStages(m, Bundled(), &ctx);
+  search_internal::FixedGroupPowerBounds(&ctx);
+  // The packs of dc_b_361 and dc_b_363 leave no vehicle light enough (a floor beyond any);
+  // with dc_b_313 the vehicle may weigh from 2.89 kg (the lightest lift choice) to the ceiling.
+  ASSERT_EQ(ctx.options.size(), 3u);
+  ASSERT_EQ(ctx.options[2].entry->id, "dc_b_313");
+  const MassFloor ceiling = ctx.fixed_mass_ceiling[2];
+  ASSERT_NE(ceiling.rule, nullptr);
+  EXPECT_STREQ(ceiling.rule, "esc_current");
+  // Measured: 2.92 kg, against 3.6 kg with the example's lift pick.
+  EXPECT_GT(ceiling.kg, ctx.fixed_mass_floor[2].kg);
+  EXPECT_LT(ceiling.kg, 3.0);
+  // The example's lift pick (dc_m_334 + dc_e_145 + dc_p_318), the vehicle made lighter or
+  // heavier so that the whole weighs total_kg.
+  j["propulsion"]["lift"]["motor"] = "dc_m_334";
+  j["propulsion"]["lift"]["esc"] = "dc_e_145";
+  j["propulsion"]["lift"]["prop"] = "dc_p_318";
+  const char* const limits[] = {"prop_figure_of_merit", "prop_max_rpm", "prop_above_data", "max_throttle",
+                                "motor_current",        "motor_power",  "esc_current"};
+  for (const double total_kg : {ceiling.kg, 1.1 * ceiling.kg, 1.5 * ceiling.kg}) {
+    for (double v = 14.0; v <= 24.0 + 1e-9; v += 2.5) {
+      Json e = j;
+      e["segments"][2]["airspeed_m_s"] = v;
+      const Mission base = ParseMission(e, "evtol");
+      const double base_kg = MissionEvaluator(base, FixedCombination(base, 6, "dc_b_313")).Solve().total_mass_kg;
+      e["vehicle"]["mass_kg"] = e["vehicle"]["mass_kg"].get<double>() + (total_kg - base_kg);
+      const Mission me = ParseMission(e, "evtol");
+      const MissionResult r = MissionEvaluator(me, FixedCombination(me, 6, "dc_b_313")).Solve();
+      EXPECT_TRUE(std::any_of(r.violations.begin(), r.violations.end(), [&](const Violation& x) {
+        return x.segment == "cruise" &&
+               std::any_of(std::begin(limits), std::end(limits), [&](const char* l) { return x.constraint == l; });
+      })) << total_kg << " kg at " << v << " m/s";
+    }
   }
 }
 

@@ -396,5 +396,34 @@ TEST(PropModelTest, StaticSpeedForThrustInvertsEvaluate) {
   (void)coeffs;
 }
 
+// max_thrust_coefficient() bounds every evaluation of every bundled propeller: speeds from a
+// fifth of the data's lowest to twice its highest, static and at advance ratios up to and
+// beyond the data's, two densities (the bound of the cruise speed floor, prop_bounds.h).
+TEST(PropModelTest, NoEvaluationExceedsTheLargestThrustCoefficient) {
+  const Catalog c = Catalog::Load(kCatalog);
+  int reached = 0;  // propellers whose largest CT some evaluation reaches (the bound is tight)
+  for (const PropEntry& p : c.props()) {
+    const PropModel m(p);
+    const double ct_max = m.max_thrust_coefficient();
+    ASSERT_TRUE(std::isfinite(ct_max)) << p.id;
+    const PropValidRange r = ValidRange(p);
+    double seen = -INFINITY;
+    for (int i = 0; i <= 40; ++i) {
+      const double rpm = r.rpm_lo / 5 + (2 * r.rpm_hi - r.rpm_lo / 5) * i / 40;
+      for (const double j : {0.0, 0.1, 0.25, 0.4, 0.55, 0.7, 0.9, 1.2}) {
+        for (const double rho : {1.225, 0.9}) {
+          const double ct = m.EvaluateAtAdvanceRatio(RpmToRadPerSec(rpm), rho, j).ct;
+          seen = std::max(seen, ct);
+          EXPECT_LE(ct, ct_max * (1 + kExactRel)) << p.id << " rpm " << rpm << " J " << j;
+        }
+      }
+    }
+    if (seen >= ct_max * (1 - kExactRel)) ++reached;
+  }
+  // The sampled speeds and ratios hit most propellers' largest CT exactly (a table's or a
+  // law's edge); the rest sit between the samples.
+  EXPECT_GT(reached, static_cast<int>(c.props().size()) / 2);
+}
+
 }  // namespace
 }  // namespace dynosize
