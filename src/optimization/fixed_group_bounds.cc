@@ -18,24 +18,24 @@ namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
-// R3 over a fixed group's free-airspeed cruise sg at a vehicle of at least mass_min_kg
-// (FreeCruiseTorqueRule with the group's own drive; M3: the torque floor rises with the mass):
-// the rule every airspeed breaks, or null.
-const char* FixedCruiseTorqueRule(const Mission& m, const Segment& sg, const GroupParts& parts, const PropModel& model,
+// R2, R12's top and R3 over a fixed group's free-airspeed cruise sg at every vehicle of at least
+// mass_min_kg (FreeCruiseRangeRule with the group's own drive, the samples taken at that mass:
+// a bound for every heavier vehicle, M1, M3): the rule every airspeed breaks, or null.
+const char* FixedCruiseRangeRule(const Mission& m, const Segment& sg, const GroupParts& parts, const PropModel& model,
                                   const BatteryOption& bo, double mass_min_kg) {
   const MotorParams mp = ScenarioMotorParams(*parts.motor, m);
   const EscParams ep = ScenarioEscParams(*parts.esc, m.objective.ranking);
   const CruisePropBound pb{parts.prop, &model, PropAdjustmentFor(*parts.prop, m.objective.ranking),
                            DriveIsLossy(mp, ep.c1, ep.c0)};
-  const FreeCruiseSamples s = SampleFreeCruise(m, sg, pb, mass_min_kg, false);
-  return FreeCruiseTorqueRule(m.constraints, Drive(mp, ep), s, bo.v_full, ThrottleLimit(m.constraints, ep.tr_sat),
+  const FreeCruiseSamples s = SampleFreeCruise(m, sg, pb, mass_min_kg, true);
+  return FreeCruiseRangeRule(m.constraints, Drive(mp, ep), s, bo.v_full, ThrottleLimit(m.constraints, ep.tr_sat),
                               ep.max_current_a);
 }
 
 // R7 and R6 as mass floors (mass_floors.h) of the fixed groups' segments, each on its group's
 // own propeller, scanned up from mass_min_kg: the highest (a feasible vehicle passes them all).
-// A free-airspeed cruise that breaks R3 at every mass (FixedCruiseTorqueRule) is a floor beyond
-// any vehicle.
+// A free-airspeed cruise that breaks R2, R12's top or R3 at every mass (FixedCruiseRangeRule) is
+// a floor beyond any vehicle.
 MassFloor FixedGroupsMassFloor(const SearchContext& ctx, const BatteryOption& bo, double mass_min_kg) {
   const Mission& m = *ctx.mission;
   const auto& props = ctx.catalog->props();
@@ -45,7 +45,7 @@ MassFloor FixedGroupsMassFloor(const SearchContext& ctx, const BatteryOption& bo
     const GroupParts& parts = ctx.fixed_parts[static_cast<std::size_t>(sg.group)];
     if (sg.type == SegmentType::kCruise && sg.airspeed_m_s.free() && sg.lift_to_drag > 0) {
       const PropModel& model = *ctx.fixed_models[static_cast<std::size_t>(sg.group)];
-      if (const char* rule = FixedCruiseTorqueRule(m, sg, parts, model, bo, mass_min_kg)) return MassFloor{kInf, rule};
+      if (const char* rule = FixedCruiseRangeRule(m, sg, parts, model, bo, mass_min_kg)) return MassFloor{kInf, rule};
     }
     // The grids are the catalog's: a fixed propeller outside it gets no floor (M1 unchecked).
     const std::ptrdiff_t pi = parts.prop - props.data();
@@ -58,9 +58,9 @@ MassFloor FixedGroupsMassFloor(const SearchContext& ctx, const BatteryOption& bo
 }
 
 // The heaviest the vehicle may be for the fixed groups' free-airspeed cruises to pass R2, R12's
-// top and R3 (FixedCruiseTorqueRule; docs/search.md#g1-torque-floor): the floor point rises with
-// the mass (the range's least thrust does, M3), so the rule that fails at some mass fails at
-// every heavier one. Bisection on the mass ratio from mass_min_kg (which passes) up to
+// top and R3 (FixedCruiseRangeRule; docs/search.md#g1-torque-floor): the rule read at a mass
+// holds for every heavier vehicle, so the rule that fails at some mass fails at every heavier
+// one. Bisection on the mass ratio from mass_min_kg (which passes) up to
 // kCeilingSpan times it: the ceiling is a mass at which the rule fails, at most kCeilingRel
 // above the heaviest that passes. {+inf, null} when none fails within the span.
 MassFloor FixedGroupsMassCeiling(const SearchContext& ctx, const BatteryOption& bo, double mass_min_kg) {
@@ -76,12 +76,12 @@ MassFloor FixedGroupsMassCeiling(const SearchContext& ctx, const BatteryOption& 
     const GroupParts& parts = ctx.fixed_parts[static_cast<std::size_t>(sg.group)];
     const PropModel& model = *ctx.fixed_models[static_cast<std::size_t>(sg.group)];
     const double hi_kg = std::min(out.kg, kCeilingSpan * mass_min_kg);
-    const char* rule = FixedCruiseTorqueRule(m, sg, parts, model, bo, hi_kg);
+    const char* rule = FixedCruiseRangeRule(m, sg, parts, model, bo, hi_kg);
     if (!rule) continue;
     double lo = mass_min_kg, hi = hi_kg;  // lo passes, hi fails
     while (hi - lo > kCeilingRel * lo) {
       const double mid = std::sqrt(lo * hi);
-      if (const char* r = FixedCruiseTorqueRule(m, sg, parts, model, bo, mid)) {
+      if (const char* r = FixedCruiseRangeRule(m, sg, parts, model, bo, mid)) {
         hi = mid;
         rule = r;
       } else {
@@ -105,11 +105,16 @@ const char* DriveRule(const MissionConstraints& k, const MotorParams& mp, const 
   return nullptr;
 }
 
-const char* FreeCruiseTorqueRule(const MissionConstraints& k, const Drive& drive, const FreeCruiseSamples& s,
-                                 double v_full_v, double tr_max, double esc_max_current_a, double* irms_lb) {
-  if (s.omega_floor_rad_s > s.omega_ub_rad_s) return s.omega_ub_rule;  // R2, R12's top
-  if (!(s.torque_floor_nm > 0) && !(s.omega_floor_rad_s > 0)) return nullptr;
-  const OperatingPoint lo = drive.Inverse(v_full_v, s.torque_floor_nm, s.omega_floor_rad_s);
+const char* FreeCruiseRangeRule(const MissionConstraints& k, const Drive& drive, const FreeCruiseSamples& s,
+                                double v_full_v, double tr_max, double esc_max_current_a, double* irms_lb) {
+  double q = s.torque_floor_nm, w = s.omega_floor_rad_s;
+  if (s.points && s.point_rises) {
+    q = std::max(q, s.torque[0]);
+    w = std::max(w, s.omega[0]);
+  }
+  if (w > s.omega_ub_rad_s) return s.omega_ub_rule;  // R2, R12's top
+  if (!(q > 0) && !(w > 0)) return nullptr;
+  const OperatingPoint lo = drive.Inverse(v_full_v, q, w);
   if (irms_lb) *irms_lb = std::max(*irms_lb, lo.irms_a);
   return DriveRule(k, drive.motor(), lo, tr_max, esc_max_current_a);
 }

@@ -386,18 +386,6 @@ const FreeCruiseSamples& JointBounds::OuterCruise(int prop, std::size_t si, std:
   return cruise_samples_[static_cast<std::size_t>(cruise_index_[i])];
 }
 
-const char* JointBounds::FreeCruiseSpeedRule(int prop, const FreeCruiseSamples& s) const {
-  if (!s.points || !s.point_rises) return nullptr;
-  const PropEntry& p = cat_.props()[static_cast<std::size_t>(prop)];
-  const double rpm = RadPerSecToRpm(s.omega[0]);
-  if (p.max_rpm && rpm > *p.max_rpm) return "prop_max_rpm";  // R2
-  const double factor = m_.constraints.prop_above_data_factor;
-  if (factor > 0 && rpm > factor * models_[static_cast<std::size_t>(prop)]->valid_range().rpm_hi) {
-    return "prop_above_data";  // R12
-  }
-  return nullptr;
-}
-
 double JointBounds::OuterCruiseFloorW(const Drive& drive, int prop, std::size_t si, std::size_t o, double mass_kg) {
   const std::size_t pi = static_cast<std::size_t>(prop);
   const MotorParams& mp = drive.motor();
@@ -477,25 +465,11 @@ double JointBounds::OuterBound(const Drive& drive, const GroupParts& parts, doub
     if (sg.type != SegmentType::kCruise || !sg.airspeed_m_s.free()) continue;
     cruise_floor_w_[si] = OuterCruiseFloorW(drive, prop, si, o, mass_kg);
     cruise_point_at_[si] = kNoIndex - 1;  // a free cruise: read again per frontier point
-    // R2, R12's top and R3 over the airspeed range (docs/search.md#g2-free-cruise): every
-    // airspeed's point is at least the samples' first (their speeds and torques checked to
-    // rise, as for the drive's bound, prop_bounds.cc); so is its speed, which the evaluator
-    // holds to the propeller's max_rpm and the data window's top. R3 at the torque floor too
-    // (docs/search.md#g1-torque-floor), which needs no rise.
+    // R2, R12's top and R3 over the airspeed range (docs/search.md#g2-free-cruise, #g1-torque-floor):
+    // every airspeed's point is at least the floor point, and the samples' first when their
+    // speeds and torques rise.
     const FreeCruiseSamples& s = OuterCruise(prop, si, o, mass_kg);
-    if (const char* rule = FreeCruiseSpeedRule(prop, s)) {
-      *why = rule;
-      return kInf;
-    }
-    if (s.points && s.point_rises) {
-      const OperatingPoint hi = drive.Inverse(options_[o].v_full, s.torque[0], s.omega[0]);
-      *irms_lb = std::max(*irms_lb, hi.irms_a);
-      if (const char* rule = DriveRule(m_.constraints, mp, hi, tr_max, esc_max_a)) {
-        *why = rule;
-        return kInf;
-      }
-    }
-    if (const char* rule = FreeCruiseTorqueRule(m_.constraints, drive, s, options_[o].v_full, tr_max, esc_max_a, irms_lb)) {
+    if (const char* rule = FreeCruiseRangeRule(m_.constraints, drive, s, options_[o].v_full, tr_max, esc_max_a, irms_lb)) {
       *why = rule;
       return kInf;
     }

@@ -138,9 +138,6 @@ class JointBounds {
   // theory, and for a drive that cannot create energy the propeller's shaft power raised by the
   // motor's loss floor (LossFloorOf); with the coupled stage also the drive's PDC.
   double OuterCruiseFloorW(const Drive& drive, int prop, std::size_t si, std::size_t o, double mass_kg);
-  // R2 (max_rpm) and R12's top (prop_above_data) over a free cruise's range from its samples:
-  // the rule every airspeed breaks, or null.
-  const char* FreeCruiseSpeedRule(int prop, const FreeCruiseSamples& s) const;
   // R10's charge and voltage for the outer group (docs/search.md#g2-voltage): with scratch_
   // holding every segment's terminal power bound, the rule (throttle, reserve_soc) that the
   // outer group's segments on `prop` flown by `drive` break at a vehicle of at least mass_kg

@@ -114,11 +114,13 @@ const char* DriveRule(const MissionConstraints& k, const MotorParams& mp, const 
                       double esc_max_current_a);
 
 // R2, R12's top and R3 over a wing-borne cruise's free airspeed range
-// (docs/search.md#g1-torque-floor): the samples' speed floor above their speed limit fails the
-// limit's rule; `drive` at the floor point and the full-charge voltage v_full_v is at or below
-// every feasible point of the range (M2: throttle, Irms and PAC rise with the torque and the
-// speed). The rule broken (DriveRule), or null; *irms_lb (if given) raised to the point's Irms.
-const char* FreeCruiseTorqueRule(const MissionConstraints& k, const Drive& drive, const FreeCruiseSamples& s,
+// (docs/search.md#g1-torque-floor, #g2-free-cruise): every feasible point of the range is at or
+// above the samples' floor point and, when their speeds and torques rise, their first point;
+// a speed there above the speed limit fails the limit's rule, and `drive` there at the
+// full-charge voltage v_full_v is at or below every feasible point (M2: throttle, Irms and PAC
+// rise with the torque and the speed). The rule broken (DriveRule), or null; *irms_lb (if
+// given) raised to the point's Irms.
+const char* FreeCruiseRangeRule(const MissionConstraints& k, const Drive& drive, const FreeCruiseSamples& s,
                                  double v_full_v, double tr_max, double esc_max_current_a, double* irms_lb = nullptr);
 
 // R0 for a propeller of `group` whatever the motor: the frame's largest diameter, the

@@ -155,7 +155,7 @@ TEST(MassFloorsTest, AFixedPusherFailingEveryMassIsRefusedWithoutASolve) {
   }
 }
 
-// R3 over a free airspeed (FreeCruiseTorqueRule, docs/search.md#g1-torque-floor): a fixed
+// R3 over a free airspeed (FreeCruiseRangeRule, docs/search.md#g1-torque-floor): a fixed
 // pusher whose motor cannot carry the cruise's torque floor anywhere in the range refuses every
 // lift choice before any solve. fu_m_118 is a 1.2 g maxon EC 4 (0.47 A) on a GWS 9x7: the floor
 // is about 0.05 N*m, some 60 A. The joint search used to take such pushers first (their bound is
