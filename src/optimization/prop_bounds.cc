@@ -113,7 +113,6 @@ FreeCruiseSamples SampleFreeCruise(const Mission& m, const Segment& sg, const Cr
   return s;
 }
 
-
 // The rules (docs/search.md#m1 to #m4, R4's momentum bound and G1's free cruise), on a cell
 // [V_k, V_k+1] of the range:
 // - the thrust W/(L/D) + 1/2*rho*V^2*Cd*A_add (flight.h) rises with V, so it is at least T_k,
