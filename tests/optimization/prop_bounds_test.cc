@@ -25,18 +25,27 @@ const Catalog& Bundled() {
 }
 
 // The quadplane example with both groups fixed to the both-free search's pick (lift
-// dc_m_550 + dc_e_145 + GWS 9x5, pusher fu_m_166 + dc_e_56 + APC SF 8.5x7 from UIUC's tables)
-// and the cruise airspeed `airspeed` (a number or a [lo, hi] range).
-Mission Quadplane(const Json& airspeed) {
+// dc_m_550 + dc_e_145 + GWS 9x5, pusher fu_m_166 + dc_e_56 + APC SF 8.5x7 from UIUC's tables,
+// or pusher_prop) and the cruise airspeed `airspeed` (a number or a [lo, hi] range).
+Mission Quadplane(const Json& airspeed, const char* pusher_prop = "uiuc_v1_ance_8.5x7.0_2") {
   Json j = ReadJsonFile(std::string(DYNOSIZE_SOURCE_DIR) + "/examples/missions/quadplane_2kg.json");
   j["propulsion"]["lift"]["motor"] = "dc_m_550";
   j["propulsion"]["lift"]["esc"] = "dc_e_145";
   j["propulsion"]["lift"]["prop"] = "uiuc_v2_gwsdd_9.0x5.0_2";
   j["propulsion"]["pusher"]["motor"] = "fu_m_166";
   j["propulsion"]["pusher"]["esc"] = "dc_e_56";
-  j["propulsion"]["pusher"]["prop"] = "uiuc_v1_ance_8.5x7.0_2";
+  j["propulsion"]["pusher"]["prop"] = pusher_prop;
   j["segments"][1]["airspeed_m_s"] = airspeed;
   return ParseMission(j, "quadplane");
+}
+
+// Every group's parts as the mission names them, with the 4S pack of dc_b_361.
+Combination FixedCombination(const Mission& m) {
+  Combination c;
+  c.battery = &Bundled().battery("dc_b_361");
+  c.cells = 4;
+  for (int g = 0; g < GroupCount(m); ++g) c.groups.push_back(FixedGroupParts(m, Bundled(), g));
+  return c;
 }
 
 struct Pusher {
@@ -69,11 +78,7 @@ TEST(PropBoundsTest, FreeCruiseBoundIsBelowEveryFeasibleEnergyAndTightWithTheDri
   int feasible = 0;
   for (double v = 14.0; v <= 24.0 + 1e-9; v += 0.5) {
     const Mission m = Quadplane(v);
-    Combination c;
-    c.battery = &Bundled().battery("dc_b_361");
-    c.cells = 4;
-    for (int g = 0; g < GroupCount(m); ++g) c.groups.push_back(FixedGroupParts(m, Bundled(), g));
-    const MissionResult r = MissionEvaluator(m, c).Solve();
+    const MissionResult r = MissionEvaluator(m, FixedCombination(m)).Solve();
     ASSERT_EQ(r.segments.size(), m.segments.size());
     mass_kg = r.total_mass_kg;  // the same at every airspeed: the pack is fixed
     least_j = std::min(least_j, r.segments[1].energy_j);
@@ -139,26 +144,12 @@ TEST(PropBoundsTest, TorqueFloorIsBelowEveryPointThatPassesTheMeritAndSpeedRules
   int checked = 0;
   double tightest = 0, tightest_omega = 0;  // the largest floor / torque and floor / speed seen
   for (const char* id : props) {
-    Json range_json = ReadJsonFile(std::string(DYNOSIZE_SOURCE_DIR) + "/examples/missions/quadplane_2kg.json");
-    range_json["propulsion"]["lift"]["motor"] = "dc_m_550";
-    range_json["propulsion"]["lift"]["esc"] = "dc_e_145";
-    range_json["propulsion"]["lift"]["prop"] = "uiuc_v2_gwsdd_9.0x5.0_2";
-    range_json["propulsion"]["pusher"]["motor"] = "fu_m_166";
-    range_json["propulsion"]["pusher"]["esc"] = "dc_e_56";
-    range_json["propulsion"]["pusher"]["prop"] = id;
-    range_json["segments"][1]["airspeed_m_s"] = Json::array({14.0, 24.0});
-    const Mission range = ParseMission(range_json, "quadplane");
+    const Mission range = Quadplane(Json::array({14.0, 24.0}), id);
     const Pusher p(id);
     const CruisePropBound pb{&p.prop, &p.model, PropAdjustmentFor(p.prop, range.objective.ranking), true};
     for (double v = 14.0; v <= 24.0 + 1e-9; v += 1.0) {
-      Json j = range_json;
-      j["segments"][1]["airspeed_m_s"] = v;
-      const Mission m = ParseMission(j, "quadplane");
-      Combination c;
-      c.battery = &Bundled().battery("dc_b_361");
-      c.cells = 4;
-      for (int g = 0; g < GroupCount(m); ++g) c.groups.push_back(FixedGroupParts(m, Bundled(), g));
-      const MissionResult r = MissionEvaluator(m, c).Solve();
+      const Mission m = Quadplane(v, id);
+      const MissionResult r = MissionEvaluator(m, FixedCombination(m)).Solve();
       const bool passes = std::none_of(r.violations.begin(), r.violations.end(), [](const Violation& x) {
         return x.segment == "cruise" && (x.constraint == "prop_figure_of_merit" || x.constraint == "prop_max_rpm" ||
                                          x.constraint == "prop_above_data");
