@@ -1,8 +1,8 @@
 #include "prop/prop_model.h"
 
 #include <algorithm>
-#include <limits>
 #include <cmath>
+#include <limits>
 #include <sstream>
 #include <vector>
 
@@ -105,17 +105,14 @@ double PropModel::MaxThrustCoefficient() const {
     case PropDataKind::kCoefficients:
       ct = *entry_.ct_static;
       break;
-    case PropDataKind::kPowerLaw: {
-      // Evaluate's CT inside the range: a*(rpm/1000)^b/(rho_law*n^2*D^4), a power of the speed.
-      const PropPowerLaw& law = *entry_.power_law;
-      const double d = entry_.diameter_m, d4 = d * d * d * d;
+    case PropDataKind::kPowerLaw:
+      // Inside the range CT is a power of the speed (Evaluate: a*(rpm/1000)^b/(rho_law*n^2*D^4),
+      // independent of rho): its largest is at an end; outside it the ends' are held (below, the
+      // Reynolds correction only lowers them).
       for (double rpm : {range_.rpm_lo, range_.rpm_hi}) {
-        const double n = rpm / 60.0;
-        if (!(n > 0)) continue;
-        ct = std::max(ct, law.thrust_law_n * std::pow(rpm / 1000.0, law.thrust_law_exp) / (law.rho_kg_m3 * n * n * d4));
+        if (rpm > 0) ct = std::max(ct, Evaluate(RpmToRadPerSec(rpm), entry_.power_law->rho_kg_m3).ct);
       }
       break;
-    }
   }
   return ct;
 }
