@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "common/numbers.h"
+#include "common/units.h"
 #include "optimization/components.h"
 #include "optimization/credibility.h"
 #include "optimization/pair_candidates.h"
@@ -264,6 +265,33 @@ bool EveryKindPasses(const SearchContext& ctx, const MotorSetup& s, std::size_t 
   return true;
 }
 
+// R15 for one pair (RaisedByNeededCapacity): its R4 bound `bound` at its lightest vehicle raised,
+// with R3 at each heavier vehicle; kInf with *why when R3 refuses every class there or no pack
+// of the range holds the energy. *irms_lb: raised to R3's Irms at the last vehicle.
+double CapacityCoupledBound(const SearchContext& ctx, const MissionFacts& f, const MotorSetup& s, std::size_t pi,
+                            std::size_t o, double floor_kg, int first_idx, double bound, double cutoff,
+                            PairLoads* loads, double* irms_lb, const char** why) {
+  const BatteryOption& bo = ctx.options[o];
+  int idx = first_idx;  // the raw grid index of the last vehicle: each is heavier than the one before
+  bool over_range = false;
+  const double raised = RaisedByNeededCapacity(*ctx.mission, bo, bound, cutoff, &over_range, [&](double capacity_ah) {
+    loads->Reset(std::max(VehicleMassKg(ctx, PackMassLowerBoundKg(bo, capacity_ah), s.mass_kg, ctx.grids[pi].mass_kg,
+                                        ctx.escs.min_mass_kg[o]),
+                          floor_kg));
+    double w = 0, q = 0;
+    HoverGridPointInBracket(f, ctx.grids[pi], loads, &idx, kGrid - 1, &w, &q);
+    const ClassPowers p = HoverPowersOfClasses(ctx, s, o, w, q);
+    if (!p.Any()) {
+      *why = p.why;
+      return kInf;
+    }
+    *irms_lb = std::max(*irms_lb, p.irms_lb);
+    return TermsOfPowers(ctx, f, p, pi, o, loads).At(bo.capacity_hi_ah);
+  });
+  if (over_range) *why = "reserve_soc";
+  return raised;
+}
+
 }  // namespace
 
 // Stage 4 for one pair of a set-up motor whose option R1 lets through and whose propeller
@@ -376,8 +404,17 @@ bool PairCandidate(const SearchContext& ctx, const MissionFacts& f, const MotorS
     }
     bound = std::min(bound, TermsOfPowers(ctx, f, p, pi, o, loads).At(edges[j + 1]));
   }
+  double irms_lb = lightest.irms_lb;
+  if (edges.empty()) {
+    const char* why = nullptr;
+    bound = CapacityCoupledBound(ctx, f, s, pi, o, floor_kg, first_idx, bound, cutoff, loads, &irms_lb, &why);
+    if (why) {
+      pruned->Add(why, per_pair);
+      return false;
+    }
+  }
   if (std::isnan(bound)) bound = -kInf;  // no bound (the order needs a number)
-  *c = Candidate{bound, s.motor, static_cast<int>(pi), static_cast<int>(o), lightest.irms_lb};
+  *c = Candidate{bound, s.motor, static_cast<int>(pi), static_cast<int>(o), irms_lb};
   return true;
 }
 
@@ -394,16 +431,21 @@ double PropOnlyBound(const SearchContext& ctx, const MissionFacts& f, std::size_
   // (the pieces go heaviest first), which bracket every later piece's.
   int first_idx = -1, heavier_idx = kGrid - 1;
   bool first_call = true;  // the first piece's
-  auto floor_at = [&](double pack_kg) {
+  // The floor with the point's raw grid index known to lie in [*lo, hi] (HoverGridPointInBracket).
+  auto floor_in = [&](double pack_kg, int* lo, int hi) {
     loads->Reset(VehicleMassKg(ctx, pack_kg, motor_kg, g.mass_kg, ctx.escs.min_mass_kg[o]));
     double omega_lb = 0, q_lb = 0;
-    int idx = first_idx;
-    HoverGridPointInBracket(f, g, loads, &idx, heavier_idx, &omega_lb, &q_lb);
-    (first_call ? first_idx : heavier_idx) = idx;
-    first_call = false;
+    HoverGridPointInBracket(f, g, loads, lo, hi, &omega_lb, &q_lb);
     const double pac_floor_w =
         omega_lb * q_lb + loss.copper_w_per_nm2 * q_lb * q_lb + loss.no_load_torque_nm * omega_lb;  // physics.h
     return kKeyRoundingAllowance * pac_floor_w;
+  };
+  auto floor_at = [&](double pack_kg) {
+    int idx = first_idx;
+    const double w = floor_in(pack_kg, &idx, heavier_idx);
+    (first_call ? first_idx : heavier_idx) = idx;
+    first_call = false;
+    return w;
   };
   auto terms_with = [&](double pdc_lb_w, bool stretch_only, std::vector<SegmentEnergyFloor>* floors = nullptr) {
     return ScoreLowerBoundTerms(ctx, f, true, ctx.catalog->props()[pi], *ctx.models[pi], o, loads, pdc_lb_w,
@@ -417,7 +459,16 @@ double PropOnlyBound(const SearchContext& ctx, const MissionFacts& f, std::size_
   // pieces assembled only while they can be the least (as PairCandidate).
   std::vector<double> scratch;
   const std::vector<double>& edges = PieceEdges(ctx, f, o, &scratch);
-  if (edges.empty()) return key_of(terms_with(floor_at(bo.mass_lo_kg), false), bo.capacity_hi_ah);
+  if (edges.empty()) {
+    // R15 (docs/search.md#r15): min_energy over a capacity range, the key raised by the pack its
+    // energy needs (a key above the range's largest pack is left: the pairs' R15 refuses them).
+    const double key = key_of(terms_with(floor_at(bo.mass_lo_kg), false), bo.capacity_hi_ah);
+    bool over_range = false;
+    return RaisedByNeededCapacity(*ctx.mission, bo, key, kInf, &over_range, [&](double capacity_ah) {
+      return key_of(terms_with(floor_in(PackMassLowerBoundKg(bo, capacity_ah), &first_idx, kGrid - 1), false),
+                    bo.capacity_hi_ah);
+    });
+  }
   const ScoreBoundTerms first = terms_with(floor_at(bo.mass_lo_kg), false, &loads->floors[1]);
   double least = key_of(first, edges[1]);
   for (std::size_t j = edges.size() - 2; j > 0; --j) {

@@ -377,6 +377,58 @@ TEST_F(SearchStagesTest, CapacityPieceBoundsAreBelowEveryFeasibleScore) {
   }
 }
 
+// R15 against the exact evaluator: min_energy over a capacity range, stage 4's bound and R11's
+// key, each raised by the pack its own energy bound needs, stay at or below every feasible score
+// (ExpectOnlyInfeasiblePairsRemoved, without tolerance), and a pair R15 refuses (reserve_soc:
+// no pack of the range holds its energy bound) has no feasible ESC. It must also tighten the
+// bound: the mean relative gap between a pair's best feasible score and its bound stays below
+// max_gap (measured on the small catalog: 0.108 over [0.5, 6] Ah and 0.095 over [0.5, 1.3] Ah;
+// with R4 at the smallest pack alone, 0.147 and 0.131; a needed capacity taken 1.3 times too
+// large puts bounds above scores and removes feasible pairs).
+TEST_F(SearchStagesTest, CapacityCoupledEnergyBoundIsBelowEveryFeasibleScore) {
+  const Catalog cat = SmallCatalog();
+  struct Range {
+    double lo, hi, max_gap;
+  };
+  for (const Range& range : {Range{0.5, 6.0, 0.12}, Range{0.5, 1.3, 0.11}}) {
+    Json j = ParseJsonText(kStageQuad, "quad");
+    j["objective"] = {{"type", "min_energy"}};
+    j["battery"]["capacity_ah"] = {range.lo, range.hi};
+    const Mission m = ParseMission(j, "quad");
+    std::map<std::string, long long> pruned_by;
+    ExpectOnlyInfeasiblePairsRemoved(cat, m, &pruned_by);
+    SearchContext ctx;
+    PrepareStages(m, cat, &ctx);
+    const CandidateList all = BuildCandidates(ctx, 1);
+    double gap_sum = 0;
+    int pairs = 0, keys = 0;
+    for (const Candidate& cand : all.candidates) {
+      const BatteryOption& bo = ctx.options[cand.option];
+      const MotorEntry& mo = cat.motors()[cand.motor];
+      const double key = PropellerKeyBound(ctx, cand.prop, cand.option, cand.motor);
+      double best = kInfinity;
+      for (const EscEntry& e : cat.escs()) {
+        const Combination c{&mo, &e, &cat.props()[cand.prop], bo.entry, bo.cells, {}};
+        const MissionResult r = MissionEvaluator(m, c).Solve();
+        if (!r.feasible) continue;
+        best = std::min(best, r.score);
+        if (DriveIsLossy(ScenarioMotorParams(mo, m, nullptr, nullptr), e.params.c1, e.params.c0)) {
+          ++keys;
+          EXPECT_LE(key, r.score) << range.lo << "-" << range.hi << " Ah: " << mo.id << " " << e.id << " " << c.prop->id;
+        }
+      }
+      if (!std::isfinite(best)) continue;
+      ++pairs;
+      gap_sum += (best - cand.bound) / std::fabs(best);
+    }
+    ASSERT_GT(pairs, 3) << range.lo << "-" << range.hi << " Ah";
+    EXPECT_GT(keys, 3) << range.lo << "-" << range.hi << " Ah";
+    EXPECT_LT(gap_sum / pairs, range.max_gap) << range.lo << "-" << range.hi << " Ah";
+    std::printf("R15 over [%g, %g] Ah: %d pairs, mean relative gap %.3f, %lld combinations refused by reserve_soc\n",
+                range.lo, range.hi, pairs, gap_sum / pairs, pruned_by["reserve_soc"]);
+  }
+}
+
 // The quadcopter's mission with its hover as the max_endurance stretch, and the same with a
 // fixed-airspeed cruise stretch (R13's two kinds of stretch).
 std::vector<Json> HoverAndCruiseStretches() {
