@@ -481,12 +481,14 @@ void BranchAndBound::Run() {
 
 SearchResult search_internal::SearchOneGroup(const Mission& m, const Catalog& cat, const SearchOptions& opt,
                                              double cutoff, PropGridCache* cache,
-                                             const std::vector<GroupParts>* given_parts) {
+                                             const std::vector<GroupParts>* given_parts,
+                                             const std::vector<char>* pair_mask) {
   const auto t0 = std::chrono::steady_clock::now();
   if (std::string why; !opt.IsValid(&why)) throw UsageError(why);
   SearchResult out;
   SearchContext ctx;
   ctx.given_parts = given_parts;
+  ctx.pair_mask = pair_mask;
   if (cache) {  // stages 0-3 with the caller's propeller grids (they depend on the air and limits only)
     ctx.mission = &m;
     ctx.catalog = &cat;

@@ -115,6 +115,13 @@ struct CandidateStream::Impl {
       ++m->walk;
       const std::size_t o = static_cast<std::size_t>(k.option);
       if (std::isnan(m->setup->w_nl[o])) continue;  // R1 (MotorSetUp counted it)
+      if (ctx.pair_mask &&
+          !(*ctx.pair_mask)[static_cast<std::size_t>(m->setup->motor) * ctx.catalog->props().size() +
+                            static_cast<std::size_t>(k.prop)]) {  // no score below the cutoff (G2's inner filter)
+        tally->pruned.Add("objective_bound", ctx.escs.rated[o]);
+        removed += ctx.escs.rated[o];
+        continue;
+      }
       ++done;
       ++tally->bounded;
       Candidate c;

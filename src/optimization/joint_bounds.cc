@@ -23,6 +23,28 @@ namespace dynosize::search_internal {
 
 namespace {
 
+// G2's inner filter's outer energy (JointBounds::OuterEnergy): e_outer_at (the outer segments'
+// energy at a vehicle of a mass, a bound at every heavier one) at floor_kg and at each grid mass
+// of G1's geometric grid from m0 above it up to top_kg; an infeasible mass ends the list (every
+// heavier vehicle is infeasible too, M3).
+template <typename EnergyAt>
+JointBounds::OuterEnergy OuterEnergyByMass(double raw_kg, double floor_kg, double m0, double top_kg, double rest_j,
+                                           EnergyAt&& e_outer_at) {
+  JointBounds::OuterEnergy out;
+  out.valid = true;
+  out.raw_kg = raw_kg;
+  out.rest_j = rest_j;
+  out.outer_j_by_kg.emplace_back(floor_kg, e_outer_at(floor_kg));
+  int k = floor_kg > m0 ? static_cast<int>(std::floor(std::log(floor_kg / m0) / std::log(kFixedPowerMassStep))) + 1 : 1;
+  for (; k < kFixedPowerMasses && std::isfinite(out.outer_j_by_kg.back().second); ++k) {
+    const double kg = m0 * std::pow(kFixedPowerMassStep, k);
+    if (kg > top_kg) break;
+    if (kg <= out.outer_j_by_kg.back().first) continue;
+    out.outer_j_by_kg.emplace_back(kg, e_outer_at(kg));
+  }
+  return out;
+}
+
 constexpr double kInf = std::numeric_limits<double>::infinity();
 constexpr double kRotorCeilingRadS = 1e5;  // RotorLowerBound's: ~1e6 rpm, beyond any motor
 constexpr std::size_t kNoIndex = std::numeric_limits<std::size_t>::max();  // OuterBound's: not a free cruise
@@ -251,9 +273,7 @@ JointBounds::JointBounds(const Mission& m, const Catalog& cat, const PropGridCac
     inner_ = free[0] == outer_ ? free[1] : free[0];
     frontier_.assign(options_.size(), std::vector<std::vector<FrontierPoint>>(kFrontierLevels));
     frontier_done_.assign(options_.size(), std::vector<char>(kFrontierLevels, 0));
-    inner_floor0_.assign(options_.size(), std::vector<float>());
-    inner_floor_.assign(options_.size(), std::vector<float>());
-    inner_floor_level_.assign(options_.size(), 0);
+    inner_floors_.assign(options_.size(), std::vector<std::vector<std::uint16_t>>(kFrontierLevels));
     for (std::size_t o = 0; o < options_.size(); ++o) Frontier(o, 0.0);
   }
 }
@@ -429,7 +449,8 @@ const char* JointBounds::VoltageLeftRule(const Drive& drive, int prop, std::size
 
 double JointBounds::OuterBound(const Drive& drive, const GroupParts& parts, double esc_max_a,
                                double tr_max, int prop, std::size_t o, double mass_kg, const char** why,
-                               double* irms_lb) {
+                               double* irms_lb, OuterEnergy* outer_energy) {
+  if (outer_energy) outer_energy->valid = false;
   const MotorParams& mp = drive.motor();
   scratch_ = other_power_w_[o];
   *irms_lb = 0;
@@ -501,6 +522,34 @@ double JointBounds::OuterBound(const Drive& drive, const GroupParts& parts, doub
     const int g = m_.segments[si].group;
     if (g != outer_ && g != inner_) e_rest += scratch_[si] * t_min(si);
   }
+  // The outer segments' energy at a vehicle of kg (at least raw_kg): a bound at every heavier
+  // vehicle (M3). A free cruise reads its samples at the grid mass at or below kg, once per grid
+  // mass (the masses asked rise).
+  auto e_outer_at = [&](double kg) {
+    double e = 0;
+    for (std::size_t si : outer_segments_) {
+      const SegmentBound b = SegmentPowerBound(m_, si, parts, mp, drive, tr_max, esc_max_a,
+                                               *models_[static_cast<std::size_t>(prop)], options_[o], kg,
+                                               OuterRotor(prop, si, o, kg));
+      if (b.infeasible) return kInf;
+      double floor_w = cruise_floor_w_[si];  // at raw_kg <= kg
+      if (cruise_point_at_[si] != kNoIndex) {
+        double grid_kg = 0;
+        const std::size_t i = RotorCacheIndex(prop, si, o, kg, &grid_kg);
+        if (i != cruise_point_at_[si]) {
+          cruise_point_at_[si] = i;
+          cruise_point_w_[si] = OuterCruiseFloorW(drive, prop, si, o, kg);
+        }
+        floor_w = std::max(floor_w, cruise_point_w_[si]);
+      }
+      e += std::max(b.power_w, floor_w) * t_min(si);
+    }
+    return e;
+  };
+  if (outer_energy) {  // up to the vehicle with the inner group's heaviest pair
+    const double top_kg = raw_kg + (inner_pair_kg_.empty() ? 0.0 : InnerExtraKg(o, inner_pair_kg_.size() - 1));
+    *outer_energy = OuterEnergyByMass(raw_kg, floor_kg, mass_min_kg_[o], top_kg, e_rest, e_outer_at);
+  }
   double best = kInf;
   // The outer segments' energy depends on kg only through OuterRotor's grid mass (a free-airspeed
   // cruise reads kg itself): points on one grid mass share it. Energy of an infeasible point is
@@ -515,29 +564,7 @@ double JointBounds::OuterBound(const Drive& drive, const GroupParts& parts, doub
     const double kg = std::max(raw_kg + f.extra_kg, floor_kg);
     const RotorBound* rb0 = reuse ? &OuterRotor(prop, outer_segments_.front(), o, kg) : nullptr;
     if (!rb0 || rb0 != last_rb) {
-      e_outer = 0;
-      for (std::size_t si : outer_segments_) {
-        const SegmentBound b = SegmentPowerBound(m_, si, parts, mp, drive, tr_max, esc_max_a,
-                                                 *models_[static_cast<std::size_t>(prop)], options_[o], kg,
-                                                 OuterRotor(prop, si, o, kg));
-        if (b.infeasible) {
-          e_outer = kInf;
-          break;
-        }
-        double floor_w = cruise_floor_w_[si];  // at raw_kg <= kg
-        if (cruise_point_at_[si] != kNoIndex) {
-          // A free cruise at this point's mass: its samples at the grid mass at or below kg, read
-          // once per grid mass (the frontier's masses rise).
-          double grid_kg = 0;
-          const std::size_t i = RotorCacheIndex(prop, si, o, kg, &grid_kg);
-          if (i != cruise_point_at_[si]) {
-            cruise_point_at_[si] = i;
-            cruise_point_w_[si] = OuterCruiseFloorW(drive, prop, si, o, kg);
-          }
-          floor_w = std::max(floor_w, cruise_point_w_[si]);
-        }
-        e_outer += std::max(b.power_w, floor_w) * t_min(si);
-      }
+      e_outer = e_outer_at(kg);
       last_rb = rb0;
     }
     const double e = e_rest + f.energy_j + e_outer;
@@ -548,7 +575,9 @@ double JointBounds::OuterBound(const Drive& drive, const GroupParts& parts, doub
   return std::max(bound, best / 3600.0);
 }
 
-double JointBounds::PairBound(int motor, int prop, std::size_t o, int esc_class, const char** why, double* irms_lb) {
+double JointBounds::PairBound(int motor, int prop, std::size_t o, int esc_class, const char** why, double* irms_lb,
+                              OuterEnergy* outer_energy) {
+  if (outer_energy) outer_energy->valid = false;
   const MotorEntry& mo = cat_.motors()[static_cast<std::size_t>(motor)];
   const EscClass& cls = escs_.classes[static_cast<std::size_t>(esc_class)];
   const std::vector<int>& members = escs_.per_option[o][static_cast<std::size_t>(esc_class)];
@@ -569,7 +598,8 @@ double JointBounds::PairBound(int motor, int prop, std::size_t o, int esc_class,
   const double mass = mass_min_kg_[o] - outer_lightest_kg_[o] +
                       m_.groups[outer_].rotors * (*mo.mass_kg + PropMassKg(cat_.props()[static_cast<std::size_t>(prop)]) +
                                                   escs_.min_mass_kg[o]);
-  return OuterBound(d, parts, kInf, ThrottleLimit(m_.constraints, cls.tr_sat), prop, o, mass, why, irms_lb);
+  return OuterBound(d, parts, kInf, ThrottleLimit(m_.constraints, cls.tr_sat), prop, o, mass, why, irms_lb,
+                    outer_energy);
 }
 
 double JointBounds::TripleBound(int motor, int esc, int prop, std::size_t o, const char** why) {

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 #include <limits>
 #include <memory>
 #include <utility>
@@ -30,19 +31,105 @@ float FloatBelow(double e) {
   return f;
 }
 
+// InnerFrontier's floors as kept per level: 16-bit codes, a float's exponent (from 2^0 to 2^30
+// J) and the top 11 bits of its mantissa, truncated (so each code's energy is at or below the
+// floor it stands for, relative step 2^-11); code 0: no floor (-inf, and every floor below
+// 1 J), kFloorCodeInf: +inf (the pair fails a rule with every class). Half a float's memory.
+constexpr std::uint16_t kFloorCodeInf = 65535;
+constexpr int kFloorCodeMantissaBits = 11;
+constexpr std::uint32_t kFloorCodeMaxExponent = 30;
+constexpr std::uint16_t kFloorCodeMax =  // the largest finite code
+    1 + ((kFloorCodeMaxExponent << kFloorCodeMantissaBits) | ((1u << kFloorCodeMantissaBits) - 1));
+double FloorOfCode(std::uint16_t q) {
+  if (q == 0) return -std::numeric_limits<double>::infinity();
+  if (q == kFloorCodeInf) return std::numeric_limits<double>::infinity();
+  const std::uint32_t c = static_cast<std::uint32_t>(q) - 1;
+  const std::uint32_t bits = (((c >> kFloorCodeMantissaBits) + 127u) << 23) |
+                             ((c & ((1u << kFloorCodeMantissaBits) - 1)) << (23 - kFloorCodeMantissaBits));
+  float f = 0;
+  std::memcpy(&f, &bits, sizeof f);
+  return f;
+}
+std::uint16_t CodeOfFloor(double e) {
+  if (e == std::numeric_limits<double>::infinity()) return kFloorCodeInf;
+  const float f = FloatBelow(e);
+  if (!(f >= 1.0f)) return 0;
+  std::uint32_t bits = 0;
+  std::memcpy(&bits, &f, sizeof bits);
+  const std::uint32_t exponent = std::min((bits >> 23) - 127u, kFloorCodeMaxExponent);
+  const std::uint32_t mantissa = exponent == (bits >> 23) - 127u
+                                     ? (bits & 0x7FFFFFu) >> (23 - kFloorCodeMantissaBits)
+                                     : (1u << kFloorCodeMantissaBits) - 1;  // above 2^31 J: the largest code
+  return static_cast<std::uint16_t>(1 + ((exponent << kFloorCodeMantissaBits) | mantissa));
+}
+// The least code whose energy is at least e: a floor below e has a code below it.
+std::uint16_t LeastCodeAtOrAbove(double e) {
+  const std::uint16_t code = CodeOfFloor(e);  // at or below e, the next one above it
+  if (code == kFloorCodeInf || FloorOfCode(code) >= e) return code;
+  return code < kFloorCodeMax ? static_cast<std::uint16_t>(code + 1) : kFloorCodeInf;
+}
+
 }  // namespace
 
 // The frontier of the level at or below outer_extra_kg (docs/search.md#g2-levels): level k
 // puts the outer group k * kFrontierLevelStep of the option's lightest vehicle above its
 // lightest, so a completion whose outer choice is at least that much heavier weighs at least
 // the vehicle each of the level's points was computed at (M3). Computed when first asked.
-const std::vector<JointBounds::FrontierPoint>& JointBounds::Frontier(std::size_t o, double outer_extra_kg) {
+int JointBounds::LevelOf(std::size_t o, double outer_extra_kg) const {
   int k = 0;
   if (outer_extra_kg > 0) {
     const double steps = outer_extra_kg / (kFrontierLevelStep * mass_min_kg_[o]);
     k = steps < kFrontierLevels - 1 ? static_cast<int>(std::floor(steps)) : kFrontierLevels - 1;
     while (k > 0 && !(FrontierLevelKg(o, k) <= outer_extra_kg)) --k;  // at or below, after rounding
   }
+  return k;
+}
+
+const std::vector<std::uint16_t>* JointBounds::FloorsAtOrBelow(std::size_t o, int level) const {
+  for (int j = std::min(level, kFrontierLevels - 1); j >= 0; --j) {
+    const std::vector<std::uint16_t>& f = inner_floors_[o][static_cast<std::size_t>(j)];
+    if (!f.empty()) return &f;
+  }
+  return nullptr;
+}
+
+// G2's inner filter (docs/search.md#g2-inner-filter). A completion with inner pair (motor,
+// propeller) spends at least the pair's energy floor (inner_floors_, at the highest computed
+// level at or below the choice's: a bound of the pair's segments at every vehicle of at least
+// that level, M3) plus outer_energy's (the other groups' segments, and the outer group's at
+// the vehicle with that pair, read at or below its mass): at or above cutoff it has no score
+// below it.
+bool JointBounds::InnerPairsBelow(std::size_t o, const OuterEnergy& outer_energy, double cutoff,
+                                  std::vector<char>* allowed) const {
+  if (inner_ < 0 || !outer_energy.valid || outer_energy.outer_j_by_kg.empty() || o >= inner_floors_.size() ||
+      !std::isfinite(cutoff)) {
+    return false;
+  }
+  const std::vector<std::uint16_t>* floors = FloorsAtOrBelow(o, LevelOf(o, outer_energy.raw_kg - mass_min_kg_[o]));
+  if (!floors || floors->size() != inner_by_mass_.size()) return false;
+  const auto& by_kg = outer_energy.outer_j_by_kg;
+  allowed->assign(cat_.motors().size() * cat_.props().size(), 0);
+  // A pair passes when its floor is below the budget left at its vehicle (min_energy: the score in
+  // Wh): its code below the budget's least code at or above.
+  auto least_code = [&](std::size_t j) {
+    return LeastCodeAtOrAbove(cutoff * 3600.0 - outer_energy.rest_j - by_kg[j].second);
+  };
+  std::size_t j = 0;  // by_kg's entry at or below the vehicle (the pairs come lightest first)
+  std::uint16_t below = least_code(0);
+  // The vehicle as OuterBound's frontier points take it, held 1e-6 below against the float masses.
+  const double shrink = 1.0 - 1e-6;
+  for (std::size_t n = 0; n < floors->size(); ++n) {
+    if (j + 1 < by_kg.size() && by_kg[j + 1].first <= shrink * (outer_energy.raw_kg + InnerExtraKg(o, n))) {
+      while (j + 1 < by_kg.size() && by_kg[j + 1].first <= shrink * (outer_energy.raw_kg + InnerExtraKg(o, n))) ++j;
+      below = least_code(j);
+    }
+    if ((*floors)[n] < below) (*allowed)[inner_by_mass_[n]] = 1;
+  }
+  return true;
+}
+
+const std::vector<JointBounds::FrontierPoint>& JointBounds::Frontier(std::size_t o, double outer_extra_kg) {
+  const int k = LevelOf(o, outer_extra_kg);
   // A level already computed up to kFrontierLevelReuse below serves (any level at or below the
   // extra mass is a bound; each level costs a walk over the inner group's choices).
   for (int j = k; j >= 0 && j >= k - kFrontierLevelReuse; --j) {
@@ -107,7 +194,11 @@ std::vector<JointBounds::FrontierPoint> JointBounds::InnerFrontier(std::size_t o
     }
     std::sort(list.begin(), list.end());
     inner_by_mass_.reserve(list.size());
-    for (const auto& e : list) inner_by_mass_.push_back(e.second);
+    inner_pair_kg_.reserve(list.size());
+    for (const auto& e : list) {
+      inner_by_mass_.push_back(e.second);
+      inner_pair_kg_.push_back(static_cast<float>(e.first));
+    }
   }
   // Per motor: its scenario parameters and R0, R1 (the lift group's voltage rule).
   std::vector<MotorParams> mps(motors.size());
@@ -119,29 +210,27 @@ std::vector<JointBounds::FrontierPoint> JointBounds::InnerFrontier(std::size_t o
   }
   std::vector<double> prop_kg(props.size());
   for (std::size_t pi = 0; pi < props.size(); ++pi) prop_kg[pi] = PropMassKg(props[pi]);
-  // Each pair's energy floor from a level at or below this one (level 0's, or the latest's
-  // when found at or below): a bound at this level too, whose vehicles are heavier (M1-M3;
-  // +inf: the pair fails a rule with every ESC class). This level's floors replace the latest
-  // when it is at or above theirs.
-  const bool level0 = level == 0;
-  if (level0) {
-    inner_floor0_[o].assign(inner_by_mass_.size(), -std::numeric_limits<float>::infinity());
-    inner_floor_[o] = inner_floor0_[o];
-    inner_floor_level_[o] = 0;
+  // Each pair's energy floor from the highest computed level below this one: a bound at this
+  // level too, whose vehicles are heavier (M1-M3; +inf: the pair fails a rule with every ESC
+  // class); raised here to this level's where it is computed, and kept as this level's.
+  const std::vector<std::uint16_t>* below = FloorsAtOrBelow(o, level);
+  std::vector<float> floors(inner_by_mass_.size(), -std::numeric_limits<float>::infinity());
+  if (below && below->size() == floors.size()) {
+    for (std::size_t n = 0; n < floors.size(); ++n) floors[n] = FloatBelow(FloorOfCode((*below)[n]));
   }
-  const std::vector<float>& known = inner_floor_level_[o] <= level ? inner_floor_[o] : inner_floor0_[o];
-  std::vector<float>* record = inner_floor_level_[o] <= level ? &inner_floor_[o] : nullptr;
-  if (record) inner_floor_level_[o] = level;
   std::vector<FrontierPoint> front;
   double e_min = kInf;
   for (std::size_t n = 0; n < inner_by_mass_.size(); ++n) {
-    const float e_known = known[n];
+    const float e_known = floors[n];
     if (e_known >= e_min) continue;  // a lighter point has no more energy
     const std::uint32_t code = inner_by_mass_[n];
     const std::size_t mi = code / props.size(), pi = code % props.size();
     const MotorEntry& mo = motors[mi];
     const double kg = rotors * (*mo.mass_kg + prop_kg[pi] + esc_min);
-    if (kg < inner_lightest_kg_[o]) continue;
+    if (kg < inner_lightest_kg_[o]) {  // it fails R0, R1, R3 or R7 with every class (LightestSurvivorKg)
+      floors[n] = FloatBelow(kInf);
+      continue;
+    }
     if (!usable[mi]) {
       bool excluded = false;
       mps[mi] = ScenarioMotorParams(mo, m_, nullptr, &excluded);
@@ -152,7 +241,7 @@ std::vector<JointBounds::FrontierPoint> JointBounds::InnerFrontier(std::size_t o
       }
     }
     if (usable[mi] != 1 || (all_lossy[mi] && floor_j[pi] >= e_min)) {  // as the class loop's skip
-      if (record) (*record)[n] = usable[mi] != 1 ? FloatBelow(kInf) : std::max(e_known, FloatBelow(floor_j[pi]));
+      floors[n] = usable[mi] != 1 ? FloatBelow(kInf) : std::max(e_known, FloatBelow(floor_j[pi]));
       continue;
     }
     const MotorParams& mp = mps[mi];
@@ -187,9 +276,11 @@ std::vector<JointBounds::FrontierPoint> JointBounds::InnerFrontier(std::size_t o
         front.push_back(FrontierPoint{kg - inner_lightest_kg_[o], e});
       }
     }
-    if (record) (*record)[n] = std::max(e_known, FloatBelow(e_pair));
+    floors[n] = std::max(e_known, FloatBelow(e_pair));
   }
-  if (level0) inner_floor0_[o] = inner_floor_[o];
+  std::vector<std::uint16_t>& kept = inner_floors_[o][static_cast<std::size_t>(level)];
+  kept.resize(floors.size());
+  for (std::size_t n = 0; n < floors.size(); ++n) kept[n] = CodeOfFloor(floors[n]);
   return front;
 }
 

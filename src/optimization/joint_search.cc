@@ -305,7 +305,8 @@ class JointLoop {
   bool TakePair(const Queued& q);
   // One class with two or more ESCs below the N-th best (`cls`, best triple bound first): the
   // virtual ESC's completions, then each real ESC against them (G3) or its own inner search.
-  void VirtualEscClass(const OuterPair& pr, std::size_t i, const std::vector<std::pair<double, int>>& cls);
+  void VirtualEscClass(const OuterPair& pr, std::size_t i, const std::vector<std::pair<double, int>>& cls,
+                       int esc_class);
   // Everything left is unsettled (a stop): the item being taken has bound `bound` and `left`
   // combinations not yet settled, the rest the queue's and the list's own bounds.
   void StopAll(double bound, long long left);
@@ -465,7 +466,7 @@ bool JointLoop::TakePair(const Queued& q) {
     }
     if (cls.size() >= 2 && virtual_ok_) {
       started = true;
-      VirtualEscClass(pr, q.pair, cls);
+      VirtualEscClass(pr, q.pair, cls, static_cast<int>(c));
       continue;
     }
     triples.insert(triples.end(), cls.begin(), cls.end());
@@ -476,7 +477,8 @@ bool JointLoop::TakePair(const Queued& q) {
   return true;
 }
 
-void JointLoop::VirtualEscClass(const OuterPair& pr, std::size_t i, const std::vector<std::pair<double, int>>& cls) {
+void JointLoop::VirtualEscClass(const OuterPair& pr, std::size_t i, const std::vector<std::pair<double, int>>& cls,
+                                int esc_class) {
   const auto& escs = cat_.escs();
   const int outer = jb_.outer_group();
   // R5 for the outer group: the class's virtual ESC (no resistance, the lightest of these ESCs'
@@ -499,8 +501,17 @@ void JointLoop::VirtualEscClass(const OuterPair& pr, std::size_t i, const std::v
   SearchOptions all_opt = inner_opt_;
   all_opt.top_n = kCompletionLimit;
   all_opt.distinct_designs = false;  // every completion, not one per design
+  // G2's inner filter: only the inner pairs whose energy floor leaves a completion below the
+  // N-th best (docs/search.md#g2-inner-filter); the virtual ESC is one of the class's (zero
+  // resistance, the lightest mass), which outer_energy bounds.
+  JointBounds::OuterEnergy outer_energy;
+  const char* why = nullptr;
+  double irms_lb = 0;
+  jb_.PairBound(pr.motor, pr.prop, pr.option, esc_class, &why, &irms_lb, &outer_energy);
+  std::vector<char> allowed;
+  const bool filtered = jb_.InnerPairsBelow(pr.option, outer_energy, Nth(), &allowed);
   const SearchResult r = SearchOneGroup(SubMission(relaxed_, cat_, outer, pr, cls.front().second, jb_), cat_,
-                                        all_opt, Nth(), cache_, &given);
+                                        all_opt, Nth(), cache_, &given, filtered ? &allowed : nullptr);
   out_.virtual_evaluations += r.searched + r.virtual_evaluations;
   if (r.interrupted) {  // the pair is left unsettled (Run)
     out_.interrupted = true;

@@ -13,6 +13,7 @@
 #include <limits>
 #include <string>
 #include <tuple>
+#include <utility>
 #include <vector>
 
 #include "catalog/catalog.h"
@@ -91,11 +92,31 @@ class JointBounds {
   // The power bound of a segment the outer group does not fly (W; +inf: no choice of its
   // group survives R0, R1, R3 with option o).
   double other_power_w(std::size_t o, std::size_t si) const { return other_power_w_[o][si]; }
+  // The energy every completion of an outer choice spends outside the inner group, from below
+  // (the coupled stage's; docs/search.md#g2-inner-filter), J: the other groups' segments, and
+  // the outer group's by vehicle mass. valid false when the coupled stage did not apply (the
+  // bound ended before it, or no inner group).
+  struct OuterEnergy {
+    bool valid = false;
+    double raw_kg = 0;  // the choice's lightest vehicle (the inner group at its lightest), kg
+    double rest_j = 0;  // the segments of neither group
+    // (vehicle kg, the outer segments' energy at every vehicle at least that heavy), kg rising
+    // from the choice's lightest (R7's floor included): at floor and at G1's grid masses above.
+    std::vector<std::pair<double, double>> outer_j_by_kg;
+  };
   // Lower bounds of the score of every combination that flies the outer group on (motor,
   // prop) with option o: with any ESC of class esc_class (PairBound), or with ESC esc
   // (TripleBound). +inf and *why set when no such combination can be feasible. irms_lb: the
-  // motor's Irms lower bound over the group's segments (R3's ESC-current rule).
-  double PairBound(int motor, int prop, std::size_t o, int esc_class, const char** why, double* irms_lb);
+  // motor's Irms lower bound over the group's segments (R3's ESC-current rule). outer_energy
+  // (optional): the choice's OuterEnergy, for InnerPairsBelow.
+  double PairBound(int motor, int prop, std::size_t o, int esc_class, const char** why, double* irms_lb,
+                   OuterEnergy* outer_energy = nullptr);
+  // G2's inner filter (docs/search.md#g2-inner-filter): with outer_energy from PairBound for an
+  // outer choice with option o, marks in *allowed (motor * props + propeller, 1) the inner
+  // group's (motor, propeller) pairs whose energy floor (InnerFrontier's, at a level at or below
+  // the choice's) leaves its completions a score below cutoff; every other pair has none below
+  // it. False (and *allowed untouched) when no floors apply.
+  bool InnerPairsBelow(std::size_t o, const OuterEnergy& outer_energy, double cutoff, std::vector<char>* allowed) const;
   double TripleBound(int motor, int esc, int prop, std::size_t o, const char** why);
   // With two free groups and min_energy: tighten PairBound and TripleBound by the coupled bound
   // (the inner group's frontier of mass and energy; docs/search.md#g2). Off by default (it costs
@@ -125,7 +146,8 @@ class JointBounds {
 
  private:
   double OuterBound(const Drive& drive, const GroupParts& parts, double esc_max_a, double tr_max,
-                    int prop, std::size_t o, double mass_kg, const char** why, double* irms_lb);
+                    int prop, std::size_t o, double mass_kg, const char** why, double* irms_lb,
+                    OuterEnergy* outer_energy = nullptr);
   const RotorBound& OuterRotor(int prop, std::size_t si, std::size_t o, double mass_kg);
   // The caches' index of (prop, si, o) at the grid mass at or below mass_kg (G1's geometric grid
   // from the option's lightest vehicle), and that grid mass (kg).
@@ -170,12 +192,23 @@ class JointBounds {
   // InnerFrontier's inner (motor, propeller) pairs, motor * props + propeller, by motor +
   // propeller mass ascending (built on its first call).
   std::vector<std::uint32_t> inner_by_mass_;
-  // Per option, by position in inner_by_mass_: a lower bound of the pair's energy (J, float
-  // rounded down; +inf: it fails a rule with every ESC class) at every level at or above the one
-  // it was found at (docs/search.md#g2-levels): level 0's, and the latest's, found at levels at
-  // or below inner_floor_level_[o].
-  std::vector<std::vector<float>> inner_floor0_, inner_floor_;
-  std::vector<int> inner_floor_level_;
+  std::vector<float> inner_pair_kg_;  // their motor + propeller masses, kg (G2's inner filter)
+  // [option][level] (empty: not computed), by position in inner_by_mass_: a lower bound of the
+  // pair's energy (J; +inf: it fails a rule with every ESC class) at every level at or above
+  // this one (docs/search.md#g2-levels), found at this level or the computed one below it. Kept
+  // as 16-bit codes, each code's energy at or below the floor (joint_frontier.cc, CodeOfFloor).
+  std::vector<std::vector<std::vector<std::uint16_t>>> inner_floors_;
+  // The highest computed level at or below `level` of option o's floors (null: none).
+  const std::vector<std::uint16_t>* FloorsAtOrBelow(std::size_t o, int level) const;
+  // Frontier's level of an outer choice outer_extra_kg above the outer group's lightest: the
+  // highest at or below it.
+  int LevelOf(std::size_t o, double outer_extra_kg) const;
+  // The inner group's (motor, propeller) pair at position n of inner_by_mass_ with option o's
+  // lightest ESC, over the group's lightest, kg (float masses: the filter's vehicle, rounded).
+  double InnerExtraKg(std::size_t o, std::size_t n) const {
+    const double esc_min = std::isfinite(escs_.min_mass_kg[o]) ? escs_.min_mass_kg[o] : 0.0;
+    return m_.groups[static_cast<std::size_t>(inner_)].rotors * (inner_pair_kg_[n] + esc_min) - inner_lightest_kg_[o];
+  }
   std::vector<double> inner_lightest_kg_;             // per option
   std::vector<BatteryOption> options_;
   EscTable escs_;

@@ -213,6 +213,8 @@ struct SearchContext {
   std::vector<std::unique_ptr<PropModel>> models;
   // Optional (SearchOneGroup with a PropGridCache): stage 4's motors set up once per key.
   MotorSetupCache* motor_setups = nullptr;
+  // Optional (SearchOneGroup's pair_mask): the stream bounds only the pairs it marks.
+  const std::vector<char>* pair_mask = nullptr;
 };
 
 // The vehicle's mass with a pack of pack_kg and each of the free group's rotors carrying a
@@ -303,8 +305,12 @@ struct PropGridCache {
 // (AddObjectiveRange: the caller's). cache (optional): the grids, built on first use.
 // given_parts (optional, by group index): parts used in place of a fixed group's catalog ids
 // where the entry's motor is set (the joint search's virtual ESC; they must outlive the call).
+// pair_mask (optional, motor * props + propeller): the free group's pairs that may score below
+// the cutoff (0: none of its combinations does; the joint search's inner filter,
+// docs/search.md#g2-inner-filter); the others are counted under objective_bound unbounded.
 SearchResult SearchOneGroup(const Mission& m, const Catalog& cat, const SearchOptions& opt, double cutoff,
-                            PropGridCache* cache, const std::vector<GroupParts>* given_parts = nullptr);
+                            PropGridCache* cache, const std::vector<GroupParts>* given_parts = nullptr,
+                            const std::vector<char>* pair_mask = nullptr);
 
 // Stage 4 on demand: the candidate pairs of BuildCandidates in CandidateBefore order, each
 // bounded only when it may be drawn next. Per motor, the pairs are bounded in the order of

@@ -16,6 +16,7 @@
 #include <memory>
 #include <random>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include "catalog/catalog.h"
@@ -533,6 +534,72 @@ TEST_F(JointSearchTest, GeneratedMissionsEqualExhaustiveEvaluation) {
   }
   EXPECT_GE(compared, kMissions - 1) << "the generated missions must mostly fly";
   EXPECT_GE(with_ranges, 1);
+}
+
+// G2's inner filter (docs/search.md#g2-inner-filter) against exhaustive evaluation: for every
+// outer choice (pusher motor, propeller, option, ESC class) and cutoffs at its completions'
+// scores, every lift (motor, propeller) pair with a feasible completion scoring below the cutoff
+// is let through, and some feasible pairs are filtered out. Checked to fail when the floors of
+// the heaviest level computed are read whatever the choice's level, when the outer energy is
+// read at a vehicle 30 % heavier, and when the budget is taken 10 % smaller (5 % passes: the
+// floors sit that far below the scores on this catalog).
+TEST_F(JointSearchTest, InnerFilterLetsThroughEveryLiftPairWithACompletionBelowTheCutoff) {
+  const Catalog cat = Catalog::Load((dir_ / "catalog").string());
+  const Mission m = ReadMission((dir_ / "free.json").string());
+  const int lift = m.segments[0].group, pusher = m.segments[1].group;
+  PropGridCache cache;
+  BuildPropGrids(m, cat, &cache.grids, &cache.models);
+  cache.built = true;
+  JointBounds jb(m, cat, cache);
+  jb.set_coupled(true);
+  const std::size_t n_props = cat.props().size();
+  // Per outer choice, per lift pair (motor * props + propeller): the least feasible score.
+  std::map<std::tuple<int, int, std::size_t, int>, std::map<std::size_t, double>> least;
+  ForEachJoint(cat, m, lift, pusher, [&](const Combination& c, const MissionResult& r) {
+    if (!r.feasible) return;
+    const OuterIndex x = OuterIndexOf(jb, cat, c, pusher);
+    if (x.esc_class < 0) return;
+    const std::size_t code = static_cast<std::size_t>(c.groups[lift].motor - cat.motors().data()) * n_props +
+                             static_cast<std::size_t>(c.groups[lift].prop - cat.props().data());
+    auto& best = least[{x.motor, x.prop, x.option, x.esc_class}];
+    const auto it = best.find(code);
+    best[code] = it == best.end() ? r.score : std::min(it->second, r.score);
+  });
+  ASSERT_FALSE(least.empty());
+  // A heavy level computed first: a choice below it must not read its floors.
+  for (std::size_t o = 0; o < jb.options().size(); ++o) jb.Frontier(o, 0.4 * jb.mass_min_kg(o));
+  int choices = 0, kept = 0, filtered_out = 0;
+  for (const auto& [key, best] : least) {
+    const auto [motor, prop, o, cls] = key;
+    JointBounds::OuterEnergy outer_energy;
+    const char* why = nullptr;
+    double irms = 0;
+    jb.PairBound(motor, prop, o, cls, &why, &irms, &outer_energy);
+    if (!outer_energy.valid) continue;
+    std::vector<double> scores;
+    for (const auto& [code, score] : best) scores.push_back(score);
+    std::sort(scores.begin(), scores.end());
+    ++choices;
+    for (const double cutoff : {scores.front() * (1 + 1e-9), scores[scores.size() / 2], scores.back()}) {
+      std::vector<char> allowed;
+      ASSERT_TRUE(jb.InnerPairsBelow(o, outer_energy, cutoff, &allowed));
+      for (const auto& [code, score] : best) {
+        if (!(score < cutoff)) {
+          filtered_out += allowed[code] == 0;  // a feasible pair, none of its completions below
+          continue;
+        }
+        EXPECT_TRUE(allowed[code]) << "pusher " << cat.motors()[motor].id << " " << cat.props()[prop].id
+                                   << ": lift " << cat.motors()[code / n_props].id << " "
+                                   << cat.props()[code % n_props].id << " scores " << score << " < " << cutoff;
+        ++kept;
+      }
+    }
+  }
+  EXPECT_GT(choices, 3);
+  EXPECT_GT(kept, 10);
+  EXPECT_GT(filtered_out, 0) << "the filter must leave out some feasible lift pairs";
+  std::cout << choices << " outer choices, " << kept << " lift pairs below a cutoff let through, " << filtered_out
+            << " feasible ones filtered out\n";
 }
 
 // A free cruise airspeed on the pusher (the outer group): its pair bounds, uncoupled and coupled,
