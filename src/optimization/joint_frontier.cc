@@ -278,9 +278,23 @@ std::vector<JointBounds::FrontierPoint> JointBounds::InnerFrontier(std::size_t o
     }
     floors[n] = std::max(e_known, FloatBelow(e_pair));
   }
-  std::vector<std::uint16_t>& kept = inner_floors_[o][static_cast<std::size_t>(level)];
+  std::vector<std::vector<std::uint16_t>>& levels = inner_floors_[o];
+  std::vector<std::uint16_t>& kept = levels[static_cast<std::size_t>(level)];
   kept.resize(floors.size());
   for (std::size_t n = 0; n < floors.size(); ++n) kept[n] = CodeOfFloor(floors[n]);
+  // At most kKeptFloorLevels besides level 0: the one nearest above the kept level below it is
+  // dropped (a level that reads from below reads that one's instead, a bound too).
+  int count = 0, drop = -1, gap = kFrontierLevels, below_level = 0;
+  for (int j = 1; j < kFrontierLevels; ++j) {
+    if (levels[static_cast<std::size_t>(j)].empty()) continue;
+    ++count;
+    if (j - below_level < gap) {
+      gap = j - below_level;
+      drop = j;
+    }
+    below_level = j;
+  }
+  if (count > kKeptFloorLevels && drop > 0) std::vector<std::uint16_t>().swap(levels[static_cast<std::size_t>(drop)]);
   return front;
 }
 

@@ -140,6 +140,7 @@ class JointBounds {
   static constexpr int kFrontierLevels = 48;         // levels of the outer group's extra mass
   static constexpr double kFrontierLevelStep = 0.01;  // a level's step, of the lightest vehicle
   static constexpr int kFrontierLevelReuse = 3;       // Frontier: a computed level this far below serves
+  static constexpr int kKeptFloorLevels = 8;          // levels whose floors are kept, besides level 0
   // R0 for the outer group's propeller and motor (the rule's name, or null).
   const char* PropRule(int prop) const;
   const char* MotorRule(int motor, std::size_t o) const;
