@@ -602,7 +602,8 @@ double JointBounds::PairBound(int motor, int prop, std::size_t o, int esc_class,
                     outer_energy);
 }
 
-double JointBounds::TripleBound(int motor, int esc, int prop, std::size_t o, const char** why) {
+double JointBounds::TripleBound(int motor, int esc, int prop, std::size_t o, const char** why,
+                                OuterEnergy* outer_energy) {
   const MotorEntry& mo = cat_.motors()[static_cast<std::size_t>(motor)];
   const EscEntry& e = cat_.escs()[static_cast<std::size_t>(esc)];
   const PropEntry& p = cat_.props()[static_cast<std::size_t>(prop)];
@@ -613,7 +614,7 @@ double JointBounds::TripleBound(int motor, int esc, int prop, std::size_t o, con
                       m_.groups[outer_].rotors * (*mo.mass_kg + PropMassKg(p) + EscMassKg(e));
   double irms_lb = 0;
   return OuterBound(d, GroupParts{&mo, &e, &p}, ep.max_current_a, ThrottleLimit(m_.constraints, ep.tr_sat),
-                    prop, o, mass, why, &irms_lb);
+                    prop, o, mass, why, &irms_lb, outer_energy);
 }
 
 }  // namespace dynosize::search_internal

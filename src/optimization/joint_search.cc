@@ -409,8 +409,18 @@ bool JointLoop::SearchTriple(const OuterPair& pr, int e, bool budgeted) {
   const Mission sub = SubMission(m_, cat_, jb_.outer_group(), pr, e, jb_);
   SearchOptions o = inner_opt_;
   if (budgeted && FreeGroupCount(sub) == 1) o.evaluation_budget = first_search_budget_;
-  SearchResult r = FreeGroupCount(sub) > 1 ? JointSearch(sub, cat_, o, Nth(), cache_)
-                                           : SearchOneGroup(sub, cat_, o, Nth(), cache_);
+  // G2's inner filter once an N-th best is known (docs/search.md#g2-inner-filter).
+  std::vector<char> allowed;
+  bool filtered = false;
+  if (Nth() < kInf && FreeGroupCount(sub) == 1) {
+    JointBounds::OuterEnergy outer_energy;
+    const char* why = nullptr;
+    jb_.TripleBound(pr.motor, e, pr.prop, pr.option, &why, &outer_energy);
+    filtered = jb_.InnerPairsBelow(pr.option, outer_energy, Nth(), &allowed);
+  }
+  SearchResult r = FreeGroupCount(sub) > 1
+                       ? JointSearch(sub, cat_, o, Nth(), cache_)
+                       : SearchOneGroup(sub, cat_, o, Nth(), cache_, nullptr, filtered ? &allowed : nullptr);
   if (r.interrupted && !StopRequested(opt_)) {  // over its budget: taken again later
     out_.virtual_evaluations += r.searched + r.virtual_evaluations;
     out_.put_back_solves += r.searched + r.virtual_evaluations;

@@ -108,7 +108,7 @@ class JointBounds {
   // prop) with option o: with any ESC of class esc_class (PairBound), or with ESC esc
   // (TripleBound). +inf and *why set when no such combination can be feasible. irms_lb: the
   // motor's Irms lower bound over the group's segments (R3's ESC-current rule). outer_energy
-  // (optional): the choice's OuterEnergy, for InnerPairsBelow.
+  // (optional): the choice's OuterEnergy (coupled only), for InnerPairsBelow.
   double PairBound(int motor, int prop, std::size_t o, int esc_class, const char** why, double* irms_lb,
                    OuterEnergy* outer_energy = nullptr);
   // G2's inner filter (docs/search.md#g2-inner-filter): with outer_energy from PairBound for an
@@ -117,7 +117,7 @@ class JointBounds {
   // the choice's) leaves its completions a score below cutoff; every other pair has none below
   // it. False (and *allowed untouched) when no floors apply.
   bool InnerPairsBelow(std::size_t o, const OuterEnergy& outer_energy, double cutoff, std::vector<char>* allowed) const;
-  double TripleBound(int motor, int esc, int prop, std::size_t o, const char** why);
+  double TripleBound(int motor, int esc, int prop, std::size_t o, const char** why, OuterEnergy* outer_energy = nullptr);
   // With two free groups and min_energy: tighten PairBound and TripleBound by the coupled bound
   // (the inner group's frontier of mass and energy; docs/search.md#g2). Off by default (it costs
   // more per call): the search turns it on for the pairs it takes.
