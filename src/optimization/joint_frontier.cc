@@ -109,21 +109,32 @@ bool JointBounds::InnerPairsBelow(std::size_t o, const OuterEnergy& outer_energy
   if (!floors || floors->size() != inner_by_mass_.size()) return false;
   const auto& by_kg = outer_energy.outer_j_by_kg;
   allowed->assign(cat_.motors().size() * cat_.props().size(), 0);
-  // A pair passes when its floor is below the budget left at its vehicle (min_energy: the score in
-  // Wh): its code below the budget's least code at or above.
-  auto least_code = [&](std::size_t j) {
-    return LeastCodeAtOrAbove(cutoff * 3600.0 - outer_energy.rest_j - by_kg[j].second);
-  };
-  std::size_t j = 0;  // by_kg's entry at or below the vehicle (the pairs come lightest first)
-  std::uint16_t below = least_code(0);
-  // The vehicle as OuterBound's frontier points take it, held 1e-6 below against the float masses.
+  // The pairs (lightest first) by the entry of by_kg at or below their vehicle, each range
+  // against the budget left there (min_energy: the score in Wh), as the least code at or above
+  // it. The vehicle as OuterBound's frontier points take it, held 1e-6 below against the float
+  // masses: an entry at kg serves the pairs whose motor + propeller weigh at least
+  // pair_kg_at(kg).
   const double shrink = 1.0 - 1e-6;
-  for (std::size_t n = 0; n < floors->size(); ++n) {
-    if (j + 1 < by_kg.size() && by_kg[j + 1].first <= shrink * (outer_energy.raw_kg + InnerExtraKg(o, n))) {
-      while (j + 1 < by_kg.size() && by_kg[j + 1].first <= shrink * (outer_energy.raw_kg + InnerExtraKg(o, n))) ++j;
-      below = least_code(j);
+  const double esc_min = std::isfinite(escs_.min_mass_kg[o]) ? escs_.min_mass_kg[o] : 0.0;
+  const int rotors = m_.groups[static_cast<std::size_t>(inner_)].rotors;
+  auto pair_kg_at = [&](double kg) {
+    return (kg / shrink - outer_energy.raw_kg + inner_lightest_kg_[o]) / rotors - esc_min;
+  };
+  const std::size_t n_pairs = floors->size();
+  std::size_t begin = 0;
+  for (std::size_t j = 0; j < by_kg.size() && begin < n_pairs; ++j) {
+    std::size_t end = n_pairs;
+    if (j + 1 < by_kg.size()) {
+      end = static_cast<std::size_t>(
+          std::lower_bound(inner_pair_kg_.begin() + static_cast<std::ptrdiff_t>(begin), inner_pair_kg_.end(),
+                           pair_kg_at(by_kg[j + 1].first)) -
+          inner_pair_kg_.begin());
     }
-    if ((*floors)[n] < below) (*allowed)[inner_by_mass_[n]] = 1;
+    const std::uint16_t below = LeastCodeAtOrAbove(cutoff * 3600.0 - outer_energy.rest_j - by_kg[j].second);
+    for (std::size_t n = begin; n < end; ++n) {
+      if ((*floors)[n] < below) (*allowed)[inner_by_mass_[n]] = 1;
+    }
+    begin = end;
   }
   return true;
 }
