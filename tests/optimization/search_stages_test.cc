@@ -327,6 +327,42 @@ TEST_F(SearchStagesTest, CandidatesRemoveOnlyInfeasiblePairsAndBoundTheScore) {
   }
 }
 
+// Stage 4's candidates of m against the exact evaluator: R11's key of each pair at or below
+// every feasible score of its lossy drives (no tolerance); returns the pairs with a feasible ESC,
+// the keys checked and the mean relative gap between a pair's best score and its bound.
+struct BoundGaps {
+  int pairs = 0, keys = 0;
+  double mean_gap = 0;
+};
+BoundGaps ExpectKeysBelowScoresAndMeasureGaps(const Catalog& cat, const Mission& m, const std::string& label) {
+  SearchContext ctx;
+  PrepareStages(m, cat, &ctx);
+  const CandidateList all = BuildCandidates(ctx, 1);
+  BoundGaps out;
+  double gap_sum = 0;
+  for (const Candidate& cand : all.candidates) {
+    const BatteryOption& bo = ctx.options[cand.option];
+    const MotorEntry& mo = cat.motors()[cand.motor];
+    const double key = PropellerKeyBound(ctx, cand.prop, cand.option, cand.motor);
+    double best = kInfinity;
+    for (const EscEntry& e : cat.escs()) {
+      const Combination c{&mo, &e, &cat.props()[cand.prop], bo.entry, bo.cells, {}};
+      const MissionResult r = MissionEvaluator(m, c).Solve();
+      if (!r.feasible) continue;
+      best = std::min(best, r.score);
+      if (DriveIsLossy(ScenarioMotorParams(mo, m, nullptr, nullptr), e.params.c1, e.params.c0)) {
+        ++out.keys;
+        EXPECT_LE(key, r.score) << label << ": " << mo.id << " " << e.id << " " << c.prop->id;
+      }
+    }
+    if (!std::isfinite(best)) continue;
+    ++out.pairs;
+    gap_sum += (best - cand.bound) / std::fabs(best);
+  }
+  out.mean_gap = out.pairs > 0 ? gap_sum / out.pairs : 0.0;
+  return out;
+}
+
 // R13 against the exact evaluator: with a capacity range (max_endurance), stage 4's pair bound
 // and R11's key, each taken piece by piece over the range, are at or below every feasible score
 // (compared without tolerance), and a pair is removed only when no ESC can fly it. The pieces
@@ -346,34 +382,12 @@ TEST_F(SearchStagesTest, CapacityPieceBoundsAreBelowEveryFeasibleScore) {
     const Mission m = ParseMission(j, "quad");
     std::map<std::string, long long> pruned_by;
     ExpectOnlyInfeasiblePairsRemoved(cat, m, &pruned_by);
-    SearchContext ctx;
-    PrepareStages(m, cat, &ctx);
-    const CandidateList all = BuildCandidates(ctx, 1);
-    double gap_sum = 0;
-    int pairs = 0, keys = 0;
-    for (const Candidate& cand : all.candidates) {
-      const BatteryOption& bo = ctx.options[cand.option];
-      const MotorEntry& mo = cat.motors()[cand.motor];
-      const double key = PropellerKeyBound(ctx, cand.prop, cand.option, cand.motor);
-      double best = kInfinity;
-      for (const EscEntry& e : cat.escs()) {
-        const Combination c{&mo, &e, &cat.props()[cand.prop], bo.entry, bo.cells, {}};
-        const MissionResult r = MissionEvaluator(m, c).Solve();
-        if (!r.feasible) continue;
-        best = std::min(best, r.score);
-        if (DriveIsLossy(ScenarioMotorParams(mo, m, nullptr, nullptr), e.params.c1, e.params.c0)) {
-          ++keys;
-          EXPECT_LE(key, r.score) << lo << "-" << hi << " Ah: " << mo.id << " " << e.id << " " << c.prop->id;
-        }
-      }
-      if (!std::isfinite(best)) continue;
-      ++pairs;
-      gap_sum += (best - cand.bound) / std::fabs(best);
-    }
-    ASSERT_GT(pairs, 3) << lo << "-" << hi << " Ah";
-    EXPECT_GT(keys, 3) << lo << "-" << hi << " Ah";
-    EXPECT_LT(gap_sum / pairs, range.max_gap) << lo << "-" << hi << " Ah";
-    std::printf("R13 over [%g, %g] Ah: %d pairs, mean relative gap %.3f\n", lo, hi, pairs, gap_sum / pairs);
+    const std::string label = std::to_string(lo) + "-" + std::to_string(hi) + " Ah";
+    const BoundGaps g = ExpectKeysBelowScoresAndMeasureGaps(cat, m, label);
+    ASSERT_GT(g.pairs, 3) << label;
+    EXPECT_GT(g.keys, 3) << label;
+    EXPECT_LT(g.mean_gap, range.max_gap) << label;
+    std::printf("R13 over [%g, %g] Ah: %d pairs, mean relative gap %.3f\n", lo, hi, g.pairs, g.mean_gap);
   }
 }
 
@@ -397,35 +411,13 @@ TEST_F(SearchStagesTest, CapacityCoupledEnergyBoundIsBelowEveryFeasibleScore) {
     const Mission m = ParseMission(j, "quad");
     std::map<std::string, long long> pruned_by;
     ExpectOnlyInfeasiblePairsRemoved(cat, m, &pruned_by);
-    SearchContext ctx;
-    PrepareStages(m, cat, &ctx);
-    const CandidateList all = BuildCandidates(ctx, 1);
-    double gap_sum = 0;
-    int pairs = 0, keys = 0;
-    for (const Candidate& cand : all.candidates) {
-      const BatteryOption& bo = ctx.options[cand.option];
-      const MotorEntry& mo = cat.motors()[cand.motor];
-      const double key = PropellerKeyBound(ctx, cand.prop, cand.option, cand.motor);
-      double best = kInfinity;
-      for (const EscEntry& e : cat.escs()) {
-        const Combination c{&mo, &e, &cat.props()[cand.prop], bo.entry, bo.cells, {}};
-        const MissionResult r = MissionEvaluator(m, c).Solve();
-        if (!r.feasible) continue;
-        best = std::min(best, r.score);
-        if (DriveIsLossy(ScenarioMotorParams(mo, m, nullptr, nullptr), e.params.c1, e.params.c0)) {
-          ++keys;
-          EXPECT_LE(key, r.score) << range.lo << "-" << range.hi << " Ah: " << mo.id << " " << e.id << " " << c.prop->id;
-        }
-      }
-      if (!std::isfinite(best)) continue;
-      ++pairs;
-      gap_sum += (best - cand.bound) / std::fabs(best);
-    }
-    ASSERT_GT(pairs, 3) << range.lo << "-" << range.hi << " Ah";
-    EXPECT_GT(keys, 3) << range.lo << "-" << range.hi << " Ah";
-    EXPECT_LT(gap_sum / pairs, range.max_gap) << range.lo << "-" << range.hi << " Ah";
+    const std::string label = std::to_string(range.lo) + "-" + std::to_string(range.hi) + " Ah";
+    const BoundGaps g = ExpectKeysBelowScoresAndMeasureGaps(cat, m, label);
+    ASSERT_GT(g.pairs, 3) << label;
+    EXPECT_GT(g.keys, 3) << label;
+    EXPECT_LT(g.mean_gap, range.max_gap) << label;
     std::printf("R15 over [%g, %g] Ah: %d pairs, mean relative gap %.3f, %lld combinations refused by reserve_soc\n",
-                range.lo, range.hi, pairs, gap_sum / pairs, pruned_by["reserve_soc"]);
+                range.lo, range.hi, g.pairs, g.mean_gap, pruned_by["reserve_soc"]);
   }
 }
 
