@@ -31,15 +31,14 @@ float FloatBelow(double e) {
   return f;
 }
 
-// InnerFrontier's floors as kept per level: 16-bit codes, a float's exponent (from 2^0 to 2^30
-// J) and the top 11 bits of its mantissa, truncated (so each code's energy is at or below the
-// floor it stands for, relative step 2^-11); code 0: no floor (-inf, and every floor below
-// 1 J), kFloorCodeInf: +inf (the pair fails a rule with every class). Half a float's memory.
-constexpr std::uint16_t kFloorCodeInf = 65535;
+}  // namespace
+
+// Floor codes (joint_search.h).
 constexpr int kFloorCodeMantissaBits = 11;
 constexpr std::uint32_t kFloorCodeMaxExponent = 30;
 constexpr std::uint16_t kFloorCodeMax =  // the largest finite code
     1 + ((kFloorCodeMaxExponent << kFloorCodeMantissaBits) | ((1u << kFloorCodeMantissaBits) - 1));
+
 double FloorOfCode(std::uint16_t q) {
   if (q == 0) return -std::numeric_limits<double>::infinity();
   if (q == kFloorCodeInf) return std::numeric_limits<double>::infinity();
@@ -50,6 +49,7 @@ double FloorOfCode(std::uint16_t q) {
   std::memcpy(&f, &bits, sizeof f);
   return f;
 }
+
 std::uint16_t CodeOfFloor(double e) {
   if (e == std::numeric_limits<double>::infinity()) return kFloorCodeInf;
   const float f = FloatBelow(e);
@@ -62,14 +62,12 @@ std::uint16_t CodeOfFloor(double e) {
                                      : (1u << kFloorCodeMantissaBits) - 1;  // above 2^31 J: the largest code
   return static_cast<std::uint16_t>(1 + ((exponent << kFloorCodeMantissaBits) | mantissa));
 }
-// The least code whose energy is at least e: a floor below e has a code below it.
+
 std::uint16_t LeastCodeAtOrAbove(double e) {
   const std::uint16_t code = CodeOfFloor(e);  // at or below e, the next one above it
   if (code == kFloorCodeInf || FloorOfCode(code) >= e) return code;
   return code < kFloorCodeMax ? static_cast<std::uint16_t>(code + 1) : kFloorCodeInf;
 }
-
-}  // namespace
 
 // The frontier of the level at or below outer_extra_kg (docs/search.md#g2-levels): level k
 // puts the outer group k * kFrontierLevelStep of the option's lightest vehicle above its

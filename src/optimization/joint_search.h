@@ -46,6 +46,16 @@ SearchResult JointSearch(const Mission& m, const Catalog& cat, const SearchOptio
                          double cutoff = std::numeric_limits<double>::infinity(), PropGridCache* cache = nullptr,
                          long long first_search_budget = kFirstSearchBudget);
 
+// The inner frontier's floors as JointBounds keeps them per level: 16-bit codes, a float's
+// exponent (from 2^0 to 2^30 J) and the top 11 bits of its mantissa, truncated, so that each
+// code's energy is at or below the floor it stands for (relative step 2^-11); code 0: no floor
+// (-inf, and every floor below 1 J), kFloorCodeInf: +inf. Half a float's memory.
+inline constexpr std::uint16_t kFloorCodeInf = 65535;
+std::uint16_t CodeOfFloor(double e);
+double FloorOfCode(std::uint16_t code);
+// The least code whose energy is at least e: a floor below e has a code below it.
+std::uint16_t LeastCodeAtOrAbove(double e);
+
 // A rotor's speed and torque at or below those of any point that gives the segment's thrust
 // (M1: bisection on the propeller's thrust at the segment's axial airspeed; the torque of the
 // mission's data scenario, credibility.h). omega 0 when no bound applies.

@@ -536,6 +536,35 @@ TEST_F(JointSearchTest, GeneratedMissionsEqualExhaustiveEvaluation) {
   EXPECT_GE(with_ranges, 1);
 }
 
+// The floors' 16-bit codes (joint_search.h): a code's energy is at or below the floor it was
+// made from (so a floor read back is still a bound), within 2^-11 of it from 1 J to 2^30 J; the
+// least code at or above an energy is the first whose energy reaches it. 100 k energies drawn
+// log-uniformly from 1e-3 to 1e12 J (seeded), the code boundaries and the infinities.
+TEST(FloorCodesTest, EachCodeIsAtOrBelowItsFloorAndTheLeastCodeAboveIsTheFirst) {
+  std::mt19937_64 rng(20261127);
+  std::uniform_real_distribution<double> log10_e(-3.0, 12.0);
+  std::vector<double> energies = {0.0, 0.5, 1.0, 1.5, 2.0, std::ldexp(1.0, 30), std::ldexp(1.0, 31), 1e15,
+                                  -1.0, -std::numeric_limits<double>::infinity(),
+                                  std::numeric_limits<double>::infinity()};
+  for (int i = 0; i < 100000; ++i) energies.push_back(std::pow(10.0, log10_e(rng)));
+  constexpr double kStep = 1.0 / 2048;  // the mantissa's 11 bits
+  for (const double e : energies) {
+    const std::uint16_t code = CodeOfFloor(e);
+    const double back = FloorOfCode(code);
+    EXPECT_LE(back, e) << e;
+    if (e >= 1.0 && e < std::ldexp(1.0, 31)) EXPECT_GE(back, e * (1.0 - kStep)) << e;
+    const std::uint16_t least = LeastCodeAtOrAbove(e);
+    if (least == kFloorCodeInf) {  // +inf, or above every finite code: the largest is below e
+      if (std::isfinite(e)) EXPECT_LT(FloorOfCode(code), e) << e;
+      continue;
+    }
+    EXPECT_GE(FloorOfCode(least), e) << e;
+    if (least > 0) EXPECT_LT(FloorOfCode(static_cast<std::uint16_t>(least - 1)), e) << e;
+  }
+  EXPECT_EQ(CodeOfFloor(std::numeric_limits<double>::infinity()), kFloorCodeInf);
+  EXPECT_EQ(FloorOfCode(0), -std::numeric_limits<double>::infinity());
+}
+
 // G2's inner filter (docs/search.md#g2-inner-filter) against exhaustive evaluation: for every
 // outer choice (pusher motor, propeller, option, ESC class) and cutoffs at its completions'
 // scores, every lift (motor, propeller) pair with a feasible completion scoring below the cutoff
