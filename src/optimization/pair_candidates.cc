@@ -7,7 +7,6 @@
 #include <vector>
 
 #include "common/numbers.h"
-#include "common/units.h"
 #include "optimization/components.h"
 #include "optimization/credibility.h"
 #include "optimization/pair_candidates.h"
