@@ -552,14 +552,20 @@ TEST(FloorCodesTest, EachCodeIsAtOrBelowItsFloorAndTheLeastCodeAboveIsTheFirst) 
     const std::uint16_t code = CodeOfFloor(e);
     const double back = FloorOfCode(code);
     EXPECT_LE(back, e) << e;
-    if (e >= 1.0 && e < std::ldexp(1.0, 31)) EXPECT_GE(back, e * (1.0 - kStep)) << e;
+    if (e >= 1.0 && e < std::ldexp(1.0, 31)) {
+      EXPECT_GE(back, e * (1.0 - kStep)) << e;
+    }
     const std::uint16_t least = LeastCodeAtOrAbove(e);
     if (least == kFloorCodeInf) {  // +inf, or above every finite code: the largest is below e
-      if (std::isfinite(e)) EXPECT_LT(FloorOfCode(code), e) << e;
+      if (std::isfinite(e)) {
+        EXPECT_LT(FloorOfCode(code), e) << e;
+      }
       continue;
     }
     EXPECT_GE(FloorOfCode(least), e) << e;
-    if (least > 0) EXPECT_LT(FloorOfCode(static_cast<std::uint16_t>(least - 1)), e) << e;
+    if (least > 0) {
+      EXPECT_LT(FloorOfCode(static_cast<std::uint16_t>(least - 1)), e) << e;
+    }
   }
   EXPECT_EQ(CodeOfFloor(std::numeric_limits<double>::infinity()), kFloorCodeInf);
   EXPECT_EQ(FloorOfCode(0), -std::numeric_limits<double>::infinity());
