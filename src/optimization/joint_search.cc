@@ -418,9 +418,12 @@ bool JointLoop::SearchTriple(const OuterPair& pr, int e, bool budgeted) {
     jb_.TripleBound(pr.motor, e, pr.prop, pr.option, &why, &outer_energy);
     filtered = jb_.InnerPairsBelow(pr.option, outer_energy, Nth(), &allowed);
   }
+  const auto t0 = std::chrono::steady_clock::now();
   SearchResult r = FreeGroupCount(sub) > 1
                        ? JointSearch(sub, cat_, o, Nth(), cache_)
                        : SearchOneGroup(sub, cat_, o, Nth(), cache_, nullptr, filtered ? &allowed : nullptr);
+  ++out_.joint.triple_searches;
+  out_.joint.triple_searches_s += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   if (r.interrupted && !StopRequested(opt_)) {  // over its budget: taken again later
     out_.virtual_evaluations += r.searched + r.virtual_evaluations;
     out_.put_back_solves += r.searched + r.virtual_evaluations;
@@ -520,8 +523,11 @@ void JointLoop::VirtualEscClass(const OuterPair& pr, std::size_t i, const std::v
   jb_.PairBound(pr.motor, pr.prop, pr.option, esc_class, &why, &irms_lb, &outer_energy);
   std::vector<char> allowed;
   const bool filtered = jb_.InnerPairsBelow(pr.option, outer_energy, Nth(), &allowed);
+  const auto t0 = std::chrono::steady_clock::now();
   const SearchResult r = SearchOneGroup(SubMission(relaxed_, cat_, outer, pr, cls.front().second, jb_), cat_,
                                         all_opt, Nth(), cache_, &given, filtered ? &allowed : nullptr);
+  ++out_.joint.class_searches;
+  out_.joint.class_searches_s += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   out_.virtual_evaluations += r.searched + r.virtual_evaluations;
   if (r.interrupted) {  // the pair is left unsettled (Run)
     out_.interrupted = true;
@@ -590,6 +596,7 @@ SearchResult JointSearch(const Mission& m, const Catalog& cat, const SearchOptio
     if (m.groups[g].fixed()) FixedGroupParts(m, cat, g);
   }
   JointBounds jb(m, cat, *cache);
+  const double setup_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   SearchResult out;
   const long long per_group = GroupCombinations(cat);
   long long block = 1;  // the inner combinations of one outer choice and option
@@ -605,6 +612,8 @@ SearchResult JointSearch(const Mission& m, const Catalog& cat, const SearchOptio
   jb.set_coupled(true);  // the tighter bound for the pairs taken (G2)
   out.candidate_pairs = static_cast<long long>(pairs.size());
   out.candidate_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  out.joint.setup_s = setup_s;
+  out.joint.outer_pairs_s = out.candidate_seconds - setup_s;
   JointLoop(m, cat, opt, cutoff, cache, &jb, pairs, block, first_search_budget, &out).Run();
   out.pruned = out.combinations - out.searched - out.unsettled;
   out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();

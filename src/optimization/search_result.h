@@ -64,6 +64,14 @@ struct SearchResult {
   // their results are shown but the combinations stay unsettled).
   long long put_back_solves = 0;
   long long candidate_batches = 0;
+  // The joint search's phases (G2, docs/search.md#g2; all zero for a one-group search): its
+  // bounds' set-up (the lift frontier's level 0 among them), the first pass over the outer
+  // pairs, and its inner searches, per class's virtual ESC (G3) and per triple, with their counts.
+  struct JointPhases {
+    double setup_s = 0.0, outer_pairs_s = 0.0, class_searches_s = 0.0, triple_searches_s = 0.0;
+    long long class_searches = 0, triple_searches = 0;
+  };
+  JointPhases joint;
 };
 
 }  // namespace dynosize

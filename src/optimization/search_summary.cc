@@ -23,6 +23,7 @@ SearchSummary SearchSummary::From(const SearchResult& r) {
   s.skipped_without_mass = r.skipped_without_mass;
   s.seconds = r.seconds;
   s.candidate_seconds = r.candidate_seconds;
+  s.joint = r.joint;
   s.interrupted = r.interrupted;
   s.unsettled = r.unsettled;
   s.nth_best_score = r.nth_best_score;
@@ -42,6 +43,17 @@ namespace {
 
 std::string GapText(double gap) { return std::isfinite(gap) ? FixedText(gap, 6) : "unknown"; }
 
+// The joint search's phases on one line ("" for a one-group search).
+std::string JointPhasesText(const SearchResult::JointPhases& j) {
+  if (!(j.setup_s > 0) && j.class_searches == 0 && j.triple_searches == 0) return "";
+  std::ostringstream o;
+  o << "joint search: bounds set up " << FixedText(j.setup_s, 3) << " s, first pass over the outer pairs "
+    << FixedText(j.outer_pairs_s, 3) << " s, " << j.class_searches << " class searches (virtual ESC) "
+    << FixedText(j.class_searches_s, 3) << " s, " << j.triple_searches << " triple searches "
+    << FixedText(j.triple_searches_s, 3) << " s";
+  return o.str();
+}
+
 }  // namespace
 
 std::string SearchSummary::BriefReport() const {
@@ -52,6 +64,7 @@ std::string SearchSummary::BriefReport() const {
     << (put_back_solves > 0 ? ", " + std::to_string(put_back_solves) + " of them in inner searches put back over their budget" : "")
     << "), " << FixedText(seconds, 3) << " s, "
     << (interrupted ? "interrupted (gap " + GapText(Gap()) + ")" : "done");
+  if (const std::string j = JointPhasesText(joint); !j.empty()) o << "\n" << j;
   return o.str();
 }
 
@@ -73,6 +86,7 @@ std::string SearchSummary::FullReport() const {
   if (skipped_without_mass > 0) o << "  motors without mass      " << skipped_without_mass << "\n";
   o << "  time                     " << FixedText(seconds, 3) << " s (stages 0-4's first batches "
     << FixedText(candidate_seconds, 3) << " s)\n";
+  if (const std::string j = JointPhasesText(joint); !j.empty()) o << "  " << j << "\n";
   if (interrupted) {
     o << "  interrupted              " << unsettled << " combinations not settled, gap " << GapText(Gap())
       << " (score)\n";

@@ -683,6 +683,23 @@ TEST_F(JointSearchTest, FreeAirspeedOuterBoundsBelowEveryFeasibleScore) {
             << ruled_out << " ruled out\n";
 }
 
+// The joint search's phases (SearchResult::joint, shown by optimize --stats): its set-up and its
+// inner searches are counted and timed, within the search's own time (a phase is part of it).
+TEST_F(JointSearchTest, PhasesAreCountedWithinTheSearchsTime) {
+  const Catalog cat = Catalog::Load(TinyCatalogDir(dir_).string());
+  const Mission m = ReadMission((dir_ / "free.json").string());
+  SearchOptions so;
+  so.top_n = 3;
+  PropGridCache cache;
+  const SearchResult s = JointSearch(m, cat, so, std::numeric_limits<double>::infinity(), &cache);
+  ASSERT_FALSE(s.best.empty());
+  const SearchResult::JointPhases& j = s.joint;
+  EXPECT_GT(j.setup_s, 0.0);
+  EXPECT_GE(j.outer_pairs_s, 0.0);
+  EXPECT_GT(j.class_searches + j.triple_searches, 0);
+  EXPECT_LE(j.setup_s + j.outer_pairs_s + j.class_searches_s + j.triple_searches_s, s.seconds);
+}
+
 // An inner search put back over its first-search budget (G2's order): its results lower the
 // threshold the loop prunes against until its item is taken again, and the answer is still
 // exhaustive evaluation's. A search stopped before the item is taken again returns those

@@ -139,5 +139,24 @@ TEST(SearchSummaryTest, OptimizeStatsPrintsTheBriefReport) {
   EXPECT_EQ(plain.err, "");
 }
 
+// The joint search's phases: one more line in both reports (where a slow both-free search spends
+// its time), none for a one-group search.
+TEST(SearchSummaryTest, TheJointSearchsPhasesAreReportedOnlyForAJointSearch) {
+  SearchSummary s;
+  EXPECT_EQ(s.BriefReport().find("joint search"), std::string::npos) << s.BriefReport();
+  EXPECT_EQ(s.FullReport().find("joint search"), std::string::npos) << s.FullReport();
+  s.joint.setup_s = 0.5;
+  s.joint.outer_pairs_s = 0.25;
+  s.joint.class_searches = 3;
+  s.joint.class_searches_s = 1.5;
+  s.joint.triple_searches = 2;
+  s.joint.triple_searches_s = 0.125;
+  const std::string line =
+      "joint search: bounds set up 0.500 s, first pass over the outer pairs 0.250 s, 3 class searches (virtual ESC) "
+      "1.500 s, 2 triple searches 0.125 s";
+  EXPECT_NE(s.BriefReport().find("\n" + line), std::string::npos) << s.BriefReport();
+  EXPECT_NE(s.FullReport().find("  " + line + "\n"), std::string::npos) << s.FullReport();
+}
+
 }  // namespace
 }  // namespace dynosize
