@@ -547,7 +547,7 @@ double JointBounds::OuterBound(const Drive& drive, const GroupParts& parts, doub
     return e;
   };
   if (outer_energy) {  // up to the vehicle with the inner group's heaviest pair
-    const double top_kg = raw_kg + (inner_pair_kg_.empty() ? 0.0 : InnerExtraKg(o, inner_pair_kg_.size() - 1));
+    const double top_kg = raw_kg + (inner_pair_kg_.empty() ? 0.0 : InnerExtraKg(o, inner_pair_kg_.back()));
     *outer_energy = OuterEnergyByMass(raw_kg, floor_kg, mass_min_kg_[o], top_kg, e_rest, e_outer_at);
   }
   double best = kInf;

@@ -110,22 +110,19 @@ bool JointBounds::InnerPairsBelow(std::size_t o, const OuterEnergy& outer_energy
   // The pairs (lightest first) by the entry of by_kg at or below their vehicle, each range
   // against the budget left there (min_energy: the score in Wh), as the least code at or above
   // it. The vehicle as OuterBound's frontier points take it, held 1e-6 below against the float
-  // masses: an entry at kg serves the pairs whose motor + propeller weigh at least
-  // pair_kg_at(kg).
+  // masses.
   const double shrink = 1.0 - 1e-6;
-  const double esc_min = std::isfinite(escs_.min_mass_kg[o]) ? escs_.min_mass_kg[o] : 0.0;
-  const int rotors = m_.groups[static_cast<std::size_t>(inner_)].rotors;
-  auto pair_kg_at = [&](double kg) {
-    return (kg / shrink - outer_energy.raw_kg + inner_lightest_kg_[o]) / rotors - esc_min;
-  };
   const std::size_t n_pairs = floors->size();
   std::size_t begin = 0;
   for (std::size_t j = 0; j < by_kg.size() && begin < n_pairs; ++j) {
     std::size_t end = n_pairs;
-    if (j + 1 < by_kg.size()) {
+    if (j + 1 < by_kg.size()) {  // the first pair whose vehicle reaches the next entry
+      const double next_kg = by_kg[j + 1].first;
       end = static_cast<std::size_t>(
-          std::lower_bound(inner_pair_kg_.begin() + static_cast<std::ptrdiff_t>(begin), inner_pair_kg_.end(),
-                           pair_kg_at(by_kg[j + 1].first)) -
+          std::partition_point(inner_pair_kg_.begin() + static_cast<std::ptrdiff_t>(begin), inner_pair_kg_.end(),
+                               [&](float pair_kg) {
+                                 return !(next_kg <= shrink * (outer_energy.raw_kg + InnerExtraKg(o, pair_kg)));
+                               }) -
           inner_pair_kg_.begin());
     }
     const std::uint16_t below = LeastCodeAtOrAbove(cutoff * 3600.0 - outer_energy.rest_j - by_kg[j].second);

@@ -214,11 +214,11 @@ class JointBounds {
   // Frontier's level of an outer choice outer_extra_kg above the outer group's lightest: the
   // highest at or below it.
   int LevelOf(std::size_t o, double outer_extra_kg) const;
-  // The inner group's (motor, propeller) pair at position n of inner_by_mass_ with option o's
-  // lightest ESC, over the group's lightest, kg (float masses: the filter's vehicle, rounded).
-  double InnerExtraKg(std::size_t o, std::size_t n) const {
+  // The inner group's (motor, propeller) pair of motor + propeller mass pair_kg (inner_pair_kg_)
+  // with option o's lightest ESC, over the group's lightest, kg.
+  double InnerExtraKg(std::size_t o, double pair_kg) const {
     const double esc_min = std::isfinite(escs_.min_mass_kg[o]) ? escs_.min_mass_kg[o] : 0.0;
-    return m_.groups[static_cast<std::size_t>(inner_)].rotors * (inner_pair_kg_[n] + esc_min) - inner_lightest_kg_[o];
+    return m_.groups[static_cast<std::size_t>(inner_)].rotors * (pair_kg + esc_min) - inner_lightest_kg_[o];
   }
   std::vector<double> inner_lightest_kg_;             // per option
   std::vector<BatteryOption> options_;
