@@ -344,6 +344,11 @@ class MissionEvaluator {
   // DataWindowRefuses and ThrustToWeightMassCeilingKg).
   bool EarlyExit(double cutoff_score, bool explain, bool search, MissionResult* out) const;
   bool HoverOrWeightRefuses(bool with_weight, MissionResult* out) const;
+  // A lower bound of a min_energy mission's energy, J, over the free cruise airspeeds, from a
+  // Run at `vars` (C0 = 0, no supply resistance: EarlyExit's conditions).
+  double MinEnergyLowerBoundJ(const MissionResult& r, const ContinuousVars& vars) const;
+  double LightestCapacityAtLeastKg(double mass_kg, double c_lo, double c_hi) const;
+  bool BreaksBeforeFreeAirspeeds(const MissionResult& r) const;
   // An upper bound of the total mission time over the capacity range (max_endurance), tightened
   // until it falls below target_s or a budget of simulations is spent.
   // [from_ah, to_ah] (to_ah > 0): only that part of the capacity range.

@@ -12,6 +12,7 @@
 #include "model/physics.h"
 #include "optimization/mission_eval.h"
 #include "optimization/mission_eval_internal.h"
+#include "optimization/needed_capacity.h"
 #include "optimization/prop_bounds.h"
 #include "optimization/prop_speed.h"
 
@@ -266,6 +267,36 @@ bool MissionEvaluator::DataWindowRefuses(bool below_too, MissionResult* out) con
   return false;
 }
 
+// The lightest capacity of [c_lo, c_hi] whose vehicle weighs at least mass_kg, by bisection
+// keeping that side (the pack's mass rises with the capacity, PackAt); c_hi when none is lighter.
+double MissionEvaluator::LightestCapacityAtLeastKg(double mass_kg, double c_lo, double c_hi) const {
+  double lo = c_lo, hi = c_hi;
+  for (int i = 0; i < 60 && hi - lo > 1e-12 * c_hi; ++i) {
+    const double mid = 0.5 * (lo + hi);
+    (fixed_mass_kg_ + BatteryMassKg(mid) >= mass_kg ? hi : lo) = mid;
+  }
+  return hi;
+}
+
+// A run at the smallest capacity (r) that breaks a constraint no larger capacity can cure
+// (RisesWithMass) in a segment flown before the first cruise with a free airspeed: that
+// segment's shaft points, state of charge and winding temperature depend on the capacity and
+// the segments before it only, so the airspeeds do not reach it, and every point of the ranges
+// breaks it too.
+bool MissionEvaluator::BreaksBeforeFreeAirspeeds(const MissionResult& r) const {
+  std::size_t first_free = m_.segments.size();
+  for (std::size_t i = 0; i < m_.segments.size() && first_free == m_.segments.size(); ++i) {
+    if (m_.segments[i].type == SegmentType::kCruise && m_.segments[i].airspeed_m_s.free()) first_free = i;
+  }
+  for (const Violation& v : r.violations) {
+    if (!RisesWithMass(v.constraint)) continue;
+    for (std::size_t i = 0; i < first_free; ++i) {
+      if (m_.segments[i].name == v.segment) return true;
+    }
+  }
+  return false;
+}
+
 // min_hover_throttle from below and min_thrust_to_weight from above, without a run (EarlyExit;
 // only in a search: the result is infeasible, as the full search's would be, and says so with
 // the constraint the proof rests on).
@@ -320,12 +351,7 @@ bool MissionEvaluator::HoverOrWeightRefuses(bool with_weight, MissionResult* out
   // m_t (bisection keeping that side; the pack's mass rises with the capacity).
   double c_h = c_hi;
   if (capacity_free && fixed_mass_kg_ + BatteryMassKg(c_hi) > m_t) {
-    double lo = c_lo, hi = c_hi;
-    for (int i = 0; i < 60 && hi - lo > 1e-12 * c_hi; ++i) {
-      const double mid = 0.5 * (lo + hi);
-      (fixed_mass_kg_ + BatteryMassKg(mid) >= m_t ? hi : lo) = mid;
-    }
-    c_h = hi;
+    c_h = LightestCapacityAtLeastKg(m_t, c_lo, c_hi);
   } else if (with_weight) {
     return false;  // C_h is the top, where the check was made without the weight
   }
@@ -380,6 +406,45 @@ double MissionEvaluator::ThrustToWeightMassCeilingKg() const {
 // result (bounded out, infeasible, or the answer itself) in *out and true, or false to go on.
 // The exits that end in an infeasible result need no cutoff, only a caller that reads nothing
 // of an infeasible result but the constraint (Solve's search); the bounds need a finite cutoff.
+// min_energy with free cruise airspeeds (EarlyExit): every other segment's energy does not
+// depend on them (terminal power N*PDC + P_avionics, and PDC = C1*U*I/kv does not depend on the
+// voltage when C0 = 0, eqs 57, 59), and a wing-borne cruise needs at least the propulsive work
+// T*d (electrical >= shaft >= thrust power) plus the avionics, T = W/(L/D) plus the added drag
+// at the lowest airspeed of the range (flight.h: the least thrust of the range). r: a Run at
+// `vars` (free airspeeds unset) that reached the last segment.
+double MissionEvaluator::MinEnergyLowerBoundJ(const MissionResult& r, const ContinuousVars& vars) const {
+  double e_lb = 0;
+  for (std::size_t i = 0; i < m_.segments.size(); ++i) {
+    const Segment& s = m_.segments[i];
+    if (!(s.type == SegmentType::kCruise && s.airspeed_m_s.free())) {
+      e_lb += r.segments[i].energy_j;
+      continue;
+    }
+    const double d = s.distance_m ? *s.distance_m : *s.duration_s * s.airspeed_m_s.lo;
+    const double t_min = s.distance_m ? d / s.airspeed_m_s.hi : *s.duration_s;
+    const double thrust =
+        s.lift_to_drag > 0 ? SegmentRotorLoad(m_, s, r.total_mass_kg, s.airspeed_m_s.lo).thrust_total_n : 0.0;
+    double e_prop = thrust * d + m_.vehicle.avionics_power_w * t_min;
+    const GroupDrive& gd = groups_[s.group];
+    const MotorParams& mp = gd.drive.motor();
+    const EscParams& ep = gd.drive.esc();
+    // Tighter, cell by cell over the airspeed range (prop_bounds.h): momentum theory when no
+    // stage creates energy, and this group's own drive at the pack's voltage range; at the
+    // run's mass, which every larger pack only adds to (M3).
+    const bool lossy = mp.kt_nm_per_a <= MaxKtPerKe(mp.type) * mp.ke_v_s_per_rad && mp.rm_ohm >= 0 &&
+                       mp.io_a >= 0 && mp.io1_a_s_per_rad >= 0 && ep.c0 >= 0 &&
+                       ep.c1 + ep.c0 >= IdealIdcPerIrmsPerThrottle(mp.type);
+    const CruisePropBound pb{gd.parts.prop, gd.prop, gd.prop_adj, lossy};
+    const BatteryPack pack(PackAt(vars.capacity_ah));
+    DischargeOptions dopt;
+    if (m_.battery.cutoff_cell_v) dopt.cutoff_cell_v = *m_.battery.cutoff_cell_v;
+    const CruiseDriveBound db{&gd.drive, pack.OcvV(1.0), pack.cutoff_v(dopt)};
+    const double p_rotors = FreeCruiseRotorPowerLowerBoundW(m_, s, pb, &db, r.total_mass_kg);
+    e_lb += std::max(e_prop, (p_rotors + m_.vehicle.avionics_power_w) * t_min);
+  }
+  return e_lb;
+}
+
 bool MissionEvaluator::EarlyExit(double cutoff_score, bool explain, bool search, MissionResult* out) const {
   const bool capacity_free = m_.battery.capacity_ah && m_.battery.capacity_ah->free();
   const bool bounds = std::isfinite(cutoff_score);
@@ -433,12 +498,7 @@ bool MissionEvaluator::EarlyExit(double cutoff_score, bool explain, bool search,
       std::all_of(groups_.begin(), groups_.end(), [&](const GroupDrive& g) {
         return g.drive.esc().c0 == 0.0 && (!capacity_free || g.drive.esc().rsupply_ohm == 0.0);
       })) {
-    // min_energy with free cruise airspeeds: every other segment's energy does not depend on
-    // them (terminal power N*PDC + P_avionics, and PDC = C1*U*I/kv does not depend on the
-    // voltage when C0 = 0, eqs 57, 59), and a wing-borne cruise needs at least the propulsive
-    // work T*d (electrical >= shaft >= thrust power) plus the avionics, T = W/(L/D) plus the
-    // added drag at the lowest airspeed of the range (flight.h: the least thrust of the range).
-    // With a capacity range the run is at the smallest capacity: a larger pack only adds mass,
+    // min_energy: MinEnergyLowerBoundJ over the free cruise airspeeds. With a capacity range the run is at the smallest capacity: a larger pack only adds mass,
     // so every segment's thrust, speed, torque and so its PDC (no supply resistance: the
     // terminal power does not depend on the pack's voltage) rise with it (M3 of search.cc), and
     // the wing-borne thrust W/(L/D) + added drag too: the same sum bounds the energy at every capacity of the range.
@@ -454,41 +514,49 @@ bool MissionEvaluator::EarlyExit(double cutoff_score, bool explain, bool search,
       out->violations_everywhere = true;
       return true;
     }
+    if (capacity_free && BreaksBeforeFreeAirspeeds(r0)) {
+      *out = std::move(r0);
+      out->violations_everywhere = true;
+      return true;
+    }
     if (r0.segments.size() == m_.segments.size()) {
-      double e_lb = 0;
-      for (std::size_t i = 0; i < m_.segments.size(); ++i) {
-        const Segment& s = m_.segments[i];
-        if (s.type == SegmentType::kCruise && s.airspeed_m_s.free()) {
-          const double d = s.distance_m ? *s.distance_m : *s.duration_s * s.airspeed_m_s.lo;
-          const double t_min = s.distance_m ? d / s.airspeed_m_s.hi : *s.duration_s;
-          const double thrust =
-              s.lift_to_drag > 0 ? SegmentRotorLoad(m_, s, r0.total_mass_kg, s.airspeed_m_s.lo).thrust_total_n : 0.0;
-          double e_prop = thrust * d + m_.vehicle.avionics_power_w * t_min;
-          const GroupDrive& gd = groups_[s.group];
-          const MotorParams& mp = gd.drive.motor();
-          const EscParams& ep = gd.drive.esc();
-          // Tighter, cell by cell over the airspeed range (prop_bounds.h): momentum theory when
-          // no stage creates energy, and this group's own drive at the pack's voltage range;
-          // at the smallest capacity's mass, which every larger pack only adds to (M3).
-          const bool lossy = mp.kt_nm_per_a <= MaxKtPerKe(mp.type) * mp.ke_v_s_per_rad && mp.rm_ohm >= 0 &&
-                             mp.io_a >= 0 && mp.io1_a_s_per_rad >= 0 && ep.c0 >= 0 &&
-                             ep.c1 + ep.c0 >= IdealIdcPerIrmsPerThrottle(mp.type);
-          const CruisePropBound pb{gd.parts.prop, gd.prop, gd.prop_adj, lossy};
-          const BatteryPack pack(PackAt(v0.capacity_ah));
-          DischargeOptions dopt;
-          if (m_.battery.cutoff_cell_v) dopt.cutoff_cell_v = *m_.battery.cutoff_cell_v;
-          const CruiseDriveBound db{&gd.drive, pack.OcvV(1.0), pack.cutoff_v(dopt)};
-          const double p_rotors = FreeCruiseRotorPowerLowerBoundW(m_, s, pb, &db, r0.total_mass_kg);
-          e_prop = std::max(e_prop, (p_rotors + m_.vehicle.avionics_power_w) * t_min);
-          e_lb += e_prop;
-        } else {
-          e_lb += r0.segments[i].energy_j;
-        }
+      double e_lb_wh = MinEnergyLowerBoundJ(r0, v0) / 3600.0;
+      bool over_range = false;
+      if (capacity_free) {
+        // R15 (needed_capacity.h): a feasible point's pack holds at least this energy above the
+        // reserve, so its capacity is at least e_lb over the integral of OCV over [reserve, 1]
+        // (per Ah; PackAt scales the charge only), and the sum above at that capacity bounds it
+        // too (M3). A run that stops before the last segment proves nothing: the bound stays.
+        // No feasible pack is heavier than min_thrust_to_weight's ceiling either
+        // (HoverOrWeightRefuses): the range's top is the largest capacity below it.
+        const Range& range = *m_.battery.capacity_ah;
+        const double m_t = ThrustToWeightMassCeilingKg();
+        const double c_top = fixed_mass_kg_ + BatteryMassKg(range.hi) > m_t
+                                 ? LightestCapacityAtLeastKg(m_t, range.lo, range.hi)
+                                 : range.hi;
+        const double ocv_integral_v = OcvIntegralUpperBound(BatteryPack(PackAt(range.lo)), m_.battery.reserve_soc);
+        e_lb_wh = RaisedByNeededCapacity(range.lo, c_top, ocv_integral_v, e_lb_wh, cutoff_score, &over_range,
+                                         [&](double capacity_ah) {
+                                           ContinuousVars vc = v0;
+                                           vc.capacity_ah = capacity_ah;
+                                           const MissionResult rc = Run(vc, 0.0);
+                                           // Broken here, broken at every larger capacity: nothing is feasible.
+                                           if (BreaksBeforeFreeAirspeeds(rc)) return kInf;
+                                           if (rc.segments.size() != m_.segments.size()) return -kInf;
+                                           return MinEnergyLowerBoundJ(rc, vc) / 3600.0;
+                                         });
       }
-      if (e_lb / 3600.0 >= cutoff_score) {
+      if (over_range) {  // no pack of the range holds even the bound: infeasible at every capacity
         MissionResult r;
         r.bounded_out = true;
-        r.score = e_lb / 3600.0;
+        r.score = kInf;
+        *out = std::move(r);
+        return true;
+      }
+      if (e_lb_wh >= cutoff_score) {
+        MissionResult r;
+        r.bounded_out = true;
+        r.score = e_lb_wh;
         *out = std::move(r);
         return true;
       }

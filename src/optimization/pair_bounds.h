@@ -14,6 +14,7 @@
 #include "mission/flight.h"
 #include "mission/mission.h"
 #include "model/drive.h"
+#include "optimization/needed_capacity.h"
 #include "optimization/search_stages.h"
 
 namespace dynosize::search_internal {
@@ -203,38 +204,18 @@ const std::vector<double>& PieceEdges(const SearchContext& ctx, const MissionFac
 // bound of the pack's true mass there: the mass is proportional to the capacity, PackAt).
 double PackMassLowerBoundKg(const BatteryOption& bo, double capacity_ah);
 
-// Rule R15 (docs/search.md#r15): min_energy over a capacity range [C_lo, C_hi]. A feasible
-// combination ends at or above the reserve, so its terminal energy E is at most its charge
-// times the integral of OCV over [reserve, 1] (R4's budget, ocv_integral_v): its capacity is at
-// least E over that integral. With E at least `bound` (a bound at the vehicle whose pack has
-// capacity C_k, C_0 = C_lo), the capacity is at least C_k+1 = bound/integral, so the vehicle
-// weighs at least the one with C_k+1's pack (PackMassLowerBoundKg) and E is at least the bound
-// there (M3): bound_at(C_k+1), kInf when R3 refuses every class there. Iterated while the
-// bound stays below the cutoff (at or above it nothing more is needed) and the capacity grows
-// by kCapacityStepMin, at most kCapacitySteps times. *over_range: C_k+1 above C_hi, where no
-// pack of the range holds the energy (reserve_soc); the bound is then left as it was.
-inline constexpr int kCapacitySteps = 4;
-inline constexpr double kCapacityStepMin = 1e-3;  // relative: a smaller step changes the bound by less
+// Rule R15 (docs/search.md#r15, needed_capacity.h) for a battery option: min_energy over its
+// capacity range [C_lo, C_hi], with R4's budget ocv_integral_v. bound_at(C) is the pair's bound
+// at the vehicle with C's pack (PackMassLowerBoundKg; kInf when R3 refuses every class there).
+// *over_range: no pack of the range holds the energy (reserve_soc). The bound as it is for
+// another objective or without a range.
 template <typename BoundAt>
 double RaisedByNeededCapacity(const Mission& m, const BatteryOption& bo, double bound, double cutoff,
                               bool* over_range, BoundAt&& bound_at) {
   *over_range = false;
-  if (m.objective.type != ObjectiveType::kMinEnergy || !(bo.capacity_hi_ah > bo.capacity_lo_ah) ||
-      !(bo.ocv_integral_v > 0)) {
-    return bound;
-  }
-  double capacity_ah = bo.capacity_lo_ah;
-  for (int k = 0; k < kCapacitySteps && bound < cutoff; ++k) {
-    const double need_ah = bound / bo.ocv_integral_v;  // Wh over V: the bound is in Wh
-    if (need_ah > bo.capacity_hi_ah) {
-      *over_range = true;
-      return bound;
-    }
-    if (!(need_ah > capacity_ah * (1.0 + kCapacityStepMin))) break;
-    capacity_ah = need_ah;
-    bound = std::max(bound, bound_at(capacity_ah));
-  }
-  return bound;
+  if (m.objective.type != ObjectiveType::kMinEnergy) return bound;
+  return dynosize::RaisedByNeededCapacity(bo.capacity_lo_ah, bo.capacity_hi_ah, bo.ocv_integral_v, bound, cutoff,
+                                          over_range, std::forward<BoundAt>(bound_at));
 }
 
 // R12 as a mass floor: a feasible combination hovers at least at the window's bottom w_min, so

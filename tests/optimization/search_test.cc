@@ -90,7 +90,8 @@ void ExpectCutoffsBoundOutOnlyWhatCannotBeatThem(const Catalog& cat, const Missi
       if (cut.bounded_out) {
         ++bounded;
         EXPECT_GE(full.score, cutoff) << Name(c) << " factor " << factor;
-      } else if (cut.feasible) {
+      } else {  // an infeasibility exit (a proof over the whole range) cannot refuse a feasible one
+        EXPECT_TRUE(cut.feasible) << Name(c) << " factor " << factor;
         EXPECT_EQ(cut.score, full.score) << Name(c) << " factor " << factor;
       }
       ++checked;
@@ -658,6 +659,29 @@ TEST_F(SearchTest, FreeCruiseEnergyBoundsAreBounds) {
   const Mission m = ParseMission(j, "lift");
   // min_energy: 0.90 asks for 10 % less; ten feasible combinations (a test of seconds).
   ExpectCutoffsBoundOutOnlyWhatCannotBeatThem(cat, m, 30, {0.5, 0.90, 1.0 + 1e-6});
+}
+
+// R15 in the evaluator's min_energy early exit (mission_eval_early_exits.cc): the energy bound
+// at the smallest capacity of a wide range, raised to the capacity that energy needs above the
+// reserve, is still a bound, with the capacity alone free and with a cruise airspeed too.
+// Without a free airspeed the bound at the raised capacity is nearly the energy itself, so a
+// needed capacity taken 1.3 times too large bounds out feasible combinations here; the
+// infeasibility exit at the smallest pack (BreaksBeforeFreeAirspeeds) refuses feasible ones
+// when it reads a constraint that a larger pack can cure (the reserve, the cut-off).
+TEST_F(SearchTest, MinEnergyEarlyExitAtTheNeededCapacityIsABound) {
+  DYNOSIZE_SKIP_UNLESS_AVAILABLE("nlopt_cobyla");  // two free variables (mission_eval.h)
+  const Catalog cat = Catalog::Load((dir_ / "catalog").string());
+  for (const bool airspeed_free : {false, true}) {
+    Json j = ParseJsonText(kQuad, "quad");
+    j["objective"] = {{"type", "min_energy"}};
+    j["battery"]["capacity_ah"] = {0.3, 6.0};  // 0.3 Ah: far below what any combination needs
+    if (airspeed_free) {  // a wing-borne cruise: its bound reads the propeller (prop_bounds.h)
+      j["segments"][1]["airspeed_m_s"] = {6.0, 14.0};
+      j["segments"][1]["lift_to_drag"] = 6.0;
+    }
+    const Mission m = ParseMission(j, "quad");
+    ExpectCutoffsBoundOutOnlyWhatCannotBeatThem(cat, m, 30, {0.9, 0.99, 1.0 + 1e-6});
+  }
 }
 
 // G1 with a free wing-borne cruise airspeed flown by a fixed pusher: the table's power at a
