@@ -2,6 +2,7 @@
 #include "optimization/mass_floors.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 
@@ -197,17 +198,32 @@ double FigureOfMeritMassFloorKg(const Mission& m, const Segment& sg, const PropE
   const int airspeed_cells = free_airspeed ? kFomAirspeedCells : 1;
   const int mass_cells = free_airspeed ? kFomCellsFree : kFomCells;
   const int depth = free_airspeed ? kFomRefinementsFree : kFomRefinements;
+  // Each airspeed cell's scan goes up from mass_min_kg one mass cell at a time and stops at the
+  // first cell not wholly proven (at x, the mass proven up to) or after mass_cells of them; the
+  // floor is the least of their stops. A scan's stop is at or above where it stands, so a scan
+  // standing at or above the least stop found so far cannot lower it. The scans advance
+  // best-first (always the one standing lowest; the lower airspeed of a tie), which gives the
+  // same stops and floor as scanning the cells in turn, with fewer checks: one airspeed cell
+  // whose first mass cell holds a feasible point ends the search at mass_min_kg.
+  std::array<double, kFomAirspeedCells> at{};
+  std::array<int, kFomAirspeedCells> steps{};
+  std::array<bool, kFomAirspeedCells> stopped{};
+  at.fill(mass_min_kg);
   double floor_kg = kInf;
-  for (int c = 0; c < airspeed_cells && floor_kg > mass_min_kg; ++c) {
-    const double va = lo + (hi - lo) * c / airspeed_cells, vb = lo + (hi - lo) * (c + 1) / airspeed_cells;
-    double kg = mass_min_kg;
-    for (int cell = 0; cell < mass_cells && kg < floor_kg; ++cell) {
-      const double kg_b = kg * kFomCellRatio;
-      const double x = cells.ProvenUpTo(kg, kg_b, va, vb, depth);
-      kg = x;
-      if (x < kg_b) break;
+  for (;;) {
+    int c = -1;
+    for (int i = 0; i < airspeed_cells; ++i) {
+      if (!stopped[i] && at[i] < floor_kg && (c < 0 || at[i] < at[c])) c = i;
     }
-    floor_kg = std::min(floor_kg, kg);
+    if (c < 0) break;
+    const double va = lo + (hi - lo) * c / airspeed_cells, vb = lo + (hi - lo) * (c + 1) / airspeed_cells;
+    const double kg_b = at[c] * kFomCellRatio;
+    const double x = cells.ProvenUpTo(at[c], kg_b, va, vb, depth);
+    at[c] = x;
+    if (x < kg_b || ++steps[c] == mass_cells) {
+      stopped[c] = true;
+      floor_kg = std::min(floor_kg, x);
+    }
   }
   return floor_kg;
 }
