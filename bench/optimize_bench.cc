@@ -170,6 +170,15 @@ void GrowthOf(benchmark::State& state, const char* file, bool free_groups) {
   state.counters["put_back_quarter"] = static_cast<double>(s[0].put_back_solves);
   state.counters["put_back_half"] = static_cast<double>(s[1].put_back_solves);
   state.counters["put_back_full"] = static_cast<double>(s[2].put_back_solves);
+  // A joint search's phases (SearchResult::joint; zero for one free group): which part grows.
+  const char* const size_name[3] = {"quarter", "half", "full"};
+  for (int i = 0; i < 3; ++i) {
+    const std::string n = size_name[i];
+    state.counters["setup_s_" + n] = s[i].joint.setup_s;
+    state.counters["outer_pairs_s_" + n] = s[i].joint.outer_pairs_s;
+    state.counters["class_s_" + n] = s[i].joint.class_searches_s;
+    state.counters["triple_s_" + n] = s[i].joint.triple_searches_s;
+  }
 }
 
 void BM_OptimizeQuadcopterGrowth(benchmark::State& state) { GrowthOf(state, "quadcopter_1p5kg.json", false); }
