@@ -159,13 +159,18 @@ TEST(Folding, ByName) {
 
 bool HaveBundled() { return std::filesystem::exists(kCatalog + "/uiuc_propdb.json"); }
 
+// UIUC's measured propellers alone (catalog/uiuc_propdb.json), loaded without a problem.
+void LoadUiuc(Catalog* c) {
+  std::vector<std::string> problems;
+  c->AddDocument(ReadJsonFile(kCatalog + "/uiuc_propdb.json"), "uiuc_propdb.json", &problems);
+  ASSERT_TRUE(problems.empty()) << problems[0];
+}
+
 // The constants of FmEnvelope() are what ComputeFmEnvelope finds on the bundled UIUC entries.
 TEST(FmEnvelope, ConstantsMatchTheMeasuredPropellers) {
   if (!HaveBundled()) GTEST_SKIP() << "no catalog/uiuc_propdb.json";
   Catalog c;
-  std::vector<std::string> problems;
-  c.AddDocument(ReadJsonFile(kCatalog + "/uiuc_propdb.json"), "uiuc_propdb.json", &problems);
-  ASSERT_TRUE(problems.empty()) << problems[0];
+  ASSERT_NO_FATAL_FAILURE(LoadUiuc(&c));
   std::vector<const PropEntry*> measured;
   for (const auto& p : c.props()) measured.push_back(&p);
   const auto fresh = ComputeFmEnvelope(measured);
@@ -193,9 +198,7 @@ TEST(FmEnvelope, ConstantsMatchTheMeasuredPropellers) {
 TEST(FmEnvelope, MeasuredSweepsInAxialFlowGoAboveTheStaticEnvelope) {
   if (!HaveBundled()) GTEST_SKIP() << "no catalog/uiuc_propdb.json";
   Catalog c;
-  std::vector<std::string> problems;
-  c.AddDocument(ReadJsonFile(kCatalog + "/uiuc_propdb.json"), "uiuc_propdb.json", &problems);
-  ASSERT_TRUE(problems.empty()) << problems[0];
+  ASSERT_NO_FATAL_FAILURE(LoadUiuc(&c));
   std::vector<double> axial_max;
   for (const auto& p : c.props()) {
     if (p.j_tables.empty()) continue;
