@@ -143,6 +143,7 @@ void MissionEvaluator::FillPropNotes(MissionResult* r) {
 }
 
 MissionResult MissionEvaluator::Solve(double cutoff_score, bool explain, bool decide, bool search) const {
+  search_only_ = search && !explain;
   MissionResult r = SolveContinuous(cutoff_score, explain, decide && std::isfinite(cutoff_score), search);
   if (explain) FillPropNotes(&r);
   return r;

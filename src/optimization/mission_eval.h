@@ -370,6 +370,9 @@ class MissionEvaluator {
   bool FullThrottleAt(const BatteryPack& pack, double soc, FullThrottle* f) const;
   // The same from a source of open-circuit voltage ocv_v behind r_pack_ohm.
   bool FullThrottleFrom(double ocv_v, double r_pack_ohm, FullThrottle* f) const;
+  // Per lift rotor, a full-throttle thrust at or below FinishRun's at the end of every run that
+  // ends at an SOC of at least soc (0: none known). Kept per SOC level (kThrustFloorLevels).
+  double ThrustFloorN(double soc) const;
   // The hover of the whole vehicle (mass_kg) on the lift rotors at `soc` with sag.
   bool HoverAt(const BatteryPack& pack, double soc, double mass_kg, OperatingPoint* op,
                double* battery_current_a, double* shaft_w) const;
@@ -398,6 +401,14 @@ class MissionEvaluator {
   double fixed_mass_kg_ = 0;
   int lift_rotors_ = 0;    // LiftRotors(mission); thrust-to-weight and the summary use them
   std::vector<std::string> assumed_;
+  // Set by each Solve to its `search`: the result's score and feasibility are all that is read,
+  // so FinishRun may settle min_thrust_to_weight from a bound (ThrustToWeightThrustFloorN).
+  mutable bool search_only_ = false;
+  // ThrustFloorN's floors by SOC level once computed (< 0: not yet), and the runs finished
+  // (the floors are only read from the second on: a one-run evaluator would pay for both).
+  static constexpr int kThrustFloorLevels = 10;
+  mutable std::array<double, kThrustFloorLevels> thrust_floor_n_{-1, -1, -1, -1, -1, -1, -1, -1, -1, -1};
+  mutable int runs_finished_ = 0;
 };
 
 }  // namespace dynosize

@@ -402,6 +402,34 @@ double MissionEvaluator::ThrustToWeightMassCeilingKg() const {
          (kStandardGravity * m_.constraints.min_thrust_to_weight);
 }
 
+// FinishRun checks min_thrust_to_weight with the lift rotors' thrust at full throttle from the
+// run's end: OCV(SOC) behind the pack's resistance R (FullThrottleAt). That thrust rises with
+// the terminal voltage (ThrustToWeightMassCeilingKg), and the full-throttle terminal voltage
+// V = OCV - R*I_batt, the upper root of V^2 - OCV*V + R*P = 0 with P the power drawn (rising with
+// V), rises with the OCV and falls with R. A run that ends at an SOC of at least s_j has an OCV of
+// at least OCV(s_j) (the OCV rises with the SOC), and every pack of a capacity range has a
+// resistance at most its smallest pack's (PackAt: R*capacity is kept). So the thrust from
+// OCV(s_j) behind the smallest pack's resistance, times 1 - kFloorMargin against the root
+// finders' tolerance (1e-10 of the speed), is at or below the check's thrust of every such run.
+// The levels s_j = j/kThrustFloorLevels (the highest at or below soc is read), each computed when
+// first read, from an evaluator's second run on. None (0) with a supply resistance, as for the
+// ceiling.
+double MissionEvaluator::ThrustFloorN(double soc) const {
+  constexpr double kFloorMargin = 1e-6;
+  if (++runs_finished_ < 2 || !(soc >= 0)) return 0.0;
+  const int j = std::min(kThrustFloorLevels - 1, static_cast<int>(std::floor(soc * kThrustFloorLevels)));
+  double& floor_n = thrust_floor_n_[static_cast<std::size_t>(j)];
+  if (floor_n >= 0) return floor_n;
+  floor_n = 0.0;
+  if (lift_rotors_ <= 0 || groups_[lift_group_].drive.esc().rsupply_ohm != 0.0) return floor_n;
+  const BatteryPack pack(PackAt(m_.battery.capacity_ah ? m_.battery.capacity_ah->lo : 0.0));
+  FullThrottle ft;
+  if (FullThrottleFrom(pack.OcvV(static_cast<double>(j) / kThrustFloorLevels), pack.ri_ohm(), &ft)) {
+    floor_n = std::max(0.0, ft.thrust_per_rotor_n * (1.0 - kFloorMargin));
+  }
+  return floor_n;
+}
+
 // The early exits of a search (a finite cutoff, or `search`), each a proof stated at its block: a
 // result (bounded out, infeasible, or the answer itself) in *out and true, or false to go on.
 // The exits that end in an infeasible result need no cutoff, only a caller that reads nothing

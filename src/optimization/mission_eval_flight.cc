@@ -349,10 +349,22 @@ void MissionEvaluator::FinishRun(const RunState& st, eval_internal::Tracker* tra
   // lower OCV), so the stretch's slack stays monotone.
   r.lift_rotors = lift_rotors_;
   if (k.min_thrust_to_weight > 0 && lift_rotors_ > 0) {
-    FullThrottle ft;
     const double weight_n = r.total_mass_kg * kStandardGravity;
-    r.thrust_to_weight = FullThrottleAt(st.pack, st.soc, &ft) ? lift_rotors_ * ft.thrust_per_rotor_n / weight_n : 0.0;
-    track->Check("min_thrust_to_weight", "", r.thrust_to_weight, k.min_thrust_to_weight, "", true);
+    // A search's evaluation (Solve's `search`: only the score and the feasibility are read),
+    // outside a max-endurance stretch (whose root function reads this check's slack): when a
+    // lower bound of the thrust-to-weight meets the limit with a relative slack no smaller than
+    // the run's least so far (and not negative), the exact check could change neither the least
+    // slack nor the violations, and is not computed. The result then holds the bound.
+    const double floor_tw = search_only_ && !st.in_stretch ? lift_rotors_ * ThrustFloorN(st.soc) / weight_n : 0.0;
+    const double floor_slack = (floor_tw - k.min_thrust_to_weight) / k.min_thrust_to_weight;
+    if (floor_tw > 0 && floor_slack >= std::max(0.0, r.min_slack)) {
+      r.thrust_to_weight = floor_tw;
+    } else {
+      FullThrottle ft;
+      r.thrust_to_weight =
+          FullThrottleAt(st.pack, st.soc, &ft) ? lift_rotors_ * ft.thrust_per_rotor_n / weight_n : 0.0;
+      track->Check("min_thrust_to_weight", "", r.thrust_to_weight, k.min_thrust_to_weight, "", true);
+    }
   }
   r.endurance_s = st.time_s;
   r.energy_wh = st.energy_j / 3600.0;

@@ -684,6 +684,48 @@ TEST_F(SearchTest, MinEnergyEarlyExitAtTheNeededCapacityIsABound) {
   }
 }
 
+// A search's evaluation (Solve's `search`) settles min_thrust_to_weight from a floor of the
+// full-throttle thrust where the floor meets the limit with the run's least slack to spare
+// (FinishRun, ThrustFloorN): the score, the feasibility, the least slack and the violations
+// must be those of the full solve, with the capacity free and with a cruise airspeed too, and
+// with a limit the floors settle and one close to the thrust they bound. A floor taken 20 %
+// too high changes the feasibility of combinations here.
+TEST_F(SearchTest, SearchEvaluationsSettleThrustToWeightAsTheFullSolve) {
+  DYNOSIZE_SKIP_UNLESS_AVAILABLE("nlopt_cobyla");  // two free variables (mission_eval.h)
+  const Catalog cat = Catalog::Load((dir_ / "catalog").string());
+  int settled_differently = 0, checked = 0;
+  for (const double tw : {1.5, 2.5}) {
+    for (const bool airspeed_free : {false, true}) {
+      Json j = ParseJsonText(kQuad, "quad");
+      j["objective"] = {{"type", "min_energy"}};
+      j["battery"]["capacity_ah"] = {1.0, 6.0};
+      j["constraints"]["min_thrust_to_weight"] = tw;
+      if (airspeed_free) {
+        j["segments"][1]["airspeed_m_s"] = {6.0, 14.0};
+        j["segments"][1]["lift_to_drag"] = 6.0;
+      }
+      const Mission m = ParseMission(j, "quad");
+      ForEachCombination(cat, [&](const Combination& c) {
+        const MissionEvaluator eval(m, c);
+        const double no_cutoff = std::numeric_limits<double>::infinity();
+        const MissionResult full = eval.Solve(no_cutoff, false);
+        const MissionResult search = eval.Solve(no_cutoff, false, false, true);
+        EXPECT_EQ(search.feasible, full.feasible) << Name(c) << " tw " << tw;
+        EXPECT_EQ(search.score, full.score) << Name(c) << " tw " << tw;
+        // An infeasibility exit (EarlyExit: a proof over the ranges) names the one violation it
+        // rests on; the solves' own runs are compared.
+        if (search.violations_everywhere) return;
+        ++checked;
+        EXPECT_EQ(search.min_slack, full.min_slack) << Name(c) << " tw " << tw;
+        EXPECT_EQ(search.violations.size(), full.violations.size()) << Name(c) << " tw " << tw;
+        settled_differently += search.thrust_to_weight != full.thrust_to_weight;
+      });
+    }
+  }
+  EXPECT_GE(checked, 20);
+  EXPECT_GT(settled_differently, 0) << "no run settled the limit from its floor: the floors were not exercised";
+}
+
 // G1 with a free wing-borne cruise airspeed flown by a fixed pusher: the table's power at a
 // combination's mass times the shortest duration is at or below the cruise energy at the
 // airspeed the evaluator picks, and the bound from the pusher's own data (M4) is tight.
