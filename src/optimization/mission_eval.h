@@ -347,7 +347,9 @@ class MissionEvaluator {
   // A lower bound of a min_energy mission's energy, J, over the free cruise airspeeds, from a
   // Run at `vars` (C0 = 0, no supply resistance: EarlyExit's conditions).
   double MinEnergyLowerBoundJ(const MissionResult& r, const ContinuousVars& vars) const;
+  // The lightest capacity of [c_lo, c_hi] whose vehicle weighs at least mass_kg (c_hi if none).
   double LightestCapacityAtLeastKg(double mass_kg, double c_lo, double c_hi) const;
+  // r breaks a constraint no larger pack cures in a segment before the first free cruise.
   bool BreaksBeforeFreeAirspeeds(const MissionResult& r) const;
   // An upper bound of the total mission time over the capacity range (max_endurance), tightened
   // until it falls below target_s or a budget of simulations is spent.
@@ -402,7 +404,7 @@ class MissionEvaluator {
   int lift_rotors_ = 0;    // LiftRotors(mission); thrust-to-weight and the summary use them
   std::vector<std::string> assumed_;
   // Set by each Solve to its `search`: the result's score and feasibility are all that is read,
-  // so FinishRun may settle min_thrust_to_weight from a bound (ThrustToWeightThrustFloorN).
+  // so FinishRun may settle min_thrust_to_weight from a bound (ThrustFloorN).
   mutable bool search_only_ = false;
   // ThrustFloorN's floors by SOC level once computed (< 0: not yet), and the runs finished
   // (the floors are only read from the second on: a one-run evaluator would pay for both).

@@ -430,10 +430,6 @@ double MissionEvaluator::ThrustFloorN(double soc) const {
   return floor_n;
 }
 
-// The early exits of a search (a finite cutoff, or `search`), each a proof stated at its block: a
-// result (bounded out, infeasible, or the answer itself) in *out and true, or false to go on.
-// The exits that end in an infeasible result need no cutoff, only a caller that reads nothing
-// of an infeasible result but the constraint (Solve's search); the bounds need a finite cutoff.
 // min_energy with free cruise airspeeds (EarlyExit): every other segment's energy does not
 // depend on them (terminal power N*PDC + P_avionics, and PDC = C1*U*I/kv does not depend on the
 // voltage when C0 = 0, eqs 57, 59), and a wing-borne cruise needs at least the propulsive work
@@ -473,6 +469,10 @@ double MissionEvaluator::MinEnergyLowerBoundJ(const MissionResult& r, const Cont
   return e_lb;
 }
 
+// The early exits of a search (a finite cutoff, or `search`), each a proof stated at its block: a
+// result (bounded out, infeasible, or the answer itself) in *out and true, or false to go on.
+// The exits that end in an infeasible result need no cutoff, only a caller that reads nothing
+// of an infeasible result but the constraint (Solve's search); the bounds need a finite cutoff.
 bool MissionEvaluator::EarlyExit(double cutoff_score, bool explain, bool search, MissionResult* out) const {
   const bool capacity_free = m_.battery.capacity_ah && m_.battery.capacity_ah->free();
   const bool bounds = std::isfinite(cutoff_score);
@@ -526,10 +526,11 @@ bool MissionEvaluator::EarlyExit(double cutoff_score, bool explain, bool search,
       std::all_of(groups_.begin(), groups_.end(), [&](const GroupDrive& g) {
         return g.drive.esc().c0 == 0.0 && (!capacity_free || g.drive.esc().rsupply_ohm == 0.0);
       })) {
-    // min_energy: MinEnergyLowerBoundJ over the free cruise airspeeds. With a capacity range the run is at the smallest capacity: a larger pack only adds mass,
-    // so every segment's thrust, speed, torque and so its PDC (no supply resistance: the
-    // terminal power does not depend on the pack's voltage) rise with it (M3 of search.cc), and
-    // the wing-borne thrust W/(L/D) + added drag too: the same sum bounds the energy at every capacity of the range.
+    // min_energy: MinEnergyLowerBoundJ over the free cruise airspeeds. With a capacity range the
+    // run is at the smallest capacity: a larger pack only adds mass, so every segment's thrust,
+    // speed, torque and so its PDC (no supply resistance: the terminal power does not depend on
+    // the pack's voltage) rise with it (M3 of search.cc), and the wing-borne thrust W/(L/D) +
+    // added drag too: the same sum bounds the energy at every capacity of the range.
     ContinuousVars v0;
     v0.airspeed_m_s.assign(m_.segments.size(), 0.0);
     if (m_.battery.capacity_ah) v0.capacity_ah = m_.battery.capacity_ah->lo;
