@@ -411,6 +411,7 @@ class MissionEvaluator {
   static constexpr int kThrustFloorLevels = 10;
   mutable std::array<double, kThrustFloorLevels> thrust_floor_n_{-1, -1, -1, -1, -1, -1, -1, -1, -1, -1};
   mutable int runs_finished_ = 0;
+  mutable double mass_ceiling_kg_ = -1.0;  // ThrustToWeightMassCeilingKg's value once computed (< 0: not yet)
 };
 
 }  // namespace dynosize

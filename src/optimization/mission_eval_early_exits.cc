@@ -390,16 +390,21 @@ bool MissionEvaluator::HoverOrWeightRefuses(bool with_weight, MissionResult* out
 // voltage at every state of charge is at most the full-charge OCV, so the thrust from that OCV
 // with no sag (times 1 + kCeilingMargin against the root finders' tolerance, 1e-10 of the
 // speed) bounds the thrust-to-weight check of every run from above.
+// Kept once computed: EarlyExit reads it twice with a capacity range (HoverOrWeightRefuses and
+// the min_energy bound's range top).
 double MissionEvaluator::ThrustToWeightMassCeilingKg() const {
   constexpr double kCeilingMargin = 1e-6;
+  if (mass_ceiling_kg_ >= 0) return mass_ceiling_kg_;
+  mass_ceiling_kg_ = kInf;
   if (!(m_.constraints.min_thrust_to_weight > 0) || lift_rotors_ <= 0 ||
       groups_[lift_group_].drive.esc().rsupply_ohm != 0.0) {
-    return kInf;
+    return mass_ceiling_kg_;
   }
   FullThrottle ft;
-  if (!FullThrottleFrom(BatteryPack(pack_base_).OcvV(1.0), 0.0, &ft)) return kInf;
-  return lift_rotors_ * ft.thrust_per_rotor_n * (1.0 + kCeilingMargin) /
-         (kStandardGravity * m_.constraints.min_thrust_to_weight);
+  if (!FullThrottleFrom(BatteryPack(pack_base_).OcvV(1.0), 0.0, &ft)) return mass_ceiling_kg_;
+  mass_ceiling_kg_ = lift_rotors_ * ft.thrust_per_rotor_n * (1.0 + kCeilingMargin) /
+                     (kStandardGravity * m_.constraints.min_thrust_to_weight);
+  return mass_ceiling_kg_;
 }
 
 // FinishRun checks min_thrust_to_weight with the lift rotors' thrust at full throttle from the
