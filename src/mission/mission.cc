@@ -339,13 +339,14 @@ static void ReadConstraints(const Reader& top, const std::string& name, Mission*
   if (top.Has("constraints")) {
     const Reader c(top.At("constraints"), name, "$.constraints");
     c.AllowOnly({"max_throttle", "min_hover_throttle", "current_margin", "allow_esc_saturation",
-                 "enforce_motor_power", "max_figure_of_merit", "max_static_advance_ratio",
+                 "enforce_motor_power", "max_figure_of_merit", "max_axial_figure_of_merit", "max_static_advance_ratio",
                  "min_thrust_to_weight", "max_winding_temp_c", "allow_folding_props_for_lift",
                  "unrated_motors", "prop_below_data_factor", "prop_above_data_factor"});
     m->constraints.min_thrust_to_weight = c.Number("min_thrust_to_weight", 0.0, 50.0, false, 2.0);
     m->constraints.max_winding_temp_c = c.Number("max_winding_temp_c", 20.0, 400.0, false, 120.0);
     m->constraints.max_static_advance_ratio = c.Number("max_static_advance_ratio", 0.0, 5.0, false, 0.2);
     m->constraints.max_figure_of_merit = c.Number("max_figure_of_merit", 0.0, 1.0, true, 0.8);
+    m->constraints.max_axial_figure_of_merit = c.Number("max_axial_figure_of_merit", 0.0, 1.0, true, 0.95);
     m->constraints.max_throttle = c.Number("max_throttle", 0.0, 1.0, true, 0.8);
     m->constraints.min_hover_throttle = c.Number("min_hover_throttle", 0.0, 1.0, false, 0.0);
     if (m->constraints.min_hover_throttle >= m->constraints.max_throttle) {

@@ -6,6 +6,7 @@
 // All values SI inside (kg, m, s, W, N*m, rad/s); rpm only at the JSON edge ("rpm" keys).
 #pragma once
 
+#include <algorithm>
 #include <limits>
 #include <optional>
 #include <string>
@@ -101,8 +102,13 @@ struct MissionConstraints {
   bool allow_esc_saturation = false; // throttle above the ESC's tr_sat is allowed
   bool enforce_motor_power = true;   // PAC <= the motor's max_power_w when rated
   // Propeller data whose figure of merit P_ideal/P (momentum theory) exceeds this are not
-  // credible: such points fail "prop_figure_of_merit" (optimization/mission_eval.cc).
+  // credible: such points fail "prop_figure_of_merit" (optimization/mission_eval_flight.cc).
+  // At rest, and static-only data in any inflow: max_figure_of_merit (0.8, the round-up of the
+  // static envelope's 0.753). In axial inflow read from forward-flight data:
+  // max_axial_figure_of_merit (0.95, the round-up of the 0.937 UIUC's measured sweeps reach;
+  // docs/model.md section 11), never below the static one. FigureOfMeritLimit picks.
   double max_figure_of_merit = 0.8;
+  double max_axial_figure_of_merit = 0.95;
   // Propellers with static data only may fly at advance ratios J = V/(n*D) up to this.
   double max_static_advance_ratio = 0.2;
   // Full-throttle static thrust of the lift rotors over the weight, at the lowest pack voltage
@@ -129,6 +135,15 @@ struct MissionConstraints {
   // (true, "estimate") or left out ("exclude"); optimization/credibility.h.
   bool estimate_unrated_motors = true;
 };
+
+// The figure-of-merit limit of a rotor point whose data are read at axial inflow
+// judged_inflow_m_s (0 at rest, and for static-only data, which are held to the static bound):
+// max_figure_of_merit at rest, the larger of it and max_axial_figure_of_merit in axial flow
+// (docs/model.md section 11). It does not fall as the inflow rises, so the limit at a range's
+// largest inflow is at least that of every point of the range.
+inline double FigureOfMeritLimit(const MissionConstraints& k, double judged_inflow_m_s) {
+  return judged_inflow_m_s > 0 ? std::max(k.max_figure_of_merit, k.max_axial_figure_of_merit) : k.max_figure_of_merit;
+}
 
 enum class ObjectiveType { kMaxEndurance, kMinEnergy, kMaxEfficiency };
 

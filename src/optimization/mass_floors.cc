@@ -182,18 +182,20 @@ double FigureOfMeritMassFloorKg(const Mission& m, const Segment& sg, const PropE
   constexpr int kFomCells = 64, kFomRefinements = 4;
   constexpr int kFomAirspeedCells = 8, kFomCellsFree = 24, kFomRefinementsFree = 6;
   constexpr double kFomCellRatio = 1.03;
-  const double limit = m.constraints.max_figure_of_merit;
   // A shaft segment has no figure of merit; a multirotor cruise's inflow changes with the mass
   // (flight.h).
   const bool free_airspeed = sg.type == SegmentType::kCruise && sg.airspeed_m_s.free();
   if (sg.type == SegmentType::kShaft || (sg.type == SegmentType::kCruise && !(sg.lift_to_drag > 0)) ||
-      !(limit > 0) || !monotone || !(mass_min_kg > 0)) {
+      !(m.constraints.max_figure_of_merit > 0) || !monotone || !(mass_min_kg > 0)) {
     return 0.0;
   }
   const bool static_only = model.data_kind() != PropDataKind::kTables || p.j_tables.empty();
-  const FomCells cells{m, sg, p, model, limit, static_only};
   const double lo = sg.airspeed_m_s.lo, hi = free_airspeed ? sg.airspeed_m_s.hi : lo;
   if (SegmentRotorLoad(m, sg, 1.0, lo).axial_airspeed_m_s < 0) return 0.0;  // a descent: PropellerPoint's inflow differs
+  // The limit at the segment's largest inflow, at least that of each of its points (mission.h);
+  // the inflow does not depend on the mass here (a climb's rate, a wing-borne cruise's airspeed).
+  const double top_inflow_m_s = static_only ? 0.0 : SegmentRotorLoad(m, sg, 1.0, hi).axial_airspeed_m_s;
+  const FomCells cells{m, sg, p, model, FigureOfMeritLimit(m.constraints, top_inflow_m_s), static_only};
   if (!cells.MayBreakLimit(mass_min_kg, lo, hi)) return 0.0;
   const int airspeed_cells = free_airspeed ? kFomAirspeedCells : 1;
   const int mass_cells = free_airspeed ? kFomCellsFree : kFomCells;

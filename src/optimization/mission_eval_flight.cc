@@ -117,9 +117,9 @@ bool PropellerPoint(const Mission& m, const Segment& s, const RotorLoad& load, c
   // Principles of Helicopter Aerodynamics, 2nd ed., eqs 2.14 and 2.91; figure of merit
   // <= 1). Propeller data below it are not physical (some DriveCalc power laws are), and
   // would fly on impossible efficiency. The ratio P_ideal/P is the figure of merit (static) or
-  // its axial-flow analogue; above the mission's max_figure_of_merit (default 0.8: small
-  // propellers measure 0.5-0.75, Brandt & Selig 2011) the point fails
-  // "prop_figure_of_merit".
+  // its axial-flow analogue; above the mission's limit (FigureOfMeritLimit: 0.8 at rest, small
+  // propellers measure 0.5-0.75, Brandt & Selig 2011; 0.95 in axial flow read from
+  // forward-flight data, docs/model.md section 11) the point fails "prop_figure_of_merit".
   {
     // Static-only data evaluated in axial flow (flagged in prop_note) are held to the
     // static bound: they cannot see the climb power, which the note says.
@@ -128,7 +128,7 @@ bool PropellerPoint(const Mission& m, const Segment& s, const RotorLoad& load, c
     const double fom = ev.power_w > 0 ? FigureOfMerit(load.thrust_per_rotor_n, ev.power_w, prop_entry.diameter_m,
                                                       m.rho_kg_m3, v_ax)
                                       : (load.thrust_per_rotor_n > 0 ? 1e3 : 0.0);
-    track->Check("prop_figure_of_merit", s.name, fom, k.max_figure_of_merit, "", false, seg);
+    track->Check("prop_figure_of_merit", s.name, fom, FigureOfMeritLimit(k, v_ax), "", false, seg);
   }
   // The scenario's propeller power (credibility.h: the credible value by default), after the
   // momentum-theory check, which judges the data as given.

@@ -128,13 +128,13 @@ MissionFacts StageFourFacts(const SearchContext& ctx) {
 }
 
 // Momentum theory's bound of a propeller segment's terminal power, W, when no stage can create
-// energy: N*P_ideal(T, V)/max_figure_of_merit + P_avionics (the evaluator's
-// prop_figure_of_merit; V the axial inflow with forward-flight tables, else 0, as
-// PropellerPoint judges it; P_ideal rises with the thrust).
+// energy: N*P_ideal(T, V)/FM_limit(V) + P_avionics (the evaluator's prop_figure_of_merit; V the
+// axial inflow with forward-flight tables, else 0, as PropellerPoint judges it; FM_limit of
+// mission.h; P_ideal rises with the thrust).
 double MomentumPowerW(const Mission& m, const RotorLoad& ld, double diameter_m, bool axial_data) {
-  const double p_ideal =
-      IdealRotorPowerW(ld.thrust_per_rotor_n, diameter_m, m.rho_kg_m3, axial_data ? ld.axial_airspeed_m_s : 0.0);
-  return ld.rotors * p_ideal / m.constraints.max_figure_of_merit + m.vehicle.avionics_power_w;
+  const double v = axial_data ? ld.axial_airspeed_m_s : 0.0;
+  const double p_ideal = IdealRotorPowerW(ld.thrust_per_rotor_n, diameter_m, m.rho_kg_m3, v);
+  return ld.rotors * p_ideal / FigureOfMeritLimit(m.constraints, v) + m.vehicle.avionics_power_w;
 }
 // Rule R4 (docs/search.md#r4): every segment draws at least its power bound for at least its
 // shortest duration, so the score is at least the assembled bound; pairs best bound first,

@@ -77,8 +77,9 @@ void SetFloorPoint(const Mission& m, const CruisePropBound& p, FreeCruiseSamples
   }
   if (!(k.max_figure_of_merit > 0) || !ScenarioKeepsPower(p.adjustment) || !(s->omega_ub_rad_s < kInf)) return;
   const bool axial_data = p.model->data_kind() == PropDataKind::kTables && !p.prop->j_tables.empty();
-  const double p_ideal = IdealRotorPowerW(t0, d, m.rho_kg_m3, axial_data ? s->v[0] : 0.0);
-  s->torque_floor_nm = kLossFloorRounding * p_ideal / k.max_figure_of_merit / s->omega_ub_rad_s;
+  const double v0 = axial_data ? s->v[0] : 0.0;
+  const double p_ideal = IdealRotorPowerW(t0, d, m.rho_kg_m3, v0);
+  s->torque_floor_nm = kLossFloorRounding * p_ideal / FigureOfMeritLimit(k, v0) / s->omega_ub_rad_s;
 }
 
 }  // namespace
@@ -160,7 +161,7 @@ double FreeCruiseRotorPowerFromSamples(const Mission& m, const Segment& sg, cons
     const double v_read = by_distance ? s.v[k + 1] : s.v[k];
     const double v_in = axial_data ? v_read : 0.0;  // a wing-borne cruise's inflow is its airspeed (flight.h)
     double p_k = momentum ? s.rotors * IdealRotorPowerW(s.thrust[k], p.prop->diameter_m, m.rho_kg_m3, v_in) /
-                                m.constraints.max_figure_of_merit
+                                FigureOfMeritLimit(m.constraints, v_in)
                           : 0.0;
     if (shaft) p_k = std::max(p_k, s.rotors * s.torque[k] * s.omega[k]);
     if (floor) {

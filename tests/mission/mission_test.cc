@@ -102,6 +102,22 @@ TEST(MissionTest, PropDataWindowDefaultsAndLimits) {
   EXPECT_NE(err2.find("$.constraints.prop_below_data_factor = 1.2"), std::string::npos) << err2;
 }
 
+// The figure-of-merit limits (docs/model.md section 11): 0.8 at rest, 0.95 in axial flow by
+// default; the axial one is never below the static one; each is in (0, 1].
+TEST(MissionTest, FigureOfMeritLimitsAtRestAndInAxialFlow) {
+  const Mission m = Parse(kGood);
+  EXPECT_DOUBLE_EQ(FigureOfMeritLimit(m.constraints, 0.0), 0.8);
+  EXPECT_DOUBLE_EQ(FigureOfMeritLimit(m.constraints, 0.5), 0.95);
+  const Mission s = Parse(Replace(kGood, "\"name\": \"t\",",
+                                  "\"name\": \"t\", \"constraints\": {\"max_figure_of_merit\": 0.9, "
+                                  "\"max_axial_figure_of_merit\": 0.85},"));
+  EXPECT_DOUBLE_EQ(FigureOfMeritLimit(s.constraints, 0.0), 0.9);
+  EXPECT_DOUBLE_EQ(FigureOfMeritLimit(s.constraints, 20.0), 0.9);  // the larger of the two
+  const std::string err = ErrorOf(Replace(kGood, "\"name\": \"t\",",
+                                          "\"name\": \"t\", \"constraints\": {\"max_axial_figure_of_merit\": 0},"));
+  EXPECT_NE(err.find("$.constraints.max_axial_figure_of_merit = 0"), std::string::npos) << err;
+}
+
 const char* kGroups = R"({
   "name": "g",
   "vehicle": {"mass_kg": 2.0, "drag_area_m2": 0.05, "drag_coefficient": 1.0},

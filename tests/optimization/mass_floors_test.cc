@@ -29,9 +29,12 @@ const Catalog& Bundled() {
 }
 
 // The quadplane example (cruise at 18 m/s, L/D 10) with its lift group fixed to the both-free
-// search's pick and the pusher to fu_m_166 + dc_e_138 on `pusher_prop`.
+// search's pick and the pusher to fu_m_166 + dc_e_138 on `pusher_prop`. The figure-of-merit
+// limit in axial flow is held at the static 0.8: no measured sweep reaches the default 0.95
+// (docs/model.md section 11), and the rules under test need a limit the propellers break.
 Json QuadplaneJson(const std::string& pusher_prop) {
   Json j = ReadJsonFile(std::string(DYNOSIZE_SOURCE_DIR) + "/examples/missions/quadplane_2kg.json");
+  j["constraints"]["max_axial_figure_of_merit"] = 0.8;
   j["propulsion"]["lift"]["motor"] = "dc_m_550";
   j["propulsion"]["lift"]["esc"] = "dc_e_145";
   j["propulsion"]["lift"]["prop"] = "uiuc_v2_gwsdd_9.0x5.0_2";
@@ -219,9 +222,10 @@ TEST(MassFloorsTest, EveryVehicleAtOrAboveTheCeilingFailsTheCruiseInTheEvaluator
   const MassFloor ceiling = ctx.fixed_mass_ceiling[2];
   ASSERT_NE(ceiling.rule, nullptr);
   EXPECT_STREQ(ceiling.rule, "esc_current");
-  // Measured: 2.92 kg, against 3.6 kg with the example's lift pick.
+  // Measured: 3.53 kg (2.92 kg with the axial figure-of-merit limit at the static 0.8, whose
+  // refusals at the low airspeeds lowered it), against 3.6 kg with the example's lift pick.
   EXPECT_GT(ceiling.kg, ctx.fixed_mass_floor[2].kg);
-  EXPECT_LT(ceiling.kg, 3.0);
+  EXPECT_LT(ceiling.kg, 3.6);
   // The example's lift pick (dc_m_334 + dc_e_145 + dc_p_318), the vehicle made lighter or
   // heavier so that the whole weighs total_kg.
   j["propulsion"]["lift"]["motor"] = "dc_m_334";
