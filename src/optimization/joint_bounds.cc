@@ -59,14 +59,14 @@ RotorBound RotorLowerBound(const Mission& m, const Segment& sg, const PropEntry&
   // A free cruise's speeds are its samples' (JointBounds::OuterCruise); a shaft has none.
   if ((sg.type == SegmentType::kCruise && sg.airspeed_m_s.free()) || sg.type == SegmentType::kShaft) return rb;
   const double v = ld.axial_airspeed_m_s;
-  // Bisection keeping thrust(lo) <= T (M1: thrust rises with speed), so lo is at or below the
+  // A speed from below keeping thrust(lo) <= T (M1: thrust rises with speed), so lo is at or below the
   // evaluator's root; a propeller that cannot give T below the ceiling turns faster (and R3
   // then finds the throttle above one).
   double lo = 0.0, hi = kRotorCeilingRadS;
   if (model.Evaluate(hi, m.rho_kg_m3, v).thrust_n < ld.thrust_per_rotor_n) {
     lo = hi;
   } else {
-    lo = BisectSpeedFromBelow(model, m.rho_kg_m3, ld.thrust_per_rotor_n, v, lo, hi, 60);
+    lo = SpeedFromBelow(model, m.rho_kg_m3, ld.thrust_per_rotor_n, v, lo, hi, 60);
   }
   if (!(lo > 0)) return rb;
   rb.thrust_n = ld.thrust_per_rotor_n;

@@ -105,7 +105,7 @@ struct FomCells {
       const double mid = 0.5 * (lo + hi);
       (model.Evaluate(mid, m.rho_kg_m3, v).thrust_n >= t_hi ? hi : lo) = mid;
     }
-    const double w_lo = BisectSpeedFromBelow(model, m.rho_kg_m3, t_lo, v, 0.0, hi, kSteps);
+    const double w_lo = SpeedFromBelow(model, m.rho_kg_m3, t_lo, v, 0.0, hi, kSteps);
     double p_prev = -kInf, power_w = 0.0;
     for (int k = 0; k <= kFomSamples; ++k) {
       power_w = model.Evaluate(w_lo + (hi - w_lo) * k / kFomSamples, m.rho_kg_m3, v).power_w;

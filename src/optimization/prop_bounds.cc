@@ -30,15 +30,41 @@ bool ScenarioKeepsPower(const PropAdjustment& adj) { return adj.reynolds_fm_exp 
 
 bool PropSpeedFromBelow(const PropModel& model, double rho, double thrust_n, double v_m_s, int steps, double* omega) {
   if (!(model.Evaluate(kPropSpeedCeilingRadS, rho, v_m_s).thrust_n >= thrust_n)) return false;
-  *omega = BisectSpeedFromBelow(model, rho, thrust_n, v_m_s, 0.0, kPropSpeedCeilingRadS, steps);
+  *omega = SpeedFromBelow(model, rho, thrust_n, v_m_s, 0.0, kPropSpeedCeilingRadS, steps);
   return true;
 }
 
-double BisectSpeedFromBelow(const PropModel& model, double rho, double thrust_n, double v_m_s, double lo, double hi,
-                            int steps) {
-  for (int i = 0; i < steps; ++i) {
-    const double mid = 0.5 * (lo + hi);
-    (model.Evaluate(mid, rho, v_m_s).thrust_n <= thrust_n ? lo : hi) = mid;
+double SpeedFromBelow(const PropModel& model, double rho, double thrust_n, double v_m_s, double lo, double hi,
+                      int steps) {
+  // Regula falsi (Illinois) on f = thrust - T over [lo, hi], keeping f(lo) <= 0 < f(hi): every
+  // step keeps lo at or below the root (M1), and a step that does not halve the bracket every
+  // second time is followed by a bisection. Stops when the bracket is kRelWidth of hi wide.
+  constexpr double kRelWidth = 1e-12;
+  auto f = [&](double w) { return model.Evaluate(w, rho, v_m_s).thrust_n - thrust_n; };
+  double f_hi = f(hi);
+  if (f_hi <= 0) return hi;  // the whole bracket gives at most T (M1)
+  double f_lo = f(lo);
+  if (f_lo > 0) return lo;  // the caller's lo is above the root: nothing below it is checked
+  int side = 0;
+  double width_before = hi - lo;
+  for (int i = 0; i < steps && hi - lo > kRelWidth * hi; ++i) {
+    const bool bisect = i % 2 == 1 && hi - lo > 0.5 * width_before;
+    if (i % 2 == 1) width_before = hi - lo;
+    double x = bisect ? 0.5 * (lo + hi) : (lo * f_hi - hi * f_lo) / (f_hi - f_lo);
+    if (!(x > lo && x < hi)) x = 0.5 * (lo + hi);
+    if (!(x > lo && x < hi)) break;  // no representable point between them
+    const double fx = f(x);
+    if (fx <= 0) {
+      lo = x;
+      f_lo = fx;
+      if (side < 0) f_hi *= 0.5;
+      side = -1;
+    } else {
+      hi = x;
+      f_hi = fx;
+      if (side > 0) f_lo *= 0.5;
+      side = 1;
+    }
   }
   return lo;
 }

@@ -18,14 +18,15 @@ namespace dynosize {
 inline constexpr double kPropSpeedCeilingRadS = 6000.0;
 
 // A speed at or below the root of thrust(omega) = T in axial inflow v on [lo, hi] (thrust
-// rising with speed, docs/search.md#m1, and thrust(lo) <= T): `steps` bisections keeping
-// thrust(lo) <= T.
-double BisectSpeedFromBelow(const PropModel& model, double rho, double thrust_n, double v_m_s, double lo, double hi,
-                            int steps);
+// rising with speed, docs/search.md#m1, and thrust(lo) <= T): at most `steps` bracketing steps
+// (regula falsi, with bisections where it stalls) that keep thrust(lo) <= T, to a bracket of
+// 1e-12 of hi; hi itself when thrust(hi) <= T.
+double SpeedFromBelow(const PropModel& model, double rho, double thrust_n, double v_m_s, double lo, double hi,
+                      int steps);
 
 // A speed at or below the evaluator's root for thrust T in axial inflow v (thrust rising with
-// speed, M1): bisection on [0, kPropSpeedCeilingRadS] keeping thrust(lo) <= T; false when even
-// the ceiling gives less.
+// speed, M1): SpeedFromBelow on [0, kPropSpeedCeilingRadS]; false when even the ceiling gives
+// less.
 bool PropSpeedFromBelow(const PropModel& model, double rho, double thrust_n, double v_m_s, int steps, double* omega);
 
 // The group's drive and the pack's voltage range, for the data part of the cruise bound below.

@@ -57,7 +57,7 @@ void SpeedTorqueFromBelow(const PropGrid& g, const SegmentGrid& sgrid, const Pro
   *omega = g.omega[idx];
   *torque = sgrid.torque_suffix_min[idx];
   if (refine_steps <= 0 || idx + 1 >= kGrid) return;
-  const double lo = BisectSpeedFromBelow(model, rho, thrust_n, sgrid.v_m_s, g.omega[idx], g.omega[idx + 1], refine_steps);
+  const double lo = SpeedFromBelow(model, rho, thrust_n, sgrid.v_m_s, g.omega[idx], g.omega[idx + 1], refine_steps);
   if (lo == g.omega[idx]) return;
   PropEvaluation ev = model.Evaluate(lo, rho, sgrid.v_m_s);
   AdjustPropEvaluation(g.adjustment, diameter_m, &ev);
