@@ -28,23 +28,15 @@ bool ScenarioKeepsPower(const PropAdjustment& adj) { return adj.reynolds_fm_exp 
 
 }  // namespace
 
-bool PropSpeedFromBelow(const PropModel& model, double rho, double thrust_n, double v_m_s, int steps, double* omega) {
-  if (!(model.Evaluate(kPropSpeedCeilingRadS, rho, v_m_s).thrust_n >= thrust_n)) return false;
-  *omega = SpeedFromBelow(model, rho, thrust_n, v_m_s, 0.0, kPropSpeedCeilingRadS, steps);
-  return true;
-}
+namespace {
 
-double SpeedFromBelow(const PropModel& model, double rho, double thrust_n, double v_m_s, double lo, double hi,
-                      int steps) {
-  // Regula falsi (Illinois) on f = thrust - T over [lo, hi], keeping f(lo) <= 0 < f(hi): every
-  // step keeps lo at or below the root (M1), and a step that does not halve the bracket every
-  // second time is followed by a bisection. Stops when the bracket is kRelWidth of hi wide.
+// SpeedFromBelow's regula falsi (Illinois) on f = thrust - T over [lo, hi] with f(lo) <= 0 <
+// f(hi) given: every step keeps lo at or below the root (M1), and a step that does not halve
+// the bracket every second time is followed by a bisection. Stops when the bracket is
+// kRelWidth of hi wide.
+template <typename F>
+double NarrowFromBelow(F&& f, double lo, double f_lo, double hi, double f_hi, int steps) {
   constexpr double kRelWidth = 1e-12;
-  auto f = [&](double w) { return model.Evaluate(w, rho, v_m_s).thrust_n - thrust_n; };
-  double f_hi = f(hi);
-  if (f_hi <= 0) return hi;  // the whole bracket gives at most T (M1)
-  double f_lo = f(lo);
-  if (f_lo > 0) return lo;  // the caller's lo is above the root: nothing below it is checked
   int side = 0;
   double width_before = hi - lo;
   for (int i = 0; i < steps && hi - lo > kRelWidth * hi; ++i) {
@@ -67,6 +59,69 @@ double SpeedFromBelow(const PropModel& model, double rho, double thrust_n, doubl
     }
   }
   return lo;
+}
+
+}  // namespace
+
+bool PropSpeedFromBelow(const PropModel& model, double rho, double thrust_n, double v_m_s, int steps, double* omega,
+                        double start_rad_s) {
+  auto f = [&](double w) { return model.Evaluate(w, rho, v_m_s).thrust_n - thrust_n; };
+  const double f_top = f(kPropSpeedCeilingRadS);
+  if (!(f_top >= 0)) return false;
+  if (!(start_rad_s > 0 && start_rad_s < kPropSpeedCeilingRadS)) {
+    *omega = SpeedFromBelow(model, rho, thrust_n, v_m_s, 0.0, kPropSpeedCeilingRadS, steps);
+    return true;
+  }
+  // Bracket the root by factors of kStep from the start, then narrow it (M1 throughout).
+  constexpr double kStep = 1.05;
+  double lo = start_rad_s, f_lo = f(lo), hi = kPropSpeedCeilingRadS, f_hi = f_top;
+  if (f_lo <= 0) {
+    while (lo * kStep < kPropSpeedCeilingRadS) {
+      const double x = lo * kStep, fx = f(x);
+      if (fx > 0) {
+        hi = x;
+        f_hi = fx;
+        break;
+      }
+      lo = x;
+      f_lo = fx;
+    }
+    if (f_hi <= 0) {  // the ceiling itself gives T
+      *omega = kPropSpeedCeilingRadS;
+      return true;
+    }
+  } else {
+    hi = lo;
+    f_hi = f_lo;
+    lo = 0.0;
+    for (double x = hi / kStep; x > hi * 1e-3; x /= kStep) {
+      const double fx = f(x);
+      if (fx <= 0) {
+        lo = x;
+        f_lo = fx;
+        break;
+      }
+      hi = x;
+      f_hi = fx;
+    }
+    if (!(lo > 0)) f_lo = f(0.0);
+    if (f_lo > 0) {  // thrust above T at rest: no speed below the root is checked
+      *omega = 0.0;
+      return true;
+    }
+  }
+  *omega = NarrowFromBelow(f, lo, f_lo, hi, f_hi, steps);
+  return true;
+}
+
+double SpeedFromBelow(const PropModel& model, double rho, double thrust_n, double v_m_s, double lo, double hi,
+                      int steps) {
+  auto f = [&](double w) { return model.Evaluate(w, rho, v_m_s).thrust_n - thrust_n; };
+  const double f_hi = f(hi);
+  if (f_hi <= 0) return hi;  // the whole bracket gives at most T (M1)
+  const double f_lo = f(lo);
+  if (f_lo > 0) return lo;  // the caller's lo is above the root: nothing below it is checked
+  return NarrowFromBelow(f, lo, f_lo, hi, f_hi, steps);
 }
 
 namespace {
@@ -123,8 +178,9 @@ FreeCruiseSamples SampleFreeCruise(const Mission& m, const Segment& sg, const Cr
     if (!s.points) continue;
     // A speed from below (M1); when even the ceiling gives less than T_k the rotor turns faster
     // than the ceiling, and its torque there is at least the ceiling's (M1).
+    // The previous sample's speed starts the search (a guess: the bracket is checked).
     double w = kPropSpeedCeilingRadS;
-    PropSpeedFromBelow(*p.model, m.rho_kg_m3, s.thrust[k], ld.axial_airspeed_m_s, 40, &w);
+    PropSpeedFromBelow(*p.model, m.rho_kg_m3, s.thrust[k], ld.axial_airspeed_m_s, 40, &w, k > 0 ? s.omega[k - 1] : 0.0);
     PropEvaluation ev = p.model->Evaluate(w, m.rho_kg_m3, ld.axial_airspeed_m_s);
     AdjustPropEvaluation(p.adjustment, p.prop->diameter_m, &ev);  // the scenario's torque, as the evaluator's
     if (!(ev.torque_nm > 0)) {

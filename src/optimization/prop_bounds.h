@@ -25,9 +25,11 @@ double SpeedFromBelow(const PropModel& model, double rho, double thrust_n, doubl
                       int steps);
 
 // A speed at or below the evaluator's root for thrust T in axial inflow v (thrust rising with
-// speed, M1): SpeedFromBelow on [0, kPropSpeedCeilingRadS]; false when even the ceiling gives
-// less.
-bool PropSpeedFromBelow(const PropModel& model, double rho, double thrust_n, double v_m_s, int steps, double* omega);
+// speed, M1), on [0, kPropSpeedCeilingRadS]; false when even the ceiling gives less. With
+// start_rad_s in (0, ceiling) (a guess, such as a neighbouring sample's speed) the root is first
+// bracketed by factors of 1.05 from it, then narrowed as SpeedFromBelow.
+bool PropSpeedFromBelow(const PropModel& model, double rho, double thrust_n, double v_m_s, int steps, double* omega,
+                        double start_rad_s = 0.0);
 
 // The group's drive and the pack's voltage range, for the data part of the cruise bound below.
 struct CruiseDriveBound {

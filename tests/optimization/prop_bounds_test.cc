@@ -15,6 +15,7 @@
 #include "model/physics.h"
 #include "optimization/credibility.h"
 #include "optimization/mission_eval.h"
+#include "optimization/prop_speed.h"
 
 namespace dynosize {
 namespace {
@@ -72,6 +73,32 @@ double CruiseEnergyBoundJ(const Mission& m, const Pusher& p, double mass_kg, boo
                            DriveIsLossy(mp, ep.c1, ep.c0), with_prop_data};
   const double p_rotors = FreeCruiseRotorPowerLowerBoundW(m, sg, pb, with_drive ? &db : nullptr, mass_kg);
   return (p_rotors + m.vehicle.avionics_power_w) * SegmentDurationS(sg, sg.airspeed_m_s.hi);
+}
+
+// The speeds from below (prop_bounds.h) on UIUC's APC 8.5x7 tables in 18 m/s of inflow: at or
+// below the evaluator's root (PropSpeedForThrust), and within kTight of it, from no start and
+// from starts below, above and far from the root; false above the ceiling's thrust.
+TEST(PropBoundsTest, SpeedsFromBelowAreAtOrBelowTheRootAndTight) {
+  constexpr double kTight = 1e-9;  // relative: the bracket closes to 1e-12 of its top
+  const PropEntry& prop = Bundled().prop("uiuc_v1_ance_8.5x7.0_2");
+  const PropModel model(prop);
+  const double rho = 1.225, v = 18.0;
+  for (const double thrust_n : {1.0, 3.0, 6.0, 12.0}) {
+    double root = 0;
+    PropEvaluation ev;
+    ASSERT_TRUE(PropSpeedForThrust(model, thrust_n, rho, v, kPropSpeedCeilingRadS, &root, &ev)) << thrust_n;
+    for (const double start : {0.0, 0.5 * root, 0.99 * root, 1.01 * root, 3.0 * root, 20.0}) {
+      double w = -1;
+      ASSERT_TRUE(PropSpeedFromBelow(model, rho, thrust_n, v, 60, &w, start)) << thrust_n << " N from " << start;
+      EXPECT_LE(model.Evaluate(w, rho, v).thrust_n, thrust_n) << thrust_n << " N from " << start;
+      EXPECT_LE(w, root);
+      EXPECT_NEAR(w, root, kTight * root) << thrust_n << " N from " << start;
+    }
+    EXPECT_NEAR(SpeedFromBelow(model, rho, thrust_n, v, 0.0, kPropSpeedCeilingRadS, 60), root, kTight * root);
+  }
+  double w = 0;
+  const double top_n = model.Evaluate(kPropSpeedCeilingRadS, rho, v).thrust_n;
+  EXPECT_FALSE(PropSpeedFromBelow(model, rho, 2.0 * top_n, v, 60, &w, 100.0));
 }
 
 TEST(PropBoundsTest, FreeCruiseBoundIsBelowEveryFeasibleEnergyAndTightWithTheDrive) {
