@@ -72,6 +72,11 @@ bool MissionEvaluator::FullThrottleFrom(double ocv, double r_pack, FullThrottle*
   PropEvaluation ev;
   f->current_limited = false;
   double w_full = 0.0, w_capped = 0.0;  // the previous sag iteration's roots (0: none yet)
+  // The sag's fixed point v = G(v) (G: the pack's terminal voltage at the drive's power at v),
+  // found as the root of G(v) - v by secant steps once two iterates are known (the plain
+  // iteration v <- G(v) converges linearly, in about nine steps); a secant step outside
+  // (0, OCV] falls back to the plain one. The same stopping rule: |G(v) - v| < 1e-9 OCV.
+  double v_prev = 0.0, d_prev = 0.0;  // the previous iterate and its G(v) - v (none: v_prev 0)
   for (int outer = 0; outer < 40; ++outer) {
     // The speed where the motor's full-throttle torque (falling with speed, eqs 42, 48) meets
     // the propeller's static torque (rising, M1 of search.cc).
@@ -98,9 +103,19 @@ bool MissionEvaluator::FullThrottleFrom(double ocv, double r_pack, FullThrottle*
     const double p_w = lift_rotors_ * op.idc_a * v + m_.vehicle.avionics_power_w;
     const double disc = ocv * ocv - 4.0 * r_pack * p_w;
     const double next = disc >= 0.0 ? 0.5 * (ocv + std::sqrt(disc)) : 0.5 * ocv;
-    const bool done = std::fabs(next - v) < 1e-9 * ocv;
-    v = next;
-    if (done) break;
+    const double d = next - v;
+    if (std::fabs(d) < 1e-9 * ocv) {
+      v = next;
+      break;
+    }
+    double step = next;
+    if (v_prev > 0 && d != d_prev) {
+      const double secant = v - d * (v - v_prev) / (d - d_prev);
+      if (secant > 0 && secant <= ocv) step = secant;
+    }
+    v_prev = v;
+    d_prev = d;
+    v = step;
   }
   const double coax = m_.vehicle.coaxial ? std::cbrt(kCoaxialInducedPowerFactor * kCoaxialInducedPowerFactor) : 1.0;
   f->thrust_per_rotor_n = ev.thrust_n / coax;  // flight.h: a coaxial rotor's isolated-data equivalent
