@@ -47,8 +47,8 @@ class Tracker {
   explicit Tracker(MissionResult* r, const bool* stretch_phase = nullptr) : r_(r), stretch_phase_(stretch_phase) {}
   // value <= limit (or >= when `at_least`); relative slack (limit - value)/|limit|.
   // `name` and `unit` are literals: no string is built unless the check fails.
-  void Check(const char* name, const std::string& segment, double value, double limit,
-             const char* unit, bool at_least = false, SegmentResult* seg = nullptr) {
+  inline void Check(const char* name, const std::string& segment, double value, double limit,
+                    const char* unit, bool at_least = false, SegmentResult* seg = nullptr) {
     if (!std::isfinite(limit)) return;
     double slack = (limit - value) / std::max(std::fabs(limit), 1e-12);
     if (at_least) slack = -slack;
@@ -59,19 +59,24 @@ class Tracker {
       seg->active_limit_slack = slack;
       seg->active_limit_id = name;
     }
-    if (slack < 0) {
-      for (Violation& v : r_->violations) {
-        if (v.constraint == name) {
-          const double rel_old = std::fabs(v.excess()) / std::max(std::fabs(v.limit), 1e-12);
-          if (-slack > rel_old) v = Violation{name, segment, value, limit, unit, at_least};
-          return;
-        }
-      }
-      r_->violations.push_back(Violation{name, segment, value, limit, unit, at_least});
-    }
+    if (slack < 0) Fail(name, segment, value, limit, unit, at_least, slack);
   }
 
  private:
+  // A failed check: kept when it is the constraint's first or worst so far (out of line: the
+  // passing checks, nearly all of them, stay small enough to inline).
+  [[gnu::noinline]] void Fail(const char* name, const std::string& segment, double value, double limit,
+                              const char* unit, bool at_least, double slack) {
+    for (Violation& v : r_->violations) {
+      if (v.constraint == name) {
+        const double rel_old = std::fabs(v.excess()) / std::max(std::fabs(v.limit), 1e-12);
+        if (-slack > rel_old) v = Violation{name, segment, value, limit, unit, at_least};
+        return;
+      }
+    }
+    r_->violations.push_back(Violation{name, segment, value, limit, unit, at_least});
+  }
+
   MissionResult* r_;
   const bool* stretch_phase_;
 };
