@@ -1,5 +1,7 @@
 #include "optimization/prop_speed.h"
 
+#include <cmath>
+
 namespace dynosize {
 
 bool PropSpeedForThrust(const PropModel& prop, double thrust_n, double rho, double airspeed,
@@ -18,9 +20,13 @@ bool PropSpeedForThrust(const PropModel& prop, double thrust_n, double rho, doub
     *ev = eb;
     return false;
   }
+  // Illinois steps in x = omega^2, in which the thrust is close to linear (T = CT*rho*n^2*D^4
+  // with CT slowly varying): about 8 steps instead of 13 in omega itself. The bracket and the
+  // stopping rule are omega's, as before.
   int side = 0;
   for (int it = 0; it < 200; ++it) {
-    const double c = (a * fb - b * fa) / (fb - fa);
+    double c = std::sqrt((a * a * fb - b * b * fa) / (fb - fa));
+    if (!(c > a && c < b)) c = 0.5 * (a + b);
     const PropEvaluation ec = prop.Evaluate(c, rho, airspeed);
     const double fc = ec.thrust_n - thrust_n;
     if (fc > 0) {
