@@ -30,8 +30,8 @@ bool ScenarioKeepsPower(const PropAdjustment& adj) { return adj.reynolds_fm_exp 
 
 namespace {
 
-// SpeedFromBelow's regula falsi (Illinois) on f = thrust - T over [lo, hi] with f(lo) <= 0 <
-// f(hi) given: every step keeps lo at or below the root (M1), and a step that does not halve
+// SpeedFromBelow's regula falsi (Illinois, secant steps in omega^2) on f = thrust - T over
+// [lo, hi] with f(lo) <= 0 < f(hi) given: every step keeps lo at or below the root (M1), and a step that does not halve
 // the bracket every second time is followed by a bisection. Stops when the bracket is
 // kRelWidth of hi wide.
 template <typename F>
@@ -42,7 +42,8 @@ double NarrowFromBelow(F&& f, double lo, double f_lo, double hi, double f_hi, in
   for (int i = 0; i < steps && hi - lo > kRelWidth * hi; ++i) {
     const bool bisect = i % 2 == 1 && hi - lo > 0.5 * width_before;
     if (i % 2 == 1) width_before = hi - lo;
-    double x = bisect ? 0.5 * (lo + hi) : (lo * f_hi - hi * f_lo) / (f_hi - f_lo);
+    // The secant in omega^2, where the thrust is close to linear (as PropSpeedForThrust's).
+    double x = bisect ? 0.5 * (lo + hi) : std::sqrt((lo * lo * f_hi - hi * hi * f_lo) / (f_hi - f_lo));
     if (!(x > lo && x < hi)) x = 0.5 * (lo + hi);
     if (!(x > lo && x < hi)) break;  // no representable point between them
     const double fx = f(x);
