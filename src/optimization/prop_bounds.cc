@@ -31,9 +31,9 @@ bool ScenarioKeepsPower(const PropAdjustment& adj) { return adj.reynolds_fm_exp 
 namespace {
 
 // SpeedFromBelow's regula falsi (Illinois, secant steps in omega^2) on f = thrust - T over
-// [lo, hi] with f(lo) <= 0 < f(hi) given: every step keeps lo at or below the root (M1), and a step that does not halve
-// the bracket every second time is followed by a bisection. Stops when the bracket is
-// kRelWidth of hi wide.
+// [lo, hi] with f(lo) <= 0 < f(hi) given: every step keeps lo at or below the root (M1), and
+// a step that does not halve the bracket every second time is followed by a bisection. Stops
+// when the bracket is kRelWidth of hi wide.
 template <typename F>
 double NarrowFromBelow(F&& f, double lo, double f_lo, double hi, double f_hi, int steps) {
   constexpr double kRelWidth = 1e-12;
@@ -73,12 +73,14 @@ bool PropSpeedFromBelow(const PropModel& model, double rho, double thrust_n, dou
     *omega = SpeedFromBelow(model, rho, thrust_n, v_m_s, 0.0, kPropSpeedCeilingRadS, steps);
     return true;
   }
-  // Bracket the root by factors of kStep from the start, then narrow it (M1 throughout).
-  constexpr double kStep = 1.05;
+  // Bracket the root by steps from the start that grow as factors 1.05, 1.05^2, 1.05^4, ...
+  // (a near guess costs one step, a far one a few), then narrow it (M1 throughout).
+  constexpr double kFirstStep = 1.05;
   double lo = start_rad_s, f_lo = f(lo), hi = kPropSpeedCeilingRadS, f_hi = f_top;
+  double step = kFirstStep;
   if (f_lo <= 0) {
-    while (lo * kStep < kPropSpeedCeilingRadS) {
-      const double x = lo * kStep, fx = f(x);
+    for (; lo * step < kPropSpeedCeilingRadS; step *= step) {
+      const double x = lo * step, fx = f(x);
       if (fx > 0) {
         hi = x;
         f_hi = fx;
@@ -95,7 +97,7 @@ bool PropSpeedFromBelow(const PropModel& model, double rho, double thrust_n, dou
     hi = lo;
     f_hi = f_lo;
     lo = 0.0;
-    for (double x = hi / kStep; x > hi * 1e-3; x /= kStep) {
+    for (double x = hi / step; x > start_rad_s * 1e-3; step *= step, x = hi / step) {
       const double fx = f(x);
       if (fx <= 0) {
         lo = x;

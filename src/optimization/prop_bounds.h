@@ -19,15 +19,16 @@ inline constexpr double kPropSpeedCeilingRadS = 6000.0;
 
 // A speed at or below the root of thrust(omega) = T in axial inflow v on [lo, hi] (thrust
 // rising with speed, docs/search.md#m1, and thrust(lo) <= T): at most `steps` bracketing steps
-// (regula falsi, with bisections where it stalls) that keep thrust(lo) <= T, to a bracket of
-// 1e-12 of hi; hi itself when thrust(hi) <= T.
+// (regula falsi in omega^2, with bisections where it stalls) that keep thrust(lo) <= T, to a
+// bracket of 1e-12 of hi; hi itself when thrust(hi) <= T.
 double SpeedFromBelow(const PropModel& model, double rho, double thrust_n, double v_m_s, double lo, double hi,
                       int steps);
 
 // A speed at or below the evaluator's root for thrust T in axial inflow v (thrust rising with
 // speed, M1), on [0, kPropSpeedCeilingRadS]; false when even the ceiling gives less. With
 // start_rad_s in (0, ceiling) (a guess, such as a neighbouring sample's speed) the root is first
-// bracketed by factors of 1.05 from it, then narrowed as SpeedFromBelow.
+// bracketed by growing steps from it (factors 1.05, 1.05^2, 1.05^4, ...), then narrowed as
+// SpeedFromBelow.
 bool PropSpeedFromBelow(const PropModel& model, double rho, double thrust_n, double v_m_s, int steps, double* omega,
                         double start_rad_s = 0.0);
 
