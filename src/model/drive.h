@@ -127,6 +127,10 @@ class Drive {
     double throttle = 0.0, idc_a = 0.0, irms_a = 0.0;
   };
   InverseCurrents InverseLight(double vdc_v, double torque_nm, double omega_rad_s) const;
+  // Inverse's PDC = VDC*IDC (eq 59) from InverseLight, bit for bit (the bounds' drive floors).
+  double InversePdcW(double vdc_v, double torque_nm, double omega_rad_s) const {
+    return vdc_v * InverseLight(vdc_v, torque_nm, omega_rad_s).idc_a;
+  }
   // Inverse's PAC (eq 47) from InverseLight's numbers at the same VDC, bit for bit.
   double InverseAcPower(double vdc_v, const InverseCurrents& c, double torque_nm, double omega_rad_s) const;
 

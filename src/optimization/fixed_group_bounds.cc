@@ -184,7 +184,7 @@ void FixedGroupPowerBounds(SearchContext* ctx) {
         const double q = prop.Evaluate(lo, m.rho_kg_m3, ld.axial_airspeed_m_s).torque_nm;
         if (!(q > 0)) continue;
         const Drive d(ScenarioMotorParams(*parts.motor, m), ScenarioEscParams(*parts.esc, m.objective.ranking));
-        const double pdc = std::min(d.Inverse(bo.v_full, q, lo).pdc_w, d.Inverse(bo.v_cut, q, lo).pdc_w);
+        const double pdc = std::min(d.InversePdcW(bo.v_full, q, lo), d.InversePdcW(bo.v_cut, q, lo));
         p_lb[si] += ld.rotors * std::max(0.0, pdc);
       }
       // Monotone in the mass by M3; the running maximum keeps the table so under rounding too

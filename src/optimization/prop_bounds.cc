@@ -235,8 +235,8 @@ double FreeCruiseRotorPowerFromSamples(const Mission& m, const Segment& sg, cons
   bool drive_ok = drive != nullptr && drive->drive != nullptr && s.points;
   for (int k = 0; k <= kFreeCruiseCells && drive_ok; ++k) {
     const Drive& d = *drive->drive;
-    const double pdc = std::min(d.Inverse(drive->v_full_v, s.torque[k], s.omega[k]).pdc_w,
-                                d.Inverse(drive->v_cut_v, s.torque[k], s.omega[k]).pdc_w);
+    const double pdc = std::min(d.InversePdcW(drive->v_full_v, s.torque[k], s.omega[k]),
+                                d.InversePdcW(drive->v_cut_v, s.torque[k], s.omega[k]));
     drive_w[k] = s.rotors * std::max(0.0, pdc);
     if (k > 0 && drive_w[k] < drive_w[k - 1]) drive_ok = false;  // M4, M2 not seen on the samples
   }

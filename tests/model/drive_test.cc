@@ -231,6 +231,7 @@ TEST(Drive, InverseLightEqualsInverse) {
       EXPECT_EQ(c.irms_a, p.irms_a) << i;
       EXPECT_EQ(d.InverseAcPower(vdc, c, q, w), p.pac_w) << i;
       EXPECT_EQ(vdc * c.idc_a, p.pdc_w) << i;  // PDC = VDC*IDC (eq 59), as the search reads it
+      EXPECT_EQ(d.InversePdcW(vdc, q, w), p.pdc_w) << i;
     }
   }
   EXPECT_GT(saturated, 50);  // the saturated branch is exercised
