@@ -178,6 +178,7 @@ void GrowthOf(benchmark::State& state, const char* file, bool free_groups) {
     state.counters["outer_pairs_s_" + n] = s[i].joint.outer_pairs_s;
     state.counters["class_s_" + n] = s[i].joint.class_searches_s;
     state.counters["triple_s_" + n] = s[i].joint.triple_searches_s;
+    state.counters["below_final_" + n] = static_cast<double>(s[i].joint.outer_pairs_below_final);
   }
 }
 

@@ -615,6 +615,12 @@ SearchResult JointSearch(const Mission& m, const Catalog& cat, const SearchOptio
   out.joint.setup_s = setup_s;
   out.joint.outer_pairs_s = out.candidate_seconds - setup_s;
   JointLoop(m, cat, opt, cutoff, cache, &jb, pairs, block, first_search_budget, &out).Run();
+  if (!out.interrupted && static_cast<int>(out.best.size()) >= opt.top_n) {
+    const double nth = out.best.back().result.score;
+    out.joint.outer_pairs_below_final =
+        std::partition_point(pairs.begin(), pairs.end(), [nth](const OuterPair& x) { return x.bound < nth; }) -
+        pairs.begin();
+  }
   out.pruned = out.combinations - out.searched - out.unsettled;
   out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return out;

@@ -70,6 +70,10 @@ struct SearchResult {
   struct JointPhases {
     double setup_s = 0.0, outer_pairs_s = 0.0, class_searches_s = 0.0, triple_searches_s = 0.0;
     long long class_searches = 0, triple_searches = 0;
+    // The outer pairs whose first-pass bound is below the final N-th best's score (0 when fewer
+    // than N were found or the search was stopped): the pairs any search taking them by that
+    // bound must take, however it orders or batches them (docs/joint-search.md, growth).
+    long long outer_pairs_below_final = 0;
   };
   JointPhases joint;
 };

@@ -51,6 +51,7 @@ std::string JointPhasesText(const SearchResult::JointPhases& j) {
     << FixedText(j.outer_pairs_s, 3) << " s, " << j.class_searches << " class searches (virtual ESC) "
     << FixedText(j.class_searches_s, 3) << " s, " << j.triple_searches << " triple searches "
     << FixedText(j.triple_searches_s, 3) << " s";
+  if (j.outer_pairs_below_final > 0) o << ", " << j.outer_pairs_below_final << " outer pairs bounded below the N-th best";
   return o.str();
 }
 

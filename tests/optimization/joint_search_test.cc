@@ -15,6 +15,7 @@
 #include <map>
 #include <memory>
 #include <random>
+#include <set>
 #include <string>
 #include <tuple>
 #include <vector>
@@ -698,6 +699,18 @@ TEST_F(JointSearchTest, PhasesAreCountedWithinTheSearchsTime) {
   EXPECT_GE(j.outer_pairs_s, 0.0);
   EXPECT_GT(j.class_searches + j.triple_searches, 0);
   EXPECT_LE(j.setup_s + j.outer_pairs_s + j.class_searches_s + j.triple_searches_s, s.seconds);
+  // The outer (pusher, group 1) pairs bounded below the final N-th best: at least those of the
+  // results that beat it (a pair's bound is at or below its combinations' scores), at most the
+  // pairs bounded.
+  ASSERT_EQ(s.best.size(), 3u);
+  std::set<std::tuple<const MotorEntry*, const PropEntry*, const BatteryEntry*, int>> beating;
+  for (const RankedCombination& r : s.best) {
+    if (!(r.result.score < s.best.back().result.score)) continue;
+    const GroupParts p = r.combination.Parts(1);
+    beating.insert({p.motor, p.prop, r.combination.battery, r.combination.cells});
+  }
+  EXPECT_GE(j.outer_pairs_below_final, static_cast<long long>(beating.size()));
+  EXPECT_LE(j.outer_pairs_below_final, s.candidate_pairs);
 }
 
 // An inner search put back over its first-search budget (G2's order): its results lower the

@@ -156,6 +156,10 @@ TEST(SearchSummaryTest, TheJointSearchsPhasesAreReportedOnlyForAJointSearch) {
       "1.500 s, 2 triple searches 0.125 s";
   EXPECT_NE(s.BriefReport().find("\n" + line), std::string::npos) << s.BriefReport();
   EXPECT_NE(s.FullReport().find("  " + line + "\n"), std::string::npos) << s.FullReport();
+  // The pairs bounded below the final N-th best, when the search knows them.
+  s.joint.outer_pairs_below_final = 42;
+  EXPECT_NE(s.BriefReport().find(line + ", 42 outer pairs bounded below the N-th best"), std::string::npos)
+      << s.BriefReport();
 }
 
 }  // namespace
