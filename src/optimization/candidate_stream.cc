@@ -60,6 +60,23 @@ std::vector<std::size_t> KeyedClasses(const SearchContext& ctx, const MissionFac
   return limit;
 }
 
+// f with only the propellers that ctx's pair mask (motor * props + propeller) marks for at
+// least one motor; f itself without a mask.
+MissionFacts MaskedFacts(const SearchContext& ctx, const MissionFacts& f) {
+  if (!ctx.pair_mask) return f;
+  const std::size_t n_props = ctx.catalog->props().size();
+  std::vector<char> any(n_props, 0);
+  for (std::size_t k = 0; k < ctx.pair_mask->size(); ++k) {
+    if ((*ctx.pair_mask)[k]) any[k % n_props] = 1;
+  }
+  MissionFacts out = f;
+  out.frame_ok_props.clear();
+  for (const int pi : f.frame_ok_props) {
+    if (any[static_cast<std::size_t>(pi)]) out.frame_ok_props.push_back(pi);
+  }
+  return out;
+}
+
 }  // namespace
 
 // Stage 4 on demand (CandidateStream). Per set-up motor: its class's keys (R11) are walked in
@@ -164,19 +181,23 @@ CandidateStream::CandidateStream(const SearchContext& ctx, int threads, std::siz
   for (std::size_t mi = 0; mi < cls.size(); ++mi) {
     if (setups[mi]) used[static_cast<std::size_t>(cls[mi])] = 1;
   }
+  // Keys only for the propellers the pair mask lets through with some motor (G2's inner filter
+  // lets a few in ten): a pair the mask refuses is never bounded, and left unwalked it stays
+  // open, counted under objective_bound when the search ends, as when Expand skips it.
+  const MissionFacts keyed_facts = MaskedFacts(ctx, s.f);
   // A class's keys for the propellers that may give one below the cutoff (KeyedClasses); the
   // others' keys are not below it, so the walk never reaches them.
-  const std::vector<std::size_t> keyed = KeyedClasses(ctx, s.f, classes, cutoff, threads);
+  const std::vector<std::size_t> keyed = KeyedClasses(ctx, keyed_facts, classes, cutoff, threads);
   ForEachOnThreads(s.classes.size(), threads, [&](int, std::size_t c) {
     const bool lossy = c + 1 < s.classes.size();  // the last class is the one without R11
     if (!used[c]) return;
     if (!lossy || !std::isfinite(cutoff)) {
-      s.classes[c] = ClassKeys(ctx, s.f, classes[c], lossy);
+      s.classes[c] = ClassKeys(ctx, keyed_facts, classes[c], lossy);
       return;
     }
     MissionFacts fc = s.f;
     fc.frame_ok_props.clear();
-    for (const int pi : s.f.frame_ok_props) {
+    for (const int pi : keyed_facts.frame_ok_props) {
       if (keyed[static_cast<std::size_t>(pi)] > c) fc.frame_ok_props.push_back(pi);
     }
     s.classes[c] = ClassKeys(ctx, fc, classes[c], true);

@@ -240,6 +240,74 @@ TEST_F(SearchStagesTest, CandidateStreamBuiltWithACutoffDrawsTheSamePairsBelowIt
   }
 }
 
+// A pair mask (the joint search's inner filter, G2): the stream draws exactly the sorted list's
+// pairs that the mask lets through, in the same order, with or without a cutoff; a propeller
+// the mask refuses with every motor gets no keys, and every combination is still counted once:
+// drawn, removed by a rule, or left open (counted under objective_bound when the search ends).
+TEST_F(SearchStagesTest, CandidateStreamWithAPairMaskDrawsTheListsPairsItLetsThrough) {
+  const Catalog cat = SmallCatalog();
+  for (const char* objective : {"max_endurance", "min_energy"}) {
+    const Mission m = StageQuadFor(objective);
+    SearchContext ctx;
+    PrepareStages(m, cat, &ctx);
+    CandidateList all = BuildCandidates(ctx, 1);
+    std::sort(all.candidates.begin(), all.candidates.end(), CandidateBefore);
+    const std::size_t n_props = cat.props().size();
+    // Every other propeller of the list's (the first with every motor, the others with every
+    // other motor); the rest refused with every motor.
+    std::set<int> listed;
+    for (const Candidate& c : all.candidates) listed.insert(c.prop);
+    ASSERT_GE(listed.size(), 3u) << objective;
+    std::vector<char> mask(cat.motors().size() * n_props, 0);
+    int nth_listed = 0;
+    for (const int pi : listed) {
+      if (nth_listed++ % 2 != 0) continue;
+      for (std::size_t mi = 0; mi < cat.motors().size(); ++mi) {
+        mask[mi * n_props + static_cast<std::size_t>(pi)] = nth_listed == 1 || mi % 2 == 0 ? 1 : 0;
+      }
+    }
+    std::vector<Candidate> want;
+    for (const Candidate& c : all.candidates) {
+      if (mask[static_cast<std::size_t>(c.motor) * n_props + static_cast<std::size_t>(c.prop)]) want.push_back(c);
+    }
+    ASSERT_GT(want.size(), 3u) << objective;
+    ASSERT_LT(want.size(), all.candidates.size()) << objective;
+    auto combinations = [&](const std::vector<Candidate>& list) {
+      long long n = 0;
+      for (const Candidate& c : list) n += ctx.escs.rated[static_cast<std::size_t>(c.option)];
+      return n;
+    };
+    auto total = [&](const std::map<std::string, long long>& pruned, long long open, long long drawn) {
+      long long n = open + drawn;
+      for (const auto& [rule, k] : pruned) n += k;
+      return n;
+    };
+    long long all_pruned = 0;
+    for (const auto& [rule, k] : all.pruned_by) all_pruned += k;
+    const long long everything = all_pruned + combinations(all.candidates);
+    ctx.pair_mask = &mask;
+    for (const double cutoff : {kInfinity, want[want.size() / 2].bound}) {
+      CandidateStream stream(ctx, 2, 1, cutoff);
+      std::vector<Candidate> got;
+      for (Candidate c; stream.Next(cutoff, &c) && c.bound < cutoff;) got.push_back(c);
+      std::size_t n_want = 0;
+      while (n_want < want.size() && want[n_want].bound < cutoff) ++n_want;
+      ASSERT_EQ(got.size(), n_want) << objective << ", cutoff " << cutoff;
+      for (std::size_t i = 0; i < got.size(); ++i) {
+        EXPECT_TRUE(got[i].motor == want[i].motor && got[i].prop == want[i].prop && got[i].option == want[i].option &&
+                    got[i].bound == want[i].bound)
+            << objective << ", cutoff " << cutoff << ", pair " << i;
+      }
+      if (std::isinf(cutoff)) {
+        std::map<std::string, long long> pruned_by;
+        stream.MergePrunedInto(&pruned_by);
+        EXPECT_EQ(total(pruned_by, stream.open_combinations(), combinations(got)), everything) << objective;
+        EXPECT_GT(stream.open_combinations(), 0) << objective << ": the refused propellers' pairs stay open";
+      }
+    }
+  }
+}
+
 // R11 against the exact evaluator: for a motor whose drives cannot create energy, the key of
 // (propeller, option) at the motor's mass is at or below the score of every feasible
 // combination with it, over max_endurance and min_energy (compared without tolerance).
