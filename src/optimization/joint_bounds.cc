@@ -46,6 +46,7 @@ JointBounds::OuterEnergy OuterEnergyByMass(double raw_kg, double floor_kg, doubl
 }
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr double kRotorCeilingRadS = 1e5;  // RotorLowerBound's: ~1e6 rpm, beyond any motor
 constexpr std::size_t kNoIndex = std::numeric_limits<std::size_t>::max();  // OuterBound's: not a free cruise
 
@@ -80,6 +81,23 @@ RotorBound RotorLowerBound(const Mission& m, const Segment& sg, const PropEntry&
   return rb;
 }
 
+SegmentBound FreeCruiseSegmentBound(const Mission& m, std::size_t si, const GroupParts& parts, const Drive& drive,
+                                    const PropModel& model, const BatteryOption& bo, double mass_kg, bool with_power) {
+  const Segment& sg = m.segments[si];
+  SegmentBound b;
+  b.power_w = m.vehicle.avionics_power_w;
+  // R7 over the range: a wing-borne cruise's inflow is its airspeed, at least lo, and the
+  // shaft turns no faster than n_max (below), so J >= lo/(n_max*D) at every airspeed.
+  const bool static_only = model.data_kind() != PropDataKind::kTables || parts.prop->j_tables.empty();
+  const double n_max = drive.NoLoadSpeed(bo.v_full, 1.0) / (2.0 * kPi);
+  if (static_only && sg.lift_to_drag > 0 && n_max > 0 &&
+      sg.airspeed_m_s.lo / (n_max * parts.prop->diameter_m) > m.constraints.max_static_advance_ratio) {
+    b.infeasible = "prop_no_forward_flight_data";
+  }
+  if (with_power) b.power_w += FreeCruisePowerLowerBoundW(m, sg, parts, model, mass_kg);
+  return b;
+}
+
 SegmentBound SegmentPowerBound(const Mission& m, std::size_t si, const GroupParts& parts, const MotorParams& mp,
                                const Drive& drive, double tr_max, double esc_max_current_a, const PropModel& model,
                                const BatteryOption& bo, double mass_kg, const RotorBound& rb) {
@@ -89,17 +107,7 @@ SegmentBound SegmentPowerBound(const Mission& m, std::size_t si, const GroupPart
   b.power_w = m.vehicle.avionics_power_w;
   if (sg.type == SegmentType::kShaft) return b;
   const bool static_only = model.data_kind() != PropDataKind::kTables || parts.prop->j_tables.empty();
-  if (sg.type == SegmentType::kCruise && sg.airspeed_m_s.free()) {
-    // R7 over the range: a wing-borne cruise's inflow is its airspeed, at least lo, and the
-    // shaft turns no faster than n_max (below), so J >= lo/(n_max*D) at every airspeed.
-    const double n_max = drive.NoLoadSpeed(bo.v_full, 1.0) / (2.0 * kPi);
-    if (static_only && sg.lift_to_drag > 0 && n_max > 0 &&
-        sg.airspeed_m_s.lo / (n_max * parts.prop->diameter_m) > k.max_static_advance_ratio) {
-      b.infeasible = "prop_no_forward_flight_data";
-    }
-    b.power_w += FreeCruisePowerLowerBoundW(m, sg, parts, model, mass_kg);
-    return b;
-  }
+  if (sg.type == SegmentType::kCruise && sg.airspeed_m_s.free()) return FreeCruiseSegmentBound(m, si, parts, drive, model, bo, mass_kg, true);
   if (!(rb.omega_rad_s > 0)) return b;
   // R3 at the bound point.
   const OperatingPoint hi = drive.Inverse(bo.v_full, rb.torque_nm, rb.omega_rad_s);
@@ -269,6 +277,10 @@ JointBounds::JointBounds(const Mission& m, const Catalog& cat, const PropGridCac
   rotor_done_.assign(n_cache, 0);
   mass_floor_kg_.assign(n_cache, -1.0);
   cruise_index_.assign(n_cache, -1);
+  for (std::size_t si : outer_segments_) {
+    const Segment& sg = m.segments[si];
+    if (sg.type == SegmentType::kCruise && sg.airspeed_m_s.free()) cruise_momentum_w_.assign(n_cache, kNaN);
+  }
   if (free.size() == 2 && m.objective.type == ObjectiveType::kMinEnergy) {
     inner_ = free[0] == outer_ ? free[1] : free[0];
     frontier_.assign(options_.size(), std::vector<std::vector<FrontierPoint>>(kFrontierLevels));
@@ -394,6 +406,33 @@ const RotorBound& JointBounds::OuterRotor(int prop, std::size_t si, std::size_t 
   return rotor_cache_[i];
 }
 
+double JointBounds::CruiseMomentumAboveW(int prop, std::size_t si, std::size_t o, double mass_kg) {
+  double grid_kg = 0;
+  const std::size_t i = RotorCacheIndex(prop, si, o, mass_kg, &grid_kg) + 1;  // the grid mass above
+  if (i % static_cast<std::size_t>(kFixedPowerMasses) == 0 || !(grid_kg <= mass_kg)) return kInf;  // the top
+  if (std::isnan(cruise_momentum_w_[i])) {
+    const int k = static_cast<int>(i % static_cast<std::size_t>(kFixedPowerMasses));
+    const double above_kg = mass_min_kg_[o] * std::pow(kFixedPowerMassStep, k);
+    const std::size_t pi = static_cast<std::size_t>(prop);
+    const CruisePropBound pb{&cat_.props()[pi], models_[pi], adjustments_[pi], true};
+    cruise_momentum_w_[i] = FreeCruiseRotorPowerLowerBoundW(m_, m_.segments[si], pb, nullptr, above_kg);
+  }
+  return cruise_momentum_w_[i];
+}
+
+SegmentBound JointBounds::OuterSegmentBound(std::size_t si, const GroupParts& parts, const Drive& drive, double tr_max,
+                                            double esc_max_a, int prop, std::size_t o, double mass_kg, double known_w) {
+  const Segment& sg = m_.segments[si];
+  const PropModel& model = *models_[static_cast<std::size_t>(prop)];
+  if (sg.type == SegmentType::kCruise && sg.airspeed_m_s.free() && !cruise_momentum_w_.empty()) {
+    // Held 1e-9 above: the momentum bound rises with the mass, but not to the last bit.
+    const double above_w = m_.vehicle.avionics_power_w + CruiseMomentumAboveW(prop, si, o, mass_kg) * (1.0 + 1e-9);
+    return FreeCruiseSegmentBound(m_, si, parts, drive, model, options_[o], mass_kg, !(above_w < known_w));
+  }
+  return SegmentPowerBound(m_, si, parts, drive.motor(), drive, tr_max, esc_max_a, model, options_[o], mass_kg,
+                           OuterRotor(prop, si, o, mass_kg));
+}
+
 const FreeCruiseSamples& JointBounds::OuterCruise(int prop, std::size_t si, std::size_t o, double mass_kg) {
   double mk = 0;
   const std::size_t i = RotorCacheIndex(prop, si, o, mass_kg, &mk);
@@ -451,7 +490,6 @@ double JointBounds::OuterBound(const Drive& drive, const GroupParts& parts, doub
                                double tr_max, int prop, std::size_t o, double mass_kg, const char** why,
                                double* irms_lb, OuterEnergy* outer_energy) {
   if (outer_energy) outer_energy->valid = false;
-  const MotorParams& mp = drive.motor();
   scratch_ = other_power_w_[o];
   *irms_lb = 0;
   for (double p : scratch_) {
@@ -496,9 +534,7 @@ double JointBounds::OuterBound(const Drive& drive, const GroupParts& parts, doub
     }
   }
   for (std::size_t si : outer_segments_) {
-    const RotorBound& rb = OuterRotor(prop, si, o, mass_kg);
-    const SegmentBound b = SegmentPowerBound(m_, si, parts, mp, drive, tr_max, esc_max_a,
-                                             *models_[static_cast<std::size_t>(prop)], options_[o], mass_kg, rb);
+    const SegmentBound b = OuterSegmentBound(si, parts, drive, tr_max, esc_max_a, prop, o, mass_kg, cruise_floor_w_[si]);
     if (b.infeasible) {
       *why = b.infeasible;
       return kInf;
@@ -528,10 +564,6 @@ double JointBounds::OuterBound(const Drive& drive, const GroupParts& parts, doub
   auto e_outer_at = [&](double kg) {
     double e = 0;
     for (std::size_t si : outer_segments_) {
-      const SegmentBound b = SegmentPowerBound(m_, si, parts, mp, drive, tr_max, esc_max_a,
-                                               *models_[static_cast<std::size_t>(prop)], options_[o], kg,
-                                               OuterRotor(prop, si, o, kg));
-      if (b.infeasible) return kInf;
       double floor_w = cruise_floor_w_[si];  // at raw_kg <= kg
       if (cruise_point_at_[si] != kNoIndex) {
         double grid_kg = 0;
@@ -542,6 +574,8 @@ double JointBounds::OuterBound(const Drive& drive, const GroupParts& parts, doub
         }
         floor_w = std::max(floor_w, cruise_point_w_[si]);
       }
+      const SegmentBound b = OuterSegmentBound(si, parts, drive, tr_max, esc_max_a, prop, o, kg, floor_w);
+      if (b.infeasible) return kInf;
       e += std::max(b.power_w, floor_w) * t_min(si);
     }
     return e;

@@ -80,6 +80,11 @@ SegmentBound SegmentPowerBound(const Mission& m, std::size_t si, const GroupPart
                                const Drive& drive, double tr_max, double esc_max_current_a, const PropModel& model,
                                const BatteryOption& bo, double mass_kg, const RotorBound& rb);
 
+// SegmentPowerBound's part for a free-airspeed cruise (R7 over the range, then momentum theory
+// at mass_kg); with_power false: R7 only, power_w the avionics' alone.
+SegmentBound FreeCruiseSegmentBound(const Mission& m, std::size_t si, const GroupParts& parts, const Drive& drive,
+                                    const PropModel& model, const BatteryOption& bo, double mass_kg, bool with_power);
+
 // R4's assembly from per-segment terminal power bounds (W, avionics included, by segment):
 // min_energy the sum of power x shortest duration, max_endurance the energy budget of the
 // largest pack; -inf when no bound applies (max_efficiency, a stretched free-airspeed cruise).
@@ -160,6 +165,17 @@ class JointBounds {
                     int prop, std::size_t o, double mass_kg, const char** why, double* irms_lb,
                     OuterEnergy* outer_energy = nullptr);
   const RotorBound& OuterRotor(int prop, std::size_t si, std::size_t o, double mass_kg);
+  // SegmentPowerBound for the outer group's segment si where the caller takes the larger of its
+  // power and known_w (W, a bound of its own): a free cruise's momentum bound at mass_kg (a
+  // walk over 33 samples) is left out when CruiseMomentumAboveW shows it at or below known_w,
+  // so the larger is the same.
+  SegmentBound OuterSegmentBound(std::size_t si, const GroupParts& parts, const Drive& drive, double tr_max,
+                                 double esc_max_a, int prop, std::size_t o, double mass_kg, double known_w);
+  // A free cruise's momentum bound (FreeCruisePowerLowerBoundW with a drive that cannot create
+  // energy, the larger case) at the grid mass above mass_kg's (RotorCacheIndex), so at or above
+  // the bound at mass_kg (M3: the thrust rises with the mass); +inf when mass_kg is at or above
+  // the grid's top. Cached per grid mass.
+  double CruiseMomentumAboveW(int prop, std::size_t si, std::size_t o, double mass_kg);
   // The caches' index of (prop, si, o) at the grid mass at or below mass_kg (G1's geometric grid
   // from the option's lightest vehicle), and that grid mass (kg).
   std::size_t RotorCacheIndex(int prop, std::size_t si, std::size_t o, double mass_kg, double* grid_kg) const;
@@ -233,6 +249,9 @@ class JointBounds {
   std::vector<char> rotor_done_;
   // OuterCruise's cache: per rotor_cache_ index, the entry in cruise_samples_ (-1: not yet).
   std::vector<int> cruise_index_;
+  // CruiseMomentumAboveW's cache by RotorCacheIndex (NaN: not yet; empty without a free cruise
+  // in the outer group).
+  std::vector<double> cruise_momentum_w_;
   std::deque<FreeCruiseSamples> cruise_samples_;
   std::vector<PropAdjustment> adjustments_;  // per propeller, the ranking scenario's
   std::vector<double> scratch_;

@@ -101,6 +101,42 @@ TEST(PropBoundsTest, SpeedsFromBelowAreAtOrBelowTheRootAndTight) {
   EXPECT_FALSE(PropSpeedFromBelow(model, rho, 2.0 * top_n, v, 60, &w, 100.0));
 }
 
+// The joint search leaves a free cruise's momentum bound out of a pair's bound when its value at
+// the next heavier grid mass is below what the pair's other bounds give (JointBounds::
+// OuterSegmentBound): that needs the bound to rise with the vehicle's mass (M3), checked here
+// on five propellers (four with forward-flight tables, one static-only) from 1 to 4 kg, by
+// distance (the example's cruise) and by duration, for a drive that cannot create energy; for
+// one that can, the bound is 0, below it.
+TEST(PropBoundsTest, FreeCruiseMomentumBoundRisesWithTheMass) {
+  constexpr double kRounding = 1e-12;  // relative; the search holds its comparison 1e-9 above
+  for (const bool by_distance : {true, false}) {
+    Mission m = Quadplane(Json::array({14.0, 24.0}));
+    if (!by_distance) {
+      m.segments[1].distance_m.reset();
+      m.segments[1].duration_s = 600.0;
+    }
+    const Segment& sg = m.segments[1];
+    for (const char* id : {"uiuc_v1_ance_8.5x7.0_2", "uiuc_v1_apcsf_9.0x6.0_2", "uiuc_v1_gwssf_9.0x7.0_2",
+                           "uiuc_v3_ancf_10.0x6.0_2", "uiuc_v2_gwsdd_9.0x5.0_2"}) {
+      const PropEntry& prop = Bundled().prop(id);
+      const PropModel model(prop);
+      const PropAdjustment adjustment = PropAdjustmentFor(prop, m.objective.ranking);
+      const CruisePropBound lossy{&prop, &model, adjustment, true};
+      const CruisePropBound creating{&prop, &model, adjustment, false};
+      double before_w = 0;
+      int rising = 0;
+      for (double kg = 1.0; kg <= 4.0; kg *= 1.003) {
+        const double w = FreeCruiseRotorPowerLowerBoundW(m, sg, lossy, nullptr, kg);
+        EXPECT_GE(w * (1.0 + kRounding), before_w) << id << (by_distance ? " by distance" : " by duration") << " at " << kg << " kg";
+        EXPECT_EQ(FreeCruiseRotorPowerLowerBoundW(m, sg, creating, nullptr, kg), 0.0) << id << " at " << kg << " kg";
+        if (w > before_w) ++rising;
+        before_w = w;
+      }
+      EXPECT_GT(rising, 100) << id << ": the bound should rise with the mass, not stay at 0";
+    }
+  }
+}
+
 TEST(PropBoundsTest, FreeCruiseBoundIsBelowEveryFeasibleEnergyAndTightWithTheDrive) {
   const Mission range = Quadplane(Json::array({14.0, 24.0}));
   const Pusher p;
