@@ -272,6 +272,14 @@ JointBounds::JointBounds(const Mission& m, const Catalog& cat, const PropGridCac
     }
     other_power_w_.push_back(std::move(p));
   }
+  // G1's grid masses per option (RotorCacheIndex), computed once.
+  grid_kg_.assign(options_.size() * static_cast<std::size_t>(kFixedPowerMasses), 0.0);
+  for (std::size_t o = 0; o < options_.size(); ++o) {
+    for (int k = 0; k < kFixedPowerMasses; ++k) {
+      grid_kg_[o * static_cast<std::size_t>(kFixedPowerMasses) + static_cast<std::size_t>(k)] =
+          mass_min_kg_[o] * std::pow(kFixedPowerMassStep, k);
+    }
+  }
   const std::size_t n_cache = options_.size() * n_seg * cat.props().size() * static_cast<std::size_t>(kFixedPowerMasses);
   rotor_cache_.assign(n_cache, RotorBound{});
   rotor_done_.assign(n_cache, 0);
@@ -387,10 +395,11 @@ std::size_t JointBounds::RotorCacheIndex(int prop, std::size_t si, std::size_t o
                                          double* grid_kg) const {
   // The grid mass at or below mass_kg (G1's geometric grid from the option's lightest vehicle).
   const double m0 = mass_min_kg_[o];
+  const double* grid = &grid_kg_[o * static_cast<std::size_t>(kFixedPowerMasses)];
   int k = mass_kg > m0 ? static_cast<int>(std::floor(std::log(mass_kg / m0) / std::log(kFixedPowerMassStep))) : 0;
   k = std::clamp(k, 0, kFixedPowerMasses - 1);
-  while (k > 0 && m0 * std::pow(kFixedPowerMassStep, k) > mass_kg) --k;
-  *grid_kg = k == 0 ? std::min(m0, mass_kg) : m0 * std::pow(kFixedPowerMassStep, k);
+  while (k > 0 && grid[k] > mass_kg) --k;
+  *grid_kg = k == 0 ? std::min(m0, mass_kg) : grid[k];
   return ((o * m_.segments.size() + si) * cat_.props().size() + static_cast<std::size_t>(prop)) *
              static_cast<std::size_t>(kFixedPowerMasses) + static_cast<std::size_t>(k);
 }
@@ -412,7 +421,7 @@ double JointBounds::CruiseMomentumAboveW(int prop, std::size_t si, std::size_t o
   if (i % static_cast<std::size_t>(kFixedPowerMasses) == 0 || !(grid_kg <= mass_kg)) return kInf;  // the top
   if (std::isnan(cruise_momentum_w_[i])) {
     const int k = static_cast<int>(i % static_cast<std::size_t>(kFixedPowerMasses));
-    const double above_kg = mass_min_kg_[o] * std::pow(kFixedPowerMassStep, k);
+    const double above_kg = grid_kg_[o * static_cast<std::size_t>(kFixedPowerMasses) + static_cast<std::size_t>(k)];
     const std::size_t pi = static_cast<std::size_t>(prop);
     const CruisePropBound pb{&cat_.props()[pi], models_[pi], adjustments_[pi], true};
     cruise_momentum_w_[i] = FreeCruiseRotorPowerLowerBoundW(m_, m_.segments[si], pb, nullptr, above_kg);

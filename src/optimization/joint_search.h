@@ -240,6 +240,7 @@ class JointBounds {
   std::vector<BatteryOption> options_;
   EscTable escs_;
   std::vector<double> mass_min_kg_, outer_lightest_kg_;
+  std::vector<double> grid_kg_;  // [o * kFixedPowerMasses + k]: mass_min_kg_[o] * kFixedPowerMassStep^k
   std::vector<char> monotone_;        // per propeller: its static thrust grid rises (M1)
   std::vector<double> mass_floor_kg_;  // MassFloorKg's cache by RotorCacheIndex; < 0: not yet
   std::vector<std::vector<double>> other_power_w_;

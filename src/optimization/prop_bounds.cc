@@ -195,7 +195,17 @@ FreeCruiseSamples SampleFreeCruise(const Mission& m, const Segment& sg, const Cr
     if (k > 0 && s.rotors * s.torque[k] * w < s.rotors * s.torque[k - 1] * s.omega[k - 1]) s.shaft_rises = false;
     if (k > 0 && (w < s.omega[k - 1] || s.torque[k] < s.torque[k - 1])) s.point_rises = false;
   }
-  if (sg.lift_to_drag > 0 && p.prop != nullptr && p.model != nullptr) SetFloorPoint(m, p, &s);
+  if (sg.lift_to_drag > 0 && p.prop != nullptr && p.model != nullptr) {
+    const bool by_distance = sg.distance_m.has_value();
+    const bool axial_data = p.model->data_kind() == PropDataKind::kTables && !p.prop->j_tables.empty();
+    for (int k = 0; k < kFreeCruiseCells; ++k) {
+      const double v_read = by_distance ? s.v[k + 1] : s.v[k];
+      const double v_in = axial_data ? v_read : 0.0;  // a wing-borne cruise's inflow is its airspeed (flight.h)
+      s.momentum_w[k] = s.rotors * IdealRotorPowerW(s.thrust[k], p.prop->diameter_m, m.rho_kg_m3, v_in) /
+                        FigureOfMeritLimit(m.constraints, v_in);
+    }
+    SetFloorPoint(m, p, &s);
+  }
   return s;
 }
 
@@ -226,7 +236,6 @@ double FreeCruiseRotorPowerFromSamples(const Mission& m, const Segment& sg, cons
   if (!(sg.lift_to_drag > 0) || p.prop == nullptr || p.model == nullptr) return 0.0;
   const double hi = sg.airspeed_m_s.hi;
   const bool by_distance = sg.distance_m.has_value();
-  const bool axial_data = p.model->data_kind() == PropDataKind::kTables && !p.prop->j_tables.empty();
   const bool momentum = p.lossy && ScenarioKeepsPower(p.adjustment) && m.constraints.max_figure_of_merit > 0;
   const bool shaft = p.lossy && p.with_prop_data && s.points && s.shaft_rises;
   const bool floor = shaft && loss != nullptr && s.point_rises &&
@@ -243,11 +252,7 @@ double FreeCruiseRotorPowerFromSamples(const Mission& m, const Segment& sg, cons
   const double p_av = m.vehicle.avionics_power_w;
   double best = kInf;
   for (int k = 0; k < kFreeCruiseCells; ++k) {
-    const double v_read = by_distance ? s.v[k + 1] : s.v[k];
-    const double v_in = axial_data ? v_read : 0.0;  // a wing-borne cruise's inflow is its airspeed (flight.h)
-    double p_k = momentum ? s.rotors * IdealRotorPowerW(s.thrust[k], p.prop->diameter_m, m.rho_kg_m3, v_in) /
-                                FigureOfMeritLimit(m.constraints, v_in)
-                          : 0.0;
+    double p_k = momentum ? s.momentum_w[k] : 0.0;
     if (shaft) p_k = std::max(p_k, s.rotors * s.torque[k] * s.omega[k]);
     if (floor) {
       const double q = s.torque[k], w = s.omega[k];

@@ -59,6 +59,9 @@ inline constexpr int kFreeCruiseCells = 32;
 // any drive.
 struct FreeCruiseSamples {
   std::array<double, kFreeCruiseCells + 1> v{}, thrust{}, omega{}, torque{};
+  // Per cell k, the rotors' momentum power P_ideal/FM_max at T_k and the cell's inflow (the
+  // airspeed read for it with forward-flight tables, else 0), W: read by every drive.
+  std::array<double, kFreeCruiseCells> momentum_w{};
   int rotors = 0;
   bool points = false;       // every sample has its speed and torque (else none of them is used)
   bool shaft_rises = false;  // Q_k*omega_k rises with k (M4 seen on the samples)
