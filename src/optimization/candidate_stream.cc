@@ -122,7 +122,7 @@ struct CandidateStream::Impl {
   long long Expand(Motor* m, double cutoff, std::size_t n, PairLoads* pair_loads, BatchCounts* tally) const {
     const std::vector<PropKey>& keys = *m->keys;
     auto first = [](const Candidate& a, const Candidate& b) { return CandidateBefore(b, a); };
-    long long removed = 0;
+    long long removed = 0, masked = 0;
     for (std::size_t done = 0; m->walk < keys.size() && done < n;) {
       const PropKey& k = keys[m->walk];
       if (!(k.bound < cutoff)) {
@@ -135,8 +135,7 @@ struct CandidateStream::Impl {
       if (ctx.pair_mask &&
           !(*ctx.pair_mask)[static_cast<std::size_t>(m->setup->motor) * ctx.catalog->props().size() +
                             static_cast<std::size_t>(k.prop)]) {  // no score below the cutoff (G2's inner filter)
-        tally->pruned.Add("objective_bound", ctx.escs.rated[o]);
-        removed += ctx.escs.rated[o];
+        masked += ctx.escs.rated[o];
         continue;
       }
       ++done;
@@ -152,7 +151,8 @@ struct CandidateStream::Impl {
       m->pending.push_back(c);
       std::push_heap(m->pending.begin(), m->pending.end(), first);
     }
-    return removed;
+    if (masked > 0) tally->pruned.Add("objective_bound", masked);
+    return removed + masked;
   }
 
   const SearchContext& ctx;

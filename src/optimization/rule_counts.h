@@ -14,7 +14,7 @@ class RuleCounts {
  public:
   void Add(const char* rule, long long n) {
     for (auto& [name, count] : counts_) {
-      if (std::strcmp(name, rule) == 0) {
+      if (name == rule || std::strcmp(name, rule) == 0) {  // the same literal: usually the same pointer
         count += n;
         return;
       }
