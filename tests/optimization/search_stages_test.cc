@@ -51,6 +51,22 @@ Mission StageQuadFor(const std::string& objective) {
   return ParseMission(j, "quad");
 }
 
+// Stages 0-3 of the stage quad with an objective (StageQuadFor), with the mission they read.
+struct StageQuadStages {
+  StageQuadStages(const Catalog& cat, const char* objective) : m(StageQuadFor(objective)) { PrepareStages(m, cat, &ctx); }
+  StageQuadStages(const StageQuadStages&) = delete;
+  StageQuadStages& operator=(const StageQuadStages&) = delete;
+  const Mission m;
+  SearchContext ctx;
+};
+
+// Stage 4's candidate list, in CandidateBefore order (what a stream must draw).
+CandidateList SortedCandidates(const SearchContext& ctx) {
+  CandidateList all = BuildCandidates(ctx, 1);
+  std::sort(all.candidates.begin(), all.candidates.end(), CandidateBefore);
+  return all;
+}
+
 class SearchStagesTest : public ::testing::Test {
  protected:
   static void SetUpTestSuite() { dir_ = testing_util::WriteSmallCatalog("stages"); }
@@ -151,8 +167,7 @@ TEST_F(SearchStagesTest, CandidateStreamDrawsTheSortedCandidateList) {
   const Mission m = ParseMission(ParseJsonText(kStageQuad, "quad"), "quad");
   SearchContext ctx;
   PrepareStages(m, cat, &ctx);
-  CandidateList all = BuildCandidates(ctx, 1);
-  std::sort(all.candidates.begin(), all.candidates.end(), CandidateBefore);
+  const CandidateList all = SortedCandidates(ctx);
   ASSERT_GT(all.candidates.size(), 20u) << "the small catalog should give enough pairs for several batches";
   auto same = [](const Candidate& a, const Candidate& b) {
     return a.motor == b.motor && a.prop == b.prop && a.option == b.option && a.bound == b.bound &&
@@ -199,11 +214,9 @@ TEST_F(SearchStagesTest, CandidateStreamDrawsTheSortedCandidateList) {
 TEST_F(SearchStagesTest, CandidateStreamBuiltWithACutoffDrawsTheSamePairsBelowIt) {
   const Catalog cat = SmallCatalog();
   for (const char* objective : {"max_endurance", "min_energy"}) {
-    const Mission m = StageQuadFor(objective);
-    SearchContext ctx;
-    PrepareStages(m, cat, &ctx);
-    CandidateList all = BuildCandidates(ctx, 1);
-    std::sort(all.candidates.begin(), all.candidates.end(), CandidateBefore);
+    const StageQuadStages q(cat, objective);
+    const SearchContext& ctx = q.ctx;
+    const CandidateList all = SortedCandidates(ctx);
     ASSERT_GT(all.candidates.size(), 20u);
     // Several motor classes, so that the search over the classes has something to skip.
     const MissionFacts f = StageFourFacts(ctx);
@@ -247,11 +260,9 @@ TEST_F(SearchStagesTest, CandidateStreamBuiltWithACutoffDrawsTheSamePairsBelowIt
 TEST_F(SearchStagesTest, CandidateStreamWithAPairMaskDrawsTheListsPairsItLetsThrough) {
   const Catalog cat = SmallCatalog();
   for (const char* objective : {"max_endurance", "min_energy"}) {
-    const Mission m = StageQuadFor(objective);
-    SearchContext ctx;
-    PrepareStages(m, cat, &ctx);
-    CandidateList all = BuildCandidates(ctx, 1);
-    std::sort(all.candidates.begin(), all.candidates.end(), CandidateBefore);
+    StageQuadStages q(cat, objective);
+    SearchContext& ctx = q.ctx;
+    const CandidateList all = SortedCandidates(ctx);
     const std::size_t n_props = cat.props().size();
     // Every other propeller of the list's (the first with every motor, the others with every
     // other motor); the rest refused with every motor.
