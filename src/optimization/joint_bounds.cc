@@ -107,7 +107,9 @@ SegmentBound SegmentPowerBound(const Mission& m, std::size_t si, const GroupPart
   b.power_w = m.vehicle.avionics_power_w;
   if (sg.type == SegmentType::kShaft) return b;
   const bool static_only = model.data_kind() != PropDataKind::kTables || parts.prop->j_tables.empty();
-  if (sg.type == SegmentType::kCruise && sg.airspeed_m_s.free()) return FreeCruiseSegmentBound(m, si, parts, drive, model, bo, mass_kg, true);
+  if (sg.type == SegmentType::kCruise && sg.airspeed_m_s.free()) {
+    return FreeCruiseSegmentBound(m, si, parts, drive, model, bo, mass_kg, true);
+  }
   if (!(rb.omega_rad_s > 0)) return b;
   // R3 at the bound point.
   const OperatingPoint hi = drive.Inverse(bo.v_full, rb.torque_nm, rb.omega_rad_s);

@@ -127,7 +127,8 @@ TEST(PropBoundsTest, FreeCruiseMomentumBoundRisesWithTheMass) {
       int rising = 0;
       for (double kg = 1.0; kg <= 4.0; kg *= 1.003) {
         const double w = FreeCruiseRotorPowerLowerBoundW(m, sg, lossy, nullptr, kg);
-        EXPECT_GE(w * (1.0 + kRounding), before_w) << id << (by_distance ? " by distance" : " by duration") << " at " << kg << " kg";
+        EXPECT_GE(w * (1.0 + kRounding), before_w)
+            << id << (by_distance ? " by distance" : " by duration") << " at " << kg << " kg";
         EXPECT_EQ(FreeCruiseRotorPowerLowerBoundW(m, sg, creating, nullptr, kg), 0.0) << id << " at " << kg << " kg";
         if (w > before_w) ++rising;
         before_w = w;

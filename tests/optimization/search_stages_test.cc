@@ -53,7 +53,9 @@ Mission StageQuadFor(const std::string& objective) {
 
 // Stages 0-3 of the stage quad with an objective (StageQuadFor), with the mission they read.
 struct StageQuadStages {
-  StageQuadStages(const Catalog& cat, const char* objective) : m(StageQuadFor(objective)) { PrepareStages(m, cat, &ctx); }
+  StageQuadStages(const Catalog& cat, const char* objective) : m(StageQuadFor(objective)) {
+    PrepareStages(m, cat, &ctx);
+  }
   StageQuadStages(const StageQuadStages&) = delete;
   StageQuadStages& operator=(const StageQuadStages&) = delete;
   const Mission m;
