@@ -106,10 +106,10 @@ SegmentBound SegmentPowerBound(const Mission& m, std::size_t si, const GroupPart
   SegmentBound b;
   b.power_w = m.vehicle.avionics_power_w;
   if (sg.type == SegmentType::kShaft) return b;
-  const bool static_only = model.data_kind() != PropDataKind::kTables || parts.prop->j_tables.empty();
   if (sg.type == SegmentType::kCruise && sg.airspeed_m_s.free()) {
     return FreeCruiseSegmentBound(m, si, parts, drive, model, bo, mass_kg, true);
   }
+  const bool static_only = model.data_kind() != PropDataKind::kTables || parts.prop->j_tables.empty();
   if (!(rb.omega_rad_s > 0)) return b;
   // R3 at the bound point.
   const OperatingPoint hi = drive.Inverse(bo.v_full, rb.torque_nm, rb.omega_rad_s);
@@ -419,11 +419,16 @@ const RotorBound& JointBounds::OuterRotor(int prop, std::size_t si, std::size_t 
 
 double JointBounds::CruiseMomentumAboveW(int prop, std::size_t si, std::size_t o, double mass_kg) {
   double grid_kg = 0;
-  const std::size_t i = RotorCacheIndex(prop, si, o, mass_kg, &grid_kg) + 1;  // the grid mass above
-  if (i % static_cast<std::size_t>(kFixedPowerMasses) == 0 || !(grid_kg <= mass_kg)) return kInf;  // the top
+  const std::size_t at = RotorCacheIndex(prop, si, o, mass_kg, &grid_kg);
+  // The first grid mass at or above mass_kg, from the one after RotorCacheIndex's.
+  const std::size_t n = static_cast<std::size_t>(kFixedPowerMasses);
+  const double* grid = &grid_kg_[o * n];
+  std::size_t k = at % n + 1;
+  while (k < n && grid[k] < mass_kg) ++k;
+  if (k == n) return kInf;  // above the grid's top
+  const std::size_t i = at - at % n + k;
   if (std::isnan(cruise_momentum_w_[i])) {
-    const int k = static_cast<int>(i % static_cast<std::size_t>(kFixedPowerMasses));
-    const double above_kg = grid_kg_[o * static_cast<std::size_t>(kFixedPowerMasses) + static_cast<std::size_t>(k)];
+    const double above_kg = grid[k];
     const std::size_t pi = static_cast<std::size_t>(prop);
     const CruisePropBound pb{&cat_.props()[pi], models_[pi], adjustments_[pi], true};
     cruise_momentum_w_[i] = FreeCruiseRotorPowerLowerBoundW(m_, m_.segments[si], pb, nullptr, above_kg);

@@ -172,9 +172,9 @@ class JointBounds {
   SegmentBound OuterSegmentBound(std::size_t si, const GroupParts& parts, const Drive& drive, double tr_max,
                                  double esc_max_a, int prop, std::size_t o, double mass_kg, double known_w);
   // A free cruise's momentum bound (FreeCruisePowerLowerBoundW with a drive that cannot create
-  // energy, the larger case) at the grid mass above mass_kg's (RotorCacheIndex), so at or above
-  // the bound at mass_kg (M3: the thrust rises with the mass); +inf when mass_kg is at or above
-  // the grid's top. Cached per grid mass.
+  // energy, the larger case) at the first grid mass at or above mass_kg (G1's grid,
+  // RotorCacheIndex), so at or above the bound at mass_kg (M3: the thrust rises with the mass);
+  // +inf above the grid's top. Cached per grid mass.
   double CruiseMomentumAboveW(int prop, std::size_t si, std::size_t o, double mass_kg);
   // The caches' index of (prop, si, o) at the grid mass at or below mass_kg (G1's geometric grid
   // from the option's lightest vehicle), and that grid mass (kg).
