@@ -127,6 +127,19 @@ double SpeedFromBelow(const PropModel& model, double rho, double thrust_n, doubl
   return NarrowFromBelow(f, lo, f_lo, hi, f_hi, steps);
 }
 
+double SpeedFromBelowInCell(const PropModel& model, double rho, double thrust_n, double v_m_s, double lo, double t_lo_n,
+                            double hi, double t_hi_n, int steps, PropEvaluation* at_lo) {
+  // Every accepted step (thrust at most T) raises lo (NarrowFromBelow), so the last one accepted
+  // is the speed returned.
+  auto f = [&](double w) {
+    const PropEvaluation ev = model.Evaluate(w, rho, v_m_s);
+    const double fx = ev.thrust_n - thrust_n;
+    if (fx <= 0) *at_lo = ev;
+    return fx;
+  };
+  return NarrowFromBelow(f, lo, t_lo_n - thrust_n, hi, t_hi_n - thrust_n, steps);
+}
+
 namespace {
 
 // FreeCruiseSamples' floor point and speed limit (docs/search.md#g1-torque-floor), for a

@@ -24,6 +24,13 @@ inline constexpr double kPropSpeedCeilingRadS = 6000.0;
 double SpeedFromBelow(const PropModel& model, double rho, double thrust_n, double v_m_s, double lo, double hi,
                       int steps);
 
+// SpeedFromBelow within a grid cell whose end thrusts are known (thrust(lo) = t_lo_n <= T <
+// thrust(hi) = t_hi_n, each as model.Evaluate(., rho, v_m_s) gives it): the same speed, without
+// evaluating the ends again. *at_lo: the evaluation at the speed returned when it is above lo
+// (left as it is when the speed is lo).
+double SpeedFromBelowInCell(const PropModel& model, double rho, double thrust_n, double v_m_s, double lo, double t_lo_n,
+                            double hi, double t_hi_n, int steps, PropEvaluation* at_lo);
+
 // A speed at or below the evaluator's root for thrust T in axial inflow v (thrust rising with
 // speed, M1), on [0, kPropSpeedCeilingRadS]; false when even the ceiling gives less. With
 // start_rad_s in (0, ceiling) (a guess, such as a neighbouring sample's speed) the root is first

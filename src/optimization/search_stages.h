@@ -257,7 +257,7 @@ double FreeCruisePowerLowerBoundW(const Mission& m, const Segment& sg, const Gro
 // kInf with *rule naming the constraint that every such combination breaks. With a capacity
 // range the pieces are refined while the bound is below `threshold` (kInf: as far as allowed).
 double SegmentwiseBound(const SearchContext& ctx, int motor, int prop, int option, int esc_class, double esc_mass_kg,
-                        double threshold, const char** rule);
+                        double threshold, const char** rule, bool stop_when_unprovable = true);
 
 // R9 (pair_bounds.cc, docs/search.md#r9): true when the hover throttle of (motor, prop, option) with this ESC is below
 // the mission's min_hover_throttle at every mass and capacity, so the ESC fails that limit for

@@ -57,9 +57,11 @@ void SpeedTorqueFromBelow(const PropGrid& g, const SegmentGrid& sgrid, const Pro
   *omega = g.omega[idx];
   *torque = sgrid.torque_suffix_min[idx];
   if (refine_steps <= 0 || idx + 1 >= kGrid) return;
-  const double lo = SpeedFromBelow(model, rho, thrust_n, sgrid.v_m_s, g.omega[idx], g.omega[idx + 1], refine_steps);
+  // The cell's end thrusts are the grid's (prop_grids.cc: the same evaluation).
+  PropEvaluation ev;
+  const double lo = SpeedFromBelowInCell(model, rho, thrust_n, sgrid.v_m_s, g.omega[idx], sgrid.thrust[idx],
+                                         g.omega[idx + 1], sgrid.thrust[idx + 1], refine_steps, &ev);
   if (lo == g.omega[idx]) return;
-  PropEvaluation ev = model.Evaluate(lo, rho, sgrid.v_m_s);
   AdjustPropEvaluation(g.adjustment, diameter_m, &ev);
   *omega = lo;
   *torque = std::min(ev.torque_nm, sgrid.torque_suffix_min[idx + 1]);
@@ -218,7 +220,7 @@ double SegmentwiseBoundAt(const SearchContext& ctx, const MissionFacts& f, const
 // tightens only as far as it takes to prove "cannot beat the threshold".
 double SegmentwiseBoundPieces(const SearchContext& ctx, const MissionFacts& f, const MotorParams& mp,
                               const Drive& ideal, double t_max, int motor, int prop, int option, double esc_mass_kg,
-                              double threshold, const char** rule) {
+                              double threshold, const char** rule, bool stop_when_unprovable) {
   constexpr int kPieces = 2, kMaxSplits = 24, kRefineSteps = 6;
   const BatteryOption& bo = ctx.options[static_cast<std::size_t>(option)];
   const double lo = bo.capacity_lo_ah, hi = bo.capacity_hi_ah;
@@ -248,18 +250,32 @@ double SegmentwiseBoundPieces(const SearchContext& ctx, const MissionFacts& f, c
     pieces.push_back(range ? piece(lo + (hi - lo) * j / n, lo + (hi - lo) * (j + 1) / n, false, masses.size())
                            : piece(lo, hi, false, masses.size()));
   }
+  // Whether no splitting can lift the least bound to the threshold, read on a refined piece [a, b]
+  // just given its own lightest vehicle: its bound at the one capacity a. Every later piece that
+  // starts at a shares that vehicle (a left half keeps its whole's) with a budget of at least
+  // a, and its bound is then no higher (SegmentwiseBoundAt falls as C_b rises: more charge and
+  // energy, less resistance, a heavier vehicle for R12's bottom); one such piece is always left,
+  // so the splitting would end below the threshold anyway.
+  auto unprovable = [&](const Piece& x) {
+    if (!stop_when_unprovable || !(x.bound < threshold)) return false;
+    const char* r = nullptr;
+    const double at_a = SegmentwiseBoundAt(ctx, f, ideal, t_max, motor, prop, option, masses[x.mass], x.a, &r);
+    return !r && at_a < threshold;
+  };
   for (int step = 0; step < kMaxSplits; ++step) {
     auto least = std::min_element(pieces.begin(), pieces.end(), [](const Piece& x, const Piece& y) { return x.bound < y.bound; });
     if (!(least->bound < threshold)) break;
     const Piece whole = *least;
     if (!whole.refined) {
       *least = piece(whole.a, whole.b, true, masses.size());
+      if (unprovable(*least)) break;
       continue;
     }
     if (!range || whole.b - whole.a < (hi - lo) / 1024) break;
     const double mid = 0.5 * (whole.a + whole.b);
     *least = piece(whole.a, mid, true, whole.mass);  // the same lightest vehicle
     pieces.push_back(piece(mid, whole.b, true, masses.size()));
+    if (unprovable(pieces.back())) break;
   }
   double best = kInf;
   for (const Piece& x : pieces) best = std::min(best, x.bound);
@@ -268,14 +284,15 @@ double SegmentwiseBoundPieces(const SearchContext& ctx, const MissionFacts& f, c
 }
 
 double SegmentwiseBound(const SearchContext& ctx, int motor, int prop, int option, int esc_class, double esc_mass_kg,
-                        double threshold, const char** rule) {
+                        double threshold, const char** rule, bool stop_when_unprovable) {
   const Mission& m = *ctx.mission;
   const MotorParams mp = ScenarioMotorParams(ctx.catalog->motors()[static_cast<std::size_t>(motor)], m, nullptr, nullptr);
   const EscClass& cls = ctx.escs.classes[static_cast<std::size_t>(esc_class)];
   const EscParams ideal = ZeroResistanceEsc(cls);
   const MissionFacts f = FactsOf(m, ctx.free_group);
   const double t_max = ThrottleLimit(m.constraints, cls.tr_sat);
-  return SegmentwiseBoundPieces(ctx, f, mp, Drive(mp, ideal), t_max, motor, prop, option, esc_mass_kg, threshold, rule);
+  return SegmentwiseBoundPieces(ctx, f, mp, Drive(mp, ideal), t_max, motor, prop, option, esc_mass_kg, threshold, rule,
+                                stop_when_unprovable);
 }
 
 }  // namespace dynosize::search_internal

@@ -822,5 +822,57 @@ TEST_F(SearchStagesTest, SegmentwiseBoundIsBelowEveryFeasibleScore) {
   EXPECT_GT(refused["reserve_soc"], 0) << "and for the reserve";
 }
 
+// R10's early stop (stop_when_unprovable): a piece whose bound at its lowest capacity alone is
+// below the threshold proves that no splitting gets there, so stopping then must give the
+// same answer as splitting on: the same refusal, and a bound below the threshold exactly when
+// the full splitting's is. Checked per pair, ESC class and ESC over a capacity range, with
+// max_endurance and min_energy, at thresholds around each combination's exact score (where the
+// splitting goes deepest) and far from it; each bound stays below every feasible score.
+TEST_F(SearchStagesTest, SegmentwiseBoundsEarlyStopKeepsItsAnswer) {
+  const Catalog cat = SmallCatalog();
+  int compared = 0, stopped_below = 0, proven_above = 0;
+  for (const char* objective : {"max_endurance", "min_energy"}) {
+    Json j = ParseJsonText(kStageQuad, "quad");
+    j["objective"]["type"] = objective;
+    if (std::string(objective) == "min_energy") j["objective"].erase("segment");
+    j["battery"]["capacity_ah"] = {1.5, 8.0};
+    const Mission m = ParseMission(j, "quad");
+    SearchContext ctx;
+    PrepareStages(m, cat, &ctx);
+    for (const Candidate& cand : BuildCandidates(ctx, 1).candidates) {
+      for (std::size_t cl = 0; cl < ctx.escs.classes.size(); ++cl) {
+        for (int e : ctx.escs.per_option[cand.option][cl]) {
+          const EscEntry& esc = cat.escs()[e];
+          const BatteryOption& bo = ctx.options[cand.option];
+          const Combination c{&cat.motors()[cand.motor], &esc, &cat.props()[cand.prop], bo.entry, bo.cells};
+          const MissionResult r = MissionEvaluator(m, c).Solve();
+          if (!r.feasible) continue;
+          // Relative offsets about the score: both signs, near and far (a score is negative for
+          // max_endurance, positive for min_energy).
+          for (const double rel : {-0.2, -0.02, -0.002, 0.0, 0.002, 0.02, 0.2}) {
+            const double threshold = r.score + rel * std::abs(r.score);
+            const char* rule_full = nullptr;
+            const char* rule_early = nullptr;
+            const double full = SegmentwiseBound(ctx, cand.motor, cand.prop, cand.option, static_cast<int>(cl),
+                                                 EscMassKg(esc), threshold, &rule_full, false);
+            const double early = SegmentwiseBound(ctx, cand.motor, cand.prop, cand.option, static_cast<int>(cl),
+                                                  EscMassKg(esc), threshold, &rule_early, true);
+            ++compared;
+            const std::string where = std::string(objective) + " " + c.motor->id + " " + esc.id + " " + c.prop->id;
+            EXPECT_EQ(rule_full == nullptr, rule_early == nullptr) << where;
+            EXPECT_EQ(full < threshold, early < threshold) << where << " threshold " << threshold;
+            EXPECT_LE(early, r.score) << where;
+            if (!rule_early && early < threshold) ++stopped_below;
+            if (!(full < threshold)) ++proven_above;
+          }
+        }
+      }
+    }
+  }
+  EXPECT_GT(compared, 100);
+  EXPECT_GT(stopped_below, 10) << "the test should see bounds left below the threshold";
+  EXPECT_GT(proven_above, 10) << "and bounds the splitting lifts above it";
+}
+
 }  // namespace
 }  // namespace dynosize::search_internal
