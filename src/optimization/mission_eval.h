@@ -354,7 +354,11 @@ class MissionEvaluator {
   // An upper bound of the total mission time over the capacity range (max_endurance), tightened
   // until it falls below target_s or a budget of simulations is spent.
   // [from_ah, to_ah] (to_ah > 0): only that part of the capacity range.
-  double EnduranceUpperBound(double target_s, double from_ah = 0.0, double to_ah = 0.0) const;
+  // run_at_lo: Run(the variables at the range's lowest capacity and the segments' lowest
+  // airspeeds, stretch 0), feasible and so flown in full, when the caller has it (the bound
+  // flies that run first); null to fly it.
+  double EnduranceUpperBound(double target_s, double from_ah = 0.0, double to_ah = 0.0,
+                             const MissionResult* run_at_lo = nullptr) const;
 
   // --- mission_eval_summary.cc: the designer's summary and the warnings.
   // The assumed catalog values and the warnings a designer expects (hover throttle over the limit, currents near a rating,

@@ -69,7 +69,8 @@ bool RisesWithMass(const std::string& constraint) {
 
 }  // namespace
 
-double MissionEvaluator::EnduranceUpperBound(double target_s, double from_ah, double to_ah) const {
+double MissionEvaluator::EnduranceUpperBound(double target_s, double from_ah, double to_ah,
+                                             const MissionResult* run_at_lo) const {
   // max_endurance with the stretched segment at a fixed airspeed (hover, or cruise with one
   // airspeed): over capacities C in a piece [C_a, C_b] of the range,
   //   t_total(C) <= t_fixed_max + Q(C_b)*integral of OCV over [reserve, 1] / P_stretch(C_a)
@@ -158,9 +159,15 @@ double MissionEvaluator::EnduranceUpperBound(double target_s, double from_ah, do
     for (std::size_t k = 0; k < m_.segments.size(); ++k) v.airspeed_m_s[k] = m_.segments[k].airspeed_m_s.lo;
     ++runs;
     // Without energy_fixed only the stretch's start is read: the segments after it are not
-    // flown (their violations would only add to infeasible_from, which may miss some).
-    const MissionResult r =
-        energy_fixed ? Run(v, 0.0) : RunUpTo(v, static_cast<std::size_t>(m_.objective.segment_index) + 1, false).r;
+    // flown (their violations would only add to infeasible_from, which may miss some). With it,
+    // the caller's run at the lowest capacity is this one (the same variables: a cruise's
+    // airspeed 0 in a run's variables means its lowest).
+    const bool reuse = energy_fixed && run_at_lo && c == c_lo && !(to_ah > 0);
+    MissionResult flown;
+    if (!reuse) {
+      flown = energy_fixed ? Run(v, 0.0) : RunUpTo(v, static_cast<std::size_t>(m_.objective.segment_index) + 1, false).r;
+    }
+    const MissionResult& r = reuse ? *run_at_lo : flown;
     for (const Violation& x : r.violations) {
       if (RisesWithMass(x.constraint)) infeasible_from = std::min(infeasible_from, c);
     }
@@ -484,6 +491,9 @@ bool MissionEvaluator::EarlyExit(double cutoff_score, bool explain, bool search,
   const bool screens = bounds || search;
   if (screens && DataWindowRefuses(true, out)) return true;
   if (screens && HoverOrWeightRefuses(false, out)) return true;
+  // max_endurance's screening run at the smallest capacity (none run: empty); a feasible one was
+  // flown in full (a screening run stops only at a violation) and is EnduranceUpperBound's first.
+  MissionResult r0;
   if (screens && m_.objective.type == ObjectiveType::kMaxEndurance) {
     // One simulation decides most candidates of a search: infeasible before any stretch.
     // With a capacity range it is run at the smallest capacity (the lightest vehicle), and
@@ -494,7 +504,7 @@ bool MissionEvaluator::EarlyExit(double cutoff_score, bool explain, bool search,
     bool airspeed_free = false;
     for (const Segment& s : m_.segments) airspeed_free |= s.type == SegmentType::kCruise && s.airspeed_m_s.free();
     if (!airspeed_free) {
-      MissionResult r0 = Run(v0, 0.0, true);
+      r0 = Run(v0, 0.0, true);
       if (!r0.feasible) {
         if (!capacity_free) {
           r0.violations_everywhere = true;  // nothing free: the one point
@@ -518,7 +528,7 @@ bool MissionEvaluator::EarlyExit(double cutoff_score, bool explain, bool search,
   // thrust-to-weight.
   if (screens && capacity_free && HoverOrWeightRefuses(true, out)) return true;
   if (bounds && m_.objective.type == ObjectiveType::kMaxEndurance) {
-    const double ub = EnduranceUpperBound(-cutoff_score);
+    const double ub = EnduranceUpperBound(-cutoff_score, 0.0, 0.0, r0.feasible ? &r0 : nullptr);
     if (-ub >= cutoff_score) {
       MissionResult r;
       r.bounded_out = true;
