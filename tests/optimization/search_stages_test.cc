@@ -69,6 +69,23 @@ CandidateList SortedCandidates(const SearchContext& ctx) {
   return all;
 }
 
+// f(candidate, class, ESC, combination) for every ESC of every class of every pair of stage 4's
+// list (each pair with its option's pack).
+template <typename F>
+void ForEachPairClassEsc(const SearchContext& ctx, const Catalog& cat, F&& f) {
+  for (const Candidate& cand : BuildCandidates(ctx, 1).candidates) {
+    const BatteryOption& bo = ctx.options[static_cast<std::size_t>(cand.option)];
+    for (std::size_t cl = 0; cl < ctx.escs.classes.size(); ++cl) {
+      for (int e : ctx.escs.per_option[static_cast<std::size_t>(cand.option)][cl]) {
+        const EscEntry& esc = cat.escs()[static_cast<std::size_t>(e)];
+        const Combination c{&cat.motors()[static_cast<std::size_t>(cand.motor)], &esc,
+                            &cat.props()[static_cast<std::size_t>(cand.prop)], bo.entry, bo.cells};
+        f(cand, static_cast<int>(cl), esc, c);
+      }
+    }
+  }
+}
+
 class SearchStagesTest : public ::testing::Test {
  protected:
   static void SetUpTestSuite() { dir_ = testing_util::WriteSmallCatalog("stages"); }
@@ -790,31 +807,24 @@ TEST_F(SearchStagesTest, SegmentwiseBoundIsBelowEveryFeasibleScore) {
     const Mission m = ParseMission(j, "quad");
     SearchContext ctx;
     PrepareStages(m, cat, &ctx);
-    const CandidateList all = BuildCandidates(ctx, 1);
-    for (const Candidate& cand : all.candidates) {
-      for (std::size_t cl = 0; cl < ctx.escs.classes.size(); ++cl) {
-        for (int e : ctx.escs.per_option[cand.option][cl]) {
-          const EscEntry& esc = cat.escs()[e];
-          const BatteryOption& bo = ctx.options[cand.option];
-          const Combination c{&cat.motors()[cand.motor], &esc, &cat.props()[cand.prop], bo.entry, bo.cells};
-          const MissionResult r = MissionEvaluator(m, c).Solve();
-          // Refined as far as allowed (a threshold no bound reaches), or toward the true score.
-          const double threshold = r.feasible && (cand.motor + cand.prop) % 2 == 0 ? r.score : kInfinity;
-          const char* rule = nullptr;
-          const double b = SegmentwiseBound(ctx, cand.motor, cand.prop, cand.option, static_cast<int>(cl), EscMassKg(esc),
-                                            threshold, &rule);
-          if (rule) {
-            ++refused[rule];
-            EXPECT_FALSE(r.feasible) << rule << ": " << c.motor->id << " " << esc.id << " " << c.prop->id;
-            continue;
-          }
-          if (std::isfinite(b)) ++finite;
-          if (!r.feasible) continue;
-          ++feasible;
-          EXPECT_LE(b, r.score) << "variant " << variant << ": " << c.motor->id << " " << esc.id << " " << c.prop->id;
-        }
+    ForEachPairClassEsc(ctx, cat, [&](const Candidate& cand, int cl, const EscEntry& esc, const Combination& c) {
+      const MissionResult r = MissionEvaluator(m, c).Solve();
+      // Refined as far as allowed (a threshold no bound reaches), or toward the true score.
+      const double threshold = r.feasible && (cand.motor + cand.prop) % 2 == 0 ? r.score : kInfinity;
+      const char* rule = nullptr;
+      // Without the early stop, so that the pieces are split as deep as the budget allows.
+      const double b =
+          SegmentwiseBound(ctx, cand.motor, cand.prop, cand.option, cl, EscMassKg(esc), threshold, &rule, false);
+      if (rule) {
+        ++refused[rule];
+        EXPECT_FALSE(r.feasible) << rule << ": " << c.motor->id << " " << esc.id << " " << c.prop->id;
+        return;
       }
-    }
+      if (std::isfinite(b)) ++finite;
+      if (!r.feasible) return;
+      ++feasible;
+      EXPECT_LE(b, r.score) << "variant " << variant << ": " << c.motor->id << " " << esc.id << " " << c.prop->id;
+    });
   }
   EXPECT_GT(feasible, 10);
   EXPECT_GT(finite, 10);
@@ -839,35 +849,28 @@ TEST_F(SearchStagesTest, SegmentwiseBoundsEarlyStopKeepsItsAnswer) {
     const Mission m = ParseMission(j, "quad");
     SearchContext ctx;
     PrepareStages(m, cat, &ctx);
-    for (const Candidate& cand : BuildCandidates(ctx, 1).candidates) {
-      for (std::size_t cl = 0; cl < ctx.escs.classes.size(); ++cl) {
-        for (int e : ctx.escs.per_option[cand.option][cl]) {
-          const EscEntry& esc = cat.escs()[e];
-          const BatteryOption& bo = ctx.options[cand.option];
-          const Combination c{&cat.motors()[cand.motor], &esc, &cat.props()[cand.prop], bo.entry, bo.cells};
-          const MissionResult r = MissionEvaluator(m, c).Solve();
-          if (!r.feasible) continue;
-          // Relative offsets about the score: both signs, near and far (a score is negative for
-          // max_endurance, positive for min_energy).
-          for (const double rel : {-0.2, -0.02, -0.002, 0.0, 0.002, 0.02, 0.2}) {
-            const double threshold = r.score + rel * std::abs(r.score);
-            const char* rule_full = nullptr;
-            const char* rule_early = nullptr;
-            const double full = SegmentwiseBound(ctx, cand.motor, cand.prop, cand.option, static_cast<int>(cl),
-                                                 EscMassKg(esc), threshold, &rule_full, false);
-            const double early = SegmentwiseBound(ctx, cand.motor, cand.prop, cand.option, static_cast<int>(cl),
-                                                  EscMassKg(esc), threshold, &rule_early, true);
-            ++compared;
-            const std::string where = std::string(objective) + " " + c.motor->id + " " + esc.id + " " + c.prop->id;
-            EXPECT_EQ(rule_full == nullptr, rule_early == nullptr) << where;
-            EXPECT_EQ(full < threshold, early < threshold) << where << " threshold " << threshold;
-            EXPECT_LE(early, r.score) << where;
-            if (!rule_early && early < threshold) ++stopped_below;
-            if (!(full < threshold)) ++proven_above;
-          }
-        }
+    ForEachPairClassEsc(ctx, cat, [&](const Candidate& cand, int cl, const EscEntry& esc, const Combination& c) {
+      const MissionResult r = MissionEvaluator(m, c).Solve();
+      if (!r.feasible) return;
+      // Relative offsets about the score: both signs, near and far (a score is negative for
+      // max_endurance, positive for min_energy).
+      for (const double rel : {-0.2, -0.02, -0.002, 0.0, 0.002, 0.02, 0.2}) {
+        const double threshold = r.score + rel * std::abs(r.score);
+        const char* rule_full = nullptr;
+        const char* rule_early = nullptr;
+        const double full =
+            SegmentwiseBound(ctx, cand.motor, cand.prop, cand.option, cl, EscMassKg(esc), threshold, &rule_full, false);
+        const double early =
+            SegmentwiseBound(ctx, cand.motor, cand.prop, cand.option, cl, EscMassKg(esc), threshold, &rule_early, true);
+        ++compared;
+        const std::string where = std::string(objective) + " " + c.motor->id + " " + esc.id + " " + c.prop->id;
+        EXPECT_EQ(rule_full == nullptr, rule_early == nullptr) << where;
+        EXPECT_EQ(full < threshold, early < threshold) << where << " threshold " << threshold;
+        EXPECT_LE(early, r.score) << where;
+        if (!rule_early && early < threshold) ++stopped_below;
+        if (!(full < threshold)) ++proven_above;
       }
-    }
+    });
   }
   EXPECT_GT(compared, 100);
   EXPECT_GT(stopped_below, 10) << "the test should see bounds left below the threshold";
