@@ -165,7 +165,8 @@ double MissionEvaluator::EnduranceUpperBound(double target_s, double from_ah, do
     const bool reuse = energy_fixed && run_at_lo && c == c_lo && !(to_ah > 0);
     MissionResult flown;
     if (!reuse) {
-      flown = energy_fixed ? Run(v, 0.0) : RunUpTo(v, static_cast<std::size_t>(m_.objective.segment_index) + 1, false).r;
+      const std::size_t stretch_end = static_cast<std::size_t>(m_.objective.segment_index) + 1;
+      flown = energy_fixed ? Run(v, 0.0) : RunUpTo(v, stretch_end, false).r;
     }
     const MissionResult& r = reuse ? *run_at_lo : flown;
     for (const Violation& x : r.violations) {
