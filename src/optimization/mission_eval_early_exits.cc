@@ -494,7 +494,7 @@ bool MissionEvaluator::EarlyExit(double cutoff_score, bool explain, bool search,
   if (screens && HoverOrWeightRefuses(false, out)) return true;
   // max_endurance's screening run at the smallest capacity (none run: empty); a feasible one was
   // flown in full (a screening run stops only at a violation) and is EnduranceUpperBound's first.
-  MissionResult r0;
+  MissionResult screen_run;
   if (screens && m_.objective.type == ObjectiveType::kMaxEndurance) {
     // One simulation decides most candidates of a search: infeasible before any stretch.
     // With a capacity range it is run at the smallest capacity (the lightest vehicle), and
@@ -505,16 +505,16 @@ bool MissionEvaluator::EarlyExit(double cutoff_score, bool explain, bool search,
     bool airspeed_free = false;
     for (const Segment& s : m_.segments) airspeed_free |= s.type == SegmentType::kCruise && s.airspeed_m_s.free();
     if (!airspeed_free) {
-      r0 = Run(v0, 0.0, true);
-      if (!r0.feasible) {
+      screen_run = Run(v0, 0.0, true);
+      if (!screen_run.feasible) {
         if (!capacity_free) {
-          r0.violations_everywhere = true;  // nothing free: the one point
-          *out = std::move(r0);
+          screen_run.violations_everywhere = true;  // nothing free: the one point
+          *out = std::move(screen_run);
           return true;
         }
-        for (const Violation& v : r0.violations) {
+        for (const Violation& v : screen_run.violations) {
           if (RisesWithMass(v.constraint)) {  // it holds at every capacity
-            *out = r0;
+            *out = screen_run;
             out->violations_everywhere = true;
             return true;
           }
@@ -529,7 +529,7 @@ bool MissionEvaluator::EarlyExit(double cutoff_score, bool explain, bool search,
   // thrust-to-weight.
   if (screens && capacity_free && HoverOrWeightRefuses(true, out)) return true;
   if (bounds && m_.objective.type == ObjectiveType::kMaxEndurance) {
-    const double ub = EnduranceUpperBound(-cutoff_score, 0.0, 0.0, r0.feasible ? &r0 : nullptr);
+    const double ub = EnduranceUpperBound(-cutoff_score, 0.0, 0.0, screen_run.feasible ? &screen_run : nullptr);
     if (-ub >= cutoff_score) {
       MissionResult r;
       r.bounded_out = true;
