@@ -124,6 +124,7 @@ MissionFacts StageFourFacts(const SearchContext& ctx) {
     if (sg.type == SegmentType::kCruise && sg.lift_to_drag > 0) f.r7_axial_m_s = std::max(f.r7_axial_m_s, sg.airspeed_m_s.lo);
   }
   for (std::size_t o = 0; o < ctx.options.size(); ++o) f.capacity_edges.push_back(CapacityPieceEdges(ctx, f, o));
+  f.refine_capacity_pieces = true;
   return f;
 }
 

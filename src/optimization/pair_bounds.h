@@ -37,6 +37,10 @@ struct MissionFacts {
   // R13's pieces all assembled at their own mass (none passed over while it cannot be the
   // least): the same bounds, for the tests that check so.
   bool every_capacity_piece = false;
+  // R13's least piece refined while the pair's bound is below a finite cutoff (PairCandidate;
+  // StageFourFacts sets it): off, the bound is R13's over the fixed pieces, as the tests of the
+  // passed-over pieces compare it.
+  bool refine_capacity_pieces = false;
   // LoadTwins of the mission.
   std::vector<std::size_t> load_twin;
   // Stage 4 only (StageFourFacts): CapacityPieceEdges per battery option, computed once.
@@ -123,6 +127,8 @@ class PairLoads {
   double mass_kg() const { return mass_kg_; }
   // R13's pieces passed over without their own assembly (PairCandidate, PropOnlyBound).
   long long pieces_skipped = 0;
+  // R13's least piece refined below the cutoff (PairCandidate): assemblies and splits made.
+  long long pieces_refined = 0;
   // Scratch for the first piece's SegmentEnergyFloor per kind of drive ([DriveIsLossy]).
   std::vector<SegmentEnergyFloor> floors[2];
   const RotorLoad& At(std::size_t si, bool high, double v_m_s) {

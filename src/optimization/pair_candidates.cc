@@ -1,6 +1,7 @@
 // Stage 4 of the catalog search (pair_candidates.h): the motors set up, each pair refused by a
 // rule or bounded (R3, R4), and R11's keys (docs/search.md).
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <memory>
@@ -291,6 +292,66 @@ double CapacityCoupledBound(const SearchContext& ctx, const MissionFacts& f, con
   return raised;
 }
 
+// R13's least piece refined below the cutoff (docs/search.md#r13, "the least piece refined"):
+// pieces [C_j, C_j+1] with piece_lb[j] a bound of each one's scores (its own assembly's, or the
+// test that passed it over, at most that). While the least is below the cutoff, that piece is
+// assembled at its own mass when it was not, else split at the geometric mean: the left half
+// keeps its vehicle with the budget of its new top, the right half keeps the whole's bound (a
+// bound of each of its parts) until its own assembly. Every piece's bound stays a bound of its
+// scores (R13 holds on any [C_a, C_b]), so the least over them is the pair's bound, at least the
+// fixed pieces'. It stops at the cutoff, after kRefineSteps, or when the least piece's vehicle
+// with the budget of its own lowest capacity is below the cutoff: its leftmost part keeps that
+// vehicle with a budget of at least C_a, so no split can lift it (BudgetScore).
+double RefineLeastPiece(const SearchContext& ctx, const MissionFacts& f, const MotorSetup& s, std::size_t pi,
+                        std::size_t o, double floor_kg, int first_idx, const std::vector<double>& edges,
+                        const double* piece_lb, double cutoff, PairLoads* loads) {
+  constexpr int kRefineSteps = 16;
+  struct Piece {
+    double a_ah, b_ah, bound;
+    bool own;
+    KindTerms terms;
+  };
+  std::array<Piece, kCapacityPieces + kRefineSteps> pieces;
+  std::size_t n = 0;
+  for (std::size_t j = 0; j + 1 < edges.size(); ++j) {
+    pieces[n++] = Piece{edges[j], edges[j + 1], piece_lb[j], false, {}};
+  }
+  const BatteryOption& bo = ctx.options[o];
+  for (int step = 0; step < kRefineSteps; ++step) {
+    Piece* least = std::min_element(pieces.begin(), pieces.begin() + static_cast<std::ptrdiff_t>(n),
+                                    [](const Piece& x, const Piece& y) { return x.bound < y.bound; });
+    if (!(least->bound < cutoff)) break;
+    ++loads->pieces_refined;
+    if (!least->own) {
+      loads->Reset(std::max(VehicleMassKg(ctx, PackMassLowerBoundKg(bo, least->a_ah), s.mass_kg, ctx.grids[pi].mass_kg,
+                                          ctx.escs.min_mass_kg[o]),
+                            floor_kg));
+      double w = 0, q = 0;
+      int idx = first_idx;
+      HoverGridPointInBracket(f, ctx.grids[pi], loads, &idx, kGrid - 1, &w, &q);
+      const ClassPowers p = HoverPowersOfClasses(ctx, s, o, w, q);
+      if (!p.Any()) {  // R3 refuses every class at the piece's lightest vehicle: no feasible point
+        least->bound = kInf;
+        continue;
+      }
+      least->terms = TermsOfPowers(ctx, f, p, pi, o, loads);
+      least->own = true;
+      least->bound = std::max(least->bound, least->terms.At(least->b_ah));
+      continue;
+    }
+    const double mid = std::sqrt(least->a_ah * least->b_ah);
+    if (n == pieces.size() || !(least->terms.At(least->a_ah) >= cutoff) || !(mid > least->a_ah && mid < least->b_ah)) {
+      break;
+    }
+    pieces[n++] = Piece{mid, least->b_ah, least->bound, false, {}};
+    least->b_ah = mid;
+    least->bound = std::max(least->bound, least->terms.At(mid));
+  }
+  double bound = kInf;
+  for (std::size_t j = 0; j < n; ++j) bound = std::min(bound, pieces[j].bound);
+  return bound;
+}
+
 }  // namespace
 
 // Stage 4 for one pair of a set-up motor whose option R1 lets through and whose propeller
@@ -340,13 +401,17 @@ bool PairCandidate(const SearchContext& ctx, const MissionFacts& f, const MotorS
   double bound = kInf;
   const double avionics_w = ctx.mission->vehicle.avionics_power_w;
   OtherEnergyFloor e_floor{&first, nullptr, avionics_w};
+  // R13's bound of each piece as far as it is known (RefineLeastPiece reads it).
+  double piece_lb[kCapacityPieces];
   if (edges.empty() || f.every_capacity_piece || !(first.At(edges[1]) >= cutoff)) {
     if (!edges.empty()) {
       first = TermsOfPowers(ctx, f, lightest, pi, o, loads, false, true);
       e_floor.loads = loads;
     }
     bound = first.At(edges.empty() ? bo.capacity_hi_ah : edges[1]);
+    piece_lb[0] = bound;
   } else {
+    piece_lb[0] = first.At(edges[1]);
     ++loads->pieces_skipped;
   }
   // The other pieces, heaviest first: a piece is assembled at its own mass only when the first
@@ -358,12 +423,14 @@ bool PairCandidate(const SearchContext& ctx, const MissionFacts& f, const MotorS
                                ? PdcGrowth{}
                                : PdcGrowthOf(ctx, s, o, omega_lb, q_lb);
   int heavier_idx = kGrid - 1;  // the last piece's raw grid index: the pieces go heaviest first
+  std::size_t passed_from = 0;  // pieces 1 to this were passed over together (first.At bounds them)
   for (std::size_t j = edges.size() < 3 ? 0 : edges.size() - 2; j > 0; --j) {
     const double target = std::min(bound, cutoff);
     if (!f.every_capacity_piece && first.At(edges[j + 1]) >= target) {
       // So are the lighter pieces': a smaller budget scores no better (BudgetScore), and the
       // target only falls.
       loads->pieces_skipped += static_cast<long long>(j);
+      passed_from = j;
       break;
     }
     const double mass_kg = std::max(VehicleMassKg(ctx, PackMassLowerBoundKg(bo, edges[j]), s.mass_kg,
@@ -374,10 +441,11 @@ bool PairCandidate(const SearchContext& ctx, const MissionFacts& f, const MotorS
     int idx = first_idx;
     HoverGridPointInBracket(f, ctx.grids[pi], loads, &idx, heavier_idx, &w, &q);
     heavier_idx = idx;
-    auto grown_out = [&]() {
-      return growth.ok && GrownStretchBound(first, lightest, growth.Factor(s.mp, w, q), e_floor, edges[j + 1]) >= target;
+    // The piece's bound from the first piece's terms (PdcGrowth); -inf without it.
+    auto grown = [&]() {
+      return growth.ok ? GrownStretchBound(first, lightest, growth.Factor(s.mp, w, q), e_floor, edges[j + 1]) : -kInf;
     };
-    if (!f.every_capacity_piece && grown_out()) {
+    if (!f.every_capacity_piece && (piece_lb[j] = grown()) >= target) {
       ++loads->pieces_skipped;
       continue;
     }
@@ -388,20 +456,27 @@ bool PairCandidate(const SearchContext& ctx, const MissionFacts& f, const MotorS
       first = TermsOfPowers(ctx, f, lightest, pi, o, loads, false, true);
       e_floor.loads = loads;
       loads->Reset(mass_kg);
-      if (first.At(edges[j + 1]) >= target || grown_out()) {
+      if ((piece_lb[j] = std::max(first.At(edges[j + 1]), grown())) >= target) {
         ++loads->pieces_skipped;
         continue;
       }
     }
     const ClassPowers p = HoverPowersOfClasses(ctx, s, o, w, q);
+    piece_lb[j] = kInf;
     if (!p.Any()) continue;  // no feasible point here (nor in a heavier piece, M1-M3)
     // (Its own stretch power, momentum theory's included, would cost an assembly of the
     // stretch per piece: the keys' measure, docs/search.md#r13, found it not worth it.)
-    if (!f.every_capacity_piece && OwnPdcBound(first, p, e_floor, edges[j + 1]) >= target) {
+    if (!f.every_capacity_piece && (piece_lb[j] = OwnPdcBound(first, p, e_floor, edges[j + 1])) >= target) {
       ++loads->pieces_skipped;
       continue;
     }
-    bound = std::min(bound, TermsOfPowers(ctx, f, p, pi, o, loads).At(edges[j + 1]));
+    piece_lb[j] = TermsOfPowers(ctx, f, p, pi, o, loads).At(edges[j + 1]);
+    bound = std::min(bound, piece_lb[j]);
+  }
+  if (f.refine_capacity_pieces && !f.every_capacity_piece && !edges.empty() && std::isfinite(cutoff) &&
+      bound < cutoff) {
+    for (std::size_t k = 1; k <= passed_from; ++k) piece_lb[k] = first.At(edges[k + 1]);
+    bound = RefineLeastPiece(ctx, f, s, pi, o, floor_kg, first_idx, edges, piece_lb, cutoff, loads);
   }
   double irms_lb = lightest.irms_lb;
   if (edges.empty()) {
