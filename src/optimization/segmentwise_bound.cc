@@ -221,7 +221,11 @@ double SegmentwiseBoundAt(const SearchContext& ctx, const MissionFacts& f, const
 double SegmentwiseBoundPieces(const SearchContext& ctx, const MissionFacts& f, const MotorParams& mp,
                               const Drive& ideal, double t_max, int motor, int prop, int option, double esc_mass_kg,
                               double threshold, const char** rule, bool stop_when_unprovable) {
-  constexpr int kPieces = 2, kMaxSplits = 24, kRefineSteps = 6;
+  // The first pieces: with max_endurance 4 (each piece's bound takes the budget of its top, and
+  // 4 pieces prove more pairs before any split: docs/search.md#r10), else 2 (min_energy's bound
+  // does not read the budget: the lowest piece is the least).
+  constexpr int kMaxSplits = 24, kRefineSteps = 6;
+  const int first_pieces = ctx.mission->objective.type == ObjectiveType::kMaxEndurance ? 4 : 2;
   const BatteryOption& bo = ctx.options[static_cast<std::size_t>(option)];
   const double lo = bo.capacity_lo_ah, hi = bo.capacity_hi_ah;
   const bool range = hi > lo;
@@ -245,7 +249,7 @@ double SegmentwiseBoundPieces(const SearchContext& ctx, const MissionFacts& f, c
     return Piece{a, b, r ? kInf : x, refined, mass};
   };
   std::vector<Piece> pieces;
-  const int n = range ? kPieces : 1;
+  const int n = range ? first_pieces : 1;
   for (int j = 0; j < n; ++j) {
     pieces.push_back(range ? piece(lo + (hi - lo) * j / n, lo + (hi - lo) * (j + 1) / n, false, masses.size())
                            : piece(lo, hi, false, masses.size()));
