@@ -534,6 +534,15 @@ std::vector<Json> HoverAndCruiseStretches() {
   return {j, cruise};
 }
 
+// *mission with its pack's capacity over `range` (Ah), parsed; *what names its stretch and range.
+Mission WithCapacityRange(Json* mission, std::pair<double, double> range, std::string* what) {
+  (*mission)["battery"]["capacity_ah"] = {range.first, range.second};
+  Mission m = ParseMission(*mission, "quad");
+  *what = m.segments[static_cast<std::size_t>(m.objective.segment_index)].name + " over [" +
+          std::to_string(range.first) + ", " + std::to_string(range.second) + "] Ah";
+  return m;
+}
+
 // R13's pieces passed over (docs/search.md#r13, "assembled only while it can be the least"): a
 // piece after the first is assembled at its own mass only when the first piece's terms with its
 // budget, then its own stretch power with the first piece's other segments, are below the least
@@ -545,10 +554,8 @@ TEST_F(SearchStagesTest, CapacityPiecesPassedOverLeaveEveryPairBoundAndKeyTheSam
   const Catalog cat = SmallCatalog();
   for (Json& mission : HoverAndCruiseStretches()) {
     for (const auto& range : {std::make_pair(2.0, 6.0), std::make_pair(1.5, 9.0), std::make_pair(8.0, 60.0), std::make_pair(10.0, 200.0)}) {
-      mission["battery"]["capacity_ah"] = {range.first, range.second};
-      const Mission m = ParseMission(mission, "quad");
-      const std::string what = m.segments[static_cast<std::size_t>(m.objective.segment_index)].name + " over [" +
-                               std::to_string(range.first) + ", " + std::to_string(range.second) + "] Ah";
+      std::string what;
+      const Mission m = WithCapacityRange(&mission, range, &what);
       SearchContext ctx;
       PrepareStages(m, cat, &ctx);
       MissionFacts f = StageFourFacts(ctx);
@@ -650,10 +657,8 @@ TEST_F(SearchStagesTest, RefinedLeastPieceStaysBelowEveryFeasibleScore) {
   long long refined = 0;
   for (Json& mission : HoverAndCruiseStretches()) {
     for (const auto& range : {std::make_pair(1.5, 9.0), std::make_pair(2.0, 6.0), std::make_pair(8.0, 60.0)}) {
-      mission["battery"]["capacity_ah"] = {range.first, range.second};
-      const Mission m = ParseMission(mission, "quad");
-      const std::string what = m.segments[static_cast<std::size_t>(m.objective.segment_index)].name + " over [" +
-                               std::to_string(range.first) + ", " + std::to_string(range.second) + "] Ah";
+      std::string what;
+      const Mission m = WithCapacityRange(&mission, range, &what);
       SearchContext ctx;
       PrepareStages(m, cat, &ctx);
       const MissionFacts f = StageFourFacts(ctx);
