@@ -124,6 +124,9 @@ MissionFacts StageFourFacts(const SearchContext& ctx) {
     if (sg.type == SegmentType::kCruise && sg.lift_to_drag > 0) f.r7_axial_m_s = std::max(f.r7_axial_m_s, sg.airspeed_m_s.lo);
   }
   for (std::size_t o = 0; o < ctx.options.size(); ++o) f.capacity_edges.push_back(CapacityPieceEdges(ctx, f, o));
+  for (std::size_t o = 0; o < ctx.options.size(); ++o) {
+    f.key_capacity_edges.push_back(CapacityPieceEdges(ctx, f, o, kKeyCapacityPieces));
+  }
   f.refine_capacity_pieces = true;
   return f;
 }
@@ -278,7 +281,8 @@ double ScoreLowerBound(const SearchContext& ctx, const MissionFacts& f, bool los
 }
 
 // Rule R13 (docs/search.md#r13): R4's budget piece by piece over a capacity range.
-std::vector<double> CapacityPieceEdges(const SearchContext& ctx, const MissionFacts& f, std::size_t option) {
+std::vector<double> CapacityPieceEdges(const SearchContext& ctx, const MissionFacts& f, std::size_t option,
+                                       int pieces) {
   const BatteryOption& bo = ctx.options[option];
   const Mission& m = *ctx.mission;
   std::vector<double> edges;
@@ -288,17 +292,18 @@ std::vector<double> CapacityPieceEdges(const SearchContext& ctx, const MissionFa
   }
   const double ratio = bo.capacity_hi_ah / bo.capacity_lo_ah;
   edges.push_back(bo.capacity_lo_ah);
-  for (int j = 1; j < kCapacityPieces; ++j) {
-    edges.push_back(bo.capacity_lo_ah * std::pow(ratio, double(j) / kCapacityPieces));
+  for (int j = 1; j < pieces; ++j) {
+    edges.push_back(bo.capacity_lo_ah * std::pow(ratio, double(j) / pieces));
   }
   edges.push_back(bo.capacity_hi_ah);
   return edges;
 }
 
 const std::vector<double>& PieceEdges(const SearchContext& ctx, const MissionFacts& f, std::size_t option,
-                                      std::vector<double>* scratch) {
-  if (option < f.capacity_edges.size()) return f.capacity_edges[option];
-  *scratch = CapacityPieceEdges(ctx, f, option);
+                                      std::vector<double>* scratch, bool keys) {
+  const std::vector<std::vector<double>>& kept = keys ? f.key_capacity_edges : f.capacity_edges;
+  if (option < kept.size()) return kept[option];
+  *scratch = CapacityPieceEdges(ctx, f, option, keys ? kKeyCapacityPieces : kCapacityPieces);
   return *scratch;
 }
 

@@ -45,6 +45,8 @@ struct MissionFacts {
   std::vector<std::size_t> load_twin;
   // Stage 4 only (StageFourFacts): CapacityPieceEdges per battery option, computed once.
   std::vector<std::vector<double>> capacity_edges;
+  // The same with kKeyCapacityPieces pieces, for R11's keys (PropOnlyBound).
+  std::vector<std::vector<double>> key_capacity_edges;
 };
 
 // Groups (G1): the rules below speak of the free group's segments only; a segment of a fixed
@@ -196,16 +198,22 @@ ScoreBoundTerms ScoreLowerBoundTerms(const SearchContext& ctx, const MissionFact
 double OtherEnergyAtLeastJ(const std::vector<SegmentEnergyFloor>& floors, double pdc_lb_w, double avionics_w);
 
 // R13 (docs/search.md#r13): R4's max_endurance budget over the option's capacity range in
-// kCapacityPieces pieces [C_j, C_j+1] (geometric): on a piece every pack holds at most C_j+1's
-// charge and the vehicle weighs at least its mass with C_j's pack, so R4's bound at that mass
-// with C_j+1's budget bounds the piece; the pair's bound is the least over the pieces. The
-// pieces' capacities, ascending (kCapacityPieces + 1 of them from capacity_lo_ah to
+// `pieces` pieces [C_j, C_j+1] (geometric; kCapacityPieces for the pairs): on a piece every pack
+// holds at most C_j+1's charge and the vehicle weighs at least its mass with C_j's pack, so R4's
+// bound at that mass with C_j+1's budget bounds the piece; the pair's bound is the least over
+// the pieces. The pieces' capacities, ascending (pieces + 1 of them from capacity_lo_ah to
 // capacity_hi_ah; empty when the option has no range or the objective no budget).
 inline constexpr int kCapacityPieces = 12;
-std::vector<double> CapacityPieceEdges(const SearchContext& ctx, const MissionFacts& f, std::size_t option);
-// CapacityPieceEdges as StageFourFacts keeps them; computed into *scratch when f has none.
+// R11's keys take finer pieces (docs/search.md#constants): a key bounds every pair of its motor
+// class, and a tighter key leaves fewer pairs to bound (the pairs' own bound is refined below
+// the cutoff instead, RefineLeastPiece).
+inline constexpr int kKeyCapacityPieces = 20;
+std::vector<double> CapacityPieceEdges(const SearchContext& ctx, const MissionFacts& f, std::size_t option,
+                                       int pieces = kCapacityPieces);
+// CapacityPieceEdges as StageFourFacts keeps them (keys: R11's, kKeyCapacityPieces); computed
+// into *scratch when f has none.
 const std::vector<double>& PieceEdges(const SearchContext& ctx, const MissionFacts& f, std::size_t option,
-                                      std::vector<double>* scratch);
+                                      std::vector<double>* scratch, bool keys = false);
 // The option's pack mass at capacity_ah of its range, shrunk by 1e-9 against rounding (a lower
 // bound of the pack's true mass there: the mass is proportional to the capacity, PackAt).
 double PackMassLowerBoundKg(const BatteryOption& bo, double capacity_ah);

@@ -532,7 +532,7 @@ double PropOnlyBound(const SearchContext& ctx, const MissionFacts& f, std::size_
   // R13 (docs/search.md#r13): over a capacity range the same key piece by piece, the other
   // pieces assembled only while they can be the least (as PairCandidate).
   std::vector<double> scratch;
-  const std::vector<double>& edges = PieceEdges(ctx, f, o, &scratch);
+  const std::vector<double>& edges = PieceEdges(ctx, f, o, &scratch, true);  // R11's finer pieces
   if (edges.empty()) {
     // R15 (docs/search.md#r15): min_energy over a capacity range, the key raised by the pack its
     // energy needs (a key above the range's largest pack is left: the pairs' R15 refuses them).
