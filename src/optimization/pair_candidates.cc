@@ -265,6 +265,15 @@ bool EveryKindPasses(const SearchContext& ctx, const MotorSetup& s, std::size_t 
   return true;
 }
 
+// The lightest vehicle of pair (s, pi) with option o's pack at capacity_ah of its range (R13's
+// pieces, R15): its lightest ESC, at least floor_kg (R12's and the fixed groups' floors).
+double PairVehicleKg(const SearchContext& ctx, const MotorSetup& s, std::size_t pi, std::size_t o, double capacity_ah,
+                     double floor_kg) {
+  return std::max(VehicleMassKg(ctx, PackMassLowerBoundKg(ctx.options[o], capacity_ah), s.mass_kg,
+                                ctx.grids[pi].mass_kg, ctx.escs.min_mass_kg[o]),
+                  floor_kg);
+}
+
 // R15 for one pair (RaisedByNeededCapacity): its R4 bound `bound` at its lightest vehicle raised,
 // with R3 at each heavier vehicle; kInf with *why when R3 refuses every class there or no pack
 // of the range holds the energy. *irms_lb: raised to R3's Irms at the last vehicle.
@@ -275,9 +284,7 @@ double CapacityCoupledBound(const SearchContext& ctx, const MissionFacts& f, con
   int idx = first_idx;  // the raw grid index of the last vehicle: each is heavier than the one before
   bool over_range = false;
   const double raised = RaisedByNeededCapacity(*ctx.mission, bo, bound, cutoff, &over_range, [&](double capacity_ah) {
-    loads->Reset(std::max(VehicleMassKg(ctx, PackMassLowerBoundKg(bo, capacity_ah), s.mass_kg, ctx.grids[pi].mass_kg,
-                                        ctx.escs.min_mass_kg[o]),
-                          floor_kg));
+    loads->Reset(PairVehicleKg(ctx, s, pi, o, capacity_ah, floor_kg));
     double w = 0, q = 0;
     HoverGridPointInBracket(f, ctx.grids[pi], loads, &idx, kGrid - 1, &w, &q);
     const ClassPowers p = HoverPowersOfClasses(ctx, s, o, w, q);
@@ -316,16 +323,13 @@ double RefineLeastPiece(const SearchContext& ctx, const MissionFacts& f, const M
   for (std::size_t j = 0; j + 1 < edges.size(); ++j) {
     pieces[n++] = Piece{edges[j], edges[j + 1], piece_lb[j], false, {}};
   }
-  const BatteryOption& bo = ctx.options[o];
   for (int step = 0; step < kRefineSteps; ++step) {
     Piece* least = std::min_element(pieces.begin(), pieces.begin() + static_cast<std::ptrdiff_t>(n),
                                     [](const Piece& x, const Piece& y) { return x.bound < y.bound; });
     if (!(least->bound < cutoff)) break;
-    ++loads->pieces_refined;
     if (!least->own) {
-      loads->Reset(std::max(VehicleMassKg(ctx, PackMassLowerBoundKg(bo, least->a_ah), s.mass_kg, ctx.grids[pi].mass_kg,
-                                          ctx.escs.min_mass_kg[o]),
-                            floor_kg));
+      ++loads->pieces_refined;
+      loads->Reset(PairVehicleKg(ctx, s, pi, o, least->a_ah, floor_kg));
       double w = 0, q = 0;
       int idx = first_idx;
       HoverGridPointInBracket(f, ctx.grids[pi], loads, &idx, kGrid - 1, &w, &q);
@@ -343,6 +347,7 @@ double RefineLeastPiece(const SearchContext& ctx, const MissionFacts& f, const M
     if (n == pieces.size() || !(least->terms.At(least->a_ah) >= cutoff) || !(mid > least->a_ah && mid < least->b_ah)) {
       break;
     }
+    ++loads->pieces_refined;
     pieces[n++] = Piece{mid, least->b_ah, least->bound, false, {}};
     least->b_ah = mid;
     least->bound = std::max(least->bound, least->terms.At(mid));
@@ -433,9 +438,7 @@ bool PairCandidate(const SearchContext& ctx, const MissionFacts& f, const MotorS
       passed_from = j;
       break;
     }
-    const double mass_kg = std::max(VehicleMassKg(ctx, PackMassLowerBoundKg(bo, edges[j]), s.mass_kg,
-                                                  ctx.grids[pi].mass_kg, ctx.escs.min_mass_kg[o]),
-                                    floor_kg);
+    const double mass_kg = PairVehicleKg(ctx, s, pi, o, edges[j], floor_kg);
     loads->Reset(mass_kg);
     double w = 0, q = 0;
     int idx = first_idx;
