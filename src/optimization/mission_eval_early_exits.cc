@@ -88,12 +88,14 @@ double MissionEvaluator::EnduranceUpperBound(double target_s, double from_ah, do
   // The OCV curve per SOC does not depend on the capacity (PackAt scales charge, mass,
   // resistance and rating only), so the integral is computed once.
   // The range starts in kBoundPieces pieces; while the largest piece bound is at least
-  // `target_s`, that piece is halved (one more Run), up to kMaxBoundRuns Runs: the bound only
-  // tightens as far as it takes to prove "cannot reach target_s".
+  // `target_s`, that piece is split where its own run stops proving the target out (split_at
+  // below; one more Run), up to kMaxBoundRuns Runs: the bound only tightens as far as it takes
+  // to prove "cannot reach target_s", and stops as soon as no split can.
   constexpr int kBoundPieces = 2;
-  // Past a few halvings a piece rarely proves anything more (capacity-sized quadcopter: 24
-  // runs, 8.4 s of CPU; 8 runs, 7.45 s, 5,154 -> 5,193 exact evaluations).
-  constexpr int kMaxBoundRuns = 8;
+  // Capacity-sized quadcopter, --top 5 (one thread, instructions of the search): halving the
+  // worst piece, 8 runs, 13.74 G; split where the run stops proving, 8, 12, 16, 24 runs:
+  // 12.53, 12.38, 12.41, 12.85 G, the same results (docs/joint-search.md, session 45).
+  constexpr int kMaxBoundRuns = 12;
   const Segment& st = m_.segments[m_.objective.segment_index];
   if (st.type == SegmentType::kCruise && st.airspeed_m_s.free()) return kInf;
   const double t_fixed_max = LongestFixedDurationS(m_);
@@ -184,10 +186,12 @@ double MissionEvaluator::EnduranceUpperBound(double target_s, double from_ah, do
     pc.omega_rad_s = s.point.omega_rad_s;
     return pc;
   };
-  auto bound_of = [&](Piece& pc) {
+  // The piece's bound with its budget at capacity cb (>= pc.ca): the smaller of the reserve's
+  // and the throttle floor's, each t_fixed_max + (Q(cb)*integral of OCV - E)/P_stretch(C_a).
+  auto bound_to = [&](Piece& pc, double cb) {
     if (pc.ca >= infeasible_from) return -kInf;
     if (!(pc.p_ca > 0)) return kInf;
-    const double by_reserve = t_fixed_max + std::max(0.0, ocv_integral_v * AhToCoulomb(pc.cb) - pc.e_other_ca) / pc.p_ca;
+    const double by_reserve = t_fixed_max + std::max(0.0, ocv_integral_v * AhToCoulomb(cb) - pc.e_other_ca) / pc.p_ca;
     if (by_reserve < target_s) return by_reserve;  // enough: the floor could only lower it
     if (!pc.floor_done && t_max < 1.0 && pc.omega_rad_s > 0) {
       const double v_min = std::max(v_cut, MinVoltageForThrottle(stretch_drive.drive, pc.torque_nm, pc.omega_rad_s,
@@ -197,8 +201,30 @@ double MissionEvaluator::EnduranceUpperBound(double target_s, double from_ah, do
     pc.floor_done = true;
     if (!std::isfinite(pc.ocv_integral_smin_v)) return by_reserve;
     const double by_throttle =
-        t_fixed_max + std::max(0.0, pc.ocv_integral_smin_v * AhToCoulomb(pc.cb) - pc.e_before_ca) / pc.p_ca;
+        t_fixed_max + std::max(0.0, pc.ocv_integral_smin_v * AhToCoulomb(cb) - pc.e_before_ca) / pc.p_ca;
     return std::min(by_reserve, by_throttle);
+  };
+  // Where to split a piece [C_a, C_b] whose bound reaches target_s: at the largest capacity up to
+  // which its own run (at C_a) proves the target out. Both bounds rise linearly with the budget
+  // Q(cb), so that capacity has a closed form; the piece up to it is settled without another
+  // run, and the next run starts where it ends. No more than C_a when no budget above Q(C_a)
+  // proves it: then no split can, as every piece from C_a has at least that bound. The split only
+  // chooses where the next run goes: every piece's bound is computed as before, so a wrong
+  // split costs runs, never a proof.
+  auto split_at = [&](Piece& pc) {
+    if (!(pc.p_ca > 0) || !(target_s > t_fixed_max)) return pc.ca;
+    const double room_j = (target_s - t_fixed_max) * pc.p_ca;  // the energy a bound below target_s allows
+    auto reach_ah = [&](double integral_v, double e_j) {
+      return integral_v > 0 ? (room_j + e_j) / AhToCoulomb(integral_v) : kInf;  // Q(cb)*integral = room + E
+    };
+    double reach = reach_ah(ocv_integral_v, pc.e_other_ca);
+    bound_to(pc, pc.cb);  // the throttle floor, when the reserve's bound alone reaches target_s
+    if (std::isfinite(pc.ocv_integral_smin_v)) {
+      reach = std::max(reach, reach_ah(pc.ocv_integral_smin_v, pc.e_before_ca));
+    }
+    double s = std::min(pc.ca + (reach - pc.ca) * (1.0 - 1e-9), pc.cb);  // strictly below target_s, not at it
+    for (int i = 0; i < 4 && s > pc.ca && !(bound_to(pc, s) < target_s); ++i) s = pc.ca + 0.5 * (s - pc.ca);
+    return bound_to(pc, s) < target_s ? s : pc.ca;
   };
   std::vector<Piece> pieces;
   const int n0 = free_c ? kBoundPieces : 1;
@@ -210,14 +236,15 @@ double MissionEvaluator::EnduranceUpperBound(double target_s, double from_ah, do
   while (true) {
     std::size_t worst = 0;
     for (std::size_t i = 1; i < pieces.size(); ++i) {
-      if (bound_of(pieces[i]) > bound_of(pieces[worst])) worst = i;
+      if (bound_to(pieces[i], pieces[i].cb) > bound_to(pieces[worst], pieces[worst].cb)) worst = i;
     }
-    const double ub = bound_of(pieces[worst]);
+    const double ub = bound_to(pieces[worst], pieces[worst].cb);
     if (!free_c || ub < target_s || runs >= kMaxBoundRuns || !std::isfinite(ub)) return ub;
-    const Piece pc = pieces[worst];
-    const double mid = 0.5 * (pc.ca + pc.cb);
-    pieces[worst].cb = mid;
-    pieces.push_back(piece_at(mid, pc.cb));
+    const double cut = split_at(pieces[worst]);
+    if (!(cut > pieces[worst].ca)) return ub;  // no split can prove it
+    const double cb = pieces[worst].cb;
+    pieces[worst].cb = cut;
+    pieces.push_back(piece_at(cut, cb));
   }
 }
 
