@@ -67,35 +67,43 @@ bool RisesWithMass(const std::string& constraint) {
   return false;
 }
 
+// EnduranceUpperBound's first pieces of a capacity range, and the Runs it may take.
+constexpr int kEnduranceBoundPieces = 2;
+// Capacity-sized quadcopter, --top 5 (one thread, instructions of the search): halving the
+// worst piece, 8 runs, 13.74 G; split where the run stops proving, 8, 12, 16, 24 runs:
+// 12.53, 12.38, 12.41, 12.85 G, the same results (docs/joint-search.md, session 45).
+constexpr int kEnduranceBoundRuns = 12;
+
+// The largest budget capacity (Ah) at which t_fixed + (Q(cb)*integral_v - e_j)/p < target,
+// given room_j = (target - t_fixed)*p: Q(cb)*integral_v = room_j + e_j (EnduranceUpperBound).
+double BudgetReachAh(double room_j, double integral_v, double e_j) {
+  return integral_v > 0 ? (room_j + e_j) / AhToCoulomb(integral_v) : kInf;
+}
+
 }  // namespace
 
+// max_endurance with the stretched segment at a fixed airspeed (hover, or cruise with one
+// airspeed): over capacities C in a piece [C_a, C_b] of the range,
+//   t_total(C) <= t_fixed_max + Q(C_b)*integral of OCV over [reserve, 1] / P_stretch(C_a)
+// because more capacity means more mass and so no less power in every segment (M3 of
+// search.cc), and the terminal energy is at most the OCV-weighted charge above the reserve.
+// P_stretch(C_a) is the terminal power at the start of the stretch, from one Run, less the
+// part of it that may fall as the voltage sags (voltage_dependent_w below: with C0 > 0 or
+// a supply resistance, eqs 57, 59), so that it is the least power over the stretch and over
+// the larger capacities.
+// When the ESC has C0 = 0 and no supply resistance, every segment's terminal power
+// N*PDC + P_avionics = N*C1*U*Irms/kv + P_avionics (eqs 48, 57, 59) does not depend on the
+// voltage, so the other segments' energy at C_a, E_other(C_a), is a lower bound of theirs at
+// any larger capacity (M3), and the stretch gets only what is left of the budget:
+//   t_total(C) <= t_fixed_max + (Q(C_b)*integral of OCV - E_other(C_a)) / P_stretch(C_a).
+// The OCV curve per SOC does not depend on the capacity (PackAt scales charge, mass,
+// resistance and rating only), so the integral is computed once.
+// The range starts in kEnduranceBoundPieces pieces; while the largest piece bound is at least
+// `target_s`, that piece is split where its own run stops proving the target out (split_at
+// below; one more Run), up to kEnduranceBoundRuns Runs: the bound only tightens as far as it takes
+// to prove "cannot reach target_s", and stops as soon as no split can.
 double MissionEvaluator::EnduranceUpperBound(double target_s, double from_ah, double to_ah,
                                              const MissionResult* run_at_lo) const {
-  // max_endurance with the stretched segment at a fixed airspeed (hover, or cruise with one
-  // airspeed): over capacities C in a piece [C_a, C_b] of the range,
-  //   t_total(C) <= t_fixed_max + Q(C_b)*integral of OCV over [reserve, 1] / P_stretch(C_a)
-  // because more capacity means more mass and so no less power in every segment (M3 of
-  // search.cc), and the terminal energy is at most the OCV-weighted charge above the reserve.
-  // P_stretch(C_a) is the terminal power at the start of the stretch, from one Run, less the
-  // part of it that may fall as the voltage sags (voltage_dependent_w below: with C0 > 0 or
-  // a supply resistance, eqs 57, 59), so that it is the least power over the stretch and over
-  // the larger capacities.
-  // When the ESC has C0 = 0 and no supply resistance, every segment's terminal power
-  // N*PDC + P_avionics = N*C1*U*Irms/kv + P_avionics (eqs 48, 57, 59) does not depend on the
-  // voltage, so the other segments' energy at C_a, E_other(C_a), is a lower bound of theirs at
-  // any larger capacity (M3), and the stretch gets only what is left of the budget:
-  //   t_total(C) <= t_fixed_max + (Q(C_b)*integral of OCV - E_other(C_a)) / P_stretch(C_a).
-  // The OCV curve per SOC does not depend on the capacity (PackAt scales charge, mass,
-  // resistance and rating only), so the integral is computed once.
-  // The range starts in kBoundPieces pieces; while the largest piece bound is at least
-  // `target_s`, that piece is split where its own run stops proving the target out (split_at
-  // below; one more Run), up to kMaxBoundRuns Runs: the bound only tightens as far as it takes
-  // to prove "cannot reach target_s", and stops as soon as no split can.
-  constexpr int kBoundPieces = 2;
-  // Capacity-sized quadcopter, --top 5 (one thread, instructions of the search): halving the
-  // worst piece, 8 runs, 13.74 G; split where the run stops proving, 8, 12, 16, 24 runs:
-  // 12.53, 12.38, 12.41, 12.85 G, the same results (docs/joint-search.md, session 45).
-  constexpr int kMaxBoundRuns = 12;
   const Segment& st = m_.segments[m_.objective.segment_index];
   if (st.type == SegmentType::kCruise && st.airspeed_m_s.free()) return kInf;
   const double t_fixed_max = LongestFixedDurationS(m_);
@@ -214,20 +222,17 @@ double MissionEvaluator::EnduranceUpperBound(double target_s, double from_ah, do
   auto split_at = [&](Piece& pc) {
     if (!(pc.p_ca > 0) || !(target_s > t_fixed_max)) return pc.ca;
     const double room_j = (target_s - t_fixed_max) * pc.p_ca;  // the energy a bound below target_s allows
-    auto reach_ah = [&](double integral_v, double e_j) {
-      return integral_v > 0 ? (room_j + e_j) / AhToCoulomb(integral_v) : kInf;  // Q(cb)*integral = room + E
-    };
-    double reach = reach_ah(ocv_integral_v, pc.e_other_ca);
+    double reach = BudgetReachAh(room_j, ocv_integral_v, pc.e_other_ca);
     bound_to(pc, pc.cb);  // the throttle floor, when the reserve's bound alone reaches target_s
     if (std::isfinite(pc.ocv_integral_smin_v)) {
-      reach = std::max(reach, reach_ah(pc.ocv_integral_smin_v, pc.e_before_ca));
+      reach = std::max(reach, BudgetReachAh(room_j, pc.ocv_integral_smin_v, pc.e_before_ca));
     }
     double s = std::min(pc.ca + (reach - pc.ca) * (1.0 - 1e-9), pc.cb);  // strictly below target_s, not at it
     for (int i = 0; i < 4 && s > pc.ca && !(bound_to(pc, s) < target_s); ++i) s = pc.ca + 0.5 * (s - pc.ca);
     return bound_to(pc, s) < target_s ? s : pc.ca;
   };
   std::vector<Piece> pieces;
-  const int n0 = free_c ? kBoundPieces : 1;
+  const int n0 = free_c ? kEnduranceBoundPieces : 1;
   for (int i = 0; i < n0; ++i) {
     const double ca = c_lo + (c_hi - c_lo) * i / n0;
     const double cb = c_lo + (c_hi - c_lo) * (i + 1) / n0;
@@ -239,7 +244,7 @@ double MissionEvaluator::EnduranceUpperBound(double target_s, double from_ah, do
       if (bound_to(pieces[i], pieces[i].cb) > bound_to(pieces[worst], pieces[worst].cb)) worst = i;
     }
     const double ub = bound_to(pieces[worst], pieces[worst].cb);
-    if (!free_c || ub < target_s || runs >= kMaxBoundRuns || !std::isfinite(ub)) return ub;
+    if (!free_c || ub < target_s || runs >= kEnduranceBoundRuns || !std::isfinite(ub)) return ub;
     const double cut = split_at(pieces[worst]);
     if (!(cut > pieces[worst].ca)) return ub;  // no split can prove it
     const double cb = pieces[worst].cb;
