@@ -194,6 +194,15 @@ double MissionEvaluator::EnduranceUpperBound(double target_s, double from_ah, do
     pc.omega_rad_s = s.point.omega_rad_s;
     return pc;
   };
+  // The piece's throttle floor (its OCV integral from s_min), computed once and only when needed.
+  auto throttle_floor = [&](Piece& pc) {
+    if (!pc.floor_done && t_max < 1.0 && pc.omega_rad_s > 0) {
+      const double v_min = std::max(v_cut, MinVoltageForThrottle(stretch_drive.drive, pc.torque_nm, pc.omega_rad_s,
+                                                                 pack_lo.OcvV(1.0), t_max));
+      pc.ocv_integral_smin_v = OcvIntegralUpperBound(pack_lo, SocBelowOcv(pack_lo, v_min, m_.battery.reserve_soc));
+    }
+    pc.floor_done = true;
+  };
   // The piece's bound with its budget at capacity cb (>= pc.ca): the smaller of the reserve's
   // and the throttle floor's, each t_fixed_max + (Q(cb)*integral of OCV - E)/P_stretch(C_a).
   auto bound_to = [&](Piece& pc, double cb) {
@@ -201,29 +210,21 @@ double MissionEvaluator::EnduranceUpperBound(double target_s, double from_ah, do
     if (!(pc.p_ca > 0)) return kInf;
     const double by_reserve = t_fixed_max + std::max(0.0, ocv_integral_v * AhToCoulomb(cb) - pc.e_other_ca) / pc.p_ca;
     if (by_reserve < target_s) return by_reserve;  // enough: the floor could only lower it
-    if (!pc.floor_done && t_max < 1.0 && pc.omega_rad_s > 0) {
-      const double v_min = std::max(v_cut, MinVoltageForThrottle(stretch_drive.drive, pc.torque_nm, pc.omega_rad_s,
-                                                                 pack_lo.OcvV(1.0), t_max));
-      pc.ocv_integral_smin_v = OcvIntegralUpperBound(pack_lo, SocBelowOcv(pack_lo, v_min, m_.battery.reserve_soc));
-    }
-    pc.floor_done = true;
+    throttle_floor(pc);
     if (!std::isfinite(pc.ocv_integral_smin_v)) return by_reserve;
     const double by_throttle =
         t_fixed_max + std::max(0.0, pc.ocv_integral_smin_v * AhToCoulomb(cb) - pc.e_before_ca) / pc.p_ca;
     return std::min(by_reserve, by_throttle);
   };
-  // Where to split a piece [C_a, C_b] whose bound reaches target_s: at the largest capacity up to
-  // which its own run (at C_a) proves the target out. Both bounds rise linearly with the budget
-  // Q(cb), so that capacity has a closed form; the piece up to it is settled without another
-  // run, and the next run starts where it ends. No more than C_a when no budget above Q(C_a)
-  // proves it: then no split can, as every piece from C_a has at least that bound. The split only
-  // chooses where the next run goes: every piece's bound is computed as before, so a wrong
-  // split costs runs, never a proof.
+  // Where to split a piece [C_a, C_b] whose bound reaches target_s: the largest capacity up to which
+  // its run at C_a proves the target out (both bounds are linear in Q(cb): a closed form). No more
+  // than C_a when no budget above Q(C_a) proves it: then no split can (every piece from C_a has at
+  // least that bound). It only chooses where the next run goes; a wrong split costs runs, not a proof.
   auto split_at = [&](Piece& pc) {
     if (!(pc.p_ca > 0) || !(target_s > t_fixed_max)) return pc.ca;
     const double room_j = (target_s - t_fixed_max) * pc.p_ca;  // the energy a bound below target_s allows
     double reach = BudgetReachAh(room_j, ocv_integral_v, pc.e_other_ca);
-    bound_to(pc, pc.cb);  // the throttle floor, when the reserve's bound alone reaches target_s
+    throttle_floor(pc);
     if (std::isfinite(pc.ocv_integral_smin_v)) {
       reach = std::max(reach, BudgetReachAh(room_j, pc.ocv_integral_smin_v, pc.e_before_ca));
     }
