@@ -4,6 +4,7 @@
 // the coupled frontier: joint_frontier.cc.
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <limits>
 #include <memory>
 #include <tuple>
@@ -125,8 +126,8 @@ SegmentBound SegmentPowerBound(const Mission& m, std::size_t si, const GroupPart
     }
   }
   // PDC is linear in VDC (eqs 57, 59): the smaller of the two ends bounds every voltage between.
-  const OperatingPoint lo = drive.Inverse(bo.v_cut, rb.torque_nm, rb.omega_rad_s);
-  double pdc = rb.rotors * std::max(0.0, std::min(hi.pdc_w, lo.pdc_w));
+  // (The low end's PDC alone: InversePdcW, Inverse's bit for bit.)
+  double pdc = rb.rotors * std::max(0.0, std::min(hi.pdc_w, drive.InversePdcW(bo.v_cut, rb.torque_nm, rb.omega_rad_s)));
   // Momentum theory: a feasible point's propeller data give P >= P_ideal/max_figure_of_merit
   // (the evaluator's prop_figure_of_merit, V_ax the inflow unless the data are static-only);
   // the scenario's power is at least P_ideal (credibility.h: raised, or capped at FM 1), so
@@ -253,7 +254,10 @@ JointBounds::JointBounds(const Mission& m, const Catalog& cat, const PropGridCac
       }
     }
     const double mass = total();
-    if (o + 1 == options_.size()) std::vector<std::vector<std::tuple<double, int, int>>>().swap(by_mass_);  // the ctor's only
+    if (o + 1 == options_.size()) {  // the ctor's only
+      std::vector<std::vector<std::pair<double, int>>>().swap(by_mass_);
+      std::vector<std::pair<double, int>>().swap(motors_by_mass_);
+    }
     outer_lightest_kg_.push_back(lightest[outer_]);
     if (free.size() == 2) inner_lightest_kg_.push_back(lightest[free[0] == outer_ ? free[1] : free[0]]);
     mass_min_kg_.push_back(mass);
@@ -342,21 +346,36 @@ bool JointBounds::ReachesThrustToWeight(int group, const Drive& drive, int prop,
 double JointBounds::LightestSurvivorKg(int group, std::size_t o, double vehicle_kg) {
   const auto& motors = cat_.motors();
   const auto& props = cat_.props();
-  // The group's motor + propeller masses, sorted once per group (the same list for every
-  // option and pass).
+  // The usable motors by mass, once; the group's propellers by mass, once per group (the same
+  // lists for every option and pass).
   if (by_mass_.size() != m_.groups.size()) by_mass_.resize(m_.groups.size());
-  std::vector<std::tuple<double, int, int>>& by_mass = by_mass_[static_cast<std::size_t>(group)];
-  if (by_mass.empty()) {
+  if (motors_by_mass_.empty()) {
     for (std::size_t mi = 0; mi < motors.size(); ++mi) {
-      if (!motors[mi].mass_kg || !motors[mi].exclude_reason.empty()) continue;
-      for (std::size_t pi = 0; pi < props.size(); ++pi) {
-        if (PropAllowed(group, props[pi])) {
-          by_mass.emplace_back(*motors[mi].mass_kg + PropMassKg(props[pi]), static_cast<int>(mi), static_cast<int>(pi));
-        }
+      if (motors[mi].mass_kg && motors[mi].exclude_reason.empty()) {
+        motors_by_mass_.emplace_back(*motors[mi].mass_kg, static_cast<int>(mi));
       }
     }
-    std::sort(by_mass.begin(), by_mass.end());
+    std::sort(motors_by_mass_.begin(), motors_by_mass_.end());
   }
+  std::vector<std::pair<double, int>>& props_by_mass = by_mass_[static_cast<std::size_t>(group)];
+  if (props_by_mass.empty()) {
+    for (std::size_t pi = 0; pi < props.size(); ++pi) {
+      if (PropAllowed(group, props[pi])) props_by_mass.emplace_back(PropMassKg(props[pi]), static_cast<int>(pi));
+    }
+    std::sort(props_by_mass.begin(), props_by_mass.end());
+  }
+  if (props_by_mass.empty()) return kInf;
+  // The (motor, propeller) pairs in ascending motor + propeller mass, merged lazily: a heap
+  // holds each motor's next propeller (by position in props_by_mass), so the walk pays for the
+  // pairs it reaches, not for sorting every pair. The first pair that survives is the lightest
+  // that does (ties in mass: the same mass, whichever is taken first).
+  using Next = std::tuple<double, std::size_t, std::size_t>;  // (kg, motor position, propeller position)
+  std::vector<Next> heap;
+  heap.reserve(motors_by_mass_.size());
+  for (std::size_t a = 0; a < motors_by_mass_.size(); ++a) {
+    heap.emplace_back(motors_by_mass_[a].first + props_by_mass[0].first, a, 0);
+  }
+  std::make_heap(heap.begin(), heap.end(), std::greater<>());
   std::vector<std::size_t> segs;
   for (std::size_t si = 0; si < m_.segments.size(); ++si) {
     if (m_.segments[si].group == group) segs.push_back(si);
@@ -364,7 +383,15 @@ double JointBounds::LightestSurvivorKg(int group, std::size_t o, double vehicle_
   std::vector<RotorBound> rbs(props.size() * segs.size());
   std::vector<char> done(rbs.size(), 0);
   const BatteryOption& bo = options_[o];
-  for (const auto& [kg, mi, pi] : by_mass) {
+  while (!heap.empty()) {
+    std::pop_heap(heap.begin(), heap.end(), std::greater<>());
+    const auto [kg, a, b] = heap.back();
+    heap.pop_back();
+    if (b + 1 < props_by_mass.size()) {
+      heap.emplace_back(motors_by_mass_[a].first + props_by_mass[b + 1].first, a, b + 1);
+      std::push_heap(heap.begin(), heap.end(), std::greater<>());
+    }
+    const int mi = motors_by_mass_[a].second, pi = props_by_mass[b].second;
     const MotorEntry& mo = motors[static_cast<std::size_t>(mi)];
     bool excluded = false;
     const MotorParams mp = ScenarioMotorParams(mo, m_, nullptr, &excluded);

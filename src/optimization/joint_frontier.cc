@@ -187,6 +187,8 @@ std::vector<JointBounds::FrontierPoint> JointBounds::InnerFrontier(std::size_t o
     }
     floor_j[pi] = e;
   }
+  std::vector<double> prop_kg(props.size());
+  for (std::size_t pi = 0; pi < props.size(); ++pi) prop_kg[pi] = PropMassKg(props[pi]);
   // The (motor, propeller) list by mass, built once for every option and level (the order of
   // motor + propeller mass is the order of the group's mass: the ESC adds the same to each).
   if (inner_by_mass_.empty()) {
@@ -195,7 +197,7 @@ std::vector<JointBounds::FrontierPoint> JointBounds::InnerFrontier(std::size_t o
       if (!motors[mi].mass_kg || !motors[mi].exclude_reason.empty()) continue;
       for (std::size_t pi = 0; pi < props.size(); ++pi) {
         if (!PropAllowed(inner_, props[pi])) continue;
-        list.emplace_back(*motors[mi].mass_kg + PropMassKg(props[pi]), static_cast<std::uint32_t>(mi * props.size() + pi));
+        list.emplace_back(*motors[mi].mass_kg + prop_kg[pi], static_cast<std::uint32_t>(mi * props.size() + pi));
       }
     }
     std::sort(list.begin(), list.end());
@@ -214,8 +216,6 @@ std::vector<JointBounds::FrontierPoint> JointBounds::InnerFrontier(std::size_t o
   for (std::size_t c = 0; c < escs_.classes.size(); ++c) {
     if (!escs_.per_option[o][c].empty()) classes.push_back(c);
   }
-  std::vector<double> prop_kg(props.size());
-  for (std::size_t pi = 0; pi < props.size(); ++pi) prop_kg[pi] = PropMassKg(props[pi]);
   // Each pair's energy floor from the highest computed level below this one: a bound at this
   // level too, whose vehicles are heavier (M1-M3; +inf: the pair fails a rule with every ESC
   // class); raised here to this level's where it is computed, and kept as this level's.

@@ -256,8 +256,10 @@ class JointBounds {
   std::deque<FreeCruiseSamples> cruise_samples_;
   std::vector<PropAdjustment> adjustments_;  // per propeller, the ranking scenario's
   std::vector<double> scratch_;
-  // LightestSurvivorKg's list per group: (motor + propeller kg, motor, propeller), ascending.
-  std::vector<std::vector<std::tuple<double, int, int>>> by_mass_;
+  // LightestSurvivorKg's lists: the usable motors (kg, motor) and per group its propellers (kg,
+  // propeller), ascending.
+  std::vector<std::pair<double, int>> motors_by_mass_;
+  std::vector<std::vector<std::pair<double, int>>> by_mass_;
 };
 
 }  // namespace search_internal
