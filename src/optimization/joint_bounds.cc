@@ -187,6 +187,7 @@ JointBounds::JointBounds(const Mission& m, const Catalog& cat, const PropGridCac
   for (const auto& p : cache.models) models_.push_back(p.get());
   for (const PropEntry& p : cat.props()) adjustments_.push_back(PropAdjustmentFor(p, m.objective.ranking));
   lift_group_ = std::max(0, LiftGroup(m));
+  lift_rotors_ = LiftRotors(m);
   // The outer group: a free group that does not lift the vehicle, so that the innermost search
   // is the lift group's, whose hover gives R2-R4 their grip.
   std::vector<int> free;
@@ -227,6 +228,7 @@ JointBounds::JointBounds(const Mission& m, const Catalog& cat, const PropGridCac
   for (int g = 0; g < GroupCount(m); ++g) {
     if (m.groups[g].fixed()) fixed_models[g] = std::make_unique<PropModel>(*fixed[g].prop);
   }
+  grids_ = &cache.grids;
   for (const PropGrid& g : cache.grids) monotone_.push_back(g.monotone);
   for (std::size_t o = 0; o < options_.size(); ++o) {
     const BatteryOption& bo = options_[o];
@@ -333,14 +335,21 @@ double JointBounds::MassFloorKg(int prop, std::size_t si, std::size_t o, double 
 bool JointBounds::ReachesThrustToWeight(int group, const Drive& drive, int prop, double vehicle_kg,
                                         std::size_t o) const {
   const MissionConstraints& k = m_.constraints;
-  const int rotors = LiftRotors(m_);
+  const int rotors = lift_rotors_;
   if (!Lifts(group) || !(k.min_thrust_to_weight > 0) || rotors <= 0 || !monotone_[static_cast<std::size_t>(prop)]) {
     return true;
   }
   const double w_nl = drive.NoLoadSpeed(options_[o].v_full, 1.0);
   if (!(w_nl > 0)) return false;
+  const double need_n = k.min_thrust_to_weight * vehicle_kg * kStandardGravity;
+  // The static grid's thrust at its last speed at or below w_nl is at most the thrust at w_nl
+  // (M1, the grid rises): when it is enough, so is the propeller's at w_nl. Else the model is
+  // read at w_nl itself, so a refusal never rests on the grid.
+  const PropGrid& g = (*grids_)[static_cast<std::size_t>(prop)];
+  const std::ptrdiff_t i = std::upper_bound(g.omega, g.omega + kGrid, w_nl) - g.omega - 1;
+  if (i >= 0 && rotors * g.thrust[i] >= need_n) return true;
   const double t_max = models_[static_cast<std::size_t>(prop)]->Evaluate(w_nl, m_.rho_kg_m3, 0.0).thrust_n;
-  return rotors * t_max >= k.min_thrust_to_weight * vehicle_kg * kStandardGravity;
+  return rotors * t_max >= need_n;
 }
 
 double JointBounds::LightestSurvivorKg(int group, std::size_t o, double vehicle_kg) {
@@ -425,9 +434,8 @@ std::size_t JointBounds::RotorCacheIndex(int prop, std::size_t si, std::size_t o
   // The grid mass at or below mass_kg (G1's geometric grid from the option's lightest vehicle).
   const double m0 = mass_min_kg_[o];
   const double* grid = &grid_kg_[o * static_cast<std::size_t>(kFixedPowerMasses)];
-  int k = mass_kg > m0 ? static_cast<int>(std::floor(std::log(mass_kg / m0) / std::log(kFixedPowerMassStep))) : 0;
-  k = std::clamp(k, 0, kFixedPowerMasses - 1);
-  while (k > 0 && grid[k] > mass_kg) --k;
+  // The last grid mass at or below mass_kg (binary search on the tabulated grid; 0 below it).
+  const int k = std::max(0, static_cast<int>(std::upper_bound(grid, grid + kFixedPowerMasses, mass_kg) - grid) - 1);
   *grid_kg = k == 0 ? std::min(m0, mass_kg) : grid[k];
   return ((o * m_.segments.size() + si) * cat_.props().size() + static_cast<std::size_t>(prop)) *
              static_cast<std::size_t>(kFixedPowerMasses) + static_cast<std::size_t>(k);
@@ -559,9 +567,14 @@ double JointBounds::OuterBound(const Drive& drive, const GroupParts& parts, doub
   // mass_kg (OuterCruiseFloorW: momentum theory, the shaft power and the motor's loss floor; the
   // coupled stage also the drive's PDC), so a floor for every heavier vehicle below (M3;
   // docs/search.md#g2-free-cruise).
-  cruise_floor_w_.assign(m_.segments.size(), 0.0);
-  cruise_point_at_.assign(m_.segments.size(), kNoIndex);
-  cruise_point_w_.assign(m_.segments.size(), 0.0);
+  // Only the outer segments' entries are read (cruise_point_w_ after cruise_point_at_ is set).
+  cruise_floor_w_.resize(m_.segments.size());
+  cruise_point_at_.resize(m_.segments.size());
+  cruise_point_w_.resize(m_.segments.size());
+  for (std::size_t si : outer_segments_) {
+    cruise_floor_w_[si] = 0.0;
+    cruise_point_at_[si] = kNoIndex;
+  }
   for (std::size_t si : outer_segments_) {
     const Segment& sg = m_.segments[si];
     if (sg.type != SegmentType::kCruise || !sg.airspeed_m_s.free()) continue;

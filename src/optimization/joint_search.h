@@ -206,6 +206,7 @@ class JointBounds {
   const Catalog& cat_;
   std::vector<const PropModel*> models_;
   int outer_ = 0, lift_group_ = 0;
+  int lift_rotors_ = 0;  // LiftRotors(m_), read per pair by ReachesThrustToWeight
   int inner_ = -1;  // the other free group when there are two and the objective is min_energy
   bool coupled_ = false;
   std::vector<double> cruise_floor_w_;  // OuterBound's scratch: per segment, a free cruise's bound
@@ -242,6 +243,7 @@ class JointBounds {
   std::vector<double> mass_min_kg_, outer_lightest_kg_;
   std::vector<double> grid_kg_;  // [o * kFixedPowerMasses + k]: mass_min_kg_[o] * kFixedPowerMassStep^k
   std::vector<char> monotone_;        // per propeller: its static thrust grid rises (M1)
+  const std::vector<PropGrid>* grids_ = nullptr;  // the cache's static grids (ReachesThrustToWeight)
   std::vector<double> mass_floor_kg_;  // MassFloorKg's cache by RotorCacheIndex; < 0: not yet
   std::vector<std::vector<double>> other_power_w_;
   std::vector<std::size_t> outer_segments_;
