@@ -95,14 +95,34 @@ MassFloor FixedGroupsMassCeiling(const SearchContext& ctx, const BatteryOption& 
 
 }  // namespace
 
+namespace {
+
+// DriveRule's checks in their order on a point's throttle, Irms and PAC (read only when the
+// mission enforces the motor's power rating).
+template <class PacW>
+const char* DriveRuleOf(const MissionConstraints& k, const MotorParams& mp, double throttle, double irms_a,
+                        const PacW& pac_w, double tr_max, double esc_max_current_a) {
+  const double margin = 1.0 - k.current_margin;
+  if (throttle > tr_max) return "throttle";
+  if (irms_a > mp.max_current_a * margin) return "motor_current";
+  if (k.enforce_motor_power && pac_w() > mp.max_power_w) return "motor_power";
+  if (irms_a > esc_max_current_a * margin) return "esc_current";
+  return nullptr;
+}
+
+}  // namespace
+
 const char* DriveRule(const MissionConstraints& k, const MotorParams& mp, const OperatingPoint& hi, double tr_max,
                       double esc_max_current_a) {
-  const double margin = 1.0 - k.current_margin;
-  if (hi.throttle > tr_max) return "throttle";
-  if (hi.irms_a > mp.max_current_a * margin) return "motor_current";
-  if (k.enforce_motor_power && hi.pac_w > mp.max_power_w) return "motor_power";
-  if (hi.irms_a > esc_max_current_a * margin) return "esc_current";
-  return nullptr;
+  return DriveRuleOf(k, mp, hi.throttle, hi.irms_a, [&] { return hi.pac_w; }, tr_max, esc_max_current_a);
+}
+
+const char* DriveRule(const MissionConstraints& k, const MotorParams& mp, const Drive& drive, double vdc_v,
+                      const Drive::InverseCurrents& hi, double torque_nm, double omega_rad_s, double tr_max,
+                      double esc_max_current_a) {
+  return DriveRuleOf(
+      k, mp, hi.throttle, hi.irms_a, [&] { return drive.InverseAcPower(vdc_v, hi, torque_nm, omega_rad_s); }, tr_max,
+      esc_max_current_a);
 }
 
 const char* FreeCruiseRangeRule(const MissionConstraints& k, const Drive& drive, const FreeCruiseSamples& s,

@@ -113,9 +113,9 @@ SegmentBound SegmentPowerBound(const Mission& m, std::size_t si, const GroupPart
   const bool static_only = model.data_kind() != PropDataKind::kTables || parts.prop->j_tables.empty();
   if (!(rb.omega_rad_s > 0)) return b;
   // R3 at the bound point.
-  const OperatingPoint hi = drive.Inverse(bo.v_full, rb.torque_nm, rb.omega_rad_s);
+  const Drive::InverseCurrents hi = drive.InverseLight(bo.v_full, rb.torque_nm, rb.omega_rad_s);
   b.irms_lb_a = hi.irms_a;
-  b.infeasible = DriveRule(k, mp, hi, tr_max, esc_max_current_a);
+  b.infeasible = DriveRule(k, mp, drive, bo.v_full, hi, rb.torque_nm, rb.omega_rad_s, tr_max, esc_max_current_a);
   // R7: static-only data in axial flow. The shaft turns no faster than the drive's no-load
   // speed at full throttle and the full-charge voltage (M2), so J >= V_ax/(n_max*D); above the
   // mission's max_static_advance_ratio the evaluator fails prop_no_forward_flight_data.
@@ -126,8 +126,9 @@ SegmentBound SegmentPowerBound(const Mission& m, std::size_t si, const GroupPart
     }
   }
   // PDC is linear in VDC (eqs 57, 59): the smaller of the two ends bounds every voltage between.
-  // (The low end's PDC alone: InversePdcW, Inverse's bit for bit.)
-  double pdc = rb.rotors * std::max(0.0, std::min(hi.pdc_w, drive.InversePdcW(bo.v_cut, rb.torque_nm, rb.omega_rad_s)));
+  // (Each end's PDC = VDC*IDC from InverseLight, Inverse's bit for bit.)
+  const double pdc_hi_w = bo.v_full * hi.idc_a;
+  double pdc = rb.rotors * std::max(0.0, std::min(pdc_hi_w, drive.InversePdcW(bo.v_cut, rb.torque_nm, rb.omega_rad_s)));
   // Momentum theory: a feasible point's propeller data give P >= P_ideal/max_figure_of_merit
   // (the evaluator's prop_figure_of_merit, V_ax the inflow unless the data are static-only);
   // the scenario's power is at least P_ideal (credibility.h: raised, or capped at FM 1), so

@@ -112,6 +112,11 @@ inline double ThrottleLimit(const MissionConstraints& k, double tr_sat) {
 // breaks (throttle, motor_current, motor_power, esc_current), or null.
 const char* DriveRule(const MissionConstraints& k, const MotorParams& mp, const OperatingPoint& hi, double tr_max,
                       double esc_max_current_a);
+// The same rule from Drive::InverseLight's numbers at (torque_nm, omega_rad_s) and vdc_v
+// (Inverse's bit for bit; the PAC computed only when the rule reads it).
+const char* DriveRule(const MissionConstraints& k, const MotorParams& mp, const Drive& drive, double vdc_v,
+                      const Drive::InverseCurrents& hi, double torque_nm, double omega_rad_s, double tr_max,
+                      double esc_max_current_a);
 
 // R2, R12's top and R3 over a wing-borne cruise's free airspeed range
 // (docs/search.md#g1-torque-floor, #g2-free-cruise): every feasible point of the range is at or
