@@ -12,6 +12,7 @@
 #include <filesystem>
 #include <limits>
 #include <map>
+#include <random>
 #include <set>
 #include <tuple>
 
@@ -19,6 +20,8 @@
 #include "common/error.h"
 #include "common/units.h"
 #include "mission/flight.h"
+#include "model/drive.h"
+#include "model/paper_drive.h"
 #include "model/physics.h"
 #include "optimization/components.h"
 #include "optimization/mission_eval.h"
@@ -1005,6 +1008,41 @@ TEST_F(SearchStagesTest, SegmentwiseBoundsEarlyStopKeepsItsAnswer) {
   EXPECT_GT(compared, 100);
   EXPECT_GT(stopped_below, 10) << "the test should see bounds left below the threshold";
   EXPECT_GT(proven_above, 10) << "and bounds the splitting lifts above it";
+}
+
+// R3's rule (DriveRule) from InverseLight's currents gives the rule the whole operating point
+// gives (the joint bounds read the light one): with and without the motor's power rating
+// enforced, ratings that every rule can break, below and above the saturation knee.
+TEST(SearchStages, DriveRuleFromCurrentsEqualsTheOperatingPointsRule) {
+  MotorParams mp = paper_drive::Motor();
+  mp.max_current_a = 20.0;
+  mp.max_power_w = 150.0;
+  const Drive d(mp, paper_drive::Esc());
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  std::map<std::string, int> seen;
+  for (bool enforce : {false, true}) {
+    MissionConstraints k;
+    k.current_margin = 0.1;
+    k.enforce_motor_power = enforce;
+    for (int i = 0; i < 2000; ++i) {
+      const double vdc = 8 + 10 * u(rng), q = 0.12 * u(rng), w = 2500 * u(rng);
+      const double tr_max = 0.6 + 0.4 * u(rng), esc_a = 10 + 30 * u(rng);
+      const char* a = DriveRule(k, mp, d.Inverse(vdc, q, w), tr_max, esc_a);
+      const char* b = DriveRule(k, mp, d, vdc, d.InverseLight(vdc, q, w), q, w, tr_max, esc_a);
+      ASSERT_EQ(a == nullptr, b == nullptr) << i;
+      if (a) {
+        ASSERT_STREQ(a, b) << i;
+        ++seen[a];
+      } else {
+        ++seen["none"];
+      }
+    }
+  }
+  // Every outcome is exercised (a rule that never fires would make the check vacuous).
+  for (const char* r : {"none", "throttle", "motor_current", "motor_power", "esc_current"}) {
+    EXPECT_GT(seen[r], 10) << r;
+  }
 }
 
 }  // namespace
