@@ -258,7 +258,7 @@ JointBounds::JointBounds(const Mission& m, const Catalog& cat, const PropGridCac
     }
     const double mass = total();
     if (o + 1 == options_.size()) {  // the ctor's only
-      std::vector<std::vector<std::pair<double, int>>>().swap(by_mass_);
+      std::vector<std::vector<std::pair<double, int>>>().swap(props_by_mass_);
       std::vector<std::pair<double, int>>().swap(motors_by_mass_);
     }
     outer_lightest_kg_.push_back(lightest[outer_]);
@@ -358,7 +358,7 @@ double JointBounds::LightestSurvivorKg(int group, std::size_t o, double vehicle_
   const auto& props = cat_.props();
   // The usable motors by mass, once; the group's propellers by mass, once per group (the same
   // lists for every option and pass).
-  if (by_mass_.size() != m_.groups.size()) by_mass_.resize(m_.groups.size());
+  if (props_by_mass_.size() != m_.groups.size()) props_by_mass_.resize(m_.groups.size());
   if (motors_by_mass_.empty()) {
     for (std::size_t mi = 0; mi < motors.size(); ++mi) {
       if (motors[mi].mass_kg && motors[mi].exclude_reason.empty()) {
@@ -367,7 +367,7 @@ double JointBounds::LightestSurvivorKg(int group, std::size_t o, double vehicle_
     }
     std::sort(motors_by_mass_.begin(), motors_by_mass_.end());
   }
-  std::vector<std::pair<double, int>>& props_by_mass = by_mass_[static_cast<std::size_t>(group)];
+  std::vector<std::pair<double, int>>& props_by_mass = props_by_mass_[static_cast<std::size_t>(group)];
   if (props_by_mass.empty()) {
     for (std::size_t pi = 0; pi < props.size(); ++pi) {
       if (PropAllowed(group, props[pi])) props_by_mass.emplace_back(PropMassKg(props[pi]), static_cast<int>(pi));

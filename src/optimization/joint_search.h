@@ -261,7 +261,7 @@ class JointBounds {
   // LightestSurvivorKg's lists: the usable motors (kg, motor) and per group its propellers (kg,
   // propeller), ascending.
   std::vector<std::pair<double, int>> motors_by_mass_;
-  std::vector<std::vector<std::pair<double, int>>> by_mass_;
+  std::vector<std::vector<std::pair<double, int>>> props_by_mass_;
 };
 
 }  // namespace search_internal
