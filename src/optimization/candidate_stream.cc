@@ -2,6 +2,8 @@
 // bound's order, each bounded only when it may be drawn next (R11, docs/search.md#r11).
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <limits>
 #include <memory>
 #include <vector>
@@ -65,9 +67,19 @@ std::vector<std::size_t> KeyedClasses(const SearchContext& ctx, const MissionFac
 MissionFacts MaskedFacts(const SearchContext& ctx, const MissionFacts& f) {
   if (!ctx.pair_mask) return f;
   const std::size_t n_props = ctx.catalog->props().size();
+  // The mask is sparse (a few pairs in a hundred): eight entries at a time are skipped while
+  // they are all zero.
   std::vector<char> any(n_props, 0);
-  for (std::size_t k = 0; k < ctx.pair_mask->size(); ++k) {
-    if ((*ctx.pair_mask)[k]) any[k % n_props] = 1;
+  const std::vector<char>& mask = *ctx.pair_mask;
+  for (std::size_t k = 0; k < mask.size();) {
+    std::uint64_t eight = 1;
+    if (k + sizeof eight <= mask.size()) std::memcpy(&eight, mask.data() + k, sizeof eight);
+    if (eight == 0) {
+      k += sizeof eight;
+      continue;
+    }
+    if (mask[k]) any[k % n_props] = 1;
+    ++k;
   }
   MissionFacts out = f;
   out.frame_ok_props.clear();
