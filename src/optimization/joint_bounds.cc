@@ -230,7 +230,6 @@ JointBounds::JointBounds(const Mission& m, const Catalog& cat, const PropGridCac
     if (m.groups[g].fixed()) fixed_models[g] = std::make_unique<PropModel>(*fixed[g].prop);
   }
   grids_ = &cache.grids;
-  for (const PropGrid& g : cache.grids) monotone_.push_back(g.monotone);
   for (std::size_t o = 0; o < options_.size(); ++o) {
     const BatteryOption& bo = options_[o];
     const double esc_min = std::isfinite(escs_.min_mass_kg[o]) ? escs_.min_mass_kg[o] : 0.0;
@@ -321,7 +320,7 @@ double JointBounds::MassFloorKg(int prop, std::size_t si, std::size_t o, double 
   } else {
     mass_floor_kg_[i] = SegmentMassFloorKg(m_, m_.segments[si], cat_.props()[static_cast<std::size_t>(prop)],
                                            *models_[static_cast<std::size_t>(prop)],
-                                           monotone_[static_cast<std::size_t>(prop)], grid_kg)
+                                           (*grids_)[static_cast<std::size_t>(prop)].monotone, grid_kg)
                             .kg;
   }
   return mass_floor_kg_[i];
@@ -337,16 +336,14 @@ bool JointBounds::ReachesThrustToWeight(int group, const Drive& drive, int prop,
                                         std::size_t o) const {
   const MissionConstraints& k = m_.constraints;
   const int rotors = lift_rotors_;
-  if (!Lifts(group) || !(k.min_thrust_to_weight > 0) || rotors <= 0 || !monotone_[static_cast<std::size_t>(prop)]) {
-    return true;
-  }
+  const PropGrid& g = (*grids_)[static_cast<std::size_t>(prop)];
+  if (!Lifts(group) || !(k.min_thrust_to_weight > 0) || rotors <= 0 || !g.monotone) return true;
   const double w_nl = drive.NoLoadSpeed(options_[o].v_full, 1.0);
   if (!(w_nl > 0)) return false;
   const double need_n = k.min_thrust_to_weight * vehicle_kg * kStandardGravity;
   // The static grid's thrust at its last speed at or below w_nl is at most the thrust at w_nl
   // (M1, the grid rises): when it is enough, so is the propeller's at w_nl. Else the model is
   // read at w_nl itself, so a refusal never rests on the grid.
-  const PropGrid& g = (*grids_)[static_cast<std::size_t>(prop)];
   const std::ptrdiff_t i = std::upper_bound(g.omega, g.omega + kGrid, w_nl) - g.omega - 1;
   if (i >= 0 && rotors * g.thrust[i] >= need_n) return true;
   const double t_max = models_[static_cast<std::size_t>(prop)]->Evaluate(w_nl, m_.rho_kg_m3, 0.0).thrust_n;

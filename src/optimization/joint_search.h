@@ -12,7 +12,6 @@
 #include <deque>
 #include <limits>
 #include <string>
-#include <tuple>
 #include <utility>
 #include <vector>
 
@@ -242,8 +241,8 @@ class JointBounds {
   EscTable escs_;
   std::vector<double> mass_min_kg_, outer_lightest_kg_;
   std::vector<double> grid_kg_;  // [o * kFixedPowerMasses + k]: mass_min_kg_[o] * kFixedPowerMassStep^k
-  std::vector<char> monotone_;        // per propeller: its static thrust grid rises (M1)
-  const std::vector<PropGrid>* grids_ = nullptr;  // the cache's static grids (ReachesThrustToWeight)
+  // The cache's static grids per propeller (M1's monotone flag, ReachesThrustToWeight's thrust).
+  const std::vector<PropGrid>* grids_ = nullptr;
   std::vector<double> mass_floor_kg_;  // MassFloorKg's cache by RotorCacheIndex; < 0: not yet
   std::vector<std::vector<double>> other_power_w_;
   std::vector<std::size_t> outer_segments_;
