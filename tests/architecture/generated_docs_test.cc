@@ -57,6 +57,7 @@ TEST(GeneratedDocsTest, EveryHeadingTheScriptPrintsIsInThePage) {
       {"scripts/validation_diagnosis.sh", "docs/validation.md"},
       {"scripts/validation_stand.sh", "docs/validation_stand.md"},
       {"scripts/propeller_reynolds.sh", "docs/propeller_reynolds.md"},
+      {"scripts/near_optimal_designs.sh", "docs/near-optimal-designs.md"},
   };
   for (const Page& p : pages) {
     const std::vector<std::string> headings = EchoedHeadings(kRoot / p.script);
