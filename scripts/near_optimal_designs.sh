@@ -4,10 +4,10 @@
 # optimize_bench's growth benchmarks read (every 2nd and every 4th motor and propeller, in id
 # order), for the lift+cruise examples with both groups free. An exact search has to solve, or
 # bound above its cutoff, every design whose score lies within its bounds' slack of the cutoff,
-# so the growth of these counts per doubling of the catalog is the least growth a search with
-# that slack can have (docs/joint-search.md, "Near-optimal designs per doubling (session 49)").
+# so the growth of these counts per doubling of the catalog is the least growth of the exact
+# solves of a search with that slack (docs/joint-search.md, "Near-optimal designs per doubling (session 49)").
 # Every number in the file is computed here from the runs' JSON. Deterministic: the same build
-# and catalog give the same file (less the seconds). About 12 minutes per mission on 2 cores.
+# and catalog give the same file. About 12 minutes per mission on 2 cores.
 #   usage: scripts/near_optimal_designs.sh [path/to/dynosize] [mission ...]
 # NEAR_OPTIMAL_RUNS=DIR keeps the runs' JSON there and reuses those already there (the report
 # alone, again, without the runs' minutes).
@@ -16,7 +16,7 @@ here=$(cd "$(dirname "$0")/.." && pwd)
 exe=${1:-$here/build/dynosize}
 shift || true
 missions=("$@")
-[ ${#missions[@]} -gt 0 ] || missions=(quadplane_2kg)
+[ ${#missions[@]} -gt 0 ] || missions=(quadplane_2kg evtol_lift_cruise)
 out=$here/docs/near-optimal-designs.md
 top=200  # the designs listed per run: enough to hold every design within 2 % on the full catalog
 tmp=$(mktemp -d)
