@@ -219,11 +219,11 @@ BENCHMARK(BM_OptimizeQuadplaneFree)->Unit(benchmark::kSecond)->Iterations(1)->Us
 BENCHMARK(BM_OptimizeEvtolFree)->Unit(benchmark::kSecond)->Iterations(1)->UseRealTime();
 BENCHMARK(BM_OptimizeQuadplaneFreeRanges)->Unit(benchmark::kSecond)->Iterations(1)->UseRealTime();
 BENCHMARK(BM_OptimizeEvtolFreeRanges)->Unit(benchmark::kSecond)->Iterations(1)->UseRealTime();
-BENCHMARK(BM_OptimizeQuadplaneFreeGrowth)->Arg(1)->Unit(benchmark::kSecond)->Iterations(1)->UseRealTime();
-BENCHMARK(BM_OptimizeEvtolFreeGrowth)->Arg(1)->Unit(benchmark::kSecond)->Iterations(1)->UseRealTime();
+// Arg 0: motors subsampled (the propellers whole); 1: motors and propellers.
+BENCHMARK(BM_OptimizeQuadplaneFreeGrowth)->Arg(0)->Arg(1)->Unit(benchmark::kSecond)->Iterations(1)->UseRealTime();
+BENCHMARK(BM_OptimizeEvtolFreeGrowth)->Arg(0)->Arg(1)->Unit(benchmark::kSecond)->Iterations(1)->UseRealTime();
 BENCHMARK(BM_OptimizeQuadplaneFreeRangesGrowth)->Arg(1)->Unit(benchmark::kSecond)->Iterations(1)->UseRealTime();
 BENCHMARK(BM_OptimizeEvtolFreeRangesGrowth)->Arg(1)->Unit(benchmark::kSecond)->Iterations(1)->UseRealTime();
-// Arg 0: motors subsampled; 1: motors and propellers.
 BENCHMARK(BM_OptimizeQuadcopterGrowth)->Arg(0)->Arg(1)->Unit(benchmark::kSecond)->Iterations(1)->UseRealTime();
 
 }  // namespace
