@@ -90,6 +90,7 @@ print("What the counts mean for the search: docs/joint-search.md, \"Near-optimal
 for name in missions:
     runs = {c: json.load(open("%s/%s.%s.json" % (tmp, name, c))) for c in ("cat4", "cat2", "full")}
     first = runs["full"]["results"][0]
+    maximize = first["objective_type"] != "min_energy"
     print()
     print("## %s, every group free (%s, %s)" % (name, first["objective_type"], first["objective_unit"]))
     print()
@@ -99,7 +100,6 @@ for name in missions:
     for c, d in runs.items():
         res = d["results"]
         scores = sorted(r["objective"] for r in res)
-        maximize = first["objective_type"] != "min_energy"
         best = scores[-1] if maximize else scores[0]
         cells = []
         for p in (1, 2, 3, 4):
@@ -117,8 +117,8 @@ for name in missions:
     print()
     ratios = []
     for p, cs in counts.items():
-        (q, _), (h, hf), (f, ff) = cs["cat4"], cs["cat2"], cs["full"]
-        if hf or ff:
+        (q, qf), (h, hf), (f, ff) = cs["cat4"], cs["cat2"], cs["full"]
+        if qf or hf or ff:
             continue  # a full list gives no ratio
         ratios.append("within %d %%: x%.1f, x%.1f" % (p, h / max(q, 1), f / max(h, 1)))
     print("Per doubling (quarter to half, half to full): " + ("; ".join(ratios) if ratios else "none (lists full)") + ".")
