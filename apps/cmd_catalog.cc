@@ -139,7 +139,8 @@ int RunCatalogValidate(const CatalogFolders& catalog, bool json) {
               << " ESCs, " << cat.props().size() << " props, " << cat.batteries().size()
               << " batteries\n";
     // What the physics rules and the importers' audit left, in numbers.
-    std::size_t tiers[5] = {0, 0, 0, 0, 0}, excluded = 0, derated = 0, folding = 0, estimated = 0;
+    std::vector<std::size_t> tiers(TierNames().size(), 0);
+    std::size_t excluded = 0, derated = 0, folding = 0, estimated = 0;
     auto count = [&](const EntryBase& e) {
       ++tiers[static_cast<int>(e.tier)];
       excluded += !e.exclude_reason.empty();
@@ -156,7 +157,7 @@ int RunCatalogValidate(const CatalogFolders& catalog, bool json) {
       folding += p.folding;
     }
     std::cout << "  tiers: ";
-    for (int t = 0; t < 5; ++t) {
+    for (int t = 0; t < static_cast<int>(tiers.size()); ++t) {
       std::cout << (t ? ", " : "") << tiers[t] << " " << TierName(static_cast<DataTier>(t));
     }
     std::cout << "\n  no entry creates energy or beats momentum theory (model.md section 10); "

@@ -224,6 +224,16 @@ MotorEntry MotorFromJson(const Json& e, EntryBase base) {
   m.loss_torque_per_omega_nm_s_per_rad = GetOpt(e, "loss_torque_per_omega_nm_s_per_rad");
   m.gear.ratio = Get(e, "gear_ratio", 1.0);
   m.gear.efficiency = Get(e, "gear_efficiency", 1.0);
+  if (const auto r = e.find("estimate_ranges"); r != e.end() && r->is_object()) {
+    auto range = [&](const char* key) -> std::optional<std::pair<double, double>> {
+      const auto k = r->find(key);
+      if (k == r->end()) return std::nullopt;
+      return std::make_pair((*k)[0].get<double>(), (*k)[1].get<double>());
+    };
+    m.rm_range_ohm = range("rm_ohm");
+    m.io_range_a = range("io_a");
+    m.kv_range_rpm_per_v = range("kv_rpm_per_v");
+  }
   return m;
 }
 
@@ -419,6 +429,32 @@ void CheckGear(const Json& e, Bad bad) {
          << MotorConstantDc(*kv, *r_dc) << " N*m/sqrt(W) is " << k << " x a typical motor of its mass (at most " << kGearedKmRatioMax
          << " x; an output-shaft Kv makes it gear_ratio times too large: motor_credibility.h)";
     bad("kv_rpm_per_v", rule.str());
+  }
+}
+
+// estimate_ranges of a motor: {"rm_ohm" | "io_a" | "kv_rpm_per_v": [p10, p90]}, finite,
+// 0 < p10 <= the entry's value <= p90.
+template <typename Bad>
+void CheckEstimateRanges(const Json& e, Bad bad) {
+  const auto r = e.find("estimate_ranges");
+  if (r == e.end()) return;
+  if (!r->is_object()) {
+    bad("estimate_ranges", "must be an object {key: [p10, p90]}");
+    return;
+  }
+  for (auto f = r->begin(); f != r->end(); ++f) {
+    const std::string path = "estimate_ranges." + f.key();
+    if (f.key() != "rm_ohm" && f.key() != "io_a" && f.key() != "kv_rpm_per_v") {
+      bad(path, "unknown key: allowed are rm_ohm, io_a, kv_rpm_per_v");
+      continue;
+    }
+    const auto v = e.find(f.key());
+    const bool pair = f->is_array() && f->size() == 2 && (*f)[0].is_number() && (*f)[1].is_number();
+    if (!pair || v == e.end() || !v->is_number() || !((*f)[0].get<double>() > 0) ||
+        !((*f)[0].get<double>() <= v->get<double>()) || !(v->get<double>() <= (*f)[1].get<double>()) ||
+        !std::isfinite((*f)[1].get<double>())) {
+      bad(path, "must be [p10, p90] with 0 < p10 <= " + f.key() + " <= p90, found " + ValueText(*f));
+    }
   }
 }
 
@@ -631,6 +667,7 @@ void Catalog::AddDocument(const Json& doc, const std::string& file,
       if (kind == ComponentKind::kProp) CheckPropKeys(e, where, bad, problems);
       if (kind == ComponentKind::kMotor) {
         CheckTestPoints(e, bad);
+        CheckEstimateRanges(e, bad);
         CheckGear(e, bad);
       }
       if (kind == ComponentKind::kBattery) {

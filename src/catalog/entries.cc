@@ -9,6 +9,7 @@ DataTier MethodTier(const std::string& method) {
   if (method == "measured" || method == "fitted") return DataTier::kMeasured;
   if (method == "computed") return DataTier::kManufacturerComputed;
   if (method == "datasheet" || method == "derived") return DataTier::kManufacturerStated;
+  if (method == "estimated") return DataTier::kEstimated;
   return DataTier::kAssumed;
 }
 
@@ -34,7 +35,7 @@ const char* TierName(DataTier tier) {
 const std::vector<std::string>& TierNames() {
   static const std::vector<std::string> kNames = {"measured", "manufacturer_computed",
                                                   "manufacturer_stated", "user_contributed",
-                                                  "assumed"};
+                                                  "estimated", "assumed"};
   return kNames;
 }
 

@@ -5,6 +5,7 @@
 
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "common/json_file.h"
@@ -21,7 +22,10 @@ enum class DataTier {
   kManufacturerComputed = 1,
   kManufacturerStated = 2,
   kUserContributed = 3,
-  kAssumed = 4,
+  // Values a law estimated from other stated values (catalog/motor_estimate.h): the law's
+  // check by leaving makers out is their range.
+  kEstimated = 4,
+  kAssumed = 5,
 };
 // "measured", "manufacturer_computed", "manufacturer_stated", "user_contributed", "assumed".
 const char* TierName(DataTier tier);
@@ -67,6 +71,10 @@ struct MotorEntry : EntryBase {
   // The entry's own numbers when the in-system law (catalog/in_system.h) replaced params' rm_ohm,
   // io_a or io1 by the values the motor shows in a system; empty when params are the file's.
   std::optional<MotorParams> datasheet_params;
+  // Estimated values' p10-p90 (key "estimate_ranges": {"rm_ohm": [p10, p90], "io_a": [...],
+  // "kv_rpm_per_v": [...]}, catalog/motor_estimate.h): the sizing's spread for these values
+  // instead of the tier's band (MotorSpreadParams).
+  std::optional<std::pair<double, double>> rm_range_ohm, io_range_a, kv_range_rpm_per_v;
   // Keys gear_ratio, gear_efficiency (model/gear.h); direct drive when absent. params and
   // kv_rpm_per_v are the motor's own (at its shaft, before the gearbox).
   Gear gear;

@@ -22,6 +22,12 @@ constexpr InSystemLaw kDriveCalcLaw{
     /*r_ratio_p10=*/0.7877, /*r_ratio_p90=*/1.78, /*io_ratio_p10=*/0.8005, /*io_ratio_p90=*/1.464,
     /*motors=*/1120, "DriveCalc database values against refits of DriveCalc's own measurements"};
 
+// The throttle offset of KDE's stand ESC (KDE-UAS125UVC), the dead band fitted per motor on the
+// same 9 sheets (docs/in-system-law.md, "Throttle offset of the sheets' ESC").
+constexpr ThrottleOffsetPrior kKdeEscOffset{/*deadband_p10=*/-0.301, /*deadband_p50=*/-0.162,
+                                            /*deadband_p90=*/0.013, /*motors=*/9,
+                                            "KDE Direct stand sheets (9 motors with torque)"};
+
 double JsonNumber(const Json& j, const char* key) {
   const auto it = j.find(key);
   return it != j.end() && it->is_number() ? it->get<double>() : 0.0;
@@ -43,6 +49,7 @@ bool IsKdeDirectName(const std::string& name) {
 }
 
 const InSystemLaw& KdeDatasheetLaw() { return kKdeLaw; }
+const ThrottleOffsetPrior& KdeEscThrottleOffsetPrior() { return kKdeEscOffset; }
 const InSystemLaw& DriveCalcDatabaseLaw() { return kDriveCalcLaw; }
 
 const InSystemLaw* InSystemLawFor(const MotorEntry& motor) {
@@ -119,6 +126,9 @@ double TierValueBand(DataTier tier) {
     case DataTier::kManufacturerComputed:
     case DataTier::kManufacturerStated: return 0.25;
     case DataTier::kUserContributed: return 0.60;
+    // Without the entry's own range (estimate_ranges), the width of the motor-constant law's
+    // held-out R range (x0.38-2.07, docs/motor-estimate.md) rounded: a factor 2 either way.
+    case DataTier::kEstimated: return 1.00;
     case DataTier::kAssumed: return 1.00;
   }
   return 1.0;
@@ -137,6 +147,9 @@ MotorParams MotorSpreadParams(const MotorEntry& motor, bool high) {
   } else {
     p.io_a = high ? p.io_a * bi : p.io_a / bi;
   }
+  // An estimated entry's own p10-p90 (catalog/motor_estimate.h) replaces the tier's band.
+  if (motor.rm_range_ohm) p.rm_ohm = high ? motor.rm_range_ohm->second : motor.rm_range_ohm->first;
+  if (motor.io_range_a) p.io_a = high ? motor.io_range_a->second : motor.io_range_a->first;
   return p;
 }
 

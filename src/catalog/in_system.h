@@ -79,6 +79,9 @@ struct ThrottleOffsetPrior {
 const InSystemLaw* InSystemLawFor(const MotorEntry& motor);
 const InSystemLaw& KdeDatasheetLaw();
 const InSystemLaw& DriveCalcDatabaseLaw();
+// The throttle offset of KDE's stand ESC (KDE-UAS125UVC) fitted on KDE's sheets; the KDE ESC
+// entry (catalog/kde_direct_sheets.json) takes its median as its dead band.
+const ThrottleOffsetPrior& KdeEscThrottleOffsetPrior();
 // "KDE" followed by a digit at the start of the name (KDE Direct's part numbers, "KDE5215XF-330").
 bool IsKdeDirectName(const std::string& name);
 // An entry of DriveCalc's database (source.dataset "DriveCalc DB", catalog/drivecalc.json).

@@ -78,8 +78,8 @@ std::vector<KeySpec> Build(ComponentKind kind) {
       add(Num("io_test_voltage_v", false, 0, true, 2000,
               "DC supply voltage at which io_a was stated or evaluated, V"));
       add(Num("vdc_nominal_v", false, 0, true, 2000, "nominal (datasheet test) supply voltage, V"));
-      add(Int("cells_min", false, 1, 50, "smallest recommended LiPo cell count in series"));
-      add(Int("cells_max", false, 1, 50, "largest recommended LiPo cell count in series"));
+      add(Int("cells_min", false, 1, 250, "smallest recommended LiPo cell count in series"));
+      add(Int("cells_max", false, 1, 250, "largest recommended LiPo cell count in series"));
       add(Int("poles", false, 2, 200, "number of magnet poles"));
       add(Num("loss_torque_nm", false, 0, false, 100,
               "constant loss torque (DriveCalc MvK), N*m; with loss_torque_per_omega it is "
@@ -90,6 +90,16 @@ std::vector<KeySpec> Build(ComponentKind kind) {
       add(Num("rm_per_omega_ohm_s_per_rad", false, 0, false, 1,
               "speed-dependent impedance term (DriveCalc K): R(omega) = rm + K*omega, ohm per rad/s"));
       add(Num("max_torque_nm", false, 0, true, 1e4, "peak torque rating, N*m"));
+      // Ratings at eVTOL scale (docs/catalog.md "Ratings"): max_current_a and max_power_w stay
+      // the continuous ratings; the peak ones hold for peak_duration_s at most.
+      add(Num("peak_current_a", false, 0, true, 1e5,
+              "peak current rating (the DC or phase basis of max_current_a), A"));
+      add(Num("peak_power_w", false, 0, true, 1e8, "peak power rating, W"));
+      add(Num("peak_duration_s", false, 0, true, 3600,
+              "how long the peak ratings may be held, s (absent: not stated)"));
+      add(Num("continuous_torque_nm", false, 0, true, 1e5, "continuous torque rating, N*m"));
+      add(Num("max_rpm", false, 0, true, 1e6, "maker's speed limit, rpm"));
+      add(Num("vdc_max_v", false, 0, true, 2000, "largest DC supply voltage stated, V"));
       // A gearbox between the motor and the propeller (model/gear.h); absent = direct drive.
       add(Num("gear_ratio", false, 1, false, 100,
               "motor turns per propeller turn (>= 1; 1 = direct drive, the default); kv, ke, "
@@ -105,6 +115,14 @@ std::vector<KeySpec> Build(ComponentKind kind) {
               "0.00393*rise), rise = rth*P_cu"));
       add(Num("kt_droop_per_a", false, 0, false, 10,
               "torque constant droop at high current, KT(I) = kt/(1 + kt_droop*I), 1/A"));
+      {
+        KeySpec er;
+        er.key = "estimate_ranges";
+        er.type = ValueType::kObject;
+        er.doc = "p10-p90 of values a law estimated (catalog/motor_estimate.h): {\"rm_ohm\", "
+                 "\"io_a\", \"kv_rpm_per_v\": [p10, p90]}; the sizing's spread for them";
+        add(er);
+      }
       {
         KeySpec tp;
         tp.key = "test_points";
@@ -135,9 +153,12 @@ std::vector<KeySpec> Build(ComponentKind kind) {
       add(Num("vdc_max_v", false, 0, true, 2000, "maximum supply voltage, V"));
       add(Num("mass_kg", false, 0, true, 1000, "mass, kg"));
       add(Num("ipeak_a", false, 0, true, 1e4, "peak (burst, a few seconds) current rating, A"));
+      add(Num("peak_duration_s", false, 0, true, 3600,
+              "how long ipeak_a may be held, s (absent: not stated)"));
+      add(Num("vdc_min_v", false, 0, true, 2000, "smallest supply voltage, V"));
       add(Num("max_power_w", false, 0, true, 1e7, "power rating, W"));
-      add(Int("cells_min", false, 1, 50, "smallest LiPo cell count in series it accepts"));
-      add(Int("cells_max", false, 1, 50, "largest LiPo cell count in series it accepts"));
+      add(Int("cells_min", false, 1, 250, "smallest LiPo cell count in series it accepts"));
+      add(Int("cells_max", false, 1, 250, "largest LiPo cell count in series it accepts"));
       break;
     case ComponentKind::kProp: {
       add(Num("diameter_m", true, 0, true, 20, "diameter, m"));
@@ -190,8 +211,8 @@ std::vector<KeySpec> Build(ComponentKind kind) {
     case ComponentKind::kBattery:
       add(Str("chemistry", true, "cell chemistry (selects the open-circuit-voltage curve)",
               {"lipo", "liion", "lifepo4", "nimh", "nicd"}));
-      add(Int("cells_series", true, 1, 100, "cells in series in this unit (1 for a single cell)"));
-      add(Int("cells_parallel", false, 1, 100, "cells in parallel in this unit (default 1)"));
+      add(Int("cells_series", true, 1, 250, "cells in series in this unit (1 for a single cell)"));
+      add(Int("cells_parallel", false, 1, 250, "cells in parallel in this unit (default 1)"));
       add(Num("capacity_ah", true, 0, true, 1e4, "rated capacity of the unit, A*h"));
       add(Num("voltage_nominal_v", true, 0, true, 2000, "nominal voltage of the unit, V"));
       add(Num("ri_ohm", false, 0, true, 100, "internal (DC) resistance of the unit, ohm"));
@@ -245,7 +266,7 @@ std::string DescribeRule(const KeySpec& spec) {
 
 const std::vector<std::string>& ProvenanceMethods() {
   static const std::vector<std::string> kMethods = {"datasheet", "measured", "computed",
-                                                    "fitted", "derived", "assumed"};
+                                                    "fitted", "derived", "estimated", "assumed"};
   return kMethods;
 }
 

@@ -25,6 +25,12 @@ const std::vector<Importer>& Importers() {
       {"sjkim_mfr_motor_tables", ImportSjkimTables},
       {"dronebuildcalc_mfr_tables", ImportDroneBuildCalc},
       {"ctu_mrs_motor_tests", ImportCtuMrs},
+      {"large_props_apc", ImportApcPer3Large},
+      {"heavy_lift_motors", ImportHeavyLiftMotors},
+      {"evtol_motors", ImportEvtolMotors},
+      {"kde_direct_mfr_sheets", ImportKdeSheetsCatalog},
+      {"hv_controllers", ImportHvControllers},
+      {"packs_and_cells", ImportPacksAndCells},
   };
   return kImporters;
 }

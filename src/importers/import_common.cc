@@ -4,6 +4,7 @@
 #include <charconv>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <sstream>
 
 #include "catalog/catalog.h"
@@ -296,6 +297,26 @@ std::string FormatCatalogDocument(const std::string& comment, const Json& motors
   }
   out += "\n}\n";
   return out;
+}
+
+std::optional<double> DurationTextS(const std::string& text) {
+  for (std::size_t i = 0; i < text.size();) {
+    if (!std::isdigit(static_cast<unsigned char>(text[i]))) {
+      ++i;
+      continue;
+    }
+    std::size_t e = i;
+    while (e < text.size() && (std::isdigit(static_cast<unsigned char>(text[e])) || text[e] == '.')) ++e;
+    const std::string number = text.substr(i, e - i);
+    std::size_t u = e;
+    while (u < text.size() && text[u] == ' ') ++u;
+    const bool unit_end = u + 1 >= text.size() || !std::isalpha(static_cast<unsigned char>(text[u + 1]));
+    const double v = std::strtod(number.c_str(), nullptr);
+    if (text.compare(u, 3, "min") == 0) return v * 60.0;
+    if (u < text.size() && text[u] == 's' && unit_end) return v;
+    i = e;
+  }
+  return std::nullopt;
 }
 
 }  // namespace dynosize

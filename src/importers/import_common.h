@@ -109,6 +109,11 @@ std::string SetRatingOrExclude(EntryBuilder* b, bool has_rating, std::optional<d
 // resistance, with its method) and rm_ohm = 0.7492*rm_dc_ohm ("derived").
 void SetResistanceFromDc(EntryBuilder* b, double r_dc_ohm, const std::string& method, int digits = 6);
 
+// A rating's duration printed in text, s: the first number followed by "s" or "min" ("10 s
+// burst" -> 10, "S2 2 min" -> 120, "periodic 30 s at 100 % + 90 s at 50 %" -> 30); nullopt for
+// text without one ("take-off", "short duration").
+std::optional<double> DurationTextS(const std::string& text);
+
 // Writes a catalog document {"comment": ..., "motors": [...], ...} with one entry per line
 // (compact JSON inside the entry), the kinds in the order motors, escs, props, batteries, and a
 // final newline: small, diff-friendly and byte-for-byte reproducible. Empty kinds are omitted.

@@ -63,6 +63,23 @@ ImportedDataset ImportSjkimTables(const std::string& dir);
 ImportedDataset ImportDroneBuildCalc(const std::string& dir);
 ImportedDataset ImportCtuMrs(const std::string& dir);
 
+// shared/data/large_props_apc: PER3_*.csv of APC's 24-28 in propellers, as ImportApcPer3.
+ImportedDataset ImportApcPer3Large(const std::string& dir);
+// shared/data/evtol_motors: the eVTOL survey's motors, constants not stated estimated by
+// catalog/motor_estimate.h (fitted on the references of ../heavy_lift_motors and this folder).
+ImportedDataset ImportEvtolMotors(const std::string& dir);
+// shared/data/heavy_lift_motors: KDE Direct's datasheet tables (kde_datasheets.csv) and the
+// corpus's T-Motor and KDE G3 rows (heavy_lift_motors.csv).
+ImportedDataset ImportHeavyLiftMotors(const std::string& dir);
+// shared/data/kde_direct_mfr_sheets: KDE's propellers (static CT, CP from the measured sweeps)
+// and KDE's stand ESC (KDE-UAS125UVC).
+ImportedDataset ImportKdeSheetsCatalog(const std::string& dir);
+// shared/data/hv_controllers: motor controllers and ESCs for 12S to 800 V (not the FAST-UAV
+// rows, which fastuav.json holds).
+ImportedDataset ImportHvControllers(const std::string& dir);
+// shared/data/packs_and_cells: Tattu 12S/14S packs and Li-ion cells.
+ImportedDataset ImportPacksAndCells(const std::string& dir);
+
 // UIUC volume 3 (Aeronaut CAM folders, family "ancf"): the flat CSV lost a decimal point of
 // some sizes ("ancf 125.0x6.0" = 12.5 x 6.0 in has P = 0.6, "ancf 13.0x65.0" = 13 x 6.5 in has
 // D = 1.3). Decodes diameter and pitch [in] from the blade name into *d_in, *p_in; returns true

@@ -6,6 +6,7 @@
 
 #include "common/error.h"
 #include "common/numbers.h"
+#include "common/units.h"
 #include "importers/csv.h"
 
 namespace dynosize {
@@ -69,7 +70,8 @@ std::vector<KdeSheetMotor> ReadKdeSheets(const std::string& dir) {
                     c_v = perf.Column("V_from_P_over_I"), c_prop = perf.Column("prop_in"),
                     c_blades = perf.Column("prop_blades"), c_tr = perf.Column("throttle_pct"),
                     c_i = perf.Column("current_A"), c_rpm = perf.Column("rpm"),
-                    c_q = perf.Column("torque_Nm");
+                    c_q = perf.Column("torque_Nm"), c_t = perf.Column("thrust_N"),
+                    c_tsl = perf.Column("thrust_sealevel_est_g");
   for (const auto& row : perf.rows) {
     const std::string name = perf.Field(row, c_motor);
     const auto it = index.find(name);
@@ -84,6 +86,8 @@ std::vector<KdeSheetMotor> ReadKdeSheets(const std::string& dir) {
     r.idc_a = Number(perf, row, c_i, false);
     r.rpm = Number(perf, row, c_rpm, false);
     r.torque_nm = Number(perf, row, c_q, true);
+    r.thrust_n = Number(perf, row, c_t, false);
+    r.thrust_sealevel_est_n = GramForceToNewton(Number(perf, row, c_tsl, true));
     r.prop = perf.Field(row, c_prop) + " " + perf.Field(row, c_blades);
     motors[it->second].rows.push_back(std::move(r));
   }

@@ -18,6 +18,8 @@ struct KdeSheetRow {
   double idc_a = 0.0;
   double rpm = 0.0;
   double torque_nm = 0.0;  // NaN where the sheet has no torque column (two older sheets)
+  double thrust_n = 0.0;   // measured at the site (thrust_N), not KDE's sea-level estimate
+  double thrust_sealevel_est_n = 0.0;  // KDE's calculated sea-level estimate; NaN when empty
   std::string prop;        // "30.5x9.7 DUAL"
 };
 
