@@ -95,6 +95,9 @@ bool BatteryPackParams::IsValid(std::string* error) const {
     return fail("cell_ri_ohm = " + SignificantText(cell_ri_ohm) + ": must be a finite number >= 0");
   }
   if (!(cell_mass_kg >= 0)) return fail("cell_mass_kg = " + SignificantText(cell_mass_kg) + ": must be >= 0");
+  if (!(mass_factor >= 1.0) || !std::isfinite(mass_factor)) {
+    return fail("mass_factor = " + SignificantText(mass_factor) + ": must be a finite number >= 1");
+  }
   if (!(cell_max_current_a > 0)) {
     return fail("cell_max_current_a = " + SignificantText(cell_max_current_a) + ": must be > 0");
   }

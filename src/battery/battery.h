@@ -38,6 +38,8 @@ struct BatteryPackParams {
   double cell_mass_kg = 0.0;
   double cell_max_current_a = std::numeric_limits<double>::infinity();
   double cell_peak_current_a = std::numeric_limits<double>::infinity();
+  // The pack's mass over its cells' (structure, BMS, wiring, cooling; >= 1, 1 = as the units).
+  double mass_factor = 1.0;
   // Keys whose value is assumed rather than from the entry ("ri_ohm" when the entry has none).
   std::vector<std::string> assumed;
   // Returns false and names the field, value and rule when a value is out of range.
@@ -87,7 +89,7 @@ class BatteryPack {
   const BatteryPackParams& params() const { return p_; }
   double capacity_ah() const { return p_.cell_capacity_ah * p_.n_parallel; }
   double ri_ohm() const { return p_.cell_ri_ohm * p_.n_series / p_.n_parallel; }
-  double mass_kg() const { return p_.cell_mass_kg * p_.n_series * p_.n_parallel; }
+  double mass_kg() const { return p_.cell_mass_kg * p_.n_series * p_.n_parallel * p_.mass_factor; }
   double max_current_a() const { return p_.cell_max_current_a * p_.n_parallel; }
   double peak_current_a() const { return p_.cell_peak_current_a * p_.n_parallel; }
   double cutoff_v(const DischargeOptions& o = {}) const;

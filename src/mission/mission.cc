@@ -309,7 +309,8 @@ static void ReadAir(const Reader& top, const std::string& name, Mission* m) {
 static void ReadBattery(const Reader& top, const std::string& name, Mission* m) {
   if (!top.Has("battery")) top.FailMissing("battery", "an object is required");
   const Reader b(top.At("battery"), name, "$.battery");
-  b.AllowOnly({"id", "cells", "capacity_ah", "reserve_soc", "cutoff_cell_v"});
+  b.AllowOnly({"id", "cells", "cells_parallel", "capacity_ah", "reserve_soc", "cutoff_cell_v",
+               "mass_factor", "mass_factor_source"});
   if (!b.Has("id")) b.FailMissing("id", "a catalog battery id or an array of ids is required");
   if (b.At("id").is_array()) {
     if (b.At("id").empty()) b.Fail("$.battery.id", b.At("id"), "must list at least one id");
@@ -323,7 +324,7 @@ static void ReadBattery(const Reader& top, const std::string& name, Mission* m) 
   } else {
     m->battery.ids.push_back(b.String("id", std::nullopt));
   }
-  const Range cells = b.NumberOrRange("cells", 1.0, 64.0, false);
+  const Range cells = b.NumberOrRange("cells", 1.0, kMaxCellsSeries, false);
   for (double c : {cells.lo, cells.hi}) {
     if (c != std::floor(c)) b.Fail("$.battery.cells", b.At("cells"), "cell counts must be integers");
   }
@@ -332,6 +333,12 @@ static void ReadBattery(const Reader& top, const std::string& name, Mission* m) 
   if (b.Has("capacity_ah")) m->battery.capacity_ah = b.NumberOrRange("capacity_ah", 0.0, 1e4, true);
   m->battery.reserve_soc = b.Number("reserve_soc", 0.0, 0.9, false, 0.2);
   m->battery.cutoff_cell_v = b.OptNumber("cutoff_cell_v", 0.5, 4.5, true);
+  m->battery.cells_parallel = b.Integer("cells_parallel", 1, 1000, 1);
+  m->battery.mass_factor = b.Number("mass_factor", 1.0, 3.0, false, 1.0);
+  m->battery.mass_factor_source = b.String("mass_factor_source", std::string());
+  if (m->battery.mass_factor != 1.0 && m->battery.mass_factor_source.empty()) {
+    b.FailMissing("mass_factor_source", "a mass_factor other than 1 must say where it comes from");
+  }
 }
 
 // "constraints" with their documented defaults.

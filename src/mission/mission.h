@@ -89,7 +89,20 @@ struct MissionBattery {
   std::optional<Range> capacity_ah;  // size the capacity within this range (mass scales with it)
   double reserve_soc = 0.2;          // state of charge that must remain at the end
   std::optional<double> cutoff_cell_v;  // under-load cut-off per cell; default per chemistry
+  // Catalog units in parallel (a Li-ion cell entry: the pack's capacity is cells_parallel x the
+  // cell's); capacity_ah, when given, still sizes the capacity about it.
+  int cells_parallel = 1;
+  // The pack's mass over its units' mass (structure, BMS, wiring, cooling): 1 = the catalog
+  // unit's mass as stated (a finished pack). Any other value needs mass_factor_source.
+  double mass_factor = 1.0;
+  std::string mass_factor_source;
 };
+
+// The largest pack voltage a mission may ask for, V, and so the most cells in series at the
+// lithium cells' 4.2 V full charge (floor(1000/4.2) = 238): the 800 V class of eVTOL buses
+// with room above it.
+inline constexpr double kMaxPackVoltageV = 1000.0;
+inline constexpr int kMaxCellsSeries = 238;
 
 struct MissionConstraints {
   double max_throttle = 0.8;         // control authority: hover/climb throttle at most this

@@ -19,7 +19,7 @@ std::vector<BatteryOption> BatteryOptions(const Mission& m, const Catalog& cat) 
     if (!b.mass_kg) throw DataError("battery '" + id + "' has no mass_kg: the mission needs it");
     for (int s = m.battery.cells_min; s <= m.battery.cells_max; ++s) {
       if (s % b.cells_series != 0) continue;
-      const BatteryPack pack(PackFromEntry(b, s / b.cells_series, 1));
+      const BatteryPack pack(MissionPackParams(m.battery, b, s));
       DischargeOptions d;
       if (m.battery.cutoff_cell_v) d.cutoff_cell_v = *m.battery.cutoff_cell_v;
       BatteryOption o{&b, s, pack.OcvV(1.0), pack.cutoff_v(d), pack.capacity_ah(), pack.capacity_ah(),

@@ -28,4 +28,11 @@ ComponentMass EscMass(const EscEntry& esc) {
   return {AssumedEscMassKg(esc.params.max_current_a), true};
 }
 
+BatteryPackParams MissionPackParams(const MissionBattery& battery, const BatteryEntry& entry,
+                                    int cells_series) {
+  BatteryPackParams p = PackFromEntry(entry, cells_series / entry.cells_series, battery.cells_parallel);
+  p.mass_factor = battery.mass_factor;
+  return p;
+}
+
 }  // namespace dynosize

@@ -10,7 +10,9 @@
 //    refuses it, the search leaves it out and counts it).
 #pragma once
 
+#include "battery/battery.h"
 #include "catalog/catalog.h"
+#include "mission/mission.h"
 
 namespace dynosize {
 
@@ -33,5 +35,11 @@ ComponentMass PropMass(const PropEntry& prop);
 ComponentMass EscMass(const EscEntry& esc);
 inline double PropMassKg(const PropEntry& prop) { return PropMass(prop).kg; }
 inline double EscMassKg(const EscEntry& esc) { return EscMass(esc).kg; }
+
+// The mission's pack of `cells_series` cells in series from a catalog battery entry (a multiple
+// of the entry's cells_series), with the mission's units in parallel and pack mass factor
+// (mission.h MissionBattery): the one place the evaluator and the search build it.
+BatteryPackParams MissionPackParams(const MissionBattery& battery, const BatteryEntry& entry,
+                                    int cells_series);
 
 }  // namespace dynosize

@@ -51,7 +51,7 @@ MissionEvaluator::MissionEvaluator(const Mission& mission, const Combination& c,
                      " cells in series: --cells " + std::to_string(c.cells) +
                      " must be a positive multiple of it");
   }
-  pack_base_ = PackFromEntry(b, c.cells / b.cells_series, 1);
+  pack_base_ = MissionPackParams(m_.battery, b, c.cells);
   base_capacity_ah_ = pack_base_.cell_capacity_ah * pack_base_.n_parallel;
   for (const auto& k : pack_base_.assumed) assumed_.push_back("battery " + b.id + ": " + k);
   if (!b.mass_kg) throw DataError("battery '" + b.id + "' has no mass_kg: the mission needs it");
