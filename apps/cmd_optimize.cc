@@ -69,7 +69,7 @@ std::string OptimizeText(const Mission& mission, const OptimizeOptions& o, const
   out << ") in " << std::fixed << std::setprecision(2) << s.seconds << " s\n";
   out << InterruptedText(mission, s, o.top);
   if (s.best.empty() && !s.interrupted) {
-    out << "no combination of the catalog flies this mission within its constraints\n";
+    out << "no combination of the catalog flies this mission within its constraints\n" << NoDesignText(s);
   }
   if (s.best.empty() && s.interrupted) out << "no feasible combination found before the search stopped\n";
   if (!s.relaxed_constraint.empty()) {

@@ -1,12 +1,15 @@
 // The catalog search's entry (search.h): one free group runs the stages (search_stages.h),
 // several the joint search (joint_search.h); then the objective ranges and, when nothing
-// reaches the thrust-to-weight, the search without that limit.
+// reaches the thrust-to-weight, the search without that limit; when nothing flies, why
+// (no_design.h).
 #include "optimization/search.h"
 
 #include <limits>
+#include <utility>
 
 #include "optimization/credibility.h"
 #include "optimization/joint_search.h"
+#include "optimization/no_design.h"
 #include "optimization/objective_range.h"
 #include "optimization/search_stages.h"
 
@@ -29,7 +32,13 @@ SearchResult SearchExactly(const Mission& m, const Catalog& cat, const SearchOpt
 SearchResult SearchCatalog(const Mission& m, const Catalog& cat, const SearchOptions& opt) {
   SearchResult out = SearchExactly(m, cat, opt);
   // Stopped: what was found (nothing may mean "not yet"), not the relaxed search.
-  if (out.interrupted || !out.best.empty() || !(m.constraints.min_thrust_to_weight > 0)) return out;
+  if (out.interrupted || !out.best.empty()) return out;
+  // Nothing flies: say which requirements nothing in the catalog meets (no_design.h).
+  auto nothing = [&](SearchResult r) {
+    if (!r.interrupted) r.no_design_because = UnmetRequirements(m, cat);
+    return r;
+  };
+  if (!(m.constraints.min_thrust_to_weight > 0)) return nothing(std::move(out));
   // No combination reaches the thrust-to-weight (or nothing flies at all): the designer still
   // needs the candidates and how far each falls short. Search again without that limit and
   // return its best, each marked infeasible with the thrust-to-weight it reaches (computed by
@@ -39,7 +48,7 @@ SearchResult SearchCatalog(const Mission& m, const Catalog& cat, const SearchOpt
   SearchResult r = SearchExactly(relaxed, cat, opt);
   if (r.best.empty()) {
     out.interrupted = r.interrupted;  // the search without the limit did not finish
-    return out;
+    return nothing(std::move(out));
   }
   for (RankedCombination& b : r.best) {
     MissionResult& x = b.result;

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "optimization/mission_eval.h"
+#include "optimization/unmet_requirement.h"
 
 namespace dynosize {
 
@@ -33,6 +34,10 @@ struct SearchResult {
   // min_thrust_to_weight violation, and relaxed_constraint says so.
   std::vector<RankedCombination> best;
   std::string relaxed_constraint;  // "" or "min_thrust_to_weight"
+  // When the search finished and found nothing (best empty, not interrupted): the requirements
+  // no part of the catalog meets on its own (no_design.h, UnmetRequirements); empty otherwise,
+  // and empty too when every requirement is met by some part but no combination meets all.
+  std::vector<UnmetRequirement> no_design_because;
   // Every combination evaluated exactly: propulsion mass and objective (for the Pareto front).
   std::vector<std::pair<double, double>> evaluated_mass_objective;
   // motors x ESCs x propellers (to the power of the free groups' count) x (battery, cells)

@@ -14,6 +14,7 @@
 #include "model/drive.h"
 #include "model/gear.h"
 #include "model/physics.h"
+#include "optimization/no_design.h"
 #include "prop/prop_model.h"
 #include "report/gnuplot.h"
 
@@ -448,7 +449,35 @@ Json SearchResultJson(const Mission& m, const SearchResult& s) {
   j["pruned_by"] = by;
   j["seconds"] = s.seconds;
   if (!s.relaxed_constraint.empty()) j["relaxed_constraint"] = s.relaxed_constraint;
+  j["no_design_because"] = UnmetRequirementsJson(s.no_design_because);
   return j;
+}
+
+Json UnmetRequirementsJson(const std::vector<UnmetRequirement>& reasons) {
+  Json out = Json::array();
+  const auto number = [](double x) { return std::isfinite(x) ? Json(x) : Json(nullptr); };
+  for (const UnmetRequirement& r : reasons) {
+    out.push_back({{"requirement", r.requirement},
+                   {"needed", number(r.needed)},
+                   {"best_available", number(r.best_available)},
+                   {"unit", r.unit},
+                   {"components", r.components},
+                   {"description", r.description},
+                   {"search_rule", r.search_rule},
+                   {"group", r.group}});
+  }
+  return out;
+}
+
+std::string NoDesignText(const SearchResult& s) {
+  if (!s.best.empty() || s.interrupted) return "";
+  if (s.no_design_because.empty()) {
+    return "  each requirement checked alone (docs/search.md#why-nothing-flies) is met by some part of the catalog: "
+           "the parts fail together (the counts above say by which rules)\n";
+  }
+  std::string out;
+  for (const UnmetRequirement& r : s.no_design_because) out += "  " + UnmetRequirementText(r, &s.pruned_by) + "\n";
+  return out;
 }
 
 std::string WriteParetoFigure(const Mission& m, const SearchResult& s, const std::string& dir) {

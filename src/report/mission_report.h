@@ -29,8 +29,17 @@ std::vector<std::vector<int>> IndistinguishableRanks(const SearchResult& s);
 
 // optimize --json: {"results": [...each with "alternatives" and "indistinguishable_from"...],
 // "designs", "interrupted", "bound_gap" (when interrupted), "searched", "pruned", "unsettled",
-// "combinations", "pruned_by", "seconds", "relaxed_constraint"}.
+// "combinations", "pruned_by", "seconds", "relaxed_constraint", "no_design_because"}.
+// no_design_because (always present; empty unless nothing flies): UnmetRequirementsJson.
 Json SearchResultJson(const Mission& mission, const SearchResult& s);
+// [{"requirement", "needed", "best_available", "unit", "components", "description",
+//   "search_rule", "group"}, ...] (optimization/unmet_requirement.h; values in SI, in `unit`;
+// a value that is not finite is null).
+Json UnmetRequirementsJson(const std::vector<UnmetRequirement>& reasons);
+// The text lines under "no combination of the catalog flies ...": one per requirement
+// (UnmetRequirementText, indented), or one saying no single part falls short; "" when `reasons`
+// does not apply (a result was found, or the search was stopped).
+std::string NoDesignText(const SearchResult& s);
 // The text lines of a result's alternatives and of the ranks it cannot be told from ("" if none).
 std::string AlternativesText(const Mission& mission, const RankedCombination& r, const std::vector<int>& tied);
 // The lines of an interrupted search: why, and the proven bound gap ("" when not interrupted).

@@ -197,6 +197,7 @@ Json SweepRowJson(const SweepRow& row, const std::vector<VaryKey>& keys) {
   j["values"] = values;
   j["status"] = row.status;
   if (!row.reason.empty()) j["reason"] = row.reason;
+  if (!row.no_design_because.empty()) j["no_design_because"] = UnmetRequirementsJson(row.no_design_because);
   Json picks = Json::array();
   for (const SweepPick& p : row.picks) {
     Json q;

@@ -11,7 +11,9 @@
 
 namespace dynosize::study {
 
-// {"index", "values": {KEY: value, ...}, "status", "reason" (failed rows), "picks": [{"rank",
+// {"index", "values": {KEY: value, ...}, "status", "reason" (failed rows), "no_design_because"
+//  (rows where nothing flies and some requirement is out of the catalog's reach:
+//  UnmetRequirementsJson, report/mission_report.h), "picks": [{"rank",
 //  "feasible", "objective", "objective_unit", "objective_range": [low, high] (null: that end
 //  cannot fly), "parts": [{"group" (with groups), "motor", "esc", "prop"}], "battery", "cells",
 //  "capacity_ah", "total_mass_kg", "thrust_to_weight", "binding_limit"}]}. The point's wall

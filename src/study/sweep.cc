@@ -7,6 +7,7 @@
 #include <limits>
 #include <mutex>
 #include <set>
+#include <sstream>
 #include <thread>
 #include <utility>
 
@@ -14,6 +15,7 @@
 #include "common/numbers.h"
 #include "common/worker_threads.h"
 #include "mission/mission.h"
+#include "optimization/no_design.h"
 #include "optimization/search.h"
 
 namespace dynosize::study {
@@ -397,6 +399,19 @@ SweepPick PickOf(const Mission& m, const SearchResult& s, std::size_t k) {
   return p;
 }
 
+// A failed row's reason when nothing flies: the search's line, and each requirement no part of
+// the catalog meets in short ("hover_thrust_per_rotor 1471 N > 52.1 N"; no_design.h).
+std::string NothingFliesReason(const std::vector<UnmetRequirement>& reasons) {
+  std::ostringstream o;
+  o << "no combination of the catalog flies this mission within its constraints";
+  for (std::size_t i = 0; i < reasons.size(); ++i) {
+    const UnmetRequirement& r = reasons[i];
+    o << (i ? "; " : ": ") << r.requirement << (r.group.empty() ? "" : " (" + r.group + ")") << " needs "
+      << RequirementValueText(r.needed, r.unit) << " > best " << RequirementValueText(r.best_available, r.unit);
+  }
+  return o.str();
+}
+
 }  // namespace
 
 SweepRow RunPoint(const Json& mission_doc, const std::string& mission_name, const Catalog& catalog,
@@ -436,7 +451,10 @@ SweepRow RunPoint(const Json& mission_doc, const std::string& mission_name, cons
     return done("failed", WithoutName(e.what(), mission_name));
   }
   if (s.interrupted) return done("stopped", "the search was stopped before it finished");
-  if (s.best.empty()) return done("failed", "no combination of the catalog flies this mission within its constraints");
+  if (s.best.empty()) {
+    row.no_design_because = s.no_design_because;
+    return done("failed", NothingFliesReason(s.no_design_because));
+  }
   for (std::size_t k = 0; k < s.best.size(); ++k) row.picks.push_back(PickOf(m, s, k));
   return done("ok", "");
 }

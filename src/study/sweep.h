@@ -20,6 +20,7 @@
 
 #include "catalog/catalog.h"
 #include "common/json_file.h"
+#include "optimization/unmet_requirement.h"
 
 namespace dynosize::study {
 
@@ -103,6 +104,9 @@ struct SweepRow {
   std::string status;
   std::string reason;
   std::vector<SweepPick> picks;  // best first, at most PointOptions::top
+  // "failed" because nothing flies: the requirements no part of the catalog meets
+  // (SearchResult::no_design_because, optimization/no_design.h); `reason` lists them too.
+  std::vector<UnmetRequirement> no_design_because;
   double seconds = 0;            // the point's wall time (not part of its result)
 };
 
