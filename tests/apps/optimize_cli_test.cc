@@ -127,5 +127,39 @@ TEST(OptimizeCli, SegmentTableNamesEachSegmentAndItsGroup) {
   EXPECT_GE(rows, 4);
 }
 
+// Issue 51 item 5: when nothing flies, the text prints one line per requirement no part of the
+// catalog meets under "no combination ...", and --json lists them under no_design_because
+// (docs/search.md#why-nothing-flies); a mission that flies has the key, empty.
+TEST(OptimizeCli, NothingFliesSaysWhy) {
+  Json doc = ReadJsonFile(kSource + "/examples/missions/quadcopter_1p5kg.json");
+  doc["vehicle"]["mass_kg"] = 150.0;
+  const fs::path m = fs::temp_directory_path() / ("dynosize_heavy_quad_" + std::to_string(getpid()) + ".json");
+  std::ofstream(m) << doc.dump(2);
+  const CliRun t = RunCli("optimize " + m.string() + " --top 1");
+  EXPECT_EQ(t.code, 0) << t.err;
+  const std::string line = "no combination of the catalog flies this mission within its constraints\n";
+  const auto at = t.out.find(line);
+  ASSERT_NE(at, std::string::npos) << t.out;
+  EXPECT_EQ(t.out.find("  hover_thrust_per_rotor: needs at least ", at), at + line.size()) << t.out;
+  EXPECT_NE(t.out.find("  motor_power_per_rotor: needs at least "), std::string::npos) << t.out;
+  const CliRun j = RunCli("optimize " + m.string() + " --top 1 --json");
+  EXPECT_EQ(j.code, 0) << j.err;
+  Json out;
+  ASSERT_NO_THROW(out = Json::parse(j.out)) << j.out.substr(0, 200);
+  EXPECT_EQ(out["results"], Json::array());
+  ASSERT_TRUE(out["no_design_because"].is_array());
+  ASSERT_FALSE(out["no_design_because"].empty());
+  for (const Json& r : out["no_design_because"]) {
+    for (const char* key : {"requirement", "needed", "best_available", "unit", "components"}) {
+      EXPECT_TRUE(r.contains(key)) << key << " in " << r.dump();
+    }
+    EXPECT_GT(r["needed"].get<double>(), r["best_available"].get<double>()) << r.dump();
+  }
+  fs::remove(m);
+  const CliRun f = RunCli("optimize " + kSource + "/examples/missions/quadcopter_1p5kg.json --top 1 --json");
+  ASSERT_EQ(f.code, 0) << f.err;
+  EXPECT_EQ(Json::parse(f.out)["no_design_because"], Json::array());
+}
+
 }  // namespace
 }  // namespace dynosize

@@ -254,6 +254,13 @@ TEST_F(SweepRunTest, FailingPointsAreRowsWithTheirReason) {
   EXPECT_EQ(r.rows[1].picks[0].binding_limit, "reserve_soc");
   EXPECT_EQ(r.rows[2].status, "failed");
   EXPECT_NE(r.rows[2].reason.find("no combination"), std::string::npos) << r.rows[2].reason;
+  // Why (optimization/no_design.h): the requirements no part meets, in the row and its reason.
+  ASSERT_FALSE(r.rows[2].no_design_because.empty()) << r.rows[2].reason;
+  for (const UnmetRequirement& u : r.rows[2].no_design_because) {
+    EXPECT_GT(u.needed, u.best_available) << u.requirement;
+    EXPECT_NE(r.rows[2].reason.find(u.requirement + " needs "), std::string::npos) << r.rows[2].reason;
+  }
+  EXPECT_TRUE(r.rows[1].no_design_because.empty());
   const Mission base = ParseMission(Quad(), "quad.json");
   const std::string csv = SweepCsv(base, r, keys);
   EXPECT_NE(csv.find("0,-1,failed,"), std::string::npos) << csv;
@@ -261,6 +268,8 @@ TEST_F(SweepRunTest, FailingPointsAreRowsWithTheirReason) {
   const Json j = SweepJson(base, r, keys);
   EXPECT_EQ(j["failed"], Json(2));
   EXPECT_EQ(j["rows"][0]["values"]["vehicle.mass_kg"], Json(-1));
+  EXPECT_TRUE(j["rows"][2]["no_design_because"].is_array());
+  EXPECT_FALSE(j["rows"][1].contains("no_design_because"));
 }
 
 TEST_F(SweepRunTest, CsvLinesHaveTheHeadersFields) {
