@@ -26,7 +26,9 @@
 //                        zero-resistance ESC of any class already needs more throttle, or the
 //                        motor more current or power than rated (R3, docs/search.md#r3, M2),
 //                        or the propeller turns above its max_rpm (R2) or its data window's top
-//                        (R12); the thrust there bounds every feasible hover point, N.
+//                        (R12); the thrust there bounds every feasible hover point, N (the
+//                        largest grid thrust up to there: for the few propellers whose grid
+//                        thrust does not rise with speed, M1, a bound on the grid's points only).
 //   motor_power_per_rotor  the momentum-theory hover power of T on the largest propeller that
 //                        fits, over the figure-of-merit limit: P = T^1.5/sqrt(2*rho*A)/FM_max
 //                        (docs/model.md section 11; FM_max the mission's max_figure_of_merit,
