@@ -26,6 +26,8 @@ std::vector<Sample> Samples(const std::vector<MotorEntry>& motors) {
     const auto v = m.json.find("io_test_voltage_v");
     const double vt = v != m.json.end() && v->is_number() ? v->get<double>() : 0.0;
     if (!(io > 0.0) || !(vt > 0.0) || !(kv > 0.0) || !(imax > 0.0) || !std::isfinite(imax)) continue;
+    // A law's estimate (catalog/motor_estimate.h) is no observation of a motor.
+    if (ValueTier(m, "io_a") == DataTier::kEstimated) continue;
     s.push_back({std::log10(imax), std::log10(kv * vt), std::log10(io)});
   }
   return s;

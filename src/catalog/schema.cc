@@ -52,86 +52,92 @@ std::vector<KeySpec> Common() {
               "why searches skip this entry by default (kept for reference), e.g. no rating")};
 }
 
+// The motor's keys (after the common ones).
+void AddMotorKeys(std::vector<KeySpec>& s) {
+  auto add = [&s](KeySpec k) { s.push_back(std::move(k)); };
+  add(Str("type", true, "motor type", {"bldc", "brushed"}));
+  add(Num("ke_v_s_per_rad", false, 0, true, 10,
+          "back-EMF constant, V*s/rad (BLDC: line-line rms, eq 42); from kv_rpm_per_v by "
+          "model.md section 8 when absent"));
+  add(Num("kt_nm_per_a", false, 0, true, 20,
+          "torque constant, N*m/A (BLDC: per rms ampere); sqrt(27/10)*ke when absent (BLDC), "
+          "ke (brushed)"));
+  add(Num("rm_ohm", true, 0, true, 100,
+          "resistance of the rms circuit of eq (42)/(48), ohm; = 0.7492 x rm_dc_ohm "
+          "(catalog/conventions.h)"));
+  add(Num("rm_dc_ohm", false, 0, true, 100,
+          "the source's resistance of the DC equivalent circuit VDC = R*IDC + n/Kv "
+          "(datasheet, DriveCalc, stand-table fit), ohm; kept for provenance"));
+  add(Num("io_a", true, 0, false, 200, "no-load current of eq (42), A"));
+  add(Num("kv_rpm_per_v", false, 0, true, 1e5, "datasheet Kv, rpm per DC volt"));
+  add(Num("mass_kg", false, 0, true, 1000, "mass, kg"));
+  add(Num("max_current_a", false, 0, true, 1e4, "current rating, A"));
+  add(Num("max_power_w", false, 0, true, 1e7, "power rating, W"));
+  add(Num("io_test_voltage_v", false, 0, true, 2000,
+          "DC supply voltage at which io_a was stated or evaluated, V"));
+  add(Num("vdc_nominal_v", false, 0, true, 2000, "nominal (datasheet test) supply voltage, V"));
+  add(Int("cells_min", false, 1, 250, "smallest recommended LiPo cell count in series"));
+  add(Int("cells_max", false, 1, 250, "largest recommended LiPo cell count in series"));
+  add(Int("poles", false, 2, 200, "number of magnet poles"));
+  add(Num("loss_torque_nm", false, 0, false, 100,
+          "constant loss torque (DriveCalc MvK), N*m; with loss_torque_per_omega it is "
+          "the no-load current law Io(omega) = (loss_torque + loss_torque_per_omega*omega)/kt "
+          "of model.md section 9"));
+  add(Num("loss_torque_per_omega_nm_s_per_rad", false, 0, false, 1,
+          "speed-proportional loss torque (DriveCalc kL), N*m per rad/s"));
+  add(Num("rm_per_omega_ohm_s_per_rad", false, 0, false, 1,
+          "speed-dependent impedance term (DriveCalc K): R(omega) = rm + K*omega, ohm per rad/s"));
+  add(Num("max_torque_nm", false, 0, true, 1e4, "peak torque rating, N*m"));
+  // Ratings at eVTOL scale (docs/catalog.md "Ratings"): max_current_a and max_power_w stay
+  // the continuous ratings; the peak ones hold for peak_duration_s at most.
+  add(Num("peak_current_a", false, 0, true, 1e5,
+          "peak current rating (the DC or phase basis of max_current_a), A"));
+  add(Num("peak_power_w", false, 0, true, 1e8, "peak power rating, W"));
+  add(Num("peak_duration_s", false, 0, true, 3600,
+          "how long the peak ratings may be held, s (absent: not stated)"));
+  add(Num("continuous_torque_nm", false, 0, true, 1e5, "continuous torque rating, N*m"));
+  add(Num("max_rpm", false, 0, true, 1e6, "maker's speed limit, rpm"));
+  add(Num("vdc_max_v", false, 0, true, 2000, "largest DC supply voltage stated, V"));
+  // A gearbox between the motor and the propeller (model/gear.h); absent = direct drive.
+  add(Num("gear_ratio", false, 1, false, 100,
+          "motor turns per propeller turn (>= 1; 1 = direct drive, the default); kv, ke, "
+          "rm and the loss terms stay the motor's own: omega_motor = ratio*omega_prop"));
+  add(Num("gear_efficiency", false, 0, true, 1,
+          "gearbox efficiency (0 < eta <= 1; 1 when direct drive): Q_motor = "
+          "Q_prop/(gear_ratio*eta); required with a gear_ratio above 1"));
+  // Model extensions of docs/model.md section 9 (src/model/drive.h); absent = 0 = first order.
+  add(Num("io1_a_s_per_rad", false, 0, false, 1,
+          "speed-dependent no-load current Io(omega) = io_a + io1*omega, A per rad/s"));
+  add(Num("rth_k_per_w", false, 0, false, 1000,
+          "winding temperature rise per watt of copper loss, K/W: Rm = rm_ohm*(1 + "
+          "0.00393*rise), rise = rth*P_cu"));
+  add(Num("kt_droop_per_a", false, 0, false, 10,
+          "torque constant droop at high current, KT(I) = kt/(1 + kt_droop*I), 1/A"));
+  {
+    KeySpec er;
+    er.key = "estimate_ranges";
+    er.type = ValueType::kObject;
+    er.doc = "p10-p90 of values a law estimated (catalog/motor_estimate.h): {\"rm_ohm\", "
+             "\"io_a\", \"kv_rpm_per_v\": [p10, p90]}; the sizing's spread for them";
+    add(er);
+  }
+  {
+    KeySpec tp;
+    tp.key = "test_points";
+    tp.type = ValueType::kArray;
+    tp.doc = "published operating points (manufacturer or stand tables): [{\"vdc_v\", "
+             "\"idc_a\" (required), \"throttle\" (0-1), \"rpm\", \"torque_nm\", "
+             "\"thrust_n\", \"prop\" (string)}]";
+    add(tp);
+  }
+}
+
 std::vector<KeySpec> Build(ComponentKind kind) {
   std::vector<KeySpec> s = Common();
   auto add = [&s](KeySpec k) { s.push_back(std::move(k)); };
   switch (kind) {
     case ComponentKind::kMotor:
-      add(Str("type", true, "motor type", {"bldc", "brushed"}));
-      add(Num("ke_v_s_per_rad", false, 0, true, 10,
-              "back-EMF constant, V*s/rad (BLDC: line-line rms, eq 42); from kv_rpm_per_v by "
-              "model.md section 8 when absent"));
-      add(Num("kt_nm_per_a", false, 0, true, 20,
-              "torque constant, N*m/A (BLDC: per rms ampere); sqrt(27/10)*ke when absent (BLDC), "
-              "ke (brushed)"));
-      add(Num("rm_ohm", true, 0, true, 100,
-              "resistance of the rms circuit of eq (42)/(48), ohm; = 0.7492 x rm_dc_ohm "
-              "(catalog/conventions.h)"));
-      add(Num("rm_dc_ohm", false, 0, true, 100,
-              "the source's resistance of the DC equivalent circuit VDC = R*IDC + n/Kv "
-              "(datasheet, DriveCalc, stand-table fit), ohm; kept for provenance"));
-      add(Num("io_a", true, 0, false, 200, "no-load current of eq (42), A"));
-      add(Num("kv_rpm_per_v", false, 0, true, 1e5, "datasheet Kv, rpm per DC volt"));
-      add(Num("mass_kg", false, 0, true, 1000, "mass, kg"));
-      add(Num("max_current_a", false, 0, true, 1e4, "current rating, A"));
-      add(Num("max_power_w", false, 0, true, 1e7, "power rating, W"));
-      add(Num("io_test_voltage_v", false, 0, true, 2000,
-              "DC supply voltage at which io_a was stated or evaluated, V"));
-      add(Num("vdc_nominal_v", false, 0, true, 2000, "nominal (datasheet test) supply voltage, V"));
-      add(Int("cells_min", false, 1, 250, "smallest recommended LiPo cell count in series"));
-      add(Int("cells_max", false, 1, 250, "largest recommended LiPo cell count in series"));
-      add(Int("poles", false, 2, 200, "number of magnet poles"));
-      add(Num("loss_torque_nm", false, 0, false, 100,
-              "constant loss torque (DriveCalc MvK), N*m; with loss_torque_per_omega it is "
-              "the no-load current law Io(omega) = (loss_torque + loss_torque_per_omega*omega)/kt "
-              "of model.md section 9"));
-      add(Num("loss_torque_per_omega_nm_s_per_rad", false, 0, false, 1,
-              "speed-proportional loss torque (DriveCalc kL), N*m per rad/s"));
-      add(Num("rm_per_omega_ohm_s_per_rad", false, 0, false, 1,
-              "speed-dependent impedance term (DriveCalc K): R(omega) = rm + K*omega, ohm per rad/s"));
-      add(Num("max_torque_nm", false, 0, true, 1e4, "peak torque rating, N*m"));
-      // Ratings at eVTOL scale (docs/catalog.md "Ratings"): max_current_a and max_power_w stay
-      // the continuous ratings; the peak ones hold for peak_duration_s at most.
-      add(Num("peak_current_a", false, 0, true, 1e5,
-              "peak current rating (the DC or phase basis of max_current_a), A"));
-      add(Num("peak_power_w", false, 0, true, 1e8, "peak power rating, W"));
-      add(Num("peak_duration_s", false, 0, true, 3600,
-              "how long the peak ratings may be held, s (absent: not stated)"));
-      add(Num("continuous_torque_nm", false, 0, true, 1e5, "continuous torque rating, N*m"));
-      add(Num("max_rpm", false, 0, true, 1e6, "maker's speed limit, rpm"));
-      add(Num("vdc_max_v", false, 0, true, 2000, "largest DC supply voltage stated, V"));
-      // A gearbox between the motor and the propeller (model/gear.h); absent = direct drive.
-      add(Num("gear_ratio", false, 1, false, 100,
-              "motor turns per propeller turn (>= 1; 1 = direct drive, the default); kv, ke, "
-              "rm and the loss terms stay the motor's own: omega_motor = ratio*omega_prop"));
-      add(Num("gear_efficiency", false, 0, true, 1,
-              "gearbox efficiency (0 < eta <= 1; 1 when direct drive): Q_motor = "
-              "Q_prop/(gear_ratio*eta); required with a gear_ratio above 1"));
-      // Model extensions of docs/model.md section 9 (src/model/drive.h); absent = 0 = first order.
-      add(Num("io1_a_s_per_rad", false, 0, false, 1,
-              "speed-dependent no-load current Io(omega) = io_a + io1*omega, A per rad/s"));
-      add(Num("rth_k_per_w", false, 0, false, 1000,
-              "winding temperature rise per watt of copper loss, K/W: Rm = rm_ohm*(1 + "
-              "0.00393*rise), rise = rth*P_cu"));
-      add(Num("kt_droop_per_a", false, 0, false, 10,
-              "torque constant droop at high current, KT(I) = kt/(1 + kt_droop*I), 1/A"));
-      {
-        KeySpec er;
-        er.key = "estimate_ranges";
-        er.type = ValueType::kObject;
-        er.doc = "p10-p90 of values a law estimated (catalog/motor_estimate.h): {\"rm_ohm\", "
-                 "\"io_a\", \"kv_rpm_per_v\": [p10, p90]}; the sizing's spread for them";
-        add(er);
-      }
-      {
-        KeySpec tp;
-        tp.key = "test_points";
-        tp.type = ValueType::kArray;
-        tp.doc = "published operating points (manufacturer or stand tables): [{\"vdc_v\", "
-                 "\"idc_a\" (required), \"throttle\" (0-1), \"rpm\", \"torque_nm\", "
-                 "\"thrust_n\", \"prop\" (string)}]";
-        add(tp);
-      }
+      AddMotorKeys(s);
       break;
     case ComponentKind::kEsc:
       add(Num("resc_ohm", true, 0, false, 10, "equivalent series resistance of eq (47), ohm"));
