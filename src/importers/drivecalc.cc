@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "catalog/esc_prior.h"
+#include "catalog/motor_credibility.h"
 #include "catalog/prop_credibility.h"
 #include "common/atmosphere.h"
 #include "common/units.h"
@@ -131,10 +132,110 @@ constexpr double kDefaultGearEfficiency = 0.96;
 // (LMT's "6:1" is Reisenauer's 5.94:1).
 constexpr double kGearRatioMatchRel = 0.02;
 
+// Geared motors whose name states no ratio (issue 51 item 3). DriveCalc stores a geared
+// motor's kV at the output shaft (docs/model.md section 12); run as a direct drive at that Kv,
+// such a motor has N x its real motor constant and wins heavy-lift searches (dc_m_1829 "Turnigy
+// T600 Heli (880kv)", 164.8 rpm/V at 365 g, picked for a 50 kg octocopter). Evidence:
+//  (1) the Kv the name states (KvFromMotorName) over DriveCalc's kV, q. On the direct-drive
+//      motors whose name states a Kv, q is 0.63-1.21 (p1 0.79, p99 1.21, 270 motors); q >=
+//      kNameKvOutputMin says the stored kV is the output shaft's (no direct drive reaches it, and
+//      it is below the smallest ratio in Gear.csv, 1.5).
+//  (3) the gear DriveCalc links to the motor (mgear_id into Gear.csv, a ratio and efficiency).
+//  (2) the motor constant against mass (catalog/motor_credibility.h): with the output shaft's
+//      kV a geared unit's Km is 0.83-4.9x the mass law (median 1.70), with its motor's Kv
+//      0.17-1.12x; Catalog::Load refuses a geared entry above kGearedKmRatioMax.
+// The ratio is determined when (1) and (3) agree: q within kNameKvMatchRel of the linked gear's
+// ratio (the scatter of q around 1 on direct drives, p1-p99). The entry is then geared with the
+// linked gear: kv_rpm_per_v = ratio x DriveCalc's kV (the motor's Kv that keeps DriveCalc's
+// measured propeller speeds; the name's Kv is nominal), gear_efficiency from Gear.csv.
+// Excluded ("geared ... no ratio to run it with"): q >= kNameKvOutputMin without a linked gear
+// of that ratio; or no Kv in the name, a linked gear above 1:1 and Km with DriveCalc's kV above
+// kGearedKmRatioMax x the mass law (the stored kV reads as the output shaft's by the test
+// Catalog::Load applies to geared entries, and nothing in the name says which ratio). A linked
+// gear with a Km below that, or a name Kv that is DriveCalc's kV (q near 1: the name rules),
+// stays direct drive, counted in the report.
+constexpr double kNameKvOutputMin = 1.4;
+constexpr double kNameKvMatchRel = 0.21;
+
+struct UnnamedGear {
+  enum Kind { kDirect, kGeared, kExcluded } kind = kDirect;
+  double ratio = 1.0;
+  double efficiency = 1.0;
+  std::string note;     // appended to source.note (geared)
+  std::string exclude;  // the reason (excluded)
+  bool linked_left_direct = false;  // a linked gear above 1:1, left direct drive
+  bool name_kv_below = false;       // the name's Kv well below DriveCalc's kV (q < 1 - kNameKvMatchRel)
+  bool by_name_kv = false;          // excluded by the name's Kv (else by the linked gear and Km)
+};
+
+std::string Fmt(double x, int digits = 4) {
+  std::ostringstream s;
+  s.precision(digits);
+  s << x;
+  return s.str();
+}
+
+UnnamedGear JudgeUnnamedGear(const std::string& name, double kv_db, double rm_dc_ohm, double mass_kg,
+                             const std::string& gear_id,
+                             const std::map<std::string, std::pair<double, double>>& gear_table) {
+  UnnamedGear u;
+  const auto linked_it = gear_table.find(gear_id);
+  const bool linked = linked_it != gear_table.end() && linked_it->second.first > 1.0;
+  const double r = linked ? linked_it->second.first : 1.0;
+  const std::string gear_text =
+      linked ? "Gear.csv myid " + gear_id + " (" + Fmt(r) + ":1, efficiency " + Fmt(linked_it->second.second) + ")"
+             : "";
+  const NameKv nkv = KvFromMotorName(name);
+  if (nkv.stated) {
+    const double q = nkv.kv_rpm_per_v / kv_db;
+    const std::string states = "the name states " + Fmt(nkv.kv_rpm_per_v, 6) + " kV (\"" + nkv.token +
+                               "\"), the entry " + Fmt(kv_db) + " rpm/V (x" + Fmt(q, 3) + ")";
+    if (q < 1.0 - kNameKvMatchRel) u.name_kv_below = true;
+    if (q < kNameKvOutputMin) {
+      u.linked_left_direct = linked;
+      return u;
+    }
+    if (linked && std::fabs(q / r - 1.0) <= kNameKvMatchRel) {
+      u.kind = UnnamedGear::kGeared;
+      u.ratio = r;
+      u.efficiency = linked_it->second.second;
+      u.note = "; geared " + Fmt(r) + ":1 without a ratio in the name: " + states +
+               ": the output shaft's Kv; DriveCalc links " + gear_text + ", x" + Fmt(q, 3) + " within " +
+               Fmt(100 * kNameKvMatchRel, 2) + " % of it: gear_ratio and gear_efficiency from Gear.csv, " +
+               "kv_rpm_per_v = " + Fmt(r) + " x DB kV (the motor's; the name's Kv is nominal), loss terms " +
+               "moved to the motor shaft";
+      return u;
+    }
+    u.kind = UnnamedGear::kExcluded;
+    u.by_name_kv = true;
+    u.exclude = "geared: " + states + ": the output shaft's Kv; no ratio to run it with (" +
+                (linked ? "the linked " + gear_text + " is not x" + Fmt(q, 3) + " within " +
+                              Fmt(100 * kNameKvMatchRel, 2) + " %"
+                        : std::string("no gear linked in Gear.csv")) +
+                ")";
+    return u;
+  }
+  if (!linked) return u;
+  const double km_ratio = GearedKmRatio(kv_db, rm_dc_ohm, mass_kg);
+  if (km_ratio > kGearedKmRatioMax) {
+    u.kind = UnnamedGear::kExcluded;
+    u.exclude = "geared: DriveCalc links " + gear_text + " and the motor constant with the entry's " + Fmt(kv_db) +
+                " rpm/V is " + Fmt(km_ratio, 3) + "x the typical one of its mass (above " + Fmt(kGearedKmRatioMax) +
+                "x: the output shaft's Kv, catalog/motor_credibility.h); the name states neither a ratio nor a " +
+                "Kv: no ratio to run it with";
+    return u;
+  }
+  u.linked_left_direct = true;
+  return u;
+}
+
 void ImportMotors(const std::string& dir, ImportedDataset* out) {
   const CsvTable t = ReadCsv(dir + "/Motors.csv");
   const auto gear_table = ReadGearTable(dir, out);
   std::size_t geared = 0, geared_table_eta = 0, colon_not_ratio = 0, linked_not_named = 0;
+  std::size_t geared_by_evidence = 0, excluded_name_kv = 0, excluded_km = 0, linked_left_direct = 0,
+              name_kv_below = 0;
+  std::vector<std::string> evidence_examples;
   if (t.was_latin1) out->report.notes.push_back("Motors.csv decoded as Latin-1");
   // Pass 1: rows that are motors at all, and their duplicate keys.
   std::vector<const CsvRow*> rows;
@@ -194,7 +295,13 @@ void ImportMotors(const std::string& dir, ImportedDataset* out) {
     // motor's own: Kv = N*kV, loss torques /N (MvK) and /N^2 (kL, per motor rad/s), K/N; Io
     // below is unchanged by it (the same current at the same speed).
     const NameGearRatio gear = GearRatioFromMotorName(name);
-    const double n = gear.ratio;
+    // No ratio in the name: the evidence that the stored kV is an output shaft's (JudgeUnnamedGear).
+    const UnnamedGear unnamed =
+        gear.stated ? UnnamedGear{}
+                    : JudgeUnnamedGear(name, kv_db, rm, GramsToKg(weight_g), row.Str("mgear_id"), gear_table);
+    const bool by_evidence = unnamed.kind == UnnamedGear::kGeared;
+    const bool geared_entry = gear.stated || by_evidence;
+    const double n = by_evidence ? unnamed.ratio : gear.ratio;
     const double kv = n * kv_db, mvk = mvk_db / n, kl = kl_db / (n * n), k = k_db / n;
     // docs/model.md section 8 (BLDC) / DC machine: KE from Kv; section 5: KT = sqrt(27/10)*KE (BLDC).
     const double ke = brushed ? KeFromKvBrushed(kv) : KeFromKvBldc(kv);
@@ -206,14 +313,14 @@ void ImportMotors(const std::string& dir, ImportedDataset* out) {
 
     EntryBuilder b("dc_m_" + myids[i], name);
     b.Set("type", brushed ? "brushed" : "bldc", "derived");
-    b.SetNum("kv_rpm_per_v", kv, gear.stated ? "derived" : "datasheet");
+    b.SetNum("kv_rpm_per_v", kv, geared_entry ? "derived" : "datasheet");
     // DriveCalc's Rm is the R of its DC model U = n/Kv + R*I (catalog/conventions.h); a brushed
     // motor's circuit is that DC circuit itself.
     if (brushed) b.SetNum("rm_ohm", rm, "datasheet");
     else SetResistanceFromDc(&b, rm, "datasheet");
     b.SetNum("io_a", io, "derived", 4);
     b.Set("io_test_voltage_v", kIoTestVoltageV, "derived");  // our evaluation point, see kIoTestVoltageV
-    const char* at_motor = gear.stated ? "derived" : "datasheet";
+    const char* at_motor = geared_entry ? "derived" : "datasheet";
     if (mvk > 0) b.SetNum("loss_torque_nm", mvk, at_motor);
     if (kl > 0) b.SetNum("loss_torque_per_omega_nm_s_per_rad", kl, at_motor);
     if (k > 0) b.SetNum("rm_per_omega_ohm_s_per_rad", k, at_motor);
@@ -241,6 +348,18 @@ void ImportMotors(const std::string& dir, ImportedDataset* out) {
       const auto linked = gear_table.find(row.Str("mgear_id"));
       if (linked != gear_table.end() && linked->second.first > 1.0) ++linked_not_named;
       if (name.find(':') != std::string::npos) ++colon_not_ratio;
+      if (unnamed.linked_left_direct) ++linked_left_direct;
+      if (unnamed.name_kv_below) ++name_kv_below;
+      if (by_evidence) {
+        ++geared_by_evidence;
+        b.SetNum("gear_ratio", n, "datasheet");  // Gear.csv's ratG of the linked gear
+        b.SetNum("gear_efficiency", unnamed.efficiency, "datasheet");
+        gear_note = unnamed.note;
+        evidence_examples.push_back("dc_m_" + myids[i] + " " + name + " (" + Fmt(n) + ":1)");
+      } else if (unnamed.kind == UnnamedGear::kExcluded) {
+        ++(unnamed.by_name_kv ? excluded_name_kv : excluded_km);
+        evidence_examples.push_back("dc_m_" + myids[i] + " " + name + " (excluded)");
+      }
     }
     if (imax > 0) b.SetNum("max_current_a", imax, "datasheet");
     if (weight_g > 0) b.SetNum("mass_kg", GramsToKg(weight_g), "datasheet");
@@ -255,15 +374,41 @@ void ImportMotors(const std::string& dir, ImportedDataset* out) {
     note += MergedNote(group, i, myids, &reference);
     b.Source(kDataset, reference, note);
     b.Tier("user_contributed");
-    out->motors.push_back(b.Build());
+    Json entry = b.Build();
+    if (unnamed.kind == UnnamedGear::kExcluded) {
+      // "exclude" before "source", as EntryBuilder writes it; a rating's reason is kept.
+      Json source = entry["source"];
+      entry.erase("source");
+      entry["exclude"] =
+          entry.contains("exclude") ? entry["exclude"].get<std::string>() + "; " + unnamed.exclude : unnamed.exclude;
+      source["note"] = source.value("note", std::string()) + "; excluded by default: " + unnamed.exclude;
+      entry["source"] = std::move(source);
+    }
+    out->motors.push_back(std::move(entry));
     out->report.Keep("motors");
   }
   std::ostringstream g;
   g << "motors geared by name: " << geared << " (gear_efficiency from Gear.csv for " << geared_table_eta << ", assumed "
     << kDefaultGearEfficiency << " for " << geared - geared_table_eta << "); " << colon_not_ratio
     << " names with ':' state no ratio (direct drive); " << linked_not_named
-    << " motors link a gear in Gear.csv without a ratio in the name (direct drive: the name rules)";
+    << " motors link a gear above 1:1 in Gear.csv without a ratio in the name";
   out->report.notes.push_back(g.str());
+  std::ostringstream e;
+  e << "geared motors without a ratio in the name (the name's Kv over DB kV, the linked gear, Km vs mass): "
+    << geared_by_evidence << " geared with the linked gear (the name's Kv / DB kV within "
+    << Fmt(100 * kNameKvMatchRel, 2) << " % of its ratio), " << excluded_name_kv + excluded_km
+    << " excluded by default as geared without a ratio to run them with (" << excluded_name_kv
+    << " by the name's Kv >= " << kNameKvOutputMin << " x DB kV, " << excluded_km
+    << " by a linked gear and Km above " << kGearedKmRatioMax << "x the mass law); left direct drive: "
+    << linked_left_direct << " linking a gear with nothing else saying geared, " << name_kv_below
+    << " whose name's Kv is below " << 1.0 - kNameKvMatchRel << " x DB kV";
+  if (!evidence_examples.empty()) {
+    e << ":";
+    for (const auto& x : evidence_examples) e << " " << x << ";";
+  }
+  std::string en = e.str();
+  if (en.back() == ';') en.pop_back();
+  out->report.notes.push_back(en);
 }
 
 void ImportEscs(const std::string& dir, ImportedDataset* out) {
@@ -545,6 +690,81 @@ NameGearRatio GearRatioFromMotorName(const std::string& name) {
     g.ratio = n;
   }
   return g;
+}
+
+namespace {
+
+bool IsDigit(char c) { return c >= '0' && c <= '9'; }
+bool IsAlpha(char c) { return std::isalpha(static_cast<unsigned char>(c)) != 0; }
+
+// The whole number of 2-5 digits ending just before `end` (before == true) or starting at
+// `begin`; "" when there is none or it is part of a decimal or of a longer token.
+std::string NumberBefore(const std::string& s, std::size_t end) {
+  std::size_t b = end;
+  while (b > 0 && IsDigit(s[b - 1])) --b;
+  if (end - b < 2 || end - b > 5) return "";
+  if (b > 0 && (IsAlpha(s[b - 1]) || s[b - 1] == '.' || s[b - 1] == ',')) return "";
+  return s.substr(b, end - b);
+}
+std::string NumberAfter(const std::string& s, std::size_t begin) {
+  std::size_t e = begin;
+  while (e < s.size() && IsDigit(s[e])) ++e;
+  if (e - begin < 2 || e - begin > 5) return "";
+  if (e < s.size() && (s[e] == '.' || s[e] == ',') && e + 1 < s.size() && IsDigit(s[e + 1])) return "";
+  return s.substr(begin, e - begin);
+}
+
+}  // namespace
+
+NameKv KvFromMotorName(const std::string& name) {
+  NameKv out;
+  std::string value;  // the one Kv of every "kv" token, "" = none yet
+  bool conflict = false;
+  for (std::size_t i = 0; i + 1 < name.size(); ++i) {
+    if (std::tolower(static_cast<unsigned char>(name[i])) != 'k' ||
+        std::tolower(static_cast<unsigned char>(name[i + 1])) != 'v') {
+      continue;
+    }
+    if ((i > 0 && IsAlpha(name[i - 1])) || (i + 2 < name.size() && IsAlpha(name[i + 2]))) continue;
+    // A number attached to the token, or one space away.
+    std::string before = NumberBefore(name, i), after = NumberAfter(name, i + 2);
+    const bool before_attached = !before.empty();
+    const bool after_attached = !after.empty();
+    if (before.empty() && i > 0 && name[i - 1] == ' ') before = NumberBefore(name, i - 1);
+    if (after.empty() && i + 2 < name.size() && name[i + 2] == ' ') after = NumberAfter(name, i + 3);
+    std::string kv, token;
+    if (!before.empty() && (after.empty() || (before_attached && !after_attached))) {
+      kv = before;
+      token = before + (before_attached ? "" : " ") + name.substr(i, 2);
+    } else if (!after.empty() && (before.empty() || (after_attached && !before_attached))) {
+      kv = after;
+      token = name.substr(i, 2) + (after_attached ? "" : " ") + after;
+    } else {
+      continue;  // none, or two numbers of the same standing
+    }
+    if (!value.empty() && std::stod(value) != std::stod(kv)) conflict = true;
+    if (value.empty()) {
+      value = kv;
+      out.token = token;
+    }
+  }
+  if (conflict) return NameKv{};
+  if (value.empty()) {
+    // Maker conventions (the header): the last token of the name is the Kv.
+    static const std::regex kHimax("^himax\\s+[a-z]{0,2}[0-9]{4}-([0-9]{3,4})$", std::regex::icase);
+    static const std::regex kMedusa("^medusa\\s+(?:mr-)?[0-9]{2,3}-[0-9]{2,3}-([0-9]{4})(?:\\s.*)?$",
+                                    std::regex::icase);
+    std::smatch m;
+    if (std::regex_match(name, m, kHimax) || std::regex_match(name, m, kMedusa)) {
+      value = m[1].str();
+      out.token = "-" + value;  // the maker's naming
+    }
+  }
+  if (value.empty()) return out;
+  out.kv_rpm_per_v = std::stod(value);
+  if (!(out.kv_rpm_per_v >= 10.0)) return NameKv{};
+  out.stated = true;
+  return out;
 }
 
 ImportedDataset ImportDriveCalc(const std::string& dir) {

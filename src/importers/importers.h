@@ -51,6 +51,23 @@ struct NameGearRatio {
   std::string error;
 };
 NameGearRatio GearRatioFromMotorName(const std::string& name);
+
+// The Kv a motor name states [rpm/V] (the motor's own, as sold): an explicit "kv" token with
+// its number attached or one space away on either side ("880kv", "(~6850Kv)", "280 kV",
+// "Scorpion HK-4015/1070KV", "KV980", "KV 880", "R2Hobbies KV2736"), 2-5 digits, a whole
+// number not preceded by a decimal separator; when a number stands on both sides the attached
+// one is the Kv ("EMP-C5065/09 KV270" 270, "HXT 42-60/06 500Kv 15-deg timing" 500), two
+// detached numbers or two different Kv in one name state none. Without a "kv" token, two
+// makers' naming conventions, checked on DriveCalc's own entries (every direct-drive one of
+// them stores that Kv within 5 %): Himax "<frame>-<Kv>" ("Himax HC3516-0840", "Himax
+// 2825-2700") and Medusa "MR-<dia>-<len>-<Kv>" ("Medusa MR-028-032-4200").
+// stated false when the name states none.
+struct NameKv {
+  bool stated = false;
+  double kv_rpm_per_v = 0.0;
+  std::string token;  // the text it was read from
+};
+NameKv KvFromMotorName(const std::string& name);
 // shared/data/fastuav_catalogues: Motors_Data.csv, ESC_data.csv,
 // Non-Dominated-Augmented-Batteries.csv, APC_propellers_MR.csv.
 ImportedDataset ImportFastUav(const std::string& dir);
