@@ -7,6 +7,30 @@
 
 namespace dynosize {
 
+namespace {
+
+// Bisection bound: halving [0, omega_NL] this often is below any rel_tolerance a double holds.
+constexpr int kMaxBisections = 200;
+
+// The speed where the drive's torque at speed (eq 49) meets the propeller's, by bisection on
+// [0, omega_NL]; false when the ends do not bracket a sign change.
+bool BracketSpeed(const Drive& drive, const PropModel& prop, double vdc_v, double throttle,
+                  double rho_kg_m3, double airspeed_m_s, double rel_tolerance, double* omega_rad_s) {
+  auto excess = [&](double w) {
+    return drive.AtSpeed(vdc_v, throttle, w).torque_nm - prop.Evaluate(w, rho_kg_m3, airspeed_m_s).torque_nm;
+  };
+  double lo = 0.0, hi = drive.NoLoadSpeed(vdc_v, throttle);
+  if (!(hi > 0.0) || !(excess(lo) > 0.0) || !(excess(hi) <= 0.0)) return false;
+  for (int i = 0; i < kMaxBisections && hi - lo > rel_tolerance * hi; ++i) {
+    const double mid = 0.5 * (lo + hi);
+    (excess(mid) > 0.0 ? lo : hi) = mid;
+  }
+  *omega_rad_s = 0.5 * (lo + hi);
+  return true;
+}
+
+}  // namespace
+
 PropDrivePoint SolveDriveWithProp(const Drive& drive, const PropModel& prop, double vdc_v,
                                   double throttle, double rho_kg_m3, double airspeed_m_s,
                                   const PropDriveOptions& options) {
@@ -40,8 +64,17 @@ PropDrivePoint SolveDriveWithProp(const Drive& drive, const PropModel& prop, dou
       break;
     }
   }
-  if (!r.converged && r.message.empty()) {
-    r.message = "no convergence in " + std::to_string(options.max_iterations) + " iterations";
+  if (!r.converged) {
+    double w = 0.0;
+    if (BracketSpeed(drive, prop, vdc_v, throttle, rho_kg_m3, airspeed_m_s, options.rel_tolerance, &w)) {
+      omega = w;
+      r.drive = drive.AtSpeed(vdc_v, throttle, w);
+      r.bracketed = true;
+      r.converged = true;
+      r.message.clear();
+    } else if (r.message.empty()) {
+      r.message = "no convergence in " + std::to_string(options.max_iterations) + " iterations";
+    }
   }
   r.prop = prop.Evaluate(std::max(omega, 0.0), rho_kg_m3, airspeed_m_s);
   if (r.converged && !r.prop.InData()) r.message = r.prop.Message();

@@ -5,7 +5,12 @@
 // quadratic through the exact propeller torque at 0.95, 1 and 1.05 times a speed omega_k; the
 // operating point omega_{k+1} = AtLoad(fit at omega_k) is then a fixed-point iteration that
 // converges in a few steps (the fit is exact at omega_k, so the error shrinks with the square of
-// the step). A result that does not converge is a status, not an exception.
+// the step). Measured tables with kinks (binned medians, KDE's sheets) can throw the local fit
+// off: when the iteration stalls or does not converge, the speed is bracketed instead, where
+// the drive's torque at the speed (Drive::AtSpeed, eq 49: falling in omega) minus the
+// propeller's changes sign on [0, omega_NL] (positive at rest when the drive can start, the
+// propeller's torque >= 0 at no-load), by bisection to rel_tolerance. A result that does not
+// converge either way is a status, not an exception.
 #pragma once
 
 #include <string>
@@ -25,7 +30,8 @@ struct PropDriveOptions {
 struct PropDrivePoint {
   OperatingPoint drive;  // the motor + ESC point (limits flagged as Drive::AtLoad does)
   PropEvaluation prop;   // thrust, torque and data flags at that speed
-  int iterations = 0;
+  int iterations = 0;      // of the fixed point
+  bool bracketed = false;  // the fixed point failed and bisection found the speed
   bool converged = false;
   std::string message;  // why not converged, or the propeller's out-of-data message
 };

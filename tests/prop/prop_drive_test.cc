@@ -48,5 +48,26 @@ TEST(PropDriveTest, DriveCalcPowerLawPropConvergesAndFlagsForwardFlight) {
   EXPECT_FALSE(fw.message.empty());
 }
 
+// KDE's measured tables are binned medians with kinks: the local quadratic through a kink can
+// send the fixed point to a stall. The bracketed fallback then finds the torque balance (the
+// KDE4012XF-400 entry through the catalog's law on the 18.5x6.3 three-blade table, KDE's ESC,
+// the sheet's 1.117 kg/m^3: commands at which the fixed point alone stalled).
+TEST(PropDriveTest, KinkedMeasuredTableIsBracketedWhenTheFixedPointStalls) {
+  if (!std::filesystem::exists(kCatalog + "/kde_direct_sheets.json")) GTEST_SKIP() << "no catalog";
+  const Catalog c = Catalog::Load(kCatalog);
+  const Drive drive(c.motor("hl_m_kde4012xf_400").params, c.esc("kde_e_uas125uvc").params);
+  const PropModel prop(c.prop("kde_p_18.5x6.3x3"));
+  int bracketed = 0;
+  for (double tr : {0.5, 0.625, 0.75, 0.875, 1.0}) {
+    const PropDrivePoint p = SolveDriveWithProp(drive, prop, 22.0, tr, 1.117);
+    ASSERT_TRUE(p.converged) << "throttle " << tr << ": " << p.message;
+    bracketed += p.bracketed ? 1 : 0;
+    // Bisection to 1e-10 in speed; the table's slope turns that into ~1e-9 in torque.
+    EXPECT_NEAR(p.drive.torque_nm, p.prop.torque_nm, kBalanceRel * p.prop.torque_nm) << "throttle " << tr;
+    EXPECT_GT(p.drive.omega_rad_s, 0.0);
+  }
+  EXPECT_GT(bracketed, 0) << "no command needed the fallback: pick another case";
+}
+
 }  // namespace
 }  // namespace dynosize
