@@ -348,7 +348,7 @@ static void ReadConstraints(const Reader& top, const std::string& name, Mission*
     c.AllowOnly({"max_throttle", "min_hover_throttle", "current_margin", "allow_esc_saturation",
                  "enforce_motor_power", "max_figure_of_merit", "max_axial_figure_of_merit", "max_static_advance_ratio",
                  "min_thrust_to_weight", "max_winding_temp_c", "allow_folding_props_for_lift",
-                 "unrated_motors", "prop_below_data_factor", "prop_above_data_factor"});
+                 "unrated_motors", "prop_below_data_factor", "prop_above_data_factor", "max_tip_mach"});
     m->constraints.min_thrust_to_weight = c.Number("min_thrust_to_weight", 0.0, 50.0, false, 2.0);
     m->constraints.max_winding_temp_c = c.Number("max_winding_temp_c", 20.0, 400.0, false, 120.0);
     m->constraints.max_static_advance_ratio = c.Number("max_static_advance_ratio", 0.0, 5.0, false, 0.2);
@@ -363,6 +363,7 @@ static void ReadConstraints(const Reader& top, const std::string& name, Mission*
     m->constraints.current_margin = c.Number("current_margin", 0.0, 0.9, false, 0.1);
     m->constraints.prop_below_data_factor = c.Number("prop_below_data_factor", 0.0, 1.0, false, 0.6);
     m->constraints.prop_above_data_factor = c.Number("prop_above_data_factor", 0.0, 1e3, false, 1.5);
+    m->constraints.max_tip_mach = c.Number("max_tip_mach", 0.0, 1.5, false, 0.7);
     if (m->constraints.prop_above_data_factor > 0.0 && m->constraints.prop_above_data_factor < 1.0) {
       c.Fail("$.constraints.prop_above_data_factor", c.At("prop_above_data_factor"),
              "must be 0 (not checked) or at least 1");

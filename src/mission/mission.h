@@ -122,6 +122,12 @@ struct MissionConstraints {
   // docs/model.md section 11), never below the static one. FigureOfMeritLimit picks.
   double max_figure_of_merit = 0.8;
   double max_axial_figure_of_merit = 0.95;
+  // Propeller tip Mach number in hover (pi*D*n over the speed of sound at the mission's air
+  // temperature) at most this: "prop_tip_mach". 0.7: the largest measured propellers of the
+  // catalog (KDE's 24.5-30.5 in sheets) reach 0.60-0.63, and thin propeller sections approach
+  // their drag-divergence Mach number above it (docs/missions.md, "Propeller tip Mach"); 0 = not
+  // checked.
+  double max_tip_mach = 0.7;
   // Propellers with static data only may fly at advance ratios J = V/(n*D) up to this.
   double max_static_advance_ratio = 0.2;
   // Full-throttle static thrust of the lift rotors over the weight, at the lowest pack voltage

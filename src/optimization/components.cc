@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace dynosize {
 
@@ -33,6 +34,18 @@ BatteryPackParams MissionPackParams(const MissionBattery& battery, const Battery
   BatteryPackParams p = PackFromEntry(entry, cells_series / entry.cells_series, battery.cells_parallel);
   p.mass_factor = battery.mass_factor;
   return p;
+}
+
+PropSpeedLimit PropSpeedLimitOf(const Mission& m, const PropEntry& prop) {
+  PropSpeedLimit out{std::numeric_limits<double>::infinity(), nullptr};
+  if (prop.max_rpm) out = {*prop.max_rpm, "prop_max_rpm"};
+  if (m.constraints.max_tip_mach > 0 && prop.diameter_m > 0) {
+    constexpr double kGammaAir = 1.4, kGasConstantAirJPerKgK = 287.05;
+    const double sound_m_s = std::sqrt(kGammaAir * kGasConstantAirJPerKgK * (m.air_temperature_c + 273.15));
+    const double rpm = 60.0 * m.constraints.max_tip_mach * sound_m_s / (kPi * prop.diameter_m);
+    if (rpm < out.rpm) out = {rpm, "prop_tip_mach"};
+  }
+  return out;
 }
 
 }  // namespace dynosize

@@ -36,6 +36,16 @@ ComponentMass EscMass(const EscEntry& esc);
 inline double PropMassKg(const PropEntry& prop) { return PropMass(prop).kg; }
 inline double EscMassKg(const EscEntry& esc) { return EscMass(esc).kg; }
 
+// A propeller's speed limit in a mission, rpm: its max_rpm ("prop_max_rpm") and the mission's
+// tip Mach limit ("prop_tip_mach": rpm = 60*M*a/(pi*D), a = sqrt(1.4*287.05 J/(kg K) * T) at the
+// mission's air temperature), the lower; +inf with rule null when neither applies. The one
+// rule the evaluator and the search's bounds (R2) both read.
+struct PropSpeedLimit {
+  double rpm;
+  const char* rule;
+};
+PropSpeedLimit PropSpeedLimitOf(const Mission& m, const PropEntry& prop);
+
 // The mission's pack of `cells_series` cells in series from a catalog battery entry (a multiple
 // of the entry's cells_series), with the mission's units in parallel and pack mass factor
 // (mission.h MissionBattery): the one place the evaluator and the search build it.

@@ -139,8 +139,8 @@ bool PropellerPoint(const Mission& m, const Segment& s, const RotorLoad& load, c
   // momentum-theory check, which judges the data as given.
   AdjustPropEvaluation(adj, prop_entry.diameter_m, &ev);
   *torque = ev.torque_nm;
-  if (prop_entry.max_rpm) {
-    track->Check("prop_max_rpm", s.name, RadPerSecToRpm(*omega), *prop_entry.max_rpm, "rpm", false, seg);
+  if (const PropSpeedLimit lim = PropSpeedLimitOf(m, prop_entry); lim.rule) {
+    track->Check(lim.rule, s.name, RadPerSecToRpm(*omega), lim.rpm, "rpm", false, seg);
   }
   // The propeller's speed window around its data (mission.h): beyond it the data do not rank.
   // The bottom is not checked in a descent (a climb segment with a negative rate): the rotors

@@ -173,12 +173,13 @@ struct PropCeiling {
   double thrust_prefix_max_n[kGrid];
 };
 
-std::unique_ptr<PropCeiling> CeilingOf(const MissionConstraints& k, const PropEntry& entry, const PropModel& model,
+std::unique_ptr<PropCeiling> CeilingOf(const Mission& m, const PropEntry& entry, const PropModel& model,
                                        const PropGrid& g, int prop) {
   auto c = std::make_unique<PropCeiling>();
   c->prop = prop;
   double cap_rad_s = kInf;
-  if (entry.max_rpm) cap_rad_s = RpmToRadPerSec(*entry.max_rpm);
+  const MissionConstraints& k = m.constraints;
+  if (const PropSpeedLimit lim = PropSpeedLimitOf(m, entry); lim.rule) cap_rad_s = RpmToRadPerSec(lim.rpm);
   if (k.prop_above_data_factor > 0) {
     cap_rad_s = std::min(cap_rad_s, RpmToRadPerSec(k.prop_above_data_factor * model.valid_range().rpm_hi));
   }
@@ -204,7 +205,7 @@ ThrustCeiling BestHoverThrust(const Mission& m, const Catalog& cat, const GroupC
   std::vector<std::unique_ptr<PropModel>> models;
   search_internal::BuildPropGrids(m, cat, &grids, &models);
   std::vector<std::unique_ptr<PropCeiling>> props;
-  for (const int p : c.props) props.push_back(CeilingOf(k, cat.props()[p], *models[p], grids[p], p));
+  for (const int p : c.props) props.push_back(CeilingOf(m, cat.props()[p], *models[p], grids[p], p));
   std::sort(props.begin(), props.end(), [](const auto& a, const auto& b) {
     return a->thrust_prefix_max_n[a->top] > b->thrust_prefix_max_n[b->top];
   });

@@ -457,7 +457,9 @@ const char* PropRule(const SearchContext& ctx, const MissionFacts& f, double mot
       return "prop_no_forward_flight_data";
     }
   }
-  if (prop.max_rpm && RadPerSecToRpm(*omega_lb) > *prop.max_rpm) return "prop_max_rpm";  // R2
+  if (const PropSpeedLimit lim = PropSpeedLimitOf(m, prop); lim.rule && RadPerSecToRpm(*omega_lb) > lim.rpm) {
+    return lim.rule;  // R2
+  }
   // R12 (the propeller's data window, mission.h): every hover speed is at least omega_lb (R2);
   // above the window's top there, every hover point fails prop_above_data. And at most the first
   // grid speed whose thrust reaches T_ub (the heaviest the vehicle can be, as R6): below the

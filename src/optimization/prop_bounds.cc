@@ -8,6 +8,7 @@
 #include "common/units.h"
 #include "mission/flight.h"
 #include "model/physics.h"
+#include "optimization/components.h"
 
 namespace dynosize {
 
@@ -156,9 +157,9 @@ void SetFloorPoint(const Mission& m, const CruisePropBound& p, FreeCruiseSamples
   const MissionConstraints& k = m.constraints;
   const double t0 = s->thrust[0], d = p.prop->diameter_m;
   if (!(t0 > 0)) return;
-  if (p.prop->max_rpm) {
-    s->omega_ub_rad_s = RpmToRadPerSec(*p.prop->max_rpm);
-    s->omega_ub_rule = "prop_max_rpm";
+  if (const PropSpeedLimit lim = PropSpeedLimitOf(m, *p.prop); lim.rule) {
+    s->omega_ub_rad_s = RpmToRadPerSec(lim.rpm);
+    s->omega_ub_rule = lim.rule;
   }
   if (k.prop_above_data_factor > 0) {
     const double top = RpmToRadPerSec(k.prop_above_data_factor * p.model->valid_range().rpm_hi);
