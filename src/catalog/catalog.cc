@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "catalog/conventions.h"
+#include "catalog/esc_prior.h"
 #include "catalog/motor_credibility.h"
 #include "catalog/in_system.h"
 #include "catalog/prop_credibility.h"
@@ -247,7 +248,14 @@ EscEntry EscFromJson(const Json& e, EntryBase base) {
   p.tr_sat = e["tr_sat"].get<double>();
   p.sat_slope = e["sat_slope"].get<double>();
   p.max_current_a = Get(e, "max_current_a", p.max_current_a);
-  p.vdc_max_v = Get(e, "vdc_max_v", p.vdc_max_v);
+  if (e.contains("vdc_max_v")) {
+    p.vdc_max_v = e["vdc_max_v"].get<double>();
+  } else if (e.contains("cells_max")) {
+    p.vdc_max_v = kLipoFullCellV * e["cells_max"].get<double>();  // its largest LiPo pack, full
+  } else {
+    p.vdc_max_v = DefaultEscPrior().unrated_vdc_max_v;
+    x.assumed_keys.push_back("vdc_max_v");
+  }
   p.deadband = Get(e, "deadband", 0.0);
   p.rsupply_ohm = Get(e, "rsupply_ohm", 0.0);
   x.mass_kg = GetOpt(e, "mass_kg");

@@ -20,6 +20,9 @@
 
 namespace dynosize {
 
+// A LiPo cell's full-charge voltage, V: an ESC rated for N cells takes N*4.2 V.
+inline constexpr double kLipoFullCellV = 4.2;
+
 struct EscPrior {
   double c1 = kIdealIdcPerIrmsPerThrottle;  // eq (56)
   double c0 = 0.0;
@@ -29,6 +32,10 @@ struct EscPrior {
   double resistance_coef_mohm = 79.18;
   double resistance_exp = -0.8467;
   double resistance_log_sd = 1.57;  // scatter of ln(R) about the law
+  // The voltage limit of an ESC that states none (no vdc_max_v, no cells_max): the p90 of the
+  // 272 DriveCalc ESCs that state one (median 16.8 V, p10 12.6 V), i.e. 10S LiPo. Without it an
+  // unrated 2000s hobby ESC ("Schulze 18.129F", 18 NiCd cells) was run on 24S packs.
+  double unrated_vdc_max_v = 42.0;
 };
 
 inline const EscPrior& DefaultEscPrior() {
