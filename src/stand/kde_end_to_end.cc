@@ -57,22 +57,33 @@ struct ColumnErrors {
   }
 };
 
-// Per-sweep medians |.| of every sweep of a set (a motor, or all motors), per column.
+void Append(const std::vector<double>& from, std::vector<double>* to) {
+  to->insert(to->end(), from.begin(), from.end());
+}
+
+// Per-sweep medians |.| (and signed) of every sweep of a set (a motor, or all motors), per column.
 struct SweepMedians {
-  std::vector<double> thrust, idc, rpm;
+  std::vector<double> thrust, idc, rpm, thrust_s, idc_s, rpm_s;
   void Add(const ColumnErrors& e) {
     thrust.push_back(fit::MedianAbs(e.thrust));
     idc.push_back(fit::MedianAbs(e.idc));
     rpm.push_back(fit::MedianAbs(e.rpm));
+    thrust_s.push_back(fit::Median(e.thrust));
+    idc_s.push_back(fit::Median(e.idc));
+    rpm_s.push_back(fit::Median(e.rpm));
   }
   void Append(const SweepMedians& o) {
-    thrust.insert(thrust.end(), o.thrust.begin(), o.thrust.end());
-    idc.insert(idc.end(), o.idc.begin(), o.idc.end());
-    rpm.insert(rpm.end(), o.rpm.begin(), o.rpm.end());
+    stand::Append(o.thrust, &thrust);
+    stand::Append(o.idc, &idc);
+    stand::Append(o.rpm, &rpm);
+    stand::Append(o.thrust_s, &thrust_s);
+    stand::Append(o.idc_s, &idc_s);
+    stand::Append(o.rpm_s, &rpm_s);
   }
   ThrustCurrentSpeedErrors Summary() const {
-    if (thrust.empty()) return {NAN, NAN, NAN};
-    return {fit::Median(thrust), fit::Median(idc), fit::Median(rpm)};
+    if (thrust.empty()) return {NAN, NAN, NAN, NAN, NAN, NAN};
+    return {fit::Median(thrust), fit::Median(idc),      fit::Median(rpm),
+            fit::Median(thrust_s), fit::Median(idc_s), fit::Median(rpm_s)};
   }
 };
 
@@ -164,6 +175,10 @@ std::string Percent(double x) {
   char b[16];
   std::snprintf(b, sizeof b, "%.1f %%", 100.0 * x);
   return b;
+}
+
+std::string SignedPercent(double x) {
+  return std::isfinite(x) && x > 0.0 ? "+" + Percent(x) : Percent(x);
 }
 
 std::string Cell(const ThrustCurrentSpeedErrors& e) {
@@ -269,6 +284,15 @@ std::string KdeEndToEndReport::Table() const {
   t += "| **all** | | " + std::string(b) + " | **" + Cell(dynosize) + "** | **" + Cell(plain_dc) + "** | **" +
        Cell(rms_datasheet) + "** |\n";
   return t;
+}
+
+std::string KdeEndToEndReport::Biases() const {
+  auto line = [](const char* name, const ThrustCurrentSpeedErrors& e) {
+    return std::string(name) + ": thrust " + SignedPercent(e.thrust_bias) + ", IDC " + SignedPercent(e.idc_bias) +
+           ", rpm " + SignedPercent(e.rpm_bias) + "\n";
+  };
+  return "signed (median over sweeps of the median pred/meas - 1)\n" + line("dynosize", dynosize) +
+         line("plain DC, datasheet", plain_dc) + line("rms model, datasheet", rms_datasheet);
 }
 
 }  // namespace dynosize::stand

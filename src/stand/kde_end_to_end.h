@@ -58,9 +58,10 @@ struct KdeEndToEndOptions {
   LawForm form{false, false};
 };
 
-// Median over sweeps of the per-sweep median |pred/meas - 1|.
+// Median over sweeps of the per-sweep median |pred/meas - 1|, and (bias) the same signed.
 struct ThrustCurrentSpeedErrors {
   double thrust = 0.0, idc = 0.0, rpm = 0.0;
+  double thrust_bias = 0.0, idc_bias = 0.0, rpm_bias = 0.0;
 };
 
 struct KdeEndToEndMotor {
@@ -83,6 +84,8 @@ struct KdeEndToEndReport {
   double rho_kg_m3 = 0.0;
   // Markdown: one row per motor and "all", the three columns of thrust / IDC / rpm errors.
   std::string Table() const;
+  // One line per column: the overall signed biases (thrust / IDC / rpm).
+  std::string Biases() const;
 };
 
 // Sheet motors without a catalog entry of the same name are skipped (named in `skipped`).
