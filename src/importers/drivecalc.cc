@@ -137,7 +137,7 @@ constexpr double kGearRatioMatchRel = 0.02;
 // such a motor has N x its real motor constant and wins heavy-lift searches (dc_m_1829 "Turnigy
 // T600 Heli (880kv)", 164.8 rpm/V at 365 g, picked for a 50 kg octocopter). Evidence:
 //  (1) the Kv the name states (KvFromMotorName) over DriveCalc's kV, q. On the direct-drive
-//      motors whose name states a Kv, q is 0.63-1.21 (p1 0.79, p99 1.21, 270 motors); q >=
+//      motors whose name states a Kv, q is 0.63-1.21 (275 motors, 271 within 21 % of 1); q >=
 //      kNameKvOutputMin says the stored kV is the output shaft's (no direct drive reaches it, and
 //      it is below the smallest ratio in Gear.csv, 1.5).
 //  (3) the gear DriveCalc links to the motor (mgear_id into Gear.csv, a ratio and efficiency).
@@ -145,7 +145,7 @@ constexpr double kGearRatioMatchRel = 0.02;
 //      kV a geared unit's Km is 0.83-4.9x the mass law (median 1.70), with its motor's Kv
 //      0.17-1.12x; Catalog::Load refuses a geared entry above kGearedKmRatioMax.
 // The ratio is determined when (1) and (3) agree: q within kNameKvMatchRel of the linked gear's
-// ratio (the scatter of q around 1 on direct drives, p1-p99). The entry is then geared with the
+// ratio (the scatter of q around 1 on direct drives: their largest q is 1.21). The entry is then geared with the
 // linked gear: kv_rpm_per_v = ratio x DriveCalc's kV (the motor's Kv that keeps DriveCalc's
 // measured propeller speeds; the name's Kv is nominal), gear_efficiency from Gear.csv.
 // Excluded ("geared ... no ratio to run it with"): q >= kNameKvOutputMin without a linked gear
