@@ -13,6 +13,7 @@
 #include "commands.h"
 #include "common/error.h"
 #include "logs/steady_table.h"
+#include "mission/mission.h"
 
 namespace {
 
@@ -218,7 +219,7 @@ CLI::App* AddEvaluateCommand(CLI::App& app, cli::EvaluateOptions& eval) {
   evaluate->add_option("--pick", eval.picks, "GROUP=MOTOR,ESC,PROP: a propulsion group's parts (repeatable)");
   evaluate->add_option("--battery", eval.battery_id, "battery (cell) id")->required();
   evaluate->add_option("--cells", eval.cells, "cells in series (default: the mission's, if fixed)")
-      ->check(CLI::Range(1, 64));
+      ->check(CLI::Range(1, dynosize::kMaxCellsSeries));
   evaluate->add_flag("--json", eval.json, "print one JSON object");
   evaluate->add_option("--plot", eval.plot_dir, "write per-segment efficiency maps here");
   return evaluate;
