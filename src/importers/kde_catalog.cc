@@ -34,6 +34,8 @@ constexpr double kMinTorqueNm = 0.2;
 // and voltages put a propeller's points at scattered speeds).
 constexpr double kBinWidth = 0.06;
 constexpr int kDigits = 4;
+// The ESC's continuous current rating, A, from its part number (UAS125).
+constexpr double kRatedCurrentA = 125.0;
 
 struct Point {
   double rpm, ct, cp;
@@ -158,10 +160,12 @@ void ImportProps(const std::vector<KdeSheetMotor>& motors, double rho, ImportedD
   }
 }
 
-// KDE's stand ESC. Its resistance and the wiring's are inside the KDE in-system law's R (the
-// law was fitted with an ideal ESC, docs/in-system-law.md), so resc_ohm is 0 here: a KDE motor
-// with this ESC is the system the sheets measured. Its throttle map is the offset prior fitted
-// on the same sheets.
+// KDE's stand ESC. Its resistance is the current-rating prior of every catalog ESC without a
+// measured one (esc_prior.h): the KDE in-system law's R already holds the sheets' ESC and wiring
+// (the law was fitted with an ideal ESC, docs/in-system-law.md), so a KDE motor with this ESC
+// counts the prior's 1.3 mOhm twice (about 3 % of KDE10218XF-105's in-system R), but any other
+// motor with it gets an ESC resistance like every other ESC's, not none. Its throttle map is
+// the offset prior fitted on the same sheets.
 void ImportEsc(const std::vector<KdeSheetMotor>& motors, ImportedDataset* out) {
   double vmax = 0.0;
   for (const auto& m : motors) {
@@ -170,20 +174,20 @@ void ImportEsc(const std::vector<KdeSheetMotor>& motors, ImportedDataset* out) {
   const EscPrior& prior = DefaultEscPrior();
   const ThrottleOffsetPrior& offset = KdeEscThrottleOffsetPrior();
   EntryBuilder b("kde_e_uas125uvc", "KDE-UAS125UVC");
-  b.SetNum("resc_ohm", 0.0, "assumed");
+  b.SetNum("resc_ohm", PriorEscResistanceOhm(kRatedCurrentA), "assumed", 3);
   b.SetNum("c1", prior.c1, "assumed");
   b.SetNum("c0", prior.c0, "assumed");
   b.SetNum("tr_sat", prior.tr_sat, "assumed");
   b.SetNum("sat_slope", prior.sat_slope, "assumed");
   b.SetNum("deadband", offset.deadband_p50, "fitted");
-  b.SetNum("max_current_a", 125.0, "derived");
-  b.SetNum("vdc_max_v", RoundSig(vmax, 3), "measured");
+  b.SetNum("max_current_a", kRatedCurrentA, "derived");
+  b.SetNum("vdc_max_v", RoundSig(vmax, 4), "measured");
   b.Source(kDataset, "kde_performance.csv (the ESC of every sheet)",
            "max_current_a from the part number (UAS125); vdc_max_v the highest supply the sheets "
            "ran it at; deadband the median throttle offset fitted on KDE's sheets (p10-p90 " +
                FixedText(offset.deadband_p10, 3) + " to " + FixedText(offset.deadband_p90, 3) +
-               ", docs/in-system-law.md); resc_ohm 0: its resistance is inside the KDE in-system "
-               "law's R; c1, c0, knee: esc_prior.h");
+               ", docs/in-system-law.md); resc_ohm from the current-rating prior, c1, c0, knee: "
+               "esc_prior.h");
   b.Tier("manufacturer_stated");
   out->escs.push_back(b.Build());
   out->report.Keep("escs");
