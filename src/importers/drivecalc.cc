@@ -229,18 +229,18 @@ UnnamedGear JudgeUnnamedGear(const std::string& name, double kv_db, double rm_dc
   return u;
 }
 
-void ImportMotors(const std::string& dir, ImportedDataset* out) {
-  const CsvTable t = ReadCsv(dir + "/Motors.csv");
-  const auto gear_table = ReadGearTable(dir, out);
-  std::size_t geared = 0, geared_table_eta = 0, colon_not_ratio = 0, linked_not_named = 0;
-  std::size_t geared_by_evidence = 0, excluded_name_kv = 0, excluded_km = 0, linked_left_direct = 0,
-              name_kv_below = 0;
-  std::vector<std::string> evidence_examples;
-  if (t.was_latin1) out->report.notes.push_back("Motors.csv decoded as Latin-1");
-  // Pass 1: rows that are motors at all, and their duplicate keys.
+// Pass 1 of ImportMotors: the rows that are motors at all, their myids and duplicate keys.
+struct MotorRows {
   std::vector<const CsvRow*> rows;
   std::vector<std::vector<std::string>> keys;
   std::vector<std::string> myids;
+};
+
+MotorRows UsableMotorRows(const CsvTable& t, ImportedDataset* out) {
+  MotorRows m;
+  auto& rows = m.rows;
+  auto& keys = m.keys;
+  auto& myids = m.myids;
   for (const auto& r : t.rows) {
     const Row row{&t, &r};
     const std::string name = CleanName(row.Str("Name"));
@@ -275,7 +275,38 @@ void ImportMotors(const std::string& dir, ImportedDataset* out) {
                         row.Str("MvK") + "|" + row.Str("kL"),
                     "k|" + NameKey(name) + "|" + row.Str("kV")});
   }
-  const std::vector<std::size_t> group = GroupDuplicates(keys);
+  return m;
+}
+
+// What ImportMotors counted of the gears, for the report's notes (GearNotes).
+struct GearCounts {
+  std::size_t geared = 0, geared_table_eta = 0, colon_not_ratio = 0, linked_not_named = 0;
+  std::size_t geared_by_evidence = 0, excluded_name_kv = 0, excluded_km = 0, linked_left_direct = 0,
+              name_kv_below = 0;
+  std::vector<std::string> evidence_examples;
+};
+
+void GearNotes(const GearCounts& c, ImportedDataset* out);
+
+void ImportMotors(const std::string& dir, ImportedDataset* out) {
+  const CsvTable t = ReadCsv(dir + "/Motors.csv");
+  const auto gear_table = ReadGearTable(dir, out);
+  GearCounts c;
+  auto& geared = c.geared;
+  auto& geared_table_eta = c.geared_table_eta;
+  auto& colon_not_ratio = c.colon_not_ratio;
+  auto& linked_not_named = c.linked_not_named;
+  auto& geared_by_evidence = c.geared_by_evidence;
+  auto& excluded_name_kv = c.excluded_name_kv;
+  auto& excluded_km = c.excluded_km;
+  auto& linked_left_direct = c.linked_left_direct;
+  auto& name_kv_below = c.name_kv_below;
+  auto& evidence_examples = c.evidence_examples;
+  if (t.was_latin1) out->report.notes.push_back("Motors.csv decoded as Latin-1");
+  const MotorRows usable = UsableMotorRows(t, out);
+  const auto& rows = usable.rows;
+  const auto& myids = usable.myids;
+  const std::vector<std::size_t> group = GroupDuplicates(usable.keys);
   for (std::size_t i = 0; i < rows.size(); ++i) {
     const Row row{&t, rows[i]};
     const std::string name = CleanName(row.Str("Name"));
@@ -387,6 +418,12 @@ void ImportMotors(const std::string& dir, ImportedDataset* out) {
     out->motors.push_back(std::move(entry));
     out->report.Keep("motors");
   }
+  GearNotes(c, out);
+}
+
+void GearNotes(const GearCounts& c, ImportedDataset* out) {
+  const auto& [geared, geared_table_eta, colon_not_ratio, linked_not_named, geared_by_evidence, excluded_name_kv,
+               excluded_km, linked_left_direct, name_kv_below, evidence_examples] = c;
   std::ostringstream g;
   g << "motors geared by name: " << geared << " (gear_efficiency from Gear.csv for " << geared_table_eta << ", assumed "
     << kDefaultGearEfficiency << " for " << geared - geared_table_eta << "); " << colon_not_ratio
