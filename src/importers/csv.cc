@@ -188,4 +188,11 @@ std::string CsvTable::Where(const CsvRow& row) const {
   return path + ":" + std::to_string(row.line);
 }
 
+std::optional<double> CsvCells::Num(const char* col) const { return ParseNumber(Str(col)); }
+
+std::optional<double> CsvCells::Pos(const char* col) const {
+  const auto v = Num(col);
+  return v && *v > 0 ? v : std::nullopt;
+}
+
 }  // namespace dynosize

@@ -56,6 +56,17 @@ CsvTable ReadCsv(const std::string& path, const CsvOptions& options = {});
 CsvTable ParseCsv(const std::string& text, const std::string& name, const CsvOptions& options = {});
 
 
+// One row of a table read by column name (the importers' cells): the trimmed text, a number
+// (nullopt when empty or malformed), or a number > 0 (nullopt otherwise). A missing column
+// throws DataError naming it (CsvTable::Column).
+struct CsvCells {
+  const CsvTable* t;
+  const CsvRow* r;
+  std::string Str(const char* col) const { return t->Field(*r, t->Column(col)); }
+  std::optional<double> Num(const char* col) const;
+  std::optional<double> Pos(const char* col) const;
+};
+
 // Trims ASCII white space (and non-breaking spaces) at both ends.
 std::string Trim(const std::string& s);
 

@@ -22,15 +22,7 @@ namespace {
 
 constexpr const char* kDataset = "MCEVS eVTOL motor survey and maker documents (evtol_motors)";
 
-struct Cells {
-  const CsvTable* t;
-  const CsvRow* r;
-  std::string Str(const char* col) const { return t->Field(*r, t->Column(col)); }
-  std::optional<double> Pos(const char* col) const {
-    const auto v = ParseNumber(Str(col));
-    return v && *v > 0 ? v : std::nullopt;
-  }
-};
+using Cells = CsvCells;
 
 std::string MethodOf(const EstimatedValue& v) { return v.stated ? "datasheet" : "estimated"; }
 

@@ -18,17 +18,7 @@ namespace {
 constexpr const char* kKdeDataset = "KDE Direct datasheets (kdedirect.com, via CWRU-VTOL/MotorDatabase)";
 constexpr const char* kCorpusDataset = "symbench/uav-analysis corpus (heavy-lift motors)";
 
-struct Cells {
-  const CsvTable* t;
-  const CsvRow* r;
-  std::string Str(const char* col) const { return t->Field(*r, t->Column(col)); }
-  std::optional<double> Num(const char* col) const { return ParseNumber(Str(col)); }
-  // A positive number or nullopt.
-  std::optional<double> Pos(const char* col) const {
-    const auto v = Num(col);
-    return v && *v > 0 ? v : std::nullopt;
-  }
-};
+using Cells = CsvCells;
 
 // The constants every BLDC entry of this folder states: Kv, the DC resistance and Io at the
 // test voltage (conventions.h 1.: rm_ohm = 0.7492*R_dc, io_a = Io_dc/1.1095).

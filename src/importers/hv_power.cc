@@ -22,15 +22,7 @@ constexpr const char* kPacksDataset = "heavy-lift packs and Li-ion cells (packs_
 // 98.9 %), so that a controller without a figure is not made better than the stated ones.
 constexpr double kAssumedInverterEfficiency = 0.97;
 
-struct Cells {
-  const CsvTable* t;
-  const CsvRow* r;
-  std::string Str(const char* col) const { return t->Field(*r, t->Column(col)); }
-  std::optional<double> Pos(const char* col) const {
-    const auto v = ParseNumber(Str(col));
-    return v && *v > 0 ? v : std::nullopt;
-  }
-};
+using Cells = CsvCells;
 
 bool Contains(const std::string& text, const char* what) { return text.find(what) != std::string::npos; }
 
