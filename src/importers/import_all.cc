@@ -35,6 +35,39 @@ const std::vector<Importer>& Importers() {
   return kImporters;
 }
 
+// A motor of an earlier data set that a later one states from the maker's own table (same name,
+// same Kv: FAST-UAV's copies fu_m_103-117 of KDE Direct's datasheets, whose mass leaves out the
+// wires, against heavy_lift_motors' KDE tables) is excluded by default with the reason: the
+// search would otherwise list the same motor twice and prefer the copy for its lighter mass.
+void ExcludeCopiesOfMakerTables(std::vector<ImportedDataset>* results) {
+  for (std::size_t later = 0; later < results->size(); ++later) {
+    const ImportedDataset& maker = (*results)[later];
+    if (maker.report.dataset != "heavy_lift_motors") continue;
+    for (std::size_t earlier = 0; earlier < later; ++earlier) {
+      ImportedDataset& copy = (*results)[earlier];
+      std::size_t n = 0;
+      for (Json& m : copy.motors) {
+        for (const Json& t : maker.motors) {
+          if (m["name"] != t["name"] || m["kv_rpm_per_v"] != t["kv_rpm_per_v"] || m.contains("exclude")) continue;
+          // "exclude" before "source", as EntryBuilder writes it.
+          Json source = m["source"];
+          m.erase("source");
+          m["exclude"] = "a copy of " + t["id"].get<std::string>() + " (" + maker.report.output_file +
+                         ": the maker's own table, with the mass of wires and bullets)";
+          source["note"] = source.value("note", std::string()) + "; excluded by default: the maker's table is " +
+                           t["id"].get<std::string>();
+          m["source"] = std::move(source);
+          ++n;
+        }
+      }
+      if (n > 0) {
+        copy.report.notes.push_back(std::to_string(n) + " motors excluded by default as copies of the maker's own "
+                                    "table in " + maker.report.output_file);
+      }
+    }
+  }
+}
+
 }  // namespace
 
 ImportReport ImportAll(const std::string& shared_data_dir, const std::string& out_catalog_dir) {
@@ -51,6 +84,7 @@ ImportReport ImportAll(const std::string& shared_data_dir, const std::string& ou
     results.push_back(imp.run(dir));
     ExcludeImplausibleMotors(&results.back());
   }
+  ExcludeCopiesOfMakerTables(&results);
   // Ids unique across everything written and the hand-made files already in the folder.
   std::set<std::string> written;
   for (const auto& r : results) written.insert(r.report.output_file);
