@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "api/simulate.h"
+#include "api/simulate_request.h"
 #include "catalog/catalog.h"
 #include "commands.h"
 #include "common/error.h"
@@ -171,31 +172,31 @@ void RunBatch(const SimulateOptions& o, const Catalog& catalog, const Drive& dri
   }
 }
 
+// The flags that choose what simulate solves (api/simulate_request.h).
+api::SimulateRequest RequestOf(const SimulateOptions& o) {
+  api::SimulateRequest r;
+  r.motor_id = o.motor_id;
+  r.esc_id = o.esc_id;
+  r.vdc_v = o.vdc_v;
+  r.throttle = o.throttle;
+  r.torque_nm = o.torque_nm;
+  r.rpm = o.rpm;
+  r.torque_law = o.torque_law;
+  r.prop_id = o.prop_id;
+  r.thrust_n = o.thrust_n;
+  r.rho_kg_m3 = o.rho_kg_m3;
+  return r;
+}
+
 // simulate --prop: a point (--throttle, --rpm or --thrust-n) or the table over throttle.
 int RunSimulateProp(const SimulateOptions& o) {
-  if (o.prop_id.empty()) throw UsageError("--thrust-n needs --prop (the propeller that gives the thrust)");
-  if (!o.batch_csv.empty()) {
+  if (!o.prop_id.empty() && !o.batch_csv.empty()) {
     throw UsageError("--prop does not go with --batch: name the propeller per row in a 'prop' column");
   }
-  if (o.torque_nm || !o.torque_law.empty()) {
-    throw UsageError("--prop is the load: do not combine it with --torque or --torque-law");
-  }
-  if (!o.out_csv.empty()) throw UsageError("--out goes with --batch");
-  if (!o.vdc_v) throw UsageError("--vdc is required (supply voltage, V)");
-  PropPointRequest req;
-  req.vdc_v = *o.vdc_v;
-  req.throttle = o.throttle;
-  req.rpm = o.rpm;
-  req.thrust_n = o.thrust_n;
-  req.rho_kg_m3 = o.rho_kg_m3;
-  const bool point_mode = o.throttle || o.rpm || o.thrust_n;
-  {
-    PropPointRequest check = req;
-    if (!point_mode) check.throttle = 0.5;  // the table: only VDC and rho to check
-    if (const std::string rule = CheckPropPointRequest(check); !rule.empty()) {
-      throw UsageError("--prop: " + rule + " (flags --throttle, --rpm, --thrust-n, --vdc, --rho-kg-m3)");
-    }
-  }
+  if (!o.out_csv.empty() && !o.prop_id.empty()) throw UsageError("--out goes with --batch");
+  const api::SimulateRequest request = RequestOf(o);
+  const PropPointRequest req = api::PropPointRequestOf(request);
+  const bool point_mode = api::IsPointRequest(request);
   const Catalog catalog = Catalog::Load(o.catalog);
   const MotorEntry& motor = catalog.motor(o.motor_id);
   const EscEntry& esc = catalog.esc(o.esc_id);
@@ -250,16 +251,9 @@ int RunSimulateProp(const SimulateOptions& o) {
       figure = WriteThrottleTableFigure(rows, title + " at VDC = " + SignificantText(req.vdc_v) + " V", o.plot_dir);
     }
     if (o.json) {
-      Json j;
-      j["motor"] = motor.id;
-      j["esc"] = esc.id;
-      j["prop"] = prop_entry.id;
-      j["vdc_v"] = req.vdc_v;
-      j["rho_kg_m3"] = o.rho_kg_m3;
-      j["throttles"] = api::PropTableJson(rows);
-      j["figures"] = figure.empty() ? Json::array() : Json::array({figure});
-      if (!assumed.empty()) j["assumed"] = assumed;
-      std::cout << DumpJson(j);
+      std::cout << DumpJson(api::PropTableRunJson(motor, esc, prop_entry, req.vdc_v, o.rho_kg_m3, rows,
+                                                  figure.empty() ? std::vector<std::string>{}
+                                                                 : std::vector<std::string>{figure}));
     } else {
       notes = PrintPropTable(title, req.vdc_v, o.rho_kg_m3, rows);
       if (!figure.empty()) std::cerr << "wrote " << figure << "\n";
@@ -311,49 +305,8 @@ int RunSimulate(const SimulateOptions& o) {
                      "--throttle, --torque, --rpm or --torque-law");
   }
   if (!o.out_csv.empty() && o.batch_csv.empty()) throw UsageError("--out goes with --batch");
-  if (o.batch_csv.empty() && !o.vdc_v) throw UsageError("--vdc is required (supply voltage, V)");
-  PointRequest req;
-  if (o.vdc_v) {
-    req.vdc_v = *o.vdc_v;
-    if (!(req.vdc_v > 0.0 && req.vdc_v <= kMaxRequestVdcV)) {
-      throw UsageError("--vdc " + SignificantText(*o.vdc_v) +
-                       ": must be a finite number > 0 V and <= " + SignificantText(kMaxRequestVdcV) + " V");
-    }
-  }
-  if (point_mode) {
-    req.throttle = o.throttle;
-    req.torque_nm = o.torque_nm;
-    req.rpm = o.rpm;
-    if (!o.torque_law.empty()) {
-      if (o.torque_nm || o.rpm) throw UsageError("--torque-law replaces --torque and --rpm");
-      if (!o.throttle) throw UsageError("--torque-law needs --throttle");
-      for (double c : o.torque_law) {
-        if (!(std::fabs(c) <= kMaxTorqueLawCoefficient)) {
-          throw UsageError("--torque-law " + SignificantText(c) + ": coefficients must be finite, at most " +
-                           SignificantText(kMaxTorqueLawCoefficient) + " in magnitude (SI)");
-        }
-      }
-      if (o.torque_law[2] < 0.0) throw UsageError("--torque-law: C must be >= 0 (a propeller's torque grows with speed)");
-      req.torque_nm = 0.0;  // for the checks below: one load given (its coefficients are checked above)
-    }
-    if (o.throttle && !(*o.throttle >= 0.0 && *o.throttle <= 1.0)) {
-      throw UsageError("--throttle " + SignificantText(*o.throttle) +
-                       ": must be between 0 and 1 (a fraction: 0.6 for 60 %)");
-    }
-    if (o.torque_nm && !(*o.torque_nm >= 0.0 && *o.torque_nm <= kMaxRequestTorqueNm)) {
-      throw UsageError("--torque " + SignificantText(*o.torque_nm) +
-                       ": must be a finite number >= 0 N*m and <= " + SignificantText(kMaxRequestTorqueNm) + " N*m");
-    }
-    if (o.rpm && !(*o.rpm >= 0.0 && *o.rpm <= kMaxRequestRpm)) {
-      throw UsageError("--rpm " + SignificantText(*o.rpm) +
-                       ": must be a finite number >= 0 and <= " + SignificantText(kMaxRequestRpm));
-    }
-    if (!CheckPointRequest(req).empty()) {
-      throw UsageError("give --throttle with one of --torque, --rpm, --torque-law (forward model), "
-                       "or --torque and --rpm without --throttle (inverse)");
-    }
-  }
-
+  // The point (or the table's voltage), checked before anything is read (api/simulate_request.h).
+  const PointRequest req = o.batch_csv.empty() ? api::PointRequestOf(RequestOf(o)) : PointRequest{};
   const Catalog catalog = Catalog::Load(o.catalog);
   const MotorEntry& motor = catalog.motor(o.motor_id);
   const EscEntry& esc = catalog.esc(o.esc_id);

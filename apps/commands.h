@@ -186,4 +186,18 @@ struct SweepCliOptions {
 };
 int RunSweep(const SweepCliOptions& o);
 
+// `dynosize serve [--port 8080] [--host 127.0.0.1]`: the web page and its JSON API
+// (src/server/web_server.h, docs/web.md) until Ctrl-C.
+struct ServeCliOptions {
+  CatalogFolders catalog;  // --catalog, --catalog-add, --override (catalog/catalog_path.h)
+  std::string host = "127.0.0.1";
+  int port = 8080;          // 0: any free port
+  std::string web_dir;      // the page's folder ("" = beside the program, server/page_files.h)
+  int jobs = 2;             // solving requests at once
+  int queue = 8;            // more waiting; beyond that 503
+  double max_search_s = 300.0;
+  bool quiet = false;       // no line per request on stderr
+};
+int RunServe(const ServeCliOptions& o);
+
 }  // namespace dynosize::cli

@@ -300,6 +300,23 @@ CLI::App* AddValidateStandCommand(CLI::App& app, cli::ValidateStandOptions& vst)
   return validate_stand;
 }
 
+CLI::App* AddServeCommand(CLI::App& app, cli::ServeCliOptions& sv) {
+  auto* serve = app.add_subcommand(
+      "serve", "serve the web page (drive calculator, catalog, mission optimizer) and its JSON API on this "
+               "machine until Ctrl-C (docs/web.md)");
+  serve->add_option("--port", sv.port, "TCP port (0: any free port; the address is printed)")
+      ->check(CLI::Range(0, 65535));
+  serve->add_option("--host", sv.host, "address to listen on (default loopback; any other prints a warning)");
+  serve->add_option("--web-dir", sv.web_dir, "the page's folder (default: the one installed beside the program)");
+  serve->add_option("--jobs", sv.jobs, "solving requests at once")->check(CLI::Range(1, 64));
+  serve->add_option("--queue", sv.queue, "solving requests waiting for a slot; beyond that 503")
+      ->check(CLI::Range(0, 1000));
+  serve->add_option("--max-search-time", sv.max_search_s, "an optimize request runs at most this long, s (> 0)")
+      ->check(CLI::PositiveNumber);
+  serve->add_flag("--quiet", sv.quiet, "no line per request on stderr");
+  return serve;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -337,14 +354,17 @@ int main(int argc, char** argv) {
   CLI::App* validate_stand = AddValidateStandCommand(app, vst);
   cli::SweepCliOptions sw;
   CLI::App* sweep = AddSweepCommand(app, sw);
+  cli::ServeCliOptions sv;
+  CLI::App* serve = AddServeCommand(app, sv);
 
   if (argc > 1 && argv[1][0] != '-') {
     const std::string first = argv[1];
     if (first != "simulate" && first != "catalog" && first != "calibrate" && first != "diagnose" &&
-        first != "evaluate" && first != "optimize" && first != "validate-stand" && first != "sweep") {
+        first != "evaluate" && first != "optimize" && first != "validate-stand" && first != "sweep" &&
+        first != "serve") {
       return Fail(ExitCode::kUsage, "unknown subcommand '" + first +
                                         "': valid are simulate, calibrate, diagnose, catalog, evaluate, "
-                                        "optimize, sweep, validate-stand (see 'dynosize --help')");
+                                        "optimize, sweep, validate-stand, serve (see 'dynosize --help')");
     }
   }
   try {
@@ -392,6 +412,10 @@ int main(int argc, char** argv) {
     if (*sweep) {
       sw.catalog = dir;
       return cli::RunSweep(sw);
+    }
+    if (*serve) {
+      sv.catalog = dir;
+      return cli::RunServe(sv);
     }
     if (*validate_stand) {
       vst.catalog = dir;

@@ -30,3 +30,7 @@ write_basic_package_version_file(${PROJECT_BINARY_DIR}/dynosizeConfigVersion.cma
                                  VERSION ${PROJECT_VERSION} COMPATIBILITY SameMinorVersion)
 install(FILES ${PROJECT_BINARY_DIR}/dynosizeConfig.cmake ${PROJECT_BINARY_DIR}/dynosizeConfigVersion.cmake
         DESTINATION ${DYNOSIZE_CMAKE_DIR})
+
+# P/share/dynosize/web/: the page `dynosize serve` serves (web/ and Chart.js, as in <build>/web;
+# server/page_files.h DefaultPageDir finds it beside P/bin/dynosize).
+install(DIRECTORY ${PROJECT_BINARY_DIR}/web/ DESTINATION ${CMAKE_INSTALL_DATADIR}/dynosize/web)

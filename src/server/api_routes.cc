@@ -1,0 +1,267 @@
+#include "server/api_routes.h"
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <limits>
+#include <optional>
+#include <set>
+#include <vector>
+
+#include "api/catalog_json.h"
+#include "api/mission_run.h"
+#include "api/simulate_request.h"
+#include "common/error.h"
+#include "common/json_file.h"
+#include "mission/mission.h"
+#include "optimization/search.h"
+#include "report/mission_report.h"
+
+namespace dynosize::server {
+
+namespace {
+
+// Bodies are parsed with the strict reader of the catalog and missions (duplicate keys, depth,
+// non-finite numbers refused); the size is held by the server before this (16 MiB).
+constexpr std::size_t kMaxBodyBytes = 16u << 20;
+
+// The keys of a request body, read strictly: an unknown key is an error listing the valid ones
+// (sorted), a value of the wrong type an error naming the key. null is the same as absent.
+class Body {
+ public:
+  Body(const std::string& text, const std::string& route, std::vector<std::string> valid) : route_(route) {
+    JsonReadOptions o;
+    o.max_bytes = kMaxBodyBytes;
+    doc_ = ParseJsonText(text, route + " request body", o);
+    if (!doc_.is_object()) throw UsageError(route + ": the request body must be a JSON object");
+    std::sort(valid.begin(), valid.end());
+    for (auto it = doc_.begin(); it != doc_.end(); ++it) {
+      if (std::binary_search(valid.begin(), valid.end(), it.key())) continue;
+      std::string list;
+      for (const auto& v : valid) list += (list.empty() ? "" : ", ") + v;
+      throw UsageError(route + ": unknown key '" + it.key() + "' (valid: " + list + ")");
+    }
+  }
+  const Json* Find(const char* key) const {
+    const auto it = doc_.find(key);
+    return it == doc_.end() || it->is_null() ? nullptr : &*it;
+  }
+  std::optional<double> Number(const char* key) const {
+    const Json* v = Find(key);
+    if (!v) return std::nullopt;
+    if (!v->is_number()) throw UsageError(Where(key) + " " + v->dump() + ": must be a number");
+    return v->get<double>();
+  }
+  std::optional<long long> Integer(const char* key) const {
+    const Json* v = Find(key);
+    if (!v) return std::nullopt;
+    if (!v->is_number_integer()) throw UsageError(Where(key) + " " + v->dump() + ": must be an integer");
+    return v->get<long long>();
+  }
+  std::string Text(const char* key) const {
+    const Json* v = Find(key);
+    if (!v) return "";
+    if (!v->is_string()) throw UsageError(Where(key) + " " + v->dump() + ": must be a string");
+    return v->get<std::string>();
+  }
+  bool Flag(const char* key) const {
+    const Json* v = Find(key);
+    if (!v) return false;
+    if (!v->is_boolean()) throw UsageError(Where(key) + " " + v->dump() + ": must be true or false");
+    return v->get<bool>();
+  }
+  std::vector<double> Numbers(const char* key) const {
+    const Json* v = Find(key);
+    std::vector<double> out;
+    if (!v) return out;
+    if (!v->is_array()) throw UsageError(Where(key) + ": must be an array of numbers");
+    for (const auto& x : *v) {
+      if (!x.is_number()) throw UsageError(Where(key) + " " + x.dump() + ": must be a number");
+      out.push_back(x.get<double>());
+    }
+    return out;
+  }
+  std::vector<std::string> Texts(const char* key) const {
+    const Json* v = Find(key);
+    std::vector<std::string> out;
+    if (!v) return out;
+    if (!v->is_array()) throw UsageError(Where(key) + ": must be an array of strings");
+    for (const auto& x : *v) {
+      if (!x.is_string()) throw UsageError(Where(key) + " " + x.dump() + ": must be a string");
+      out.push_back(x.get<std::string>());
+    }
+    return out;
+  }
+  // The mission: a JSON object with the content of a mission file (read by the mission reader).
+  Mission MissionOf() const {
+    const Json* v = Find("mission");
+    if (!v) throw UsageError(route_ + ": the key 'mission' is required (the mission file's content)");
+    if (!v->is_object()) throw UsageError(Where("mission") + ": must be a JSON object (the mission file's content)");
+    return ParseMission(*v, "mission");
+  }
+
+ private:
+  std::string Where(const char* key) const { return route_ + ": " + key; }
+  std::string route_;
+  Json doc_;
+};
+
+// A number of the query string, the whole text read (no trailing characters).
+std::optional<double> QueryNumber(const ApiCall& call, const char* key) {
+  const auto it = call.query.find(key);
+  if (it == call.query.end() || it->second.empty()) return std::nullopt;
+  const std::string& text = it->second;
+  double v = 0.0;
+  const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
+  if (ec != std::errc() || end != text.data() + text.size() || !std::isfinite(v)) {
+    throw UsageError(std::string("catalog: ") + key + "=" + text + ": must be a finite number");
+  }
+  return v;
+}
+
+Json CatalogList(const ApiContext& ctx, const ApiCall& call) {
+  static const std::set<std::string> kKeys = {"kind", "kv_min", "kv_max", "mass_max_kg", "current_min_a"};
+  for (const auto& [k, v] : call.query) {
+    if (!kKeys.count(k)) {
+      throw UsageError("catalog: unknown parameter '" + k + "' (valid: current_min_a, kind, kv_max, kv_min, mass_max_kg)");
+    }
+  }
+  api::CatalogListRequest r;
+  if (const auto it = call.query.find("kind"); it != call.query.end()) r.kind = it->second;
+  if (!r.kind.empty() && r.kind != "motors" && r.kind != "escs" && r.kind != "props" && r.kind != "batteries") {
+    throw UsageError("--kind " + r.kind + ": must be one of motors, escs, props, batteries");
+  }
+  r.kv_min = QueryNumber(call, "kv_min");
+  r.kv_max = QueryNumber(call, "kv_max");
+  r.mass_max_kg = QueryNumber(call, "mass_max_kg");
+  r.current_min_a = QueryNumber(call, "current_min_a");
+  api::CheckCatalogListRequest(r);
+  return api::CatalogListJson(*ctx.catalog, r);
+}
+
+Json Simulate(const ApiContext& ctx, const ApiCall& call) {
+  const Body b(call.body, "simulate",
+               {"motor", "esc", "vdc_v", "throttle", "torque_nm", "rpm", "torque_law", "prop", "thrust_n", "rho_kg_m3"});
+  api::SimulateRequest r;
+  r.motor_id = b.Text("motor");
+  r.esc_id = b.Text("esc");
+  if (r.motor_id.empty() || r.esc_id.empty()) throw UsageError("simulate: 'motor' and 'esc' are required (catalog ids)");
+  r.vdc_v = b.Number("vdc_v");
+  r.throttle = b.Number("throttle");
+  r.torque_nm = b.Number("torque_nm");
+  r.rpm = b.Number("rpm");
+  r.torque_law = b.Numbers("torque_law");
+  r.prop_id = b.Text("prop");
+  r.thrust_n = b.Number("thrust_n");
+  if (const auto rho = b.Number("rho_kg_m3")) r.rho_kg_m3 = *rho;
+  return api::SimulateJson(*ctx.catalog, r);
+}
+
+Json Evaluate(const ApiContext& ctx, const ApiCall& call) {
+  const Body b(call.body, "evaluate", {"mission", "motor", "esc", "prop", "battery", "pick", "cells"});
+  const Mission mission = b.MissionOf();
+  api::EvaluateRequest r;
+  r.motor_id = b.Text("motor");
+  r.esc_id = b.Text("esc");
+  r.prop_id = b.Text("prop");
+  r.battery_id = b.Text("battery");
+  if (r.battery_id.empty()) throw UsageError("evaluate: 'battery' is required (a catalog battery id)");
+  r.picks = b.Texts("pick");
+  const long long cells = b.Integer("cells").value_or(0);
+  if (cells < 0 || cells > kMaxCellsSeries) {
+    throw UsageError("--cells " + std::to_string(cells) + ": must be in [1 - " + std::to_string(kMaxCellsSeries) + "]");
+  }
+  r.cells = static_cast<int>(cells);
+  const Combination c = api::ChooseCombination(mission, *ctx.catalog, r);
+  return MissionResultJson(mission, c, api::EvaluateCombination(mission, c));
+}
+
+Json Optimize(const ApiContext& ctx, const ApiCall& call) {
+  const Body b(call.body, "optimize", {"mission", "top", "threads", "variants", "time_limit_s"});
+  api::OptimizeRequest r;
+  const long long top = b.Integer("top").value_or(5);
+  if (top < 1 || top > 1000) throw UsageError("--top " + std::to_string(top) + ": must be in [1 - 1000]");
+  const long long threads = b.Integer("threads").value_or(2);
+  if (threads < 1 || threads > 64) throw UsageError("--threads " + std::to_string(threads) + ": must be in [1 - 64]");
+  r.top = static_cast<int>(top);
+  r.threads = static_cast<int>(threads);
+  r.variants = b.Flag("variants");
+  r.time_limit_s = b.Number("time_limit_s").value_or(std::numeric_limits<double>::infinity());
+  SearchOptions so = api::OptimizeSearchOptions(r);  // checks the time limit (> 0)
+  so.deadline = std::min(so.deadline, api::DeadlineAfter(ctx.max_search_s));
+  so.stop = ctx.stop;
+  const Mission mission = b.MissionOf();
+  return SearchResultJson(mission, SearchCatalog(mission, *ctx.catalog, so));
+}
+
+ApiAnswer Answer(const Json& doc) {
+  ApiAnswer a;
+  a.body = DumpJson(doc);  // checks every number is finite (InternalError otherwise), as the CLI's
+  return a;
+}
+
+ApiAnswer Route(const ApiContext& ctx, const ApiCall& call) {
+  const std::string& p = call.path;
+  const bool get = call.method == "GET" || call.method == "HEAD";
+  const auto need = [&](const char* method) {
+    if (call.method != method && !(get && std::string(method) == "GET")) {
+      ApiAnswer a;
+      a.status = 405;
+      a.body = ErrorBody(p + ": use " + method, static_cast<int>(ExitCode::kUsage));
+      return std::optional<ApiAnswer>(a);
+    }
+    return std::optional<ApiAnswer>();
+  };
+  if (p == "/api/catalog") {
+    if (auto bad = need("GET")) return *bad;
+    return Answer(CatalogList(ctx, call));
+  }
+  if (p.rfind("/api/catalog/", 0) == 0) {
+    if (auto bad = need("GET")) return *bad;
+    const std::string id = p.substr(std::string("/api/catalog/").size());
+    try {
+      return Answer(api::CatalogShowJson(*ctx.catalog, id));
+    } catch (const UsageError& e) {  // an unknown id: the resource is not there
+      return {404, ErrorBody(e.what(), static_cast<int>(e.code()))};
+    }
+  }
+  const std::pair<const char*, Json (*)(const ApiContext&, const ApiCall&)> posts[] = {
+      {"/api/simulate", &Simulate}, {"/api/evaluate", &Evaluate}, {"/api/optimize", &Optimize}};
+  for (const auto& [route, run] : posts) {
+    if (p != route) continue;
+    if (auto bad = need("POST")) return *bad;
+    return Answer(run(ctx, call));
+  }
+  return {404, ErrorBody(p + ": no such API route (GET /api/catalog, /api/catalog/ID; POST /api/simulate, "
+                              "/api/evaluate, /api/optimize)",
+                         static_cast<int>(ExitCode::kUsage))};
+}
+
+}  // namespace
+
+bool IsJobRoute(const std::string& path) {
+  return path == "/api/simulate" || path == "/api/evaluate" || path == "/api/optimize";
+}
+
+std::string ErrorBody(const std::string& message, int exit_code) {
+  Json j;
+  j["error"] = message;
+  j["exit_code"] = exit_code;
+  return j.dump() + "\n";
+}
+
+ApiAnswer HandleApi(const ApiContext& context, const ApiCall& call) {
+  try {
+    return Route(context, call);
+  } catch (const Error& e) {
+    int status = 400;
+    if (e.code() == ExitCode::kNoInput) status = 404;
+    if (e.code() == ExitCode::kUnavailable) status = 501;
+    if (e.code() == ExitCode::kInternal) status = 500;
+    return {status, ErrorBody(e.what(), static_cast<int>(e.code()))};
+  } catch (const std::exception& e) {
+    return {500, ErrorBody(std::string("internal error: ") + e.what(), static_cast<int>(ExitCode::kInternal))};
+  }
+}
+
+}  // namespace dynosize::server
