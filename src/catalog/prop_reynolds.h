@@ -22,11 +22,10 @@
 #include <vector>
 
 #include "catalog/entries.h"
+#include "common/atmosphere.h"
 
 namespace dynosize {
 
-// Air's dynamic viscosity at 15 C (ISA sea level), Pa*s: for the Re figures of the report only.
-inline constexpr double kAirViscosityPaS = 1.789e-5;
 // Chord over radius at r = 0.75 R: the median over the blades of UIUC's geometry tables
 // (volume1-3_geom.csv, c/R interpolated at r/R = 0.75); recomputed in
 // tests/catalog/prop_reynolds_test.cc when ../shared is present. Only the report's absolute Re

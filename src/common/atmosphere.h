@@ -14,6 +14,12 @@ inline constexpr double kIsaSeaLevelPressurePa = 101325.0;
 inline constexpr double kIsaSeaLevelTemperatureK = 288.15;
 inline constexpr double kDryAirGasConstantJPerKgK = 287.058;
 
+// Air's dynamic viscosity at 15 C (ISA sea level), Pa*s, and the speed of sound there,
+// sqrt(1.4*287.058*288.15) m/s: the Reynolds and Mach numbers of the blade sections
+// (docs/model.md eq B3) and the Re figures of the propeller reports.
+inline constexpr double kAirViscosityPaS = 1.789e-5;
+inline constexpr double kIsaSeaLevelSpeedOfSoundMS = 340.294;
+
 inline double CelsiusToKelvin(double t_c) { return t_c + 273.15; }
 
 // ISA static pressure at geometric altitude h (troposphere, h < 11 km), Pa.
