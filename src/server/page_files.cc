@@ -61,6 +61,18 @@ const PageFile* PageFiles::Find(const std::string& path) const {
   return it == files_.end() ? nullptr : &it->second;
 }
 
+std::vector<std::string> PageFiles::ExampleNames() const {
+  const std::string prefix = "/examples/", suffix = ".json";
+  std::vector<std::string> names;
+  for (const auto& [path, file] : files_) {
+    if (path.rfind(prefix, 0) != 0 || path.size() <= prefix.size() + suffix.size()) continue;
+    if (path.compare(path.size() - suffix.size(), suffix.size(), suffix) != 0) continue;
+    const std::string name = path.substr(prefix.size(), path.size() - prefix.size() - suffix.size());
+    if (name.find('/') == std::string::npos) names.push_back(name);
+  }
+  return names;  // in the map's order: sorted
+}
+
 std::string DefaultPageDir() {
   if (const char* env = std::getenv("DYNOSIZE_WEB_DIR"); env && *env) return env;
   std::error_code ec;

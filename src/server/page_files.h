@@ -6,6 +6,7 @@
 
 #include <map>
 #include <string>
+#include <vector>
 
 namespace dynosize::server {
 
@@ -22,6 +23,8 @@ class PageFiles {
   // The file served at a request path ("/" is "/index.html"); null when there is none.
   const PageFile* Find(const std::string& path) const;
   std::size_t size() const { return files_.size(); }
+  // The names (without ".json") of the example missions, the files under /examples/, sorted.
+  std::vector<std::string> ExampleNames() const;
 
  private:
   std::map<std::string, PageFile> files_;  // "/app.js" -> file

@@ -1,0 +1,126 @@
+// Every endpoint of `dynosize serve` answers what the CLI prints with --json for the same input
+// (timing keys aside), and its errors carry the CLI's one-line message and exit code. Runs the
+// executable: a whole_run suite (CMakeLists.txt).
+#include <gtest/gtest.h>
+
+#include <string>
+
+#include "cli_runner.h"
+#include "common/json_file.h"
+#include "server/served.h"
+
+namespace dynosize {
+namespace {
+
+using testing_util::RunCli;
+using testing_util::RunningServer;
+
+const std::string kSource = DYNOSIZE_SOURCE_DIR;
+
+// The CLI's --json document (exit 0 expected).
+Json CliJson(const std::string& args) {
+  const auto r = RunCli(args);
+  EXPECT_EQ(r.code, 0) << args << "\n" << r.err;
+  return Json::parse(r.out);
+}
+
+Json Get(const RunningServer& s, const std::string& path, int status = 200) {
+  const auto res = s.Client()->Get(path.c_str());
+  EXPECT_TRUE(res) << path;
+  if (!res) return Json();
+  EXPECT_EQ(res->status, status) << path << "\n" << res->body;
+  return Json::parse(res->body);
+}
+
+Json Post(const RunningServer& s, const std::string& path, const Json& body, int status = 200) {
+  const auto res = s.Client()->Post(path.c_str(), body.dump(), "application/json");
+  EXPECT_TRUE(res) << path;
+  if (!res) return Json();
+  EXPECT_EQ(res->status, status) << path << " " << body.dump() << "\n" << res->body;
+  return Json::parse(res->body);
+}
+
+TEST(ServerCli, CatalogListAndShowEqualTheCli) {
+  const RunningServer s;
+  EXPECT_EQ(Get(s, "/api/catalog?kind=escs&current_min_a=30"),
+            CliJson("catalog list --kind escs --current-min-a 30 --json"));
+  EXPECT_EQ(Get(s, "/api/catalog?kind=motors&kv_min=700&kv_max=1000&mass_max_kg=0.08"),
+            CliJson("catalog list --kind motors --kv-min 700 --kv-max 1000 --mass-max-kg 0.08 --json"));
+  EXPECT_EQ(Get(s, "/api/catalog?kind=batteries"), CliJson("catalog list --kind batteries --json"));
+  for (const char* id : {"dc_m_365", "emax_1900kv_paper", "dc_p_231", "dc_b_363"}) {
+    EXPECT_EQ(Get(s, std::string("/api/catalog/") + id), CliJson(std::string("catalog show ") + id)) << id;
+  }
+}
+
+TEST(ServerCli, SimulateEqualsTheCliInEveryMode) {
+  const RunningServer s;
+  const Json pair = {{"motor", "emax_1900kv_paper"}, {"esc", "multistar_30a_paper"}, {"vdc_v", 7.2}};
+  const std::string flags = "simulate --motor emax_1900kv_paper --esc multistar_30a_paper --vdc 7.2 --json";
+  struct Case {
+    Json extra;
+    std::string args;
+  };
+  const Case cases[] = {
+      {Json::object(), ""},                                                        // the table over throttle
+      {{{"throttle", 0.8}, {"torque_nm", 0.05}}, " --throttle 0.8 --torque 0.05"},  // forward
+      {{{"torque_nm", 0.05}, {"rpm", 9000}}, " --torque 0.05 --rpm 9000"},          // inverse
+      {{{"throttle", 0.6}, {"torque_law", {0.001, 0.0, 1e-7}}}, " --throttle 0.6 --torque-law 0.001,0,1e-7"},
+      {{{"prop", "fu_p_apc_8x3.8sf"}}, " --prop fu_p_apc_8x3.8sf"},                 // the propeller's table
+      {{{"prop", "fu_p_apc_8x3.8sf"}, {"thrust_n", 2.0}}, " --prop fu_p_apc_8x3.8sf --thrust-n 2"},
+      {{{"prop", "fu_p_apc_8x3.8sf"}, {"throttle", 0.7}, {"rho_kg_m3", 1.1}},
+       " --prop fu_p_apc_8x3.8sf --throttle 0.7 --rho-kg-m3 1.1"},
+  };
+  for (const Case& c : cases) {
+    Json body = pair;
+    body.update(c.extra);
+    EXPECT_EQ(Post(s, "/api/simulate", body), CliJson(flags + c.args)) << c.args;
+  }
+}
+
+TEST(ServerCli, EvaluateAndOptimizeEqualTheCli) {
+  const RunningServer s;
+  const std::string mission_file = kSource + "/examples/missions/quadcopter_1p5kg.json";
+  const Json mission = ReadJsonFile(mission_file);
+  const Json evaluated = Post(s, "/api/evaluate",
+                              {{"mission", mission}, {"motor", "dc_m_365"}, {"esc", "dc_e_56"}, {"prop", "dc_p_231"},
+                               {"battery", "dc_b_363"}, {"cells", 4}});
+  EXPECT_EQ(evaluated, CliJson("evaluate " + mission_file +
+                               " --motor dc_m_365 --esc dc_e_56 --prop dc_p_231 --battery dc_b_363 --cells 4 --json"));
+  Json served = Post(s, "/api/optimize", {{"mission", mission}, {"top", 3}});
+  Json cli = CliJson("optimize " + mission_file + " --top 3 --json");
+  ASSERT_TRUE(served.contains("seconds"));
+  served.erase("seconds");  // the wall time: the one key that differs
+  cli.erase("seconds");
+  EXPECT_EQ(served, cli);
+  EXPECT_EQ(served["results"][0]["motor"], "dc_m_365");
+}
+
+// A bad value gets the CLI's message (without "dynosize: ") and exit code.
+TEST(ServerCli, ErrorsAreTheCliLines) {
+  const RunningServer s;
+  struct Case {
+    Json body;
+    std::string args;
+  };
+  const Case cases[] = {
+      {{{"motor", "emax_1900kv_paper"}, {"esc", "multistar_30a_paper"}, {"vdc_v", -1}}, "--vdc -1"},
+      {{{"motor", "emax_1900kv_paper"}, {"esc", "multistar_30a_paper"}, {"vdc_v", 7.2}, {"throttle", 1.5},
+        {"torque_nm", 0.01}},
+       "--vdc 7.2 --throttle 1.5 --torque 0.01"},
+      {{{"motor", "no_such_motor"}, {"esc", "multistar_30a_paper"}, {"vdc_v", 7.2}}, "--vdc 7.2"},
+      {{{"motor", "emax_1900kv_paper"}, {"esc", "multistar_30a_paper"}}, ""},
+      {{{"motor", "emax_1900kv_paper"}, {"esc", "multistar_30a_paper"}, {"vdc_v", 7.2}, {"thrust_n", 2}},
+       "--vdc 7.2 --thrust-n 2"},
+  };
+  for (const Case& c : cases) {
+    const Json served = Post(s, "/api/simulate", c.body, 400);
+    const std::string motor = c.body["motor"];
+    const auto r = RunCli("simulate --motor " + motor + " --esc multistar_30a_paper " + c.args + " --json");
+    ASSERT_EQ(r.err.rfind("dynosize: ", 0), 0u) << r.err;
+    EXPECT_EQ(served["error"].get<std::string>() + "\n", r.err.substr(10)) << c.args;
+    EXPECT_EQ(served["exit_code"], r.code) << c.args;
+  }
+}
+
+}  // namespace
+}  // namespace dynosize

@@ -1,0 +1,385 @@
+// The page of `dynosize serve` (docs/web.md): plain JavaScript over the JSON API, no build step.
+// Every number shown comes from the API, which answers what the CLI prints with --json.
+"use strict";
+
+const $ = (id) => document.getElementById(id);
+
+// One API call: GET without a body, POST with a JSON body. Throws an Error carrying the server's
+// one-line message (the CLI's) when the answer is not 200.
+async function api(path, body) {
+  const init = body === undefined ? {} : {
+    method: "POST", headers: { "Content-Type": "application/json" }, body: JSON.stringify(body) };
+  const res = await fetch(path, init);
+  const text = await res.text();
+  let doc;
+  try { doc = JSON.parse(text); } catch (e) { throw new Error(`${path}: HTTP ${res.status}: ${text.slice(0, 200)}`); }
+  if (!res.ok) throw new Error(doc.error || `${path}: HTTP ${res.status}`);
+  return doc;
+}
+
+function showError(id, err) {
+  const el = $(id);
+  if (!err) { el.hidden = true; el.textContent = ""; return; }
+  el.hidden = false;
+  el.textContent = err.message || String(err);
+}
+
+const fmt = (v, digits) => (typeof v === "number" && isFinite(v) ? v.toFixed(digits) : "-");
+function cell(tr, text, cls) {
+  const td = document.createElement("td");
+  td.textContent = text;
+  if (cls) td.className = cls;
+  tr.appendChild(td);
+  return td;
+}
+function header(table, names) {
+  table.replaceChildren();
+  const tr = document.createElement("tr");
+  for (const [name, cls] of names) {
+    const th = document.createElement("th");
+    th.textContent = name;
+    if (cls) th.className = cls;
+    tr.appendChild(th);
+  }
+  const thead = document.createElement("thead");
+  thead.appendChild(tr);
+  table.appendChild(thead);
+  const tbody = document.createElement("tbody");
+  table.appendChild(tbody);
+  return tbody;
+}
+
+// --- tabs
+function showView(name) {
+  for (const b of document.querySelectorAll(".tab")) b.classList.toggle("active", b.dataset.view === name);
+  for (const v of document.querySelectorAll(".view")) v.hidden = v.id !== `view-${name}`;
+  if (name === "catalog" && !$("cat-table").rows.length) listCatalog();
+  if (name === "mission" && !$("mission-example").options.length) loadExamples();
+}
+
+// --- the catalog, one kind at a time, fetched once
+const catalogCache = {};
+async function catalogKind(kind) {
+  if (!catalogCache[kind]) catalogCache[kind] = api(`/api/catalog?kind=${kind}`).then((d) => d[kind]);
+  return catalogCache[kind];
+}
+function nameOf(kind, id) {
+  const list = catalogCache[`${kind}:resolved`];
+  const e = list && list.find((x) => x.id === id);
+  return e ? e.name : "";
+}
+
+// A searchable picker: the select lists the entries whose id or name holds the filter's words
+// (at most 300, the chosen one always kept).
+function picker(filterId, selectId, entries, chosen, allowNone) {
+  const filter = $(filterId), select = $(selectId);
+  const fill = () => {
+    const words = filter.value.toLowerCase().split(/\s+/).filter(Boolean);
+    const current = select.value || chosen;
+    select.replaceChildren();
+    if (allowNone) select.add(new Option("(none: the motor's table)", ""));
+    let n = 0;
+    for (const e of entries) {
+      const text = `${e.id}  ${e.name}`.toLowerCase();
+      const keep = e.id === current || (n < 300 && words.every((w) => text.includes(w)));
+      if (!keep) continue;
+      select.add(new Option(`${e.name} (${e.id})`, e.id, false, e.id === current));
+      n += 1;
+    }
+  };
+  filter.addEventListener("input", fill);
+  fill();
+}
+
+// --- drive calculator
+const charts = {};
+function lineChart(id, label, unit, xs, ys) {
+  if (typeof Chart === "undefined") return;
+  if (charts[id]) charts[id].destroy();
+  charts[id] = new Chart($(id), {
+    type: "line",
+    data: { labels: xs, datasets: [{ label, data: ys, borderColor: "#0b5cad", backgroundColor: "#0b5cad", tension: 0.2 }] },
+    options: {
+      animation: false, responsive: true, maintainAspectRatio: false,
+      plugins: { legend: { display: false }, title: { display: true, text: `${label} vs throttle` } },
+      scales: { x: { title: { display: true, text: "throttle %" } }, y: { title: { display: true, text: unit } } },
+    },
+  });
+}
+
+function driveRequest() {
+  const body = { motor: $("motor").value, esc: $("esc").value, vdc_v: Number($("vdc").value) };
+  if ($("prop").value) {
+    body.prop = $("prop").value;
+    body.rho_kg_m3 = Number($("rho").value);
+  }
+  return body;
+}
+
+function renderPropTable(doc) {
+  const rows = doc.throttles;
+  const tbody = header($("drive-table"), [["TR %"], ["rpm"], ["thrust N"], ["thrust gf"], ["IDC A"], ["Irms A"],
+    ["PDC W"], ["Pmech W"], ["g/W"], ["η motor"], ["η ESC"], ["η system"], ["FM"], ["limits", "text"]]);
+  for (const r of rows) {
+    const tr = tbody.insertRow();
+    const flags = [...r.limits];
+    if (r.saturated) flags.push("esc_saturated");
+    if (!r.prop_in_data) flags.push("prop_data_edge");
+    [fmt(100 * r.throttle, 0), fmt(r.rpm, 0), fmt(r.thrust_n, 2), fmt(r.thrust_n / 0.00980665, 0), fmt(r.idc_a, 2),
+      fmt(r.irms_a, 2), fmt(r.pdc_w, 1), fmt(r.pmech_w, 1), fmt(r.g_per_w, 2), fmt(r.eta_motor, 3), fmt(r.eta_esc, 3),
+      fmt(r.eta_system, 3), fmt(r.figure_of_merit, 3)].forEach((t) => cell(tr, t));
+    cell(tr, flags.length ? flags.join(", ") : "-", "text");
+  }
+  const xs = rows.map((r) => fmt(100 * r.throttle, 0));
+  lineChart("chart-thrust", "thrust", "N", xs, rows.map((r) => r.thrust_n));
+  lineChart("chart-current", "battery current IDC", "A", xs, rows.map((r) => r.idc_a));
+}
+
+function renderMotorTable(doc) {
+  const rows = doc.throttles;
+  const tbody = header($("drive-table"), [["TR %"], ["TR eff %"], ["no-load rpm"], ["stall N·m"], ["max-P rpm"],
+    ["max P W"], ["best-η rpm"], ["η system"], ["IDC A at best η"]]);
+  for (const r of rows) {
+    const tr = tbody.insertRow();
+    [fmt(100 * r.throttle, 0), fmt(100 * r.throttle_effective, 1), fmt(r.no_load_rpm, 0), fmt(r.stall_torque_nm, 4),
+      fmt(r.max_power_rpm, 0), fmt(r.max_power_w, 1), fmt(r.max_efficiency_rpm, 0), fmt(r.max_eta_system, 3),
+      fmt(r.at_max_efficiency.idc_a, 2)].forEach((t) => cell(tr, t));
+  }
+  const xs = rows.map((r) => fmt(100 * r.throttle, 0));
+  lineChart("chart-thrust", "maximum shaft power", "W", xs, rows.map((r) => r.max_power_w));
+  lineChart("chart-current", "IDC at best efficiency", "A", xs, rows.map((r) => r.at_max_efficiency.idc_a));
+}
+
+async function runDrive(ev) {
+  if (ev) ev.preventDefault();
+  showError("drive-error", null);
+  const t0 = performance.now();
+  try {
+    const doc = await api("/api/simulate", driveRequest());
+    const ms = performance.now() - t0;
+    if (doc.prop) renderPropTable(doc); else renderMotorTable(doc);
+    $("drive-title").textContent = `${doc.motor} + ${doc.esc}${doc.prop ? " + " + doc.prop : ""} at ${doc.vdc_v} V` +
+      ` (${ms.toFixed(0)} ms)`;
+    $("drive-notes").textContent = doc.assumed ? `results rest on assumed catalog values (${doc.assumed})` : "";
+    document.body.dataset.driveMs = ms.toFixed(1);
+  } catch (err) {
+    showError("drive-error", err);
+  }
+}
+
+async function initDrive() {
+  try {
+    const [motors, escs, props] = await Promise.all(["motors", "escs", "props"].map(catalogKind));
+    catalogCache["motors:resolved"] = motors;
+    catalogCache["escs:resolved"] = escs;
+    catalogCache["props:resolved"] = props;
+    picker("motor-filter", "motor", motors, "emax_1900kv_paper", false);
+    picker("esc-filter", "esc", escs, "multistar_30a_paper", false);
+    picker("prop-filter", "prop", props, "fu_p_apc_8x3.8sf", true);
+    await runDrive();
+    document.body.dataset.ready = "1";
+  } catch (err) {
+    showError("drive-error", err);
+  }
+}
+
+// --- catalog browser
+const VALUE_SKIP = new Set(["source", "derived", "static_table", "j_tables", "id", "name"]);
+async function listCatalog(ev) {
+  if (ev) ev.preventDefault();
+  showError("cat-error", null);
+  const kind = $("cat-kind").value;
+  const q = new URLSearchParams({ kind });
+  if (kind === "motors") {
+    if ($("cat-kv-min").value) q.set("kv_min", $("cat-kv-min").value);
+    if ($("cat-kv-max").value) q.set("kv_max", $("cat-kv-max").value);
+  }
+  if ($("cat-mass-max").value) q.set("mass_max_kg", $("cat-mass-max").value);
+  try {
+    const doc = await api(`/api/catalog?${q}`);
+    const words = $("cat-text").value.toLowerCase().split(/\s+/).filter(Boolean);
+    const list = doc[kind].filter((e) => words.every((w) => `${e.id} ${e.name}`.toLowerCase().includes(w)));
+    $("cat-count").textContent = `${list.length} of ${doc[kind].length} ${kind}` + (list.length > 500 ? " (first 500 shown)" : "");
+    const tbody = header($("cat-table"), [["id", "text"], ["name", "text"], ["Kv rpm/V"], ["mass g"], ["I max A"], ["tier", "text"]]);
+    for (const e of list.slice(0, 500)) {
+      const tr = tbody.insertRow();
+      tr.className = "clickable";
+      cell(tr, e.id, "text");
+      cell(tr, e.name, "text");
+      cell(tr, fmt(e.kv_rpm_per_v, 0));
+      cell(tr, fmt(1000 * e.mass_kg, 0));
+      cell(tr, fmt(e.max_current_a, 1));
+      cell(tr, (e.source && e.source.tier) || "-", "text");
+      tr.addEventListener("click", () => showEntry(e.id));
+    }
+  } catch (err) {
+    showError("cat-error", err);
+  }
+}
+
+async function showEntry(id) {
+  showError("cat-error", null);
+  try {
+    const e = await api(`/api/catalog/${encodeURIComponent(id)}`);
+    const box = $("cat-entry");
+    box.replaceChildren();
+    const h = document.createElement("h2");
+    h.textContent = `${e.name} (${e.id})`;
+    box.appendChild(h);
+    const src = e.source || {};
+    const p = document.createElement("p");
+    p.innerHTML = "";
+    p.append(`tier `, Object.assign(document.createElement("span"), { className: "tier", textContent: src.tier || "-" }),
+      `; ${src.dataset || ""}${src.reference ? ", " + src.reference : ""}`);
+    box.appendChild(p);
+    if (src.note) box.appendChild(Object.assign(document.createElement("p"), { className: "notes", textContent: src.note }));
+    const table = document.createElement("table");
+    table.id = "cat-entry-values";
+    const tbody = header(table, [["key", "text"], ["value"], ["provenance", "text"]]);
+    const prov = src.values || {};
+    for (const [k, v] of Object.entries(e)) {
+      if (VALUE_SKIP.has(k) || typeof v === "object") continue;
+      const tr = tbody.insertRow();
+      cell(tr, k, "text");
+      cell(tr, typeof v === "number" ? String(+v.toPrecision(6)) : String(v));
+      cell(tr, prov[k] || "-", "text");
+    }
+    box.appendChild(table);
+    const raw = document.createElement("details");
+    raw.append(Object.assign(document.createElement("summary"), { textContent: "the entry as JSON (catalog show)" }),
+      Object.assign(document.createElement("pre"), { textContent: JSON.stringify(e, null, 2) }));
+    box.appendChild(raw);
+  } catch (err) {
+    showError("cat-error", err);
+  }
+}
+
+// --- mission optimizer
+async function loadExamples() {
+  try {
+    const doc = await api("/api/examples");
+    const sel = $("mission-example");
+    sel.replaceChildren(...doc.examples.map((n) => new Option(n, n, false, n === "quadcopter_1p5kg")));
+  } catch (err) {
+    showError("mission-error", err);
+  }
+}
+
+async function loadExample() {
+  showError("mission-error", null);
+  try {
+    const res = await fetch(`/examples/${encodeURIComponent($("mission-example").value)}.json`);
+    if (!res.ok) throw new Error(`example ${$("mission-example").value}: HTTP ${res.status}`);
+    $("mission-json").value = await res.text();
+    $("mission-status").textContent = `loaded ${$("mission-example").value}`;
+    $("mission-table").replaceChildren();
+    $("mission-detail").replaceChildren();
+  } catch (err) {
+    showError("mission-error", err);
+  }
+}
+
+function objectiveText(r, v) {
+  if (r.objective_unit === "s") return `${fmt(v / 60, 2)} min`;
+  return `${fmt(v, 3)} ${r.objective_unit || ""}`;
+}
+
+function renderResults(doc, ms) {
+  const res = doc.results;
+  $("mission-status").textContent = `${res.length} designs; ${doc.combinations} combinations, ${doc.searched} evaluated ` +
+    `exactly, ${doc.pruned} pruned by safe bounds; search ${fmt(doc.seconds, 2)} s, answer in ${fmt(ms / 1000, 2)} s` +
+    (doc.interrupted ? " (stopped by the time limit: best so far)" : "");
+  const tbody = header($("mission-table"), [["#"], ["motor", "text"], ["ESC", "text"], ["propeller", "text"],
+    ["battery", "text"], ["cells"], ["objective"], ["credible range"], ["feasible", "text"], ["mass kg"], ["T/W"],
+    ["hover throttle %"]]);
+  res.forEach((r, i) => {
+    const tr = tbody.insertRow();
+    tr.className = "clickable" + (i === 0 ? " pick" : "");
+    cell(tr, String(i + 1));
+    for (const [kind, id] of [["motors", r.motor], ["escs", r.esc], ["props", r.prop]]) {
+      const name = nameOf(kind, id);
+      cell(tr, name ? `${id} (${name})` : id, "text");
+    }
+    cell(tr, r.battery, "text");
+    cell(tr, String(r.cells));
+    cell(tr, objectiveText(r, r.objective));
+    cell(tr, r.objective_range ? `${objectiveText(r, r.objective_range[0])} - ${objectiveText(r, r.objective_range[1])}` : "-");
+    cell(tr, r.feasible ? "yes" : "no", "text");
+    cell(tr, fmt(r.total_mass_kg, 3));
+    cell(tr, fmt(r.thrust_to_weight, 2));
+    cell(tr, r.summary ? fmt(100 * r.summary.hover_throttle, 1) : "-");
+    tr.addEventListener("click", () => renderSegments(r, i));
+  });
+  if (!res.length && doc.no_design_because) $("mission-status").textContent += `: ${JSON.stringify(doc.no_design_because)}`;
+  if (res.length) renderSegments(res[0], 0);
+}
+
+function renderSegments(r, i) {
+  const box = $("mission-detail");
+  box.replaceChildren(Object.assign(document.createElement("h2"), { textContent: `#${i + 1}: operating point per segment` }));
+  if (!r.segments) return;
+  const table = document.createElement("table");
+  const tbody = header(table, [["segment", "text"], ["type", "text"], ["s"], ["rpm"], ["throttle %"], ["torque N·m"],
+    ["IDC A"], ["VDC V"], ["PDC W"], ["η system"], ["SOC end %"]]);
+  for (const s of r.segments) {
+    const tr = tbody.insertRow();
+    cell(tr, s.name, "text");
+    cell(tr, s.type, "text");
+    [fmt(s.duration_s, 0), fmt(s.rpm, 0), fmt(100 * s.throttle, 1), fmt(s.torque_nm, 4), fmt(s.idc_a, 2), fmt(s.vdc_v, 2),
+      fmt(s.pdc_w, 1), fmt(s.eta_system, 3), fmt(100 * s.soc_end, 1)].forEach((t) => cell(tr, t));
+  }
+  const wrap = Object.assign(document.createElement("div"), { className: "scroll" });
+  wrap.appendChild(table);
+  box.appendChild(wrap);
+  if (r.warnings && r.warnings.length) {
+    box.appendChild(Object.assign(document.createElement("p"), { className: "notes", textContent: r.warnings.join("\n") }));
+  }
+}
+
+async function runMission(ev) {
+  ev.preventDefault();
+  showError("mission-error", null);
+  let mission;
+  try {
+    if (!$("mission-json").value.trim()) await loadExample();
+    mission = JSON.parse($("mission-json").value);
+  } catch (err) {
+    showError("mission-error", new Error(`mission JSON: ${err.message}`));
+    return;
+  }
+  const button = $("mission-run");
+  button.disabled = true;
+  const t0 = performance.now();
+  const timer = setInterval(() => {
+    $("mission-status").textContent = `optimizing... ${((performance.now() - t0) / 1000).toFixed(1)} s`;
+  }, 200);
+  try {
+    const body = { mission, top: Number($("mission-top").value) };
+    if ($("mission-time").value) body.time_limit_s = Number($("mission-time").value);
+    const doc = await api("/api/optimize", body);
+    clearInterval(timer);
+    renderResults(doc, performance.now() - t0);
+  } catch (err) {
+    clearInterval(timer);
+    $("mission-status").textContent = "";
+    showError("mission-error", err);
+  } finally {
+    button.disabled = false;
+  }
+}
+
+document.addEventListener("DOMContentLoaded", () => {
+  for (const b of document.querySelectorAll(".tab")) b.addEventListener("click", () => showView(b.dataset.view));
+  $("drive-form").addEventListener("submit", runDrive);
+  for (const id of ["motor", "esc", "prop", "vdc", "rho"]) $(id).addEventListener("change", () => runDrive());
+  $("cells").addEventListener("change", () => {
+    const n = Number($("cells").value);
+    if (n > 0) $("vdc").value = (3.7 * n).toFixed(2);
+    runDrive();
+  });
+  $("catalog-form").addEventListener("submit", listCatalog);
+  $("cat-kind").addEventListener("change", () => listCatalog());
+  $("mission-form").addEventListener("submit", runMission);
+  $("mission-load").addEventListener("click", loadExample);
+  initDrive();
+});
