@@ -368,6 +368,115 @@ async function runMission(ev) {
   }
 }
 
+// --- calibration and diagnosis of uploaded logs
+// A file as the API takes it: UTF-8 text as text, anything else (a spreadsheet's Latin-1 re-save)
+// as base64 of its bytes.
+async function logOf(file) {
+  const bytes = new Uint8Array(await file.arrayBuffer());
+  try {
+    return { name: file.name, text: new TextDecoder("utf-8", { fatal: true }).decode(bytes) };
+  } catch (e) {
+    let bin = "";
+    for (let i = 0; i < bytes.length; i += 0x8000) bin += String.fromCharCode(...bytes.subarray(i, i + 0x8000));
+    return { name: file.name, base64: btoa(bin) };
+  }
+}
+
+function keyValueTable(rows) {
+  const table = document.createElement("table");
+  const tbody = header(table, [["check", "text"], ["passed", "text"], ["value"], ["limit"], ["detail", "text"]]);
+  for (const c of rows) {
+    const tr = tbody.insertRow();
+    cell(tr, c.name, "text");
+    cell(tr, c.passed ? "yes" : "NO", "text");
+    cell(tr, typeof c.value === "number" ? String(+c.value.toPrecision(4)) : "-");
+    cell(tr, typeof c.limit === "number" ? String(+c.limit.toPrecision(4)) : "-");
+    cell(tr, c.detail || "", "text");
+  }
+  return table;
+}
+
+function download(name, doc) {
+  const a = document.createElement("a");
+  a.href = URL.createObjectURL(new Blob([JSON.stringify(doc, null, 2) + "\n"], { type: "application/json" }));
+  a.download = name;
+  a.textContent = `download ${name}`;
+  return a;
+}
+
+function renderCalibration(doc) {
+  const box = $("cal-result");
+  box.replaceChildren();
+  $("cal-status").textContent = `calibrate: ${doc.summary}`;
+  if (doc.advice) box.appendChild(Object.assign(document.createElement("p"), { className: "notes", textContent: doc.advice }));
+  box.appendChild(keyValueTable(doc.checks || []));
+  const params = document.createElement("table");
+  params.id = "cal-params";
+  const tbody = header(params, [["parameter", "text"], ["value"], ["std error"], ["identifiable", "text"]]);
+  for (const [k, se] of Object.entries(doc.stderr || {})) {
+    const v = k in (doc.motor || {}) ? doc.motor[k] : (doc.esc || {})[k];
+    const tr = tbody.insertRow();
+    cell(tr, k, "text");
+    cell(tr, typeof v === "number" ? String(+v.toPrecision(6)) : "-");
+    cell(tr, typeof se === "number" ? String(+se.toPrecision(3)) : "-");
+    cell(tr, doc.identifiable && k in doc.identifiable ? (doc.identifiable[k] ? "yes" : "no") : "-", "text");
+  }
+  box.appendChild(Object.assign(document.createElement("h2"), { textContent: "fitted parameters" }));
+  box.appendChild(params);
+  const ho = doc.held_out;
+  if (ho && ho.idc) {
+    box.appendChild(Object.assign(document.createElement("p"), {
+      textContent: `held out (${ho.folds} folds), dynosize / plain DC model: DC current ${fmt(ho.idc.median_abs_percent, 2)} % / ` +
+        `${ho.dc_baseline ? fmt(ho.dc_baseline.idc.median_abs_percent, 2) : "-"} %, speed at the torque ` +
+        `${fmt(ho.omega_at_torque.median_abs_percent, 2)} % / ${ho.dc_baseline ? fmt(ho.dc_baseline.omega_at_torque.median_abs_percent, 2) : "-"} %`,
+    }));
+  }
+  if (doc.motor && doc.esc) {
+    const p = document.createElement("p");
+    p.appendChild(download(`${doc.motor.id}.json`, { motors: [doc.motor], escs: [doc.esc] }));
+    p.append(" (a catalog file: use it with --catalog-add, or add it to your parts folder)");
+    box.appendChild(p);
+  }
+  if (doc.warnings && doc.warnings.length) {
+    box.appendChild(Object.assign(document.createElement("p"), { className: "notes", textContent: doc.warnings.join("\n") }));
+  }
+}
+
+function renderDiagnosis(doc) {
+  const box = $("cal-result");
+  box.replaceChildren();
+  $("cal-status").textContent = `diagnose: ${doc.summary}`;
+  if (doc.advice) box.appendChild(Object.assign(document.createElement("p"), { className: "notes", textContent: doc.advice }));
+  box.appendChild(keyValueTable(doc.checks || []));
+  const raw = document.createElement("details");
+  raw.append(Object.assign(document.createElement("summary"), { textContent: "findings and the extended model (diagnose --json)" }),
+    Object.assign(document.createElement("pre"), { textContent: JSON.stringify({ findings: doc.findings, extended_model: doc.extended_model }, null, 2) }));
+  box.appendChild(raw);
+}
+
+async function runLogs(kind) {
+  showError("cal-error", null);
+  const files = [...$("cal-files").files];
+  if (!files.length) {
+    showError("cal-error", new Error("choose one or more log files first"));
+    return;
+  }
+  $("cal-status").textContent = `${kind}...`;
+  try {
+    const logs = await Promise.all(files.map(logOf));
+    const common = { format: $("cal-format").value };
+    if ($("cal-kv").value) common.kv_label = Number($("cal-kv").value);
+    if (kind === "calibrate") {
+      renderCalibration(await api("/api/calibrate", { logs, motor_id: $("cal-motor-id").value, esc_id: $("cal-esc-id").value, ...common }));
+    } else {
+      renderDiagnosis(await api("/api/diagnose", { log: logs[0], ...common }));
+    }
+  } catch (err) {
+    $("cal-status").textContent = "";
+    showError("cal-error", err);
+  }
+}
+
 document.addEventListener("DOMContentLoaded", () => {
   for (const b of document.querySelectorAll(".tab")) b.addEventListener("click", () => showView(b.dataset.view));
   $("drive-form").addEventListener("submit", runDrive);
@@ -381,5 +490,7 @@ document.addEventListener("DOMContentLoaded", () => {
   $("cat-kind").addEventListener("change", () => listCatalog());
   $("mission-form").addEventListener("submit", runMission);
   $("mission-load").addEventListener("click", loadExample);
+  $("cal-form").addEventListener("submit", (ev) => { ev.preventDefault(); runLogs("calibrate"); });
+  $("diag-run").addEventListener("click", () => runLogs("diagnose"));
   initDrive();
 });

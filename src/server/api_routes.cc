@@ -16,95 +16,14 @@
 #include "mission/mission.h"
 #include "optimization/search.h"
 #include "report/mission_report.h"
+#include "server/log_routes.h"
+#include "server/request_body.h"
 
 namespace dynosize::server {
 
 namespace {
 
-// Bodies are parsed with the strict reader of the catalog and missions (duplicate keys, depth,
-// non-finite numbers refused); the size is held by the server before this (16 MiB).
-constexpr std::size_t kMaxBodyBytes = 16u << 20;
-
-// The keys of a request body, read strictly: an unknown key is an error listing the valid ones
-// (sorted), a value of the wrong type an error naming the key. null is the same as absent.
-class Body {
- public:
-  Body(const std::string& text, const std::string& route, std::vector<std::string> valid) : route_(route) {
-    JsonReadOptions o;
-    o.max_bytes = kMaxBodyBytes;
-    doc_ = ParseJsonText(text, route + " request body", o);
-    if (!doc_.is_object()) throw UsageError(route + ": the request body must be a JSON object");
-    std::sort(valid.begin(), valid.end());
-    for (auto it = doc_.begin(); it != doc_.end(); ++it) {
-      if (std::binary_search(valid.begin(), valid.end(), it.key())) continue;
-      std::string list;
-      for (const auto& v : valid) list += (list.empty() ? "" : ", ") + v;
-      throw UsageError(route + ": unknown key '" + it.key() + "' (valid: " + list + ")");
-    }
-  }
-  const Json* Find(const char* key) const {
-    const auto it = doc_.find(key);
-    return it == doc_.end() || it->is_null() ? nullptr : &*it;
-  }
-  std::optional<double> Number(const char* key) const {
-    const Json* v = Find(key);
-    if (!v) return std::nullopt;
-    if (!v->is_number()) throw UsageError(Where(key) + " " + v->dump() + ": must be a number");
-    return v->get<double>();
-  }
-  std::optional<long long> Integer(const char* key) const {
-    const Json* v = Find(key);
-    if (!v) return std::nullopt;
-    if (!v->is_number_integer()) throw UsageError(Where(key) + " " + v->dump() + ": must be an integer");
-    return v->get<long long>();
-  }
-  std::string Text(const char* key) const {
-    const Json* v = Find(key);
-    if (!v) return "";
-    if (!v->is_string()) throw UsageError(Where(key) + " " + v->dump() + ": must be a string");
-    return v->get<std::string>();
-  }
-  bool Flag(const char* key) const {
-    const Json* v = Find(key);
-    if (!v) return false;
-    if (!v->is_boolean()) throw UsageError(Where(key) + " " + v->dump() + ": must be true or false");
-    return v->get<bool>();
-  }
-  std::vector<double> Numbers(const char* key) const {
-    const Json* v = Find(key);
-    std::vector<double> out;
-    if (!v) return out;
-    if (!v->is_array()) throw UsageError(Where(key) + ": must be an array of numbers");
-    for (const auto& x : *v) {
-      if (!x.is_number()) throw UsageError(Where(key) + " " + x.dump() + ": must be a number");
-      out.push_back(x.get<double>());
-    }
-    return out;
-  }
-  std::vector<std::string> Texts(const char* key) const {
-    const Json* v = Find(key);
-    std::vector<std::string> out;
-    if (!v) return out;
-    if (!v->is_array()) throw UsageError(Where(key) + ": must be an array of strings");
-    for (const auto& x : *v) {
-      if (!x.is_string()) throw UsageError(Where(key) + " " + x.dump() + ": must be a string");
-      out.push_back(x.get<std::string>());
-    }
-    return out;
-  }
-  // The mission: a JSON object with the content of a mission file (read by the mission reader).
-  Mission MissionOf() const {
-    const Json* v = Find("mission");
-    if (!v) throw UsageError(route_ + ": the key 'mission' is required (the mission file's content)");
-    if (!v->is_object()) throw UsageError(Where("mission") + ": must be a JSON object (the mission file's content)");
-    return ParseMission(*v, "mission");
-  }
-
- private:
-  std::string Where(const char* key) const { return route_ + ": " + key; }
-  std::string route_;
-  Json doc_;
-};
+constexpr std::size_t kMaxIdChars = 200;
 
 // A number of the query string, the whole text read (no trailing characters).
 std::optional<double> QueryNumber(const ApiCall& call, const char* key) {
@@ -129,7 +48,7 @@ Json CatalogList(const ApiContext& ctx, const ApiCall& call) {
   api::CatalogListRequest r;
   if (const auto it = call.query.find("kind"); it != call.query.end()) r.kind = it->second;
   if (!r.kind.empty() && r.kind != "motors" && r.kind != "escs" && r.kind != "props" && r.kind != "batteries") {
-    throw UsageError("--kind " + r.kind + ": must be one of motors, escs, props, batteries");
+    throw UsageError("--kind " + r.kind + ": not in {motors, escs, props, batteries}");  // as the Python module
   }
   r.kv_min = QueryNumber(call, "kv_min");
   r.kv_max = QueryNumber(call, "kv_max");
@@ -140,7 +59,7 @@ Json CatalogList(const ApiContext& ctx, const ApiCall& call) {
 }
 
 Json Simulate(const ApiContext& ctx, const ApiCall& call) {
-  const Body b(call.body, "simulate",
+  const RequestBody b(call.body, "simulate",
                {"motor", "esc", "vdc_v", "throttle", "torque_nm", "rpm", "torque_law", "prop", "thrust_n", "rho_kg_m3"});
   api::SimulateRequest r;
   r.motor_id = b.Text("motor");
@@ -158,7 +77,7 @@ Json Simulate(const ApiContext& ctx, const ApiCall& call) {
 }
 
 Json Evaluate(const ApiContext& ctx, const ApiCall& call) {
-  const Body b(call.body, "evaluate", {"mission", "motor", "esc", "prop", "battery", "pick", "cells"});
+  const RequestBody b(call.body, "evaluate", {"mission", "motor", "esc", "prop", "battery", "pick", "cells"});
   const Mission mission = b.MissionOf();
   api::EvaluateRequest r;
   r.motor_id = b.Text("motor");
@@ -177,7 +96,7 @@ Json Evaluate(const ApiContext& ctx, const ApiCall& call) {
 }
 
 Json Optimize(const ApiContext& ctx, const ApiCall& call) {
-  const Body b(call.body, "optimize", {"mission", "top", "threads", "variants", "time_limit_s"});
+  const RequestBody b(call.body, "optimize", {"mission", "top", "threads", "variants", "time_limit_s"});
   api::OptimizeRequest r;
   const long long top = b.Integer("top").value_or(5);
   if (top < 1 || top > 1000) throw UsageError("--top " + std::to_string(top) + ": must be in [1 - 1000]");
@@ -219,6 +138,13 @@ ApiAnswer Route(const ApiContext& ctx, const ApiCall& call) {
   if (p.rfind("/api/catalog/", 0) == 0) {
     if (auto bad = need("GET")) return *bad;
     const std::string id = p.substr(std::string("/api/catalog/").size());
+    // The "did you mean" of an unknown id compares it with every id (0.2 s for 1000 characters):
+    // no entry has an id this long, so a longer one is answered at once.
+    if (id.size() > kMaxIdChars) {
+      return {404, ErrorBody("catalog: an id of " + std::to_string(id.size()) + " characters: no entry has one over " +
+                                 std::to_string(kMaxIdChars),
+                             static_cast<int>(ExitCode::kUsage))};
+    }
     try {
       return Answer(api::CatalogShowJson(*ctx.catalog, id));
     } catch (const UsageError& e) {  // an unknown id: the resource is not there
@@ -226,21 +152,26 @@ ApiAnswer Route(const ApiContext& ctx, const ApiCall& call) {
     }
   }
   const std::pair<const char*, Json (*)(const ApiContext&, const ApiCall&)> posts[] = {
-      {"/api/simulate", &Simulate}, {"/api/evaluate", &Evaluate}, {"/api/optimize", &Optimize}};
+      {"/api/simulate", &Simulate},
+      {"/api/evaluate", &Evaluate},
+      {"/api/optimize", &Optimize},
+      {"/api/calibrate", [](const ApiContext& c, const ApiCall& q) { return CalibrateRoute(c, q.body); }},
+      {"/api/diagnose", [](const ApiContext& c, const ApiCall& q) { return DiagnoseRoute(c, q.body); }}};
   for (const auto& [route, run] : posts) {
     if (p != route) continue;
     if (auto bad = need("POST")) return *bad;
     return Answer(run(ctx, call));
   }
   return {404, ErrorBody(p + ": no such API route (GET /api/catalog, /api/catalog/ID; POST /api/simulate, "
-                              "/api/evaluate, /api/optimize)",
+                              "/api/evaluate, /api/optimize, /api/calibrate, /api/diagnose)",
                          static_cast<int>(ExitCode::kUsage))};
 }
 
 }  // namespace
 
 bool IsJobRoute(const std::string& path) {
-  return path == "/api/simulate" || path == "/api/evaluate" || path == "/api/optimize";
+  return path == "/api/simulate" || path == "/api/evaluate" || path == "/api/optimize" || path == "/api/calibrate" ||
+         path == "/api/diagnose";
 }
 
 std::string ErrorBody(const std::string& message, int exit_code) {

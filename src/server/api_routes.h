@@ -10,6 +10,7 @@
 //                        "cells"}                                           evaluate --json
 //   POST /api/optimize  {"mission": {...}, "top", "threads", "variants", "time_limit_s"}
 //                                                                           optimize --json
+//   POST /api/calibrate, /api/diagnose: the logs in the body (server/log_routes.h)
 #pragma once
 
 #include <atomic>

@@ -146,3 +146,17 @@ def test_mission_optimizer(server, browser):
         assert pick[key] in first, (key, pick[key], first)
     assert f"{pick['objective'] / 60:.2f} min" in first
     screenshot(browser, "mission_optimizer.png")
+
+
+def test_calibration(server, browser):
+    browser.find_element(By.ID, "tab-calibrate").click()
+    log = os.path.abspath(os.path.join(ROOT, "examples", "dyno_log.csv"))
+    browser.find_element(By.ID, "cal-files").send_keys(log)
+    browser.find_element(By.ID, "cal-run").click()
+    wait = WebDriverWait(browser, 60)
+    wait.until(EC.presence_of_element_located((By.ID, "cal-params")))
+    cli = cli_json("calibrate", log, "--motor-id", "my_motor", "--esc-id", "my_esc")
+    assert browser.find_element(By.ID, "cal-status").text == f"calibrate: {cli['summary']}"
+    params = browser.find_element(By.ID, "cal-params").text
+    assert f"{cli['motor']['rm_ohm']:.6g}" in params
+    screenshot(browser, "calibration.png")

@@ -3,6 +3,8 @@
 // executable: a whole_run suite (CMakeLists.txt).
 #include <gtest/gtest.h>
 
+#include <fstream>
+#include <sstream>
 #include <string>
 
 #include "cli_runner.h"
@@ -93,6 +95,31 @@ TEST(ServerCli, EvaluateAndOptimizeEqualTheCli) {
   cli.erase("seconds");
   EXPECT_EQ(served, cli);
   EXPECT_EQ(served["results"][0]["motor"], "dc_m_365");
+}
+
+// The logs travel in the body; the answer is the CLI's for a file of that name.
+TEST(ServerCli, CalibrateAndDiagnoseEqualTheCli) {
+  const RunningServer s;
+  const std::string log_file = kSource + "/examples/dyno_log.csv";
+  std::ifstream in(log_file);
+  std::stringstream text;
+  text << in.rdbuf();
+  const Json log = {{"name", "dyno_log.csv"}, {"text", text.str()}};
+  EXPECT_EQ(Post(s, "/api/calibrate", {{"logs", {log}}, {"motor_id", "my_motor"}, {"esc_id", "my_esc"}}),
+            CliJson("calibrate " + log_file + " --motor-id my_motor --esc-id my_esc --json"));
+  EXPECT_EQ(Post(s, "/api/calibrate",
+                 {{"logs", {log}}, {"motor_id", "m"}, {"esc_id", "e"}, {"kv_label", 2500}, {"loo", true}}),
+            CliJson("calibrate " + log_file + " --motor-id m --esc-id e --kv-label 2500 --loo --json"));
+  Json cli = CliJson("diagnose " + log_file + " --motor emax_1900kv_paper --json");
+  ASSERT_EQ(cli["file"], log_file);
+  cli["file"] = "dyno_log.csv";  // the CLI names the file as given; the server as uploaded
+  EXPECT_EQ(Post(s, "/api/diagnose", {{"log", log}, {"motor", "emax_1900kv_paper"}}), cli);
+  // A log that is not one: the reader's message names the log as uploaded, never the temporary
+  // folder. ("QUJD" is base64 of "ABC": how bytes that are not UTF-8 travel.)
+  const Json bad = Post(s, "/api/diagnose", {{"log", {{"name", "abc.csv"}, {"base64", "QUJD"}}}}, 400);
+  const std::string message = bad["error"];
+  EXPECT_EQ(message.rfind("abc.csv", 0), 0u) << message;
+  EXPECT_EQ(message.find("dynosize-serve-"), std::string::npos) << message;
 }
 
 // A bad value gets the CLI's message (without "dynosize: ") and exit code.

@@ -69,7 +69,15 @@ TEST(ServerHostile, BrokenJsonAndBadValuesAre400) {
   ExpectError(PostText(s, "/api/optimize", R"({"mission": {}, "top": 0})"), 400, "--top 0");
   ExpectError(PostText(s, "/api/optimize", R"({"mission": {}, "time_limit_s": -1})"), 400, "--time-limit");
   ExpectError(PostText(s, "/api/evaluate", R"({"mission": "/etc/passwd", "battery": "x"})"), 400, "must be a JSON object");
-  ExpectError(s.Client()->Get("/api/catalog?kind=rockets"), 400, "--kind rockets");
+  for (const char* name : {"../../etc/cron.d/x", "/etc/passwd", ".bashrc", "a/b.csv", "", "x\\y.csv"}) {
+    const Json body = {{"log", {{"name", name}, {"text", "a,b\n"}}}};
+    ExpectError(PostText(s, "/api/diagnose", body.dump()), 400, "a log's name must be");
+  }
+  ExpectError(PostText(s, "/api/diagnose", R"({"log": {"name": "x.csv", "base64": "!!"}})"), 400, "not base64");
+  ExpectError(PostText(s, "/api/calibrate", R"({"logs": []})"), 400, "'logs' is required");
+  ExpectError(PostText(s, "/api/calibrate", R"({"logs": [{"name": "a.csv", "text": ""}, {"name": "a.csv", "text": ""}]})"),
+              400, "two logs named");
+  ExpectError(s.Client()->Get("/api/catalog?kind=rockets"), 400, "--kind rockets: not in");
   ExpectError(s.Client()->Get("/api/catalog?kind=motors&kv_min=abc"), 400, "kv_min=abc: must be a finite number");
   ExpectError(s.Client()->Get("/api/catalog?kind=motors&kv_min=nan"), 400, "kv_min=nan");
   ExpectError(s.Client()->Get("/api/catalog?kind=escs&kv_min=100"), 400, "--kv-min/--kv-max filter motors");
