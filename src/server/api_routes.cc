@@ -16,6 +16,8 @@
 #include "mission/mission.h"
 #include "optimization/search.h"
 #include "report/mission_report.h"
+#include "report/sweep_report.h"
+#include "study/sweep.h"
 #include "server/log_routes.h"
 #include "server/request_body.h"
 
@@ -113,6 +115,31 @@ Json Optimize(const ApiContext& ctx, const ApiCall& call) {
   return SearchResultJson(mission, SearchCatalog(mission, *ctx.catalog, so));
 }
 
+// sweep --json: "vary" holds the CLI's --vary strings (KEY=START:STOP:STEP or KEY=v1,v2,...).
+Json Sweep(const ApiContext& ctx, const ApiCall& call) {
+  const RequestBody b(call.body, "sweep", {"mission", "vary", "top", "threads", "variants", "time_limit_s", "yes"});
+  const Json* doc = b.Find("mission");
+  if (!doc || !doc->is_object()) throw UsageError("sweep: 'mission' is required (a JSON object: the mission file's content)");
+  const std::vector<std::string> vary = b.Texts("vary");
+  if (vary.empty()) throw UsageError("sweep: 'vary' is required: [\"KEY=START:STOP:STEP\" or \"KEY=v1,v2,...\", ...]");
+  const long long top = b.Integer("top").value_or(1);
+  if (top < 1 || top > 1000) throw UsageError("--top " + std::to_string(top) + ": must be in [1 - 1000]");
+  const long long threads = b.Integer("threads").value_or(2);
+  if (threads < 1 || threads > 64) throw UsageError("--threads " + std::to_string(threads) + ": must be in [1 - 64]");
+  study::SweepOptions so;
+  so.point.deadline = std::min(api::DeadlineAfter(b.Number("time_limit_s").value_or(ctx.max_search_s)),
+                               api::DeadlineAfter(ctx.max_search_s));
+  so.point.stop = ctx.stop;
+  so.point.top = static_cast<int>(top);
+  so.point.distinct_designs = !b.Flag("variants");
+  so.threads = static_cast<int>(threads);
+  std::vector<study::VaryKey> keys;
+  for (const std::string& spec : vary) keys.push_back(study::ParseVary(spec));
+  const study::SweepPlan plan = study::PlanSweep(*doc, "mission", std::move(keys), b.Flag("yes"));
+  const Mission base = ParseMission(plan.doc, plan.name);
+  return study::SweepJson(base, study::RunSweep(plan.doc, plan.name, *ctx.catalog, plan.keys, so), plan.keys);
+}
+
 ApiAnswer Answer(const Json& doc) {
   ApiAnswer a;
   a.body = DumpJson(doc);  // checks every number is finite (InternalError otherwise), as the CLI's
@@ -155,6 +182,7 @@ ApiAnswer Route(const ApiContext& ctx, const ApiCall& call) {
       {"/api/simulate", &Simulate},
       {"/api/evaluate", &Evaluate},
       {"/api/optimize", &Optimize},
+      {"/api/sweep", &Sweep},
       {"/api/calibrate", [](const ApiContext& c, const ApiCall& q) { return CalibrateRoute(c, q.body); }},
       {"/api/diagnose", [](const ApiContext& c, const ApiCall& q) { return DiagnoseRoute(c, q.body); }}};
   for (const auto& [route, run] : posts) {
@@ -163,15 +191,15 @@ ApiAnswer Route(const ApiContext& ctx, const ApiCall& call) {
     return Answer(run(ctx, call));
   }
   return {404, ErrorBody(p + ": no such API route (GET /api/catalog, /api/catalog/ID; POST /api/simulate, "
-                              "/api/evaluate, /api/optimize, /api/calibrate, /api/diagnose)",
+                              "/api/evaluate, /api/optimize, /api/sweep, /api/calibrate, /api/diagnose)",
                          static_cast<int>(ExitCode::kUsage))};
 }
 
 }  // namespace
 
 bool IsJobRoute(const std::string& path) {
-  return path == "/api/simulate" || path == "/api/evaluate" || path == "/api/optimize" || path == "/api/calibrate" ||
-         path == "/api/diagnose";
+  return path == "/api/simulate" || path == "/api/evaluate" || path == "/api/optimize" || path == "/api/sweep" ||
+         path == "/api/calibrate" || path == "/api/diagnose";
 }
 
 std::string ErrorBody(const std::string& message, int exit_code) {

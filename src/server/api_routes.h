@@ -10,6 +10,8 @@
 //                        "cells"}                                           evaluate --json
 //   POST /api/optimize  {"mission": {...}, "top", "threads", "variants", "time_limit_s"}
 //                                                                           optimize --json
+//   POST /api/sweep     {"mission": {...}, "vary": ["KEY=START:STOP:STEP", ...], "top", "threads",
+//                        "variants", "time_limit_s", "yes"}                sweep --json
 //   POST /api/calibrate, /api/diagnose: the logs in the body (server/log_routes.h)
 #pragma once
 
@@ -38,7 +40,7 @@ struct ApiAnswer {
 };
 
 // What the routes share: the catalog loaded once, the longest an optimize may run (its
-// time_limit_s is held to it) and a flag that stops every running search (the server stopping).
+// and a sweep's time_limit_s are held to it) and a flag that stops every running search (the server stopping).
 struct ApiContext {
   const Catalog* catalog = nullptr;
   double max_search_s = 300.0;

@@ -95,6 +95,11 @@ TEST(ServerCli, EvaluateAndOptimizeEqualTheCli) {
   cli.erase("seconds");
   EXPECT_EQ(served, cli);
   EXPECT_EQ(served["results"][0]["motor"], "dc_m_365");
+  Json swept = Post(s, "/api/sweep", {{"mission", mission}, {"vary", {"battery.capacity_ah=3:5:1"}}});
+  Json cli_sweep = CliJson("sweep " + mission_file + " --vary battery.capacity_ah=3:5:1 --json");
+  swept.erase("seconds");
+  cli_sweep.erase("seconds");
+  EXPECT_EQ(swept, cli_sweep);
 }
 
 // The logs travel in the body; the answer is the CLI's for a file of that name.
