@@ -288,7 +288,7 @@ function renderResults(doc, ms) {
   const res = doc.results;
   $("mission-status").textContent = `${res.length} designs; ${doc.combinations} combinations, ${doc.searched} evaluated ` +
     `exactly, ${doc.pruned} pruned by safe bounds; search ${fmt(doc.seconds, 2)} s, answer in ${fmt(ms / 1000, 2)} s` +
-    (doc.interrupted ? " (stopped by the time limit: best so far)" : "");
+    (doc.interrupted ? " (stopped: the best found so far)" : "");
   const tbody = header($("mission-table"), [["#"], ["motor", "text"], ["ESC", "text"], ["propeller", "text"],
     ["battery", "text"], ["cells"], ["objective"], ["credible range"], ["feasible", "text"], ["mass kg"], ["T/W"],
     ["hover throttle %"]]);
@@ -336,6 +336,11 @@ function renderSegments(r, i) {
   }
 }
 
+// Optimize as a job (POST /api/jobs/optimize): its progress polled, Cancel stops it with the
+// best so far (as Ctrl-C on the command line).
+let missionJob = null;
+const sleep = (ms) => new Promise((r) => setTimeout(r, ms));
+
 async function runMission(ev) {
   ev.preventDefault();
   showError("mission-error", null);
@@ -347,24 +352,47 @@ async function runMission(ev) {
     showError("mission-error", new Error(`mission JSON: ${err.message}`));
     return;
   }
-  const button = $("mission-run");
+  const button = $("mission-run"), cancel = $("mission-cancel"), bar = $("mission-progress");
   button.disabled = true;
   const t0 = performance.now();
-  const timer = setInterval(() => {
-    $("mission-status").textContent = `optimizing... ${((performance.now() - t0) / 1000).toFixed(1)} s`;
-  }, 200);
   try {
     const body = { mission, top: Number($("mission-top").value) };
     if ($("mission-time").value) body.time_limit_s = Number($("mission-time").value);
-    const doc = await api("/api/optimize", body);
-    clearInterval(timer);
-    renderResults(doc, performance.now() - t0);
+    missionJob = (await api("/api/jobs/optimize", body)).job;
+    cancel.disabled = false;
+    bar.hidden = false;
+    bar.value = 0;
+    for (let wait = 20; ; wait = Math.min(2 * wait, 250)) {
+      const st = await api(`/api/jobs/${missionJob}`);
+      const p = st.progress;
+      bar.value = p.fraction;
+      $("mission-status").textContent = `${st.state === "queued" ? "waiting for a free slot" : "optimizing"}... ` +
+        `${st.seconds.toFixed(1)} s, ${(100 * p.fraction).toFixed(0)} % done, ${p.searched} evaluated` +
+        (p.best_objective !== null ? `, best ${p.best_objective.toFixed(2)}${p.unit}` : "");
+      if (st.state === "done") {
+        renderResults(st.result, performance.now() - t0);
+        break;
+      }
+      if (st.state === "failed") throw new Error(st.error.error);
+      await sleep(wait);
+    }
   } catch (err) {
-    clearInterval(timer);
     $("mission-status").textContent = "";
     showError("mission-error", err);
   } finally {
+    missionJob = null;
     button.disabled = false;
+    cancel.disabled = true;
+    bar.hidden = true;
+  }
+}
+
+async function cancelMission() {
+  if (!missionJob) return;
+  try {
+    await api(`/api/jobs/${missionJob}/cancel`, {});
+  } catch (err) {
+    showError("mission-error", err);
   }
 }
 
@@ -490,6 +518,7 @@ document.addEventListener("DOMContentLoaded", () => {
   $("cat-kind").addEventListener("change", () => listCatalog());
   $("mission-form").addEventListener("submit", runMission);
   $("mission-load").addEventListener("click", loadExample);
+  $("mission-cancel").addEventListener("click", cancelMission);
   $("cal-form").addEventListener("submit", (ev) => { ev.preventDefault(); runLogs("calibrate"); });
   $("diag-run").addEventListener("click", () => runLogs("diagnose"));
   initDrive();

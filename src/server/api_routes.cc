@@ -98,21 +98,8 @@ Json Evaluate(const ApiContext& ctx, const ApiCall& call) {
 }
 
 Json Optimize(const ApiContext& ctx, const ApiCall& call) {
-  const RequestBody b(call.body, "optimize", {"mission", "top", "threads", "variants", "time_limit_s"});
-  api::OptimizeRequest r;
-  const long long top = b.Integer("top").value_or(5);
-  if (top < 1 || top > 1000) throw UsageError("--top " + std::to_string(top) + ": must be in [1 - 1000]");
-  const long long threads = b.Integer("threads").value_or(2);
-  if (threads < 1 || threads > 64) throw UsageError("--threads " + std::to_string(threads) + ": must be in [1 - 64]");
-  r.top = static_cast<int>(top);
-  r.threads = static_cast<int>(threads);
-  r.variants = b.Flag("variants");
-  r.time_limit_s = b.Number("time_limit_s").value_or(std::numeric_limits<double>::infinity());
-  SearchOptions so = api::OptimizeSearchOptions(r);  // checks the time limit (> 0)
-  so.deadline = std::min(so.deadline, api::DeadlineAfter(ctx.max_search_s));
-  so.stop = ctx.stop;
-  const Mission mission = b.MissionOf();
-  return SearchResultJson(mission, SearchCatalog(mission, *ctx.catalog, so));
+  const OptimizeWork w = OptimizeWorkOf(ctx, call.body);
+  return SearchResultJson(w.mission, SearchCatalog(w.mission, *ctx.catalog, w.options));
 }
 
 // sweep --json: "vary" holds the CLI's --vary strings (KEY=START:STOP:STEP or KEY=v1,v2,...).
@@ -196,6 +183,24 @@ ApiAnswer Route(const ApiContext& ctx, const ApiCall& call) {
 }
 
 }  // namespace
+
+OptimizeWork OptimizeWorkOf(const ApiContext& ctx, const std::string& body) {
+  const RequestBody b(body, "optimize", {"mission", "top", "threads", "variants", "time_limit_s"});
+  api::OptimizeRequest r;
+  const long long top = b.Integer("top").value_or(5);
+  if (top < 1 || top > 1000) throw UsageError("--top " + std::to_string(top) + ": must be in [1 - 1000]");
+  const long long threads = b.Integer("threads").value_or(2);
+  if (threads < 1 || threads > 64) throw UsageError("--threads " + std::to_string(threads) + ": must be in [1 - 64]");
+  r.top = static_cast<int>(top);
+  r.threads = static_cast<int>(threads);
+  r.variants = b.Flag("variants");
+  r.time_limit_s = b.Number("time_limit_s").value_or(std::numeric_limits<double>::infinity());
+  SearchOptions options = api::OptimizeSearchOptions(r);  // checks the time limit (> 0), before the mission
+  OptimizeWork w{b.MissionOf(), std::move(options)};
+  w.options.deadline = std::min(w.options.deadline, api::DeadlineAfter(ctx.max_search_s));
+  w.options.stop = ctx.stop;
+  return w;
+}
 
 bool IsJobRoute(const std::string& path) {
   return path == "/api/simulate" || path == "/api/evaluate" || path == "/api/optimize" || path == "/api/sweep" ||

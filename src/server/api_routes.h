@@ -20,6 +20,8 @@
 #include <string>
 
 #include "catalog/catalog.h"
+#include "mission/mission.h"
+#include "optimization/search_options.h"
 
 namespace dynosize::server {
 
@@ -46,6 +48,14 @@ struct ApiContext {
   double max_search_s = 300.0;
   const std::atomic<bool>* stop = nullptr;
 };
+
+// An optimize request's mission and search options, checked (the route's and the jobs' of
+// server/jobs.h): the time limit held to max_search_s, the stop flag the context's.
+struct OptimizeWork {
+  Mission mission;
+  SearchOptions options;
+};
+OptimizeWork OptimizeWorkOf(const ApiContext& context, const std::string& body);
 
 // Whether the path is one of the routes above that needs a job slot (the solving POSTs).
 bool IsJobRoute(const std::string& path);

@@ -15,6 +15,7 @@
 #include "common/text_format.h"
 #include "server/api_routes.h"
 #include "server/job_queue.h"
+#include "server/jobs.h"
 #include "server/page_files.h"
 
 namespace dynosize::server {
@@ -111,7 +112,9 @@ struct WebServer::Impl {
     context.catalog = &catalog;
     context.max_search_s = o.max_search_s;
     context.stop = &stopping;
+    optimize_jobs = std::make_unique<OptimizeJobs>(context, jobs, kKeptJobs);
   }
+  static constexpr int kKeptJobs = 16;
   void Configure();
   httplib::Server::HandlerResponse Screen(const httplib::Request& req, httplib::Response& res);
   void ServeApi(const httplib::Request& req, httplib::Response& res);
@@ -122,6 +125,7 @@ struct WebServer::Impl {
   JobQueue jobs;
   ApiContext context;
   std::atomic<bool> stopping{false};
+  std::unique_ptr<OptimizeJobs> optimize_jobs;  // made once the context is set
   std::atomic<bool> in_run{false};
   httplib::Server http;
   int port = 0;
@@ -155,6 +159,11 @@ void WebServer::Impl::ServeApi(const httplib::Request& req, httplib::Response& r
     Json j;
     j["examples"] = pages.ExampleNames();
     res.set_content(j.dump() + "\n", "application/json");
+    return;
+  }
+  if (auto job_answer = optimize_jobs->Handle(req.method, req.path, req.body)) {  // /api/jobs/...
+    res.status = job_answer->status;
+    res.set_content(job_answer->body, "application/json");
     return;
   }
   if (IsJobRoute(req.path) && req.method == "POST") {
@@ -273,6 +282,7 @@ void WebServer::Run() {
 void WebServer::Stop() {
   if (!impl_) return;
   impl_->stopping.store(true);
+  impl_->optimize_jobs->CancelAll();
   // A Run() that has not started listening yet would miss the stop: wait until it listens (or
   // has returned).
   while (impl_->in_run.load() && !impl_->http.is_running()) std::this_thread::sleep_for(std::chrono::milliseconds(1));

@@ -160,3 +160,29 @@ def test_calibration(server, browser):
     params = browser.find_element(By.ID, "cal-params").text
     assert f"{cli['motor']['rm_ohm']:.6g}" in params
     screenshot(browser, "calibration.png")
+
+
+def test_optimize_cancel(server, browser):
+    """A search that outlasts any wait (the eVTOL example with both groups, the capacity and the
+    cruise speed free: tests/cli_runner.h LongSearchMission): the progress shows, Cancel stops it
+    with the best so far."""
+    with open(os.path.join(ROOT, "examples", "missions", "evtol_lift_cruise.json")) as f:
+        m = json.load(f)
+    for group in m["propulsion"].values():
+        for part in ("motor", "esc", "prop"):
+            group.pop(part, None)
+    m["battery"]["capacity_ah"] = [2, 8]
+    for s in m["segments"]:
+        if s["type"] == "cruise":
+            s["airspeed_m_s"] = [14, 24]
+    browser.find_element(By.ID, "tab-mission").click()
+    browser.execute_script("document.getElementById('mission-json').value = arguments[0];", json.dumps(m))
+    browser.find_element(By.ID, "mission-time").clear()
+    browser.find_element(By.ID, "mission-run").click()
+    wait = WebDriverWait(browser, 30)
+    wait.until(EC.text_to_be_present_in_element((By.ID, "mission-status"), "optimizing..."))
+    wait.until(lambda d: d.find_element(By.ID, "mission-cancel").is_enabled())
+    time.sleep(1.0)
+    browser.find_element(By.ID, "mission-cancel").click()
+    wait.until(EC.text_to_be_present_in_element((By.ID, "mission-status"), "(stopped: the best found so far)"))
+    assert browser.find_element(By.ID, "mission-run").is_enabled()

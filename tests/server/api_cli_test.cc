@@ -3,9 +3,11 @@
 // executable: a whole_run suite (CMakeLists.txt).
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <thread>
 
 #include "cli_runner.h"
 #include "common/json_file.h"
@@ -100,6 +102,29 @@ TEST(ServerCli, EvaluateAndOptimizeEqualTheCli) {
   swept.erase("seconds");
   cli_sweep.erase("seconds");
   EXPECT_EQ(swept, cli_sweep);
+}
+
+// An optimize as a job: polled until done, its result is the CLI's.
+TEST(ServerCli, OptimizeJobEqualsTheCli) {
+  const RunningServer s;
+  const std::string mission_file = kSource + "/examples/missions/quadcopter_1p5kg.json";
+  const Json started =
+      Post(s, "/api/jobs/optimize", {{"mission", ReadJsonFile(mission_file)}, {"top", 3}}, 202);
+  const std::string id = started["job"];
+  EXPECT_EQ(id.size(), 32u);
+  Json st;
+  for (int i = 0; i < 600; ++i) {
+    st = Get(s, "/api/jobs/" + id);
+    if (st["state"] == "done" || st["state"] == "failed") break;
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  }
+  ASSERT_EQ(st["state"], "done") << st.dump();
+  EXPECT_EQ(st["progress"]["fraction"], 1.0);
+  Json result = st["result"];
+  Json cli = CliJson("optimize " + mission_file + " --top 3 --json");
+  result.erase("seconds");
+  cli.erase("seconds");
+  EXPECT_EQ(result, cli);
 }
 
 // The logs travel in the body; the answer is the CLI's for a file of that name.

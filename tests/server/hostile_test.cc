@@ -221,6 +221,37 @@ TEST(ServerHostile, StopEndsARunningSearch) {
   }
 }
 
+// A job cancelled mid-search finishes with its best so far; unknown jobs are 404.
+TEST(ServerHostile, OptimizeJobsCancelAndBounds) {
+  const RunningServer s;
+  const auto path = testing_util::LongSearchMission("server_job");
+  const std::string body = Json{{"mission", ReadJsonFile(path.string())}, {"top", 1}}.dump();
+  std::filesystem::remove(path);
+  const auto started = PostText(s, "/api/jobs/optimize", body);
+  ASSERT_TRUE(started);
+  ASSERT_EQ(started->status, 202) << started->body;
+  const std::string id = Json::parse(started->body)["job"];
+  std::this_thread::sleep_for(std::chrono::milliseconds(500));
+  const auto cancelled = PostText(s, "/api/jobs/" + id + "/cancel", "{}");
+  ASSERT_TRUE(cancelled);
+  EXPECT_EQ(cancelled->status, 200);
+  Json st;
+  for (int i = 0; i < 400; ++i) {
+    const auto res = s.Client()->Get(("/api/jobs/" + id).c_str());
+    ASSERT_TRUE(res);
+    st = Json::parse(res->body);
+    if (st["state"] == "done") break;
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  }
+  ASSERT_EQ(st["state"], "done") << st.dump();
+  EXPECT_TRUE(st["cancelled"].get<bool>());
+  EXPECT_TRUE(st["result"]["interrupted"].get<bool>());
+  ExpectError(s.Client()->Get("/api/jobs/0123456789abcdef0123456789abcdef"), 404, "no such job");
+  ExpectError(s.Client()->Get("/api/jobs/optimize"), 405, "use POST");
+  ExpectError(PostText(s, "/api/jobs/optimize", R"({"mission": {}, "top": -3})"), 400, "--top -3");
+  ExpectAlive(s);
+}
+
 // 200 hostile requests of every kind in a row; the server answers each and the next.
 TEST(ServerHostile, TwoHundredHostileRequests) {
   const RunningServer s;
