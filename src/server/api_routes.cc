@@ -207,13 +207,6 @@ bool IsJobRoute(const std::string& path) {
          path == "/api/calibrate" || path == "/api/diagnose";
 }
 
-std::string ErrorBody(const std::string& message, int exit_code) {
-  Json j;
-  j["error"] = message;
-  j["exit_code"] = exit_code;
-  return j.dump() + "\n";
-}
-
 ApiAnswer HandleApi(const ApiContext& context, const ApiCall& call) {
   try {
     return Route(context, call);

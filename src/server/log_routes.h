@@ -18,7 +18,7 @@
 #include <string>
 
 #include "common/json_file.h"
-#include "server/api_routes.h"
+#include "server/api_context.h"
 
 namespace dynosize::server {
 

@@ -124,6 +124,7 @@ def test_catalog(server, browser):
     entry = browser.find_element(By.ID, "cat-entry").text
     assert "tier assumed" in entry
     assert "rm_ohm" in entry and "assumed" in entry and "kv_rpm_per_v" in entry and "datasheet" in entry
+    browser.execute_script("document.querySelector('#view-catalog .list').scrollLeft = 0;")  # the click scrolled it
     screenshot(browser, "catalog.png")
 
 
