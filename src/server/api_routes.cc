@@ -20,6 +20,7 @@
 #include "study/sweep.h"
 #include "server/log_routes.h"
 #include "server/request_body.h"
+#include "server/simulate_arrays.h"
 
 namespace dynosize::server {
 
@@ -67,6 +68,7 @@ Json Simulate(const ApiContext& ctx, const ApiCall& call) {
   r.motor_id = b.Text("motor");
   r.esc_id = b.Text("esc");
   if (r.motor_id.empty() || r.esc_id.empty()) throw UsageError("simulate: 'motor' and 'esc' are required (catalog ids)");
+  if (HasPointArrays(b)) return SimulateArrays(*ctx.catalog, b);  // the Python module's batch
   r.vdc_v = b.Number("vdc_v");
   r.throttle = b.Number("throttle");
   r.torque_nm = b.Number("torque_nm");

@@ -6,6 +6,7 @@
 //   GET  /api/catalog/ID                                                    catalog show ID
 //   POST /api/simulate  {"motor", "esc", "vdc_v", "throttle", "torque_nm", "rpm", "torque_law",
 //                        "prop", "thrust_n", "rho_kg_m3"}                   simulate --json
+//                       (arrays: the Python module's simulate, server/simulate_arrays.h)
 //   POST /api/evaluate  {"mission": {...}, "motor", "esc", "prop", "battery", "pick": [...],
 //                        "cells"}                                           evaluate --json
 //   POST /api/optimize  {"mission": {...}, "top", "threads", "variants", "time_limit_s"}
