@@ -328,6 +328,9 @@ evenodd "Scorpion" "$s/Scorpion_1100kv.csv" 1100 throttle voltage_V current_A rp
 evenodd "T-Motor AT3520" "$s/TMotor_AT3520_550kv.csv" 550 throttle voltage_V current_A rpm torque_Nm
 echo >> "$out"
 
+# Propellers from their geometry (blade-element model, issue 52): UIUC by leaving each family out, APC's
+# own tables, a propeller from its size alone (about 6 min on 2 cores).
+"$exe" rotor validate --shared "$data" --plot "$here/docs/img/rotor_validation.png" >> "$out"
 if [ -f "$here/docs/validation_notes.md" ]; then cat "$here/docs/validation_notes.md" >> "$out"; fi
 # Diagnosis of the same and further logs (dynosize diagnose), with figures in docs/img.
 "$here/scripts/validation_diagnosis.sh" "$exe" "$data" >> "$out"

@@ -1,6 +1,9 @@
 #include "importers/blade_geometry.h"
 
+#include <algorithm>
 #include <array>
+#include <cctype>
+#include <filesystem>
 #include <cmath>
 #include <sstream>
 
@@ -28,9 +31,9 @@ void CheckOrThrow(const BladeGeometry& g) {
 
 }  // namespace
 
-std::vector<UiucBlade> ReadUiucGeometry(const std::string& csv_path) {
+std::vector<FamilyBlade> ReadUiucGeometry(const std::string& csv_path) {
   const CsvTable t = ReadCsv(csv_path);
-  std::vector<UiucBlade> out;
+  std::vector<FamilyBlade> out;
   std::vector<int> samples;  // per blade: how many measured samples were averaged
   std::size_t station = 0;   // index of the next station within the current sample
   for (const CsvRow& row : t.rows) {
@@ -42,7 +45,7 @@ std::vector<UiucBlade> ReadUiucGeometry(const std::string& csv_path) {
     }
     const bool same_blade = !out.empty() && out.back().geometry.name == name;
     if (!same_blade) {
-      UiucBlade b;
+      FamilyBlade b;
       b.geometry.name = name;
       b.geometry.radius_m = 0.5 * InchToMeter(*d);
       b.geometry.blades = 2;
@@ -155,6 +158,85 @@ BladeGeometry ReadApcPe0(const std::string& path) {
   return g;
 }
 
+Per3Table ReadApcPer3Csv(const std::string& path) {
+  const CsvTable t = ReadCsv(path);
+  const std::size_t c_rpm = t.Column("RPM"), c_q = t.Column("Torque (N-m)"), c_v = t.Column("V(speed) (m/s)"),
+                    c_t = t.Column("Thrust (kg)");
+  Per3Table out;
+  out.name = BaseName(path);
+  for (const CsvRow& row : t.rows) {
+    const auto rpm = ParseNumber(t.Field(row, c_rpm)), q = ParseNumber(t.Field(row, c_q)),
+               v = ParseNumber(t.Field(row, c_v)), thrust = ParseNumber(t.Field(row, c_t));
+    if (!rpm || !v) throw DataError(t.Where(row) + ": RPM and V must be numbers");
+    if (!q || !thrust) continue;  // truncated by APC
+    out.rows.push_back({*rpm, *v, KilogramForceToNewton(*thrust), *q});
+  }
+  if (out.rows.empty()) throw DataError(path + ": no row with torque and thrust");
+  return out;
+}
+
+bool ParseApcSize(const std::string& name, double* diameter_in, double* pitch_in) {
+  std::size_t i = 0;
+  auto digits = [&](double* v, std::size_t* count) {
+    const std::size_t start = i;
+    while (i < name.size() && std::isdigit(static_cast<unsigned char>(name[i]))) ++i;
+    *count = i - start;
+    if (*count == 0) return false;
+    *v = std::stod(name.substr(start, *count));
+    return true;
+  };
+  std::size_t nd = 0, np = 0;
+  double d = 0.0, p = 0.0;
+  if (!digits(&d, &nd) || i >= name.size() || name[i] != 'x') return false;
+  ++i;
+  if (!digits(&p, &np)) return false;
+  if (nd == 2 && d > 30.0 && d != 42.0) d /= 10.0;  // "95x5MR" is 9.5 in; APC's 42x2 is 42 in
+  if (np >= 2 && p > 1.5 * d) p /= 10.0;
+  *diameter_in = d;
+  *pitch_in = p;
+  return true;
+}
+
+std::vector<RotorFamily> DeriveBundledFamilies(const std::string& data_dir, const std::string& leave_out) {
+  std::vector<FamilyBlade> uiuc;
+  for (int v = 1; v <= 2; ++v) {
+    for (FamilyBlade& b : ReadUiucGeometry(data_dir + "/uiuc_propdb/volume" + std::to_string(v) + "_geom.csv")) {
+      uiuc.push_back(b);
+    }
+  }
+  auto of = [&](const std::string& family) {
+    std::vector<FamilyBlade> out;
+    for (const FamilyBlade& b : uiuc) {
+      if (b.family == family) out.push_back(b);
+    }
+    return out;
+  };
+  std::vector<FamilyBlade> mr;
+  const std::string dir = data_dir + "/apc_geometry/geometry";
+  std::vector<std::string> files;
+  for (const auto& e : std::filesystem::directory_iterator(dir)) {
+    const std::string f = e.path().filename().string();
+    if (f.size() > 11 && f.substr(f.size() - 11) == "MR-PERF.PE0") files.push_back(e.path().string());
+  }
+  std::sort(files.begin(), files.end());
+  for (const std::string& f : files) {
+    FamilyBlade b;
+    b.geometry = ReadApcPe0(f);
+    b.family = "apcmr";
+    if (!ParseApcSize(b.geometry.name, &b.diameter_in, &b.pitch_in)) {
+      throw DataError(f + ": the name does not start with <diameter>x<pitch>");
+    }
+    mr.push_back(b);
+  }
+  const std::string uiuc_src = "UIUC Propeller Data Site vol 1-2 geometry (uiuc_propdb/volume1_geom.csv, volume2_geom.csv), family ";
+  return {FamilyShape("apc_e", "APC thin electric (E)", uiuc_src + "apce", of("apce"), leave_out),
+          FamilyShape("apc_sf", "APC slow flyer (SF)", uiuc_src + "apcsf", of("apcsf"), leave_out),
+          FamilyShape("apc_sport", "APC sport", uiuc_src + "apcsp", of("apcsp"), leave_out),
+          FamilyShape("multirotor", "multirotor (APC MR planform and twist)",
+                      "APC's geometry files of its MR propellers (apc_geometry/geometry/*MR-PERF.PE0, v2022-0915)", mr,
+                      leave_out)};
+}
+
 std::string UiucBladeNameOfId(const std::string& id) {
   // uiuc_v<volume>_<family>_<DxP>_<blades>
   if (id.rfind("uiuc_v", 0) != 0) return "";
@@ -166,6 +248,36 @@ std::string UiucBladeNameOfId(const std::string& id) {
   if (sep == std::string::npos) return "";
   rest[sep] = ' ';
   return rest;
+}
+
+std::vector<RotorFitCase> UiucCases(const std::vector<PropEntry>& props,
+                                    const std::map<std::string, FamilyBlade>& blades, int max_sweep_points) {
+  std::vector<RotorFitCase> out;
+  for (const PropEntry& p : props) {
+    const auto it = blades.find(UiucBladeNameOfId(p.id));
+    if (it == blades.end()) continue;
+    RotorFitCase c;
+    c.name = p.id;
+    c.family = it->second.family;
+    c.geometry = it->second.geometry;
+    c.geometry.blades = p.blades.value_or(2);
+    const PropStaticTable& st = p.static_table;
+    for (std::size_t i = 0; i < st.rpm.size(); ++i) c.points.push_back({st.rpm[i], 0.0, st.ct[i], st.cp[i], 0.0});
+    for (const PropSweep& s : p.j_tables) {
+      std::vector<std::size_t> usable;
+      for (std::size_t i = 0; i < s.j.size(); ++i) {
+        if (s.j[i] > 0.0 && s.ct[i] > 0.0 && s.cp[i] > 0.0) usable.push_back(i);
+      }
+      const std::size_t n = usable.size();
+      const std::size_t keep = std::min<std::size_t>(n, static_cast<std::size_t>(std::max(1, max_sweep_points)));
+      for (std::size_t k = 0; k < keep; ++k) {
+        const std::size_t i = usable[keep > 1 ? k * (n - 1) / (keep - 1) : 0];
+        c.points.push_back({s.rpm, s.j[i], s.ct[i], s.cp[i], s.j[i] * s.ct[i] / s.cp[i]});
+      }
+    }
+    if (!c.points.empty()) out.push_back(std::move(c));
+  }
+  return out;
 }
 
 }  // namespace dynosize

@@ -1,5 +1,5 @@
 // The blade section of the blade-element model: a lift curve and a drag polar with Reynolds-number
-// and Mach-number corrections (docs/model.md section 13, eqs B1-B4).
+// and Mach-number corrections (docs/model.md section 13, eqs B1-B3).
 //
 //   (B1)  cl = (cl0 + cl_alpha*alpha) / sqrt(1 - M^2)       (Prandtl-Glauert, M <= kMaxMach)
 //         held at cl_max / cl_min beyond them (stall), where the drag rises by

@@ -10,7 +10,9 @@
 namespace dynosize {
 namespace {
 
-constexpr int kFitParameters = 6;  // cl0, cl_alpha, cl_max, cd0, cd2, re_exp
+constexpr int kFitParameters = 6;
+constexpr double kReExpPriorMean = -0.35;
+constexpr double kReExpPriorSigma = 0.15;  // cl0, cl_alpha, cl_max, cd0, cd2, re_exp
 
 AirfoilPolar PolarOf(const AirfoilPolar& start, const Eigen::VectorXd& x) {
   AirfoilPolar p = start;
@@ -99,6 +101,10 @@ AirfoilFitResult FitAirfoil(const std::vector<RotorFitCase>& cases, const Airfoi
   problem.num_parameters = kFitParameters;
   problem.residuals = NumericDiffResiduals(residuals);
   problem.parameter_names = {"cl0", "cl_alpha_per_rad", "cl_max", "cd0", "cd2", "re_exp"};
+  // The drag's Reynolds exponent: a prior between the laminar boundary layer's skin friction
+  // (Blasius, Cf ~ Re^-0.5) and the turbulent one's (Re^-0.2) (H. Schlichting, Boundary-Layer
+  // Theory, ch. 7 and 21): the propellers' Re span (1e4-2e5) alone barely determines it.
+  problem.priors = {{5, kReExpPriorMean, kReExpPriorSigma}};
   problem.lower_bounds = lo;
   problem.upper_bounds = hi;
   Eigen::VectorXd x(kFitParameters);

@@ -27,6 +27,13 @@ struct BladeGeometry {
   std::string source;                  // file and row, for messages
 };
 
+// A blade as a database files it: its family (e.g. UIUC's "apce") and nominal size.
+struct FamilyBlade {
+  BladeGeometry geometry;
+  std::string family;
+  double diameter_in = 0.0, pitch_in = 0.0;
+};
+
 // "" when the geometry is usable, else one line naming the station and the rule.
 std::string CheckBladeGeometry(const BladeGeometry& g);
 

@@ -18,10 +18,10 @@ constexpr double kDeg = kPi / 180.0;
 TEST(BladeGeometryReaders, UiucVolumeOne) {
   const std::string f = kData + "/uiuc_propdb/volume1_geom.csv";
   if (!std::filesystem::exists(f)) GTEST_SKIP() << "no ../shared/data/uiuc_propdb";
-  const std::vector<UiucBlade> blades = ReadUiucGeometry(f);
+  const std::vector<FamilyBlade> blades = ReadUiucGeometry(f);
   ASSERT_GE(blades.size(), 70u);
-  const UiucBlade* apce = nullptr;
-  for (const UiucBlade& b : blades) {
+  const FamilyBlade* apce = nullptr;
+  for (const FamilyBlade& b : blades) {
     if (b.geometry.name == "apce 10.0x5.0") apce = &b;
   }
   ASSERT_NE(apce, nullptr);
@@ -37,7 +37,7 @@ TEST(BladeGeometryReaders, UiucSamplesOfOneBladeAreAveraged) {
   if (!std::filesystem::exists(f)) GTEST_SKIP() << "no ../shared/data/uiuc_propdb";
   // gwsdd 2.5x0.8 was measured on several samples (rows 308-325, 326-343, ...), c/R at r/R 0.15
   // 0.3088, 0.3176, 0.3225, ...: the blade's first station is their mean, between them.
-  for (const UiucBlade& b : ReadUiucGeometry(f)) {
+  for (const FamilyBlade& b : ReadUiucGeometry(f)) {
     if (b.geometry.name != "gwsdd 2.5x0.8") continue;
     EXPECT_EQ(b.geometry.stations.size(), 18u);
     EXPECT_GT(b.geometry.stations[0].chord_over_r, 0.3088);

@@ -1,0 +1,188 @@
+#include "importers/sized_prop.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "common/error.h"
+#include "common/text_format.h"
+#include "common/units.h"
+#include "catalog/catalog.h"
+#include "importers/blade_geometry.h"
+#include "importers/csv.h"
+#include "importers/import_common.h"
+#include "rotor/bemt.h"
+#include "rotor/family.h"
+#include "prop/prop_model.h"
+#include "rotor/uiuc_polar.h"
+
+namespace dynosize {
+namespace {
+
+constexpr int kStaticSpeeds = 12;
+constexpr int kSweepPoints = 14;
+constexpr double kSweepTipSpeeds[] = {100.0, 160.0, 220.0};
+
+std::string InchText(double m) { return SignificantText(m / 0.0254, 4); }
+
+}  // namespace
+
+PropSize ParsePropParam(const std::string& text) {
+  PropSize s;
+  const std::string rule = "--prop-param '" + text + "': must be DxP or DxPxB, inches, e.g. 40x13 or 40x13x3";
+  std::vector<std::string> parts;
+  std::size_t start = 0;
+  for (std::size_t i = 0; i <= text.size(); ++i) {
+    if (i == text.size() || text[i] == 'x' || text[i] == 'X') {
+      parts.push_back(text.substr(start, i - start));
+      start = i + 1;
+    }
+  }
+  if (parts.size() < 2 || parts.size() > 3) throw UsageError(rule);
+  const auto d = ParseNumber(parts[0]), p = ParseNumber(parts[1]);
+  if (!d || !p || !(*d > 0.0) || !(*p > 0.0)) throw UsageError(rule);
+  if (*d > 400.0) throw UsageError(rule + " (diameter above 400 in)");
+  s.diameter_m = InchToMeter(*d);
+  s.pitch_m = InchToMeter(*p);
+  if (parts.size() == 3) {
+    const auto b = ParseNumber(parts[2]);
+    if (!b || *b != std::floor(*b) || *b < 1 || *b > 8) throw UsageError(rule + " (blades 1-8)");
+    s.blades = static_cast<int>(*b);
+  }
+  return s;
+}
+
+Json SizedPropJson(const PropSize& size) {
+  const std::string family_id = size.family.empty() ? DefaultFamilyId(size.diameter_m, size.pitch_m) : size.family;
+  const RotorFamily* family = FindFamily(family_id);
+  if (family == nullptr) {
+    std::string known;
+    for (const RotorFamily& f : BundledFamilies()) known += (known.empty() ? "" : ", ") + f.id;
+    throw UsageError("propeller family '" + family_id + "' is not bundled: known are " + known);
+  }
+  return SizedPropJson(size, *family);
+}
+
+Json SizedPropJson(const PropSize& size, const RotorFamily& fam) {
+  const RotorFamily* family = &fam;
+  const std::string& family_id = fam.id;
+  BladeGeometry blade = SizedBlade(*family, size.diameter_m, size.pitch_m, size.blades);
+  const std::string dims = InchText(size.diameter_m) + "x" + InchText(size.pitch_m) + "x" + std::to_string(size.blades);
+  blade.name = family_id + " " + dims;
+  const Bemt bemt(blade, kUiucFittedPolar);
+  const double d = size.diameter_m;
+  Json stat = {{"rpm", Json::array()}, {"ct", Json::array()}, {"cp", Json::array()}};
+  for (int i = 0; i < kStaticSpeeds; ++i) {
+    const double tip = kSizedTipSpeedMin * std::pow(kSizedTipSpeedMax / kSizedTipSpeedMin, i / (kStaticSpeeds - 1.0));
+    const double omega = tip / (0.5 * d);
+    const BemtPoint p = bemt.Evaluate(omega, 0.0, kIsaSeaLevelRhoKgM3);
+    stat["rpm"].push_back(RoundSig(RadPerSecToRpm(omega), 6));
+    stat["ct"].push_back(RoundSig(p.ct, 5));
+    stat["cp"].push_back(RoundSig(p.cp, 5));
+  }
+  Json sweeps = Json::array();
+  // J up to past zero thrust: the geometric pitch ratio at 0.75 R, with margin.
+  const double j_max = 1.3 * GeometricPitchM(blade, 0.75) / d + 0.1;
+  for (const double tip : kSweepTipSpeeds) {
+    const double omega = tip / (0.5 * d);
+    Json sw = {{"rpm", RoundSig(RadPerSecToRpm(omega), 6)}, {"j", Json::array()}, {"ct", Json::array()}, {"cp", Json::array()}};
+    for (int k = 1; k <= kSweepPoints; ++k) {
+      const double j = j_max * k / kSweepPoints;
+      const BemtPoint p = bemt.EvaluateAtAdvanceRatio(omega, j, kIsaSeaLevelRhoKgM3);
+      if (!(p.ct > 0.0) || !(p.cp > 0.0)) break;
+      sw["j"].push_back(RoundSig(j, 5));
+      sw["ct"].push_back(RoundSig(p.ct, 5));
+      sw["cp"].push_back(RoundSig(p.cp, 5));
+    }
+    if (!sw["j"].empty()) sweeps.push_back(sw);
+  }
+  Json e;
+  e["id"] = "sized_" + family_id + "_" + dims;
+  e["name"] = "sized " + dims + " in, " + family->description + " (blade-element model)";
+  e["diameter_m"] = RoundSig(size.diameter_m, 6);
+  e["pitch_m"] = RoundSig(size.pitch_m, 6);
+  e["blades"] = size.blades;
+  e["static_table"] = stat;
+  if (!sweeps.empty()) e["j_tables"] = sweeps;
+  e["source"] = {{"dataset", "dynosize blade-element model (src/rotor, docs/model.md section 13)"},
+                 {"reference", "family " + family_id + ": " + family->source},
+                 {"values", {{"diameter_m", "datasheet"}, {"pitch_m", "datasheet"}, {"blades", "datasheet"},
+                             {"static_table", "estimated"}, {"j_tables", "estimated"}}},
+                 {"note", "geometry of the family scaled to the size (eq B12), polar fitted on UIUC's measured propellers "
+                          "(rotor/uiuc_polar.h); the family's blades span " + SignificantText(family->d_min_in, 3) + "-" +
+                          SignificantText(family->d_max_in, 3) + " in and pitch ratios " +
+                          SignificantText(family->pd_min, 2) + "-" + SignificantText(family->pd_max, 2)},
+                 {"tier", "estimated"}};
+  return e;
+}
+
+namespace {
+
+double Quantile(std::vector<double> v, double q) {
+  std::sort(v.begin(), v.end());
+  const double pos = q * static_cast<double>(v.size() - 1);
+  const std::size_t i = static_cast<std::size_t>(pos);
+  return i + 1 < v.size() ? v[i] + (pos - static_cast<double>(i)) * (v[i + 1] - v[i]) : v[i];
+}
+
+}  // namespace
+
+SizeOnlyCheck CheckSizeOnly(const std::vector<PropEntry>& measured, const std::string& data, double min_diameter_m) {
+  SizeOnlyCheck out;
+  std::vector<int> prop_of_point;
+  for (const PropEntry& p : measured) {
+    if (p.tier != DataTier::kMeasured || p.static_table.rpm.empty() || p.diameter_m < min_diameter_m || !p.pitch_m ||
+        !p.exclude_reason.empty()) {
+      continue;
+    }
+    PropSize size{p.diameter_m, *p.pitch_m, p.blades.value_or(2), ""};
+    const std::string family_id = DefaultFamilyId(size.diameter_m, size.pitch_m);
+    RotorFamily family;
+    for (const RotorFamily& f : DeriveBundledFamilies(data, UiucBladeNameOfId(p.id))) {
+      if (f.id == family_id) family = f;
+    }
+    const PropEntry sized = PropEntryFromJson(SizedPropJson(size, family));
+    const PropModel model(sized);
+    for (std::size_t i = 0; i < p.static_table.rpm.size(); ++i) {
+      const PropEvaluation e = model.Evaluate(RpmToRadPerSec(p.static_table.rpm[i]), kIsaSeaLevelRhoKgM3);
+      out.points.push_back({p.id, family_id, p.diameter_m / 0.0254, p.static_table.rpm[i],
+                            p.static_table.ct[i] / e.ct, p.static_table.cp[i] / e.cp});
+      prop_of_point.push_back(out.props);
+    }
+    ++out.props;
+  }
+  if (out.points.empty()) return out;
+  std::vector<double> t_all, q_all, t_med, q_med;
+  for (const SizeOnlyPoint& s : out.points) {
+    t_all.push_back(s.thrust_ratio);
+    q_all.push_back(s.torque_ratio);
+  }
+  out.thrust_p10 = Quantile(t_all, 0.1);
+  out.thrust_p90 = Quantile(t_all, 0.9);
+  out.torque_p10 = Quantile(q_all, 0.1);
+  out.torque_p90 = Quantile(q_all, 0.9);
+  int t_in = 0, q_in = 0;
+  for (int k = 0; k < out.props; ++k) {
+    std::vector<double> t_other, q_other, t_own, q_own;
+    for (std::size_t i = 0; i < out.points.size(); ++i) {
+      (prop_of_point[i] == k ? t_own : t_other).push_back(out.points[i].thrust_ratio);
+      (prop_of_point[i] == k ? q_own : q_other).push_back(out.points[i].torque_ratio);
+    }
+    std::vector<double> te, qe;
+    for (double r : t_own) te.push_back(std::fabs(1.0 / r - 1.0));
+    for (double r : q_own) qe.push_back(std::fabs(1.0 / r - 1.0));
+    t_med.push_back(Quantile(te, 0.5));
+    q_med.push_back(Quantile(qe, 0.5));
+    if (t_other.empty()) continue;
+    const double t10 = Quantile(t_other, 0.1), t90 = Quantile(t_other, 0.9);
+    const double q10 = Quantile(q_other, 0.1), q90 = Quantile(q_other, 0.9);
+    for (double r : t_own) t_in += (r >= t10 && r <= t90) ? 1 : 0;
+    for (double r : q_own) q_in += (r >= q10 && r <= q90) ? 1 : 0;
+  }
+  out.thrust_median = Quantile(t_med, 0.5);
+  out.torque_median = Quantile(q_med, 0.5);
+  out.thrust_coverage = static_cast<double>(t_in) / static_cast<double>(out.points.size());
+  out.torque_coverage = static_cast<double>(q_in) / static_cast<double>(out.points.size());
+  return out;
+}
+
+}  // namespace dynosize

@@ -1,0 +1,82 @@
+#include "rotor/family.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "common/error.h"
+#include "common/text_format.h"
+#include "common/units.h"
+
+namespace dynosize {
+namespace {
+
+double FamilyStation(int k) { return kFamilyFirstStation + kFamilyStationStep * k; }
+
+}  // namespace
+
+RotorFamily FamilyShape(const std::string& id, const std::string& description, const std::string& source,
+                        const std::vector<FamilyBlade>& blades, const std::string& leave_out) {
+  RotorFamily f;
+  f.id = id;
+  f.description = description;
+  f.source = source;
+  f.d_min_in = 1e300;
+  f.pd_min = 1e300;
+  for (const FamilyBlade& b : blades) {
+    if (b.geometry.name == leave_out || !(b.pitch_in > 0.0)) continue;
+    ++f.blades_averaged;
+    f.d_min_in = std::min(f.d_min_in, b.diameter_in);
+    f.d_max_in = std::max(f.d_max_in, b.diameter_in);
+    f.pd_min = std::min(f.pd_min, b.pitch_in / b.diameter_in);
+    f.pd_max = std::max(f.pd_max, b.pitch_in / b.diameter_in);
+    const double pitch_m = InchToMeter(b.pitch_in);
+    for (int k = 0; k < kFamilyStations; ++k) {
+      const double x = FamilyStation(k);
+      f.chord_over_r[k] += InterpolateStation(b.geometry, x).chord_over_r;
+      f.pitch_over_nominal[k] += GeometricPitchM(b.geometry, x) / pitch_m;
+    }
+  }
+  if (f.blades_averaged == 0) throw UsageError("family " + id + ": no blade to average");
+  for (int k = 0; k < kFamilyStations; ++k) {
+    f.chord_over_r[k] /= f.blades_averaged;
+    f.pitch_over_nominal[k] /= f.blades_averaged;
+  }
+  return f;
+}
+
+BladeGeometry SizedBlade(const RotorFamily& f, double diameter_m, double pitch_m, int blades) {
+  if (!(diameter_m > 0.0) || !std::isfinite(diameter_m)) {
+    throw UsageError("propeller diameter " + SignificantText(diameter_m) + " m must be > 0");
+  }
+  if (!(pitch_m > 0.0) || !(pitch_m <= 2.0 * diameter_m)) {
+    throw UsageError("propeller pitch " + SignificantText(pitch_m) + " m must be > 0 and at most 2 diameters");
+  }
+  if (blades < 1 || blades > 8) throw UsageError("propeller blades " + std::to_string(blades) + " must be 1-8");
+  BladeGeometry g;
+  g.radius_m = 0.5 * diameter_m;
+  g.blades = blades;
+  g.root_r_over_r = kFamilyFirstStation;
+  g.source = "family " + f.id;
+  for (int k = 0; k < kFamilyStations; ++k) {
+    const double x = FamilyStation(k);
+    BladeStation s;
+    s.r_over_r = x;
+    s.chord_over_r = f.chord_over_r[k];
+    s.beta_rad = std::atan(pitch_m * f.pitch_over_nominal[k] / (2.0 * kPi * x * g.radius_m));
+    g.stations.push_back(s);
+  }
+  return g;
+}
+
+const RotorFamily* FindFamily(const std::string& id) {
+  for (const RotorFamily& f : BundledFamilies()) {
+    if (f.id == id) return &f;
+  }
+  return nullptr;
+}
+
+std::string DefaultFamilyId(double diameter_m, double pitch_m) {
+  return diameter_m >= InchToMeter(12.0) && pitch_m <= 0.5 * diameter_m ? "multirotor" : "apc_e";
+}
+
+}  // namespace dynosize

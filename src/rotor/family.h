@@ -1,0 +1,52 @@
+// Propeller families: a blade shape in non-dimensional form, so that a propeller given only by its
+// diameter, pitch and blade count can be built and run through the blade-element model
+// (docs/model.md section 13, eq B12):
+//   (B12) c(r) = R * c/R_family(x),   beta(r) = atan(P * p_family(x) / (2*pi*x*R)),   x = r/R
+// c/R_family is the mean chord over radius of the family's measured blades, p_family(x) their
+// mean local geometric pitch 2*pi*x*R*tan(beta(x)) over the nominal pitch of their name, both on
+// the stations x = 0.15, 0.20, ..., 1.00. The bundled families (rotor/family_data.cc) are printed
+// from the data by `dynosize rotor families --shared ../shared/data` and checked against it in
+// tests/rotor/family_test.cc. No I/O.
+#pragma once
+
+#include <array>
+#include <string>
+#include <vector>
+
+#include "rotor/blade.h"
+
+namespace dynosize {
+
+inline constexpr int kFamilyStations = 18;
+inline constexpr double kFamilyFirstStation = 0.15;
+inline constexpr double kFamilyStationStep = 0.05;
+
+struct RotorFamily {
+  std::string id;           // "apc_e"
+  std::string description;  // "APC thin electric (E)"
+  std::string source;       // which data, how many blades
+  int blades_averaged = 0;
+  double d_min_in = 0.0, d_max_in = 0.0;    // the measured blades' diameters
+  double pd_min = 0.0, pd_max = 0.0;        // and pitch ratios
+  std::array<double, kFamilyStations> chord_over_r{};
+  std::array<double, kFamilyStations> pitch_over_nominal{};
+};
+
+// The mean shape of `blades` (each with its nominal pitch in FamilyBlade::pitch_in), leaving out
+// the blade named `leave_out` (""= none). Throws UsageError when no blade is left.
+RotorFamily FamilyShape(const std::string& id, const std::string& description, const std::string& source,
+                        const std::vector<FamilyBlade>& blades, const std::string& leave_out = "");
+
+// Eq B12: the blade of a family at a size. Throws UsageError for a diameter, pitch or blade
+// count out of range (D > 0, P > 0, P/D <= 2, 1-8 blades).
+BladeGeometry SizedBlade(const RotorFamily& family, double diameter_m, double pitch_m, int blades);
+
+// The bundled families (rotor/family_data.cc).
+const std::vector<RotorFamily>& BundledFamilies();
+// nullptr when no bundled family has that id.
+const RotorFamily* FindFamily(const std::string& id);
+// The family a size alone picks: multirotor propellers (pitch ratio <= 0.5 from 12 in) take the
+// multirotor shape, others APC's thin electric one (the commonest electric propeller).
+std::string DefaultFamilyId(double diameter_m, double pitch_m);
+
+}  // namespace dynosize
