@@ -183,6 +183,8 @@ api::SimulateRequest RequestOf(const SimulateOptions& o) {
   r.rpm = o.rpm;
   r.torque_law = o.torque_law;
   r.prop_id = o.prop_id;
+  r.prop_param = o.prop_param;
+  r.prop_family = o.prop_family;
   r.thrust_n = o.thrust_n;
   r.rho_kg_m3 = o.rho_kg_m3;
   return r;
@@ -190,7 +192,7 @@ api::SimulateRequest RequestOf(const SimulateOptions& o) {
 
 // simulate --prop: a point (--throttle, --rpm or --thrust-n) or the table over throttle.
 int RunSimulateProp(const SimulateOptions& o) {
-  if (!o.prop_id.empty() && !o.batch_csv.empty()) {
+  if ((!o.prop_id.empty() || !o.prop_param.empty()) && !o.batch_csv.empty()) {
     throw UsageError("--prop does not go with --batch: name the propeller per row in a 'prop' column");
   }
   if (!o.out_csv.empty() && !o.prop_id.empty()) throw UsageError("--out goes with --batch");
@@ -200,7 +202,7 @@ int RunSimulateProp(const SimulateOptions& o) {
   const Catalog catalog = Catalog::Load(o.catalog);
   const MotorEntry& motor = catalog.motor(o.motor_id);
   const EscEntry& esc = catalog.esc(o.esc_id);
-  const PropEntry& prop_entry = catalog.prop(o.prop_id);
+  const PropEntry prop_entry = api::ResolveProp(catalog, request);
   const Gear& gear = motor.gear;
   const std::string title = motor.name + " + " + esc.name + " + " + prop_entry.name;
   const std::string assumed = api::AssumedNote(motor, esc, &prop_entry);
@@ -292,8 +294,8 @@ void PrintPointWithRange(const SimulateOptions& o, const PointRequest& req, cons
 }  // namespace
 
 int RunSimulate(const SimulateOptions& o) {
-  if (!o.prop_id.empty() || o.thrust_n) {
-    if (!o.batch_csv.empty() && o.prop_id.empty()) {
+  if (!o.prop_id.empty() || !o.prop_param.empty() || o.thrust_n) {
+    if (!o.batch_csv.empty() && o.prop_id.empty() && o.prop_param.empty()) {
       throw UsageError("--thrust-n does not go with --batch: use a thrust_n column");
     }
     return RunSimulateProp(o);

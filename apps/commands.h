@@ -27,6 +27,8 @@ struct SimulateOptions {
   // A catalog propeller as the load: with --throttle (forward), --rpm or --thrust-n
   // (the throttle solved), or alone (the manufacturer-style table over throttle).
   std::string prop_id;
+  // Or a propeller from its size alone (importers/sized_prop.h): "DxP[xB]" inches, its family.
+  std::string prop_param, prop_family;
   std::optional<double> thrust_n;
   double rho_kg_m3 = 1.225;
 };
@@ -76,6 +78,19 @@ struct InSystemLawOptions {
   std::string plot_png;  // measured vs predicted figure of the KDE sheets
 };
 int RunInSystemLaw(const InSystemLawOptions& o);
+
+// `dynosize rotor validate` (apps/cmd_rotor.cc).
+struct RotorValidateOptions {
+  CatalogFolders catalog;
+  std::string shared_data_dir;
+  int threads = 2;
+  bool constants = false;  // print kUiucFittedPolar as src/rotor/uiuc_polar.h holds it
+  bool size_only = false;  // only the check of a propeller from its size alone
+  std::string plot_png;
+};
+int RunRotorValidate(const RotorValidateOptions& o);
+// `dynosize rotor families --shared DIR`: prints src/rotor/family_data.cc from the data.
+int RunRotorFamilies(const std::string& shared_data_dir);
 
 struct CalibrateOptions {
   CatalogFolders catalog;  // --catalog, --catalog-add, --override (catalog/catalog_path.h)

@@ -79,6 +79,12 @@ CLI::App* AddSimulateCommand(CLI::App& app, cli::SimulateOptions& sim) {
   simulate->add_option("--prop", sim.prop_id,
                        "catalog propeller as the load: with --throttle (forward), --rpm or --thrust-n "
                        "(throttle solved), or alone (the table over throttle: thrust, current, rpm, g/W)");
+  simulate->add_option("--prop-param", sim.prop_param,
+                       "instead of --prop, a propeller from its size alone: DxP or DxPxB in inches (e.g. 40x13x2), "
+                       "its blade from a family run through the blade-element model (docs/model.md section 13)");
+  simulate->add_option("--prop-family", sim.prop_family,
+                       "with --prop-param: apc_e, apc_sf, apc_sport or multirotor (default: multirotor from 12 in "
+                       "at pitch/diameter <= 0.5, else apc_e)");
   simulate->add_option("--thrust-n", sim.thrust_n, "with --prop: the static thrust to hold, N");
   simulate->add_option("--rho-kg-m3", sim.rho_kg_m3, "with --prop: air density, kg/m^3 (default 1.225)");
   simulate->add_flag("--json", sim.json, "print one JSON object");
@@ -300,6 +306,34 @@ CLI::App* AddValidateStandCommand(CLI::App& app, cli::ValidateStandOptions& vst)
   return validate_stand;
 }
 
+struct RotorCli {
+  cli::RotorValidateOptions validate;
+  CLI::App* validate_cmd = nullptr;
+  std::string families_shared;
+  CLI::App* families_cmd = nullptr;
+};
+
+void AddRotorCommands(CLI::App& app, RotorCli& r) {
+  cli::RotorValidateOptions& rv = r.validate;
+  auto* rotor = app.add_subcommand("rotor", "propellers and rotors from their blade geometry (blade-element "
+                                            "momentum theory, docs/model.md section 13)");
+  rotor->require_subcommand(1);
+  rotor->fallthrough();
+  auto* validate = rotor->add_subcommand(
+      "validate", "check the blade-element model against UIUC's measured propellers by leaving each family out, "
+                  "and against APC's own tables (markdown; docs/validation.md)");
+  validate->add_option("--shared", rv.shared_data_dir, "the shared data folder (../shared/data)")->required();
+  validate->add_option("--threads", rv.threads, "folds fitted at once")->check(CLI::Range(1, 64));
+  validate->add_flag("--constants", rv.constants,
+                     "print the polar fitted on every family as src/rotor/uiuc_polar.h holds it");
+  validate->add_option("--plot", rv.plot_png, "write the measured-vs-model figure to this PNG");
+  validate->add_flag("--size-only", rv.size_only, "only the check of a propeller from its size alone (seconds)");
+  r.validate_cmd = validate;
+  r.families_cmd = rotor->add_subcommand(
+      "families", "print src/rotor/family_data.cc: the propeller families' blade shapes derived from the data");
+  r.families_cmd->add_option("--shared", r.families_shared, "the shared data folder (../shared/data)")->required();
+}
+
 CLI::App* AddServeCommand(CLI::App& app, cli::ServeCliOptions& sv) {
   auto* serve = app.add_subcommand(
       "serve", "serve the web page (drive calculator, catalog, mission optimizer) and its JSON API on this "
@@ -356,15 +390,17 @@ int main(int argc, char** argv) {
   CLI::App* sweep = AddSweepCommand(app, sw);
   cli::ServeCliOptions sv;
   CLI::App* serve = AddServeCommand(app, sv);
+  RotorCli rot;
+  AddRotorCommands(app, rot);
 
   if (argc > 1 && argv[1][0] != '-') {
     const std::string first = argv[1];
     if (first != "simulate" && first != "catalog" && first != "calibrate" && first != "diagnose" &&
         first != "evaluate" && first != "optimize" && first != "validate-stand" && first != "sweep" &&
-        first != "serve") {
+        first != "serve" && first != "rotor") {
       return Fail(ExitCode::kUsage, "unknown subcommand '" + first +
                                         "': valid are simulate, calibrate, diagnose, catalog, evaluate, "
-                                        "optimize, sweep, validate-stand, serve (see 'dynosize --help')");
+                                        "optimize, sweep, validate-stand, serve, rotor (see 'dynosize --help')");
     }
   }
   try {
@@ -417,6 +453,11 @@ int main(int argc, char** argv) {
       sv.catalog = dir;
       return cli::RunServe(sv);
     }
+    if (*rot.validate_cmd) {
+      rot.validate.catalog = dir;
+      return cli::RunRotorValidate(rot.validate);
+    }
+    if (*rot.families_cmd) return cli::RunRotorFamilies(rot.families_shared);
     if (*validate_stand) {
       vst.catalog = dir;
       return cli::RunValidateStand(vst);

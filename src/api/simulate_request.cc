@@ -1,10 +1,13 @@
 #include "api/simulate_request.h"
 
+#include "importers/sized_prop.h"
+
 #include <cmath>
 
 #include "api/simulate.h"
 #include "common/error.h"
 #include "common/text_format.h"
+#include "importers/sized_prop.h"
 #include "model/drive.h"
 #include "model/gear.h"
 #include "prop/prop_model.h"
@@ -68,8 +71,17 @@ PointRequest PointRequestOf(const SimulateRequest& r) {
   return req;
 }
 
+PropEntry ResolveProp(const Catalog& catalog, const SimulateRequest& r) {
+  if (!r.prop_param.empty() && !r.prop_id.empty()) throw UsageError("--prop and --prop-param: give one propeller");
+  if (!r.prop_family.empty() && r.prop_param.empty()) throw UsageError("--prop-family goes with --prop-param");
+  if (r.prop_param.empty()) return catalog.prop(r.prop_id);
+  PropSize size = ParsePropParam(r.prop_param);
+  size.family = r.prop_family;
+  return PropEntryFromJson(SizedPropJson(size));
+}
+
 PropPointRequest PropPointRequestOf(const SimulateRequest& r) {
-  if (r.prop_id.empty()) throw UsageError("--thrust-n needs --prop (the propeller that gives the thrust)");
+  if (r.prop_id.empty() && r.prop_param.empty()) throw UsageError("--thrust-n needs --prop (the propeller that gives the thrust)");
   if (r.torque_nm || !r.torque_law.empty()) {
     throw UsageError("--prop is the load: do not combine it with --torque or --torque-law");
   }
@@ -109,7 +121,7 @@ Json SimulateJson(const Catalog& catalog, const SimulateRequest& r) {
     const PropPointRequest req = PropPointRequestOf(r);
     const MotorEntry& motor = catalog.motor(r.motor_id);
     const EscEntry& esc = catalog.esc(r.esc_id);
-    const PropEntry& prop = catalog.prop(r.prop_id);
+    const PropEntry prop = ResolveProp(catalog, r);
     if (IsPointRequest(r)) return PropPointRunJson(RunPropPoint(motor, esc, prop, req), motor, esc, prop, r.rho_kg_m3);
     // The table is the propeller's: solved at its shaft through the gearbox (model/gear.h).
     const Drive drive(MotorAtPropellerShaft(motor.params, motor.gear), esc.params);

@@ -22,12 +22,20 @@ struct SimulateRequest {
   std::optional<double> vdc_v, throttle, torque_nm, rpm;
   std::vector<double> torque_law;  // a, b, c of Q = a + b*omega + c*omega^2 (SI), or empty
   std::string prop_id;             // a catalog propeller as the load
+  // Or a propeller from its size alone: "DxP[xB]" in inches and a family ("" = the default);
+  // importers/sized_prop.h.
+  std::string prop_param, prop_family;
   std::optional<double> thrust_n;  // with prop_id: the static thrust to hold, N
   double rho_kg_m3 = 1.225;
 };
 
 // Whether the request names a propeller (or a thrust, which needs one): the propeller path.
-inline bool IsPropRequest(const SimulateRequest& r) { return !r.prop_id.empty() || r.thrust_n.has_value(); }
+inline bool IsPropRequest(const SimulateRequest& r) {
+  return !r.prop_id.empty() || !r.prop_param.empty() || r.thrust_n.has_value();
+}
+// The request's propeller: the catalog's prop_id, or the sized propeller of prop_param
+// (importers/sized_prop.h). Throws UsageError for both or a bad size, DataError for an unknown id.
+PropEntry ResolveProp(const Catalog& catalog, const SimulateRequest& r);
 // Whether it asks for one point (else the table over throttle).
 bool IsPointRequest(const SimulateRequest& r);
 

@@ -178,6 +178,21 @@ DataTier InferTier(ComponentKind kind, const Json& src) {
   return t;
 }
 
+// An entry's assumed keys and tier from its (valid) source object: the tier stated, else inferred.
+void FillSourceFields(ComponentKind kind, const Json& src, EntryBase* base) {
+  if (const auto vals = src.find("values"); vals != src.end()) {
+    for (auto m = vals->begin(); m != vals->end(); ++m) {
+      if (m->get<std::string>() == "assumed") base->assumed_keys.push_back(m.key());
+    }
+  }
+  if (const auto t = src.find("tier"); t != src.end()) {
+    base->tier = TierFromName(t->get<std::string>());
+    base->tier_stated = true;
+  } else {
+    base->tier = InferTier(kind, src);
+  }
+}
+
 DataTier InferTierFromValues(ComponentKind kind, const Json& src) {
   const auto vals = src.find("values");
   if (vals == src.end() || !vals->is_object()) return DataTier::kAssumed;
@@ -513,6 +528,9 @@ PropEntry PropEntryFromJson(const Json& e) {
   base.id = e.value("id", std::string());
   base.name = e.value("name", std::string());
   base.json = e;
+  if (const auto src = e.find("source"); src != e.end() && src->is_object()) {
+    FillSourceFields(ComponentKind::kProp, *src, &base);
+  }
   return PropFromJson(e, std::move(base));
 }
 
@@ -705,17 +723,7 @@ void Catalog::AddDocument(const Json& doc, const std::string& file,
       base.name = e["name"].get<std::string>();
       base.file = file;
       base.json = e;
-      if (const auto vals = src->find("values"); vals != src->end()) {
-        for (auto m = vals->begin(); m != vals->end(); ++m) {
-          if (m->get<std::string>() == "assumed") base.assumed_keys.push_back(m.key());
-        }
-      }
-      if (const auto t = src->find("tier"); t != src->end()) {
-        base.tier = TierFromName(t->get<std::string>());
-        base.tier_stated = true;
-      } else {
-        base.tier = InferTier(kind, *src);
-      }
+      FillSourceFields(kind, *src, &base);
       if (const auto x = e.find("exclude"); x != e.end()) base.exclude_reason = x->get<std::string>();
       const std::string violation = AddEntry(kind, e, std::move(base));
       if (!violation.empty()) {

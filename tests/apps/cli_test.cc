@@ -195,3 +195,29 @@ TEST(Cli, SimulatePropWithAGearedMotorReportsBothSpeeds) {
 
 }  // namespace
 }  // namespace dynosize
+
+namespace dynosize {
+namespace {
+
+TEST(CliRotor, SimulateWithAPropellerFromItsSize) {
+  const testing_util::CliRun r = testing_util::RunCli(
+      "simulate --motor hl_m_kde7215xf_135 --esc kde_e_uas125uvc --prop-param 27.5x8.9x2 --vdc 44.4 --throttle 0.7 --json");
+  ASSERT_EQ(r.code, 0) << r.err;
+  const Json j = Json::parse(r.out);
+  EXPECT_GT(j.dump().find("sized_multirotor_27.5x8.9x2"), 0u);
+  const testing_util::CliRun both = testing_util::RunCli(
+      "simulate --motor hl_m_kde7215xf_135 --esc kde_e_uas125uvc --prop kde_p_27.5x8.9x2 --prop-param 27.5x8.9 --vdc 44.4");
+  EXPECT_EQ(both.code, 64);
+  EXPECT_NE(both.err.find("give one propeller"), std::string::npos) << both.err;
+  const testing_util::CliRun bad = testing_util::RunCli(
+      "simulate --motor hl_m_kde7215xf_135 --esc kde_e_uas125uvc --prop-param 27.5 --vdc 44.4");
+  EXPECT_EQ(bad.code, 64);
+  EXPECT_NE(bad.err.find("DxP"), std::string::npos) << bad.err;
+  const testing_util::CliRun fam = testing_util::RunCli(
+      "simulate --motor hl_m_kde7215xf_135 --esc kde_e_uas125uvc --prop-param 27.5x8.9 --prop-family wood --vdc 44.4");
+  EXPECT_EQ(fam.code, 64);
+  EXPECT_NE(fam.err.find("known are"), std::string::npos) << fam.err;
+}
+
+}  // namespace
+}  // namespace dynosize
