@@ -314,6 +314,31 @@ function renderResults(doc, ms) {
   if (res.length) renderSegments(res[0], 0);
 }
 
+// The Pareto front as optimize --plot draws it: every evaluated combination, the front, the picks.
+function renderPareto(pareto, results) {
+  if (typeof Chart === "undefined" || !pareto) return;
+  if (charts["chart-pareto"]) charts["chart-pareto"].destroy();
+  const xy = (pairs) => pairs.filter((p) => p[1] !== null).map(([x, y]) => ({ x, y }));
+  const display = (r) => (r.objective_unit === "s" ? r.objective / 60 : r.objective);
+  const unit = pareto.unit.trim();
+  charts["chart-pareto"] = new Chart($("chart-pareto"), {
+    type: "scatter",
+    data: {
+      datasets: [
+        { label: `evaluated (${pareto.evaluated})`, data: xy(pareto.all), pointRadius: 1.5, backgroundColor: "#9a9a9a" },
+        { label: "Pareto front", data: xy(pareto.front), showLine: true, borderColor: "#d62728", backgroundColor: "#d62728", pointRadius: 3 },
+        { label: "top picks", data: results.map((r) => ({ x: r.propulsion_mass_kg, y: display(r) })), pointRadius: 7,
+          pointStyle: "circle", borderColor: "#1f77b4", backgroundColor: "rgba(31,119,180,0.2)", borderWidth: 2 },
+      ],
+    },
+    options: {
+      animation: false, responsive: true, maintainAspectRatio: false,
+      plugins: { title: { display: true, text: `objective (${unit}) vs propulsion mass` } },
+      scales: { x: { title: { display: true, text: "propulsion mass kg" } }, y: { title: { display: true, text: unit } } },
+    },
+  });
+}
+
 function renderSegments(r, i) {
   const box = $("mission-detail");
   box.replaceChildren(Object.assign(document.createElement("h2"), { textContent: `#${i + 1}: operating point per segment` }));
@@ -371,6 +396,7 @@ async function runMission(ev) {
         (p.best_objective !== null ? `, best ${p.best_objective.toFixed(2)}${p.unit}` : "");
       if (st.state === "done") {
         renderResults(st.result, performance.now() - t0);
+        renderPareto(st.pareto, st.result.results);
         break;
       }
       if (st.state === "failed") throw new Error(st.error.error);

@@ -480,24 +480,34 @@ std::string NoDesignText(const SearchResult& s) {
   return out;
 }
 
-std::string WriteParetoFigure(const Mission& m, const SearchResult& s, const std::string& dir) {
-  MakeOutputDir(dir);
-  std::vector<std::pair<double, double>> pts;
-  for (const auto& p : s.evaluated_mass_objective) pts.emplace_back(p.first, Display(m, p.second));
+ParetoPoints ParetoPointsOf(const Mission& m, const SearchResult& s) {
+  ParetoPoints out;
+  for (const auto& p : s.evaluated_mass_objective) out.all.emplace_back(p.first, Display(m, p.second));
   const bool larger_better = m.objective.type != ObjectiveType::kMinEnergy;
-  std::sort(pts.begin(), pts.end());
-  DataBlock all{"all", {}, false}, front{"front", {}, false}, top{"top", {}, false};
-  std::vector<double> ax, ay, fx, fy, tx, ty;
+  std::sort(out.all.begin(), out.all.end());
   double best = larger_better ? -1e300 : 1e300;
-  for (const auto& p : pts) {
-    ax.push_back(p.first);
-    ay.push_back(p.second);
+  for (const auto& p : out.all) {
     const bool better = larger_better ? p.second > best : p.second < best;
     if (better) {  // non-dominated: lighter ones are all worse
       best = p.second;
-      fx.push_back(p.first);
-      fy.push_back(p.second);
+      out.front.push_back(p);
     }
+  }
+  return out;
+}
+
+std::string WriteParetoFigure(const Mission& m, const SearchResult& s, const std::string& dir) {
+  MakeOutputDir(dir);
+  const ParetoPoints pareto = ParetoPointsOf(m, s);
+  DataBlock all{"all", {}, false}, front{"front", {}, false}, top{"top", {}, false};
+  std::vector<double> ax, ay, fx, fy, tx, ty;
+  for (const auto& p : pareto.all) {
+    ax.push_back(p.first);
+    ay.push_back(p.second);
+  }
+  for (const auto& p : pareto.front) {
+    fx.push_back(p.first);
+    fy.push_back(p.second);
   }
   std::vector<double> tlo, thi;  // objective_range of the picks (credibility.h)
   for (const auto& b : s.best) {

@@ -45,6 +45,14 @@ std::string AlternativesText(const Mission& mission, const RankedCombination& r,
 // The lines of an interrupted search: why, and the proven bound gap ("" when not interrupted).
 std::string InterruptedText(const Mission& mission, const SearchResult& s, int top_n);
 
+// The Pareto figure's data: every evaluated combination as (propulsion mass kg, objective in
+// the unit reports print it, DisplayObjective), sorted by mass, and the non-dominated front
+// among them (each point better than every lighter one). The web page draws the same.
+struct ParetoPoints {
+  std::vector<std::pair<double, double>> all, front;
+};
+ParetoPoints ParetoPointsOf(const Mission& mission, const SearchResult& s);
+
 // pareto_front.png: every evaluated combination (objective vs propulsion mass), the
 // non-dominated front and the top picks. Returns the PNG path.
 std::string WriteParetoFigure(const Mission& mission, const SearchResult& s, const std::string& dir);

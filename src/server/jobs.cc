@@ -24,7 +24,7 @@ struct OptimizeJobs::Job {
   SearchProgress progress;
   double display_best = 0.0;
   std::string unit;
-  Json result;
+  Json result, pareto;
   ApiAnswer error;
 };
 
@@ -46,6 +46,24 @@ std::string NewJobId() {
 }
 
 ApiAnswer JsonAnswer(int status, const Json& j) { return {status, DumpJson(j)}; }
+
+// The page's Pareto chart (report/mission_report.h ParetoPointsOf, as optimize --plot draws it):
+// [mass kg, objective] pairs, every evaluated combination (an even sample of kMaxParetoPoints
+// when there are more) and the front.
+constexpr std::size_t kMaxParetoPoints = 20000;
+Json ParetoJson(const Mission& mission, const SearchResult& s) {
+  const ParetoPoints p = ParetoPointsOf(mission, s);
+  Json all = Json::array(), front = Json::array();
+  const std::size_t stride = p.all.size() / kMaxParetoPoints + 1;
+  for (std::size_t i = 0; i < p.all.size(); i += stride) all.push_back({p.all[i].first, NumberOrNull(p.all[i].second)});
+  for (const auto& [mass, objective] : p.front) front.push_back({mass, NumberOrNull(objective)});
+  Json j;
+  j["unit"] = DisplayUnit(mission);
+  j["evaluated"] = p.all.size();
+  j["all"] = std::move(all);
+  j["front"] = std::move(front);
+  return j;
+}
 
 }  // namespace
 
@@ -116,10 +134,13 @@ ApiAnswer OptimizeJobs::Start(const std::string& body) {
       job->display_best = p.has_best ? DisplayObjective(mission, p.best_objective) : 0.0;
     };
     try {
-      Json result = SearchResultJson(mission, SearchCatalog(mission, *catalog, work.options));
+      const SearchResult s = SearchCatalog(mission, *catalog, work.options);
+      Json result = SearchResultJson(mission, s);
       CheckJsonFinite(result, "optimize result");
+      Json pareto = ParetoJson(mission, s);
       const std::lock_guard<std::mutex> lock(job->m);
       job->result = std::move(result);
+      job->pareto = std::move(pareto);
       job->state = "done";
     } catch (const std::exception& e) {
       const auto* err = dynamic_cast<const Error*>(&e);
@@ -160,7 +181,10 @@ ApiAnswer OptimizeJobs::Status(const std::string& id) {
   p["unit"] = job->unit;
   j["progress"] = p;
   j["cancelled"] = job->cancel.load();
-  if (job->state == "done") j["result"] = job->result;
+  if (job->state == "done") {
+    j["result"] = job->result;
+    j["pareto"] = job->pareto;
+  }
   if (job->state == "failed") j["error"] = Json::parse(job->error.body);
   return JsonAnswer(200, j);
 }

@@ -3,7 +3,9 @@
 //   GET  /api/jobs/ID            {"job", "state": queued | running | done | failed, "seconds",
 //                                 "progress": {"fraction", "searched", "pruned", "found",
 //                                 "best_objective" (in the unit the CLI prints), "unit"},
-//                                 "result": optimize --json when done, "error" when failed}
+//                                 "result": optimize --json when done, "error" when failed,
+//                                 "pareto": {"unit", "evaluated", "all", "front"} when done:
+//                                 [mass kg, objective] as optimize --plot's Pareto figure}
 //   POST /api/jobs/ID/cancel     stops the search: it finishes with the best so far (its result
 //                                 says "interrupted": true), as Ctrl-C does on the CLI
 // A job runs on its own thread through the server's job queue (server/job_queue.h). At most

@@ -120,6 +120,11 @@ TEST(ServerCli, OptimizeJobEqualsTheCli) {
   }
   ASSERT_EQ(st["state"], "done") << st.dump();
   EXPECT_EQ(st["progress"]["fraction"], 1.0);
+  // The Pareto figure's data beside the result: the front's best is the pick's objective.
+  const Json& front = st["pareto"]["front"];
+  ASSERT_FALSE(front.empty());
+  EXPECT_EQ(st["pareto"]["unit"], " min");
+  EXPECT_NEAR(front.back()[1].get<double>(), st["result"]["results"][0]["objective"].get<double>() / 60.0, 0.5);
   Json result = st["result"];
   Json cli = CliJson("optimize " + mission_file + " --top 3 --json");
   result.erase("seconds");
