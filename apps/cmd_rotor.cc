@@ -15,10 +15,13 @@
 #include "apps/commands.h"
 #include "catalog/catalog.h"
 #include "common/error.h"
+#include "common/json_file.h"
+#include "common/units.h"
 #include "common/text_format.h"
 #include "importers/blade_geometry.h"
 #include "importers/sized_prop.h"
 #include "report/rotor_figures.h"
+#include "rotor/parametric.h"
 #include "rotor/uiuc_polar.h"
 #include "rotor/validation.h"
 
@@ -181,6 +184,47 @@ int RunRotorValidate(const RotorValidateOptions& o) {
     WriteRotorValidationFigure(r, o.plot_png);
     std::printf("Figure: %s\n\n", o.plot_png.c_str());
   }
+  return 0;
+}
+
+int RunRotorHover(const RotorHoverOptions& o) {
+  ParametricRotor p;
+  p.radius_m = 0.5 * o.diameter_m;
+  p.blades = o.blades;
+  p.solidity = o.solidity;
+  p.twist_deg = o.twist_deg;
+  p.taper = o.taper;
+  p.root_cutout = o.root_cutout;
+  const std::string bad = CheckParametricRotor(p);
+  if (!bad.empty()) throw UsageError(bad);
+  const HoverDesign d = DesignHover(p, kUiucFittedPolar, o.thrust_n, o.rho_kg_m3, o.tip_mach_max);
+  const BemtPoint& b = d.point;
+  if (o.json) {
+    Json j = {{"feasible", d.feasible}, {"limit", d.limit}, {"message", d.message},
+              {"collective_deg", d.collective_deg}, {"rpm", RadPerSecToRpm(b.omega_rad_s)},
+              {"thrust_n", b.thrust_n}, {"torque_nm", b.torque_nm}, {"power_w", b.power_w},
+              {"figure_of_merit", b.figure_of_merit}, {"tip_mach", b.tip_mach}, {"ct_over_sigma", b.ct_over_sigma},
+              {"stalled_span", b.stalled_span}, {"reynolds_75", b.mean_reynolds},
+              {"disk_loading_n_m2", d.disk_loading_n_m2}, {"power_loading_n_w", d.power_loading_n_w},
+              {"induced_velocity_m_s", d.induced_velocity_m_s}, {"polar", "src/rotor/uiuc_polar.h"}};
+    std::cout << DumpJson(j);
+    return 0;
+  }
+  std::printf("rotor D %.3f m, %d blades, solidity %.3f, twist %.1f deg, taper %.2f, root cut-out %.2f\n", o.diameter_m,
+              p.blades, p.solidity, p.twist_deg, p.taper, p.root_cutout);
+  std::printf("  hover thrust   %10.1f N at rho %.3f kg/m^3 (disk loading %.0f N/m^2)\n", o.thrust_n, o.rho_kg_m3,
+              d.disk_loading_n_m2);
+  std::printf("  collective     %10.2f deg at 0.75 R (best figure of merit)\n", d.collective_deg);
+  std::printf("  speed          %10.0f rpm (tip Mach %.3f, limit %.2f)\n", RadPerSecToRpm(b.omega_rad_s), b.tip_mach,
+              o.tip_mach_max);
+  std::printf("  power          %10.1f W, torque %.1f N*m, power loading %.2f N/W\n", b.power_w, b.torque_nm,
+              d.power_loading_n_w);
+  std::printf("  figure of merit %9.3f (momentum theory: 1; induced velocity %.2f m/s)\n", b.figure_of_merit,
+              d.induced_velocity_m_s);
+  std::printf("  blade loading  %10.3f CT/sigma (limit %.2f), %.0f %% of the span past stall, Re_75 %.2g\n",
+              b.ct_over_sigma, kMaxBladeLoading, 100.0 * b.stalled_span, b.mean_reynolds);
+  std::printf("  %s\n", d.limit.empty() ? "no limit binds" : ("limited by " + d.limit + ": " + d.message).c_str());
+  if (!d.feasible) std::printf("  NOT FEASIBLE: the values above are the rotor at its tip Mach limit\n");
   return 0;
 }
 

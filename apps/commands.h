@@ -89,6 +89,15 @@ struct RotorValidateOptions {
   std::string plot_png;
 };
 int RunRotorValidate(const RotorValidateOptions& o);
+// `dynosize rotor hover`: a parametric rotor's best hover design at a thrust (rotor/parametric.h).
+struct RotorHoverOptions {
+  double diameter_m = 0.0;
+  int blades = 3;
+  double solidity = 0.10, twist_deg = -10.0, taper = 1.0, root_cutout = 0.2;
+  double thrust_n = 0.0, rho_kg_m3 = 1.225, tip_mach_max = 0.7;
+  bool json = false;
+};
+int RunRotorHover(const RotorHoverOptions& o);
 // `dynosize rotor families --shared DIR`: prints src/rotor/family_data.cc from the data.
 int RunRotorFamilies(const std::string& shared_data_dir);
 

@@ -311,7 +311,26 @@ struct RotorCli {
   CLI::App* validate_cmd = nullptr;
   std::string families_shared;
   CLI::App* families_cmd = nullptr;
+  cli::RotorHoverOptions hover;
+  CLI::App* hover_cmd = nullptr;
 };
+
+void AddRotorHoverCommand(CLI::App* rotor, RotorCli& r) {
+  cli::RotorHoverOptions& h = r.hover;
+  r.hover_cmd = rotor->add_subcommand(
+      "hover", "a parametric rotor (eVTOL class) at a hover thrust: the collective and speed of the best figure "
+               "of merit within the tip Mach limit, its power, blade loading and what limits it");
+  r.hover_cmd->add_option("--diameter-m", h.diameter_m, "rotor diameter, m")->required()->check(CLI::Range(0.05, 40.0));
+  r.hover_cmd->add_option("--thrust-n", h.thrust_n, "hover thrust of this rotor, N")->required()->check(CLI::PositiveNumber);
+  r.hover_cmd->add_option("--blades", h.blades, "blades (2-8)")->check(CLI::Range(2, 8));
+  r.hover_cmd->add_option("--solidity", h.solidity, "blade area over disk area (0.02-0.3; default 0.10)");
+  r.hover_cmd->add_option("--twist-deg", h.twist_deg, "linear twist, tip minus root, deg (default -10)");
+  r.hover_cmd->add_option("--taper", h.taper, "tip chord over root chord (default 1)");
+  r.hover_cmd->add_option("--root-cutout", h.root_cutout, "r/R where the blade starts (default 0.2)");
+  r.hover_cmd->add_option("--tip-mach-max", h.tip_mach_max, "tip Mach limit (default 0.7)");
+  r.hover_cmd->add_option("--rho-kg-m3", h.rho_kg_m3, "air density, kg/m^3 (default 1.225)");
+  r.hover_cmd->add_flag("--json", h.json, "print one JSON object");
+}
 
 void AddRotorCommands(CLI::App& app, RotorCli& r) {
   cli::RotorValidateOptions& rv = r.validate;
@@ -332,6 +351,7 @@ void AddRotorCommands(CLI::App& app, RotorCli& r) {
   r.families_cmd = rotor->add_subcommand(
       "families", "print src/rotor/family_data.cc: the propeller families' blade shapes derived from the data");
   r.families_cmd->add_option("--shared", r.families_shared, "the shared data folder (../shared/data)")->required();
+  AddRotorHoverCommand(rotor, r);
 }
 
 CLI::App* AddServeCommand(CLI::App& app, cli::ServeCliOptions& sv) {
@@ -458,6 +478,7 @@ int main(int argc, char** argv) {
       return cli::RunRotorValidate(rot.validate);
     }
     if (*rot.families_cmd) return cli::RunRotorFamilies(rot.families_shared);
+    if (*rot.hover_cmd) return cli::RunRotorHover(rot.hover);
     if (*validate_stand) {
       vst.catalog = dir;
       return cli::RunValidateStand(vst);

@@ -330,7 +330,8 @@ echo >> "$out"
 
 # Propellers from their geometry (blade-element model, issue 52): UIUC by leaving each family out, APC's
 # own tables, a propeller from its size alone (about 6 min on 2 cores).
-"$exe" rotor validate --shared "$data" --plot "$here/docs/img/rotor_validation.png" >> "$out"
+"$exe" rotor validate --shared "$data" --plot "$here/docs/img/rotor_validation.png" |
+  sed 's|^Figure: .*/\(rotor_validation.png\)$|![UIUC propellers from their geometry](img/\1)|' >> "$out"
 if [ -f "$here/docs/validation_notes.md" ]; then cat "$here/docs/validation_notes.md" >> "$out"; fi
 # Diagnosis of the same and further logs (dynosize diagnose), with figures in docs/img.
 "$here/scripts/validation_diagnosis.sh" "$exe" "$data" >> "$out"
