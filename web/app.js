@@ -265,6 +265,75 @@ async function loadExamples() {
   }
 }
 
+// The mission as a form: the scalar and list values of vehicle, air, battery, constraints and
+// objective, and a table of the segments. Editing a field writes the JSON text; editing the
+// text redraws the form. Lists are written "3, 4"; an empty field removes the key.
+const FORM_SECTIONS = ["vehicle", "air", "battery", "constraints", "objective"];
+function fieldText(v) { return Array.isArray(v) ? v.join(", ") : String(v); }
+function fieldValue(text, old) {
+  const one = (t) => (t !== "" && !isNaN(Number(t)) && typeof (Array.isArray(old) ? old[0] : old) !== "string" ? Number(t) : t);
+  if (Array.isArray(old) || text.includes(",")) return text.split(",").map((t) => one(t.trim())).filter((t) => t !== "");
+  return one(text.trim());
+}
+function formInput(obj, key, onChange) {
+  const input = document.createElement("input");
+  input.value = fieldText(obj[key]);
+  if (typeof obj[key] === "string" || Array.isArray(obj[key])) input.className = "text";
+  input.addEventListener("change", () => {
+    if (input.value.trim() === "") delete obj[key]; else obj[key] = fieldValue(input.value, obj[key]);
+    onChange();
+  });
+  return input;
+}
+function renderMissionForm() {
+  const box = $("mission-form-fields");
+  box.replaceChildren();
+  let m;
+  try { m = JSON.parse($("mission-json").value); } catch (e) { return; }
+  if (!m || typeof m !== "object") return;
+  const write = () => { $("mission-json").value = JSON.stringify(m, null, 2); };
+  for (const section of FORM_SECTIONS) {
+    if (!m[section] || typeof m[section] !== "object" || Array.isArray(m[section])) continue;
+    const fs = document.createElement("fieldset");
+    fs.appendChild(Object.assign(document.createElement("legend"), { textContent: section }));
+    for (const [k, v] of Object.entries(m[section])) {
+      if (v !== null && typeof v === "object" && !Array.isArray(v)) continue;
+      const label = document.createElement("label");
+      label.append(k, formInput(m[section], k, write));
+      fs.appendChild(label);
+    }
+    box.appendChild(fs);
+  }
+  if (Array.isArray(m.segments)) {
+    const keys = [...new Set(m.segments.flatMap((s) => Object.keys(s)))];
+    const table = document.createElement("table");
+    table.id = "mission-segments-form";
+    const tbody = header(table, keys.map((k) => [k, "text"]));
+    for (const seg of m.segments) {
+      const tr = tbody.insertRow();
+      for (const k of keys) {
+        const td = tr.insertCell();
+        if (k in seg && (typeof seg[k] !== "object" || Array.isArray(seg[k]))) td.appendChild(formInput(seg, k, write));
+      }
+    }
+    const fs = document.createElement("fieldset");
+    fs.appendChild(Object.assign(document.createElement("legend"), { textContent: "segments" }));
+    const wrap = Object.assign(document.createElement("div"), { className: "scroll" });
+    wrap.appendChild(table);
+    fs.appendChild(wrap);
+    box.appendChild(fs);
+  }
+}
+
+async function loadMissionFile() {
+  showError("mission-error", null);
+  const file = $("mission-file").files[0];
+  if (!file) return;
+  $("mission-json").value = await file.text();
+  $("mission-status").textContent = `loaded ${file.name}`;
+  renderMissionForm();
+}
+
 async function loadExample() {
   showError("mission-error", null);
   try {
@@ -272,6 +341,7 @@ async function loadExample() {
     if (!res.ok) throw new Error(`example ${$("mission-example").value}: HTTP ${res.status}`);
     $("mission-json").value = await res.text();
     $("mission-status").textContent = `loaded ${$("mission-example").value}`;
+    renderMissionForm();
     $("mission-table").replaceChildren();
     $("mission-detail").replaceChildren();
   } catch (err) {
@@ -545,6 +615,8 @@ document.addEventListener("DOMContentLoaded", () => {
   $("mission-form").addEventListener("submit", runMission);
   $("mission-load").addEventListener("click", loadExample);
   $("mission-cancel").addEventListener("click", cancelMission);
+  $("mission-file").addEventListener("change", loadMissionFile);
+  $("mission-json").addEventListener("change", renderMissionForm);
   $("cal-form").addEventListener("submit", (ev) => { ev.preventDefault(); runLogs("calibrate"); });
   $("diag-run").addEventListener("click", () => runLogs("diagnose"));
   initDrive();

@@ -135,6 +135,15 @@ def test_mission_optimizer(server, browser):
     assert Select(browser.find_element(By.ID, "mission-example")).first_selected_option.text == "quadcopter_1p5kg"
     browser.find_element(By.ID, "mission-load").click()
     wait.until(lambda d: "quadcopter" in d.find_element(By.ID, "mission-json").get_attribute("value"))
+    # The form shows the mission's values; a change there is written into the JSON.
+    mass = browser.find_element(By.CSS_SELECTOR, "#mission-form-fields fieldset input")
+    assert mass.get_attribute("value") == "0.75"
+    mass.clear()
+    mass.send_keys("0.8\t")
+    assert json.loads(browser.find_element(By.ID, "mission-json").get_attribute("value"))["vehicle"]["mass_kg"] == 0.8
+    mass.clear()
+    mass.send_keys("0.75\t")
+    assert json.loads(browser.find_element(By.ID, "mission-json").get_attribute("value"))["vehicle"]["mass_kg"] == 0.75
     t0 = time.monotonic()
     browser.find_element(By.ID, "mission-run").click()
     wait = WebDriverWait(browser, 120)
