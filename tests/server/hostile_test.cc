@@ -214,7 +214,9 @@ TEST(ServerHostile, StopEndsARunningSearch) {
   std::this_thread::sleep_for(std::chrono::milliseconds(300));
   const auto t0 = std::chrono::steady_clock::now();
   s->Stop();
-  EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(), 10.0);
+  // The search looks at its stop flag between chunks: about 2 s here in Release, 9 s under
+  // ASan (its set-up before the first chunk); the bound says it returns, not how fast.
+  EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(), 60.0);
   const auto res = running.get();
   if (res) {  // or the connection closed with the server
     EXPECT_TRUE(Json::parse(res->body)["interrupted"].get<bool>()) << res->body;
