@@ -6,6 +6,7 @@
 #include "common/error.h"
 #include "common/text_format.h"
 #include "common/units.h"
+#include "fit/statistics.h"
 #include "catalog/catalog.h"
 #include "importers/blade_geometry.h"
 #include "importers/csv.h"
@@ -16,6 +17,8 @@
 #include "rotor/uiuc_polar.h"
 
 namespace dynosize {
+
+using fit::Quantile;
 namespace {
 
 constexpr int kStaticSpeeds = 12;
@@ -114,17 +117,6 @@ Json SizedPropJson(const PropSize& size, const RotorFamily& fam) {
                  {"tier", "estimated"}};
   return e;
 }
-
-namespace {
-
-double Quantile(std::vector<double> v, double q) {
-  std::sort(v.begin(), v.end());
-  const double pos = q * static_cast<double>(v.size() - 1);
-  const std::size_t i = static_cast<std::size_t>(pos);
-  return i + 1 < v.size() ? v[i] + (pos - static_cast<double>(i)) * (v[i + 1] - v[i]) : v[i];
-}
-
-}  // namespace
 
 SizeOnlyCheck CheckSizeOnly(const std::vector<PropEntry>& measured, const std::string& data, double min_diameter_m) {
   SizeOnlyCheck out;

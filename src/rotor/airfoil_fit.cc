@@ -5,9 +5,12 @@
 
 #include "common/error.h"
 #include "common/units.h"
+#include "fit/statistics.h"
 #include "fit/nonlinear_least_squares.h"
 
 namespace dynosize {
+
+using fit::Median;
 namespace {
 
 constexpr int kFitParameters = 6;
@@ -25,11 +28,6 @@ AirfoilPolar PolarOf(const AirfoilPolar& start, const Eigen::VectorXd& x) {
   return p;
 }
 
-double Median(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  const std::size_t n = v.size();
-  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-}
 
 // CT0, CP0 of eq B11: the median static coefficients, or the median of all points without a
 // static one.

@@ -6,22 +6,12 @@
 
 #include "common/text_format.h"
 #include "common/units.h"
+#include "fit/statistics.h"
 #include "common/worker_threads.h"
 
 namespace dynosize {
-namespace {
 
-double Quantile(std::vector<double> v, double q) {
-  if (v.empty()) return std::nan("");
-  std::sort(v.begin(), v.end());
-  const double pos = q * static_cast<double>(v.size() - 1);
-  const std::size_t i = static_cast<std::size_t>(pos);
-  const double f = pos - static_cast<double>(i);
-  return i + 1 < v.size() ? v[i] + f * (v[i + 1] - v[i]) : v[i];
-}
-
-}  // namespace
-
+using fit::Quantile;
 ErrorSummary Summarize(const std::vector<CasePrediction>& points, int props) {
   ErrorSummary s;
   s.props = props;
