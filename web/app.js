@@ -150,6 +150,58 @@ function renderMotorTable(doc) {
   lineChart("chart-current", "IDC at best efficiency", "A", xs, rows.map((r) => r.at_max_efficiency.idc_a));
 }
 
+// The system-efficiency map over torque and speed at the pack voltage (as simulate --plot's
+// efficiency map): one array request of the inverse model (torque and rpm given, throttle
+// solved) on a 36 x 28 grid framed by the propeller's line, which is drawn over it. Points the
+// drive cannot hold (throttle above one, a limit) are left out.
+function etaColor(eta, lo, hi) {
+  const t = Math.max(0, Math.min(1, (eta - lo) / Math.max(hi - lo, 1e-9)));
+  const hue = 240 - 240 * t;  // blue (low) .. red (high)
+  return `hsl(${hue.toFixed(0)}, 75%, 50%)`;
+}
+
+async function renderEfficiencyMap(doc) {
+  if (typeof Chart === "undefined" || !doc.prop) return;
+  const rows = doc.throttles.filter((r) => r.rpm > 0 && r.torque_nm > 0);
+  if (!rows.length) return;
+  const rpmMax = 1.15 * Math.max(...rows.map((r) => r.rpm)), qMax = 1.3 * Math.max(...rows.map((r) => r.torque_nm));
+  const rpm = [], torque = [];
+  for (let i = 1; i <= 36; i++) {
+    for (let j = 1; j <= 28; j++) {
+      rpm.push((rpmMax * i) / 36);
+      torque.push((qMax * j) / 28);
+    }
+  }
+  const grid = await api("/api/simulate", { motor: doc.motor, esc: doc.esc, vdc_v: doc.vdc_v, rpm, torque_nm: torque });
+  const points = [];
+  grid.rpm.forEach((r, k) => {
+    if (grid.feasible[k] && grid.eta_system[k] !== null) points.push({ x: r, y: grid.torque_nm[k], eta: grid.eta_system[k] });
+  });
+  const etas = points.map((p) => p.eta);
+  const lo = Math.max(0, Math.min(...etas)), hi = Math.max(...etas);
+  const colors = points.map((p) => etaColor(p.eta, lo, hi));
+  if (charts["chart-map"]) charts["chart-map"].destroy();
+  charts["chart-map"] = new Chart($("chart-map"), {
+    type: "scatter",
+    data: {
+      datasets: [
+        { label: "propeller", data: rows.map((r) => ({ x: r.rpm, y: r.torque_nm })), showLine: true, borderColor: "#000",
+          backgroundColor: "#000", pointRadius: 3, order: 0 },
+        { label: `η system (blue ${(100 * lo).toFixed(0)} % .. red ${(100 * hi).toFixed(0)} %)`, data: points, pointStyle: "rect", pointRadius: 4,
+          backgroundColor: colors, borderWidth: 0, order: 1 },
+      ],
+    },
+    options: {
+      animation: false, responsive: true, maintainAspectRatio: false,
+      plugins: {
+        title: { display: true, text: `system efficiency over torque and speed at ${doc.vdc_v} V` },
+        tooltip: { callbacks: { label: (c) => (c.raw.eta !== undefined ? `η ${(100 * c.raw.eta).toFixed(1)} %` : `${c.raw.x.toFixed(0)} rpm`) } },
+      },
+      scales: { x: { title: { display: true, text: "rpm" } }, y: { title: { display: true, text: "torque N·m" } } },
+    },
+  });
+}
+
 async function runDrive(ev) {
   if (ev) ev.preventDefault();
   showError("drive-error", null);
@@ -162,6 +214,12 @@ async function runDrive(ev) {
       ` (${ms.toFixed(0)} ms)`;
     $("drive-notes").textContent = doc.assumed ? `results rest on assumed catalog values (${doc.assumed})` : "";
     document.body.dataset.driveMs = ms.toFixed(1);
+    if (doc.prop) {
+      await renderEfficiencyMap(doc);
+    } else if (charts["chart-map"]) {
+      charts["chart-map"].destroy();
+      delete charts["chart-map"];
+    }
   } catch (err) {
     showError("drive-error", err);
   }
