@@ -345,6 +345,11 @@ Json PropPointRunJson(const PropPointRun& run, const MotorEntry& motor, const Es
   j["motor"] = motor.id;
   j["esc"] = esc.id;
   j["prop"] = prop.id;
+  j["prop_torque_nm"] = run.point.prop.torque_nm;
+  j["prop_power_w"] = run.point.prop.power_w;
+  // Where the propeller's numbers come from (for a sized propeller: its family, the model, the
+  // measured range of the size-only estimate; importers/sized_prop.h).
+  if (const auto src = prop.json.find("source"); src != prop.json.end()) j["prop_source"] = *src;
   j["rho_kg_m3"] = rho_kg_m3;
   const std::string assumed = AssumedNote(motor, esc, &prop);
   if (!assumed.empty()) j["assumed"] = assumed;

@@ -113,7 +113,10 @@ Json SizedPropJson(const PropSize& size, const RotorFamily& fam) {
                  {"note", "geometry of the family scaled to the size (eq B12), polar fitted on UIUC's measured propellers "
                           "(rotor/uiuc_polar.h); the family's blades span " + SignificantText(family->d_min_in, 3) + "-" +
                           SignificantText(family->d_max_in, 3) + " in and pitch ratios " +
-                          SignificantText(family->pd_min, 2) + "-" + SignificantText(family->pd_max, 2)},
+                          SignificantText(family->pd_min, 2) + "-" + SignificantText(family->pd_max, 2) +
+                          "; measured/predicted p10-p90 of propellers of 12 in and more left out (docs/validation.md): "
+                          "thrust " + FixedText(kSizedThrustRatioP10, 2) + "-" + FixedText(kSizedThrustRatioP90, 2) +
+                          ", torque " + FixedText(kSizedTorqueRatioP10, 2) + "-" + FixedText(kSizedTorqueRatioP90, 2)},
                  {"tier", "estimated"}};
   return e;
 }

@@ -32,6 +32,12 @@ PropSize ParsePropParam(const std::string& text);
 inline constexpr double kSizedTipSpeedMin = 40.0;
 inline constexpr double kSizedTipSpeedMax = 260.0;
 
+// The range a sized propeller carries: measured/predicted static thrust and torque, p10 and p90
+// over the 43 measured propellers of 12 in and more, each left out of its family (CheckSizeOnly;
+// docs/validation.md, "A propeller from its size alone"; tests/rotor/family_test.cc recomputes them).
+inline constexpr double kSizedThrustRatioP10 = 0.903, kSizedThrustRatioP90 = 1.245;
+inline constexpr double kSizedTorqueRatioP10 = 0.914, kSizedTorqueRatioP90 = 1.270;
+
 // The catalog JSON of the sized propeller: id "sized_<family>_<D>x<P>x<B>", static_table and
 // j_tables computed. Throws UsageError for an unknown family or a size out of range.
 Json SizedPropJson(const PropSize& size);

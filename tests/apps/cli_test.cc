@@ -204,7 +204,12 @@ TEST(CliRotor, SimulateWithAPropellerFromItsSize) {
       "simulate --motor hl_m_kde7215xf_135 --esc kde_e_uas125uvc --prop-param 27.5x8.9x2 --vdc 44.4 --throttle 0.7 --json");
   ASSERT_EQ(r.code, 0) << r.err;
   const Json j = Json::parse(r.out);
-  EXPECT_GT(j.dump().find("sized_multirotor_27.5x8.9x2"), 0u);
+  EXPECT_EQ(j.at("prop").get<std::string>(), "sized_multirotor_27.5x8.9x2");
+  EXPECT_GT(j.at("thrust_n").get<double>(), 0.0);
+  EXPECT_GT(j.at("prop_torque_nm").get<double>(), 0.0);
+  EXPECT_NEAR(j.at("prop_power_w").get<double>(), j.at("pmech_w").get<double>(), 1e-6 * j.at("pmech_w").get<double>());
+  EXPECT_EQ(j.at("prop_source").at("tier").get<std::string>(), "estimated");
+  EXPECT_NE(j.at("prop_source").at("reference").get<std::string>().find("family multirotor"), std::string::npos);
   const testing_util::CliRun both = testing_util::RunCli(
       "simulate --motor hl_m_kde7215xf_135 --esc kde_e_uas125uvc --prop kde_p_27.5x8.9x2 --prop-param 27.5x8.9 --vdc 44.4");
   EXPECT_EQ(both.code, 64);

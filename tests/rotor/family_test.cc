@@ -94,6 +94,11 @@ TEST(SizedProp, LeftOutMeasuredPropellersMeetTheGoals) {
   // The p10-p90 range of the other propellers covers about 80 % of each one's points (78 %).
   EXPECT_GT(c.thrust_coverage, 0.7);
   EXPECT_GT(c.torque_coverage, 0.7);
+  // The range the sized entries carry is this check's (printed to 3 decimals).
+  EXPECT_NEAR(c.thrust_p10, kSizedThrustRatioP10, 6e-4);
+  EXPECT_NEAR(c.thrust_p90, kSizedThrustRatioP90, 6e-4);
+  EXPECT_NEAR(c.torque_p10, kSizedTorqueRatioP10, 6e-4);
+  EXPECT_NEAR(c.torque_p90, kSizedTorqueRatioP90, 6e-4);
 }
 
 TEST(UiucPolar, PredictsUiucStaticThrustNearItsValidation) {
