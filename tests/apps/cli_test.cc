@@ -199,7 +199,7 @@ TEST(Cli, SimulatePropWithAGearedMotorReportsBothSpeeds) {
 namespace dynosize {
 namespace {
 
-TEST(CliRotor, SimulateWithAPropellerFromItsSize) {
+TEST(Cli, SimulateWithAPropellerFromItsSize) {
   const testing_util::CliRun r = testing_util::RunCli(
       "simulate --motor hl_m_kde7215xf_135 --esc kde_e_uas125uvc --prop-param 27.5x8.9x2 --vdc 44.4 --throttle 0.7 --json");
   ASSERT_EQ(r.code, 0) << r.err;
