@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "api/mission_run.h"
+#include "api/mission_catalog.h"
 #include "catalog/catalog.h"
 #include "commands.h"
 #include "common/json_file.h"
@@ -16,7 +17,9 @@ namespace dynosize::cli {
 
 int RunEvaluate(const EvaluateOptions& o) {
   const Mission mission = ReadMission(o.mission);
-  const Catalog cat = Catalog::Load(o.catalog);
+  const Catalog loaded = Catalog::Load(o.catalog);
+  const api::MissionCatalog mission_catalog(loaded, mission);  // with the mission's sized propellers
+  const Catalog& cat = mission_catalog.get();
   const Combination c =
       api::ChooseCombination(mission, cat, {o.motor_id, o.esc_id, o.prop_id, o.battery_id, o.picks, o.cells});
   const MissionResult r = api::EvaluateCombination(mission, c);

@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "api/mission_run.h"
+#include "api/mission_catalog.h"
 #include "catalog/catalog.h"
 #include "commands.h"
 #include "interrupt.h"
@@ -95,7 +96,9 @@ int RunOptimize(const OptimizeOptions& o) {
   SearchOptions so = api::OptimizeSearchOptions({o.top, o.threads, o.variants, o.time_limit_s});
   so.stop = &SigintToFlag::Flag();
   const Mission mission = ReadMission(o.mission);
-  const Catalog cat = Catalog::Load(o.catalog);
+  const Catalog loaded = Catalog::Load(o.catalog);
+  const api::MissionCatalog mission_catalog(loaded, mission);  // with the mission's sized propellers
+  const Catalog& cat = mission_catalog.get();
   bool shown = false;
   if (!o.json && !o.quiet && isatty(fileno(stderr))) so.progress = ProgressLine(mission, o, &shown);
   const SearchResult s = SearchCatalog(mission, cat, so);

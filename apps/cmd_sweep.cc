@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "api/mission_run.h"
+#include "api/mission_catalog.h"
 #include "catalog/catalog.h"
 #include "commands.h"
 #include "common/error.h"
@@ -51,7 +52,9 @@ int RunSweep(const SweepCliOptions& o) {
   const study::SweepPlan plan = study::PlanSweep(ReadJsonFile(o.mission), o.mission, std::move(vary), o.yes);
   const std::vector<study::VaryKey>& keys = plan.keys;
   const Mission base = ParseMission(plan.doc, plan.name);
-  const Catalog cat = Catalog::Load(o.catalog);  // once, for every point
+  const Catalog loaded = Catalog::Load(o.catalog);  // once, for every point
+  const api::MissionCatalog mission_catalog(loaded, base);  // with the mission's sized propellers
+  const Catalog& cat = mission_catalog.get();
   bool shown = false;
   if (!o.quiet && isatty(fileno(stderr))) so.progress = SweepProgressLine(&shown);
   const study::SweepResult r = study::RunSweep(plan.doc, plan.name, cat, keys, so);

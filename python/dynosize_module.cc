@@ -18,6 +18,7 @@
 #include "api/calibrate.h"
 #include "api/catalog_json.h"
 #include "api/diagnose.h"
+#include "api/mission_catalog.h"
 #include "api/mission_run.h"
 #include "api/simulate.h"
 #include "catalog/catalog.h"
@@ -251,7 +252,8 @@ py::object Evaluate(const py::object& mission_arg, const std::string& motor, con
                     const std::string& prop, const std::string& battery, const std::vector<std::string>& pick,
                     int cells, const PyCatalog* catalog) {
   const dynosize::Mission mission = MissionOf(mission_arg);
-  const dynosize::Catalog& cat = CatalogOr(catalog).get();
+  const dynosize::api::MissionCatalog mission_catalog(CatalogOr(catalog).get(), mission);
+  const dynosize::Catalog& cat = mission_catalog.get();
   const dynosize::Combination c = dynosize::api::ChooseCombination(mission, cat, {motor, esc, prop, battery, pick, cells});
   dynosize::MissionResult r;
   {
@@ -269,7 +271,8 @@ py::object Optimize(const py::object& mission_arg, int top, int threads, bool va
   }
   dynosize::SearchOptions so = dynosize::api::OptimizeSearchOptions({top, threads, variants, time_limit_s});
   const dynosize::Mission mission = MissionOf(mission_arg);
-  const dynosize::Catalog& cat = CatalogOr(catalog).get();
+  const dynosize::api::MissionCatalog mission_catalog(CatalogOr(catalog).get(), mission);
+  const dynosize::Catalog& cat = mission_catalog.get();
   dynosize::SearchResult s;
   {
     py::gil_scoped_release release;
@@ -336,7 +339,9 @@ py::dict SweepPlanOf(const py::object& mission, const py::dict& grid, bool yes) 
 // One grid point, as a task of a distributed study runs it: the row of sweep --json.
 py::object SweepPoint(const py::dict& plan_dict, std::size_t index, int top, bool variants, const PyCatalog* catalog) {
   const dynosize::study::SweepPlan plan = PlanOf(plan_dict);
-  const dynosize::Catalog& cat = CatalogOr(catalog).get();
+  const dynosize::api::MissionCatalog mission_catalog(CatalogOr(catalog).get(),
+                                                      dynosize::ParseMission(plan.doc, plan.name));
+  const dynosize::Catalog& cat = mission_catalog.get();
   dynosize::study::PointOptions po;
   po.top = top;
   po.distinct_designs = !variants;
@@ -352,7 +357,9 @@ py::object SweepPoint(const py::dict& plan_dict, std::size_t index, int top, boo
 // Every point on this machine's threads: the dict of sweep --json.
 py::object SweepLocal(const py::dict& plan_dict, int top, bool variants, int threads, const PyCatalog* catalog) {
   const dynosize::study::SweepPlan plan = PlanOf(plan_dict);
-  const dynosize::Catalog& cat = CatalogOr(catalog).get();
+  const dynosize::api::MissionCatalog mission_catalog(CatalogOr(catalog).get(),
+                                                      dynosize::ParseMission(plan.doc, plan.name));
+  const dynosize::Catalog& cat = mission_catalog.get();
   dynosize::study::SweepOptions so;
   so.point.top = top;
   so.point.distinct_designs = !variants;

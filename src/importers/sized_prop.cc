@@ -25,37 +25,11 @@ constexpr int kStaticSpeeds = 12;
 constexpr int kSweepPoints = 14;
 constexpr double kSweepTipSpeeds[] = {100.0, 160.0, 220.0};
 
-std::string InchText(double m) { return SignificantText(m / 0.0254, 4); }
 
 }  // namespace
 
-PropSize ParsePropParam(const std::string& text) {
-  PropSize s;
-  const std::string rule = "--prop-param '" + text + "': must be DxP or DxPxB, inches, e.g. 40x13 or 40x13x3";
-  std::vector<std::string> parts;
-  std::size_t start = 0;
-  for (std::size_t i = 0; i <= text.size(); ++i) {
-    if (i == text.size() || text[i] == 'x' || text[i] == 'X') {
-      parts.push_back(text.substr(start, i - start));
-      start = i + 1;
-    }
-  }
-  if (parts.size() < 2 || parts.size() > 3) throw UsageError(rule);
-  const auto d = ParseNumber(parts[0]), p = ParseNumber(parts[1]);
-  if (!d || !p || !(*d > 0.0) || !(*p > 0.0)) throw UsageError(rule);
-  if (*d > 400.0) throw UsageError(rule + " (diameter above 400 in)");
-  s.diameter_m = InchToMeter(*d);
-  s.pitch_m = InchToMeter(*p);
-  if (parts.size() == 3) {
-    const auto b = ParseNumber(parts[2]);
-    if (!b || *b != std::floor(*b) || *b < 1 || *b > 8) throw UsageError(rule + " (blades 1-8)");
-    s.blades = static_cast<int>(*b);
-  }
-  return s;
-}
-
 Json SizedPropJson(const PropSize& size) {
-  const std::string family_id = size.family.empty() ? DefaultFamilyId(size.diameter_m, size.pitch_m) : size.family;
+  const std::string family_id = FamilyIdOf(size);
   const RotorFamily* family = FindFamily(family_id);
   if (family == nullptr) {
     std::string known;
@@ -69,7 +43,7 @@ Json SizedPropJson(const PropSize& size, const RotorFamily& fam) {
   const RotorFamily* family = &fam;
   const std::string& family_id = fam.id;
   BladeGeometry blade = SizedBlade(*family, size.diameter_m, size.pitch_m, size.blades);
-  const std::string dims = InchText(size.diameter_m) + "x" + InchText(size.pitch_m) + "x" + std::to_string(size.blades);
+  const std::string dims = SizeText(size);
   blade.name = family_id + " " + dims;
   const Bemt bemt(blade, kUiucFittedPolar);
   const double d = size.diameter_m;
@@ -99,7 +73,7 @@ Json SizedPropJson(const PropSize& size, const RotorFamily& fam) {
     if (!sw["j"].empty()) sweeps.push_back(sw);
   }
   Json e;
-  e["id"] = "sized_" + family_id + "_" + dims;
+  e["id"] = "sized_" + family_id + "_" + dims;  // SizedPropId(size) when family_id is size.family's
   e["name"] = "sized " + dims + " in, " + family->description + " (blade-element model)";
   e["diameter_m"] = RoundSig(size.diameter_m, 6);
   e["pitch_m"] = RoundSig(size.pitch_m, 6);

@@ -15,17 +15,6 @@
 
 namespace dynosize {
 
-struct PropSize {
-  double diameter_m = 0.0;
-  double pitch_m = 0.0;
-  int blades = 2;
-  std::string family;  // a bundled family id; "" = DefaultFamilyId
-};
-
-// "DxP" or "DxPxB", inches ("40x13", "40x13x3"); family "" (the default). Throws UsageError naming
-// the text and the rule.
-PropSize ParsePropParam(const std::string& text);
-
 // The speeds of the entry's tables: tip speeds from kSizedTipSpeedMin to kSizedTipSpeedMax m/s
 // (tip Mach 0.12-0.76 at sea level: below, the Reynolds numbers fall under the data's; above,
 // compressibility passes the airfoil model's range, rotor/airfoil.h).

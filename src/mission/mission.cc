@@ -226,6 +226,35 @@ Segment ReadSegment(const Reader& r, const std::string& path) {
 
 }  // namespace
 
+// A propeller from its size alone: "DxP[xB]" or {"param": "DxP[xB]", "family": F} (rotor/family.h).
+static PropSize ReadSizedProp(const Json& v, const std::string& name, const std::string& path) {
+  const std::string rule = "a size \"DxP[xB]\" (inches) or {\"param\": \"DxP[xB]\", \"family\": F}";
+  std::string param, family;
+  if (v.is_string()) {
+    param = v.get<std::string>();
+  } else if (v.is_object()) {
+    const Reader r(v, name, path);
+    r.AllowOnly({"param", "family", "comment"});
+    param = r.String("param", std::nullopt);
+    family = r.String("family", std::string());
+  } else {
+    throw DataError(name + ": " + path + ": must be " + rule);
+  }
+  PropSize size;
+  try {
+    size = ParsePropParam(param);
+  } catch (const UsageError& e) {
+    throw DataError(name + ": " + path + ": " + e.what());
+  }
+  if (!family.empty() && FindFamily(family) == nullptr) {
+    std::string known;
+    for (const RotorFamily& f : BundledFamilies()) known += (known.empty() ? "" : ", ") + f.id;
+    throw DataError(name + ": " + path + ".family = \"" + family + "\": not a bundled family (known: " + known + ")");
+  }
+  size.family = family;
+  return size;
+}
+
 // "propulsion": {"lift": {"rotors": 4, "max_prop_diameter_m": 0.33, "idle_drag_area_m2": 0.01,
 //                "motor": ID, "esc": ID, "prop": ID}, ...}; sets m->groups and m->vehicle.rotors.
 static void ReadPropulsion(const Reader& top, const std::string& name, Mission* m) {
@@ -235,7 +264,8 @@ static void ReadPropulsion(const Reader& top, const std::string& name, Mission* 
   for (auto it = p.begin(); it != p.end(); ++it) {
     const std::string path = "$.propulsion." + it.key();
     const Reader g(it.value(), name, path);
-    g.AllowOnly({"rotors", "max_prop_diameter_m", "idle_drag_area_m2", "motor", "esc", "prop", "comment"});
+    g.AllowOnly({"rotors", "max_prop_diameter_m", "idle_drag_area_m2", "motor", "esc", "prop", "sized_props",
+                 "comment"});
     PropulsionGroup grp;
     grp.name = it.key();
     if (grp.name.empty()) top.Fail("$.propulsion", p, "a group name must not be empty");
@@ -244,7 +274,22 @@ static void ReadPropulsion(const Reader& top, const std::string& name, Mission* 
     grp.idle_drag_area_m2 = g.Number("idle_drag_area_m2", 0.0, 100.0, false, 0.0);
     grp.motor_id = g.String("motor", std::string());
     grp.esc_id = g.String("esc", std::string());
-    grp.prop_id = g.String("prop", std::string());
+    if (g.Has("prop") && g.At("prop").is_object()) {
+      grp.sized_props.push_back(ReadSizedProp(g.At("prop"), name, path + ".prop"));
+      grp.prop_id = SizedPropId(grp.sized_props.back());
+    } else {
+      grp.prop_id = g.String("prop", std::string());
+    }
+    if (g.Has("sized_props")) {
+      const Json& list = g.At("sized_props");
+      if (!grp.prop_id.empty()) g.Fail(path + ".sized_props", list, "a fixed group's propeller is its \"prop\"");
+      if (!list.is_array() || list.empty() || list.size() > 64) {
+        g.Fail(path + ".sized_props", list, "must be an array of 1-64 sizes (\"DxP[xB]\" or {\"param\", \"family\"})");
+      }
+      for (std::size_t i = 0; i < list.size(); ++i) {
+        grp.sized_props.push_back(ReadSizedProp(list[i], name, path + ".sized_props[" + std::to_string(i) + "]"));
+      }
+    }
     const int given = !grp.motor_id.empty() + !grp.esc_id.empty() + !grp.prop_id.empty();
     if (given != 0 && given != 3) {
       g.Fail(path, it.value(), "give all of motor, esc and prop (a fixed group) or none (a searched group)");

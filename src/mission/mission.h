@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "common/json_file.h"
+#include "rotor/family.h"
 
 namespace dynosize {
 
@@ -81,6 +82,11 @@ struct PropulsionGroup {
   double idle_drag_area_m2 = 0.0;
   std::string motor_id, esc_id, prop_id;  // all three given: the group is fixed; none: searched
   bool fixed() const { return !motor_id.empty(); }
+  // Propellers from their size alone (rotor/family.h, importers/sized_prop.h): "sized_props"
+  // offered to a searched group beside the catalog's, or a fixed group's "prop" given as
+  // {"param": "DxP[xB]", "family": F} (then prop_id is its SizedPropId). The catalog a mission
+  // runs on holds their entries (api/mission_catalog.h, CatalogForMission).
+  std::vector<PropSize> sized_props;
 };
 
 struct MissionBattery {

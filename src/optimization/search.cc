@@ -4,6 +4,8 @@
 // (no_design.h).
 #include "optimization/search.h"
 
+#include "common/error.h"
+
 #include <limits>
 #include <utility>
 
@@ -30,6 +32,19 @@ SearchResult SearchExactly(const Mission& m, const Catalog& cat, const SearchOpt
 }  // namespace
 
 SearchResult SearchCatalog(const Mission& m, const Catalog& cat, const SearchOptions& opt) {
+  // A searched group's sized propellers must be in the catalog (api/mission_catalog.h adds them):
+  // otherwise the search would quietly leave them out.
+  for (const PropulsionGroup& g : m.groups) {
+    for (const PropSize& size : g.sized_props) {
+      const std::string id = SizedPropId(size);
+      bool found = false;
+      for (const PropEntry& p : cat.props()) found = found || p.id == id;
+      if (!found) {
+        throw UsageError(m.file + ": $.propulsion." + g.name + ": the sized propeller " + id +
+                         " is not in the catalog searched (run the mission on api::MissionCatalog)");
+      }
+    }
+  }
   SearchResult out = SearchExactly(m, cat, opt);
   // Stopped: what was found (nothing may mean "not yet"), not the relaxed search.
   if (out.interrupted || !out.best.empty()) return out;

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 
 #include "common/error.h"
 #include "common/text_format.h"
@@ -78,5 +79,41 @@ const RotorFamily* FindFamily(const std::string& id) {
 std::string DefaultFamilyId(double diameter_m, double pitch_m) {
   return diameter_m >= InchToMeter(12.0) && pitch_m <= 0.5 * diameter_m ? "multirotor" : "apc_e";
 }
+
+PropSize ParsePropParam(const std::string& text) {
+  const std::string rule = "propeller size '" + text + "': must be DxP or DxPxB, inches, e.g. 40x13 or 40x13x3";
+  std::vector<double> parts;
+  std::size_t start = 0;
+  for (std::size_t i = 0; i <= text.size(); ++i) {
+    if (i < text.size() && text[i] != 'x' && text[i] != 'X') continue;
+    const std::string part = text.substr(start, i - start);
+    char* end = nullptr;
+    const double v = part.empty() ? std::nan("") : std::strtod(part.c_str(), &end);
+    if (part.empty() || end != part.c_str() + part.size() || !std::isfinite(v) || !(v > 0.0)) throw UsageError(rule);
+    parts.push_back(v);
+    start = i + 1;
+  }
+  if (parts.size() < 2 || parts.size() > 3) throw UsageError(rule);
+  if (parts[0] > 400.0) throw UsageError(rule + " (diameter above 400 in)");
+  PropSize s;
+  s.diameter_m = InchToMeter(parts[0]);
+  s.pitch_m = InchToMeter(parts[1]);
+  if (parts.size() == 3) {
+    if (parts[2] != std::floor(parts[2]) || parts[2] > 8) throw UsageError(rule + " (blades 1-8)");
+    s.blades = static_cast<int>(parts[2]);
+  }
+  return s;
+}
+
+std::string FamilyIdOf(const PropSize& size) {
+  return size.family.empty() ? DefaultFamilyId(size.diameter_m, size.pitch_m) : size.family;
+}
+
+std::string SizeText(const PropSize& size) {
+  return SignificantText(size.diameter_m / 0.0254, 4) + "x" + SignificantText(size.pitch_m / 0.0254, 4) + "x" +
+         std::to_string(size.blades);
+}
+
+std::string SizedPropId(const PropSize& size) { return "sized_" + FamilyIdOf(size) + "_" + SizeText(size); }
 
 }  // namespace dynosize

@@ -49,4 +49,22 @@ const RotorFamily* FindFamily(const std::string& id);
 // multirotor shape, others APC's thin electric one (the commonest electric propeller).
 std::string DefaultFamilyId(double diameter_m, double pitch_m);
 
+// A propeller given by its size alone (issue 52): "DxP[xB]" in inches, its family ("" = the
+// default of DefaultFamilyId).
+struct PropSize {
+  double diameter_m = 0.0;
+  double pitch_m = 0.0;
+  int blades = 2;
+  std::string family;
+};
+
+// "DxP" or "DxPxB", inches ("40x13", "40x13x3"). Throws UsageError naming the text and the rule.
+PropSize ParsePropParam(const std::string& text);
+// The family the size uses: size.family, or DefaultFamilyId.
+std::string FamilyIdOf(const PropSize& size);
+// "40x13x2": the size as the ids and names print it (inches, 4 significant digits).
+std::string SizeText(const PropSize& size);
+// The catalog id of the sized propeller: "sized_<family>_<D>x<P>x<B>".
+std::string SizedPropId(const PropSize& size);
+
 }  // namespace dynosize

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "api/catalog_json.h"
+#include "api/mission_catalog.h"
 #include "api/mission_run.h"
 #include "api/simulate_request.h"
 #include "common/error.h"
@@ -95,13 +96,15 @@ Json Evaluate(const ApiContext& ctx, const ApiCall& call) {
     throw UsageError("--cells " + std::to_string(cells) + ": must be in [1 - " + std::to_string(kMaxCellsSeries) + "]");
   }
   r.cells = static_cast<int>(cells);
-  const Combination c = api::ChooseCombination(mission, *ctx.catalog, r);
+  const api::MissionCatalog cat(*ctx.catalog, mission);  // with the mission's sized propellers
+  const Combination c = api::ChooseCombination(mission, cat.get(), r);
   return MissionResultJson(mission, c, api::EvaluateCombination(mission, c));
 }
 
 Json Optimize(const ApiContext& ctx, const ApiCall& call) {
   const OptimizeWork w = OptimizeWorkOf(ctx, call.body);
-  return SearchResultJson(w.mission, SearchCatalog(w.mission, *ctx.catalog, w.options));
+  const api::MissionCatalog cat(*ctx.catalog, w.mission);  // with the mission's sized propellers
+  return SearchResultJson(w.mission, SearchCatalog(w.mission, cat.get(), w.options));
 }
 
 // sweep --json: "vary" holds the CLI's --vary strings (KEY=START:STOP:STEP or KEY=v1,v2,...).
@@ -126,7 +129,8 @@ Json Sweep(const ApiContext& ctx, const ApiCall& call) {
   for (const std::string& spec : vary) keys.push_back(study::ParseVary(spec));
   const study::SweepPlan plan = study::PlanSweep(*doc, "mission", std::move(keys), b.Flag("yes"));
   const Mission base = ParseMission(plan.doc, plan.name);
-  return study::SweepJson(base, study::RunSweep(plan.doc, plan.name, *ctx.catalog, plan.keys, so), plan.keys);
+  const api::MissionCatalog cat(*ctx.catalog, base);  // with the mission's sized propellers
+  return study::SweepJson(base, study::RunSweep(plan.doc, plan.name, cat.get(), plan.keys, so), plan.keys);
 }
 
 ApiAnswer Answer(const Json& doc) {

@@ -5,6 +5,7 @@
 #include <random>
 #include <thread>
 
+#include "api/mission_catalog.h"
 #include "common/error.h"
 #include "common/json_file.h"
 #include "optimization/search.h"
@@ -134,7 +135,8 @@ ApiAnswer OptimizeJobs::Start(const std::string& body) {
       job->display_best = p.has_best ? DisplayObjective(mission, p.best_objective) : 0.0;
     };
     try {
-      const SearchResult s = SearchCatalog(mission, *catalog, work.options);
+      const api::MissionCatalog cat(*catalog, mission);  // with the mission's sized propellers
+      const SearchResult s = SearchCatalog(mission, cat.get(), work.options);
       Json result = SearchResultJson(mission, s);
       CheckJsonFinite(result, "optimize result");
       Json pareto = ParetoJson(mission, s);

@@ -163,3 +163,21 @@ TEST(OptimizeCli, NothingFliesSaysWhy) {
 
 }  // namespace
 }  // namespace dynosize
+
+namespace dynosize {
+namespace {
+
+// A mission's sized propellers (sized_props, docs/missions.md): the search sees them beside the
+// catalog's, and the air taxi's lift rotors grow past the largest measured propeller (0.90 m).
+TEST(OptimizeCli, SizedLiftRotorsOfTheAirTaxi) {
+  const testing_util::CliRun r = testing_util::RunCli(
+      "optimize " + std::string(DYNOSIZE_SOURCE_DIR) + "/examples/missions/air_taxi_sized_rotors.json --top 1 --json");
+  ASSERT_EQ(r.code, 0) << r.err;
+  const Json j = Json::parse(r.out);
+  const std::string dump = j.dump();
+  EXPECT_NE(dump.find("sized_multirotor_"), std::string::npos) << dump.substr(0, 400);
+  EXPECT_EQ(dump.find("\"feasible\":false"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace dynosize

@@ -296,3 +296,47 @@ TEST(FlightTest, QuadplaneCruiseThrustRisesByTheStoppedRotorsDrag) {
 
 }  // namespace
 }  // namespace dynosize
+
+namespace dynosize {
+namespace {
+
+TEST(MissionSizedProps, ReadsSizesForSearchedAndFixedGroups) {
+  std::string text = Replace(kGroups, "\"idle_drag_area_m2\": 0.02}",
+                             "\"idle_drag_area_m2\": 0.02, \"sized_props\": [\"16x5.5\", {\"param\": \"15x8x3\", \"family\": \"apc_e\"}]}");
+  text = Replace(text, "\"prop\": \"p\"", "\"prop\": {\"param\": \"12x6\"}");
+  const Mission m = Parse(text);
+  const PropulsionGroup& lift = m.groups[m.segments[0].group];
+  const PropulsionGroup& cruise = m.groups[m.segments[1].group];
+  ASSERT_EQ(lift.sized_props.size(), 2u);
+  EXPECT_EQ(SizedPropId(lift.sized_props[0]), "sized_multirotor_16x5.5x2");  // the size's default family
+  EXPECT_EQ(SizedPropId(lift.sized_props[1]), "sized_apc_e_15x8x3");
+  EXPECT_TRUE(lift.prop_id.empty());
+  EXPECT_EQ(cruise.prop_id, "sized_multirotor_12x6x2");  // 12 in at pitch ratio 0.5: multirotor
+  EXPECT_TRUE(cruise.fixed());
+}
+
+TEST(MissionSizedProps, BadSizesGiveOneLineNamingPathValueAndRule) {
+  const std::string base = "\"idle_drag_area_m2\": 0.02}";
+  struct Case { std::string to, expect; };
+  const Case cases[] = {
+      {"\"idle_drag_area_m2\": 0.02, \"sized_props\": [\"16\"]}", "$.propulsion.lift.sized_props[0]: propeller size '16'"},
+      {"\"idle_drag_area_m2\": 0.02, \"sized_props\": [{\"param\": \"16x5\", \"family\": \"wood\"}]}",
+       "$.propulsion.lift.sized_props[0].family = \"wood\": not a bundled family"},
+      {"\"idle_drag_area_m2\": 0.02, \"sized_props\": []}", "$.propulsion.lift.sized_props = []: must be an array of 1-64"},
+      {"\"idle_drag_area_m2\": 0.02, \"sized_props\": [7]}", "$.propulsion.lift.sized_props[0]: must be a size"},
+  };
+  for (const Case& c : cases) {
+    try {
+      Parse(Replace(kGroups, base, c.to));
+      ADD_FAILURE() << "no error for " << c.to;
+    } catch (const DataError& e) {
+      EXPECT_NE(std::string(e.what()).find(c.expect), std::string::npos) << e.what();
+    }
+  }
+  // A fixed group's propeller is its "prop": no sized_props beside it.
+  const std::string fixed = Replace(kGroups, "\"prop\": \"p\"}", "\"prop\": \"p\", \"sized_props\": [\"12x6\"]}");
+  EXPECT_THROW(Parse(fixed), DataError);
+}
+
+}  // namespace
+}  // namespace dynosize
