@@ -77,3 +77,14 @@ def test_missing_file_is_file_not_found(cli, repo):
 
 def test_error_class():
     assert issubclass(dynosize.Error, RuntimeError)
+
+
+def test_optimize_with_sized_propellers_equals_cli_json(catalog, cli, repo):
+    # A mission's sized propellers (docs/missions.md "sized_props") reach the search from Python too.
+    mission = "examples/missions/air_taxi_sized_rotors.json"
+    got = dynosize.optimize(str(repo / mission), top=1, catalog=catalog)
+    want = cli("optimize", mission, "--top", 1, "--json", "--quiet").json()
+    got.pop("seconds")
+    want.pop("seconds")
+    assert got == want
+    assert "sized_multirotor_" in str(got["results"][0])
