@@ -1,6 +1,9 @@
-// `dynosize rotor validate`: the blade-element model (src/rotor) against UIUC's measured propellers
-// by leaving each family out, and against APC's own computed tables on the APC propellers UIUC
-// measured; prints the markdown of docs/validation.md's "Propellers from their geometry".
+// `dynosize rotor validate | hover | families` (src/rotor, docs/model.md section 13):
+//   validate  the blade-element model against UIUC's measured propellers by leaving each family
+//             out, against APC's own computed tables on the APC propellers UIUC measured, and a
+//             propeller from its size alone; prints docs/validation.md's "Propellers from their geometry";
+//   hover     a parametric eVTOL rotor's best hover design (rotor/parametric.h);
+//   families  prints src/rotor/family_data.cc from the data.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -36,21 +39,6 @@ std::map<std::string, FamilyBlade> ReadUiucBlades(const std::string& data) {
     }
   }
   return out;
-}
-
-// UIUC's name of an APC propeller as APC files it: "apce 10.0x5.0" -> "10x5E", "apcsf 10.0x4.7"
-// -> "10x47SF", "apcsp 10.0x5.0" -> "10x5" (apc_geometry/README.md); "" for other families.
-std::string ApcFileName(const std::string& family, double d_in, double p_in) {
-  std::string suffix;
-  if (family == "apce") suffix = "E";
-  else if (family == "apcsf") suffix = "SF";
-  else if (family != "apcsp") return "";
-  auto digits = [](double v) {
-    std::string s = SignificantText(v, 4);  // "10", "4.7", "4.5"
-    s.erase(std::remove(s.begin(), s.end(), '.'), s.end());
-    return s;
-  };
-  return digits(d_in) + "x" + digits(p_in) + suffix;
 }
 
 std::string Pct(double fraction) { return std::isfinite(fraction) ? PercentText(fraction) : "-"; }
@@ -161,7 +149,7 @@ int RunRotorValidate(const RotorValidateOptions& o) {
   std::vector<ApcCase> apc;
   for (const RotorFitCase& c : cases) {
     const auto b = blades.find(UiucBladeNameOfId(c.name));
-    const std::string file = ApcFileName(c.family, b->second.diameter_in, b->second.pitch_in);
+    const std::string file = ApcFileNameOfUiuc(c.family, b->second.diameter_in, b->second.pitch_in);
     const std::string pe0 = data + "/apc_geometry/geometry/" + file + "-PERF.PE0";
     const std::string per3 = data + "/apc_geometry/per3/PER3_" + file + ".csv";
     if (file.empty() || !std::filesystem::exists(pe0) || !std::filesystem::exists(per3)) continue;

@@ -197,6 +197,21 @@ bool ParseApcSize(const std::string& name, double* diameter_in, double* pitch_in
   return true;
 }
 
+// UIUC's name of an APC propeller as APC files it: "apce 10.0x5.0" -> "10x5E", "apcsf 10.0x4.7"
+// -> "10x47SF", "apcsp 10.0x5.0" -> "10x5" (apc_geometry/README.md); "" for other families.
+std::string ApcFileNameOfUiuc(const std::string& family, double d_in, double p_in) {
+  std::string suffix;
+  if (family == "apce") suffix = "E";
+  else if (family == "apcsf") suffix = "SF";
+  else if (family != "apcsp") return "";
+  auto digits = [](double v) {
+    std::string s = SignificantText(v, 4);  // "10", "4.7", "4.5"
+    s.erase(std::remove(s.begin(), s.end(), '.'), s.end());
+    return s;
+  };
+  return digits(d_in) + "x" + digits(p_in) + suffix;
+}
+
 std::vector<RotorFamily> DeriveBundledFamilies(const std::string& data_dir, const std::string& leave_out) {
   std::vector<FamilyBlade> uiuc;
   for (int v = 1; v <= 2; ++v) {

@@ -37,6 +37,11 @@ Per3Table ReadApcPer3Csv(const std::string& path);
 // implied decimal point). False when the name does not start with "<digits>x<digits>".
 bool ParseApcSize(const std::string& name, double* diameter_in, double* pitch_in);
 
+// UIUC's name of an APC propeller as APC files it: family "apce", 10.0 x 5.0 in -> "10x5E";
+// "apcsf" 10.0 x 4.7 -> "10x47SF"; "apcsp" 10.0 x 5.0 -> "10x5" (apc_geometry/README.md); "" for
+// other families.
+std::string ApcFileNameOfUiuc(const std::string& family, double d_in, double p_in);
+
 // The bundled propeller families (rotor/family.h) derived from the data:
 //   apc_e, apc_sf, apc_sport: the blades UIUC measured of APC's thin electric, slow-flyer and
 //     sport families (uiuc_propdb/volume{1,2}_geom.csv, families apce, apcsf, apcsp);

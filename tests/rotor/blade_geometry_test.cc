@@ -64,6 +64,24 @@ TEST(BladeGeometryReaders, ApcPe0) {
   EXPECT_NEAR(g.root_r_over_r, 1.2 / 5.0, 1e-12);  // HUBTRA 1.20 in = the first station
 }
 
+TEST(BladeGeometryReaders, ApcNames) {
+  EXPECT_EQ(ApcFileNameOfUiuc("apce", 10.0, 5.0), "10x5E");
+  EXPECT_EQ(ApcFileNameOfUiuc("apcsf", 10.0, 4.7), "10x47SF");
+  EXPECT_EQ(ApcFileNameOfUiuc("apcsp", 14.0, 13.0), "14x13");
+  EXPECT_EQ(ApcFileNameOfUiuc("gwsdd", 9.0, 5.0), "");
+  double d = 0.0, p = 0.0;
+  ASSERT_TRUE(ParseApcSize("10x45MR", &d, &p));
+  EXPECT_EQ(d, 10.0);
+  EXPECT_EQ(p, 4.5);
+  ASSERT_TRUE(ParseApcSize("95x5MR", &d, &p));
+  EXPECT_EQ(d, 9.5);
+  EXPECT_EQ(p, 5.0);
+  ASSERT_TRUE(ParseApcSize("8x10", &d, &p));
+  EXPECT_EQ(d, 8.0);
+  EXPECT_EQ(p, 10.0);
+  EXPECT_FALSE(ParseApcSize("MRx5", &d, &p));
+}
+
 TEST(BladeGeometryReaders, UiucIdToBladeName) {
   EXPECT_EQ(UiucBladeNameOfId("uiuc_v1_apce_10.0x5.0_2"), "apce 10.0x5.0");
   EXPECT_EQ(UiucBladeNameOfId("uiuc_v2_da4022_5.0x3.75_3"), "da4022 5.0x3.75");
