@@ -30,7 +30,7 @@ int RunServe(const ServeCliOptions& o) {
   }
   std::cout << "dynosize serve: listening on " << web.Url() << " (" << catalog.motors().size() << " motors, "
             << catalog.escs().size() << " ESCs, " << catalog.props().size() << " propellers, "
-            << catalog.batteries().size() << " batteries; Ctrl-C stops)" << std::endl;
+            << catalog.batteries().size() << " batteries; page " << so.page_dir << "; Ctrl-C stops)" << std::endl;
   std::thread runner([&web] { web.Run(); });
   while (!SigintToFlag::Received()) std::this_thread::sleep_for(std::chrono::milliseconds(50));
   web.Stop();

@@ -195,6 +195,12 @@ void WebServer::Impl::Configure() {
   http.new_task_queue = [n = options.jobs_running + options.jobs_waiting + 8] {
     return new httplib::ThreadPool(static_cast<std::size_t>(n));
   };
+  // SO_REUSEADDR only: the library's default also sets SO_REUSEPORT, with which a second server
+  // binds the same port and the kernel shares the connections between them.
+  http.set_socket_options([](socket_t sock) {
+    int yes = 1;
+    setsockopt(sock, SOL_SOCKET, SO_REUSEADDR, &yes, sizeof(yes));
+  });
   http.set_default_headers(DefaultHeaders());
   http.set_payload_max_length(options.max_body_bytes);
   const auto io_us = static_cast<time_t>(options.io_timeout_s * 1e6);

@@ -5,6 +5,7 @@
 #      file) and run from an unrelated folder without DYNOSIZE_CATALOG: it must find TMP's
 #      catalog by itself (the build's own prefix is not TMP) and fly the README's pick;
 #   3. the installed CLI finds the same catalog and gives the same mission numbers;
+#   3b. the installed CLI serves the installed page (share/dynosize/web) and stops on SIGINT;
 #   4. with PYTHON and PY_DIR (the Python module built): the installed package dynosize imported
 #      from TMP/PY_DIR finds TMP's catalog and gives the same mission numbers.
 # Usage: installed_package_test.sh BUILD_DIR SOURCE_DIR [PYTHON PY_DIR]
@@ -44,6 +45,17 @@ cli=$("$prefix/bin/dynosize" evaluate "$source_dir/examples/missions/quadcopter_
       --esc dc_e_56 --prop dc_p_231 --battery dc_b_363 --cells 4) || fail "the installed CLI's evaluate failed"
 cli_obj=$(sed -n 's/^  feasible; .*; \(mission [0-9.]* min, [0-9.]* Wh\),.*/\1/p' <<< "$cli")
 [ "$cli_obj" = "$example_obj" ] || fail "the example's '$example_obj' differs from the CLI's '$cli_obj'"
+# The installed CLI serves the installed page (docs/web.md): its folder is printed on start.
+for f in index.html app.js style.css chart.min.js examples/quadcopter_1p5kg.json; do
+  [ -e "$prefix/share/dynosize/web/$f" ] || fail "not installed: share/dynosize/web/$f"
+done
+"$prefix/bin/dynosize" serve --port 0 --quiet > "$tmp/serve.out" 2> "$tmp/serve.err" &
+serve_pid=$!
+for _ in $(seq 100); do grep -q "listening on" "$tmp/serve.out" && break; sleep 0.1; done
+kill -INT "$serve_pid"
+wait "$serve_pid" || fail "the installed serve did not stop cleanly on SIGINT: $(cat "$tmp/serve.err")"
+grep -q "page $prefix/share/dynosize/web;" "$tmp/serve.out" || fail "the installed serve did not use the installed page: $(cat "$tmp/serve.out")"
+
 if [ $# -ge 4 ]; then
   [ -e "$prefix/$4/dynosize/__init__.py" ] || fail "not installed: $4/dynosize"
   PYTHONPATH="$prefix/$4" "$3" - "$prefix" "$source_dir" << 'EOF' || fail "the installed Python module failed"

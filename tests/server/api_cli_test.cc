@@ -157,6 +157,21 @@ TEST(ServerCli, CalibrateAndDiagnoseEqualTheCli) {
   EXPECT_EQ(message.find("dynosize-serve-"), std::string::npos) << message;
 }
 
+// `dynosize serve` refuses a port out of range (64) and a port in use (73) with one line.
+TEST(ServerCli, ServeCommandErrors) {
+  const auto range = RunCli("serve --port 70000");
+  EXPECT_EQ(range.code, 64) << range.err;
+  EXPECT_NE(range.err.find("--port"), std::string::npos) << range.err;
+  const RunningServer s;  // holds a port
+  const auto busy = RunCli("serve --port " + std::to_string(s.port()));
+  EXPECT_EQ(busy.code, 73) << busy.err;
+  EXPECT_EQ(busy.err, "dynosize: serve: cannot listen on 127.0.0.1:" + std::to_string(s.port()) +
+                          " (the port is in use, or the address is not this machine's)\n");
+  const auto no_page = RunCli("serve --port 0 --web-dir /nonexistent");
+  EXPECT_EQ(no_page.code, 66) << no_page.err;
+  EXPECT_NE(no_page.err.find("does not hold index.html"), std::string::npos) << no_page.err;
+}
+
 // A bad value gets the CLI's message (without "dynosize: ") and exit code.
 TEST(ServerCli, ErrorsAreTheCliLines) {
   const RunningServer s;
