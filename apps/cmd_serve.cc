@@ -1,5 +1,7 @@
 // `dynosize serve`: the web page and its JSON API on this machine (src/server, docs/web.md).
+#include <atomic>
 #include <chrono>
+#include <csignal>
 #include <iostream>
 #include <thread>
 
@@ -11,8 +13,34 @@
 
 namespace dynosize::cli {
 
+namespace {
+
+// SIGTERM (a service manager stopping it) stops the server as Ctrl-C does.
+std::atomic<bool> g_sigterm{false};
+extern "C" void OnSigterm(int) { g_sigterm.store(true); }
+
+class SigtermToFlag {
+ public:
+  SigtermToFlag() {
+    struct sigaction sa = {};
+    sa.sa_handler = OnSigterm;
+    sigemptyset(&sa.sa_mask);
+    sa.sa_flags = SA_RESTART;
+    sigaction(SIGTERM, &sa, &previous_);
+  }
+  ~SigtermToFlag() { sigaction(SIGTERM, &previous_, nullptr); }
+  SigtermToFlag(const SigtermToFlag&) = delete;
+  SigtermToFlag& operator=(const SigtermToFlag&) = delete;
+
+ private:
+  struct sigaction previous_;
+};
+
+}  // namespace
+
 int RunServe(const ServeCliOptions& o) {
   const SigintToFlag sigint;  // Ctrl-C stops the server (running searches return their best so far)
+  const SigtermToFlag sigterm;
   const Catalog catalog = Catalog::Load(o.catalog);
   server::ServeOptions so;
   so.host = o.host;
@@ -32,7 +60,7 @@ int RunServe(const ServeCliOptions& o) {
             << catalog.escs().size() << " ESCs, " << catalog.props().size() << " propellers, "
             << catalog.batteries().size() << " batteries; page " << so.page_dir << "; Ctrl-C stops)" << std::endl;
   std::thread runner([&web] { web.Run(); });
-  while (!SigintToFlag::Received()) std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  while (!SigintToFlag::Received() && !g_sigterm.load()) std::this_thread::sleep_for(std::chrono::milliseconds(50));
   web.Stop();
   runner.join();
   std::cerr << "dynosize serve: stopped\n";
