@@ -83,7 +83,7 @@ CLI::App* AddSimulateCommand(CLI::App& app, cli::SimulateOptions& sim) {
                        "instead of --prop, a propeller from its size alone: DxP or DxPxB in inches (e.g. 40x13x2), "
                        "its blade from a family run through the blade-element model (docs/model.md section 13)");
   simulate->add_option("--prop-family", sim.prop_family,
-                       "with --prop-param: apc_e, apc_sf, apc_sport or multirotor (default: multirotor from 12 in "
+                       "with --prop-param: apc_e, apc_sf, apc_sport, multirotor or evtol_rotor (default: multirotor from 12 in "
                        "at pitch/diameter <= 0.5, else apc_e)");
   simulate->add_option("--thrust-n", sim.thrust_n, "with --prop: the static thrust to hold, N");
   simulate->add_option("--rho-kg-m3", sim.rho_kg_m3, "with --prop: air density, kg/m^3 (default 1.225)");

@@ -32,9 +32,7 @@ Json SizedPropJson(const PropSize& size) {
   const std::string family_id = FamilyIdOf(size);
   const RotorFamily* family = FindFamily(family_id);
   if (family == nullptr) {
-    std::string known;
-    for (const RotorFamily& f : BundledFamilies()) known += (known.empty() ? "" : ", ") + f.id;
-    throw UsageError("propeller family '" + family_id + "' is not bundled: known are " + known);
+    throw UsageError("propeller family '" + family_id + "' is not bundled: known are " + KnownFamilyIds());
   }
   return SizedPropJson(size, *family);
 }

@@ -247,9 +247,7 @@ static PropSize ReadSizedProp(const Json& v, const std::string& name, const std:
     throw DataError(name + ": " + path + ": " + e.what());
   }
   if (!family.empty() && FindFamily(family) == nullptr) {
-    std::string known;
-    for (const RotorFamily& f : BundledFamilies()) known += (known.empty() ? "" : ", ") + f.id;
-    throw DataError(name + ": " + path + ".family = \"" + family + "\": not a bundled family (known: " + known + ")");
+    throw DataError(name + ": " + path + ".family = \"" + family + "\": not a bundled family (known: " + KnownFamilyIds() + ")");
   }
   size.family = family;
   return size;

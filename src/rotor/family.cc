@@ -7,6 +7,7 @@
 #include "common/error.h"
 #include "common/text_format.h"
 #include "common/units.h"
+#include "rotor/parametric.h"
 
 namespace dynosize {
 namespace {
@@ -69,11 +70,32 @@ BladeGeometry SizedBlade(const RotorFamily& f, double diameter_m, double pitch_m
   return g;
 }
 
+const RotorFamily& EvtolRotorFamily() {
+  static const RotorFamily kFamily = [] {
+    const ParametricRotor p;  // the defaults named in family.h
+    FamilyBlade b;
+    b.geometry = ParametricBlade(p);
+    b.diameter_in = 2.0 * p.radius_m / 0.0254;
+    b.pitch_in = GeometricPitchM(b.geometry, 0.75) / 0.0254;  // the pitch at 0.75 R is the nominal one
+    b.family = "evtol_rotor";
+    return FamilyShape("evtol_rotor", "parametric eVTOL rotor (solidity 0.10 at 3 blades, -10 deg twist)",
+                       "rotor/parametric.h default rotor, not a measured blade", {b});
+  }();
+  return kFamily;
+}
+
 const RotorFamily* FindFamily(const std::string& id) {
   for (const RotorFamily& f : BundledFamilies()) {
     if (f.id == id) return &f;
   }
+  if (id == EvtolRotorFamily().id) return &EvtolRotorFamily();
   return nullptr;
+}
+
+std::string KnownFamilyIds() {
+  std::string known;
+  for (const RotorFamily& f : BundledFamilies()) known += (known.empty() ? "" : ", ") + f.id;
+  return known + ", " + EvtolRotorFamily().id;
 }
 
 std::string DefaultFamilyId(double diameter_m, double pitch_m) {

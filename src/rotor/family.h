@@ -43,8 +43,15 @@ BladeGeometry SizedBlade(const RotorFamily& family, double diameter_m, double pi
 
 // The bundled families (rotor/family_data.cc).
 const std::vector<RotorFamily>& BundledFamilies();
-// nullptr when no bundled family has that id.
+// The parametric eVTOL rotor family "evtol_rotor" (not from measured blades: rotor/parametric.h's
+// default rotor, three blades of constant chord at solidity 0.10, -10 degrees of linear twist,
+// root cut-out 0.2, at 10 degrees collective), its shape normalized like the others: a size
+// "DxPxB" scales its chord with D and its pitch with P.
+const RotorFamily& EvtolRotorFamily();
+// nullptr when no family (bundled or evtol_rotor) has that id.
 const RotorFamily* FindFamily(const std::string& id);
+// "apc_e, apc_sf, ...": every id FindFamily knows, for messages.
+std::string KnownFamilyIds();
 // The family a size alone picks: multirotor propellers (pitch ratio <= 0.5 from 12 in) take the
 // multirotor shape, others APC's thin electric one (the commonest electric propeller).
 std::string DefaultFamilyId(double diameter_m, double pitch_m);

@@ -13,6 +13,7 @@
 #include "importers/sized_prop.h"
 #include "prop/prop_model.h"
 #include "rotor/bemt.h"
+#include "rotor/parametric.h"
 #include "rotor/uiuc_polar.h"
 
 namespace dynosize {
@@ -116,6 +117,33 @@ TEST(UiucPolar, PredictsUiucStaticThrustNearItsValidation) {
   std::nth_element(err.begin(), err.begin() + err.size() / 2, err.end());
   // docs/validation.md: 9.9 % in sample over volumes 1-3; volume 1 alone within 12 %.
   EXPECT_LT(err[err.size() / 2], 0.12);
+}
+
+}  // namespace
+}  // namespace dynosize
+
+namespace dynosize {
+namespace {
+
+TEST(RotorFamily, EvtolRotorFamilyIsTheParametricRotorScaled) {
+  const RotorFamily* f = FindFamily("evtol_rotor");
+  ASSERT_NE(f, nullptr);
+  // At the parametric rotor's own size and pitch the sized blade is that rotor's blade.
+  const ParametricRotor p;
+  const BladeGeometry ref = ParametricBlade(p);
+  const double pitch = GeometricPitchM(ref, 0.75);
+  const BladeGeometry g = SizedBlade(*f, 2.0 * p.radius_m, pitch, p.blades);
+  for (const double x : {0.3, 0.5, 0.75, 0.95}) {
+    EXPECT_NEAR(InterpolateStation(g, x).chord_over_r, InterpolateStation(ref, x).chord_over_r, 1e-9) << x;
+    EXPECT_NEAR(InterpolateStation(g, x).beta_rad, InterpolateStation(ref, x).beta_rad, 1e-3) << x;
+  }
+  EXPECT_NE(KnownFamilyIds().find("evtol_rotor"), std::string::npos);
+  // Sized at 2.4 m it hovers inside momentum theory, at an air-taxi rotor's figure of merit.
+  const PropEntry e = PropEntryFromJson(SizedPropJson({2.4, 0.66, 3, "evtol_rotor"}));
+  const PropEvaluation ev = PropModel(e).Evaluate(RpmToRadPerSec(1600.0), 1.225);
+  const double ideal = std::pow(ev.thrust_n, 1.5) / std::sqrt(2.0 * 1.225 * kPi * 1.44);
+  EXPECT_GT(ideal / ev.power_w, 0.6);
+  EXPECT_LT(ideal / ev.power_w, 0.85);
 }
 
 }  // namespace
