@@ -414,6 +414,7 @@ function objectiveText(r, v) {
 
 function renderResults(doc, ms) {
   const res = doc.results;
+  document.body.dataset.optimizeMs = ms.toFixed(0);
   $("mission-status").textContent = `${res.length} designs; ${doc.combinations} combinations, ${doc.searched} evaluated ` +
     `exactly, ${doc.pruned} pruned by safe bounds; search ${fmt(doc.seconds, 2)} s, answer in ${fmt(ms / 1000, 2)} s` +
     (doc.interrupted ? " (stopped: the best found so far)" : "");
@@ -515,7 +516,7 @@ async function runMission(ev) {
     cancel.disabled = false;
     bar.hidden = false;
     bar.value = 0;
-    for (let wait = 20; ; wait = Math.min(2 * wait, 250)) {
+    for (let wait = 20; ; wait = Math.min(2 * wait, 100)) {
       const st = await api(`/api/jobs/${missionJob}`);
       const p = st.progress;
       bar.value = p.fraction;
