@@ -212,21 +212,14 @@ std::string ApcFileNameOfUiuc(const std::string& family, double d_in, double p_i
   return digits(d_in) + "x" + digits(p_in) + suffix;
 }
 
-std::vector<RotorFamily> DeriveBundledFamilies(const std::string& data_dir, const std::string& leave_out) {
-  std::vector<FamilyBlade> uiuc;
+FamilyBlades ReadFamilyBlades(const std::string& data_dir) {
+  FamilyBlades out;
   for (int v = 1; v <= 2; ++v) {
     for (FamilyBlade& b : ReadUiucGeometry(data_dir + "/uiuc_propdb/volume" + std::to_string(v) + "_geom.csv")) {
-      uiuc.push_back(b);
+      out.uiuc.push_back(b);
     }
   }
-  auto of = [&](const std::string& family) {
-    std::vector<FamilyBlade> out;
-    for (const FamilyBlade& b : uiuc) {
-      if (b.family == family) out.push_back(b);
-    }
-    return out;
-  };
-  std::vector<FamilyBlade> mr;
+  std::vector<FamilyBlade>& mr = out.apc_mr;
   const std::string dir = data_dir + "/apc_geometry/geometry";
   std::vector<std::string> files;
   for (const auto& e : std::filesystem::directory_iterator(dir)) {
@@ -243,13 +236,28 @@ std::vector<RotorFamily> DeriveBundledFamilies(const std::string& data_dir, cons
     }
     mr.push_back(b);
   }
+  return out;
+}
+
+std::vector<RotorFamily> DeriveBundledFamilies(const std::string& data_dir, const std::string& leave_out) {
+  return DeriveBundledFamilies(ReadFamilyBlades(data_dir), leave_out);
+}
+
+std::vector<RotorFamily> DeriveBundledFamilies(const FamilyBlades& blades, const std::string& leave_out) {
+  auto of = [&](const std::string& family) {
+    std::vector<FamilyBlade> out;
+    for (const FamilyBlade& b : blades.uiuc) {
+      if (b.family == family) out.push_back(b);
+    }
+    return out;
+  };
   const std::string uiuc_src = "UIUC Propeller Data Site vol 1-2 geometry (uiuc_propdb/volume1_geom.csv, volume2_geom.csv), family ";
   return {FamilyShape("apc_e", "APC thin electric (E)", uiuc_src + "apce", of("apce"), leave_out),
           FamilyShape("apc_sf", "APC slow flyer (SF)", uiuc_src + "apcsf", of("apcsf"), leave_out),
           FamilyShape("apc_sport", "APC sport", uiuc_src + "apcsp", of("apcsp"), leave_out),
           FamilyShape("multirotor", "multirotor (APC MR planform and twist)",
-                      "APC's geometry files of its MR propellers (apc_geometry/geometry/*MR-PERF.PE0, v2022-0915)", mr,
-                      leave_out)};
+                      "APC's geometry files of its MR propellers (apc_geometry/geometry/*MR-PERF.PE0, v2022-0915)",
+                      blades.apc_mr, leave_out)};
 }
 
 std::string UiucBladeNameOfId(const std::string& id) {

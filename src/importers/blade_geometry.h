@@ -48,6 +48,14 @@ std::string ApcFileNameOfUiuc(const std::string& family, double d_in, double p_i
 //   multirotor: APC's multirotor (MR) blades from APC's own geometry (apc_geometry/geometry/*MR-PERF.PE0).
 // `leave_out` names a blade to leave out of its family (the size-only check); "" = none.
 std::vector<RotorFamily> DeriveBundledFamilies(const std::string& data_dir, const std::string& leave_out = "");
+// The same in two steps, for callers that derive the families many times (the size-only check
+// leaves each propeller out): the blades read once, then the shapes from them.
+struct FamilyBlades {
+  std::vector<FamilyBlade> uiuc;    // volumes 1-2, every family
+  std::vector<FamilyBlade> apc_mr;  // APC's MR geometry files
+};
+FamilyBlades ReadFamilyBlades(const std::string& data_dir);
+std::vector<RotorFamily> DeriveBundledFamilies(const FamilyBlades& blades, const std::string& leave_out = "");
 
 // The measured propellers of catalog/uiuc_propdb.json whose blade has a UIUC geometry table
 // (blade name from the id, importers/blade_geometry.h), as fit cases: every static point, and of

@@ -37,10 +37,9 @@ Json SizedPropJson(const PropSize& size) {
   return SizedPropJson(size, *family);
 }
 
-Json SizedPropJson(const PropSize& size, const RotorFamily& fam) {
-  const RotorFamily* family = &fam;
-  const std::string& family_id = fam.id;
-  BladeGeometry blade = SizedBlade(*family, size.diameter_m, size.pitch_m, size.blades);
+Json SizedPropJson(const PropSize& size, const RotorFamily& family) {
+  const std::string& family_id = family.id;
+  BladeGeometry blade = SizedBlade(family, size.diameter_m, size.pitch_m, size.blades);
   const std::string dims = SizeText(size);
   blade.name = family_id + " " + dims;
   const Bemt bemt(blade, kUiucFittedPolar);
@@ -72,20 +71,20 @@ Json SizedPropJson(const PropSize& size, const RotorFamily& fam) {
   }
   Json e;
   e["id"] = "sized_" + family_id + "_" + dims;  // SizedPropId(size) when family_id is size.family's
-  e["name"] = "sized " + dims + " in, " + family->description + " (blade-element model)";
+  e["name"] = "sized " + dims + " in, " + family.description + " (blade-element model)";
   e["diameter_m"] = RoundSig(size.diameter_m, 6);
   e["pitch_m"] = RoundSig(size.pitch_m, 6);
   e["blades"] = size.blades;
   e["static_table"] = stat;
   if (!sweeps.empty()) e["j_tables"] = sweeps;
   e["source"] = {{"dataset", "dynosize blade-element model (src/rotor, docs/model.md section 13)"},
-                 {"reference", "family " + family_id + ": " + family->source},
+                 {"reference", "family " + family_id + ": " + family.source},
                  {"values", {{"diameter_m", "datasheet"}, {"pitch_m", "datasheet"}, {"blades", "datasheet"},
                              {"static_table", "estimated"}, {"j_tables", "estimated"}}},
                  {"note", "geometry of the family scaled to the size (eq B12), polar fitted on UIUC's measured propellers "
-                          "(rotor/uiuc_polar.h); the family's blades span " + SignificantText(family->d_min_in, 3) + "-" +
-                          SignificantText(family->d_max_in, 3) + " in and pitch ratios " +
-                          SignificantText(family->pd_min, 2) + "-" + SignificantText(family->pd_max, 2) +
+                          "(rotor/uiuc_polar.h); the family's blades span " + SignificantText(family.d_min_in, 3) + "-" +
+                          SignificantText(family.d_max_in, 3) + " in and pitch ratios " +
+                          SignificantText(family.pd_min, 2) + "-" + SignificantText(family.pd_max, 2) +
                           "; measured/predicted p10-p90 of propellers of 12 in and more left out (docs/validation.md): "
                           "thrust " + FixedText(kSizedThrustRatioP10, 2) + "-" + FixedText(kSizedThrustRatioP90, 2) +
                           ", torque " + FixedText(kSizedTorqueRatioP10, 2) + "-" + FixedText(kSizedTorqueRatioP90, 2)},
@@ -96,6 +95,7 @@ Json SizedPropJson(const PropSize& size, const RotorFamily& fam) {
 SizeOnlyCheck CheckSizeOnly(const std::vector<PropEntry>& measured, const std::string& data, double min_diameter_m) {
   SizeOnlyCheck out;
   std::vector<int> prop_of_point;
+  const FamilyBlades blades = ReadFamilyBlades(data);  // read once; each propeller left out of its copy
   for (const PropEntry& p : measured) {
     if (p.tier != DataTier::kMeasured || p.static_table.rpm.empty() || p.diameter_m < min_diameter_m || !p.pitch_m ||
         !p.exclude_reason.empty()) {
@@ -104,7 +104,7 @@ SizeOnlyCheck CheckSizeOnly(const std::vector<PropEntry>& measured, const std::s
     PropSize size{p.diameter_m, *p.pitch_m, p.blades.value_or(2), ""};
     const std::string family_id = DefaultFamilyId(size.diameter_m, size.pitch_m);
     RotorFamily family;
-    for (const RotorFamily& f : DeriveBundledFamilies(data, UiucBladeNameOfId(p.id))) {
+    for (const RotorFamily& f : DeriveBundledFamilies(blades, UiucBladeNameOfId(p.id))) {
       if (f.id == family_id) family = f;
     }
     const PropEntry sized = PropEntryFromJson(SizedPropJson(size, family));
