@@ -53,7 +53,7 @@ int RunSweep(const SweepCliOptions& o) {
   const std::vector<study::VaryKey>& keys = plan.keys;
   const Mission base = ParseMission(plan.doc, plan.name);
   const Catalog loaded = Catalog::Load(o.catalog);  // once, for every point
-  const api::MissionCatalog mission_catalog(loaded, base);  // with the mission's sized propellers
+  const api::MissionCatalog mission_catalog(loaded, study::PointMissions(plan));  // with the points' sized propellers
   const Catalog& cat = mission_catalog.get();
   bool shown = false;
   if (!o.quiet && isatty(fileno(stderr))) so.progress = SweepProgressLine(&shown);

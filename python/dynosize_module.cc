@@ -339,8 +339,13 @@ py::dict SweepPlanOf(const py::object& mission, const py::dict& grid, bool yes) 
 // One grid point, as a task of a distributed study runs it: the row of sweep --json.
 py::object SweepPoint(const py::dict& plan_dict, std::size_t index, int top, bool variants, const PyCatalog* catalog) {
   const dynosize::study::SweepPlan plan = PlanOf(plan_dict);
-  const dynosize::api::MissionCatalog mission_catalog(CatalogOr(catalog).get(),
-                                                      dynosize::ParseMission(plan.doc, plan.name));
+  std::vector<dynosize::Mission> point;  // the point's own sized propellers (a point that does not parse: a failed row)
+  try {
+    point.push_back(dynosize::ParseMission(
+        dynosize::study::MissionAt(plan.doc, plan.keys, dynosize::study::GridPoint(plan.keys, index)), plan.name));
+  } catch (const dynosize::DataError&) {
+  }
+  const dynosize::api::MissionCatalog mission_catalog(CatalogOr(catalog).get(), point);
   const dynosize::Catalog& cat = mission_catalog.get();
   dynosize::study::PointOptions po;
   po.top = top;
@@ -357,8 +362,7 @@ py::object SweepPoint(const py::dict& plan_dict, std::size_t index, int top, boo
 // Every point on this machine's threads: the dict of sweep --json.
 py::object SweepLocal(const py::dict& plan_dict, int top, bool variants, int threads, const PyCatalog* catalog) {
   const dynosize::study::SweepPlan plan = PlanOf(plan_dict);
-  const dynosize::api::MissionCatalog mission_catalog(CatalogOr(catalog).get(),
-                                                      dynosize::ParseMission(plan.doc, plan.name));
+  const dynosize::api::MissionCatalog mission_catalog(CatalogOr(catalog).get(), dynosize::study::PointMissions(plan));
   const dynosize::Catalog& cat = mission_catalog.get();
   dynosize::study::SweepOptions so;
   so.point.top = top;

@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "catalog/conventions.h"
+#include "catalog/prop_families.h"
 #include "catalog/esc_prior.h"
 #include "catalog/motor_credibility.h"
 #include "catalog/in_system.h"
@@ -630,11 +631,12 @@ void Catalog::AddDocument(const Json& doc, const std::string& file,
     const bool known = std::any_of(std::begin(kKinds), std::end(kKinds), [&](ComponentKind k) {
       return it.key() == KindArrayName(k);
     });
-    if (!known && it.key() != "comment") {
+    if (!known && it.key() != "comment" && it.key() != "prop_families") {
       problems->push_back(file + ": unknown top-level key \"" + it.key() +
-                          "\": allowed are motors, escs, props, batteries, comment");
+                          "\": allowed are motors, escs, props, batteries, prop_families, comment");
     }
   }
+  if (const auto fam = doc.find("prop_families"); fam != doc.end()) ReadPropFamilies(*fam, file, &prop_families_, problems);
   for (ComponentKind kind : kKinds) {
     const auto arr = doc.find(KindArrayName(kind));
     if (arr == doc.end()) continue;

@@ -1,5 +1,6 @@
 // The component catalog: a folder of JSON files, each an object with any of the arrays
-// "motors", "escs", "props", "batteries". Every entry has a unique "id" (across the whole
+// "motors", "escs", "props", "batteries", and "prop_families" (propeller families the search
+// sizes; catalog/prop_families.h). Every entry has a unique "id" (across the whole
 // catalog), a "name" and a "source" object saying where its numbers came from:
 //
 //   "source": {"dataset": "...",            required: the data set or document
@@ -36,6 +37,7 @@
 #include "catalog/catalog_path.h"
 #include "common/json_file.h"
 #include "catalog/entries.h"
+#include "rotor/family.h"
 
 namespace dynosize {
 
@@ -70,6 +72,9 @@ class Catalog {
   const std::vector<EscEntry>& escs() const { return escs_; }
   const std::vector<PropEntry>& props() const { return props_; }
   const std::vector<BatteryEntry>& batteries() const { return batteries_; }
+  // Propeller families searched with their size free (catalog/prop_families.h; offered to a
+  // mission's searched groups within their max_prop_diameter_m by api::MissionCatalog).
+  const std::vector<PropSizing>& prop_families() const { return prop_families_; }
 
   // Lookup by id; UsageError naming the id, the kind and the closest ids when absent.
   const MotorEntry& motor(const std::string& id) const;
@@ -108,6 +113,7 @@ class Catalog {
   std::vector<EscEntry> escs_;
   std::vector<PropEntry> props_;
   std::vector<BatteryEntry> batteries_;
+  std::vector<PropSizing> prop_families_;
   // id -> (kind, index); ids are unique across the catalog.
   std::unordered_map<std::string, std::pair<ComponentKind, std::size_t>> index_;
   // id -> where it was read ("file: motors[3] id=x") and from which folder.

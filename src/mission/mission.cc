@@ -30,6 +30,24 @@ const char* ObjectiveTypeName(ObjectiveType type) {
   return "?";
 }
 
+std::vector<PropSize> OfferedSizes(const Mission& m, const std::vector<PropSizing>& catalog_families, int g) {
+  std::vector<PropSize> out;
+  std::set<std::string> ids;
+  for (const PropSize& s : GroupSizedProps(m, g)) {
+    if (ids.insert(SizedPropId(s)).second) out.push_back(s);
+  }
+  if (!m.groups.empty() && m.groups[g].fixed()) return out;
+  const std::optional<double> d_max = GroupMaxPropDiameterM(m, g);
+  const std::optional<std::vector<PropSizing>>& own = GroupPropSizing(m, g);
+  if (!own && !d_max) return out;
+  for (const PropSizing& f : own ? *own : catalog_families) {
+    for (const PropSize& s : SizingGrid(f, d_max.value_or(std::numeric_limits<double>::infinity()))) {
+      if (ids.insert(SizedPropId(s)).second) out.push_back(s);
+    }
+  }
+  return out;
+}
+
 double DisplayObjective(const Mission& m, double objective) {
   switch (m.objective.type) {
     case ObjectiveType::kMaxEndurance: return objective / 60.0;
@@ -253,6 +271,69 @@ static PropSize ReadSizedProp(const Json& v, const std::string& name, const std:
   return size;
 }
 
+// "prop_sizing": [{"family": F, "diameter_m": [lo, hi], "pitch_ratio": [lo, hi], "blades": [2, 3]}]
+// (rotor/family.h PropSizing); pitch_ratio defaults to the family's measured blades' range,
+// blades to [2].
+static std::vector<PropSizing> ReadPropSizing(const Json& v, const std::string& name, const std::string& path) {
+  if (!v.is_array() || v.size() > 8) {
+    throw DataError(name + ": " + path + ": must be an array of at most 8 families "
+                    "({\"family\", \"diameter_m\": [min, max], \"pitch_ratio\", \"blades\"}; [] for none)");
+  }
+  std::vector<PropSizing> out;
+  for (std::size_t i = 0; i < v.size(); ++i) {
+    const std::string at = path + "[" + std::to_string(i) + "]";
+    const Reader r(v[i], name, at);
+    r.AllowOnly({"family", "diameter_m", "pitch_ratio", "blades", "comment"});
+    PropSizing s;
+    s.family = r.String("family", std::nullopt);
+    const RotorFamily* family = FindFamily(s.family);
+    if (family == nullptr) {
+      r.Fail(at + ".family", r.At("family"), "must be a bundled family (" + KnownFamilyIds() + ")");
+    }
+    const Range d = r.NumberOrRange("diameter_m", 0.0, 10.0, true);
+    const Range pd = r.Has("pitch_ratio") ? r.NumberOrRange("pitch_ratio", 0.0, 2.0, true)
+                                          : Range{family->pd_min, family->pd_max};
+    s.diameter_min_m = d.lo;
+    s.diameter_max_m = d.hi;
+    s.pitch_ratio_min = pd.lo;
+    s.pitch_ratio_max = pd.hi;
+    s.blades = {2};
+    if (r.Has("blades")) {
+      const Json& b = r.At("blades");
+      if (!b.is_array() || b.empty() || b.size() > 8) r.Fail(at + ".blades", b, "must be an array of 1-8 blade counts");
+      s.blades.clear();
+      for (const Json& x : b) {
+        if (!x.is_number_integer() || x.get<int>() < 1 || x.get<int>() > 8) {
+          r.Fail(at + ".blades", b, "each blade count must be an integer 1-8");
+        }
+        s.blades.push_back(x.get<int>());
+      }
+    }
+    try {
+      CheckPropSizing(s);
+    } catch (const UsageError& e) {
+      throw DataError(name + ": " + at + ": " + e.what());
+    }
+    out.push_back(std::move(s));
+  }
+  return out;
+}
+
+// A searched group's (or the vehicle's) "sized_props" and "prop_sizing".
+static void ReadPropOffer(const Reader& g, const std::string& name, const std::string& path,
+                          std::vector<PropSize>* sized, std::optional<std::vector<PropSizing>>* sizing) {
+  if (g.Has("sized_props")) {
+    const Json& list = g.At("sized_props");
+    if (!list.is_array() || list.empty() || list.size() > 64) {
+      g.Fail(path + ".sized_props", list, "must be an array of 1-64 sizes (\"DxP[xB]\" or {\"param\", \"family\"})");
+    }
+    for (std::size_t i = 0; i < list.size(); ++i) {
+      sized->push_back(ReadSizedProp(list[i], name, path + ".sized_props[" + std::to_string(i) + "]"));
+    }
+  }
+  if (g.Has("prop_sizing")) *sizing = ReadPropSizing(g.At("prop_sizing"), name, path + ".prop_sizing");
+}
+
 // "propulsion": {"lift": {"rotors": 4, "max_prop_diameter_m": 0.33, "idle_drag_area_m2": 0.01,
 //                "motor": ID, "esc": ID, "prop": ID}, ...}; sets m->groups and m->vehicle.rotors.
 static void ReadPropulsion(const Reader& top, const std::string& name, Mission* m) {
@@ -263,7 +344,7 @@ static void ReadPropulsion(const Reader& top, const std::string& name, Mission* 
     const std::string path = "$.propulsion." + it.key();
     const Reader g(it.value(), name, path);
     g.AllowOnly({"rotors", "max_prop_diameter_m", "idle_drag_area_m2", "motor", "esc", "prop", "sized_props",
-                 "comment"});
+                 "prop_sizing", "comment"});
     PropulsionGroup grp;
     grp.name = it.key();
     if (grp.name.empty()) top.Fail("$.propulsion", p, "a group name must not be empty");
@@ -278,16 +359,12 @@ static void ReadPropulsion(const Reader& top, const std::string& name, Mission* 
     } else {
       grp.prop_id = g.String("prop", std::string());
     }
-    if (g.Has("sized_props")) {
-      const Json& list = g.At("sized_props");
-      if (!grp.prop_id.empty()) g.Fail(path + ".sized_props", list, "a fixed group's propeller is its \"prop\"");
-      if (!list.is_array() || list.empty() || list.size() > 64) {
-        g.Fail(path + ".sized_props", list, "must be an array of 1-64 sizes (\"DxP[xB]\" or {\"param\", \"family\"})");
-      }
-      for (std::size_t i = 0; i < list.size(); ++i) {
-        grp.sized_props.push_back(ReadSizedProp(list[i], name, path + ".sized_props[" + std::to_string(i) + "]"));
+    for (const char* key : {"sized_props", "prop_sizing"}) {
+      if (g.Has(key) && !grp.prop_id.empty()) {
+        g.Fail(path + "." + key, g.At(key), "a fixed group's propeller is its \"prop\"");
       }
     }
+    ReadPropOffer(g, name, path, &grp.sized_props, &grp.prop_sizing);
     const int given = !grp.motor_id.empty() + !grp.esc_id.empty() + !grp.prop_id.empty();
     if (given != 0 && given != 3) {
       g.Fail(path, it.value(), "give all of motor, esc and prop (a fixed group) or none (a searched group)");
@@ -304,7 +381,7 @@ static void ReadVehicle(const Reader& top, const std::string& name, Mission* m) 
   if (!top.Has("vehicle")) top.FailMissing("vehicle", "an object is required");
   const Reader v(top.At("vehicle"), name, "$.vehicle");
   v.AllowOnly({"mass_kg", "rotors", "coaxial", "drag_area_m2", "drag_coefficient", "avionics_power_w",
-               "max_prop_diameter_m"});
+               "max_prop_diameter_m", "sized_props", "prop_sizing"});
   m->vehicle.mass_kg = v.Number("mass_kg", 0.0, 1e4, true);
   if (top.Has("propulsion")) {
     ReadPropulsion(top, name, m);
@@ -312,12 +389,12 @@ static void ReadVehicle(const Reader& top, const std::string& name, Mission* m) 
       v.Fail("$.vehicle.rotors", v.At("rotors"), "must be the sum of the propulsion groups' rotors (" +
                                                      std::to_string(m->vehicle.rotors) + ") or left out");
     }
-    if (v.Has("max_prop_diameter_m")) {
-      v.Fail("$.vehicle.max_prop_diameter_m", v.At("max_prop_diameter_m"),
-             "give max_prop_diameter_m per propulsion group");
+    for (const char* key : {"max_prop_diameter_m", "sized_props", "prop_sizing"}) {
+      if (v.Has(key)) v.Fail(std::string("$.vehicle.") + key, v.At(key), std::string("give ") + key + " per propulsion group");
     }
   } else {
     m->vehicle.rotors = v.Integer("rotors", 1, 64, std::nullopt);
+    ReadPropOffer(v, name, "$.vehicle", &m->vehicle.sized_props, &m->vehicle.prop_sizing);
   }
   m->vehicle.coaxial = v.Bool("coaxial", false);
   if (m->vehicle.coaxial && m->vehicle.rotors % 2 != 0) {

@@ -68,6 +68,10 @@ struct Vehicle {
   double avionics_power_w = 0.0;  // drawn from the battery throughout
   // The largest propeller the frame takes (arm length, rotor spacing); no limit when absent.
   std::optional<double> max_prop_diameter_m;
+  // Without "propulsion" groups, the one searched group's sized propellers and propeller
+  // sizing, as PropulsionGroup's below.
+  std::vector<PropSize> sized_props;
+  std::optional<std::vector<PropSizing>> prop_sizing;
 };
 
 // A propulsion group (mission key "propulsion"): rotors that share one motor, ESC and
@@ -87,6 +91,11 @@ struct PropulsionGroup {
   // {"param": "DxP[xB]", "family": F} (then prop_id is its SizedPropId). The catalog a mission
   // runs on holds their entries (api/mission_catalog.h, CatalogForMission).
   std::vector<PropSize> sized_props;
+  // "prop_sizing" (a searched group): families whose size the search chooses, each a diameter
+  // range (and pitch ratio range and blade counts) laid on rotor/family.h's SizingGrid. Absent:
+  // the catalog's prop_families within the group's max_prop_diameter_m (none without one);
+  // an empty list: none. OfferedSizes gives the sizes.
+  std::optional<std::vector<PropSizing>> prop_sizing;
 };
 
 struct MissionBattery {
@@ -210,6 +219,21 @@ inline std::optional<double> GroupMaxPropDiameterM(const Mission& m, int g) {
   return m.groups.empty() ? m.vehicle.max_prop_diameter_m : m.groups[g].max_prop_diameter_m;
 }
 inline std::string GroupName(const Mission& m, int g) { return m.groups.empty() ? "" : m.groups[g].name; }
+// The sizes offered to group g beside the catalog's propellers (PropulsionGroup::sized_props,
+// or Vehicle's without groups); a fixed group's one is its own "prop".
+inline const std::vector<PropSize>& GroupSizedProps(const Mission& m, int g) {
+  return m.groups.empty() ? m.vehicle.sized_props : m.groups[g].sized_props;
+}
+inline const std::optional<std::vector<PropSizing>>& GroupPropSizing(const Mission& m, int g) {
+  return m.groups.empty() ? m.vehicle.prop_sizing : m.groups[g].prop_sizing;
+}
+// The sized propellers searched group g is offered beside the catalog's (issue 52 item 5): its
+// sized_props, then the grid (rotor/family.h SizingGrid) of each family of its prop_sizing or,
+// without that key, of `catalog_families` (Catalog::prop_families) within its
+// max_prop_diameter_m (none without one: a frame with no limit is not offered 4 m rotors by
+// default). Each id once, in that order; a fixed group's is its sized "prop" (if any). The one rule for
+// api::MissionCatalog (which builds their entries) and the search (which offers each group its own).
+std::vector<PropSize> OfferedSizes(const Mission& m, const std::vector<PropSizing>& catalog_families, int g);
 
 // Reads and checks a mission file: NoInputError when missing, DataError (one line: file, JSON
 // path, value, rule) when anything is wrong.

@@ -164,11 +164,11 @@ double ScoreFromSegmentPowers(const Mission& m, const std::vector<double>& p_lb_
 }
 
 bool JointBounds::PropAllowed(int group, const PropEntry& p) const {
-  return PropFrameRule(m_, group, Lifts(group), p) == nullptr;
+  return PropFrameRule(m_, offer_, group, Lifts(group), cat_, static_cast<std::size_t>(&p - cat_.props().data())) == nullptr;
 }
 
 const char* JointBounds::PropRule(int prop) const {
-  return PropFrameRule(m_, outer_, Lifts(outer_), cat_.props()[static_cast<std::size_t>(prop)]);
+  return PropFrameRule(m_, offer_, outer_, Lifts(outer_), cat_, static_cast<std::size_t>(prop));
 }
 
 const char* JointBounds::MotorRule(int motor, std::size_t o) const {
@@ -184,7 +184,8 @@ const char* JointBounds::MotorRule(int motor, std::size_t o) const {
   return nullptr;
 }
 
-JointBounds::JointBounds(const Mission& m, const Catalog& cat, const PropGridCache& cache) : m_(m), cat_(cat) {
+JointBounds::JointBounds(const Mission& m, const Catalog& cat, const PropGridCache& cache)
+    : m_(m), cat_(cat), offer_(m, cat) {
   for (const auto& p : cache.models) models_.push_back(p.get());
   for (const PropEntry& p : cat.props()) adjustments_.push_back(PropAdjustmentFor(p, m.objective.ranking));
   lift_group_ = std::max(0, LiftGroup(m));

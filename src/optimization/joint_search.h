@@ -203,6 +203,7 @@ class JointBounds {
 
   const Mission& m_;
   const Catalog& cat_;
+  SizedPropOffer offer_;  // which sized propellers each group may take (R0)
   std::vector<const PropModel*> models_;
   int outer_ = 0, lift_group_ = 0;
   int lift_rotors_ = 0;  // LiftRotors(m_), read per pair by ReachesThrustToWeight

@@ -37,7 +37,8 @@ struct GroupCandidates {
   std::vector<int> motors, escs, props;
 };
 
-GroupCandidates CandidatesOf(const Mission& m, const Catalog& cat, int g, bool lifts) {
+GroupCandidates CandidatesOf(const Mission& m, const Catalog& cat, const search_internal::SizedPropOffer& offer, int g,
+                             bool lifts) {
   GroupCandidates c;
   auto index_of = [](const auto& list, const auto* entry) { return static_cast<int>(entry - list.data()); };
   if (!m.groups.empty() && m.groups[g].fixed()) {
@@ -55,7 +56,7 @@ GroupCandidates CandidatesOf(const Mission& m, const Catalog& cat, int g, bool l
     if (cat.escs()[i].exclude_reason.empty()) c.escs.push_back(static_cast<int>(i));
   }
   for (std::size_t i = 0; i < cat.props().size(); ++i) {
-    if (!search_internal::PropFrameRule(m, g, lifts, cat.props()[i])) c.props.push_back(static_cast<int>(i));
+    if (!search_internal::PropFrameRule(m, offer, g, lifts, cat, i)) c.props.push_back(static_cast<int>(i));
   }
   return c;
 }
@@ -395,7 +396,8 @@ std::vector<UnmetRequirement> UnmetRequirements(const Mission& m, const Catalog&
   }
   const int lift_group = LiftGroup(m);
   std::vector<GroupCandidates> groups;
-  for (int g = 0; g < GroupCount(m); ++g) groups.push_back(CandidatesOf(m, cat, g, g == std::max(0, lift_group)));
+  const search_internal::SizedPropOffer offer(m, cat);
+  for (int g = 0; g < GroupCount(m); ++g) groups.push_back(CandidatesOf(m, cat, offer, g, g == std::max(0, lift_group)));
   VoltageRequirements(m, cat, groups, lift_group, v_full_min_v, &out);
   if (lift_group < 0) return out;  // a wing-borne cruise only: no hover to bound
   const GroupCandidates& lift = groups[static_cast<std::size_t>(lift_group)];

@@ -108,7 +108,7 @@ MissionFacts StageFourFacts(const SearchContext& ctx) {
   MissionFacts f = FactsOf(m, ctx.free_group);
   const auto& props = ctx.catalog->props();
   for (std::size_t pi = 0; pi < props.size(); ++pi) {
-    const char* rule = PropFrameRule(m, f.free_group, f.free_lifts, props[pi]);
+    const char* rule = PropFrameRule(m, ctx.prop_offer, f.free_group, f.free_lifts, *ctx.catalog, pi);
     if (!rule) {
       f.frame_ok_props.push_back(static_cast<int>(pi));
       continue;

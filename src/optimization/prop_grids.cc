@@ -4,6 +4,8 @@
 #include <cmath>
 #include <limits>
 #include <memory>
+#include <set>
+#include <string>
 #include <vector>
 
 #include "common/units.h"
@@ -22,7 +24,22 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 
 // Rule R0 (docs/search.md#r0): a propeller over the frame's diameter, or folding for lift, or
 // excluded by the catalog fails whatever motor is chosen.
-const char* PropFrameRule(const Mission& m, int group, bool lifts, const PropEntry& prop) {
+SizedPropOffer::SizedPropOffer(const Mission& m, const Catalog& cat) {
+  const auto& props = cat.props();
+  offered_.assign(static_cast<std::size_t>(GroupCount(m)), std::vector<char>(props.size(), 1));
+  for (int g = 0; g < GroupCount(m); ++g) {
+    std::set<std::string> ids;
+    for (const PropSize& s : OfferedSizes(m, cat.prop_families(), g)) ids.insert(SizedPropId(s));
+    for (std::size_t p = 0; p < props.size(); ++p) {
+      if (IsSizedPropId(props[p].id) && ids.count(props[p].id) == 0) offered_[static_cast<std::size_t>(g)][p] = 0;
+    }
+  }
+}
+
+const char* PropFrameRule(const Mission& m, const SizedPropOffer& offer, int group, bool lifts, const Catalog& cat,
+                          std::size_t prop_index) {
+  if (!offer.Offered(group, prop_index)) return "prop_not_offered";
+  const PropEntry& prop = cat.props()[prop_index];
   const std::optional<double> d_max = GroupMaxPropDiameterM(m, group);
   if (d_max && prop.diameter_m > *d_max) return "prop_diameter";
   if (!prop.exclude_reason.empty()) return "catalog_exclude";

@@ -7,6 +7,8 @@
 #include "common/error.h"
 
 #include <limits>
+#include <set>
+#include <string>
 #include <utility>
 
 #include "optimization/credibility.h"
@@ -34,14 +36,16 @@ SearchResult SearchExactly(const Mission& m, const Catalog& cat, const SearchOpt
 SearchResult SearchCatalog(const Mission& m, const Catalog& cat, const SearchOptions& opt) {
   // A searched group's sized propellers must be in the catalog (api/mission_catalog.h adds them):
   // otherwise the search would quietly leave them out.
-  for (const PropulsionGroup& g : m.groups) {
-    for (const PropSize& size : g.sized_props) {
+  std::set<std::string> ids;
+  for (const PropEntry& p : cat.props()) {
+    if (IsSizedPropId(p.id)) ids.insert(p.id);
+  }
+  for (int g = 0; g < GroupCount(m); ++g) {
+    for (const PropSize& size : OfferedSizes(m, cat.prop_families(), g)) {
       const std::string id = SizedPropId(size);
-      bool found = false;
-      for (const PropEntry& p : cat.props()) found = found || p.id == id;
-      if (!found) {
-        throw UsageError(m.file + ": $.propulsion." + g.name + ": the sized propeller " + id +
-                         " is not in the catalog searched (run the mission on api::MissionCatalog)");
+      if (ids.count(id) == 0) {
+        throw UsageError(m.file + (m.groups.empty() ? ": $.vehicle" : ": $.propulsion." + GroupName(m, g)) +
+                         ": the sized propeller " + id + " is not in the catalog searched (run the mission on api::MissionCatalog)");
       }
     }
   }

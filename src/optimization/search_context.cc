@@ -13,6 +13,7 @@ namespace dynosize::search_internal {
 
 void ResolveGroups(SearchContext* ctx) {
   const Mission& m = *ctx->mission;
+  ctx->prop_offer = SizedPropOffer(m, *ctx->catalog);
   ctx->free_group = 0;
   ctx->fixed_parts.clear();
   ctx->fixed_groups_mass_kg = 0;

@@ -128,9 +128,27 @@ const char* DriveRule(const MissionConstraints& k, const MotorParams& mp, const 
 const char* FreeCruiseRangeRule(const MissionConstraints& k, const Drive& drive, const FreeCruiseSamples& s,
                                  double v_full_v, double tr_max, double esc_max_current_a, double* irms_lb = nullptr);
 
-// R0 for a propeller of `group` whatever the motor: the frame's largest diameter, the
-// catalog's exclusion, a folding propeller for lift (credibility.h); null when none applies.
-const char* PropFrameRule(const Mission& m, int group, bool lifts, const PropEntry& prop);
+// Which sized propellers of the catalog (rotor/family.h IsSizedPropId) each group is offered
+// (mission.h OfferedSizes: its own sized_props and prop_sizing, or the catalog's families within
+// its frame): a group searches only its own, so that one group's sizes are not another's.
+class SizedPropOffer {
+ public:
+  SizedPropOffer() = default;  // offers every propeller (a context before ResolveGroups)
+  SizedPropOffer(const Mission& m, const Catalog& cat);
+  // True for every propeller that is not sized, and for the sized ones offered to `group`.
+  bool Offered(int group, std::size_t prop) const {
+    return offered_.empty() || offered_[static_cast<std::size_t>(group)][prop] != 0;
+  }
+
+ private:
+  std::vector<std::vector<char>> offered_;  // [group][prop]
+};
+
+// R0 for propeller `prop` (an index into the catalog's) of `group` whatever the motor: a sized
+// propeller not offered to the group, the frame's largest diameter, the catalog's exclusion, a
+// folding propeller for lift (credibility.h); null when none applies.
+const char* PropFrameRule(const Mission& m, const SizedPropOffer& offer, int group, bool lifts, const Catalog& cat,
+                          std::size_t prop);
 
 inline constexpr int kGrid = 256;
 inline constexpr double kGridMinRadS = 30.0, kGridMaxRadS = kPropSpeedCeilingRadS;
@@ -186,6 +204,8 @@ struct MotorSetupCache {
 struct SearchContext {
   const Mission* mission = nullptr;
   const Catalog* catalog = nullptr;
+  // Which sized propellers each group is offered (R0); built with the context.
+  SizedPropOffer prop_offer;
   // Propulsion groups: the search chooses the parts of free_group; the others are fixed by the
   // mission (fixed_parts by group index, the free one's entry null; empty without groups).
   int free_group = 0;

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 
+#include "rotor/family.h"
+
 namespace dynosize::search_internal {
 
 namespace {
@@ -14,7 +16,11 @@ EntryKey KeyOf(const Combination& c, bool distinct_designs) {
   EntryKey k;
   auto add = [&](const GroupParts& p) {
     k.push_back(Id(p.motor));
-    k.push_back(Id(p.prop));
+    // Designs: the sizes of one family and blade count are one design, its size a choice inside
+    // it (a grid's neighbours are not alternatives to a different motor or family).
+    const RotorFamily* family = distinct_designs ? FamilyOfSizedPropId(p.prop->id) : nullptr;
+    k.push_back(family ? Id(family) : Id(p.prop));
+    if (family) k.push_back(static_cast<std::uintptr_t>(p.prop->blades.value_or(2)));
     if (!distinct_designs) k.push_back(Id(p.esc));
   };
   if (c.groups.empty()) {

@@ -4,8 +4,9 @@
 //
 // Two ways of counting the N (SearchOptions::distinct_designs):
 //  - combinations (false): every (motor, ESC, propeller, pack) on its own, as before;
-//  - designs (true): each of the N a different design, the (motor, propeller) of every group;
-//    a design's other ESCs and packs are kept inside it as alternatives.
+//  - designs (true): each of the N a different design, the (motor, propeller) of every group,
+//    the sized propellers of one family and blade count (rotor/family.h) one propeller; a
+//    design's other ESCs, packs and sizes are kept inside it as alternatives.
 // The threshold is the N-th best entry's score (smaller is better), or the caller's cutoff while
 // fewer than N are known (and never above it). Designs: a combination whose score is not below
 // that threshold can neither put a new design into the top N nor better a design's best, so
@@ -25,8 +26,9 @@
 
 namespace dynosize::search_internal {
 
-// What makes two results the same entry: the motor and propeller of every group (designs), and
-// also the ESCs, the battery and the cells (combinations).
+// What makes two results the same entry: the motor and propeller (a sized one: its family and
+// blades) of every group (designs), and also the ESCs, the battery and the cells (combinations:
+// every propeller on its own).
 using EntryKey = std::vector<std::uintptr_t>;
 EntryKey KeyOf(const Combination& c, bool distinct_designs);
 

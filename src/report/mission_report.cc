@@ -17,6 +17,7 @@
 #include "optimization/no_design.h"
 #include "prop/prop_model.h"
 #include "report/gnuplot.h"
+#include "rotor/family.h"
 
 namespace dynosize {
 
@@ -58,6 +59,32 @@ void AddCredibilityJson(const Mission& m, const MissionResult& r, Json* j) {
   for (const PartTier& p : g.tiers) t[p.part] = {{"id", p.id}, {"tier", TierName(p.tier)}, {"set_by", p.why}};
   (*j)["tiers"] = t;
   (*j)["motor_rating"] = g.motor_rating;
+}
+
+// A sized propeller (rotor/family.h): its size, blades, family and how far the family's data
+// reach; null for a catalog propeller.
+Json SizedPropOf(const PropEntry& p) {
+  const RotorFamily* f = FamilyOfSizedPropId(p.id);
+  if (f == nullptr) return nullptr;
+  return {{"diameter_m", p.diameter_m}, {"pitch_m", p.pitch_m.value_or(0.0)}, {"blades", p.blades.value_or(2)},
+          {"family", f->id}, {"family_description", f->description},
+          {"family_measured_diameter_in", {f->d_min_in, f->d_max_in}}, {"reach", FamilyReachText(*f, p.diameter_m)}};
+}
+
+// "  sized propeller (lift): 1.630 m, pitch 0.533 m (64.17 x 20.99 in), 2 blades, family ...".
+std::string SizedPropText(const Mission& m, const Combination& c) {
+  std::string out;
+  for (int g = 0; g < GroupCount(m); ++g) {
+    const PropEntry& p = *c.Parts(g).prop;
+    const RotorFamily* f = FamilyOfSizedPropId(p.id);
+    if (f == nullptr) continue;
+    const double pitch_m = p.pitch_m.value_or(0.0);
+    out += "  sized propeller" + (m.groups.empty() ? std::string() : " (" + m.groups[g].name + ")") + ": " +
+           FixedText(p.diameter_m, 3) + " m, pitch " + FixedText(pitch_m, 3) + " m (" + SignificantText(p.diameter_m / 0.0254, 4) +
+           " x " + SignificantText(pitch_m / 0.0254, 4) + " in), " + std::to_string(p.blades.value_or(2)) + " blades, family " +
+           f->id + ", blade-element estimate; " + FamilyReachText(*f, p.diameter_m) + "\n";
+  }
+  return out;
 }
 
 std::string CredibilityText(const Mission& m, const MissionResult& r) {
@@ -133,9 +160,13 @@ Json MissionResultJson(const Mission& m, const Combination& c, const MissionResu
       Json x = {{"motor", p.motor->id}, {"esc", p.esc->id}, {"prop", p.prop->id}, {"rotors", GroupRotors(m, g)},
                 {"fixed", m.groups[g].fixed()}};
       if (g == LiftGroup(m)) x["thrust_to_weight"] = r.thrust_to_weight;
+      if (const Json sized = SizedPropOf(*p.prop); !sized.is_null()) x["sized_prop"] = sized;
       groups[m.groups[g].name] = x;
     }
     j["groups"] = groups;
+  }
+  if (m.groups.empty()) {
+    if (const Json sized = SizedPropOf(*c.prop); !sized.is_null()) j["sized_prop"] = sized;
   }
   j["battery"] = c.battery->id;
   j["cells"] = c.cells;
@@ -282,6 +313,7 @@ std::string MissionResultText(const Mission& m, const Combination& c, const Miss
     }
     o << "; winding up to " << FixedText(d.winding_temp_max_c, 0) << " C\n";
   }
+  o << SizedPropText(m, c);
   o << CredibilityText(m, r);
   o << SegmentTableHeader(m, r);
   const SegmentColumns cols = SegmentColumnsOf(m, r);

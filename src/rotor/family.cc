@@ -138,4 +138,77 @@ std::string SizeText(const PropSize& size) {
 
 std::string SizedPropId(const PropSize& size) { return "sized_" + FamilyIdOf(size) + "_" + SizeText(size); }
 
+bool IsSizedPropId(const std::string& id) { return id.rfind("sized_", 0) == 0; }
+
+const RotorFamily* FamilyOfSizedPropId(const std::string& id) {
+  if (!IsSizedPropId(id)) return nullptr;
+  const RotorFamily* best = nullptr;
+  auto consider = [&](const RotorFamily& f) {
+    const std::string prefix = "sized_" + f.id + "_";
+    if (id.rfind(prefix, 0) == 0 && (!best || f.id.size() > best->id.size())) best = &f;
+  };
+  for (const RotorFamily& f : BundledFamilies()) consider(f);
+  consider(EvtolRotorFamily());
+  return best;
+}
+
+std::string FamilyReachText(const RotorFamily& family, double diameter_m) {
+  if (&family == &EvtolRotorFamily()) return "the family is parametric: no measured rotor of its class to check it on";
+  const double d_in = diameter_m / 0.0254;
+  std::string text = "the family's measured blades span " + SignificantText(family.d_min_in, 3) + "-" +
+                     SignificantText(family.d_max_in, 3) + " in";
+  if (d_in > family.d_max_in) return text + "; this one is " + FixedText(d_in / family.d_max_in, 1) + "x the largest";
+  if (d_in < family.d_min_in) return text + "; this one is " + FixedText(family.d_min_in / d_in, 1) + "x below the smallest";
+  return text + "; this one is inside them";
+}
+
+namespace {
+
+// lo, lo + step, ... below hi, then hi (lo alone when hi == lo).
+std::vector<double> GridOver(double lo, double hi, double step) {
+  std::vector<double> v;
+  const double tol = 1e-9 * step;
+  for (int k = 0;; ++k) {
+    const double x = lo + k * step;
+    if (x >= hi - tol) break;
+    v.push_back(x);
+  }
+  v.push_back(hi);
+  return v;
+}
+
+}  // namespace
+
+std::vector<PropSize> SizingGrid(const PropSizing& sizing, double max_diameter_m) {
+  std::vector<PropSize> out;
+  const double d_hi = std::min(sizing.diameter_max_m, max_diameter_m);
+  if (!(d_hi >= sizing.diameter_min_m)) return out;
+  const std::vector<double> diameters = GridOver(sizing.diameter_min_m, d_hi, kSizingDiameterStepM);
+  const std::vector<double> ratios = GridOver(sizing.pitch_ratio_min, sizing.pitch_ratio_max, kSizingPitchRatioStep);
+  for (const int b : sizing.blades) {
+    for (const double d : diameters) {
+      for (const double pd : ratios) out.push_back(PropSize{d, pd * d, b, sizing.family});
+    }
+  }
+  return out;
+}
+
+void CheckPropSizing(const PropSizing& s) {
+  if (FindFamily(s.family) == nullptr) {
+    throw UsageError("family \"" + s.family + "\": not a bundled family (known: " + KnownFamilyIds() + ")");
+  }
+  if (!(s.diameter_min_m > 0.0 && s.diameter_min_m <= s.diameter_max_m && s.diameter_max_m <= 10.0)) {
+    throw UsageError("diameter_m [" + SignificantText(s.diameter_min_m, 4) + ", " + SignificantText(s.diameter_max_m, 4) +
+                     "]: must be a range with 0 < min <= max <= 10 m");
+  }
+  if (!(s.pitch_ratio_min > 0.0 && s.pitch_ratio_min <= s.pitch_ratio_max && s.pitch_ratio_max <= 2.0)) {
+    throw UsageError("pitch_ratio [" + SignificantText(s.pitch_ratio_min, 4) + ", " + SignificantText(s.pitch_ratio_max, 4) +
+                     "]: must be a range with 0 < min <= max <= 2");
+  }
+  if (s.blades.empty()) throw UsageError("blades: must list 1-8 blade counts");
+  for (const int b : s.blades) {
+    if (b < 1 || b > 8) throw UsageError("blades: " + std::to_string(b) + ": must be 1-8");
+  }
+}
+
 }  // namespace dynosize

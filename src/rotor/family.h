@@ -73,5 +73,41 @@ std::string FamilyIdOf(const PropSize& size);
 std::string SizeText(const PropSize& size);
 // The catalog id of the sized propeller: "sized_<family>_<D>x<P>x<B>".
 std::string SizedPropId(const PropSize& size);
+// True for the ids SizedPropId makes (the entries api::MissionCatalog adds for a mission).
+bool IsSizedPropId(const std::string& id);
+// The family of a sized propeller's id (the longest family id after "sized_"); nullptr when the
+// id is not a sized one.
+const RotorFamily* FamilyOfSizedPropId(const std::string& id);
+// How far a size is from its family's data, for a result's line: "the family's measured blades
+// span 12-18 in; this one is 3.6x the largest", or that the family is parametric.
+std::string FamilyReachText(const RotorFamily& family, double diameter_m);
+
+// A family offered to the search with its sizes free (issue 52 item 5): the catalog's
+// "prop_families" (catalog/catalog.h) and a mission's "prop_sizing" (docs/missions.md). The
+// search sizes the rotor on the grid SizingGrid lays over the ranges, every point an entry of
+// its own searched exactly with the motor, ESC and pack (docs/missions.md, "Sizing the rotor").
+struct PropSizing {
+  std::string id;      // the catalog entry's id ("" for a mission's own)
+  std::string family;  // a FindFamily id
+  double diameter_min_m = 0.0, diameter_max_m = 0.0;
+  double pitch_ratio_min = 0.0, pitch_ratio_max = 0.0;
+  std::vector<int> blades;  // 1-8 each
+  std::string source;       // why these ranges (the catalog's provenance)
+};
+
+// The grid's steps: 2 cm of diameter (finer than the inch propellers are sold in; issue 52's goal
+// compares with the best of a 2 cm grid) and 0.05 of pitch ratio.
+inline constexpr double kSizingDiameterStepM = 0.02;
+inline constexpr double kSizingPitchRatioStep = 0.05;
+
+// The sizes of the grid over `sizing`'s ranges with the diameter at most `max_diameter_m`:
+// diameters from the range's low end by kSizingDiameterStepM, the range's high end (or
+// max_diameter_m, the lower) always included; pitch ratios likewise by kSizingPitchRatioStep;
+// every blade count. Empty when the frame takes none of the family's diameters. A range
+// shorter than its step gives its two ends (one for a single value).
+std::vector<PropSize> SizingGrid(const PropSizing& sizing, double max_diameter_m);
+// Throws UsageError naming the rule when a sizing's family is unknown or a range is out of
+// bounds (diameter 0 < min <= max <= 10 m, pitch ratio 0 < min <= max <= 2, blades 1-8).
+void CheckPropSizing(const PropSizing& sizing);
 
 }  // namespace dynosize

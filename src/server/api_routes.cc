@@ -129,7 +129,7 @@ Json Sweep(const ApiContext& ctx, const ApiCall& call) {
   for (const std::string& spec : vary) keys.push_back(study::ParseVary(spec));
   const study::SweepPlan plan = study::PlanSweep(*doc, "mission", std::move(keys), b.Flag("yes"));
   const Mission base = ParseMission(plan.doc, plan.name);
-  const api::MissionCatalog cat(*ctx.catalog, base);  // with the mission's sized propellers
+  const api::MissionCatalog cat(*ctx.catalog, study::PointMissions(plan));  // with the points' sized propellers
   return study::SweepJson(base, study::RunSweep(plan.doc, plan.name, cat.get(), plan.keys, so), plan.keys);
 }
 

@@ -332,6 +332,18 @@ SweepPlan PlanSweep(Json mission_doc, std::string mission_name, std::vector<Vary
   return plan;
 }
 
+std::vector<Mission> PointMissions(const SweepPlan& plan) {
+  std::vector<Mission> out;
+  for (std::size_t i = 0; i < plan.points; ++i) {
+    try {
+      out.push_back(ParseMission(MissionAt(plan.doc, plan.keys, GridPoint(plan.keys, i)), plan.name));
+    } catch (const DataError&) {
+      // RunSweep reports the point as failed
+    }
+  }
+  return out;
+}
+
 std::vector<Json> GridPoint(const std::vector<VaryKey>& keys, std::size_t index) {
   std::vector<Json> out(keys.size());
   for (std::size_t i = keys.size(); i-- > 0;) {

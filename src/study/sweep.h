@@ -20,6 +20,7 @@
 
 #include "catalog/catalog.h"
 #include "common/json_file.h"
+#include "mission/mission.h"
 #include "optimization/unmet_requirement.h"
 
 namespace dynosize::study {
@@ -67,6 +68,11 @@ struct SweepPlan {
 // The mission read by its reader (ParseMission), at least one key, the grid within
 // kLargeGridPoints unless allow_large (the CLI's --yes), then CheckKeys; UsageError otherwise.
 SweepPlan PlanSweep(Json mission_doc, std::string mission_name, std::vector<VaryKey> keys, bool allow_large);
+
+// The missions of the plan's grid points that parse (one that does not is a "failed" row of
+// RunSweep): the catalog of a sweep holds the sized propellers any of them offers
+// (api::MissionCatalog).
+std::vector<Mission> PointMissions(const SweepPlan& plan);
 
 // The values of grid point `index` (< GridSize), one per key.
 std::vector<Json> GridPoint(const std::vector<VaryKey>& keys, std::size_t index);

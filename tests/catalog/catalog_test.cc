@@ -212,3 +212,68 @@ TEST(Catalog, GearKeysAreReadAndChecked) {
 
 }  // namespace
 }  // namespace dynosize
+
+namespace dynosize {
+namespace {
+
+// "prop_families" (catalog/prop_families.h): read strictly, one line per problem.
+TEST(CatalogPropFamilies, ReadsFamiliesAndNamesEveryProblem) {
+  const std::string good =
+      R"({"id": "f1", "name": "n", "family": "multirotor", "diameter_m": [0.5, 1.5], "pitch_ratio": [0.3, 0.45],
+          "blades": [2], "source": {"dataset": "d", "reference": "r"}})";
+  Catalog c;
+  std::vector<std::string> problems;
+  c.AddDocument(ParseJsonText("{\"prop_families\": [" + good + "]}", "t.json"), "t.json", &problems);
+  EXPECT_TRUE(problems.empty()) << problems.front();
+  ASSERT_EQ(c.prop_families().size(), 1u);
+  EXPECT_EQ(c.prop_families()[0].family, "multirotor");
+  EXPECT_DOUBLE_EQ(c.prop_families()[0].diameter_max_m, 1.5);
+  struct Case { std::string from, to, expect; };
+  const Case cases[] = {
+      {"\"multirotor\"", "\"wood\"", "prop_families[0] id=f1: family \"wood\": not a bundled family"},
+      {"[0.5, 1.5]", "[1.5, 0.5]", "diameter_m [1.5, 0.5]: must be a range with 0 < min <= max"},
+      {"[0.3, 0.45]", "0.3", "key 'pitch_ratio' = 0.3: must be [min, max]"},
+      {"[2]", "[2.5]", "key 'blades' = [2.5]: must hold integers"},
+      {"\"name\": \"n\"", "\"name\": \"n\", \"twist\": 1", "key 'twist': unknown key for a propeller family"},
+      {"{\"dataset\": \"d\", \"reference\": \"r\"}", "{}", "key 'source': required"},
+  };
+  for (const Case& k : cases) {
+    std::string e = good;
+    e.replace(e.find(k.from), k.from.size(), k.to);
+    Catalog bad;
+    std::vector<std::string> p;
+    bad.AddDocument(ParseJsonText("{\"prop_families\": [" + e + "]}", "t.json"), "t.json", &p);
+    ASSERT_EQ(p.size(), 1u) << k.to;
+    EXPECT_NE(p[0].find(k.expect), std::string::npos) << p[0];
+    EXPECT_TRUE(bad.prop_families().empty());
+  }
+  std::vector<std::string> twice;
+  Catalog dup;
+  dup.AddDocument(ParseJsonText("{\"prop_families\": [" + good + ", " + good + "]}", "t.json"), "t.json", &twice);
+  ASSERT_EQ(twice.size(), 1u);
+  EXPECT_NE(twice[0].find("repeats"), std::string::npos);
+}
+
+// The bundled families the search sizes by default (issue 52: a carbon multirotor family of
+// 20-62 in, an eVTOL rotor family of 1-4 m).
+TEST(CatalogPropFamilies, BundledCatalogHoldsTheMultirotorAndEvtolFamilies) {
+  const Catalog c = Catalog::Load(std::string(DYNOSIZE_SOURCE_DIR) + "/catalog");
+  ASSERT_EQ(c.prop_families().size(), 2u);
+  bool multirotor = false, evtol = false;
+  for (const PropSizing& f : c.prop_families()) {
+    if (f.family == "multirotor") {
+      multirotor = true;
+      EXPECT_NEAR(f.diameter_min_m, 20 * 0.0254, 1e-3);
+      EXPECT_NEAR(f.diameter_max_m, 62 * 0.0254, 1e-3);
+    }
+    if (f.family == "evtol_rotor") {
+      evtol = true;
+      EXPECT_DOUBLE_EQ(f.diameter_min_m, 1.0);
+      EXPECT_DOUBLE_EQ(f.diameter_max_m, 4.0);
+    }
+  }
+  EXPECT_TRUE(multirotor && evtol);
+}
+
+}  // namespace
+}  // namespace dynosize

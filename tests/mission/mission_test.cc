@@ -338,5 +338,74 @@ TEST(MissionSizedProps, BadSizesGiveOneLineNamingPathValueAndRule) {
   EXPECT_THROW(Parse(fixed), DataError);
 }
 
+// Rotor sizing (issue 52 item 5): a group's own families, or the catalog's within its frame.
+TEST(MissionPropSizing, OffersTheGridOfTheGroupsOwnOrTheCatalogsFamilies) {
+  PropSizing catalog_family;
+  catalog_family.id = "fam";
+  catalog_family.family = "multirotor";
+  catalog_family.diameter_min_m = 0.30;
+  catalog_family.diameter_max_m = 1.5;
+  catalog_family.pitch_ratio_min = catalog_family.pitch_ratio_max = 0.35;
+  catalog_family.blades = {2};
+  const std::vector<PropSizing> families = {catalog_family};
+  Mission m = Parse(kGroups);
+  const int lift = m.segments[0].group, cruise = m.segments[1].group;
+  // Within the lift group's 0.40 m: 0.30, 0.32, ... 0.38 and 0.40 (the frame's limit).
+  const std::vector<PropSize> offered = OfferedSizes(m, families, lift);
+  ASSERT_EQ(offered.size(), 6u);
+  EXPECT_DOUBLE_EQ(offered.front().diameter_m, 0.30);
+  EXPECT_DOUBLE_EQ(offered.back().diameter_m, 0.40);
+  EXPECT_DOUBLE_EQ(offered.back().pitch_m, 0.35 * 0.40);
+  EXPECT_TRUE(OfferedSizes(m, families, cruise).empty());  // a fixed group sizes nothing
+  // No frame limit: the catalog's families are not offered (a 1.5 m rotor on a 2 kg quadplane).
+  m.groups[static_cast<std::size_t>(lift)].max_prop_diameter_m.reset();
+  EXPECT_TRUE(OfferedSizes(m, families, lift).empty());
+  // The group's own: an empty list offers none; its own families replace the catalog's.
+  const Mission none = Parse(Replace(kGroups, "\"idle_drag_area_m2\": 0.02}", "\"idle_drag_area_m2\": 0.02, \"prop_sizing\": []}"));
+  EXPECT_TRUE(OfferedSizes(none, families, lift).empty());
+  const Mission own = Parse(Replace(kGroups, "\"idle_drag_area_m2\": 0.02}",
+                                    "\"idle_drag_area_m2\": 0.02, \"prop_sizing\": [{\"family\": \"apc_e\", "
+                                    "\"diameter_m\": [0.2, 0.25], \"pitch_ratio\": [0.5, 0.6], \"blades\": [2, 3]}]}"));
+  const std::vector<PropSize> sizes = OfferedSizes(own, families, lift);
+  // 0.20, 0.22, 0.24, 0.25 m x pitch ratio 0.50, 0.55, 0.60 x 2 and 3 blades.
+  ASSERT_EQ(sizes.size(), 24u);
+  for (const PropSize& s : sizes) {
+    EXPECT_EQ(s.family, "apc_e");
+    EXPECT_GE(s.diameter_m, 0.2 - 1e-12);
+    EXPECT_LE(s.diameter_m, 0.25 + 1e-12);
+  }
+  // Without a pitch ratio: the family's measured blades' range (multirotor 0.31-0.56: 6 ratios).
+  const Mission default_pd = Parse(Replace(kGroups, "\"idle_drag_area_m2\": 0.02}",
+                                           "\"idle_drag_area_m2\": 0.02, \"prop_sizing\": [{\"family\": \"multirotor\", \"diameter_m\": 0.3}]}"));
+  const std::vector<PropSize> one_d = OfferedSizes(default_pd, families, lift);
+  ASSERT_FALSE(one_d.empty());
+  EXPECT_NEAR(one_d.front().pitch_m / 0.3, FindFamily("multirotor")->pd_min, 1e-12);
+  EXPECT_NEAR(one_d.back().pitch_m / 0.3, FindFamily("multirotor")->pd_max, 1e-12);
+}
+
+TEST(MissionPropSizing, BadSizingGivesOneLineNamingPathValueAndRule) {
+  const std::string base = "\"idle_drag_area_m2\": 0.02}";
+  struct Case { std::string sizing, expect; };
+  const Case cases[] = {
+      {"{}", "$.propulsion.lift.prop_sizing: must be an array"},
+      {"[{\"family\": \"wood\", \"diameter_m\": [0.2, 0.3]}]", "$.propulsion.lift.prop_sizing[0].family = \"wood\""},
+      {"[{\"family\": \"apc_e\"}]", "$.propulsion.lift.prop_sizing[0].diameter_m"},
+      {"[{\"family\": \"apc_e\", \"diameter_m\": [0.3, 0.2]}]", "min <= max"},
+      {"[{\"family\": \"apc_e\", \"diameter_m\": [0.2, 0.3], \"pitch_ratio\": [0, 0.5]}]", "pitch_ratio[0] = 0"},
+      {"[{\"family\": \"apc_e\", \"diameter_m\": [0.2, 0.3], \"blades\": [9]}]", "blades = [9]: each blade count must be an integer 1-8"},
+      {"[{\"family\": \"apc_e\", \"diameter_m\": 0.2, \"twist\": 3}]", "twist"},
+  };
+  for (const Case& c : cases) {
+    try {
+      Parse(Replace(kGroups, base, "\"idle_drag_area_m2\": 0.02, \"prop_sizing\": " + c.sizing + "}"));
+      ADD_FAILURE() << "no error for " << c.sizing;
+    } catch (const DataError& e) {
+      EXPECT_NE(std::string(e.what()).find(c.expect), std::string::npos) << e.what();
+    }
+  }
+  // A fixed group's propeller is its "prop".
+  EXPECT_THROW(Parse(Replace(kGroups, "\"prop\": \"p\"}", "\"prop\": \"p\", \"prop_sizing\": []}")), DataError);
+}
+
 }  // namespace
 }  // namespace dynosize

@@ -148,3 +148,83 @@ TEST(RotorFamily, EvtolRotorFamilyIsTheParametricRotorScaled) {
 
 }  // namespace
 }  // namespace dynosize
+
+namespace dynosize {
+namespace {
+
+// The grid the search sizes a rotor on (issue 52 item 5): 2 cm of diameter, 0.05 of pitch ratio,
+// both ends always in it, nothing above the frame's limit.
+TEST(SizingGrid, StepsTwoCentimetresAndKeepsTheEnds) {
+  PropSizing s;
+  s.family = "multirotor";
+  s.diameter_min_m = 1.0;
+  s.diameter_max_m = 1.575;
+  s.pitch_ratio_min = 0.30;
+  s.pitch_ratio_max = 0.45;
+  s.blades = {2, 3};
+  const std::vector<PropSize> all = SizingGrid(s, 10.0);
+  // 1.00, 1.02, ..., 1.56 (29) and 1.575; ratios 0.30, 0.35, 0.40, 0.45; two blade counts.
+  ASSERT_EQ(all.size(), 30u * 4u * 2u);
+  double d_prev = 0.0;
+  for (std::size_t i = 0; i < all.size(); i += 4) {
+    if (all[i].blades != all[0].blades) break;
+    if (d_prev > 0) {
+      EXPECT_GT(all[i].diameter_m - d_prev, 0.0);
+      EXPECT_LE(all[i].diameter_m - d_prev, kSizingDiameterStepM + 1e-12);
+    }
+    d_prev = all[i].diameter_m;
+  }
+  EXPECT_DOUBLE_EQ(all.front().diameter_m, 1.0);
+  EXPECT_DOUBLE_EQ(all.back().diameter_m, 1.575);
+  EXPECT_NEAR(all.back().pitch_m, 0.45 * 1.575, 1e-12);
+  EXPECT_EQ(all.back().blades, 3);
+  // The frame's limit cuts the range, and is itself a size.
+  const std::vector<PropSize> cut = SizingGrid(s, 1.31);
+  EXPECT_DOUBLE_EQ(cut.back().diameter_m, 1.31);
+  for (const PropSize& p : cut) EXPECT_LE(p.diameter_m, 1.31);
+  EXPECT_TRUE(SizingGrid(s, 0.9).empty());
+  // A single value is one size.
+  s.diameter_max_m = s.diameter_min_m;
+  s.pitch_ratio_max = s.pitch_ratio_min;
+  s.blades = {2};
+  EXPECT_EQ(SizingGrid(s, 10.0).size(), 1u);
+}
+
+TEST(SizingGrid, RefusesAnUnknownFamilyAndRangesOutOfBounds) {
+  PropSizing s;
+  s.family = "multirotor";
+  s.diameter_min_m = 0.5;
+  s.diameter_max_m = 1.0;
+  s.pitch_ratio_min = 0.3;
+  s.pitch_ratio_max = 0.4;
+  s.blades = {2};
+  EXPECT_NO_THROW(CheckPropSizing(s));
+  PropSizing bad = s;
+  bad.family = "wood";
+  EXPECT_THROW(CheckPropSizing(bad), UsageError);
+  bad = s;
+  bad.diameter_max_m = 0.4;
+  EXPECT_THROW(CheckPropSizing(bad), UsageError);
+  bad = s;
+  bad.pitch_ratio_min = 0.0;
+  EXPECT_THROW(CheckPropSizing(bad), UsageError);
+  bad = s;
+  bad.blades = {0};
+  EXPECT_THROW(CheckPropSizing(bad), UsageError);
+}
+
+TEST(SizedProp, IdsNameTheirFamilyAndHowFarItsDataReach) {
+  const PropSize size{1.32, 0.46, 2, "multirotor"};
+  const RotorFamily* f = FamilyOfSizedPropId(SizedPropId(size));
+  ASSERT_NE(f, nullptr);
+  EXPECT_EQ(f->id, "multirotor");
+  EXPECT_EQ(FamilyOfSizedPropId(SizedPropId(PropSize{2.0, 0.9, 3, "evtol_rotor"}))->id, "evtol_rotor");
+  EXPECT_EQ(FamilyOfSizedPropId(SizedPropId(PropSize{0.3, 0.1, 2, "apc_sport"}))->id, "apc_sport");
+  EXPECT_EQ(FamilyOfSizedPropId("kde_p_30.5x9.7x2"), nullptr);
+  // 52 in against the family's largest measured blade (18 in).
+  EXPECT_NE(FamilyReachText(*f, 1.32).find("2.9x the largest"), std::string::npos) << FamilyReachText(*f, 1.32);
+  EXPECT_NE(FamilyReachText(EvtolRotorFamily(), 2.0).find("parametric"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace dynosize
