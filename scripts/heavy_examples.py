@@ -21,7 +21,7 @@ import subprocess
 import sys
 
 ROOT = __file__.rsplit("/scripts/", 1)[0]
-MISSIONS = ["ag_octocopter_50kg", "cargo_octocopter_150kg", "air_taxi_one_seat"]
+MISSIONS = ["ag_octocopter_50kg", "cargo_octocopter_150kg", "air_taxi_one_seat", "air_taxi_sized_rotors"]
 
 
 def load_catalog_entries():
@@ -69,8 +69,10 @@ def figures(dynosize, name, cat):
     motor, esc, prop = r["motor"], r["esc"], r["prop"]
     if isinstance(motor, dict):
         motor, esc, prop = motor["lift"], esc["lift"], prop["lift"]
-    m, e, p, b = cat[motor], cat[esc], cat[prop], cat[r["battery"]]
-    d = p["diameter_m"]
+    m, e, b = cat[motor], cat[esc], cat[r["battery"]]
+    # A sized propeller (issue 52) is not in the catalog's files: the result states its size.
+    sized = r.get("sized_prop") or r.get("groups", {}).get("lift", {}).get("sized_prop")
+    d = sized["diameter_m"] if sized else cat[prop]["diameter_m"]
     area = math.pi * d * d / 4
     hovers = [s for s in r["segments"] if s["type"] in ("hover", "climb") and s.get("group", "lift") in ("lift", None)
               and s["thrust_per_rotor_n"] > 0]
