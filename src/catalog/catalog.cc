@@ -272,6 +272,7 @@ EscEntry EscFromJson(const Json& e, EntryBase base) {
     p.vdc_max_v = DefaultEscPrior().unrated_vdc_max_v;
     x.assumed_keys.push_back("vdc_max_v");
   }
+  p.vdc_min_v = Get(e, "vdc_min_v", 0.0);
   p.deadband = Get(e, "deadband", 0.0);
   p.rsupply_ohm = Get(e, "rsupply_ohm", 0.0);
   x.mass_kg = GetOpt(e, "mass_kg");

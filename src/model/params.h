@@ -39,6 +39,8 @@ struct EscParams {
   double rsupply_ohm = 0.0;  // wire/connector resistance between the VDC sense point and ESC
   double max_current_a = std::numeric_limits<double>::infinity();
   double vdc_max_v = std::numeric_limits<double>::infinity();
+  // The least supply voltage it runs on (an eVTOL controller's undervoltage lockout); 0 = none stated.
+  double vdc_min_v = 0.0;
 };
 
 }  // namespace dynosize

@@ -19,7 +19,8 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 // Rule R5 (docs/search.md#r5).
 bool EscDominates(const EscEntry& a, const EscEntry& b) {
   return EscMassKg(a) <= EscMassKg(b) && a.params.resc_ohm <= b.params.resc_ohm &&
-         a.params.max_current_a >= b.params.max_current_a && a.params.vdc_max_v >= b.params.vdc_max_v;
+         a.params.max_current_a >= b.params.max_current_a && a.params.vdc_max_v >= b.params.vdc_max_v &&
+         a.params.vdc_min_v <= b.params.vdc_min_v;
 }
 
 // A result that breaks min_hover_throttle or prop_below_data (possibly among others) says
@@ -33,8 +34,10 @@ bool RulesOutDominatedEscs(const MissionResult& r) {
   return true;
 }
 
-// Rule R1 (docs/search.md#r1): an ESC rated below the pack's full-charge voltage fails
-// esc_voltage whatever else is chosen; R0 (docs/search.md#r0): an ESC the catalog excludes.
+// Rule R1 (docs/search.md#r1): an ESC rated below the pack's full-charge voltage, or whose least
+// supply voltage is above the pack's cut-off (esc_min_voltage: the pack's terminal voltage reaches
+// the cut-off; the evaluator checks the same), fails whatever else is chosen (both counted as
+// esc_voltage); R0 (docs/search.md#r0): an ESC the catalog excludes.
 EscTable BuildEscTable(const Catalog& cat, const std::vector<BatteryOption>& options) {
   const auto& escs = cat.escs();
   EscTable t;
@@ -63,7 +66,7 @@ EscTable BuildEscTable(const Catalog& cat, const std::vector<BatteryOption>& opt
           ++n_excluded;
           continue;
         }
-        if (escs[i].params.vdc_max_v >= options[o].v_full) {  // R1
+        if (escs[i].params.vdc_max_v >= options[o].v_full && escs[i].params.vdc_min_v <= options[o].v_cut) {  // R1
           ok.push_back(i);
           t.min_mass_kg[o] = std::min(t.min_mass_kg[o], EscMassKg(escs[i]));
           t.max_mass_kg[o] = std::max(t.max_mass_kg[o], EscMassKg(escs[i]));

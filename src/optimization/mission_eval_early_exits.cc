@@ -57,7 +57,7 @@ double SocBelowOcv(const BatteryPack& pack, double v, double floor_soc) {
 // only on them). Violated at one capacity, they are violated at every larger one. Throttle
 // and IDC are not in the list: a larger pack also sags less, which lowers both.
 bool RisesWithMass(const std::string& constraint) {
-  static const char* const kNames[] = {"esc_voltage", "prop_diameter", "thrust", "motor_power", "prop_max_rpm", "prop_tip_mach",
+  static const char* const kNames[] = {"esc_voltage", "esc_min_voltage", "prop_diameter", "thrust", "motor_power", "prop_max_rpm", "prop_tip_mach",
                                        "prop_above_data",
                                        "max_winding_temp_c", "prop_folding", "motor_unrated",
                                        "motor_voltage"};

@@ -172,6 +172,8 @@ void MissionEvaluator::CheckParts(const RunState& st, eval_internal::Tracker* tr
   for (int g = 0; g < static_cast<int>(groups_.size()); ++g) {
     const GroupDrive& gd = groups_[g];
     track->Check("esc_voltage", "", st.v_full, gd.drive.esc().vdc_max_v, "V");
+    // The pack may be run down to its cut-off: the controller must still run there.
+    if (gd.drive.esc().vdc_min_v > 0) track->Check("esc_min_voltage", "", st.cutoff_v, gd.drive.esc().vdc_min_v, "V", true);
     if (const auto d_max = GroupMaxPropDiameterM(m_, g)) {
       track->Check("prop_diameter", "", gd.parts.prop->diameter_m, *d_max, "m");
     }

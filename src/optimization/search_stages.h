@@ -67,8 +67,8 @@ struct EscClass {
 
 struct EscTable {
   std::vector<EscClass> classes;
-  // [option][class]: the ESCs rated for the option's full-charge voltage (R1), sorted by
-  // (mass, resistance, -current rating).
+  // [option][class]: the ESCs rated for the option's full-charge voltage and running at its
+  // cut-off (R1), sorted by (mass, resistance, -current rating).
   std::vector<std::vector<std::vector<int>>> per_option;
   // [option][class], from per_option's lists: their current ratings in ascending order, and
   // the running maximum of the rating along the list (R3's count and its lightest passing ESC
