@@ -264,7 +264,7 @@ void BranchAndBound::Process(const Candidate& cand, TopScores top, Outcome* o) c
     virt.id = "virtual";
     virt.params = escs[lightest_rated].params;
     virt.params.resc_ohm = 0.0;
-    virt.params.max_current_a = kInf;
+    virt.params.max_current_a = virt.params.continuous_current_a = kInf;
     virt.mass_kg = EscMassKg(escs[lightest_rated]);
     // R10: segment by segment, with the virtual ESC's drive and mass; true when it prunes the
     // class. First with every rated ESC (it refuses most classes, and R9 is then not needed),
@@ -296,7 +296,7 @@ void BranchAndBound::Process(const Candidate& cand, TopScores top, Outcome* o) c
     if (segmentwise_prunes()) continue;
     rated.clear();
     for (int e : list) {
-      if (!below_r3(escs[e].params.max_current_a)) rated.push_back(e);
+      if (!below_r3(EscReachCurrentA(escs[e]))) rated.push_back(e);
     }
     // R9, per ESC; skipped when the class's most favourable case (its lightest mass and least
     // resistance, which give the lowest throttle bound: M1-M3) is not below the limit.

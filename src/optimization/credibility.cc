@@ -136,11 +136,13 @@ MotorParams ScenarioMotorParams(const MotorEntry& motor, const Mission& m, bool*
     p.io_a = spread.io_a;
     p.io1_a_s_per_rad = spread.io1_a_s_per_rad;
   }
+  ApplyPeakRatings(&p);  // the peak ratings for segments no longer than their duration (issue 51)
   return MotorAtPropellerShaft(p, motor.gear);  // the one place a mission meets the gearbox
 }
 
 EscParams ScenarioEscParams(const EscEntry& esc, DataScenario s) {
   EscParams p = esc.params;
+  ApplyPeakRatings(&p);  // the peak rating for segments no longer than its duration (issue 51)
   if (s != DataScenario::kPessimistic && s != DataScenario::kOptimistic) return p;
   const bool up = s == DataScenario::kPessimistic;
   const DataTier tr = ValueTier(esc, "resc_ohm");

@@ -138,6 +138,13 @@ double MotorMaxVoltageV(const MotorEntry& motor);
 MotorParams ScenarioMotorParams(const MotorEntry& motor, const Mission& mission,
                                 bool* rating_estimated = nullptr, bool* excluded = nullptr);
 EscParams ScenarioEscParams(const EscEntry& esc, DataScenario scenario);
+// The most current any point may draw through the ESC in a mission: its peak rating where a peak
+// duration is stated, else its continuous one (ApplyPeakRatings; the search's R1-R5 lists).
+inline double EscReachCurrentA(const EscEntry& esc) {
+  EscParams p = esc.params;
+  ApplyPeakRatings(&p);
+  return p.max_current_a;
+}
 
 // The tier of each part of a result and the objective under the other scenarios.
 struct PartTier {

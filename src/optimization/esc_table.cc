@@ -18,9 +18,14 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 
 // Rule R5 (docs/search.md#r5).
 bool EscDominates(const EscEntry& a, const EscEntry& b) {
-  return EscMassKg(a) <= EscMassKg(b) && a.params.resc_ohm <= b.params.resc_ohm &&
-         a.params.max_current_a >= b.params.max_current_a && a.params.vdc_max_v >= b.params.vdc_max_v &&
-         a.params.vdc_min_v <= b.params.vdc_min_v;
+  // Its current rating at least b's for a segment of any duration (peak and continuous, issue 51).
+  EscParams pa = a.params, pb = b.params;
+  ApplyPeakRatings(&pa);
+  ApplyPeakRatings(&pb);
+  const bool current = pa.max_current_a >= pb.max_current_a && pa.continuous_current_a >= pb.continuous_current_a &&
+                       (pa.peak_duration_s >= pb.peak_duration_s || pa.continuous_current_a >= pb.max_current_a);
+  return EscMassKg(a) <= EscMassKg(b) && a.params.resc_ohm <= b.params.resc_ohm && current &&
+         a.params.vdc_max_v >= b.params.vdc_max_v && a.params.vdc_min_v <= b.params.vdc_min_v;
 }
 
 // A result that breaks min_hover_throttle or prop_below_data (possibly among others) says
@@ -76,13 +81,13 @@ EscTable BuildEscTable(const Catalog& cat, const std::vector<BatteryOption>& opt
         const double ma = EscMassKg(escs[a]), mb = EscMassKg(escs[b]);
         if (ma != mb) return ma < mb;
         if (escs[a].params.resc_ohm != escs[b].params.resc_ohm) return escs[a].params.resc_ohm < escs[b].params.resc_ohm;
-        return escs[a].params.max_current_a > escs[b].params.max_current_a;
+        return EscReachCurrentA(escs[a]) > EscReachCurrentA(escs[b]);
       });
       n_ok += static_cast<long long>(ok.size());
       std::vector<double> ascending, running_max;
       for (int i : ok) {
-        ascending.push_back(escs[i].params.max_current_a);
-        running_max.push_back(std::max(running_max.empty() ? -kInf : running_max.back(), escs[i].params.max_current_a));
+        ascending.push_back(EscReachCurrentA(escs[i]));
+        running_max.push_back(std::max(running_max.empty() ? -kInf : running_max.back(), EscReachCurrentA(escs[i])));
       }
       std::sort(ascending.begin(), ascending.end());
       t.currents_ascending[o].push_back(std::move(ascending));

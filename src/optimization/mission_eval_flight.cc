@@ -277,9 +277,18 @@ bool MissionEvaluator::IntegrateSegment(std::size_t si, bool stretched, double o
     track->Check("max_throttle", s.name, op.throttle, k.max_throttle, "", false, seg);
     if (!k.allow_esc_saturation) track->Check("esc_saturation", s.name, op.throttle, ep.tr_sat, "", false, seg);
     const double i = std::max(op.idc_a, op.irms_a);
-    track->Check("motor_current", s.name, i, mp.max_current_a * st->current_factor, "A", false, seg);
-    track->Check("esc_current", s.name, i, ep.max_current_a * st->current_factor, "A", false, seg);
-    if (k.enforce_motor_power) track->Check("motor_power", s.name, op.pac_w, mp.max_power_w, "W", false, seg);
+    // The peak ratings for a segment no longer than their duration, else the continuous ones (issue 51).
+    const double t_s = seg->duration_s;
+    track->Check("motor_current", s.name, i,
+                 SegmentRating(mp.max_current_a, mp.continuous_current_a, mp.peak_duration_s, t_s) * st->current_factor,
+                 "A", false, seg);
+    track->Check("esc_current", s.name, i,
+                 SegmentRating(ep.max_current_a, ep.continuous_current_a, ep.peak_duration_s, t_s) * st->current_factor,
+                 "A", false, seg);
+    if (k.enforce_motor_power) {
+      track->Check("motor_power", s.name, op.pac_w,
+                   SegmentRating(mp.max_power_w, mp.continuous_power_w, mp.peak_duration_s, t_s), "W", false, seg);
+    }
     track->Check("battery_current", s.name, i_batt, pack.max_current_a() * st->current_factor, "A", false, seg);
     track->Check("battery_cutoff", s.name, v, st->cutoff_v, "V", true, seg);
     const double temp_c = WindingTempC(op, s.group);

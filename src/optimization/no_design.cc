@@ -212,7 +212,7 @@ ThrustCeiling BestHoverThrust(const Mission& m, const Catalog& cat, const GroupC
   });
   const std::vector<EscParams> classes = ZeroResistanceClasses(cat, c.escs, m.objective.ranking);
   double esc_max_current_a = 0.0;  // no real ESC is rated above the highest rating
-  for (const int i : c.escs) esc_max_current_a = std::max(esc_max_current_a, cat.escs()[i].params.max_current_a);
+  for (const int i : c.escs) esc_max_current_a = std::max(esc_max_current_a, EscReachCurrentA(cat.escs()[i]));
   std::vector<MotorDrives> motors;
   for (const int i : c.motors) {
     bool excluded = false;
@@ -305,7 +305,7 @@ void LiftRequirements(const Mission& m, const Catalog& cat, const GroupCandidate
   const auto [d_max_m, d_prop] = LargestProp(cat, c);
   if (d_prop < 0) return;
   double esc_max_current_a = 0.0;
-  for (const int i : c.escs) esc_max_current_a = std::max(esc_max_current_a, cat.escs()[i].params.max_current_a);
+  for (const int i : c.escs) esc_max_current_a = std::max(esc_max_current_a, EscReachCurrentA(cat.escs()[i]));
   double p_max_w = -kInf;
   int p_motor = -1;
   for (const int i : c.motors) {
