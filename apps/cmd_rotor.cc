@@ -5,6 +5,7 @@
 //   hover     a parametric eVTOL rotor's best hover design (rotor/parametric.h);
 //   families  prints src/rotor/family_data.cc from the data.
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -231,6 +232,21 @@ int RunRotorFamilies(const std::string& shared_data_dir) {
     std::printf("}},\n");
   }
   std::printf("  };\n  return kFamilies;\n}\n\n}  // namespace dynosize\n");
+  return 0;
+}
+
+int RunRotorEntry(const std::string& pe0_file, const std::string& id) {
+  const BladeGeometry blade = ReadApcPe0(pe0_file);
+  std::string name = std::filesystem::path(pe0_file).stem().string();  // "14x7E-PERF"
+  name = name.substr(0, name.find("-PERF"));
+  std::string own_id = id;
+  if (own_id.empty()) {
+    own_id = "bemt_apc_" + name;
+    std::transform(own_id.begin(), own_id.end(), own_id.begin(), [](unsigned char ch) { return std::tolower(ch); });
+  }
+  const Json doc = {{"comment", "written by dynosize rotor entry --pe0 " + std::filesystem::path(pe0_file).filename().string()},
+                    {"props", Json::array({GeometryPropJson(blade, own_id, pe0_file)})}};
+  std::printf("%s\n", DumpJson(doc).c_str());
   return 0;
 }
 

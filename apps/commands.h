@@ -100,6 +100,10 @@ struct RotorHoverOptions {
 int RunRotorHover(const RotorHoverOptions& o);
 // `dynosize rotor families --shared DIR`: prints src/rotor/family_data.cc from the data.
 int RunRotorFamilies(const std::string& shared_data_dir);
+// `dynosize rotor entry --pe0 FILE [--id ID]`: prints a catalog document {"props": [entry]}: the
+// propeller of an APC geometry file through the blade-element model (importers/sized_prop.h
+// GeometryPropJson), for --catalog-add.
+int RunRotorEntry(const std::string& pe0_file, const std::string& id);
 
 struct CalibrateOptions {
   CatalogFolders catalog;  // --catalog, --catalog-add, --override (catalog/catalog_path.h)

@@ -311,6 +311,8 @@ struct RotorCli {
   CLI::App* validate_cmd = nullptr;
   std::string families_shared;
   CLI::App* families_cmd = nullptr;
+  std::string entry_pe0, entry_id;
+  CLI::App* entry_cmd = nullptr;
   cli::RotorHoverOptions hover;
   CLI::App* hover_cmd = nullptr;
 };
@@ -352,6 +354,11 @@ void AddRotorCommands(CLI::App& app, RotorCli& r) {
       "families", "print src/rotor/family_data.cc: the propeller families' blade shapes derived from the data");
   r.families_cmd->add_option("--shared", r.families_shared, "the shared data folder (../shared/data)")->required();
   AddRotorHoverCommand(rotor, r);
+  r.entry_cmd = rotor->add_subcommand(
+      "entry", "print a catalog document holding the propeller of an APC geometry file (PE0) run through the "
+               "blade-element model (tier estimated), for --catalog-add");
+  r.entry_cmd->add_option("--pe0", r.entry_pe0, "APC geometry file (*-PERF.PE0)")->required();
+  r.entry_cmd->add_option("--id", r.entry_id, "the entry's id (default bemt_apc_<name>, e.g. bemt_apc_14x7e)");
 }
 
 CLI::App* AddServeCommand(CLI::App& app, cli::ServeCliOptions& sv) {
@@ -478,6 +485,7 @@ int main(int argc, char** argv) {
       return cli::RunRotorValidate(rot.validate);
     }
     if (*rot.families_cmd) return cli::RunRotorFamilies(rot.families_shared);
+    if (*rot.entry_cmd) return cli::RunRotorEntry(rot.entry_pe0, rot.entry_id);
     if (*rot.hover_cmd) return cli::RunRotorHover(rot.hover);
     if (*validate_stand) {
       vst.catalog = dir;

@@ -37,13 +37,9 @@ Json SizedPropJson(const PropSize& size) {
   return SizedPropJson(size, *family);
 }
 
-Json SizedPropJson(const PropSize& size, const RotorFamily& family) {
-  const std::string& family_id = family.id;
-  BladeGeometry blade = SizedBlade(family, size.diameter_m, size.pitch_m, size.blades);
-  const std::string dims = SizeText(size);
-  blade.name = family_id + " " + dims;
+Json BemtPropJson(const BladeGeometry& blade, const std::string& id, const std::string& name, double pitch_m) {
   const Bemt bemt(blade, kUiucFittedPolar);
-  const double d = size.diameter_m;
+  const double d = 2.0 * blade.radius_m;
   Json stat = {{"rpm", Json::array()}, {"ct", Json::array()}, {"cp", Json::array()}};
   for (int i = 0; i < kStaticSpeeds; ++i) {
     const double tip = kSizedTipSpeedMin * std::pow(kSizedTipSpeedMax / kSizedTipSpeedMin, i / (kStaticSpeeds - 1.0));
@@ -70,13 +66,24 @@ Json SizedPropJson(const PropSize& size, const RotorFamily& family) {
     if (!sw["j"].empty()) sweeps.push_back(sw);
   }
   Json e;
-  e["id"] = "sized_" + family_id + "_" + dims;  // SizedPropId(size) when family_id is size.family's
-  e["name"] = "sized " + dims + " in, " + family.description + " (blade-element model)";
-  e["diameter_m"] = RoundSig(size.diameter_m, 6);
-  e["pitch_m"] = RoundSig(size.pitch_m, 6);
-  e["blades"] = size.blades;
+  e["id"] = id;
+  e["name"] = name;
+  e["diameter_m"] = RoundSig(d, 6);
+  e["pitch_m"] = RoundSig(pitch_m, 6);
+  e["blades"] = blade.blades;
   e["static_table"] = stat;
   if (!sweeps.empty()) e["j_tables"] = sweeps;
+  return e;
+}
+
+Json SizedPropJson(const PropSize& size, const RotorFamily& family) {
+  const std::string& family_id = family.id;
+  BladeGeometry blade = SizedBlade(family, size.diameter_m, size.pitch_m, size.blades);
+  const std::string dims = SizeText(size);
+  blade.name = family_id + " " + dims;
+  // "sized_<family>_<D>x<P>x<B>": SizedPropId(size) when family_id is size.family's.
+  Json e = BemtPropJson(blade, "sized_" + family_id + "_" + dims,
+                        "sized " + dims + " in, " + family.description + " (blade-element model)", size.pitch_m);
   e["source"] = {{"dataset", "dynosize blade-element model (src/rotor, docs/model.md section 13)"},
                  {"reference", "family " + family_id + ": " + family.source},
                  {"values", {{"diameter_m", "datasheet"}, {"pitch_m", "datasheet"}, {"blades", "datasheet"},
@@ -88,6 +95,19 @@ Json SizedPropJson(const PropSize& size, const RotorFamily& family) {
                           "; measured/predicted p10-p90 of propellers of 12 in and more left out (docs/validation.md): "
                           "thrust " + FixedText(kSizedThrustRatioP10, 2) + "-" + FixedText(kSizedThrustRatioP90, 2) +
                           ", torque " + FixedText(kSizedTorqueRatioP10, 2) + "-" + FixedText(kSizedTorqueRatioP90, 2)},
+                 {"tier", "estimated"}};
+  return e;
+}
+
+Json GeometryPropJson(const BladeGeometry& blade, const std::string& id, const std::string& geometry_file) {
+  const double pitch_m = GeometricPitchM(blade, 0.75);
+  Json e = BemtPropJson(blade, id, blade.name + " (blade-element model from its geometry)", pitch_m);
+  e["source"] = {{"dataset", "dynosize blade-element model (src/rotor, docs/model.md section 13)"},
+                 {"reference", geometry_file},
+                 {"values", {{"diameter_m", "datasheet"}, {"pitch_m", "derived"}, {"blades", "datasheet"},
+                             {"static_table", "estimated"}, {"j_tables", "estimated"}}},
+                 {"note", "the blade's own chord and twist (eqs B5-B10), polar fitted on UIUC's measured propellers "
+                          "(rotor/uiuc_polar.h); pitch: the geometric pitch at 0.75 R"},
                  {"tier", "estimated"}};
   return e;
 }

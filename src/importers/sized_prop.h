@@ -11,6 +11,7 @@
 
 #include "catalog/entries.h"
 #include "common/json_file.h"
+#include "rotor/blade.h"
 #include "rotor/family.h"
 
 namespace dynosize {
@@ -32,6 +33,14 @@ inline constexpr double kSizedTorqueRatioP10 = 0.914, kSizedTorqueRatioP90 = 1.2
 Json SizedPropJson(const PropSize& size);
 // Same with the family given (the leave-out check builds families without a propeller).
 Json SizedPropJson(const PropSize& size, const RotorFamily& family);
+
+// The catalog propeller entry of a blade run through the blade-element model with the UIUC polar:
+// static_table (tip speeds kSizedTipSpeedMin-Max) and j_tables (three tip speeds), without
+// "source" (the callers say where the blade comes from).
+Json BemtPropJson(const BladeGeometry& blade, const std::string& id, const std::string& name, double pitch_m);
+// The entry of a propeller from its own geometry (an APC PE0 file, importers/blade_geometry.h):
+// tier estimated, its source the geometry file (`dynosize rotor entry`).
+Json GeometryPropJson(const BladeGeometry& blade, const std::string& id, const std::string& geometry_file);
 
 // The check of docs/validation.md ("A propeller from its size alone"): every measured propeller
 // of `measured` with a static table and a diameter >= min_diameter_m, predicted from its
