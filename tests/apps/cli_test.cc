@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "cli_runner.h"
+#include "catalog/catalog.h"
 #include "common/json_file.h"
 
 namespace dynosize {
@@ -222,6 +223,30 @@ TEST(Cli, SimulateWithAPropellerFromItsSize) {
       "simulate --motor hl_m_kde7215xf_135 --esc kde_e_uas125uvc --prop-param 27.5x8.9 --prop-family wood --vdc 44.4");
   EXPECT_EQ(fam.code, 64);
   EXPECT_NE(fam.err.find("known are"), std::string::npos) << fam.err;
+}
+
+}  // namespace
+}  // namespace dynosize
+
+namespace dynosize {
+namespace {
+
+// `rotor entry --pe0`: APC's geometry through the blade-element model as a catalog document.
+TEST(Cli, RotorEntryWritesACatalogPropellerFromApcsGeometry) {
+  const std::string pe0 = std::string(DYNOSIZE_SHARED_DIR) + "/data/apc_geometry/geometry/14x7E-PERF.PE0";
+  if (!std::filesystem::exists(pe0)) GTEST_SKIP() << "no ../shared/data/apc_geometry";
+  const testing_util::CliRun r = testing_util::RunCli("rotor entry --pe0 " + pe0);
+  ASSERT_EQ(r.code, 0) << r.err;
+  Catalog c;
+  std::vector<std::string> problems;
+  c.AddDocument(Json::parse(r.out), "entry.json", &problems);
+  ASSERT_TRUE(problems.empty()) << problems.front();
+  const PropEntry& p = c.prop("bemt_apc_14x7e");
+  EXPECT_NEAR(p.diameter_m, 14 * 0.0254, 1e-3);
+  EXPECT_EQ(p.tier, DataTier::kEstimated);
+  EXPECT_FALSE(p.static_table.rpm.empty());
+  const testing_util::CliRun missing = testing_util::RunCli("rotor entry --pe0 /nonexistent/14x7E-PERF.PE0");
+  EXPECT_EQ(missing.code, 66) << missing.err;
 }
 
 }  // namespace

@@ -179,5 +179,25 @@ TEST(OptimizeCli, SizedLiftRotorsOfTheAirTaxi) {
   EXPECT_EQ(dump.find("\"feasible\":false"), std::string::npos);
 }
 
+// The rotor sized by the search (docs/missions.md, "Sizing the rotor"): the cargo octocopter's
+// frame takes 1.32 m; the catalog's families are offered within it, and the result says which
+// size it took, its family and how far the family's data reach, in --json and in the text.
+TEST(OptimizeCli, TheCargoOctocopterSizesItsRotorWithinTheFrame) {
+  const std::string mission = std::string(DYNOSIZE_SOURCE_DIR) + "/examples/missions/cargo_octocopter_150kg.json";
+  const testing_util::CliRun r = testing_util::RunCli("optimize " + mission + " --top 1 --json");
+  ASSERT_EQ(r.code, 0) << r.err;
+  const Json j = Json::parse(r.out);
+  ASSERT_EQ(j.at("results").size(), 1u);
+  const Json& best = j.at("results")[0];
+  ASSERT_TRUE(best.contains("sized_prop")) << best.dump().substr(0, 400);
+  const Json& sized = best.at("sized_prop");
+  EXPECT_LE(sized.at("diameter_m").get<double>(), 1.32 + 1e-9);
+  EXPECT_GE(sized.at("diameter_m").get<double>(), 20 * 0.0254 - 1e-9);
+  EXPECT_NE(sized.at("reach").get<std::string>().find("the family"), std::string::npos);
+  const testing_util::CliRun t = testing_util::RunCli("optimize " + mission + " --top 1");
+  ASSERT_EQ(t.code, 0) << t.err;
+  EXPECT_NE(t.out.find("  sized propeller: "), std::string::npos) << t.out.substr(0, 800);
+}
+
 }  // namespace
 }  // namespace dynosize
