@@ -125,6 +125,12 @@ HoverDesign DesignHover(const ParametricRotor& p, const AirfoilPolar& polar, dou
     best.limit = "tip Mach";
     best.message = "at most " + SignificantText(best.point.thrust_n, 4) + " N at tip Mach " + FixedText(tip_mach_max, 2) +
                    " (collective " + FixedText(best.collective_deg, 1) + " deg): a larger radius or solidity";
+    // The strongest collective is usually deep in stall: say so (the blade limit, not the speed alone).
+    if (best.point.ct_over_sigma > kMaxBladeLoading || best.point.stalled_span > 0.05) {
+      best.limit = "tip Mach and stall";
+      best.message += "; there CT/sigma is " + FixedText(best.point.ct_over_sigma, 3) + " and " +
+                      PercentText(best.point.stalled_span, 0) + " of the span is past stall";
+    }
   } else if (best.point.ct_over_sigma > kMaxBladeLoading) {
     best.limit = "blade loading";
     best.message = "CT/sigma " + FixedText(best.point.ct_over_sigma, 3) + " above " + FixedText(kMaxBladeLoading, 2) +

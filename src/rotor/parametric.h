@@ -43,7 +43,7 @@ inline constexpr double kCollectiveMinDeg = 2.0, kCollectiveMaxDeg = 25.0;
 
 struct HoverDesign {
   bool feasible = false;
-  std::string limit;         // "" when none binds, else "tip Mach", "blade loading", "stall"
+  std::string limit;         // "" when none binds, else "tip Mach" ("tip Mach and stall"), "blade loading", "stall"
   std::string message;       // one sentence
   double collective_deg = 0.0;
   BemtPoint point;           // at the design speed
