@@ -137,7 +137,7 @@ int RunCatalogValidate(const CatalogFolders& catalog, bool json) {
     const Catalog cat = Catalog::Load(catalog);
     std::cout << dir << ": valid: " << cat.motors().size() << " motors, " << cat.escs().size()
               << " ESCs, " << cat.props().size() << " props, " << cat.batteries().size()
-              << " batteries\n";
+              << " batteries, " << cat.prop_families().size() << " propeller families the search sizes\n";
     // What the physics rules and the importers' audit left, in numbers.
     std::vector<std::size_t> tiers(TierNames().size(), 0);
     std::size_t excluded = 0, derated = 0, folding = 0, estimated = 0;

@@ -7,7 +7,9 @@
 #include "catalog/in_system.h"
 #include "catalog/prop_credibility.h"
 #include "common/error.h"
+#include "common/text_format.h"
 #include "common/units.h"
+#include "rotor/family.h"
 
 namespace dynosize::api {
 
@@ -144,6 +146,20 @@ Json CatalogShowJson(const Catalog& cat, const std::string& id) {
     found = true;
     out = b.json;
     out["derived"] = Json{{"file", b.file}};
+  }
+  // A propeller family the search sizes (catalog/prop_families.h): its ranges and its grid.
+  for (const PropSizing& f : cat.prop_families()) {
+    if (f.id != id) continue;
+    found = true;
+    const RotorFamily* family = FindFamily(f.family);
+    out = {{"id", f.id}, {"family", f.family}, {"diameter_m", {f.diameter_min_m, f.diameter_max_m}},
+           {"pitch_ratio", {f.pitch_ratio_min, f.pitch_ratio_max}}, {"blades", f.blades}, {"source", f.source}};
+    out["derived"] = {{"family_description", family->description},
+                      {"family_measured_diameter_in", {family->d_min_in, family->d_max_in}},
+                      {"sizes_on_the_grid", SizingGrid(f, f.diameter_max_m).size()},
+                      {"grid", "diameter every " + SignificantText(kSizingDiameterStepM, 2) + " m, pitch ratio every " +
+                                   SignificantText(kSizingPitchRatioStep, 2) + "; offered within a mission group's "
+                                   "max_prop_diameter_m (docs/missions.md, Sizing the rotor)"}};
   }
   if (!found) {
     // Ask the typed lookups for their "closest ids" message.

@@ -231,6 +231,19 @@ TEST(Cli, SimulateWithAPropellerFromItsSize) {
 namespace dynosize {
 namespace {
 
+// The catalog's propeller families (catalog/prop_families.json): shown like an entry, counted by validate.
+TEST(Cli, CatalogShowsThePropellerFamiliesTheSearchSizes) {
+  const testing_util::CliRun r = testing_util::RunCli("catalog show fam_evtol_rotor");
+  ASSERT_EQ(r.code, 0) << r.err;
+  const Json j = Json::parse(r.out);
+  EXPECT_EQ(j.at("family").get<std::string>(), "evtol_rotor");
+  EXPECT_EQ(j.at("diameter_m")[1].get<double>(), 4.0);
+  EXPECT_GT(j.at("derived").at("sizes_on_the_grid").get<int>(), 100);
+  const testing_util::CliRun v = testing_util::RunCli("catalog validate");
+  ASSERT_EQ(v.code, 0) << v.err;
+  EXPECT_NE(v.out.find("2 propeller families the search sizes"), std::string::npos) << v.out;
+}
+
 // `rotor entry --pe0`: APC's geometry through the blade-element model as a catalog document.
 TEST(Cli, RotorEntryWritesACatalogPropellerFromApcsGeometry) {
   const std::string pe0 = std::string(DYNOSIZE_SHARED_DIR) + "/data/apc_geometry/geometry/14x7E-PERF.PE0";
