@@ -44,7 +44,8 @@ std::string HeldOutBesideDc(const calibration::CrossValidation& cv, bool label) 
   };
   const bool torque = !cv.omega_error_percent.empty();
   std::string s = "held out (" + std::to_string(cv.folds) + " folds), dynosize / plain DC model (" +
-                  (label ? "label Kv; R, Io" : "Kv, R, Io") + " fitted on the same rows): ";
+                  (label ? "label Kv; R, Io" : "Kv, R, Io") + " fitted on the same rows, the command through the "
+                  "fit's throttle offset): ";
   if (torque) {
     s += "DC current " + med(cv.idc_error_percent) + " / " + med(cv.dc_idc_error_percent) + ", speed at the torque " +
          med(cv.omega_error_percent) + " / " + med(cv.dc_omega_error_percent);

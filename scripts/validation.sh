@@ -59,7 +59,8 @@ echo "**held-out**: median |error| of the DC current / speed when each throttle 
 echo "else 10 interleaved folds) is left out (speed at the measured torque where there is one, else from"
 echo "the measured current); **written**: whether --out wrote the entry (only \`ok\`); **plain DC**: the"
 echo "same held-out rows predicted by the first-order DC model (label Kv; R and Io fitted on the same"
-echo "training rows; the ESC a lossless chopper, U = throttle*VDC: src/identification/dc_fit.h), the"
+echo "training rows; the ESC a lossless chopper, U = d*VDC, d the command corrected by the throttle offset"
+echo "dynosize's fit found on the same rows, as a careful user would: src/identification/dc_fit.h), the"
 echo "baseline to beat."
 echo
 echo "| data set | log | label Kv | status | fitted Kv | first failed check | held-out idc | held-out rpm | written | plain DC: idc | plain DC: rpm |"

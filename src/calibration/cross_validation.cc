@@ -22,9 +22,9 @@ namespace {
 
 // The plain DC model's errors on held-out row i (percent of the measured value), beside the
 // rms model's: DC current and speed at the row's torque (tq), speed from its measured current.
-void AddDcErrors(const DcMotor& m, const SteadyTable& t, std::size_t i, double assumed_throttle, bool tq,
+void AddDcErrors(const identification::DcFit& dc, const SteadyTable& t, std::size_t i, double assumed_throttle, bool tq,
                  CrossValidation* cv) {
-  const identification::DcRowPrediction p = identification::PredictDcRow(m, t, i, assumed_throttle);
+  const identification::DcRowPrediction p = identification::PredictDcRow(dc.motor, t, i, assumed_throttle, dc.deadband);
   const double w = t.Get(Column::kOmegaRadS)[i], idc = t.Get(Column::kIdcA)[i];
   if (tq && idc > 0.0 && std::isfinite(p.idc_at_torque_a)) {
     cv->dc_idc_error_percent.push_back((p.idc_at_torque_a - idc) / idc * 100.0);
@@ -94,14 +94,15 @@ CrossValidation LeaveOneOut(const SteadyTable& t, const CalibrationOptions& opti
       bool unknown = false;
       if (usable(i, &unknown) && !unknown) dc_rows.push_back(i);
     }
+    // The same throttle offset as the fold's own fit (identification/dc_fit.h).
     const identification::DcFit dc = identification::FitDcMotor(t, dc_rows, options.assumed_throttle,
-                                                                options.labels.kv_rpm_per_v.value_or(0.0));
+                                                                options.labels.kv_rpm_per_v.value_or(0.0), r.esc.deadband);
     for (std::size_t i : test) {
       const double w = t.Get(Column::kOmegaRadS)[i];
       bool speed_unknown = false;
       if (spurious[i] || !usable(i, &speed_unknown)) continue;
       const bool no_load = has_nl && t.Get(Column::kNoLoad)[i] != 0.0;
-      if (dc.ok && !speed_unknown) AddDcErrors(dc.motor, t, i, options.assumed_throttle, has_q || no_load, &cv);
+      if (dc.ok && !speed_unknown) AddDcErrors(dc, t, i, options.assumed_throttle, has_q || no_load, &cv);
       const RowPrediction p = PredictRow(t, i, r.motor, r.esc, options.assumed_throttle);
       const double idc = t.Get(Column::kIdcA)[i];
       if (idc > 0.0 && std::isfinite(p.idc_a)) {

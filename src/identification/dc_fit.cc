@@ -6,25 +6,30 @@
 #include "common/numbers.h"
 #include "common/units.h"
 #include "identification/fit_rows.h"
+#include "model/circuit.h"
 
 namespace dynosize::identification {
 
 namespace {
 
-double Duty(const logs::SteadyTable& t, std::size_t i, double assumed_throttle) {
-  return t.Has(logs::Column::kThrottle) ? t.Get(logs::Column::kThrottle)[i] : assumed_throttle;
+// The duty of the chopper: the command, through the throttle offset (dead band) the fit found
+// (section 9: d = (TR - deadband)/(1 - deadband), model/circuit.h; no knee: the DC model has none).
+double Duty(const logs::SteadyTable& t, std::size_t i, double assumed_throttle, double deadband) {
+  const double command = t.Has(logs::Column::kThrottle) ? t.Get(logs::Column::kThrottle)[i] : assumed_throttle;
+  return circuit::EffectiveThrottle(command, 1.0, 1.0, deadband);
 }
 
 }  // namespace
 
 DcFit FitDcMotor(const logs::SteadyTable& t, const std::vector<std::size_t>& rows, double assumed_throttle,
-                 double kv_label_rpm_per_v) {
+                 double kv_label_rpm_per_v, double deadband) {
   DcFit out;
+  out.deadband = deadband;
   using logs::Column;
   if (!t.Has(Column::kIdcA) || !t.Has(Column::kVdcV) || !t.Has(Column::kOmegaRadS)) return out;
   std::vector<double> cur, omega, u;
   for (std::size_t i : rows) {
-    const double d = Duty(t, i, assumed_throttle);
+    const double d = Duty(t, i, assumed_throttle, deadband);
     const double w = t.Get(Column::kOmegaRadS)[i], idc = t.Get(Column::kIdcA)[i];
     if (!(d > 0.0) || !(w > 0.0) || !(idc > 0.0)) continue;
     cur.push_back(idc / d);
@@ -46,7 +51,7 @@ DcFit FitDcMotor(const logs::SteadyTable& t, const std::vector<std::size_t>& row
     double s = 0.0;
     int n = 0;
     for (std::size_t i : rows) {
-      const double d = Duty(t, i, assumed_throttle), idc = t.Get(Column::kIdcA)[i];
+      const double d = Duty(t, i, assumed_throttle, deadband), idc = t.Get(Column::kIdcA)[i];
       if (!(d > 0.0) || !(idc > 0.0)) continue;
       s += idc / d - t.Get(Column::kTorqueNm)[i] / kt;
       ++n;
@@ -57,10 +62,11 @@ DcFit FitDcMotor(const logs::SteadyTable& t, const std::vector<std::size_t>& row
   return out;
 }
 
-DcRowPrediction PredictDcRow(const DcMotor& m, const logs::SteadyTable& t, std::size_t i, double assumed_throttle) {
+DcRowPrediction PredictDcRow(const DcMotor& m, const logs::SteadyTable& t, std::size_t i, double assumed_throttle,
+                             double deadband) {
   using logs::Column;
   DcRowPrediction p{kNaN, kNaN, kNaN};
-  const double d = Duty(t, i, assumed_throttle), vdc = t.Get(Column::kVdcV)[i];
+  const double d = Duty(t, i, assumed_throttle, deadband), vdc = t.Get(Column::kVdcV)[i];
   if (!(d > 0.0) || !(vdc > 0.0)) return p;
   if (t.Has(Column::kTorqueNm)) {
     const DcPoint q = DcAtThrottleTorque(m, vdc, d, t.Get(Column::kTorqueNm)[i]);
