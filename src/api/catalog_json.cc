@@ -155,7 +155,8 @@ Json CatalogShowJson(const Catalog& cat, const std::string& id) {
     out = {{"id", f.id}, {"family", f.family}, {"diameter_m", {f.diameter_min_m, f.diameter_max_m}},
            {"pitch_ratio", {f.pitch_ratio_min, f.pitch_ratio_max}}, {"blades", f.blades}, {"source", f.source}};
     out["derived"] = {{"family_description", family->description},
-                      {"family_measured_diameter_in", {family->d_min_in, family->d_max_in}},
+                      {"family_measured_diameter_in",
+                       IsParametricFamily(*family) ? Json(nullptr) : Json{family->d_min_in, family->d_max_in}},
                       {"sizes_on_the_grid", SizingGrid(f, f.diameter_max_m).size()},
                       {"grid", "diameter every " + SignificantText(kSizingDiameterStepM, 2) + " m, pitch ratio every " +
                                    SignificantText(kSizingPitchRatioStep, 2) + "; offered within a mission group's "

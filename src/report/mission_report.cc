@@ -68,7 +68,8 @@ Json SizedPropOf(const PropEntry& p) {
   if (f == nullptr) return nullptr;
   return {{"diameter_m", p.diameter_m}, {"pitch_m", p.pitch_m.value_or(0.0)}, {"blades", p.blades.value_or(2)},
           {"family", f->id}, {"family_description", f->description},
-          {"family_measured_diameter_in", {f->d_min_in, f->d_max_in}}, {"reach", FamilyReachText(*f, p.diameter_m)}};
+          {"family_measured_diameter_in", IsParametricFamily(*f) ? Json(nullptr) : Json{f->d_min_in, f->d_max_in}},
+          {"reach", FamilyReachText(*f, p.diameter_m)}};
 }
 
 // "  sized propeller (lift): 1.630 m, pitch 0.533 m (64.17 x 20.99 in), 2 blades, family ...".

@@ -152,8 +152,10 @@ const RotorFamily* FamilyOfSizedPropId(const std::string& id) {
   return best;
 }
 
+bool IsParametricFamily(const RotorFamily& family) { return family.id == EvtolRotorFamily().id; }
+
 std::string FamilyReachText(const RotorFamily& family, double diameter_m) {
-  if (&family == &EvtolRotorFamily()) return "the family is parametric: no measured rotor of its class to check it on";
+  if (IsParametricFamily(family)) return "the family is parametric: no measured rotor of its class to check it on";
   const double d_in = diameter_m / 0.0254;
   std::string text = "the family's measured blades span " + SignificantText(family.d_min_in, 3) + "-" +
                      SignificantText(family.d_max_in, 3) + " in";

@@ -78,6 +78,8 @@ bool IsSizedPropId(const std::string& id);
 // The family of a sized propeller's id (the longest family id after "sized_"); nullptr when the
 // id is not a sized one.
 const RotorFamily* FamilyOfSizedPropId(const std::string& id);
+// True for a family not drawn from measured blades (evtol_rotor): it has no measured diameters.
+bool IsParametricFamily(const RotorFamily& family);
 // How far a size is from its family's data, for a result's line: "the family's measured blades
 // span 12-18 in; this one is 3.6x the largest", or that the family is parametric.
 std::string FamilyReachText(const RotorFamily& family, double diameter_m);
