@@ -52,6 +52,10 @@ std::string HeldOutBesideDc(const calibration::CrossValidation& cv, bool label) 
   } else {
     s += "speed from the current " + med(cv.omega_from_idc_error_percent) + " / " + med(cv.dc_omega_from_idc_error_percent);
   }
+  if (cv.dc_failed_folds > 0) {
+    s += "; the plain DC model cannot be fitted on " + std::to_string(cv.dc_failed_folds) + " of " +
+         std::to_string(cv.folds) + " folds (" + cv.dc_why + ")";
+  }
   return s;
 }
 

@@ -186,7 +186,9 @@ Json CalibrationJson(const CalibrateRequest& o, const CalibrationOutcome& out,
                    {"omega_from_idc", ErrorsJson(cv.omega_from_idc_error_percent)},
                    {"dc_baseline", {{"idc", ErrorsJson(cv.dc_idc_error_percent)},
                                     {"omega_at_torque", ErrorsJson(cv.dc_omega_error_percent)},
-                                    {"omega_from_idc", ErrorsJson(cv.dc_omega_from_idc_error_percent)}}}};
+                                    {"omega_from_idc", ErrorsJson(cv.dc_omega_from_idc_error_percent)},
+                                    {"failed_folds", cv.dc_failed_folds},
+                                    {"why", cv.dc_why.empty() ? Json(nullptr) : Json(cv.dc_why)}}}};
   Json dropped = Json::array();
   for (const auto& d : r.dropped_rows) dropped.push_back({{"line", d.source_line}, {"reason", d.reason}});
   j["dropped_rows"] = dropped;

@@ -123,6 +123,10 @@ struct CrossValidation {
   std::vector<double> dc_omega_from_idc_error_percent;
   std::size_t folds = 0;
   std::size_t failed_folds = 0;  // too few rows left to fit
+  // Folds whose plain DC model could not be fitted (identification/dc_fit.h DcFit::why), and the
+  // first reason: said instead of an error.
+  std::size_t dc_failed_folds = 0;
+  std::string dc_why;
 };
 // With max_folds > 0 and more groups than that, the groups (sorted) are dealt into max_folds
 // interleaved folds instead (group k in fold k % max_folds): deterministic and bounded in time.

@@ -97,6 +97,10 @@ CrossValidation LeaveOneOut(const SteadyTable& t, const CalibrationOptions& opti
     // The same throttle offset as the fold's own fit (identification/dc_fit.h).
     const identification::DcFit dc = identification::FitDcMotor(t, dc_rows, options.assumed_throttle,
                                                                 options.labels.kv_rpm_per_v.value_or(0.0), r.esc.deadband);
+    if (!dc.ok) {
+      ++cv.dc_failed_folds;
+      if (cv.dc_why.empty()) cv.dc_why = dc.why;
+    }
     for (std::size_t i : test) {
       const double w = t.Get(Column::kOmegaRadS)[i];
       bool speed_unknown = false;

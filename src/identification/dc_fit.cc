@@ -36,15 +36,25 @@ DcFit FitDcMotor(const logs::SteadyTable& t, const std::vector<std::size_t>& row
     omega.push_back(w);
     u.push_back(d * t.Get(Column::kVdcV)[i]);
   }
-  if (cur.size() < 2) return out;
+  if (cur.size() < 2) {
+    out.why = "fewer than 2 rows with speed, current and throttle";
+    return out;
+  }
   if (kv_label_rpm_per_v > 0.0) {
     out.motor.kv_rpm_per_v = kv_label_rpm_per_v;
     out.motor.r_ohm = ResistanceWithKeHeld(cur, omega, u, out.motor.kt_nm_per_a());  // KE_dc = KT_dc
   } else {
     const CircuitStart lin = LinearCircuitStart(cur, omega, u);  // ke = 1/Kv in V*s/rad
-    if (!(lin.ke_v_s_per_rad > 0.0)) return out;
+    if (!(lin.ke_v_s_per_rad > 0.0)) {
+      out.why = "the least-squares Kv is not positive";
+      return out;
+    }
     out.motor.kv_rpm_per_v = 1.0 / (lin.ke_v_s_per_rad * kRadPerSecPerRpm);
     out.motor.r_ohm = lin.r_total_ohm;
+  }
+  if (!(out.motor.r_ohm >= 0.0)) {
+    out.why = "the least-squares R is negative";
+    return out;
   }
   if (t.Has(Column::kTorqueNm)) {
     const double kt = out.motor.kt_nm_per_a();

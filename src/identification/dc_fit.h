@@ -17,6 +17,7 @@
 #pragma once
 
 #include <cstddef>
+#include <string>
 #include <vector>
 
 #include "logs/steady_table.h"
@@ -27,7 +28,10 @@ namespace dynosize::identification {
 struct DcFit {
   DcMotor motor;
   double deadband = 0.0;  // the throttle offset the duty was corrected by
-  bool ok = false;  // at least 2 rows with speed, current and a positive duty, and Kv > 0
+  // At least 2 rows with speed, current and a positive duty, Kv > 0 and R >= 0 (a careful user
+  // keeps no negative resistance): else `why` says which, and no error is reported for it.
+  bool ok = false;
+  std::string why;
 };
 
 // kv_label_rpm_per_v <= 0: Kv fitted too. deadband: the command's offset (0: none).

@@ -94,7 +94,24 @@ TEST(DcFit, TooFewRowsIsNotOk) {
   m.kv_rpm_per_v = 900.0;
   m.r_ohm = 0.09;
   const logs::SteadyTable t = DcGeneratedTable(m);
-  EXPECT_FALSE(FitDcMotor(t, {3}, 1.0).ok);
+  const DcFit f = FitDcMotor(t, {3}, 1.0);
+  EXPECT_FALSE(f.ok);
+  EXPECT_NE(f.why.find("fewer than 2 rows"), std::string::npos);
+}
+
+// A label far above the motor's Kv leaves a negative resistance to explain the voltage: a careful
+// user keeps none, and the baseline says it cannot be fitted instead of printing its errors.
+TEST(DcFit, ANegativeResistanceIsNotAFit) {
+  DcMotor m;
+  m.kv_rpm_per_v = 900.0;
+  m.r_ohm = 0.09;
+  m.io_a = 0.7;
+  const logs::SteadyTable t = DcGeneratedTable(m);
+  std::vector<std::size_t> rows(t.rows());
+  std::iota(rows.begin(), rows.end(), 0);
+  const DcFit f = FitDcMotor(t, rows, 1.0, 600.0);  // KE too large: U - KE*omega < 0
+  EXPECT_FALSE(f.ok);
+  EXPECT_NE(f.why.find("negative"), std::string::npos) << f.why;
 }
 
 }  // namespace
