@@ -61,7 +61,8 @@ echo "the measured current); **written**: whether --out wrote the entry (only \`
 echo "same held-out rows predicted by the first-order DC model (label Kv; R and Io fitted on the same"
 echo "training rows; the ESC a lossless chopper, U = d*VDC, d the command corrected by the throttle offset"
 echo "dynosize's fit found on the same rows, as a careful user would: src/identification/dc_fit.h), the"
-echo "baseline to beat."
+echo "baseline to beat; \"-\" where it cannot be fitted (a label Kv that leaves a negative R on the rows,"
+echo "e.g. the no-propeller sweeps whose motor turns 1.5x its label)."
 echo
 echo "| data set | log | label Kv | status | fitted Kv | first failed check | held-out idc | held-out rpm | written | plain DC: idc | plain DC: rpm |"
 echo "|---|---|---|---|---|---|---|---|---|---|---|"
