@@ -233,8 +233,6 @@ MotorEntry MotorFromJson(const Json& e, EntryBase base) {
   p.io_a = e["io_a"].get<double>();
   p.max_current_a = Get(e, "max_current_a", p.max_current_a);
   p.max_power_w = Get(e, "max_power_w", p.max_power_w);
-  p.continuous_current_a = p.max_current_a;
-  p.continuous_power_w = p.max_power_w;
   // Peak ratings with their duration (issue 51): read by a mission through ApplyPeakRatings only.
   p.peak_current_a = Get(e, "peak_current_a", 0.0);
   p.peak_power_w = Get(e, "peak_power_w", 0.0);
@@ -279,13 +277,11 @@ EscEntry EscFromJson(const Json& e, EntryBase base) {
     x.assumed_keys.push_back("vdc_max_v");
   }
   p.vdc_min_v = Get(e, "vdc_min_v", 0.0);
-  p.continuous_current_a = p.max_current_a;
   p.peak_current_a = Get(e, "ipeak_a", 0.0);
   p.peak_duration_s = Get(e, "peak_duration_s", 0.0);
   p.deadband = Get(e, "deadband", 0.0);
   p.rsupply_ohm = Get(e, "rsupply_ohm", 0.0);
   x.mass_kg = GetOpt(e, "mass_kg");
-  x.ipeak_a = GetOpt(e, "ipeak_a");
   return x;
 }
 

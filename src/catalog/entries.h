@@ -83,7 +83,6 @@ struct MotorEntry : EntryBase {
 struct EscEntry : EntryBase {
   EscParams params;
   std::optional<double> mass_kg;
-  std::optional<double> ipeak_a;
 };
 
 // Static thrust and shaft power as power laws in speed (DriveCalc):

@@ -264,7 +264,7 @@ void BranchAndBound::Process(const Candidate& cand, TopScores top, Outcome* o) c
     virt.id = "virtual";
     virt.params = escs[lightest_rated].params;
     virt.params.resc_ohm = 0.0;
-    virt.params.max_current_a = virt.params.continuous_current_a = kInf;
+    virt.params.max_current_a = kInf;
     virt.mass_kg = EscMassKg(escs[lightest_rated]);
     // R10: segment by segment, with the virtual ESC's drive and mass; true when it prunes the
     // class. First with every rated ESC (it refuses most classes, and R9 is then not needed),

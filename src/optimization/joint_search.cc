@@ -502,7 +502,7 @@ void JointLoop::VirtualEscClass(const OuterPair& pr, std::size_t i, const std::v
   virt.id = "virtual";
   virt.params = escs[static_cast<std::size_t>(cls.front().second)].params;
   virt.params.resc_ohm = 0.0;
-  virt.params.max_current_a = virt.params.continuous_current_a = kInf;
+  virt.params.max_current_a = kInf;
   double kg = kInf;
   for (const auto& t : cls) kg = std::min(kg, EscMassKg(escs[static_cast<std::size_t>(t.second)]));
   virt.mass_kg = kg;
