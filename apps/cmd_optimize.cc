@@ -44,6 +44,11 @@ std::function<void(const SearchProgress&)> ProgressLine(const Mission& mission, 
       line << ", best " << std::fixed << std::setprecision(2) << DisplayObjective(mission, p.best_objective)
            << DisplayUnit(mission);
     }
+    if (p.has_bound && p.fraction < 1.0) {  // what is not yet settled can do no better than this
+      const bool larger_better = mission.objective.type != ObjectiveType::kMinEnergy;
+      line << ", the rest " << (larger_better ? "<= " : ">= ") << std::fixed << std::setprecision(2)
+           << DisplayObjective(mission, p.bound_objective) << DisplayUnit(mission);
+    }
     line << "; Ctrl-C stops with the best so far";
     std::string text = line.str();
     if (text.size() < 79) text += std::string(79 - text.size(), ' ');

@@ -32,9 +32,11 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 class BranchAndBound {
  public:
   // cutoff: only results scoring below it are wanted (the joint search's N-th best, G2).
+  // t0: the search's start (SearchResult::first_result_s).
   BranchAndBound(const SearchContext& ctx, const SearchOptions& opt, CandidateStream* stream, SearchResult* out,
-                 double cutoff = kInf)
-      : ctx_(ctx),
+                 std::chrono::steady_clock::time_point t0, double cutoff = kInf)
+      : t0_(t0),
+        ctx_(ctx),
         opt_(opt),
         stream_(*stream),
         open_at_start_(stream->open_combinations()),
@@ -98,6 +100,7 @@ class BranchAndBound {
   bool StopAt(std::size_t ci, double threshold);
   void ReportProgress(std::size_t ci);
 
+  const std::chrono::steady_clock::time_point t0_;
   const SearchContext& ctx_;
   const SearchOptions& opt_;
   CandidateStream& stream_;
@@ -114,6 +117,9 @@ class BranchAndBound {
 
 void BranchAndBound::Insert(const Combination& c, MissionResult&& r, double cutoff) {
   if (!r.feasible) return;
+  if (!std::isfinite(out_->first_result_s)) {
+    out_->first_result_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0_).count();
+  }
   out_->evaluated_mass_objective.emplace_back(r.propulsion_mass_kg, r.objective);
   board_.Add(RankedCombination{c, std::move(r), {}}, cutoff);
 }
@@ -389,6 +395,10 @@ void BranchAndBound::ReportProgress(std::size_t ci) {
     const double drawn = static_cast<double>(ci);
     const double left = static_cast<double>(base_ + ordered_.size() - ci + stream_.PairsLeftBelow(threshold));
     p.fraction = drawn / (drawn + left);
+    if (std::isfinite(next->bound)) {
+      p.has_bound = true;
+      p.bound_objective = ObjectiveOfScore(ctx_.mission->objective.type, next->bound);
+    }
   }
   p.searched = out_->searched;
   for (const auto& [rule, n] : out_->pruned_by) p.pruned += n;
@@ -513,7 +523,7 @@ SearchResult search_internal::SearchOneGroup(const Mission& m, const Catalog& ca
   {
     CandidateStream stream(ctx, opt.threads, kFirstBatch, cutoff);  // stage 4 (each motor's first batch)
     out.candidate_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    BranchAndBound bb(ctx, opt, &stream, &out, cutoff);  // stage 5 (and stage 4 on demand)
+    BranchAndBound bb(ctx, opt, &stream, &out, t0, cutoff);  // stage 5 (and stage 4 on demand)
     bb.Run();
     bb.ResolveDeferred();
     bb.Explain();

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <functional>
 #include <initializer_list>
 #include <limits>
 #include <map>
@@ -106,12 +107,25 @@ struct OuterPair {
 
 // The outer group's (motor, propeller, option) pairs that survive R0, R1, R3 with their bound
 // (the least over ESC classes), best first; the pruned ones counted (x `block`: the inner
-// combinations of each).
-std::vector<OuterPair> OuterPairs(const Catalog& cat, JointBounds* jb, long long block, SearchResult* out) {
+// combinations of each). Every motor_stride-th motor only (1: all; the dive's sample counts
+// nothing). A stop (SearchOptions) between motors returns what was bounded; *stopped_at: the
+// first motor not taken (the catalog's motor count when none was left).
+// every_64_motors (optional): called between motors now and then (progress).
+std::vector<OuterPair> OuterPairs(const Catalog& cat, JointBounds* jb, long long block, std::size_t motor_stride,
+                                  const SearchOptions& opt, SearchResult* out, std::size_t* stopped_at,
+                                  const std::function<void()>& every_64_motors = nullptr) {
   std::vector<OuterPair> pairs;
+  SearchResult uncounted;
+  if (motor_stride > 1) out = &uncounted;
   const long long n_esc = static_cast<long long>(cat.escs().size());
   const long long n_prop = static_cast<long long>(cat.props().size());
-  for (std::size_t mi = 0; mi < cat.motors().size(); ++mi) {
+  *stopped_at = cat.motors().size();
+  for (std::size_t mi = 0; mi < cat.motors().size(); mi += motor_stride) {
+    if (StopRequested(opt)) {
+      *stopped_at = mi;
+      break;
+    }
+    if (every_64_motors && mi % 64 == 0) every_64_motors();
     if (!cat.motors()[mi].mass_kg) ++out->skipped_without_mass;
     for (std::size_t o = 0; o < jb->options().size(); ++o) {
       if (const char* rule = jb->MotorRule(static_cast<int>(mi), o)) {
@@ -154,16 +168,18 @@ std::vector<OuterPair> OuterPairs(const Catalog& cat, JointBounds* jb, long long
 
 // The progress of the outer loop before pair `done` (SearchProgress): the share of the work, the
 // inner searches' counts so far and the best so far.
-void ReportProgress(const SearchOptions& opt, const std::vector<OuterPair>& pairs, std::size_t done,
-                    const TopResults& top, const SearchResult& out) {
+// least_left: the least bound of what is left (a score; +inf: none known).
+void ReportProgress(const Mission& m, const SearchOptions& opt, const std::vector<OuterPair>& pairs,
+                    std::size_t done, const TopResults& top, const SearchResult& out, double least_left) {
   if (!opt.progress) return;
   SearchProgress p;
   // As the one-group search's (branch_and_bound.cc, ReportProgress): the outer pairs taken against those
   // taken plus those left below the N-th best (they are sorted by bound).
+  // Before the first pass has bounded the pairs (pairs empty), nothing is known of the work left.
   const double t = top.Threshold();
   const auto below = std::partition_point(pairs.begin(), pairs.end(), [t](const OuterPair& x) { return x.bound < t; });
   const double left = static_cast<double>(std::max<std::ptrdiff_t>(0, (below - pairs.begin()) - static_cast<std::ptrdiff_t>(done)));
-  p.fraction = left == 0 ? 1.0 : static_cast<double>(done) / (static_cast<double>(done) + left);
+  p.fraction = pairs.empty() ? 0.0 : left == 0 ? 1.0 : static_cast<double>(done) / (static_cast<double>(done) + left);
   p.searched = out.searched;
   // The rules' counts overlap (an ESC over its voltage rating on a pair R0 removes is counted
   // by both, as in the one-group search): held to what is not yet searched.
@@ -172,6 +188,8 @@ void ReportProgress(const SearchOptions& opt, const std::vector<OuterPair>& pair
   p.has_best = !top.empty();
   p.found = top.size();
   p.best_objective = top.best_objective();
+  p.has_bound = std::isfinite(least_left);
+  if (p.has_bound) p.bound_objective = ObjectiveOfScore(m.objective.type, least_left);
   opt.progress(p);
 }
 
@@ -256,13 +274,14 @@ namespace {
 // one queue, the inner searches merged into one top N.
 class JointLoop {
  public:
+  // pairs: the first pass's (filled after Dive, before Run); t0: the search's start.
   JointLoop(const Mission& m, const Catalog& cat, const SearchOptions& opt, double cutoff, PropGridCache* cache,
             JointBounds* jb, const std::vector<OuterPair>& pairs, long long block, long long first_search_budget,
-            SearchResult* out)
-      : m_(m), cat_(cat), opt_(opt), cache_(cache), jb_(*jb), pairs_(pairs), block_(block),
+            std::chrono::steady_clock::time_point t0, SearchResult* out)
+      : t0_(t0), m_(m), cat_(cat), opt_(opt), cache_(cache), jb_(*jb), pairs_(pairs), block_(block),
         first_search_budget_(first_search_budget),
         n_esc_(static_cast<long long>(cat.escs().size())), out_(*out), top_(opt.top_n, opt.distinct_designs, cutoff),
-        put_back_(opt.top_n, opt.distinct_designs, cutoff) {
+        put_back_(opt.top_n, opt.distinct_designs, cutoff), dive_(opt.top_n, opt.distinct_designs, cutoff) {
     inner_opt_ = opt;
     inner_opt_.progress = nullptr;
     // The virtual ESC only with two free groups (the inner search is the one-group search) and
@@ -274,8 +293,20 @@ class JointLoop {
     relaxed_.constraints.prop_below_data_factor = 0.0;  // as min_hover_throttle (docs/search.md#r12)
   }
 
+  // A good design first (docs/joint-search.md#dive), before the first pass: every
+  // kDiveMotorStride-th motor's outer pairs bounded, and the best of them, each with its
+  // best-bound ESC, searched with the inner group free on a budget of kDiveBudget solves, until
+  // the top N is full or kDiveTries searches are done. The results are exact solves: like those
+  // of an inner search put back, they only lower Nth() and join the top N if the search is
+  // stopped first (the complete search finds again each one that can be in its top N).
+  void Dive();
   // The whole loop; then out's best, N-th best and progress.
   void Run();
+  // The progress before Run (the first pass over the outer pairs).
+  void FirstPassProgress() const { Progress(0); }
+  // A stop before the first pass had bounded every outer pair (motors from `motor` on not
+  // taken): the dive's results are the answer, nothing is proven of the rest.
+  void StoppedBeforeRun(std::size_t motor);
 
  private:
   // A pair (esc -1, under its coupled bound) or one ESC's inner search (under its triple bound).
@@ -288,11 +319,39 @@ class JointLoop {
   };
   // What the loop prunes against: the N-th best of the results kept, or of those found by the
   // inner searches put back, whichever is lower (G2's order, docs/search.md#g2).
-  double Nth() const {
-    const double t = put_back_.Threshold();
-    return std::min(top_.Threshold(), t < kInf ? std::nextafter(t, kInf) : kInf);
+  double Nth() const { return std::min(OwnNth(), Above(dive_.Threshold())); }
+  // The N-th best of the loop's own searches (the dive's left out): the loop's order (budgets,
+  // the best-bound ESC's own search first) follows it as it did without a dive, so that the
+  // first exact searches still set a tight threshold; the dive's only prunes.
+  double OwnNth() const { return std::min(top_.Threshold(), Above(put_back_.Threshold())); }
+  static double Above(double t) { return t < kInf ? std::nextafter(t, kInf) : kInf; }
+  // The progress with the best known: the top N and the results not yet in it (the dive's, the
+  // inner searches' put back), as a stop would return them. Public for the first pass.
+  void Progress(std::size_t done) const {
+    if (!opt_.progress) return;
+    if (dive_results_.empty() && put_back_results_.empty()) {
+      ReportProgress(m_, opt_, pairs_, done, top_, out_, LeastLeft());
+      return;
+    }
+    TopResults shown = top_;
+    AddUnheld(std::vector<RankedCombination>(dive_results_), &shown);
+    for (const auto& entry : put_back_results_) AddUnheld(std::vector<RankedCombination>(entry.second), &shown);
+    ReportProgress(m_, opt_, pairs_, done, shown, out_, LeastLeft());
   }
-  void Progress(std::size_t done) const { ReportProgress(opt_, pairs_, done, top_, out_); }
+  // The least bound of the pairs and items not yet taken (+inf: none).
+  double LeastLeft() const {
+    double least = next_ < pairs_.size() ? pairs_[next_].bound : kInf;
+    if (!queue_.empty()) least = std::min(least, queue_.top().bound);
+    for (const Queued& d : deferred_) least = std::min(least, d.bound);
+    return least;
+  }
+  // out_.first_result_s once a feasible result is known.
+  void NoteFirstResult() {
+    if (!std::isfinite(out_.first_result_s) &&
+        (!top_.empty() || !put_back_.entries().empty() || !dive_.entries().empty())) {
+      out_.first_result_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0_).count();
+    }
+  }
   // The next pair of the list under its coupled bound (G2's order: the uncoupled one is lower).
   void Tighten();
   // The outer group fixed to (pair, ESC e), the battery to the pair's option: the inner search.
@@ -312,6 +371,7 @@ class JointLoop {
   void StopAll(double bound, long long left);
   long long QueuedCombinations(const Queued& q) const { return q.esc < 0 ? SaturatingProduct({n_esc_, block_}) : block_; }
 
+  const std::chrono::steady_clock::time_point t0_;
   const Mission& m_;
   const Catalog& cat_;
   const SearchOptions& opt_;
@@ -328,6 +388,9 @@ class JointLoop {
   // only when the search is stopped first (StopAll); taken again, the item finds them itself.
   std::map<std::pair<std::size_t, int>, std::vector<RankedCombination>> put_back_results_;
   std::vector<RankedCombination> last_put_back_;  // SearchTriple's, for Run
+  std::vector<RankedCombination> dive_results_;   // Dive's: they join the top N on a stop only
+  TopScores dive_;                                 // their scores, for Nth()
+  std::chrono::steady_clock::time_point last_report_ = std::chrono::steady_clock::now();
   SearchOptions inner_opt_;
   bool virtual_ok_ = false;
   Mission relaxed_;
@@ -338,11 +401,113 @@ class JointLoop {
   std::size_t next_ = 0;  // the list's next pair not yet in the queue
 };
 
+// The dive's sample, tries and budget (docs/joint-search.md#dive: how they were chosen).
+constexpr std::size_t kDiveMotorStride = 16;
+constexpr int kDiveTries = 8;
+constexpr long long kDiveBudget = 800;
+constexpr std::chrono::milliseconds kDiveTryTime{300};
+
+// The dive's first guess of the continuous variables: a capacity range at its geometric mean, a
+// free cruise airspeed at its middle (each search then costs plain solves, no continuous solve).
+Mission DiveGuess(const Mission& m) {
+  Mission guess = m;
+  if (guess.battery.capacity_ah && guess.battery.capacity_ah->free()) {
+    const double c = std::sqrt(guess.battery.capacity_ah->lo * guess.battery.capacity_ah->hi);
+    guess.battery.capacity_ah = Range{c, c};
+  }
+  for (Segment& sg : guess.segments) {
+    if (sg.type == SegmentType::kCruise && sg.airspeed_m_s.free()) {
+      const double v = 0.5 * (sg.airspeed_m_s.lo + sg.airspeed_m_s.hi);
+      sg.airspeed_m_s = Range{v, v};
+    }
+  }
+  return guess;
+}
+
+bool HasContinuousVariables(const Mission& m) {
+  if (m.battery.capacity_ah && m.battery.capacity_ah->free()) return true;
+  return std::any_of(m.segments.begin(), m.segments.end(),
+                     [](const Segment& sg) { return sg.type == SegmentType::kCruise && sg.airspeed_m_s.free(); });
+}
+
+void JointLoop::Dive() {
+  const auto t0 = std::chrono::steady_clock::now();
+  std::size_t stopped_at = 0;
+  const std::vector<OuterPair> sample = OuterPairs(cat_, &jb_, block_, kDiveMotorStride, opt_, &out_, &stopped_at);
+  const int outer = jb_.outer_group();
+  const bool guessed = HasContinuousVariables(m_);
+  const Mission guess = guessed ? DiveGuess(m_) : Mission{};
+  int tries = 0;
+  std::set<int> props_tried;
+  for (const OuterPair& pr : sample) {
+    if (tries == kDiveTries || dive_.Threshold() < kInf || StopRequested(opt_)) break;
+    // One try per propeller: where the bound ties, the propeller sets it (momentum theory at the
+    // lightest vehicle), and a propeller the mission refuses refuses it with every motor.
+    if (!props_tried.insert(pr.prop).second) continue;
+    // The pair's ESC with the least triple bound (the one a search of the pair would take first).
+    double best = kInf;
+    int esc = -1;
+    for (const std::vector<int>& members : jb_.escs().per_option[pr.option]) {
+      for (int e : members) {
+        const char* why = nullptr;
+        const double b = jb_.TripleBound(pr.motor, e, pr.prop, pr.option, &why);
+        if (b < best) {
+          best = b;
+          esc = e;
+        }
+      }
+    }
+    if (esc < 0) continue;
+    ++tries;
+    SearchOptions o = inner_opt_;
+    o.evaluation_budget = kDiveBudget;
+    // A try that bounds pairs for long without a solve (an outer choice no inner pair completes,
+    // refused pair by pair) is cut off by time too.
+    o.deadline = std::min(opt_.deadline, std::chrono::steady_clock::now() + kDiveTryTime);
+    const Mission sub = SubMission(m_, cat_, outer, pr, esc, jb_);
+    SearchResult r = guessed ? SearchOneGroup(SubMission(guess, cat_, outer, pr, esc, jb_), cat_, o, kInf, cache_)
+                             : SearchOneGroup(sub, cat_, o, Nth(), cache_);
+    ++out_.joint.dive_searches;
+    out_.joint.dive_solves += r.searched + r.virtual_evaluations;
+    std::vector<const PropModel*> group_models(m_.groups.size(), nullptr);
+    group_models[static_cast<std::size_t>(outer)] = cache_->models[static_cast<std::size_t>(pr.prop)].get();
+    for (RankedCombination& b : r.best) {
+      if (guessed) {  // the guess's design solved exactly on the mission itself
+        const PropModel* model = cache_->models[static_cast<std::size_t>(b.combination.prop - cat_.props().data())].get();
+        b.result = MissionEvaluator(sub, b.combination, model, &group_models).Solve();
+        b.alternatives.clear();
+        ++out_.joint.dive_solves;
+        if (!b.result.feasible) continue;
+      }
+      dive_.Add(KeyOf(b.combination, opt_.distinct_designs), b.result.score);
+      dive_results_.push_back(std::move(b));
+    }
+    NoteFirstResult();
+  }
+  out_.joint.dive_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  Progress(0);  // the dive's best, before the first pass
+}
+
+void JointLoop::StoppedBeforeRun(std::size_t motor) {
+  out_.interrupted = true;
+  AddUnheld(std::move(dive_results_), &top_);
+  dive_results_.clear();
+  out_.unsettled_bound_score = -kInf;  // the pairs not yet bounded have no bound
+  // The pairs bounded and those of the motors not taken.
+  const long long n_motors_left = static_cast<long long>(cat_.motors().size() - motor);
+  out_.unsettled = SaturatingProduct({static_cast<long long>(pairs_.size()), n_esc_, block_});
+  AddCount(&out_.unsettled, SaturatingProduct({n_motors_left, static_cast<long long>(jb_.options().size()),
+                                               static_cast<long long>(cat_.props().size()), n_esc_, block_}));
+  out_.unsettled = std::min(out_.unsettled, out_.combinations);
+  out_.best = top_.Sorted();
+  out_.nth_best_score = top_.Threshold();
+}
+
 void JointLoop::Run() {
   std::size_t taken = 0;
   for (;;) {
     const bool drained = next_ == pairs_.size() && queue_.empty();
-    if (!deferred_.empty() && (Nth() < kInf || drained)) {
+    if (!deferred_.empty() && (OwnNth() < kInf || drained)) {
       for (Queued d : deferred_) {
         d.unlimited = true;
         queue_.push(d);
@@ -368,9 +533,14 @@ void JointLoop::Run() {
     }
     const Queued q = queue_.top();
     queue_.pop();
-    if (taken++ % 64 == 0) Progress(next_);
-    const bool budgeted = !q.unlimited && !(Nth() < kInf);
+    // Every 64 items, and at least every 0.25 s (an inner search can take a second).
+    if (taken++ % 64 == 0 || std::chrono::steady_clock::now() - last_report_ > std::chrono::milliseconds(250)) {
+      Progress(next_);
+      last_report_ = std::chrono::steady_clock::now();
+    }
+    const bool budgeted = !q.unlimited && !(OwnNth() < kInf);
     const bool done = q.esc >= 0 ? SearchTriple(pairs_[q.pair], q.esc, budgeted) : TakePair(q);
+    NoteFirstResult();
     if (!done) {
       deferred_.push_back(q);
       put_back_results_[{q.pair, q.esc}] = std::move(last_put_back_);
@@ -443,7 +613,7 @@ bool JointLoop::SearchTriple(const OuterPair& pr, int e, bool budgeted) {
 
 bool JointLoop::TakePair(const Queued& q) {
   const OuterPair& pr = pairs_[q.pair];
-  const bool budgeted = !q.unlimited && !(Nth() < kInf);
+  const bool budgeted = !q.unlimited && !(OwnNth() < kInf);
   std::vector<std::pair<double, int>> triples, cls;
   bool started = false;  // work done on the pair: it may no longer be put back
   for (std::size_t c = 0; c < jb_.escs().classes.size() && !out_.interrupted; ++c) {
@@ -468,7 +638,7 @@ bool JointLoop::TakePair(const Queued& q) {
       }
     }
     std::sort(cls.begin(), cls.end());
-    if (cls.size() >= 2 && virtual_ok_ && !(Nth() < kInf)) {
+    if (cls.size() >= 2 && virtual_ok_ && !(OwnNth() < kInf)) {
       // No N-th best yet: the best-bound ESC's own search first, so that the virtual ESC's
       // search has a cutoff (without one it would list every completion). Put back only before
       // any other work on the pair (nothing of it may be taken twice).
@@ -568,10 +738,9 @@ void JointLoop::StopAll(double bound, long long left) {
   // The results of the items put back and not taken again: exact solves, not yet in the top N.
   for (auto& entry : put_back_results_) AddUnheld(std::move(entry.second), &top_);
   put_back_results_.clear();
-  double least = bound;
-  if (next_ < pairs_.size()) least = std::min(least, pairs_[next_].bound);
-  if (!queue_.empty()) least = std::min(least, queue_.top().bound);
-  for (const Queued& d : deferred_) least = std::min(least, d.bound);
+  AddUnheld(std::move(dive_results_), &top_);
+  dive_results_.clear();
+  const double least = std::min(bound, LeastLeft());
   out_.unsettled_bound_score = std::min(out_.unsettled_bound_score, least);
   AddCount(&out_.unsettled, left);
   AddCount(&out_.unsettled, SaturatingProduct({static_cast<long long>(pairs_.size() - next_), n_esc_, block_}));
@@ -583,7 +752,7 @@ void JointLoop::StopAll(double bound, long long left) {
 }  // namespace
 
 SearchResult JointSearch(const Mission& m, const Catalog& cat, const SearchOptions& opt, double cutoff,
-                         PropGridCache* cache, long long first_search_budget) {
+                         PropGridCache* cache, long long first_search_budget, bool dive) {
   const auto t0 = std::chrono::steady_clock::now();
   if (std::string why; !opt.IsValid(&why)) throw UsageError(why);
   PropGridCache own;
@@ -608,13 +777,25 @@ SearchResult JointSearch(const Mission& m, const Catalog& cat, const SearchOptio
   if (jb.escs().excluded_pruned > 0) {
     AddCount(&out.pruned_by["catalog_exclude"], SaturatingProduct({jb.escs().excluded_pruned, n_motor, n_prop, block}));
   }
-  const std::vector<OuterPair> pairs = OuterPairs(cat, &jb, block, &out);
+  std::vector<OuterPair> pairs;
+  JointLoop loop(m, cat, opt, cutoff, cache, &jb, pairs, block, first_search_budget, t0, &out);
+  // The dive: only in the outermost search (an inner joint search has its caller's cutoff).
+  if (dive && FreeGroupCount(m) == 2 && !std::isfinite(cutoff)) {
+    loop.Dive();
+  }
+  const auto pass_t0 = std::chrono::steady_clock::now();
+  std::size_t stopped_at = 0;
+  pairs = OuterPairs(cat, &jb, block, 1, opt, &out, &stopped_at, [&loop]() { loop.FirstPassProgress(); });
   jb.set_coupled(true);  // the tighter bound for the pairs taken (G2)
   out.candidate_pairs = static_cast<long long>(pairs.size());
   out.candidate_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   out.joint.setup_s = setup_s;
-  out.joint.outer_pairs_s = out.candidate_seconds - setup_s;
-  JointLoop(m, cat, opt, cutoff, cache, &jb, pairs, block, first_search_budget, &out).Run();
+  out.joint.outer_pairs_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - pass_t0).count();
+  if (stopped_at < cat.motors().size()) {
+    loop.StoppedBeforeRun(stopped_at);
+  } else {
+    loop.Run();
+  }
   if (!out.interrupted && static_cast<int>(out.best.size()) >= opt.top_n) {
     const double nth = out.best.back().result.score;
     out.joint.outer_pairs_below_final =

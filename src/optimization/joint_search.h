@@ -41,9 +41,12 @@ inline constexpr long long kFirstSearchBudget = 5000;
 // choice of every free group's motor, ESC and propeller and the battery option. Needs
 // FreeGroupCount(m) >= 2. The results' objective ranges are not computed (the caller's).
 // first_search_budget: kFirstSearchBudget (the tests set another, to put inner searches back).
+// dive: with two free groups and no cutoff, a good design first (docs/joint-search.md#dive)
+// before every outer pair is bounded; the answer does not depend on it, only the order of the
+// work (the tests turn it off to follow the loop's own order).
 SearchResult JointSearch(const Mission& m, const Catalog& cat, const SearchOptions& opt,
                          double cutoff = std::numeric_limits<double>::infinity(), PropGridCache* cache = nullptr,
-                         long long first_search_budget = kFirstSearchBudget);
+                         long long first_search_budget = kFirstSearchBudget, bool dive = true);
 
 // The inner frontier's floors as JointBounds keeps them per level: 16-bit codes, a float's
 // exponent (from 2^0 to 2^30 J) and the top 11 bits of its mantissa, truncated, so that each

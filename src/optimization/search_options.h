@@ -22,6 +22,12 @@ struct SearchProgress {
   bool has_best = false;
   int found = 0;              // of the top N so far (the fraction stays near 0 until all N are)
   double best_objective = 0;  // the best result's objective (its unit: the mission's)
+  // A proven bound of every combination not yet settled (the objective's unit; below for
+  // min_energy, above for max_endurance): the N-th best found and it bracket the answer, and
+  // their gap narrows as the search goes. has_bound false while none is known (max_efficiency,
+  // or before the joint search's first pass has bounded every outer pair).
+  bool has_bound = false;
+  double bound_objective = 0;
 };
 
 struct SearchOptions {

@@ -75,12 +75,19 @@ struct SearchResult {
   struct JointPhases {
     double setup_s = 0.0, outer_pairs_s = 0.0, class_searches_s = 0.0, triple_searches_s = 0.0;
     long long class_searches = 0, triple_searches = 0;
+    // The dive (a good design first, docs/joint-search.md#dive): its inner searches, their solves
+    // (not in `searched`: the complete search finds again what it found) and seconds.
+    long long dive_searches = 0, dive_solves = 0;
+    double dive_s = 0.0;
     // The outer pairs whose first-pass bound is below the final N-th best's score (0 when fewer
     // than N were found or the search was stopped): the pairs any search taking them by that
     // bound must take, however it orders or batches them (docs/joint-search.md, growth).
     long long outer_pairs_below_final = 0;
   };
   JointPhases joint;
+  // Seconds from the search's start to its first feasible result (+inf: none): what a designer
+  // waits before the progress line shows a design (issue 54's goal, optimize_bench).
+  double first_result_s = std::numeric_limits<double>::infinity();
 };
 
 }  // namespace dynosize

@@ -22,6 +22,7 @@ SearchSummary SearchSummary::From(const SearchResult& r) {
   s.put_back_solves = r.put_back_solves;
   s.skipped_without_mass = r.skipped_without_mass;
   s.seconds = r.seconds;
+  s.first_result_s = r.first_result_s;
   s.candidate_seconds = r.candidate_seconds;
   s.joint = r.joint;
   s.interrupted = r.interrupted;
@@ -47,7 +48,12 @@ std::string GapText(double gap) { return std::isfinite(gap) ? FixedText(gap, 6) 
 std::string JointPhasesText(const SearchResult::JointPhases& j) {
   if (!(j.setup_s > 0) && j.class_searches == 0 && j.triple_searches == 0) return "";
   std::ostringstream o;
-  o << "joint search: bounds set up " << FixedText(j.setup_s, 3) << " s, first pass over the outer pairs "
+  o << "joint search: bounds set up " << FixedText(j.setup_s, 3) << " s, ";
+  if (j.dive_searches > 0) {
+    o << "dive " << j.dive_searches << " inner searches " << j.dive_solves << " solves " << FixedText(j.dive_s, 3)
+      << " s, ";
+  }
+  o << "first pass over the outer pairs "
     << FixedText(j.outer_pairs_s, 3) << " s, " << j.class_searches << " class searches (virtual ESC) "
     << FixedText(j.class_searches_s, 3) << " s, " << j.triple_searches << " triple searches "
     << FixedText(j.triple_searches_s, 3) << " s";
@@ -64,6 +70,7 @@ std::string SearchSummary::BriefReport() const {
     << virtual_evaluations << " virtual-ESC solves besides"
     << (put_back_solves > 0 ? ", " + std::to_string(put_back_solves) + " of them in inner searches put back over their budget" : "")
     << "), " << FixedText(seconds, 3) << " s, "
+    << (std::isfinite(first_result_s) ? "first result after " + FixedText(first_result_s, 3) + " s, " : "")
     << (interrupted ? "interrupted (gap " + GapText(Gap()) + ")" : "done");
   if (const std::string j = JointPhasesText(joint); !j.empty()) o << "\n" << j;
   return o.str();
@@ -86,7 +93,9 @@ std::string SearchSummary::FullReport() const {
   }
   if (skipped_without_mass > 0) o << "  motors without mass      " << skipped_without_mass << "\n";
   o << "  time                     " << FixedText(seconds, 3) << " s (stages 0-4's first batches "
-    << FixedText(candidate_seconds, 3) << " s)\n";
+    << FixedText(candidate_seconds, 3) << " s";
+  if (std::isfinite(first_result_s)) o << "; first result after " << FixedText(first_result_s, 3) << " s";
+  o << ")\n";
   if (const std::string j = JointPhasesText(joint); !j.empty()) o << "  " << j << "\n";
   if (interrupted) {
     o << "  interrupted              " << unsettled << " combinations not settled, gap " << GapText(Gap())

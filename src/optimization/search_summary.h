@@ -29,6 +29,7 @@ struct SearchSummary {
   long long skipped_without_mass = 0;
   double seconds = 0.0;             // elapsed, the whole search
   double candidate_seconds = 0.0;   // to the end of stage 4's first batches (stages 0-3 included)
+  double first_result_s = std::numeric_limits<double>::infinity();  // SearchResult's
   SearchResult::JointPhases joint;  // the joint search's phases (zero for one free group)
   // Stopped before every combination was settled: `unsettled` combinations were neither solved
   // nor pruned, each scoring at least unsettled_bound_score; nth_best_score is the N-th best

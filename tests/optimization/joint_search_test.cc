@@ -728,7 +728,7 @@ TEST_F(JointSearchTest, InnerSearchesPutBackKeepTheAnswerAndShowTheirResultsOnAS
   for (long long budget : {1LL, 4LL, kFirstSearchBudget}) {
     SCOPED_TRACE("budget " + std::to_string(budget));
     PropGridCache cache;
-    const SearchResult s = JointSearch(m, cat, so, std::numeric_limits<double>::infinity(), &cache, budget);
+    const SearchResult s = JointSearch(m, cat, so, std::numeric_limits<double>::infinity(), &cache, budget, false);
     ASSERT_EQ(s.best.size(), 3u);
     for (std::size_t i = 0; i < 3; ++i) {
       EXPECT_EQ(Name(s.best[i].combination, lift, pusher), all[i].name) << i;
@@ -746,7 +746,7 @@ TEST_F(JointSearchTest, InnerSearchesPutBackKeepTheAnswerAndShowTheirResultsOnAS
     if (++reports == 2) stop = true;
   };
   PropGridCache cache;
-  const SearchResult s = JointSearch(m, cat, so, std::numeric_limits<double>::infinity(), &cache, 4);
+  const SearchResult s = JointSearch(m, cat, so, std::numeric_limits<double>::infinity(), &cache, 4, false);
   EXPECT_TRUE(s.interrupted);
   ASSERT_FALSE(s.best.empty()) << "the put-back search's results are shown";
   for (const RankedCombination& b : s.best) {
