@@ -338,9 +338,10 @@ class JointLoop {
     for (const auto& entry : put_back_results_) AddUnheld(std::vector<RankedCombination>(entry.second), &shown);
     ReportProgress(m_, opt_, pairs_, done, shown, out_, LeastLeft());
   }
-  // The least bound of the pairs and items not yet taken (+inf: none).
+  // The least bound of the pairs and items not yet settled: those not yet taken and the one
+  // being taken (+inf: none).
   double LeastLeft() const {
-    double least = next_ < pairs_.size() ? pairs_[next_].bound : kInf;
+    double least = std::min(taking_bound_, next_ < pairs_.size() ? pairs_[next_].bound : kInf);
     if (!queue_.empty()) least = std::min(least, queue_.top().bound);
     for (const Queued& d : deferred_) least = std::min(least, d.bound);
     return least;
@@ -399,6 +400,7 @@ class JointLoop {
   // known (their bounds then prune most of them), or, when nothing else is left, unlimited.
   std::vector<Queued> deferred_;
   std::size_t next_ = 0;  // the list's next pair not yet in the queue
+  double taking_bound_ = kInf;  // the bound of the item being taken (+inf: none)
 };
 
 // The dive's sample, tries and budget (docs/joint-search.md#dive: how they were chosen).
@@ -533,6 +535,7 @@ void JointLoop::Run() {
     }
     const Queued q = queue_.top();
     queue_.pop();
+    taking_bound_ = q.bound;
     // Every 64 items, and at least every 0.25 s (an inner search can take a second).
     if (taken++ % 64 == 0 || std::chrono::steady_clock::now() - last_report_ > std::chrono::milliseconds(250)) {
       Progress(next_);
@@ -540,6 +543,7 @@ void JointLoop::Run() {
     }
     const bool budgeted = !q.unlimited && !(OwnNth() < kInf);
     const bool done = q.esc >= 0 ? SearchTriple(pairs_[q.pair], q.esc, budgeted) : TakePair(q);
+    taking_bound_ = kInf;  // settled, put back (deferred_ holds it) or stopped (StopAll below)
     NoteFirstResult();
     if (!done) {
       deferred_.push_back(q);

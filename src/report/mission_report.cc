@@ -420,8 +420,13 @@ std::string InterruptedText(const Mission& m, const SearchResult& s, int top_n) 
   o << "interrupted after " << FixedText(s.seconds, 2) << " s: the best found so far, not proven the best ("
     << s.unsettled << " combinations not yet settled)\n";
   if (!std::isfinite(s.unsettled_bound_score)) {
-    o << "bound gap: unknown (the objective " << ObjectiveTypeName(m.objective.type)
-      << " has no bound on what is left)\n";
+    if (m.objective.type == ObjectiveType::kMaxEfficiency) {
+      o << "bound gap: unknown (the objective " << ObjectiveTypeName(m.objective.type)
+        << " has no bound on what is left)\n";
+    } else {  // the joint search stopped in its first pass (docs/joint-search.md#dive)
+      o << "bound gap: unknown (stopped before every choice of the outer group was bounded; a longer "
+           "time limit gives one)\n";
+    }
     return o.str();
   }
   const double bound = DisplayObjective(m, ObjectiveOfScore(m.objective.type, s.unsettled_bound_score));

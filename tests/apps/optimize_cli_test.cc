@@ -30,14 +30,18 @@ int Lines(const std::string& s) {
 // A search that outlasts every stop below (cli_runner.h).
 fs::path LongMission() { return testing_util::LongSearchMission("long"); }
 
-void ExpectCompleteInterruptedJson(const CliRun& r) {
+// bound_known: the stop came after the first pass (a few seconds in), so the bound is a number.
+void ExpectCompleteInterruptedJson(const CliRun& r, bool bound_known) {
   Json j;
   ASSERT_NO_THROW(j = Json::parse(r.out)) << r.out.substr(0, 200);
   EXPECT_EQ(j["interrupted"], true);
   ASSERT_TRUE(j.contains("bound_gap"));
   EXPECT_TRUE(j["results"].is_array());
   EXPECT_GT(j["unsettled"].get<long long>(), 0);
-  // The proven bound: nothing unsettled beats it (endurance: a number of seconds above the best found).
+  // The proven bound: nothing unsettled beats it (endurance: a number of seconds above the best
+  // found); null only when the joint search stopped before its first pass had bounded every
+  // outer choice (within its first seconds: the dive's designs, docs/joint-search.md#dive).
+  if (!bound_known && j["bound_gap"]["unsettled_bound"].is_null()) return;
   ASSERT_TRUE(j["bound_gap"]["unsettled_bound"].is_number());
   for (const Json& x : j["results"]) EXPECT_LE(x["objective"].get<double>(), j["bound_gap"]["unsettled_bound"].get<double>() + 1e-9);
 }
@@ -57,7 +61,7 @@ TEST(OptimizeCli, TimeLimitPrintsTheBestSoFarAndExitsZero) {
   const fs::path m = LongMission();
   const CliRun r = RunCli("optimize " + m.string() + " --json --time-limit 0.5");
   EXPECT_EQ(r.code, 0) << r.err;
-  ExpectCompleteInterruptedJson(r);
+  ExpectCompleteInterruptedJson(r, false);
   const CliRun t = RunCli("optimize " + m.string() + " --time-limit 0.5");
   EXPECT_EQ(t.code, 0) << t.err;
   EXPECT_NE(t.out.find("interrupted after "), std::string::npos) << t.out;
@@ -71,7 +75,7 @@ TEST(OptimizeCli, SigintPrintsTheBestSoFarAndExits130) {
   // returns its exit status.
   const CliRun r = RunCli("optimize " + m.string() + " --json & p=$!; sleep 1; kill -INT $p; wait $p");
   EXPECT_EQ(r.code, 130) << r.err;
-  ExpectCompleteInterruptedJson(r);
+  ExpectCompleteInterruptedJson(r, false);
   fs::remove(m);
 }
 

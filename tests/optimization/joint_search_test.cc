@@ -742,8 +742,8 @@ TEST_F(JointSearchTest, InnerSearchesPutBackKeepTheAnswerAndShowTheirResultsOnAS
   std::atomic<bool> stop{false};
   int reports = 0;
   so.stop = &stop;
-  so.progress = [&](const SearchProgress&) {
-    if (++reports == 2) stop = true;
+  so.progress = [&](const SearchProgress& p) {
+    if (p.has_bound && ++reports == 2) stop = true;  // the loop's (the first pass's have no bound yet)
   };
   PropGridCache cache;
   const SearchResult s = JointSearch(m, cat, so, std::numeric_limits<double>::infinity(), &cache, 4, false);
@@ -755,6 +755,69 @@ TEST_F(JointSearchTest, InnerSearchesPutBackKeepTheAnswerAndShowTheirResultsOnAS
     });
     ASSERT_NE(it, all.end()) << Name(b.combination, lift, pusher);
     EXPECT_EQ(b.result.score, it->score);
+  }
+}
+
+// The dive (docs/joint-search.md#dive): the answer is exhaustive evaluation's with it as without
+// it. A stop at the first progress report (the dive's, before the first pass) returns the
+// dive's designs, each an exact solve, with no bound on the rest (nothing is bounded yet); a
+// stop at the first report with a bound returns that bound, at or below every score left.
+TEST_F(JointSearchTest, TheDivesDesignsAreExactAndAStopBeforeTheFirstPassHasNoBound) {
+  const Catalog cat = Catalog::Load(TinyCatalogDir(dir_).string());
+  const Mission m = ReadMission((dir_ / "free.json").string());
+  const int lift = m.segments[0].group, pusher = m.segments[1].group;
+  const std::vector<Scored> all = FeasibleScoresSorted(cat, m, lift, pusher);
+  ASSERT_GE(all.size(), 3u);
+  auto score_of = [&](const RankedCombination& b) {
+    const auto it = std::find_if(all.begin(), all.end(), [&](const Scored& x) { return x.name == Name(b.combination, lift, pusher); });
+    return it == all.end() ? std::numeric_limits<double>::quiet_NaN() : it->score;
+  };
+  SearchOptions so;
+  so.top_n = 3;
+  {
+    PropGridCache cache;
+    const SearchResult s = JointSearch(m, cat, so, std::numeric_limits<double>::infinity(), &cache);
+    ASSERT_EQ(s.best.size(), 3u);
+    EXPECT_GT(s.joint.dive_searches, 0);
+    for (std::size_t i = 0; i < 3; ++i) EXPECT_EQ(s.best[i].result.score, all[i].score) << i;
+    EXPECT_TRUE(std::isfinite(s.first_result_s));
+    EXPECT_LE(s.first_result_s, s.seconds);
+  }
+  std::atomic<bool> stop{false};
+  so.stop = &stop;
+  so.progress = [&](const SearchProgress&) { stop = true; };
+  {
+    PropGridCache cache;
+    const SearchResult s = JointSearch(m, cat, so, std::numeric_limits<double>::infinity(), &cache);
+    EXPECT_TRUE(s.interrupted);
+    EXPECT_FALSE(std::isfinite(s.unsettled_bound_score));
+    EXPECT_GT(s.unsettled, 0);
+    ASSERT_FALSE(s.best.empty()) << "the dive found nothing on the tiny catalog";
+    for (const RankedCombination& b : s.best) EXPECT_EQ(b.result.score, score_of(b)) << Name(b.combination, lift, pusher);
+  }
+  stop = false;
+  double reported = std::numeric_limits<double>::quiet_NaN();
+  so.progress = [&](const SearchProgress& p) {
+    if (p.has_bound && !stop) {
+      reported = p.bound_objective;
+      stop = true;
+    }
+  };
+  PropGridCache cache;
+  const SearchResult s = JointSearch(m, cat, so, std::numeric_limits<double>::infinity(), &cache);
+  ASSERT_TRUE(s.interrupted);
+  ASSERT_TRUE(std::isfinite(s.unsettled_bound_score));
+  // Each of the true top 3 not returned was unsettled when the bound was reported and is at the
+  // stop (settled, it would be among the results): it scores at least both bounds.
+  ASSERT_EQ(m.objective.type, ObjectiveType::kMinEnergy);
+  for (std::size_t i = 0; i < 3; ++i) {
+    const bool found = std::any_of(s.best.begin(), s.best.end(), [&](const RankedCombination& b) {
+      return Name(b.combination, lift, pusher) == all[i].name;
+    });
+    if (!found) {
+      EXPECT_GE(all[i].score, s.unsettled_bound_score) << all[i].name;
+      EXPECT_GE(ObjectiveOfScore(m.objective.type, all[i].score), reported - 1e-9) << all[i].name;
+    }
   }
 }
 
