@@ -269,6 +269,12 @@ MissionResult MissionEvaluator::SolveOneFree(const std::vector<FreeVar>& free, d
   return r;
 }
 
+// SolveManyFree: COBYLA's infeasible answer within this relative slack of a constraint is
+// followed by 1-D searches along each variable (a feasible corner the grid missed); further out
+// the combination is taken as infeasible, as before (most infeasible combinations of a search end
+// far outside, and the 1-D searches would cost about 100 runs each).
+constexpr double kNearlyFeasibleSlack = 1e-3;
+
 // Several free variables: a coarse grid (5 levels per variable, at most 125 points) picks the
 // start; COBYLA (derivative-free: the objective passes through tabulated propeller data) polishes it.
 MissionResult MissionEvaluator::SolveManyFree(const std::vector<FreeVar>& free, double cutoff_score, bool explain,
@@ -357,10 +363,38 @@ MissionResult MissionEvaluator::SolveManyFree(const std::vector<FreeVar>& free, 
     xs = best_x;
     broke_by = 0;
   }
+  bool by_coordinates = false;
+  if (!r.feasible && std::isfinite(r.min_slack) && r.min_slack > -kNearlyFeasibleSlack) {
+    // COBYLA ended a hair outside a constraint and no grid point is feasible: the feasible set
+    // is a corner the 5 x 5 grid misses (quadplane, capacity [2, 10] Ah, airspeed [12, 26] m/s,
+    // lift ESC fu_e_60: feasible near 3 Ah and 12 m/s, COBYLA's end 1.1e-6 outside). Each
+    // variable in turn over its whole range, the others held, by the bracketed 1-D search,
+    // which approaches a boundary from the feasible side.
+    for (int round = 0; round < 2 && !r.feasible; ++round) {
+      for (int i = 0; i < n; ++i) {
+        auto along = [&](double t) {
+          Eigen::VectorXd y = xs;
+          y[i] = t;
+          return WithEndurance(vars_at(y.data()));
+        };
+        MissionResult ri = SolveOneVariable(
+            along, [](const MissionResult&, double, double) { return false; },
+            [](const MissionResult&) { return false; }, false);
+        if (!Better(ri, r)) continue;
+        const double value = free[i].segment < 0 ? ri.capacity_ah : ri.segments[free[i].segment].airspeed_m_s;
+        xs[i] = (value - free[i].lo) / (free[i].hi - free[i].lo);
+        r = std::move(ri);
+        by_coordinates = true;
+      }
+    }
+  }
   if (!explain) return r;
   std::ostringstream msg;
   msg << sr.BriefReport();
   if (scale != 1.0) msg << " (f: the objective over the grid's best, " << SignificantText(best_score, 6) << ")";
+  if (by_coordinates) {
+    msg << "; its answer and the grid infeasible: bracketed 1-D searches along each variable from its end";
+  }
   if (broke_by > 0) {
     msg << "; its answer broke a constraint by " << SignificantText(broke_by, 2)
         << " (relative slack): the last feasible point towards it from the grid's best";
