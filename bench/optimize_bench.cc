@@ -278,8 +278,8 @@ BENCHMARK(BM_OptimizeEvtolFreeRanges)->Unit(benchmark::kSecond)->Iterations(1)->
 // Arg 0: motors subsampled (the propellers whole); 1: motors and propellers.
 BENCHMARK(BM_OptimizeQuadplaneFreeGrowth)->Arg(0)->Arg(1)->Unit(benchmark::kSecond)->Iterations(1)->UseRealTime();
 BENCHMARK(BM_OptimizeEvtolFreeGrowth)->Arg(0)->Arg(1)->Unit(benchmark::kSecond)->Iterations(1)->UseRealTime();
-BENCHMARK(BM_OptimizeQuadplaneFreeRangesGrowth)->Arg(1)->Unit(benchmark::kSecond)->Iterations(1)->UseRealTime();
-BENCHMARK(BM_OptimizeEvtolFreeRangesGrowth)->Arg(1)->Unit(benchmark::kSecond)->Iterations(1)->UseRealTime();
+BENCHMARK(BM_OptimizeQuadplaneFreeRangesGrowth)->Arg(0)->Arg(1)->Unit(benchmark::kSecond)->Iterations(1)->UseRealTime();
+BENCHMARK(BM_OptimizeEvtolFreeRangesGrowth)->Arg(0)->Arg(1)->Unit(benchmark::kSecond)->Iterations(1)->UseRealTime();
 BENCHMARK(BM_OptimizeQuadcopterGrowth)->Arg(0)->Arg(1)->Unit(benchmark::kSecond)->Iterations(1)->UseRealTime();
 
 }  // namespace
