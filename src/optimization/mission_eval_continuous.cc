@@ -269,10 +269,10 @@ MissionResult MissionEvaluator::SolveOneFree(const std::vector<FreeVar>& free, d
   return r;
 }
 
-// SolveManyFree: COBYLA's infeasible answer within this relative slack of a constraint is
-// followed by 1-D searches along each variable (a feasible corner the grid missed); further out
-// the combination is taken as infeasible, as before (most infeasible combinations of a search end
-// far outside, and the 1-D searches would cost about 100 runs each).
+// SolveManyFree: with no feasible grid point, COBYLA's answer, feasible or infeasible within this
+// relative slack of a constraint, is followed by 1-D searches along each variable (a feasible
+// corner the grid missed); further out the combination is taken as infeasible, as before (most
+// infeasible combinations of a search end far outside, and the 1-D searches cost about 100 runs).
 constexpr double kNearlyFeasibleSlack = 1e-3;
 
 // Several free variables: a coarse grid (5 levels per variable, at most 125 points) picks the
@@ -364,13 +364,16 @@ MissionResult MissionEvaluator::SolveManyFree(const std::vector<FreeVar>& free, 
     broke_by = 0;
   }
   bool by_coordinates = false;
-  if (!r.feasible && std::isfinite(r.min_slack) && r.min_slack > -kNearlyFeasibleSlack) {
-    // COBYLA ended a hair outside a constraint and no grid point is feasible: the feasible set
-    // is a corner the 5 x 5 grid misses (quadplane, capacity [2, 10] Ah, airspeed [12, 26] m/s,
-    // lift ESC fu_e_60: feasible near 3 Ah and 12 m/s, COBYLA's end 1.1e-6 outside). Each
-    // variable in turn over its whole range, the others held, by the bracketed 1-D search,
-    // which approaches a boundary from the feasible side.
-    for (int round = 0; round < 2 && !r.feasible; ++round) {
+  if (!grid.feasible && (r.feasible || (std::isfinite(r.min_slack) && r.min_slack > -kNearlyFeasibleSlack))) {
+    // No grid point is feasible: the feasible set is a corner the 5 x 5 grid misses, and COBYLA,
+    // started outside it, ends a hair outside a constraint or short of the optimum (quadplane,
+    // capacity [2, 10] Ah, airspeed [12, 26] m/s, lift dc_m_550 + GWS 9x5: with ESC fu_e_60
+    // 1.1e-6 outside though it flies near 3 Ah and 12 m/s; with dc_e_113 at its iteration limit,
+    // 3.67 Ah and 34.60 Wh against 33.56 Wh at 3 Ah). Each variable in turn over its whole range,
+    // the others held, by the bracketed 1-D search, which approaches a boundary from the
+    // feasible side; twice, or until a round changes nothing.
+    for (int round = 0; round < 2; ++round) {
+      bool changed = false;
       for (int i = 0; i < n; ++i) {
         auto along = [&](double t) {
           Eigen::VectorXd y = xs;
@@ -384,8 +387,9 @@ MissionResult MissionEvaluator::SolveManyFree(const std::vector<FreeVar>& free, 
         const double value = free[i].segment < 0 ? ri.capacity_ah : ri.segments[free[i].segment].airspeed_m_s;
         xs[i] = (value - free[i].lo) / (free[i].hi - free[i].lo);
         r = std::move(ri);
-        by_coordinates = true;
+        by_coordinates = changed = true;
       }
+      if (!changed) break;
     }
   }
   if (!explain) return r;
@@ -393,7 +397,7 @@ MissionResult MissionEvaluator::SolveManyFree(const std::vector<FreeVar>& free, 
   msg << sr.BriefReport();
   if (scale != 1.0) msg << " (f: the objective over the grid's best, " << SignificantText(best_score, 6) << ")";
   if (by_coordinates) {
-    msg << "; its answer and the grid infeasible: bracketed 1-D searches along each variable from its end";
+    msg << "; no grid point feasible: bracketed 1-D searches along each variable from its answer";
   }
   if (broke_by > 0) {
     msg << "; its answer broke a constraint by " << SignificantText(broke_by, 2)
