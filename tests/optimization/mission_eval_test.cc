@@ -432,24 +432,23 @@ TEST_F(MissionEvalTest, AGearedMotorTurnsThePropellerAtItsOwnSpeedAndPaysTheGear
 namespace dynosize {
 namespace {
 
-// Two free variables (the capacity and the cruise airspeed) with the optimum on a feasibility
-// boundary: the quadplane example's lift drive of its first design with a capacity range and an
-// airspeed range (bundled catalog). With ESC dc_e_22 COBYLA ended 8.8e-7 outside a constraint
-// and the evaluator fell back to its coarse grid's start, 32.16 Wh at 3.5 Ah, above the 30.90 Wh
-// of dc_e_21, an ESC dc_e_22 dominates (R5: it may score no better). The last feasible point
-// towards COBYLA's answer keeps the order R5 relies on.
-TEST(MissionEvalManyFreeTest, AnOptimumOnAFeasibilityBoundaryIsKeptAndDominanceHolds) {
-  const std::string root = DYNOSIZE_SOURCE_DIR;
-  const Catalog cat = Catalog::Load(root + "/catalog");
-  Json j = ReadJsonFile(root + "/examples/missions/quadplane_2kg.json");
-  j["battery"]["capacity_ah"] = {2.0, 8.0};
-  for (Json& s : j["segments"]) {
-    if (s["type"] == "cruise") s["airspeed_m_s"] = {14.0, 24.0};
-  }
-  const Mission m = ParseMission(j, "quadplane with ranges");
+// The quadplane example (its pusher fixed) with a capacity range and a cruise airspeed range, and
+// its combination with the lift drive dc_m_550 + `esc` + GWS 9x5 on a 4S dc_b_361 pack (the
+// bundled catalog).
+struct QuadplaneWithRanges {
+  Catalog cat = Catalog::Load(std::string(DYNOSIZE_SOURCE_DIR) + "/catalog");
+  Mission m;
   int lift = 0, pusher = 0;
-  for (int g = 0; g < GroupCount(m); ++g) (m.groups[g].name == "lift" ? lift : pusher) = g;
-  auto solve = [&](const char* esc) {
+  QuadplaneWithRanges(double capacity_hi_ah, double airspeed_lo_m_s, double airspeed_hi_m_s) {
+    Json j = ReadJsonFile(std::string(DYNOSIZE_SOURCE_DIR) + "/examples/missions/quadplane_2kg.json");
+    j["battery"]["capacity_ah"] = {2.0, capacity_hi_ah};
+    for (Json& s : j["segments"]) {
+      if (s["type"] == "cruise") s["airspeed_m_s"] = {airspeed_lo_m_s, airspeed_hi_m_s};
+    }
+    m = ParseMission(j, "quadplane with ranges");
+    for (int g = 0; g < GroupCount(m); ++g) (m.groups[g].name == "lift" ? lift : pusher) = g;
+  }
+  Combination With(const char* esc) const {
     Combination c;
     c.battery = &cat.battery("dc_b_361");
     c.cells = 4;
@@ -460,8 +459,20 @@ TEST(MissionEvalManyFreeTest, AnOptimumOnAFeasibilityBoundaryIsKeptAndDominanceH
     c.motor = c.groups[lift].motor;
     c.esc = c.groups[lift].esc;
     c.prop = c.groups[lift].prop;
-    return MissionEvaluator(m, c).Solve();
-  };
+    return c;
+  }
+};
+
+// Two free variables (the capacity and the cruise airspeed) with the optimum on a feasibility
+// boundary: the quadplane example's lift drive of its first design with a capacity range and an
+// airspeed range (bundled catalog). With ESC dc_e_22 COBYLA ended 8.8e-7 outside a constraint
+// and the evaluator fell back to its coarse grid's start, 32.16 Wh at 3.5 Ah, above the 30.90 Wh
+// of dc_e_21, an ESC dc_e_22 dominates (R5: it may score no better). The last feasible point
+// towards COBYLA's answer keeps the order R5 relies on.
+TEST(MissionEvalManyFreeTest, AnOptimumOnAFeasibilityBoundaryIsKeptAndDominanceHolds) {
+  const QuadplaneWithRanges q(8.0, 14.0, 24.0);
+  const Catalog& cat = q.cat;
+  auto solve = [&](const char* esc) { return MissionEvaluator(q.m, q.With(esc)).Solve(); };
   ASSERT_TRUE(search_internal::EscDominates(cat.esc("dc_e_22"), cat.esc("dc_e_21")));
   const MissionResult dominated = solve("dc_e_21");
   const MissionResult dominating = solve("dc_e_22");
@@ -480,28 +491,11 @@ TEST(MissionEvalManyFreeTest, AnOptimumOnAFeasibilityBoundaryIsKeptAndDominanceH
 // points: 33.74, 33.56, 34.05 Wh). The 1-D searches along each variable from COBYLA's answer
 // find each feasible, at or below the dense grid's best.
 TEST(MissionEvalManyFreeTest, AFeasibleCornerTheGridMissesIsFound) {
-  const std::string root = DYNOSIZE_SOURCE_DIR;
-  const Catalog cat = Catalog::Load(root + "/catalog");
-  Json j = ReadJsonFile(root + "/examples/missions/quadplane_2kg.json");
-  j["battery"]["capacity_ah"] = {2.0, 10.0};
-  for (Json& s : j["segments"]) {
-    if (s["type"] == "cruise") s["airspeed_m_s"] = {12.0, 26.0};
-  }
-  const Mission m = ParseMission(j, "quadplane with wide ranges");
-  int lift = 0, pusher = 0;
-  for (int g = 0; g < GroupCount(m); ++g) (m.groups[g].name == "lift" ? lift : pusher) = g;
+  const QuadplaneWithRanges q(10.0, 12.0, 26.0);
+  const Mission& m = q.m;
   for (const char* esc : {"fu_e_60", "dc_e_113", "dc_e_2"}) {
     SCOPED_TRACE(esc);
-    Combination c;
-    c.battery = &cat.battery("dc_b_361");
-    c.cells = 4;
-    c.groups.assign(2, GroupParts{});
-    c.groups[lift] = GroupParts{&cat.motor("dc_m_550"), &cat.esc(esc), &cat.prop("uiuc_v2_gwsdd_9.0x5.0_2")};
-    c.groups[pusher] = GroupParts{&cat.motor(m.groups[pusher].motor_id), &cat.esc(m.groups[pusher].esc_id),
-                                  &cat.prop(m.groups[pusher].prop_id)};
-    c.motor = c.groups[lift].motor;
-    c.esc = c.groups[lift].esc;
-    c.prop = c.groups[lift].prop;
+    const Combination c = q.With(esc);
     const MissionResult r = MissionEvaluator(m, c).Solve();
     double dense_best = std::numeric_limits<double>::infinity();
     for (int a = 0; a <= 40; ++a) {
