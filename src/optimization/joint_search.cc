@@ -338,6 +338,13 @@ class JointLoop {
     for (const auto& entry : put_back_results_) AddUnheld(std::vector<RankedCombination>(entry.second), &shown);
     ReportProgress(m_, opt_, pairs_, done, shown, out_, LeastLeft());
   }
+  // Progress(done) when the last report is over 0.25 s old: between items and from within the
+  // inner searches (one class search can run for seconds), so that the line keeps moving.
+  void ProgressNowAndThen(std::size_t done) {
+    if (!opt_.progress || std::chrono::steady_clock::now() - last_report_ < std::chrono::milliseconds(250)) return;
+    Progress(done);
+    last_report_ = std::chrono::steady_clock::now();
+  }
   // The least bound of the pairs and items not yet settled: those not yet taken and the one
   // being taken (+inf: none).
   double LeastLeft() const {
@@ -537,9 +544,11 @@ void JointLoop::Run() {
     queue_.pop();
     taking_bound_ = q.bound;
     // Every 64 items, and at least every 0.25 s (an inner search can take a second).
-    if (taken++ % 64 == 0 || std::chrono::steady_clock::now() - last_report_ > std::chrono::milliseconds(250)) {
+    if (taken++ % 64 == 0) {
       Progress(next_);
       last_report_ = std::chrono::steady_clock::now();
+    } else {
+      ProgressNowAndThen(next_);
     }
     const bool budgeted = !q.unlimited && !(OwnNth() < kInf);
     const bool done = q.esc >= 0 ? SearchTriple(pairs_[q.pair], q.esc, budgeted) : TakePair(q);
@@ -582,6 +591,7 @@ void JointLoop::Tighten() {
 bool JointLoop::SearchTriple(const OuterPair& pr, int e, bool budgeted) {
   const Mission sub = SubMission(m_, cat_, jb_.outer_group(), pr, e, jb_);
   SearchOptions o = inner_opt_;
+  if (opt_.progress) o.progress = [this](const SearchProgress&) { ProgressNowAndThen(next_); };
   if (budgeted && FreeGroupCount(sub) == 1) o.evaluation_budget = first_search_budget_;
   // G2's inner filter once an N-th best is known (docs/search.md#g2-inner-filter).
   std::vector<char> allowed;
@@ -686,6 +696,7 @@ void JointLoop::VirtualEscClass(const OuterPair& pr, std::size_t i, const std::v
   Progress(i);
   // G3: every completion below the N-th best with the virtual ESC, up to kCompletionLimit.
   SearchOptions all_opt = inner_opt_;
+  if (opt_.progress) all_opt.progress = [this, i](const SearchProgress&) { ProgressNowAndThen(i); };
   all_opt.top_n = kCompletionLimit;
   all_opt.distinct_designs = false;  // every completion, not one per design
   // G2's inner filter: only the inner pairs whose energy floor leaves a completion below the
