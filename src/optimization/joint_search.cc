@@ -302,6 +302,11 @@ class JointLoop {
   void Dive();
   // The whole loop; then out's best, N-th best and progress.
   void Run();
+  // out's best and N-th best from the top N (the end of Run or StoppedBeforeRun).
+  void Finish() {
+    out_.best = top_.Sorted();
+    out_.nth_best_score = top_.Threshold();
+  }
   // The progress before Run (the first pass over the outer pairs).
   void FirstPassProgress() const { Progress(0); }
   // A stop before the first pass had bounded every outer pair (motors from `motor` on not
@@ -416,27 +421,25 @@ constexpr int kDiveTries = 8;
 constexpr long long kDiveBudget = 800;
 constexpr std::chrono::milliseconds kDiveTryTime{300};
 
-// The dive's first guess of the continuous variables: a capacity range at its geometric mean, a
-// free cruise airspeed at its middle (each search then costs plain solves, no continuous solve).
-Mission DiveGuess(const Mission& m) {
-  Mission guess = m;
-  if (guess.battery.capacity_ah && guess.battery.capacity_ah->free()) {
-    const double c = std::sqrt(guess.battery.capacity_ah->lo * guess.battery.capacity_ah->hi);
-    guess.battery.capacity_ah = Range{c, c};
+// The dive's first guess of the continuous variables: m with a capacity range at its geometric
+// mean and each free cruise airspeed at its middle (each search then costs plain solves, no
+// continuous solve); false (and *guess m itself) when m has none.
+bool DiveGuess(const Mission& m, Mission* guess) {
+  *guess = m;
+  bool guessed = false;
+  if (guess->battery.capacity_ah && guess->battery.capacity_ah->free()) {
+    const double c = std::sqrt(guess->battery.capacity_ah->lo * guess->battery.capacity_ah->hi);
+    guess->battery.capacity_ah = Range{c, c};
+    guessed = true;
   }
-  for (Segment& sg : guess.segments) {
+  for (Segment& sg : guess->segments) {
     if (sg.type == SegmentType::kCruise && sg.airspeed_m_s.free()) {
       const double v = 0.5 * (sg.airspeed_m_s.lo + sg.airspeed_m_s.hi);
       sg.airspeed_m_s = Range{v, v};
+      guessed = true;
     }
   }
-  return guess;
-}
-
-bool HasContinuousVariables(const Mission& m) {
-  if (m.battery.capacity_ah && m.battery.capacity_ah->free()) return true;
-  return std::any_of(m.segments.begin(), m.segments.end(),
-                     [](const Segment& sg) { return sg.type == SegmentType::kCruise && sg.airspeed_m_s.free(); });
+  return guessed;
 }
 
 void JointLoop::Dive() {
@@ -444,8 +447,8 @@ void JointLoop::Dive() {
   std::size_t stopped_at = 0;
   const std::vector<OuterPair> sample = OuterPairs(cat_, &jb_, block_, kDiveMotorStride, opt_, &out_, &stopped_at);
   const int outer = jb_.outer_group();
-  const bool guessed = HasContinuousVariables(m_);
-  const Mission guess = guessed ? DiveGuess(m_) : Mission{};
+  Mission guess;
+  const bool guessed = DiveGuess(m_, &guess);
   int tries = 0;
   std::set<int> props_tried;
   for (const OuterPair& pr : sample) {
@@ -508,8 +511,7 @@ void JointLoop::StoppedBeforeRun(std::size_t motor) {
   AddCount(&out_.unsettled, SaturatingProduct({n_motors_left, static_cast<long long>(jb_.options().size()),
                                                static_cast<long long>(cat_.props().size()), n_esc_, block_}));
   out_.unsettled = std::min(out_.unsettled, out_.combinations);
-  out_.best = top_.Sorted();
-  out_.nth_best_score = top_.Threshold();
+  Finish();
 }
 
 void JointLoop::Run() {
@@ -567,8 +569,7 @@ void JointLoop::Run() {
     }
   }
   if (!out_.interrupted) Progress(pairs_.size());
-  out_.best = top_.Sorted();
-  out_.nth_best_score = top_.Threshold();
+  Finish();
 }
 
 void JointLoop::Tighten() {
