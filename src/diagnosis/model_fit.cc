@@ -45,6 +45,39 @@ bool PredictRow(const Data& d, const Drive& drive, std::size_t k, double* pred) 
   return (p.limits & kLimitThermalRunaway) == 0;
 }
 
+bool EffectiveVarianceScales(const Data& d, const Drive& drive, std::size_t k, const double* pred, double* inv_scale) {
+  // Relative step of the inputs for the derivatives (their values are of order 1-1000).
+  constexpr double kStep = 1e-4;
+  constexpr double kSpreadRange = 2.0;
+  const bool tk = d.torque_known[k] != 0;
+  const double x = tk ? d.q[k] : d.omega[k];
+  double pv[kMeasCount], px[kMeasCount];
+  auto predict = [&](double vdc, double xin, double* out) {
+    const OperatingPoint op = tk ? drive.AtTorque(vdc, d.tr[k], xin) : drive.AtSpeed(vdc, d.tr[k], xin);
+    out[kMOmega] = op.omega_rad_s;
+    out[kMIdc] = op.idc_a;
+    out[kMIrms] = op.irms_a;
+    out[kMVll] = op.vll_rms_v;
+    out[kMPac] = op.pac_w;
+  };
+  predict(d.vdc[k] * (1.0 + kStep), x, pv);
+  predict(d.vdc[k], x == 0.0 ? kStep : x * (1.0 + kStep), px);
+  for (int t = d.term_begin[k]; t < d.term_begin[k + 1]; ++t) {
+    const Term& term = d.terms[t];
+    const double sv = (pv[term.meas] - pred[term.meas]) / kStep;  // dy/dVDC * VDC
+    const double sx = x == 0.0 ? 0.0 : (px[term.meas] - pred[term.meas]) / kStep;
+    const double spread = std::sqrt(term.value * term.value + sv * sv + sx * sx);
+    if (!std::isfinite(spread)) return false;
+    double inv = 100.0 / std::max(spread, d.spread_floor[term.meas]);
+    // Within a factor of kSpreadRange of the preliminary fit's spread (term.inv_scale): a model
+    // far more sensitive to its inputs than the first-order fit would explain any misfit as input
+    // noise (on logs without a throttle column the fit ran to KE on its bound, missing by 15,000 %).
+    if (d.weights_follow_model) inv = std::clamp(inv, term.inv_scale / kSpreadRange, term.inv_scale * kSpreadRange);
+    inv_scale[t - d.term_begin[k]] = inv;
+  }
+  return true;
+}
+
 bool Residuals(const Data& d, const std::vector<std::size_t>& rows, const Values& v, double* r) {
   MotorParams m;
   EscParams e;
@@ -55,11 +88,14 @@ bool Residuals(const Data& d, const std::vector<std::size_t>& rows, const Values
   const Drive drive(m, e);
   double pred[kMeasCount];
   int out = 0;
+  double inv_scale[kMeasCount];
   for (std::size_t k : rows) {
     if (!PredictRow(d, drive, k, pred)) return false;
+    if (d.weights_follow_model && !EffectiveVarianceScales(d, drive, k, pred, inv_scale)) return false;
     for (int t = d.term_begin[k]; t < d.term_begin[k + 1]; ++t) {
       const Term& term = d.terms[t];
-      r[out++] = TermResidual(term, pred);
+      r[out++] = d.weights_follow_model ? (pred[term.meas] - term.value) * inv_scale[t - d.term_begin[k]]
+                                        : TermResidual(term, pred);
     }
   }
   return true;

@@ -54,6 +54,12 @@ using identification::TermResidual;
 struct Data : identification::FitRows {
   bool tie_kt = true;
   MotorType motor_type = MotorType::kBldc;
+  // Effective-variance weights that follow the model being fitted (ApplyEffectiveVarianceWeights
+  // switches them on): each residual of a fit is divided by the spread the relative noise of its
+  // row's inputs gives it under the parameters being tried, not under a preliminary fit's
+  // (prepare.cc, stage 5). spread_floor: the smallest spread of each measured column, in its units.
+  bool weights_follow_model = false;
+  std::array<double, kMeasCount> spread_floor{};
 };
 
 struct Model {
@@ -115,6 +121,11 @@ struct Step {
 void ToParams(const Data& d, const Values& v, MotorParams* m, EscParams* e);
 // Predictions of row k (every measured column) by the model with these values.
 bool PredictRow(const Data& d, const Drive& drive, std::size_t k, double* pred);
+// The effective-variance scale of each term of row k (100 / spread, the spread of its value under
+// relative noise on the value and on the row's inputs, VDC and the speed or torque) into inv_scale,
+// with the derivatives of `drive`; pred: the row's predictions (PredictRow). False where a
+// perturbed prediction fails.
+bool EffectiveVarianceScales(const Data& d, const Drive& drive, std::size_t k, const double* pred, double* inv_scale);
 // The residual terms of `rows` into r; false outside the model's domain.
 bool Residuals(const Data& d, const std::vector<std::size_t>& rows, const Values& v, double* r);
 int TermCount(const Data& d, const std::vector<std::size_t>& rows);

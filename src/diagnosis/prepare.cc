@@ -326,9 +326,18 @@ Folds AssignFolds(std::size_t n, const DiagnoseOptions& o) {
 // U = kv*VDC*TR or in KE*omega is a large error in the current (I = (U - KE*omega)/R is a
 // small difference there). Each residual is therefore divided by the spread that relative
 // noise of the output and of the inputs gives it (the "effective variance" of errors-in-
-// variables fitting): s = sqrt(y^2 + (dy/dVDC*VDC)^2 + (dy/dx*x)^2), x = omega or torque,
-// with the derivatives of a preliminary fit of the first-order model. Without this the F test
-// sees heteroscedastic residuals and calls low-throttle noise an effect.
+// variables fitting): s = sqrt(y^2 + (dy/dVDC*VDC)^2 + (dy/dx*x)^2), x = omega or torque.
+// Without this the F test sees heteroscedastic residuals and calls low-throttle noise an effect.
+// The derivatives are those of the model being fitted, recomputed at every trial (model_fit.cc,
+// Residuals): with the spreads of a preliminary fit held fixed the fit is ordinary weighted least
+// squares with noisy inputs, which flattens KE and R (the noise of the speed input looks like a
+// weaker back-EMF), and any extension that lets the noise-free throttle column carry the back-EMF
+// instead - a throttle offset - recovers that bias and passes its F test on a clean log (clean
+// campaigns without torque: 8 in 200 named a dead band). With the spreads following the
+// parameters the sum of squares is the errors-in-variables likelihood, profiled over the true
+// inputs (exact where the prediction is linear in them, as the first-order circuit is at a given
+// throttle). term.inv_scale keeps the preliminary fit's scales: the cross-validation's yardstick,
+// the same for every model compared, and the centre of the range the followed spreads may take.
 void ApplyEffectiveVarianceWeights(const std::vector<std::size_t>& used, const Model& base, Prepared* p) {
   Data& d = p->d;
   const FitOut pre = FitModel(d, used, base, LossType::kHuber, 1.0);
@@ -337,31 +346,17 @@ void ApplyEffectiveVarianceWeights(const std::vector<std::size_t>& used, const M
   EscParams ep;
   ToParams(d, pre.values, &mp, &ep);
   const Drive drive(mp, ep);
-  double p0[kMeasCount], pv[kMeasCount], px[kMeasCount];
+  for (int m = 0; m < kMeasCount; ++m) d.spread_floor[m] = 5.0 / p->inv_scale[m];
+  double pred[kMeasCount], inv_scale[kMeasCount];
   for (std::size_t k = 0; k < d.rows(); ++k) {
-    const double h = 1e-4;
-    const bool tk = d.torque_known[k] != 0;
-    const double x = tk ? d.q[k] : d.omega[k];
-    auto predict = [&](double vdc, double xin, double* out) {
-      const OperatingPoint op = tk ? drive.AtTorque(vdc, d.tr[k], xin) : drive.AtSpeed(vdc, d.tr[k], xin);
-      out[kMOmega] = op.omega_rad_s;
-      out[kMIdc] = op.idc_a;
-      out[kMIrms] = op.irms_a;
-      out[kMVll] = op.vll_rms_v;
-      out[kMPac] = op.pac_w;
-    };
-    predict(d.vdc[k], x, p0);
-    predict(d.vdc[k] * (1.0 + h), x, pv);
-    predict(d.vdc[k], x == 0.0 ? h : x * (1.0 + h), px);
-    for (int tt = d.term_begin[k]; tt < d.term_begin[k + 1]; ++tt) {
-      Term& term = d.terms[tt];
-      const double sv = (pv[term.meas] - p0[term.meas]) / h;  // dy/dVDC * VDC
-      const double sx = x == 0.0 ? 0.0 : (px[term.meas] - p0[term.meas]) / h;
-      const double spread = std::sqrt(term.value * term.value + sv * sv + sx * sx);
-      const double floor = 5.0 / p->inv_scale[term.meas];
-      if (std::isfinite(spread)) term.inv_scale = 100.0 / std::max(spread, floor);
-    }
+    PredictRow(d, drive, k, pred);
+    if (!EffectiveVarianceScales(d, drive, k, pred, inv_scale)) continue;
+    for (int tt = d.term_begin[k]; tt < d.term_begin[k + 1]; ++tt) d.terms[tt].inv_scale = inv_scale[tt - d.term_begin[k]];
   }
+  // Without a throttle column every row is taken at an assumed command, a model known to be
+  // wrong wherever the rows are not at that command; there the spreads stay those of the
+  // preliminary fit (following the model, the fit of such a log ran to KE on its bound).
+  d.weights_follow_model = p->has_tr;
 }
 
 // Stage 6: outlier screen with the union model (the base model plus every testable candidate).
