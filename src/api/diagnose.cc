@@ -135,6 +135,22 @@ Json DiagnoseJson(const diagnosis::DiagnoseResult& r, const std::string& no_thro
     findings.push_back(fj);
   }
   j["findings"] = findings;
+  Json remaining = Json::array();
+  for (const auto& t : r.remaining_trends) {
+    const identification::TrendAttribution& a = t.attribution;
+    Json sigs = Json::array();
+    for (const auto& g : a.signatures) {
+      Json gj = {{"mechanism", g.mechanism}, {"r2", NumberOrNull(g.r2)}, {"p_value", NumberOrNull(g.p_value)},
+                 {"change_percent", NumberOrNull(g.change_percent)}};
+      if (g.mechanism == "heating") gj["tau_s"] = g.tau_s;
+      sigs.push_back(gj);
+    }
+    remaining.push_back({{"column", logs::ColumnName(t.column)}, {"follows", a.signatures.front().mechanism},
+                         {"separable", a.separable}, {"rival", a.rival},
+                         {"rival_correlation", NumberOrNull(a.rival_correlation)}, {"text", a.text},
+                         {"measurement", a.measurement}, {"signatures", sigs}});
+  }
+  j["remaining_trends"] = remaining;
   Json last = Json::array();
   for (const auto& s : r.last_step_scores) last.push_back(ScoreJson(s));
   j["rejected_candidates"] = last;

@@ -10,6 +10,7 @@
 #include "fit/statistics.h"
 #include "identification/dc_fit.h"
 #include "identification/fit_rows.h"
+#include "identification/trend_attribution.h"
 
 namespace dynosize::calibration {
 
@@ -139,6 +140,48 @@ CrossValidation CrossValidateForVerdict(const SteadyTable& table, const Calibrat
   return LeaveOneOut(table, options, true, g.size() <= kMaxLooGroups ? 0 : kFolds);
 }
 
+namespace {
+
+// The fit predicts the speed from the measured current (a DC log with throttle but neither
+// torque nor the AC columns: Prepare).
+bool SpeedFromCurrent(const SteadyTable& table) {
+  return table.Has(Column::kThrottle) && !table.Has(Column::kTorqueNm) &&
+         !(table.Has(Column::kVllRmsV) && table.Has(Column::kIrmsA));
+}
+
+// What the fitted model's residual of its predicted current (or, where the speed is predicted
+// from the current, of that speed) still follows over the rows it fitted: speed, accumulated
+// heat or command (identification/trend_attribution.h; in-sample residuals, at the diagnosis's
+// test level). Empty when nothing is structured.
+identification::TrendAttribution FitResidualTrend(const CalibrationResult& r, const SteadyTable& table) {
+  constexpr double kAlpha = 1e-3;  // as DiagnoseOptions::alpha
+  const bool speed_from_current = SpeedFromCurrent(table);
+  if (!table.Has(Column::kIdcA) || !table.Has(Column::kOmegaRadS)) return {};
+  std::vector<char> dropped(table.rows(), 0);
+  for (const DroppedRow& d : r.dropped_rows) {
+    if (d.row < dropped.size()) dropped[d.row] = 1;
+  }
+  identification::TrendRows rows;
+  const auto& w = table.Get(Column::kOmegaRadS);
+  const auto& idc = table.Get(Column::kIdcA);
+  for (std::size_t k = 0; k < table.rows(); ++k) {
+    if (dropped[k] || !(w[k] > 0.0) || !(idc[k] > 0.0)) continue;
+    const RowPrediction p = PredictRow(table, k, r.motor, r.esc);
+    const double pred = speed_from_current ? p.omega_from_idc_rad_s : p.idc_a;
+    const double meas = speed_from_current ? w[k] : idc[k];
+    if (!std::isfinite(pred)) continue;
+    rows.predicted.push_back(pred);
+    rows.measured.push_back(meas);
+    rows.omega_rad_s.push_back(w[k]);
+    rows.current_a.push_back(idc[k]);
+    if (table.Has(Column::kTimeS)) rows.time_s.push_back(table.Get(Column::kTimeS)[k]);
+    if (table.Has(Column::kThrottle)) rows.throttle.push_back(table.Get(Column::kThrottle)[k]);
+  }
+  return identification::AttributeTrend(rows, kAlpha);
+}
+
+}  // namespace
+
 identification::Verdict JudgeCalibration(const CalibrationResult& r, const SteadyTable& table,
                                          const CalibrationOptions& options, const CrossValidation* cv) {
   identification::VerdictInputs in;
@@ -187,9 +230,7 @@ identification::Verdict JudgeCalibration(const CalibrationResult& r, const Stead
       for (double& x : v) x = std::fabs(x);
       return Median(v);
     };
-    const bool current_input = table.Has(Column::kThrottle) && !table.Has(Column::kTorqueNm) &&
-                               !(table.Has(Column::kVllRmsV) && table.Has(Column::kIrmsA));
-    if (current_input) {
+    if (SpeedFromCurrent(table)) {
       // The fit predicts the speed from the measured current (Prepare): that is its held-out test.
       h.median_abs_current_percent = med_abs(cv->omega_from_idc_error_percent);
       h.primary_quantity = "speed predicted from the measured current";
@@ -209,6 +250,17 @@ identification::Verdict JudgeCalibration(const CalibrationResult& r, const Stead
   in.pulse_min_us = table.throttle_pulse_min_us;
   in.pulse_max_us = table.throttle_pulse_max_us;
   identification::Verdict v = identification::Judge(in);
+  if (v.status != identification::Status::kOk) {
+    // A refusal names what is wrong with the parameters; a trend the fit leaves in its residual
+    // is often why (a no-load current pushed to its bound by a current that drifts over the run).
+    const identification::TrendAttribution trend = FitResidualTrend(r, table);
+    if (trend.structured) {
+      v.advice += std::string(v.advice.empty() ? "" : "; ") + "the fit's " +
+                  (SpeedFromCurrent(table) ? "speed" : "current") + " residual is not noise: " + trend.text +
+                  (trend.measurement.empty() ? "" : " (to separate them: " + trend.measurement + ")") +
+                  "; `dynosize diagnose` tests the named causes";
+    }
+  }
   if (r.io_source == "no-load prior") {
     v.summary += " (io_a from the no-load prior: assumed, the log has neither torque nor no-load rows)";
   }

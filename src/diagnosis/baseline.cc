@@ -119,6 +119,26 @@ std::vector<WorstPoint> WorstPoints(const SteadyTable& t, const Data& d, const s
   return all;
 }
 
+namespace {
+
+// The held-out percent error of measured column m on the used rows that have one: the fit rows
+// in rows, the errors in ys.
+void HeldOutErrors(const Data& d, const std::vector<std::size_t>& used, const CvOut& cv, int m,
+                   std::vector<std::size_t>* rows, std::vector<double>* ys) {
+  for (std::size_t k : used) {
+    const double pr = cv.pred[m][k];
+    double meas = kNaN;
+    for (int tt = d.term_begin[k]; tt < d.term_begin[k + 1]; ++tt) {
+      if (d.terms[tt].meas == m) meas = d.terms[tt].value;
+    }
+    if (!std::isfinite(pr) || !std::isfinite(meas) || meas == 0.0) continue;
+    rows->push_back(k);
+    ys->push_back((pr - meas) / meas * 100.0);
+  }
+}
+
+}  // namespace
+
 // Stage 8b: residual structure of the baseline: the held-out percent error of every predicted
 // column against each logged variable.
 std::vector<ResidualTrend> ResidualTrends(const SteadyTable& t, const Prepared& p,
@@ -140,18 +160,12 @@ std::vector<ResidualTrend> ResidualTrends(const SteadyTable& t, const Prepared& 
   std::vector<ResidualTrend> trends;
   for (int m = 0; m < kMeasCount; ++m) {
     if (!d.measured[m]) continue;
+    std::vector<std::size_t> rows;
+    std::vector<double> ys;
+    HeldOutErrors(d, used, cv, m, &rows, &ys);
     for (const Var& var : vars) {
-      std::vector<double> xs, ys;
-      for (std::size_t k : used) {
-        const double pr = cv.pred[m][k];
-        double meas = kNaN;
-        for (int tt = d.term_begin[k]; tt < d.term_begin[k + 1]; ++tt) {
-          if (d.terms[tt].meas == m) meas = d.terms[tt].value;
-        }
-        if (!std::isfinite(pr) || !std::isfinite(meas) || meas == 0.0) continue;
-        xs.push_back(t.Get(var.col)[d.table_row[k]]);
-        ys.push_back((pr - meas) / meas * 100.0);
-      }
+      std::vector<double> xs;
+      for (std::size_t k : rows) xs.push_back(t.Get(var.col)[d.table_row[k]]);
       std::optional<ResidualTrend> tr = FitTrend(xs, ys, alpha);
       if (!tr) continue;
       tr->variable = var.name;
@@ -160,6 +174,34 @@ std::vector<ResidualTrend> ResidualTrends(const SteadyTable& t, const Prepared& 
     }
   }
   return trends;
+}
+
+std::vector<RemainingTrend> RemainingTrends(const SteadyTable& t, const Prepared& p,
+                                            const std::vector<std::size_t>& used, const CvOut& cv, double alpha) {
+  const Data& d = p.d;
+  const Column current = d.measured[kMIrms] ? Column::kIrmsA : Column::kIdcA;
+  if (!t.Has(current)) return {};
+  std::vector<RemainingTrend> out;
+  for (int m = 0; m < kMeasCount; ++m) {
+    if (!d.measured[m]) continue;
+    identification::TrendRows tr;
+    for (std::size_t k : used) {
+      const std::size_t row = d.table_row[k];
+      const double meas = t.Get(kMeasColumn[m])[row];
+      if (!std::isfinite(cv.pred[m][k]) || !std::isfinite(meas)) continue;
+      tr.predicted.push_back(cv.pred[m][k]);
+      tr.measured.push_back(meas);
+      tr.omega_rad_s.push_back(t.Get(Column::kOmegaRadS)[row]);
+      tr.current_a.push_back(t.Get(current)[row]);
+      if (t.Has(Column::kTimeS)) tr.time_s.push_back(t.Get(Column::kTimeS)[row]);
+      if (p.has_tr) tr.throttle.push_back(d.tr[k]);
+    }
+    RemainingTrend r;
+    r.column = kMeasColumn[m];
+    r.attribution = identification::AttributeTrend(tr, alpha);
+    if (r.attribution.structured) out.push_back(std::move(r));
+  }
+  return out;
 }
 
 }  // namespace dynosize::diagnosis::internal

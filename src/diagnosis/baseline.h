@@ -25,5 +25,9 @@ std::vector<WorstPoint> WorstPoints(const logs::SteadyTable& t, const Data& d, c
 // column against each logged variable.
 std::vector<ResidualTrend> ResidualTrends(const logs::SteadyTable& t, const Prepared& p,
                                           const std::vector<std::size_t>& used, const CvOut& cv, double alpha);
+// Stage 10b: what the extended model's held-out residual of each predicted column still follows
+// (speed, accumulated heat, command; identification/trend_attribution.h): the structured ones.
+std::vector<RemainingTrend> RemainingTrends(const logs::SteadyTable& t, const Prepared& p,
+                                            const std::vector<std::size_t>& used, const CvOut& cv, double alpha);
 
 }  // namespace dynosize::diagnosis::internal

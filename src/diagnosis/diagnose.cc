@@ -199,6 +199,7 @@ DiagnoseResult Diagnose(const logs::SteadyTable& t, const DiagnoseOptions& o) {
   cur = in::SearchCandidates(x, p.has_tr, candidates, std::move(cur), &res);
   cur = in::HoldEscOnBound(x, p.ac, std::move(cur), &res);
   in::AssembleResult(t, o, d, used, folds, cur, &res);
+  res.remaining_trends = in::RemainingTrends(t, p, used, cur.cv, o.alpha);
   in::UseCalibrationEntry(t, o, cal, &res);
   return res;
 }

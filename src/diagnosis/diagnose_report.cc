@@ -77,6 +77,11 @@ std::string DiagnoseResult::FullReport() const {
   for (const auto& a : ambiguous) {
     s << "  ambiguous: " << a.reason << "\n    to separate them: " << a.measurement << "\n";
   }
+  for (const auto& rt : remaining_trends) {
+    s << "  remaining trend of the extended model (held out), " << logs::ColumnName(rt.column) << ": "
+      << rt.attribution.text << "\n";
+    if (!rt.attribution.measurement.empty()) s << "    to separate them: " << rt.attribution.measurement << "\n";
+  }
   for (const auto& nt : not_testable) {
     s << "  not testable: " << CauseId(nt.cause) << " (" << nt.not_testable_reason << ")\n";
   }

@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "identification/trend_attribution.h"
 #include "identification/verdict.h"
 #include "logs/steady_table.h"
 #include "model/drive.h"
@@ -135,6 +136,13 @@ struct Finding {
   std::vector<CandidateScore> step_scores;
 };
 
+// What the extended model's held-out residual of one column still follows: speed, accumulated
+// heat or the command, named where the log separates them (identification/trend_attribution.h).
+struct RemainingTrend {
+  logs::Column column = logs::Column::kIdcA;
+  identification::TrendAttribution attribution;
+};
+
 struct Ambiguity {
   std::vector<Cause> causes;
   std::string reason;
@@ -173,6 +181,7 @@ struct DiagnoseResult {
   std::vector<CandidateScore> last_step_scores;
   std::vector<Ambiguity> ambiguous;
   std::vector<CandidateScore> not_testable;  // candidates the columns cannot reveal
+  std::vector<RemainingTrend> remaining_trends;  // extended model, CV residuals; structured ones only
   MotorParams extended_motor;
   EscParams extended_esc;
   std::vector<ColumnError> extended_cv;

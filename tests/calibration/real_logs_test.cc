@@ -104,6 +104,21 @@ TEST(CalibrateRealLogs, HeldOutBeatsThePlainDcModelOnAt4125) {
   EXPECT_LT(MedianAbs(cv.omega_error_percent), 0.5 * MedianAbs(cv.dc_omega_error_percent));
 }
 
+// xNova-TM-MR (RCbenchmark thrust map, one propeller): refused, and the refusal says what the
+// fit's current residual follows - speed or command, which one propeller cannot tell apart - and
+// the measurement that would (issue: a refusal that points only at a parameter on its bound).
+TEST(CalibrateRealLogs, ARefusalNamesTheTrendTheFitLeaves) {
+  REQUIRE_SHARED();
+  const auto t = logs::ReadLog(Shared() + "aerostack2_xnova_thrustmap/xNova-TM-MR.csv");
+  const CalibrationOptions co;
+  const CalibrationResult r = Calibrate(t, co);
+  const CrossValidation cv = CrossValidateForVerdict(t, co);
+  const identification::Verdict v = JudgeCalibration(r, t, co, &cv);
+  ASSERT_NE(v.status, identification::Status::kOk) << v.summary;
+  EXPECT_NE(v.advice.find("residual is not noise"), std::string::npos) << v.advice;
+  EXPECT_NE(v.advice.find("second propeller"), std::string::npos) << v.advice;
+}
+
 TEST(CalibrateRealLogs, EveryLogWithThrottleCalibratesAndFlagsBounds) {
   REQUIRE_SHARED();
   std::vector<std::string> files;

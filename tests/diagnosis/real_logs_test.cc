@@ -60,5 +60,28 @@ TEST(DiagnoseRealLogs, ExtensionWorseOnHeldOutRowsIsRefused) {
   EXPECT_FALSE(c->passed);
 }
 
+// xNova-TM-SR (RCbenchmark thrust map, 246 rows, torque): after its findings the speed residual
+// still follows the shaft speed beyond the command (named), and the current residual follows
+// the command, which the shaft speed explains as well in a one-propeller map (not named; the
+// measurement that would separate them is given).
+TEST(DiagnoseRealLogs, TheTrendTheExtensionsLeaveIsNamedOrSaysWhyNot) {
+  REQUIRE_SHARED();
+  const logs::SteadyTable t = logs::ReadLog(Shared() + "aerostack2_xnova_thrustmap/xNova-TM-SR.csv");
+  const DiagnoseResult r = Diagnose(t);
+  const RemainingTrend* speed = nullptr;
+  const RemainingTrend* current = nullptr;
+  for (const auto& x : r.remaining_trends) {
+    if (x.column == logs::Column::kOmegaRadS) speed = &x;
+    if (x.column == logs::Column::kIdcA) current = &x;
+  }
+  ASSERT_NE(speed, nullptr) << r.FullReport();
+  EXPECT_EQ(speed->attribution.signatures.front().mechanism, "speed");
+  EXPECT_TRUE(speed->attribution.separable) << speed->attribution.text;
+  ASSERT_NE(current, nullptr) << r.FullReport();
+  EXPECT_FALSE(current->attribution.separable) << current->attribution.text;
+  EXPECT_FALSE(current->attribution.measurement.empty());
+  EXPECT_NE(r.FullReport().find("remaining trend of the extended model"), std::string::npos);
+}
+
 }  // namespace
 }  // namespace dynosize::diagnosis
