@@ -68,11 +68,16 @@ void AddNoise(unsigned seed, TrendRows* r) {
   for (double& y : r->predicted) y += e(rng);
 }
 
+// The attribution of a sweep's residual (seeded noise added).
+TrendAttribution Attribute(TrendRows r, const std::vector<double>& residual_percent, unsigned seed) {
+  SetResidual(residual_percent, &r);
+  AddNoise(seed, &r);
+  return AttributeTrend(r, kAlpha);
+}
+
 TEST(TrendAttribution, HeatingInAnUpAndDownSweepIsNamed) {
-  TrendRows r = Sweep(true);
-  SetResidual(Heat(r, 8.0), &r);
-  AddNoise(1, &r);
-  const TrendAttribution a = AttributeTrend(r, kAlpha);
+  const TrendRows r = Sweep(true);
+  const TrendAttribution a = Attribute(r, Heat(r, 8.0), 1);
   ASSERT_TRUE(a.structured);
   EXPECT_EQ(a.signatures.front().mechanism, "heating") << a.text;
   EXPECT_TRUE(a.separable) << a.text;
@@ -81,10 +86,8 @@ TEST(TrendAttribution, HeatingInAnUpAndDownSweepIsNamed) {
 }
 
 TEST(TrendAttribution, SpeedLossWithTwoPropellersIsNamed) {
-  TrendRows r = Sweep(true, true);
-  SetResidual(Speed(r, -0.008), &r);
-  AddNoise(2, &r);
-  const TrendAttribution a = AttributeTrend(r, kAlpha);
+  const TrendRows r = Sweep(true, true);
+  const TrendAttribution a = Attribute(r, Speed(r, -0.008), 2);
   ASSERT_TRUE(a.structured);
   EXPECT_EQ(a.signatures.front().mechanism, "speed") << a.text;
   EXPECT_TRUE(a.separable) << a.text;
@@ -92,10 +95,8 @@ TEST(TrendAttribution, SpeedLossWithTwoPropellersIsNamed) {
 }
 
 TEST(TrendAttribution, SpeedLossWithOnePropellerIsNotToldFromTheCommand) {
-  TrendRows r = Sweep(true);
-  SetResidual(Speed(r, -0.008), &r);
-  AddNoise(2, &r);
-  const TrendAttribution a = AttributeTrend(r, kAlpha);
+  const TrendRows r = Sweep(true);
+  const TrendAttribution a = Attribute(r, Speed(r, -0.008), 2);
   ASSERT_TRUE(a.structured);
   // One propeller: the speed is a function of the command, the two are one regressor.
   EXPECT_FALSE(a.separable) << a.text;
@@ -103,10 +104,8 @@ TEST(TrendAttribution, SpeedLossWithOnePropellerIsNotToldFromTheCommand) {
 }
 
 TEST(TrendAttribution, HeatingInAOneWaySweepCannotBeTold) {
-  TrendRows r = Sweep(false);
-  SetResidual(Heat(r, 8.0), &r);
-  AddNoise(3, &r);
-  const TrendAttribution a = AttributeTrend(r, kAlpha);
+  const TrendRows r = Sweep(false);
+  const TrendAttribution a = Attribute(r, Heat(r, 8.0), 3);
   ASSERT_TRUE(a.structured);
   EXPECT_FALSE(a.separable) << a.text;
   EXPECT_GE(a.rival_correlation, 0.9);  // a one-way sweep: heat and speed rise together
