@@ -630,6 +630,17 @@ function renderDiagnosis(doc) {
   box.replaceChildren();
   $("cal-status").textContent = `diagnose: ${doc.summary}`;
   if (doc.advice) box.appendChild(Object.assign(document.createElement("p"), { className: "notes", textContent: doc.advice }));
+  // What the log shows: the named causes, then what the extended model still misses.
+  const lines = (doc.findings || []).map((f) => `${f.cause}: held-out error ${fmt(f.gain_percent, 1)} % lower`);
+  for (const t of doc.remaining_trends || []) {
+    lines.push(`${t.column}, still: ${t.text}` + (t.measurement ? ` (to separate them: ${t.measurement})` : ""));
+  }
+  if (lines.length) {
+    const ul = document.createElement("ul");
+    ul.id = "diag-findings";
+    for (const l of lines) ul.appendChild(Object.assign(document.createElement("li"), { textContent: l }));
+    box.appendChild(ul);
+  }
   box.appendChild(keyValueTable(doc.checks || []));
   const raw = document.createElement("details");
   raw.append(Object.assign(document.createElement("summary"), { textContent: "findings and the extended model (diagnose --json)" }),

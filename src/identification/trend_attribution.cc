@@ -188,7 +188,7 @@ TrendAttribution AttributeTrend(const TrendRows& rows, double alpha) {
   std::sort(c.begin(), c.end(), [](const Candidate& a, const Candidate& b) { return a.sig.r2 > b.sig.r2; });
   for (const Candidate& x : c) out.signatures.push_back(x.sig);
   const TrendSignature& top = c.front().sig;
-  out.structured = top.p_value < alpha && top.r2 >= 0.2;
+  out.structured = top.p_value < alpha && top.r2 >= 0.2 && std::fabs(top.change_percent) >= kMinTrendChangePercent;
   if (!out.structured) return out;
   // The rival: the other signature that leaves the least to the strongest (the largest p value of
   // the strongest beyond it). Named only when the strongest explains what every rival cannot.

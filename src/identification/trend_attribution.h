@@ -41,8 +41,13 @@ struct TrendSignature {
   double tau_s = 0.0;            // heating: the time constant of the best fit
 };
 
+// A trend smaller than this over its range is not reported, however significant: below the
+// 0.3-1 % noise of stand sensors, and below the 1 % a diagnosis finding must gain.
+inline constexpr double kMinTrendChangePercent = 1.0;
+
 struct TrendAttribution {
-  bool structured = false;  // some signature has p < alpha and R^2 >= 0.2
+  // The strongest signature has p < alpha, R^2 >= 0.2 and a change of kMinTrendChangePercent or more.
+  bool structured = false;
   std::vector<TrendSignature> signatures;  // every signature tested, strongest first
   // The strongest signature, named when it explains the residual beyond every other one.
   bool separable = false;

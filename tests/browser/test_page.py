@@ -173,6 +173,27 @@ def test_calibration(server, browser):
     screenshot(browser, "calibration.png")
 
 
+def test_diagnosis(server, browser):
+    """Diagnose in the page: the named causes and what the extended model still misses, as the CLI
+    gives them."""
+    browser.get(server)
+    WebDriverWait(browser, 30).until(EC.element_to_be_clickable((By.ID, "tab-calibrate"))).click()
+    log = os.path.abspath(os.path.join(ROOT, "examples", "dyno_log.csv"))
+    files = browser.find_element(By.ID, "cal-files")
+    files.clear()
+    files.send_keys(log)
+    browser.find_element(By.ID, "diag-run").click()
+    WebDriverWait(browser, 60).until(EC.presence_of_element_located((By.ID, "diag-findings")))
+    cli = cli_json("diagnose", log)
+    assert browser.find_element(By.ID, "cal-status").text == f"diagnose: {cli['summary']}"
+    shown = browser.find_element(By.ID, "diag-findings").text
+    for f in cli["findings"]:
+        assert f["cause"] in shown, (f["cause"], shown)
+    for t in cli["remaining_trends"]:
+        assert t["text"] in shown, (t["text"], shown)
+    screenshot(browser, "diagnosis.png")
+
+
 def test_optimize_cancel(server, browser):
     """A search that outlasts any wait (the eVTOL example with both groups, the capacity and the
     cruise speed free: tests/cli_runner.h LongSearchMission): the progress shows, Cancel stops it
