@@ -86,10 +86,11 @@ std::string Fixed(double x, int digits) {
   return o.str();
 }
 
-// R1 (docs/search.md#r1): every group's ESCs against the lowest full-charge OCV of the packs;
-// the lift group's motors too (the search checks their voltage there only).
+// R1 (docs/search.md#r1): every group's ESCs against the lowest full-charge OCV of the packs,
+// and their least supply voltage against the highest cut-off (esc_min_voltage); the lift
+// group's motors too (the search checks their voltage there only).
 void VoltageRequirements(const Mission& m, const Catalog& cat, const std::vector<GroupCandidates>& groups,
-                         int lift_group, double v_full_min_v, std::vector<UnmetRequirement>* out) {
+                         int lift_group, double v_full_min_v, double v_cut_max_v, std::vector<UnmetRequirement>* out) {
   for (int g = 0; g < GroupCount(m); ++g) {
     const GroupCandidates& c = groups[static_cast<std::size_t>(g)];
     double esc_v = -kInf;
@@ -104,6 +105,20 @@ void VoltageRequirements(const Mission& m, const Catalog& cat, const std::vector
       out->push_back({"controller_voltage", v_full_min_v, esc_v, "V", {esc_id},
                       "the ESC's voltage rating (vdc_max_v) against the full-charge voltage of the mission's "
                       "lowest-voltage pack",
+                      "esc_voltage", GroupName(m, g)});
+    }
+    double esc_min_v = kInf;
+    std::string esc_min_id;
+    for (const int i : c.escs) {
+      if (cat.escs()[i].params.vdc_min_v < esc_min_v) {
+        esc_min_v = cat.escs()[i].params.vdc_min_v;
+        esc_min_id = cat.escs()[i].id;
+      }
+    }
+    if (!c.escs.empty() && esc_min_v > v_cut_max_v) {
+      out->push_back({"controller_min_voltage", esc_min_v, v_cut_max_v, "V", {esc_min_id},
+                      "the least supply voltage any ESC runs on (vdc_min_v) against the cut-off voltage of the "
+                      "mission's highest-voltage pack, which the pack reaches at the end of the flight",
                       "esc_voltage", GroupName(m, g)});
     }
     if (g != lift_group) continue;
@@ -389,16 +404,17 @@ std::vector<UnmetRequirement> UnmetRequirements(const Mission& m, const Catalog&
   std::vector<UnmetRequirement> out;
   const std::vector<BatteryOption> options = search_internal::BatteryOptions(m, cat);
   if (options.empty()) return out;
-  double v_full_min_v = kInf, v_full_max_v = 0.0;
+  double v_full_min_v = kInf, v_full_max_v = 0.0, v_cut_max_v = 0.0;
   for (const BatteryOption& o : options) {
     v_full_min_v = std::min(v_full_min_v, o.v_full);
     v_full_max_v = std::max(v_full_max_v, o.v_full);
+    v_cut_max_v = std::max(v_cut_max_v, o.v_cut);
   }
   const int lift_group = LiftGroup(m);
   std::vector<GroupCandidates> groups;
   const search_internal::SizedPropOffer offer(m, cat);
   for (int g = 0; g < GroupCount(m); ++g) groups.push_back(CandidatesOf(m, cat, offer, g, g == std::max(0, lift_group)));
-  VoltageRequirements(m, cat, groups, lift_group, v_full_min_v, &out);
+  VoltageRequirements(m, cat, groups, lift_group, v_full_min_v, v_cut_max_v, &out);
   if (lift_group < 0) return out;  // a wing-borne cruise only: no hover to bound
   const GroupCandidates& lift = groups[static_cast<std::size_t>(lift_group)];
   if (lift.props.empty()) FrameRequirement(m, cat, lift_group, &out);

@@ -15,6 +15,9 @@
 // The requirements (needed vs best_available, unit):
 //   controller_voltage   the lowest full-charge OCV of the mission's packs vs the highest
 //                        vdc_max_v of the ESCs (R1, docs/search.md#r1; rule esc_voltage), V.
+//   controller_min_voltage  the lowest vdc_min_v of the ESCs vs the highest cut-off voltage of
+//                        the packs, which every flight ends near (R1; rule esc_voltage, the
+//                        evaluator's esc_min_voltage), V.
 //   motor_voltage        the same OCV vs the highest voltage rating of the motors (cells_max x
 //                        4.2 V; rule motor_voltage), V.
 //   frame_prop_diameter  the smallest propeller of the catalog that is not excluded (nor folding

@@ -167,6 +167,33 @@ TEST(NoDesign, APackAboveEveryRatingNamesTheVoltage) {
   EXPECT_NE(Find(s.no_design_because, "controller_voltage"), nullptr);
 }
 
+// ESCs that need more voltage than the pack keeps to its cut-off: the small test catalog with
+// every ESC's least supply voltage set to 30 V (a high-voltage controller's window) and a 4S pack.
+TEST(NoDesign, AnEscWhoseLeastVoltageIsAboveTheCutOffIsNamed) {
+  const fs::path dir = testing_util::WriteSmallCatalog("no_design_min_volts");
+  const fs::path file = dir / "catalog" / "small.json";
+  Json doc = ReadJsonFile(file.string());
+  for (Json& e : doc["escs"]) e["vdc_min_v"] = 30.0;
+  std::ofstream(file) << DumpJson(doc);
+  const Catalog cat = Catalog::Load((dir / "catalog").string());
+  fs::remove_all(dir);
+  Json quad = ParseJsonText(testing_util::kQuad, "quad.json");
+  quad["battery"]["cells"] = 4;
+  const Mission m = ParseMission(quad, "quad.json");
+  const std::vector<UnmetRequirement> why = UnmetRequirements(m, cat);
+  const UnmetRequirement* esc = Find(why, "controller_min_voltage");
+  ASSERT_NE(esc, nullptr);
+  EXPECT_EQ(esc->needed, 30.0);
+  EXPECT_LT(esc->best_available, 4 * 4.2);  // a 4S pack's cut-off, below its full charge
+  EXPECT_EQ(esc->search_rule, "esc_voltage");
+  const std::string line = UnmetRequirementText(*esc);
+  EXPECT_EQ(line.find("controller_min_voltage: needs at least 30 V"), 0u) << line;
+  // The search agrees: nothing flies.
+  const SearchResult s = SearchCatalog(m, cat, {});
+  EXPECT_TRUE(s.best.empty());
+  EXPECT_NE(Find(s.no_design_because, "controller_min_voltage"), nullptr);
+}
+
 // No propeller of the catalog fits a 1 cm frame.
 TEST(NoDesign, AFrameNoPropellerFits) {
   const Mission m = EditedQuad("frame", [](Json& d) { d["vehicle"]["max_prop_diameter_m"] = 0.01; });
