@@ -23,7 +23,9 @@ echo "scored on held-out rows (5-fold cross-validation; leave-one-out below 12 r
 echo "are added one at a time while they pass the F test (p < 0.001), lower AICc, have a parameter"
 echo "2 standard errors from \"no effect\" and cut the cross-validated error by at least 1 %."
 echo "**CV before/after**: rms of the held-out percent errors over all predicted columns (idc_a;"
-echo "omega_rad_s where torque is logged). **Findings**: cause (main parameter) and CV gain."
+echo "omega_rad_s where torque is logged). **Findings**: cause (main parameter) and CV gain. **Still"
+echo "misses**: the trend the extended model's held-out residual still follows (speed, heat accumulated"
+echo "over the run, command), with \"or X?\" where the log cannot tell it from X (docs/diagnosis.md)."
 echo "Negative \`deadband\` = a throttle offset (voltage already at zero command)."
 echo
 
@@ -32,7 +34,7 @@ row() {
   local set=$1 name=$2; shift 2
   local j=$tmp/d.json
   if ! "$exe" diagnose "$@" --json > "$j" 2> "$tmp/err"; then
-    echo "| $set | $name | error: $(head -c 160 "$tmp/err" | sed 's/^dynosize: [^:]*: //' | tr '\n|' ' /') | | | | | |"
+    echo "| $set | $name | error: $(head -c 160 "$tmp/err" | sed 's/^dynosize: [^:]*: //' | tr '\n|' ' /') | | | | | | |"
     return
   fi
   local f
@@ -46,11 +48,17 @@ row() {
   w=$(jq -r '[.warnings[] | select(test("outlier") | not) | sub("^[^ ]+\\.(csv|CSV|txt|TXT): "; "") | .[0:70]] | join("; ")' "$j" | tr '|' '/')
   local st
   st=$(jq -r '.status + ([.checks[] | select(.passed | not)][0] | if . == null then "" else ": " + .name end)' "$j")
-  echo "| $set | $name | $(jq -r .mode "$j") | $(jq .points_used "$j") | $(r2 .baseline.cv_rms_percent_all "$j") % | $(r2 .extended_model.cv_rms_percent_all "$j") % | $f | $st | $w |"
+  echo "| $set | $name | $(jq -r .mode "$j") | $(jq .points_used "$j") | $(r2 .baseline.cv_rms_percent_all "$j") % | $(r2 .extended_model.cv_rms_percent_all "$j") % | $f | $(still "$j") | $st | $w |"
 }
 
-echo "| data set | log | mode | points | CV before | CV after | findings (parameter; gain) | status of the extended model | warnings |"
-echo "|---|---|---|---|---|---|---|---|---|"
+# What the extended model still misses (remaining_trends): "column: mechanism", or "column:
+# mechanism or rival?" where the log cannot tell them apart.
+still() {
+  jq -r '[.remaining_trends[] | "\(.column): \(.follows)" + (if .separable then "" else " or \(.rival)?" end)] | if length == 0 then "-" else join("; ") end' "$1"
+}
+
+echo "| data set | log | mode | points | CV before | CV after | findings (parameter; gain) | still misses | status of the extended model | warnings |"
+echo "|---|---|---|---|---|---|---|---|---|---|"
 s=$data/sjkim_mfr_motor_tables
 row sjkim "T-Motor AT2814 1200kv" "$s/TMotor_AT2814_1200kv.csv" --format mapped --map throttle=Throttle --map vdc_v=Voltage \
   --map idc_a=Current --map rpm=Rpm --map "torque_nm=Torque [N*m]"
@@ -70,7 +78,7 @@ for f in "$data"/heinzgerhard_rcb_large_motor/*.csv; do row heinzgerhard "$(base
 echo
 echo "## Strawson FPV motor/prop sweeps (208 RCbenchmark logs, no torque)"
 echo
-n=0; ok=0; : > "$tmp/causes"; : > "$tmp/before"; : > "$tmp/after"
+n=0; ok=0; : > "$tmp/causes"; : > "$tmp/before"; : > "$tmp/after"; : > "$tmp/still"
 for f in "$data"/strawson_fpv_motor_prop/rawdata/*.csv; do
   n=$((n + 1))
   if "$exe" diagnose "$f" --json > "$tmp/s.json" 2>/dev/null; then
@@ -78,6 +86,7 @@ for f in "$data"/strawson_fpv_motor_prop/rawdata/*.csv; do
     jq -r '.findings[] | "\(.cause) \(.gain_percent)"' "$tmp/s.json" >> "$tmp/causes"
     jq -r '.baseline.cv_rms_percent_all' "$tmp/s.json" >> "$tmp/before"
     jq -r '.extended_model.cv_rms_percent_all' "$tmp/s.json" >> "$tmp/after"
+    jq -r '.remaining_trends[] | "\(.follows) \(.separable)"' "$tmp/s.json" >> "$tmp/still"
   fi
 done
 med() { sort -g "$1" | awk '{a[NR]=$1} END{if (NR == 0) print "-"; else if (NR % 2) printf "%.2f", a[(NR+1)/2]; else printf "%.2f", (a[NR/2]+a[NR/2+1])/2}'; }
@@ -89,6 +98,10 @@ for c in throttle_deadband esc_saturation winding_temperature_rise supply_resist
   awk -v c="$c" '$1 == c {print $2}' "$tmp/causes" > "$tmp/g"
   echo "| $c | $(wc -l < "$tmp/g") | $(med "$tmp/g") % |"
 done
+echo
+left=$(awk '{n[$1]++; if ($2 == "true") t[$1]++} END {for (k in n) printf "%s %d (named in %d)\n", k, n[k], t[k]}' "$tmp/still" | sort | paste -sd ';' | sed 's/;/; /g')
+echo "What the extended model still misses (its held-out current residual; remaining trends,"
+echo "docs/diagnosis.md): $(wc -l < "$tmp/still") of $ok logs have a trend left${left:+: $left}."
 
 # Figures for a few logs: what was wrong, before and after.
 echo
