@@ -28,15 +28,25 @@ void ToParams(const Data& d, const Values& v, MotorParams* m, EscParams* e) {
   e->rsupply_ohm = v[kRsupply];
 }
 
-// Predictions of row k (every measured column) by the model with these values.
-bool PredictRow(const Data& d, const Drive& drive, std::size_t k, double* pred) {
-  const OperatingPoint p = d.torque_known[k] ? drive.AtTorque(d.vdc[k], d.tr[k], d.q[k])
-                                             : drive.AtSpeed(d.vdc[k], d.tr[k], d.omega[k]);
+namespace {
+
+// Row k's operating point at supply voltage vdc and load input x (its torque where the torque is
+// known, else its speed), every measured column into pred.
+OperatingPoint PredictAt(const Data& d, const Drive& drive, std::size_t k, double vdc, double x, double* pred) {
+  const OperatingPoint p = d.torque_known[k] ? drive.AtTorque(vdc, d.tr[k], x) : drive.AtSpeed(vdc, d.tr[k], x);
   pred[kMOmega] = p.omega_rad_s;
   pred[kMIdc] = p.idc_a;
   pred[kMIrms] = p.irms_a;
   pred[kMVll] = p.vll_rms_v;
   pred[kMPac] = p.pac_w;
+  return p;
+}
+
+}  // namespace
+
+// Predictions of row k (every measured column) by the model with these values.
+bool PredictRow(const Data& d, const Drive& drive, std::size_t k, double* pred) {
+  const OperatingPoint p = PredictAt(d, drive, k, d.vdc[k], d.torque_known[k] ? d.q[k] : d.omega[k], pred);
   for (int m = 0; m < kMeasCount; ++m) {
     if (!std::isfinite(pred[m])) return false;
   }
@@ -49,19 +59,10 @@ bool EffectiveVarianceScales(const Data& d, const Drive& drive, std::size_t k, c
   // Relative step of the inputs for the derivatives (their values are of order 1-1000).
   constexpr double kStep = 1e-4;
   constexpr double kSpreadRange = 2.0;
-  const bool tk = d.torque_known[k] != 0;
-  const double x = tk ? d.q[k] : d.omega[k];
+  const double x = d.torque_known[k] ? d.q[k] : d.omega[k];
   double pv[kMeasCount], px[kMeasCount];
-  auto predict = [&](double vdc, double xin, double* out) {
-    const OperatingPoint op = tk ? drive.AtTorque(vdc, d.tr[k], xin) : drive.AtSpeed(vdc, d.tr[k], xin);
-    out[kMOmega] = op.omega_rad_s;
-    out[kMIdc] = op.idc_a;
-    out[kMIrms] = op.irms_a;
-    out[kMVll] = op.vll_rms_v;
-    out[kMPac] = op.pac_w;
-  };
-  predict(d.vdc[k] * (1.0 + kStep), x, pv);
-  predict(d.vdc[k], x == 0.0 ? kStep : x * (1.0 + kStep), px);
+  PredictAt(d, drive, k, d.vdc[k] * (1.0 + kStep), x, pv);
+  PredictAt(d, drive, k, d.vdc[k], x == 0.0 ? kStep : x * (1.0 + kStep), px);
   for (int t = d.term_begin[k]; t < d.term_begin[k + 1]; ++t) {
     const Term& term = d.terms[t];
     const double sv = (pv[term.meas] - pred[term.meas]) / kStep;  // dy/dVDC * VDC

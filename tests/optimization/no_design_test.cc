@@ -129,25 +129,39 @@ TEST(NoDesign, TheSearchReturnsThemWhenNothingFlies) {
   EXPECT_EQ(SearchResultJson(ReadMission(kQuad), flies)["no_design_because"], Json::array());
 }
 
+// The small test catalog (optimization/small_catalog.h) with its "escs" array edited, read back.
+template <typename Edit>
+Catalog SmallCatalogWithEscs(const std::string& tag, Edit edit_escs) {
+  const fs::path dir = testing_util::WriteSmallCatalog(tag);
+  const fs::path file = dir / "catalog" / "small.json";
+  Json doc = ReadJsonFile(file.string());
+  edit_escs(doc["escs"]);
+  std::ofstream(file) << DumpJson(doc);
+  const Catalog cat = Catalog::Load((dir / "catalog").string());
+  fs::remove_all(dir);
+  return cat;
+}
+
+// The small catalog's quadcopter mission with an n-cell pack.
+Mission SmallQuadWithCells(int cells) {
+  Json quad = ParseJsonText(testing_util::kQuad, "quad.json");
+  quad["battery"]["cells"] = cells;
+  return ParseMission(quad, "quad.json");
+}
+
 // A pack no ESC is rated for: the small test catalog (optimization/small_catalog.h) with only its
 // ESCs that state vdc_max_v (an ESC without a rating passes R1 at any voltage, as in the search),
 // the highest of them 33.6 V (8S), and a 10S pack.
 TEST(NoDesign, APackAboveEveryRatingNamesTheVoltage) {
-  const fs::path dir = testing_util::WriteSmallCatalog("no_design_volts");
-  const fs::path file = dir / "catalog" / "small.json";
-  Json doc = ReadJsonFile(file.string());
-  Json rated = Json::array();
-  for (const Json& e : doc["escs"]) {
-    if (e.contains("vdc_max_v")) rated.push_back(e);
-  }
-  ASSERT_FALSE(rated.empty());
-  doc["escs"] = rated;
-  std::ofstream(file) << DumpJson(doc);
-  const Catalog cat = Catalog::Load((dir / "catalog").string());
-  fs::remove_all(dir);
-  Json quad = ParseJsonText(testing_util::kQuad, "quad.json");
-  quad["battery"]["cells"] = 10;
-  const Mission m = ParseMission(quad, "quad.json");
+  const Catalog cat = SmallCatalogWithEscs("no_design_volts", [](Json& escs) {
+    Json rated = Json::array();
+    for (const Json& e : escs) {
+      if (e.contains("vdc_max_v")) rated.push_back(e);
+    }
+    escs = rated;
+  });
+  ASSERT_FALSE(cat.escs().empty());
+  const Mission m = SmallQuadWithCells(10);
   const std::vector<UnmetRequirement> why = UnmetRequirements(m, cat);
   const UnmetRequirement* esc = Find(why, "controller_voltage");
   ASSERT_NE(esc, nullptr);
@@ -170,16 +184,10 @@ TEST(NoDesign, APackAboveEveryRatingNamesTheVoltage) {
 // ESCs that need more voltage than the pack keeps to its cut-off: the small test catalog with
 // every ESC's least supply voltage set to 30 V (a high-voltage controller's window) and a 4S pack.
 TEST(NoDesign, AnEscWhoseLeastVoltageIsAboveTheCutOffIsNamed) {
-  const fs::path dir = testing_util::WriteSmallCatalog("no_design_min_volts");
-  const fs::path file = dir / "catalog" / "small.json";
-  Json doc = ReadJsonFile(file.string());
-  for (Json& e : doc["escs"]) e["vdc_min_v"] = 30.0;
-  std::ofstream(file) << DumpJson(doc);
-  const Catalog cat = Catalog::Load((dir / "catalog").string());
-  fs::remove_all(dir);
-  Json quad = ParseJsonText(testing_util::kQuad, "quad.json");
-  quad["battery"]["cells"] = 4;
-  const Mission m = ParseMission(quad, "quad.json");
+  const Catalog cat = SmallCatalogWithEscs("no_design_min_volts", [](Json& escs) {
+    for (Json& e : escs) e["vdc_min_v"] = 30.0;
+  });
+  const Mission m = SmallQuadWithCells(4);
   const std::vector<UnmetRequirement> why = UnmetRequirements(m, cat);
   const UnmetRequirement* esc = Find(why, "controller_min_voltage");
   ASSERT_NE(esc, nullptr);
